@@ -1,0 +1,10 @@
+#pragma once
+// Each subcommand registers itself on the root app; its callback runs the library and prints.
+#include <CLI/CLI.hpp>
+
+namespace topple::cli {
+
+void add_info_command(CLI::App& app);
+void add_slide_command(CLI::App& app);
+
+}  // namespace topple::cli

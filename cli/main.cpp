@@ -1,0 +1,30 @@
+// topple: earthquake response of free-standing rigid objects. Exit status: 0 success, 2 bad input, 1 other errors.
+#include <cstdio>
+#include <exception>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "commands.hpp"
+#include "topple/error.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"topple: sliding, rocking and overturning of rigid objects in earthquakes, and what they tell "
+               "about the shaking"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "topple 0.1.0");
+  topple::cli::add_info_command(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 2;
+  } catch (const topple::InputError& e) {
+    fmt::print(stderr, "topple: error: {}\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "topple: internal error: {}\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,250 @@
+#include "topple/ground_motion.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <utility>
+
+#include <fmt/format.h>
+
+#include "topple/error.hpp"
+
+namespace topple {
+namespace {
+
+void require_finite_samples(const std::vector<double>& values, const char* field) {
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (!std::isfinite(values[i])) {
+      throw parameter_error(field, fmt::format("sample {} is not finite ({})", i, values[i]));
+    }
+  }
+}
+
+/// Solves the small dense system A x = b (Gaussian elimination with partial pivoting); A is n x n row-major.
+std::vector<double> solve_dense(std::vector<double> a, std::vector<double> b) {
+  const std::size_t n = b.size();
+  for (std::size_t col = 0; col < n; ++col) {
+    std::size_t pivot = col;
+    for (std::size_t r = col + 1; r < n; ++r) {
+      if (std::abs(a[r * n + col]) > std::abs(a[pivot * n + col])) pivot = r;
+    }
+    for (std::size_t c = 0; c < n; ++c) std::swap(a[col * n + c], a[pivot * n + c]);
+    std::swap(b[col], b[pivot]);
+    const double diag = a[col * n + col];
+    for (std::size_t r = col + 1; r < n; ++r) {
+      const double f = a[r * n + col] / diag;
+      for (std::size_t c = col; c < n; ++c) a[r * n + c] -= f * a[col * n + c];
+      b[r] -= f * b[col];
+    }
+  }
+  std::vector<double> x(n);
+  for (std::size_t i = n; i-- > 0;) {
+    double s = b[i];
+    for (std::size_t c = i + 1; c < n; ++c) s -= a[i * n + c] * x[c];
+    x[i] = s / a[i * n + i];
+  }
+  return x;
+}
+
+}  // namespace
+
+GroundMotion GroundMotion::uniform(std::vector<double> accel_m_s2, double dt_s, double start_time_s,
+                                   RecordMetadata metadata) {
+  if (accel_m_s2.empty()) throw parameter_error("accel", "a ground motion needs at least one sample");
+  if (!(dt_s > 0.0) || !std::isfinite(dt_s)) {
+    throw parameter_error("dt_s", fmt::format("time step must be positive and finite, got {}", dt_s));
+  }
+  if (!std::isfinite(start_time_s)) throw parameter_error("start_time_s", "start time must be finite");
+  require_finite_samples(accel_m_s2, "accel");
+  GroundMotion m;
+  m.accel_ = std::move(accel_m_s2);
+  m.dt_ = dt_s;
+  m.t0_ = start_time_s;
+  m.meta_ = std::move(metadata);
+  return m;
+}
+
+GroundMotion GroundMotion::irregular(std::vector<double> time_s, std::vector<double> accel_m_s2,
+                                     RecordMetadata metadata) {
+  if (time_s.size() != accel_m_s2.size()) {
+    throw parameter_error("time", fmt::format("{} times but {} accelerations", time_s.size(), accel_m_s2.size()));
+  }
+  if (time_s.size() < 2) throw parameter_error("time", "an irregular record needs at least two samples");
+  require_finite_samples(time_s, "time");
+  require_finite_samples(accel_m_s2, "accel");
+  for (std::size_t i = 1; i < time_s.size(); ++i) {
+    if (time_s[i] < time_s[i - 1]) {
+      throw parameter_error("time", fmt::format("times decrease at sample {} ({} after {})", i, time_s[i],
+                                                time_s[i - 1]));
+    }
+  }
+  if (!(time_s.back() > time_s.front())) throw parameter_error("time", "the record has zero duration");
+  GroundMotion m;
+  m.t0_ = time_s.front();
+  m.dt_ = (time_s.back() - time_s.front()) / static_cast<double>(time_s.size() - 1);
+  m.accel_ = std::move(accel_m_s2);
+  m.time_ = std::move(time_s);
+  m.meta_ = std::move(metadata);
+  return m;
+}
+
+std::vector<double> GroundMotion::times_s() const {
+  if (!time_.empty()) return time_;
+  std::vector<double> t(size());
+  for (std::size_t i = 0; i < t.size(); ++i) t[i] = time_s(i);
+  return t;
+}
+
+double GroundMotion::accel_at(double t) const noexcept {
+  const std::size_t n = size();
+  if (n == 0 || t < t0_ || t > end_time_s()) return 0.0;
+  std::size_t hi = 0;
+  if (time_.empty()) {
+    const double x = (t - t0_) / dt_;
+    const auto lo = std::min(static_cast<std::size_t>(x), n - 1);
+    if (lo + 1 >= n) return accel_[n - 1];
+    const double f = x - static_cast<double>(lo);
+    return accel_[lo] + f * (accel_[lo + 1] - accel_[lo]);
+  }
+  // first sample strictly after t: at a jump this picks the value after it
+  hi = static_cast<std::size_t>(std::upper_bound(time_.begin(), time_.end(), t) - time_.begin());
+  if (hi >= n) return accel_[n - 1];
+  const std::size_t lo = hi - 1;
+  const double span = time_[hi] - time_[lo];
+  const double f = span > 0.0 ? (t - time_[lo]) / span : 1.0;
+  return accel_[lo] + f * (accel_[hi] - accel_[lo]);
+}
+
+double GroundMotion::pga_m_s2() const noexcept {
+  double peak = 0.0;
+  for (double a : accel_) peak = std::max(peak, std::abs(a));
+  return peak;
+}
+
+double GroundMotion::pga_time_s() const noexcept {
+  double peak = -1.0;
+  std::size_t at = 0;
+  for (std::size_t i = 0; i < accel_.size(); ++i) {
+    if (std::abs(accel_[i]) > peak) {
+      peak = std::abs(accel_[i]);
+      at = i;
+    }
+  }
+  return time_s(at);
+}
+
+GroundMotion GroundMotion::scaled(double factor) const {
+  if (!std::isfinite(factor)) throw parameter_error("scale", fmt::format("scale factor must be finite, got {}", factor));
+  GroundMotion m = *this;
+  for (double& a : m.accel_) a *= factor;
+  return m;
+}
+
+GroundMotion GroundMotion::scaled_to_pga(double pga_m_s2) const {
+  if (!(pga_m_s2 > 0.0) || !std::isfinite(pga_m_s2)) {
+    throw parameter_error("pga", fmt::format("target PGA must be positive and finite, got {} m/s^2", pga_m_s2));
+  }
+  const double peak = this->pga_m_s2();
+  if (peak == 0.0) throw parameter_error("pga", "cannot scale a record that is zero everywhere to a PGA");
+  return scaled(pga_m_s2 / peak);
+}
+
+GroundMotion GroundMotion::time_scaled(double factor) const {
+  if (!(factor > 0.0) || !std::isfinite(factor)) {
+    throw parameter_error("time_scale", fmt::format("time scale factor must be positive and finite, got {}", factor));
+  }
+  GroundMotion m = *this;
+  m.dt_ *= factor;
+  for (double& t : m.time_) t = t0_ + factor * (t - t0_);
+  return m;
+}
+
+GroundMotion GroundMotion::trimmed(double t_begin, double t_end) const {
+  if (!(t_end > t_begin) || !std::isfinite(t_begin) || !std::isfinite(t_end)) {
+    throw parameter_error("trim", fmt::format("trim window [{}, {}] s is empty or not finite", t_begin, t_end));
+  }
+  const double lo = std::max(t_begin, t0_);
+  const double hi = std::min(t_end, end_time_s());
+  if (!(hi > lo)) {
+    throw parameter_error("trim", fmt::format("trim window [{}, {}] s lies outside the record [{}, {}] s", t_begin,
+                                              t_end, t0_, end_time_s()));
+  }
+  std::vector<double> t{lo};
+  std::vector<double> a{accel_at(lo)};
+  for (std::size_t i = 0; i < size(); ++i) {
+    const double ti = time_s(i);
+    if (ti > lo && ti < hi) {
+      t.push_back(ti);
+      a.push_back(accel_[i]);
+    }
+  }
+  t.push_back(hi);
+  a.push_back(accel_at(hi));
+  if (is_uniform()) {
+    // Keep the uniform grid when the window falls on samples; otherwise the result is irregular by nature.
+    const double first = (lo - t0_) / dt_;
+    const double last = (hi - t0_) / dt_;
+    if (std::abs(first - std::round(first)) < 1e-9 && std::abs(last - std::round(last)) < 1e-9) {
+      const auto i0 = static_cast<std::size_t>(std::llround(first));
+      const auto i1 = static_cast<std::size_t>(std::llround(last));
+      std::vector<double> part(accel_.begin() + static_cast<std::ptrdiff_t>(i0),
+                               accel_.begin() + static_cast<std::ptrdiff_t>(i1) + 1);
+      return uniform(std::move(part), dt_, time_s(i0), meta_);
+    }
+  }
+  return irregular(std::move(t), std::move(a), meta_);
+}
+
+GroundMotion GroundMotion::resampled(double dt_s) const {
+  if (!(dt_s > 0.0) || !std::isfinite(dt_s)) {
+    throw parameter_error("dt_s", fmt::format("resampling step must be positive and finite, got {}", dt_s));
+  }
+  const auto n = static_cast<std::size_t>(std::floor(duration_s() / dt_s * (1.0 + 1e-12))) + 1;
+  std::vector<double> a(n);
+  for (std::size_t i = 0; i < n; ++i) a[i] = accel_at(t0_ + static_cast<double>(i) * dt_s);
+  return uniform(std::move(a), dt_s, t0_, meta_);
+}
+
+GroundMotion GroundMotion::baseline_corrected(int order) const {
+  if (order < 0 || order > 6) {
+    throw parameter_error("baseline_order", fmt::format("polynomial order must be 0..6, got {}", order));
+  }
+  const auto k = static_cast<std::size_t>(order) + 1;
+  // Least squares in the scaled time x in [-1, 1], which keeps the normal equations well conditioned.
+  const double mid = 0.5 * (t0_ + end_time_s());
+  const double half = std::max(0.5 * duration_s(), 1e-300);
+  std::vector<double> gram(k * k, 0.0);
+  std::vector<double> rhs(k, 0.0);
+  std::array<double, 13> powers{};
+  for (std::size_t i = 0; i < size(); ++i) {
+    const double x = (time_s(i) - mid) / half;
+    powers[0] = 1.0;
+    for (std::size_t p = 1; p < 2 * k - 1; ++p) powers[p] = powers[p - 1] * x;
+    for (std::size_t r = 0; r < k; ++r) {
+      rhs[r] += powers[r] * accel_[i];
+      for (std::size_t c = 0; c < k; ++c) gram[r * k + c] += powers[r + c];
+    }
+  }
+  if (size() < k) throw parameter_error("baseline_order", "record has fewer samples than polynomial coefficients");
+  const std::vector<double> coef = solve_dense(std::move(gram), std::move(rhs));
+  GroundMotion m = *this;
+  for (std::size_t i = 0; i < size(); ++i) {
+    const double x = (time_s(i) - mid) / half;
+    double poly = 0.0;
+    for (std::size_t p = k; p-- > 0;) poly = poly * x + coef[p];
+    m.accel_[i] -= poly;
+  }
+  return m;
+}
+
+GroundMotion GroundMotion::to_uniform() const {
+  if (is_uniform()) return *this;
+  double smallest = duration_s();
+  for (std::size_t i = 1; i < time_.size(); ++i) {
+    const double step = time_[i] - time_[i - 1];
+    if (step > 0.0) smallest = std::min(smallest, step);
+  }
+  return resampled(smallest);
+}
+
+}  // namespace topple

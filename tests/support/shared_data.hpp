@@ -1,0 +1,38 @@
+#pragma once
+// Test fixtures: where ../shared lives, and running the built CLI.
+#include <filesystem>
+#include <string>
+
+namespace topple::test {
+
+/// The shared/ folder beside the clone (records, verification, seed). Tests that need it skip when it is absent.
+[[nodiscard]] std::filesystem::path shared_dir();
+[[nodiscard]] std::filesystem::path shared_record(const std::string& name);
+[[nodiscard]] bool have_shared();
+
+struct CommandResult {
+  int exit_code = -1;
+  std::string out;  ///< stdout
+  std::string err;  ///< stderr
+};
+
+/// Runs the built `topple` CLI with the given argument string (shell-quoted by the caller).
+[[nodiscard]] CommandResult run_cli(const std::string& args);
+
+/// A fresh temporary directory, removed when the object dies.
+class TempDir {
+ public:
+  TempDir();
+  ~TempDir();
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  [[nodiscard]] const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+/// Writes text to a file (binary, exactly as given).
+void write_file(const std::filesystem::path& path, const std::string& text);
+
+}  // namespace topple::test
