@@ -1,10 +1,19 @@
-// Placeholder: the readers are being written (issue 2, section 2).
+// Ground-motion readers: format names, detection from content, dispatch, and the plain-text reader.
+// The agency formats live one per file beside this one (peer_at2.cpp, cosmos_v2.cpp, csmip_v2.cpp, knet.cpp,
+// usgs_smc.cpp, esm.cpp); the layouts they follow are summarised in ../shared/records/SOURCES.md.
 #include "topple/io/read.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <sstream>
+#include <system_error>
 
+#include <fmt/format.h>
+
+#include "text_lines.hpp"
 #include "topple/error.hpp"
+#include "topple/units.hpp"
 
 namespace topple::io {
 
@@ -27,21 +36,351 @@ Format parse_format_name(std::string_view name, const std::string& field) {
                    Format::usgs_smc, Format::esm, Format::plain}) {
     if (name == format_name(f)) return f;
   }
-  throw parameter_error(field, "unknown format '" + std::string(name) + "'");
+  throw parameter_error(field, "unknown format '" + std::string(name) +
+                                   "' (known: auto, peer-at2, cosmos-v2, csmip-v2, knet, usgs-smc, esm, plain)");
 }
 
-Format detect_format(std::string_view) { return Format::plain; }
+Format detect_format(std::string_view content) {
+  // Every agency format announces itself in its first lines; only those are looked at, so detection costs nothing
+  // on large files. The order matters only where signatures could overlap: an SMC first line ("2 CORRECTED
+  // ACCELEROGRAM") also names a corrected accelerogram, as CSMIP V2 does, so the stronger CSMIP data-section
+  // signature is tried first.
+  const std::vector<detail::Line> head = detail::split_lines(content, 120);
+  if (detail::looks_like_cosmos_v2(head)) return Format::cosmos_v2;
+  if (detail::looks_like_csmip_v2(head)) return Format::csmip_v2;
+  if (detail::looks_like_usgs_smc(head)) return Format::usgs_smc;
+  if (detail::looks_like_knet(head)) return Format::knet;
+  if (detail::looks_like_esm(head)) return Format::esm;
+  if (detail::looks_like_peer_at2(head)) return Format::peer_at2;
+  return Format::plain;
+}
 
-GroundMotion parse_motion(std::string_view, const std::string& name, const ReadOptions&) {
-  throw InputError(InputLocation{.file = name, .line = {}, .field = {}}, "readers not implemented yet");
+GroundMotion parse_motion(std::string_view content, const std::string& name, const ReadOptions& options) {
+  if (!(options.g_m_s2 > 0.0) || !std::isfinite(options.g_m_s2)) {
+    throw parameter_error("g", fmt::format("g must be positive and finite, got {}", options.g_m_s2));
+  }
+  const Format format = options.format == Format::automatic ? detect_format(content) : options.format;
+  const detail::Text text(content, name);
+  if (options.channel && *options.channel < 1) {
+    text.fail_file("--channel", fmt::format("channels are numbered from 1, got {}", *options.channel));
+  }
+  if (options.channel && *options.channel != 1 && format != Format::csmip_v2 && format != Format::cosmos_v2) {
+    text.fail_file("--channel", fmt::format("a {} file holds one channel; there is no channel {}",
+                                            format_name(format), *options.channel));
+  }
+  if (text.empty() || std::all_of(text.lines().begin(), text.lines().end(),
+                                  [](const detail::Line& l) { return detail::is_blank(l.text); })) {
+    text.fail_file("", "the file is empty");
+  }
+  GroundMotion motion = [&] {
+    switch (format) {
+      case Format::peer_at2: return detail::read_peer_at2(text, options);
+      case Format::cosmos_v2: return detail::read_cosmos_v2(text, options);
+      case Format::csmip_v2: return detail::read_csmip_v2(text, options);
+      case Format::knet: return detail::read_knet(text, options);
+      case Format::usgs_smc: return detail::read_usgs_smc(text, options);
+      case Format::esm: return detail::read_esm(text, options);
+      case Format::plain:
+      case Format::automatic: break;
+    }
+    return detail::read_plain(text, options);
+  }();
+  RecordMetadata meta = motion.metadata();
+  meta.format = std::string(format_name(format));
+  meta.source_file = name;
+  motion.set_metadata(std::move(meta));
+  return motion;
 }
 
 GroundMotion read_motion(const std::filesystem::path& path, const ReadOptions& options) {
+  const std::string name = path.string();
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    throw InputError(InputLocation{.file = name, .line = {}, .field = {}}, "is a directory, not a record file");
+  }
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(InputLocation{.file = path.string(), .line = {}, .field = {}}, "cannot open file");
+  if (!in) throw InputError(InputLocation{.file = name, .line = {}, .field = {}}, "cannot open file");
   std::ostringstream text;
   text << in.rdbuf();
-  return parse_motion(text.str(), path.string(), options);
+  if (in.bad()) throw InputError(InputLocation{.file = name, .line = {}, .field = {}}, "cannot read file");
+  return parse_motion(text.str(), name, options);
 }
 
+// ---------------------------------------------------------------------------------------------------------------
+// Plain text
+//
+// One column of accelerations at a given dt, or time/acceleration pairs separated by a comma or by blanks. Lines
+// starting with '#' are comments. An optional header line names the columns, with units: "time_s,accel_g",
+// "time_s,accel_m_s2", "accel_cm_s2", "Time (s),Acceleration (g's)". The pySLAMMER files carry that header as their
+// last comment line ("# Time (s),Acceleration (g's)"), so a comment right before the data that names a time and an
+// acceleration column, one per data column, counts as the header too. Without a unit in the header or
+// ReadOptions::units the reader refuses the file rather than assume g.
+// ---------------------------------------------------------------------------------------------------------------
+namespace detail {
+namespace {
+
+struct Column {
+  std::string name;      ///< as written
+  std::string quantity;  ///< lower case, without the unit
+  std::string unit;      ///< lower case, "" when none is named
+};
+
+/// "accel_g" -> {accel, g}; "accel_m_s2" -> {accel, m/s2}; "Acceleration (g's)" -> {acceleration, g};
+/// "time [s]" -> {time, s}.
+Column parse_column(std::string_view raw) {
+  Column c;
+  c.name = std::string(trim(raw));
+  std::string s = to_lower(c.name);
+  const std::size_t bracket = s.find_first_of("([");
+  if (bracket != std::string::npos) {
+    const std::size_t close = s.find_first_of(")]", bracket);
+    c.unit = std::string(trim(std::string_view(s).substr(bracket + 1, close == std::string::npos
+                                                                          ? std::string::npos
+                                                                          : close - bracket - 1)));
+    c.quantity = std::string(trim(std::string_view(s).substr(0, bracket)));
+  } else if (const std::size_t us = s.find('_'); us != std::string::npos) {
+    c.quantity = s.substr(0, us);
+    c.unit = s.substr(us + 1);
+    // "m_s2" -> "m/s2": in an identifier the first underscore of the unit stands for the slash.
+    if (const std::size_t u2 = c.unit.find('_'); u2 != std::string::npos) c.unit[u2] = '/';
+  } else {
+    c.quantity = s;
+  }
+  if (c.unit.ends_with("'s")) c.unit.resize(c.unit.size() - 2);  // "g's"
+  c.unit = std::string(trim(c.unit));
+  return c;
+}
+
+bool is_time_column(const Column& c) { return c.quantity == "t" || c.quantity.starts_with("time"); }
+bool is_accel_column(const Column& c) {
+  return c.quantity == "a" || c.quantity == "ag" || c.quantity.starts_with("acc") ||
+         c.quantity.find("accel") != std::string::npos;
+}
+
+/// Fields of a line: comma-separated when it has a comma, else blank-separated. Trailing empty fields (a trailing
+/// comma) are dropped; an empty field elsewhere is kept so that the caller can refuse it.
+std::vector<std::string_view> split_fields(std::string_view s) {
+  if (s.find(',') == std::string_view::npos) return split_whitespace(s);
+  std::vector<std::string_view> fields;
+  std::size_t begin = 0;
+  while (true) {
+    const std::size_t comma = s.find(',', begin);
+    fields.push_back(trim(s.substr(begin, comma == std::string_view::npos ? std::string_view::npos : comma - begin)));
+    if (comma == std::string_view::npos) break;
+    begin = comma + 1;
+  }
+  while (!fields.empty() && fields.back().empty()) fields.pop_back();
+  return fields;
+}
+
+std::string_view comment_body(std::string_view s) {
+  s = trim(s);
+  if (s.starts_with('#')) s.remove_prefix(1);
+  return trim(s);
+}
+
+struct Header {
+  std::vector<Column> columns;
+  std::size_t line = 0;
+  bool from_comment = false;
+};
+
+/// A commented line taken as the header only when it names what the data columns are.
+std::optional<Header> header_from_comment(const Line& comment, std::size_t data_columns) {
+  const auto fields = split_fields(comment_body(comment.text));
+  if (fields.size() != data_columns) return std::nullopt;
+  Header h;
+  h.line = comment.number;
+  h.from_comment = true;
+  for (std::string_view f : fields) h.columns.push_back(parse_column(f));
+  const bool names_columns = data_columns == 2 ? is_time_column(h.columns[0]) && is_accel_column(h.columns[1])
+                                               : is_accel_column(h.columns[0]);
+  if (!names_columns) return std::nullopt;
+  return h;
+}
+
+/// "Time Series: Kobe, Japan 1995 - TAK-090" (pySLAMMER) -> event, station, component.
+void metadata_from_title(std::string_view comment, RecordMetadata& meta) {
+  std::string_view s = comment_body(comment);
+  if (!starts_with_ci(s, "time series:")) return;
+  s = trim(s.substr(12));
+  while (!s.empty() && s.back() == ',') s.remove_suffix(1);
+  const std::size_t dash = s.rfind(" - ");
+  if (dash == std::string_view::npos) {
+    meta.event = std::string(s);
+    return;
+  }
+  meta.event = std::string(trim(s.substr(0, dash)));
+  const std::string_view rest = trim(s.substr(dash + 3));
+  const std::size_t hyphen = rest.rfind('-');
+  if (hyphen == std::string_view::npos || hyphen == 0) {
+    meta.station = std::string(rest);
+  } else {
+    meta.station = std::string(rest.substr(0, hyphen));
+    meta.component = std::string(rest.substr(hyphen + 1));
+  }
+}
+
+}  // namespace
+
+GroundMotion read_plain(const Text& text, const ReadOptions& options) {
+  std::optional<Header> header;
+  std::optional<Line> last_comment;
+  std::optional<Line> first_comment;
+  std::size_t columns = 0;
+  std::size_t first_data_line = 0;
+  Samples times;
+  Samples accels;
+
+  for (const Line& line : text.lines()) {
+    const std::string_view s = trim(line.text);
+    if (s.empty()) continue;
+    if (s.starts_with('#')) {
+      if (columns == 0) {
+        last_comment = line;
+        if (!first_comment) first_comment = line;
+      }
+      continue;
+    }
+    const auto fields = split_fields(s);
+    if (fields.empty()) {
+      text.fail(line.number, "", fmt::format("no values on the line {}", detail::quoted(s)));
+    }
+    if (columns == 0 && !header && !try_number(fields.front())) {
+      // The first non-comment line that does not start with a number names the columns.
+      Header h;
+      h.line = line.number;
+      for (std::string_view f : fields) {
+        if (f.empty()) text.fail(line.number, "header", "empty column name in the header");
+        h.columns.push_back(parse_column(f));
+      }
+      header = std::move(h);
+      continue;
+    }
+    if (columns == 0) {
+      columns = fields.size();
+      first_data_line = line.number;
+      if (columns > 2) {
+        text.fail(line.number, "",
+                  fmt::format("{} columns; a plain file holds one (acceleration) or two (time, acceleration)",
+                              columns));
+      }
+      if (!header && last_comment) header = header_from_comment(*last_comment, columns);
+    } else if (fields.size() != columns) {
+      text.fail(line.number, "",
+                fmt::format("{} column{} where line {} has {}", fields.size(), fields.size() == 1 ? "" : "s",
+                            first_data_line, columns));
+    }
+    for (std::size_t k = 0; k < fields.size(); ++k) {
+      if (fields[k].empty()) text.fail(line.number, "", fmt::format("empty field {} (two separators in a row)", k + 1));
+    }
+    if (columns == 2) {
+      times.push(parse_number(text, fields[0], line.number, "time"), line.number);
+      accels.push(parse_number(text, fields[1], line.number, "acceleration"), line.number);
+    } else {
+      accels.push(parse_number(text, fields[0], line.number, "acceleration"), line.number);
+    }
+  }
+  if (accels.size() == 0) {
+    text.fail(header ? header->line : text.last_line_number(), "",
+              "no data: the file holds no numeric lines (only comments or a header)");
+  }
+
+  // Column meaning and units.
+  std::string time_unit;
+  std::string accel_unit;
+  std::size_t unit_line = 0;
+  std::string accel_field = "acceleration";
+  if (header) {
+    if (header->columns.size() != columns) {
+      text.fail(header->line, "header",
+                fmt::format("the header names {} column{} but the data has {}", header->columns.size(),
+                            header->columns.size() == 1 ? "" : "s", columns));
+    }
+    const Column& accel_column = header->columns.back();
+    if (columns == 2 && !is_time_column(header->columns[0])) {
+      text.fail(header->line, header->columns[0].name,
+                "the first of two columns must be the time (e.g. 'time_s,accel_g')");
+    }
+    if (!is_accel_column(accel_column) && !header->from_comment) {
+      text.fail(header->line, accel_column.name,
+                "the acceleration column must be named accel/acc/acceleration with its unit (e.g. 'accel_g')");
+    }
+    if (columns == 2) time_unit = header->columns[0].unit;
+    accel_unit = accel_column.unit;
+    accel_field = accel_column.name;
+    unit_line = header->line;
+  }
+
+  RecordMetadata meta;
+  if (first_comment) metadata_from_title(first_comment->text, meta);
+  double factor = 0.0;
+  if (!options.units.empty()) {
+    try {
+      factor = acceleration_unit_factor(options.units, "--units", options.g_m_s2);
+    } catch (const InputError& e) {
+      text.fail_file("--units", e.problem());
+    }
+    meta.units_as_read = options.units;
+  } else if (!accel_unit.empty()) {
+    factor = unit_factor(text, accel_unit, unit_line, accel_field, options.g_m_s2);
+    meta.units_as_read = accel_unit;
+  } else if (header) {
+    text.fail(header->line, accel_field,
+              "the header names no acceleration unit; name it (e.g. 'accel_g', 'accel_m_s2', 'accel_cm_s2') or "
+              "give --units (g, m/s2, cm/s2, gal)");
+  } else {
+    text.fail_file("--units",
+                   "a plain file without a header naming its unit needs --units (g, m/s2, cm/s2, gal)");
+  }
+  std::vector<double> accel = to_m_s2(text, accels, factor, accel_field);
+
+  if (columns == 1) {
+    if (!options.dt_s) {
+      text.fail_file("--dt", "a one-column file holds no times; give its time step with --dt");
+    }
+    if (!(*options.dt_s > 0.0) || !std::isfinite(*options.dt_s)) {
+      text.fail_file("--dt", fmt::format("the time step must be positive and finite, got {}", *options.dt_s));
+    }
+    return GroundMotion::uniform(std::move(accel), *options.dt_s, 0.0, std::move(meta));
+  }
+
+  if (options.dt_s) {
+    text.fail_file("--dt", "this file has a time column; --dt applies only to one-column files");
+  }
+  double time_factor = 1.0;
+  if (time_unit == "ms") {
+    time_factor = 1e-3;
+  } else if (!time_unit.empty() && time_unit != "s" && time_unit != "sec") {
+    text.fail(header->line, header->columns[0].name,
+              fmt::format("unknown time unit {} (known: s, ms)", detail::quoted(time_unit)));
+  }
+  std::vector<double> t = times.values;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    t[i] *= time_factor;
+    if (i > 0 && !(t[i] > t[i - 1])) {
+      text.fail(times.lines[i], "time",
+                fmt::format("time {} {} the time {} of line {}; times must increase", times.values[i],
+                            t[i] == t[i - 1] ? "repeats" : "is before", times.values[i - 1], times.lines[i - 1]));
+    }
+  }
+  if (t.size() < 2) {
+    text.fail(times.lines.front(), "time", "a time/acceleration file needs at least two rows");
+  }
+  const double span = t.back() - t.front();
+  if (!std::isfinite(span)) {
+    text.fail(times.lines.back(), "time", "the time span of the record is too large to represent");
+  }
+  // Uniform when every interval equals the mean interval to 1e-9 relative: times printed with a few decimals
+  // ("40.13", "40.14") differ from a uniform grid only by the rounding of their decimal representation.
+  const double dt = span / static_cast<double>(t.size() - 1);
+  bool uniform = dt > 0.0;
+  for (std::size_t i = 1; i < t.size() && uniform; ++i) {
+    if (std::abs((t[i] - t[i - 1]) - dt) > 1e-9 * dt) uniform = false;
+  }
+  if (uniform) return GroundMotion::uniform(std::move(accel), dt, t.front(), std::move(meta));
+  return GroundMotion::irregular(std::move(t), std::move(accel), std::move(meta));
+}
+
+}  // namespace detail
 }  // namespace topple::io
