@@ -37,6 +37,24 @@ void add_motion_options(CLI::App& cmd, MotionOptions& options);
 /// Applies --scale-pga / --scale / --invert to a motion.
 [[nodiscard]] GroundMotion transform_motion(GroundMotion motion, const MotionOptions& options);
 
+/// An analytic pulse instead of a record file (--pulse KIND --amp-g A --duration T [--tail T] [--pulse-dt T]).
+struct PulseOptions {
+  std::string kind;            // empty: no pulse
+  std::optional<double> amp_g;
+  std::string duration = "";   // "0.1" (s) or with a unit ("100ms")
+  std::string tail = "";       // still ground after the pulse; default: 5 pulse durations
+  std::string dt = "";         // sampling of smooth pulses; default duration/2000
+};
+
+/// Adds --pulse, --amp-g, --duration, --tail, --pulse-dt.
+void add_pulse_options(CLI::App& cmd, PulseOptions& options);
+
+/// The pulse as a motion (g from `g_m_s2`). Throws InputError naming the option.
+[[nodiscard]] GroundMotion make_pulse_motion(const PulseOptions& options, double g_m_s2);
+
+/// A duration option: a bare number is seconds, or a value with a unit ("100ms").
+[[nodiscard]] double parse_seconds(const std::string& text, const std::string& option);
+
 /// JSON-friendly number: NaN/Inf never reach output (callers pass optionals for "none").
 [[nodiscard]] std::string format_seconds_or_none(const std::optional<double>& t);
 

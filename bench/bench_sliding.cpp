@@ -1,0 +1,96 @@
+// Sliding throughput: record samples per second per core for a single block, and the 100-coefficient sliding
+// spectrum kernel. The record is the first 20,000 samples (dt = 0.005 s) of Kocaeli 1999 ATS-090 from
+// ../shared/records/slammer (PGA 0.185 g); without ../shared, a seeded synthetic record of the same length.
+// Run:  build/release/bench/bench_sliding  (figures in docs/performance.md)
+#include <cmath>
+#include <filesystem>
+#include <random>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+
+#include "topple/io/read.hpp"
+#include "topple/sliding.hpp"
+
+namespace {
+
+using topple::GroundMotion;
+
+GroundMotion load_record() {
+  const std::filesystem::path path =
+      std::filesystem::path(TOPPLE_SHARED_DIR) / "records" / "slammer" / "Kocaeli_1999_ATS-090.csv";
+  constexpr std::size_t n = 20000;
+  if (std::filesystem::exists(path)) {
+    const GroundMotion full = topple::io::read_motion(path);
+    std::vector<double> a(full.accel_m_s2().begin(), full.accel_m_s2().begin() + n);
+    return GroundMotion::uniform(std::move(a), full.dt_s());
+  }
+  std::mt19937_64 rng(42);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  std::vector<double> a(n);
+  double y1 = 0.0;
+  double y2 = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double y = 1.9 * y1 - 0.92 * y2 + noise(rng);
+    y2 = y1;
+    y1 = y;
+    a[i] = y;
+  }
+  return GroundMotion::uniform(std::move(a), 0.005).scaled_to_pga(0.185 * topple::kStandardGravity);
+}
+
+const GroundMotion& record() {
+  static const GroundMotion r = load_record();
+  return r;
+}
+
+/// mu giving the wanted fraction of time sliding, as a benchmark argument in percent of PGA.
+void single_block(benchmark::State& state, topple::SlidingMode mode) {
+  const GroundMotion& rec = record();
+  const double mu = static_cast<double>(state.range(0)) / 100.0 * rec.pga_m_s2() / topple::kStandardGravity;
+  const auto block = topple::SlidingBlock::make(mu, mu, 0.0, mode);
+  topple::SlidingSummary s;
+  for (auto _ : state) {
+    s = topple::slide_summary(rec, block);
+    benchmark::DoNotOptimize(s);
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * rec.size()));
+  state.counters["slide_fraction"] = s.total_slip_duration_s / rec.duration_s();
+  state.counters["mu"] = mu;
+  state.counters["residual_cm"] = 100.0 * s.residual_displacement_m;
+}
+
+void BM_TwoWaySliding(benchmark::State& state) { single_block(state, topple::SlidingMode::two_way); }
+void BM_OneWaySliding(benchmark::State& state) { single_block(state, topple::SlidingMode::one_way); }
+// Argument: mu as a percentage of PGA/g (higher: less sliding).
+BENCHMARK(BM_TwoWaySliding)->Arg(90)->Arg(60)->Arg(40)->Arg(20)->Arg(5);
+BENCHMARK(BM_OneWaySliding)->Arg(60)->Arg(20);
+
+void BM_TwoWaySlidingWithHistory(benchmark::State& state) {
+  const GroundMotion& rec = record();
+  const double mu = 0.4 * rec.pga_m_s2() / topple::kStandardGravity;
+  const auto block = topple::SlidingBlock::make(mu);
+  for (auto _ : state) {
+    auto r = topple::slide(rec, block);
+    benchmark::DoNotOptimize(r);
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * rec.size()));
+}
+BENCHMARK(BM_TwoWaySlidingWithHistory);
+
+void BM_SlidingSpectrum100(benchmark::State& state) {
+  // 100 friction coefficients from 1 % to 100 % of PGA/g on one record, two-way.
+  const GroundMotion& rec = record();
+  std::vector<double> mu(100);
+  for (std::size_t i = 0; i < mu.size(); ++i) {
+    mu[i] = static_cast<double>(i + 1) / 100.0 * rec.pga_m_s2() / topple::kStandardGravity;
+  }
+  for (auto _ : state) {
+    auto s = topple::slide_summaries(rec, mu);
+    benchmark::DoNotOptimize(s);
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * rec.size() * mu.size()));
+}
+BENCHMARK(BM_SlidingSpectrum100)->Unit(benchmark::kMillisecond);
+
+}  // namespace

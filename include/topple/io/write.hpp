@@ -1,0 +1,22 @@
+#pragma once
+// Writers: solver results to the files and JSON objects users and scripts read. Column and key names carry units;
+// the JSON keys are a stable interface shared by the CLI and the Python package.
+#include <filesystem>
+
+#include <nlohmann/json.hpp>
+
+#include "topple/ground_motion.hpp"
+#include "topple/sliding.hpp"
+
+namespace topple::io {
+
+/// Summary of a sliding run as JSON (keys: max_abs_displacement_m, residual_displacement_m, slip_episodes,
+/// first_slip_time_s (null when none), ...). Never emits NaN: absent values are null.
+[[nodiscard]] nlohmann::ordered_json sliding_summary_json(const SlidingSummary& summary, const SlidingBlock& block);
+
+/// History as CSV: time_s,ground_accel_m_s2,displacement_m,velocity_m_s,state (state: -1 slipping up-slope /
+/// negative, 0 stuck, 1 slipping down-slope / positive). Throws InputError when the file cannot be written.
+void write_sliding_history_csv(const std::filesystem::path& path, const SlidingHistory& history,
+                               const GroundMotion& horizontal);
+
+}  // namespace topple::io

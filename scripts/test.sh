@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# The project's test command (README quick start; CI runs exactly this): installs what is missing, builds the
+# optimised and the sanitizer (ASan + UBSan) configurations, runs every test in both, then fuzzes each reader briefly.
+# Tests that read ../shared/ (records, verification data) skip when it is absent.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+jobs="${TOPPLE_JOBS:-$(nproc)}"
+
+scripts/install-deps.sh
+
+echo "== release build and tests"
+cmake --preset release >/dev/null
+cmake --build --preset release -j "$jobs"
+ctest --preset release -j "$jobs"
+
+echo "== sanitizer build (ASan + UBSan) and tests"
+cmake --preset asan >/dev/null
+cmake --build --preset asan -j "$jobs"
+ctest --preset asan -j "$jobs"
+
+if [[ -x scripts/fuzz.sh ]] && command -v clang++ >/dev/null; then
+  echo "== fuzzing each reader for ${TOPPLE_FUZZ_SECONDS:-10} s"
+  scripts/fuzz.sh "${TOPPLE_FUZZ_SECONDS:-10}"
+fi
+echo "== all tests passed"
