@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", "topple 0.1.0");
   topple::cli::add_info_command(app);
+  topple::cli::add_slide_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
