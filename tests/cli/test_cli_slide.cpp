@@ -1,0 +1,97 @@
+// `topple slide`: JSON interface, pulses, every shared record, and bad input (exit 2 naming the option).
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "support/shared_data.hpp"
+#include "topple/pulses.hpp"
+
+namespace topple {
+namespace {
+
+nlohmann::json run_json(const std::string& args) {
+  const auto r = test::run_cli(args);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  return nlohmann::json::parse(r.out);
+}
+
+TEST(CliSlide, PulseJsonMatchesTheClosedForm) {
+  // Thesis Table 3.1 row 1 with g = 9.81: U_m = 0.5 v^2 / (g N) (1 - N/A), v = A g t0.
+  const auto j = run_json("slide --pulse rect --amp-g 2 --duration 0.1 --mu 0.3 --g 9.81 --json");
+  const auto cf = rectangular_pulse_sliding(2.0, 0.1, 0.3, 9.81);
+  EXPECT_NEAR(j.at("max_abs_displacement_m").get<double>(), cf.max_displacement_m, 1e-9 * cf.max_displacement_m);
+  EXPECT_NEAR(j.at("residual_displacement_m").get<double>(), cf.max_displacement_m, 1e-9 * cf.max_displacement_m);
+  EXPECT_EQ(j.at("slip_episodes").get<int>(), 1);
+  EXPECT_DOUBLE_EQ(j.at("first_slip_time_s").get<double>(), 0.0);
+  EXPECT_DOUBLE_EQ(j.at("g_m_s2").get<double>(), 9.81);
+  EXPECT_DOUBLE_EQ(j.at("mu_static").get<double>(), 0.3);
+  EXPECT_EQ(j.at("mode").get<std::string>(), "two-way");
+  for (const char* key : {"total_slip_duration_s", "max_displacement_time_s", "input"}) {
+    EXPECT_TRUE(j.contains(key)) << key;
+  }
+}
+
+TEST(CliSlide, NoSlipGivesNullFirstSlip) {
+  const auto j = run_json("slide --pulse tri --amp-g 0.2 --duration 0.1 --mu 0.3 --json");
+  EXPECT_TRUE(j.at("first_slip_time_s").is_null());
+  EXPECT_EQ(j.at("max_abs_displacement_m").get<double>(), 0.0);
+}
+
+TEST(CliSlide, HistoryCsvHasUnitsInItsHeader) {
+  test::TempDir tmp;
+  const auto out = tmp.path() / "h.csv";
+  const auto r = test::run_cli("slide --pulse double-tri --amp-g 2 --duration 0.2 --mu 0.3 --out '" + out.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream in(out);
+  std::string header;
+  std::getline(in, header);
+  EXPECT_EQ(header, "time_s,ground_accel_m_s2,displacement_m,velocity_m_s,state");
+  int rows = 0;
+  std::string line;
+  while (std::getline(in, line)) ++rows;
+  EXPECT_GT(rows, 5);
+}
+
+TEST(CliSlide, EveryRecordInSharedSlides) {
+  if (!test::have_shared()) GTEST_SKIP() << "../shared not present";
+  int files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(test::shared_dir() / "records")) {
+    if (!entry.is_regular_file() || entry.path().extension() == ".md") continue;
+    std::string extra;
+    if (entry.path().filename() == "ce36456p_CE36456.V2") extra = " --channel 1";
+    const auto j = run_json("slide '" + entry.path().string() + "'" + extra + " --mu 0.1 --scale-pga 0.3g --json");
+    EXPECT_NEAR(j.at("input").at("pga_g").get<double>(), 0.3, 1e-12) << entry.path();
+    EXPECT_GT(j.at("max_abs_displacement_m").get<double>(), 0.0) << entry.path();
+    EXPECT_TRUE(std::isfinite(j.at("residual_displacement_m").get<double>())) << entry.path();
+    ++files;
+  }
+  EXPECT_GE(files, 12);
+}
+
+TEST(CliSlide, BadInputExitsTwoNamingTheOption) {
+  auto r = test::run_cli("slide --pulse rect --amp-g 2 --duration 0.1 --mu -1");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("mu"), std::string::npos) << r.err;
+  r = test::run_cli("slide --pulse rect --amp-g 2 --duration 0.1");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--mu"), std::string::npos) << r.err;
+  r = test::run_cli("slide --pulse square --amp-g 2 --duration 0.1 --mu 0.3");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--pulse"), std::string::npos) << r.err;
+  r = test::run_cli("slide /nonexistent/file.AT2 --mu 0.3");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("/nonexistent/file.AT2"), std::string::npos) << r.err;
+  r = test::run_cli("slide --pulse rect --amp-g 2 --duration 0.1 --mu 0.3 --scale-pga 0.5");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--scale-pga"), std::string::npos) << r.err;
+  r = test::run_cli("slide --pulse rect --amp-g 2 --duration 0.1 --mu 0.3 --slope-deg 95");
+  EXPECT_EQ(r.exit_code, 2);
+  r = test::run_cli("slide --pulse rect --amp-g 2 --duration 0.1 --mu nope");
+  EXPECT_EQ(r.exit_code, 2);
+}
+
+}  // namespace
+}  // namespace topple
