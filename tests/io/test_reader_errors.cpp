@@ -1,0 +1,415 @@
+// Bad inputs, written to temporary files: every reader error is an InputError that names the file, the 1-based
+// line and the problem. The small well-formed files built here follow the layouts of shared/records/SOURCES.md; each
+// test breaks one thing.
+#include <cmath>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include "support/shared_data.hpp"
+#include "topple/error.hpp"
+#include "topple/io/read.hpp"
+
+namespace topple::io {
+namespace {
+
+using test::TempDir;
+using test::write_file;
+
+// ---- well-formed files of each format ----
+
+std::string at2(const std::string& npts_line, const std::vector<std::string>& values) {
+  std::string s = "PEER NGA STRONG MOTION DATABASE RECORD\nTest, 1/1/2000, Station, 090\n"
+                  "ACCELERATION TIME SERIES IN UNITS OF G\n" + npts_line + "\n";
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    s += fmt::format("{:>15}", values[i]);
+    if (i % 5 == 4 || i + 1 == values.size()) s += "\n";
+  }
+  return s;
+}
+
+std::string at2_ok() { return at2("NPTS=      7, DT=   .0100 SEC,", {"0.1", "-0.2", "0.3", "0", "0", "0.05", "0"}); }
+
+std::string cosmos(std::size_t npts, const std::vector<double>& values, double dt_ms = 10.0,
+                   const std::string& units = "cm/sec2(04)") {
+  std::string s = "Corrected acceleration    (Format v01.20 with 13 text lines) Src: test\n"
+                  "Record of Test Earthquake of Mon Jan 1, 2024 00:00 UTC\n";
+  for (int k = 3; k <= 13; ++k) {
+    if (k == 5) s += "Statn No: 01-00001 Code:XX-TST  Test Station\n";
+    else if (k == 9) s += "Sta Chan   1: 90 deg (Rcrdr Chan  1) Location:\n";
+    else s += fmt::format("text line {}\n", k);
+  }
+  s += " 100 Integer-header values follow on  10 lines, Format= (10I8)\n";
+  for (int line = 0; line < 10; ++line) {
+    for (int k = 0; k < 10; ++k) s += fmt::format("{:8d}", -999);
+    s += "\n";
+  }
+  s += " 100 Real-header values follow on  20 lines, Format= (5F15.6)\n";
+  for (int line = 0; line < 20; ++line) {
+    for (int k = 0; k < 5; ++k) s += fmt::format("{:15.6f}", line * 5 + k == 61 ? dt_ms : -999.0);
+    s += "\n";
+  }
+  s += "   1 Comment line(s) follow, each starting with a \"|\":\n| test\n";
+  s += fmt::format("{:8d} acceleration pts, approx    1 secs, units={},Format=(5E15.6)\n", npts, units);
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    s += fmt::format("{:15.6E}", values[i]);
+    if (i % 5 == 4 || i + 1 == values.size()) s += "\n";
+  }
+  s += "End-of-data for ChanTST acceleration\n";
+  return s;
+}
+
+std::string csmip_block(int channel, const std::string& name, std::size_t npts, const std::vector<double>& values,
+                        bool end_marker = true) {
+  std::string s = fmt::format("CORRECTED ACCELEROGRAM   00001-T0000-24001.01       CHAN  {}: {:<8}FROM\n", channel, name);
+  s += "UNCORRECTED ACCELEROGRAM DATA\nTEST EARTHQUAKE\nJAN 1, 2024 00:00 PST   (ORIGIN: 01/01/24)\nX\n";
+  s += "STATION NO. 00001   35.9N, 120.4W\nTEST STATION\n";
+  s += fmt::format("CHAN  {}: {}\n", channel, name);
+  for (int k = 9; k <= 25; ++k) s += "TEXT\n";
+  for (int line = 0; line < 7; ++line) s += "    0    0    0    0\n";
+  for (int line = 0; line < 13; ++line) s += "      .000      .000\n";
+  auto section = [&](const char* what, const char* units) {
+    s += fmt::format(" {:4d} POINTS OF {} DATA EQUALLY SPACED AT  .020 SEC.  (UNITS: {})\n", npts, what, units);
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      s += fmt::format("{:10.3f}", values[i]);
+      if (i % 8 == 7 || i + 1 == values.size()) s += "\n";
+    }
+  };
+  section("ACCEL", "CM/SEC/SEC");
+  section("VELOC", "CM/SEC");
+  if (end_marker) s += fmt::format("/&  ----------  END OF DATA FOR CHANNEL  {}  ----------\n", channel);
+  return s;
+}
+
+std::string smc(long npts, const std::vector<std::string>& data_lines, double rate = 100.0) {
+  std::string s = "2 CORRECTED ACCELEROGRAM\n*\nTEST\n     2024  01  01    0000 Test, CA\nMag\n"
+                  "station = Test Station component=     90\n*\n*\n*\n*\n*\n";
+  for (int k = 1; k <= 48; ++k) {
+    const long v = k == 16 ? 1 : k == 17 ? npts : -32768;
+    s += fmt::format("{:10d}", v);
+    if (k % 8 == 0) s += "\n";
+  }
+  for (int k = 1; k <= 50; ++k) {
+    s += fmt::format("{:15.7E}", k == 2 ? rate : 1.7e38);
+    if (k % 5 == 0) s += "\n";
+  }
+  s += "| comment\n";
+  for (const auto& line : data_lines) s += line + "\n";
+  return s;
+}
+
+std::string knet(const std::string& freq, const std::string& scale, const std::string& data) {
+  std::string s;
+  auto label = [&](const char* l, const std::string& v) { s += fmt::format("{:<18}{}\n", l, v); };
+  label("Origin Time", "2024/01/01 00:00:00");
+  label("Lat.", "41.0");
+  label("Long.", "142.5");
+  label("Depth. (km)", "30");
+  label("Mag.", "6.2");
+  label("Station Code", "TST001");
+  label("Station Lat.", "41.0");
+  label("Station Long.", "141.0");
+  label("Station Height(m)", "17");
+  label("Record Time", "2024/01/01 00:00:10");
+  if (!freq.empty()) label("Sampling Freq(Hz)", freq);
+  else label("Padding", "x");
+  label("Duration Time(s)", "1");
+  label("Dir.", "N-S");
+  label("Scale Factor", scale);
+  label("Max. Acc. (gal)", "1.0");
+  label("Last Correction", "2024/01/01 00:00:10");
+  label("Memo.", "");
+  return s + data;
+}
+
+std::string esm(const std::string& ndata, const std::string& units, const std::string& values,
+                const std::string& dt = "0.010000") {
+  std::string s = "EVENT_NAME: TEST\nNETWORK: XX\nSTATION_CODE: TST\n";
+  if (!dt.empty()) s += "SAMPLING_INTERVAL_S: " + dt + "\n";
+  if (!ndata.empty()) s += "NDATA: " + ndata + "\n";
+  s += "STREAM: HNE\n";
+  if (!units.empty()) s += "UNITS: " + units + "\n";
+  s += "DATA_TYPE: ACCELERATION\nUSER5: \n";
+  return s + values;
+}
+
+// ---- checking an error ----
+
+struct Expected {
+  std::optional<std::size_t> line;  ///< nullopt: the error must not name a line
+  std::string field;                ///< checked when not empty
+  std::vector<std::string> problem; ///< substrings of the problem text
+};
+
+class ReaderErrors : public ::testing::Test {
+ protected:
+  TempDir dir;
+
+  /// Writes `content` to a file, reads it, and checks the InputError.
+  void expect_error(const std::string& content, const Expected& expected, ReadOptions options = {},
+                    const std::string& name = "bad.txt") {
+    const auto path = dir.path() / name;
+    write_file(path, content);
+    try {
+      (void)read_motion(path, options);
+      ADD_FAILURE() << "no InputError for " << name;
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_EQ(e.where().file, path.string()) << what;
+      EXPECT_NE(what.find(path.string()), std::string::npos) << what;
+      EXPECT_EQ(e.where().line, expected.line) << what;
+      if (expected.line) {
+        EXPECT_NE(what.find(fmt::format(":{}:", *expected.line)), std::string::npos) << what;
+      }
+      if (!expected.field.empty()) {
+        EXPECT_EQ(e.where().field, expected.field) << what;
+      }
+      for (const auto& p : expected.problem) EXPECT_NE(e.problem().find(p), std::string::npos) << what;
+    }
+  }
+};
+
+TEST_F(ReaderErrors, WellFormedSamplesRead) {
+  // The generators above make valid files; each test below breaks one thing.
+  const auto read = [&](const std::string& content, ReadOptions o = {}) {
+    const auto path = dir.path() / "ok.txt";
+    write_file(path, content);
+    return read_motion(path, o);
+  };
+  EXPECT_EQ(read(at2_ok()).size(), 7u);
+  EXPECT_EQ(read(cosmos(3, {1.0, -2.0, 3.0})).size(), 3u);
+  EXPECT_DOUBLE_EQ(read(cosmos(3, {1.0, -2.0, 3.0})).dt_s(), 0.01);
+  ReadOptions ch2;
+  ch2.channel = 2;
+  const auto two = read(csmip_block(1, "90 DEG", 3, {1, 2, 3}) + csmip_block(2, "UP", 2, {-400, 1}), ch2);
+  EXPECT_EQ(two.size(), 2u);
+  EXPECT_DOUBLE_EQ(two.pga_m_s2(), 4.0);
+  EXPECT_EQ(two.metadata().component, "UP");
+  EXPECT_EQ(read(smc(3, {" 1.000E+00-2.000E+00 3.000E+00"})).size(), 3u);
+  EXPECT_DOUBLE_EQ(read(smc(3, {" 1.000E+00-2.000E+00 3.000E+00"})).pga_m_s2(), 0.03);
+  EXPECT_DOUBLE_EQ(read(knet("100Hz", "1(gal)/1", "  1  2  3\n")).pga_m_s2(), 0.01);  // mean 2 removed
+  EXPECT_EQ(read(esm("3", "cm/s^2", "1\n2\n3\n")).size(), 3u);
+}
+
+// ---- empty, unreadable ----
+
+TEST_F(ReaderErrors, EmptyFile) { expect_error("", {std::nullopt, "", {"empty"}}); }
+TEST_F(ReaderErrors, BlankFile) { expect_error("\n  \r\n\n", {std::nullopt, "", {"empty"}}); }
+
+TEST_F(ReaderErrors, MissingFileAndDirectory) {
+  try {
+    (void)read_motion(dir.path() / "nope.AT2");
+    ADD_FAILURE();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("nope.AT2"), std::string::npos);
+    EXPECT_NE(e.problem().find("cannot open"), std::string::npos);
+  }
+  EXPECT_THROW((void)read_motion(dir.path()), InputError);
+}
+
+// ---- PEER AT2 ----
+
+TEST_F(ReaderErrors, At2Truncated) {
+  expect_error(at2("NPTS=     10, DT=   .0100 SEC,", {"0.1", "0.2", "0.3", "0.4", "0.5", "0.6", "0.7"}),
+               {6, "acceleration", {"truncated", "7 values", "NPTS announces 10"}});
+}
+
+TEST_F(ReaderErrors, At2MoreValuesThanNpts) {
+  expect_error(at2("NPTS=      4, DT=   .0100 SEC,", {"0.1", "0.2", "0.3", "0.4", "0.5", "0.6"}),
+               {5, "acceleration", {"more values", "4"}});
+  expect_error(at2("NPTS=      5, DT=   .0100 SEC,", {"0.1", "0.2", "0.3", "0.4", "0.5", "0.6"}),
+               {6, "NPTS", {"more values", "5"}});
+}
+
+TEST_F(ReaderErrors, At2NonNumericTokenIsQuoted) {
+  expect_error(at2("NPTS=      3, DT=   .0100 SEC,", {"0.1", "0.2x", "0.3"}), {5, "acceleration", {"'0.2x'"}});
+}
+
+TEST_F(ReaderErrors, At2NanAndInf) {
+  expect_error(at2("NPTS=      3, DT=   .0100 SEC,", {"0.1", "NaN", "0.3"}), {5, "acceleration", {"NaN", "'NaN'"}});
+  expect_error(at2("NPTS=      3, DT=   .0100 SEC,", {"0.1", "0.2", "-Inf"}), {5, "acceleration", {"infinite"}});
+  expect_error(at2("NPTS=      3, DT=   .0100 SEC,", {"0.1", "1e400", "0.3"}), {5, "acceleration", {"out of the range"}});
+  // Finite in g but not in m/s^2.
+  expect_error(at2("NPTS=      3, DT=   .0100 SEC,", {"0.1", "1.7e308", "0.3"}), {5, "acceleration", {"too large"}});
+}
+
+TEST_F(ReaderErrors, At2NonPositiveDt) {
+  expect_error(at2("NPTS=      3, DT=   .0000 SEC,", {"0.1", "0.2", "0.3"}), {4, "DT", {"positive"}});
+  expect_error(at2("NPTS=      3, DT=  -.0100 SEC,", {"0.1", "0.2", "0.3"}), {4, "DT", {"positive"}});
+  expect_error(at2("NPTS=      3, DT=  abc SEC,", {"0.1", "0.2", "0.3"}), {4, "DT", {"'abc'"}});
+}
+
+TEST_F(ReaderErrors, At2BadNptsLine) {
+  ReadOptions o;
+  o.format = Format::peer_at2;
+  expect_error(at2("NPTS AND DT FORGOTTEN", {"0.1"}), {4, "NPTS", {"expected NPTS and DT"}}, o);
+  expect_error(at2("NPTS=   3.5, DT=   .0100 SEC,", {"0.1"}), {4, "NPTS", {"not an integer", "'3.5'"}});
+  expect_error("PEER\nline 2\n", {2, "NPTS", {"ends before line 4"}}, o);
+}
+
+TEST_F(ReaderErrors, At2VelocityIsNotAcceleration) {
+  std::string s = at2_ok();
+  s.replace(s.find("ACCELERATION"), 12, "VELOCITY");
+  expect_error(s, {3, "units", {"velocity"}});
+}
+
+TEST_F(ReaderErrors, ChannelOfASingleChannelFile) {
+  ReadOptions o;
+  o.channel = 2;
+  expect_error(at2_ok(), {std::nullopt, "--channel", {"one channel"}}, o);
+  o.channel = 0;
+  expect_error(at2_ok(), {std::nullopt, "--channel", {"numbered from 1"}}, o);
+}
+
+// ---- COSMOS V2 ----
+
+TEST_F(ReaderErrors, CosmosUnknownDt) {
+  // Lines: 1-13 text, 14 integer count, 15-24 integers, 25 real count, 26-45 reals (value 62 on line 38),
+  // 46 comment count, 47 comment, 48 data line, 49 values, 50 End-of-data.
+  expect_error(cosmos(3, {1, 2, 3}, -999.0), {38, "Real header 62", {"unknown", "-999"}});
+  expect_error(cosmos(3, {1, 2, 3}, 0.0), {38, "Real header 62", {"positive"}});
+}
+
+TEST_F(ReaderErrors, CosmosUnits) {
+  expect_error(cosmos(3, {1, 2, 3}, 10.0, "furlongs/fortnight2(99)"), {48, "units", {"unknown acceleration unit"}});
+}
+
+TEST_F(ReaderErrors, CosmosTruncatedAndTooLong) {
+  expect_error(cosmos(8, {1, 2, 3}), {50, "acceleration", {"truncated", "3 values", "8"}});
+  expect_error(cosmos(2, {1, 2, 3}), {49, "acceleration", {"more values", "2"}});
+  std::string s = cosmos(3, {1, 2, 3});
+  s.resize(s.find("End-of-data"));
+  expect_error(s, {49, "End-of-data", {"without its 'End-of-data'"}});
+}
+
+TEST_F(ReaderErrors, CosmosFixedColumns) {
+  std::string s = cosmos(3, {1, 2, 3});
+  const std::size_t at = s.find("1.000000E+00");
+  s.replace(at, 12, "1.0000000E+00");  // one column too wide
+  expect_error(s, {49, "acceleration", {"columns of format 5E15.6"}});
+}
+
+// ---- CSMIP V2 ----
+
+TEST_F(ReaderErrors, CsmipSeveralChannelsNeedOne) {
+  const std::string s = csmip_block(1, "90 DEG", 2, {1, 2}) + csmip_block(2, "UP", 2, {1, 2}) +
+                        csmip_block(3, "360 DEG", 2, {1, 2});
+  expect_error(s, {std::nullopt, "--channel", {"3 channels", "1 (90 DEG), 2 (UP), 3 (360 DEG)"}});
+  ReadOptions o;
+  o.channel = 4;
+  expect_error(s, {std::nullopt, "--channel", {"no channel 4"}}, o);
+}
+
+TEST_F(ReaderErrors, CsmipTruncated) {
+  expect_error(csmip_block(1, "90 DEG", 2, {1, 2}, false), {49, "channel", {"truncated"}});
+  // The END line is present but ACCEL holds fewer values than announced: the VELOC line ends the data.
+  std::string s = csmip_block(1, "90 DEG", 10, {1, 2, 3});
+  expect_error(s, {48, "ACCEL", {"truncated", "3 values", "10"}});
+}
+
+TEST_F(ReaderErrors, CsmipBadValue) {
+  std::string s = csmip_block(1, "90 DEG", 3, {1, 2, 3});
+  s.replace(s.find("     2.000"), 10, "     2.0x0");
+  expect_error(s, {47, "ACCEL", {"'2.0x0'"}});
+}
+
+TEST_F(ReaderErrors, CsmipBadDtAndUnits) {
+  std::string s = csmip_block(1, "90 DEG", 3, {1, 2, 3});
+  s.replace(s.find(" .020 SEC.  (UNITS: CM/SEC/SEC)"), 10, " .000 SEC.");
+  expect_error(s, {46, "DT", {"positive"}});
+  s = csmip_block(1, "90 DEG", 3, {1, 2, 3});
+  s.replace(s.find("CM/SEC/SEC"), 10, "INCH/SEC/S");
+  expect_error(s, {46, "UNITS", {"unknown acceleration unit"}});
+}
+
+// ---- USGS SMC ----
+
+TEST_F(ReaderErrors, SmcNptsMismatch) {
+  expect_error(smc(4, {" 1.000E+00-2.000E+00 3.000E+00"}), {29, "acceleration", {"truncated", "3 values", "4"}});
+  expect_error(smc(2, {" 1.000E+00-2.000E+00 3.000E+00"}), {29, "acceleration", {"more values", "2"}});
+  expect_error(smc(2, {" 1.000E+00-2.000E+00", " 3.000E+00"}), {30, "integer header #17", {"more values"}});
+}
+
+TEST_F(ReaderErrors, SmcFixedWidthAndTokens) {
+  expect_error(smc(3, {" 1.000E+00-2.000E+00 3.00E+00"}), {29, "acceleration", {"columns of format 8E10.4"}});
+  expect_error(smc(3, {" 1.000E+00-2.0x0E+00 3.000E+00"}), {29, "acceleration", {"'-2.0x0E+00'"}});
+}
+
+TEST_F(ReaderErrors, SmcMissingHeaderValues) {
+  expect_error(smc(-32768, {" 1.000E+00"}), {14, "integer header #17", {"missing"}});
+  expect_error(smc(1, {" 1.000E+00"}, 1.7e38), {18, "real header #2", {"missing"}});
+  expect_error(smc(1, {" 1.000E+00"}, -5.0), {18, "real header #2", {"positive"}});
+}
+
+// ---- K-NET ----
+
+TEST_F(ReaderErrors, KnetHeader) {
+  expect_error(knet("", "1(gal)/1", "1 2 3\n"), {17, "Sampling Freq(Hz)", {"missing"}});
+  expect_error(knet("0Hz", "1(gal)/1", "1 2 3\n"), {11, "Sampling Freq(Hz)", {"positive"}});
+  expect_error(knet("100Hz", "3920/6182761", "1 2 3\n"), {14, "Scale Factor", {"(gal)/"}});
+  expect_error(knet("100Hz", "3920(gal)/0", "1 2 3\n"), {14, "Scale Factor", {"zero"}});
+}
+
+TEST_F(ReaderErrors, KnetData) {
+  expect_error(knet("100Hz", "1(gal)/1", "1 2 3\n4 five 6\n"), {19, "counts", {"'five'"}});
+  expect_error(knet("100Hz", "1(gal)/1", ""), {17, "data", {"no data"}});
+}
+
+// ---- ESM ----
+
+TEST_F(ReaderErrors, EsmCounts) {
+  expect_error(esm("4", "cm/s^2", "1\n2\n3\n"), {12, "acceleration", {"truncated", "3 values", "4"}});
+  expect_error(esm("2", "cm/s^2", "1\n2\n3\n"), {12, "NDATA", {"more values"}});
+}
+
+TEST_F(ReaderErrors, EsmHeader) {
+  expect_error(esm("3", "", "1\n2\n3\n"), {8, "UNITS", {"missing"}});
+  expect_error(esm("3", "furlong/s^2", "1\n2\n3\n"), {7, "UNITS", {"unknown acceleration unit"}});
+  expect_error(esm("3", "cm/s^2", "1\n2\n3\n", "-0.01"), {4, "SAMPLING_INTERVAL_S", {"positive"}});
+  ReadOptions o;
+  o.format = Format::esm;
+  expect_error(esm("3", "cm/s^2", "1\n2\n3\n", ""), {8, "SAMPLING_INTERVAL_S", {"missing"}}, o);
+}
+
+// ---- plain text ----
+
+TEST_F(ReaderErrors, PlainDecreasingAndRepeatedTimes) {
+  expect_error("time_s,accel_g\n0,0\n0.01,1\n0.005,0\n", {4, "time", {"0.005", "before", "line 3"}});
+  expect_error("time_s,accel_g\n0,0\n0.01,1\n0.01,0\n", {4, "time", {"repeats", "line 3"}});
+}
+
+TEST_F(ReaderErrors, PlainUnits) {
+  expect_error("0,0\n0.01,1\n", {std::nullopt, "--units", {"--units"}});
+  expect_error("time,accel\n0,0\n0.01,1\n", {1, "accel", {"no acceleration unit", "--units"}});
+  expect_error("time_s,accel_furlong\n0,0\n0.01,1\n", {1, "accel_furlong", {"unknown acceleration unit"}});
+  ReadOptions o;
+  o.units = "parsec";
+  expect_error("time_s,accel_g\n0,0\n0.01,1\n", {std::nullopt, "--units", {"unknown acceleration unit"}}, o);
+}
+
+TEST_F(ReaderErrors, PlainOneColumnNeedsDt) {
+  ReadOptions o;
+  o.units = "g";
+  expect_error("0\n1\n2\n", {std::nullopt, "--dt", {"--dt"}}, o);
+  o.dt_s = 0.0;
+  expect_error("0\n1\n2\n", {std::nullopt, "--dt", {"positive"}}, o);
+  o.dt_s = -1.0;
+  expect_error("0\n1\n2\n", {std::nullopt, "--dt", {"positive"}}, o);
+}
+
+TEST_F(ReaderErrors, PlainBadTokensAndColumns) {
+  expect_error("time_s,accel_g\n0,0\n0.01,1.2.3\n", {3, "acceleration", {"'1.2.3'"}});
+  expect_error("time_s,accel_g\n0,0\n0.01,nan\n", {3, "acceleration", {"NaN"}});
+  expect_error("time_s,accel_g\n0,0\n0.01,1,5\n", {3, "", {"3 columns", "line 2"}});
+  expect_error("time_s,accel_g\n0,0\n0.01,,\n0.02,1\n", {3, "", {"1 column", "line 2"}});
+  expect_error("time_s,accel_g\n0,0,0\n", {2, "", {"3 columns"}});
+  expect_error("time_s,accel_g\n0,0\n", {2, "time", {"at least two rows"}});
+  expect_error("# only a comment\ntime_s,accel_g\n", {2, "", {"no data"}});
+  expect_error("accel_g,time_s\n0,0\n1,1\n", {1, "accel_g", {"first of two columns must be the time"}});
+}
+
+}  // namespace
+}  // namespace topple::io
