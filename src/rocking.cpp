@@ -1,0 +1,1063 @@
+// Rocking and overturning engine. See rocking.hpp for the model, the sign convention, the rest rule and the method.
+#include "topple/rocking.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include <boost/math/quadrature/gauss_kronrod.hpp>
+#include <boost/math/tools/toms748_solve.hpp>
+#include <boost/numeric/odeint/stepper/controlled_runge_kutta.hpp>
+#include <boost/numeric/odeint/stepper/runge_kutta4.hpp>
+#include <boost/numeric/odeint/stepper/runge_kutta_dopri5.hpp>
+#include <fmt/format.h>
+
+#include "topple/error.hpp"
+
+namespace topple {
+namespace {
+
+namespace odeint = boost::numeric::odeint;
+
+/// Scaled state (theta / alpha, theta' / (p alpha)).
+using State = std::array<double, 2>;
+
+void require_positive(double value, const char* field, const char* what) {
+  if (!std::isfinite(value) || !(value > 0.0)) {
+    throw parameter_error(field, fmt::format("{} must be positive and finite, got {}", what, value));
+  }
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Input on one time grid: the horizontal samples (jumps kept) and, with a vertical record, the union of both grids.
+
+struct Input {
+  std::span<const double> accel;
+  std::vector<double> accel_store;  // merged grid storage
+  std::vector<double> gravity;      // g + a_v per point; empty without vertical input
+  std::vector<double> times;        // empty for a uniform grid
+  double t0 = 0.0;
+  double dt = 0.0;                  // sample interval (mean interval when irregular): the run-out grid and RK4 h
+  [[nodiscard]] std::size_t size() const { return accel.size(); }
+  [[nodiscard]] double time(std::size_t i) const {
+    return times.empty() ? t0 + static_cast<double>(i) * dt : times[i];
+  }
+};
+
+Input make_input(const GroundMotion& horizontal, const GroundMotion* vertical, double g) {
+  Input in;
+  in.t0 = horizontal.start_time_s();
+  in.dt = horizontal.dt_s();
+  if (vertical == nullptr) {
+    in.accel = horizontal.accel_m_s2();
+    if (!horizontal.is_uniform()) in.times = horizontal.times_s();
+    return in;
+  }
+  const auto av = vertical->accel_m_s2();
+  const double lowest = *std::min_element(av.begin(), av.end());
+  if (!(g + lowest > 0.0)) {
+    throw parameter_error("vertical", fmt::format("the vertical acceleration reaches {} m/s2, so g + a_v = {} m/s2 "
+                                                  "<= 0: the body would leave the ground, which this model excludes",
+                                                  lowest, g + lowest));
+  }
+  // Horizontal points (repeated times of a jump kept) plus the vertical points strictly inside the horizontal
+  // record. Both inputs are piecewise linear, so they stay exact on the union (a jump of the vertical record is
+  // taken at its value after the jump). Outside its own record the vertical component is zero.
+  const std::vector<double> th = horizontal.times_s();
+  const std::vector<double> tv = vertical->times_s();
+  const auto ah = horizontal.accel_m_s2();
+  std::vector<double> t;
+  std::vector<double> a;
+  t.reserve(th.size() + tv.size());
+  a.reserve(th.size() + tv.size());
+  std::size_t j = 0;
+  for (std::size_t i = 0; i < th.size(); ++i) {
+    while (j < tv.size() && tv[j] < th[i]) {
+      if (tv[j] > th.front() && (t.empty() || tv[j] > t.back())) {
+        t.push_back(tv[j]);
+        a.push_back(horizontal.accel_at(tv[j]));
+      }
+      ++j;
+    }
+    t.push_back(th[i]);
+    a.push_back(ah[i]);
+  }
+  in.gravity.resize(t.size());
+  for (std::size_t i = 0; i < t.size(); ++i) in.gravity[i] = g + vertical->accel_at(t[i]);
+  in.accel_store = std::move(a);
+  in.accel = in.accel_store;
+  in.times = std::move(t);
+  return in;
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Right-hand side: the equation of motion of rocking.hpp in the scaled state, with the forcing linear in time over
+// the current sample interval.
+
+struct Rhs {
+  double p = 0.0;
+  double alpha = 0.0;
+  double k = 0.0;        // (R / D) / (p alpha)
+  double s_alpha = 0.0;  // s * alpha, s the pivot
+  double t_ref = 0.0;    // forcing: a_h = ah0 + ahs (t - t_ref), g + a_v = ge0 + ges (t - t_ref)
+  double ah0 = 0.0;
+  double ahs = 0.0;
+  double ge0 = 0.0;
+  double ges = 0.0;
+
+  void operator()(const State& u, State& du, double t) const {
+    const double phi = s_alpha - alpha * u[0];
+    const double tau = t - t_ref;
+    du[0] = p * u[1];
+    du[1] = -k * ((ge0 + ges * tau) * std::sin(phi) + (ah0 + ahs * tau) * std::cos(phi));
+  }
+};
+
+// ---------------------------------------------------------------------------------------------------------------
+// Steppers. Both take one step from the last state toward t_limit (never past it) and give the state anywhere in
+// that step (dense output) for the event root finder.
+
+class AdaptiveStepper {
+ public:
+  using Dopri = odeint::runge_kutta_dopri5<State>;
+  using Checker = odeint::default_error_checker<double, Dopri::algebra_type, Dopri::operations_type>;
+  using Controlled = odeint::controlled_runge_kutta<Dopri, Checker>;
+
+  AdaptiveStepper(const Rhs& rhs, double abs_tol, double rel_tol, double dt0)
+      // a_dxdt = 0: the tolerance is abs + rel |x| (the classic form); the state is scaled to O(1) near alpha.
+      : rhs_(&rhs), controlled_(Checker(abs_tol, rel_tol, 1.0, 0.0)), dt_(dt0) {}
+
+  void restart(double t, const State& x) {
+    t1_ = t;
+    x1_ = x;
+    (*rhs_)(x1_, dx1_, t1_);
+  }
+
+  void step(double t_limit, std::size_t& steps, std::size_t max_steps) {
+    t0_ = t1_;
+    x0_ = x1_;
+    dx0_ = dx1_;
+    const double remaining = t_limit - t0_;
+    for (;;) {
+      if (++steps > max_steps) {
+        throw std::runtime_error(fmt::format("rocking: more than {} integrator steps (max_steps) at t = {} s",
+                                             max_steps, t0_));
+      }
+      const bool clamped = dt_ >= remaining;
+      double dt = clamped ? remaining : dt_;
+      double t = t0_;
+      if (controlled_.try_step(std::cref(*rhs_), x0_, dx0_, t, x1_, dx1_, dt) == odeint::success) {
+        t1_ = clamped ? t_limit : t;
+        // A step shortened to reach the sample instant says little about the step the solution allows.
+        dt_ = clamped ? std::max(dt_, dt) : dt;
+        return;
+      }
+      dt_ = dt;  // rejected: the controller has reduced it
+    }
+  }
+
+  [[nodiscard]] State dense(double t) const {
+    State x{};
+    controlled_.stepper().calc_state(t, x, x0_, dx0_, t0_, x1_, dx1_, t1_);
+    return x;
+  }
+
+  [[nodiscard]] double t0() const { return t0_; }
+  [[nodiscard]] double t1() const { return t1_; }
+  [[nodiscard]] const State& x0() const { return x0_; }
+  [[nodiscard]] const State& x1() const { return x1_; }
+
+ private:
+  const Rhs* rhs_;
+  Controlled controlled_;
+  double dt_;
+  double t0_ = 0.0;
+  double t1_ = 0.0;
+  State x0_{};
+  State dx0_{};
+  State x1_{};
+  State dx1_{};
+};
+
+class Rk4Stepper {
+ public:
+  Rk4Stepper(const Rhs& rhs, double h) : rhs_(&rhs), h_(h) {}
+
+  void restart(double t, const State& x) {
+    t1_ = t;
+    x1_ = x;
+  }
+
+  void step(double t_limit, std::size_t& steps, std::size_t max_steps) {
+    if (++steps > max_steps) {
+      throw std::runtime_error(fmt::format("rocking: more than {} integrator steps (max_steps) at t = {} s",
+                                           max_steps, t1_));
+    }
+    t0_ = t1_;
+    x0_ = x1_;
+    const double remaining = t_limit - t0_;
+    // Equal steps of at most h over what is left of the sample interval: dt/n over a whole interval (thesis).
+    const double n = std::max(1.0, std::ceil(remaining / h_ - 1e-9));
+    const double dt = remaining / n;
+    rk4_.do_step(std::cref(*rhs_), x0_, t0_, x1_, dt);
+    t1_ = n == 1.0 ? t_limit : t0_ + dt;
+  }
+
+  /// A classical RK4 step of length t - t0 from the step's start: a continuous extension of order 4.
+  [[nodiscard]] State dense(double t) const {
+    if (t == t1_) return x1_;
+    State x{};
+    rk4_.do_step(std::cref(*rhs_), x0_, t0_, x, t - t0_);
+    return x;
+  }
+
+  [[nodiscard]] double t0() const { return t0_; }
+  [[nodiscard]] double t1() const { return t1_; }
+  [[nodiscard]] const State& x0() const { return x0_; }
+  [[nodiscard]] const State& x1() const { return x1_; }
+
+ private:
+  const Rhs* rhs_;
+  double h_;
+  mutable odeint::runge_kutta4<State> rk4_;
+  double t0_ = 0.0;
+  double t1_ = 0.0;
+  State x0_{};
+  State x1_{};
+};
+
+/// Root of f on [a, b] with f(a), f(b) of opposite signs (or zero), by TOMS 748, to a few ulps of the time.
+template <class F>
+double find_root(F f, double a, double b, double fa, double fb) {
+  if (fa == 0.0) return a;
+  if (fb == 0.0) return b;
+  constexpr std::uintmax_t kMaxIterations = 200;
+  std::uintmax_t iterations = kMaxIterations;
+  // Relative to the time itself, with a floor of 1 s so that events near t = 0 converge too.
+  const auto tol = [](double lo, double hi) {
+    return std::abs(hi - lo) <= 4.0 * std::numeric_limits<double>::epsilon() * std::max({std::abs(lo), std::abs(hi), 1.0});
+  };
+  const auto r = boost::math::tools::toms748_solve(f, a, b, fa, fb, tol, iterations);
+  if (iterations >= kMaxIterations) {
+    throw std::runtime_error(fmt::format("rocking: event location did not converge in {} iterations on [{}, {}] s",
+                                         kMaxIterations, a, b));
+  }
+  return 0.5 * (r.first + r.second);
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// The engine.
+
+struct Params {
+  double a = 0.0, h = 0.0, D = 0.0, R = 0.0, alpha = 0.0, p = 0.0, e = 0.0, g = 0.0, tan_alpha = 0.0;
+  double w_scale = 0.0;        // p alpha: theta' = w_scale * u[1]
+  double rest_w2 = 0.0;        // theta'^2 below which the rest rule applies after an impact
+  double overturn_level = 0.0; // (pi / 2) / alpha in the scaled state
+};
+
+enum class Mode : std::uint8_t { rest, rocking };
+
+template <class Stepper, bool kRecord>
+class Engine {
+ public:
+  Engine(const Input& in, const Params& par, const RockingOptions& opt, Stepper& stepper, Rhs& rhs)
+      : in_(in), par_(par), opt_(opt), stepper_(stepper), rhs_(rhs) {}
+
+  RockingResult run() {
+    const std::size_t n = in_.size();
+    if constexpr (kRecord) {
+      const std::size_t guess = n + n / 4 + 16;
+      out_.history.time_s.reserve(guess);
+      out_.history.theta_rad.reserve(guess);
+      out_.history.theta_dot_rad_s.reserve(guess);
+      out_.history.state.reserve(guess);
+    }
+    RockingSummary& sum = out_.summary;
+    t_ = in_.time(0);
+    sum.max_rotation_time_s = t_;
+    // The ground is still before the record, so the first sample is reached by a jump from 0.
+    if (opt_.initial_theta_rad != 0.0 || opt_.initial_theta_dot_rad_s != 0.0) {
+      started_rocking_ = true;
+      s_ = opt_.initial_theta_rad != 0.0 ? (opt_.initial_theta_rad > 0.0 ? 1 : -1)
+                                         : (opt_.initial_theta_dot_rad_s > 0.0 ? 1 : -1);
+      u_ = {opt_.initial_theta_rad / par_.alpha, opt_.initial_theta_dot_rad_s / par_.w_scale};
+      mode_ = Mode::rocking;
+      need_restart_ = true;
+      track(t_, u_);
+      if (std::abs(u_[0]) >= 1.0) sum.exceeded_alpha_time_s = t_;  // released beyond alpha
+    }
+    row(t_, u_);
+
+    const bool fast_rest = in_.gravity.empty();
+    const double* a = in_.accel.data();
+    const double threshold = par_.g * par_.tan_alpha;
+    std::size_t i = 0;
+    at_start_ = true;  // t_ is at the start of interval i
+    while (!done_ && i + 1 < n) {
+      // The scan checks the end of each interval; the first sample (a jump from still ground) is checked by the
+      // general path.
+      if (fast_rest && mode_ == Mode::rest && at_start_ && (i > 0 || std::abs(a[0]) <= threshold)) {
+        // Full contact: each sample interval costs one comparison (|a| is convex on a linear piece, so both ends
+        // below the threshold keep the whole interval below it).
+        while (i + 1 < n && std::abs(a[i + 1]) <= threshold) {
+          ++i;
+          if constexpr (kRecord) row(in_.time(i), u_);
+        }
+        t_ = in_.time(i);
+        if (i + 1 >= n) break;
+      }
+      const double ta = in_.time(i);
+      const double tb = in_.time(i + 1);
+      if (!(tb > ta)) {  // a jump: the forcing changes at once
+        ++i;
+        need_restart_ = true;
+        continue;
+      }
+      const double ahs = (a[i + 1] - a[i]) / (tb - ta);
+      const double ge0 = in_.gravity.empty() ? par_.g : in_.gravity[i];
+      const double ges = in_.gravity.empty() ? 0.0 : (in_.gravity[i + 1] - in_.gravity[i]) / (tb - ta);
+      interval(ta, tb, a[i], ahs, ge0, ges);
+      if (done_) break;
+      ++i;
+      at_start_ = true;
+      row(tb, u_);
+    }
+    const double t_end = in_.time(n - 1);
+    if (!done_) {
+      t_ = t_end;
+      run_out(t_end);
+    }
+    finish();
+    return std::move(out_);
+  }
+
+ private:
+  // ---- recording ----
+  void row(double t, const State& u) {
+    if constexpr (kRecord) {
+      if (in_run_out_) flush_grid(t, false);
+      push_row(t, u);
+    }
+  }
+  void push_row(double t, const State& u) {
+    if constexpr (kRecord) {
+      auto& h = out_.history;
+      const RockingState st = state();
+      if (!h.time_s.empty() && h.time_s.back() == t && h.state.back() == st) {
+        h.theta_rad.back() = par_.alpha * u[0];
+        h.theta_dot_rad_s.back() = par_.w_scale * u[1];
+        return;
+      }
+      h.time_s.push_back(t);
+      h.theta_rad.push_back(par_.alpha * u[0]);
+      h.theta_dot_rad_s.push_back(par_.w_scale * u[1]);
+      h.state.push_back(st);
+    }
+  }
+  void event(RockingEventKind kind, double t, double theta, double w_before, double w_after) {
+    if constexpr (kRecord) out_.events.push_back(RockingEvent{kind, t, theta, w_before, w_after});
+  }
+  [[nodiscard]] RockingState state() const {
+    if (fallen_) return RockingState::fallen;
+    if (mode_ == Mode::rocking) return s_ > 0 ? RockingState::rocking_positive : RockingState::rocking_negative;
+    return RockingState::rest;
+  }
+  void track(double t, const State& u) {
+    RockingSummary& sum = out_.summary;
+    const double theta = std::abs(par_.alpha * u[0]);
+    if (theta > sum.max_abs_rotation_rad) {
+      sum.max_abs_rotation_rad = theta;
+      sum.max_rotation_time_s = t;
+    }
+    sum.max_abs_theta_dot_rad_s = std::max(sum.max_abs_theta_dot_rad_s, std::abs(par_.w_scale * u[1]));
+  }
+
+  // ---- one sample interval [ta, tb] from t_ ----
+  void interval(double ta, double tb, double ah0, double ahs, double ge0, double ges) {
+    rhs_.t_ref = ta;
+    rhs_.ah0 = ah0;
+    rhs_.ahs = ahs;
+    rhs_.ge0 = ge0;
+    rhs_.ges = ges;
+    at_start_ = false;
+    int events_here = 0;
+    while (!done_ && t_ < tb) {
+      if (++events_here > kMaxEventsPerInterval) {
+        throw std::runtime_error(fmt::format("rocking: more than {} events in the sample interval [{}, {}] s",
+                                             kMaxEventsPerInterval, ta, tb));
+      }
+      if (mode_ == Mode::rest) {
+        rest_phase(ta, tb, ah0, ahs, ge0, ges);
+      } else {
+        rocking_phase(tb);
+      }
+    }
+  }
+
+  /// Full contact over [t_, tb]: find the uplift, which is the root of a linear function. Uplift about O+ when
+  /// f+ = -a_h - (g + a_v) tan(alpha) > 0, about O- when f- = a_h - (g + a_v) tan(alpha) > 0.
+  void rest_phase(double ta, double tb, double ah0, double ahs, double ge0, double ges) {
+    const auto ah = [&](double t) { return ah0 + ahs * (t - ta); };
+    const auto ge = [&](double t) { return ge0 + ges * (t - ta); };
+    const double tan_a = par_.tan_alpha;
+    const double fp0 = -ah(t_) - ge(t_) * tan_a;
+    const double fm0 = ah(t_) - ge(t_) * tan_a;
+    const double fp1 = -ah(tb) - ge(tb) * tan_a;
+    const double fm1 = ah(tb) - ge(tb) * tan_a;
+    int dir = 0;
+    double tu = t_;
+    if (fp0 > 0.0) {
+      dir = 1;
+    } else if (fm0 > 0.0) {
+      dir = -1;
+    } else if (fp1 > 0.0) {
+      dir = 1;
+      tu = t_ + (tb - t_) * (-fp0) / (fp1 - fp0);
+    } else if (fm1 > 0.0) {
+      dir = -1;
+      tu = t_ + (tb - t_) * (-fm0) / (fm1 - fm0);
+    }
+    if (dir == 0) {
+      t_ = tb;
+      return;
+    }
+    tu = std::min(tu, tb);
+    t_ = tu;
+    s_ = dir;
+    u_ = {0.0, 0.0};
+    mode_ = Mode::rocking;
+    need_restart_ = true;
+    RockingSummary& sum = out_.summary;
+    ++sum.uplifts;
+    if (!sum.uplift_time_s) {
+      sum.uplift_time_s = tu;
+      // Value after a jump when the uplift sits on one; at least a/h, which round-off in the root may undercut.
+      if (!started_rocking_) first_uplift_ratio_ = std::max(std::abs(ah(tu)) / ge(tu), par_.a / par_.h);
+    }
+    event(RockingEventKind::uplift, tu, 0.0, 0.0, 0.0);
+    row(tu, u_);
+  }
+
+  /// One integrator step toward tb while rocking, and the events inside it.
+  void rocking_phase(double tb) {
+    rhs_.s_alpha = s_ * par_.alpha;
+    if (need_restart_) {
+      stepper_.restart(t_, u_);
+      need_restart_ = false;
+    }
+    if (tb - t_ <= 4.0 * std::numeric_limits<double>::epsilon() * std::max(std::abs(tb), 1.0)) {
+      t_ = tb;  // an event left only round-off of the interval
+      return;
+    }
+    stepper_.step(tb, out_.summary.steps, opt_.max_steps);
+    const double t0 = stepper_.t0();
+    const double t1 = stepper_.t1();
+    const State& x0 = stepper_.x0();
+    const State& x1 = stepper_.x1();
+    const double s = s_;
+    const auto f = [&](double t) { return s * stepper_.dense(t)[0]; };
+    const auto v = [&](double t) { return s * stepper_.dense(t)[1]; };
+    const double f0 = s * x0[0];
+    const double f1 = s * x1[0];
+    const double v0 = s * x0[1];
+    const double v1 = s * x1[1];
+
+    // Split the step at a turning point of theta (at most one inside a step: steps end on samples and the error
+    // control keeps them short against the motion), so that s theta is monotone on each piece.
+    double tp = t1;
+    bool split = false;
+    if ((v0 > 0.0 && v1 <= 0.0) || (v0 < 0.0 && v1 > 0.0)) {
+      tp = v1 == 0.0 ? t1 : find_root(v, t0, t1, v0, v1);
+      split = tp < t1;
+    }
+    const bool first_up = v0 > 0.0 || (v0 == 0.0 && (v1 > 0.0 || (v1 == 0.0 && f1 > f0)));
+    const double fp = split ? f(tp) : f1;
+    if (piece(t0, tp, f0, fp, first_up)) return;
+    if (first_up && (v0 > 0.0 && v1 <= 0.0)) peak(tp);
+    if (split && piece(tp, t1, fp, f1, !first_up)) return;
+
+    t_ = t1;
+    u_ = x1;
+    track(t1, x1);
+  }
+
+  /// Events on a monotone piece [ta, tb] of s theta (scaled: fa, fb). Returns true when an event ended the step
+  /// (impact, fall, rest, or the end of the run).
+  bool piece(double ta, double tb, double fa, double fb, bool up) {
+    const double s = s_;
+    const auto level = [&](double lv) {
+      return [this, s, lv](double t) { return s * stepper_.dense(t)[0] - lv; };
+    };
+    RockingSummary& sum = out_.summary;
+    if (up) {
+      if (!sum.exceeded_alpha_time_s && fa < 1.0 && fb >= 1.0) {
+        const double te = find_root(level(1.0), ta, tb, fa - 1.0, fb - 1.0);
+        sum.exceeded_alpha_time_s = te;
+        const State x = stepper_.dense(te);
+        event(RockingEventKind::exceeded_alpha, te, s * par_.alpha, par_.w_scale * x[1], par_.w_scale * x[1]);
+        row(te, State{s, x[1]});
+        if (opt_.stop_when_alpha_exceeded) {
+          t_ = te;
+          u_ = {s, x[1]};
+          track(te, u_);
+          done_ = true;
+          return true;
+        }
+      }
+      if (fb >= par_.overturn_level) {
+        const double tf = find_root(level(par_.overturn_level), ta, tb, fa - par_.overturn_level,
+                                    fb - par_.overturn_level);
+        const State x = stepper_.dense(tf);
+        before_state_change(tf);
+        t_ = tf;
+        u_ = {s * par_.overturn_level, x[1]};
+        track(tf, u_);
+        sum.overturned = true;
+        sum.overturn_time_s = tf;
+        fallen_ = true;
+        event(RockingEventKind::overturned, tf, s * kPi / 2.0, par_.w_scale * x[1], 0.0);
+        row(tf, u_);
+        done_ = true;
+        return true;
+      }
+      return false;
+    }
+    if (fb > 0.0) return false;
+    if (!(fa > 0.0)) {
+      // Lift-off that did not happen: the step started at theta = 0 with theta' = 0 and round-off sent it below.
+      // The body is still in contact at the end of the piece (time moves on, so this cannot loop).
+      before_state_change(tb);
+      t_ = tb;
+      u_ = {0.0, 0.0};
+      mode_ = Mode::rest;
+      event(RockingEventKind::rest, tb, 0.0, 0.0, 0.0);
+      row(tb, u_);
+      return true;
+    }
+    impact(find_root(level(0.0), ta, tb, fa, fb));
+    return true;
+  }
+
+  void peak(double tp) {
+    const State x = stepper_.dense(tp);
+    track(tp, x);
+    event(RockingEventKind::peak, tp, par_.alpha * x[0], 0.0, 0.0);
+    if constexpr (kRecord) {
+      // The turning point is a row of its own, between the step's start and end (the state is unchanged by it).
+      row(tp, State{x[0], 0.0});
+    }
+  }
+
+  /// theta = 0: land on the other edge with theta' multiplied by e (Housner), or come to rest (rest rule).
+  void impact(double ti) {
+    RockingSummary& sum = out_.summary;
+    const State x = stepper_.dense(ti);
+    before_state_change(ti);
+    const double w_before = par_.w_scale * x[1];
+    const double w_after = par_.e * w_before;
+    ++sum.impacts;
+    sum.energy_lost_j_per_kg += 0.5 * par_.D * (w_before * w_before - w_after * w_after);
+    sum.max_abs_theta_dot_rad_s = std::max(sum.max_abs_theta_dot_rad_s, std::abs(w_before));
+    event(RockingEventKind::impact, ti, 0.0, w_before, w_after);
+    t_ = ti;
+    need_restart_ = true;
+    if (w_after * w_after < par_.rest_w2) {
+      sum.energy_lost_j_per_kg += 0.5 * par_.D * w_after * w_after;
+      u_ = {0.0, 0.0};
+      mode_ = Mode::rest;
+      event(RockingEventKind::rest, ti, 0.0, w_after, 0.0);
+      row(ti, u_);
+      return;
+    }
+    s_ = -s_;
+    u_ = {0.0, w_after / par_.w_scale};
+    row(ti, u_);
+  }
+
+  // ---- after the record: still ground until rest, fall, or the run-out cap ----
+  void run_out(double t_end) {
+    if (mode_ == Mode::rest || opt_.max_run_out_s == 0.0) return;
+    rhs_.t_ref = t_end;
+    rhs_.ah0 = 0.0;
+    rhs_.ahs = 0.0;
+    rhs_.ge0 = par_.g;
+    rhs_.ges = 0.0;
+    need_restart_ = true;  // the ground jumps to rest at the end of the record
+    const double t_stop = t_end + opt_.max_run_out_s;
+    // The forcing is constant now, so steps need not stop anywhere (the same steps with or without a history).
+    // History rows continue the record's spacing (at most 1e5 of them) from the dense output of each step.
+    in_run_out_ = true;
+    grid_t0_ = t_end;
+    grid_dt_ = std::max(in_.dt, opt_.max_run_out_s * 1e-5);
+    std::size_t stalls = 0;
+    while (!done_ && mode_ == Mode::rocking && t_ < t_stop) {
+      const double before = t_;
+      rocking_phase(t_stop);
+      if constexpr (kRecord) {
+        if (!done_ && mode_ == Mode::rocking && t_ == stepper_.t1()) flush_grid(t_, true);
+      }
+      if (t_ == before && ++stalls > static_cast<std::size_t>(kMaxEventsPerInterval)) {
+        throw std::runtime_error(fmt::format("rocking: no progress in the run-out at t = {} s", t_));
+      }
+    }
+    in_run_out_ = false;
+  }
+
+  /// Rows due before an event at t carry the state before it.
+  void before_state_change(double t) {
+    if constexpr (kRecord) {
+      if (in_run_out_) flush_grid(t, false);
+    } else {
+      (void)t;
+    }
+  }
+
+  /// Run-out rows on the grid up to t (before an event row at t, or at the end of a step), from the current step.
+  void flush_grid(double t, bool inclusive) {
+    for (;;) {
+      const double tg = grid_t0_ + static_cast<double>(next_grid_) * grid_dt_;
+      if (tg > t || (!inclusive && tg == t)) return;
+      ++next_grid_;
+      if (tg < stepper_.t0()) continue;
+      push_row(tg, tg == stepper_.t1() ? stepper_.x1() : stepper_.dense(tg));
+    }
+  }
+
+  void finish() {
+    RockingSummary& sum = out_.summary;
+    sum.end_time_s = t_;
+    sum.end_state = state();
+    if (mode_ == Mode::rocking && !fallen_) {
+      sum.still_rocking_at_end = true;
+      if (!opt_.stop_when_alpha_exceeded) {
+        sum.warnings.push_back(fmt::format("the body was still rocking {} s after the record ended "
+                                           "(max_run_out_s); the summary covers the response up to then",
+                                           opt_.max_run_out_s));
+      }
+    }
+    if constexpr (kRecord) {
+      if (out_.history.time_s.empty() || out_.history.time_s.back() < t_) row(t_, u_);
+    }
+  }
+
+ public:
+  std::optional<double> first_uplift_ratio_;
+
+ private:
+  static constexpr int kMaxEventsPerInterval = 1'000'000;
+  const Input& in_;
+  const Params& par_;
+  const RockingOptions& opt_;
+  Stepper& stepper_;
+  Rhs& rhs_;
+  RockingResult out_;
+  double t_ = 0.0;
+  State u_{0.0, 0.0};
+  int s_ = 1;
+  Mode mode_ = Mode::rest;
+  bool need_restart_ = true;
+  bool at_start_ = true;
+  bool fallen_ = false;
+  bool started_rocking_ = false;
+  bool done_ = false;
+  bool in_run_out_ = false;
+  double grid_t0_ = 0.0;
+  double grid_dt_ = 0.0;
+  std::size_t next_grid_ = 1;
+};
+
+void validate(const RockingBody& body, const RockingOptions& o) {
+  // The factories validate; a body built field by field is checked again here.
+  (void)RockingBody::general(body.a_m, body.h_m, body.D_m2);
+  require_positive(o.g_m_s2, "g", "g");
+  if (o.restitution == RestitutionMode::given && (!std::isfinite(o.e) || o.e < 0.0 || o.e > 1.0)) {
+    throw parameter_error("e", fmt::format("coefficient of restitution must be in [0, 1], got {}", o.e));
+  }
+  if (o.restitution == RestitutionMode::housner && housner_restitution(body) < 0.0) {
+    throw parameter_error("e", fmt::format("Housner's e = 1 - 2a^2/D = {:.6g} is negative for this squat body "
+                                           "(alpha = {:.4g} deg): it cannot rock onto the other edge; give e",
+                                           housner_restitution(body), body.alpha_rad() * 180.0 / kPi));
+  }
+  if (o.mu && (!std::isfinite(*o.mu) || *o.mu < 0.0)) {
+    throw parameter_error("mu", fmt::format("friction coefficient must be finite and >= 0, got {}", *o.mu));
+  }
+  if (!std::isfinite(o.rel_tol) || !(o.rel_tol > 0.0) || o.rel_tol >= 1.0) {
+    throw parameter_error("rel_tol", fmt::format("relative tolerance must be in (0, 1), got {}", o.rel_tol));
+  }
+  if (!std::isfinite(o.abs_tol) || !(o.abs_tol > 0.0)) {
+    throw parameter_error("abs_tol", fmt::format("absolute tolerance must be positive and finite, got {}", o.abs_tol));
+  }
+  if (o.rk4_substeps < 1) {
+    throw parameter_error("rk4_substeps", fmt::format("RK4 needs at least 1 step per sample, got {}", o.rk4_substeps));
+  }
+  if (!std::isfinite(o.rest_energy_fraction) || !(o.rest_energy_fraction > 0.0) || o.rest_energy_fraction >= 1.0) {
+    throw parameter_error("rest_energy_fraction",
+                          fmt::format("must be in (0, 1), got {}", o.rest_energy_fraction));
+  }
+  if (!std::isfinite(o.max_run_out_s) || o.max_run_out_s < 0.0) {
+    throw parameter_error("max_run_out_s", fmt::format("run-out time must be >= 0 and finite, got {}", o.max_run_out_s));
+  }
+  if (!std::isfinite(o.initial_theta_rad) || std::abs(o.initial_theta_rad) >= kPi / 2.0) {
+    throw parameter_error("initial_theta_rad",
+                          fmt::format("initial rotation must be finite and below pi/2 in magnitude, got {}",
+                                      o.initial_theta_rad));
+  }
+  if (!std::isfinite(o.initial_theta_dot_rad_s)) {
+    throw parameter_error("initial_theta_dot_rad_s", "initial angular velocity must be finite");
+  }
+}
+
+Params make_params(const RockingBody& body, const RockingOptions& o) {
+  Params par;
+  par.a = body.a_m;
+  par.h = body.h_m;
+  par.D = body.D_m2;
+  par.R = body.R_m();
+  par.alpha = body.alpha_rad();
+  par.g = o.g_m_s2;
+  par.p = body.p_rad_s(o.g_m_s2);
+  par.tan_alpha = body.a_m / body.h_m;
+  par.e = o.restitution == RestitutionMode::housner ? housner_restitution(body) : o.e;
+  par.w_scale = par.p * par.alpha;
+  // (D/2) theta'^2 < fraction * g R (1 - cos alpha), with 1 - cos alpha = 2 sin^2(alpha/2) (no cancellation).
+  const double sh = std::sin(0.5 * par.alpha);
+  par.rest_w2 = 2.0 * o.rest_energy_fraction * par.g * par.R * 2.0 * sh * sh / par.D;
+  par.overturn_level = (kPi / 2.0) / par.alpha;
+  return par;
+}
+
+/// max over the input of |a_h| / (g + a_v): exact for piecewise-linear inputs (the ratio of two linear functions
+/// is monotone on each interval, so its maximum sits on a sample).
+double peak_accel_ratio(const Input& in, double g) {
+  double peak = 0.0;
+  for (std::size_t i = 0; i < in.size(); ++i) {
+    peak = std::max(peak, std::abs(in.accel[i]) / (in.gravity.empty() ? g : in.gravity[i]));
+  }
+  return peak;
+}
+
+void onset(RockingSummary& sum, const RockingBody& body, const RockingOptions& o, const Input& in,
+           const std::optional<double>& uplift_ratio, bool started_rocking) {
+  if (!o.mu) return;
+  const double mu = *o.mu;
+  const double beta = body.a_m / body.h_m;
+  if (mu < beta) {
+    if (uplift_ratio || peak_accel_ratio(in, o.g_m_s2) > mu) {
+      sum.onset_mode = OnsetMode::slide;
+      sum.onset_accel_ratio = mu;
+      sum.warnings.push_back(fmt::format("mu = {:.6g} < a/h = {:.6g}: the body slides before it can rock (Shenton "
+                                         "1996); the rocking-only response is not valid for this friction",
+                                         mu, beta));
+    } else {
+      sum.onset_mode = OnsetMode::rest;
+    }
+    return;
+  }
+  if (uplift_ratio) {
+    sum.onset_accel_ratio = *uplift_ratio;
+    sum.critical_mu = shenton_critical_mu(body, *uplift_ratio);
+    sum.onset_mode = shenton_onset_mode(body, *uplift_ratio, mu);
+    if (sum.onset_mode == OnsetMode::slide_rock) {
+      sum.warnings.push_back(fmt::format("mu = {:.6g} < mu_crit = {:.6g} at lift-off (|a_h|/(g+a_v) = {:.6g}): the "
+                                         "body starts in slide-rock mode (Shenton 1996); the rocking-only response "
+                                         "is not valid for this friction",
+                                         mu, *sum.critical_mu, *uplift_ratio));
+    }
+    return;
+  }
+  sum.onset_mode = started_rocking ? OnsetMode::unchecked : OnsetMode::rest;
+}
+
+template <bool kRecord>
+RockingResult run(const GroundMotion& horizontal, const RockingBody& body, const RockingOptions& o,
+                  const GroundMotion* vertical) {
+  validate(body, o);
+  const Input in = make_input(horizontal, vertical, o.g_m_s2);
+  const Params par = make_params(body, o);
+  Rhs rhs;
+  rhs.p = par.p;
+  rhs.alpha = par.alpha;
+  rhs.k = (par.R / par.D) / par.w_scale;
+  rhs.ge0 = par.g;
+  RockingResult result;
+  std::optional<double> uplift_ratio;
+  const bool started_rocking = o.initial_theta_rad != 0.0 || o.initial_theta_dot_rad_s != 0.0;
+  if (o.method == RockingMethod::adaptive) {
+    // First step guess: a tenth of the sample interval (the controller adapts it within a few steps).
+    AdaptiveStepper stepper(rhs, o.abs_tol, o.rel_tol, 0.1 * in.dt);
+    Engine<AdaptiveStepper, kRecord> engine(in, par, o, stepper, rhs);
+    result = engine.run();
+    uplift_ratio = engine.first_uplift_ratio_;
+  } else {
+    Rk4Stepper stepper(rhs, in.dt / static_cast<double>(o.rk4_substeps));
+    Engine<Rk4Stepper, kRecord> engine(in, par, o, stepper, rhs);
+    result = engine.run();
+    uplift_ratio = engine.first_uplift_ratio_;
+  }
+  RockingSummary& sum = result.summary;
+  sum.alpha_rad = par.alpha;
+  sum.R_m = par.R;
+  sum.p_rad_s = par.p;
+  sum.e = par.e;
+  sum.g_m_s2 = par.g;
+  sum.max_rotation_over_alpha = sum.max_abs_rotation_rad / par.alpha;
+  onset(sum, body, o, in, uplift_ratio, started_rocking);
+  return result;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------------------------
+
+RockingBody RockingBody::block(double width_m, double height_m) {
+  require_positive(width_m, "width", "width");
+  require_positive(height_m, "height", "height");
+  const double a = 0.5 * width_m;
+  const double h = 0.5 * height_m;
+  return RockingBody{Shape::block, a, h, 4.0 / 3.0 * (a * a + h * h)};  // thesis eq 3.14
+}
+
+RockingBody RockingBody::cylinder(double diameter_m, double height_m) {
+  require_positive(diameter_m, "diameter", "diameter");
+  require_positive(height_m, "height", "height");
+  const double a = 0.5 * diameter_m;
+  const double h = 0.5 * height_m;
+  return RockingBody{Shape::cylinder, a, h, (15.0 * a * a + 16.0 * h * h) / 12.0};  // thesis eq 3.13
+}
+
+RockingBody RockingBody::general(double a_m, double h_m, double D_m2) {
+  require_positive(a_m, "a", "a (CM to pivot edge)");
+  require_positive(h_m, "h", "h (CM height)");
+  require_positive(D_m2, "D", "D (pivot moment of inertia per unit mass)");
+  const double r2 = a_m * a_m + h_m * h_m;
+  // Parallel axes: D = a^2 + h^2 + I_cm/m. Allow round-off of the factories' own arithmetic.
+  if (D_m2 < r2 * (1.0 - 8.0 * std::numeric_limits<double>::epsilon())) {
+    throw parameter_error("D", fmt::format("D = {:.6g} m2 is below a^2 + h^2 = {:.6g} m2: no real body has a "
+                                           "negative moment of inertia about its centre of mass",
+                                           D_m2, r2));
+  }
+  return RockingBody{Shape::general, a_m, h_m, D_m2};
+}
+
+double RockingBody::alpha_rad() const noexcept { return std::atan2(a_m, h_m); }
+double RockingBody::R_m() const noexcept { return std::hypot(a_m, h_m); }
+double RockingBody::p_rad_s(double g_m_s2) const noexcept { return std::sqrt(g_m_s2 * R_m() / D_m2); }
+
+std::string_view shape_name(RockingBody::Shape shape) {
+  switch (shape) {
+    case RockingBody::Shape::block: return "block";
+    case RockingBody::Shape::cylinder: return "cylinder";
+    case RockingBody::Shape::general: return "general";
+  }
+  return "unknown";
+}
+
+double housner_restitution(const RockingBody& body) noexcept {
+  // e = 1 - 2 m R^2 sin^2(alpha) / I_O with R sin(alpha) = a.
+  return 1.0 - 2.0 * body.a_m * body.a_m / body.D_m2;
+}
+
+std::string_view rocking_state_name(RockingState state) {
+  switch (state) {
+    case RockingState::rocking_negative: return "rocking-";
+    case RockingState::rest: return "rest";
+    case RockingState::rocking_positive: return "rocking+";
+    case RockingState::fallen: return "fallen";
+  }
+  return "unknown";
+}
+
+std::string_view onset_mode_name(OnsetMode mode) {
+  switch (mode) {
+    case OnsetMode::unchecked: return "unchecked";
+    case OnsetMode::rest: return "rest";
+    case OnsetMode::rock: return "rock";
+    case OnsetMode::slide: return "slide";
+    case OnsetMode::slide_rock: return "slide-rock";
+  }
+  return "unknown";
+}
+
+std::string_view rocking_event_name(RockingEventKind kind) {
+  switch (kind) {
+    case RockingEventKind::uplift: return "uplift";
+    case RockingEventKind::impact: return "impact";
+    case RockingEventKind::rest: return "rest";
+    case RockingEventKind::peak: return "peak";
+    case RockingEventKind::exceeded_alpha: return "exceeded-alpha";
+    case RockingEventKind::overturned: return "overturned";
+  }
+  return "unknown";
+}
+
+RockingResult rock(const GroundMotion& horizontal, const RockingBody& body, const RockingOptions& options,
+                   const GroundMotion* vertical) {
+  return run<true>(horizontal, body, options, vertical);
+}
+
+RockingSummary rock_summary(const GroundMotion& horizontal, const RockingBody& body, const RockingOptions& options,
+                            const GroundMotion* vertical) {
+  return run<false>(horizontal, body, options, vertical).summary;
+}
+
+// ---- Shenton ----
+
+double shenton_critical_mu(const RockingBody& body, double accel_ratio) {
+  if (!std::isfinite(accel_ratio) || accel_ratio < 0.0) {
+    throw parameter_error("accel_ratio", fmt::format("|a_h|/(g + a_v) must be finite and >= 0, got {}", accel_ratio));
+  }
+  const double a = body.a_m;
+  const double h = body.h_m;
+  const double D = body.D_m2;
+  return (accel_ratio * (D - h * h) + a * h) / ((D - a * a) + accel_ratio * a * h);
+}
+
+OnsetMode shenton_onset_mode(const RockingBody& body, double accel_ratio, double mu) {
+  if (!std::isfinite(mu) || mu < 0.0) {
+    throw parameter_error("mu", fmt::format("friction coefficient must be finite and >= 0, got {}", mu));
+  }
+  const double mu_crit = shenton_critical_mu(body, accel_ratio);  // validates accel_ratio
+  const double beta = body.a_m / body.h_m;
+  if (accel_ratio < std::min(mu, beta)) return OnsetMode::rest;
+  if (mu < beta) return OnsetMode::slide;
+  return mu >= mu_crit ? OnsetMode::rock : OnsetMode::slide_rock;
+}
+
+// ---- Closed forms ----
+
+namespace {
+void require_amplitude(const RockingBody& body, double theta0) {
+  if (!std::isfinite(theta0) || !(theta0 > 0.0) || !(theta0 < body.alpha_rad())) {
+    throw parameter_error("theta0", fmt::format("free rocking needs 0 < theta0 < alpha = {}, got {}",
+                                                body.alpha_rad(), theta0));
+  }
+}
+}  // namespace
+
+double linearized_free_rocking_period(const RockingBody& body, double theta0_rad, double g_m_s2) {
+  require_amplitude(body, theta0_rad);
+  require_positive(g_m_s2, "g", "g");
+  return 4.0 / body.p_rad_s(g_m_s2) * std::acosh(1.0 / (1.0 - theta0_rad / body.alpha_rad()));
+}
+
+double free_rocking_period(const RockingBody& body, double theta0_rad, double g_m_s2) {
+  require_amplitude(body, theta0_rad);
+  require_positive(g_m_s2, "g", "g");
+  const double alpha = body.alpha_rad();
+  const double p = body.p_rad_s(g_m_s2);
+  const double phi0 = alpha - theta0_rad;
+  // theta = theta0 (1 - w^2), w in [0, 1]: dtheta = -2 theta0 w dw, and with delta = theta0 w^2
+  // cos(phi0) - cos(phi0 + delta) = 2 sin(phi0 + delta/2) sin(delta/2) ~ w^2: the integrand is smooth in w.
+  const auto integrand = [&](double w) {
+    if (w == 0.0) return 2.0 * theta0_rad / std::sqrt(2.0 * p * p * std::sin(phi0) * theta0_rad);
+    const double delta = theta0_rad * w * w;
+    const double diff = 2.0 * std::sin(phi0 + 0.5 * delta) * std::sin(0.5 * delta);
+    return 2.0 * theta0_rad * w / std::sqrt(2.0 * p * p * diff);
+  };
+  const double quarter = boost::math::quadrature::gauss_kronrod<double, 31>::integrate(integrand, 0.0, 1.0, 15, 1e-14);
+  return 4.0 * quarter;
+}
+
+double free_rocking_impact_speed(const RockingBody& body, double theta0_rad, double g_m_s2) {
+  require_amplitude(body, theta0_rad);
+  require_positive(g_m_s2, "g", "g");
+  const double alpha = body.alpha_rad();
+  const double p = body.p_rad_s(g_m_s2);
+  // cos(alpha - theta0) - cos(alpha) = 2 sin(alpha - theta0/2) sin(theta0/2)
+  return std::sqrt(2.0 * p * p * 2.0 * std::sin(alpha - 0.5 * theta0_rad) * std::sin(0.5 * theta0_rad));
+}
+
+double free_rocking_amplitude(const RockingBody& body, double theta0_rad, double e, int impacts) {
+  require_amplitude(body, theta0_rad);
+  if (!std::isfinite(e) || e < 0.0 || e > 1.0) {
+    throw parameter_error("e", fmt::format("coefficient of restitution must be in [0, 1], got {}", e));
+  }
+  if (impacts < 0) throw parameter_error("impacts", fmt::format("must be >= 0, got {}", impacts));
+  const double alpha = body.alpha_rad();
+  const double ca = std::cos(alpha);
+  double theta = theta0_rad;
+  for (int k = 0; k < impacts; ++k) {
+    theta = alpha - std::acos(ca + e * e * (std::cos(alpha - theta) - ca));
+  }
+  return theta;
+}
+
+double rectangular_pulse_threshold_linearized(const RockingBody& body, double duration_s, double g_m_s2) {
+  require_positive(duration_s, "duration", "pulse duration");
+  require_positive(g_m_s2, "g", "g");
+  return g_m_s2 * body.alpha_rad() / (-std::expm1(-body.p_rad_s(g_m_s2) * duration_s));
+}
+
+double velocity_impulse_threshold(const RockingBody& body, double g_m_s2) {
+  require_positive(g_m_s2, "g", "g");
+  const double alpha = body.alpha_rad();
+  const double sh = std::sin(0.5 * alpha);
+  // sqrt(2 (1 - cos alpha)) = 2 sin(alpha / 2)
+  return g_m_s2 / (body.p_rad_s(g_m_s2) * std::cos(alpha)) * 2.0 * sh;
+}
+
+// ---- Threshold search ----
+
+ThresholdResult first_overturning_amplitude(const std::function<GroundMotion(double)>& motion_for,
+                                            const RockingBody& body, const RockingOptions& options,
+                                            OverturnCriterion criterion, const ThresholdSearch& search) {
+  if (!std::isfinite(search.start) || !std::isfinite(search.max) || search.max < search.start) {
+    throw parameter_error("search", fmt::format("scan range [{}, {}] is empty or not finite", search.start, search.max));
+  }
+  require_positive(search.step, "search.step", "scan step");
+  require_positive(search.rel_tol, "search.rel_tol", "relative tolerance");
+  RockingOptions o = options;
+  o.stop_when_alpha_exceeded = criterion == OverturnCriterion::exceeds_alpha;
+  ThresholdResult result;
+  const auto overturns = [&](double amplitude) {
+    if (++result.runs > search.max_runs) {
+      throw std::runtime_error(fmt::format("first_overturning_amplitude: more than {} runs (max_runs)",
+                                           search.max_runs));
+    }
+    const RockingSummary s = rock_summary(motion_for(amplitude), body, o);
+    return criterion == OverturnCriterion::falls ? s.overturned : s.exceeded_alpha_time_s.has_value();
+  };
+  double below = search.start;
+  bool have_below = false;
+  std::optional<double> above;
+  for (std::size_t k = 0;; ++k) {
+    const double amplitude = search.start + static_cast<double>(k) * search.step;
+    if (amplitude > search.max * (1.0 + 1e-12)) break;
+    if (overturns(amplitude)) {
+      above = amplitude;
+      break;
+    }
+    below = amplitude;
+    have_below = true;
+  }
+  if (!above) {
+    result.below = below;
+    return result;
+  }
+  if (!have_below) {  // the first amplitude tried already overturns
+    result.amplitude = above;
+    result.below = *above;
+    return result;
+  }
+  double hi = *above;
+  double lo = below;
+  while (hi - lo > search.rel_tol * std::abs(hi)) {
+    const double mid = 0.5 * (lo + hi);
+    if (overturns(mid)) {
+      hi = mid;
+    } else {
+      lo = mid;
+    }
+  }
+  result.amplitude = hi;
+  result.below = lo;
+  return result;
+}
+
+}  // namespace topple
