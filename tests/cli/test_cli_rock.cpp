@@ -1,0 +1,200 @@
+// `topple rock`: the JSON summary (stable keys), the history CSV, records and pulses, vertical input, and bad input
+// (exit 2 naming the option). The CLI only parses and prints, so its numbers must be the library's exactly.
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "support/shared_data.hpp"
+#include "topple/io/read.hpp"
+#include "topple/pulses.hpp"
+#include "topple/rocking.hpp"
+
+namespace topple {
+namespace {
+
+nlohmann::json run_json(const std::string& args) {
+  const auto r = test::run_cli(args);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  return nlohmann::json::parse(r.out);
+}
+
+void expect_error(const std::string& args, const std::string& option) {
+  const auto r = test::run_cli(args);
+  EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.out;
+  EXPECT_NE(r.err.find(option), std::string::npos) << args << "\n" << r.err;
+}
+
+TEST(CliRock, PulseJsonIsTheLibrarySummary) {
+  // One-cycle cosine of 0.5 g, 0.5 s on the thesis' object A (4 x 20 cm), g = 9.81: the JSON numbers are those of
+  // rock_summary on the same pulse (printed with full precision by nlohmann: equal to round-trip, 1e-15).
+  const auto j = run_json("rock --shape block --width 4cm --height 20cm --pulse cosine --amp-g 0.25 --duration 0.5s "
+                          "--g 9.81 --e 0.6 --json");
+  PulseSpec spec;
+  spec.kind = PulseKind::cosine;
+  spec.amplitude_m_s2 = 0.25 * 9.81;
+  spec.duration_s = 0.5;
+  spec.tail_s = 2.5;  // the CLI's default tail: 5 durations
+  RockingOptions o;
+  o.g_m_s2 = 9.81;
+  o.restitution = RestitutionMode::given;
+  o.e = 0.6;
+  const auto s = rock_summary(make_pulse(spec), RockingBody::block(0.04, 0.20), o);
+  ASSERT_GT(s.impacts, 0u);
+  EXPECT_NEAR(j.at("max_abs_rotation_rad").get<double>(), s.max_abs_rotation_rad, 1e-15);
+  EXPECT_NEAR(j.at("max_rotation_over_alpha").get<double>(), s.max_rotation_over_alpha, 1e-14);
+  EXPECT_EQ(j.at("impacts").get<std::size_t>(), s.impacts);
+  EXPECT_EQ(j.at("overturned").get<bool>(), s.overturned);
+  EXPECT_NEAR(j.at("uplift_time_s").get<double>(), *s.uplift_time_s, 1e-15);
+  EXPECT_NEAR(j.at("alpha_rad").get<double>(), std::atan(0.2), 1e-15);
+  EXPECT_NEAR(j.at("p_rad_s").get<double>(), std::sqrt(3.0 * 9.81 / (4.0 * std::hypot(0.02, 0.1))), 1e-12);
+  EXPECT_DOUBLE_EQ(j.at("e").get<double>(), 0.6);
+  EXPECT_DOUBLE_EQ(j.at("g_m_s2").get<double>(), 9.81);
+  EXPECT_EQ(j.at("onset_mode").get<std::string>(), "unchecked");
+  // Stable interface: these keys are always present (null where there is no value).
+  for (const char* key : {"max_abs_rotation_rad", "max_rotation_over_alpha", "impacts", "uplift_time_s",
+                          "exceeded_alpha_time_s", "overturned", "overturn_time_s", "alpha_rad", "p_rad_s", "e",
+                          "onset_mode", "g_m_s2", "energy_lost_j_per_kg", "body", "solver", "input", "warnings"}) {
+    EXPECT_TRUE(j.contains(key)) << key;
+  }
+  EXPECT_EQ(j.at("body").at("shape").get<std::string>(), "block");
+  EXPECT_DOUBLE_EQ(j.at("body").at("width_m").get<double>(), 0.04);
+  EXPECT_DOUBLE_EQ(j.at("body").at("height_m").get<double>(), 0.20);
+}
+
+TEST(CliRock, NoUpliftGivesNullTimes) {
+  // 0.15 g < a/h = 0.2: the block never leaves full contact.
+  const auto j = run_json("rock --shape block --width 4cm --height 20cm --pulse sine --amp-g 0.15 --duration 0.5 --json");
+  EXPECT_TRUE(j.at("uplift_time_s").is_null());
+  EXPECT_TRUE(j.at("exceeded_alpha_time_s").is_null());
+  EXPECT_TRUE(j.at("overturn_time_s").is_null());
+  EXPECT_FALSE(j.at("overturned").get<bool>());
+  EXPECT_EQ(j.at("max_abs_rotation_rad").get<double>(), 0.0);
+  EXPECT_EQ(j.at("e_mode").get<std::string>(), "housner");
+  EXPECT_NEAR(j.at("e").get<double>(), 1.0 - 1.5 * std::pow(std::sin(std::atan(0.2)), 2), 1e-15);
+}
+
+TEST(CliRock, OverturningPulseAndShapes) {
+  // A long rectangular pulse well above the threshold topples every shape.
+  const auto block = run_json("rock --shape block --width 4cm --height 20cm --pulse rect --amp-g 0.5 --duration 1s --json");
+  EXPECT_TRUE(block.at("overturned").get<bool>());
+  EXPECT_FALSE(block.at("overturn_time_s").is_null());
+  EXPECT_FALSE(block.at("exceeded_alpha_time_s").is_null());
+  EXPECT_EQ(block.at("end_state").get<std::string>(), "fallen");
+  const auto cyl = run_json("rock --shape cylinder --diameter 40mm --height 0.2m --pulse rect --amp-g 0.5 --duration 1s --json");
+  EXPECT_TRUE(cyl.at("overturned").get<bool>());
+  EXPECT_NEAR(cyl.at("body").at("D_m2").get<double>(), (15.0 * 0.02 * 0.02 + 16.0 * 0.1 * 0.1) / 12.0, 1e-15);
+  const auto gen = run_json("rock --shape general --a 2cm --h 10cm --D 140cm2 --pulse rect --amp-g 0.5 --duration 1s --json");
+  EXPECT_TRUE(gen.at("overturned").get<bool>());
+  EXPECT_NEAR(gen.at("body").at("D_m2").get<double>(), 0.014, 1e-15);
+}
+
+TEST(CliRock, HistoryCsvHasUnitsInItsHeaderAndValidStates) {
+  test::TempDir tmp;
+  const auto out = tmp.path() / "h.csv";
+  const auto r = test::run_cli("rock --shape block --width 4cm --height 20cm --pulse sine --amp-g 0.3 --duration 0.4 "
+                               "--e 0.7 --out '" + out.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream in(out);
+  std::string header;
+  std::getline(in, header);
+  EXPECT_EQ(header, "time_s,theta_rad,theta_dot_rad_s,state");
+  const std::set<std::string> states{"rest", "rocking+", "rocking-", "fallen"};
+  std::set<std::string> seen;
+  int rows = 0;
+  std::string line;
+  double last_t = -1.0;
+  while (std::getline(in, line)) {
+    ++rows;
+    const auto c3 = line.rfind(',');
+    const std::string state = line.substr(c3 + 1);
+    EXPECT_TRUE(states.count(state)) << line;
+    seen.insert(state);
+    const double t = std::stod(line.substr(0, line.find(',')));
+    EXPECT_GE(t, last_t) << line;
+    last_t = t;
+  }
+  EXPECT_GT(rows, 2000);  // 2000 pulse samples and the tail, plus events
+  EXPECT_TRUE(seen.count("rest"));
+  EXPECT_TRUE(seen.count("rocking+") || seen.count("rocking-"));
+}
+
+TEST(CliRock, ShentonWarningOnStderr) {
+  // mu = 0.1 < a/h = 0.2: the block slides before it can rock; the run still succeeds, with a warning.
+  const auto r = test::run_cli("rock --shape block --width 4cm --height 20cm --pulse sine --amp-g 0.3 --duration 0.4 "
+                               "--mu 0.1 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("warning"), std::string::npos) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j.at("onset_mode").get<std::string>(), "slide");
+  EXPECT_FALSE(j.at("warnings").empty());
+  const auto ok = run_json("rock --shape block --width 4cm --height 20cm --pulse sine --amp-g 0.3 --duration 0.4 "
+                           "--mu 0.8 --json");
+  EXPECT_EQ(ok.at("onset_mode").get<std::string>(), "rock");
+}
+
+TEST(CliRock, RecordScaledAndInvertedMatchesTheLibrary) {
+  if (!test::have_shared()) GTEST_SKIP() << "../shared not present";
+  const auto path = test::shared_record("RSN6_IMPVALL.I_I-ELC180.AT2");
+  const auto j = run_json("rock '" + path.string() + "' --shape block --width 4cm --height 20cm --e 0.75 "
+                          "--scale-pga 0.3g --invert --json");
+  const GroundMotion m = io::read_motion(path).scaled_to_pga(0.3 * kStandardGravity).inverted();
+  RockingOptions o;
+  o.restitution = RestitutionMode::given;
+  o.e = 0.75;
+  const auto s = rock_summary(m, RockingBody::block(0.04, 0.20), o);
+  EXPECT_NEAR(j.at("max_abs_rotation_rad").get<double>(), s.max_abs_rotation_rad, 1e-15);
+  EXPECT_EQ(j.at("impacts").get<std::size_t>(), s.impacts);
+  EXPECT_NEAR(j.at("input").at("pga_g").get<double>(), 0.3, 1e-12);
+  EXPECT_TRUE(j.at("input").at("invert").get<bool>());
+}
+
+TEST(CliRock, VerticalInputIsReadAndScaled) {
+  // A plain vertical record of constant -g/2 halves the effective gravity: a 0.15 g pulse (below a/h = 0.2 alone)
+  // rocks the block with it.
+  test::TempDir tmp;
+  const auto v = tmp.path() / "v.csv";
+  test::write_file(v, "time_s,accel_g\n0,-0.5\n5,-0.5\n");
+  const std::string base = "rock --shape block --width 4cm --height 20cm --pulse sine --amp-g 0.15 --duration 0.5 --json";
+  EXPECT_TRUE(run_json(base).at("uplift_time_s").is_null());
+  const auto j = run_json(base + " --vertical '" + v.string() + "'");
+  EXPECT_FALSE(j.at("uplift_time_s").is_null());
+  EXPECT_EQ(j.at("input").at("vertical").get<std::string>(), v.string());
+}
+
+TEST(CliRock, MethodsAgree) {
+  // Fixed-step RK4 (dt/100 on the pulse's 0.25 ms samples) and the adaptive method: max |theta| to 1e-6 relative.
+  const std::string base = "rock --shape block --width 4cm --height 20cm --pulse sine --amp-g 0.3 --duration 0.5 --e 0.7 --json";
+  const auto a = run_json(base + " --rtol 1e-10");
+  const auto r = run_json(base + " --method rk4 --rk4-substeps 100");
+  EXPECT_NEAR(r.at("max_abs_rotation_rad").get<double>() / a.at("max_abs_rotation_rad").get<double>(), 1.0, 1e-6);
+  EXPECT_EQ(r.at("solver").at("method").get<std::string>(), "rk4");
+}
+
+TEST(CliRock, BadInputExitsWithStatus2NamingTheOption) {
+  const std::string pulse = "rock --pulse sine --amp-g 0.3 --duration 0.5 ";
+  expect_error(pulse + "--shape block --width 0.04 --height 20cm", "--width");          // bare number
+  expect_error(pulse + "--shape block --width -4cm --height 20cm", "--width");          // non-positive
+  expect_error(pulse + "--shape block --width 4cm", "--height");                        // missing
+  expect_error(pulse + "--shape cylinder --diameter 0cm --height 20cm", "--diameter");
+  expect_error(pulse + "--shape general --a 2cm --h 10cm --D 0.001m2", "--D");          // D < a^2 + h^2
+  expect_error(pulse + "--shape general --a 2cm --h 10cm --D 0.02", "--D");             // no unit
+  expect_error(pulse + "--shape block --width 4cm --height 20cm --e 1.5", "--e");
+  expect_error(pulse + "--shape block --width 4cm --height 20cm --e -0.1", "--e");
+  expect_error(pulse + "--shape block --width 4cm --height 20cm --e soft", "--e");
+  expect_error(pulse + "--shape block --width 1m --height 50cm", "--e");                // Housner e < 0
+  expect_error(pulse + "--shape block --width 4cm --height 20cm --mu -0.2", "--mu");
+  expect_error(pulse + "--shape block --width 4cm --height 20cm --g -9.8", "--g");
+  expect_error(pulse + "--width 4cm --height 20cm", "--shape");
+  expect_error(pulse + "--shape prism --width 4cm --height 20cm", "--shape");
+  expect_error(pulse + "--shape block --width 4cm --height 20cm --diameter 4cm", "--diameter");
+  expect_error(pulse + "--shape block --width 4cm --height 20cm --method euler", "--method");
+  expect_error(pulse + "--shape block --width 4cm --height 20cm --rtol 2", "--rtol");
+  expect_error("rock --shape block --width 4cm --height 20cm", "FILE");  // neither a file nor a pulse
+}
+
+}  // namespace
+}  // namespace topple
