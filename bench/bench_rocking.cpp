@@ -1,0 +1,140 @@
+// Rocking throughput: record samples per second per core (items_per_second) for one body on a 20,000-sample
+// record, adaptive Dormand-Prince at rel_tol 1e-8 (the default). The record is the first 20,000 samples
+// (dt = 0.005 s, 100 s) of Kocaeli 1999 ATS-090 from ../shared/records/slammer (PGA 0.185 g), the record of
+// bench_sliding; without ../shared, a seeded synthetic record of the same length and PGA.
+//
+// Cases (benchmark arguments: block width in cm, slenderness a/h in percent). All rock strongly without falling,
+// so every run covers the whole record:
+//   100 cm, a/h 0.15: rocks through the strong motion, ~270 impacts (the typical case: rest phases cost a compare);
+//   100 cm, a/h 0.10: rocks for almost the whole record, ~650 impacts (the worst case: one step per sample).
+// Run:  build/release/bench/bench_rocking  (figures in docs/performance.md)
+#include <cmath>
+#include <filesystem>
+#include <random>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+
+#include "topple/io/read.hpp"
+#include "topple/pulses.hpp"
+#include "topple/rocking.hpp"
+
+namespace {
+
+using topple::GroundMotion;
+
+GroundMotion load_record() {
+  const std::filesystem::path path =
+      std::filesystem::path(TOPPLE_SHARED_DIR) / "records" / "slammer" / "Kocaeli_1999_ATS-090.csv";
+  constexpr std::size_t n = 20000;
+  if (std::filesystem::exists(path)) {
+    const GroundMotion full = topple::io::read_motion(path);
+    std::vector<double> a(full.accel_m_s2().begin(), full.accel_m_s2().begin() + n);
+    return GroundMotion::uniform(std::move(a), full.dt_s());
+  }
+  // Resonator-filtered noise under a rise-and-decay envelope peaking at 20 s.
+  std::mt19937_64 rng(42);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  std::vector<double> a(n);
+  double y1 = 0.0;
+  double y2 = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double y = 1.9 * y1 - 0.92 * y2 + noise(rng);
+    y2 = y1;
+    y1 = y;
+    const double t = 0.005 * static_cast<double>(i);
+    a[i] = y * (t / 20.0) * std::exp(1.0 - t / 20.0);
+  }
+  return GroundMotion::uniform(std::move(a), 0.005).scaled_to_pga(0.185 * topple::kStandardGravity);
+}
+
+const GroundMotion& record() {
+  static const GroundMotion r = load_record();
+  return r;
+}
+
+topple::RockingBody body_from(const benchmark::State& state) {
+  const double width = static_cast<double>(state.range(0)) / 100.0;
+  const double slenderness = static_cast<double>(state.range(1)) / 100.0;
+  return topple::RockingBody::block(width, width / slenderness);
+}
+
+void counters(benchmark::State& state, const topple::RockingSummary& s, std::size_t samples) {
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * samples));
+  state.counters["impacts"] = static_cast<double>(s.impacts);
+  state.counters["max_theta_over_alpha"] = s.max_rotation_over_alpha;
+  state.counters["steps_per_sample"] = static_cast<double>(s.steps) / static_cast<double>(samples);
+  state.counters["overturned"] = s.overturned ? 1.0 : 0.0;
+}
+
+void BM_Rocking(benchmark::State& state) {
+  const GroundMotion& rec = record();
+  const auto body = body_from(state);
+  const topple::RockingOptions options;  // adaptive, rel_tol 1e-8, Housner's e
+  topple::RockingSummary s;
+  for (auto _ : state) {
+    s = topple::rock_summary(rec, body, options);
+    benchmark::DoNotOptimize(s);
+  }
+  counters(state, s, rec.size());
+}
+BENCHMARK(BM_Rocking)->Args({100, 15})->Args({100, 10})->Unit(benchmark::kMillisecond);
+
+void BM_RockingWithHistory(benchmark::State& state) {
+  const GroundMotion& rec = record();
+  const auto body = body_from(state);
+  const topple::RockingOptions options;
+  topple::RockingResult r;
+  for (auto _ : state) {
+    r = topple::rock(rec, body, options);
+    benchmark::DoNotOptimize(r);
+  }
+  counters(state, r.summary, rec.size());
+}
+BENCHMARK(BM_RockingWithHistory)->Args({100, 15})->Unit(benchmark::kMillisecond);
+
+void BM_RockingRk4Thesis(benchmark::State& state) {
+  // The thesis' method for comparison: fixed-step RK4, 10 steps per sample interval.
+  const GroundMotion& rec = record();
+  const auto body = body_from(state);
+  topple::RockingOptions options;
+  options.method = topple::RockingMethod::rk4;
+  topple::RockingSummary s;
+  for (auto _ : state) {
+    s = topple::rock_summary(rec, body, options);
+    benchmark::DoNotOptimize(s);
+  }
+  counters(state, s, rec.size());
+}
+BENCHMARK(BM_RockingRk4Thesis)->Args({100, 15})->Unit(benchmark::kMillisecond);
+
+void BM_ThresholdSearchP1(benchmark::State& state) {
+  // First overturning amplitude of rocking.md P1 (one-cycle cosine, p = 2 rad/s, alpha = 15 deg): a whole search
+  // (scan and bisection to 1e-7), ~30 responses.
+  const double alpha = 15.0 * topple::kPi / 180.0;
+  const double R = 3.0 * 9.81 / 16.0;
+  const auto body = topple::RockingBody::block(2.0 * R * std::sin(alpha), 2.0 * R * std::cos(alpha));
+  topple::RockingOptions options;
+  options.g_m_s2 = 9.81;
+  const auto motion = [](double x) {
+    topple::PulseSpec spec;
+    spec.kind = topple::PulseKind::cosine;
+    spec.amplitude_m_s2 = x * 9.81;
+    spec.duration_s = 2.0;
+    return topple::make_pulse(spec);
+  };
+  topple::ThresholdSearch search;
+  search.start = std::tan(alpha);
+  search.step = 0.02 * std::tan(alpha);
+  search.max = 1.0;
+  topple::ThresholdResult found;
+  for (auto _ : state) {
+    found = topple::first_overturning_amplitude(motion, body, options, topple::OverturnCriterion::falls, search);
+    benchmark::DoNotOptimize(found);
+  }
+  state.counters["amplitude_g"] = found.amplitude.value_or(-1.0);
+  state.counters["runs"] = static_cast<double>(found.runs);
+}
+BENCHMARK(BM_ThresholdSearchP1)->Unit(benchmark::kMillisecond);
+
+}  // namespace
