@@ -9,6 +9,7 @@
 #include "common.hpp"
 #include "topple/error.hpp"
 #include "topple/io/write.hpp"
+#include "topple/plot.hpp"
 #include "topple/sliding.hpp"
 #include "topple/units.hpp"
 
@@ -24,6 +25,7 @@ struct SlideOptions {
   bool one_way = false;
   std::string vertical;
   std::string out;
+  std::string plot;
   bool json = false;
 };
 
@@ -49,9 +51,15 @@ void run_slide(const SlideOptions& o) {
   const GroundMotion* vertical_ptr = vertical ? &*vertical : nullptr;
 
   SlidingSummary summary;
-  if (!o.out.empty()) {
+  if (!o.out.empty() || !o.plot.empty()) {
     const SlidingResult result = slide(horizontal, block, vertical_ptr);
-    io::write_sliding_history_csv(o.out, result.history, horizontal);
+    if (!o.out.empty()) io::write_sliding_history_csv(o.out, result.history, horizontal);
+    if (!o.plot.empty()) {
+      const std::string name = from_pulse ? horizontal.metadata().event : o.motion.file;
+      plot::render(plot::sliding_figure(horizontal, result, block,
+                                        fmt::format("Sliding block, mu = {}: {}", block.mu_static, name)),
+                   o.plot);
+    }
     summary = result.summary;
   } else {
     summary = slide_summary(horizontal, block, vertical_ptr);
@@ -91,6 +99,7 @@ void run_slide(const SlideOptions& o) {
                        "sliding model is not valid after that\n", *summary.contact_lost_time_s);
   }
   if (!o.out.empty()) fmt::print("history written to {}\n", o.out);
+  if (!o.plot.empty()) fmt::print("figure written to {}\n", o.plot);
 }
 
 }  // namespace
@@ -109,6 +118,7 @@ void add_slide_command(CLI::App& app) {
   cmd->add_flag("--one-way", o->one_way, "Down-slope sliding only (SLAMMER rigid-block convention)");
   cmd->add_option("--vertical", o->vertical, "Vertical acceleration record (positive up), scaled with the horizontal");
   cmd->add_option("--out", o->out, "Write the time history to this CSV file");
+  cmd->add_option("--plot", o->plot, "Draw record, thresholds and response to this .svg or .png file (gnuplot)");
   cmd->add_flag("--json", o->json, "Print the summary as one JSON object");
   cmd->callback([o] { run_slide(*o); });
 }

@@ -1,0 +1,84 @@
+#pragma once
+// Figures: what an engineer expects to see of each analysis, drawn by gnuplot (Debian gnuplot-nox) through a pipe.
+//
+// The library describes a figure as data (panels of series on a shared x axis, or a map); render() writes a gnuplot
+// script with the data inline and runs `gnuplot` on it, producing SVG or PNG by the file's extension. Plotting never
+// computes physics: the builders below take solver results as they are.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "topple/ground_motion.hpp"
+#include "topple/rocking.hpp"
+#include "topple/sliding.hpp"
+
+namespace topple::plot {
+
+struct Series {
+  std::string label;
+  std::vector<double> x;
+  std::vector<double> y;
+  std::string style = "lines";  ///< gnuplot style: "lines", "points", "linespoints", "steps", "impulses"
+  std::string color;            ///< "#rrggbb"; empty: gnuplot's cycle
+  double width = 1.5;
+};
+
+/// Horizontal reference line (e.g. a yield acceleration), drawn dashed with its label.
+struct Level {
+  double y = 0.0;
+  std::string label;
+};
+
+struct Panel {
+  std::string ylabel;  ///< with units, e.g. "ground acceleration (g)"
+  std::vector<Series> series;
+  std::vector<Level> levels;
+  std::vector<double> marks_x;  ///< instants marked by thin vertical lines (slip starts, impacts)
+  bool log_x = false;
+  bool log_y = false;
+};
+
+/// Panels stacked with a shared x axis (time histories), or a single panel (spectra, fragility curves).
+struct Figure {
+  std::string title;
+  std::string xlabel;  ///< with units
+  std::vector<Panel> panels;
+  int width_px = 1000;
+  int panel_height_px = 260;
+};
+
+/// A gridded field (e.g. a likelihood over PGA x frequency) with optional contour lines of other fields.
+struct MapFigure {
+  std::string title;
+  std::string xlabel;
+  std::string ylabel;
+  std::string zlabel;
+  std::vector<double> x;       ///< column coordinates (ascending)
+  std::vector<double> y;       ///< row coordinates (ascending)
+  std::vector<double> z;       ///< row-major, y.size() x x.size()
+  bool log_x = false;
+  bool log_y = false;
+  std::vector<Series> overlay;  ///< lines or points drawn over the map (bounds, best estimate)
+  int width_px = 900;
+  int height_px = 700;
+};
+
+/// Writes the figure to `path` (.svg or .png). Throws InputError for another extension or an unwritable path, and
+/// std::runtime_error when gnuplot is missing or fails (its message is included).
+void render(const Figure& figure, const std::filesystem::path& path);
+void render(const MapFigure& figure, const std::filesystem::path& path);
+
+/// The gnuplot script render() runs (for tests and for users who want to restyle).
+[[nodiscard]] std::string gnuplot_script(const Figure& figure, const std::filesystem::path& path);
+[[nodiscard]] std::string gnuplot_script(const MapFigure& figure, const std::filesystem::path& path);
+
+/// Record with the yield levels +-yield (in g), relative velocity and displacement, slip episodes marked.
+[[nodiscard]] Figure sliding_figure(const GroundMotion& horizontal, const SlidingResult& result,
+                                    const SlidingBlock& block, const std::string& title);
+
+/// Record with the uplift levels +-g tan(alpha) (in g), theta / alpha (overturning at +-pi/(2 alpha)), theta', impacts
+/// marked.
+[[nodiscard]] Figure rocking_figure(const GroundMotion& horizontal, const RockingResult& result,
+                                    const RockingBody& body, const std::string& title);
+
+}  // namespace topple::plot

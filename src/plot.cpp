@@ -1,0 +1,235 @@
+#include "topple/plot.hpp"
+
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "topple/error.hpp"
+
+namespace topple::plot {
+namespace {
+
+std::string terminal_for(const std::filesystem::path& path, int width, int height) {
+  const std::string ext = path.extension().string();
+  if (ext == ".svg") return fmt::format("set terminal svg size {},{} dynamic noenhanced font 'Helvetica,12' background '#ffffff'", width, height);
+  if (ext == ".png") return fmt::format("set terminal pngcairo size {},{} noenhanced font 'Helvetica,11'", width, height);
+  throw InputError(InputLocation{path.string(), {}, "--plot"}, "figures are written as .svg or .png");
+}
+
+std::string quote(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out + "\"";
+}
+
+/// Inline data block $name with x y rows; non-finite values become gaps.
+void datablock(std::ostringstream& os, const std::string& name, const std::vector<double>& x,
+               const std::vector<double>& y) {
+  os << '$' << name << " << EOD\n";
+  for (std::size_t i = 0; i < x.size() && i < y.size(); ++i) {
+    if (std::isfinite(x[i]) && std::isfinite(y[i])) {
+      os << fmt::format("{:.10g} {:.10g}\n", x[i], y[i]);
+    } else {
+      os << "\n";
+    }
+  }
+  os << "EOD\n";
+}
+
+std::string series_clause(const Series& s, const std::string& block) {
+  std::string clause = fmt::format("{} using 1:2 with {} lw {}", block, s.style, s.width);
+  if (!s.color.empty()) clause += fmt::format(" lc rgb '{}'", s.color);
+  clause += s.label.empty() ? " notitle" : " title " + quote(s.label);
+  return clause;
+}
+
+void run_gnuplot(const std::string& script, const std::filesystem::path& path) {
+  {
+    std::ofstream probe(path, std::ios::binary);
+    if (!probe) throw InputError(InputLocation{path.string(), {}, "--plot"}, "cannot open the file for writing");
+  }
+  const auto script_path = std::filesystem::path(path.string() + ".gp");
+  {
+    std::ofstream out(script_path, std::ios::binary);
+    out << script;
+  }
+  const std::string cmd = fmt::format("gnuplot '{}' 2>&1", script_path.string());
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> pipe(popen(cmd.c_str(), "r"), pclose);
+  if (!pipe) throw std::runtime_error("cannot start gnuplot");
+  std::string messages;
+  char buffer[4096];
+  std::size_t got = 0;
+  while ((got = std::fread(buffer, 1, sizeof buffer, pipe.get())) > 0) messages.append(buffer, got);
+  const int status = pclose(pipe.release());
+  std::filesystem::remove(script_path);
+  if (status != 0) {
+    throw std::runtime_error(fmt::format("gnuplot failed (is gnuplot-nox installed?) writing {}: {}", path.string(),
+                                         messages));
+  }
+}
+
+}  // namespace
+
+std::string gnuplot_script(const Figure& f, const std::filesystem::path& path) {
+  std::ostringstream os;
+  const int n = static_cast<int>(f.panels.size());
+  os << terminal_for(path, f.width_px, std::max(1, n) * f.panel_height_px + 60) << "\n";
+  os << "set output " << quote(path.string()) << "\n";
+  os << "set grid lc rgb '#dddddd'\nset key top right font ',10' opaque\nset border lc rgb '#444444'\n";
+  for (int p = 0; p < n; ++p) {
+    for (std::size_t s = 0; s < f.panels[p].series.size(); ++s) {
+      datablock(os, fmt::format("p{}s{}", p, s), f.panels[p].series[s].x, f.panels[p].series[s].y);
+    }
+  }
+  // Shared x axis: one range and fixed margins so that the panels line up.
+  double xmin = INFINITY;
+  double xmax = -INFINITY;
+  for (const Panel& panel : f.panels) {
+    for (const Series& s : panel.series) {
+      for (double x : s.x) {
+        if (std::isfinite(x) && (!panel.log_x || x > 0.0)) {
+          xmin = std::min(xmin, x);
+          xmax = std::max(xmax, x);
+        }
+      }
+    }
+  }
+  if (xmax > xmin) os << fmt::format("set xrange [{:.10g}:{:.10g}]\n", xmin, xmax);
+  os << "set lmargin 12\nset rmargin 4\n";
+  os << fmt::format("set multiplot layout {},1 title {} font ',13'\n", std::max(1, n), quote(f.title));
+  for (int p = 0; p < n; ++p) {
+    const Panel& panel = f.panels[p];
+    os << "unset arrow\nunset logscale\n";
+    os << "set ylabel " << quote(panel.ylabel) << "\n";
+    os << "set xlabel " << (p == n - 1 ? quote(f.xlabel) : std::string("\"\"")) << "\n";
+    if (panel.log_x) os << "set logscale x\n";
+    if (panel.log_y) os << "set logscale y\n";
+    int arrow = 1;
+    for (double x : panel.marks_x) {
+      os << fmt::format("set arrow {} from {:.10g}, graph 0 to {:.10g}, graph 1 nohead lc rgb '#bbbbbb' lw 0.5\n",
+                        arrow++, x, x);
+    }
+    std::vector<std::string> clauses;
+    for (std::size_t s = 0; s < panel.series.size(); ++s) {
+      clauses.push_back(series_clause(panel.series[s], fmt::format("$p{}s{}", p, s)));
+    }
+    for (const Level& level : panel.levels) {
+      clauses.push_back(fmt::format("{:.10g} with lines dt 2 lc rgb '#c0392b' lw 1 title {}", level.y,
+                                    quote(level.label)));
+    }
+    if (clauses.empty()) clauses.push_back("NaN notitle");
+    os << "plot ";
+    for (std::size_t c = 0; c < clauses.size(); ++c) os << (c ? ", \\\n     " : "") << clauses[c];
+    os << "\n";
+  }
+  os << "unset multiplot\nset output\n";
+  return os.str();
+}
+
+std::string gnuplot_script(const MapFigure& f, const std::filesystem::path& path) {
+  std::ostringstream os;
+  os << terminal_for(path, f.width_px, f.height_px) << "\n";
+  os << "set output " << quote(path.string()) << "\n";
+  os << "$map << EOD\n";
+  for (std::size_t r = 0; r < f.y.size(); ++r) {
+    for (std::size_t c = 0; c < f.x.size(); ++c) {
+      const double z = f.z[r * f.x.size() + c];
+      os << fmt::format("{:.10g} {:.10g} {:.10g}\n", f.x[c], f.y[r], std::isfinite(z) ? z : 0.0);
+    }
+    os << "\n";
+  }
+  os << "EOD\n";
+  for (std::size_t s = 0; s < f.overlay.size(); ++s) datablock(os, fmt::format("ov{}", s), f.overlay[s].x, f.overlay[s].y);
+  os << "set title " << quote(f.title) << "\nset xlabel " << quote(f.xlabel) << "\nset ylabel " << quote(f.ylabel)
+     << "\nset cblabel " << quote(f.zlabel) << "\n";
+  if (f.log_x) os << "set logscale x\n";
+  if (f.log_y) os << "set logscale y\n";
+  os << "set palette defined (0 '#ffffff', 0.25 '#c6dbef', 0.5 '#6baed6', 0.75 '#2171b5', 1 '#08306b')\n";
+  os << "set key outside bottom center horizontal font ',10'\nset tics out\n";
+  if (!f.x.empty() && !f.y.empty()) {
+    os << fmt::format("set xrange [{:.10g}:{:.10g}]\nset yrange [{:.10g}:{:.10g}]\n", f.x.front(), f.x.back(),
+                      f.y.front(), f.y.back());
+  }
+  os << "plot $map using 1:2:3 with image pixels notitle";
+  for (std::size_t s = 0; s < f.overlay.size(); ++s) os << ", \\\n     " << series_clause(f.overlay[s], fmt::format("$ov{}", s));
+  os << "\nset output\n";
+  return os.str();
+}
+
+void render(const Figure& figure, const std::filesystem::path& path) { run_gnuplot(gnuplot_script(figure, path), path); }
+void render(const MapFigure& figure, const std::filesystem::path& path) {
+  run_gnuplot(gnuplot_script(figure, path), path);
+}
+
+namespace {
+
+Series ground_series(const GroundMotion& m, double g, double t_end) {
+  Series s{"ground acceleration", {}, {}, "lines", "#555555", 1.0};
+  for (std::size_t i = 0; i < m.size(); ++i) {
+    s.x.push_back(m.time_s(i));
+    s.y.push_back(m.accel_m_s2()[i] / g);
+  }
+  if (t_end > m.end_time_s()) {  // still ground during the run-out
+    s.x.push_back(m.end_time_s());
+    s.y.push_back(0.0);
+    s.x.push_back(t_end);
+    s.y.push_back(0.0);
+  }
+  return s;
+}
+
+}  // namespace
+
+Figure sliding_figure(const GroundMotion& m, const SlidingResult& r, const SlidingBlock& block,
+                      const std::string& title) {
+  const double g = block.g_m_s2;
+  const double t_end = r.history.time_s.empty() ? m.end_time_s() : r.history.time_s.back();
+  Figure f;
+  f.title = title;
+  f.xlabel = "time (s)";
+  Panel accel{"acceleration (g)", {ground_series(m, g, t_end)}, {}, {}, false, false};
+  accel.levels.push_back({block.yield_down_m_s2() / g, "yield (+)"});
+  if (std::isfinite(block.yield_up_m_s2())) accel.levels.push_back({block.yield_up_m_s2() / g, "yield (-)"});
+  Panel vel{"relative velocity (m/s)", {{"block - ground", r.history.time_s, r.history.velocity_m_s, "lines", "#2171b5", 1.5}}, {}, {}, false, false};
+  Panel disp{"relative displacement (m)", {{"block - ground", r.history.time_s, r.history.displacement_m, "lines", "#c0392b", 1.8}}, {}, {}, false, false};
+  for (std::size_t i = 1; i < r.history.state.size(); ++i) {
+    if (r.history.state[i] != SlipState::stuck && r.history.state[i - 1] == SlipState::stuck) {
+      accel.marks_x.push_back(r.history.time_s[i]);
+    }
+  }
+  f.panels = {accel, vel, disp};
+  return f;
+}
+
+Figure rocking_figure(const GroundMotion& m, const RockingResult& r, const RockingBody& body, const std::string& title) {
+  const double g = r.summary.g_m_s2 > 0.0 ? r.summary.g_m_s2 : kStandardGravity;
+  const double alpha = body.alpha_rad();
+  const double t_end = r.history.time_s.empty() ? m.end_time_s() : r.history.time_s.back();
+  Figure f;
+  f.title = title;
+  f.xlabel = "time (s)";
+  Panel accel{"acceleration (g)", {ground_series(m, g, t_end)}, {{std::tan(alpha), "uplift g tan(alpha)"}, {-std::tan(alpha), "uplift -g tan(alpha)"}}, {}, false, false};
+  std::vector<double> ratio(r.history.theta_rad.size());
+  for (std::size_t i = 0; i < ratio.size(); ++i) ratio[i] = r.history.theta_rad[i] / alpha;
+  Panel theta{"rotation theta / alpha", {{"theta / alpha", r.history.time_s, ratio, "lines", "#c0392b", 1.8}}, {{1.0, "CM over pivot"}, {-1.0, ""}}, {}, false, false};
+  Panel rate{"angular velocity (rad/s)", {{"theta'", r.history.time_s, r.history.theta_dot_rad_s, "lines", "#2171b5", 1.5}}, {}, {}, false, false};
+  for (const RockingEvent& e : r.events) {
+    if (e.kind == RockingEventKind::impact) theta.marks_x.push_back(e.time_s);
+    if (e.kind == RockingEventKind::uplift) accel.marks_x.push_back(e.time_s);
+  }
+  f.panels = {accel, theta, rate};
+  return f;
+}
+
+}  // namespace topple::plot

@@ -1,0 +1,104 @@
+// Figures: files are produced, valid and non-trivial (gnuplot must be installed; scripts/install-deps.sh does it).
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "support/shared_data.hpp"
+#include "topple/error.hpp"
+#include "topple/plot.hpp"
+#include "topple/pulses.hpp"
+#include "topple/sliding.hpp"
+
+namespace topple {
+namespace {
+
+std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::size_t count(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (auto pos = text.find(what); pos != std::string::npos; pos = text.find(what, pos + 1)) ++n;
+  return n;
+}
+
+plot::Figure sliding_example() {
+  const auto motion = make_pulse({PulseKind::double_triangular, 2.0 * kStandardGravity, 0.2, 0.5, 0.0});
+  const auto block = SlidingBlock::make(0.3);
+  return plot::sliding_figure(motion, slide(motion, block), block, "double triangular pulse");
+}
+
+TEST(Plot, SlidingFigureAsSvgHasThreePanelsWithData) {
+  test::TempDir tmp;
+  const auto path = tmp.path() / "slide.svg";
+  plot::render(sliding_example(), path);
+  const std::string svg = slurp(path);
+  ASSERT_GT(svg.size(), 5000u);
+  EXPECT_NE(svg.find("<svg"), std::string::npos);
+  EXPECT_NE(svg.rfind("</svg>"), std::string::npos);
+  // labels with units are in the text of the figure
+  EXPECT_NE(svg.find("relative displacement (m)"), std::string::npos);
+  EXPECT_NE(svg.find("acceleration (g)"), std::string::npos);
+  EXPECT_NE(svg.find("time (s)"), std::string::npos);
+  // ground, velocity and displacement curves plus the two yield levels: at least 5 drawn paths
+  EXPECT_GE(count(svg, "<path"), 5u);
+  EXPECT_FALSE(std::filesystem::exists(path.string() + ".gp"));  // the script is cleaned up
+}
+
+TEST(Plot, PngIsAPngImage) {
+  test::TempDir tmp;
+  const auto path = tmp.path() / "slide.png";
+  plot::render(sliding_example(), path);
+  const std::string png = slurp(path);
+  ASSERT_GT(png.size(), 10000u);
+  EXPECT_EQ(png.substr(1, 3), "PNG");
+}
+
+TEST(Plot, MapFigure) {
+  plot::MapFigure map;
+  map.title = "likelihood";
+  map.xlabel = "PGA (g)";
+  map.ylabel = "predominant frequency (Hz)";
+  map.zlabel = "likelihood";
+  map.log_x = map.log_y = true;
+  for (int i = 0; i < 10; ++i) map.x.push_back(0.05 * std::pow(1.4, i));
+  for (int j = 0; j < 8; ++j) map.y.push_back(0.5 * std::pow(1.6, j));
+  for (int j = 0; j < 8; ++j) {
+    for (int i = 0; i < 10; ++i) map.z.push_back(std::exp(-0.1 * ((i - 5) * (i - 5) + (j - 3) * (j - 3))));
+  }
+  map.overlay.push_back({"lower bound", {0.2, 0.2}, {0.5, 10.0}, "lines", "#c0392b", 2.0});
+  test::TempDir tmp;
+  const auto path = tmp.path() / "map.svg";
+  plot::render(map, path);
+  const std::string svg = slurp(path);
+  EXPECT_NE(svg.find("<svg"), std::string::npos);
+  EXPECT_GE(count(svg, "<polygon"), 80u);  // the gridded field: one filled cell per grid point (10 x 8)
+  EXPECT_NE(svg.find("lower bound"), std::string::npos);
+}
+
+TEST(Plot, UnknownExtensionIsAnInputError) {
+  test::TempDir tmp;
+  EXPECT_THROW(plot::render(sliding_example(), tmp.path() / "figure.jpeg"), InputError);
+}
+
+TEST(Plot, CliSlideWritesTheFigure) {
+  test::TempDir tmp;
+  const auto path = tmp.path() / "cli.svg";
+  const auto r = test::run_cli("slide --pulse sine --amp-g 0.6 --duration 0.5 --mu 0.2 --plot '" + path.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_GT(std::filesystem::file_size(path), 5000u);
+  const auto bad = test::run_cli("slide --pulse sine --amp-g 0.6 --duration 0.5 --mu 0.2 --plot '" +
+                                 (tmp.path() / "x.gif").string() + "'");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find(".svg or .png"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace topple
