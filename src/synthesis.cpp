@@ -1,0 +1,481 @@
+// Synthetic ground motions (synthesis.hpp). Compiled with -ffp-contract=off (src/CMakeLists.txt): the bits of a
+// motion depend on the order of IEEE operations written here and on nothing else.
+#include "topple/synthesis.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cassert>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include <fmt/format.h>
+
+#include "topple/error.hpp"
+#include "topple/units.hpp"
+
+namespace topple {
+
+// ---- Portable elementary functions -------------------------------------------------------------------------------
+namespace {
+
+// ln 2 split so that k * kLn2Hi is exact for |k| < 2^20 (fdlibm's constants).
+constexpr double kLn2Hi = 6.93147180369123816490e-01;
+constexpr double kLn2Lo = 1.90821492927058770002e-10;
+constexpr double kInvLn2 = 1.44269504088896338700e+00;
+constexpr double kSqrtHalf = 0.70710678118654752440;
+
+}  // namespace
+
+double portable_exp(double x) noexcept {
+  if (std::isnan(x)) return x;
+  if (x > 709.782712893383973096) return std::numeric_limits<double>::infinity();
+  if (x < -745.13321910194110842) return 0.0;
+  // x = k ln2 + r, |r| <= ln2 / 2 (Cody & Waite reduction): floor is exact, the products below are exact or
+  // correctly rounded.
+  const double k = std::floor(x * kInvLn2 + 0.5);
+  const double r = (x - k * kLn2Hi) - k * kLn2Lo;
+  // Taylor series of e^r to r^14 / 14!: |r|^15 / 15! < 2e-19 for |r| <= 0.35.
+  double p = 1.0 / 87178291200.0;  // 1/14!
+  constexpr std::array<double, 14> kInvFactorial = {
+      1.0 / 6227020800.0, 1.0 / 479001600.0, 1.0 / 39916800.0, 1.0 / 3628800.0, 1.0 / 362880.0,
+      1.0 / 40320.0,      1.0 / 5040.0,      1.0 / 720.0,      1.0 / 120.0,     1.0 / 24.0,
+      1.0 / 6.0,          0.5,               1.0,              1.0};
+  for (double c : kInvFactorial) p = p * r + c;
+  return std::ldexp(p, static_cast<int>(k));  // exact scaling (one rounding for subnormal results)
+}
+
+double portable_log(double x) noexcept {
+  if (std::isnan(x) || x < 0.0) return std::numeric_limits<double>::quiet_NaN();
+  if (x == 0.0) return -std::numeric_limits<double>::infinity();
+  if (std::isinf(x)) return x;
+  int e = 0;
+  double m = std::frexp(x, &e);  // x = m 2^e, m in [0.5, 1): exact
+  if (m < kSqrtHalf) {
+    m *= 2.0;
+    --e;
+  }
+  // log m = 2 atanh(s), s = (m - 1) / (m + 1), |s| <= 0.1716: series in z = s^2 to z^11 / 23 (< 2e-19).
+  const double f = m - 1.0;
+  const double s = f / (2.0 + f);
+  const double z = s * s;
+  double q = 1.0 / 23.0;
+  for (double c : {1.0 / 21.0, 1.0 / 19.0, 1.0 / 17.0, 1.0 / 15.0, 1.0 / 13.0, 1.0 / 11.0, 1.0 / 9.0, 1.0 / 7.0,
+                   1.0 / 5.0, 1.0 / 3.0}) {
+    q = q * z + c;
+  }
+  const double log_m = 2.0 * s + 2.0 * s * (z * q);
+  const double k = static_cast<double>(e);
+  return k * kLn2Hi + (k * kLn2Lo + log_m);
+}
+
+// ---- Random numbers ----------------------------------------------------------------------------------------------
+
+std::uint64_t SplitMix64::next() noexcept {
+  std::uint64_t z = (state_ += 0x9e3779b97f4a7c15ULL);
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
+PortableRandom::PortableRandom(std::uint64_t seed) noexcept {
+  SplitMix64 sm(seed);
+  for (auto& word : s_) word = sm.next();  // never all zero: SplitMix64 is a bijection of distinct states
+}
+
+namespace {
+constexpr std::uint64_t rotl(std::uint64_t x, int k) noexcept { return (x << k) | (x >> (64 - k)); }
+}  // namespace
+
+std::uint64_t PortableRandom::next() noexcept {
+  const std::uint64_t result = rotl(s_[1] * 5, 7) * 9;
+  const std::uint64_t t = s_[1] << 17;
+  s_[2] ^= s_[0];
+  s_[3] ^= s_[1];
+  s_[1] ^= s_[2];
+  s_[0] ^= s_[3];
+  s_[2] ^= t;
+  s_[3] = rotl(s_[3], 45);
+  return result;
+}
+
+double PortableRandom::uniform() noexcept {
+  return static_cast<double>(next() >> 11) * 0x1.0p-53;  // exact: 53-bit integer times a power of two
+}
+
+double PortableRandom::normal() {
+  if (has_spare_) {
+    has_spare_ = false;
+    return spare_;
+  }
+  // Rejection accepts pi/4 of the pairs; 200 rejections in a row has probability 0.2146^200 < 1e-133.
+  constexpr int kMaxTries = 200;
+  for (int attempt = 0; attempt < kMaxTries; ++attempt) {
+    const double u = 2.0 * uniform() - 1.0;
+    const double v = 2.0 * uniform() - 1.0;
+    const double s = u * u + v * v;
+    if (s >= 1.0 || s == 0.0) continue;
+    const double factor = std::sqrt(-2.0 * portable_log(s) / s);
+    spare_ = v * factor;
+    has_spare_ = true;
+    return u * factor;
+  }
+  throw std::runtime_error("PortableRandom::normal: no pair accepted in 200 tries (generator broken)");
+}
+
+// ---- Names -------------------------------------------------------------------------------------------------------
+
+FilterModel parse_filter_model(std::string_view name, const std::string& field) {
+  if (name == "kanai-tajimi" || name == "kt") return FilterModel::kanai_tajimi;
+  if (name == "clough-penzien" || name == "cp") return FilterModel::clough_penzien;
+  throw parameter_error(field, fmt::format("unknown filter model '{}' (known: kanai-tajimi, clough-penzien)", name));
+}
+
+std::string_view filter_model_name(FilterModel model) {
+  return model == FilterModel::kanai_tajimi ? "kanai-tajimi" : "clough-penzien";
+}
+
+EnvelopeKind parse_envelope_kind(std::string_view name, const std::string& field) {
+  if (name == "saragoni-hart") return EnvelopeKind::saragoni_hart;
+  if (name == "jennings") return EnvelopeKind::jennings;
+  throw parameter_error(field, fmt::format("unknown envelope '{}' (known: saragoni-hart, jennings)", name));
+}
+
+std::string_view envelope_kind_name(EnvelopeKind kind) {
+  return kind == EnvelopeKind::saragoni_hart ? "saragoni-hart" : "jennings";
+}
+
+// ---- Calibration -------------------------------------------------------------------------------------------------
+namespace {
+
+// kappa = mean over seeds of predominant_frequency_hz(motion) / f_g at the nodes zeta_g x f_g below (T = 20 s,
+// dt = 0.01 s, Saragoni-Hart envelope, 200 seeds per node). Produced by
+// `test_synthesis --gtest_also_run_disabled_tests --gtest_filter='*DISABLED_CalibrationTable*'`; docs/method.md.
+// Bilinear in (zeta_g, log f_g), constant beyond the f_g nodes. Rows: zeta_g; columns: f_g.
+constexpr std::array<double, 5> kCalibrationDamping = {0.1, 0.2, 0.3, 0.4, 0.5};
+constexpr std::array<double, 5> kCalibrationFrequency = {0.5, 1.0, 2.0, 4.0, 8.0};
+using KappaTable = std::array<std::array<double, 5>, 5>;  // [damping][frequency]
+constexpr KappaTable kKappaKanaiTajimi = {{
+    {0.941, 0.953, 0.975, 0.978, 0.977},
+    {0.871, 0.858, 0.901, 0.900, 0.896},
+    {0.824, 0.785, 0.770, 0.705, 0.681},
+    {0.805, 0.732, 0.660, 0.539, 0.455},
+    {0.782, 0.680, 0.592, 0.442, 0.335},
+}};
+constexpr KappaTable kKappaCloughPenzien = {{
+    {0.941, 0.953, 0.975, 0.978, 0.977},
+    {0.872, 0.869, 0.904, 0.915, 0.941},
+    {0.824, 0.786, 0.802, 0.790, 0.843},
+    {0.808, 0.744, 0.713, 0.658, 0.692},
+    {0.794, 0.698, 0.641, 0.578, 0.580},
+}};
+
+/// Index j >= 1 and weight w of x between nodes[j - 1] and nodes[j] (w clamped to [0, 1]).
+template <std::size_t N>
+std::pair<std::size_t, double> bracket(const std::array<double, N>& nodes, double x) {
+  std::size_t j = 1;
+  while (j + 1 < N && x > nodes[j]) ++j;
+  const double w = (x - nodes[j - 1]) / (nodes[j] - nodes[j - 1]);
+  return {j, std::clamp(w, 0.0, 1.0)};
+}
+
+}  // namespace
+
+double predominant_frequency_ratio(double zeta_g, FilterModel model, double f_g_hz) {
+  if (!(zeta_g >= kCalibrationDamping.front() && zeta_g <= kCalibrationDamping.back())) {
+    throw parameter_error("ground_damping", fmt::format("zeta_g = {} is outside the calibrated range [{}, {}]",
+                                                        zeta_g, kCalibrationDamping.front(),
+                                                        kCalibrationDamping.back()));
+  }
+  if (!(f_g_hz > 0.0) || !std::isfinite(f_g_hz)) {
+    throw parameter_error("f_g", fmt::format("the filter frequency must be positive, got {} Hz", f_g_hz));
+  }
+  const KappaTable& kappa = model == FilterModel::kanai_tajimi ? kKappaKanaiTajimi : kKappaCloughPenzien;
+  const auto [i, wz] = bracket(kCalibrationDamping, zeta_g);
+  std::array<double, 5> log_f{};
+  for (std::size_t k = 0; k < log_f.size(); ++k) log_f[k] = portable_log(kCalibrationFrequency[k]);
+  const auto [j, wf] = bracket(log_f, portable_log(f_g_hz));
+  const auto row = [&](std::size_t r) { return kappa[r][j - 1] + wf * (kappa[r][j] - kappa[r][j - 1]); };
+  return row(i - 1) + wz * (row(i) - row(i - 1));
+}
+
+double ground_frequency_for_request_hz(double request_hz, double zeta_g, FilterModel model) {
+  if (!(request_hz > 0.0) || !std::isfinite(request_hz)) {
+    throw parameter_error("freq", fmt::format("the requested frequency must be positive, got {} Hz", request_hz));
+  }
+  // Fixed point f_g = request / kappa(f_g): kappa changes by at most 0.12 per doubling of f_g around 0.3-0.98, so the
+  // map contracts by a factor below 0.3 and 100 iterations are far more than round-off needs.
+  double f_g = request_hz / predominant_frequency_ratio(zeta_g, model, request_hz);
+  for (int it = 0; it < 100; ++it) {
+    const double next = request_hz / predominant_frequency_ratio(zeta_g, model, f_g);
+    const bool converged = std::abs(next - f_g) <= 1e-13 * f_g;
+    f_g = next;
+    if (converged) return f_g;
+  }
+  throw std::runtime_error(fmt::format("ground_frequency_for_request_hz: no convergence in 100 iterations for {} Hz, "
+                                       "zeta_g = {}", request_hz, zeta_g));
+}
+
+// ---- Validation --------------------------------------------------------------------------------------------------
+
+void validate(const SynthesisSpec& s) {
+  const auto finite_positive = [](double v) { return std::isfinite(v) && v > 0.0; };
+  if (!finite_positive(s.pga_m_s2)) {
+    throw parameter_error("pga", fmt::format("the PGA must be positive and finite, got {} m/s2", s.pga_m_s2));
+  }
+  if (!finite_positive(s.dt_s) || s.dt_s > 0.1) {
+    throw parameter_error("dt", fmt::format("the time step must be in (0, 0.1] s, got {} s", s.dt_s));
+  }
+  const double f = s.predominant_frequency_hz;
+  const double f_max = std::min(20.0, 0.1 / s.dt_s);
+  if (!std::isfinite(f) || f < 0.2 || f > f_max) {
+    throw parameter_error("freq", fmt::format("the predominant frequency must be in [0.2, {:.6g}] Hz (20 Hz, and "
+                                              "at least 10 samples per period at dt = {} s), got {} Hz",
+                                              f_max, s.dt_s, f));
+  }
+  const double t_min = std::max(5.0 / f, 100.0 * s.dt_s);
+  if (!std::isfinite(s.duration_s) || s.duration_s < t_min) {
+    throw parameter_error("duration", fmt::format("the duration must be at least {:.6g} s (5 predominant periods "
+                                                  "and 100 samples), got {} s", t_min, s.duration_s));
+  }
+  if (s.duration_s / s.dt_s > 5e7) {
+    throw parameter_error("duration", fmt::format("{} s at dt = {} s is more than 5e7 samples", s.duration_s, s.dt_s));
+  }
+  if (!(s.ground_damping >= 0.1 && s.ground_damping <= 0.5)) {
+    throw parameter_error("ground_damping", fmt::format("zeta_g must be in [0.1, 0.5] (the calibrated range), got {}",
+                                                        s.ground_damping));
+  }
+  if (!(s.high_pass_ratio > 0.0 && s.high_pass_ratio <= 0.5)) {
+    throw parameter_error("high_pass_ratio", fmt::format("f_f / f_g must be in (0, 0.5], got {}", s.high_pass_ratio));
+  }
+  if (!(s.high_pass_damping >= 0.5 && s.high_pass_damping <= 2.0)) {
+    throw parameter_error("high_pass_damping", fmt::format("zeta_f must be in [0.5, 2], got {}", s.high_pass_damping));
+  }
+  if (!(s.envelope_peak_fraction >= 0.05 && s.envelope_peak_fraction <= 0.5)) {
+    throw parameter_error("envelope_peak_fraction",
+                          fmt::format("eps must be in [0.05, 0.5], got {}", s.envelope_peak_fraction));
+  }
+  if (!(s.envelope_end_level >= 0.001 && s.envelope_end_level <= 0.5)) {
+    throw parameter_error("envelope_end_level",
+                          fmt::format("eta must be in [0.001, 0.5], got {}", s.envelope_end_level));
+  }
+  if (!(s.jennings_rise_fraction > 0.0 && s.jennings_rise_fraction < s.jennings_plateau_end_fraction &&
+        s.jennings_plateau_end_fraction < 1.0)) {
+    throw parameter_error("jennings_rise_fraction",
+                          fmt::format("the Jennings envelope needs 0 < t1/T < t2/T < 1, got t1/T = {}, t2/T = {}",
+                                      s.jennings_rise_fraction, s.jennings_plateau_end_fraction));
+  }
+}
+
+// ---- Envelope ----------------------------------------------------------------------------------------------------
+
+double envelope_at(const SynthesisSpec& s, double t) {
+  const double T = s.duration_s;
+  if (!(t > 0.0)) return 0.0;
+  const double eta = s.envelope_end_level;
+  if (s.envelope == EnvelopeKind::saragoni_hart) {
+    // e = (t / tp)^b exp(b (1 - t / tp)), tp = eps T; e(T) = eta gives b = ln eta / (1 - 1/eps - ln eps)
+    // (Boore 2003, eq. 11: b = -eps ln eta / (1 + eps (ln eps - 1)), the same number).
+    const double eps = s.envelope_peak_fraction;
+    const double b = portable_log(eta) / (1.0 - 1.0 / eps - portable_log(eps));
+    const double x = t / (eps * T);
+    return portable_exp(b * (portable_log(x) + 1.0 - x));
+  }
+  const double t1 = s.jennings_rise_fraction * T;
+  const double t2 = s.jennings_plateau_end_fraction * T;
+  if (t < t1) return (t / t1) * (t / t1);
+  if (t <= t2) return 1.0;
+  const double c = -portable_log(eta) / (T - t2);  // e(T) = eta
+  return portable_exp(-c * (t - t2));
+}
+
+// ---- Exact discretisation of the filters -------------------------------------------------------------------------
+namespace {
+
+constexpr std::size_t kMaxAug = 6;  // 4 states + input + input slope
+using Matrix = std::array<std::array<double, kMaxAug>, kMaxAug>;
+
+Matrix multiply(const Matrix& a, const Matrix& b, std::size_t n) {
+  Matrix c{};
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = 0; j < n; ++j) {
+      double sum = 0.0;
+      for (std::size_t k = 0; k < n; ++k) sum = sum + a[i][k] * b[k][j];
+      c[i][j] = sum;
+    }
+  }
+  return c;
+}
+
+/// exp(M) by scaling and squaring of the Taylor series (Moler & Van Loan 2003, method 3): M / 2^s has norm <= 1/2,
+/// the series to degree 20 leaves < 1e-25 of it, then s squarings. Only +, -, *, / and ldexp: portable.
+Matrix expm(Matrix m, std::size_t n) {
+  double norm = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    double row = 0.0;
+    for (std::size_t j = 0; j < n; ++j) row = row + std::abs(m[i][j]);
+    norm = std::max(norm, row);
+  }
+  int s = 0;
+  while (norm > 0.5 && s < 1000) {
+    norm = norm * 0.5;
+    ++s;
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < n; ++j) m[i][j] = std::ldexp(m[i][j], -s);
+  Matrix result{};
+  Matrix term{};
+  for (std::size_t i = 0; i < n; ++i) result[i][i] = term[i][i] = 1.0;
+  for (int k = 1; k <= 20; ++k) {
+    term = multiply(term, m, n);
+    const double inv_k = 1.0 / static_cast<double>(k);
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t j = 0; j < n; ++j) {
+        term[i][j] = term[i][j] * inv_k;
+        result[i][j] = result[i][j] + term[i][j];
+      }
+    }
+  }
+  for (int k = 0; k < s; ++k) result = multiply(result, result, n);
+  return result;
+}
+
+/// s_{i+1} = phi s_i + g0 w_i + g1 (w_{i+1} - w_i); a_i = c . s_i.
+struct Discrete {
+  std::size_t states = 0;
+  std::array<std::array<double, 4>, 4> phi{};
+  std::array<double, 4> g0{};
+  std::array<double, 4> g1{};
+  std::array<double, 4> c{};
+};
+
+Discrete discretise(const SynthesisSpec& spec, double f_g) {
+  const double wg = 2.0 * kPi * f_g;
+  const double zg = spec.ground_damping;
+  const bool cp = spec.model == FilterModel::clough_penzien;
+  const std::size_t n = cp ? 4 : 2;
+  // Continuous system s' = A s + B w. States: x, x' (ground), y, y' (high-pass).
+  Matrix a{};
+  std::array<double, 4> b{};
+  a[0][1] = 1.0;
+  a[1][0] = -wg * wg;
+  a[1][1] = -2.0 * zg * wg;
+  b[1] = -1.0;
+  Discrete d;
+  d.states = n;
+  d.c = {-wg * wg, -2.0 * zg * wg, 0.0, 0.0};  // a_KT = -(w_g^2 x + 2 zeta_g w_g x')
+  if (cp) {
+    const double wf = wg * spec.high_pass_ratio;
+    const double zf = spec.high_pass_damping;
+    // y'' = -2 zeta_f w_f y' - w_f^2 y - a_KT = -2 zeta_f w_f y' - w_f^2 y + w_g^2 x + 2 zeta_g w_g x'
+    a[2][3] = 1.0;
+    a[3][0] = wg * wg;
+    a[3][1] = 2.0 * zg * wg;
+    a[3][2] = -wf * wf;
+    a[3][3] = -2.0 * zf * wf;
+    d.c = {wg * wg, 2.0 * zg * wg, -wf * wf, -2.0 * zf * wf};  // a_CP = y''
+  }
+  // Augmented matrix in normalised time tau = t / dt: [s; u; du]' = [[A dt, B dt, 0]; [0, 0, 1]; [0, 0, 0]].
+  const double h = spec.dt_s;
+  Matrix m{};
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = 0; j < n; ++j) m[i][j] = a[i][j] * h;
+    m[i][n] = b[i] * h;
+  }
+  m[n][n + 1] = 1.0;
+  const Matrix e = expm(m, n + 2);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = 0; j < n; ++j) d.phi[i][j] = e[i][j];
+    d.g0[i] = e[i][n];
+    d.g1[i] = e[i][n + 1];
+  }
+  return d;
+}
+
+/// Exact end velocity and displacement of a piecewise-linear acceleration from rest (intensity.hpp's integrals).
+std::array<double, 2> end_velocity_displacement(const std::vector<double>& a, double h) {
+  double v = 0.0;
+  double d = 0.0;
+  for (std::size_t i = 1; i < a.size(); ++i) {
+    d = d + v * h + h * h * (2.0 * a[i - 1] + a[i]) / 6.0;
+    v = v + 0.5 * h * (a[i - 1] + a[i]);
+  }
+  return {v, d};
+}
+
+}  // namespace
+
+std::vector<double> filtered_noise(const SynthesisSpec& spec) {
+  validate(spec);
+  const double f_g = ground_frequency_for_request_hz(spec.predominant_frequency_hz, spec.ground_damping, spec.model);
+  const auto n = static_cast<std::size_t>(std::floor(spec.duration_s / spec.dt_s + 0.5)) + 1;
+  const Discrete d = discretise(spec, f_g);
+
+  PortableRandom rng(spec.seed);
+  std::vector<double> a(n, 0.0);
+  std::array<double, 4> s{};
+  double w_prev = rng.normal();
+  for (std::size_t i = 1; i < n; ++i) {
+    const double w = rng.normal();
+    const double dw = w - w_prev;
+    std::array<double, 4> next{};
+    for (std::size_t r = 0; r < d.states; ++r) {
+      double sum = d.g0[r] * w_prev + d.g1[r] * dw;
+      for (std::size_t c = 0; c < d.states; ++c) sum = sum + d.phi[r][c] * s[c];
+      next[r] = sum;
+    }
+    s = next;
+    double out = 0.0;
+    for (std::size_t c = 0; c < d.states; ++c) out = out + d.c[c] * s[c];
+    a[i] = out;
+    w_prev = w;
+  }
+  return a;
+}
+
+GroundMotion synthesize(const SynthesisSpec& spec) {
+  std::vector<double> a = filtered_noise(spec);  // validates
+  const double f_g = ground_frequency_for_request_hz(spec.predominant_frequency_hz, spec.ground_damping, spec.model);
+  const double h = spec.dt_s;
+  const std::size_t n = a.size();
+
+  // Envelope.
+  std::vector<double> e(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    e[i] = envelope_at(spec, static_cast<double>(i) * h);
+    a[i] = a[i] * e[i];
+  }
+
+  // Baseline: a -= e (c0 + c1 t/T) with v(T) = d(T) = 0.
+  std::vector<double> e_t(n);
+  const double t_end = static_cast<double>(n - 1) * h;
+  for (std::size_t i = 0; i < n; ++i) e_t[i] = e[i] * (static_cast<double>(i) * h / t_end);
+  const auto [va, da] = end_velocity_displacement(a, h);
+  const auto [v0, d0] = end_velocity_displacement(e, h);
+  const auto [v1, d1] = end_velocity_displacement(e_t, h);
+  const double det = v0 * d1 - v1 * d0;
+  assert(det != 0.0);  // e and e t/T are linearly independent positive shapes
+  const double c0 = (va * d1 - v1 * da) / det;
+  const double c1 = (v0 * da - va * d0) / det;
+  double peak = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    a[i] = a[i] - (c0 * e[i] + c1 * e_t[i]);
+    peak = std::max(peak, std::abs(a[i]));
+  }
+  if (!(peak > 0.0)) throw std::runtime_error("synthesize: the filtered noise is identically zero");
+  const double factor = spec.pga_m_s2 / peak;
+  for (double& x : a) x = x * factor;
+
+  RecordMetadata meta;
+  meta.format = "synthetic";
+  meta.units_as_read = "m/s2";
+  meta.event = fmt::format("synthetic {} motion, {} envelope: PGA {:.6g} m/s2, requested predominant frequency "
+                           "{:.6g} Hz (f_g {:.6g} Hz, zeta_g {:.3g}), T {:.6g} s, dt {:.6g} s, seed {}",
+                           filter_model_name(spec.model), envelope_kind_name(spec.envelope), spec.pga_m_s2,
+                           spec.predominant_frequency_hz, f_g, spec.ground_damping, spec.duration_s, h, spec.seed);
+  return GroundMotion::uniform(std::move(a), h, 0.0, std::move(meta));
+}
+
+}  // namespace topple
