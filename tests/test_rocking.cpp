@@ -315,6 +315,17 @@ TEST(RockingOnset, VerticalAccelerationScalesTheThreshold) {
   ASSERT_GT(plain.impacts, 0u);
   EXPECT_NEAR(merged.max_abs_rotation_rad, plain.max_abs_rotation_rad, 1e-6 * plain.max_abs_rotation_rad);
   EXPECT_EQ(merged.uplift_time_s, plain.uplift_time_s);
+  // The union keeps the jumps of a rectangular pulse: same fall with and without a zero vertical record.
+  PulseSpec spec;
+  spec.kind = PulseKind::rectangular;
+  spec.amplitude_m_s2 = -0.5 * kG;
+  spec.duration_s = 0.4;
+  const auto rect = make_pulse(spec);
+  const auto alone = rock_summary(rect, b, housner());
+  const auto with_zeros = rock_summary(rect, b, housner(), &zeros);
+  ASSERT_TRUE(alone.overturned);
+  ASSERT_TRUE(with_zeros.overturned);
+  EXPECT_NEAR(*with_zeros.overturn_time_s, *alone.overturn_time_s, 1e-9);
 }
 
 // ---------------------------------------------------------------------------------------------------------------

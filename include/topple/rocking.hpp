@@ -41,9 +41,11 @@
 // RockingOptions::rest_energy_fraction (default 1e-8) times the energy needed to lift the CM over the pivot,
 // g R (1 - cos(alpha)), the body is put in full contact at rest (theta = theta' = 0; the energy dropped is counted as
 // lost). It then waits for the next uplift. With the default the motion dropped would have had an amplitude of
-// about 5e-9 alpha.
+// about 5e-9 alpha. (The thesis' overturning program has the same kind of rule: after an impact it sets the velocity
+// to zero when it is below an input limit VL.)
 //
-// Overturning. The body has fallen when |theta| reaches pi/2 (its side hits the ground). The first time |theta|
+// Overturning. The body has fallen when |theta| reaches pi/2 (its side hits the ground; the thesis' program stops at
+// 1.57 rad). The first time |theta|
 // exceeds alpha (the CM passes over the pivot: without further input the body then falls) is reported as well. After
 // the last sample the ground is still (a_h = a_v = 0) and the integration runs on until the body is at rest, has
 // fallen, or RockingOptions::max_run_out_s has passed, so that a body past alpha at the end of the record falls.
@@ -65,7 +67,8 @@
 // integrated: each sample interval costs a comparison of |a_h| with the uplift threshold. RK4: the thesis' fixed-step
 // classical Runge-Kutta with step dt/n inside each sample interval (dt the record's sample interval, n =
 // rk4_substeps), kept for comparison; its events are located by the same root finder on the RK4 step of variable
-// length from the start of the step (a 4th-order continuous extension).
+// length from the start of the step (a 4th-order continuous extension), where the thesis cut the step to a fifth and
+// interpolated linearly.
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -136,8 +139,9 @@ enum class RockingState : std::int8_t { rocking_negative = -1, rest = 0, rocking
 enum class OnsetMode : std::uint8_t { unchecked, rest, rock, slide, slide_rock };
 [[nodiscard]] std::string_view onset_mode_name(OnsetMode mode);  ///< "unchecked", "rest", "rock", "slide", "slide-rock"
 
-/// Time history on the record's samples (and, after the record, on the same spacing until the run ends) plus every
-/// event instant. At an event the row carries the state after the event. The history ends when the body falls.
+/// Time history on the record's samples (and, after the record, on the same spacing, or max_run_out_s / 1e5 if
+/// coarser, until the run ends) plus every event instant. At an event the row carries the state after the event.
+/// The history ends when the body falls.
 struct RockingHistory {
   std::vector<double> time_s;
   std::vector<double> theta_rad;
