@@ -141,13 +141,30 @@ std::string gnuplot_script(const MapFigure& f, const std::filesystem::path& path
   std::ostringstream os;
   os << terminal_for(path, f.width_px, f.height_px) << "\n";
   os << "set output " << quote(path.string()) << "\n";
+  // Each cell drawn as a filled box between the midpoints to its neighbours (geometric midpoints on a log axis), so
+  // that the field sits exactly on its axes whatever their scale.
+  const auto edges = [](const std::vector<double>& v, bool log) {
+    std::vector<double> e(v.size() + 1);
+    const auto mid = [log](double a, double b) { return log ? std::sqrt(a * b) : 0.5 * (a + b); };
+    for (std::size_t i = 1; i < v.size(); ++i) e[i] = mid(v[i - 1], v[i]);
+    if (v.size() > 1) {
+      e[0] = log ? v[0] * v[0] / e[1] : 2.0 * v[0] - e[1];
+      e[v.size()] = log ? v.back() * v.back() / e[v.size() - 1] : 2.0 * v.back() - e[v.size() - 1];
+    } else if (!v.empty()) {
+      e[0] = v[0] * 0.9;
+      e[1] = v[0] * 1.1;
+    }
+    return e;
+  };
+  const auto ex = edges(f.x, f.log_x);
+  const auto ey = edges(f.y, f.log_y);
   os << "$map << EOD\n";
   for (std::size_t r = 0; r < f.y.size(); ++r) {
     for (std::size_t c = 0; c < f.x.size(); ++c) {
       const double z = f.z[r * f.x.size() + c];
-      os << fmt::format("{:.10g} {:.10g} {:.10g}\n", f.x[c], f.y[r], std::isfinite(z) ? z : 0.0);
+      os << fmt::format("{:.10g} {:.10g} {:.10g} {:.10g} {:.10g} {:.10g} {:.10g}\n", f.x[c], f.y[r], ex[c], ex[c + 1],
+                        ey[r], ey[r + 1], std::isfinite(z) ? z : 0.0);
     }
-    os << "\n";
   }
   os << "EOD\n";
   for (std::size_t s = 0; s < f.overlay.size(); ++s) datablock(os, fmt::format("ov{}", s), f.overlay[s].x, f.overlay[s].y);
@@ -158,10 +175,11 @@ std::string gnuplot_script(const MapFigure& f, const std::filesystem::path& path
   os << "set palette defined (0 '#ffffff', 0.25 '#c6dbef', 0.5 '#6baed6', 0.75 '#2171b5', 1 '#08306b')\n";
   os << "set key outside bottom center horizontal font ',10'\nset tics out\n";
   if (!f.x.empty() && !f.y.empty()) {
-    os << fmt::format("set xrange [{:.10g}:{:.10g}]\nset yrange [{:.10g}:{:.10g}]\n", f.x.front(), f.x.back(),
-                      f.y.front(), f.y.back());
+    os << fmt::format("set xrange [{:.10g}:{:.10g}]\nset yrange [{:.10g}:{:.10g}]\n", ex.front(), ex.back(),
+                      ey.front(), ey.back());
   }
-  os << "plot $map using 1:2:3 with image pixels notitle";
+  os << "set style fill solid 1.0 noborder\nset cbrange [0:*]\n";
+  os << "plot $map using 1:2:3:4:5:6:7 with boxxyerror fc palette notitle";
   for (std::size_t s = 0; s < f.overlay.size(); ++s) os << ", \\\n     " << series_clause(f.overlay[s], fmt::format("$ov{}", s));
   os << "\nset output\n";
   return os.str();
