@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   topple::cli::add_info_command(app);
   topple::cli::add_slide_command(app);
   topple::cli::add_rock_command(app);
+  topple::cli::add_sweep_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

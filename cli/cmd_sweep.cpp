@@ -1,0 +1,181 @@
+// topple sweep: an ensemble of runs (motions x objects x parameters) from a sweep file, on every core, across
+// machines under mpirun, resumable. Parsing and printing only: the work is topple::ensemble::run_to_files.
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <mutex>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "commands.hpp"
+#include "topple/ensemble.hpp"
+#include "topple/error.hpp"
+#include "topple/io/sweep_file.hpp"
+
+namespace topple::cli {
+namespace {
+
+struct SweepOptions {
+  std::string file;
+  int threads = 0;
+  std::string out;
+  bool jsonl = false;
+  bool quiet = false;
+  bool verbose = false;
+  bool restart = false;
+};
+
+std::string format_duration(double seconds) {
+  const auto s = static_cast<long long>(seconds + 0.5);
+  if (s >= 3600) return fmt::format("{}:{:02}:{:02}", s / 3600, (s / 60) % 60, s % 60);
+  return fmt::format("{}:{:02}", s / 60, s % 60);
+}
+
+/// "  1234/10000 runs  12%  [####      ]  560 runs/s  ETA 0:15" on stderr, redrawn at most 10 times a second.
+class ProgressBar {
+ public:
+  explicit ProgressBar(bool enabled) : enabled_(enabled), start_(std::chrono::steady_clock::now()) {}
+
+  void update(std::size_t done, std::size_t total) {
+    if (!enabled_) return;
+    const std::unique_lock lock(mutex_, std::try_to_lock);
+    if (!lock.owns_lock()) return;  // another thread is drawing
+    const auto now = std::chrono::steady_clock::now();
+    if (drawn_ && done < total && now - last_ < std::chrono::milliseconds(100)) return;
+    last_ = now;
+    draw(done, total, now);
+  }
+
+  void finish() {
+    if (!enabled_) return;
+    const std::lock_guard lock(mutex_);
+    if (drawn_) std::fputs("\n", stderr);
+  }
+
+ private:
+  void draw(std::size_t done, std::size_t total, std::chrono::steady_clock::time_point now) {
+    constexpr int kWidth = 30;
+    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    const double fraction = total > 0 ? static_cast<double>(done) / static_cast<double>(total) : 1.0;
+    const double rate = elapsed > 0.0 ? static_cast<double>(done) / elapsed : 0.0;
+    const auto filled = static_cast<int>(fraction * kWidth);
+    const std::string eta = rate > 0.0 ? format_duration(static_cast<double>(total - done) / rate) : "?";
+    fmt::print(stderr, "\r  {}/{} runs {:3.0f}% [{}{}] {:.0f} runs/s  ETA {}   ", done, total, 100.0 * fraction,
+               std::string(static_cast<std::size_t>(filled), '#'), std::string(static_cast<std::size_t>(kWidth - filled), ' '),
+               rate, eta);
+    std::fflush(stderr);
+    drawn_ = true;
+  }
+
+  bool enabled_;
+  std::chrono::steady_clock::time_point start_;
+  std::chrono::steady_clock::time_point last_{};
+  bool drawn_ = false;
+  std::mutex mutex_;
+};
+
+/// Ends a rank other than 0 without printing (rank 0 reports), after MPI is finalised.
+[[noreturn]] void quiet_exit(std::unique_ptr<ensemble::Cluster>& cluster, int code) {
+  cluster.reset();
+  std::fflush(stdout);
+  std::exit(code);
+}
+
+void run_sweep(const SweepOptions& o) {
+  std::unique_ptr<ensemble::Cluster> cluster = ensemble::join_cluster();
+  const int rank = cluster->rank();
+
+  // Every rank reads the sweep file and its records (the plan is identical everywhere; run_to_files checks).
+  std::optional<io::SweepFile> sweep;
+  std::optional<ensemble::Plan> plan;
+  std::optional<InputError> failure;
+  try {
+    sweep = io::read_sweep_file(o.file);
+    plan = ensemble::make_plan(sweep->spec);
+  } catch (const InputError& e) {
+    failure = e;
+  }
+  const auto failed = cluster->all_gather(failure ? 1 : 0);
+  if (failure) {
+    if (rank == 0) throw *failure;
+    if (failed[0] == 0) fmt::print(stderr, "topple: rank {}: error: {}\n", rank, failure->what());
+    quiet_exit(cluster, 2);
+  }
+  for (std::size_t r = 0; r < failed.size(); ++r) {
+    if (failed[r] != 0) {
+      if (rank == 0) throw InputError(InputLocation{o.file, std::nullopt, ""}, fmt::format("rank {} could not read the sweep (see its message)", r));
+      quiet_exit(cluster, 2);
+    }
+  }
+
+  ensemble::StoreOptions store;
+  store.csv_path = o.out.empty() ? sweep->output_csv : std::filesystem::path(o.out);
+  store.field = o.out.empty() ? "output.path" : "--out";
+  if (o.jsonl || sweep->jsonl) store.jsonl_path = io::jsonl_path_for(store.csv_path);
+  store.restart = o.restart;
+
+  ProgressBar bar(rank == 0 && !o.quiet && ::isatty(STDERR_FILENO) != 0);
+  ensemble::ExecuteOptions execute;
+  execute.threads = o.threads;
+  execute.progress = [&bar](std::size_t done, std::size_t total) { bar.update(done, total); };
+
+  if (rank == 0 && o.verbose) {
+    fmt::print(stderr, "topple sweep: {} runs = {} motions x {} objects; {} chunks of {} runs; {} rank{}; output {}\n",
+               plan->runs(), plan->motions.size(), plan->objects.size(), plan->chunks(), plan->chunk_size(),
+               cluster->size(), cluster->size() == 1 ? "" : "s", store.csv_path.string());
+  }
+  ensemble::SweepReport report;
+  try {
+    report = ensemble::run_to_files(*plan, store, execute, *cluster);
+  } catch (const InputError&) {
+    if (rank != 0) quiet_exit(cluster, 2);
+    throw;
+  }
+  bar.finish();
+  if (rank != 0 || o.quiet) return;
+  if (o.verbose) {
+    fmt::print(stderr, "topple sweep: chunks total={} already_done={} computed={} runs_computed={} threads={} "
+                       "ranks={} seconds={:.3f}{}\n",
+               report.chunks, report.chunks_already_done, report.chunks_computed, report.runs_computed,
+               report.threads, report.ranks, report.seconds, report.restarted ? " (restarted)" : "");
+  }
+  const std::string outputs =
+      store.csv_path.string() + (store.jsonl_path ? " and " + store.jsonl_path->string() : std::string());
+  if (report.was_complete) {
+    fmt::print(stderr, "topple sweep: already complete, nothing to do: {} ({} rows)\n", outputs, report.runs);
+    return;
+  }
+  const double rate = report.seconds > 0.0 ? static_cast<double>(report.runs_computed) / report.seconds : 0.0;
+  fmt::print(stderr, "topple sweep: wrote {} ({} rows); computed {} runs in {:.2f} s ({:.0f} runs/s){}\n", outputs,
+             report.runs, report.runs_computed, report.seconds, rate,
+             report.chunks_already_done > 0
+                 ? fmt::format("; resumed: {} of {} chunks were already done", report.chunks_already_done,
+                               report.chunks)
+                 : std::string());
+}
+
+}  // namespace
+
+void add_sweep_command(CLI::App& app) {
+  auto o = std::make_shared<SweepOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "sweep", "Run an ensemble (motions x objects x parameters) from a sweep file to a CSV table: all cores, MPI "
+               "ranks under mpirun, resumable (rerun the same command)");
+  cmd->add_option("file", o->file, "Sweep file (TOML; see docs/sweeps.md)")->required();
+  cmd->add_option("--threads", o->threads, "Worker threads per process (default 0: every core it may use)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--out", o->out, "Output CSV (default: [output] path of the sweep file); chunks of an unfinished "
+                                   "sweep live in OUT.parts/");
+  cmd->add_flag("--jsonl", o->jsonl, "Also write JSON lines (OUT with the extension .jsonl)");
+  cmd->add_flag("--restart", o->restart, "Discard the chunks of an earlier (or different) sweep to this output and "
+                                         "start over");
+  cmd->add_flag("--quiet", o->quiet, "No progress bar and no summary on stderr");
+  cmd->add_flag("--verbose", o->verbose, "Plan and chunk counts (already done, computed) on stderr");
+  cmd->callback([o] { run_sweep(*o); });
+}
+
+}  // namespace topple::cli

@@ -1,0 +1,371 @@
+// The standard sweep: records and pulses against sliding blocks and rocking bodies, expanded into an ensemble plan
+// whose run function calls the exact sliding solver and the rocking engine. See ensemble.hpp (make_plan) for the
+// columns.
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <memory>
+#include <string>
+#include <utility>
+
+#include <fmt/format.h>
+
+#include "topple/ensemble.hpp"
+#include "topple/error.hpp"
+
+namespace topple::ensemble {
+namespace {
+
+constexpr std::size_t kAbsent = std::numeric_limits<std::size_t>::max();
+
+/// Column names in order, and where each one is.
+class ColumnSet {
+ public:
+  void add(const std::string& name) {
+    if (index_.count(name) == 0) {
+      index_[name] = names_.size();
+      names_.push_back(name);
+    }
+  }
+  [[nodiscard]] std::size_t at(const std::string& name) const {
+    const auto it = index_.find(name);
+    return it == index_.end() ? kAbsent : it->second;
+  }
+  [[nodiscard]] const std::vector<std::string>& names() const { return names_; }
+
+ private:
+  std::vector<std::string> names_;
+  std::map<std::string, std::size_t> index_;
+};
+
+Value optional_value(const std::optional<double>& v) { return v ? Value{*v} : Value{}; }
+
+struct SlideColumns {
+  std::size_t max_abs_displacement_m, max_displacement_time_s, residual_displacement_m, max_abs_velocity_m_s,
+      slip_episodes, first_slip_time_s, total_slip_duration_s, end_time_s, at_rest_at_end, contact_lost_time_s,
+      yield_down_g, yield_up_g;
+};
+
+struct RockColumns {
+  std::size_t max_abs_rotation_rad, max_rotation_over_alpha, max_rotation_time_s, max_abs_theta_dot_rad_s, impacts,
+      uplifts, uplift_time_s, exceeded_alpha_time_s, overturned, overturn_time_s, energy_lost_j_per_kg, end_time_s,
+      end_state, still_rocking_at_end, onset_mode, critical_mu, alpha_rad, p_rad_s, e;
+};
+
+const std::vector<std::string> kSlideResults{
+    "max_abs_displacement_m", "max_displacement_time_s", "residual_displacement_m", "max_abs_velocity_m_s",
+    "slip_episodes",          "first_slip_time_s",       "total_slip_duration_s",   "end_time_s",
+    "at_rest_at_end",         "contact_lost_time_s",     "yield_down_g",            "yield_up_g"};
+
+const std::vector<std::string> kRockResults{
+    "max_abs_rotation_rad", "max_rotation_over_alpha", "max_rotation_time_s", "max_abs_theta_dot_rad_s",
+    "impacts",              "uplifts",                 "uplift_time_s",       "exceeded_alpha_time_s",
+    "overturned",           "overturn_time_s",         "energy_lost_j_per_kg", "end_time_s",
+    "end_state",            "still_rocking_at_end",    "onset_mode",          "critical_mu",
+    "alpha_rad",            "p_rad_s",                 "e"};
+
+/// The run function of the standard sweep. Consecutive level-or-inclined blocks with mu_kinetic = mu_static and the
+/// same slope, mode and g go through slide_summaries, which shares the input scan across them and gives the same
+/// numbers as slide_summary block by block.
+class Runner {
+ public:
+  Runner(std::vector<ObjectSpec> objects, const ColumnSet& results) : objects_(std::move(objects)) {
+    const auto& c = results;
+    slide_ = {c.at("max_abs_displacement_m"), c.at("max_displacement_time_s"), c.at("residual_displacement_m"),
+              c.at("max_abs_velocity_m_s"),   c.at("slip_episodes"),           c.at("first_slip_time_s"),
+              c.at("total_slip_duration_s"),  c.at("end_time_s"),              c.at("at_rest_at_end"),
+              c.at("contact_lost_time_s"),    c.at("yield_down_g"),            c.at("yield_up_g")};
+    rock_ = {c.at("max_abs_rotation_rad"), c.at("max_rotation_over_alpha"), c.at("max_rotation_time_s"),
+             c.at("max_abs_theta_dot_rad_s"), c.at("impacts"), c.at("uplifts"), c.at("uplift_time_s"),
+             c.at("exceeded_alpha_time_s"), c.at("overturned"), c.at("overturn_time_s"),
+             c.at("energy_lost_j_per_kg"), c.at("end_time_s"), c.at("end_state"), c.at("still_rocking_at_end"),
+             c.at("onset_mode"), c.at("critical_mu"), c.at("alpha_rad"), c.at("p_rad_s"), c.at("e")};
+    stride_ = c.names().size();
+  }
+
+  void operator()(const GroundMotion& motion, std::size_t /*motion_index*/, std::size_t begin, std::size_t end,
+                  std::span<Value> out) const {
+    std::size_t o = begin;
+    std::vector<double> mus;
+    while (o < end) {
+      Value* row = out.data() + (o - begin) * stride_;
+      if (const auto* s = std::get_if<SlideObject>(&objects_[o])) {
+        std::size_t last = o + 1;
+        while (last < end && batchable(*s, objects_[last])) ++last;
+        if (last - o >= 2 && s->block.mu_kinetic == s->block.mu_static) {
+          mus.clear();
+          for (std::size_t k = o; k < last; ++k) mus.push_back(std::get<SlideObject>(objects_[k]).block.mu_static);
+          const auto summaries = slide_summaries(motion, mus, s->block.slope_rad, s->block.mode, s->block.g_m_s2);
+          for (std::size_t k = o; k < last; ++k) {
+            fill(summaries[k - o], std::get<SlideObject>(objects_[k]).block, out.data() + (k - begin) * stride_);
+          }
+          o = last;
+          continue;
+        }
+        fill(slide_summary(motion, s->block), s->block, row);
+      } else {
+        const auto& r = std::get<RockObject>(objects_[o]);
+        fill(rock_summary(motion, r.body, r.options), row);
+      }
+      ++o;
+    }
+  }
+
+ private:
+  static bool batchable(const SlideObject& first, const ObjectSpec& next) {
+    const auto* s = std::get_if<SlideObject>(&next);
+    return s != nullptr && first.block.mu_kinetic == first.block.mu_static &&
+           s->block.mu_kinetic == s->block.mu_static && s->block.slope_rad == first.block.slope_rad &&
+           s->block.mode == first.block.mode && s->block.g_m_s2 == first.block.g_m_s2;
+  }
+
+  void fill(const SlidingSummary& s, const SlidingBlock& b, Value* row) const {
+    const SlideColumns& c = slide_;
+    row[c.max_abs_displacement_m] = s.max_abs_displacement_m;
+    row[c.max_displacement_time_s] = s.max_displacement_time_s;
+    row[c.residual_displacement_m] = s.residual_displacement_m;
+    row[c.max_abs_velocity_m_s] = s.max_abs_velocity_m_s;
+    row[c.slip_episodes] = static_cast<std::int64_t>(s.slip_episodes);
+    row[c.first_slip_time_s] = optional_value(s.first_slip_time_s);
+    row[c.total_slip_duration_s] = s.total_slip_duration_s;
+    row[c.end_time_s] = s.end_time_s;
+    row[c.at_rest_at_end] = s.at_rest_at_end;
+    row[c.contact_lost_time_s] = optional_value(s.contact_lost_time_s);
+    row[c.yield_down_g] = b.yield_down_m_s2() / b.g_m_s2;
+    const double up = b.yield_up_m_s2();
+    row[c.yield_up_g] = std::isfinite(up) ? Value{up / b.g_m_s2} : Value{};
+  }
+
+  void fill(const RockingSummary& s, Value* row) const {
+    const RockColumns& c = rock_;
+    row[c.max_abs_rotation_rad] = s.max_abs_rotation_rad;
+    row[c.max_rotation_over_alpha] = s.max_rotation_over_alpha;
+    row[c.max_rotation_time_s] = s.max_rotation_time_s;
+    row[c.max_abs_theta_dot_rad_s] = s.max_abs_theta_dot_rad_s;
+    row[c.impacts] = static_cast<std::int64_t>(s.impacts);
+    row[c.uplifts] = static_cast<std::int64_t>(s.uplifts);
+    row[c.uplift_time_s] = optional_value(s.uplift_time_s);
+    row[c.exceeded_alpha_time_s] = optional_value(s.exceeded_alpha_time_s);
+    row[c.overturned] = s.overturned;
+    row[c.overturn_time_s] = optional_value(s.overturn_time_s);
+    row[c.energy_lost_j_per_kg] = s.energy_lost_j_per_kg;
+    row[c.end_time_s] = s.end_time_s;
+    row[c.end_state] = std::string(rocking_state_name(s.end_state));
+    row[c.still_rocking_at_end] = s.still_rocking_at_end;
+    row[c.onset_mode] = std::string(onset_mode_name(s.onset_mode));
+    row[c.critical_mu] = optional_value(s.critical_mu);
+    row[c.alpha_rad] = s.alpha_rad;
+    row[c.p_rad_s] = s.p_rad_s;
+    row[c.e] = s.e;
+  }
+
+  std::vector<ObjectSpec> objects_;
+  SlideColumns slide_{};
+  RockColumns rock_{};
+  std::size_t stride_ = 0;
+};
+
+std::string_view polarity_name(bool inverse) { return inverse ? "inverse" : "normal"; }
+
+/// Values of a column set filled by name.
+class RowValues {
+ public:
+  explicit RowValues(const ColumnSet& columns) : columns_(columns), values_(columns.names().size()) {}
+  void set(const std::string& name, Value v) {
+    const std::size_t i = columns_.at(name);
+    if (i != kAbsent) values_[i] = std::move(v);
+  }
+  [[nodiscard]] std::vector<Value> take() { return std::move(values_); }
+
+ private:
+  const ColumnSet& columns_;
+  std::vector<Value> values_;
+};
+
+}  // namespace
+
+Plan make_plan(const SweepSpec& spec) {
+  if (spec.records.empty() && spec.pulses.empty()) throw parameter_error("motions", "the sweep has no motion");
+  if (spec.objects.empty()) throw parameter_error("object", "the sweep has no object");
+  if (spec.inverse.empty()) throw parameter_error("polarity", "no polarity given");
+  if (!spec.records.empty() && (spec.time_scales.empty() || spec.scales.empty())) {
+    throw parameter_error("scale", "no scale or time scale given");
+  }
+  if (!(spec.g_m_s2 > 0.0) || !std::isfinite(spec.g_m_s2)) {
+    throw parameter_error("g", fmt::format("g must be positive and finite, got {}", spec.g_m_s2));
+  }
+  const double g = spec.g_m_s2;
+
+  bool any_slide = false;
+  bool any_rock = false;
+  bool any_rock_mu = false;
+  bool any_block = false;
+  bool any_cylinder = false;
+  bool any_general = false;
+  for (const auto& o : spec.objects) {
+    if (const auto* r = std::get_if<RockObject>(&o)) {
+      any_rock = true;
+      any_rock_mu = any_rock_mu || r->options.mu.has_value();
+      any_block = any_block || r->body.shape == RockingBody::Shape::block;
+      any_cylinder = any_cylinder || r->body.shape == RockingBody::Shape::cylinder;
+      any_general = any_general || r->body.shape == RockingBody::Shape::general;
+    } else {
+      any_slide = true;
+    }
+  }
+
+  ColumnSet motion_cols;
+  motion_cols.add("motion");
+  if (!spec.pulses.empty()) {
+    motion_cols.add("pulse_kind");
+    motion_cols.add("pulse_amp_g");
+    motion_cols.add("pulse_duration_s");
+  }
+  for (const char* c : {"time_scale", "scale_factor", "pga_g", "polarity"}) motion_cols.add(c);
+
+  ColumnSet object_cols;
+  object_cols.add("model");
+  object_cols.add("g_m_s2");
+  if (any_slide || any_rock_mu) object_cols.add("mu");
+  if (any_slide) {
+    for (const char* c : {"mu_kinetic", "slope_deg", "mode"}) object_cols.add(c);
+  }
+  if (any_rock) {
+    object_cols.add("shape");
+    if (any_block) object_cols.add("width_m");
+    if (any_cylinder) object_cols.add("diameter_m");
+    if (any_block || any_cylinder) object_cols.add("height_m");
+    if (any_general) {
+      for (const char* c : {"a_m", "h_m", "D_m2"}) object_cols.add(c);
+    }
+    object_cols.add("restitution");
+  }
+
+  ColumnSet result_cols;
+  if (any_slide) {
+    for (const auto& c : kSlideResults) result_cols.add(c);
+  }
+  if (any_rock) {
+    for (const auto& c : kRockResults) result_cols.add(c);
+  }
+
+  Plan plan;
+  plan.motion_columns = motion_cols.names();
+  plan.object_columns = object_cols.names();
+  plan.result_columns = result_cols.names();
+  plan.chunk_runs = spec.chunk_runs;
+  plan.identity = "topple-sweep/1";
+
+  for (const auto& rec : spec.records) {
+    if (!rec.motion) throw parameter_error("motions", fmt::format("record '{}' has no motion", rec.name));
+    const double peak = rec.motion->pga_m_s2();
+    for (const double ts : spec.time_scales) {
+      if (!(ts > 0.0) || !std::isfinite(ts)) {
+        throw parameter_error("time_scale", fmt::format("time scale factors must be positive and finite, got {}", ts));
+      }
+      for (const auto& sc : spec.scales) {
+        double factor = 1.0;
+        MotionTransform t;
+        t.time_scale = ts;
+        if (sc.kind == ScaleSpec::Kind::pga) {
+          if (!(sc.value > 0.0) || !std::isfinite(sc.value)) {
+            throw parameter_error("scale_pga", fmt::format("target PGA must be positive and finite, got {} m/s2",
+                                                           sc.value));
+          }
+          if (peak == 0.0) {
+            throw parameter_error("scale_pga", fmt::format("record '{}' is zero everywhere: it cannot be scaled to "
+                                                           "a PGA", rec.name));
+          }
+          t.target_pga_m_s2 = sc.value;
+          factor = sc.value / peak;  // what GroundMotion::scaled_to_pga multiplies by
+        } else if (sc.kind == ScaleSpec::Kind::factor) {
+          if (!std::isfinite(sc.value)) {
+            throw parameter_error("scale", fmt::format("scale factors must be finite, got {}", sc.value));
+          }
+          t.factor = sc.value;
+          factor = sc.value;
+        }
+        // max |a f| = round(peak |f|): rounding is monotone, so this is the scaled record's PGA exactly.
+        const double pga = peak * std::abs(factor);
+        for (const bool inv : spec.inverse) {
+          MotionCase mc;
+          mc.base = rec.motion;
+          mc.transform = t;
+          mc.transform.invert = inv;
+          RowValues v(motion_cols);
+          v.set("motion", rec.name);
+          v.set("time_scale", ts);
+          v.set("scale_factor", factor);
+          v.set("pga_g", pga / g);
+          v.set("polarity", std::string(polarity_name(inv)));
+          mc.values = v.take();
+          plan.motions.push_back(std::move(mc));
+        }
+      }
+    }
+  }
+  for (const auto& p : spec.pulses) {
+    const auto base = std::make_shared<const GroundMotion>(make_pulse(p.spec));
+    for (const bool inv : spec.inverse) {
+      MotionCase mc;
+      mc.base = base;
+      mc.transform.invert = inv;
+      RowValues v(motion_cols);
+      v.set("motion", p.name);
+      v.set("pulse_kind", std::string(pulse_kind_name(p.spec.kind)));
+      v.set("pulse_amp_g", p.spec.amplitude_m_s2 / g);
+      v.set("pulse_duration_s", p.spec.duration_s);
+      v.set("time_scale", 1.0);
+      v.set("scale_factor", 1.0);
+      v.set("pga_g", base->pga_m_s2() / g);
+      v.set("polarity", std::string(polarity_name(inv)));
+      mc.values = v.take();
+      plan.motions.push_back(std::move(mc));
+    }
+  }
+
+  for (const auto& o : spec.objects) {
+    RowValues v(object_cols);
+    if (const auto* s = std::get_if<SlideObject>(&o)) {
+      v.set("model", std::string("slide"));
+      v.set("g_m_s2", s->block.g_m_s2);
+      v.set("mu", s->block.mu_static);
+      v.set("mu_kinetic", s->block.mu_kinetic);
+      v.set("slope_deg", s->slope_deg);
+      v.set("mode", std::string(s->block.mode == SlidingMode::one_way ? "one-way" : "two-way"));
+    } else {
+      const auto& r = std::get<RockObject>(o);
+      v.set("model", std::string("rock"));
+      v.set("g_m_s2", r.options.g_m_s2);
+      if (r.options.mu) v.set("mu", *r.options.mu);
+      v.set("shape", std::string(shape_name(r.body.shape)));
+      if (r.width_m) v.set("width_m", *r.width_m);
+      if (r.diameter_m) v.set("diameter_m", *r.diameter_m);
+      if (r.height_m) v.set("height_m", *r.height_m);
+      if (r.body.shape == RockingBody::Shape::general) {
+        v.set("a_m", r.body.a_m);
+        v.set("h_m", r.body.h_m);
+        v.set("D_m2", r.body.D_m2);
+      }
+      v.set("restitution", std::string(r.options.restitution == RestitutionMode::housner ? "housner" : "given"));
+      // Settings that are not columns still decide the results: they enter the fingerprint.
+      const RockingOptions& x = r.options;
+      plan.identity += fmt::format(";rock a={} h={} D={} e={} method={} rtol={} atol={} n={} rest={} runout={} "
+                                   "theta0={} omega0={} stop={} steps={}",
+                                   r.body.a_m, r.body.h_m, r.body.D_m2, x.e, static_cast<int>(x.method), x.rel_tol,
+                                   x.abs_tol, x.rk4_substeps, x.rest_energy_fraction, x.max_run_out_s,
+                                   x.initial_theta_rad, x.initial_theta_dot_rad_s, x.stop_when_alpha_exceeded,
+                                   x.max_steps);
+    }
+    plan.objects.push_back(ObjectCase{v.take()});
+  }
+
+  plan.run = [runner = std::make_shared<const Runner>(spec.objects, result_cols)](
+                 const GroundMotion& motion, std::size_t m, std::size_t begin, std::size_t end, std::span<Value> out) {
+    (*runner)(motion, m, begin, end, out);
+  };
+  return plan;
+}
+
+}  // namespace topple::ensemble

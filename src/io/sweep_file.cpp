@@ -1,0 +1,704 @@
+// Sweep files (TOML, toml++) into an ensemble::SweepSpec. See sweep_file.hpp and docs/sweeps.md.
+#include "topple/io/sweep_file.hpp"
+
+#include <glob.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <exception>
+#include <fstream>
+#include <functional>
+#include <initializer_list>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <oneapi/tbb/parallel_for.h>
+#include <toml++/toml.h>
+
+#include "topple/error.hpp"
+#include "topple/io/read.hpp"
+#include "topple/pulses.hpp"
+#include "topple/units.hpp"
+
+namespace topple::io {
+namespace fs = std::filesystem;
+namespace {
+
+using Parser = std::function<double(std::string_view text, const std::string& field)>;
+
+std::string type_name(const toml::node& n) {
+  switch (n.type()) {
+    case toml::node_type::string: return "a string";
+    case toml::node_type::integer: return "an integer";
+    case toml::node_type::floating_point: return "a number";
+    case toml::node_type::boolean: return "a boolean";
+    case toml::node_type::date: return "a date";
+    case toml::node_type::time: return "a time";
+    case toml::node_type::date_time: return "a date-time";
+    case toml::node_type::array: return "a list";
+    case toml::node_type::table: return "a table";
+    default: return "nothing";
+  }
+}
+
+std::optional<double> number_of(const toml::node& n) {
+  if (const auto* i = n.as_integer()) return static_cast<double>(i->get());
+  if (const auto* f = n.as_floating_point()) return f->get();
+  return std::nullopt;
+}
+
+/// Reads one sweep file; every error names the file, the line and the key.
+class Reader {
+ public:
+  Reader(std::string file, fs::path dir) : file_(std::move(file)), dir_(std::move(dir)) {}
+
+  [[noreturn]] void fail(const toml::node* node, const std::string& key, const std::string& problem) const {
+    std::optional<std::size_t> line;
+    if (node != nullptr && node->source().begin.line > 0) line = node->source().begin.line;
+    throw InputError(InputLocation{file_, line, key}, problem);
+  }
+
+  /// Rethrows an InputError of a units helper or a model factory with this file's location and the user's key.
+  template <class F>
+  auto located(const toml::node* node, const std::string& key, F f) const {
+    try {
+      return f();
+    } catch (const InputError& e) {
+      fail(node, key, e.problem());
+    }
+  }
+
+  void check_keys(const toml::table& t, const std::string& where, std::initializer_list<std::string_view> allowed) const {
+    for (auto&& [k, v] : t) {
+      const std::string_view name = k.str();
+      if (std::find(allowed.begin(), allowed.end(), name) != allowed.end()) continue;
+      std::string known;
+      for (const auto& a : allowed) known += (known.empty() ? "" : ", ") + std::string(a);
+      fail(&v, where.empty() ? std::string(name) : where + "." + std::string(name),
+           fmt::format("unknown key '{}' (known here: {})", name, known));
+    }
+  }
+
+  /// Numbers: a number, a list of numbers or a range table. Empty when the key is absent.
+  [[nodiscard]] std::optional<std::vector<double>> numbers(const toml::table& t, std::string_view key,
+                                                           const std::string& field) const {
+    const toml::node* n = t.get(key);
+    if (n == nullptr) return std::nullopt;
+    if (const auto x = number_of(*n)) return std::vector<double>{*x};
+    if (const auto* a = n->as_array()) {
+      if (a->empty()) fail(n, field, "empty list: give at least one value");
+      std::vector<double> out;
+      for (const auto& e : *a) {
+        const auto x = number_of(e);
+        if (!x) fail(&e, field, fmt::format("expected numbers in the list, got {}", type_name(e)));
+        out.push_back(*x);
+      }
+      return out;
+    }
+    if (const auto* r = n->as_table()) {
+      return range(*r, field, [&](const toml::node& e, const std::string& f) -> double {
+        const auto x = number_of(e);
+        if (!x) fail(&e, f, fmt::format("expected a number, got {}", type_name(e)));
+        return *x;
+      });
+    }
+    fail(n, field, fmt::format("expected a number, a list of numbers or a range table {{from, to, count}}, got {}",
+                               type_name(*n)));
+  }
+
+  /// A dimensional parameter: `unit_key` (e.g. "width_m") takes numbers in that unit, `plain_key` (e.g. "width")
+  /// strings with a unit, converted by `parse` to the same unit. Empty when both are absent.
+  [[nodiscard]] std::optional<std::vector<double>> quantities(const toml::table& t, std::string_view unit_key,
+                                                              std::string_view plain_key, const std::string& prefix,
+                                                              const Parser& parse, std::string_view example) const {
+    const std::string unit_field = prefix + std::string(unit_key);
+    const std::string plain_field = prefix + std::string(plain_key);
+    const toml::node* plain = t.get(plain_key);
+    if (plain != nullptr && t.get(unit_key) != nullptr) {
+      fail(plain, plain_field, fmt::format("give either {} or {}, not both", plain_key, unit_key));
+    }
+    if (plain == nullptr) return numbers(t, unit_key, unit_field);
+    const auto one = [&](const toml::node& e) -> double {
+      if (const auto* s = e.as_string()) return located(&e, plain_field, [&] { return parse(s->get(), plain_field); });
+      if (const auto x = number_of(e)) {
+        fail(&e, plain_field, fmt::format("{} has no unit: write it as a string with one (e.g. \"{}\"), or use {} "
+                                          "for a plain number", *x, example, unit_key));
+      }
+      fail(&e, plain_field, fmt::format("expected a string with a unit (e.g. \"{}\"), got {}", example, type_name(e)));
+    };
+    if (const auto* a = plain->as_array()) {
+      if (a->empty()) fail(plain, plain_field, "empty list: give at least one value");
+      std::vector<double> out;
+      for (const auto& e : *a) out.push_back(one(e));
+      return out;
+    }
+    if (const auto* r = plain->as_table()) {
+      return range(*r, plain_field, [&](const toml::node& e, const std::string&) { return one(e); });
+    }
+    return std::vector<double>{one(*plain)};
+  }
+
+  /// Strings: a string or a list of strings.
+  [[nodiscard]] std::optional<std::vector<std::string>> strings(const toml::table& t, std::string_view key,
+                                                                const std::string& field) const {
+    const toml::node* n = t.get(key);
+    if (n == nullptr) return std::nullopt;
+    if (const auto* s = n->as_string()) return std::vector<std::string>{s->get()};
+    if (const auto* a = n->as_array()) {
+      if (a->empty()) fail(n, field, "empty list: give at least one value");
+      std::vector<std::string> out;
+      for (const auto& e : *a) {
+        const auto* s = e.as_string();
+        if (s == nullptr) fail(&e, field, fmt::format("expected strings in the list, got {}", type_name(e)));
+        out.push_back(s->get());
+      }
+      return out;
+    }
+    fail(n, field, fmt::format("expected a string or a list of strings, got {}", type_name(*n)));
+  }
+
+  [[nodiscard]] std::optional<std::string> string(const toml::table& t, std::string_view key,
+                                                  const std::string& field) const {
+    const toml::node* n = t.get(key);
+    if (n == nullptr) return std::nullopt;
+    const auto* s = n->as_string();
+    if (s == nullptr) fail(n, field, fmt::format("expected a string, got {}", type_name(*n)));
+    return s->get();
+  }
+
+  [[nodiscard]] std::optional<std::int64_t> integer(const toml::table& t, std::string_view key,
+                                                    const std::string& field) const {
+    const toml::node* n = t.get(key);
+    if (n == nullptr) return std::nullopt;
+    const auto* i = n->as_integer();
+    if (i == nullptr) fail(n, field, fmt::format("expected an integer, got {}", type_name(*n)));
+    return i->get();
+  }
+
+  [[nodiscard]] std::optional<bool> boolean(const toml::table& t, std::string_view key, const std::string& field) const {
+    const toml::node* n = t.get(key);
+    if (n == nullptr) return std::nullopt;
+    const auto* b = n->as_boolean();
+    if (b == nullptr) fail(n, field, fmt::format("expected true or false, got {}", type_name(*n)));
+    return b->get();
+  }
+
+  /// A single dimensional value (no list): unit key or plain key.
+  [[nodiscard]] std::optional<double> quantity(const toml::table& t, std::string_view unit_key,
+                                               std::string_view plain_key, const std::string& prefix,
+                                               const Parser& parse, std::string_view example) const {
+    const auto v = quantities(t, unit_key, plain_key, prefix, parse, example);
+    if (!v) return std::nullopt;
+    if (v->size() != 1) {
+      const toml::node* n = t.get(plain_key) != nullptr ? t.get(plain_key) : t.get(unit_key);
+      fail(n, prefix + std::string(t.get(plain_key) != nullptr ? plain_key : unit_key), "expected a single value");
+    }
+    return v->front();
+  }
+
+  /// A range table {from, to, count | step, spacing = "linear" | "log"}; `value` reads from, to and step.
+  template <class V>
+  std::vector<double> range(const toml::table& r, const std::string& field, V value) const {
+    check_keys(r, field, {"from", "to", "count", "step", "spacing"});
+    const toml::node* from_n = r.get("from");
+    const toml::node* to_n = r.get("to");
+    if (from_n == nullptr || to_n == nullptr) fail(&r, field, "a range needs 'from' and 'to'");
+    const double from = value(*from_n, field);
+    const double to = value(*to_n, field);
+    const auto spacing = string(r, "spacing", field + ".spacing").value_or("linear");
+    if (spacing != "linear" && spacing != "log") {
+      fail(r.get("spacing"), field + ".spacing", fmt::format("unknown spacing '{}' (known: linear, log)", spacing));
+    }
+    const toml::node* step_n = r.get("step");
+    const auto count = integer(r, "count", field + ".count");
+    if ((step_n != nullptr) == count.has_value()) fail(&r, field, "a range needs exactly one of 'count' and 'step'");
+    if (to < from) fail(&r, field, fmt::format("empty range: 'to' ({}) is below 'from' ({})", to, from));
+    std::vector<double> out;
+    if (count) {
+      if (*count < 1) fail(r.get("count"), field, fmt::format("empty range: count = {}", *count));
+      if (*count > 100'000'000) fail(r.get("count"), field, fmt::format("count = {} is too large", *count));
+      const auto n = static_cast<std::size_t>(*count);
+      if (n > 1 && to == from) fail(&r, field, "range with count > 1 but 'to' equal to 'from'");
+      if (spacing == "log" && !(from > 0.0)) fail(&r, field, "a log range needs 'from' > 0");
+      for (std::size_t i = 0; i < n; ++i) {
+        const double f = n == 1 ? 0.0 : static_cast<double>(i) / static_cast<double>(n - 1);
+        double x = spacing == "log" ? from * std::pow(to / from, f) : from + (to - from) * f;
+        if (i == 0) x = from;
+        if (n > 1 && i + 1 == n) x = to;
+        out.push_back(x);
+      }
+    } else {
+      if (spacing == "log") fail(step_n, field, "a log range takes 'count', not 'step'");
+      const double step = value(*step_n, field);
+      if (!(step > 0.0) || !std::isfinite(step)) fail(step_n, field, fmt::format("step must be > 0, got {}", step));
+      // Points from + i step up to 'to', which counts when within 1e-9 steps of a point (round-off).
+      const double span = (to - from) / step;
+      if (span > 1e8) fail(step_n, field, fmt::format("{} values is too many", span));
+      const auto n = static_cast<std::size_t>(std::floor(span + 1e-9)) + 1;
+      for (std::size_t i = 0; i < n; ++i) out.push_back(from + static_cast<double>(i) * step);
+    }
+    return out;
+  }
+
+  /// Glob patterns (relative to the sweep file's directory) to files, in pattern order, each pattern's matches
+  /// sorted by name (bytes), each file once.
+  [[nodiscard]] std::vector<std::pair<std::string, fs::path>> files(const toml::table& motions) const {
+    std::vector<std::pair<std::string, fs::path>> out;
+    const toml::node* n = motions.get("files");
+    if (n == nullptr) return out;
+    const auto patterns = strings(motions, "files", "motions.files");
+    std::set<std::string> seen;
+    const auto* arr = n->as_array();
+    for (std::size_t i = 0; i < patterns->size(); ++i) {
+      const std::string& pattern = (*patterns)[i];
+      const toml::node* where = arr != nullptr ? arr->get(i) : n;
+      const std::string field = arr != nullptr ? fmt::format("motions.files[{}]", i + 1) : "motions.files";
+      if (pattern.empty()) fail(where, field, "empty file pattern");
+      const bool absolute = fs::path(pattern).is_absolute();
+      std::string prefix;
+      std::size_t plain_prefix_size = 0;  // the prefix without its escapes: what glob's matches start with
+      if (!absolute && !dir_.empty()) {
+        plain_prefix_size = dir_.string().size() + 1;
+        for (const char c : dir_.string()) {
+          if (c == '*' || c == '?' || c == '[' || c == '\\' || c == '{') prefix += '\\';
+          prefix += c;
+        }
+        prefix += '/';
+      }
+      const std::string full = prefix + pattern;
+      glob_t g{};
+      const int rc = ::glob(full.c_str(), GLOB_MARK | GLOB_NOSORT | GLOB_BRACE, nullptr, &g);
+      std::vector<std::string> matches;
+      if (rc == 0) {
+        for (std::size_t k = 0; k < g.gl_pathc; ++k) matches.emplace_back(g.gl_pathv[k]);
+      }
+      globfree(&g);
+      if (rc == GLOB_ABORTED) fail(where, field, fmt::format("cannot read a directory while matching '{}'", pattern));
+      const bool literal = pattern.find_first_of("*?[{") == std::string::npos;
+      if (rc == GLOB_NOMATCH || matches.empty()) {
+        if (literal) fail(where, field, fmt::format("no such record file '{}' (looked for '{}')", pattern, full));
+        fail(where, field, fmt::format("'{}' matches no file (looked for '{}')", pattern, full));
+      }
+      std::sort(matches.begin(), matches.end());
+      std::size_t kept = 0;
+      for (const auto& m : matches) {
+        if (!m.empty() && m.back() == '/') continue;  // a directory the pattern also matched
+        const std::string name = m.substr(plain_prefix_size);
+        if (name.find_first_of("\r\n") != std::string::npos) fail(where, field, "a file name holds a line break");
+        ++kept;
+        if (!seen.insert(fs::path(m).lexically_normal().string()).second) continue;
+        out.emplace_back(name, fs::path(m));
+      }
+      if (kept == 0) fail(where, field, fmt::format("'{}' matches only directories", pattern));
+    }
+    return out;
+  }
+
+  [[nodiscard]] const fs::path& dir() const { return dir_; }
+
+ private:
+  std::string file_;
+  fs::path dir_;
+};
+
+Parser length_parser() { return [](std::string_view s, const std::string& f) { return parse_length_m(s, f); }; }
+Parser duration_parser() { return [](std::string_view s, const std::string& f) { return parse_duration_s(s, f); }; }
+Parser frequency_parser() { return [](std::string_view s, const std::string& f) { return parse_frequency_hz(s, f); }; }
+Parser angle_deg_parser() {
+  return [](std::string_view s, const std::string& f) { return parse_angle_rad(s, f) * 180.0 / kPi; };
+}
+Parser acceleration_parser(double g, double divide_by) {
+  return [g, divide_by](std::string_view s, const std::string& f) { return parse_acceleration_m_s2(s, f, g) / divide_by; };
+}
+
+/// [motions]: records and pulses, scaling, polarity.
+void read_motions(const Reader& r, const toml::table& t, SweepFile& out) {
+  const toml::table* m = nullptr;
+  if (const toml::node* n = t.get("motions")) {
+    m = n->as_table();
+    if (m == nullptr) r.fail(n, "motions", fmt::format("expected a table [motions], got {}", type_name(*n)));
+  } else {
+    r.fail(&t, "motions", "the sweep has no [motions] table");
+  }
+  const double g = out.spec.g_m_s2;
+  r.check_keys(*m, "motions", {"files", "format", "units", "dt", "dt_s", "channel", "scale", "scale_pga",
+                               "scale_pga_g", "time_scale", "polarity", "pulse"});
+
+  // Reading options for the record files.
+  ReadOptions ro;
+  ro.g_m_s2 = g;
+  if (const auto f = r.string(*m, "format", "motions.format")) {
+    ro.format = r.located(m->get("format"), "motions.format", [&] { return parse_format_name(*f, "motions.format"); });
+  }
+  if (const auto u = r.string(*m, "units", "motions.units")) {
+    r.located(m->get("units"), "motions.units", [&] { return acceleration_unit_factor(*u, "motions.units", g); });
+    ro.units = *u;
+  }
+  ro.dt_s = r.quantity(*m, "dt_s", "dt", "motions.", duration_parser(), "0.01s");
+  if (ro.dt_s && !(*ro.dt_s > 0.0)) r.fail(m->get("dt") ? m->get("dt") : m->get("dt_s"), "motions.dt", "must be > 0");
+  if (const auto c = r.integer(*m, "channel", "motions.channel")) {
+    if (*c < 1 || *c > 1000) r.fail(m->get("channel"), "motions.channel", fmt::format("must be >= 1, got {}", *c));
+    ro.channel = static_cast<int>(*c);
+  }
+
+  // Records: every glob match, read once (in parallel; the first failure in file order is reported).
+  const auto files = r.files(*m);
+  std::vector<std::shared_ptr<const GroundMotion>> loaded(files.size());
+  std::vector<std::exception_ptr> errors(files.size());
+  tbb::parallel_for(std::size_t{0}, files.size(), [&](std::size_t i) {
+    try {
+      loaded[i] = std::make_shared<const GroundMotion>(read_motion(files[i].second, ro));
+    } catch (...) {
+      errors[i] = std::current_exception();
+    }
+  });
+  for (const auto& e : errors) {
+    if (e) std::rethrow_exception(e);
+  }
+  for (std::size_t i = 0; i < files.size(); ++i) out.spec.records.push_back({files[i].first, loaded[i]});
+
+  // Scaling (records only).
+  const toml::node* scale_n = m->get("scale");
+  const toml::node* pga_n = m->get("scale_pga") != nullptr ? m->get("scale_pga") : m->get("scale_pga_g");
+  if (scale_n != nullptr && pga_n != nullptr) {
+    r.fail(scale_n, "motions.scale", "give either scale (factors) or scale_pga / scale_pga_g (target PGAs), not both");
+  }
+  if (const auto pgas = r.quantities(*m, "scale_pga_g", "scale_pga", "motions.", acceleration_parser(g, 1.0), "0.2g")) {
+    const bool in_g = m->get("scale_pga_g") != nullptr;
+    out.spec.scales.clear();
+    for (const double v : *pgas) {
+      const double target = in_g ? v * g : v;
+      if (!(target > 0.0)) r.fail(pga_n, in_g ? "motions.scale_pga_g" : "motions.scale_pga",
+                                  fmt::format("target PGAs must be > 0, got {}", v));
+      out.spec.scales.push_back({ensemble::ScaleSpec::Kind::pga, target});
+    }
+  }
+  if (const auto factors = r.numbers(*m, "scale", "motions.scale")) {
+    out.spec.scales.clear();
+    for (const double v : *factors) out.spec.scales.push_back({ensemble::ScaleSpec::Kind::factor, v});
+  }
+  if (const auto ts = r.numbers(*m, "time_scale", "motions.time_scale")) {
+    for (const double v : *ts) {
+      if (!(v > 0.0)) r.fail(m->get("time_scale"), "motions.time_scale", fmt::format("factors must be > 0, got {}", v));
+    }
+    out.spec.time_scales = *ts;
+  }
+  if ((scale_n != nullptr || pga_n != nullptr || m->get("time_scale") != nullptr) && files.empty()) {
+    r.fail(scale_n != nullptr ? scale_n : pga_n != nullptr ? pga_n : m->get("time_scale"), "motions",
+           "scale, scale_pga and time_scale apply to record files, and there are none (pulses take their own "
+           "amplitudes and frequencies)");
+  }
+  if (const auto pol = r.strings(*m, "polarity", "motions.polarity")) {
+    out.spec.inverse.clear();
+    for (const auto& p : *pol) {
+      if (p != "normal" && p != "inverse") {
+        r.fail(m->get("polarity"), "motions.polarity", fmt::format("unknown polarity '{}' (known: normal, inverse)", p));
+      }
+      out.spec.inverse.push_back(p == "inverse");
+    }
+  }
+
+  // Analytic pulses: every combination of kind x amplitude x frequency (or duration).
+  if (const toml::node* pn = m->get("pulse")) {
+    const auto* arr = pn->as_array();
+    if (arr == nullptr || !arr->is_array_of_tables()) {
+      r.fail(pn, "motions.pulse", "expected [[motions.pulse]] tables");
+    }
+    for (std::size_t i = 0; i < arr->size(); ++i) {
+      const toml::table& p = *arr->get(i)->as_table();
+      const std::string key = fmt::format("motions.pulse[{}]", i + 1);
+      const std::string prefix = key + ".";
+      r.check_keys(p, key, {"kind", "amp_g", "amp", "freq_hz", "freq", "duration_s", "duration", "tail_s", "tail",
+                            "dt_s", "dt"});
+      const auto kinds = r.strings(p, "kind", prefix + "kind");
+      if (!kinds) r.fail(&p, prefix + "kind", "a pulse needs its kind (rect, tri, double-tri, sine, cosine, ricker)");
+      std::vector<PulseKind> kind_values;
+      for (const auto& k : *kinds) {
+        kind_values.push_back(r.located(p.get("kind"), prefix + "kind", [&] { return parse_pulse_kind(k, "kind"); }));
+      }
+      const auto amps = r.quantities(p, "amp_g", "amp", prefix, acceleration_parser(g, g), "0.3g");
+      if (!amps) r.fail(&p, prefix + "amp_g", "a pulse needs its amplitude (amp_g, or amp with a unit)");
+      const auto freqs = r.quantities(p, "freq_hz", "freq", prefix, frequency_parser(), "2Hz");
+      const auto durations = r.quantities(p, "duration_s", "duration", prefix, duration_parser(), "0.1s");
+      if (freqs.has_value() == durations.has_value()) {
+        r.fail(&p, prefix + "freq_hz", "a pulse needs exactly one of freq_hz / freq and duration_s / duration");
+      }
+      const auto tail = r.quantity(p, "tail_s", "tail", prefix, duration_parser(), "1s");
+      const auto dt = r.quantity(p, "dt_s", "dt", prefix, duration_parser(), "0.001s");
+      if (tail && !(*tail >= 0.0)) r.fail(&p, prefix + "tail", "must be >= 0");
+      if (dt && !(*dt > 0.0)) r.fail(&p, prefix + "dt", "must be > 0");
+      for (const PulseKind kind : kind_values) {
+        for (const double amp_g : *amps) {
+          for (const double x : freqs ? *freqs : *durations) {
+            if (!(x > 0.0)) r.fail(&p, prefix + (freqs ? "freq_hz" : "duration_s"), fmt::format("must be > 0, got {}", x));
+            ensemble::PulseInput in;
+            in.spec.kind = kind;
+            in.spec.amplitude_m_s2 = amp_g * g;  // as `topple slide --amp-g` computes it
+            in.spec.duration_s = freqs ? 1.0 / x : x;
+            in.spec.tail_s = tail ? *tail : 5.0 * in.spec.duration_s;  // the CLI's default: 5 pulse durations
+            in.spec.dt_s = dt.value_or(0.0);
+            in.name = fmt::format("{} amp_g={} {}={}", pulse_kind_name(kind), amp_g, freqs ? "freq_hz" : "duration_s", x);
+            r.located(&p, key, [&] { return make_pulse(in.spec).size(); });  // validate now, not at the first run
+            out.spec.pulses.push_back(std::move(in));
+          }
+        }
+      }
+    }
+  }
+  if (out.spec.records.empty() && out.spec.pulses.empty()) {
+    r.fail(m, "motions", "no motion: give files = [...] and/or [[motions.pulse]] tables");
+  }
+}
+
+SlidingMode parse_mode(const Reader& r, const toml::node* n, const std::string& field, const std::string& s) {
+  if (s == "two-way") return SlidingMode::two_way;
+  if (s == "one-way") return SlidingMode::one_way;
+  r.fail(n, field, fmt::format("unknown mode '{}' (known: two-way, one-way)", s));
+}
+
+void read_slide(const Reader& r, const toml::table& o, const std::string& key, double g, SweepFile& out) {
+  const std::string prefix = key + ".";
+  r.check_keys(o, key, {"model", "mu", "mu_kinetic", "slope_deg", "slope", "mode"});
+  const auto mu = r.numbers(o, "mu", prefix + "mu");
+  if (!mu) r.fail(&o, prefix + "mu", "a sliding object needs its friction coefficient mu");
+  const auto mu_k = r.numbers(o, "mu_kinetic", prefix + "mu_kinetic");
+  const auto slopes = r.quantities(o, "slope_deg", "slope", prefix, angle_deg_parser(), "10deg").value_or(
+      std::vector<double>{0.0});
+  std::vector<SlidingMode> modes{SlidingMode::two_way};
+  if (const auto ms = r.strings(o, "mode", prefix + "mode")) {
+    modes.clear();
+    for (const auto& s : *ms) modes.push_back(parse_mode(r, o.get("mode"), prefix + "mode", s));
+  }
+  const auto field_of = [&](const std::string& f) {
+    if (f == "slope") return prefix + (o.get("slope") != nullptr ? "slope" : "slope_deg");
+    return prefix + f;
+  };
+  for (const SlidingMode mode : modes) {
+    for (const double slope_deg : slopes) {
+      for (const double m : *mu) {
+        for (const double k : mu_k ? *mu_k : std::vector<double>{-1.0}) {
+          try {
+            // slope_deg * pi / 180: the expression `topple slide --slope-deg` uses, so that rows match it exactly.
+            const SlidingBlock b = SlidingBlock::make(m, k, slope_deg * kPi / 180.0, mode, g);
+            out.spec.objects.emplace_back(ensemble::SlideObject{b, slope_deg});
+          } catch (const InputError& e) {
+            const std::string f = field_of(e.where().field);
+            r.fail(o.get(f.substr(prefix.size())) != nullptr ? o.get(f.substr(prefix.size())) : &o, f, e.problem());
+          }
+        }
+      }
+    }
+  }
+}
+
+void read_rock(const Reader& r, const toml::table& o, const std::string& key, double g, SweepFile& out) {
+  const std::string prefix = key + ".";
+  r.check_keys(o, key, {"model", "shape", "width", "width_m", "height", "height_m", "diameter", "diameter_m", "a",
+                        "a_m", "h", "h_m", "D_m2", "e", "mu"});
+  const std::string shape = r.string(o, "shape", prefix + "shape").value_or("");
+  const auto refuse = [&](std::initializer_list<std::string_view> keys) {
+    for (const auto k : keys) {
+      if (const toml::node* n = o.get(k)) {
+        r.fail(n, prefix + std::string(k), fmt::format("does not apply to shape = \"{}\"", shape));
+      }
+    }
+  };
+  const auto need = [&](const std::optional<std::vector<double>>& v, std::string_view name) {
+    if (!v) r.fail(&o, prefix + std::string(name), fmt::format("shape = \"{}\" needs {}", shape, name));
+    return *v;
+  };
+  std::vector<double> first;   // width, diameter or a (m)
+  std::vector<double> second;  // height or h (m)
+  std::vector<double> third{0.0};  // D (m^2), general only
+  std::string first_key;
+  std::string second_key;
+  if (shape == "block" || shape == "cylinder") {
+    first_key = shape == "block" ? "width" : "diameter";
+    second_key = "height";
+    first = need(r.quantities(o, first_key + "_m", first_key, prefix, length_parser(), "4cm"), first_key);
+    second = need(r.quantities(o, "height_m", "height", prefix, length_parser(), "20cm"), "height");
+    if (shape == "block") refuse({"diameter", "diameter_m"});
+    if (shape == "cylinder") refuse({"width", "width_m"});
+    refuse({"a", "a_m", "h", "h_m", "D_m2"});
+  } else if (shape == "general") {
+    first_key = "a";
+    second_key = "h";
+    first = need(r.quantities(o, "a_m", "a", prefix, length_parser(), "2cm"), "a");
+    second = need(r.quantities(o, "h_m", "h", prefix, length_parser(), "10cm"), "h");
+    third = need(r.numbers(o, "D_m2", prefix + "D_m2"), "D_m2");
+    refuse({"width", "width_m", "height", "height_m", "diameter", "diameter_m"});
+  } else if (shape.empty()) {
+    r.fail(&o, prefix + "shape", "a rocking object needs its shape: block, cylinder or general");
+  } else {
+    r.fail(o.get("shape"), prefix + "shape", fmt::format("unknown shape '{}' (known: block, cylinder, general)", shape));
+  }
+  // e: "housner", a number in [0, 1], or a list mixing them.
+  std::vector<std::optional<double>> es;
+  if (const toml::node* en = o.get("e")) {
+    const auto one = [&](const toml::node& e) -> std::optional<double> {
+      if (const auto* s = e.as_string()) {
+        if (s->get() == "housner") return std::nullopt;
+        r.fail(&e, prefix + "e", fmt::format("'{}' is neither 'housner' nor a number in [0, 1]", s->get()));
+      }
+      const auto x = number_of(e);
+      if (!x) r.fail(&e, prefix + "e", fmt::format("expected \"housner\" or a number in [0, 1], got {}", type_name(e)));
+      if (!(*x >= 0.0 && *x <= 1.0)) r.fail(&e, prefix + "e", fmt::format("must be in [0, 1], got {}", *x));
+      return *x;
+    };
+    if (const auto* a = en->as_array()) {
+      if (a->empty()) r.fail(en, prefix + "e", "empty list: give at least one value");
+      for (const auto& e : *a) es.push_back(one(e));
+    } else if (en->is_table()) {
+      const std::vector<double> values = *r.numbers(o, "e", prefix + "e");
+      for (const double x : values) {
+        if (!(x >= 0.0 && x <= 1.0)) r.fail(en, prefix + "e", fmt::format("must be in [0, 1], got {}", x));
+        es.emplace_back(x);
+      }
+    } else {
+      es.push_back(one(*en));
+    }
+  } else {
+    es.emplace_back(std::nullopt);
+  }
+  const auto mus = r.numbers(o, "mu", prefix + "mu");
+  std::vector<std::optional<double>> mu_values;
+  if (mus) {
+    for (const double m : *mus) {
+      if (!(m >= 0.0) || !std::isfinite(m)) r.fail(o.get("mu"), prefix + "mu", fmt::format("must be >= 0, got {}", m));
+      mu_values.emplace_back(m);
+    }
+  } else {
+    mu_values.emplace_back(std::nullopt);
+  }
+  const auto key_of = [&](const std::string& base) {
+    return o.get(base) != nullptr ? base : base + (base == "D" ? "_m2" : "_m");
+  };
+  for (const double x1 : first) {
+    for (const double x2 : second) {
+      for (const double x3 : third) {
+        RockingBody body;
+        try {
+          body = shape == "block"      ? RockingBody::block(x1, x2)
+                 : shape == "cylinder" ? RockingBody::cylinder(x1, x2)
+                                       : RockingBody::general(x1, x2, x3);
+        } catch (const InputError& e) {
+          std::string f = e.where().field;
+          if (f == "width" || f == "diameter" || f == "a") f = key_of(first_key);
+          if (f == "height" || f == "h") f = key_of(second_key);
+          if (f == "D") f = "D_m2";
+          r.fail(o.get(f) != nullptr ? o.get(f) : &o, prefix + f, e.problem());
+        }
+        for (const auto& e : es) {
+          if (!e && housner_restitution(body) < 0.0) {
+            r.fail(o.get("e") != nullptr ? o.get("e") : &o, prefix + "e",
+                   fmt::format("Housner's restitution 1 - 2a^2/D = {} is negative for this body (too squat to rock "
+                               "onto its other edge): give e explicitly", housner_restitution(body)));
+          }
+          for (const auto& m : mu_values) {
+            ensemble::RockObject ro;
+            ro.body = body;
+            ro.options.g_m_s2 = g;
+            ro.options.restitution = e ? RestitutionMode::given : RestitutionMode::housner;
+            if (e) ro.options.e = *e;
+            ro.options.mu = m;
+            if (shape == "block") ro.width_m = x1;
+            if (shape == "cylinder") ro.diameter_m = x1;
+            if (shape != "general") ro.height_m = x2;
+            out.spec.objects.emplace_back(std::move(ro));
+          }
+        }
+      }
+    }
+  }
+}
+
+void read_objects(const Reader& r, const toml::table& t, SweepFile& out) {
+  const toml::node* n = t.get("object");
+  if (n == nullptr) r.fail(&t, "object", "the sweep has no [[object]] table");
+  const auto* arr = n->as_array();
+  if (arr == nullptr || !arr->is_array_of_tables() || arr->empty()) {
+    r.fail(n, "object", "expected [[object]] tables (an array of tables: note the double brackets)");
+  }
+  for (std::size_t i = 0; i < arr->size(); ++i) {
+    const toml::table& o = *arr->get(i)->as_table();
+    const std::string key = fmt::format("object[{}]", i + 1);
+    const auto model = r.string(o, "model", key + ".model");
+    if (!model) r.fail(&o, key + ".model", "an object needs its model: \"slide\" or \"rock\"");
+    if (*model == "slide") {
+      read_slide(r, o, key, out.spec.g_m_s2, out);
+    } else if (*model == "rock") {
+      read_rock(r, o, key, out.spec.g_m_s2, out);
+    } else {
+      r.fail(o.get("model"), key + ".model", fmt::format("unknown model '{}' (known: slide, rock)", *model));
+    }
+  }
+}
+
+void read_output(const Reader& r, const toml::table& t, const fs::path& sweep_path, SweepFile& out) {
+  fs::path csv = sweep_path.filename();
+  csv.replace_extension(".csv");
+  if (const toml::node* n = t.get("output")) {
+    const auto* o = n->as_table();
+    if (o == nullptr) r.fail(n, "output", fmt::format("expected a table [output], got {}", type_name(*n)));
+    r.check_keys(*o, "output", {"path", "jsonl", "chunk_runs"});
+    if (const auto p = r.string(*o, "path", "output.path")) {
+      if (p->empty()) r.fail(o->get("path"), "output.path", "empty path");
+      csv = *p;
+    }
+    out.jsonl = r.boolean(*o, "jsonl", "output.jsonl").value_or(false);
+    if (const auto c = r.integer(*o, "chunk_runs", "output.chunk_runs")) {
+      if (*c < 1) r.fail(o->get("chunk_runs"), "output.chunk_runs", fmt::format("must be >= 1, got {}", *c));
+      out.spec.chunk_runs = static_cast<std::size_t>(*c);
+    }
+  }
+  out.output_csv = csv.is_absolute() ? csv : r.dir() / csv;
+}
+
+}  // namespace
+
+fs::path jsonl_path_for(const fs::path& csv_path) {
+  fs::path p = csv_path;
+  p.replace_extension(".jsonl");
+  if (p == csv_path) p += ".jsonl";
+  return p;
+}
+
+SweepFile parse_sweep_file(std::string_view text, const fs::path& path) {
+  const std::string file = path.string();
+  toml::table t;
+  try {
+    t = toml::parse(text, file);
+  } catch (const toml::parse_error& e) {
+    std::optional<std::size_t> line;
+    if (e.source().begin.line > 0) line = e.source().begin.line;
+    throw InputError(InputLocation{file, line, ""}, fmt::format("not valid TOML: {}", e.description()));
+  }
+  const Reader r(file, path.parent_path());
+  r.check_keys(t, "", {"description", "g", "g_m_s2", "motions", "object", "output"});
+  SweepFile out;
+  out.path = path;
+  static_cast<void>(r.string(t, "description", "description"));  // free text, checked to be a string
+  if (const auto g = r.quantity(t, "g_m_s2", "g", "", acceleration_parser(kStandardGravity, 1.0), "9.81m/s2")) {
+    if (!(*g > 0.0)) r.fail(t.get("g") != nullptr ? t.get("g") : t.get("g_m_s2"), "g", "must be > 0");
+    out.spec.g_m_s2 = *g;
+  }
+  read_output(r, t, path, out);
+  read_objects(r, t, out);  // objects first: they are cheap to check, records are not
+  read_motions(r, t, out);
+  return out;
+}
+
+SweepFile read_sweep_file(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(InputLocation{path.string(), std::nullopt, ""}, "cannot open the sweep file");
+  std::stringstream s;
+  s << in.rdbuf();
+  return parse_sweep_file(s.str(), path);
+}
+
+}  // namespace topple::io

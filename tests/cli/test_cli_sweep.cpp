@@ -1,0 +1,445 @@
+// `topple sweep`: rows equal to single runs of `topple slide` / `topple rock`, identical files whatever the threads
+// and MPI ranks, kill -9 and resume, bad sweep files (exit 2 naming file and key), changed sweeps, quiet output.
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <random>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "support/shared_data.hpp"
+
+extern char** environ;
+
+namespace topple {
+namespace {
+
+namespace fs = std::filesystem;
+using test::run_cli;
+using test::TempDir;
+using test::write_file;
+
+std::string quote(const std::string& s) { return "'" + s + "'"; }
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// A CSV file as rows of cells (quoted cells unquoted), header first.
+std::vector<std::vector<std::string>> read_csv(const fs::path& p) {
+  std::vector<std::vector<std::string>> rows;
+  std::istringstream in(slurp(p));
+  std::string line;
+  while (std::getline(in, line)) {
+    std::vector<std::string> cells;
+    std::string cell;
+    bool quoted = false;
+    for (std::size_t i = 0; i < line.size(); ++i) {
+      const char c = line[i];
+      if (quoted) {
+        if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+          cell += '"';
+          ++i;
+        } else if (c == '"') {
+          quoted = false;
+        } else {
+          cell += c;
+        }
+      } else if (c == '"') {
+        quoted = true;
+      } else if (c == ',') {
+        cells.push_back(cell);
+        cell.clear();
+      } else {
+        cell += c;
+      }
+    }
+    cells.push_back(cell);
+    rows.push_back(std::move(cells));
+  }
+  return rows;
+}
+
+struct Table {
+  std::vector<std::string> header;
+  std::vector<std::vector<std::string>> rows;
+  [[nodiscard]] const std::string& at(std::size_t row, const std::string& col) const {
+    const auto it = std::find(header.begin(), header.end(), col);
+    if (it == header.end()) throw std::runtime_error("no column " + col);
+    return rows.at(row).at(static_cast<std::size_t>(it - header.begin()));
+  }
+};
+
+Table read_table(const fs::path& p) {
+  auto all = read_csv(p);
+  Table t;
+  t.header = all.at(0);
+  t.rows.assign(all.begin() + 1, all.end());
+  return t;
+}
+
+/// A CSV cell and a JSON value carry the same number (or both are none), compared exactly as doubles.
+void expect_same(const std::string& cell, const nlohmann::json& j, const std::string& key) {
+  SCOPED_TRACE(key + ": csv '" + cell + "', json " + j.dump());
+  if (j.is_null()) {
+    EXPECT_EQ(cell, "");
+  } else if (j.is_boolean()) {
+    EXPECT_EQ(cell, j.get<bool>() ? "true" : "false");
+  } else if (j.is_string()) {
+    EXPECT_EQ(cell, j.get<std::string>());
+  } else {
+    ASSERT_FALSE(cell.empty());
+    EXPECT_EQ(std::strtod(cell.c_str(), nullptr), j.get<double>());
+  }
+}
+
+const char* kPulseSweep = R"(# pulses x sliding blocks and rocking blocks
+[motions]
+polarity = ["normal", "inverse"]
+[[motions.pulse]]
+kind = ["sine", "rect", "tri"]
+amp_g = [0.3, 0.6]
+freq_hz = [1, 4]
+
+[[object]]
+model = "slide"
+mu = [0.05, 0.1, 0.2]
+
+[[object]]
+model = "slide"
+mu = 0.3
+mu_kinetic = 0.2
+slope_deg = 10
+mode = "one-way"
+
+[[object]]
+model = "rock"
+shape = "block"
+width_m = 0.04
+height_m = 0.4
+e = ["housner", 0.9]
+mu = 0.5
+
+[output]
+path = "results.csv"
+chunk_runs = 10
+)";
+
+/// Runs `topple slide` or `topple rock` on the inputs of row `r` and compares its JSON summary with the row.
+void check_row_against_single_run(const Table& t, std::size_t r, const std::string& motion_args) {
+  const std::string model = t.at(r, "model");
+  SCOPED_TRACE("row " + t.at(r, "run") + " (" + model + ", " + t.at(r, "motion") + ")");
+  std::string args = motion_args + (t.at(r, "polarity") == "inverse" ? " --invert" : "");
+  std::vector<std::string> keys;
+  if (model == "slide") {
+    args = "slide " + args + " --mu " + t.at(r, "mu") + " --mu-kinetic " + t.at(r, "mu_kinetic") + " --slope-deg " +
+           t.at(r, "slope_deg") + (t.at(r, "mode") == "one-way" ? " --one-way" : "");
+    keys = {"max_abs_displacement_m", "max_displacement_time_s", "residual_displacement_m", "max_abs_velocity_m_s",
+            "slip_episodes",          "first_slip_time_s",       "total_slip_duration_s",   "end_time_s",
+            "at_rest_at_end",         "contact_lost_time_s",     "yield_down_g",            "yield_up_g"};
+  } else {
+    const std::string e = t.at(r, "restitution") == "housner" ? "housner" : t.at(r, "e");
+    args = "rock " + args + " --shape block --width " + t.at(r, "width_m") + "m --height " + t.at(r, "height_m") +
+           "m --e " + e + (t.at(r, "mu").empty() ? "" : " --mu " + t.at(r, "mu"));
+    keys = {"max_abs_rotation_rad", "max_rotation_over_alpha", "max_rotation_time_s", "max_abs_theta_dot_rad_s",
+            "impacts",              "uplifts",                 "uplift_time_s",       "exceeded_alpha_time_s",
+            "overturned",           "overturn_time_s",         "energy_lost_j_per_kg", "end_time_s",
+            "end_state",            "still_rocking_at_end",    "onset_mode",          "critical_mu",
+            "alpha_rad",            "p_rad_s",                 "e"};
+  }
+  const auto out = run_cli(args + " --json");
+  ASSERT_EQ(out.exit_code, 0) << args << "\n" << out.err;
+  const auto j = nlohmann::json::parse(out.out);
+  for (const auto& k : keys) expect_same(t.at(r, k), j.at(k), k);
+}
+
+TEST(CliSweep, RowsEqualSingleRunsOfSlideAndRock) {
+  TempDir dir;
+  write_file(dir.path() / "s.toml", kPulseSweep);
+  const auto r = run_cli("sweep " + quote((dir.path() / "s.toml").string()) + " --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  const Table t = read_table(dir.path() / "results.csv");
+  ASSERT_EQ(t.rows.size(), 3u * 2u * 2u * 2u * 6u);
+  // Rows picked at random (fixed seed), six sliding and four rocking ones.
+  std::mt19937 rng(2024);
+  std::uniform_int_distribution<std::size_t> pick(0, t.rows.size() - 1);
+  int slides = 0;
+  int rocks = 0;
+  while (slides < 6 || rocks < 4) {
+    const std::size_t row = pick(rng);
+    const bool slide = t.at(row, "model") == "slide";
+    if ((slide && slides >= 6) || (!slide && rocks >= 4)) continue;
+    (slide ? slides : rocks)++;
+    const std::string pulse = "--pulse " + t.at(row, "pulse_kind") + " --amp-g " + t.at(row, "pulse_amp_g") +
+                              " --duration " + t.at(row, "pulse_duration_s");
+    check_row_against_single_run(t, row, pulse);
+  }
+}
+
+TEST(CliSweep, RecordRowsEqualSingleRuns) {
+  if (!test::have_shared()) GTEST_SKIP() << "shared/records not found";
+  TempDir dir;
+  const std::string a = test::shared_record("RSN6_IMPVALL.I_I-ELC180.AT2").string();
+  const std::string b = test::shared_record("Rinaldi228.AT2").string();
+  write_file(dir.path() / "r.toml", fmt::format(R"(
+[motions]
+files = ["{}", "{}"]
+scale_pga_g = [0.2, 0.5]
+polarity = ["normal", "inverse"]
+[[object]]
+model = "slide"
+mu = [0.05, 0.15]
+[[object]]
+model = "rock"
+shape = "block"
+width_m = 0.1
+height_m = 0.5
+)", a, b));
+  const auto r = run_cli("sweep " + quote((dir.path() / "r.toml").string()) + " --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Table t = read_table(dir.path() / "r.csv");
+  ASSERT_EQ(t.rows.size(), 2u * 2u * 2u * 3u);
+  for (const std::size_t row : {0u, 7u, 13u, 20u, 23u}) {
+    const double target = std::round(std::strtod(t.at(row, "pga_g").c_str(), nullptr) * 10.0) / 10.0;
+    check_row_against_single_run(t, row, quote(t.at(row, "motion")) + fmt::format(" --scale-pga {}g", target));
+  }
+}
+
+bool have_mpirun() { return std::system("command -v mpirun >/dev/null 2>&1") == 0; }
+
+TEST(CliSweep, SameBytesForOneThreadAllThreadsAndMpiRanks) {
+  TempDir dir;
+  write_file(dir.path() / "s.toml", kPulseSweep);
+  const std::string sweep = quote((dir.path() / "s.toml").string());
+  std::vector<std::string> outputs;
+  for (const std::string threads : {"1", "2", "0"}) {
+    const std::string out = (dir.path() / ("t" + threads + ".csv")).string();
+    const auto r = run_cli("sweep " + sweep + " --threads " + threads + " --jsonl --quiet --out " + quote(out));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    outputs.push_back(out);
+  }
+#if defined(__SANITIZE_ADDRESS__)
+  const bool mpi = false;  // Open MPI's own allocations trip LeakSanitizer: not run in sanitizer builds
+#elif TOPPLE_TEST_MPI
+  const bool mpi = have_mpirun();
+#else
+  const bool mpi = false;
+#endif
+  if (mpi) {
+    for (const int ranks : {2, 3}) {
+      const std::string out = (dir.path() / fmt::format("mpi{}.csv", ranks)).string();
+      const std::string cmd = fmt::format(
+          "mpirun -n {} --oversubscribe --allow-run-as-root --mca btl self,vader '{}' sweep {} --jsonl --verbose "
+          "--out {} >{} 2>&1",
+          ranks, TOPPLE_CLI_PATH, sweep, quote(out), quote(out + ".log"));
+      const int status = std::system(cmd.c_str());
+      ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << cmd << "\n" << slurp(out + ".log");
+      EXPECT_NE(slurp(out + ".log").find(fmt::format("ranks={}", ranks)), std::string::npos) << slurp(out + ".log");
+      outputs.push_back(out);
+    }
+  }
+  const std::string csv = slurp(outputs[0]);
+  const std::string jsonl = slurp(fs::path(outputs[0]).replace_extension(".jsonl"));
+  ASSERT_GT(csv.size(), 1000u);
+  for (std::size_t i = 1; i < outputs.size(); ++i) {
+    SCOPED_TRACE(outputs[i]);
+    EXPECT_EQ(slurp(outputs[i]), csv);
+    EXPECT_EQ(slurp(fs::path(outputs[i]).replace_extension(".jsonl")), jsonl);
+  }
+  // JSON lines: one object per row, the same keys as the CSV header, values as in the CSV.
+  const Table t = read_table(outputs[0]);
+  std::istringstream lines(jsonl);
+  std::string line;
+  std::size_t n = 0;
+  while (std::getline(lines, line)) {
+    const auto j = nlohmann::ordered_json::parse(line);
+    ASSERT_EQ(j.size(), t.header.size());
+    std::size_t k = 0;
+    for (const auto& [key, value] : j.items()) {
+      ASSERT_EQ(key, t.header[k]);
+      expect_same(t.rows[n][k], value, key);
+      ++k;
+    }
+    ++n;
+  }
+  EXPECT_EQ(n, t.rows.size());
+  if (!mpi) GTEST_SKIP() << "threads compared; mpirun absent, topple built without MPI, or a sanitizer build";
+}
+
+/// Starts the CLI in the background with stderr to a file.
+pid_t spawn_cli(const std::vector<std::string>& args, const fs::path& err) {
+  std::vector<std::string> argv_s{TOPPLE_CLI_PATH};
+  argv_s.insert(argv_s.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& a : argv_s) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  pid_t pid = -1;
+  const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  return rc == 0 ? pid : -1;
+}
+
+std::set<std::string> chunk_files(const fs::path& dir) {
+  std::set<std::string> out;
+  if (!fs::exists(dir)) return out;
+  for (const auto& e : fs::directory_iterator(dir)) {
+    const auto name = e.path().filename().string();
+    if (std::regex_match(name, std::regex("[0-9]{8}\\.csv"))) out.insert(name);
+  }
+  return out;
+}
+
+std::size_t verbose_count(const std::string& err, const std::string& key) {
+  std::smatch m;
+  if (!std::regex_search(err, m, std::regex(key + "=([0-9]+)"))) return static_cast<std::size_t>(-1);
+  return std::stoul(m[1]);
+}
+
+// A real `topple sweep` killed with SIGKILL once some chunks are committed, then rerun: the file equals an
+// uninterrupted run byte for byte, and the chunks found finished were not computed again.
+TEST(CliSweep, KillNineAndResume) {
+  TempDir dir;
+  // About 3 s on one core: 160 motions x 30 rocking blocks, 60 runs per chunk (80 chunks).
+  write_file(dir.path() / "k.toml", R"(
+[motions]
+[[motions.pulse]]
+kind = "sine"
+amp_g = { from = 0.1, to = 0.6, count = 40 }
+freq_hz = [0.5, 1, 2, 4]
+[[object]]
+model = "rock"
+shape = "block"
+width = { from = "3cm", to = "12cm", count = 30 }
+height = "40cm"
+[output]
+path = "k.csv"
+chunk_runs = 60
+)");
+  const std::string sweep = (dir.path() / "k.toml").string();
+  const fs::path ref = dir.path() / "ref.csv";
+  const auto r0 = run_cli("sweep " + quote(sweep) + " --quiet --out " + quote(ref.string()));
+  ASSERT_EQ(r0.exit_code, 0) << r0.err;
+
+  const fs::path out = dir.path() / "k.csv";
+  const fs::path parts = dir.path() / "k.csv.parts";
+  const pid_t pid = spawn_cli({"sweep", sweep, "--threads", "1", "--quiet"}, dir.path() / "err1.txt");
+  ASSERT_GT(pid, 0);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (chunk_files(parts).size() < 3 && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  ASSERT_EQ(::kill(pid, SIGKILL), 0);
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFSIGNALED(status)) << "the sweep ended before it was killed: make it longer";
+  EXPECT_FALSE(fs::exists(out));
+  const std::set<std::string> finished = chunk_files(parts);
+  ASSERT_GE(finished.size(), 3u);
+  ASSERT_LT(finished.size(), 80u);
+  std::map<std::string, std::string> finished_text;
+  for (const auto& f : finished) finished_text[f] = slurp(parts / f);
+
+  const auto r = run_cli("sweep " + quote(sweep) + " --verbose");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(verbose_count(r.err, "total"), 80u) << r.err;
+  EXPECT_EQ(verbose_count(r.err, "already_done"), finished.size()) << r.err;
+  EXPECT_EQ(verbose_count(r.err, "computed"), 80u - finished.size()) << r.err;
+  EXPECT_EQ(verbose_count(r.err, "runs_computed"), 4800u - 60u * finished.size()) << r.err;
+  EXPECT_NE(r.err.find("resumed"), std::string::npos) << r.err;
+  const std::string result = slurp(out);
+  EXPECT_EQ(result, slurp(ref));
+  // The committed chunks are in the result as they were written before the kill.
+  for (const auto& [name, text] : finished_text) EXPECT_NE(result.find(text), std::string::npos) << name;
+  // A third run has nothing to do.
+  const auto again = run_cli("sweep " + quote(sweep) + " --verbose");
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_NE(again.err.find("already complete"), std::string::npos) << again.err;
+  EXPECT_EQ(slurp(out), result);
+}
+
+TEST(CliSweep, BadSweepFilesExitTwoNamingFileAndKey) {
+  TempDir dir;
+  const std::string pulse = "[motions]\n[[motions.pulse]]\nkind = \"sine\"\namp_g = 0.3\nfreq_hz = 2\n";
+  const std::string slide = "[[object]]\nmodel = \"slide\"\nmu = 0.1\n";
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {pulse + "[[object]]\nmodel = \"slide\"\nmu = 0.1\nfriction = 3\n", "object[1].friction"},
+      {"[motions]\nfiles = [\"records/missing.AT2\"]\n" + slide, "motions.files[1]"},
+      {"[motions]\nfiles = [\"records/*.AT2\"]\n" + slide, "motions.files[1]"},
+      {pulse + "[[object]]\nmodel = \"slide\"\nmu = { from = 0.2, to = 0.1, count = 3 }\n", "object[1].mu"},
+      {pulse + slide + "[[object]]\nmodel = \"rock\"\nshape = \"block\"\nwidth = [0.04]\nheight = \"20cm\"\n",
+       "object[2].width"},
+      {pulse + "[[object]]\nmodel = \"slide\"\nmu = [\"0.1\"]\n", "object[1].mu"},
+  };
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const fs::path p = dir.path() / fmt::format("bad{}.toml", i);
+    write_file(p, cases[i].first);
+    const auto r = run_cli("sweep " + quote(p.string()));
+    SCOPED_TRACE(cases[i].first);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find(p.string()), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(cases[i].second + ":"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir.path() / fmt::format("bad{}.csv.parts", i))) << "work started";
+  }
+}
+
+TEST(CliSweep, AChangedSweepIsRefusedUntilRestart) {
+  TempDir dir;
+  const fs::path p = dir.path() / "s.toml";
+  write_file(p, kPulseSweep);
+  ASSERT_EQ(run_cli("sweep " + quote(p.string()) + " --quiet").exit_code, 0);
+  std::string changed = kPulseSweep;
+  changed.replace(changed.find("[0.05, 0.1, 0.2]"), 16, "[0.05, 0.1, 0.25]");
+  write_file(p, changed);
+  const auto refused = run_cli("sweep " + quote(p.string()));
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_NE(refused.err.find("--restart"), std::string::npos) << refused.err;
+  EXPECT_NE(refused.err.find("output.path"), std::string::npos) << refused.err;
+  const auto restarted = run_cli("sweep " + quote(p.string()) + " --restart --verbose");
+  ASSERT_EQ(restarted.exit_code, 0) << restarted.err;
+  EXPECT_NE(restarted.err.find("(restarted)"), std::string::npos) << restarted.err;
+  EXPECT_NE(slurp(dir.path() / "results.csv").find(",0.25,"), std::string::npos);
+}
+
+TEST(CliSweep, QuietAndSummaryOutput) {
+  TempDir dir;
+  const fs::path p = dir.path() / "s.toml";
+  write_file(p, kPulseSweep);
+  const auto r = run_cli("sweep " + quote(p.string()) + " --out " + quote((dir.path() / "x.csv").string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, "");
+  EXPECT_NE(r.err.find("wrote"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find('\r'), std::string::npos) << "no progress bar when stderr is not a terminal";
+  const auto q = run_cli("sweep " + quote(p.string()) + " --quiet --restart --out " +
+                         quote((dir.path() / "x.csv").string()));
+  ASSERT_EQ(q.exit_code, 0) << q.err;
+  EXPECT_EQ(q.err, "");
+  EXPECT_EQ(run_cli("sweep " + quote(p.string()) + " --threads -1").exit_code, 2);
+}
+
+}  // namespace
+}  // namespace topple

@@ -1,0 +1,340 @@
+// Sweep files: every key read into the spec (lists, ranges, units, globs), and every kind of bad file refused before
+// any run with an InputError naming the file, the line and the key.
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include "support/shared_data.hpp"
+#include "topple/ensemble.hpp"
+#include "topple/error.hpp"
+#include "topple/io/sweep_file.hpp"
+
+namespace topple::io {
+namespace {
+
+namespace fs = std::filesystem;
+using ensemble::RockObject;
+using ensemble::ScaleSpec;
+using ensemble::SlideObject;
+using test::TempDir;
+using test::write_file;
+
+constexpr double kG = kStandardGravity;
+
+/// A plain record (time_s,accel_g header) of n samples at 0.01 s: 2.5 Hz, so that t = 0.1 s samples the peak.
+std::string plain_record(double amp_g, std::size_t n = 200) {
+  std::string s = "time_s,accel_g\n";
+  for (std::size_t i = 0; i < n; ++i) {
+    const double t = 0.01 * static_cast<double>(i);
+    s += fmt::format("{},{}\n", t, amp_g * std::sin(2.0 * kPi * 2.5 * t));
+  }
+  return s;
+}
+
+SweepFile parse_in(const TempDir& dir, const std::string& text, const std::string& name = "sweep.toml") {
+  const fs::path p = dir.path() / name;
+  write_file(p, text);
+  return read_sweep_file(p);
+}
+
+const char* kPulseMotions = R"(
+[motions]
+[[motions.pulse]]
+kind = "sine"
+amp_g = 0.3
+freq_hz = 2
+)";
+
+TEST(SweepFile, TheIssueExample) {
+  TempDir dir;
+  fs::create_directories(dir.path() / "records");
+  fs::create_directories(dir.path() / "more");
+  write_file(dir.path() / "records" / "b.AT2.csv", plain_record(0.3));
+  write_file(dir.path() / "records" / "a.AT2.csv", plain_record(0.2));
+  write_file(dir.path() / "more" / "c.V2.csv", plain_record(0.1));
+  fs::create_directories(dir.path() / "records" / "sub.AT2.csv");  // a directory the glob also matches: skipped
+  const SweepFile s = parse_in(dir, R"(
+description = "the example of the issue"
+[motions]
+files = ["records/*.AT2.csv", "more/*.V2.csv", "records/a.AT2.csv"]   # the last one is already in: once only
+scale_pga_g = [0.1, 0.2, 0.4]
+polarity = ["normal", "inverse"]
+[[motions.pulse]]
+kind = "sine"
+amp_g = [0.2, 0.4, 0.6]
+freq_hz = [1.0, 2.0, 4.0]
+
+[[object]]
+model = "slide"
+mu = [0.05, 0.1, 0.2]
+mode = "two-way"
+
+[[object]]
+model = "rock"
+shape = "block"
+width = ["4cm", "8cm"]
+height = "20cm"
+e = "housner"
+
+[output]
+path = "results.csv"
+)");
+  ASSERT_EQ(s.spec.records.size(), 3u);
+  EXPECT_EQ(s.spec.records[0].name, "records/a.AT2.csv");
+  EXPECT_EQ(s.spec.records[1].name, "records/b.AT2.csv");
+  EXPECT_EQ(s.spec.records[2].name, "more/c.V2.csv");
+  EXPECT_NEAR(s.spec.records[0].motion->pga_m_s2(), 0.2 * kG, 1e-9);
+  ASSERT_EQ(s.spec.scales.size(), 3u);
+  EXPECT_EQ(s.spec.scales[1].kind, ScaleSpec::Kind::pga);
+  EXPECT_EQ(s.spec.scales[1].value, 0.2 * kG);  // as `--scale-pga 0.2g` computes it
+  EXPECT_EQ(s.spec.inverse, (std::vector<bool>{false, true}));
+  ASSERT_EQ(s.spec.pulses.size(), 9u);
+  EXPECT_EQ(s.spec.pulses[1].name, "sine amp_g=0.2 freq_hz=2");
+  EXPECT_EQ(s.spec.pulses[1].spec.duration_s, 0.5);
+  EXPECT_EQ(s.spec.pulses[1].spec.tail_s, 2.5);
+  EXPECT_EQ(s.spec.pulses[3].spec.amplitude_m_s2, 0.4 * kG);
+  ASSERT_EQ(s.spec.objects.size(), 5u);
+  EXPECT_EQ(std::get<SlideObject>(s.spec.objects[2]).block.mu_static, 0.2);
+  EXPECT_EQ(std::get<SlideObject>(s.spec.objects[2]).block.mu_kinetic, 0.2);
+  const auto& r = std::get<RockObject>(s.spec.objects[4]);
+  EXPECT_DOUBLE_EQ(*r.width_m, 0.08);
+  EXPECT_DOUBLE_EQ(r.body.h_m, 0.10);
+  EXPECT_EQ(r.options.restitution, RestitutionMode::housner);
+  EXPECT_EQ(s.output_csv, dir.path() / "results.csv");
+  EXPECT_FALSE(s.jsonl);
+  const ensemble::Plan plan = ensemble::make_plan(s.spec);
+  EXPECT_EQ(plan.motions.size(), 3u * 3u * 2u + 9u * 2u);
+  EXPECT_EQ(plan.runs(), plan.motions.size() * 5u);
+}
+
+TEST(SweepFile, ListsRangesAndUnits) {
+  TempDir dir;
+  const SweepFile s = parse_in(dir, std::string(kPulseMotions) + R"(
+[[motions.pulse]]
+kind = ["rect", "tri"]
+amp = ["2m/s2", "0.5g"]
+duration = ["100ms", "0.2s"]
+tail = "1s"
+[[object]]
+model = "slide"
+mu = { from = 0.1, to = 0.5, count = 5 }
+mu_kinetic = 0.05
+slope = "10deg"
+mode = ["two-way", "one-way"]
+[[object]]
+model = "slide"
+mu = { from = 0.05, to = 0.2, step = 0.05 }
+slope_deg = [0, 5]
+[[object]]
+model = "slide"
+mu = { from = 0.01, to = 1, count = 3, spacing = "log" }
+[[object]]
+model = "rock"
+shape = "cylinder"
+diameter_m = { from = 0.05, to = 0.1, count = 2 }
+height = { from = "20cm", to = "40cm", step = "10cm" }
+e = ["housner", 0.9]
+mu = [0.3, 0.6]
+[[object]]
+model = "rock"
+shape = "general"
+a = "2cm"
+h_m = 0.1
+D_m2 = 0.02
+e = { from = 0.8, to = 0.9, count = 2 }
+[output]
+path = "out/r.csv"
+jsonl = true
+chunk_runs = 17
+)");
+  ASSERT_EQ(s.spec.pulses.size(), 1u + 8u);
+  EXPECT_EQ(s.spec.pulses[1].spec.kind, PulseKind::rectangular);
+  EXPECT_EQ(s.spec.pulses[1].spec.amplitude_m_s2, 2.0);
+  EXPECT_NEAR(s.spec.pulses[1].spec.duration_s, 0.1, 1e-15);
+  EXPECT_EQ(s.spec.pulses[1].spec.tail_s, 1.0);
+  EXPECT_EQ(s.spec.pulses[1].name, "rect amp_g=0.20394324259558566 duration_s=0.1");
+  EXPECT_EQ(s.spec.pulses[3].spec.amplitude_m_s2, 0.5 * kG);
+  // slide 1: 2 modes x 1 slope x 5 mu; slide 2: 2 slopes x 4 mu; slide 3: 3 mu
+  std::vector<double> mus;
+  for (std::size_t i = 0; i < 10; ++i) {
+    const auto& b = std::get<SlideObject>(s.spec.objects[i]);
+    if (i < 5) mus.push_back(b.block.mu_static);
+    EXPECT_EQ(b.block.mu_kinetic, 0.05);
+    EXPECT_NEAR(b.slope_deg, 10.0, 1e-12);
+    EXPECT_EQ(b.block.mode, i < 5 ? SlidingMode::two_way : SlidingMode::one_way);
+  }
+  EXPECT_EQ(mus, (std::vector<double>{0.1, 0.2, 0.30000000000000004, 0.4, 0.5}));
+  const auto& step0 = std::get<SlideObject>(s.spec.objects[10]);
+  EXPECT_EQ(step0.slope_deg, 0.0);
+  EXPECT_EQ(std::get<SlideObject>(s.spec.objects[13]).block.mu_static, 0.05 + 3 * 0.05);  // 'to' within round-off
+  EXPECT_EQ(std::get<SlideObject>(s.spec.objects[14]).slope_deg, 5.0);
+  EXPECT_EQ(std::get<SlideObject>(s.spec.objects[14]).block.slope_rad, 5.0 * kPi / 180.0);
+  EXPECT_EQ(std::get<SlideObject>(s.spec.objects[18]).block.mu_static, 0.01);
+  EXPECT_NEAR(std::get<SlideObject>(s.spec.objects[19]).block.mu_static, 0.1, 1e-15);
+  EXPECT_EQ(std::get<SlideObject>(s.spec.objects[20]).block.mu_static, 1.0);
+  // rock cylinders: 2 diameters x 3 heights x 2 e x 2 mu = 24, then general: 2 e
+  ASSERT_EQ(s.spec.objects.size(), 21u + 24u + 2u);
+  const auto& c = std::get<RockObject>(s.spec.objects[21 + 1]);
+  EXPECT_EQ(c.body.shape, RockingBody::Shape::cylinder);
+  EXPECT_EQ(*c.diameter_m, 0.05);
+  EXPECT_DOUBLE_EQ(*c.height_m, 0.2);
+  EXPECT_EQ(c.options.restitution, RestitutionMode::housner);
+  EXPECT_EQ(*c.options.mu, 0.6);
+  const auto& c2 = std::get<RockObject>(s.spec.objects[21 + 2]);
+  EXPECT_EQ(c2.options.restitution, RestitutionMode::given);
+  EXPECT_EQ(c2.options.e, 0.9);
+  const auto& gen = std::get<RockObject>(s.spec.objects[46]);
+  EXPECT_EQ(gen.body.shape, RockingBody::Shape::general);
+  EXPECT_DOUBLE_EQ(gen.body.a_m, 0.02);
+  EXPECT_EQ(gen.options.e, 0.9);
+  EXPECT_EQ(s.output_csv, dir.path() / "out" / "r.csv");
+  EXPECT_TRUE(s.jsonl);
+  EXPECT_EQ(s.spec.chunk_runs, 17u);
+  EXPECT_EQ(jsonl_path_for(s.output_csv), dir.path() / "out" / "r.jsonl");
+}
+
+TEST(SweepFile, RecordOptionsTimeScalesAndGravity) {
+  TempDir dir;
+  std::string one_column;
+  for (int i = 0; i < 100; ++i) one_column += fmt::format("{}\n", 50.0 * std::sin(0.3 * i));
+  write_file(dir.path() / "r.txt", one_column);
+  const SweepFile s = parse_in(dir, R"(
+g = "9.81m/s2"
+[motions]
+files = "r.txt"
+format = "plain"
+units = "gal"
+dt = "20ms"
+scale = [0.5, 2]
+time_scale = [1, 2]
+[[object]]
+model = "slide"
+mu = 0.1
+)");
+  EXPECT_EQ(s.spec.g_m_s2, 9.81);
+  ASSERT_EQ(s.spec.records.size(), 1u);
+  EXPECT_EQ(s.spec.records[0].name, "r.txt");
+  EXPECT_NEAR(s.spec.records[0].motion->dt_s(), 0.02, 1e-15);
+  EXPECT_NEAR(s.spec.records[0].motion->pga_m_s2(), 0.5, 1e-3);  // 50 gal
+  ASSERT_EQ(s.spec.scales.size(), 2u);
+  EXPECT_EQ(s.spec.scales[0].kind, ScaleSpec::Kind::factor);
+  EXPECT_EQ(s.spec.time_scales, (std::vector<double>{1.0, 2.0}));
+  EXPECT_EQ(std::get<SlideObject>(s.spec.objects[0]).block.g_m_s2, 9.81);
+  EXPECT_EQ(s.output_csv, dir.path() / "sweep.csv");  // default: the sweep file's name
+}
+
+// ---- bad files ----
+
+struct BadCase {
+  const char* what;
+  std::string text;
+  std::string field;         // the key the message must name
+  std::size_t line;          // 1-based line of the problem
+  std::string problem_part;  // a piece of the reason
+};
+
+std::vector<BadCase> bad_cases() {
+  const std::string pulse = "[motions]\n[[motions.pulse]]\nkind = \"sine\"\namp_g = 0.3\nfreq_hz = 2\n";  // 5 lines
+  const std::string slide = "[[object]]\nmodel = \"slide\"\nmu = 0.1\n";                                    // 3 lines
+  return {
+      {"unknown top-level key", "[motion]\n" + pulse + slide, "motion", 1, "unknown key 'motion'"},
+      {"unknown key in an object", pulse + "[[object]]\nmodel = \"slide\"\nmu = 0.1\nmue = 3\n", "object[1].mue", 9,
+       "unknown key"},
+      {"unknown key in a pulse", "[motions]\n[[motions.pulse]]\nkind = \"sine\"\namp_g = 0.3\nfreq = \"2Hz\"\nphase = 1\n" + slide,
+       "motions.pulse[1].phase", 6, "unknown key"},
+      {"missing record", "[motions]\nfiles = [\"rec.AT2\", \"nope.AT2\"]\n" + slide, "motions.files[2]", 2,
+       "no such record file 'nope.AT2'"},
+      {"glob matching nothing", "[motions]\nfiles = \"records/*.V2\"\n" + slide, "motions.files", 2,
+       "matches no file"},
+      {"empty list", pulse + "[[object]]\nmodel = \"slide\"\nmu = []\n", "object[1].mu", 8, "empty list"},
+      {"empty range", pulse + "[[object]]\nmodel = \"slide\"\nmu = { from = 0.5, to = 0.1, step = 0.1 }\n",
+       "object[1].mu", 8, "empty range"},
+      {"range of count 0", pulse + "[[object]]\nmodel = \"slide\"\nmu = { from = 0.1, to = 0.5, count = 0 }\n",
+       "object[1].mu", 8, "empty range"},
+      {"missing unit", pulse + slide + "[[object]]\nmodel = \"rock\"\nshape = \"block\"\nwidth = [\"4cm\", 0.08]\nheight = \"20cm\"\n",
+       "object[2].width", 12, "has no unit"},
+      {"missing unit in a string", pulse + slide + "[[object]]\nmodel = \"rock\"\nshape = \"block\"\nwidth = \"4cm\"\nheight = \"20\"\n",
+       "object[2].height", 13, "no unit"},
+      {"unknown unit", pulse + "[[object]]\nmodel = \"slide\"\nmu = 0.1\nslope = \"10 furlongs\"\n", "object[1].slope",
+       9, "unknown angle unit"},
+      {"wrong type", pulse + "[[object]]\nmodel = \"slide\"\nmu = \"0.1\"\n", "object[1].mu", 8, "got a string"},
+      {"wrong type in a list", pulse + "[[object]]\nmodel = \"slide\"\nmu = [0.1, true]\n", "object[1].mu", 8,
+       "got a boolean"},
+      {"both spellings", pulse + "[[object]]\nmodel = \"slide\"\nmu = 0.1\nslope = \"5deg\"\nslope_deg = 5\n",
+       "object[1].slope", 9, "not both"},
+      {"unknown model", pulse + "[[object]]\nmodel = \"topple\"\n", "object[1].model", 7, "unknown model"},
+      {"missing mu", pulse + "[[object]]\nmodel = \"slide\"\n", "object[1].mu", 6, "needs its friction"},
+      {"kinetic above static", pulse + "[[object]]\nmodel = \"slide\"\nmu = [0.3, 0.1]\nmu_kinetic = 0.2\n",
+       "object[1].mu_kinetic", 9, "kinetic friction"},
+      {"slope steeper than friction allows", pulse + "[[object]]\nmodel = \"slide\"\nmu = 1.0\nslope_deg = 50\n",
+       "object[1].slope_deg", 9, "reaches 90 deg"},
+      {"squat block with Housner's e", pulse + "[[object]]\nmodel = \"rock\"\nshape = \"block\"\nwidth = \"30cm\"\nheight = \"10cm\"\n",
+       "object[1].e", 6, "give e explicitly"},
+      {"e out of range", pulse + "[[object]]\nmodel = \"rock\"\nshape = \"block\"\nwidth = \"3cm\"\nheight = \"10cm\"\ne = 1.2\n",
+       "object[1].e", 11, "[0, 1]"},
+      {"width on a cylinder", pulse + "[[object]]\nmodel = \"rock\"\nshape = \"cylinder\"\ndiameter = \"3cm\"\nheight = \"10cm\"\nwidth = \"1cm\"\n",
+       "object[1].width", 11, "does not apply"},
+      {"object as a single table", pulse + "[object]\nmodel = \"slide\"\nmu = 0.1\n", "object", 6, "[[object]]"},
+      {"no object", pulse, "object", 0, "no [[object]]"},
+      {"no motion", "[motions]\npolarity = \"normal\"\n" + slide, "motions", 1, "no motion"},
+      {"bad polarity", "[motions]\npolarity = [\"normal\", \"reverse\"]\n" + pulse.substr(10) + slide,
+       "motions.polarity", 2, "unknown polarity"},
+      {"scaling without records", "[motions]\nscale_pga_g = [0.1]\n" + pulse.substr(10) + slide, "motions", 2,
+       "apply to record files"},
+      {"scale and scale_pga", "[motions]\nfiles = \"rec.AT2\"\nscale = [1]\nscale_pga = [\"0.1g\"]\n" + slide,
+       "motions.scale", 3, "not both"},
+      {"pulse without amplitude", "[motions]\n[[motions.pulse]]\nkind = \"sine\"\nfreq_hz = 2\n" + slide,
+       "motions.pulse[1].amp_g", 2, "amplitude"},
+      {"unknown pulse kind", "[motions]\n[[motions.pulse]]\nkind = \"square\"\namp_g = 1\nfreq_hz = 2\n" + slide,
+       "motions.pulse[1].kind", 3, "unknown pulse"},
+      {"bad output key", pulse + slide + "[output]\nfile = \"x.csv\"\n", "output.file", 10, "unknown key"},
+      {"bad chunk size", pulse + slide + "[output]\nchunk_runs = 0\n", "output.chunk_runs", 10, "must be >= 1"},
+      {"not TOML", "[motions\n", "", 1, "not valid TOML"},
+  };
+}
+
+TEST(SweepFile, BadFilesNameFileLineAndKey) {
+  TempDir dir;
+  write_file(dir.path() / "rec.AT2", plain_record(0.2));  // a plain file named like an AT2: content decides
+  for (const auto& c : bad_cases()) {
+    SCOPED_TRACE(c.what);
+    const fs::path p = dir.path() / "bad.toml";
+    write_file(p, c.text);
+    try {
+      static_cast<void>(read_sweep_file(p));
+      ADD_FAILURE() << "accepted";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.where().file, p.string()) << e.what();
+      EXPECT_EQ(e.where().field, c.field) << e.what();
+      if (c.line > 0) {
+        EXPECT_EQ(e.where().line.value_or(0), c.line) << e.what();
+      }
+      EXPECT_NE(e.problem().find(c.problem_part), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(SweepFile, AnUnreadableRecordIsNamed) {
+  TempDir dir;
+  write_file(dir.path() / "good.csv", plain_record(0.2));
+  write_file(dir.path() / "bad.csv", "time_s,accel_g\n0,0.1\n0.01,zero\n");
+  try {
+    static_cast<void>(parse_in(dir, "[motions]\nfiles = \"*.csv\"\n[[object]]\nmodel = \"slide\"\nmu = 0.1\n"));
+    FAIL() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(e.where().file.find("bad.csv"), std::string::npos) << e.what();
+    EXPECT_TRUE(e.where().line.has_value()) << e.what();
+  }
+}
+
+TEST(SweepFile, MissingSweepFile) {
+  TempDir dir;
+  EXPECT_THROW(static_cast<void>(read_sweep_file(dir.path() / "none.toml")), InputError);
+}
+
+}  // namespace
+}  // namespace topple::io

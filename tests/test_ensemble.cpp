@@ -1,0 +1,515 @@
+// The ensemble engine: plan expansion, rows equal to direct solver calls, determinism over threads, the resumable
+// store (resume after a failure, truncated chunks, changed plans, locks) and the formats.
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <filesystem>
+#include <cstdlib>
+#include <fstream>
+#include <limits>
+#include <random>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "support/shared_data.hpp"
+#include "topple/ensemble.hpp"
+#include "topple/error.hpp"
+#include "topple/pulses.hpp"
+#include "topple/rocking.hpp"
+#include "topple/sliding.hpp"
+
+namespace topple::ensemble {
+namespace {
+
+namespace fs = std::filesystem;
+using test::TempDir;
+
+constexpr double kG = kStandardGravity;
+
+/// A reproducible broadband record: filtered noise, n samples at dt, PGA 0.4 g.
+std::shared_ptr<const GroundMotion> noise_record(unsigned seed, std::size_t n = 1500, double dt = 0.01) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  std::vector<double> a(n);
+  double y1 = 0.0;
+  double y2 = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double w = 2.0 * kPi * 2.5 * dt;
+    const double y = 2.0 * std::cos(w) * 0.95 * y1 - 0.95 * 0.95 * y2 + noise(rng);
+    y2 = y1;
+    y1 = y;
+    const double t = static_cast<double>(i) * dt;
+    a[i] = y * (t / 4.0) * std::exp(1.0 - t / 4.0);
+  }
+  return std::make_shared<const GroundMotion>(GroundMotion::uniform(a, dt).scaled_to_pga(0.4 * kG));
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// Two records and two pulses; level and inclined blocks (a run of mu for the batched kernel, one with mu_kinetic
+/// below mu_static), one-way; two rocking blocks and a cylinder.
+SweepSpec mixed_spec() {
+  SweepSpec s;
+  s.records.push_back({"rec-a", noise_record(1)});
+  s.records.push_back({"rec-b", noise_record(2, 900, 0.02)});
+  PulseInput p;
+  p.spec.kind = PulseKind::sine;
+  p.spec.amplitude_m_s2 = 0.5 * kG;
+  p.spec.duration_s = 0.5;
+  p.spec.tail_s = 2.5;
+  p.name = "sine";
+  s.pulses.push_back(p);
+  p.spec.kind = PulseKind::rectangular;
+  p.spec.amplitude_m_s2 = 0.3 * kG;
+  p.spec.duration_s = 0.2;
+  p.spec.tail_s = 1.0;
+  p.name = "rect";
+  s.pulses.push_back(p);
+  s.time_scales = {1.0, 1.5};
+  s.scales = {{ScaleSpec::Kind::pga, 0.3 * kG}, {ScaleSpec::Kind::factor, 0.8}};
+  s.inverse = {false, true};
+  for (const double mu : {0.05, 0.1, 0.15, 0.2}) s.objects.emplace_back(SlideObject{SlidingBlock::make(mu), 0.0});
+  s.objects.emplace_back(SlideObject{SlidingBlock::make(0.2, 0.15), 0.0});
+  for (const double mu : {0.3, 0.4}) {
+    s.objects.emplace_back(SlideObject{SlidingBlock::make(mu, mu, 10.0 * kPi / 180.0, SlidingMode::one_way), 10.0});
+  }
+  RockObject r;
+  r.body = RockingBody::block(0.08, 0.4);
+  r.width_m = 0.08;
+  r.height_m = 0.4;
+  s.objects.emplace_back(r);
+  r.options.restitution = RestitutionMode::given;
+  r.options.e = 0.9;
+  r.options.mu = 0.5;
+  s.objects.emplace_back(r);
+  RockObject c;
+  c.body = RockingBody::cylinder(0.1, 0.3);
+  c.diameter_m = 0.1;
+  c.height_m = 0.3;
+  s.objects.emplace_back(c);
+  s.chunk_runs = 7;  // chunks straddle motions
+  return s;
+}
+
+std::size_t column(const ResultTable& t, const std::string& name) {
+  const auto it = std::find(t.columns.begin(), t.columns.end(), name);
+  if (it == t.columns.end()) throw std::runtime_error("no column " + name);
+  return static_cast<std::size_t>(it - t.columns.begin());
+}
+
+double number(const Value& v) {
+  if (const auto* d = std::get_if<double>(&v)) return *d;
+  if (const auto* i = std::get_if<std::int64_t>(&v)) return static_cast<double>(*i);
+  throw std::runtime_error("not a number");
+}
+
+TEST(EnsemblePlan, ExpansionOrderAndColumns) {
+  const SweepSpec spec = mixed_spec();
+  const Plan plan = make_plan(spec);
+  // records x time scales x scales x polarities, then pulses x polarities
+  ASSERT_EQ(plan.motions.size(), 2u * 2u * 2u * 2u + 2u * 2u);
+  ASSERT_EQ(plan.objects.size(), spec.objects.size());
+  EXPECT_EQ(plan.runs(), plan.motions.size() * plan.objects.size());
+  EXPECT_EQ(plan.chunk_size(), 7u);
+  EXPECT_EQ(plan.chunks(), (plan.runs() + 6) / 7);
+  const std::vector<std::string> motion_cols{"motion",     "pulse_kind",   "pulse_amp_g", "pulse_duration_s",
+                                             "time_scale", "scale_factor", "pga_g",       "polarity"};
+  EXPECT_EQ(plan.motion_columns, motion_cols);
+  const std::vector<std::string> object_cols{"model",    "g_m_s2",     "mu",       "mu_kinetic",
+                                             "slope_deg", "mode",      "shape",    "width_m",
+                                             "diameter_m", "height_m", "restitution"};
+  EXPECT_EQ(plan.object_columns, object_cols);
+  EXPECT_EQ(plan.columns().front(), "run");
+  // The third motion is record a, time scale 1, factor 0.8, normal polarity.
+  const auto& m2 = plan.motions[2].values;
+  EXPECT_EQ(std::get<std::string>(m2[0]), "rec-a");
+  EXPECT_TRUE(std::holds_alternative<std::monostate>(m2[1]));  // no pulse kind for a record
+  EXPECT_EQ(std::get<double>(m2[5]), 0.8);
+  EXPECT_EQ(std::get<double>(m2[6]), spec.records[0].motion->pga_m_s2() * 0.8 / kG);
+  EXPECT_EQ(std::get<std::string>(m2[7]), "normal");
+  EXPECT_EQ(std::get<std::string>(plan.motions[3].values[7]), "inverse");
+  const auto& pulse = plan.motions[16].values;
+  EXPECT_EQ(std::get<std::string>(pulse[0]), "sine");
+  EXPECT_EQ(std::get<std::string>(pulse[1]), "sine");
+  EXPECT_EQ(std::get<double>(pulse[2]), 0.5);
+  EXPECT_EQ(std::get<double>(pulse[3]), 0.5);
+}
+
+TEST(EnsemblePlan, DefaultChunkSizeDependsOnRunsOnly) {
+  EXPECT_EQ(default_chunk_runs(10), 64u);
+  EXPECT_EQ(default_chunk_runs(10'000), 64u);
+  EXPECT_EQ(default_chunk_runs(1'000'000), 245u);
+  EXPECT_EQ(default_chunk_runs(10'000'000), 2442u);
+  EXPECT_EQ(default_chunk_runs(10'000'000'000), 100'000u);
+}
+
+TEST(EnsemblePlan, EmptySpecsAreRefused) {
+  SweepSpec s = mixed_spec();
+  s.objects.clear();
+  EXPECT_THROW(static_cast<void>(make_plan(s)), InputError);
+  s = mixed_spec();
+  s.records.clear();
+  s.pulses.clear();
+  EXPECT_THROW(static_cast<void>(make_plan(s)), InputError);
+  s = mixed_spec();
+  s.records.push_back({"zero", std::make_shared<const GroundMotion>(GroundMotion::uniform({0.0, 0.0, 0.0}, 0.01))});
+  try {
+    static_cast<void>(make_plan(s));
+    FAIL() << "a zero record scaled to a PGA must be refused";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("zero"), std::string::npos) << e.what();
+  }
+}
+
+TEST(EnsemblePlan, MalformedPlansAreProgrammingErrors) {
+  Plan p = make_plan(mixed_spec());
+  p.objects[0].values.pop_back();
+  EXPECT_THROW(check_plan(p), std::invalid_argument);
+  p = make_plan(mixed_spec());
+  p.motions[0].values[0] = std::string("two\nlines");
+  EXPECT_THROW(check_plan(p), std::invalid_argument);
+  p = make_plan(mixed_spec());
+  p.result_columns.push_back("mu");
+  EXPECT_THROW(check_plan(p), std::invalid_argument);
+}
+
+// Every row equals the solver called directly on the same transformed motion: exact equality (same operations in
+// the same order), for the batched kernel (a run of mu on one motion) as for single blocks and rocking bodies.
+TEST(EnsembleRun, RowsEqualDirectSolverCalls) {
+  const SweepSpec spec = mixed_spec();
+  const Plan plan = make_plan(spec);
+  const ResultTable t = run_in_memory(plan);
+  ASSERT_EQ(t.rows.size(), plan.runs());
+  const std::size_t n_obj = plan.objects.size();
+  const auto c_disp = column(t, "max_abs_displacement_m");
+  const auto c_res = column(t, "residual_displacement_m");
+  const auto c_vel = column(t, "max_abs_velocity_m_s");
+  const auto c_ep = column(t, "slip_episodes");
+  const auto c_tot = column(t, "total_slip_duration_s");
+  const auto c_end = column(t, "end_time_s");
+  const auto c_first = column(t, "first_slip_time_s");
+  const auto c_rot = column(t, "max_abs_rotation_rad");
+  const auto c_imp = column(t, "impacts");
+  const auto c_over = column(t, "overturned");
+  const auto c_e = column(t, "e");
+  for (std::size_t run = 0; run < t.rows.size(); ++run) {
+    SCOPED_TRACE("run " + std::to_string(run));
+    const auto& row = t.rows[run];
+    EXPECT_EQ(std::get<std::int64_t>(row[0]), static_cast<std::int64_t>(run));
+    const MotionCase& mc = plan.motions[run / n_obj];
+    const GroundMotion motion = mc.transform.apply(*mc.base);
+    const ObjectSpec& o = spec.objects[run % n_obj];
+    if (const auto* s = std::get_if<SlideObject>(&o)) {
+      const SlidingSummary d = slide_summary(motion, s->block);
+      EXPECT_EQ(number(row[c_disp]), d.max_abs_displacement_m);
+      EXPECT_EQ(number(row[c_res]), d.residual_displacement_m);
+      EXPECT_EQ(number(row[c_vel]), d.max_abs_velocity_m_s);
+      EXPECT_EQ(number(row[c_ep]), d.slip_episodes);
+      EXPECT_EQ(number(row[c_tot]), d.total_slip_duration_s);
+      EXPECT_EQ(number(row[c_end]), d.end_time_s);
+      if (d.first_slip_time_s) {
+        EXPECT_EQ(number(row[c_first]), *d.first_slip_time_s);
+      } else {
+        EXPECT_TRUE(std::holds_alternative<std::monostate>(row[c_first]));
+      }
+      EXPECT_TRUE(std::holds_alternative<std::monostate>(row[c_rot]));
+    } else {
+      const auto& r = std::get<RockObject>(o);
+      const RockingSummary d = rock_summary(motion, r.body, r.options);
+      EXPECT_EQ(number(row[c_rot]), d.max_abs_rotation_rad);
+      EXPECT_EQ(number(row[c_imp]), static_cast<double>(d.impacts));
+      EXPECT_EQ(std::get<bool>(row[c_over]), d.overturned);
+      EXPECT_EQ(number(row[c_end]), d.end_time_s);
+      EXPECT_EQ(number(row[c_e]), d.e);
+      EXPECT_TRUE(std::holds_alternative<std::monostate>(row[c_disp]));
+    }
+  }
+  // The sweep is not trivial: some blocks slid, some did not.
+  std::size_t slid = 0;
+  for (const auto& row : t.rows) {
+    if (const auto* d = std::get_if<double>(&row[c_disp]); d != nullptr && *d > 0.0) ++slid;
+  }
+  EXPECT_GT(slid, 10u);
+}
+
+TEST(EnsembleRun, SameBytesForAnyNumberOfThreads) {
+  const Plan plan = make_plan(mixed_spec());
+  ExecuteOptions one;
+  one.threads = 1;
+  ExecuteOptions all;  // every core
+  ExecuteOptions four;
+  four.threads = 4;  // more threads than cores
+  const std::string a = to_csv(run_in_memory(plan, one));
+  EXPECT_EQ(a, to_csv(run_in_memory(plan, all)));
+  EXPECT_EQ(a, to_csv(run_in_memory(plan, four)));
+  EXPECT_EQ(to_jsonl(run_in_memory(plan, one)), to_jsonl(run_in_memory(plan, four)));
+}
+
+TEST(EnsembleRun, ProgressReachesTheTotal) {
+  const Plan plan = make_plan(mixed_spec());
+  std::atomic<std::size_t> last{0};
+  std::atomic<std::size_t> calls{0};
+  ExecuteOptions o;
+  o.progress = [&](std::size_t done, std::size_t total) {
+    EXPECT_EQ(total, plan.runs());
+    EXPECT_LE(done, total);
+    std::size_t prev = last.load();
+    while (done > prev && !last.compare_exchange_weak(prev, done)) {
+    }
+    ++calls;
+  };
+  static_cast<void>(run_in_memory(plan, o));
+  EXPECT_EQ(last.load(), plan.runs());
+  EXPECT_GT(calls.load(), 0u);
+}
+
+TEST(EnsembleFormat, CsvAndJsonValues) {
+  std::string s;
+  append_csv_value(s, Value{});
+  append_csv_value(s, Value{true});
+  append_csv_value(s, Value{std::int64_t{-3}});
+  append_csv_value(s, Value{0.1});
+  append_csv_value(s, Value{1e-5});
+  append_csv_value(s, Value{std::nan("")});
+  append_csv_value(s, Value{std::string("a,b \"c\"")});
+  append_csv_value(s, Value{std::string("plain")});
+  EXPECT_EQ(s, "true-30.11e-05\"a,b \"\"c\"\"\"plain");
+  std::string j;
+  append_json_value(j, Value{});
+  append_json_value(j, Value{false});
+  append_json_value(j, Value{std::numeric_limits<double>::infinity()});
+  append_json_value(j, Value{std::string("q\"\\\t\x01")});
+  EXPECT_EQ(j, "nullfalsenull\"q\\\"\\\\\\t\\u0001\"");
+  // Shortest round trip: every double reads back to itself.
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-1e3, 1e3);
+  for (int i = 0; i < 1000; ++i) {
+    const double x = u(rng) * std::pow(10.0, static_cast<double>(i % 40 - 20));
+    std::string t;
+    append_csv_value(t, Value{x});
+    EXPECT_EQ(std::strtod(t.c_str(), nullptr), x) << t;
+  }
+}
+
+// ---- The store ----
+
+/// A plan whose run function counts its calls and, while `fail_from` is set, throws on that run and after.
+struct CountingPlan {
+  std::shared_ptr<std::atomic<std::size_t>> calls = std::make_shared<std::atomic<std::size_t>>(0);
+  std::shared_ptr<std::atomic<std::size_t>> fail_from =
+      std::make_shared<std::atomic<std::size_t>>(std::numeric_limits<std::size_t>::max());
+  Plan plan;
+
+  explicit CountingPlan(std::size_t n_motions = 12, std::size_t n_objects = 10, std::size_t chunk = 8) {
+    plan.motion_columns = {"motion"};
+    plan.object_columns = {"k"};
+    plan.result_columns = {"value", "note"};
+    auto base = std::make_shared<const GroundMotion>(GroundMotion::uniform({0.0, 1.0, 0.0}, 0.01));
+    for (std::size_t m = 0; m < n_motions; ++m) {
+      std::string name = "m";  // (not "m" + to_string: GCC 12 warns falsely on that, -Wrestrict)
+      name += std::to_string(m);
+      plan.motions.push_back({base, {}, {Value{name}}});
+    }
+    for (std::size_t o = 0; o < n_objects; ++o) plan.objects.push_back({{Value{std::int64_t(o)}}});
+    plan.chunk_runs = chunk;
+    plan.run = [calls = calls, fail_from = fail_from, n_objects](const GroundMotion&, std::size_t m, std::size_t b,
+                                                                 std::size_t e, std::span<Value> out) {
+      for (std::size_t o = b; o < e; ++o) {
+        if (m * n_objects + o >= fail_from->load()) throw std::runtime_error("injected failure");
+        ++*calls;
+        out[(o - b) * 2] = std::sqrt(static_cast<double>(m * 100 + o));
+        out[(o - b) * 2 + 1] = (o % 3 == 0) ? Value{std::string("x,y")} : Value{};
+      }
+    };
+  }
+};
+
+std::vector<fs::path> chunk_files(const fs::path& dir) {
+  std::vector<fs::path> out;
+  for (const auto& e : fs::directory_iterator(dir)) {
+    const auto name = e.path().filename().string();
+    if (name.size() == 12 && name.substr(8) == ".csv") out.push_back(e.path());
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+TEST(EnsembleStore, FilesEqualTheInMemoryTable) {
+  TempDir tmp;
+  CountingPlan cp;
+  SingleProcess one;
+  StoreOptions store;
+  store.csv_path = tmp.path() / "sub" / "out.csv";
+  store.jsonl_path = tmp.path() / "sub" / "out.jsonl";
+  const SweepReport r = run_to_files(cp.plan, store, {}, one);
+  EXPECT_EQ(r.runs, 120u);
+  EXPECT_EQ(r.chunks, 15u);
+  EXPECT_EQ(r.chunks_computed, 15u);
+  EXPECT_EQ(r.runs_computed, 120u);
+  const ResultTable t = run_in_memory(cp.plan);
+  EXPECT_EQ(slurp(store.csv_path), to_csv(t));
+  EXPECT_EQ(slurp(*store.jsonl_path), to_jsonl(t));
+  EXPECT_EQ(slurp(store.csv_path).substr(0, 29), "run,motion,k,value,note\n0,m0,");
+  // Every JSON line parses and carries every column.
+  std::istringstream lines(slurp(*store.jsonl_path));
+  std::string line;
+  std::size_t n = 0;
+  while (std::getline(lines, line)) {
+    const auto j = nlohmann::json::parse(line);
+    EXPECT_EQ(j.size(), 5u);
+    EXPECT_EQ(j["run"].get<std::size_t>(), n);
+    ++n;
+  }
+  EXPECT_EQ(n, 120u);
+  // The store keeps its manifest (complete) and no chunk.
+  EXPECT_TRUE(chunk_files(parts_directory(store.csv_path)).empty());
+  const auto manifest = nlohmann::json::parse(slurp(parts_directory(store.csv_path) / "manifest.json"));
+  EXPECT_TRUE(manifest["complete"].get<bool>());
+  EXPECT_EQ(manifest["fingerprint"].get<std::string>(), plan_fingerprint(cp.plan));
+
+  // Rerun: nothing to do.
+  const std::size_t calls = cp.calls->load();
+  const SweepReport again = run_to_files(cp.plan, store, {}, one);
+  EXPECT_TRUE(again.was_complete);
+  EXPECT_EQ(cp.calls->load(), calls);
+  // Outputs removed: computed again, same bytes.
+  const std::string before = slurp(store.csv_path);
+  fs::remove(store.csv_path);
+  const SweepReport redo = run_to_files(cp.plan, store, {}, one);
+  EXPECT_FALSE(redo.was_complete);
+  EXPECT_EQ(redo.chunks_computed, 15u);
+  EXPECT_EQ(slurp(store.csv_path), before);
+}
+
+TEST(EnsembleStore, ResumesAfterAFailureWithoutRecomputing) {
+  TempDir tmp;
+  CountingPlan cp;
+  SingleProcess one;
+  StoreOptions store;
+  store.csv_path = tmp.path() / "out.csv";
+  const std::string expected = to_csv(run_in_memory(cp.plan));
+  cp.calls->store(0);
+
+  cp.fail_from->store(60);  // runs 60.. fail: chunks 0-6 (runs 0-55) can finish
+  ExecuteOptions single;
+  single.threads = 1;
+  EXPECT_THROW(static_cast<void>(run_to_files(cp.plan, store, single, one)), std::runtime_error);
+  EXPECT_FALSE(fs::exists(store.csv_path));
+  const auto done = chunk_files(parts_directory(store.csv_path));
+  ASSERT_GE(done.size(), 1u);
+  ASSERT_LE(done.size(), 7u);
+
+  cp.fail_from->store(std::numeric_limits<std::size_t>::max());
+  cp.calls->store(0);
+  const SweepReport r = run_to_files(cp.plan, store, {}, one);
+  EXPECT_EQ(r.chunks_already_done, done.size());
+  EXPECT_EQ(r.chunks_computed, 15u - done.size());
+  EXPECT_EQ(r.runs_computed, 120u - 8u * done.size());
+  EXPECT_EQ(cp.calls->load(), r.runs_computed);  // finished chunks were not recomputed
+  EXPECT_EQ(slurp(store.csv_path), expected);
+}
+
+TEST(EnsembleStore, CutShortChunksAreRecomputed) {
+  TempDir tmp;
+  CountingPlan cp;
+  SingleProcess one;
+  StoreOptions store;
+  store.csv_path = tmp.path() / "out.csv";
+  const std::string expected = to_csv(run_in_memory(cp.plan));
+  cp.fail_from->store(100);
+  ExecuteOptions single;
+  single.threads = 1;
+  EXPECT_THROW(static_cast<void>(run_to_files(cp.plan, store, single, one)), std::runtime_error);
+  const auto done = chunk_files(parts_directory(store.csv_path));
+  ASSERT_GE(done.size(), 2u);
+  // A machine crash can leave a renamed file without its last bytes, or empty; a killed writer leaves a temporary.
+  const std::string text = slurp(done[0]);
+  test::write_file(done[0], text.substr(0, text.size() - 5));
+  test::write_file(done[1], "");
+  test::write_file(parts_directory(store.csv_path) / ".tmp-0-1-00000003.csv", "partial");
+  cp.fail_from->store(std::numeric_limits<std::size_t>::max());
+  const SweepReport r = run_to_files(cp.plan, store, {}, one);
+  EXPECT_EQ(r.chunks_already_done, done.size() - 2);
+  EXPECT_EQ(slurp(store.csv_path), expected);
+  EXPECT_FALSE(fs::exists(parts_directory(store.csv_path) / ".tmp-0-1-00000003.csv"));
+}
+
+TEST(EnsembleStore, AChangedPlanIsRefusedUnlessRestarted) {
+  TempDir tmp;
+  CountingPlan cp;
+  SingleProcess one;
+  StoreOptions store;
+  store.csv_path = tmp.path() / "out.csv";
+  store.field = "output.path";
+  cp.fail_from->store(50);
+  EXPECT_THROW(static_cast<void>(run_to_files(cp.plan, store, {}, one)), std::runtime_error);
+  cp.fail_from->store(std::numeric_limits<std::size_t>::max());
+
+  CountingPlan changed;
+  changed.plan.objects.pop_back();  // one object fewer
+  try {
+    static_cast<void>(run_to_files(changed.plan, store, {}, one));
+    FAIL() << "a store of another plan must be refused";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().file, store.csv_path.string());
+    EXPECT_EQ(e.where().field, "output.path");
+    EXPECT_NE(e.problem().find("--restart"), std::string::npos) << e.what();
+  }
+  // Another chunk size is another plan too.
+  CountingPlan rechunked(12, 10, 9);
+  EXPECT_THROW(static_cast<void>(run_to_files(rechunked.plan, store, {}, one)), InputError);
+  store.restart = true;
+  const SweepReport r = run_to_files(changed.plan, store, {}, one);
+  EXPECT_TRUE(r.restarted);
+  EXPECT_EQ(r.chunks_already_done, 0u);
+  EXPECT_EQ(slurp(store.csv_path), to_csv(run_in_memory(changed.plan)));
+}
+
+TEST(EnsembleStore, ALockedStoreIsRefused) {
+  TempDir tmp;
+  CountingPlan cp;
+  SingleProcess one;
+  StoreOptions store;
+  store.csv_path = tmp.path() / "out.csv";
+  const fs::path dir = parts_directory(store.csv_path);
+  fs::create_directories(dir);
+  const int fd = ::open((dir / "lock").c_str(), O_RDWR | O_CREAT, 0644);
+  ASSERT_GE(fd, 0);
+  ASSERT_EQ(::flock(fd, LOCK_EX | LOCK_NB), 0);
+  try {
+    static_cast<void>(run_to_files(cp.plan, store, {}, one));
+    FAIL() << "a locked store must be refused";
+  } catch (const InputError& e) {
+    EXPECT_NE(e.problem().find("another topple sweep"), std::string::npos) << e.what();
+  }
+  ::close(fd);
+  EXPECT_NO_THROW(static_cast<void>(run_to_files(cp.plan, store, {}, one)));
+}
+
+TEST(EnsembleStore, FingerprintFollowsRecordSamples) {
+  SweepSpec a = mixed_spec();
+  SweepSpec b = mixed_spec();
+  EXPECT_EQ(plan_fingerprint(make_plan(a)), plan_fingerprint(make_plan(b)));
+  b.records[1].motion = noise_record(3, 900, 0.02);  // same name, other samples
+  EXPECT_NE(plan_fingerprint(make_plan(a)), plan_fingerprint(make_plan(b)));
+  b = mixed_spec();
+  std::get<RockObject>(b.objects.back()).options.rel_tol = 1e-9;  // not a column, still an input
+  EXPECT_NE(plan_fingerprint(make_plan(a)), plan_fingerprint(make_plan(b)));
+}
+
+}  // namespace
+}  // namespace topple::ensemble
