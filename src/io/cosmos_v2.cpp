@@ -252,8 +252,8 @@ GroundMotion read_cosmos_v2(const Text& text, const ReadOptions& options) {
   }
   RecordMetadata meta = b.meta;
   meta.units_as_read = b.unit;
-  return GroundMotion::uniform(to_m_s2(text, samples, factor, "acceleration"), dt_ms / 1000.0, 0.0,
-                               std::move(meta));
+  return uniform_record(text, to_m_s2(text, samples, factor, "acceleration"), dt_ms / 1000.0, dt_line,
+                        "Real header 62", std::move(meta));
 }
 
 }  // namespace topple::io::detail

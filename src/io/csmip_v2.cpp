@@ -141,7 +141,7 @@ GroundMotion read_csmip_v2(const Text& text, const ReadOptions& options) {
   meta.station = station + collapse_spaces(block_line(7));
   meta.component = c.name;
   meta.units_as_read = unit;
-  return GroundMotion::uniform(to_m_s2(text, samples, factor, "ACCEL"), dt, 0.0, std::move(meta));
+  return uniform_record(text, to_m_s2(text, samples, factor, "ACCEL"), dt, section.number, "DT", std::move(meta));
 }
 
 }  // namespace topple::io::detail

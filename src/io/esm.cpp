@@ -104,7 +104,8 @@ GroundMotion read_esm(const Text& text, const ReadOptions& options) {
   if (name) meta.station += meta.station.empty() ? std::string(name->value) : fmt::format(" ({})", name->value);
   if (const auto stream = get("STREAM")) meta.component = std::string(stream->value);
   meta.units_as_read = std::string(units.value);
-  return GroundMotion::uniform(to_m_s2(text, samples, factor, "acceleration"), dt, 0.0, std::move(meta));
+  return uniform_record(text, to_m_s2(text, samples, factor, "acceleration"), dt, dt_entry.line,
+                        "SAMPLING_INTERVAL_S", std::move(meta));
 }
 
 }  // namespace topple::io::detail

@@ -105,8 +105,8 @@ GroundMotion read_knet(const Text& text, const ReadOptions&) {
   if (const auto station = header_value(text, "Station Code")) meta.station = std::string(station->text);
   if (const auto dir = header_value(text, "Dir.")) meta.component = kiknet_direction(dir->text);
   meta.units_as_read = fmt::format("counts*{}/{} gal, record mean removed", numerator, denominator);
-  return GroundMotion::uniform(to_m_s2(text, centred, gal_per_count * 0.01, "counts"), 1.0 / hz, 0.0,
-                               std::move(meta));
+  return uniform_record(text, to_m_s2(text, centred, gal_per_count * 0.01, "counts"), 1.0 / hz, freq.number,
+                        "Sampling Freq(Hz)", std::move(meta));
 }
 
 }  // namespace topple::io::detail

@@ -148,7 +148,8 @@ GroundMotion read_peer_at2(const Text& text, const ReadOptions& options) {
   RecordMetadata meta;
   metadata_from_line2(text[1].text, meta);
   meta.units_as_read = unit;
-  return GroundMotion::uniform(to_m_s2(text, samples, factor, "acceleration"), dt, 0.0, std::move(meta));
+  return uniform_record(text, to_m_s2(text, samples, factor, "acceleration"), dt, npts_line.number, "DT",
+                        std::move(meta));
 }
 
 }  // namespace topple::io::detail

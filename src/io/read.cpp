@@ -342,7 +342,7 @@ GroundMotion read_plain(const Text& text, const ReadOptions& options) {
     if (!(*options.dt_s > 0.0) || !std::isfinite(*options.dt_s)) {
       text.fail_file("--dt", fmt::format("the time step must be positive and finite, got {}", *options.dt_s));
     }
-    return GroundMotion::uniform(std::move(accel), *options.dt_s, 0.0, std::move(meta));
+    return uniform_record(text, std::move(accel), *options.dt_s, std::nullopt, "--dt", std::move(meta));
   }
 
   if (options.dt_s) {
@@ -378,6 +378,8 @@ GroundMotion read_plain(const Text& text, const ReadOptions& options) {
   for (std::size_t i = 1; i < t.size() && uniform; ++i) {
     if (std::abs((t[i] - t[i - 1]) - dt) > 1e-9 * dt) uniform = false;
   }
+  // Near the top of the double range, t0 + i*dt could round past the last time and overflow.
+  uniform = uniform && std::isfinite(t.front() + dt * static_cast<double>(t.size() - 1));
   if (uniform) return GroundMotion::uniform(std::move(accel), dt, t.front(), std::move(meta));
   return GroundMotion::irregular(std::move(t), std::move(accel), std::move(meta));
 }

@@ -278,6 +278,22 @@ std::vector<double> to_m_s2(const Text& text, const Samples& samples, double fac
   return out;
 }
 
+GroundMotion uniform_record(const Text& text, std::vector<double> accel_m_s2, double dt_s,
+                            std::optional<std::size_t> line, std::string_view field, RecordMetadata meta) {
+  std::string problem;
+  if (!(dt_s > 0.0) || !std::isfinite(dt_s)) {
+    problem = fmt::format("the time step must be positive and finite, got {} s", dt_s);
+  } else if (accel_m_s2.size() > 1 && !std::isfinite(dt_s * static_cast<double>(accel_m_s2.size() - 1))) {
+    problem = fmt::format("a time step of {} s over {} samples gives a record too long to represent", dt_s,
+                          accel_m_s2.size());
+  }
+  if (!problem.empty()) {
+    if (line) text.fail(*line, field, problem);
+    text.fail_file(field, problem);
+  }
+  return GroundMotion::uniform(std::move(accel_m_s2), dt_s, 0.0, std::move(meta));
+}
+
 void require_no_more_values(const Text& text, std::size_t from, std::string_view count_field, std::size_t count) {
   for (std::size_t i = from; i < text.size(); ++i) {
     if (!is_blank(text[i].text)) {

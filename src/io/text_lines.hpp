@@ -113,6 +113,12 @@ std::size_t read_count(const Text& text, std::size_t first, std::size_t count, c
 [[nodiscard]] std::vector<double> to_m_s2(const Text& text, const Samples& samples, double factor,
                                           std::string_view field);
 
+/// GroundMotion::uniform, refusing here (at `line` of the file, or the whole file when nullopt) a time step that is
+/// not positive or whose record length overflows, so that no record with an infinite duration comes out.
+[[nodiscard]] GroundMotion uniform_record(const Text& text, std::vector<double> accel_m_s2, double dt_s,
+                                          std::optional<std::size_t> line, std::string_view field,
+                                          RecordMetadata meta);
+
 /// Throws unless no non-blank line remains from index `from` on: values beyond the announced count.
 void require_no_more_values(const Text& text, std::size_t from, std::string_view count_field, std::size_t count);
 

@@ -115,7 +115,8 @@ GroundMotion read_usgs_smc(const Text& text, const ReadOptions&) {  // values ar
   }
   if (comp != std::string_view::npos) meta.component = collapse_spaces(station_line.substr(comp + 10));
   meta.units_as_read = "cm/s2";
-  return GroundMotion::uniform(to_m_s2(text, samples, 0.01, "acceleration"), 1.0 / rate, 0.0, std::move(meta));
+  return uniform_record(text, to_m_s2(text, samples, 0.01, "acceleration"), 1.0 / rate, reals.lines[1],
+                        "real header #2", std::move(meta));
 }
 
 }  // namespace topple::io::detail

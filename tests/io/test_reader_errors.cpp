@@ -242,6 +242,15 @@ TEST_F(ReaderErrors, At2NonPositiveDt) {
   expect_error(at2("NPTS=      3, DT=  abc SEC,", {"0.1", "0.2", "0.3"}), {4, "DT", {"'abc'"}});
 }
 
+TEST_F(ReaderErrors, At2RecordTooLongToRepresent) {
+  // Found by review of the fuzz contract (finite duration): a finite DT whose record length overflows.
+  expect_error(at2("NPTS=      3, DT=  1e308 SEC,", {"0.1", "0.2", "0.3"}), {4, "DT", {"too long to represent"}});
+  ReadOptions o;
+  o.units = "g";
+  o.dt_s = 1e308;
+  expect_error("0\n1\n2\n", {std::nullopt, "--dt", {"too long to represent"}}, o);
+}
+
 TEST_F(ReaderErrors, At2BadNptsLine) {
   ReadOptions o;
   o.format = Format::peer_at2;

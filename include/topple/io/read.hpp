@@ -23,17 +23,20 @@ enum class Format {
   knet,       ///< NIED K-NET / KiK-net ASCII (counts x scale factor, gal; record mean removed)
   usgs_smc,   ///< USGS SMC corrected accelerogram (fixed-width values)
   esm,        ///< ESM / ITACA ASCII ("KEY: value" header)
-  plain,      ///< plain text: one column with a given dt, or time/acceleration columns (CSV or whitespace)
+  plain,      ///< plain text: one column with a given dt, or time/acceleration columns (CSV or whitespace);
+              ///< '#' comments, optional UTF-8 BOM, optional header naming the columns with units ("time_s,accel_g",
+              ///< "accel_cm_s2", or a last comment line such as "# Time (s),Acceleration (g's)")
 };
 
 struct ReadOptions {
   Format format = Format::automatic;
-  /// 1-based channel for multi-channel files (CSMIP V2); required there when the file holds more than one.
+  /// 1-based channel for multi-channel files (CSMIP V2, COSMOS files holding several acceleration channels); required
+  /// there when the file holds more than one. Any other value than 1 is an error for a single-channel file.
   std::optional<int> channel;
   /// Acceleration unit of a plain file's values ("g", "m/s2", "cm/s2", "gal"); overrides a unit named in its
   /// header (e.g. "accel_g"). Ignored for self-describing formats.
   std::string units;
-  /// Time step of a one-column plain file, s.
+  /// Time step of a one-column plain file, s (an error for a file that has a time column).
   std::optional<double> dt_s;
   /// g used to convert values in g to m/s^2.
   double g_m_s2 = kStandardGravity;
