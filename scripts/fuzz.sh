@@ -1,0 +1,115 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets (the `fuzz` preset: clang, ASan + UBSan) and runs each for a bounded time.
+#
+#   scripts/fuzz.sh [seconds-per-target]     (default 20)
+#
+# Seed corpora are made at run time from ../shared/records when it is there (TOPPLE_SHARED_DIR overrides): each
+# record, cut to its first 16 KiB, plus a small well-formed version of it (header kept, a few samples, counts
+# rewritten) so that mutations start from inputs that parse. Nothing is copied into the repository; corpora and
+# crash reproducers go to build/fuzz/corpus and build/fuzz/artifacts. Exits non-zero when a target finds a crash.
+# See docs/fuzzing.md.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds="${1:-20}"
+jobs="${TOPPLE_JOBS:-2}"
+shared="${TOPPLE_SHARED_DIR:-$(pwd)/../shared}"
+targets=(fuzz_peer_at2 fuzz_cosmos_v2 fuzz_csmip_v2 fuzz_knet fuzz_usgs_smc fuzz_esm fuzz_plain fuzz_detect)
+
+cmake --preset fuzz >/dev/null
+cmake --build --preset fuzz -j "$jobs" --target "${targets[@]}"
+
+out=build/fuzz
+mkdir -p "$out/corpus" "$out/artifacts"
+
+# Which records seed which target (by content family; fuzz_detect gets them all).
+seeds_for() {
+  case "$1" in
+    fuzz_peer_at2) echo '*.AT2 *.at2' ;;
+    fuzz_cosmos_v2) echo '*.V2c' ;;
+    fuzz_csmip_v2) echo '*.V2' ;;
+    fuzz_knet) echo '*.NS *.NS2 *.EW *.UD *.EW2 *.UD2 *.NS1' ;;
+    fuzz_usgs_smc) echo '*.smc' ;;
+    fuzz_esm) echo '*.ASC' ;;
+    fuzz_plain) echo '*.csv slammer/*.csv' ;;
+    *) echo '*' ;;
+  esac
+}
+
+# A small well-formed version of a record: header kept, counts rewritten to the samples kept.
+shrink() {
+  python3 - "$1" "$2" <<'EOF' || true
+import re, sys
+src, dst = sys.argv[1], sys.argv[2]
+raw = open(src, 'rb').read().rstrip(b'\x1a')
+nl = b'\r\n' if b'\r\n' in raw else b'\n'
+lines = raw.split(nl)
+out = None
+head = lines[0].decode('latin-1') if lines else ''
+text = raw.decode('latin-1')
+if len(lines) > 4 and re.search(r'NPTS', lines[3].decode('latin-1'), re.I):            # AT2
+    vals = lines[4:12]                                                                     # 8 lines, 5 per line
+    n = sum(len(v.split()) for v in vals)
+    l4 = re.sub(rb'(NPTS\s*=\s*)\d+', lambda m: m.group(1) + str(n).encode(), lines[3])
+    if l4 == lines[3]:
+        l4 = re.sub(rb'^\s*\d+', b' ' + str(n).encode(), lines[3])
+    out = lines[:3] + [l4] + vals
+elif 'text lines' in head:                                                                  # COSMOS
+    i = next(k for k, l in enumerate(lines) if b' pts' in l and b'units=' in l)
+    kept = lines[i + 1:i + 21]
+    n = sum(len(v.split()) for v in kept)
+    out = lines[:i] + [re.sub(rb'^\s*\d+', b'%8d' % n, lines[i])] + kept + [b'End-of-data for Chan acceleration']
+elif 'POINTS OF ACCEL DATA' in text:                                                        # CSMIP: 8 per line
+    out, k = [], 0
+    while k < len(lines):
+        m = re.match(rb'\s*\d+( POINTS OF \w+ DATA.*)', lines[k])
+        if not m:
+            out.append(lines[k]); k += 1; continue
+        out += [b' %4d' % 16 + m.group(1)] + lines[k + 1:k + 3]                           # 16 values
+        k += 1
+        while k < len(lines) and b'POINTS OF' not in lines[k] and b'END OF DATA' not in lines[k]:
+            k += 1
+elif re.match(r'^\d [A-Z]', head):                                                          # SMC
+    ints = b''.join(lines[11:17])
+    nc = int(ints[150:160])
+    first = 27 + nc
+    kept = lines[first:first + 3]
+    l14 = lines[13]
+    l14 = b'%10d' % 24 + l14[10:]
+    out = lines[:13] + [l14] + lines[14:first] + kept
+elif head.startswith('Origin Time'):                                                       # K-NET
+    out = lines[:17 + 6]
+elif 'SAMPLING_INTERVAL_S' in text[:4000]:                                                  # ESM
+    i = next(k for k, l in enumerate(lines) if l and not re.match(rb'^[A-Z0-9_/^.\-]+:', l))
+    out = [re.sub(rb'^NDATA: .*', b'NDATA: 30', l) for l in lines[:i]] + lines[i:i + 30]
+else:                                                                                      # plain text
+    out = lines[:40]
+open(dst, 'wb').write(nl.join(out) + nl)
+EOF
+}
+
+status=0
+for target in "${targets[@]}"; do
+  corpus="$out/corpus/$target"
+  mkdir -p "$corpus"
+  if [[ -d "$shared/records" ]]; then
+    for pattern in $(seeds_for "$target"); do
+      for f in "$shared"/records/$pattern; do
+        [[ -f "$f" ]] || continue
+        case "$f" in *.md|*gm_summary.csv) continue ;; esac
+        base=$(basename "$f")
+        head -c 16384 "$f" >"$corpus/head-$base"
+        if command -v python3 >/dev/null; then shrink "$f" "$corpus/small-$base"; fi
+      done
+    done
+  fi
+  echo "== $target: ${seconds} s"
+  if ! "$out/fuzz/$target" "$corpus" -max_total_time="$seconds" -max_len=65536 -timeout=10 -rss_limit_mb=2048 \
+       -dict=fuzz/readers.dict -print_final_stats=1 -artifact_prefix="$out/artifacts/$target-" 2>"$out/$target.log"; then
+    echo "!! $target found a problem; reproducer in $out/artifacts, log in $out/$target.log"
+    tail -n 40 "$out/$target.log"
+    status=1
+  else
+    grep -E '^stat::number_of_executed_units|^Done' "$out/$target.log" || true
+  fi
+done
+exit "$status"
