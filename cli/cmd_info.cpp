@@ -1,21 +1,52 @@
 // topple info FILE: what a record is and how strong it is.
 #include <cstdio>
 #include <memory>
+#include <optional>
+#include <string>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "topple/error.hpp"
 #include "topple/intensity.hpp"
+#include "topple/spectra.hpp"
 
 namespace topple::cli {
+namespace {
+
+/// A measure that is undefined for some records (an identically zero one, a record too short for the band): the
+/// value, or the reason it has none.
+struct Measure {
+  std::optional<double> value;
+  std::string why_not;
+};
+
+template <class F>
+Measure measure(F f) {
+  try {
+    return {f(), {}};
+  } catch (const InputError& e) {
+    return {std::nullopt, e.problem()};
+  }
+}
+
+nlohmann::ordered_json json_value(const Measure& m) {
+  return m.value ? nlohmann::ordered_json(*m.value) : nlohmann::ordered_json(nullptr);
+}
+
+std::string text_value(const Measure& m, const char* format_unit) {
+  return m.value ? fmt::format(fmt::runtime(format_unit), *m.value) : "undefined (" + m.why_not + ")";
+}
+
+}  // namespace
 
 void add_info_command(CLI::App& app) {
   auto options = std::make_shared<MotionOptions>();
   auto json = std::make_shared<bool>(false);
   CLI::App* cmd = app.add_subcommand("info", "Describe a ground-motion record: format, station, npts, dt, PGA, PGV, "
-                                             "PGD, Arias intensity");
+                                             "PGD, Arias intensity, D5-95, CAV, Tp, Tm, predominant frequency");
   cmd->add_option("file", options->file, "Record file (format detected from content)")->required();
   add_motion_options(*cmd, *options);
   cmd->add_flag("--json", *json, "Print one JSON object instead of text");
@@ -24,6 +55,17 @@ void add_info_command(CLI::App& app) {
     const BasicIntensity im = basic_intensity(motion, options->g_m_s2);
     const auto& meta = motion.metadata();
     const double g = options->g_m_s2;
+    const auto duration = [&]() -> std::optional<SignificantDuration> {
+      try {
+        return significant_duration(motion);
+      } catch (const InputError&) {
+        return std::nullopt;  // identically zero record
+      }
+    }();
+    const double cav = cumulative_absolute_velocity_m_s(motion);
+    const Measure tp = measure([&] { return predominant_period_s(motion); });
+    const Measure tm = measure([&] { return mean_period_s(motion); });
+    const Measure fp = measure([&] { return predominant_frequency_hz(motion); });
     if (*json) {
       nlohmann::ordered_json out;
       out["file"] = options->file;
@@ -43,6 +85,13 @@ void add_info_command(CLI::App& app) {
       out["pgv_m_s"] = im.pgv_m_s;
       out["pgd_m"] = im.pgd_m;
       out["arias_m_s"] = im.arias_m_s;
+      out["d5_95_s"] = duration ? nlohmann::ordered_json(duration->duration_s) : nlohmann::ordered_json(nullptr);
+      out["d5_time_s"] = duration ? nlohmann::ordered_json(duration->start_s) : nlohmann::ordered_json(nullptr);
+      out["d95_time_s"] = duration ? nlohmann::ordered_json(duration->end_s) : nlohmann::ordered_json(nullptr);
+      out["cav_m_s"] = cav;
+      out["tp_s"] = json_value(tp);
+      out["tm_s"] = json_value(tm);
+      out["predominant_frequency_hz"] = json_value(fp);
       out["g_m_s2"] = g;
       fmt::print("{}\n", out.dump(2));
       return;
@@ -60,6 +109,16 @@ void add_info_command(CLI::App& app) {
     fmt::print("PGV         {:.5g} m/s\n", im.pgv_m_s);
     fmt::print("PGD         {:.5g} m   (no baseline correction)\n", im.pgd_m);
     fmt::print("Arias       {:.5g} m/s\n", im.arias_m_s);
+    if (duration) {
+      fmt::print("D5-95       {:.4f} s (from {:.4f} s to {:.4f} s)\n", duration->duration_s, duration->start_s,
+                 duration->end_s);
+    } else {
+      fmt::print("D5-95       undefined (the record is identically zero)\n");
+    }
+    fmt::print("CAV         {:.5g} m/s\n", cav);
+    fmt::print("Tp          {}   (peak of the 5%-damped PSA)\n", text_value(tp, "{:.4f} s"));
+    fmt::print("Tm          {}   (Rathje et al. 1998)\n", text_value(tm, "{:.4f} s"));
+    fmt::print("f_p         {}   (peak of the Konno-Ohmachi b=40 smoothed FAS)\n", text_value(fp, "{:.4f} Hz"));
     fmt::print("g           {} m/s2\n", g);
   });
 }

@@ -1,0 +1,142 @@
+// topple synth: a synthetic ground motion (synthesis.hpp) written as a CSV that every topple command reads back.
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "common.hpp"
+#include "topple/error.hpp"
+#include "topple/spectra.hpp"
+#include "topple/synthesis.hpp"
+#include "topple/units.hpp"
+
+namespace topple::cli {
+namespace {
+
+struct SynthOptions {
+  std::string pga;
+  std::string freq;
+  std::string duration;
+  std::string dt = "0.01s";
+  std::uint64_t seed = 0;
+  std::string model = "clough-penzien";
+  std::string envelope = "saragoni-hart";
+  double zeta_g = 0.3;
+  double g_m_s2 = kStandardGravity;
+  std::string out;
+  bool json = false;
+};
+
+/// Decimals that print every multiple of dt exactly enough for the reader to see a uniform grid (dt = 0.01 -> 2);
+/// nullopt when dt has no short decimal form.
+std::optional<int> decimals_of(double dt) {
+  double scale = 1.0;
+  for (int p = 0; p <= 9; ++p, scale *= 10.0) {
+    const double scaled = dt * scale;
+    if (std::abs(scaled - std::round(scaled)) <= 1e-9 * scaled) return p;
+  }
+  return std::nullopt;
+}
+
+void write_motion_csv(const std::string& path, const GroundMotion& motion, const SynthesisSpec& spec, double f_g,
+                      double g) {
+  std::ofstream out(path, std::ios::binary);
+  if (!out) throw InputError(InputLocation{.file = path, .line = {}, .field = "--out"}, "cannot open for writing");
+  out << "# topple synth: Kanai-Tajimi / Clough-Penzien filtered white noise under a time envelope (docs/method.md)\n";
+  out << fmt::format("# model={} envelope={} pga_g={} freq_hz={} duration_s={} dt_s={} seed={} zeta_g={} "
+                     "f_g_hz={:.9g} g_m_s2={}\n",
+                     filter_model_name(spec.model), envelope_kind_name(spec.envelope), spec.pga_m_s2 / g,
+                     spec.predominant_frequency_hz, spec.duration_s, spec.dt_s, spec.seed, spec.ground_damping, f_g, g);
+  out << "time_s,accel_g\n";
+  const auto a = motion.accel_m_s2();
+  const std::optional<int> decimals = decimals_of(spec.dt_s);
+  std::string buffer;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const double t = static_cast<double>(i) * spec.dt_s;
+    buffer += decimals ? fmt::format("{:.{}f}", t, *decimals) : fmt::format("{}", t);
+    buffer += fmt::format(",{}\n", a[i] / g);
+  }
+  out << buffer;
+  if (!out) throw InputError(InputLocation{.file = path, .line = {}, .field = "--out"}, "write failed");
+}
+
+void run_synth(const SynthOptions& o) {
+  if (!(o.g_m_s2 > 0.0) || !std::isfinite(o.g_m_s2)) {
+    throw parameter_error("--g", fmt::format("g must be positive and finite, got {}", o.g_m_s2));
+  }
+  if (o.out.empty()) throw parameter_error("--out", "give the CSV file to write (--out motion.csv)");
+  SynthesisSpec spec;
+  spec.pga_m_s2 = parse_acceleration_m_s2(o.pga, "--pga", o.g_m_s2);
+  spec.predominant_frequency_hz = parse_frequency_hz(o.freq, "--freq");
+  spec.duration_s = parse_seconds(o.duration, "--duration");
+  spec.dt_s = parse_seconds(o.dt, "--dt");
+  spec.seed = o.seed;
+  spec.model = parse_filter_model(o.model, "--model");
+  spec.envelope = parse_envelope_kind(o.envelope, "--envelope");
+  spec.ground_damping = o.zeta_g;
+  try {
+    validate(spec);
+  } catch (const InputError& e) {
+    // The library names its fields; the user typed options.
+    const std::string& field = e.where().field;
+    const std::string option = field == "pga" ? "--pga" : field == "freq" ? "--freq" : field == "duration" ? "--duration"
+                               : field == "dt" ? "--dt" : field == "ground_damping" ? "--zeta-g" : field;
+    throw parameter_error(option, e.problem());
+  }
+  const GroundMotion motion = synthesize(spec);
+  const double f_g = ground_frequency_for_request_hz(spec.predominant_frequency_hz, spec.ground_damping, spec.model);
+  write_motion_csv(o.out, motion, spec, f_g, o.g_m_s2);
+  const double measured = predominant_frequency_hz(motion);
+  if (o.json) {
+    nlohmann::ordered_json j;
+    j["out"] = o.out;
+    j["model"] = filter_model_name(spec.model);
+    j["envelope"] = envelope_kind_name(spec.envelope);
+    j["seed"] = spec.seed;
+    j["npts"] = motion.size();
+    j["dt_s"] = spec.dt_s;
+    j["duration_s"] = motion.duration_s();
+    j["pga_g"] = motion.pga_m_s2() / o.g_m_s2;
+    j["requested_frequency_hz"] = spec.predominant_frequency_hz;
+    j["filter_frequency_hz"] = f_g;
+    j["zeta_g"] = spec.ground_damping;
+    j["predominant_frequency_hz"] = measured;
+    j["g_m_s2"] = o.g_m_s2;
+    fmt::print("{}\n", j.dump(2));
+    return;
+  }
+  fmt::print("wrote {}: {} samples, dt {} s, {} / {} motion, seed {}\n", o.out, motion.size(), spec.dt_s,
+             filter_model_name(spec.model), envelope_kind_name(spec.envelope), spec.seed);
+  fmt::print("PGA {:.5g} g; predominant frequency requested {:.4g} Hz (filter f_g {:.4g} Hz), measured {:.4g} Hz\n",
+             motion.pga_m_s2() / o.g_m_s2, spec.predominant_frequency_hz, f_g, measured);
+}
+
+}  // namespace
+
+void add_synth_command(CLI::App& app) {
+  auto o = std::make_shared<SynthOptions>();
+  CLI::App* cmd = app.add_subcommand("synth", "Synthetic ground motion: Kanai-Tajimi / Clough-Penzien filtered white "
+                                              "noise under a time envelope, reproducible from its seed");
+  cmd->add_option("--pga", o->pga, "Peak ground acceleration, with a unit (0.3g, 3m/s2)")->required();
+  cmd->add_option("--freq", o->freq, "Predominant frequency of the motion as topple measures it, e.g. 3Hz")->required();
+  cmd->add_option("--duration", o->duration, "Record length, s (a bare number) or with a unit, e.g. 20s")->required();
+  cmd->add_option("--dt", o->dt, "Sample interval")->capture_default_str();
+  cmd->add_option("--seed", o->seed, "Random seed (any 64-bit integer): same parameters and seed, same motion")
+      ->capture_default_str();
+  cmd->add_option("--model", o->model, "Filter: kanai-tajimi or clough-penzien")->capture_default_str();
+  cmd->add_option("--envelope", o->envelope, "Time envelope: saragoni-hart or jennings")->capture_default_str();
+  cmd->add_option("--zeta-g", o->zeta_g, "Kanai-Tajimi ground damping, 0.1-0.5")->capture_default_str();
+  cmd->add_option("--g", o->g_m_s2, "Gravitational acceleration, m/s2 (for values in g)")->capture_default_str();
+  cmd->add_option("--out", o->out, "CSV file to write (time_s,accel_g)")->required();
+  cmd->add_flag("--json", o->json, "Print a JSON summary instead of text");
+  cmd->callback([o] { run_synth(*o); });
+}
+
+}  // namespace topple::cli
