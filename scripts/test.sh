@@ -7,6 +7,7 @@ cd "$(dirname "$0")/.."
 jobs="${TOPPLE_JOBS:-$(nproc)}"
 
 scripts/install-deps.sh
+scripts/test-venv.sh || echo "test-venv: no .venv-test; the pyrotd/eqsig comparisons will be skipped"
 
 echo "== release build and tests"
 cmake --preset release >/dev/null
