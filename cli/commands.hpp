@@ -6,6 +6,7 @@ namespace topple::cli {
 
 void add_info_command(CLI::App& app);
 void add_slide_command(CLI::App& app);
+void add_invert_command(CLI::App& app);
 void add_synth_command(CLI::App& app);
 void add_rock_command(CLI::App& app);
 void add_sweep_command(CLI::App& app);

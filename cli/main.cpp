@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "topple 0.1.0");
   topple::cli::add_info_command(app);
   topple::cli::add_slide_command(app);
+  topple::cli::add_invert_command(app);
   topple::cli::add_synth_command(app);
   topple::cli::add_rock_command(app);
   topple::cli::add_sweep_command(app);

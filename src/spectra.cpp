@@ -94,7 +94,15 @@ std::vector<double> konno_ohmachi_smooth(const FourierSpectrum& spectrum, std::s
   const auto& f = spectrum.frequency_hz;
   const auto& amp = spectrum.amplitude_m_s;
   std::vector<double> log_f(f.size(), 0.0);
-  for (std::size_t k = 1; k < f.size(); ++k) log_f[k] = std::log10(f[k]);
+  // sin(b (log f - log fc)) = sin(b log f) cos(b log fc) - cos(b log f) sin(b log fc): the sines and cosines of the
+  // spectrum's frequencies are computed once, not once per (frequency, centre) pair.
+  std::vector<double> sin_f(f.size(), 0.0);
+  std::vector<double> cos_f(f.size(), 1.0);
+  for (std::size_t k = 1; k < f.size(); ++k) {
+    log_f[k] = std::log10(f[k]);
+    sin_f[k] = std::sin(bandwidth * log_f[k]);
+    cos_f[k] = std::cos(bandwidth * log_f[k]);
+  }
   const double half_width = 6.0 * kPi / bandwidth;  // in log10 f
   const double ratio = std::pow(10.0, half_width);
   std::vector<double> out(centre_hz.size(), 0.0);
@@ -104,6 +112,8 @@ std::vector<double> konno_ohmachi_smooth(const FourierSpectrum& spectrum, std::s
       throw parameter_error("centre_hz", fmt::format("centre frequencies must be positive, got {} Hz", fc));
     }
     const double log_fc = std::log10(fc);
+    const double sin_c = std::sin(bandwidth * log_fc);
+    const double cos_c = std::cos(bandwidth * log_fc);
     auto k = static_cast<std::size_t>(std::lower_bound(f.begin(), f.end(), fc / ratio) - f.begin());
     k = std::max<std::size_t>(k, 1);
     double num = 0.0;
@@ -113,7 +123,7 @@ std::vector<double> konno_ohmachi_smooth(const FourierSpectrum& spectrum, std::s
       if (std::abs(x) > 6.0 * kPi) continue;
       double w = 1.0;
       if (std::abs(x) > 1e-8) {  // sin(x)/x = 1 - x^2/6: below 1e-8 the difference is under 1e-16
-        const double s = std::sin(x) / x;
+        const double s = (sin_f[k] * cos_c - cos_f[k] * sin_c) / x;
         w = (s * s) * (s * s);
       }
       num += w * amp[k];

@@ -132,7 +132,7 @@ TEST(SlammerVerification, RigidBlockOneWayAll180Results) {
   EXPECT_EQ(failures, 0);
   std::sort(rel_diffs.begin(), rel_diffs.end());
   ASSERT_FALSE(rel_diffs.empty());
-  const auto pct = [&](double q) { return 100.0 * rel_diffs[static_cast<std::size_t>(q * (rel_diffs.size() - 1))]; };
+  const auto pct = [&](double q) { return 100.0 * rel_diffs[static_cast<std::size_t>(q * static_cast<double>(rel_diffs.size() - 1))]; };
   fmt::print("SLAMMER rigid one-way: {} results, {} >= 0.5 cm; (topple - SLAMMER)/SLAMMER in %: min {:.3f}, "
              "p10 {:.3f}, median {:.3f}, p90 {:.3f}, max {:.3f}; below 0.5 cm: max |diff| {:.4f} cm\n",
              cases, rel_diffs.size(), pct(0.0), pct(0.1), pct(0.5), pct(0.9), pct(1.0), worst_small_abs);

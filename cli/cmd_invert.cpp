@@ -1,0 +1,115 @@
+// topple invert SURVEY: from observed objects to PGA and predominant-frequency bounds.
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "topple/error.hpp"
+#include "topple/inversion.hpp"
+#include "topple/io/inversion_output.hpp"
+#include "topple/io/survey_file.hpp"
+#include "topple/report.hpp"
+
+namespace topple::cli {
+namespace {
+
+struct InvertOptions {
+  std::string survey;
+  bool json = false;
+  std::string grid;
+  std::string map;
+  std::string report;
+  int threads = 0;
+  bool quiet = false;
+};
+
+std::string interval_text(const std::optional<double>& lo, const std::optional<double>& hi, const char* unit) {
+  const auto end = [&](const std::optional<double>& v, const char* none) {
+    return v ? fmt::format("{:.3g}", *v) : std::string(none);
+  };
+  return fmt::format("[{}, {}] {}", end(lo, "unconstrained"), end(hi, "unconstrained"), unit);
+}
+
+void print_site(const Site& site, const InversionResult& r) {
+  fmt::print("== {}\n", site.name);
+  fmt::print("objects: {}   grid: {} PGA x {} frequencies, {} runs in {:.1f} s\n", site.objects.size(),
+             r.pga_g.size(), r.freq_hz.size(), r.runs, r.seconds);
+  fmt::print("static bounds on PGA: {}\n", interval_text(r.bounds.lower_g, r.bounds.upper_g, "g"));
+  for (const auto& b : r.bounds.lower) fmt::print("  lower {:.3g} g  {}: {}\n", b.pga_g, b.object_id, b.reason);
+  for (const auto& b : r.bounds.upper) fmt::print("  upper {:.3g} g  {}: {}\n", b.pga_g, b.object_id, b.reason);
+  fmt::print("PGA:       best {:.3g} g, median {:.3g} g, 68 % {}, 95 % {}\n", r.pga.best, r.pga.median,
+             interval_text(r.pga.ci68_low, r.pga.ci68_high, "g"), interval_text(r.pga.ci95_low, r.pga.ci95_high, "g"));
+  fmt::print("frequency: best {:.3g} Hz, median {:.3g} Hz, 68 % {}, 95 % {}\n", r.freq.best, r.freq.median,
+             interval_text(r.freq.ci68_low, r.freq.ci68_high, "Hz"),
+             interval_text(r.freq.ci95_low, r.freq.ci95_high, "Hz"));
+  fmt::print("objects (probability of the observation at the best cell):\n");
+  for (const auto& o : r.objects) fmt::print("  {:<16} {:<15} {:.2f}\n", o.id, outcome_name(o.outcome), o.probability_at_best);
+  for (const auto& note : r.notes) fmt::print("note: {}\n", note);
+}
+
+void run_invert(const InvertOptions& o) {
+  const Survey survey = io::read_survey(o.survey);
+  std::vector<InversionResult> results;
+  for (const Site& site : survey.sites) {
+    if (!o.quiet) fmt::print(stderr, "topple: inverting {} ({} objects)...\n", site.name, site.objects.size());
+    results.push_back(invert_site(site, survey.inversion, InversionOptions{o.threads}));
+  }
+  const bool multi = survey.sites.size() > 1;
+  const auto site_path = [&](const std::string& base, std::size_t i) {
+    if (!multi) return std::filesystem::path(base);
+    std::filesystem::path p(base);
+    return p.parent_path() / fmt::format("{}.site{}{}", p.stem().string(), i + 1, p.extension().string());
+  };
+  if (!o.grid.empty()) {
+    for (std::size_t i = 0; i < results.size(); ++i) io::write_inversion_grid_csv(site_path(o.grid, i), results[i]);
+  }
+  if (!o.map.empty()) {
+    io::write_sites_geojson(o.map, survey.sites, results);
+    if (survey.epicentre_lat_deg) {
+      std::filesystem::path csv(o.map);
+      csv.replace_extension(".distance.csv");
+      io::write_distance_csv(csv, survey.sites, results, *survey.epicentre_lat_deg, *survey.epicentre_lon_deg);
+    }
+  }
+  if (!o.report.empty()) {
+    for (std::size_t i = 0; i < results.size(); ++i) {
+      const std::filesystem::path dir = multi ? std::filesystem::path(o.report) / fmt::format("site{}", i + 1)
+                                              : std::filesystem::path(o.report);
+      write_report(dir, survey, survey.sites[i], results[i]);
+      if (!o.quiet) fmt::print(stderr, "topple: report written to {}\n", (dir / "index.html").string());
+    }
+  }
+  if (o.json) {
+    if (!multi) {
+      fmt::print("{}\n", io::inversion_json(results[0], survey.sites[0]).dump(2));
+    } else {
+      nlohmann::ordered_json all;
+      all["sites"] = nlohmann::ordered_json::array();
+      for (std::size_t i = 0; i < results.size(); ++i) all["sites"].push_back(io::inversion_json(results[i], survey.sites[i]));
+      fmt::print("{}\n", all.dump(2));
+    }
+    return;
+  }
+  for (std::size_t i = 0; i < results.size(); ++i) print_site(survey.sites[i], results[i]);
+}
+
+}  // namespace
+
+void add_invert_command(CLI::App& app) {
+  auto o = std::make_shared<InvertOptions>();
+  CLI::App* cmd = app.add_subcommand("invert", "From observed objects (a survey file) to PGA and predominant-"
+                                               "frequency bounds, a likelihood map and a report");
+  cmd->add_option("survey", o->survey, "Survey file (TOML; see examples/survey.toml)")->required();
+  cmd->add_flag("--json", o->json, "Print the result as one JSON object");
+  cmd->add_option("--grid", o->grid, "Write the likelihood grid to this CSV file");
+  cmd->add_option("--map", o->map, "Write one GeoJSON point per site (and, with an epicentre, PGA vs distance CSV)");
+  cmd->add_option("--report", o->report, "Write a self-contained HTML report (and its figures) into this directory");
+  cmd->add_option("--threads", o->threads, "Worker threads (default: all cores)");
+  cmd->add_flag("--quiet", o->quiet, "No progress messages on stderr");
+  cmd->callback([o] { run_invert(*o); });
+}
+
+}  // namespace topple::cli

@@ -1,0 +1,33 @@
+#pragma once
+// Inversion results as JSON (a stable interface), the grid as CSV, sites as GeoJSON, PGA vs epicentral distance.
+#include <filesystem>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "topple/inversion.hpp"
+#include "topple/survey.hpp"
+
+namespace topple::io {
+
+/// One site's result: keys pga_g and freq_hz ({best, median, ci68: [low, high], ci95: [low, high]}, null ends where
+/// unconstrained), static_bounds_pga_g ([low, high], null where unconstrained), contradictions, notes, objects,
+/// grid axes, runs, seconds.
+[[nodiscard]] nlohmann::ordered_json inversion_json(const InversionResult& result, const Site& site);
+
+/// The grid: one row per cell, pga_g,freq_hz,log_likelihood,posterior,p_<object id>...
+void write_inversion_grid_csv(const std::filesystem::path& path, const InversionResult& result);
+
+/// One GeoJSON point per site that has coordinates, with PGA median and intervals (for iso-acceleration maps).
+void write_sites_geojson(const std::filesystem::path& path, const std::vector<Site>& sites,
+                         const std::vector<InversionResult>& results);
+
+/// PGA vs epicentral distance (great-circle, R = 6371 km): site,distance_km,pga_median_g,ci68/ci95 ends.
+void write_distance_csv(const std::filesystem::path& path, const std::vector<Site>& sites,
+                        const std::vector<InversionResult>& results, double epicentre_lat_deg,
+                        double epicentre_lon_deg);
+
+/// Great-circle distance by the haversine formula, km (Earth radius 6371 km).
+[[nodiscard]] double epicentral_distance_km(double lat1_deg, double lon1_deg, double lat2_deg, double lon2_deg);
+
+}  // namespace topple::io

@@ -1,0 +1,34 @@
+#pragma once
+// The inversion's report: figures (likelihood map with static bounds and one contour per object, marginal
+// posteriors, an example motion at the best cell with every object's response) and a self-contained HTML page that
+// a field engineer can hand on (figures embedded, observations table, method in short, the numbers, the inputs).
+#include <filesystem>
+
+#include "topple/inversion.hpp"
+#include "topple/plot.hpp"
+#include "topple/survey.hpp"
+
+namespace topple {
+
+/// The likelihood map (posterior over PGA x frequency, log axes), static bounds as vertical lines, each object's
+/// P(observation) = 0.5 contour, the best cell.
+[[nodiscard]] plot::MapFigure likelihood_map_figure(const InversionResult& result, const Site& site);
+
+/// Marginal posterior of PGA (or frequency) with the median and the 68 % / 95 % intervals.
+[[nodiscard]] plot::Figure marginal_figure(const InversionResult& result, bool pga);
+
+/// One motion of the family at the best cell and each object's response to it (nominal parameters).
+[[nodiscard]] plot::Figure best_cell_figure(const InversionResult& result, const Site& site,
+                                            const InversionSettings& settings);
+
+/// Segments of the level-`level` contour of a field on a grid (marching squares), as one polyline with NaN
+/// separators between segments; x and y in data coordinates.
+[[nodiscard]] plot::Series contour_series(const std::vector<double>& x, const std::vector<double>& y,
+                                          const std::vector<double>& z, double level, const std::string& label);
+
+/// Writes DIR/index.html and the figures (DIR/likelihood.svg, DIR/marginal_pga.svg, DIR/marginal_freq.svg,
+/// DIR/best_cell.svg, DIR/grid.csv, DIR/result.json). The page embeds the SVGs inline: it is self-contained.
+void write_report(const std::filesystem::path& dir, const Survey& survey, const Site& site,
+                  const InversionResult& result);
+
+}  // namespace topple

@@ -1,0 +1,92 @@
+#pragma once
+// A field survey: what was seen at one or more sites after an earthquake (thesis section 1.1).
+//
+// At each site, a field engineer notes household objects that slid (and how far), rocked, toppled or stayed put,
+// with their sizes, the surfaces they stood on and how sure the observation is. Read from a TOML file by
+// io::read_survey (topple/io/survey_file.hpp); inverted by topple/inversion.hpp.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "topple/rocking.hpp"
+
+namespace topple {
+
+/// A quantity known as a value (low == high) or a range [low, high], sampled uniformly in the inversion.
+struct Interval {
+  double low = 0.0;
+  double high = 0.0;
+  [[nodiscard]] bool is_value() const noexcept { return low == high; }
+  [[nodiscard]] double mid() const noexcept { return 0.5 * (low + high); }
+};
+
+enum class Outcome {
+  overturned,      ///< toppled: |theta| reached pi/2
+  not_overturned,  ///< stood (it may have rocked)
+  rocked,          ///< visibly rocked (max |theta| >= kVisibleRockingRad) but stood
+  slid,            ///< slid: a distance (value +- uncertainty), at least a distance, or just "slid" (>= kVisibleSlipM)
+  not_slid,        ///< did not slide (max |d| < kVisibleSlipM)
+};
+
+/// What "visibly" means (stated once, used for the outcomes above and in docs/method.md).
+inline constexpr double kVisibleRockingRad = 0.01;  ///< 0.57 degrees of tilt at the peak
+inline constexpr double kVisibleSlipM = 0.002;      ///< 2 mm
+
+[[nodiscard]] std::string_view outcome_name(Outcome outcome);  ///< "overturned", "not_overturned", ...
+
+enum class Evidence { certain, likely, reported };
+[[nodiscard]] std::string_view evidence_name(Evidence evidence);
+/// The chance that an observation is wrong (misreported, misremembered): certain 0.02, likely 0.10, reported 0.25.
+/// The inversion scores a run that reproduces the observation 1 - eps, one that does not eps.
+[[nodiscard]] double evidence_error_rate(Evidence evidence) noexcept;
+
+struct ObservedObject {
+  std::string id;
+  std::string description;
+  RockingBody body;            ///< nominal geometry (shape, a, h, D)
+  std::optional<double> width_m, height_m, diameter_m;  ///< dimensions as given (for reports)
+  Interval mu;                 ///< friction coefficient (value or range)
+  bool e_housner = true;       ///< restitution from Housner's formula for the shape
+  Interval e;                  ///< given restitution (value or range) when !e_housner
+  std::string support = "ground";  ///< "ground", "furniture", "upper floor" (free text)
+  Interval amplification{1.0, 1.0};  ///< support motion / ground motion (>= 1 for furniture and upper floors)
+  std::optional<double> orientation_deg;  ///< angle between the object's rocking plane and the shaking direction;
+                                          ///< the rocking model sees cos(angle) of the motion (0 when unknown)
+  Outcome outcome = Outcome::not_overturned;
+  std::optional<double> slid_m;              ///< observed sliding distance (outcome slid)
+  double slid_uncertainty_m = 0.0;           ///< its one-sigma uncertainty
+  std::optional<double> slid_at_least_m;     ///< or: it slid at least this far
+  Evidence evidence = Evidence::certain;
+};
+
+struct Site {
+  std::string name;
+  std::optional<double> lat_deg, lon_deg;
+  std::string notes;
+  std::vector<ObservedObject> objects;
+};
+
+enum class MotionFamily { synthetic, records };
+
+/// How the inversion explores the shaking (defaults as documented in docs/method.md).
+struct InversionSettings {
+  MotionFamily family = MotionFamily::synthetic;
+  std::vector<std::string> records;      ///< family = records: paths (relative to the survey file, resolved)
+  double pga_min_g = 0.02, pga_max_g = 2.0;
+  int pga_count = 30;
+  double freq_min_hz = 0.3, freq_max_hz = 20.0;
+  int freq_count = 25;
+  int motions_per_cell = 40;
+  std::uint64_t seed = 1;
+  double duration_s = 20.0;              ///< synthetic motions' length
+  double g_m_s2 = kStandardGravity;
+};
+
+struct Survey {
+  std::string source_file;
+  std::vector<Site> sites;
+  InversionSettings inversion;
+  std::optional<double> epicentre_lat_deg, epicentre_lon_deg;
+};
+
+}  // namespace topple

@@ -1,0 +1,136 @@
+#include "topple/io/inversion_output.hpp"
+
+#include <cmath>
+#include <fstream>
+
+#include <fmt/format.h>
+
+#include "topple/error.hpp"
+#include "topple/units.hpp"
+
+namespace topple::io {
+namespace {
+
+nlohmann::ordered_json opt(const std::optional<double>& v) {
+  return v ? nlohmann::ordered_json(*v) : nlohmann::ordered_json(nullptr);
+}
+
+nlohmann::ordered_json estimate_json(const Estimate& e) {
+  nlohmann::ordered_json j;
+  j["best"] = e.best;
+  j["median"] = e.median;
+  j["ci68"] = {opt(e.ci68_low), opt(e.ci68_high)};
+  j["ci95"] = {opt(e.ci95_low), opt(e.ci95_high)};
+  return j;
+}
+
+std::ofstream open_out(const std::filesystem::path& path, const std::string& field) {
+  std::ofstream out(path, std::ios::binary);
+  if (!out) throw InputError(InputLocation{path.string(), {}, field}, "cannot open the file for writing");
+  return out;
+}
+
+}  // namespace
+
+nlohmann::ordered_json inversion_json(const InversionResult& r, const Site& site) {
+  nlohmann::ordered_json j;
+  j["site"] = site.name;
+  j["lat"] = opt(site.lat_deg);
+  j["lon"] = opt(site.lon_deg);
+  j["pga_g"] = estimate_json(r.pga);
+  j["freq_hz"] = estimate_json(r.freq);
+  j["static_bounds_pga_g"] = {opt(r.bounds.lower_g), opt(r.bounds.upper_g)};
+  j["contradictions"] = r.bounds.contradictions;
+  j["notes"] = r.notes;
+  nlohmann::ordered_json objects = nlohmann::ordered_json::array();
+  for (std::size_t o = 0; o < r.objects.size(); ++o) {
+    const ObjectReport& rep = r.objects[o];
+    nlohmann::ordered_json oj;
+    oj["id"] = rep.id;
+    oj["outcome"] = std::string(outcome_name(rep.outcome));
+    oj["probability_at_best"] = rep.probability_at_best;
+    oj["max_probability"] = rep.max_probability;
+    oj["reproduced_anywhere"] = rep.reproduced_anywhere;
+    for (const auto& b : r.bounds.lower) {
+      if (b.object_id == rep.id) oj["static_lower_bound_pga_g"] = b.pga_g;
+    }
+    for (const auto& b : r.bounds.upper) {
+      if (b.object_id == rep.id) oj["static_upper_bound_pga_g"] = b.pga_g;
+    }
+    objects.push_back(oj);
+  }
+  j["objects"] = objects;
+  j["grid"] = {{"pga_g", r.pga_g}, {"freq_hz", r.freq_hz}, {"measured_freq_hz", r.measured_freq_hz}};
+  j["best_cell"] = {{"pga_g", r.pga_g[r.best_cell / r.freq_hz.size()]}, {"freq_hz", r.freq_hz[r.best_cell % r.freq_hz.size()]}};
+  j["runs"] = r.runs;
+  j["seconds"] = r.seconds;
+  return j;
+}
+
+void write_inversion_grid_csv(const std::filesystem::path& path, const InversionResult& r) {
+  auto out = open_out(path, "--grid");
+  out << "pga_g,freq_hz,log_likelihood,posterior";
+  for (const auto& o : r.objects) out << ",p_" << o.id;
+  out << "\n";
+  const std::size_t nf = r.freq_hz.size();
+  for (std::size_t c = 0; c < r.posterior.size(); ++c) {
+    out << fmt::format("{},{},{},{}", r.pga_g[c / nf], r.freq_hz[c % nf], r.log_likelihood[c], r.posterior[c]);
+    for (const auto& o : r.objects) out << fmt::format(",{}", o.probability[c]);
+    out << "\n";
+  }
+}
+
+double epicentral_distance_km(double lat1, double lon1, double lat2, double lon2) {
+  const double d2r = kPi / 180.0;
+  const double dlat = (lat2 - lat1) * d2r;
+  const double dlon = (lon2 - lon1) * d2r;
+  const double a = std::sin(dlat / 2) * std::sin(dlat / 2) +
+                   std::cos(lat1 * d2r) * std::cos(lat2 * d2r) * std::sin(dlon / 2) * std::sin(dlon / 2);
+  return 2.0 * 6371.0 * std::asin(std::min(1.0, std::sqrt(a)));
+}
+
+void write_sites_geojson(const std::filesystem::path& path, const std::vector<Site>& sites,
+                         const std::vector<InversionResult>& results) {
+  nlohmann::ordered_json fc;
+  fc["type"] = "FeatureCollection";
+  fc["features"] = nlohmann::ordered_json::array();
+  for (std::size_t i = 0; i < sites.size(); ++i) {
+    if (!sites[i].lat_deg || !sites[i].lon_deg) continue;
+    nlohmann::ordered_json f;
+    f["type"] = "Feature";
+    f["geometry"] = {{"type", "Point"}, {"coordinates", {*sites[i].lon_deg, *sites[i].lat_deg}}};
+    const auto& r = results[i];
+    f["properties"] = {{"site", sites[i].name},
+                       {"pga_median_g", r.pga.median},
+                       {"pga_best_g", r.pga.best},
+                       {"pga_ci68_g", {opt(r.pga.ci68_low), opt(r.pga.ci68_high)}},
+                       {"pga_ci95_g", {opt(r.pga.ci95_low), opt(r.pga.ci95_high)}},
+                       {"static_bounds_pga_g", {opt(r.bounds.lower_g), opt(r.bounds.upper_g)}},
+                       {"freq_median_hz", r.freq.median}};
+    fc["features"].push_back(f);
+  }
+  auto out = open_out(path, "--map");
+  out << fc.dump(2) << "\n";
+}
+
+void write_distance_csv(const std::filesystem::path& path, const std::vector<Site>& sites,
+                        const std::vector<InversionResult>& results, double lat, double lon) {
+  auto out = open_out(path, "--map");
+  const auto cell = [](const std::optional<double>& v) { return v ? fmt::format("{}", *v) : std::string(); };
+  out << "site,epicentral_distance_km,pga_median_g,pga_ci68_low_g,pga_ci68_high_g,pga_ci95_low_g,pga_ci95_high_g\n";
+  for (std::size_t i = 0; i < sites.size(); ++i) {
+    if (!sites[i].lat_deg || !sites[i].lon_deg) continue;
+    const auto& r = results[i];
+    std::string name = sites[i].name;
+    if (name.find_first_of(",\"") != std::string::npos) {
+      std::string q = "\"";
+      for (char c : name) q += (c == '"') ? std::string("\"\"") : std::string(1, c);
+      name = q + "\"";
+    }
+    out << fmt::format("{},{},{},{},{},{},{}\n", name,
+                       epicentral_distance_km(lat, lon, *sites[i].lat_deg, *sites[i].lon_deg), r.pga.median,
+                       cell(r.pga.ci68_low), cell(r.pga.ci68_high), cell(r.pga.ci95_low), cell(r.pga.ci95_high));
+  }
+}
+
+}  // namespace topple::io

@@ -1,0 +1,401 @@
+// Survey file reader (TOML, toml++). Every error names the file, the line when known, and the key path.
+#include "topple/io/survey_file.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include "topple/error.hpp"
+#include "topple/units.hpp"
+
+namespace topple {
+
+std::string_view outcome_name(Outcome o) {
+  switch (o) {
+    case Outcome::overturned: return "overturned";
+    case Outcome::not_overturned: return "not_overturned";
+    case Outcome::rocked: return "rocked";
+    case Outcome::slid: return "slid";
+    case Outcome::not_slid: return "not_slid";
+  }
+  return "unknown";
+}
+
+std::string_view evidence_name(Evidence e) {
+  switch (e) {
+    case Evidence::certain: return "certain";
+    case Evidence::likely: return "likely";
+    case Evidence::reported: return "reported";
+  }
+  return "unknown";
+}
+
+double evidence_error_rate(Evidence e) noexcept {
+  switch (e) {
+    case Evidence::certain: return 0.02;
+    case Evidence::likely: return 0.10;
+    case Evidence::reported: return 0.25;
+  }
+  return 0.02;
+}
+
+namespace io {
+namespace {
+
+/// Reads one table, remembering which keys were used so that unknown ones are refused (typos must not pass).
+class Reader {
+ public:
+  Reader(const toml::table& table, std::string file, std::string path)
+      : table_(table), file_(std::move(file)), path_(std::move(path)) {}
+
+  [[nodiscard]] InputError error(std::string_view key, const std::string& problem, const toml::node* node = nullptr) const {
+    std::optional<std::size_t> line;
+    const toml::node* at = node != nullptr ? node : table_.get(key);
+    if (at != nullptr && at->source().begin.line > 0) line = at->source().begin.line;
+    else if (table_.source().begin.line > 0) line = table_.source().begin.line;
+    return InputError(InputLocation{file_, line, key.empty() ? path_ : field(key)}, problem);
+  }
+  [[nodiscard]] std::string field(std::string_view key) const {
+    return path_.empty() ? std::string(key) : path_ + "." + std::string(key);
+  }
+  const toml::node* get(std::string_view key) {
+    used_.insert(std::string(key));
+    return table_.get(key);
+  }
+  bool has(std::string_view key) const { return table_.contains(key); }
+
+  std::optional<std::string> string(std::string_view key) {
+    const toml::node* n = get(key);
+    if (n == nullptr) return std::nullopt;
+    if (!n->is_string()) throw error(key, "expected a string", n);
+    return n->as_string()->get();
+  }
+  std::optional<double> number(std::string_view key) {
+    const toml::node* n = get(key);
+    if (n == nullptr) return std::nullopt;
+    return as_number(key, *n);
+  }
+  double as_number(std::string_view key, const toml::node& n) const {
+    double v = 0.0;
+    if (n.is_floating_point()) v = n.as_floating_point()->get();
+    else if (n.is_integer()) v = static_cast<double>(n.as_integer()->get());
+    else throw error(key, "expected a number", &n);
+    if (!std::isfinite(v)) throw error(key, "must be finite", &n);
+    return v;
+  }
+  /// A value or a two-element range [low, high] (low <= high).
+  std::optional<Interval> interval(std::string_view key) {
+    const toml::node* n = get(key);
+    if (n == nullptr) return std::nullopt;
+    if (const auto* arr = n->as_array()) {
+      if (arr->size() != 2) throw error(key, "a range is [low, high]", n);
+      const double lo = as_number(key, *arr->get(0));
+      const double hi = as_number(key, *arr->get(1));
+      if (lo > hi) throw error(key, fmt::format("range [{}, {}] has low > high", lo, hi), n);
+      return Interval{lo, hi};
+    }
+    const double v = as_number(key, *n);
+    return Interval{v, v};
+  }
+  /// A length string with a unit ("8cm").
+  std::optional<double> length(std::string_view key) {
+    const toml::node* n = get(key);
+    if (n == nullptr) return std::nullopt;
+    if (!n->is_string()) {
+      throw error(key, "a length needs its unit: write it as a string such as \"8cm\" or \"0.08m\"", n);
+    }
+    try {
+      return parse_length_m(n->as_string()->get(), field(key));
+    } catch (const InputError& e) {
+      throw error(key, e.problem(), n);
+    }
+  }
+  /// [min, max, count] of a log-spaced axis.
+  std::optional<std::tuple<double, double, int>> axis(std::string_view key) {
+    const toml::node* n = get(key);
+    if (n == nullptr) return std::nullopt;
+    const auto* arr = n->as_array();
+    if (arr == nullptr || arr->size() != 3) throw error(key, "expected [min, max, count]", n);
+    const double lo = as_number(key, *arr->get(0));
+    const double hi = as_number(key, *arr->get(1));
+    const double count = as_number(key, *arr->get(2));
+    if (!(lo > 0.0) || !(hi > lo)) throw error(key, fmt::format("need 0 < min < max, got [{}, {}]", lo, hi), n);
+    if (count < 2 || count > 1000 || count != std::floor(count)) {
+      throw error(key, fmt::format("count must be a whole number from 2 to 1000, got {}", count), n);
+    }
+    return std::tuple{lo, hi, static_cast<int>(count)};
+  }
+  void refuse_unknown() const {
+    for (const auto& [key, node] : table_) {
+      if (!used_.contains(std::string(key.str()))) {
+        throw error(key.str(), "unknown key (check its spelling in docs/survey.md)", &node);
+      }
+    }
+  }
+
+ private:
+  const toml::table& table_;
+  std::string file_;
+  std::string path_;
+  std::set<std::string> used_;
+};
+
+Outcome parse_outcome(Reader& r, std::string_view text) {
+  for (Outcome o : {Outcome::overturned, Outcome::not_overturned, Outcome::rocked, Outcome::slid, Outcome::not_slid}) {
+    if (text == outcome_name(o)) return o;
+  }
+  throw r.error("outcome", fmt::format("unknown outcome '{}' (known: overturned, not_overturned, rocked, slid, "
+                                       "not_slid)", text));
+}
+
+ObservedObject parse_object(const toml::table& t, const std::string& file, const std::string& path) {
+  Reader r(t, file, path);
+  ObservedObject o;
+  o.id = r.string("id").value_or("");
+  if (o.id.empty()) throw r.error("id", "every object needs an id");
+  Reader named(t, file, path + "(" + o.id + ")");
+  named.get("id");
+  o.description = named.string("description").value_or("");
+  const std::string shape = named.string("shape").value_or("block");
+  const auto require = [&](std::string_view key) {
+    auto v = named.length(key);
+    if (!v) throw named.error(key, fmt::format("a {} needs its {} (a length with unit)", shape, key));
+    if (!(*v > 0.0)) throw named.error(key, fmt::format("must be positive, got {} m", *v));
+    return *v;
+  };
+  try {
+    if (shape == "block") {
+      o.width_m = require("width");
+      o.height_m = require("height");
+      o.body = RockingBody::block(*o.width_m, *o.height_m);
+    } else if (shape == "cylinder") {
+      o.diameter_m = require("diameter");
+      o.height_m = require("height");
+      o.body = RockingBody::cylinder(*o.diameter_m, *o.height_m);
+    } else if (shape == "general") {
+      const double a = require("a");
+      const double h = require("h");
+      const toml::node* dn = named.get("D");
+      if (dn == nullptr || !dn->is_string()) throw named.error("D", "a general body needs D = I/m with its unit, e.g. \"0.01m2\"");
+      std::string dtext = dn->as_string()->get();
+      // D is an area (m^2): accept "m2"/"cm2" by converting the length unit's square.
+      double factor = 0.0;
+      for (const auto& [suffix, f] : {std::pair{"cm2", 1e-4}, std::pair{"mm2", 1e-6}, std::pair{"m2", 1.0}}) {
+        if (dtext.size() > std::string_view(suffix).size() &&
+            dtext.compare(dtext.size() - std::string_view(suffix).size(), std::string::npos, suffix) == 0) {
+          factor = f;
+          dtext.resize(dtext.size() - std::string_view(suffix).size());
+          break;
+        }
+      }
+      double d = 0.0;
+      std::istringstream ss(dtext);
+      if (factor == 0.0 || !(ss >> d) || !(d > 0.0)) {
+        throw named.error("D", fmt::format("'{}' is not a positive area with unit m2, cm2 or mm2", dn->as_string()->get()), dn);
+      }
+      o.body = RockingBody::general(a, h, d * factor);
+    } else {
+      throw named.error("shape", fmt::format("unknown shape '{}' (known: block, cylinder, general)", shape));
+    }
+  } catch (const InputError& e) {
+    if (!e.where().file.empty()) throw;
+    throw named.error(e.where().field.empty() ? "shape" : e.where().field, e.problem());
+  }
+  const auto mu = named.interval("mu");
+  if (!mu) throw named.error("mu", "the friction coefficient is required (a value or a range [low, high])");
+  if (mu->low < 0.0) throw named.error("mu", "must be >= 0");
+  o.mu = *mu;
+  if (const toml::node* e = named.get("e")) {
+    if (e->is_string()) {
+      if (e->as_string()->get() != "housner") throw named.error("e", "write \"housner\", a value or a range", e);
+    } else {
+      const auto iv = named.interval("e");
+      if (!iv || iv->low < 0.0 || iv->high > 1.0) throw named.error("e", "restitution must lie in [0, 1]", e);
+      o.e_housner = false;
+      o.e = *iv;
+    }
+  }
+  o.support = named.string("support").value_or("ground");
+  if (const auto amp = named.interval("amplification")) {
+    if (!(amp->low > 0.0)) throw named.error("amplification", "must be positive");
+    o.amplification = *amp;
+  }
+  if (const auto orient = named.number("orientation_deg")) {
+    if (*orient < 0.0 || *orient > 90.0) throw named.error("orientation_deg", "must lie in [0, 90] degrees");
+    o.orientation_deg = orient;
+  }
+  const auto outcome = named.string("outcome");
+  if (!outcome) throw named.error("outcome", "every object needs its observed outcome");
+  o.outcome = parse_outcome(named, *outcome);
+  const bool rocks = o.outcome == Outcome::overturned || o.outcome == Outcome::not_overturned || o.outcome == Outcome::rocked;
+  if (rocks && o.e_housner && housner_restitution(o.body) < 0.0) {
+    throw named.error("e", "Housner's restitution is negative for so squat a body: give e explicitly");
+  }
+  o.slid_m = named.length("slid");
+  if (const auto u = named.length("slid_uncertainty")) o.slid_uncertainty_m = *u;
+  o.slid_at_least_m = named.length("slid_at_least");
+  if ((o.slid_m || o.slid_at_least_m) && o.outcome != Outcome::slid) {
+    throw named.error("slid", "a sliding distance goes with outcome = \"slid\"");
+  }
+  if (o.slid_m && o.slid_at_least_m) throw named.error("slid_at_least", "give either slid or slid_at_least");
+  if (o.slid_m && !(*o.slid_m > 0.0)) throw named.error("slid", "must be positive");
+  if (o.slid_uncertainty_m < 0.0) throw named.error("slid_uncertainty", "must be >= 0");
+  if (const auto ev = named.string("evidence")) {
+    if (*ev == "certain") o.evidence = Evidence::certain;
+    else if (*ev == "likely") o.evidence = Evidence::likely;
+    else if (*ev == "reported") o.evidence = Evidence::reported;
+    else throw named.error("evidence", fmt::format("unknown evidence '{}' (known: certain, likely, reported)", *ev));
+  }
+  named.refuse_unknown();
+  return o;
+}
+
+std::vector<ObservedObject> parse_objects(const toml::node* node, const std::string& file, const std::string& key) {
+  std::vector<ObservedObject> out;
+  if (node == nullptr) return out;
+  const auto* arr = node->as_array();
+  if (arr == nullptr) throw InputError(InputLocation{file, node->source().begin.line, key}, "expected [[" + key + "]] tables");
+  std::set<std::string> ids;
+  for (std::size_t i = 0; i < arr->size(); ++i) {
+    const auto* t = arr->get(i)->as_table();
+    if (t == nullptr) throw InputError(InputLocation{file, node->source().begin.line, key}, "expected a table");
+    out.push_back(parse_object(*t, file, fmt::format("{}[{}]", key, i + 1)));
+    if (!ids.insert(out.back().id).second) {
+      throw InputError(InputLocation{file, t->source().begin.line, fmt::format("{}[{}].id", key, i + 1)},
+                       fmt::format("duplicate object id '{}'", out.back().id));
+    }
+  }
+  return out;
+}
+
+void parse_site_fields(Reader& r, Site& site) {
+  site.name = r.string("name").value_or("");
+  site.lat_deg = r.number("lat");
+  site.lon_deg = r.number("lon");
+  site.notes = r.string("notes").value_or("");
+  if (site.lat_deg && std::abs(*site.lat_deg) > 90.0) throw r.error("lat", "latitude must lie in [-90, 90]");
+  if (site.lon_deg && std::abs(*site.lon_deg) > 180.0) throw r.error("lon", "longitude must lie in [-180, 180]");
+}
+
+}  // namespace
+
+Survey parse_survey(std::string_view text, const std::string& name, const std::filesystem::path& base_dir) {
+  toml::table root;
+  try {
+    root = toml::parse(text, name);
+  } catch (const toml::parse_error& e) {
+    throw InputError(InputLocation{name, static_cast<std::size_t>(e.source().begin.line), {}},
+                     std::string(e.description()));
+  }
+  Survey s;
+  s.source_file = name;
+  Reader top(root, name, "");
+  if (const toml::node* inv = top.get("inversion")) {
+    const auto* t = inv->as_table();
+    if (t == nullptr) throw top.error("inversion", "expected a table");
+    Reader r(*t, name, "inversion");
+    InversionSettings& st = s.inversion;
+    if (const auto fam = r.string("family")) {
+      if (*fam == "synthetic") st.family = MotionFamily::synthetic;
+      else if (*fam == "records") st.family = MotionFamily::records;
+      else throw r.error("family", fmt::format("unknown family '{}' (known: synthetic, records)", *fam));
+    }
+    if (const toml::node* rec = r.get("records")) {
+      const auto* arr = rec->as_array();
+      if (arr == nullptr) throw r.error("records", "expected a list of file paths", rec);
+      for (const auto& item : *arr) {
+        if (!item.is_string()) throw r.error("records", "expected file paths (strings)", &item);
+        std::filesystem::path p(item.as_string()->get());
+        if (p.is_relative()) p = base_dir / p;
+        if (!std::filesystem::exists(p)) throw r.error("records", fmt::format("no such record file '{}'", p.string()), &item);
+        st.records.push_back(p.string());
+      }
+    }
+    if (st.family == MotionFamily::records && st.records.empty()) {
+      throw r.error("records", "family = \"records\" needs records = [\"file\", ...]");
+    }
+    if (const auto ax = r.axis("pga_g")) std::tie(st.pga_min_g, st.pga_max_g, st.pga_count) = *ax;
+    if (const auto ax = r.axis("freq_hz")) std::tie(st.freq_min_hz, st.freq_max_hz, st.freq_count) = *ax;
+    if (const auto n = r.number("motions_per_cell")) {
+      if (*n < 1 || *n > 100000 || *n != std::floor(*n)) throw r.error("motions_per_cell", "must be a whole number >= 1");
+      st.motions_per_cell = static_cast<int>(*n);
+    }
+    if (const auto seed = r.number("seed")) {
+      if (*seed < 0 || *seed != std::floor(*seed)) throw r.error("seed", "must be a whole number >= 0");
+      st.seed = static_cast<std::uint64_t>(*seed);
+    }
+    if (const auto d = r.number("duration_s")) {
+      if (!(*d > 0.0)) throw r.error("duration_s", "must be positive");
+      st.duration_s = *d;
+    }
+    if (const auto g = r.number("g_m_s2")) {
+      if (!(*g > 0.0)) throw r.error("g_m_s2", "must be positive");
+      st.g_m_s2 = *g;
+    }
+    r.refuse_unknown();
+  }
+  if (const toml::node* ev = top.get("event")) {
+    const auto* t = ev->as_table();
+    if (t == nullptr) throw top.error("event", "expected a table");
+    Reader r(*t, name, "event");
+    if (const toml::node* epi = r.get("epicentre")) {
+      const auto* arr = epi->as_array();
+      if (arr == nullptr || arr->size() != 2) throw r.error("epicentre", "expected [lat, lon]", epi);
+      s.epicentre_lat_deg = r.as_number("epicentre", *arr->get(0));
+      s.epicentre_lon_deg = r.as_number("epicentre", *arr->get(1));
+    }
+    r.refuse_unknown();
+  }
+  const bool single = top.has("site") || top.has("object");
+  if (single && top.has("sites")) throw top.error("sites", "use either [site] with [[object]] or [[sites]], not both");
+  if (single) {
+    Site site;
+    if (const toml::node* st = top.get("site")) {
+      const auto* t = st->as_table();
+      if (t == nullptr) throw top.error("site", "expected a table");
+      Reader r(*t, name, "site");
+      parse_site_fields(r, site);
+      r.refuse_unknown();
+    }
+    site.objects = parse_objects(top.get("object"), name, "object");
+    s.sites.push_back(std::move(site));
+  } else if (const toml::node* sites = top.get("sites")) {
+    const auto* arr = sites->as_array();
+    if (arr == nullptr) throw top.error("sites", "expected [[sites]] tables");
+    for (std::size_t i = 0; i < arr->size(); ++i) {
+      const auto* t = arr->get(i)->as_table();
+      if (t == nullptr) throw top.error("sites", "expected a table");
+      Reader r(*t, name, fmt::format("sites[{}]", i + 1));
+      Site site;
+      parse_site_fields(r, site);
+      site.objects = parse_objects(r.get("object"), name, fmt::format("sites[{}].object", i + 1));
+      r.refuse_unknown();
+      s.sites.push_back(std::move(site));
+    }
+  }
+  top.refuse_unknown();
+  if (s.sites.empty()) throw InputError(InputLocation{name, {}, "object"}, "the survey has no site and no object");
+  for (std::size_t i = 0; i < s.sites.size(); ++i) {
+    if (s.sites[i].objects.empty()) {
+      throw InputError(InputLocation{name, {}, s.sites.size() == 1 ? "object" : fmt::format("sites[{}].object", i + 1)},
+                       "a site needs at least one observed object");
+    }
+    if (s.sites[i].name.empty()) s.sites[i].name = fmt::format("site {}", i + 1);
+  }
+  return s;
+}
+
+Survey read_survey(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(InputLocation{path.string(), {}, {}}, "cannot open the survey file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_survey(text.str(), path.string(), path.parent_path());
+}
+
+}  // namespace io
+}  // namespace topple

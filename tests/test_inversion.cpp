@@ -1,0 +1,216 @@
+// Inversion of field observations: static bounds by hand, honesty, and recovery of known shaking.
+#include <cmath>
+#include <string>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include "topple/error.hpp"
+#include "topple/inversion.hpp"
+#include "topple/io/survey_file.hpp"
+#include "topple/spectra.hpp"
+#include "topple/synthesis.hpp"
+
+namespace topple {
+namespace {
+
+ObservedObject block(const std::string& id, double w, double h, Interval mu, Outcome outcome) {
+  ObservedObject o;
+  o.id = id;
+  o.body = RockingBody::block(w, h);
+  o.width_m = w;
+  o.height_m = h;
+  o.mu = mu;
+  o.outcome = outcome;
+  return o;
+}
+
+TEST(StaticBounds, HandComputedValues) {
+  Site site;
+  site.objects.push_back(block("slid-03", 0.2, 0.2, {0.3, 0.3}, Outcome::slid));             // lower mu g = 0.30
+  site.objects.push_back(block("rocked", 0.10, 0.25, {0.6, 0.6}, Outcome::rocked));          // lower a/h = 0.40
+  site.objects.push_back(block("fell", 0.05, 0.25, {0.6, 0.6}, Outcome::overturned));        // lower a/h = 0.20
+  site.objects.push_back(block("stuck", 0.3, 0.3, {0.5, 0.6}, Outcome::not_slid));           // upper mu_hi = 0.60
+  site.objects.push_back(block("standing", 0.1, 0.5, {0.6, 0.6}, Outcome::not_overturned));  // no static bound
+  auto amplified = block("shelf", 0.2, 0.2, {0.5, 0.5}, Outcome::slid);
+  amplified.amplification = {1.0, 1.25};                                                   // lower 0.5 / 1.25 = 0.40
+  site.objects.push_back(amplified);
+  const StaticBounds b = static_bounds(site);
+  ASSERT_TRUE(b.lower_g && b.upper_g);
+  EXPECT_NEAR(*b.lower_g, 0.40, 1e-12);
+  EXPECT_NEAR(*b.upper_g, 0.60, 1e-12);
+  EXPECT_EQ(b.lower.size(), 4u);
+  EXPECT_EQ(b.upper.size(), 1u);
+  EXPECT_NEAR(b.lower[2].pga_g, 0.2, 1e-12);
+  EXPECT_TRUE(b.contradictions.empty());
+}
+
+TEST(StaticBounds, ContradictionsNameBothObjects) {
+  Site site;
+  site.objects.push_back(block("box", 0.2, 0.2, {0.2, 0.2}, Outcome::not_slid));
+  site.objects.push_back(block("pan", 0.2, 0.2, {0.35, 0.35}, Outcome::slid));
+  const StaticBounds b = static_bounds(site);
+  ASSERT_EQ(b.contradictions.size(), 1u);
+  EXPECT_NE(b.contradictions[0].find("pan"), std::string::npos);
+  EXPECT_NE(b.contradictions[0].find("box"), std::string::npos);
+}
+
+std::string survey_text(const std::string& object) {
+  return "[site]\nname = \"t\"\n[[object]]\nid = \"ok\"\nshape = \"block\"\nwidth = \"8cm\"\nheight = \"30cm\"\n"
+         "mu = 0.5\noutcome = \"overturned\"\n[[object]]\n" + object;
+}
+
+void expect_error(const std::string& object, const std::string& field, const std::string& words) {
+  try {
+    (void)io::parse_survey(survey_text(object), "survey.toml");
+    ADD_FAILURE() << "accepted: " << object;
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("survey.toml"), std::string::npos) << msg;
+    EXPECT_NE(msg.find(field), std::string::npos) << msg;
+    EXPECT_NE(msg.find(words), std::string::npos) << msg;
+  }
+}
+
+TEST(SurveyFile, BadObjectsAreNamedWithTheirField) {
+  expect_error("id = \"b\"\nshape = \"pyramid\"\nwidth = \"1cm\"\nheight = \"2cm\"\nmu = 0.5\noutcome = \"slid\"\n",
+               "object[2](b).shape", "unknown shape 'pyramid'");
+  expect_error("id = \"b\"\nshape = \"block\"\nwidth = \"1cm\"\nmu = 0.5\noutcome = \"slid\"\n", "object[2](b).height",
+               "needs its height");
+  expect_error("id = \"b\"\nshape = \"block\"\nwidth = \"-1cm\"\nheight = \"2cm\"\nmu = 0.5\noutcome = \"slid\"\n",
+               "object[2](b).width", "positive");
+  expect_error("id = \"b\"\nshape = \"block\"\nwidth = \"1cm\"\nheight = \"2cm\"\nmu = 0.5\noutcome = \"fell\"\n",
+               "object[2](b).outcome", "unknown outcome 'fell'");
+  expect_error("id = \"b\"\nshape = \"block\"\nwidth = 8\nheight = \"2cm\"\nmu = 0.5\noutcome = \"slid\"\n",
+               "object[2](b).width", "unit");
+  expect_error("id = \"b\"\nshape = \"block\"\nwidth = \"8 furlongs\"\nheight = \"2cm\"\nmu = 0.5\noutcome = \"slid\"\n",
+               "object[2](b).width", "unknown length unit");
+  expect_error("id = \"b\"\nshape = \"block\"\nwidht = \"8cm\"\nwidth = \"8cm\"\nheight = \"2cm\"\nmu = 0.5\noutcome = \"slid\"\n",
+               "object[2](b).widht", "unknown key");
+  expect_error("id = \"b\"\nshape = \"cylinder\"\ndiameter = \"8cm\"\nheight = \"2cm\"\noutcome = \"slid\"\n",
+               "object[2](b).mu", "friction coefficient is required");
+  expect_error("id = \"b\"\nshape = \"block\"\nwidth = \"8cm\"\nheight = \"2cm\"\nmu = [0.6, 0.4]\noutcome = \"slid\"\n",
+               "object[2](b).mu", "low > high");
+  expect_error("id = \"ok\"\nshape = \"block\"\nwidth = \"8cm\"\nheight = \"2cm\"\nmu = 0.5\noutcome = \"slid\"\n",
+               "object[2].id", "duplicate");
+}
+
+TEST(SurveyFile, ExampleParses) {
+  const Survey s = io::read_survey(std::filesystem::path(TOPPLE_SOURCE_DIR) / "examples" / "survey.toml");
+  ASSERT_EQ(s.sites.size(), 1u);
+  EXPECT_EQ(s.sites[0].objects.size(), 8u);
+  EXPECT_EQ(s.inversion.pga_count, 30);
+  EXPECT_EQ(s.inversion.freq_count, 25);
+  EXPECT_EQ(s.inversion.motions_per_cell, 40);
+  EXPECT_NEAR(s.sites[0].objects[0].body.a_m, 0.04, 1e-15);
+  EXPECT_DOUBLE_EQ(s.sites[0].objects[0].amplification.high, 1.3);
+}
+
+InversionSettings small_grid(int motions = 10) {
+  InversionSettings st;
+  st.pga_min_g = 0.05;
+  st.pga_max_g = 2.0;
+  st.pga_count = 14;
+  st.freq_min_hz = 0.5;
+  st.freq_max_hz = 12.0;
+  st.freq_count = 8;
+  st.motions_per_cell = motions;
+  st.duration_s = 10.0;
+  return st;
+}
+
+TEST(Inversion, OnlyUnmovedObjectsLeaveTheLowerEndUnconstrained) {
+  Site site;
+  site.name = "quiet";
+  site.objects.push_back(block("tall", 0.05, 0.5, {0.5, 0.5}, Outcome::not_overturned));
+  site.objects.push_back(block("box", 0.3, 0.3, {0.5, 0.5}, Outcome::not_slid));
+  const InversionResult r = invert_site(site, small_grid(6));
+  EXPECT_FALSE(r.bounds.lower_g.has_value());
+  EXPECT_FALSE(r.pga.ci95_low.has_value());  // nothing pushes the PGA off the grid's lower end
+  EXPECT_TRUE(r.pga.ci95_high.has_value());
+  bool said = false;
+  for (const auto& note : r.notes) said = said || note.find("no static lower bound") != std::string::npos;
+  EXPECT_TRUE(said);
+  EXPECT_EQ(r.runs, 14u * 8u * 6u * 2u);
+}
+
+TEST(Inversion, ObservationsNeverReproducedAreNamed) {
+  Site site;
+  site.name = "odd";
+  // A 1.5 m wide, 0.5 m tall block cannot even lift off under 2 g, and a pot cannot slide 5 m.
+  auto squat = block("squat", 1.5, 0.5, {0.9, 0.9}, Outcome::overturned);  // uplift needs 3 g
+  squat.e_housner = false;
+  squat.e = {0.5, 0.5};
+  site.objects.push_back(squat);
+  auto pot = block("pot", 0.2, 0.1, {0.3, 0.3}, Outcome::slid);
+  pot.slid_at_least_m = 5.0;
+  site.objects.push_back(pot);
+  const InversionResult r = invert_site(site, small_grid(4));
+  bool named = false;
+  for (const auto& note : r.notes) named = named || (note.find("squat") != std::string::npos && note.find("pot") != std::string::npos);
+  EXPECT_TRUE(named);
+}
+
+// Recovery: draw a true (PGA, f), make a motion of the family (a seed the inversion never uses), observe what a set
+// of objects does under it, invert, and check that the truth lies in the 95 % (68 %) HPD region. With a calibrated
+// likelihood the coverage is about 95 % (68 %); the test requires at least 85 % (55 %) over 30 trials (the issue's
+// criterion). Measured when written: 30/30 in the 95 % region, 21/30 in the 68 % one. The truths and the
+// observations are drawn with fixed seeds, so the test is deterministic.
+TEST(Inversion, RecoversKnownShakingWithCalibratedIntervals) {
+  const InversionSettings st = small_grid(10);
+  std::vector<ObservedObject> objects;
+  objects.push_back(block("slender", 0.06, 0.40, {0.5, 0.7}, Outcome::overturned));
+  objects.push_back(block("medium", 0.10, 0.30, {0.5, 0.7}, Outcome::overturned));
+  objects.push_back(block("stocky", 0.15, 0.25, {0.5, 0.7}, Outcome::overturned));
+  objects.push_back(block("tall-box", 0.25, 1.00, {0.5, 0.7}, Outcome::overturned));
+  objects.push_back(block("pan", 0.2, 0.1, {0.15, 0.25}, Outcome::slid));
+  objects.push_back(block("crate", 0.3, 0.3, {0.4, 0.6}, Outcome::slid));
+  objects.push_back(block("bin", 0.3, 0.3, {0.7, 0.9}, Outcome::slid));
+  PortableRandom rng(2026);
+  int in95 = 0;
+  int in68 = 0;
+  const int trials = 30;
+  for (int t = 0; t < trials; ++t) {
+    const double pga = std::exp(std::log(0.12) + (std::log(1.2) - std::log(0.12)) * rng.uniform());
+    const double freq = std::exp(std::log(0.8) + (std::log(8.0) - std::log(0.8)) * rng.uniform());
+    SynthesisSpec spec;
+    spec.pga_m_s2 = pga * st.g_m_s2;
+    spec.predominant_frequency_hz = freq;
+    spec.duration_s = std::max(st.duration_s, 8.0 / freq);
+    spec.dt_s = std::min(0.01, 1.0 / (20.0 * freq));
+    spec.seed = 0xC0FFEE00ULL + static_cast<std::uint64_t>(t);
+    // Built as the family's members are (inversion.hpp): time-scaled so that its measured predominant frequency is
+    // the drawn one.
+    const GroundMotion raw = synthesize(spec);
+    const GroundMotion truth = raw.time_scaled(predominant_frequency_hz(raw) / freq);
+    const double true_freq = predominant_frequency_hz(truth);
+    Site site;
+    site.name = fmt::format("trial {}", t);
+    for (std::size_t o = 0; o < objects.size(); ++o) {
+      ObservedObject obj = objects[o];
+      const DrawnParameters p = draw_parameters(obj, 777 + static_cast<std::uint64_t>(t), 0, o);
+      // What happened: the categorical outcome the truth produces with these parameters.
+      if (obj.outcome == Outcome::overturned || obj.outcome == Outcome::not_overturned) {
+        obj.outcome = Outcome::overturned;
+        obj.outcome = observation_match(obj, p, truth, st.g_m_s2) > 0.5 ? Outcome::overturned : Outcome::not_overturned;
+      } else {
+        obj.outcome = Outcome::slid;
+        obj.outcome = observation_match(obj, p, truth, st.g_m_s2) > 0.5 ? Outcome::slid : Outcome::not_slid;
+      }
+      site.objects.push_back(obj);
+    }
+    const InversionResult r = invert_site(site, st);
+    const bool c95 = in_credible_region(r, pga, true_freq, 0.95);
+    const bool c68 = in_credible_region(r, pga, true_freq, 0.68);
+    in95 += c95;
+    in68 += c68;
+    fmt::print("trial {:2}: truth {:.3f} g {:.2f} Hz; median {:.3f} g {:.2f} Hz; in95 {} in68 {}\n", t, pga, true_freq,
+               r.pga.median, r.freq.median, c95, c68);
+  }
+  fmt::print("coverage: 95 % region {}/{}, 68 % region {}/{}\n", in95, trials, in68, trials);
+  EXPECT_GE(in95, static_cast<int>(std::ceil(0.85 * trials)));
+  EXPECT_GE(in68, static_cast<int>(std::ceil(0.55 * trials)));
+}
+
+}  // namespace
+}  // namespace topple
