@@ -50,7 +50,7 @@ GroundMotion MotionTransform::apply(const GroundMotion& base) const {
 
 std::size_t default_chunk_runs(std::size_t runs) noexcept {
   const std::size_t target = (runs + 4095) / 4096;
-  return std::clamp<std::size_t>(target, 64, 100'000);
+  return std::clamp<std::size_t>(target, 1024, 100'000);
 }
 
 std::size_t Plan::chunk_size() const noexcept { return chunk_runs > 0 ? chunk_runs : default_chunk_runs(runs()); }
@@ -275,6 +275,7 @@ void format_rows(const Plan& plan, const Layout& layout, std::size_t begin, std:
         append_csv_value(*csv, r[k]);
       }
       *csv += '\n';
+      if (run == begin) csv->reserve(csv->size() * (end - begin) * 9 / 8 + 64);  // rows are about as long as the first
     }
     if (jsonl != nullptr) {
       fmt::format_to(std::back_inserter(*jsonl), "{{\"run\":{}", run);
@@ -285,6 +286,7 @@ void format_rows(const Plan& plan, const Layout& layout, std::size_t begin, std:
         append_json_value(*jsonl, r[k]);
       }
       *jsonl += "}\n";
+      if (run == begin) jsonl->reserve(jsonl->size() * (end - begin) * 9 / 8 + 64);
     }
   }
 }
@@ -547,11 +549,10 @@ void write_atomically(const fs::path& path, const std::string& text, const std::
   if (ec) throw InputError(where, fmt::format("cannot rename '{}' to '{}': {}", tmp.string(), path.string(), ec.message()));
 }
 
-std::size_t count_lines(const fs::path& path, bool* ends_with_newline) {
+std::size_t count_lines(const fs::path& path, std::vector<char>& buf, bool* ends_with_newline) {
   std::FILE* f = std::fopen(path.c_str(), "rb");
   *ends_with_newline = false;
   if (f == nullptr) return 0;
-  std::vector<char> buf(1 << 16);
   std::size_t lines = 0;
   std::size_t n = 0;
   char last = '\n';
@@ -649,10 +650,9 @@ void clear_store(const fs::path& dir) {
   }
 }
 
-void append_file(std::FILE* out, const fs::path& path, const InputLocation& where) {
+void append_file(std::FILE* out, const fs::path& path, std::vector<char>& buf, const InputLocation& where) {
   std::FILE* in = std::fopen(path.c_str(), "rb");
   if (in == nullptr) throw InputError(where, fmt::format("cannot read '{}': {}", path.string(), errno_text()));
-  std::vector<char> buf(1 << 20);
   std::size_t n = 0;
   bool ok = true;
   while ((n = std::fread(buf.data(), 1, buf.size(), in)) > 0) ok = ok && std::fwrite(buf.data(), 1, n, out) == n;
@@ -667,8 +667,9 @@ void assemble(const fs::path& dir, std::size_t chunks, std::string_view ext, con
   std::FILE* out = std::fopen(tmp.c_str(), "wb");
   if (out == nullptr) throw InputError(where, fmt::format("cannot write '{}': {}", tmp.string(), errno_text()));
   bool ok = std::fwrite(header.data(), 1, header.size(), out) == header.size();
+  std::vector<char> buf(std::size_t{1} << 20);
   try {
-    for (std::size_t c = 0; c < chunks; ++c) append_file(out, dir / chunk_name(c, ext), where);
+    for (std::size_t c = 0; c < chunks; ++c) append_file(out, dir / chunk_name(c, ext), buf, where);
   } catch (...) {
     std::fclose(out);
     throw;
@@ -752,9 +753,10 @@ SweepReport run_to_files(const Plan& plan, const StoreOptions& store, const Exec
         }
         std::vector<std::uint64_t> pending;
         std::size_t already = 0;
-        const Engine probe(plan, execute);
+        std::vector<char> buf(std::size_t{1} << 20);
         for (std::size_t c = 0; c < report.chunks; ++c) {
-          const auto [begin, end] = probe.chunk_range(c);
+          const std::size_t begin = c * report.chunk_runs;
+          const std::size_t end = std::min(report.runs, begin + report.chunk_runs);
           bool whole = true;
           for (const std::string_view ext : {std::string_view("csv"), std::string_view("jsonl")}) {
             if (ext == "jsonl" && !jsonl) continue;
@@ -764,7 +766,7 @@ SweepReport run_to_files(const Plan& plan, const StoreOptions& store, const Exec
               continue;
             }
             bool newline_end = false;
-            if (count_lines(dir / name, &newline_end) != end - begin || !newline_end) {
+            if (count_lines(dir / name, buf, &newline_end) != end - begin || !newline_end) {
               fs::remove(dir / name);  // cut short (a crash of the machine): compute it again
               whole = false;
             }

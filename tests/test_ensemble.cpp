@@ -150,9 +150,10 @@ TEST(EnsemblePlan, ExpansionOrderAndColumns) {
 }
 
 TEST(EnsemblePlan, DefaultChunkSizeDependsOnRunsOnly) {
-  EXPECT_EQ(default_chunk_runs(10), 64u);
-  EXPECT_EQ(default_chunk_runs(10'000), 64u);
-  EXPECT_EQ(default_chunk_runs(1'000'000), 245u);
+  EXPECT_EQ(default_chunk_runs(10), 1024u);
+  EXPECT_EQ(default_chunk_runs(10'000), 1024u);
+  EXPECT_EQ(default_chunk_runs(4'194'304), 1024u);
+  EXPECT_EQ(default_chunk_runs(4'194'305), 1025u);
   EXPECT_EQ(default_chunk_runs(10'000'000), 2442u);
   EXPECT_EQ(default_chunk_runs(10'000'000'000), 100'000u);
 }
