@@ -47,6 +47,59 @@ nlohmann::ordered_json sliding_summary_json(const SlidingSummary& s, const Slidi
   return j;
 }
 
+nlohmann::ordered_json rocking_summary_json(const RockingSummary& s, const RockingBody& body,
+                                            const RockingOptions& options) {
+  nlohmann::ordered_json j;
+  j["max_abs_rotation_rad"] = s.max_abs_rotation_rad;
+  j["max_rotation_over_alpha"] = s.max_rotation_over_alpha;
+  j["max_rotation_time_s"] = s.max_rotation_time_s;
+  j["max_abs_theta_dot_rad_s"] = s.max_abs_theta_dot_rad_s;
+  j["impacts"] = s.impacts;
+  j["uplifts"] = s.uplifts;
+  j["uplift_time_s"] = optional_json(s.uplift_time_s);
+  j["exceeded_alpha_time_s"] = optional_json(s.exceeded_alpha_time_s);
+  j["overturned"] = s.overturned;
+  j["overturn_time_s"] = optional_json(s.overturn_time_s);
+  j["end_state"] = rocking_state_name(s.end_state);
+  j["end_time_s"] = s.end_time_s;
+  j["still_rocking_at_end"] = s.still_rocking_at_end;
+  j["energy_lost_j_per_kg"] = s.energy_lost_j_per_kg;
+  j["alpha_rad"] = s.alpha_rad;
+  j["alpha_deg"] = s.alpha_rad * 180.0 / kPi;
+  j["R_m"] = s.R_m;
+  j["p_rad_s"] = s.p_rad_s;
+  j["e"] = s.e;
+  j["e_mode"] = options.restitution == RestitutionMode::housner ? "housner" : "given";
+  j["onset_mode"] = onset_mode_name(s.onset_mode);
+  j["onset_accel_ratio"] = optional_json(s.onset_accel_ratio);
+  j["critical_mu"] = optional_json(s.critical_mu);
+  j["mu"] = optional_json(options.mu);
+  j["g_m_s2"] = options.g_m_s2;
+  j["warnings"] = s.warnings;
+  nlohmann::ordered_json b;
+  b["shape"] = shape_name(body.shape);
+  if (body.shape == RockingBody::Shape::block) {
+    b["width_m"] = 2.0 * body.a_m;
+    b["height_m"] = 2.0 * body.h_m;
+  } else if (body.shape == RockingBody::Shape::cylinder) {
+    b["diameter_m"] = 2.0 * body.a_m;
+    b["height_m"] = 2.0 * body.h_m;
+  }
+  b["a_m"] = body.a_m;
+  b["h_m"] = body.h_m;
+  b["D_m2"] = body.D_m2;
+  j["body"] = b;
+  nlohmann::ordered_json m;
+  m["method"] = options.method == RockingMethod::rk4 ? "rk4" : "adaptive";
+  m["rel_tol"] = options.rel_tol;
+  m["rk4_substeps"] = options.rk4_substeps;
+  m["rest_energy_fraction"] = options.rest_energy_fraction;
+  m["max_run_out_s"] = options.max_run_out_s;
+  m["steps"] = s.steps;
+  j["solver"] = m;
+  return j;
+}
+
 void write_sliding_history_csv(const std::filesystem::path& path, const SlidingHistory& h,
                                const GroundMotion& horizontal) {
   std::unique_ptr<std::FILE, FileCloser> f(std::fopen(path.c_str(), "w"));
