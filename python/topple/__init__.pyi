@@ -1,0 +1,201 @@
+"""Type stubs and documentation of the topple package (implemented by the C++ extension topple._core).
+
+Units are SI; every name carries its unit. Lengths are plain floats in metres. Accelerations given "in g" use
+g = 9.80665 m/s^2 unless a ``g`` argument says otherwise.
+"""
+from typing import Any, Literal, Optional, Sequence, Union
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+STANDARD_GRAVITY: float  # 9.80665 m/s^2
+
+ArrayIn = Union[npt.NDArray[np.float64], Sequence[float]]
+
+class InputError(ValueError):
+    """Bad caller input (file, parameter, array value). str() is the message the CLI prints after 'topple: error: '."""
+    file: Optional[str]   # path as given, when the problem is in a file
+    line: Optional[int]   # 1-based line in that file
+    field: Optional[str]  # parameter, key or column name ("mu", "dt_s", "NPTS", "width")
+    problem: str          # the message without its location
+
+class GroundMotion:
+    """One component of ground acceleration, piecewise linear between samples.
+
+    GroundMotion(accel, dt, units="g", *, time=None, start_time_s=0.0, g=9.80665)
+
+    accel: 1-D numpy float64 array (TypeError for another dtype: convert explicitly; a strided array is copied) or a
+    list of numbers, in `units` ("g", "m/s2", "cm/s2", "gal", "mm/s2"). dt: sample interval, s, for uniform samples;
+    or time: the sample times, s (non-decreasing) for irregular ones. NaN/Inf values, dt <= 0, decreasing times:
+    InputError.
+    """
+    def __init__(self, accel: ArrayIn, dt: Optional[float] = None, units: str = "g", *,
+                 time: Optional[ArrayIn] = None, start_time_s: float = 0.0, g: float = 9.80665) -> None: ...
+    def __len__(self) -> int: ...
+    @property
+    def npts(self) -> int: ...
+    @property
+    def is_uniform(self) -> bool: ...
+    @property
+    def dt_s(self) -> float:
+        """Sample interval, s (mean interval of an irregular record)."""
+    @property
+    def start_time_s(self) -> float: ...
+    @property
+    def end_time_s(self) -> float: ...
+    @property
+    def duration_s(self) -> float: ...
+    @property
+    def accel_m_s2(self) -> npt.NDArray[np.float64]:
+        """Acceleration, m/s^2: a read-only view on the C++ data (no copy), valid as long as it is referenced."""
+    @property
+    def accel_g(self) -> npt.NDArray[np.float64]:
+        """Acceleration in standard g (a new array)."""
+    @property
+    def time_s(self) -> npt.NDArray[np.float64]:
+        """Sample times, s (a new array; materialised for uniform records)."""
+    @property
+    def pga_m_s2(self) -> float: ...
+    @property
+    def pga_g(self) -> float:
+        """Peak |a| in standard g (9.80665 m/s^2)."""
+    @property
+    def pga_time_s(self) -> float: ...
+    @property
+    def metadata(self) -> dict[str, str]:
+        """format, source_file, event, station, component, units_as_read."""
+    @property
+    def name(self) -> str:
+        """The source file as given, else the event description (synthetic and pulse motions)."""
+    def accel_at(self, t_s: float) -> float: ...
+    def scaled(self, factor: float) -> GroundMotion: ...
+    def scaled_to_pga(self, pga_g: float, g: float = 9.80665) -> GroundMotion: ...
+    def inverted(self) -> GroundMotion: ...
+    def time_scaled(self, factor: float) -> GroundMotion: ...
+    def trimmed(self, t_begin_s: float, t_end_s: float) -> GroundMotion: ...
+    def resampled(self, dt_s: float) -> GroundMotion: ...
+    def baseline_corrected(self, order: int) -> GroundMotion: ...
+
+def read(path: str, format: Optional[str] = None, units: Optional[str] = None, dt: Optional[float] = None,
+         channel: Optional[int] = None, g: float = 9.80665) -> GroundMotion:
+    """Read a record (PEER .AT2, COSMOS V2, CSMIP V2, USGS SMC, K-NET, ESM, plain text; detected from content).
+    format: "auto" or one of "peer-at2", "cosmos-v2", "csmip-v2", "knet", "usgs-smc", "esm", "plain"; units: unit of a
+    plain file's values; dt: time step of a one-column plain file, s; channel: 1-based, multi-channel files."""
+
+class SlidingResult:
+    """Sliding response. Summary attributes have the names and units of `topple slide --json`; json() is that
+    object (with its "input"). Histories (time_s, displacement_m, velocity_m_s: read-only views; state: -1 slipping
+    up-slope/negative, 0 stuck, 1 slipping down-slope/positive) are empty when run with history=False."""
+    max_abs_displacement_m: float
+    max_displacement_time_s: float
+    residual_displacement_m: float
+    max_abs_velocity_m_s: float
+    slip_episodes: int
+    first_slip_time_s: Optional[float]
+    total_slip_duration_s: float
+    end_time_s: float
+    at_rest_at_end: bool
+    contact_lost_time_s: Optional[float]
+    yield_down_g: float
+    yield_up_g: Optional[float]  # None in one-way mode
+    mu_static: float
+    mu_kinetic: float
+    slope_deg: float
+    mode: str
+    g_m_s2: float
+    time_s: npt.NDArray[np.float64]
+    displacement_m: npt.NDArray[np.float64]
+    velocity_m_s: npt.NDArray[np.float64]
+    state: npt.NDArray[np.int8]
+    def json(self) -> dict[str, Any]: ...
+
+def slide(motion: GroundMotion, *, mu: float, mu_kinetic: Optional[float] = None,
+          mode: Literal["two-way", "one-way"] = "two-way", slope_deg: float = 0.0,
+          vertical: Optional[GroundMotion] = None, g: float = 9.80665, history: bool = True) -> SlidingResult:
+    """Exact sliding of a rigid block with Coulomb friction (mu static, mu_kinetic <= mu, default = mu) on a plane
+    inclined at slope_deg; one-way: down-slope slip only (SLAMMER rigid block). vertical: vertical acceleration,
+    positive up. history=False takes the summary-only fast path."""
+
+def slide_spectrum(motion: GroundMotion, mu: ArrayIn, *, slope_deg: float = 0.0,
+                   mode: Literal["two-way", "one-way"] = "two-way", g: float = 9.80665) -> dict[str, npt.NDArray[np.float64]]:
+    """Sliding displacement spectrum: keys mu, max_abs_displacement_m, residual_displacement_m (one per mu)."""
+
+class RockingBody:
+    """A rigid body that rocks (made by Block, Cylinder or General). a_m: CM to pivot edge, m; h_m: CM height, m;
+    D_m2: pivot moment of inertia per unit mass, m^2."""
+    shape: str
+    a_m: float
+    h_m: float
+    D_m2: float
+    alpha_rad: float
+    R_m: float
+    housner_e: float
+    def p_rad_s(self, g: float = 9.80665) -> float: ...
+
+def Block(width: float, height: float) -> RockingBody:
+    """Rectangular block of full width and height, m."""
+def Cylinder(diameter: float, height: float) -> RockingBody:
+    """Solid cylinder standing on its end, diameter and height in m."""
+def General(a: float, h: float, D: float) -> RockingBody:
+    """Any body: a, h in m, D = I_O/m in m^2 (D >= a^2 + h^2)."""
+
+class RockingResult:
+    """Rocking response. Summary attributes have the names and units of `topple rock --json`; json() is that object.
+    Histories (time_s, theta_rad, theta_dot_rad_s: read-only views; state: -1 rocking-, 0 rest, 1 rocking+, 2 fallen)
+    and events are empty when run with history=False."""
+    max_abs_rotation_rad: float
+    max_rotation_over_alpha: float
+    max_rotation_time_s: float
+    max_abs_theta_dot_rad_s: float
+    impacts: int
+    uplifts: int
+    uplift_time_s: Optional[float]
+    exceeded_alpha_time_s: Optional[float]
+    overturned: bool
+    overturn_time_s: Optional[float]
+    end_state: str
+    end_time_s: float
+    still_rocking_at_end: bool
+    energy_lost_j_per_kg: float
+    alpha_rad: float
+    alpha_deg: float
+    R_m: float
+    p_rad_s: float
+    e: float
+    e_mode: str
+    onset_mode: str
+    onset_accel_ratio: Optional[float]
+    critical_mu: Optional[float]
+    mu: Optional[float]
+    g_m_s2: float
+    warnings: list[str]
+    body: RockingBody
+    time_s: npt.NDArray[np.float64]
+    theta_rad: npt.NDArray[np.float64]
+    theta_dot_rad_s: npt.NDArray[np.float64]
+    state: npt.NDArray[np.int8]
+    events: list[dict[str, Any]]
+    def json(self) -> dict[str, Any]: ...
+
+def rock(motion: GroundMotion, shape: RockingBody, *, e: Union[Literal["housner"], float] = "housner",
+         mu: Optional[float] = None, g: float = 9.80665, method: Literal["adaptive", "rk4"] = "adaptive",
+         rel_tol: float = 1e-8, rk4_substeps: int = 10, max_run_out_s: float = 60.0,
+         vertical: Optional[GroundMotion] = None, history: bool = True) -> RockingResult:
+    """Housner rocking and overturning on a level base that does not slide. e: restitution in [0, 1] or "housner";
+    mu: check Shenton's slide/rock onset criterion."""
+
+def synth(*, pga_g: float, freq_hz: float, duration_s: float, seed: int = 0, dt_s: float = 0.01,
+          model: Literal["clough-penzien", "kanai-tajimi"] = "clough-penzien",
+          envelope: Literal["saragoni-hart", "jennings"] = "saragoni-hart", zeta_g: float = 0.3,
+          g: float = 9.80665) -> GroundMotion:
+    """Synthetic motion (as `topple synth`): the same parameters and seed give the same bits everywhere."""
+
+def intensity(motion: GroundMotion, g: float = 9.80665) -> dict[str, Any]:
+    """Intensity measures as `topple info --json` names them: npts, dt_s, duration_s, pga_g, pga_m_s2, pga_time_s,
+    pgv_m_s, pgd_m, arias_m_s, d5_95_s, d5_time_s, d95_time_s, cav_m_s, tp_s, tm_s, predominant_frequency_hz, g_m_s2
+    (None where undefined)."""
+
+def invert(survey_path: str, *, threads: int = 0) -> dict[str, Any]:
+    """`topple invert --json` of a survey file: one site's dict, or {"sites": [...]}. Each site's dict also holds
+    posterior_grid and log_likelihood_grid (numpy, rows PGA, columns frequency) for topple.plot.inversion_map."""

@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# The Python package's virtual environment .venv-py (README, "Python"): Debian's python3 (/usr/bin/python3, with the
+# python3-dev headers from scripts/install-deps.sh), numpy, matplotlib, pytest from PyPI, and topple itself built by
+# scikit-build-core from this checkout. Idempotent: the package is rebuilt incrementally in build/python (pyproject's
+# build-dir), without build isolation so that the same scikit-build-core and nanobind (installed here) are used every
+# time. Quiet unless something fails.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+venv=.venv-py
+python=/usr/bin/python3
+[[ -x $python ]] || python=python3
+if [[ ! -x $venv/bin/python ]]; then
+  "$python" -m venv "$venv"
+fi
+pip=($venv/bin/python -m pip -q --disable-pip-version-check)
+if ! $venv/bin/python -c "import numpy, matplotlib, pytest, scikit_build_core, nanobind" 2>/dev/null; then
+  "${pip[@]}" install "numpy>=2" matplotlib pytest "scikit-build-core>=0.10" "nanobind>=2.0"
+fi
+# CMAKE_BUILD_PARALLEL_LEVEL: the extension build uses every core (TOPPLE_JOBS when set).
+CMAKE_BUILD_PARALLEL_LEVEL="${TOPPLE_JOBS:-$(nproc)}" "${pip[@]}" install --no-build-isolation --no-deps ./
+$venv/bin/python -c "import topple; topple.GroundMotion([0.0, 0.1], 0.01)"
