@@ -9,6 +9,7 @@ packages=(
   libtbb-dev libopenmpi-dev openmpi-bin libfftw3-dev
   libgtest-dev libgmock-dev googletest libbenchmark-dev
   gnuplot-nox python3 python3-venv
+  python3-dev
 )
 
 missing=()

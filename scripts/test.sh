@@ -23,4 +23,9 @@ if [[ -x scripts/fuzz.sh ]] && command -v clang++ >/dev/null; then
   echo "== fuzzing each reader for ${TOPPLE_FUZZ_SECONDS:-10} s"
   scripts/fuzz.sh "${TOPPLE_FUZZ_SECONDS:-10}"
 fi
+echo "== Python package: build topple._core into .venv-py (scripts/python-venv.sh), pytest against the release CLI"
+scripts/python-venv.sh
+# The suite holds tests that need neither ../shared nor the CLI, so pytest never ends with "no tests ran" (exit 5);
+# any non-zero status fails this script.
+TOPPLE_CLI="$PWD/build/release/cli/topple" .venv-py/bin/python -m pytest -q -p no:cacheprovider python/tests
 echo "== all tests passed"

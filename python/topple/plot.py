@@ -56,7 +56,7 @@ def rocking(motion: GroundMotion, result: RockingResult, title: Optional[str] = 
     fig = Figure(figsize=(9, 7), layout="constrained")
     ax = fig.subplots(3, 1, sharex=True)
     tan_alpha = math.tan(result.alpha_rad)
-    _record_panel(ax[0], motion, result.g_m_s2, [(tan_alpha, f"+-g tan(alpha) = {tan_alpha:.3g} g"), (-tan_alpha, "")])
+    _record_panel(ax[0], motion, result.g_m_s2, [(tan_alpha, f"±g tan(alpha) = ±{tan_alpha:.3g} g"), (-tan_alpha, "")])
     ax[1].plot(result.time_s, np.asarray(result.theta_rad) / result.alpha_rad, color="tab:blue")
     for level in (1.0, -1.0):
         ax[1].axhline(level, color="tab:red", lw=0.8, ls=":")
