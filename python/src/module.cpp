@@ -160,27 +160,42 @@ GroundMotion make_motion(nb::handle accel, std::optional<double> dt_s, const std
 
 // ---- sliding ----
 
+/// The motions a run used, kept alive by their Python objects, for the "input" object of json() (built on demand:
+/// it scans the record for its PGA, which would otherwise double the cost of a summary-only call). GroundMotion is
+/// immutable from Python, so what json() reports is what the run saw.
+struct RunInputs {
+  nb::object horizontal;
+  nb::object vertical;  // None when absent
+
+  RunInputs() = default;
+  RunInputs(const GroundMotion& h, const GroundMotion* v)
+      : horizontal(nb::find(h)), vertical(v ? nb::find(*v) : nb::none()) {}
+  [[nodiscard]] nlohmann::ordered_json json(double g_m_s2) const;
+};
+
 struct SlidingRun {
   SlidingSummary summary;
   SlidingHistory history;  // empty when run with history=False
   SlidingBlock block;
-  nlohmann::ordered_json input;
+  RunInputs inputs;
 
   [[nodiscard]] nlohmann::ordered_json json() const {
     nlohmann::ordered_json j = io::sliding_summary_json(summary, block);
-    j["input"] = input;
+    j["input"] = inputs.json(block.g_m_s2);
     return j;
   }
 };
 
 /// The "input" object of the CLI's JSON for a motion used as given (no scaling or polarity flip in the call).
-nlohmann::ordered_json input_json(const GroundMotion& h, const GroundMotion* vertical, double g_m_s2) {
+nlohmann::ordered_json RunInputs::json(double g_m_s2) const {
+  const GroundMotion& h = nb::cast<const GroundMotion&>(horizontal);
+  const GroundMotion* v = vertical.is_none() ? nullptr : &nb::cast<const GroundMotion&>(vertical);
   nlohmann::ordered_json in;
   in["motion"] = motion_name(h);
   in["pga_g"] = h.pga_m_s2() / g_m_s2;
   in["scale_factor"] = 1.0;
   in["invert"] = false;
-  in["vertical"] = vertical ? nlohmann::ordered_json(motion_name(*vertical)) : nlohmann::ordered_json(nullptr);
+  in["vertical"] = v ? nlohmann::ordered_json(motion_name(*v)) : nlohmann::ordered_json(nullptr);
   in["npts"] = h.size();
   in["dt_s"] = h.dt_s();
   return in;
@@ -206,7 +221,7 @@ SlidingRun run_slide(const GroundMotion& motion, double mu, std::optional<double
       run.summary = slide_summary(motion, run.block, vertical);
     }
   }
-  run.input = input_json(motion, vertical, g_m_s2);
+  run.inputs = RunInputs(motion, vertical);
   return run;
 }
 
@@ -216,11 +231,12 @@ struct RockingRun {
   RockingResult result;  // history and events empty when run with history=False
   RockingBody body;
   RockingOptions options;
-  nlohmann::ordered_json input;
+  RunInputs inputs;
 
   [[nodiscard]] nlohmann::ordered_json json() const {
     nlohmann::ordered_json j = io::rocking_summary_json(result.summary, body, options);
-    j["input"] = input;
+    j["input"] = inputs.json(options.g_m_s2);
+    j["input"]["duration_s"] = nb::cast<const GroundMotion&>(inputs.horizontal).duration_s();
     return j;
   }
 };
@@ -258,8 +274,7 @@ RockingRun run_rock(const GroundMotion& motion, const RockingBody& body, const s
       run.result.summary = rock_summary(motion, body, o, vertical);
     }
   }
-  run.input = input_json(motion, vertical, g_m_s2);
-  run.input["duration_s"] = motion.duration_s();
+  run.inputs = RunInputs(motion, vertical);
   return run;
 }
 
