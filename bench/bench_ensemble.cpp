@@ -10,6 +10,8 @@
 // Figures: docs/performance.md, "Ensemble engine".
 #include <unistd.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <memory>
@@ -136,6 +138,70 @@ void engine_to_files(benchmark::State& state, bool records, bool batched) {
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * plan.runs()));
   std::filesystem::remove_all(dir);
 }
+
+/// Paired measurements, robust to a shared machine: each iteration times the bare loop and the engine (to files, in
+/// chunks of 1024 runs) back to back, and the counters report the medians over iterations of the engine's overhead
+/// (engine / bare - 1, 1 thread) and of its speed-up on 2 threads (engine 1 thread / engine 2 threads).
+/// state.range(0): 0 = bare loop of slide_summary, 1 = bare loop of slide_summaries (one call per motion).
+void paired(benchmark::State& state, bool records, bool batched) {
+  const SweepSpec spec = make_spec(records, batched);
+  const Plan plan = make_plan(spec);
+  const std::vector<GroundMotion> motions = motions_of(plan);
+  std::vector<double> mus;
+  for (const auto& o : spec.objects) mus.push_back(std::get<SlideObject>(o).block.mu_static);
+  const auto dir = std::filesystem::temp_directory_path() / ("topple-bench-ensemble-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  StoreOptions store;
+  store.csv_path = dir / "out.csv";
+  store.restart = true;
+  SingleProcess one;
+  const auto seconds = [](auto f) {
+    const auto t0 = std::chrono::steady_clock::now();
+    f();
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
+  std::vector<double> overhead;
+  std::vector<double> speedup;
+  std::vector<double> bare_s;
+  std::vector<double> engine1_s;
+  for (auto _ : state) {
+    const double bare = seconds([&] {
+      double sum = 0.0;
+      for (const auto& m : motions) {
+        if (state.range(0) == 0) {
+          for (const auto& o : spec.objects) sum += slide_summary(m, std::get<SlideObject>(o).block).max_abs_displacement_m;
+        } else {
+          for (const auto& r : slide_summaries(m, mus)) sum += r.max_abs_displacement_m;
+        }
+      }
+      benchmark::DoNotOptimize(sum);
+    });
+    ExecuteOptions o1;
+    o1.threads = 1;
+    ExecuteOptions o2;
+    o2.threads = 2;
+    const double e1 = seconds([&] { benchmark::DoNotOptimize(run_to_files(plan, store, o1, one).runs_computed); });
+    const double e2 = seconds([&] { benchmark::DoNotOptimize(run_to_files(plan, store, o2, one).runs_computed); });
+    overhead.push_back(e1 / bare - 1.0);
+    speedup.push_back(e1 / e2);
+    bare_s.push_back(bare);
+    engine1_s.push_back(e1);
+  }
+  const auto median = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v.empty() ? 0.0 : v[v.size() / 2];
+  };
+  state.counters["bare_runs_per_s"] = static_cast<double>(plan.runs()) / median(bare_s);
+  state.counters["engine1_runs_per_s"] = static_cast<double>(plan.runs()) / median(engine1_s);
+  state.counters["overhead_pct"] = 100.0 * median(overhead);
+  state.counters["speedup_2_threads"] = median(speedup);
+  std::filesystem::remove_all(dir);
+}
+
+BENCHMARK_CAPTURE(paired, records_kinetic, true, false)->Arg(0)->Iterations(30)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(paired, records_batched, true, true)->Arg(0)->Arg(1)->Iterations(30)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(paired, pulses_kinetic, false, false)->Arg(0)->Iterations(20)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(paired, pulses_batched, false, true)->Arg(0)->Arg(1)->Iterations(20)->Unit(benchmark::kMillisecond);
 
 /// The engine alone: 100 motions x 1000 objects whose run function only fills 12 result doubles (what a sliding row
 /// carries), to files, in chunks of state.range(0) runs. Time per run = the engine's cost per row.

@@ -24,6 +24,7 @@
 #include <unordered_map>
 #include <utility>
 
+#include <fmt/compile.h>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <oneapi/tbb/blocked_range.h>
@@ -113,6 +114,14 @@ void check_plan(const Plan& plan) {
 
 namespace {
 
+/// Shortest round-trip text of a number (fmt "{}", Dragonbox for doubles), appended without a format-string parse.
+template <class T>
+void append_number(std::string& out, T v) {
+  char buf[40];
+  char* end = fmt::format_to(buf, FMT_COMPILE("{}"), v);
+  out.append(buf, end);
+}
+
 bool csv_needs_quotes(std::string_view s) {
   if (s.empty()) return false;
   if (s.front() == ' ' || s.back() == ' ') return true;
@@ -151,9 +160,9 @@ void append_csv_value(std::string& out, const Value& value) {
         } else if constexpr (std::is_same_v<T, bool>) {
           out += v ? "true" : "false";
         } else if constexpr (std::is_same_v<T, std::int64_t>) {
-          fmt::format_to(std::back_inserter(out), "{}", v);
+          append_number(out, v);
         } else if constexpr (std::is_same_v<T, double>) {
-          if (std::isfinite(v)) fmt::format_to(std::back_inserter(out), "{}", v);
+          if (std::isfinite(v)) append_number(out, v);
         } else {
           if (!csv_needs_quotes(v)) {
             out += v;
@@ -179,10 +188,10 @@ void append_json_value(std::string& out, const Value& value) {
         } else if constexpr (std::is_same_v<T, bool>) {
           out += v ? "true" : "false";
         } else if constexpr (std::is_same_v<T, std::int64_t>) {
-          fmt::format_to(std::back_inserter(out), "{}", v);
+          append_number(out, v);
         } else if constexpr (std::is_same_v<T, double>) {
           if (std::isfinite(v)) {
-            fmt::format_to(std::back_inserter(out), "{}", v);
+            append_number(out, v);
           } else {
             out += "null";
           }
@@ -267,7 +276,7 @@ void format_rows(const Plan& plan, const Layout& layout, std::size_t begin, std:
     const Value* r = results.data() + (run - begin) * nres;
     for (std::size_t k = 0; k < nres; ++k) check_result_text(r[k], run);
     if (csv != nullptr) {
-      fmt::format_to(std::back_inserter(*csv), "{}", run);
+      append_number(*csv, run);
       *csv += layout.motion_csv[m];
       *csv += layout.object_csv[o];
       for (std::size_t k = 0; k < nres; ++k) {
@@ -278,7 +287,8 @@ void format_rows(const Plan& plan, const Layout& layout, std::size_t begin, std:
       if (run == begin) csv->reserve(csv->size() * (end - begin) * 9 / 8 + 64);  // rows are about as long as the first
     }
     if (jsonl != nullptr) {
-      fmt::format_to(std::back_inserter(*jsonl), "{{\"run\":{}", run);
+      *jsonl += "{\"run\":";
+      append_number(*jsonl, run);
       *jsonl += layout.motion_json[m];
       *jsonl += layout.object_json[o];
       for (std::size_t k = 0; k < nres; ++k) {
@@ -434,7 +444,11 @@ struct Engine {
       if (!mc.transform.is_identity()) prepared = mc.transform.apply(*mc.base);
       const GroundMotion& motion = prepared ? *prepared : *mc.base;
       const std::size_t row0 = m * n_obj + o_begin - begin;
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(o_begin, o_end), [&](const auto& r) {
+      // At most about 8 pieces per thread: enough to balance, few enough that a run function with a per-call cost
+      // (slide_summaries scans the record once per call) pays it rarely.
+      const auto pieces = 8 * static_cast<std::size_t>(tbb::this_task_arena::max_concurrency());
+      const std::size_t grain = std::max<std::size_t>(1, (o_end - o_begin + pieces - 1) / pieces);
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(o_begin, o_end, grain), [&](const auto& r) {
         const std::size_t first_row = row0 + (r.begin() - o_begin);
         plan.run(motion, m, r.begin(), r.end(),
                  std::span<Value>(results.data() + first_row * nres, r.size() * nres));
