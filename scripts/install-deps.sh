@@ -9,6 +9,7 @@ packages=(
   libtbb-dev libopenmpi-dev openmpi-bin libfftw3-dev
   libgtest-dev libgmock-dev googletest libbenchmark-dev
   gnuplot-nox python3 python3-venv
+  chromium  # test only: the inversion report is opened in a real headless browser
   python3-dev
 )
 

@@ -122,7 +122,7 @@ struct Plan {
 void check_plan(const Plan& plan);
 
 /// 32 hex digits identifying the expanded plan: columns, every motion's and object's values, the samples of every
-/// base motion, the transforms, the chunk size and Plan::identity (two 64-bit FNV-1a hashes).
+/// base motion, the transforms, the chunk size and Plan::identity (two 64-bit FNV-1a-style hashes).
 [[nodiscard]] std::string plan_fingerprint(const Plan& plan);
 
 struct ExecuteOptions {

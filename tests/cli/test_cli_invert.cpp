@@ -1,0 +1,166 @@
+// `topple invert`: the JSON interface, bad surveys (exit 2 naming object and field), several sites with a GeoJSON
+// map and PGA vs distance, and the HTML report opened in a real headless browser (Debian chromium).
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "support/shared_data.hpp"
+
+namespace topple {
+namespace {
+
+// A small survey (coarse grid, few motions) keeps these CLI tests to a few seconds; the default-sized example is
+// timed by bench/bench_inversion.cpp.
+const char* kSmallInversion = "[inversion]\npga_g = [0.05, 2.0, 10]\nfreq_hz = [0.5, 10.0, 6]\nmotions_per_cell = 6\n"
+                              "duration_s = 8.0\n";
+
+const char* kObjects =
+    "[[object]]\nid = \"vase\"\nshape = \"cylinder\"\ndiameter = \"8cm\"\nheight = \"40cm\"\nmu = [0.4, 0.6]\n"
+    "outcome = \"overturned\"\n"
+    "[[object]]\nid = \"tv\"\nshape = \"block\"\nwidth = \"25cm\"\nheight = \"45cm\"\nmu = 0.5\noutcome = \"not_slid\"\n"
+    "[[object]]\nid = \"pot\"\nshape = \"cylinder\"\ndiameter = \"25cm\"\nheight = \"15cm\"\nmu = 0.25\n"
+    "outcome = \"slid\"\nslid = \"3cm\"\nslid_uncertainty = \"1cm\"\n";
+
+std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+TEST(CliInvert, JsonCarriesEstimatesIntervalsAndBounds) {
+  test::TempDir tmp;
+  const auto survey = tmp.path() / "s.toml";
+  test::write_file(survey, std::string("[site]\nname = \"kitchen\"\n") + kSmallInversion + kObjects);
+  const auto r = test::run_cli("invert '" + survey.string() + "' --json --quiet --grid '" + (tmp.path() / "g.csv").string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  for (const char* key : {"pga_g", "freq_hz"}) {
+    const auto& e = j.at(key);
+    EXPECT_TRUE(e.at("best").is_number());
+    EXPECT_TRUE(e.at("median").is_number());
+    ASSERT_EQ(e.at("ci68").size(), 2u);
+    ASSERT_EQ(e.at("ci95").size(), 2u);
+    for (const auto& end : e.at("ci95")) EXPECT_TRUE(end.is_number() || end.is_null());
+  }
+  // static bounds by hand: vase overturned -> a/h = 0.2; pot slid -> mu = 0.25; tv not slid -> upper 0.5
+  ASSERT_EQ(j.at("static_bounds_pga_g").size(), 2u);
+  EXPECT_NEAR(j.at("static_bounds_pga_g")[0].get<double>(), 0.25, 1e-12);
+  EXPECT_NEAR(j.at("static_bounds_pga_g")[1].get<double>(), 0.5, 1e-12);
+  EXPECT_EQ(j.at("objects").size(), 3u);
+  EXPECT_EQ(j.at("runs").get<int>(), 10 * 6 * 6 * 3);
+  // the grid CSV: header with units and one row per cell
+  std::ifstream grid(tmp.path() / "g.csv");
+  std::string header;
+  std::getline(grid, header);
+  EXPECT_EQ(header, "pga_g,freq_hz,log_likelihood,posterior,p_vase,p_tv,p_pot");
+  int rows = 0;
+  for (std::string line; std::getline(grid, line);) ++rows;
+  EXPECT_EQ(rows, 60);
+}
+
+TEST(CliInvert, BadSurveysExitTwoNamingObjectAndField) {
+  test::TempDir tmp;
+  const auto check = [&](const std::string& text, const std::string& needle) {
+    const auto path = tmp.path() / "bad.toml";
+    test::write_file(path, text);
+    const auto r = test::run_cli("invert '" + path.string() + "' --quiet");
+    EXPECT_EQ(r.exit_code, 2) << text;
+    EXPECT_NE(r.err.find(needle), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("bad.toml"), std::string::npos) << r.err;
+  };
+  check("[[object]]\nid = \"x\"\nshape = \"cone\"\nwidth = \"1cm\"\nheight = \"2cm\"\nmu = 0.5\noutcome = \"slid\"\n",
+        "object[1](x).shape");
+  check("[[object]]\nid = \"x\"\nshape = \"block\"\nheight = \"2cm\"\nmu = 0.5\noutcome = \"slid\"\n", "object[1](x).width");
+  check("[[object]]\nid = \"x\"\nshape = \"block\"\nwidth = \"1cm\"\nheight = \"2cm\"\nmu = 0.5\noutcome = \"wobbled\"\n",
+        "object[1](x).outcome");
+  check("[[object]]\nid = \"x\"\nshape = \"block\"\nwidth = 3\nheight = \"2cm\"\nmu = 0.5\noutcome = \"slid\"\n", "unit");
+  check("[inversion]\npga_g = [2.0, 0.1, 10]\n[[object]]\nid = \"x\"\nshape = \"block\"\nwidth = \"1cm\"\nheight = "
+        "\"2cm\"\nmu = 0.5\noutcome = \"slid\"\n", "inversion.pga_g");
+  check("[site]\nname = \"empty\"\n", "at least one observed object");
+  check("this is = not toml [", "bad.toml");
+}
+
+TEST(CliInvert, SeveralSitesGiveAGeoJsonMapAndDistances) {
+  test::TempDir tmp;
+  const auto survey = tmp.path() / "multi.toml";
+  std::string text = std::string(kSmallInversion) + "[event]\nepicentre = [17.20, 73.70]\n";
+  for (int s = 0; s < 2; ++s) {
+    text += "[[sites]]\nname = \"site " + std::to_string(s + 1) + "\"\nlat = " + (s == 0 ? "17.40" : "17.60") +
+            "\nlon = 73.75\n";
+    std::string objects = kObjects;
+    for (auto pos = objects.find("[[object]]"); pos != std::string::npos; pos = objects.find("[[object]]", pos + 4)) {
+      objects.replace(pos, 10, "[[sites.object]]");
+    }
+    text += objects;
+  }
+  test::write_file(survey, text);
+  const auto map = tmp.path() / "out.geojson";
+  const auto r = test::run_cli("invert '" + survey.string() + "' --json --quiet --map '" + map.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j.at("sites").size(), 2u);
+  const auto geo = nlohmann::json::parse(slurp(map));
+  EXPECT_EQ(geo.at("type"), "FeatureCollection");
+  ASSERT_EQ(geo.at("features").size(), 2u);
+  EXPECT_DOUBLE_EQ(geo["features"][1]["geometry"]["coordinates"][1].get<double>(), 17.60);
+  EXPECT_TRUE(geo["features"][0]["properties"]["pga_median_g"].is_number());
+  // distance CSV: 0.2 deg and 0.4 deg of latitude north (plus 0.05 deg east): haversine, R = 6371 km.
+  std::ifstream csv(tmp.path() / "out.distance.csv");
+  std::string header, row1, row2;
+  std::getline(csv, header);
+  std::getline(csv, row1);
+  std::getline(csv, row2);
+  EXPECT_EQ(header.substr(0, 30), "site,epicentral_distance_km,pg");
+  const double d1 = std::stod(row1.substr(row1.find(',') + 1));
+  const double d2 = std::stod(row2.substr(row2.find(',') + 1));
+  EXPECT_NEAR(d1, 22.9, 0.2);  // sqrt(22.24^2 + 5.31^2) km on the sphere
+  EXPECT_NEAR(d2, 44.8, 0.3);
+}
+
+TEST(CliInvert, ReportOpensInAHeadlessBrowserWithMapAndTable) {
+  test::TempDir tmp;
+  const auto survey = tmp.path() / "s.toml";
+  test::write_file(survey, std::string("[site]\nname = \"kitchen & hall\"\n") + kSmallInversion + kObjects);
+  const auto dir = tmp.path() / "report";
+  const auto r = test::run_cli("invert '" + survey.string() + "' --quiet --report '" + dir.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string html = slurp(dir / "index.html");
+  EXPECT_NE(html.find("kitchen &amp; hall"), std::string::npos);
+  EXPECT_NE(html.find("id=\"map\"><svg"), std::string::npos);  // the figure is inline: self-contained
+  EXPECT_NE(html.find("id=\"observations\""), std::string::npos);
+  for (const char* f : {"likelihood.svg", "marginal_pga.svg", "marginal_freq.svg", "best_cell.svg", "grid.csv", "result.json"}) {
+    EXPECT_TRUE(std::filesystem::exists(dir / f)) << f;
+  }
+  if (std::system("command -v chromium >/dev/null 2>&1") != 0) GTEST_SKIP() << "chromium is not installed";
+  // Load the page in a real browser and dump the DOM it built; chromium logs page errors to stderr with
+  // --enable-logging=stderr (lines with "CONSOLE" or "Uncaught").
+  const auto dom = tmp.path() / "dom.html";
+  const auto log = tmp.path() / "browser.log";
+  const std::string cmd = "timeout 120 chromium --headless --no-sandbox --disable-gpu --enable-logging=stderr --v=0 "
+                          "--dump-dom 'file://" + (dir / "index.html").string() + "' >'" + dom.string() + "' 2>'" +
+                          log.string() + "'";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << slurp(log);
+  const std::string rendered = slurp(dom);
+  EXPECT_NE(rendered.find("<svg"), std::string::npos);
+  EXPECT_NE(rendered.find("posterior over PGA x predominant frequency"), std::string::npos);
+  EXPECT_NE(rendered.find("id=\"observations\""), std::string::npos);
+  EXPECT_NE(rendered.find(">vase<"), std::string::npos);
+  const std::string browser_log = slurp(log);
+  EXPECT_EQ(browser_log.find("Uncaught"), std::string::npos) << browser_log;
+  EXPECT_EQ(browser_log.find("Not allowed to load"), std::string::npos) << browser_log;
+  // and a screenshot of the first screen is a real image
+  const auto png = tmp.path() / "shot.png";
+  const std::string shot = "timeout 120 chromium --headless --no-sandbox --disable-gpu --window-size=1100,1400 "
+                           "--screenshot='" + png.string() + "' 'file://" + (dir / "index.html").string() + "' >/dev/null 2>&1";
+  ASSERT_EQ(std::system(shot.c_str()), 0);
+  EXPECT_GT(std::filesystem::file_size(png), 20000u);
+}
+
+}  // namespace
+}  // namespace topple
