@@ -50,8 +50,20 @@ void print_site(const Site& site, const InversionResult& r) {
   for (const auto& note : r.notes) fmt::print("note: {}\n", note);
 }
 
+/// Output files may name folders that do not exist yet (as --report does): made before the runs, so that a path
+/// that cannot be written fails in a second instead of after the inversion.
+void prepare_output_folder(const std::string& path, const char* option) {
+  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  if (parent.empty()) return;
+  std::error_code ec;
+  std::filesystem::create_directories(parent, ec);
+  if (ec) throw InputError(InputLocation{parent.string(), {}, option}, "cannot create the folder: " + ec.message());
+}
+
 void run_invert(const InvertOptions& o) {
   const Survey survey = io::read_survey(o.survey);
+  if (!o.grid.empty()) prepare_output_folder(o.grid, "--grid");
+  if (!o.map.empty()) prepare_output_folder(o.map, "--map");
   std::vector<InversionResult> results;
   for (const Site& site : survey.sites) {
     if (!o.quiet) fmt::print(stderr, "topple: inverting {} ({} objects)...\n", site.name, site.objects.size());

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # README quick start, first command: installs what is missing, builds topple, and runs its main job on the embedded
-# default input (no data files needed).
+# default input (no data files needed): the inversion of the synthetic example survey examples/survey.toml into PGA
+# and predominant-frequency bounds, with its HTML report.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
@@ -9,5 +10,7 @@ cmake --build --preset release -j "$(nproc)" --target topple_cli
 topple=build/release/cli/topple
 
 echo
-echo "== Sliding of a block (mu = 0.3) under the double triangular pulse of the thesis (Fig. 3.4: A = 2 g, t0 = 0.2 s)"
-"$topple" slide --pulse double-tri --amp-g 2 --duration 0.2 --mu 0.3 --g 9.81 --out build/demo_slide_history.csv
+echo "== topple invert examples/survey.toml  (a synthetic survey: 8 objects, 30 x 25 cells x 40 motions)"
+"$topple" invert examples/survey.toml --report build/report
+echo
+echo "Report: build/report/index.html (open it in a browser); likelihood grid: build/report/grid.csv"

@@ -1,0 +1,51 @@
+// The main job's budget: `topple invert examples/survey.toml` (8 objects, 30 PGA x 25 frequencies x 40 motions per
+// cell = 240,000 runs) must finish in under 30 s on the project's 2-core machine (issue #6). This benchmark times
+// invert_site on that survey, wall clock, with every core (threads = 0) and with one (the per-core rate, for
+// clusters), and reports runs per second. Synthesis of the family's motions (25 columns x 40 motions) is included:
+// it is part of every inversion.
+// Run:  build/release/bench/bench_inversion  (figures in docs/performance.md)
+#include <filesystem>
+
+#include <benchmark/benchmark.h>
+
+#include "topple/inversion.hpp"
+#include "topple/io/survey_file.hpp"
+
+namespace {
+
+const topple::Survey& example_survey() {
+  static const topple::Survey survey =
+      topple::io::read_survey(std::filesystem::path(TOPPLE_SOURCE_DIR) / "examples" / "survey.toml");
+  return survey;
+}
+
+void BM_InvertExampleSurvey(benchmark::State& state) {
+  const topple::Survey& survey = example_survey();
+  const topple::InversionOptions options{static_cast<int>(state.range(0))};
+  std::size_t runs = 0;
+  for (auto _ : state) {
+    const topple::InversionResult r = topple::invert_site(survey.sites.front(), survey.inversion, options);
+    runs += r.runs;
+    benchmark::DoNotOptimize(r.pga.median);
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(runs));
+  state.counters["objects"] = static_cast<double>(survey.sites.front().objects.size());
+}
+// Argument: worker threads (0 = every core).
+BENCHMARK(BM_InvertExampleSurvey)->Arg(0)->Arg(1)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(1);
+
+/// A quarter of the work (motions_per_cell 10): the same per-run mix, for quick comparisons.
+void BM_InvertExampleSurveyTenMotions(benchmark::State& state) {
+  topple::InversionSettings settings = example_survey().inversion;
+  settings.motions_per_cell = 10;
+  std::size_t runs = 0;
+  for (auto _ : state) {
+    const topple::InversionResult r = topple::invert_site(example_survey().sites.front(), settings, {});
+    runs += r.runs;
+    benchmark::DoNotOptimize(r.pga.median);
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(runs));
+}
+BENCHMARK(BM_InvertExampleSurveyTenMotions)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(3);
+
+}  // namespace
