@@ -10,12 +10,12 @@ scripts/install-deps.sh
 scripts/test-venv.sh || echo "test-venv: no .venv-test; the pyrotd/eqsig comparisons will be skipped"
 
 echo "== release build and tests"
-cmake --preset release >/dev/null
+cmake --preset release -DTOPPLE_BUILD_TESTS=ON -DTOPPLE_BUILD_BENCH=ON >/dev/null  # on after a demo.sh build
 cmake --build --preset release -j "$jobs"
 ctest --preset release -j "$jobs"
 
 echo "== sanitizer build (ASan + UBSan) and tests"
-cmake --preset asan >/dev/null
+cmake --preset asan -DTOPPLE_BUILD_TESTS=ON >/dev/null
 cmake --build --preset asan -j "$jobs"
 ctest --preset asan -j "$jobs"
 
