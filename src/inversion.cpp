@@ -239,19 +239,18 @@ InversionResult invert_site(const Site& site, const InversionSettings& st, const
   const std::size_t no = site.objects.size();
 
   // The family: motions of each frequency column, generated in parallel, shared read-only by every run.
+  // Each column also records its motions' mean measured predominant frequency (a check of the time scaling).
   std::vector<std::vector<std::shared_ptr<const GroundMotion>>> family(nf);
+  r.measured_freq_hz.resize(nf);
   tbb::parallel_for(std::size_t{0}, nf, [&](std::size_t j) {
+    double sum = 0.0;
     for (GroundMotion& m : family_motions(st, r.freq_hz[j])) {
+      sum += predominant_frequency_hz(m);
       family[j].push_back(std::make_shared<const GroundMotion>(std::move(m)));
     }
+    r.measured_freq_hz[j] = sum / static_cast<double>(family[j].size());
   });
   const std::size_t n = family.front().size();
-  r.measured_freq_hz.resize(nf);
-  for (std::size_t j = 0; j < nf; ++j) {
-    double sum = 0.0;
-    for (const auto& m : family[j]) sum += predominant_frequency_hz(*m);
-    r.measured_freq_hz[j] = sum / static_cast<double>(family[j].size());
-  }
 
   ensemble::Plan plan;
   plan.motion_columns = {"cell", "pga_g", "freq_hz", "motion"};
