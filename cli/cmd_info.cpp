@@ -11,6 +11,7 @@
 #include "common.hpp"
 #include "topple/error.hpp"
 #include "topple/intensity.hpp"
+#include "topple/plot.hpp"
 #include "topple/spectra.hpp"
 
 namespace topple::cli {
@@ -45,12 +46,16 @@ std::string text_value(const Measure& m, const char* format_unit) {
 void add_info_command(CLI::App& app) {
   auto options = std::make_shared<MotionOptions>();
   auto json = std::make_shared<bool>(false);
+  auto plot_path = std::make_shared<std::string>();
   CLI::App* cmd = app.add_subcommand("info", "Describe a ground-motion record: format, station, npts, dt, PGA, PGV, "
                                              "PGD, Arias intensity, D5-95, CAV, Tp, Tm, predominant frequency");
   cmd->add_option("file", options->file, "Record file (format detected from content)")->required();
   add_motion_options(*cmd, *options);
   cmd->add_flag("--json", *json, "Print one JSON object instead of text");
-  cmd->callback([options, json] {
+  cmd->add_option("--plot", *plot_path, "Draw acceleration, velocity, displacement and the 5%-damped PSA spectrum "
+                                        "with Tp marked to this .svg or .png file (gnuplot)");
+  cmd->callback([options, json, plot_path] {
+    check_plot_path(*plot_path);
     const GroundMotion motion = load_motion(*options);
     const BasicIntensity im = basic_intensity(motion, options->g_m_s2);
     const auto& meta = motion.metadata();
@@ -66,6 +71,20 @@ void add_info_command(CLI::App& app) {
     const Measure tp = measure([&] { return predominant_period_s(motion); });
     const Measure tm = measure([&] { return mean_period_s(motion); });
     const Measure fp = measure([&] { return predominant_frequency_hz(motion); });
+    if (!plot_path->empty()) {
+      // Tp's own spectrum (spectra.hpp): 5 % damping, 100 periods per decade from 0.02 s to 5 s.
+      const auto periods = log_spaced(0.02, 5.0, 271);
+      std::vector<plot::Mark> marks;
+      if (tp.value) marks.push_back({*tp.value, fmt::format("Tp = {:.3f} s", *tp.value), "#e67e22"});
+      const std::string name = !meta.event.empty() ? meta.event + (meta.station.empty() ? "" : ", " + meta.station)
+                                                   : options->file;
+      const std::string title = fmt::format("{}{}: PGA {:.3g} g, PGV {:.3g} m/s, PGD {:.3g} m", name,
+                                            meta.component.empty() ? "" : " " + meta.component, im.pga_m_s2 / g,
+                                            im.pgv_m_s, im.pgd_m);
+      plot::render(plot::record_figure(motion, integrate_ground(motion), response_spectrum(motion, periods, 0.05),
+                                       marks, g, title),
+                   *plot_path);
+    }
     if (*json) {
       nlohmann::ordered_json out;
       out["file"] = options->file;
@@ -120,6 +139,7 @@ void add_info_command(CLI::App& app) {
     fmt::print("Tm          {}   (Rathje et al. 1998)\n", text_value(tm, "{:.4f} s"));
     fmt::print("f_p         {}   (peak of the Konno-Ohmachi b=40 smoothed FAS)\n", text_value(fp, "{:.4f} Hz"));
     fmt::print("g           {} m/s2\n", g);
+    if (!plot_path->empty()) fmt::print("figure      {}\n", *plot_path);
   });
 }
 

@@ -16,6 +16,7 @@
 #include "common.hpp"
 #include "topple/error.hpp"
 #include "topple/io/write.hpp"
+#include "topple/plot.hpp"
 #include "topple/rocking.hpp"
 #include "topple/units.hpp"
 
@@ -40,6 +41,7 @@ struct RockOptions {
   std::optional<int> rk4_substeps;
   std::string run_out;
   std::string out;
+  std::string plot;
   bool json = false;
 };
 
@@ -177,6 +179,7 @@ void write_history_csv(const std::string& path, const RockingHistory& h) {
 void run_rock(const RockOptions& o) {
   const double g = o.motion.g_m_s2;
   if (!(g > 0.0) || !std::isfinite(g)) throw parameter_error("--g", fmt::format("g must be positive and finite, got {}", g));
+  check_plot_path(o.plot);
   const RockingBody body = make_body(o);
   const RockingOptions options = make_options(o);
   const bool from_pulse = !o.pulse.kind.empty();
@@ -192,17 +195,23 @@ void run_rock(const RockOptions& o) {
   if (!o.vertical.empty()) vertical = io::read_motion(o.vertical, read_options(o.motion)).scaled(factor);
   const GroundMotion* vertical_ptr = vertical ? &*vertical : nullptr;
 
+  const std::string motion_name = from_pulse ? horizontal.metadata().event : o.motion.file;
   RockingSummary s;
-  if (!o.out.empty()) {
+  if (!o.out.empty() || !o.plot.empty()) {
     const RockingResult result = naming_options([&] { return rock(horizontal, body, options, vertical_ptr); });
-    write_history_csv(o.out, result.history);
+    if (!o.out.empty()) write_history_csv(o.out, result.history);
+    if (!o.plot.empty()) {
+      const std::string title = fmt::format("Rocking {}, a = {:.3g} m, h = {:.3g} m, α = {:.3g} rad, e = {:.3g}: {}",
+                                            shape_name(body.shape), body.a_m, body.h_m, result.summary.alpha_rad,
+                                            result.summary.e, motion_name);
+      plot::render(plot::rocking_figure(horizontal, result, body, title, vertical_ptr), o.plot);
+    }
     s = result.summary;
   } else {
     s = naming_options([&] { return rock_summary(horizontal, body, options, vertical_ptr); });
   }
   for (const auto& w : s.warnings) fmt::print(stderr, "topple: warning: {}\n", w);
 
-  const std::string motion_name = from_pulse ? horizontal.metadata().event : o.motion.file;
   if (o.json) {
     nlohmann::ordered_json j = io::rocking_summary_json(s, body, options);
     nlohmann::ordered_json in;
@@ -237,6 +246,7 @@ void run_rock(const RockOptions& o) {
   fmt::print("onset mode             {}{}\n", onset_mode_name(s.onset_mode),
              o.mu ? fmt::format(" (mu = {})", *o.mu) : std::string(" (give --mu to check)"));
   if (!o.out.empty()) fmt::print("history written to {}\n", o.out);
+  if (!o.plot.empty()) fmt::print("figure written to {}\n", o.plot);
 }
 
 }  // namespace
@@ -266,6 +276,8 @@ void add_rock_command(CLI::App& app) {
   cmd->add_option("--rk4-substeps", o->rk4_substeps, "RK4 steps per sample interval (default 10)");
   cmd->add_option("--run-out", o->run_out, "Longest integration after the record on still ground, s (default 60)");
   cmd->add_option("--out", o->out, "Write the time history to this CSV file (time_s,theta_rad,theta_dot_rad_s,state)");
+  cmd->add_option("--plot", o->plot, "Draw record with the uplift levels, theta/alpha with the overturning limits, "
+                                     "theta', impacts and the fall, to this .svg or .png file (gnuplot)");
   cmd->add_flag("--json", o->json, "Print the summary as one JSON object");
   cmd->callback([o] { run_rock(*o); });
 }

@@ -32,6 +32,7 @@ struct SlideOptions {
 void run_slide(const SlideOptions& o) {
   const double g = o.motion.g_m_s2;
   if (!o.mu) throw parameter_error("--mu", "the friction coefficient is required");
+  check_plot_path(o.plot);
   const SlidingBlock block = SlidingBlock::make(*o.mu, o.mu_kinetic.value_or(-1.0), o.slope_deg * kPi / 180.0,
                                                 o.one_way ? SlidingMode::one_way : SlidingMode::two_way, g);
   const bool from_pulse = !o.pulse.kind.empty();

@@ -13,6 +13,7 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "topple/error.hpp"
+#include "topple/plot.hpp"
 #include "topple/spectra.hpp"
 #include "topple/synthesis.hpp"
 #include "topple/units.hpp"
@@ -31,6 +32,7 @@ struct SynthOptions {
   double zeta_g = 0.3;
   double g_m_s2 = kStandardGravity;
   std::string out;
+  std::string plot;
   bool json = false;
 };
 
@@ -71,7 +73,10 @@ void run_synth(const SynthOptions& o) {
   if (!(o.g_m_s2 > 0.0) || !std::isfinite(o.g_m_s2)) {
     throw parameter_error("--g", fmt::format("g must be positive and finite, got {}", o.g_m_s2));
   }
-  if (o.out.empty()) throw parameter_error("--out", "give the CSV file to write (--out motion.csv)");
+  if (o.out.empty() && o.plot.empty()) {
+    throw parameter_error("--out", "give the CSV file to write (--out motion.csv), a figure (--plot motion.svg), or both");
+  }
+  check_plot_path(o.plot);
   SynthesisSpec spec;
   spec.pga_m_s2 = parse_acceleration_m_s2(o.pga, "--pga", o.g_m_s2);
   spec.predominant_frequency_hz = parse_frequency_hz(o.freq, "--freq");
@@ -92,11 +97,28 @@ void run_synth(const SynthOptions& o) {
   }
   const GroundMotion motion = synthesize(spec);
   const double f_g = ground_frequency_for_request_hz(spec.predominant_frequency_hz, spec.ground_damping, spec.model);
-  write_motion_csv(o.out, motion, spec, f_g, o.g_m_s2);
+  if (!o.out.empty()) write_motion_csv(o.out, motion, spec, f_g, o.g_m_s2);
   const double measured = predominant_frequency_hz(motion);
+  if (!o.plot.empty()) {
+    // The spectrum the predominant frequency is measured on (spectra.hpp): zero padded to the next power of two at
+    // least twice the record, Konno-Ohmachi b = 40, 0.1 Hz to min(25 Hz, 0.8 f_Nyquist).
+    std::size_t n_fft = 1;
+    while (n_fft < 2 * motion.size()) n_fft *= 2;
+    const FourierSpectrum fas = fourier_amplitude_spectrum(motion, n_fft);
+    const double f_hi = std::min(25.0, 0.4 / spec.dt_s);
+    const std::vector<double> centres = log_spaced(0.1, f_hi, 400);
+    const std::vector<double> smooth = konno_ohmachi_smooth(fas, centres, 40.0);
+    const std::vector<plot::Mark> marks{
+        {spec.predominant_frequency_hz, fmt::format("requested {:.3g} Hz", spec.predominant_frequency_hz), "#e67e22"},
+        {measured, fmt::format("measured f_p {:.3g} Hz", measured), "#c0392b"}};
+    const std::string title = fmt::format("Synthetic motion ({}, {}): PGA {:.3g} g, seed {}", filter_model_name(spec.model),
+                                          envelope_kind_name(spec.envelope), motion.pga_m_s2() / o.g_m_s2, spec.seed);
+    plot::render(plot::motion_spectrum_figure(motion, fas, centres, smooth, marks, o.g_m_s2, title), o.plot);
+  }
   if (o.json) {
     nlohmann::ordered_json j;
-    j["out"] = o.out;
+    j["out"] = o.out.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(o.out);
+    j["plot"] = o.plot.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(o.plot);
     j["model"] = filter_model_name(spec.model);
     j["envelope"] = envelope_kind_name(spec.envelope);
     j["seed"] = spec.seed;
@@ -112,10 +134,12 @@ void run_synth(const SynthOptions& o) {
     fmt::print("{}\n", j.dump(2));
     return;
   }
-  fmt::print("wrote {}: {} samples, dt {} s, {} / {} motion, seed {}\n", o.out, motion.size(), spec.dt_s,
+  if (!o.out.empty()) fmt::print("wrote {}: ", o.out);
+  fmt::print("{} samples, dt {} s, {} / {} motion, seed {}\n", motion.size(), spec.dt_s,
              filter_model_name(spec.model), envelope_kind_name(spec.envelope), spec.seed);
   fmt::print("PGA {:.5g} g; predominant frequency requested {:.4g} Hz (filter f_g {:.4g} Hz), measured {:.4g} Hz\n",
              motion.pga_m_s2() / o.g_m_s2, spec.predominant_frequency_hz, f_g, measured);
+  if (!o.plot.empty()) fmt::print("figure written to {}\n", o.plot);
 }
 
 }  // namespace
@@ -134,7 +158,9 @@ void add_synth_command(CLI::App& app) {
   cmd->add_option("--envelope", o->envelope, "Time envelope: saragoni-hart or jennings")->capture_default_str();
   cmd->add_option("--zeta-g", o->zeta_g, "Kanai-Tajimi ground damping, 0.1-0.5")->capture_default_str();
   cmd->add_option("--g", o->g_m_s2, "Gravitational acceleration, m/s2 (for values in g)")->capture_default_str();
-  cmd->add_option("--out", o->out, "CSV file to write (time_s,accel_g)")->required();
+  cmd->add_option("--out", o->out, "CSV file to write (time_s,accel_g); --out, --plot or both");
+  cmd->add_option("--plot", o->plot, "Draw the motion and its smoothed Fourier spectrum with the requested and "
+                                     "measured predominant frequency to this .svg or .png file (gnuplot)");
   cmd->add_flag("--json", o->json, "Print a JSON summary instead of text");
   cmd->callback([o] { run_synth(*o); });
 }

@@ -50,12 +50,20 @@ GroundMotion load_motion(const MotionOptions& o) {
 
 void add_pulse_options(CLI::App& cmd, PulseOptions& o) {
   cmd.add_option("--pulse", o.kind, "Use an analytic pulse instead of a file: rect, tri, double-tri, sine, cosine, "
-                                    "ricker");
-  cmd.add_option("--amp-g", o.amp_g, "Pulse amplitude, in g");
-  cmd.add_option("--duration", o.duration, "Pulse duration (rect/tri width, sine/cosine period, Ricker 1/f_peak), "
-                                           "s (a bare number) or with a unit, e.g. 100ms");
+                                    "ricker, tri-train, trap-train (thesis Figs 3.5, 3.6; --cycles), mp "
+                                    "(Mavroeidis-Papageorgiou near-fault pulse; --vel-amp, --gamma, --nu-deg)");
+  cmd.add_option("--amp-g", o.amp_g, "Pulse amplitude, in g (all pulses but mp)");
+  cmd.add_option("--duration", o.duration, "Pulse duration (rect/tri width, sine/cosine/train period, Ricker "
+                                           "1/f_peak, mp 1/f_p), s (a bare number) or with a unit, e.g. 100ms");
   cmd.add_option("--tail", o.tail, "Still ground after the pulse, s (default: 5 pulse durations)");
   cmd.add_option("--pulse-dt", o.dt, "Sampling step of smooth pulses, s (default: duration/2000)");
+  cmd.add_option("--cycles", o.cycles, "tri-train, trap-train: number of full cycles (default 1)");
+  cmd.add_option("--ramp-fraction", o.ramp_fraction, "trap-train: rise (and fall) time as a fraction of the half "
+                                                     "period, in (0, 0.5] (default 1/3; 0.5 is the tri-train)");
+  cmd.add_option("--vel-amp", o.vel_amp_m_s, "mp: velocity amplitude A, m/s (scale to a PGA with --scale-pga)");
+  cmd.add_option("--gamma", o.gamma, "mp: oscillatory character gamma > 1, half cycles under the envelope "
+                                     "(default 2)");
+  cmd.add_option("--nu-deg", o.nu_deg, "mp: phase nu, degrees (default 0: symmetric velocity pulse)");
 }
 
 double parse_seconds(const std::string& text, const std::string& option) {
@@ -68,17 +76,86 @@ double parse_seconds(const std::string& text, const std::string& option) {
   return parse_duration_s(text, option);
 }
 
+namespace {
+
+/// The library names its fields; the user typed options.
+template <class F>
+GroundMotion naming_pulse_options(F f) {
+  try {
+    return f();
+  } catch (const InputError& e) {
+    static const std::pair<const char*, const char*> names[] = {
+        {"amplitude", "--amp-g"},     {"duration", "--duration"},   {"tail", "--tail"},
+        {"dt", "--pulse-dt"},         {"cycles", "--cycles"},       {"trapezoid_ramp_fraction", "--ramp-fraction"},
+        {"velocity_amplitude_m_s", "--vel-amp"}, {"frequency_hz", "--duration"}, {"phase_rad", "--nu-deg"},
+        {"gamma", "--gamma"}};
+    for (const auto& [field, option] : names) {
+      if (e.where().field == field && e.where().file.empty()) throw parameter_error(option, e.problem());
+    }
+    throw;
+  }
+}
+
+}  // namespace
+
 GroundMotion make_pulse_motion(const PulseOptions& o, double g_m_s2) {
-  if (!o.amp_g) throw parameter_error("--amp-g", "a pulse needs its amplitude (--amp-g, in g)");
   if (o.duration.empty()) throw parameter_error("--duration", "a pulse needs its duration (--duration)");
+  const double duration = parse_seconds(o.duration, "--duration");
+  const double tail = o.tail.empty() ? 5.0 * duration : parse_seconds(o.tail, "--tail");
+  const double dt = o.dt.empty() ? 0.0 : parse_seconds(o.dt, "--pulse-dt");
+  if (dt < 0.0) throw parameter_error("--pulse-dt", "must be positive");
+  const bool mp = o.kind == "mp" || o.kind == "mavroeidis-papageorgiou";
+  const PulseKind kind = [&] {
+    if (mp) return PulseKind::sine;  // unused
+    try {
+      return parse_pulse_kind(o.kind, "--pulse");
+    } catch (const InputError&) {
+      throw parameter_error("--pulse", fmt::format("unknown pulse '{}' (known: rect, tri, double-tri, sine, cosine, "
+                                                   "ricker, tri-train, trap-train, mp)", o.kind));
+    }
+  }();
+  const bool train = !mp && (kind == PulseKind::triangular_train || kind == PulseKind::trapezoidal_train);
+  const auto refuse = [&](bool given, const char* option, const char* applies_to) {
+    if (given) throw parameter_error(option, fmt::format("{} applies to --pulse {} only", option, applies_to));
+  };
+  refuse(o.cycles.has_value() && !train, "--cycles", "tri-train and trap-train");
+  refuse(o.ramp_fraction.has_value() && (mp || kind != PulseKind::trapezoidal_train), "--ramp-fraction", "trap-train");
+  refuse(o.vel_amp_m_s.has_value() && !mp, "--vel-amp", "mp (the others take --amp-g)");
+  refuse(o.gamma.has_value() && !mp, "--gamma", "mp");
+  refuse(o.nu_deg.has_value() && !mp, "--nu-deg", "mp");
+  if (mp) {
+    if (o.amp_g) {
+      throw parameter_error("--amp-g", "the mp pulse is given by its velocity amplitude (--vel-amp, m/s); scale it "
+                                       "to a PGA with --scale-pga");
+    }
+    if (!o.vel_amp_m_s) throw parameter_error("--vel-amp", "the mp pulse needs its velocity amplitude (--vel-amp, m/s)");
+    if (!(duration > 0.0)) throw parameter_error("--duration", fmt::format("must be positive, got {} s", duration));
+    MavroeidisPapageorgiouPulse pulse;
+    pulse.velocity_amplitude_m_s = *o.vel_amp_m_s;
+    pulse.frequency_hz = 1.0 / duration;
+    pulse.gamma = o.gamma.value_or(2.0);
+    pulse.phase_rad = o.nu_deg.value_or(0.0) * kPi / 180.0;
+    return naming_pulse_options([&] { return make_mavroeidis_papageorgiou_pulse(pulse, dt, tail); });
+  }
+  if (!o.amp_g) throw parameter_error("--amp-g", "a pulse needs its amplitude (--amp-g, in g)");
   PulseSpec spec;
-  spec.kind = parse_pulse_kind(o.kind, "--pulse");
+  spec.kind = kind;
   spec.amplitude_m_s2 = *o.amp_g * g_m_s2;
-  spec.duration_s = parse_seconds(o.duration, "--duration");
-  spec.tail_s = o.tail.empty() ? 5.0 * spec.duration_s : parse_seconds(o.tail, "--tail");
-  spec.dt_s = o.dt.empty() ? 0.0 : parse_seconds(o.dt, "--pulse-dt");
-  if (spec.dt_s < 0.0) throw parameter_error("--pulse-dt", "must be positive");
-  return make_pulse(spec);
+  spec.duration_s = duration;
+  spec.tail_s = tail;
+  spec.dt_s = dt;
+  if (o.cycles) spec.cycles = *o.cycles;
+  if (o.ramp_fraction) spec.trapezoid_ramp_fraction = *o.ramp_fraction;
+  return naming_pulse_options([&] { return make_pulse(spec); });
+}
+
+void check_plot_path(const std::string& path) {
+  if (path.empty()) return;
+  const auto dot = path.rfind('.');
+  const std::string ext = dot == std::string::npos ? std::string() : path.substr(dot);
+  if (ext != ".svg" && ext != ".png") {
+    throw parameter_error("--plot", fmt::format("'{}': figures are written as .svg or .png", path));
+  }
 }
 
 std::string format_seconds_or_none(const std::optional<double>& t) {

@@ -37,16 +37,23 @@ void add_motion_options(CLI::App& cmd, MotionOptions& options);
 /// Applies --scale-pga / --scale / --invert to a motion.
 [[nodiscard]] GroundMotion transform_motion(GroundMotion motion, const MotionOptions& options);
 
-/// An analytic pulse instead of a record file (--pulse KIND --amp-g A --duration T [--tail T] [--pulse-dt T]).
+/// An analytic pulse instead of a record file (--pulse KIND --amp-g A --duration T [--tail T] [--pulse-dt T]; trains
+/// take --cycles N [--ramp-fraction r]; the Mavroeidis-Papageorgiou pulse --vel-amp A --duration 1/f_p [--gamma]
+/// [--nu-deg] instead of --amp-g).
 struct PulseOptions {
   std::string kind;            // empty: no pulse
   std::optional<double> amp_g;
   std::string duration = "";   // "0.1" (s) or with a unit ("100ms")
   std::string tail = "";       // still ground after the pulse; default: 5 pulse durations
   std::string dt = "";         // sampling of smooth pulses; default duration/2000
+  std::optional<int> cycles;             // tri-train, trap-train: number of cycles (default 1)
+  std::optional<double> ramp_fraction;   // trap-train: ramp length / half period, (0, 0.5] (default 1/3)
+  std::optional<double> vel_amp_m_s;     // mp: velocity amplitude A, m/s
+  std::optional<double> gamma;           // mp: oscillatory character, > 1 (default 2)
+  std::optional<double> nu_deg;          // mp: phase, degrees (default 0)
 };
 
-/// Adds --pulse, --amp-g, --duration, --tail, --pulse-dt.
+/// Adds --pulse, --amp-g, --duration, --tail, --pulse-dt, --cycles, --ramp-fraction, --vel-amp, --gamma, --nu-deg.
 void add_pulse_options(CLI::App& cmd, PulseOptions& options);
 
 /// The pulse as a motion (g from `g_m_s2`). Throws InputError naming the option.
@@ -54,6 +61,9 @@ void add_pulse_options(CLI::App& cmd, PulseOptions& options);
 
 /// A duration option: a bare number is seconds, or a value with a unit ("100ms").
 [[nodiscard]] double parse_seconds(const std::string& text, const std::string& option);
+
+/// Checks a --plot file name before any work is done: .svg or .png, else InputError naming --plot (exit 2).
+void check_plot_path(const std::string& path);
 
 /// JSON-friendly number: NaN/Inf never reach output (callers pass optionals for "none").
 [[nodiscard]] std::string format_seconds_or_none(const std::optional<double>& t);

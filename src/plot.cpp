@@ -86,33 +86,55 @@ std::string gnuplot_script(const Figure& f, const std::filesystem::path& path) {
   const int n = static_cast<int>(f.panels.size());
   os << terminal_for(path, f.width_px, std::max(1, n) * f.panel_height_px + 60) << "\n";
   os << "set output " << quote(path.string()) << "\n";
-  os << "set grid lc rgb '#dddddd'\nset key top right font ',10' opaque\nset border lc rgb '#444444'\n";
+  os << "set grid lc rgb '#dddddd'\nset border lc rgb '#444444'\n";
   for (int p = 0; p < n; ++p) {
     for (std::size_t s = 0; s < f.panels[p].series.size(); ++s) {
       datablock(os, fmt::format("p{}s{}", p, s), f.panels[p].series[s].x, f.panels[p].series[s].y);
     }
   }
-  // Shared x axis: one range and fixed margins so that the panels line up.
-  double xmin = INFINITY;
-  double xmax = -INFINITY;
-  for (const Panel& panel : f.panels) {
+  // Shared x axis: one range and fixed margins so that the panels line up. A panel with its own x label has its own
+  // axis and range. Legends sit in the right margin, beside their panel, never over the data.
+  const auto own_xlabel = [&f](int p) -> std::string {
+    return p < static_cast<int>(f.own_xlabels.size()) ? f.own_xlabels[static_cast<std::size_t>(p)] : std::string();
+  };
+  const auto x_range = [](const Panel& panel) {
+    std::pair<double, double> r{INFINITY, -INFINITY};
     for (const Series& s : panel.series) {
       for (double x : s.x) {
         if (std::isfinite(x) && (!panel.log_x || x > 0.0)) {
-          xmin = std::min(xmin, x);
-          xmax = std::max(xmax, x);
+          r.first = std::min(r.first, x);
+          r.second = std::max(r.second, x);
         }
       }
     }
+    return r;
+  };
+  double xmin = INFINITY;
+  double xmax = -INFINITY;
+  for (int p = 0; p < n; ++p) {
+    if (!own_xlabel(p).empty()) continue;
+    const auto [lo, hi] = x_range(f.panels[p]);
+    xmin = std::min(xmin, lo);
+    xmax = std::max(xmax, hi);
   }
-  if (xmax > xmin) os << fmt::format("set xrange [{:.10g}:{:.10g}]\n", xmin, xmax);
-  os << "set lmargin 12\nset rmargin 4\n";
+  os << "set lmargin at screen 0.09\nset rmargin at screen 0.78\n";
+  os << "set key at graph 1.02, graph 1 left top vertical Left reverse noopaque nobox font ',10' samplen 2 "
+        "spacing 1.1\n";
   os << fmt::format("set multiplot layout {},1 title {} font ',13'\n", std::max(1, n), quote(f.title));
   for (int p = 0; p < n; ++p) {
     const Panel& panel = f.panels[p];
     os << "unset arrow\nunset logscale\n";
     os << "set ylabel " << quote(panel.ylabel) << "\n";
-    os << "set xlabel " << (p == n - 1 ? quote(f.xlabel) : std::string("\"\"")) << "\n";
+    const bool own_axis = !own_xlabel(p).empty();
+    const bool last_shared = !own_axis && (p == n - 1 || !own_xlabel(p + 1).empty());
+    os << "set xlabel " << (own_axis ? quote(own_xlabel(p)) : last_shared ? quote(f.xlabel) : std::string("\"\""))
+       << "\n";
+    const auto [lo, hi] = own_axis ? x_range(panel) : std::pair{xmin, xmax};
+    if (hi > lo) {
+      os << fmt::format("set xrange [{:.10g}:{:.10g}]\n", lo, hi);
+    } else {
+      os << "set xrange [*:*]\n";
+    }
     if (panel.log_x) os << "set logscale x\n";
     if (panel.log_y) os << "set logscale y\n";
     int arrow = 1;
@@ -230,23 +252,143 @@ Figure sliding_figure(const GroundMotion& m, const SlidingResult& r, const Slidi
   return f;
 }
 
-Figure rocking_figure(const GroundMotion& m, const RockingResult& r, const RockingBody& body, const std::string& title) {
+namespace {
+
+/// A vertical line at `mark.x` spanning [lo, hi] of the panel's data, with its label in the legend.
+Series mark_series(const Mark& mark, double lo, double hi) {
+  return {mark.label, {mark.x, mark.x}, {lo, hi}, "lines dt 4", mark.color.empty() ? "#e67e22" : mark.color, 1.5};
+}
+
+std::pair<double, double> y_span(const std::vector<double>& y, bool positive_only) {
+  std::pair<double, double> r{INFINITY, -INFINITY};
+  for (double v : y) {
+    if (std::isfinite(v) && (!positive_only || v > 0.0)) {
+      r.first = std::min(r.first, v);
+      r.second = std::max(r.second, v);
+    }
+  }
+  if (!(r.second >= r.first)) r = {positive_only ? 1.0 : 0.0, positive_only ? 10.0 : 1.0};
+  return r;
+}
+
+}  // namespace
+
+Figure rocking_figure(const GroundMotion& m, const RockingResult& r, const RockingBody& body, const std::string& title,
+                      const GroundMotion* vertical) {
   const double g = r.summary.g_m_s2 > 0.0 ? r.summary.g_m_s2 : kStandardGravity;
   const double alpha = body.alpha_rad();
   const double t_end = r.history.time_s.empty() ? m.end_time_s() : r.history.time_s.back();
+  const double threshold = body.a_m / body.h_m;  // = tan(alpha): uplift at |a_h| > (g + a_v) a / h
   Figure f;
   f.title = title;
   f.xlabel = "time (s)";
-  Panel accel{"acceleration (g)", {ground_series(m, g, t_end)}, {{std::tan(alpha), "uplift g tan(alpha)"}, {-std::tan(alpha), "uplift -g tan(alpha)"}}, {}, false, false};
+  Panel accel{"ground acceleration (g)", {ground_series(m, g, t_end)}, {}, {}, false, false};
+  accel.series.front().label = "horizontal";
+  if (vertical != nullptr) {
+    Series v = ground_series(*vertical, g, t_end);
+    v.label = "vertical";
+    v.color = "#27ae60";
+    accel.series.push_back(std::move(v));
+  }
+  accel.levels = {{threshold, fmt::format("uplift ±a/h = ±{:.3g} g", threshold)}, {-threshold, ""}};
   std::vector<double> ratio(r.history.theta_rad.size());
   for (std::size_t i = 0; i < ratio.size(); ++i) ratio[i] = r.history.theta_rad[i] / alpha;
-  Panel theta{"rotation theta / alpha", {{"theta / alpha", r.history.time_s, ratio, "lines", "#c0392b", 1.8}}, {{1.0, "CM over pivot"}, {-1.0, ""}}, {}, false, false};
-  Panel rate{"angular velocity (rad/s)", {{"theta'", r.history.time_s, r.history.theta_dot_rad_s, "lines", "#2171b5", 1.5}}, {}, {}, false, false};
+  Panel theta{"rotation θ/α (-)", {{"θ/α", r.history.time_s, ratio, "lines", "#c0392b", 1.8}},
+              {{1.0, "overturning limit ±1"}, {-1.0, ""}}, {}, false, false};
+  Panel rate{"angular velocity (rad/s)",
+             {{"dθ/dt", r.history.time_s, r.history.theta_dot_rad_s, "lines", "#2171b5", 1.5}}, {}, {}, false,
+             false};
+  Series impacts{"impacts", {}, {}, "points pt 7 ps 0.45", "#333333", 1.0};
   for (const RockingEvent& e : r.events) {
-    if (e.kind == RockingEventKind::impact) theta.marks_x.push_back(e.time_s);
+    if (e.kind == RockingEventKind::impact) {
+      impacts.x.push_back(e.time_s);
+      impacts.y.push_back(0.0);
+    }
     if (e.kind == RockingEventKind::uplift) accel.marks_x.push_back(e.time_s);
   }
+  if (!impacts.x.empty()) {
+    impacts.label = fmt::format("impacts ({})", impacts.x.size());
+    theta.series.push_back(std::move(impacts));
+  }
+  if (r.summary.overturned && r.summary.overturn_time_s) {
+    const double t = *r.summary.overturn_time_s;
+    const Mark fall{t, fmt::format("overturned, t = {:.3f} s", t), "#8e44ad"};
+    for (Panel* panel : {&accel, &theta, &rate}) {
+      double lo = INFINITY;
+      double hi = -INFINITY;
+      for (const Series& s : panel->series) {
+        const auto [a, b] = y_span(s.y, false);
+        lo = std::min(lo, a);
+        hi = std::max(hi, b);
+      }
+      for (const Level& level : panel->levels) {
+        lo = std::min(lo, level.y);
+        hi = std::max(hi, level.y);
+      }
+      panel->series.push_back(mark_series(fall, lo, hi));
+      if (panel != &theta) panel->series.back().label.clear();
+    }
+  }
   f.panels = {accel, theta, rate};
+  return f;
+}
+
+Figure motion_spectrum_figure(const GroundMotion& m, const FourierSpectrum& fas, const std::vector<double>& smooth_hz,
+                              const std::vector<double>& smooth_amplitude_m_s, const std::vector<Mark>& marks,
+                              double g, const std::string& title) {
+  Figure f;
+  f.title = title;
+  f.xlabel = "time (s)";
+  Series ground = ground_series(m, g, m.end_time_s());
+  ground.color = "#333333";
+  ground.label = "";
+  Panel accel{"acceleration (g)", {std::move(ground)}, {}, {}, false, false};
+  // The raw FAS over the band the smoothed one covers (plus a little), without f = 0 (log axis).
+  const double f_lo = smooth_hz.empty() ? 0.0 : smooth_hz.front();
+  const double f_hi = smooth_hz.empty() ? INFINITY : smooth_hz.back();
+  Series raw{"FAS", {}, {}, "lines", "#bbbbbb", 0.8};
+  for (std::size_t k = 0; k < fas.frequency_hz.size(); ++k) {
+    const double fk = fas.frequency_hz[k];
+    if (fk > 0.0 && fk >= 0.8 * f_lo && fk <= 1.25 * f_hi && fas.amplitude_m_s[k] > 0.0) {
+      raw.x.push_back(fk);
+      raw.y.push_back(fas.amplitude_m_s[k]);
+    }
+  }
+  Panel spectrum{"Fourier amplitude (m/s)", {std::move(raw)}, {}, {}, true, true};
+  spectrum.series.push_back({"smoothed (K-O, b = 40)", smooth_hz, smooth_amplitude_m_s, "lines", "#2171b5", 2.0});
+  auto [lo, hi] = y_span(spectrum.series.front().y, true);
+  const auto [slo, shi] = y_span(smooth_amplitude_m_s, true);
+  lo = std::min(lo, slo);
+  hi = std::max(hi, shi);
+  for (const Mark& mark : marks) spectrum.series.push_back(mark_series(mark, lo, hi));
+  f.panels = {accel, spectrum};
+  f.own_xlabels = {"", "frequency (Hz)"};
+  return f;
+}
+
+Figure record_figure(const GroundMotion& m, const GroundVelocityDisplacement& ground, const ResponseSpectrum& rs,
+                     const std::vector<Mark>& marks, double g, const std::string& title) {
+  Figure f;
+  f.title = title;
+  f.xlabel = "time (s)";
+  f.panel_height_px = 220;
+  std::vector<double> t(m.size());
+  for (std::size_t i = 0; i < m.size(); ++i) t[i] = m.time_s(i);
+  Series a = ground_series(m, g, m.end_time_s());
+  a.color = "#333333";
+  a.label = "";
+  Panel accel{"acceleration (g)", {std::move(a)}, {}, {}, false, false};
+  Panel vel{"velocity (m/s)", {{"", t, ground.velocity_m_s, "lines", "#2171b5", 1.2}}, {}, {}, false, false};
+  Panel disp{"displacement (m)", {{"", t, ground.displacement_m, "lines", "#c0392b", 1.2}}, {}, {}, false, false};
+  std::vector<double> psa(rs.psa_m_s2.size());
+  for (std::size_t i = 0; i < psa.size(); ++i) psa[i] = rs.psa_m_s2[i] / g;
+  Panel spectrum{"pseudo-acceleration (g)",
+                 {{fmt::format("PSA, {:.3g} % damping", 100.0 * rs.damping), rs.period_s, psa, "lines", "#2171b5", 2.0}},
+                 {}, {}, true, false};
+  const auto [lo, hi] = y_span(psa, false);
+  for (const Mark& mark : marks) spectrum.series.push_back(mark_series(mark, std::min(0.0, lo), hi));
+  f.panels = {accel, vel, disp, spectrum};
+  f.own_xlabels = {"", "", "", "period (s)"};
   return f;
 }
 

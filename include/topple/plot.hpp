@@ -9,8 +9,10 @@
 #include <vector>
 
 #include "topple/ground_motion.hpp"
+#include "topple/intensity.hpp"
 #include "topple/rocking.hpp"
 #include "topple/sliding.hpp"
+#include "topple/spectra.hpp"
 
 namespace topple::plot {
 
@@ -45,6 +47,9 @@ struct Figure {
   std::vector<Panel> panels;
   int width_px = 1000;
   int panel_height_px = 260;
+  /// By panel index: a non-empty label (with units) gives that panel its own x axis and the range of its own data
+  /// instead of the shared one (e.g. a spectrum below time histories). Missing or empty: the shared axis.
+  std::vector<std::string> own_xlabels;
 };
 
 /// A gridded field (e.g. a likelihood over PGA x frequency) with optional contour lines of other fields.
@@ -76,9 +81,31 @@ void render(const MapFigure& figure, const std::filesystem::path& path);
 [[nodiscard]] Figure sliding_figure(const GroundMotion& horizontal, const SlidingResult& result,
                                     const SlidingBlock& block, const std::string& title);
 
-/// Record with the uplift levels +-g tan(alpha) (in g), theta / alpha (overturning at +-pi/(2 alpha)), theta', impacts
-/// marked.
+/// Record with the uplift levels +-g a/h (in g; the vertical component too when given), theta / alpha with the
+/// overturning limits +-1 (the CM over the pivot), theta'; uplifts, impacts and the fall marked.
 [[nodiscard]] Figure rocking_figure(const GroundMotion& horizontal, const RockingResult& result,
-                                    const RockingBody& body, const std::string& title);
+                                    const RockingBody& body, const std::string& title,
+                                    const GroundMotion* vertical = nullptr);
+
+/// A frequency or period marked on a spectrum by a vertical line with its label.
+struct Mark {
+  double x = 0.0;
+  std::string label;
+  std::string color;  ///< "#rrggbb"
+};
+
+/// Acceleration (g) over time, and below it the Fourier amplitude spectrum (m/s) on log axes: the raw FAS and its
+/// smoothed version at `smooth_hz`, with frequencies marked (e.g. requested and measured predominant frequency).
+[[nodiscard]] Figure motion_spectrum_figure(const GroundMotion& motion, const FourierSpectrum& fas,
+                                            const std::vector<double>& smooth_hz,
+                                            const std::vector<double>& smooth_amplitude_m_s,
+                                            const std::vector<Mark>& frequency_marks, double g_m_s2,
+                                            const std::string& title);
+
+/// Ground acceleration (g), velocity (m/s) and displacement (m) stacked over time, and below them the
+/// pseudo-acceleration response spectrum (g) over period on log axes, with periods marked (e.g. Tp).
+[[nodiscard]] Figure record_figure(const GroundMotion& motion, const GroundVelocityDisplacement& ground,
+                                   const ResponseSpectrum& spectrum, const std::vector<Mark>& period_marks,
+                                   double g_m_s2, const std::string& title);
 
 }  // namespace topple::plot
