@@ -74,7 +74,8 @@ void run_synth(const SynthOptions& o) {
     throw parameter_error("--g", fmt::format("g must be positive and finite, got {}", o.g_m_s2));
   }
   if (o.out.empty() && o.plot.empty()) {
-    throw parameter_error("--out", "give the CSV file to write (--out motion.csv), a figure (--plot motion.svg), or both");
+    throw parameter_error("--out",
+                          "give the CSV file to write (--out motion.csv), a figure (--plot motion.svg), or both");
   }
   check_plot_path(o.plot);
   SynthesisSpec spec;
@@ -111,8 +112,9 @@ void run_synth(const SynthOptions& o) {
     const std::vector<plot::Mark> marks{
         {spec.predominant_frequency_hz, fmt::format("requested {:.3g} Hz", spec.predominant_frequency_hz), "#e67e22"},
         {measured, fmt::format("measured f_p {:.3g} Hz", measured), "#c0392b"}};
-    const std::string title = fmt::format("Synthetic motion ({}, {}): PGA {:.3g} g, seed {}", filter_model_name(spec.model),
-                                          envelope_kind_name(spec.envelope), motion.pga_m_s2() / o.g_m_s2, spec.seed);
+    const std::string title =
+        fmt::format("Synthetic motion ({}, {}): PGA {:.3g} g, seed {}", filter_model_name(spec.model),
+                    envelope_kind_name(spec.envelope), motion.pga_m_s2() / o.g_m_s2, spec.seed);
     plot::render(plot::motion_spectrum_figure(motion, fas, centres, smooth, marks, o.g_m_s2, title), o.plot);
   }
   if (o.json) {

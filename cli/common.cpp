@@ -128,7 +128,9 @@ GroundMotion make_pulse_motion(const PulseOptions& o, double g_m_s2) {
       throw parameter_error("--amp-g", "the mp pulse is given by its velocity amplitude (--vel-amp, m/s); scale it "
                                        "to a PGA with --scale-pga");
     }
-    if (!o.vel_amp_m_s) throw parameter_error("--vel-amp", "the mp pulse needs its velocity amplitude (--vel-amp, m/s)");
+    if (!o.vel_amp_m_s) {
+      throw parameter_error("--vel-amp", "the mp pulse needs its velocity amplitude (--vel-amp, m/s)");
+    }
     if (!(duration > 0.0)) throw parameter_error("--duration", fmt::format("must be positive, got {} s", duration));
     MavroeidisPapageorgiouPulse pulse;
     pulse.velocity_amplitude_m_s = *o.vel_amp_m_s;

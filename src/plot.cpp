@@ -383,7 +383,8 @@ Figure record_figure(const GroundMotion& m, const GroundVelocityDisplacement& gr
   std::vector<double> psa(rs.psa_m_s2.size());
   for (std::size_t i = 0; i < psa.size(); ++i) psa[i] = rs.psa_m_s2[i] / g;
   Panel spectrum{"pseudo-acceleration (g)",
-                 {{fmt::format("PSA, {:.3g} % damping", 100.0 * rs.damping), rs.period_s, psa, "lines", "#2171b5", 2.0}},
+                 {{fmt::format("PSA, {:.3g} % damping", 100.0 * rs.damping), rs.period_s, psa, "lines", "#2171b5",
+                   2.0}},
                  {}, {}, true, false};
   const auto [lo, hi] = y_span(psa, false);
   for (const Mark& mark : marks) spectrum.series.push_back(mark_series(mark, std::min(0.0, lo), hi));

@@ -9,9 +9,12 @@
 
 #include "support/shared_data.hpp"
 #include "topple/error.hpp"
+#include "topple/intensity.hpp"
 #include "topple/plot.hpp"
 #include "topple/pulses.hpp"
+#include "topple/rocking.hpp"
 #include "topple/sliding.hpp"
+#include "topple/spectra.hpp"
 
 namespace topple {
 namespace {
@@ -81,6 +84,44 @@ TEST(Plot, MapFigure) {
   EXPECT_NE(svg.find("<svg"), std::string::npos);
   EXPECT_GE(count(svg, "<polygon"), 80u);  // the gridded field: one filled cell per grid point (10 x 8)
   EXPECT_NE(svg.find("lower bound"), std::string::npos);
+}
+
+TEST(Plot, RockingFigureThresholdsAndFall) {
+  const auto motion = make_pulse({PulseKind::sine, 0.25 * kStandardGravity, 0.5, 2.5, 0.0});
+  const auto body = RockingBody::block(0.04, 0.20);
+  RockingOptions options;
+  options.restitution = RestitutionMode::given;
+  options.e = 0.9;
+  const auto result = rock(motion, body, options);
+  ASSERT_TRUE(result.summary.overturned);
+  const auto f = plot::rocking_figure(motion, result, body, "falling block");
+  ASSERT_EQ(f.panels.size(), 3u);
+  ASSERT_EQ(f.panels[0].levels.size(), 2u);  // uplift at +-a/h (in g)
+  EXPECT_DOUBLE_EQ(f.panels[0].levels[0].y, 0.2);
+  EXPECT_DOUBLE_EQ(f.panels[0].levels[1].y, -0.2);
+  ASSERT_EQ(f.panels[1].levels.size(), 2u);  // theta/alpha = +-1
+  EXPECT_DOUBLE_EQ(f.panels[1].levels[0].y, 1.0);
+  EXPECT_DOUBLE_EQ(f.panels[1].levels[1].y, -1.0);
+  // the fall is a vertical line at the overturning instant in every panel
+  for (const auto& panel : f.panels) {
+    const auto& mark = panel.series.back();
+    EXPECT_EQ(mark.x, (std::vector<double>{*result.summary.overturn_time_s, *result.summary.overturn_time_s}));
+  }
+}
+
+TEST(Plot, PanelsWithTheirOwnAxisBelowTimeHistories) {
+  const auto motion = make_pulse({PulseKind::ricker, 0.3 * kStandardGravity, 0.4, 2.0, 0.005});
+  const auto periods = log_spaced(0.02, 5.0, 50);
+  const auto f = plot::record_figure(motion, integrate_ground(motion), response_spectrum(motion, periods),
+                                     {{0.4, "Tp", "#e67e22"}}, kStandardGravity, "ricker");
+  ASSERT_EQ(f.panels.size(), 4u);
+  const std::string script = plot::gnuplot_script(f, "x.svg");
+  // time (s) once, under the last time history; the spectrum has its own log axis over its own periods
+  EXPECT_EQ(count(script, "set xlabel \"time (s)\""), 1u);
+  EXPECT_EQ(count(script, "set xlabel \"period (s)\""), 1u);
+  EXPECT_LT(script.find("set xlabel \"time (s)\""), script.find("set xlabel \"period (s)\""));
+  EXPECT_NE(script.find("set xrange [0.02:5]\nset logscale x"), std::string::npos);
+  EXPECT_EQ(count(script, "set logscale x"), 1u);
 }
 
 TEST(Plot, UnknownExtensionIsAnInputError) {
