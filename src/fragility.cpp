@@ -170,6 +170,32 @@ LognormalFragilityFit fit_lognormal_fragility(const FragilityData& data) {
   }
   const double lb_min = std::log(kMinimumBeta);
 
+  // Perfectly separated data (every level all-safe or all-fail, the safe ones below): ln L -> 0 as beta -> 0 for any
+  // theta between the last safe and the first failing level. Report beta at its bound and theta at the geometric
+  // middle of that interval.
+  {
+    double last_safe = -std::numeric_limits<double>::infinity();
+    double first_fail = std::numeric_limits<double>::infinity();
+    bool separated = true;
+    for (std::size_t j = 0; j < L.ln_x.size() && separated; ++j) {
+      if (L.z[j] == 0.0) {
+        last_safe = std::max(last_safe, L.ln_x[j]);
+      } else if (L.z[j] == L.n[j]) {
+        first_fail = std::min(first_fail, L.ln_x[j]);
+      } else {
+        separated = false;
+      }
+    }
+    if (separated && last_safe < first_fail) {
+      LognormalFragilityFit fit;
+      fit.theta = std::exp(0.5 * (last_safe + first_fail));
+      fit.beta = kMinimumBeta;
+      fit.beta_at_bound = true;
+      fit.log_likelihood = L.value(std::log(fit.theta), fit.beta);
+      return fit;
+    }
+  }
+
   // Start: probit least squares ln x = mu + beta u through the levels with 0 < z/n < 1.
   double mu0 = 0.0;
   double beta0 = 0.4;
