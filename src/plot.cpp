@@ -64,7 +64,10 @@ void run_gnuplot(const std::string& script, const std::filesystem::path& path) {
     std::ofstream out(script_path, std::ios::binary);
     out << script;
   }
-  const std::string cmd = fmt::format("gnuplot '{}' 2>&1", script_path.string());
+  // The script path goes through /bin/sh in single quotes; a quote inside it is closed, escaped and reopened.
+  std::string shell_path;
+  for (char c : script_path.string()) shell_path += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  const std::string cmd = fmt::format("gnuplot '{}' 2>&1", shell_path);
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> pipe(popen(cmd.c_str(), "r"), pclose);
   if (!pipe) throw std::runtime_error("cannot start gnuplot");
   std::string messages;

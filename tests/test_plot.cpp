@@ -64,6 +64,17 @@ TEST(Plot, PngIsAPngImage) {
   EXPECT_EQ(png.substr(1, 3), "PNG");
 }
 
+TEST(Plot, PathsWithQuotesAndSpaces) {
+  // The script is handed to gnuplot through /bin/sh: quotes and spaces in the folder name must survive.
+  test::TempDir tmp;
+  const auto dir = tmp.path() / "O'Brien's \"figures\" $HOME";
+  std::filesystem::create_directories(dir);
+  const auto path = dir / "slide.svg";
+  plot::render(sliding_example(), path);
+  EXPECT_GT(slurp(path).size(), 10000u);
+  EXPECT_FALSE(std::filesystem::exists(path.string() + ".gp"));
+}
+
 TEST(Plot, MapFigure) {
   plot::MapFigure map;
   map.title = "likelihood";
