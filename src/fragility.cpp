@@ -34,6 +34,20 @@ std::string_view intensity_measure_name(IntensityMeasure im) {
   return "?";
 }
 
+std::string_view intensity_measure_unit(IntensityMeasure im) {
+  switch (im) {
+    case IntensityMeasure::pga: return "g";
+    case IntensityMeasure::pgv: return "m/s";
+    case IntensityMeasure::pgd: return "m";
+    case IntensityMeasure::cav: return "m/s";
+  }
+  return "?";
+}
+
+double intensity_measure_display_factor(IntensityMeasure im, double g_m_s2) {
+  return im == IntensityMeasure::pga ? 1.0 / g_m_s2 : 1.0;
+}
+
 double intensity_measure_si(const GroundMotion& motion, IntensityMeasure im) {
   switch (im) {
     case IntensityMeasure::pga: return motion.pga_m_s2();

@@ -55,6 +55,9 @@ enum class IntensityMeasure : std::uint8_t {
 [[nodiscard]] std::string_view intensity_measure_name(IntensityMeasure im);
 /// The measure of a motion, SI (m/s^2, m/s, m, m/s).
 [[nodiscard]] double intensity_measure_si(const GroundMotion& motion, IntensityMeasure im);
+/// The unit the measure is shown in ("g" for PGA, else SI: "m/s", "m", "m/s") and the factor from SI to it.
+[[nodiscard]] std::string_view intensity_measure_unit(IntensityMeasure im);
+[[nodiscard]] double intensity_measure_display_factor(IntensityMeasure im, double g_m_s2 = kStandardGravity);
 
 inline constexpr double kMinimumBeta = 0.01;  ///< lower bound of beta in the fit (see the header)
 

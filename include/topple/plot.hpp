@@ -9,7 +9,9 @@
 #include <vector>
 
 #include "topple/ground_motion.hpp"
+#include "topple/fragility.hpp"
 #include "topple/intensity.hpp"
+#include "topple/object_spectra.hpp"
 #include "topple/rocking.hpp"
 #include "topple/sliding.hpp"
 #include "topple/spectra.hpp"
@@ -107,5 +109,20 @@ struct Mark {
 [[nodiscard]] Figure record_figure(const GroundMotion& motion, const GroundVelocityDisplacement& ground,
                                    const ResponseSpectrum& spectrum, const std::vector<Mark>& period_marks,
                                    double g_m_s2, const std::string& title);
+
+// ---- Object spectra and fragility (src/plot_object_spectra.cpp) ----
+
+/// Sliding displacement spectrum: max |d| and residual d (m) against mu, or against k_y g / PGA.
+[[nodiscard]] Figure sliding_spectrum_figure(const SlidingSpectrum& spectrum, bool against_yield_ratio,
+                                             const std::string& title);
+
+/// Overturning map as boxes over block height (m, log axis over a wide range) x PGA (g), 1 = overturned, with the
+/// first-overturn PGA of each size and the uplift level g tan(alpha) drawn over it.
+[[nodiscard]] MapFigure overturning_map_figure(const OverturningMap& map, const std::string& title);
+
+/// Fragility curves over the IM (log axis, in the IM's display unit): the fraction failing at each level (points),
+/// the fitted lognormal curve and its delta-method band at `band_level` (dashed).
+[[nodiscard]] Figure fragility_figure(const FragilityResult& result, double g_m_s2, double band_level,
+                                      const std::string& title);
 
 }  // namespace topple::plot
