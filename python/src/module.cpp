@@ -10,8 +10,10 @@
 // - Arrays out: GroundMotion.accel_m_s2 and the result histories are read-only views on the C++ data (no copy),
 //   kept alive by the object they come from.
 // - Computations release the GIL.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -28,13 +30,17 @@
 #include <nanobind/stl/vector.h>
 #include <nlohmann/json.hpp>
 
+#include "topple/ensemble.hpp"
 #include "topple/error.hpp"
+#include "topple/fragility.hpp"
 #include "topple/ground_motion.hpp"
 #include "topple/intensity.hpp"
 #include "topple/inversion.hpp"
+#include "topple/object_spectra.hpp"
 #include "topple/io/inversion_output.hpp"
 #include "topple/io/read.hpp"
 #include "topple/io/survey_file.hpp"
+#include "topple/io/sweep_file.hpp"
 #include "topple/io/write.hpp"
 #include "topple/rocking.hpp"
 #include "topple/sliding.hpp"
@@ -241,12 +247,32 @@ struct RockingRun {
   }
 };
 
+RockingOptions make_rocking_options(const std::variant<double, std::string>& e, std::optional<double> mu,
+                                    double g_m_s2, const std::string& method, double rel_tol, int rk4_substeps,
+                                    double max_run_out_s);
+
 RockingRun run_rock(const GroundMotion& motion, const RockingBody& body, const std::variant<double, std::string>& e,
                     std::optional<double> mu, double g_m_s2, const std::string& method, double rel_tol,
                     int rk4_substeps, double max_run_out_s, const GroundMotion* vertical, bool history) {
   RockingRun run;
   run.body = body;
-  RockingOptions& o = run.options;
+  run.options = make_rocking_options(e, mu, g_m_s2, method, rel_tol, rk4_substeps, max_run_out_s);
+  {
+    nb::gil_scoped_release release;
+    if (history) {
+      run.result = rock(motion, body, run.options, vertical);
+    } else {
+      run.result.summary = rock_summary(motion, body, run.options, vertical);
+    }
+  }
+  run.inputs = RunInputs(motion, vertical);
+  return run;
+}
+
+RockingOptions make_rocking_options(const std::variant<double, std::string>& e, std::optional<double> mu,
+                                    double g_m_s2, const std::string& method, double rel_tol, int rk4_substeps,
+                                    double max_run_out_s) {
+  RockingOptions o;
   o.g_m_s2 = g_m_s2;
   if (const auto* name = std::get_if<std::string>(&e)) {
     if (*name != "housner") throw parameter_error("e", fmt::format("'{}' is neither a number in [0, 1] nor 'housner'", *name));
@@ -266,16 +292,7 @@ RockingRun run_rock(const GroundMotion& motion, const RockingBody& body, const s
   o.rel_tol = rel_tol;
   o.rk4_substeps = rk4_substeps;
   o.max_run_out_s = max_run_out_s;
-  {
-    nb::gil_scoped_release release;
-    if (history) {
-      run.result = rock(motion, body, o, vertical);
-    } else {
-      run.result.summary = rock_summary(motion, body, o, vertical);
-    }
-  }
-  run.inputs = RunInputs(motion, vertical);
-  return run;
+  return o;
 }
 
 // ---- intensity (the measures of `topple info`, undefined ones as None) ----
@@ -367,6 +384,384 @@ nb::object invert_survey(const std::string& path, int threads) {
   for (std::size_t i = 0; i < results.size(); ++i) sites.append(site_dict(i));
   all["sites"] = sites;
   return all;
+}
+
+// ---- spectra of a motion ----
+
+/// A 2-D numpy array (row-major, rows x cols) owning `values`.
+template <class T>
+nb::ndarray<nb::numpy, T, nb::ndim<2>> to_numpy_2d(std::vector<T> values, std::size_t rows, std::size_t cols) {
+  auto owned = std::make_unique<std::vector<T>>(std::move(values));
+  T* data = owned->data();
+  nb::capsule owner(owned.get(), [](void* p) noexcept { delete static_cast<std::vector<T>*>(p); });
+  owned.release();
+  return nb::ndarray<nb::numpy, T, nb::ndim<2>>(data, {rows, cols}, owner);
+}
+
+/// The periods of the predominant period Tp (spectra.hpp): 100 per decade from 0.02 s to 5 s.
+std::vector<double> tp_periods_s() {
+  constexpr double kLow = 0.02;
+  constexpr double kHigh = 5.0;
+  constexpr double kPerDecade = 100.0;
+  const auto n = static_cast<std::size_t>(std::floor(kPerDecade * std::log10(kHigh / kLow) + 0.5)) + 1;
+  std::vector<double> periods(n);
+  for (std::size_t j = 0; j < n; ++j) periods[j] = kLow * std::pow(10.0, static_cast<double>(j) / kPerDecade);
+  return periods;
+}
+
+nb::dict response_spectrum_dict(const GroundMotion& motion, nb::handle periods, double damping, double g_m_s2) {
+  const std::vector<double> p = periods.is_none() ? tp_periods_s() : to_vector(periods, "periods_s");
+  if (!(g_m_s2 > 0.0) || !std::isfinite(g_m_s2)) throw parameter_error("g", "g must be a finite number > 0 (m/s^2)");
+  ResponseSpectrum s;
+  {
+    nb::gil_scoped_release release;
+    s = response_spectrum(motion, p, damping);
+  }
+  std::vector<double> psa_g(s.psa_m_s2);
+  for (double& v : psa_g) v /= g_m_s2;
+  nb::dict d;
+  d["period_s"] = to_numpy(std::move(s.period_s));
+  d["damping"] = s.damping;
+  d["sd_m"] = to_numpy(std::move(s.sd_m));
+  d["psv_m_s"] = to_numpy(std::move(s.psv_m_s));
+  d["psa_m_s2"] = to_numpy(std::move(s.psa_m_s2));
+  d["psa_g"] = to_numpy(std::move(psa_g));
+  d["sv_m_s"] = to_numpy(std::move(s.sv_m_s));
+  d["sa_m_s2"] = to_numpy(std::move(s.sa_m_s2));
+  d["g_m_s2"] = g_m_s2;
+  d["motion"] = motion_name(motion);
+  return d;
+}
+
+/// The centre frequencies of the predominant frequency (spectra.hpp): 200 per decade from 0.1 Hz to
+/// min(25 Hz, 0.8 f_Nyquist) of a record sampled at dt (empty when that band is empty).
+std::vector<double> fp_centres_hz(double dt_s) {
+  constexpr double kBandLow = 0.1;
+  constexpr double kPerDecade = 200.0;
+  const double top = std::min(25.0, 0.8 * 0.5 / dt_s);
+  if (!(top > kBandLow)) return {};
+  const auto n = static_cast<std::size_t>(std::floor(kPerDecade * std::log10(top / kBandLow))) + 1;
+  std::vector<double> centres(n);
+  for (std::size_t j = 0; j < n; ++j) centres[j] = kBandLow * std::pow(10.0, static_cast<double>(j) / kPerDecade);
+  return centres;
+}
+
+nb::dict fourier_spectrum_dict(const GroundMotion& motion, std::optional<double> smoothing_b, nb::handle centre_hz,
+                               std::optional<std::size_t> fft_length) {
+  std::vector<double> centres;
+  if (!centre_hz.is_none()) centres = to_vector(centre_hz, "centre_hz");
+  if (smoothing_b && !(*smoothing_b > 0.0 && std::isfinite(*smoothing_b))) {
+    throw parameter_error("smoothing_b", fmt::format("the Konno-Ohmachi bandwidth b must be a finite number > 0, got {}",
+                                                     *smoothing_b));
+  }
+  FourierSpectrum fas;
+  std::vector<double> smooth;
+  std::optional<double> fp;
+  {
+    nb::gil_scoped_release release;
+    const GroundMotion uniform = motion.to_uniform();
+    std::size_t n_fft = 1;
+    while (n_fft < 2 * uniform.size()) n_fft *= 2;
+    fas = fourier_amplitude_spectrum(uniform, fft_length.value_or(n_fft));
+    if (smoothing_b) {
+      if (centre_hz.is_none()) centres = fp_centres_hz(uniform.dt_s());
+      smooth = konno_ohmachi_smooth(fas, centres, *smoothing_b);
+    }
+    try {
+      fp = predominant_frequency_hz(motion);
+    } catch (const InputError&) {
+      fp.reset();
+    }
+  }
+  nb::dict d;
+  d["freq_hz"] = to_numpy(std::move(fas.frequency_hz));
+  d["amplitude_m_s"] = to_numpy(std::move(fas.amplitude_m_s));
+  d["dt_s"] = fas.dt_s;
+  d["fft_length"] = fas.fft_length;
+  d["smoothing_b"] = smoothing_b ? nb::cast(*smoothing_b) : nb::none();
+  if (smoothing_b) {
+    d["smoothed_freq_hz"] = to_numpy(std::move(centres));
+    d["smoothed_amplitude_m_s"] = to_numpy(std::move(smooth));
+  } else {
+    d["smoothed_freq_hz"] = nb::none();
+    d["smoothed_amplitude_m_s"] = nb::none();
+  }
+  d["predominant_frequency_hz"] = optional_float(fp);
+  d["motion"] = motion_name(motion);
+  return d;
+}
+
+// ---- object spectra ----
+
+nb::dict sliding_spectrum_dict(const GroundMotion& motion, nb::handle mu, double slope_deg, const std::string& mode,
+                               double g_m_s2) {
+  const std::vector<double> mus = to_vector(mu, "mu");
+  const SlidingMode sliding_mode = parse_mode(mode);
+  SlidingSpectrum s;
+  {
+    nb::gil_scoped_release release;
+    s = sliding_spectrum(motion, mus, slope_deg * kPi / 180.0, sliding_mode, g_m_s2);
+  }
+  const std::size_t n = s.points.size();
+  std::vector<double> mu_out(n), yield_g(n), yield_over(n), max_abs(n), residual(n), slip_s(n);
+  std::vector<std::int64_t> episodes(n);
+  std::vector<bool> at_rest(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const SlidingSpectrumPoint& p = s.points[i];
+    mu_out[i] = p.mu;
+    yield_g[i] = p.yield_accel_g;
+    yield_over[i] = p.yield_over_pga;
+    max_abs[i] = p.max_abs_displacement_m;
+    residual[i] = p.residual_displacement_m;
+    slip_s[i] = p.total_slip_duration_s;
+    episodes[i] = p.slip_episodes;
+    at_rest[i] = p.at_rest_at_end;
+  }
+  std::vector<std::uint8_t> rest_bytes(at_rest.begin(), at_rest.end());
+  nb::dict d;
+  d["mu"] = to_numpy(std::move(mu_out));
+  d["max_abs_displacement_m"] = to_numpy(std::move(max_abs));
+  d["residual_displacement_m"] = to_numpy(std::move(residual));
+  d["yield_accel_g"] = to_numpy(std::move(yield_g));
+  d["yield_over_pga"] = to_numpy(std::move(yield_over));
+  d["slip_episodes"] = to_numpy(std::move(episodes));
+  d["total_slip_duration_s"] = to_numpy(std::move(slip_s));
+  d["at_rest_at_end"] = nb::module_::import_("numpy").attr("asarray")(to_numpy(std::move(rest_bytes)), "bool");
+  d["pga_g"] = s.pga_m_s2 / s.g_m_s2;
+  d["slope_deg"] = slope_deg;
+  d["mode"] = mode;
+  d["g_m_s2"] = s.g_m_s2;
+  return d;
+}
+
+RockingBody::Shape parse_family_shape(const std::string& shape) {
+  if (shape == "block") return RockingBody::Shape::block;
+  if (shape == "cylinder") return RockingBody::Shape::cylinder;
+  throw parameter_error("shape", fmt::format("unknown shape '{}' for a body family (known: block, cylinder)", shape));
+}
+
+nb::dict overturning_map_dict(const GroundMotion& motion, double alpha_rad, nb::handle heights_m, nb::handle pga_g,
+                              const std::string& shape, const std::variant<double, std::string>& e,
+                              std::optional<double> mu, double g_m_s2, const std::string& method, double rel_tol,
+                              int rk4_substeps, double max_run_out_s, int threads) {
+  BodyFamily family;
+  family.shape = parse_family_shape(shape);
+  family.alpha_rad = alpha_rad;
+  family.heights_m = to_vector(heights_m, "heights_m");
+  std::vector<double> pga = to_vector(pga_g, "pga_g");
+  for (double& v : pga) v *= g_m_s2;
+  OverturningMapOptions options;
+  options.rocking = make_rocking_options(e, mu, g_m_s2, method, rel_tol, rk4_substeps, max_run_out_s);
+  options.threads = threads;
+  OverturningMap map;
+  {
+    nb::gil_scoped_release release;
+    map = overturning_map(motion, family, pga, options);
+  }
+  const std::size_t n_size = map.sizes.size();
+  const std::size_t n_pga = map.pga_m_s2.size();
+  std::vector<double> pga_out(map.pga_m_s2), height(n_size), width(n_size), R(n_size), p(n_size), first(n_size);
+  for (double& v : pga_out) v /= map.g_m_s2;
+  std::vector<std::uint8_t> standing(n_size);
+  std::vector<std::int64_t> count(n_size);
+  for (std::size_t i = 0; i < n_size; ++i) {
+    const OverturningSize& s = map.sizes[i];
+    height[i] = s.height_m;
+    width[i] = s.width_m;
+    R[i] = s.R_m;
+    p[i] = s.p_rad_s;
+    first[i] = s.first_overturn_pga_m_s2 ? *s.first_overturn_pga_m_s2 / map.g_m_s2 : std::nan("");
+    standing[i] = s.standing_above_first ? 1 : 0;
+    count[i] = static_cast<std::int64_t>(s.overturn_count);
+  }
+  nb::object as_bool = nb::module_::import_("numpy").attr("asarray");
+  nb::dict d;
+  d["pga_g"] = to_numpy(std::move(pga_out));
+  d["pga_m_s2"] = to_numpy(std::vector<double>(map.pga_m_s2));
+  d["height_m"] = to_numpy(std::move(height));
+  d["width_m"] = to_numpy(std::move(width));
+  d["R_m"] = to_numpy(std::move(R));
+  d["p_rad_s"] = to_numpy(std::move(p));
+  d["first_overturn_pga_g"] = to_numpy(std::move(first));
+  d["standing_above_first"] = as_bool(to_numpy(std::move(standing)), "bool");
+  d["overturn_count"] = to_numpy(std::move(count));
+  d["overturned"] = as_bool(to_numpy_2d(std::vector<std::uint8_t>(map.overturned), n_size, n_pga), "bool");
+  d["max_rotation_over_alpha"] = to_numpy_2d(std::vector<double>(map.max_rotation_over_alpha), n_size, n_pga);
+  d["alpha_rad"] = map.alpha_rad;
+  d["uplift_pga_g"] = std::tan(map.alpha_rad);
+  d["shape"] = std::string(shape_name(map.shape));
+  d["g_m_s2"] = map.g_m_s2;
+  d["motion"] = motion_name(motion);
+  return d;
+}
+
+// ---- fragility ----
+
+/// Integers: a sequence (list, tuple, numpy integer array) whose items are Python or numpy integers (a float is
+/// refused, not truncated).
+std::vector<int> to_int_vector(nb::handle obj, const char* name) {
+  if (nb::ndarray_check(obj) || nb::isinstance<nb::list>(obj) || nb::isinstance<nb::tuple>(obj)) {
+    std::vector<int> out;
+    for (nb::handle item : obj) {
+      nb::object index = nb::steal(PyNumber_Index(item.ptr()));
+      if (!index.is_valid()) {
+        PyErr_Clear();
+        throw nb::type_error(fmt::format("{}: every element must be an integer, got {}", name,
+                                         nb::type_name(item.type()).c_str()).c_str());
+      }
+      const long long v = PyLong_AsLongLong(index.ptr());
+      if (PyErr_Occurred() || v < std::numeric_limits<int>::min() || v > std::numeric_limits<int>::max()) {
+        PyErr_Clear();
+        throw nb::value_error(fmt::format("{}: an element is out of range", name).c_str());
+      }
+      out.push_back(static_cast<int>(v));
+    }
+    return out;
+  }
+  throw nb::type_error(fmt::format("{} must be a list or numpy array of integers, got {}", name,
+                                   nb::type_name(obj.type()).c_str()).c_str());
+}
+
+/// A float for a Python number, else a float64 array of f applied to each element of the array-like.
+template <class F>
+nb::object map_im(nb::handle im, F f) {
+  if (PyFloat_Check(im.ptr()) || PyLong_Check(im.ptr())) return nb::cast(f(nb::cast<double>(im)));
+  std::vector<double> x = to_vector(im, "im");
+  for (double& v : x) v = f(v);
+  return nb::cast(to_numpy(std::move(x)));
+}
+
+/// The IM's display unit in SI: g for PGA, 1 otherwise (m/s, m, m/s).
+double im_unit(IntensityMeasure im, double g_m_s2) { return im == IntensityMeasure::pga ? g_m_s2 : 1.0; }
+
+/// The fit with theta in the display unit (ln theta shifts by a constant: standard errors are unchanged).
+LognormalFragilityFit fit_in_unit(LognormalFragilityFit fit, double unit) {
+  fit.theta /= unit;
+  return fit;
+}
+
+nb::dict fragility_dict(nb::handle motions, nb::handle levels, const std::string& im,
+                        std::optional<double> mu, std::optional<double> threshold_m, std::optional<double> mu_kinetic,
+                        const std::string& mode, double slope_deg, const std::optional<RockingBody>& body,
+                        const std::variant<double, std::string>& e, std::optional<double> rock_mu, double g_m_s2,
+                        const std::string& method, double rel_tol, int rk4_substeps, double max_run_out_s,
+                        int threads) {
+  FragilitySpec spec;
+  spec.im = parse_intensity_measure(im, "im");
+  const double unit = im_unit(spec.im, g_m_s2);
+  spec.levels_si = to_vector(levels, "levels");
+  for (double& v : spec.levels_si) v *= unit;
+  if (nb::isinstance<GroundMotion>(motions) || !(nb::isinstance<nb::list>(motions) || nb::isinstance<nb::tuple>(motions))) {
+    throw nb::type_error("motions must be a list of topple.GroundMotion (the ensemble)");
+  }
+  for (nb::handle item : motions) {
+    if (!nb::isinstance<GroundMotion>(item)) {
+      throw nb::type_error(fmt::format("motions: every element must be a topple.GroundMotion, got {}",
+                                       nb::type_name(item.type()).c_str()).c_str());
+    }
+    spec.motions.push_back(std::make_shared<const GroundMotion>(nb::cast<const GroundMotion&>(item)));
+  }
+  if (mu) {
+    if (!threshold_m) throw parameter_error("threshold_m", "a sliding curve (mu given) needs threshold_m, m");
+    spec.sliding = SlidingFailure{SlidingBlock::make(*mu, mu_kinetic.value_or(-1.0), slope_deg * kPi / 180.0,
+                                                     parse_mode(mode), g_m_s2),
+                                  *threshold_m};
+  } else if (threshold_m) {
+    throw parameter_error("mu", "threshold_m given without mu: give the block's friction coefficient mu");
+  }
+  if (body) {
+    spec.overturning =
+        OverturnFailure{*body, make_rocking_options(e, rock_mu, g_m_s2, method, rel_tol, rk4_substeps, max_run_out_s)};
+  }
+  spec.threads = threads;
+  FragilityResult result;
+  {
+    nb::gil_scoped_release release;
+    result = fragility_analysis(spec);
+  }
+  nb::list curves;
+  for (const FragilityCurve& c : result.curves) {
+    nb::dict cd;
+    cd["name"] = c.name;
+    std::vector<double> x(c.data.im);
+    for (double& v : x) v /= unit;
+    std::vector<double> fraction(x.size());
+    for (std::size_t j = 0; j < x.size(); ++j) {
+      fraction[j] = static_cast<double>(c.data.failures[j]) / static_cast<double>(c.data.trials[j]);
+    }
+    cd["im"] = to_numpy(std::move(x));
+    cd["trials"] = to_numpy(std::vector<std::int64_t>(c.data.trials.begin(), c.data.trials.end()));
+    cd["failures"] = to_numpy(std::vector<std::int64_t>(c.data.failures.begin(), c.data.failures.end()));
+    cd["fraction"] = to_numpy(std::move(fraction));
+    cd["fit"] = c.fit ? nb::cast(fit_in_unit(*c.fit, unit)) : nb::none();
+    cd["fit_note"] = c.fit_note;
+    curves.append(cd);
+  }
+  nb::dict d;
+  d["im"] = std::string(intensity_measure_name(result.im));
+  d["im_unit"] = std::string(result.im == IntensityMeasure::pga ? "g"
+                             : result.im == IntensityMeasure::pgd ? "m"
+                                                                  : "m/s");
+  d["curves"] = curves;
+  d["runs"] = result.runs;
+  d["g_m_s2"] = g_m_s2;
+  return d;
+}
+
+// ---- sweeps ----
+
+nb::dict sweep_dict(const std::string& path, int threads) {
+  ensemble::ResultTable table;
+  {
+    nb::gil_scoped_release release;
+    const io::SweepFile file = io::read_sweep_file(path);
+    const ensemble::Plan plan = ensemble::make_plan(file.spec);
+    ensemble::ExecuteOptions options;
+    options.threads = threads;
+    table = ensemble::run_in_memory(plan, options);
+  }
+  nb::dict out;
+  for (std::size_t c = 0; c < table.columns.size(); ++c) {
+    bool text = false;
+    for (const auto& row : table.rows) text = text || std::holds_alternative<std::string>(row[c]);
+    if (text) {
+      // Text columns: str, None where the value does not apply.
+      nb::list values;
+      for (const auto& row : table.rows) {
+        const ensemble::Value& v = row[c];
+        if (const auto* s = std::get_if<std::string>(&v)) {
+          values.append(nb::str(s->data(), s->size()));
+        } else if (std::holds_alternative<std::monostate>(v)) {
+          values.append(nb::none());
+        } else if (const auto* b = std::get_if<bool>(&v)) {
+          values.append(nb::bool_(*b));
+        } else if (const auto* i = std::get_if<std::int64_t>(&v)) {
+          values.append(nb::int_(*i));
+        } else {
+          values.append(nb::float_(std::get<double>(v)));
+        }
+      }
+      out[table.columns[c].c_str()] = values;
+    } else {
+      // Numeric columns (numbers, booleans as 0/1): float64, NaN where the value does not apply or is not finite
+      // (the CSV's empty cell).
+      std::vector<double> values(table.rows.size());
+      for (std::size_t r = 0; r < table.rows.size(); ++r) {
+        const ensemble::Value& v = table.rows[r][c];
+        if (const auto* d = std::get_if<double>(&v)) {
+          values[r] = std::isfinite(*d) ? *d : std::nan("");
+        } else if (const auto* i = std::get_if<std::int64_t>(&v)) {
+          values[r] = static_cast<double>(*i);
+        } else if (const auto* b = std::get_if<bool>(&v)) {
+          values[r] = *b ? 1.0 : 0.0;
+        } else {
+          values[r] = std::nan("");
+        }
+      }
+      out[table.columns[c].c_str()] = to_numpy(std::move(values));
+    }
+  }
+  return out;
 }
 
 // ---- the exception ----
@@ -524,27 +919,8 @@ NB_MODULE(_core, m) {
         "motion"_a, nb::kw_only(), "mu"_a, "mu_kinetic"_a = nb::none(), "mode"_a = "two-way", "slope_deg"_a = 0.0,
         "vertical"_a = nb::none(), "g"_a = kStandardGravity, "history"_a = true);
 
-  m.def("slide_spectrum",
-        [](const GroundMotion& motion, nb::handle mu, double slope_deg, const std::string& mode, double g) {
-          const std::vector<double> mus = to_vector(mu, "mu");
-          const SlidingMode sliding_mode = parse_mode(mode);
-          std::vector<SlidingSummary> s;
-          {
-            nb::gil_scoped_release release;
-            s = slide_summaries(motion, mus, slope_deg * kPi / 180.0, sliding_mode, g);
-          }
-          std::vector<double> max_abs(s.size()), residual(s.size());
-          for (std::size_t i = 0; i < s.size(); ++i) {
-            max_abs[i] = s[i].max_abs_displacement_m;
-            residual[i] = s[i].residual_displacement_m;
-          }
-          nb::dict d;
-          d["mu"] = to_numpy(std::vector<double>(mus));
-          d["max_abs_displacement_m"] = to_numpy(std::move(max_abs));
-          d["residual_displacement_m"] = to_numpy(std::move(residual));
-          return d;
-        },
-        "motion"_a, "mu"_a, nb::kw_only(), "slope_deg"_a = 0.0, "mode"_a = "two-way", "g"_a = kStandardGravity);
+  m.def("slide_spectrum", &sliding_spectrum_dict, "motion"_a, "mu"_a, nb::kw_only(), "slope_deg"_a = 0.0,
+        "mode"_a = "two-way", "g"_a = kStandardGravity);
 
   // ---- rocking ----
   nb::class_<RockingBody>(m, "RockingBody", "A rigid body that rocks: made by Block, Cylinder or General (metres).")
@@ -658,4 +1034,57 @@ NB_MODULE(_core, m) {
 
   m.def("intensity", &intensity_dict, "motion"_a, "g"_a = kStandardGravity);
   m.def("invert", &invert_survey, "survey_path"_a, nb::kw_only(), "threads"_a = 0);
+
+  // ---- spectra, object spectra, fragility, sweeps ----
+  m.def("response_spectrum", &response_spectrum_dict, "motion"_a, "periods_s"_a = nb::none(), "damping"_a = 0.05,
+        nb::kw_only(), "g"_a = kStandardGravity);
+  m.def("fourier_spectrum", &fourier_spectrum_dict, "motion"_a, "smoothing_b"_a = 40.0, nb::kw_only(),
+        "centre_hz"_a = nb::none(), "fft_length"_a = nb::none());
+  m.def("overturning_map", &overturning_map_dict, "motion"_a, nb::kw_only(), "alpha_rad"_a, "heights_m"_a, "pga_g"_a,
+        "shape"_a = "block", "e"_a = "housner", "mu"_a = nb::none(), "g"_a = kStandardGravity,
+        "method"_a = "adaptive", "rel_tol"_a = 1e-8, "rk4_substeps"_a = 10, "max_run_out_s"_a = 60.0,
+        "threads"_a = 0);
+
+  nb::class_<LognormalFragilityFit>(m, "FragilityFit",
+                                    "Lognormal fragility P(failure | IM = x) = Phi(ln(x / theta) / beta), fitted by "
+                                    "maximum likelihood (topple/fragility.hpp).")
+      .def_ro("theta", &LognormalFragilityFit::theta)
+      .def_ro("beta", &LognormalFragilityFit::beta)
+      .def_ro("log_likelihood", &LognormalFragilityFit::log_likelihood)
+      .def_ro("se_ln_theta", &LognormalFragilityFit::se_ln_theta)
+      .def_ro("se_beta", &LognormalFragilityFit::se_beta)
+      .def_ro("cov_ln_theta_beta", &LognormalFragilityFit::cov_ln_theta_beta)
+      .def_ro("iterations", &LognormalFragilityFit::iterations)
+      .def_ro("beta_at_bound", &LognormalFragilityFit::beta_at_bound)
+      .def("probability",
+           [](const LognormalFragilityFit& f, nb::handle im) {
+             return map_im(im, [&](double x) { return f.probability(x); });
+           },
+           "im"_a)
+      .def("band",
+           [](const LognormalFragilityFit& f, nb::handle im, double level) {
+             return nb::make_tuple(map_im(im, [&](double x) { return f.band(x, level).first; }),
+                                   map_im(im, [&](double x) { return f.band(x, level).second; }));
+           },
+           "im"_a, "level"_a = 0.95)
+      .def("__repr__", [](const LognormalFragilityFit& f) {
+        return fmt::format("FragilityFit(theta={:.6g}, beta={:.6g}{})", f.theta, f.beta,
+                           f.beta_at_bound ? ", beta_at_bound=True" : "");
+      });
+  m.def("fragility_fit",
+        [](nb::handle im, nb::handle trials, nb::handle failures) {
+          FragilityData data;
+          data.im = to_vector(im, "im");
+          data.trials = to_int_vector(trials, "trials");
+          data.failures = to_int_vector(failures, "failures");
+          nb::gil_scoped_release release;
+          return fit_lognormal_fragility(data);
+        },
+        "im"_a, "trials"_a, "failures"_a);
+  m.def("fragility", &fragility_dict, "motions"_a, "levels"_a, nb::kw_only(), "im"_a = "pga", "mu"_a = nb::none(),
+        "threshold_m"_a = nb::none(), "mu_kinetic"_a = nb::none(), "mode"_a = "two-way", "slope_deg"_a = 0.0,
+        "body"_a = nb::none(), "e"_a = "housner", "rock_mu"_a = nb::none(), "g"_a = kStandardGravity,
+        "method"_a = "adaptive", "rel_tol"_a = 1e-8, "rk4_substeps"_a = 10, "max_run_out_s"_a = 60.0,
+        "threads"_a = 0);
+  m.def("_sweep", &sweep_dict, "path"_a, nb::kw_only(), "threads"_a = 0);
 }

@@ -3,7 +3,8 @@
 Units are SI; every name carries its unit. Lengths are plain floats in metres. Accelerations given "in g" use
 g = 9.80665 m/s^2 unless a ``g`` argument says otherwise.
 """
-from typing import Any, Literal, Optional, Sequence, Union
+import os
+from typing import Any, Literal, Optional, Sequence, Union, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -118,8 +119,12 @@ def slide(motion: GroundMotion, *, mu: float, mu_kinetic: Optional[float] = None
     positive up. history=False takes the summary-only fast path."""
 
 def slide_spectrum(motion: GroundMotion, mu: ArrayIn, *, slope_deg: float = 0.0,
-                   mode: Literal["two-way", "one-way"] = "two-way", g: float = 9.80665) -> dict[str, npt.NDArray[np.float64]]:
-    """Sliding displacement spectrum: keys mu, max_abs_displacement_m, residual_displacement_m (one per mu)."""
+                   mode: Literal["two-way", "one-way"] = "two-way", g: float = 9.80665) -> dict[str, Any]:
+    """Sliding displacement spectrum (topple/object_spectra.hpp) of blocks with mu static = kinetic on a plane at
+    slope_deg. Arrays, one value per mu in the given order: mu, max_abs_displacement_m (m),
+    residual_displacement_m (m, signed), yield_accel_g (downslope yield k_y = tan(atan(mu) - slope), g),
+    yield_over_pga (k_y g / PGA), slip_episodes (int64), total_slip_duration_s (s), at_rest_at_end (bool); scalars
+    pga_g, slope_deg, mode, g_m_s2. mu < 0, NaN, or atan(mu) + slope >= 90 deg: InputError."""
 
 class RockingBody:
     """A rigid body that rocks (made by Block, Cylinder or General). a_m: CM to pivot edge, m; h_m: CM height, m;
@@ -199,3 +204,95 @@ def intensity(motion: GroundMotion, g: float = 9.80665) -> dict[str, Any]:
 def invert(survey_path: str, *, threads: int = 0) -> dict[str, Any]:
     """`topple invert --json` of a survey file: one site's dict, or {"sites": [...]}. Each site's dict also holds
     posterior_grid and log_likelihood_grid (numpy, rows PGA, columns frequency) for topple.plot.inversion_map."""
+
+
+# ---- spectra of a motion ----
+
+def response_spectrum(motion: GroundMotion, periods_s: Optional[ArrayIn] = None, damping: float = 0.05, *,
+                      g: float = 9.80665) -> dict[str, Any]:
+    """Elastic response spectrum of linear oscillators x'' + 2 zeta w x' + w^2 x = -a_g, from rest, by the exact
+    Nigam-Jennings recurrence (topple/spectra.hpp; maxima at the samples, over the record only).
+
+    periods_s: oscillator periods, s (> 0; default: the grid of the predominant period Tp, 100 per decade from
+    0.02 s to 5 s); damping: ratio zeta in [0, 1). Returns numpy arrays, one value per period: period_s (s), sd_m
+    (max |x|, m), psv_m_s (w SD, m/s), psa_m_s2 (w^2 SD, m/s^2), psa_g (PSA / g), sv_m_s (max |x'|, m/s), sa_m_s2
+    (max absolute acceleration, m/s^2); scalars damping, g_m_s2, motion (name). The GIL is released."""
+
+def fourier_spectrum(motion: GroundMotion, smoothing_b: Optional[float] = 40.0, *,
+                     centre_hz: Optional[ArrayIn] = None, fft_length: Optional[int] = None) -> dict[str, Any]:
+    """Fourier amplitude spectrum |A(f)| = dt |DFT| (m/s) and its Konno-Ohmachi smoothing (topple/spectra.hpp).
+
+    fft_length: zero-padded FFT length (>= npts; default: the next power of two >= 2 npts, as for the predominant
+    frequency); smoothing_b: Konno-Ohmachi bandwidth b (> 0), None for no smoothing; centre_hz: centre frequencies
+    of the smoothing, Hz (default: 200 per decade from 0.1 Hz to min(25 Hz, 0.8 f_Nyquist)). Returns freq_hz (Hz,
+    k / (N dt), k = 0 .. N/2), amplitude_m_s (m/s), smoothed_freq_hz and smoothed_amplitude_m_s (None without
+    smoothing), dt_s, fft_length, smoothing_b, predominant_frequency_hz (Hz, the library's definition, as
+    topple.intensity()["predominant_frequency_hz"]; None when undefined), motion. Irregular records are resampled at
+    their smallest interval first. The GIL is released."""
+
+# ---- object spectra and fragility ----
+
+def overturning_map(motion: GroundMotion, *, alpha_rad: float, heights_m: ArrayIn, pga_g: ArrayIn,
+                    shape: Literal["block", "cylinder"] = "block", e: Union[Literal["housner"], float] = "housner",
+                    mu: Optional[float] = None, g: float = 9.80665, method: Literal["adaptive", "rk4"] = "adaptive",
+                    rel_tol: float = 1e-8, rk4_substeps: int = 10, max_run_out_s: float = 60.0,
+                    threads: int = 0) -> dict[str, Any]:
+    """Overturning map (topple/object_spectra.hpp): bodies of one shape and slenderness alpha_rad = atan(a/h), of
+    full heights heights_m (m), under the motion scaled to each PGA of pga_g (g); rocking options as topple.rock.
+    Runs on `threads` cores (0: all), GIL released. Returns pga_g (ascending) and pga_m_s2; per size (in the given
+    order): height_m, width_m (full width or diameter, m), R_m (m), p_rad_s (rad/s), first_overturn_pga_g (g, NaN
+    when no PGA of the grid overturns it), standing_above_first (bool), overturn_count (int64); overturned (bool) and
+    max_rotation_over_alpha, 2-D [size, pga]; alpha_rad, uplift_pga_g (= tan(alpha): no uplift below it), shape,
+    g_m_s2, motion."""
+
+class FragilityFit:
+    """Lognormal fragility P(failure | IM = x) = Phi(ln(x / theta) / beta), maximum-likelihood fit to binomial
+    counts (Baker 2015). theta: median, in the unit of the IM levels given; beta: log standard deviation."""
+    theta: float
+    beta: float
+    log_likelihood: float
+    se_ln_theta: float        # standard error of ln theta (observed information)
+    se_beta: float
+    cov_ln_theta_beta: float
+    iterations: int
+    beta_at_bound: bool       # separated data: beta held at its lower bound 0.01
+    @overload
+    def probability(self, im: float) -> float: ...
+    @overload
+    def probability(self, im: ArrayIn) -> npt.NDArray[np.float64]: ...
+    def band(self, im: Union[float, ArrayIn], level: float = 0.95) -> tuple[Any, Any]:
+        """Delta-method confidence band (lower, upper) of the probability at im, at confidence `level`."""
+
+def fragility_fit(im: ArrayIn, trials: Sequence[int], failures: Sequence[int]) -> FragilityFit:
+    """Fit a lognormal fragility to counts: at IM level im[j] (> 0, any unit: theta comes out in it), trials[j]
+    runs of which failures[j] failed. No failure, or failures only: InputError."""
+
+def fragility(motions: Sequence[GroundMotion], levels: ArrayIn, *, im: Literal["pga", "pgv", "pgd", "cav"] = "pga",
+              mu: Optional[float] = None, threshold_m: Optional[float] = None, mu_kinetic: Optional[float] = None,
+              mode: Literal["two-way", "one-way"] = "two-way", slope_deg: float = 0.0,
+              body: Optional[RockingBody] = None, e: Union[Literal["housner"], float] = "housner",
+              rock_mu: Optional[float] = None, g: float = 9.80665, method: Literal["adaptive", "rk4"] = "adaptive",
+              rel_tol: float = 1e-8, rk4_substeps: int = 10, max_run_out_s: float = 60.0,
+              threads: int = 0) -> dict[str, Any]:
+    """Fragility analysis (topple/fragility.hpp): every motion scaled so that its IM equals each level, run on a
+    sliding block (mu, failure when max |d| > threshold_m, m) and/or a rocking body (body, failure = overturning;
+    e, rock_mu and solver options as topple.rock). levels are in g for pga, m/s for pgv and cav, m for pgd. Returns
+    im, im_unit, runs, g_m_s2 and curves: a list (slide first, then overturn) of dicts name, im (the levels), trials,
+    failures (int64), fraction, fit (FragilityFit with theta in im_unit; None when the counts cannot be fitted) and
+    fit_note. Runs on `threads` cores (0: all), GIL released."""
+
+# ---- sweeps ----
+
+class SweepTable(dict[str, Any]):
+    """The table of a sweep: column name -> float64 numpy array (numbers, booleans as 0/1, NaN where the CSV cell is
+    empty) or list of str (text columns, None where empty), in the CSV's column order."""
+    @property
+    def columns(self) -> list[str]: ...
+    @property
+    def n_rows(self) -> int: ...
+    def to_pandas(self) -> Any:
+        """A pandas.DataFrame (needs pandas, not a dependency of topple)."""
+
+def sweep(path: Union[str, "os.PathLike[str]"], threads: int = 0) -> SweepTable:
+    """Run a sweep file (docs/sweeps.md) in memory as `topple sweep` does (the same rows as its CSV; [output] is
+    ignored) on `threads` cores (0: all), GIL released."""

@@ -11,9 +11,11 @@ from typing import Any, Mapping, Optional, Sequence
 import numpy as np
 from matplotlib.figure import Figure
 
-from . import GroundMotion, RockingResult, SlidingResult, slide_spectrum
+from . import GroundMotion, RockingResult, SlidingResult, fourier_spectrum as _fourier_spectrum, slide_spectrum
+from . import response_spectrum as _response_spectrum
 
-__all__ = ["response", "sliding", "rocking", "sliding_spectrum", "inversion_map"]
+__all__ = ["response", "sliding", "rocking", "sliding_spectrum", "inversion_map", "response_spectrum", "fourier_spectrum",
+           "overturning_map", "fragility"]
 
 
 def _need_history(result: Any) -> None:
@@ -138,4 +140,114 @@ def inversion_map(site: Mapping[str, Any], title: Optional[str] = None) -> Figur
     ax.set_ylabel("PGA (g)")
     ax.legend(loc="lower right", fontsize="small")
     ax.set_title(title or f"Inversion: {site['site']}")
+    return fig
+
+
+def response_spectrum(spec: Any, title: Optional[str] = None, *, units: str = "g",
+                      tp_s: Optional[float] = None) -> Figure:
+    """Pseudo-spectral acceleration against period (s, log axis), in g (units="g") or m/s^2 (units="m/s2").
+
+    spec: the dict of topple.response_spectrum, or a GroundMotion (its 5 %-damped spectrum on the Tp periods).
+    tp_s: mark a period (s), e.g. topple.intensity(motion)["tp_s"]."""
+    if isinstance(spec, GroundMotion):
+        spec = _response_spectrum(spec)
+    if units not in ("g", "m/s2"):
+        raise ValueError(f"units must be 'g' or 'm/s2', got {units!r}")
+    psa = np.asarray(spec["psa_g"] if units == "g" else spec["psa_m_s2"])
+    fig = Figure(figsize=(7, 4.5), layout="constrained")
+    ax = fig.subplots()
+    ax.plot(spec["period_s"], psa, color="tab:blue", label=f"PSA, {100 * spec['damping']:g} % damping")
+    if tp_s is not None:
+        ax.axvline(tp_s, color="tab:orange", ls="--", lw=1.0, label=f"Tp = {tp_s:.3f} s")
+    ax.set_xscale("log")
+    ax.set_xlabel("period (s)")
+    ax.set_ylabel("PSA (g)" if units == "g" else "PSA (m/s²)")
+    ax.grid(alpha=0.3, which="both")
+    ax.legend()
+    ax.set_title(title or f"Response spectrum: {spec.get('motion') or 'record'}")
+    return fig
+
+
+def fourier_spectrum(fas: Any, title: Optional[str] = None) -> Figure:
+    """Fourier amplitude (m/s) against frequency (Hz), log-log: the FAS, its Konno-Ohmachi smoothing and the
+    predominant frequency. fas: the dict of topple.fourier_spectrum, or a GroundMotion (b = 40)."""
+    if isinstance(fas, GroundMotion):
+        fas = _fourier_spectrum(fas)
+    f = np.asarray(fas["freq_hz"])
+    a = np.asarray(fas["amplitude_m_s"])
+    keep = f > 0  # log axis
+    fig = Figure(figsize=(7, 4.5), layout="constrained")
+    ax = fig.subplots()
+    ax.plot(f[keep], a[keep], color="0.7", lw=0.6, label="FAS")
+    if fas.get("smoothed_amplitude_m_s") is not None:
+        ax.plot(fas["smoothed_freq_hz"], fas["smoothed_amplitude_m_s"], color="tab:blue", lw=1.5,
+                label=f"Konno-Ohmachi, b = {fas['smoothing_b']:g}")
+    fp = fas.get("predominant_frequency_hz")
+    if fp is not None:
+        ax.axvline(fp, color="tab:red", ls="--", lw=1.0, label=f"f_p = {fp:.3g} Hz")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("frequency (Hz)")
+    ax.set_ylabel("Fourier amplitude (m/s)")
+    ax.grid(alpha=0.3, which="both")
+    ax.legend()
+    ax.set_title(title or f"Fourier amplitude spectrum: {fas.get('motion') or 'record'}")
+    return fig
+
+
+def overturning_map(omap: Mapping[str, Any], title: Optional[str] = None) -> Figure:
+    """Overturned (dark) or standing against PGA (g) and body height (m), from the dict of topple.overturning_map,
+    with each size's first-overturn PGA and the uplift threshold PGA = g tan(alpha)."""
+    pga = np.asarray(omap["pga_g"], dtype=np.float64)
+    height = np.asarray(omap["height_m"], dtype=np.float64)
+    order = np.argsort(height)
+    fell = np.asarray(omap["overturned"], dtype=np.float64)[order]
+    h = height[order]
+
+    def edges(v: np.ndarray) -> np.ndarray:
+        if len(v) == 1:
+            return np.array([v[0] * 0.9, v[0] * 1.1])
+        mid = 0.5 * (v[:-1] + v[1:])
+        return np.concatenate(([v[0] - (mid[0] - v[0])], mid, [v[-1] + (v[-1] - mid[-1])]))
+
+    fig = Figure(figsize=(7.5, 5), layout="constrained")
+    ax = fig.subplots()
+    ax.pcolormesh(edges(pga), edges(h), fell, cmap="Greys", vmin=0.0, vmax=1.6, shading="flat")
+    first = np.asarray(omap["first_overturn_pga_g"], dtype=np.float64)[order]
+    ax.plot(first, h, marker="o", color="tab:red", lw=1.0, label="first-overturn PGA")
+    ax.axvline(omap["uplift_pga_g"], color="tab:blue", ls="--", lw=1.0, label="uplift: PGA = g tan(alpha)")
+    ax.set_xlabel("PGA (g)")
+    ax.set_ylabel("body height (m)")
+    ax.legend(loc="upper left", fontsize="small")
+    ax.set_title(title or f"Overturning map, {omap['shape']}, alpha = {math.degrees(omap['alpha_rad']):.3g} deg: "
+                          f"{omap.get('motion') or 'record'}")
+    return fig
+
+
+def fragility(result: Mapping[str, Any], title: Optional[str] = None, *, level: float = 0.95) -> Figure:
+    """Probability of failure against the intensity measure: observed fractions (markers), the lognormal fit and its
+    delta-method band at `level`, for each curve of the dict of topple.fragility (or one of its curves)."""
+    curves = result["curves"] if "curves" in result else [result]
+    im = result.get("im", "im")
+    unit = result.get("im_unit", "")
+    fig = Figure(figsize=(7, 4.5), layout="constrained")
+    ax = fig.subplots()
+    for k, curve in enumerate(curves):
+        color = f"C{k}"
+        x = np.asarray(curve["im"], dtype=np.float64)
+        ax.plot(x, curve["fraction"], ls="none", marker="o", color=color, label=f"{curve['name']}: observed")
+        fit = curve.get("fit")
+        if fit is not None:
+            xs = np.geomspace(x.min() / 1.5, x.max() * 1.5, 200)
+            ax.plot(xs, fit.probability(xs), color=color,
+                    label=f"{curve['name']}: theta = {fit.theta:.3g} {unit}, beta = {fit.beta:.2f}")
+            lower, upper = fit.band(xs, level)
+            ax.fill_between(xs, lower, upper, color=color, alpha=0.2, lw=0)
+    ax.set_xscale("log")
+    ax.set_ylim(-0.02, 1.02)
+    ax.set_xlabel(f"{im.upper()} ({unit})" if unit else str(im))
+    ax.set_ylabel("probability of failure")
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize="small")
+    ax.set_title(title or f"Fragility ({100 * level:g} % band)")
     return fig
