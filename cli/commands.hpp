@@ -10,5 +10,7 @@ void add_invert_command(CLI::App& app);
 void add_synth_command(CLI::App& app);
 void add_rock_command(CLI::App& app);
 void add_sweep_command(CLI::App& app);
+void add_spectrum_command(CLI::App& app);
+void add_fragility_command(CLI::App& app);
 
 }  // namespace topple::cli

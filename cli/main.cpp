@@ -19,6 +19,8 @@ int main(int argc, char** argv) {
   topple::cli::add_synth_command(app);
   topple::cli::add_rock_command(app);
   topple::cli::add_sweep_command(app);
+  topple::cli::add_spectrum_command(app);
+  topple::cli::add_fragility_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

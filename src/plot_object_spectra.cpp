@@ -72,8 +72,8 @@ Figure fragility_figure(const FragilityResult& result, double g_m_s2, double ban
   std::size_t c = 0;
   for (const FragilityCurve& curve : result.curves) {
     const std::string color = colors[c++ % 4];
-    const std::string what = curve.name == "overturn" ? "P(overturn)" : "P(slide > d)";
-    Series data{what + ": fraction of motions", {}, {}, "points pt 7 ps 1.0", color, 1.0};
+    const std::string what = curve.name == "overturn" ? "overturn" : "slide > d";
+    Series data{what + ": fraction", {}, {}, "points pt 7 ps 1.0", color, 1.0};
     for (std::size_t j = 0; j < curve.data.im.size(); ++j) {
       data.x.push_back(curve.data.im[j] * k);
       data.y.push_back(static_cast<double>(curve.data.failures[j]) / curve.data.trials[j]);
@@ -83,7 +83,7 @@ Figure fragility_figure(const FragilityResult& result, double g_m_s2, double ban
     const auto [lo_it, hi_it] = std::minmax_element(curve.data.im.begin(), curve.data.im.end());
     const double lo = *lo_it / 1.5;
     const double hi = *hi_it * 1.5;
-    Series fit{fmt::format("{}: lognormal θ = {:.3g} {}, β = {:.2f}", what, curve.fit->theta * k,
+    Series fit{fmt::format("{}: θ = {:.3g} {}, β = {:.2f}", what, curve.fit->theta * k,
                            intensity_measure_unit(result.im), curve.fit->beta),
                {}, {}, "lines", color, 2.0};
     Series band_lo{fmt::format("{:.0f} % band", 100.0 * band_level), {}, {}, "lines dt 2", color, 1.0};

@@ -1,0 +1,275 @@
+// topple fragility: P(overturn) and P(slide > d) against an intensity measure over an ensemble of records or
+// synthetic motions, with the lognormal maximum-likelihood fit and its band. Parsing and printing only.
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "common.hpp"
+#include "grids.hpp"
+#include "topple/error.hpp"
+#include "topple/fragility.hpp"
+#include "topple/object_spectra.hpp"
+#include "topple/plot.hpp"
+#include "topple/synthesis.hpp"
+#include "topple/units.hpp"
+
+namespace topple::cli {
+namespace {
+
+struct FragilityOptions {
+  std::vector<std::string> files;
+  MotionOptions motion;  // read options and --g (scaling options do not apply: every motion is scaled to the levels)
+  std::optional<int> synth;
+  std::string freq = "2Hz";
+  std::string duration = "20s";
+  std::string synth_dt = "0.01";
+  std::uint64_t seed = 1;
+  std::string im = "pga";
+  std::string im_range;
+  std::optional<double> mu;
+  double slope_deg = 0.0;
+  bool one_way = false;
+  std::string threshold;
+  std::string shape;
+  std::string width;
+  std::string height;
+  std::string diameter;
+  std::string e = "housner";
+  double band = 0.95;
+  int threads = 0;
+  std::string out;
+  std::string plot;
+  bool json = false;
+};
+
+std::string im_column(IntensityMeasure im) {
+  switch (im) {
+    case IntensityMeasure::pga: return "im_pga_g";
+    case IntensityMeasure::pgv: return "im_pgv_m_s";
+    case IntensityMeasure::pgd: return "im_pgd_m";
+    case IntensityMeasure::cav: return "im_cav_m_s";
+  }
+  return "im";
+}
+
+void run_fragility(const FragilityOptions& o) {
+  check_plot_path(o.plot);
+  const double g = o.motion.g_m_s2;
+  if (!(g > 0.0) || !std::isfinite(g)) throw parameter_error("--g", fmt::format("g must be positive and finite, got {}", g));
+  if (!o.motion.scale_pga.empty() || o.motion.scale || o.motion.invert) {
+    throw parameter_error("--scale-pga", "fragility scales every motion to each IM level itself: --scale-pga, --scale "
+                                         "and --invert do not apply");
+  }
+  if (!(o.band > 0.0 && o.band < 1.0)) throw parameter_error("--band", fmt::format("must be in (0, 1), got {}", o.band));
+  FragilitySpec spec;
+  spec.im = parse_intensity_measure(o.im, "--im");
+  spec.threads = o.threads;
+  if (o.im_range.empty()) throw parameter_error("--im-range", "the IM levels are required, e.g. --im-range 0.05:2:12 "
+                                                              "(in g for PGA, SI for the others)");
+  const Range r = parse_range(o.im_range, "--im-range", parse_number);
+  const double to_si = 1.0 / intensity_measure_display_factor(spec.im, g);
+  for (double x : log_grid(r.lo, r.hi, r.n, "--im-range")) spec.levels_si.push_back(x * to_si);
+
+  // Objects.
+  if (o.mu) {
+    if (o.threshold.empty()) throw parameter_error("--threshold", "a sliding block needs its displacement threshold, e.g. 5cm");
+    SlidingFailure f;
+    try {
+      f.block = SlidingBlock::make(*o.mu, -1.0, o.slope_deg * kPi / 180.0,
+                                   o.one_way ? SlidingMode::one_way : SlidingMode::two_way, g);
+    } catch (const InputError& e) {
+      throw parameter_error(e.where().field == "slope" ? "--slope-deg" : "--mu", e.problem());
+    }
+    f.threshold_m = parse_length_m(o.threshold, "--threshold");
+    spec.sliding = f;
+  } else if (!o.threshold.empty()) {
+    throw parameter_error("--mu", "--threshold applies to a sliding block: give its friction coefficient --mu");
+  }
+  if (!o.shape.empty()) {
+    OverturnFailure f;
+    f.options.g_m_s2 = g;
+    if (o.e != "housner") {
+      f.options.restitution = RestitutionMode::given;
+      f.options.e = parse_number(o.e, "--e");
+    }
+    if (o.height.empty()) throw parameter_error("--height", "the rocking body needs --height");
+    const double h = parse_length_m(o.height, "--height");
+    try {
+      if (o.shape == "block") {
+        if (o.width.empty()) throw parameter_error("--width", "--shape block needs --width");
+        f.body = RockingBody::block(parse_length_m(o.width, "--width"), h);
+      } else if (o.shape == "cylinder") {
+        if (o.diameter.empty()) throw parameter_error("--diameter", "--shape cylinder needs --diameter");
+        f.body = RockingBody::cylinder(parse_length_m(o.diameter, "--diameter"), h);
+      } else {
+        throw parameter_error("--shape", fmt::format("unknown shape '{}' (known: block, cylinder)", o.shape));
+      }
+    } catch (const InputError& e) {
+      const std::string& field = e.where().field;
+      if (field == "width" || field == "height" || field == "diameter") throw parameter_error("--" + field, e.problem());
+      throw;
+    }
+    spec.overturning = f;
+  }
+  if (!spec.sliding && !spec.overturning) {
+    throw parameter_error("--mu", "give a sliding block (--mu, --threshold) and/or a rocking body (--shape ...)");
+  }
+
+  // Motions.
+  if (o.synth.has_value() == !o.files.empty()) throw parameter_error("FILES", "give record files or --synth N");
+  std::vector<std::string> names;
+  if (o.synth) {
+    if (*o.synth < 1) throw parameter_error("--synth", fmt::format("needs at least one motion, got {}", *o.synth));
+    SynthesisSpec s;
+    s.pga_m_s2 = 0.1 * g;  // rescaled to every level anyway
+    s.predominant_frequency_hz = parse_frequency_hz(o.freq, "--freq");
+    s.duration_s = parse_seconds(o.duration, "--duration");
+    s.dt_s = parse_seconds(o.synth_dt, "--synth-dt");
+    for (int i = 0; i < *o.synth; ++i) {
+      s.seed = o.seed + static_cast<std::uint64_t>(i);
+      try {
+        spec.motions.push_back(std::make_shared<const GroundMotion>(synthesize(s)));
+      } catch (const InputError& e) {
+        const std::string& field = e.where().field;
+        const std::string option = field == "predominant_frequency_hz" ? "--freq"
+                                   : field == "duration_s"             ? "--duration"
+                                   : field == "dt_s"                   ? "--synth-dt"
+                                                                       : "--synth";
+        throw parameter_error(option, e.problem());
+      }
+      names.push_back(fmt::format("synthetic seed {}", s.seed));
+    }
+  } else {
+    for (const std::string& f : o.files) {
+      spec.motions.push_back(std::make_shared<const GroundMotion>(io::read_motion(f, read_options(o.motion))));
+      names.push_back(f);
+    }
+  }
+  const FragilityResult res = fragility_analysis(spec);
+  const double k = intensity_measure_display_factor(spec.im, g);
+  const std::string unit(intensity_measure_unit(spec.im));
+
+  if (!o.out.empty()) {
+    std::ofstream out(o.out, std::ios::binary);
+    if (!out) throw parameter_error("--out", fmt::format("cannot write '{}'", o.out));
+    out << "curve," << im_column(spec.im) << ",trials,failures,fraction,fitted_probability,band_lower,band_upper\n";
+    for (const auto& c : res.curves) {
+      for (std::size_t j = 0; j < c.data.im.size(); ++j) {
+        out << fmt::format("{},{},{},{},{}", c.name, c.data.im[j] * k, c.data.trials[j], c.data.failures[j],
+                           static_cast<double>(c.data.failures[j]) / c.data.trials[j]);
+        if (c.fit) {
+          const auto [lo, hi] = c.fit->band(c.data.im[j], o.band);
+          out << fmt::format(",{},{},{}\n", c.fit->probability(c.data.im[j]), lo, hi);
+        } else {
+          out << ",,,\n";
+        }
+      }
+    }
+    if (!out) throw parameter_error("--out", fmt::format("error while writing '{}'", o.out));
+  }
+  if (!o.plot.empty()) {
+    plot::render(plot::fragility_figure(res, g, o.band,
+                                        fmt::format("Fragility over {} motions ({})", spec.motions.size(),
+                                                    o.synth ? "synthetic" : "records")),
+                 o.plot);
+  }
+  if (o.json) {
+    nlohmann::ordered_json j;
+    j["im"] = o.im;
+    j["im_unit"] = unit;
+    j["g_m_s2"] = g;
+    j["motions"] = names;
+    j["runs"] = res.runs;
+    j["band_level"] = o.band;
+    j["band_method"] = "delta method on the probit scale, observed information";
+    auto& curves = j["curves"] = nlohmann::ordered_json::array();
+    for (const auto& c : res.curves) {
+      nlohmann::ordered_json cj;
+      cj["curve"] = c.name;
+      nlohmann::ordered_json lv = nlohmann::ordered_json::array();
+      for (std::size_t i = 0; i < c.data.im.size(); ++i) {
+        lv.push_back({{im_column(spec.im), c.data.im[i] * k}, {"trials", c.data.trials[i]},
+                      {"failures", c.data.failures[i]}});
+      }
+      cj["levels"] = lv;
+      if (c.fit) {
+        const double th = c.fit->theta * k;
+        cj["fit"] = {{"theta", th},
+                     {"theta_unit", unit},
+                     {"beta", c.fit->beta},
+                     {"se_ln_theta", c.fit->se_ln_theta},
+                     {"se_beta", c.fit->se_beta},
+                     {"cov_ln_theta_beta", c.fit->cov_ln_theta_beta},
+                     {"log_likelihood", c.fit->log_likelihood},
+                     {"beta_at_bound", c.fit->beta_at_bound}};
+      } else {
+        cj["fit"] = nullptr;
+        cj["fit_note"] = c.fit_note;
+      }
+      curves.push_back(cj);
+    }
+    fmt::print("{}\n", j.dump(2));
+    return;
+  }
+  fmt::print("fragility over {} motions x {} {} levels ({} runs), g = {} m/s2\n", spec.motions.size(),
+             spec.levels_si.size(), o.im, res.runs, g);
+  for (const auto& c : res.curves) {
+    fmt::print("{}:", c.name == "overturn" ? "P(overturn)" : "P(slide > threshold)");
+    if (c.fit) {
+      fmt::print(" median theta = {:.4g} {} (ln theta +- {:.3g}), beta = {:.3f} +- {:.3f}{}\n", c.fit->theta * k, unit,
+                 c.fit->se_ln_theta, c.fit->beta, c.fit->se_beta,
+                 c.fit->beta_at_bound ? " (separated data: beta at its lower bound)" : "");
+    } else {
+      fmt::print(" no fit: {}\n", c.fit_note);
+    }
+    for (std::size_t i = 0; i < c.data.im.size(); ++i) {
+      fmt::print("  {} = {:<10.4g} {:>4}/{:<4}\n", o.im, c.data.im[i] * k, c.data.failures[i], c.data.trials[i]);
+    }
+  }
+  if (!o.out.empty()) fmt::print("table written to {}\n", o.out);
+  if (!o.plot.empty()) fmt::print("figure written to {}\n", o.plot);
+}
+
+}  // namespace
+
+void add_fragility_command(CLI::App& app) {
+  auto o = std::make_shared<FragilityOptions>();
+  CLI::App* cmd = app.add_subcommand("fragility", "P(overturn) and P(slide > d) vs an intensity measure over an "
+                                                  "ensemble of motions, lognormal MLE fit with its band");
+  cmd->add_option("files", o->files, "Record files of the ensemble");
+  cmd->add_option("--format", o->motion.format, "Record format (default: detect)")->capture_default_str();
+  cmd->add_option("--units", o->motion.units, "Unit of the values of plain files: g, m/s2, cm/s2, gal");
+  cmd->add_option("--dt", o->motion.dt_s, "Time step of one-column plain files, s");
+  cmd->add_option("--g", o->motion.g_m_s2, "Gravitational acceleration, m/s2")->capture_default_str();
+  cmd->add_option("--synth", o->synth, "Use N synthetic motions instead of files (seeds SEED .. SEED+N-1)");
+  cmd->add_option("--freq", o->freq, "Synthetic: predominant frequency, with a unit")->capture_default_str();
+  cmd->add_option("--duration", o->duration, "Synthetic: duration, s or with a unit")->capture_default_str();
+  cmd->add_option("--synth-dt", o->synth_dt, "Synthetic: sample interval, s")->capture_default_str();
+  cmd->add_option("--seed", o->seed, "Synthetic: first seed")->capture_default_str();
+  cmd->add_option("--im", o->im, "Intensity measure: pga (g), pgv (m/s), pgd (m), cav (m/s)")->capture_default_str();
+  cmd->add_option("--im-range", o->im_range, "IM levels LO:HI:N, log spaced, in the IM's unit (e.g. 0.05:2:12)");
+  cmd->add_option("--mu", o->mu, "Sliding block: friction coefficient");
+  cmd->add_option("--slope-deg", o->slope_deg, "Sliding block: inclination, degrees")->capture_default_str();
+  cmd->add_flag("--one-way", o->one_way, "Sliding block: down-slope sliding only");
+  cmd->add_option("--threshold", o->threshold, "Sliding block: failure when max |d| exceeds this, with a unit (5cm)");
+  cmd->add_option("--shape", o->shape, "Rocking body: block (--width, --height) or cylinder (--diameter, --height)");
+  cmd->add_option("--width", o->width, "Block width, with a unit");
+  cmd->add_option("--height", o->height, "Block or cylinder height, with a unit");
+  cmd->add_option("--diameter", o->diameter, "Cylinder diameter, with a unit");
+  cmd->add_option("--e", o->e, "Coefficient of restitution in [0, 1], or 'housner'")->capture_default_str();
+  cmd->add_option("--band", o->band, "Confidence level of the band")->capture_default_str();
+  cmd->add_option("--threads", o->threads, "Worker threads (0: every core)")->capture_default_str();
+  cmd->add_option("--out", o->out, "Write the counts, fitted probabilities and band per level to this CSV file");
+  cmd->add_option("--plot", o->plot, "Draw the curves with their data points and band to this .svg or .png file");
+  cmd->add_flag("--json", o->json, "Print the fits as one JSON object");
+  cmd->callback([o] { run_fragility(*o); });
+}
+
+}  // namespace topple::cli

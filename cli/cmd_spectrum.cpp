@@ -1,0 +1,333 @@
+// topple spectrum slide | rock: sliding displacement spectrum over mu, overturning map over PGA x size.
+// Parsing and printing only; the computation is topple::sliding_spectrum / topple::overturning_map.
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "common.hpp"
+#include "grids.hpp"
+#include "topple/error.hpp"
+#include "topple/object_spectra.hpp"
+#include "topple/plot.hpp"
+#include "topple/units.hpp"
+
+namespace topple::cli {
+namespace {
+
+struct MotionInput {
+  MotionOptions motion;
+  PulseOptions pulse;
+};
+
+struct LoadedMotion {
+  GroundMotion motion;
+  std::string name;
+};
+
+LoadedMotion load(const MotionInput& in) {
+  const double g = in.motion.g_m_s2;
+  if (!(g > 0.0) || !std::isfinite(g)) throw parameter_error("--g", fmt::format("g must be positive and finite, got {}", g));
+  const bool from_pulse = !in.pulse.kind.empty();
+  if (from_pulse == !in.motion.file.empty()) throw parameter_error("FILE", "give either a record file or --pulse");
+  GroundMotion raw = from_pulse ? make_pulse_motion(in.pulse, g) : io::read_motion(in.motion.file, read_options(in.motion));
+  GroundMotion m = transform_motion(std::move(raw), in.motion);
+  std::string name = from_pulse ? m.metadata().event : in.motion.file;
+  return {std::move(m), std::move(name)};
+}
+
+std::ofstream open_out(const std::string& path) {
+  std::ofstream out(path, std::ios::binary);
+  if (!out) throw parameter_error("--out", fmt::format("cannot write '{}'", path));
+  return out;
+}
+
+/// Library fields -> the options that set them.
+template <class F>
+auto naming(const std::map<std::string, std::string>& names, F f) {
+  try {
+    return f();
+  } catch (const InputError& e) {
+    const auto it = names.find(e.where().field);
+    if (it == names.end() || !e.where().file.empty()) throw;
+    throw parameter_error(it->second, e.problem());
+  }
+}
+
+// ---- spectrum slide ----
+
+struct SlideSpectrumOptions {
+  MotionInput input;
+  std::string mu;
+  std::string mu_range;
+  std::string ky_range;
+  double slope_deg = 0.0;
+  bool one_way = false;
+  std::string out;
+  std::string plot;
+  bool json = false;
+};
+
+void run_slide_spectrum(const SlideSpectrumOptions& o) {
+  check_plot_path(o.plot);
+  const int given = int(!o.mu.empty()) + int(!o.mu_range.empty()) + int(!o.ky_range.empty());
+  if (given != 1) throw parameter_error("--mu", "give exactly one of --mu LIST, --mu-range LO:HI:N, --ky-ratio-range LO:HI:N");
+  const LoadedMotion lm = load(o.input);
+  const double g = o.input.motion.g_m_s2;
+  const double slope = o.slope_deg * kPi / 180.0;
+  std::vector<double> mu;
+  if (!o.mu.empty()) mu = parse_list(o.mu, "--mu", parse_number);
+  if (!o.mu_range.empty()) {
+    const Range r = parse_range(o.mu_range, "--mu-range", parse_number);
+    mu = linear_grid(r.lo, r.hi, r.n, "--mu-range");
+  }
+  if (!o.ky_range.empty()) {
+    const Range r = parse_range(o.ky_range, "--ky-ratio-range", parse_number);
+    for (double ratio : linear_grid(r.lo, r.hi, r.n, "--ky-ratio-range")) {
+      mu.push_back(naming({{"ky_over_pga", "--ky-ratio-range"}},
+                          [&] { return mu_for_yield_ratio(ratio, lm.motion.pga_m_s2(), slope, g); }));
+    }
+  }
+  const SlidingMode mode = o.one_way ? SlidingMode::one_way : SlidingMode::two_way;
+  const SlidingSpectrum sp = naming({{"mu", "--mu"}, {"slope", "--slope-deg"}, {"g", "--g"}},
+                                    [&] { return sliding_spectrum(lm.motion, mu, slope, mode, g); });
+
+  if (!o.out.empty()) {
+    std::ofstream out = open_out(o.out);
+    out << "mu,yield_accel_g,ky_over_pga,max_abs_displacement_m,residual_displacement_m,slip_episodes,"
+           "total_slip_duration_s\n";
+    for (const auto& p : sp.points) {
+      out << fmt::format("{},{},{},{},{},{},{}\n", p.mu, p.yield_accel_g, p.yield_over_pga, p.max_abs_displacement_m,
+                         p.residual_displacement_m, p.slip_episodes, p.total_slip_duration_s);
+    }
+    if (!out) throw parameter_error("--out", fmt::format("error while writing '{}'", o.out));
+  }
+  if (!o.plot.empty()) {
+    plot::render(plot::sliding_spectrum_figure(sp, !o.ky_range.empty(),
+                                               fmt::format("Sliding displacement spectrum ({}, slope {} deg): {}",
+                                                           o.one_way ? "one-way" : "two-way", o.slope_deg, lm.name)),
+                 o.plot);
+  }
+  if (o.json) {
+    nlohmann::ordered_json j;
+    j["motion"] = lm.name;
+    j["pga_g"] = sp.pga_m_s2 / g;
+    j["npts"] = lm.motion.size();
+    j["dt_s"] = lm.motion.dt_s();
+    j["g_m_s2"] = g;
+    j["mode"] = o.one_way ? "one-way" : "two-way";
+    j["slope_deg"] = o.slope_deg;
+    auto& pts = j["points"] = nlohmann::ordered_json::array();
+    for (const auto& p : sp.points) {
+      pts.push_back({{"mu", p.mu},
+                     {"yield_accel_g", p.yield_accel_g},
+                     {"ky_over_pga", p.yield_over_pga},
+                     {"max_abs_displacement_m", p.max_abs_displacement_m},
+                     {"residual_displacement_m", p.residual_displacement_m},
+                     {"slip_episodes", p.slip_episodes}});
+    }
+    fmt::print("{}\n", j.dump(2));
+    return;
+  }
+  fmt::print("sliding displacement spectrum: {} (PGA {:.4f} g), {}, slope {} deg, g = {} m/s2\n", lm.name,
+             sp.pga_m_s2 / g, o.one_way ? "one-way" : "two-way", o.slope_deg, g);
+  fmt::print("{:>10} {:>10} {:>14} {:>14} {:>8}\n", "mu", "ky/PGA", "max |d| (m)", "residual (m)", "slips");
+  for (const auto& p : sp.points) {
+    fmt::print("{:>10.5g} {:>10.5g} {:>14.6g} {:>14.6g} {:>8}\n", p.mu, p.yield_over_pga, p.max_abs_displacement_m,
+               p.residual_displacement_m, p.slip_episodes);
+  }
+  if (!o.out.empty()) fmt::print("table written to {}\n", o.out);
+  if (!o.plot.empty()) fmt::print("figure written to {}\n", o.plot);
+}
+
+// ---- spectrum rock ----
+
+struct RockSpectrumOptions {
+  MotionInput input;
+  std::string shape = "block";
+  std::string alpha;
+  std::optional<double> slenderness;
+  std::string heights;
+  std::string height_range;
+  std::string pga;
+  std::string pga_range;
+  std::string e = "housner";
+  int threads = 0;
+  std::string out;
+  std::string plot;
+  bool json = false;
+};
+
+void run_rock_spectrum(const RockSpectrumOptions& o) {
+  check_plot_path(o.plot);
+  const double g = o.input.motion.g_m_s2;
+  BodyFamily family;
+  if (o.shape == "block") {
+    family.shape = RockingBody::Shape::block;
+  } else if (o.shape == "cylinder") {
+    family.shape = RockingBody::Shape::cylinder;
+  } else {
+    throw parameter_error("--shape", fmt::format("unknown shape '{}' (known: block, cylinder)", o.shape));
+  }
+  if (o.alpha.empty() == !o.slenderness.has_value()) {
+    throw parameter_error("--alpha", "give the slenderness as --alpha ANGLE (e.g. 0.2rad) or --slenderness b/h");
+  }
+  if (o.slenderness) {
+    if (!(*o.slenderness > 0.0) || !std::isfinite(*o.slenderness)) {
+      throw parameter_error("--slenderness", fmt::format("must be positive, got {}", *o.slenderness));
+    }
+    family.alpha_rad = std::atan(*o.slenderness);
+  } else {
+    family.alpha_rad = parse_angle_rad(o.alpha, "--alpha");
+  }
+  if (o.heights.empty() == o.height_range.empty()) {
+    throw parameter_error("--heights", "give the sizes as --heights LIST or --height-range LO:HI:N (full heights)");
+  }
+  if (!o.heights.empty()) {
+    family.heights_m = parse_list(o.heights, "--heights", [](const std::string& t, const std::string& opt) {
+      return parse_length_m(t, opt);
+    });
+  } else {
+    const Range r = parse_range(o.height_range, "--height-range", [](const std::string& t, const std::string& opt) {
+      return parse_length_m(t, opt);
+    });
+    family.heights_m = log_grid(r.lo, r.hi, r.n, "--height-range");
+  }
+  if (o.pga.empty() == o.pga_range.empty()) {
+    throw parameter_error("--pga", "give the amplitudes as --pga LIST or --pga-range LO:HI:N (e.g. 0.05g:1g:40)");
+  }
+  const ValueParser accel = [g](const std::string& t, const std::string& opt) {
+    return parse_acceleration_m_s2(t, opt, g);
+  };
+  std::vector<double> pga;
+  if (!o.pga.empty()) {
+    pga = parse_list(o.pga, "--pga", accel);
+  } else {
+    const Range r = parse_range(o.pga_range, "--pga-range", accel);
+    pga = linear_grid(r.lo, r.hi, r.n, "--pga-range");
+  }
+  OverturningMapOptions mo;
+  mo.rocking.g_m_s2 = g;
+  mo.threads = o.threads;
+  if (o.e != "housner") {
+    mo.rocking.restitution = RestitutionMode::given;
+    mo.rocking.e = parse_number(o.e, "--e");
+  }
+  const LoadedMotion lm = load(o.input);
+  const std::string pga_option = o.pga.empty() ? "--pga-range" : "--pga";
+  const std::string height_option = o.heights.empty() ? "--height-range" : "--heights";
+  const OverturningMap map = naming(
+      {{"alpha", o.slenderness ? "--slenderness" : "--alpha"}, {"height", height_option}, {"width", height_option},
+       {"diameter", height_option}, {"pga", pga_option}, {"e", "--e"}, {"g", "--g"}},
+      [&] { return overturning_map(lm.motion, family, pga, mo); });
+
+  const std::size_t na = map.pga_m_s2.size();
+  if (!o.out.empty()) {
+    std::ofstream out = open_out(o.out);
+    out << fmt::format("height_m,{},R_m,p_rad_s,pga_g,overturned,max_rotation_over_alpha\n",
+                       family.shape == RockingBody::Shape::cylinder ? "diameter_m" : "width_m");
+    for (std::size_t s = 0; s < map.sizes.size(); ++s) {
+      const auto& z = map.sizes[s];
+      for (std::size_t k = 0; k < na; ++k) {
+        out << fmt::format("{},{},{},{},{},{},{}\n", z.height_m, z.width_m, z.R_m, z.p_rad_s, map.pga_m_s2[k] / g,
+                           map.at(s, k) ? "true" : "false", map.max_rotation_over_alpha[s * na + k]);
+      }
+    }
+    if (!out) throw parameter_error("--out", fmt::format("error while writing '{}'", o.out));
+  }
+  if (!o.plot.empty()) {
+    plot::render(plot::overturning_map_figure(map, fmt::format("Overturning map, {} α = {:.3g} rad: {}", o.shape,
+                                                               map.alpha_rad, lm.name)),
+                 o.plot);
+  }
+  if (o.json) {
+    nlohmann::ordered_json j;
+    j["motion"] = lm.name;
+    j["pga_g_as_read"] = lm.motion.pga_m_s2() / g;
+    j["g_m_s2"] = g;
+    j["shape"] = o.shape;
+    j["alpha_rad"] = map.alpha_rad;
+    j["uplift_pga_g"] = std::tan(map.alpha_rad);
+    nlohmann::ordered_json grid = nlohmann::ordered_json::array();
+    for (double a : map.pga_m_s2) grid.push_back(a / g);
+    j["pga_g"] = grid;
+    auto& sizes = j["sizes"] = nlohmann::ordered_json::array();
+    for (const auto& z : map.sizes) {
+      sizes.push_back({{"height_m", z.height_m},
+                       {family.shape == RockingBody::Shape::cylinder ? "diameter_m" : "width_m", z.width_m},
+                       {"R_m", z.R_m},
+                       {"p_rad_s", z.p_rad_s},
+                       {"first_overturn_pga_g", z.first_overturn_pga_m_s2
+                                                    ? nlohmann::ordered_json(*z.first_overturn_pga_m_s2 / g)
+                                                    : nlohmann::ordered_json(nullptr)},
+                       {"standing_above_first", z.standing_above_first},
+                       {"overturn_count", z.overturn_count}});
+    }
+    fmt::print("{}\n", j.dump(2));
+    return;
+  }
+  fmt::print("overturning map: {} ({} {} PGAs x {} sizes), {} alpha = {:.4g} rad, uplift at PGA > {:.4f} g\n", lm.name,
+             na, "grid", map.sizes.size(), o.shape, map.alpha_rad, std::tan(map.alpha_rad));
+  fmt::print("{:>12} {:>10} {:>20} {:>22}\n", "height (m)", "p (rad/s)", "first overturn (g)", "standing above first");
+  for (const auto& z : map.sizes) {
+    fmt::print("{:>12.5g} {:>10.4g} {:>20} {:>22}\n", z.height_m, z.p_rad_s,
+               z.first_overturn_pga_m_s2 ? fmt::format("{:.4f}", *z.first_overturn_pga_m_s2 / g) : std::string("none"),
+               z.standing_above_first ? "yes" : "no");
+  }
+  if (!o.out.empty()) fmt::print("map written to {}\n", o.out);
+  if (!o.plot.empty()) fmt::print("figure written to {}\n", o.plot);
+}
+
+void add_motion_input(CLI::App& cmd, MotionInput& in) {
+  cmd.add_option("file", in.motion.file, "Record file (format detected from content)");
+  add_motion_options(cmd, in.motion);
+  add_pulse_options(cmd, in.pulse);
+}
+
+}  // namespace
+
+void add_spectrum_command(CLI::App& app) {
+  CLI::App* spectrum = app.add_subcommand("spectrum", "Object spectra of one motion: sliding displacement vs friction, "
+                                                      "overturning map over amplitude x size");
+  spectrum->require_subcommand(1);
+
+  auto s = std::make_shared<SlideSpectrumOptions>();
+  CLI::App* slide = spectrum->add_subcommand("slide", "Max and residual sliding displacement vs mu (or k_y/PGA)");
+  add_motion_input(*slide, s->input);
+  slide->add_option("--mu", s->mu, "Friction coefficients, comma-separated (e.g. 0.05,0.1,0.2)");
+  slide->add_option("--mu-range", s->mu_range, "Friction coefficients LO:HI:N, evenly spaced (e.g. 0.02:0.5:25)");
+  slide->add_option("--ky-ratio-range", s->ky_range, "Yield acceleration over PGA, LO:HI:N, evenly spaced "
+                                                     "(mu = tan(slope + atan(ratio PGA/g)))");
+  slide->add_option("--slope-deg", s->slope_deg, "Inclination of the plane, degrees")->capture_default_str();
+  slide->add_flag("--one-way", s->one_way, "Down-slope sliding only (SLAMMER rigid-block convention)");
+  slide->add_option("--out", s->out, "Write the spectrum to this CSV file");
+  slide->add_option("--plot", s->plot, "Draw the spectrum to this .svg or .png file (gnuplot)");
+  slide->add_flag("--json", s->json, "Print the spectrum as one JSON object");
+  slide->callback([s] { run_slide_spectrum(*s); });
+
+  auto r = std::make_shared<RockSpectrumOptions>();
+  CLI::App* rock = spectrum->add_subcommand("rock", "Overturning map over PGA x size for a family of fixed slenderness, "
+                                                    "and each size's first-overturn PGA");
+  add_motion_input(*rock, r->input);
+  rock->add_option("--shape", r->shape, "block or cylinder")->capture_default_str();
+  rock->add_option("--alpha", r->alpha, "Slenderness angle atan(b/h), with a unit (e.g. 0.2rad, 11deg)");
+  rock->add_option("--slenderness", r->slenderness, "Slenderness b/h = width/height (= tan alpha)");
+  rock->add_option("--heights", r->heights, "Full heights of the family, comma-separated with units (e.g. 20cm,1m)");
+  rock->add_option("--height-range", r->height_range, "Full heights LO:HI:N, log spaced (e.g. 10cm:4m:50)");
+  rock->add_option("--pga", r->pga, "PGAs the motion is scaled to, comma-separated with units (e.g. 0.2g,0.4g)");
+  rock->add_option("--pga-range", r->pga_range, "PGAs LO:HI:N, evenly spaced (e.g. 0.05g:1g:50)");
+  rock->add_option("--e", r->e, "Coefficient of restitution in [0, 1], or 'housner'")->capture_default_str();
+  rock->add_option("--threads", r->threads, "Worker threads (0: every core)")->capture_default_str();
+  rock->add_option("--out", r->out, "Write the map to this CSV file (one row per size and PGA)");
+  rock->add_option("--plot", r->plot, "Draw the map with the first-overturn curve to this .svg or .png file");
+  rock->add_flag("--json", r->json, "Print the first-overturn PGA of each size as one JSON object");
+  rock->callback([r] { run_rock_spectrum(*r); });
+}
+
+}  // namespace topple::cli

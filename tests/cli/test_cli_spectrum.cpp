@@ -1,0 +1,156 @@
+// `topple spectrum slide|rock` and `topple fragility`: JSON equals single runs, CSV headers carry units, figures
+// are produced and non-trivial, bad input exits 2 naming the option.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "support/shared_data.hpp"
+#include "topple/pulses.hpp"
+
+namespace topple {
+namespace {
+
+nlohmann::json run_json(const std::string& args) {
+  const auto r = test::run_cli(args);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  return nlohmann::json::parse(r.out);
+}
+
+std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string first_line(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  std::string line;
+  std::getline(in, line);
+  return line;
+}
+
+TEST(CliSpectrum, SlideEntriesEqualSingleSlideRunsAndTheClosedForm) {
+  const std::string pulse = "--pulse rect --amp-g 2 --duration 0.1 --g 9.81";
+  const auto j = run_json("spectrum slide " + pulse + " --mu 0.1,0.3,0.5 --json");
+  ASSERT_EQ(j.at("points").size(), 3u);
+  for (const auto& p : j.at("points")) {
+    const double mu = p.at("mu").get<double>();
+    const auto one = run_json(fmt::format("slide {} --mu {} --json", pulse, mu));
+    EXPECT_DOUBLE_EQ(p.at("max_abs_displacement_m").get<double>(), one.at("max_abs_displacement_m").get<double>());
+    EXPECT_DOUBLE_EQ(p.at("residual_displacement_m").get<double>(), one.at("residual_displacement_m").get<double>());
+    // thesis Table 3.1 closed form, 1e-9 relative (exact solver on an exactly piecewise-linear pulse)
+    const double um = rectangular_pulse_sliding(2.0, 0.1, mu, 9.81).max_displacement_m;
+    EXPECT_NEAR(p.at("max_abs_displacement_m").get<double>(), um, 1e-9 * um);
+  }
+}
+
+TEST(CliSpectrum, SlideCsvAndFigure) {
+  test::TempDir tmp;
+  const auto csv = tmp.path() / "s.csv";
+  const auto svg = tmp.path() / "s.svg";
+  const auto r = test::run_cli("spectrum slide --pulse double-tri --amp-g 1 --duration 0.2 --ky-ratio-range 0.05:0.9:12 "
+                               "--one-way --slope-deg 5 --out '" + csv.string() + "' --plot '" + svg.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(first_line(csv), "mu,yield_accel_g,ky_over_pga,max_abs_displacement_m,residual_displacement_m,"
+                             "slip_episodes,total_slip_duration_s");
+  const std::string s = slurp(svg);
+  ASSERT_GT(s.size(), 5000u);
+  EXPECT_NE(s.find("</svg>"), std::string::npos);
+  EXPECT_NE(s.find("sliding displacement (m)"), std::string::npos);
+  EXPECT_NE(s.find("PGA"), std::string::npos);
+}
+
+TEST(CliSpectrum, RockMapEqualsSingleRockRuns) {
+  const std::string pulse = "--pulse sine --amp-g 1 --duration 0.5 --pulse-dt 0.0005";
+  const auto j = run_json("spectrum rock " + pulse + " --slenderness 0.25 --heights 20cm,1m --pga 0.3g,0.6g,1g --json");
+  ASSERT_EQ(j.at("sizes").size(), 2u);
+  const std::vector<std::string> heights{"20cm", "1m"};
+  const std::vector<std::string> pgas{"0.3g", "0.6g", "1g"};
+  for (std::size_t s = 0; s < 2; ++s) {
+    std::optional<double> first;
+    const double h = j.at("sizes")[s].at("height_m").get<double>();
+    for (std::size_t k = 0; k < 3; ++k) {
+      const auto one = run_json(fmt::format("rock {} --scale-pga {} --shape block --width {}m --height {} --json", pulse,
+                                            pgas[k], 0.25 * h, heights[s]));
+      if (one.at("overturned").get<bool>() && !first) first = j.at("pga_g")[k].get<double>();
+    }
+    const auto& f = j.at("sizes")[s].at("first_overturn_pga_g");
+    if (first) {
+      EXPECT_DOUBLE_EQ(f.get<double>(), *first) << s;
+    } else {
+      EXPECT_TRUE(f.is_null()) << s;
+    }
+  }
+}
+
+TEST(CliSpectrum, RockCsvAndFigure) {
+  test::TempDir tmp;
+  const auto csv = tmp.path() / "m.csv";
+  const auto svg = tmp.path() / "m.svg";
+  const auto r = test::run_cli("spectrum rock --pulse sine --amp-g 1 --duration 0.5 --alpha 0.2rad --height-range "
+                               "10cm:2m:6 --pga-range 0.1g:1.2g:6 --out '" + csv.string() + "' --plot '" + svg.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(first_line(csv), "height_m,width_m,R_m,p_rad_s,pga_g,overturned,max_rotation_over_alpha");
+  const std::string s = slurp(svg);
+  ASSERT_GT(s.size(), 5000u);
+  EXPECT_NE(s.find("PGA (g)"), std::string::npos);
+  EXPECT_NE(s.find("block height 2h (m)"), std::string::npos);
+  EXPECT_NE(s.find("first-overturn PGA"), std::string::npos);
+}
+
+TEST(CliFragility, SyntheticEnsembleJsonCsvAndFigure) {
+  test::TempDir tmp;
+  const auto csv = tmp.path() / "f.csv";
+  const auto svg = tmp.path() / "f.svg";
+  const auto j = run_json("fragility --synth 6 --freq 2Hz --duration 8s --im-range 0.05:1.5:8 --mu 0.2 --threshold 2cm "
+                          "--shape block --width 10cm --height 40cm --json --out '" + csv.string() + "' --plot '" +
+                          svg.string() + "'");
+  ASSERT_EQ(j.at("curves").size(), 2u);
+  EXPECT_EQ(j.at("runs").get<int>(), 6 * 8 * 2);
+  for (const auto& c : j.at("curves")) {
+    ASSERT_FALSE(c.at("fit").is_null()) << c;
+    const double theta = c.at("fit").at("theta").get<double>();
+    EXPECT_GT(theta, 0.05);
+    EXPECT_LT(theta, 1.5);
+    EXPECT_EQ(c.at("levels").size(), 8u);
+  }
+  EXPECT_EQ(first_line(csv), "curve,im_pga_g,trials,failures,fraction,fitted_probability,band_lower,band_upper");
+  const std::string s = slurp(svg);
+  ASSERT_GT(s.size(), 5000u);
+  EXPECT_NE(s.find("PGA (g)"), std::string::npos);
+  EXPECT_NE(s.find("probability of failure (-)"), std::string::npos);
+}
+
+TEST(CliSpectrum, BadInputExitsTwoNamingTheOption) {
+  const std::string pulse = " --pulse rect --amp-g 2 --duration 0.1";
+  const auto expect2 = [](const std::string& args, const std::string& option) {
+    const auto r = test::run_cli(args);
+    EXPECT_EQ(r.exit_code, 2) << args;
+    EXPECT_NE(r.err.find(option), std::string::npos) << args << "\n" << r.err;
+  };
+  expect2("spectrum slide" + pulse, "--mu");
+  expect2("spectrum slide" + pulse + " --mu 0.1,-2", "--mu");
+  expect2("spectrum slide" + pulse + " --mu-range 0.1:0.5", "--mu-range");
+  expect2("spectrum slide" + pulse + " --mu 0.2 --plot x.pdf", "--plot");
+  expect2("spectrum slide /nonexistent/record.AT2 --mu 0.2", "/nonexistent/record.AT2");
+  expect2("spectrum rock" + pulse + " --alpha 0.2rad --heights 1m", "--pga");
+  expect2("spectrum rock" + pulse + " --alpha 2rad --heights 1m --pga 1g", "--alpha");
+  expect2("spectrum rock" + pulse + " --alpha 0.2rad --heights 1m,-2m --pga 1g", "--heights");
+  expect2("spectrum rock" + pulse + " --alpha 0.2rad --heights 1m --pga-range 1g:0.1g:3", "--pga-range");
+  expect2("spectrum rock" + pulse + " --shape sphere --alpha 0.2rad --heights 1m --pga 1g", "--shape");
+  expect2("fragility --synth 3 --im-range 0.1:1:3", "--mu");
+  expect2("fragility --synth 3 --im-range 0.1:1:3 --mu 0.2", "--threshold");
+  expect2("fragility --synth 3 --im pgz --im-range 0.1:1:3 --mu 0.2 --threshold 1cm", "--im");
+  expect2("fragility --synth 3 --mu 0.2 --threshold 1cm", "--im-range");
+  expect2("fragility /nonexistent/a.AT2 --im-range 0.1:1:3 --mu 0.2 --threshold 1cm", "/nonexistent/a.AT2");
+  expect2("fragility --synth 3 --im-range 0.1:1:3 --shape block --width 0cm --height 1m", "--width");
+}
+
+}  // namespace
+}  // namespace topple
