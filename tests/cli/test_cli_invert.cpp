@@ -14,6 +14,8 @@
 namespace topple {
 namespace {
 
+using test::slurp;
+
 // A small survey (coarse grid, few motions) keeps these CLI tests to a few seconds; the default-sized example is
 // timed by bench/bench_inversion.cpp.
 const char* kSmallInversion = "[inversion]\npga_g = [0.05, 2.0, 10]\nfreq_hz = [0.5, 10.0, 6]\nmotions_per_cell = 6\n"
@@ -25,13 +27,6 @@ const char* kObjects =
     "[[object]]\nid = \"tv\"\nshape = \"block\"\nwidth = \"25cm\"\nheight = \"45cm\"\nmu = 0.5\noutcome = \"not_slid\"\n"
     "[[object]]\nid = \"pot\"\nshape = \"cylinder\"\ndiameter = \"25cm\"\nheight = \"15cm\"\nmu = 0.25\n"
     "outcome = \"slid\"\nslid = \"3cm\"\nslid_uncertainty = \"1cm\"\n";
-
-std::string slurp(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 TEST(CliInvert, JsonCarriesEstimatesIntervalsAndBounds) {
   test::TempDir tmp;

@@ -16,11 +16,7 @@
 namespace topple {
 namespace {
 
-nlohmann::json run_json(const std::string& args) {
-  const auto r = test::run_cli(args);
-  EXPECT_EQ(r.exit_code, 0) << r.err;
-  return nlohmann::json::parse(r.out);
-}
+using test::run_json;
 
 void expect_error(const std::string& args, const std::string& option) {
   const auto r = test::run_cli(args);

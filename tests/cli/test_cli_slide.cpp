@@ -12,11 +12,7 @@
 namespace topple {
 namespace {
 
-nlohmann::json run_json(const std::string& args) {
-  const auto r = test::run_cli(args);
-  EXPECT_EQ(r.exit_code, 0) << r.err;
-  return nlohmann::json::parse(r.out);
-}
+using test::run_json;
 
 TEST(CliSlide, PulseJsonMatchesTheClosedForm) {
   // Thesis Table 3.1 row 1 with g = 9.81: U_m = 0.5 v^2 / (g N) (1 - N/A), v = A g t0.

@@ -15,18 +15,8 @@
 namespace topple {
 namespace {
 
-nlohmann::json run_json(const std::string& args) {
-  const auto r = test::run_cli(args);
-  EXPECT_EQ(r.exit_code, 0) << r.err;
-  return nlohmann::json::parse(r.out);
-}
-
-std::string slurp(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::slurp;
+using test::run_json;
 
 std::string first_line(const std::filesystem::path& p) {
   std::ifstream in(p);

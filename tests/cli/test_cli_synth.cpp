@@ -16,17 +16,13 @@
 namespace topple {
 namespace {
 
+using test::run_json;
+
 std::string slurp(const std::filesystem::path& p) {
   std::ifstream in(p, std::ios::binary);
   std::stringstream s;
   s << in.rdbuf();
   return s.str();
-}
-
-nlohmann::json run_json(const std::string& args) {
-  const auto r = test::run_cli(args);
-  EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.err;
-  return nlohmann::json::parse(r.out);
 }
 
 TEST(CliSynth, WritesACsvThatEveryCommandReadsBack) {

@@ -8,6 +8,8 @@
 #include <fstream>
 #include <random>
 #include <sstream>
+
+#include <gtest/gtest.h>
 #include <stdexcept>
 
 namespace topple::test {
@@ -22,13 +24,20 @@ std::filesystem::path shared_record(const std::string& name) { return shared_dir
 bool have_shared() { return std::filesystem::exists(shared_dir() / "records"); }
 
 namespace {
+}  // namespace
+
 std::string slurp(const std::filesystem::path& p) {
   std::ifstream in(p, std::ios::binary);
   std::ostringstream s;
   s << in.rdbuf();
   return s.str();
 }
-}  // namespace
+
+nlohmann::json run_json(const std::string& args) {
+  const auto r = run_cli(args);
+  EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.err;
+  return nlohmann::json::parse(r.out);
+}
 
 CommandResult run_cli(const std::string& args) {
   TempDir tmp;

@@ -3,6 +3,8 @@
 #include <filesystem>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 namespace topple::test {
 
 /// The shared/ folder beside the clone (records, verification, seed). Tests that need it skip when it is absent.
@@ -18,6 +20,13 @@ struct CommandResult {
 
 /// Runs the built `topple` CLI with the given argument string (shell-quoted by the caller).
 [[nodiscard]] CommandResult run_cli(const std::string& args);
+
+/// Runs the CLI, expects exit status 0 (a test failure naming the arguments and stderr otherwise) and parses stdout
+/// as JSON.
+[[nodiscard]] nlohmann::json run_json(const std::string& args);
+
+/// The whole content of a file (binary); empty when it cannot be read.
+[[nodiscard]] std::string slurp(const std::filesystem::path& path);
 
 /// A fresh temporary directory, removed when the object dies.
 class TempDir {
