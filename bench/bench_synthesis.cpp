@@ -13,27 +13,13 @@
 #include "topple/spectra.hpp"
 #include "topple/synthesis.hpp"
 
+#include "kocaeli_record.hpp"
+
 namespace {
 
 using topple::GroundMotion;
 
-GroundMotion load_record() {
-  const std::filesystem::path path =
-      std::filesystem::path(TOPPLE_SHARED_DIR) / "records" / "slammer" / "Kocaeli_1999_ATS-090.csv";
-  constexpr std::size_t n = 20000;
-  if (std::filesystem::exists(path)) {
-    const GroundMotion full = topple::io::read_motion(path);
-    std::vector<double> a(full.accel_m_s2().begin(), full.accel_m_s2().begin() + n);
-    return GroundMotion::uniform(std::move(a), full.dt_s());
-  }
-  topple::SynthesisSpec s;
-  s.pga_m_s2 = 0.185 * topple::kStandardGravity;
-  s.predominant_frequency_hz = 3.0;
-  s.duration_s = 99.995;
-  s.dt_s = 0.005;
-  s.seed = 42;
-  return topple::synthesize(s);
-}
+GroundMotion load_record() { return topple::bench::kocaeli_record(20000, 3.0); }
 
 const GroundMotion& record() {
   static const GroundMotion r = load_record();
