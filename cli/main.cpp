@@ -1,4 +1,5 @@
-// topple: earthquake response of free-standing rigid objects. Exit status: 0 success, 2 bad input, 1 other errors.
+// topple: earthquake response of free-standing rigid objects. Exit statuses: topple::ExitStatus (error.hpp): 0 success,
+// 1 internal error, 2 bad input, 3 solver limit, 4 output failure, 130/143 SIGINT/SIGTERM.
 #include <cstdio>
 #include <exception>
 
@@ -7,10 +8,12 @@
 
 #include "commands.hpp"
 #include "topple/error.hpp"
+#include "topple/io/output_file.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"topple: sliding, rocking and overturning of rigid objects in earthquakes, and what they tell "
                "about the shaking"};
+  topple::io::install_interrupt_cleanup();
   app.require_subcommand(1);
   app.set_version_flag("--version", "topple 0.1.0");
   topple::cli::add_info_command(app);
@@ -28,10 +31,16 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : 2;
   } catch (const topple::InputError& e) {
     fmt::print(stderr, "topple: error: {}\n", e.what());
-    return 2;
+    return static_cast<int>(topple::ExitStatus::bad_input);
+  } catch (const topple::SolverError& e) {
+    fmt::print(stderr, "topple: solver limit: {}\n", e.what());
+    return static_cast<int>(topple::ExitStatus::solver_limit);
+  } catch (const topple::OutputError& e) {
+    fmt::print(stderr, "topple: output error: {}\n", e.what());
+    return static_cast<int>(topple::ExitStatus::output_failure);
   } catch (const std::exception& e) {
     fmt::print(stderr, "topple: internal error: {}\n", e.what());
-    return 1;
+    return static_cast<int>(topple::ExitStatus::internal_error);
   }
   return 0;
 }

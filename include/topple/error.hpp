@@ -4,12 +4,26 @@
 // Caller input (a file, a command-line value, a numpy array) that cannot be used throws InputError, whose message
 // names where the problem is (file, line, field) and what it is. The CLI turns it into exit status 2; the Python
 // package into topple.InputError. Internal invariants are asserts, not exceptions.
+//
+// A solver that stops at one of its limits (steps, events, root-finder iterations) throws a SolverError naming the
+// limit and the parameters that caused it; a file that cannot be written (disk full, permission) throws an
+// OutputError. Each has its own exit status (ExitStatus below; the CLI's documented contract).
 #include <cstddef>
 #include <optional>
 #include <stdexcept>
 #include <string>
 
 namespace topple {
+
+/// The `topple` command's exit statuses (README "Exit status"). Other front ends map the same exceptions.
+enum class ExitStatus : int {
+  success = 0,
+  internal_error = 1,   ///< a bug: an exception that is none of the kinds below
+  bad_input = 2,        ///< InputError
+  solver_limit = 3,     ///< SolverError: a step, event or iteration limit reached
+  output_failure = 4,   ///< OutputError: a result could not be written (disk full, permission, I/O error)
+  interrupted = 130,    ///< SIGINT (128 + 2); SIGTERM gives 143 (128 + 15)
+};
 
 /// Where in the caller's input a problem sits. Every part is optional: a command-line option has a field but no
 /// file; a reader error has a file and a line.
@@ -31,6 +45,20 @@ class InputError : public std::runtime_error {
  private:
   InputLocation where_;
   std::string problem_;
+};
+
+/// A solver reached one of its limits (max steps, max events, root-finder iterations) before the end of the motion.
+/// The message quotes the limit and the parameters that led to it. Derived types name the limit kind.
+class SolverError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// A result file could not be written or renamed into place (disk full, permission denied, I/O error). The message
+/// names the path and the system's reason. Never a partial file under the final name (io/output_file.hpp).
+class OutputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
 };
 
 /// Convenience: an InputError about a named parameter (no file).
