@@ -1,7 +1,7 @@
 // topple fragility: P(overturn) and P(slide > d) against an intensity measure over an ensemble of records or
 // synthetic motions, with the lognormal maximum-likelihood fit and its band. Parsing and printing only.
 #include <cstdio>
-#include <fstream>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -14,6 +14,7 @@
 #include "common.hpp"
 #include "grids.hpp"
 #include "topple/error.hpp"
+#include "topple/io/output_file.hpp"
 #include "topple/fragility.hpp"
 #include "topple/object_spectra.hpp"
 #include "topple/plot.hpp"
@@ -30,7 +31,7 @@ struct FragilityOptions {
   std::string freq = "2Hz";
   std::string duration = "20s";
   std::string synth_dt = "0.01";
-  std::uint64_t seed = 1;
+  std::string seed = "1";
   std::string im = "pga";
   std::string im_range;
   std::optional<double> mu;
@@ -49,20 +50,16 @@ struct FragilityOptions {
   bool json = false;
 };
 
-std::string im_column(IntensityMeasure im) {
-  switch (im) {
-    case IntensityMeasure::pga: return "im_pga_g";
-    case IntensityMeasure::pgv: return "im_pgv_m_s";
-    case IntensityMeasure::pgd: return "im_pgd_m";
-    case IntensityMeasure::cav: return "im_cav_m_s";
-  }
-  return "im";
-}
+/// The most synthetic motions (each is held in memory; 1e4 motions of 20 s at 0.01 s: 320 MB) and IM levels.
+constexpr int kMaxSynthMotions = 10'000;
+constexpr std::size_t kMaxLevels = 1'000;
 
 void run_fragility(const FragilityOptions& o) {
   check_plot_path(o.plot);
+  check_output_path(o.out);
+  check_threads(o.threads);
   const double g = o.motion.g_m_s2;
-  if (!(g > 0.0) || !std::isfinite(g)) throw parameter_error("--g", fmt::format("g must be positive and finite, got {}", g));
+  check_g(g);
   if (!o.motion.scale_pga.empty() || o.motion.scale || o.motion.invert) {
     throw parameter_error("--scale-pga", "fragility scales every motion to each IM level itself: --scale-pga, --scale "
                                          "and --invert do not apply");
@@ -73,7 +70,7 @@ void run_fragility(const FragilityOptions& o) {
   spec.threads = o.threads;
   if (o.im_range.empty()) throw parameter_error("--im-range", "the IM levels are required, e.g. --im-range 0.05:2:12 "
                                                               "(in g for PGA, SI for the others)");
-  const Range r = parse_range(o.im_range, "--im-range", parse_number);
+  const Range r = parse_range(o.im_range, "--im-range", parse_number, kMaxLevels);
   const double to_si = 1.0 / intensity_measure_display_factor(spec.im, g);
   for (double x : log_grid(r.lo, r.hi, r.n, "--im-range")) spec.levels_si.push_back(x * to_si);
 
@@ -82,7 +79,7 @@ void run_fragility(const FragilityOptions& o) {
     if (o.threshold.empty()) throw parameter_error("--threshold", "a sliding block needs its displacement threshold, e.g. 5cm");
     SlidingFailure f;
     try {
-      f.block = SlidingBlock::make(*o.mu, -1.0, o.slope_deg * kPi / 180.0,
+      f.block = SlidingBlock::make(*o.mu, std::nullopt, o.slope_deg * kPi / 180.0,
                                    o.one_way ? SlidingMode::one_way : SlidingMode::two_way, g);
     } catch (const InputError& e) {
       throw parameter_error(e.where().field == "slope" ? "--slope-deg" : "--mu", e.problem());
@@ -95,25 +92,23 @@ void run_fragility(const FragilityOptions& o) {
   if (!o.shape.empty()) {
     OverturnFailure f;
     f.options.g_m_s2 = g;
-    if (o.e != "housner") {
-      f.options.restitution = RestitutionMode::given;
-      f.options.e = parse_number(o.e, "--e");
-    }
+    const RestitutionChoice e = parse_restitution(o.e, "--e");
+    f.options.restitution = e.mode;
+    f.options.e = e.e;
     if (o.height.empty()) throw parameter_error("--height", "the rocking body needs --height");
-    const double h = parse_length_m(o.height, "--height");
+    const RockingBody::Shape shape = parse_shape(o.shape, "--shape");
+    if (shape == RockingBody::Shape::general) {
+      throw parameter_error("--shape", fmt::format("unknown shape '{}' (known: block, cylinder)", o.shape));
+    }
+    BodyDimensions d;
+    d.height_m = parse_length_m(o.height, "--height");
+    if (!o.width.empty()) d.width_m = parse_length_m(o.width, "--width");
+    if (!o.diameter.empty()) d.diameter_m = parse_length_m(o.diameter, "--diameter");
     try {
-      if (o.shape == "block") {
-        if (o.width.empty()) throw parameter_error("--width", "--shape block needs --width");
-        f.body = RockingBody::block(parse_length_m(o.width, "--width"), h);
-      } else if (o.shape == "cylinder") {
-        if (o.diameter.empty()) throw parameter_error("--diameter", "--shape cylinder needs --diameter");
-        f.body = RockingBody::cylinder(parse_length_m(o.diameter, "--diameter"), h);
-      } else {
-        throw parameter_error("--shape", fmt::format("unknown shape '{}' (known: block, cylinder)", o.shape));
-      }
-    } catch (const InputError& e) {
-      const std::string& field = e.where().field;
-      if (field == "width" || field == "height" || field == "diameter") throw parameter_error("--" + field, e.problem());
+      f.body = make_rocking_body(shape, d);
+    } catch (const InputError& err) {
+      const std::string& field = err.where().field;
+      if (field == "width" || field == "height" || field == "diameter") throw parameter_error("--" + field, err.problem());
       throw;
     }
     spec.overturning = f;
@@ -126,23 +121,37 @@ void run_fragility(const FragilityOptions& o) {
   if (o.synth.has_value() == !o.files.empty()) throw parameter_error("FILES", "give record files or --synth N");
   std::vector<std::string> names;
   if (o.synth) {
-    if (*o.synth < 1) throw parameter_error("--synth", fmt::format("needs at least one motion, got {}", *o.synth));
+    if (*o.synth < 1 || *o.synth > kMaxSynthMotions) {
+      throw parameter_error("--synth", fmt::format("needs 1 to {} motions, got {}", kMaxSynthMotions, *o.synth));
+    }
+    const std::uint64_t first_seed = parse_seed(o.seed, "--seed");
+    const auto count = static_cast<std::uint64_t>(*o.synth);
+    if (first_seed > std::numeric_limits<std::uint64_t>::max() - (count - 1)) {
+      throw parameter_error("--seed", fmt::format("seeds {} + 0 .. {} pass 2^64 - 1", first_seed, count - 1));
+    }
     SynthesisSpec s;
     s.pga_m_s2 = 0.1 * g;  // rescaled to every level anyway
     s.predominant_frequency_hz = parse_frequency_hz(o.freq, "--freq");
     s.duration_s = parse_seconds(o.duration, "--duration");
     s.dt_s = parse_seconds(o.synth_dt, "--synth-dt");
-    for (int i = 0; i < *o.synth; ++i) {
-      s.seed = o.seed + static_cast<std::uint64_t>(i);
+    const auto synth_option = [](const InputError& e) {
+      const std::string& field = e.where().field;
+      return field == "freq" || field == "predominant_frequency_hz" ? "--freq"
+             : field == "duration" || field == "duration_s"         ? "--duration"
+             : field == "dt" || field == "dt_s"                     ? "--synth-dt"
+                                                                    : "--synth";
+    };
+    try {
+      validate(s);  // before the first motion is made
+    } catch (const InputError& e) {
+      throw parameter_error(synth_option(e), e.problem());
+    }
+    for (std::uint64_t i = 0; i < count; ++i) {
+      s.seed = first_seed + i;
       try {
         spec.motions.push_back(std::make_shared<const GroundMotion>(synthesize(s)));
       } catch (const InputError& e) {
-        const std::string& field = e.where().field;
-        const std::string option = field == "predominant_frequency_hz" ? "--freq"
-                                   : field == "duration_s"             ? "--duration"
-                                   : field == "dt_s"                   ? "--synth-dt"
-                                                                       : "--synth";
-        throw parameter_error(option, e.problem());
+        throw parameter_error(synth_option(e), e.problem());
       }
       names.push_back(fmt::format("synthetic seed {}", s.seed));
     }
@@ -157,9 +166,9 @@ void run_fragility(const FragilityOptions& o) {
   const std::string unit(intensity_measure_unit(spec.im));
 
   if (!o.out.empty()) {
-    std::ofstream out(o.out, std::ios::binary);
-    if (!out) throw parameter_error("--out", fmt::format("cannot write '{}'", o.out));
-    out << "curve," << im_column(spec.im) << ",trials,failures,fraction,fitted_probability,band_lower,band_upper\n";
+    io::OutputFile file(o.out);
+    std::ostream& out = file.stream();
+    out << "curve," << intensity_measure_column(spec.im) << ",trials,failures,fraction,fitted_probability,band_lower,band_upper\n";
     for (const auto& c : res.curves) {
       for (std::size_t j = 0; j < c.data.im.size(); ++j) {
         out << fmt::format("{},{},{},{},{}", c.name, c.data.im[j] * k, c.data.trials[j], c.data.failures[j],
@@ -172,7 +181,7 @@ void run_fragility(const FragilityOptions& o) {
         }
       }
     }
-    if (!out) throw parameter_error("--out", fmt::format("error while writing '{}'", o.out));
+    file.commit();
   }
   if (!o.plot.empty()) {
     plot::render(plot::fragility_figure(res, g, o.band,
@@ -195,7 +204,7 @@ void run_fragility(const FragilityOptions& o) {
       cj["curve"] = c.name;
       nlohmann::ordered_json lv = nlohmann::ordered_json::array();
       for (std::size_t i = 0; i < c.data.im.size(); ++i) {
-        lv.push_back({{im_column(spec.im), c.data.im[i] * k}, {"trials", c.data.trials[i]},
+        lv.push_back({{std::string(intensity_measure_column(spec.im)), c.data.im[i] * k}, {"trials", c.data.trials[i]},
                       {"failures", c.data.failures[i]}});
       }
       cj["levels"] = lv;

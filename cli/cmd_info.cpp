@@ -17,28 +17,12 @@
 namespace topple::cli {
 namespace {
 
-/// A measure that is undefined for some records (an identically zero one, a record too short for the band): the
-/// value, or the reason it has none.
-struct Measure {
-  std::optional<double> value;
-  std::string why_not;
-};
-
-template <class F>
-Measure measure(F f) {
-  try {
-    return {f(), {}};
-  } catch (const InputError& e) {
-    return {std::nullopt, e.problem()};
-  }
-}
-
-nlohmann::ordered_json json_value(const Measure& m) {
+nlohmann::ordered_json json_value(const OptionalMeasure& m) {
   return m.value ? nlohmann::ordered_json(*m.value) : nlohmann::ordered_json(nullptr);
 }
 
-std::string text_value(const Measure& m, const char* format_unit) {
-  return m.value ? fmt::format(fmt::runtime(format_unit), *m.value) : "undefined (" + m.why_not + ")";
+std::string text_value(const OptionalMeasure& m, const char* format_unit) {
+  return m.value ? fmt::format(fmt::runtime(format_unit), *m.value) : "undefined (" + m.undefined_reason + ")";
 }
 
 }  // namespace
@@ -57,23 +41,18 @@ void add_info_command(CLI::App& app) {
   cmd->callback([options, json, plot_path] {
     check_plot_path(*plot_path);
     const GroundMotion motion = load_motion(*options);
-    const BasicIntensity im = basic_intensity(motion, options->g_m_s2);
+    const IntensityMeasures all = intensity_measures(motion, options->g_m_s2);
+    const BasicIntensity& im = all.basic;
     const auto& meta = motion.metadata();
     const double g = options->g_m_s2;
-    const auto duration = [&]() -> std::optional<SignificantDuration> {
-      try {
-        return significant_duration(motion);
-      } catch (const InputError&) {
-        return std::nullopt;  // identically zero record
-      }
-    }();
-    const double cav = cumulative_absolute_velocity_m_s(motion);
-    const Measure tp = measure([&] { return predominant_period_s(motion); });
-    const Measure tm = measure([&] { return mean_period_s(motion); });
-    const Measure fp = measure([&] { return predominant_frequency_hz(motion); });
+    const std::optional<SignificantDuration>& duration = all.d5_95;
+    const double cav = all.cav_m_s;
+    const OptionalMeasure& tp = all.tp_s;
+    const OptionalMeasure& tm = all.tm_s;
+    const OptionalMeasure& fp = all.predominant_frequency_hz;
     if (!plot_path->empty()) {
-      // Tp's own spectrum (spectra.hpp): 5 % damping, 100 periods per decade from 0.02 s to 5 s.
-      const auto periods = log_spaced(0.02, 5.0, 271);
+      // Tp's own spectrum (spectra.hpp): 5 % damping on Tp's periods.
+      const auto periods = tp_periods_s();
       std::vector<plot::Mark> marks;
       if (tp.value) marks.push_back({*tp.value, fmt::format("Tp = {:.3f} s", *tp.value), "#e67e22"});
       const std::string name = !meta.event.empty() ? meta.event + (meta.station.empty() ? "" : ", " + meta.station)

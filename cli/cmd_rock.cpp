@@ -1,9 +1,7 @@
 // topple rock: rocking and overturning of a rigid block, cylinder or general body under a record or a pulse.
 // Parsing and printing only; the response is topple::rock / topple::rock_summary.
-#include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <map>
 #include <memory>
 #include <optional>
@@ -67,139 +65,52 @@ auto naming_options(F f) {
   }
 }
 
-/// An area such as "0.011m2", "110cm2", "0.011 m^2" (the pivot moment of inertia per unit mass D). A bare number is
-/// refused, as for lengths.
-double parse_area_m2(const std::string& text, const std::string& option) {
-  std::string s = text;
-  while (!s.empty() && s.front() == ' ') s.erase(s.begin());
-  double value = 0.0;
-  const char* first = s.data();
-  const char* last = s.data() + s.size();
-  const auto [ptr, ec] = std::from_chars(first, last, value);
-  if (ec != std::errc{} || ptr == first) {
-    throw parameter_error(option, fmt::format("'{}' is not an area (expected a number and a unit, e.g. 0.011m2)", text));
-  }
-  if (!std::isfinite(value)) throw parameter_error(option, fmt::format("'{}' is not finite", text));
-  std::string unit(ptr, last);
-  unit.erase(0, unit.find_first_not_of(' '));
-  if (unit.empty()) throw parameter_error(option, fmt::format("'{}' has no unit; write it with one, e.g. '{}m2'", text, value));
-  static const std::map<std::string, double> units{{"m2", 1.0},    {"m^2", 1.0},    {"cm2", 1e-4},
-                                                   {"cm^2", 1e-4}, {"mm2", 1e-6},   {"mm^2", 1e-6}};
-  const auto it = units.find(unit);
-  if (it == units.end()) {
-    throw parameter_error(option, fmt::format("unknown area unit '{}' in '{}' (known: m2, cm2, mm2)", unit, text));
-  }
-  return value * it->second;
-}
-
 RockingBody make_body(const RockOptions& o) {
-  const auto need = [](const std::string& value, const char* option, const std::string& shape) {
-    if (value.empty()) throw parameter_error(option, fmt::format("--shape {} needs {}", shape, option));
+  const RockingBody::Shape shape = naming_options([&] { return parse_shape(o.shape, "--shape"); });
+  const auto length = [](const std::string& text, const char* option) -> std::optional<double> {
+    if (text.empty()) return std::nullopt;
+    return parse_length_m(text, option);
   };
-  const auto refuse = [](const std::string& value, const char* option, const std::string& shape) {
-    if (!value.empty()) throw parameter_error(option, fmt::format("{} does not apply to --shape {}", option, shape));
-  };
-  if (o.shape == "block") {
-    need(o.width, "--width", o.shape);
-    need(o.height, "--height", o.shape);
-    for (const auto& [v, name] : {std::pair{o.diameter, "--diameter"}, std::pair{o.a, "--a"}, std::pair{o.h, "--h"},
-                                  std::pair{o.D, "--D"}}) {
-      refuse(v, name, o.shape);
-    }
-    return naming_options([&] {
-      return RockingBody::block(parse_length_m(o.width, "--width"), parse_length_m(o.height, "--height"));
-    });
-  }
-  if (o.shape == "cylinder") {
-    need(o.diameter, "--diameter", o.shape);
-    need(o.height, "--height", o.shape);
-    for (const auto& [v, name] : {std::pair{o.width, "--width"}, std::pair{o.a, "--a"}, std::pair{o.h, "--h"},
-                                  std::pair{o.D, "--D"}}) {
-      refuse(v, name, o.shape);
-    }
-    return naming_options([&] {
-      return RockingBody::cylinder(parse_length_m(o.diameter, "--diameter"), parse_length_m(o.height, "--height"));
-    });
-  }
-  if (o.shape == "general") {
-    need(o.a, "--a", o.shape);
-    need(o.h, "--h", o.shape);
-    need(o.D, "--D", o.shape);
-    for (const auto& [v, name] : {std::pair{o.width, "--width"}, std::pair{o.height, "--height"},
-                                  std::pair{o.diameter, "--diameter"}}) {
-      refuse(v, name, o.shape);
-    }
-    return naming_options([&] {
-      return RockingBody::general(parse_length_m(o.a, "--a"), parse_length_m(o.h, "--h"), parse_area_m2(o.D, "--D"));
-    });
-  }
-  if (o.shape.empty()) throw parameter_error("--shape", "the body's shape is required: block, cylinder or general");
-  throw parameter_error("--shape", fmt::format("unknown shape '{}' (known: block, cylinder, general)", o.shape));
+  BodyDimensions d;
+  d.width_m = length(o.width, "--width");
+  d.height_m = length(o.height, "--height");
+  d.diameter_m = length(o.diameter, "--diameter");
+  d.a_m = length(o.a, "--a");
+  d.h_m = length(o.h, "--h");
+  if (!o.D.empty()) d.D_m2 = parse_area_m2(o.D, "--D");
+  return naming_options([&] { return make_rocking_body(shape, d); });
 }
 
 RockingOptions make_options(const RockOptions& o) {
   RockingOptions r;
   r.g_m_s2 = o.motion.g_m_s2;
-  if (o.e == "housner") {
-    r.restitution = RestitutionMode::housner;
-  } else {
-    double e = 0.0;
-    const auto [ptr, ec] = std::from_chars(o.e.data(), o.e.data() + o.e.size(), e);
-    if (ec != std::errc{} || ptr != o.e.data() + o.e.size()) {
-      throw parameter_error("--e", fmt::format("'{}' is neither a number in [0, 1] nor 'housner'", o.e));
-    }
-    r.restitution = RestitutionMode::given;
-    r.e = e;
-  }
+  const RestitutionChoice e = parse_restitution(o.e, "--e");
+  r.restitution = e.mode;
+  r.e = e.e;
   r.mu = o.mu;
-  if (o.method == "adaptive") {
-    r.method = RockingMethod::adaptive;
-  } else if (o.method == "rk4") {
-    r.method = RockingMethod::rk4;
-  } else {
-    throw parameter_error("--method", fmt::format("unknown method '{}' (known: adaptive, rk4)", o.method));
-  }
+  r.method = parse_rocking_method(o.method, "--method");
   if (o.rtol) r.rel_tol = *o.rtol;
   if (o.rk4_substeps) r.rk4_substeps = *o.rk4_substeps;
   if (!o.run_out.empty()) r.max_run_out_s = parse_seconds(o.run_out, "--run-out");
   return r;
 }
 
-void write_history_csv(const std::string& path, const RockingHistory& h) {
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw parameter_error("--out", fmt::format("cannot write '{}'", path));
-  out << "time_s,theta_rad,theta_dot_rad_s,state\n";
-  for (std::size_t i = 0; i < h.time_s.size(); ++i) {
-    out << fmt::format("{:.9g},{:.12g},{:.12g},{}\n", h.time_s[i], h.theta_rad[i], h.theta_dot_rad_s[i],
-                       rocking_state_name(h.state[i]));
-  }
-  if (!out) throw parameter_error("--out", fmt::format("error while writing '{}'", path));
-}
-
 void run_rock(const RockOptions& o) {
   const double g = o.motion.g_m_s2;
-  if (!(g > 0.0) || !std::isfinite(g)) throw parameter_error("--g", fmt::format("g must be positive and finite, got {}", g));
+  check_g(g);
   check_plot_path(o.plot);
+  check_output_path(o.out);
   const RockingBody body = make_body(o);
   const RockingOptions options = make_options(o);
-  const bool from_pulse = !o.pulse.kind.empty();
-  if (from_pulse == !o.motion.file.empty()) throw parameter_error("FILE", "give either a record file or --pulse");
-  const GroundMotion raw =
-      from_pulse ? make_pulse_motion(o.pulse, g) : io::read_motion(o.motion.file, read_options(o.motion));
-  const double raw_pga = raw.pga_m_s2();
-  const GroundMotion horizontal = transform_motion(raw, o.motion);
-  const double factor = raw_pga > 0.0 ? horizontal.pga_m_s2() / raw_pga : 1.0;
-  // The vertical component gets the same amplitude factor as the horizontal (scaling scales the whole shaking);
-  // --invert flips the horizontal polarity only.
-  std::optional<GroundMotion> vertical;
-  if (!o.vertical.empty()) vertical = io::read_motion(o.vertical, read_options(o.motion)).scaled(factor);
-  const GroundMotion* vertical_ptr = vertical ? &*vertical : nullptr;
-
-  const std::string motion_name = from_pulse ? horizontal.metadata().event : o.motion.file;
+  RunMotion run = load_run_motion(o.motion, o.pulse, o.vertical);
+  run.input.with_duration = true;
+  const GroundMotion& horizontal = run.horizontal;
+  const GroundMotion* vertical_ptr = run.vertical_ptr();
+  const std::string& motion_name = run.input.motion;
   RockingSummary s;
   if (!o.out.empty() || !o.plot.empty()) {
     const RockingResult result = naming_options([&] { return rock(horizontal, body, options, vertical_ptr); });
-    if (!o.out.empty()) write_history_csv(o.out, result.history);
+    if (!o.out.empty()) io::write_rocking_history_csv(o.out, result.history);
     if (!o.plot.empty()) {
       const std::string title = fmt::format("Rocking {}, a = {:.3g} m, h = {:.3g} m, α = {:.3g} rad, e = {:.3g}: {}",
                                             shape_name(body.shape), body.a_m, body.h_m, result.summary.alpha_rad,
@@ -214,16 +125,7 @@ void run_rock(const RockOptions& o) {
 
   if (o.json) {
     nlohmann::ordered_json j = io::rocking_summary_json(s, body, options);
-    nlohmann::ordered_json in;
-    in["motion"] = motion_name;
-    in["pga_g"] = horizontal.pga_m_s2() / g;
-    in["scale_factor"] = factor;
-    in["invert"] = o.motion.invert;
-    in["vertical"] = o.vertical.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(o.vertical);
-    in["npts"] = horizontal.size();
-    in["dt_s"] = horizontal.dt_s();
-    in["duration_s"] = horizontal.duration_s();
-    j["input"] = in;
+    j["input"] = io::run_input_json(run.input, horizontal, g);
     fmt::print("{}\n", j.dump(2));
     return;
   }
@@ -231,7 +133,7 @@ void run_rock(const RockOptions& o) {
              body.h_m, body.D_m2);
   fmt::print("  alpha = {:.6g} rad ({:.4f} deg), R = {:.6g} m, p = {:.6g} rad/s, e = {:.6g} ({}), g = {} m/s2\n",
              s.alpha_rad, s.alpha_rad * 180.0 / kPi, s.R_m, s.p_rad_s, s.e,
-             options.restitution == RestitutionMode::housner ? "Housner" : "given", g);
+             options.restitution == RestitutionMode::housner ? "Housner" : restitution_mode_name(options.restitution), g);
   fmt::print("  uplift threshold {:.5f} g (a/h)\n", body.a_m / body.h_m);
   fmt::print("motion: {} (PGA {:.4f} g, {} samples)\n", motion_name, horizontal.pga_m_s2() / g, horizontal.size());
   fmt::print("max |theta|            {:.6g} rad = {:.6g} alpha at {:.4f} s\n", s.max_abs_rotation_rad,

@@ -31,34 +31,33 @@ struct SlideOptions {
 
 void run_slide(const SlideOptions& o) {
   const double g = o.motion.g_m_s2;
+  check_g(g);
   if (!o.mu) throw parameter_error("--mu", "the friction coefficient is required");
   check_plot_path(o.plot);
-  const SlidingBlock block = SlidingBlock::make(*o.mu, o.mu_kinetic.value_or(-1.0), o.slope_deg * kPi / 180.0,
-                                                o.one_way ? SlidingMode::one_way : SlidingMode::two_way, g);
-  const bool from_pulse = !o.pulse.kind.empty();
-  if (from_pulse == !o.motion.file.empty()) {
-    throw parameter_error("FILE", "give either a record file or --pulse");
-  }
-  GroundMotion raw = from_pulse ? make_pulse_motion(o.pulse, g) : io::read_motion(o.motion.file, read_options(o.motion));
-  const double raw_pga = raw.pga_m_s2();
-  const GroundMotion horizontal = transform_motion(raw, o.motion);
-  // The vertical component gets the same amplitude factor as the horizontal (scaling scales the whole shaking);
-  // --invert flips the horizontal polarity only.
-  std::optional<GroundMotion> vertical;
-  if (!o.vertical.empty()) {
-    const double factor = raw_pga > 0.0 ? std::abs(horizontal.pga_m_s2() / raw_pga) : 1.0;
-    vertical = io::read_motion(o.vertical, read_options(o.motion)).scaled(factor);
-  }
-  const GroundMotion* vertical_ptr = vertical ? &*vertical : nullptr;
+  check_output_path(o.out);
+  const SlidingBlock block = [&] {
+    try {
+      return SlidingBlock::make(*o.mu, o.mu_kinetic, o.slope_deg * kPi / 180.0,
+                                o.one_way ? SlidingMode::one_way : SlidingMode::two_way, g);
+    } catch (const InputError& e) {
+      // The library names its fields; the user typed options.
+      const std::string& field = e.where().field;
+      if (!e.where().file.empty()) throw;
+      throw parameter_error(field == "mu_kinetic" ? "--mu-kinetic" : field == "slope" ? "--slope-deg"
+                            : field == "g"        ? "--g" : "--mu", e.problem());
+    }
+  }();
+  const RunMotion run = load_run_motion(o.motion, o.pulse, o.vertical);
+  const GroundMotion& horizontal = run.horizontal;
+  const GroundMotion* vertical_ptr = run.vertical_ptr();
 
   SlidingSummary summary;
   if (!o.out.empty() || !o.plot.empty()) {
     const SlidingResult result = slide(horizontal, block, vertical_ptr);
     if (!o.out.empty()) io::write_sliding_history_csv(o.out, result.history, horizontal);
     if (!o.plot.empty()) {
-      const std::string name = from_pulse ? horizontal.metadata().event : o.motion.file;
       plot::render(plot::sliding_figure(horizontal, result, block,
-                                        fmt::format("Sliding block, mu = {}: {}", block.mu_static, name)),
+                                        fmt::format("Sliding block, mu = {}: {}", block.mu_static, run.input.motion)),
                    o.plot);
     }
     summary = result.summary;
@@ -68,22 +67,14 @@ void run_slide(const SlideOptions& o) {
 
   if (o.json) {
     nlohmann::ordered_json j = io::sliding_summary_json(summary, block);
-    nlohmann::ordered_json input;
-    input["motion"] = from_pulse ? nlohmann::ordered_json(horizontal.metadata().event) : nlohmann::ordered_json(o.motion.file);
-    input["pga_g"] = horizontal.pga_m_s2() / g;
-    input["scale_factor"] = raw_pga > 0.0 ? horizontal.pga_m_s2() / raw_pga : 1.0;
-    input["invert"] = o.motion.invert;
-    input["vertical"] = o.vertical.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(o.vertical);
-    input["npts"] = horizontal.size();
-    input["dt_s"] = horizontal.dt_s();
-    j["input"] = input;
+    j["input"] = io::run_input_json(run.input, horizontal, g);
     fmt::print("{}\n", j.dump(2));
     return;
   }
   fmt::print("sliding block: mu_s = {}, mu_k = {}, slope = {} deg, {}, g = {} m/s2\n", block.mu_static,
              block.mu_kinetic, o.slope_deg, o.one_way ? "one-way (down-slope only)" : "two-way", g);
-  fmt::print("motion: {} (PGA {:.4f} g, {} samples)\n", from_pulse ? horizontal.metadata().event : o.motion.file,
-             horizontal.pga_m_s2() / g, horizontal.size());
+  fmt::print("motion: {} (PGA {:.4f} g, {} samples)\n", run.input.motion, horizontal.pga_m_s2() / g,
+             horizontal.size());
   fmt::print("yield acceleration: {:.4f} g down-slope", block.yield_down_m_s2() / g);
   if (!o.one_way) fmt::print(", {:.4f} g up-slope", block.yield_up_m_s2() / g);
   fmt::print("\n");

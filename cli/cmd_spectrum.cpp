@@ -1,7 +1,6 @@
 // topple spectrum slide | rock: sliding displacement spectrum over mu, overturning map over PGA x size.
 // Parsing and printing only; the computation is topple::sliding_spectrum / topple::overturning_map.
 #include <cstdio>
-#include <fstream>
 #include <map>
 #include <memory>
 #include <optional>
@@ -14,6 +13,7 @@
 #include "common.hpp"
 #include "grids.hpp"
 #include "topple/error.hpp"
+#include "topple/io/output_file.hpp"
 #include "topple/object_spectra.hpp"
 #include "topple/plot.hpp"
 #include "topple/units.hpp"
@@ -32,20 +32,8 @@ struct LoadedMotion {
 };
 
 LoadedMotion load(const MotionInput& in) {
-  const double g = in.motion.g_m_s2;
-  if (!(g > 0.0) || !std::isfinite(g)) throw parameter_error("--g", fmt::format("g must be positive and finite, got {}", g));
-  const bool from_pulse = !in.pulse.kind.empty();
-  if (from_pulse == !in.motion.file.empty()) throw parameter_error("FILE", "give either a record file or --pulse");
-  GroundMotion raw = from_pulse ? make_pulse_motion(in.pulse, g) : io::read_motion(in.motion.file, read_options(in.motion));
-  GroundMotion m = transform_motion(std::move(raw), in.motion);
-  std::string name = from_pulse ? m.metadata().event : in.motion.file;
-  return {std::move(m), std::move(name)};
-}
-
-std::ofstream open_out(const std::string& path) {
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw parameter_error("--out", fmt::format("cannot write '{}'", path));
-  return out;
+  RunMotion run = load_run_motion(in.motion, in.pulse);
+  return {std::move(run.horizontal), std::move(run.input.motion)};
 }
 
 /// Library fields -> the options that set them.
@@ -78,40 +66,54 @@ void run_slide_spectrum(const SlideSpectrumOptions& o) {
   check_plot_path(o.plot);
   const int given = int(!o.mu.empty()) + int(!o.mu_range.empty()) + int(!o.ky_range.empty());
   if (given != 1) throw parameter_error("--mu", "give exactly one of --mu LIST, --mu-range LO:HI:N, --ky-ratio-range LO:HI:N");
-  const LoadedMotion lm = load(o.input);
+  check_output_path(o.out);
   const double g = o.input.motion.g_m_s2;
+  check_g(g);
   const double slope = o.slope_deg * kPi / 180.0;
+  // Every option is checked before the motion is read: the grids first.
   std::vector<double> mu;
   if (!o.mu.empty()) mu = parse_list(o.mu, "--mu", parse_number);
   if (!o.mu_range.empty()) {
     const Range r = parse_range(o.mu_range, "--mu-range", parse_number);
     mu = linear_grid(r.lo, r.hi, r.n, "--mu-range");
   }
+  std::vector<double> ky_ratios;
   if (!o.ky_range.empty()) {
     const Range r = parse_range(o.ky_range, "--ky-ratio-range", parse_number);
-    for (double ratio : linear_grid(r.lo, r.hi, r.n, "--ky-ratio-range")) {
+    ky_ratios = linear_grid(r.lo, r.hi, r.n, "--ky-ratio-range");
+  }
+  const SlidingMode mode = o.one_way ? SlidingMode::one_way : SlidingMode::two_way;
+  for (double m : mu) {  // each block is valid (and the slope with it) before the motion is read
+    (void)naming({{"mu", o.mu.empty() ? "--mu-range" : "--mu"}, {"mu_kinetic", "--mu"}, {"slope", "--slope-deg"},
+                  {"g", "--g"}},
+                 [&] { return SlidingBlock::make(m, std::nullopt, slope, mode, g); });
+  }
+  const LoadedMotion lm = load(o.input);
+  if (!ky_ratios.empty()) {
+    for (double ratio : ky_ratios) {
       mu.push_back(naming({{"ky_over_pga", "--ky-ratio-range"}},
                           [&] { return mu_for_yield_ratio(ratio, lm.motion.pga_m_s2(), slope, g); }));
     }
   }
-  const SlidingMode mode = o.one_way ? SlidingMode::one_way : SlidingMode::two_way;
+  const std::string_view mode_name = sliding_mode_name(mode);
   const SlidingSpectrum sp = naming({{"mu", "--mu"}, {"slope", "--slope-deg"}, {"g", "--g"}},
                                     [&] { return sliding_spectrum(lm.motion, mu, slope, mode, g); });
 
   if (!o.out.empty()) {
-    std::ofstream out = open_out(o.out);
+    io::OutputFile file(o.out);
+    std::ostream& out = file.stream();
     out << "mu,yield_accel_g,ky_over_pga,max_abs_displacement_m,residual_displacement_m,slip_episodes,"
            "total_slip_duration_s\n";
     for (const auto& p : sp.points) {
       out << fmt::format("{},{},{},{},{},{},{}\n", p.mu, p.yield_accel_g, p.yield_over_pga, p.max_abs_displacement_m,
                          p.residual_displacement_m, p.slip_episodes, p.total_slip_duration_s);
     }
-    if (!out) throw parameter_error("--out", fmt::format("error while writing '{}'", o.out));
+    file.commit();
   }
   if (!o.plot.empty()) {
     plot::render(plot::sliding_spectrum_figure(sp, !o.ky_range.empty(),
                                                fmt::format("Sliding displacement spectrum ({}, slope {} deg): {}",
-                                                           o.one_way ? "one-way" : "two-way", o.slope_deg, lm.name)),
+                                                           mode_name, o.slope_deg, lm.name)),
                  o.plot);
   }
   if (o.json) {
@@ -121,7 +123,7 @@ void run_slide_spectrum(const SlideSpectrumOptions& o) {
     j["npts"] = lm.motion.size();
     j["dt_s"] = lm.motion.dt_s();
     j["g_m_s2"] = g;
-    j["mode"] = o.one_way ? "one-way" : "two-way";
+    j["mode"] = mode_name;
     j["slope_deg"] = o.slope_deg;
     auto& pts = j["points"] = nlohmann::ordered_json::array();
     for (const auto& p : sp.points) {
@@ -136,7 +138,7 @@ void run_slide_spectrum(const SlideSpectrumOptions& o) {
     return;
   }
   fmt::print("sliding displacement spectrum: {} (PGA {:.4f} g), {}, slope {} deg, g = {} m/s2\n", lm.name,
-             sp.pga_m_s2 / g, o.one_way ? "one-way" : "two-way", o.slope_deg, g);
+             sp.pga_m_s2 / g, mode_name, o.slope_deg, g);
   fmt::print("{:>10} {:>10} {:>14} {:>14} {:>8}\n", "mu", "ky/PGA", "max |d| (m)", "residual (m)", "slips");
   for (const auto& p : sp.points) {
     fmt::print("{:>10.5g} {:>10.5g} {:>14.6g} {:>14.6g} {:>8}\n", p.mu, p.yield_over_pga, p.max_abs_displacement_m,
@@ -166,13 +168,13 @@ struct RockSpectrumOptions {
 
 void run_rock_spectrum(const RockSpectrumOptions& o) {
   check_plot_path(o.plot);
+  check_output_path(o.out);
+  check_threads(o.threads);
   const double g = o.input.motion.g_m_s2;
+  check_g(g);
   BodyFamily family;
-  if (o.shape == "block") {
-    family.shape = RockingBody::Shape::block;
-  } else if (o.shape == "cylinder") {
-    family.shape = RockingBody::Shape::cylinder;
-  } else {
+  family.shape = parse_shape(o.shape, "--shape");
+  if (family.shape == RockingBody::Shape::general) {
     throw parameter_error("--shape", fmt::format("unknown shape '{}' (known: block, cylinder)", o.shape));
   }
   if (o.alpha.empty() == !o.slenderness.has_value()) {
@@ -212,13 +214,19 @@ void run_rock_spectrum(const RockSpectrumOptions& o) {
     const Range r = parse_range(o.pga_range, "--pga-range", accel);
     pga = linear_grid(r.lo, r.hi, r.n, "--pga-range");
   }
+  // Each cell is one rocking run and one stored result: the product of the axes is capped too.
+  constexpr std::size_t kMaxCells = 1'000'000;
+  if (family.heights_m.size() * pga.size() > kMaxCells) {
+    throw parameter_error(o.pga.empty() ? "--pga-range" : "--pga",
+                          fmt::format("{} sizes x {} PGAs is more than {} runs", family.heights_m.size(), pga.size(),
+                                      kMaxCells));
+  }
   OverturningMapOptions mo;
   mo.rocking.g_m_s2 = g;
   mo.threads = o.threads;
-  if (o.e != "housner") {
-    mo.rocking.restitution = RestitutionMode::given;
-    mo.rocking.e = parse_number(o.e, "--e");
-  }
+  const RestitutionChoice e = parse_restitution(o.e, "--e");
+  mo.rocking.restitution = e.mode;
+  mo.rocking.e = e.e;
   const LoadedMotion lm = load(o.input);
   const std::string pga_option = o.pga.empty() ? "--pga-range" : "--pga";
   const std::string height_option = o.heights.empty() ? "--height-range" : "--heights";
@@ -229,7 +237,8 @@ void run_rock_spectrum(const RockSpectrumOptions& o) {
 
   const std::size_t na = map.pga_m_s2.size();
   if (!o.out.empty()) {
-    std::ofstream out = open_out(o.out);
+    io::OutputFile file(o.out);
+    std::ostream& out = file.stream();
     out << fmt::format("height_m,{},R_m,p_rad_s,pga_g,overturned,max_rotation_over_alpha\n",
                        family.shape == RockingBody::Shape::cylinder ? "diameter_m" : "width_m");
     for (std::size_t s = 0; s < map.sizes.size(); ++s) {
@@ -239,7 +248,7 @@ void run_rock_spectrum(const RockSpectrumOptions& o) {
                            map.at(s, k) ? "true" : "false", map.max_rotation_over_alpha[s * na + k]);
       }
     }
-    if (!out) throw parameter_error("--out", fmt::format("error while writing '{}'", o.out));
+    file.commit();
   }
   if (!o.plot.empty()) {
     plot::render(plot::overturning_map_figure(map, fmt::format("Overturning map, {} α = {:.3g} rad: {}", o.shape,

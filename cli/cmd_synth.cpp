@@ -2,7 +2,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <fstream>
 #include <memory>
 #include <optional>
 #include <string>
@@ -12,7 +11,9 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "grids.hpp"
 #include "topple/error.hpp"
+#include "topple/io/output_file.hpp"
 #include "topple/plot.hpp"
 #include "topple/spectra.hpp"
 #include "topple/synthesis.hpp"
@@ -26,7 +27,7 @@ struct SynthOptions {
   std::string freq;
   std::string duration;
   std::string dt = "0.01s";
-  std::uint64_t seed = 0;
+  std::string seed = "0";
   std::string model = "clough-penzien";
   std::string envelope = "saragoni-hart";
   double zeta_g = 0.3;
@@ -49,8 +50,8 @@ std::optional<int> decimals_of(double dt) {
 
 void write_motion_csv(const std::string& path, const GroundMotion& motion, const SynthesisSpec& spec, double f_g,
                       double g) {
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw InputError(InputLocation{.file = path, .line = {}, .field = "--out"}, "cannot open for writing");
+  io::OutputFile file(path);
+  std::ostream& out = file.stream();
   out << "# topple synth: Kanai-Tajimi / Clough-Penzien filtered white noise under a time envelope (docs/method.md)\n";
   out << fmt::format("# model={} envelope={} pga_g={} freq_hz={} duration_s={} dt_s={} seed={} zeta_g={} "
                      "f_g_hz={:.9g} g_m_s2={}\n",
@@ -66,7 +67,7 @@ void write_motion_csv(const std::string& path, const GroundMotion& motion, const
     buffer += fmt::format(",{}\n", a[i] / g);
   }
   out << buffer;
-  if (!out) throw InputError(InputLocation{.file = path, .line = {}, .field = "--out"}, "write failed");
+  file.commit();
 }
 
 void run_synth(const SynthOptions& o) {
@@ -78,12 +79,13 @@ void run_synth(const SynthOptions& o) {
                           "give the CSV file to write (--out motion.csv), a figure (--plot motion.svg), or both");
   }
   check_plot_path(o.plot);
+  check_output_path(o.out);
   SynthesisSpec spec;
   spec.pga_m_s2 = parse_acceleration_m_s2(o.pga, "--pga", o.g_m_s2);
   spec.predominant_frequency_hz = parse_frequency_hz(o.freq, "--freq");
   spec.duration_s = parse_seconds(o.duration, "--duration");
   spec.dt_s = parse_seconds(o.dt, "--dt");
-  spec.seed = o.seed;
+  spec.seed = parse_seed(o.seed, "--seed");
   spec.model = parse_filter_model(o.model, "--model");
   spec.envelope = parse_envelope_kind(o.envelope, "--envelope");
   spec.ground_damping = o.zeta_g;
@@ -103,11 +105,8 @@ void run_synth(const SynthOptions& o) {
   if (!o.plot.empty()) {
     // The spectrum the predominant frequency is measured on (spectra.hpp): zero padded to the next power of two at
     // least twice the record, Konno-Ohmachi b = 40, 0.1 Hz to min(25 Hz, 0.8 f_Nyquist).
-    std::size_t n_fft = 1;
-    while (n_fft < 2 * motion.size()) n_fft *= 2;
-    const FourierSpectrum fas = fourier_amplitude_spectrum(motion, n_fft);
-    const double f_hi = std::min(25.0, 0.4 / spec.dt_s);
-    const std::vector<double> centres = log_spaced(0.1, f_hi, 400);
+    const FourierSpectrum fas = fourier_amplitude_spectrum(motion, predominant_frequency_fft_length(motion.size()));
+    const std::vector<double> centres = predominant_frequency_centres_hz(motion.dt_s());
     const std::vector<double> smooth = konno_ohmachi_smooth(fas, centres, 40.0);
     const std::vector<plot::Mark> marks{
         {spec.predominant_frequency_hz, fmt::format("requested {:.3g} Hz", spec.predominant_frequency_hz), "#e67e22"},

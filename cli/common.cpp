@@ -5,6 +5,7 @@
 #include <charconv>
 
 #include "topple/error.hpp"
+#include "topple/io/output_file.hpp"
 #include "topple/pulses.hpp"
 #include "topple/units.hpp"
 
@@ -41,11 +42,32 @@ GroundMotion transform_motion(GroundMotion motion, const MotionOptions& o) {
   return motion;
 }
 
-GroundMotion load_motion(const MotionOptions& o) {
-  if (!(o.g_m_s2 > 0.0) || !std::isfinite(o.g_m_s2)) {
-    throw parameter_error("--g", fmt::format("g must be positive and finite, got {}", o.g_m_s2));
+void check_g(double g_m_s2) {
+  if (!(g_m_s2 > 0.0) || !std::isfinite(g_m_s2)) {
+    throw parameter_error("--g", fmt::format("g must be positive and finite, got {}", g_m_s2));
   }
+}
+
+GroundMotion load_motion(const MotionOptions& o) {
+  check_g(o.g_m_s2);
   return transform_motion(io::read_motion(o.file, read_options(o)), o);
+}
+
+RunMotion load_run_motion(const MotionOptions& motion, const PulseOptions& pulse, const std::string& vertical_path) {
+  check_g(motion.g_m_s2);
+  const bool from_pulse = !pulse.kind.empty();
+  if (from_pulse == !motion.file.empty()) throw parameter_error("FILE", "give either a record file or --pulse");
+  const GroundMotion raw =
+      from_pulse ? make_pulse_motion(pulse, motion.g_m_s2) : io::read_motion(motion.file, read_options(motion));
+  RunMotion run{transform_motion(raw, motion), std::nullopt, {}};
+  run.input.motion = from_pulse ? run.horizontal.metadata().event : motion.file;
+  run.input.scale_factor = amplitude_factor(raw, run.horizontal);
+  run.input.inverted = motion.invert;
+  if (!vertical_path.empty()) {
+    run.vertical = io::read_motion(vertical_path, read_options(motion)).scaled(run.input.scale_factor);
+    run.input.vertical = vertical_path;
+  }
+  return run;
 }
 
 void add_pulse_options(CLI::App& cmd, PulseOptions& o) {
@@ -102,8 +124,9 @@ GroundMotion make_pulse_motion(const PulseOptions& o, double g_m_s2) {
   if (o.duration.empty()) throw parameter_error("--duration", "a pulse needs its duration (--duration)");
   const double duration = parse_seconds(o.duration, "--duration");
   const double tail = o.tail.empty() ? 5.0 * duration : parse_seconds(o.tail, "--tail");
+  // 0 is the library's "default step" (duration / 2000): a user who types 0 gets an error, not the default.
   const double dt = o.dt.empty() ? 0.0 : parse_seconds(o.dt, "--pulse-dt");
-  if (dt < 0.0) throw parameter_error("--pulse-dt", "must be positive");
+  if (!o.dt.empty() && !(dt > 0.0)) throw parameter_error("--pulse-dt", fmt::format("must be positive, got {} s", dt));
   const bool mp = o.kind == "mp" || o.kind == "mavroeidis-papageorgiou";
   const PulseKind kind = [&] {
     if (mp) return PulseKind::sine;  // unused
@@ -151,6 +174,13 @@ GroundMotion make_pulse_motion(const PulseOptions& o, double g_m_s2) {
   return naming_pulse_options([&] { return make_pulse(spec); });
 }
 
+void check_output_path(const std::string& path) {
+  if (path.empty()) return;
+  // Opening (and dropping) the temporary file the result will go through: an unwritable place fails now, with its
+  // path and exit status 4, and not after the computation.
+  const io::OutputFile probe{std::filesystem::path(path)};
+}
+
 void check_plot_path(const std::string& path) {
   if (path.empty()) return;
   const auto dot = path.rfind('.');
@@ -158,6 +188,7 @@ void check_plot_path(const std::string& path) {
   if (ext != ".svg" && ext != ".png") {
     throw parameter_error("--plot", fmt::format("'{}': figures are written as .svg or .png", path));
   }
+  check_output_path(path);
 }
 
 std::string format_seconds_or_none(const std::optional<double>& t) {

@@ -8,6 +8,7 @@
 
 #include "topple/ground_motion.hpp"
 #include "topple/io/read.hpp"
+#include "topple/io/write.hpp"
 
 namespace topple::cli {
 
@@ -59,11 +60,31 @@ void add_pulse_options(CLI::App& cmd, PulseOptions& options);
 /// The pulse as a motion (g from `g_m_s2`). Throws InputError naming the option.
 [[nodiscard]] GroundMotion make_pulse_motion(const PulseOptions& options, double g_m_s2);
 
+/// The motion of a single-run command (slide, rock, spectrum): a record file or --pulse, transformed by the motion
+/// options, with its vertical component (scaled by the horizontal's amplitude_factor) and what the JSON "input"
+/// object reports. Throws InputError naming the option.
+struct RunMotion {
+  GroundMotion horizontal;
+  std::optional<GroundMotion> vertical;
+  io::RunInput input;
+  [[nodiscard]] const GroundMotion* vertical_ptr() const noexcept { return vertical ? &*vertical : nullptr; }
+};
+[[nodiscard]] RunMotion load_run_motion(const MotionOptions& motion, const PulseOptions& pulse,
+                                        const std::string& vertical_path = {});
+
+/// Checks --g (positive and finite) before any work; InputError naming --g.
+void check_g(double g_m_s2);
+
 /// A duration option: a bare number is seconds, or a value with a unit ("100ms").
 [[nodiscard]] double parse_seconds(const std::string& text, const std::string& option);
 
-/// Checks a --plot file name before any work is done: .svg or .png, else InputError naming --plot (exit 2).
+/// Checks a --plot file name before any work is done: .svg or .png, else InputError naming --plot (exit 2); then
+/// as check_output_path.
 void check_plot_path(const std::string& path);
+
+/// Checks before any work that a result file can be created where `path` says (empty: none asked): OutputError
+/// naming the path (exit 4) otherwise. Nothing is left behind.
+void check_output_path(const std::string& path);
 
 /// JSON-friendly number: NaN/Inf never reach output (callers pass optionals for "none").
 [[nodiscard]] std::string format_seconds_or_none(const std::optional<double>& t);

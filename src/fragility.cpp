@@ -48,6 +48,16 @@ double intensity_measure_display_factor(IntensityMeasure im, double g_m_s2) {
   return im == IntensityMeasure::pga ? 1.0 / g_m_s2 : 1.0;
 }
 
+std::string_view intensity_measure_column(IntensityMeasure im) {
+  switch (im) {
+    case IntensityMeasure::pga: return "im_pga_g";
+    case IntensityMeasure::pgv: return "im_pgv_m_s";
+    case IntensityMeasure::pgd: return "im_pgd_m";
+    case IntensityMeasure::cav: return "im_cav_m_s";
+  }
+  return "im";
+}
+
 double intensity_measure_si(const GroundMotion& motion, IntensityMeasure im) {
   switch (im) {
     case IntensityMeasure::pga: return motion.pga_m_s2();

@@ -247,4 +247,9 @@ GroundMotion GroundMotion::to_uniform() const {
   return resampled(smallest);
 }
 
+double amplitude_factor(const GroundMotion& original, const GroundMotion& transformed) noexcept {
+  const double before = original.pga_m_s2();
+  return before > 0.0 ? std::abs(transformed.pga_m_s2() / before) : 1.0;
+}
+
 }  // namespace topple

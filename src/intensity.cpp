@@ -141,14 +141,32 @@ double cumulative_absolute_velocity_m_s(const GroundMotion& motion) {
   return cav;
 }
 
+namespace {
+
+/// The measure, or the reason the record does not define it (the library's InputError text).
+template <class F>
+OptionalMeasure optional_measure(F f) {
+  try {
+    return {f(), {}};
+  } catch (const InputError& e) {
+    return {std::nullopt, e.problem()};
+  }
+}
+
+}  // namespace
+
 IntensityMeasures intensity_measures(const GroundMotion& motion, double g_m_s2) {
   IntensityMeasures m;
   m.basic = basic_intensity(motion, g_m_s2);
-  m.d5_95 = significant_duration(motion);
+  try {
+    m.d5_95 = significant_duration(motion);
+  } catch (const InputError&) {
+    m.d5_95.reset();  // identically zero record
+  }
   m.cav_m_s = cumulative_absolute_velocity_m_s(motion);
-  m.tp_s = predominant_period_s(motion);
-  m.tm_s = mean_period_s(motion);
-  m.predominant_frequency_hz = predominant_frequency_hz(motion);
+  m.tp_s = optional_measure([&] { return predominant_period_s(motion); });
+  m.tm_s = optional_measure([&] { return mean_period_s(motion); });
+  m.predominant_frequency_hz = optional_measure([&] { return predominant_frequency_hz(motion); });
   return m;
 }
 

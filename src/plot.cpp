@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <memory>
 #include <sstream>
 #include <stdexcept>
@@ -13,6 +12,7 @@
 #include <fmt/format.h>
 
 #include "topple/error.hpp"
+#include "topple/io/output_file.hpp"
 
 namespace topple::plot {
 namespace {
@@ -54,16 +54,22 @@ std::string series_clause(const Series& s, const std::string& block) {
   return clause;
 }
 
-void run_gnuplot(const std::string& script, const std::filesystem::path& path) {
-  {
-    std::ofstream probe(path, std::ios::binary);
-    if (!probe) throw InputError(InputLocation{path.string(), {}, "--plot"}, "cannot open the file for writing");
-  }
-  const auto script_path = std::filesystem::path(path.string() + ".gp");
-  {
-    std::ofstream out(script_path, std::ios::binary);
-    out << script;
-  }
+/// Runs gnuplot on `script`, which writes the figure to `image`'s temporary file; the figure appears under its final
+/// name only when gnuplot succeeded (OutputFile's rename), and SIGINT/SIGTERM remove both temporaries. The
+/// OutputFile's own stream stays empty: gnuplot writes the temporary file itself.
+void run_gnuplot(const std::string& script, io::OutputFile& image) {
+  const std::filesystem::path script_path = image.temporary_path().string() + ".gp";
+  const int slot = io::register_temporary(script_path);
+  struct RemoveScript {
+    const std::filesystem::path& path;
+    int slot;
+    ~RemoveScript() {
+      std::error_code ec;
+      std::filesystem::remove(path, ec);
+      io::unregister_temporary(slot);
+    }
+  } remove_script{script_path, slot};
+  io::write_file_atomically(script_path, script);
   // The script path goes through /bin/sh in single quotes; a quote inside it is closed, escaped and reopened.
   std::string shell_path;
   for (char c : script_path.string()) shell_path += c == '\'' ? std::string("'\\''") : std::string(1, c);
@@ -75,11 +81,18 @@ void run_gnuplot(const std::string& script, const std::filesystem::path& path) {
   std::size_t got = 0;
   while ((got = std::fread(buffer, 1, sizeof buffer, pipe.get())) > 0) messages.append(buffer, got);
   const int status = pclose(pipe.release());
-  std::filesystem::remove(script_path);
   if (status != 0) {
-    throw std::runtime_error(fmt::format("gnuplot failed (is gnuplot-nox installed?) writing {}: {}", path.string(),
-                                         messages));
+    throw std::runtime_error(fmt::format("gnuplot failed (is gnuplot-nox installed?) writing {}: {}",
+                                         image.final_path().string(), messages));
   }
+  image.commit();
+}
+
+template <class F>
+void render_figure(const F& figure, const std::filesystem::path& path) {
+  (void)terminal_for(path, 1, 1);  // a bad extension is bad input (exit 2), before any file is touched
+  io::OutputFile image(path);
+  run_gnuplot(gnuplot_script(figure, image.temporary_path()), image);
 }
 
 }  // namespace
@@ -210,10 +223,8 @@ std::string gnuplot_script(const MapFigure& f, const std::filesystem::path& path
   return os.str();
 }
 
-void render(const Figure& figure, const std::filesystem::path& path) { run_gnuplot(gnuplot_script(figure, path), path); }
-void render(const MapFigure& figure, const std::filesystem::path& path) {
-  run_gnuplot(gnuplot_script(figure, path), path);
-}
+void render(const Figure& figure, const std::filesystem::path& path) { render_figure(figure, path); }
+void render(const MapFigure& figure, const std::filesystem::path& path) { render_figure(figure, path); }
 
 namespace {
 

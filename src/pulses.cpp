@@ -24,7 +24,12 @@ struct Points {
 
 template <class F>
 void sample_smooth(Points& p, double t_end, double dt, F f) {
-  const auto n = static_cast<std::size_t>(std::ceil(t_end / dt - 1e-9));
+  const double samples = std::ceil(t_end / dt - 1e-9);
+  if (!(samples <= kMaxPulseSamples)) {
+    throw parameter_error("dt", fmt::format("{} s sampled every {} s is more than {:.0e} samples", t_end, dt,
+                                            kMaxPulseSamples));
+  }
+  const auto n = static_cast<std::size_t>(samples);
   for (std::size_t i = 0; i <= n; ++i) {
     const double t = std::min(static_cast<double>(i) * dt, t_end);
     p.add(t, f(t));
@@ -71,8 +76,9 @@ GroundMotion make_pulse(const PulseSpec& spec) {
     throw parameter_error("tail", fmt::format("tail must be non-negative and finite, got {} s", spec.tail_s));
   }
   const bool train = spec.kind == PulseKind::triangular_train || spec.kind == PulseKind::trapezoidal_train;
-  if (train && spec.cycles < 1) {
-    throw parameter_error("cycles", fmt::format("a pulse train needs at least one cycle, got {}", spec.cycles));
+  if (train && (spec.cycles < 1 || spec.cycles > kMaxPulseCycles)) {
+    throw parameter_error("cycles", fmt::format("a pulse train needs 1 to {} cycles, got {}", kMaxPulseCycles,
+                                                spec.cycles));
   }
   if (spec.kind == PulseKind::trapezoidal_train &&
       !(spec.trapezoid_ramp_fraction > 0.0 && spec.trapezoid_ramp_fraction <= 0.5)) {

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "topple/error.hpp"
+#include "topple/io/output_file.hpp"
 #include "topple/io/inversion_output.hpp"
 #include "topple/rocking.hpp"
 #include "topple/sliding.hpp"
@@ -214,16 +215,13 @@ plot::Figure best_cell_figure(const InversionResult& r, const Site& site, const 
 void write_report(const std::filesystem::path& dir, const Survey& survey, const Site& site, const InversionResult& r) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
-  if (ec) throw InputError(InputLocation{dir.string(), {}, "--report"}, "cannot create the directory: " + ec.message());
+  if (ec) throw OutputError(fmt::format("cannot create the report directory '{}': {}", dir.string(), ec.message()));
   plot::render(likelihood_map_figure(r, site), dir / "likelihood.svg");
   plot::render(marginal_figure(r, true), dir / "marginal_pga.svg");
   plot::render(marginal_figure(r, false), dir / "marginal_freq.svg");
   plot::render(best_cell_figure(r, site, survey.inversion), dir / "best_cell.svg");
   io::write_inversion_grid_csv(dir / "grid.csv", r);
-  {
-    std::ofstream json(dir / "result.json");
-    json << io::inversion_json(r, site).dump(2) << "\n";
-  }
+  io::write_file_atomically(dir / "result.json", io::inversion_json(r, site).dump(2) + "\n");
   const InversionSettings& st = survey.inversion;
   std::ostringstream h;
   h << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n<title>topple: " << html_escape(site.name)
@@ -296,9 +294,7 @@ void write_report(const std::filesystem::path& dir, const Survey& survey, const 
   }
   h << "<p>Files beside this page: <a href=\"grid.csv\">grid.csv</a> (the likelihood grid), <a href=\"result.json\">result.json</a>.</p>\n";
   h << "<p style=\"color:#888\">Made by topple 0.1.0.</p>\n</body></html>\n";
-  std::ofstream out(dir / "index.html", std::ios::binary);
-  if (!out) throw InputError(InputLocation{(dir / "index.html").string(), {}, "--report"}, "cannot write the report");
-  out << h.str();
+  io::write_file_atomically(dir / "index.html", h.str());
 }
 
 }  // namespace topple

@@ -423,13 +423,13 @@ Recorder<kRecord> run(const GroundMotion& horizontal, const SlidingBlock& block,
 
 }  // namespace
 
-SlidingBlock SlidingBlock::make(double mu_static, double mu_kinetic, double slope_rad, SlidingMode mode,
-                                double g_m_s2) {
-  if (mu_kinetic < 0.0) mu_kinetic = mu_static;
+SlidingBlock SlidingBlock::make(double mu_static, std::optional<double> mu_kinetic_given, double slope_rad,
+                                SlidingMode mode, double g_m_s2) {
+  const double mu_kinetic = mu_kinetic_given.value_or(mu_static);
   if (!std::isfinite(mu_static) || mu_static < 0.0) {
     throw parameter_error("mu", fmt::format("friction coefficient must be finite and >= 0, got {}", mu_static));
   }
-  if (!std::isfinite(mu_kinetic) || mu_kinetic > mu_static) {
+  if (!std::isfinite(mu_kinetic) || mu_kinetic < 0.0 || mu_kinetic > mu_static) {
     throw parameter_error("mu_kinetic", fmt::format("kinetic friction must be finite and between 0 and the static "
                                                     "coefficient {}, got {}", mu_static, mu_kinetic));
   }

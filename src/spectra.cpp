@@ -147,23 +147,36 @@ std::vector<double> log_spaced(double lo, double hi, std::size_t n) {
   return v;
 }
 
+namespace {
+constexpr double kFpBandLow_hz = 0.1;      // predominant frequency band: 0.1 Hz ..
+constexpr double kFpBandHigh_hz = 25.0;    // .. min(25 Hz, 0.8 f_Nyquist)
+constexpr double kFpPerDecade = 200.0;     // centre frequencies per decade
+constexpr double kTpLow_s = 0.02;          // predominant period grid: 0.02 s ..
+constexpr double kTpHigh_s = 5.0;          // .. 5 s
+constexpr double kTpPerDecade = 100.0;     // periods per decade
+}  // namespace
+
+std::size_t predominant_frequency_fft_length(std::size_t samples) { return next_power_of_two(2 * samples); }
+
+std::vector<double> predominant_frequency_centres_hz(double dt_s) {
+  const double top = std::min(kFpBandHigh_hz, 0.8 * 0.5 / dt_s);
+  if (!(top > kFpBandLow_hz)) return {};
+  const auto n_centres = static_cast<std::size_t>(std::floor(kFpPerDecade * std::log10(top / kFpBandLow_hz))) + 1;
+  std::vector<double> centres(n_centres);
+  for (std::size_t j = 0; j < n_centres; ++j) {
+    centres[j] = kFpBandLow_hz * std::pow(10.0, static_cast<double>(j) / kFpPerDecade);
+  }
+  return centres;
+}
+
 double predominant_frequency_hz(const GroundMotion& motion) {
-  constexpr double kBandLow = 0.1;
-  constexpr double kBandHigh = 25.0;
-  constexpr double kPerDecade = 200.0;
   const GroundMotion uniform = motion.to_uniform();
-  const double nyquist = 0.5 / uniform.dt_s();
-  const double top = std::min(kBandHigh, 0.8 * nyquist);
-  if (!(top > kBandLow)) {
+  const std::vector<double> centres = predominant_frequency_centres_hz(uniform.dt_s());
+  if (centres.empty()) {
     throw parameter_error("dt", fmt::format("dt = {} s leaves no frequency in the band 0.1 Hz - 0.8 f_Nyquist",
                                             uniform.dt_s()));
   }
-  const FourierSpectrum fas = fourier_amplitude_spectrum(uniform, next_power_of_two(2 * uniform.size()));
-  const auto n_centres = static_cast<std::size_t>(std::floor(kPerDecade * std::log10(top / kBandLow))) + 1;
-  std::vector<double> centres(n_centres);
-  for (std::size_t j = 0; j < n_centres; ++j) {
-    centres[j] = kBandLow * std::pow(10.0, static_cast<double>(j) / kPerDecade);
-  }
+  const FourierSpectrum fas = fourier_amplitude_spectrum(uniform, predominant_frequency_fft_length(uniform.size()));
   const std::vector<double> smooth = konno_ohmachi_smooth(fas, centres, 40.0);
   const auto peak = static_cast<std::size_t>(std::max_element(smooth.begin(), smooth.end()) - smooth.begin());
   if (!(smooth[peak] > 0.0)) {
@@ -172,7 +185,7 @@ double predominant_frequency_hz(const GroundMotion& motion) {
   }
   double offset = 0.0;
   if (peak > 0 && peak + 1 < smooth.size()) offset = parabola_vertex(smooth[peak - 1], smooth[peak], smooth[peak + 1]);
-  return kBandLow * std::pow(10.0, (static_cast<double>(peak) + offset) / kPerDecade);
+  return kFpBandLow_hz * std::pow(10.0, (static_cast<double>(peak) + offset) / kFpPerDecade);
 }
 
 double mean_period_s(const GroundMotion& motion) {
@@ -344,20 +357,23 @@ ResponseSpectrum response_spectrum(const GroundMotion& motion, std::span<const d
   return r;
 }
 
-double predominant_period_s(const GroundMotion& motion) {
-  constexpr double kLow = 0.02;
-  constexpr double kHigh = 5.0;
-  constexpr double kPerDecade = 100.0;
-  const auto n = static_cast<std::size_t>(std::floor(kPerDecade * std::log10(kHigh / kLow) + 0.5)) + 1;
+std::vector<double> tp_periods_s() {
+  const auto n = static_cast<std::size_t>(std::floor(kTpPerDecade * std::log10(kTpHigh_s / kTpLow_s) + 0.5)) + 1;
   std::vector<double> periods(n);
-  for (std::size_t j = 0; j < n; ++j) periods[j] = kLow * std::pow(10.0, static_cast<double>(j) / kPerDecade);
+  for (std::size_t j = 0; j < n; ++j) periods[j] = kTpLow_s * std::pow(10.0, static_cast<double>(j) / kTpPerDecade);
+  return periods;
+}
+
+double predominant_period_s(const GroundMotion& motion) {
+  const std::vector<double> periods = tp_periods_s();
+  const std::size_t n = periods.size();
   const ResponseSpectrum r = response_spectrum(motion, periods, 0.05);
   const auto& psa = r.psa_m_s2;
   const auto peak = static_cast<std::size_t>(std::max_element(psa.begin(), psa.end()) - psa.begin());
   if (!(psa[peak] > 0.0)) throw parameter_error("motion", "the record is identically zero: no predominant period");
   double offset = 0.0;
   if (peak > 0 && peak + 1 < n) offset = parabola_vertex(psa[peak - 1], psa[peak], psa[peak + 1]);
-  return kLow * std::pow(10.0, (static_cast<double>(peak) + offset) / kPerDecade);
+  return kTpLow_s * std::pow(10.0, (static_cast<double>(peak) + offset) / kTpPerDecade);
 }
 
 }  // namespace topple

@@ -71,6 +71,12 @@ double parse_length_m(std::string_view text, const std::string& field) {
   return convert(text, field, "length", table);
 }
 
+double parse_area_m2(std::string_view text, const std::string& field) {
+  static constexpr std::array<UnitFactor, 6> table{{
+      {"m2", 1.0}, {"m^2", 1.0}, {"cm2", 1e-4}, {"cm^2", 1e-4}, {"mm2", 1e-6}, {"mm^2", 1e-6}}};
+  return convert(text, field, "area", table);
+}
+
 double parse_acceleration_m_s2(std::string_view text, const std::string& field, double g_m_s2) {
   const std::array<UnitFactor, 8> table{{{"g", g_m_s2},
                                          {"m/s2", 1.0},

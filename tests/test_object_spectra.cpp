@@ -32,7 +32,7 @@ TEST(SlidingSpectrum, EntriesEqualSingleSlideRuns) {
     ASSERT_EQ(sp.points.size(), mu.size());
     EXPECT_DOUBLE_EQ(sp.pga_m_s2, m.pga_m_s2());
     for (std::size_t i = 0; i < mu.size(); ++i) {
-      const SlidingBlock block = SlidingBlock::make(mu[i], -1.0, slope, mode);
+      const SlidingBlock block = SlidingBlock::make(mu[i], std::nullopt, slope, mode);
       const SlidingSummary one = slide_summary(m, block);
       // Same exact solver on the same samples: equal to a few ulps of the displacement (the kernel skips stick
       // blocks, which changes no arithmetic of the slip phases).
@@ -73,7 +73,7 @@ TEST(SlidingSpectrum, YieldRatioGivesTheFrictionCoefficient) {
   const double slope = 15.0 * kPi / 180.0;
   for (double r : {0.0, 0.2, 0.7, 1.5}) {
     const double mu = mu_for_yield_ratio(r, pga, slope);
-    EXPECT_NEAR(SlidingBlock::make(mu, -1.0, slope).yield_down_m_s2() / pga, r, 1e-12) << r;
+    EXPECT_NEAR(SlidingBlock::make(mu, std::nullopt, slope).yield_down_m_s2() / pga, r, 1e-12) << r;
   }
   EXPECT_THROW((void)mu_for_yield_ratio(-0.1, pga), InputError);
   EXPECT_THROW((void)sliding_spectrum(make_pulse({PulseKind::rectangular, 1.0, 0.1, 0.1, 0.0}), std::vector<double>{}),

@@ -19,13 +19,8 @@
 namespace topple {
 namespace {
 
+using test::count;
 using test::slurp;
-
-std::size_t count(const std::string& text, const std::string& what) {
-  std::size_t n = 0;
-  for (auto pos = text.find(what); pos != std::string::npos; pos = text.find(what, pos + 1)) ++n;
-  return n;
-}
 
 plot::Figure sliding_example() {
   const auto motion = make_pulse({PulseKind::double_triangular, 2.0 * kStandardGravity, 0.2, 0.5, 0.0});

@@ -58,6 +58,8 @@ enum class IntensityMeasure : std::uint8_t {
 /// The unit the measure is shown in ("g" for PGA, else SI: "m/s", "m", "m/s") and the factor from SI to it.
 [[nodiscard]] std::string_view intensity_measure_unit(IntensityMeasure im);
 [[nodiscard]] double intensity_measure_display_factor(IntensityMeasure im, double g_m_s2 = kStandardGravity);
+/// The IM's column and key name with its unit: im_pga_g, im_pgv_m_s, im_pgd_m, im_cav_m_s.
+[[nodiscard]] std::string_view intensity_measure_column(IntensityMeasure im);
 
 inline constexpr double kMinimumBeta = 0.01;  ///< lower bound of beta in the fit (see the header)
 

@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "topple/units.hpp"
+
 namespace topple {
 
 /// Where a record came from; all fields optional and informative only (no computation depends on them).
@@ -23,6 +25,9 @@ struct RecordMetadata {
   std::string station;       ///< station name or code
   std::string component;     ///< e.g. "180", "N-S", "HNE", "UP"
   std::string units_as_read; ///< acceleration unit in the file ("g", "cm/s2", "counts*3920/6182761 gal", ...)
+  /// The g (m/s^2) that values in g were converted with and that this motion's values in g are expressed in (the
+  /// Python package's accel_g and pga_g): the caller's g where one built or read the motion with its own g.
+  double g_m_s2 = kStandardGravity;
 };
 
 class GroundMotion {
@@ -88,5 +93,10 @@ class GroundMotion {
   double t0_ = 0.0;
   RecordMetadata meta_;
 };
+
+/// The amplitude factor that turned `original` into `transformed` (|PGA ratio|; 1 for an identically zero original).
+/// It is the factor a vertical component gets when its horizontal is scaled: scaling scales the whole shaking,
+/// while a polarity flip is the horizontal's own.
+[[nodiscard]] double amplitude_factor(const GroundMotion& original, const GroundMotion& transformed) noexcept;
 
 }  // namespace topple

@@ -14,6 +14,8 @@
 // - Cumulative absolute velocity CAV = integral |a| dt (EPRI 1988, without its 0.025 g threshold), exact per step:
 //   h (|a0| + |a1|) / 2 without a sign change, h (a0^2 + a1^2) / (2 (|a0| + |a1|)) across a zero.
 // The spectral measures (predominant frequency, predominant and mean period) are defined in spectra.hpp.
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "topple/ground_motion.hpp"
@@ -59,17 +61,25 @@ struct SignificantDuration {
 /// Cumulative absolute velocity integral |a| dt, m/s, exact for the piecewise-linear record.
 [[nodiscard]] double cumulative_absolute_velocity_m_s(const GroundMotion& motion);
 
-/// Everything `topple info` prints.
-struct IntensityMeasures {
-  BasicIntensity basic;
-  SignificantDuration d5_95;
-  double cav_m_s = 0.0;
-  double tp_s = 0.0;                      ///< predominant period (spectra.hpp)
-  double tm_s = 0.0;                      ///< mean period, Rathje et al. 1998 (spectra.hpp)
-  double predominant_frequency_hz = 0.0;  ///< spectra.hpp
+/// A measure that some records lack (an identically zero record, one too short for the band): its value, or the
+/// reason it has none.
+struct OptionalMeasure {
+  std::optional<double> value;
+  std::string undefined_reason;  ///< empty when value is set
 };
 
-/// All measures of a record. Throws InputError for an identically zero record.
+/// Everything `topple info` prints (and `topple.intensity` returns).
+struct IntensityMeasures {
+  BasicIntensity basic;
+  std::optional<SignificantDuration> d5_95;  ///< none for an identically zero record
+  double cav_m_s = 0.0;
+  OptionalMeasure tp_s;                      ///< predominant period, s (spectra.hpp)
+  OptionalMeasure tm_s;                      ///< mean period, s, Rathje et al. 1998 (spectra.hpp)
+  OptionalMeasure predominant_frequency_hz;  ///< Hz (spectra.hpp)
+};
+
+/// All measures of a record; g (m/s^2) is used only for Arias' pi/(2g). A measure the record does not define is
+/// left empty with its reason (never an exception for an identically zero or a short record).
 [[nodiscard]] IntensityMeasures intensity_measures(const GroundMotion& motion, double g_m_s2 = kStandardGravity);
 
 }  // namespace topple

@@ -70,7 +70,8 @@ struct MapFigure {
   int height_px = 700;
 };
 
-/// Writes the figure to `path` (.svg or .png). Throws InputError for another extension or an unwritable path, and
+/// Writes the figure to `path` (.svg or .png) through a temporary file renamed once gnuplot succeeded. Throws
+/// InputError for another extension, OutputError (naming the path) for an unwritable one, and
 /// std::runtime_error when gnuplot is missing or fails (its message is included).
 void render(const Figure& figure, const std::filesystem::path& path);
 void render(const MapFigure& figure, const std::filesystem::path& path);

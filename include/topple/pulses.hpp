@@ -34,6 +34,12 @@ enum class PulseKind {
 };
 
 /// "rect", "tri", "double-tri", "sine", "cosine", "ricker" (also the long names); throws InputError naming `field`.
+/// The most samples a pulse is sampled with (the cap of synthesis.hpp: 5e7 samples, 400 MB per component); a finer
+/// dt_s is refused (InputError naming "dt"), never a silent allocation of unbounded memory.
+inline constexpr double kMaxPulseSamples = 5e7;
+/// The most cycles of a pulse train (each cycle is at most 6 samples; 1e6 cycles is far beyond any physical train).
+inline constexpr int kMaxPulseCycles = 1'000'000;
+
 [[nodiscard]] PulseKind parse_pulse_kind(std::string_view name, const std::string& field = "--pulse");
 [[nodiscard]] std::string_view pulse_kind_name(PulseKind kind);
 

@@ -107,6 +107,28 @@ struct RockingBody {
 };
 
 [[nodiscard]] std::string_view shape_name(RockingBody::Shape shape);  ///< "block", "cylinder", "general"
+/// "block", "cylinder" or "general"; throws InputError naming `field` otherwise.
+[[nodiscard]] RockingBody::Shape parse_shape(std::string_view name, const std::string& field = "shape");
+
+/// The largest body dimension topple accepts, m: a free-standing object of a kilometre is no object, and the limit
+/// keeps D = (4/3)(a^2 + h^2) and every quantity derived from it finite.
+inline constexpr double kMaxBodyDimension_m = 1000.0;
+
+/// A body's dimensions as a user gives them, by shape: block {width_m, height_m}, cylinder {diameter_m, height_m},
+/// general {a_m, h_m, D_m2} (m, m^2). Unset: not given.
+struct BodyDimensions {
+  std::optional<double> width_m;
+  std::optional<double> height_m;
+  std::optional<double> diameter_m;
+  std::optional<double> a_m;
+  std::optional<double> h_m;
+  std::optional<double> D_m2;
+};
+
+/// The body of `shape` from its dimensions. Throws InputError naming the field ("width", "height", "diameter", "a",
+/// "h", "D") that the shape needs and lacks, that does not apply to it, that exceeds kMaxBodyDimension_m (D: its
+/// square), or that the factory refuses.
+[[nodiscard]] RockingBody make_rocking_body(RockingBody::Shape shape, const BodyDimensions& dimensions);
 
 /// Housner's coefficient of restitution e = 1 - 2 a^2 / D (angular-velocity ratio at impact; may be negative for a
 /// squat body, see the header).
@@ -114,6 +136,19 @@ struct RockingBody {
 
 enum class RestitutionMode : std::uint8_t { housner, given };
 enum class RockingMethod : std::uint8_t { adaptive, rk4 };
+[[nodiscard]] std::string_view restitution_mode_name(RestitutionMode mode);  ///< "housner", "given"
+[[nodiscard]] std::string_view rocking_method_name(RockingMethod method);    ///< "adaptive", "rk4"
+/// "adaptive" or "rk4"; throws InputError naming `field` otherwise.
+[[nodiscard]] RockingMethod parse_rocking_method(std::string_view name, const std::string& field = "method");
+
+/// The restitution choice as users write it: "housner" (e = 1 - 2 a^2 / D) or a number (the given e). Returns the
+/// mode and, for `given`, the number (its range [0, 1] is checked by the solvers). Throws InputError naming `field`
+/// for anything else.
+struct RestitutionChoice {
+  RestitutionMode mode = RestitutionMode::housner;
+  double e = 1.0;  ///< when mode == given
+};
+[[nodiscard]] RestitutionChoice parse_restitution(std::string_view text, const std::string& field = "e");
 
 struct RockingOptions {
   double g_m_s2 = kStandardGravity;                  ///< gravity, m/s^2

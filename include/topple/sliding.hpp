@@ -32,6 +32,8 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "topple/ground_motion.hpp"
@@ -40,6 +42,9 @@
 namespace topple {
 
 enum class SlidingMode : std::uint8_t { two_way, one_way };
+[[nodiscard]] std::string_view sliding_mode_name(SlidingMode mode);  ///< "two-way", "one-way"
+/// "two-way" or "one-way"; throws InputError naming `field` otherwise.
+[[nodiscard]] SlidingMode parse_sliding_mode(std::string_view name, const std::string& field = "mode");
 
 /// A friction block. Use make() to validate.
 struct SlidingBlock {
@@ -49,9 +54,11 @@ struct SlidingBlock {
   SlidingMode mode = SlidingMode::two_way;
   double g_m_s2 = kStandardGravity;
 
-  /// Validated block; mu_kinetic < 0 means "equal to mu_static" (the thesis' assumption). Throws InputError for
-  /// non-finite values, mu_s < 0, mu_k > mu_s, slope outside [0, 90) deg, slope + friction angle >= 90 deg, g <= 0.
-  [[nodiscard]] static SlidingBlock make(double mu_static, double mu_kinetic = -1.0, double slope_rad = 0.0,
+  /// Validated block; no mu_kinetic means "equal to mu_static" (the thesis' assumption). Throws InputError for
+  /// non-finite values, mu_s < 0, mu_k outside [0, mu_s], slope outside [0, 90) deg, slope + friction angle >= 90
+  /// deg, g <= 0.
+  [[nodiscard]] static SlidingBlock make(double mu_static, std::optional<double> mu_kinetic = std::nullopt,
+                                         double slope_rad = 0.0,
                                          SlidingMode mode = SlidingMode::two_way, double g_m_s2 = kStandardGravity);
 
   /// Yield accelerations for g_e = g: a_h above yield_down starts downslope slip, below yield_up upslope slip

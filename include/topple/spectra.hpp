@@ -55,6 +55,13 @@ struct FourierSpectrum {
 /// n values from lo to hi (> 0) evenly spaced in log; n >= 2.
 [[nodiscard]] std::vector<double> log_spaced(double lo, double hi, std::size_t n);
 
+/// The FFT length of the predominant frequency (definition above): the next power of two at least 2 `samples`.
+[[nodiscard]] std::size_t predominant_frequency_fft_length(std::size_t samples);
+
+/// The centre frequencies of the predominant frequency (definition above), Hz, for a record sampled every dt_s: 200
+/// per decade from 0.1 Hz to min(25 Hz, 0.8 f_Nyquist); empty when that band is empty.
+[[nodiscard]] std::vector<double> predominant_frequency_centres_hz(double dt_s);
+
 /// The predominant frequency of a motion, Hz (definition above). Throws InputError for a record too short to
 /// hold any frequency of the band, or an identically zero one.
 [[nodiscard]] double predominant_frequency_hz(const GroundMotion& motion);
@@ -109,6 +116,9 @@ struct OscillatorHistory {
   std::vector<double> absolute_accel_m_s2;
 };
 [[nodiscard]] OscillatorHistory oscillator_response(const GroundMotion& motion, double period_s, double damping);
+
+/// The periods of the predominant period Tp (definition above), s: 100 per decade from 0.02 s to 5 s (271 periods).
+[[nodiscard]] std::vector<double> tp_periods_s();
 
 /// Predominant period Tp, s (definition above).
 [[nodiscard]] double predominant_period_s(const GroundMotion& motion);

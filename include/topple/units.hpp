@@ -19,6 +19,9 @@ inline constexpr double kPi = 3.141592653589793238462643383279502884;
 /// no number, no unit, an unknown unit, or is not finite.
 [[nodiscard]] double parse_length_m(std::string_view text, const std::string& field);
 
+/// An area such as "0.011m2", "110cm2", "0.011 m^2" (m2, cm2, mm2); a bare number is refused, as for lengths.
+[[nodiscard]] double parse_area_m2(std::string_view text, const std::string& field);
+
 /// An acceleration such as "0.5g", "4.9m/s2", "490gal", "490cm/s2". Multiples of g use `g_m_s2`.
 [[nodiscard]] double parse_acceleration_m_s2(std::string_view text, const std::string& field,
                                              double g_m_s2 = kStandardGravity);

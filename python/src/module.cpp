@@ -155,6 +155,7 @@ GroundMotion make_motion(nb::handle accel, std::optional<double> dt_s, const std
   RecordMetadata meta;
   meta.format = "python";
   meta.units_as_read = units;
+  meta.g_m_s2 = g_m_s2;
   if (!time.is_none()) {
     if (dt_s) throw parameter_error("dt", "give either dt (uniform samples) or time (irregular samples), not both");
     std::vector<double> t = to_vector(time, "time");
@@ -176,6 +177,7 @@ struct RunInputs {
   RunInputs() = default;
   RunInputs(const GroundMotion& h, const GroundMotion* v)
       : horizontal(nb::find(h)), vertical(v ? nb::find(*v) : nb::none()) {}
+  bool with_duration = false;  // the rocking "input" object has duration_s
   [[nodiscard]] nlohmann::ordered_json json(double g_m_s2) const;
 };
 
@@ -195,28 +197,19 @@ struct SlidingRun {
 /// The "input" object of the CLI's JSON for a motion used as given (no scaling or polarity flip in the call).
 nlohmann::ordered_json RunInputs::json(double g_m_s2) const {
   const GroundMotion& h = nb::cast<const GroundMotion&>(horizontal);
-  const GroundMotion* v = vertical.is_none() ? nullptr : &nb::cast<const GroundMotion&>(vertical);
-  nlohmann::ordered_json in;
-  in["motion"] = motion_name(h);
-  in["pga_g"] = h.pga_m_s2() / g_m_s2;
-  in["scale_factor"] = 1.0;
-  in["invert"] = false;
-  in["vertical"] = v ? nlohmann::ordered_json(motion_name(*v)) : nlohmann::ordered_json(nullptr);
-  in["npts"] = h.size();
-  in["dt_s"] = h.dt_s();
-  return in;
+  io::RunInput in;
+  in.motion = motion_name(h);
+  if (!vertical.is_none()) in.vertical = motion_name(nb::cast<const GroundMotion&>(vertical));
+  in.with_duration = with_duration;
+  return io::run_input_json(in, h, g_m_s2);
 }
 
-SlidingMode parse_mode(const std::string& mode) {
-  if (mode == "two-way") return SlidingMode::two_way;
-  if (mode == "one-way") return SlidingMode::one_way;
-  throw parameter_error("mode", fmt::format("unknown mode '{}' (known: two-way, one-way)", mode));
-}
+SlidingMode parse_mode(const std::string& mode) { return parse_sliding_mode(mode, "mode"); }
 
 SlidingRun run_slide(const GroundMotion& motion, double mu, std::optional<double> mu_kinetic, const std::string& mode,
                      double slope_deg, const GroundMotion* vertical, double g_m_s2, bool history) {
   SlidingRun run;
-  run.block = SlidingBlock::make(mu, mu_kinetic.value_or(-1.0), slope_deg * kPi / 180.0, parse_mode(mode), g_m_s2);
+  run.block = SlidingBlock::make(mu, mu_kinetic, slope_deg * kPi / 180.0, parse_mode(mode), g_m_s2);
   {
     nb::gil_scoped_release release;
     if (history) {
@@ -242,7 +235,6 @@ struct RockingRun {
   [[nodiscard]] nlohmann::ordered_json json() const {
     nlohmann::ordered_json j = io::rocking_summary_json(result.summary, body, options);
     j["input"] = inputs.json(options.g_m_s2);
-    j["input"]["duration_s"] = nb::cast<const GroundMotion&>(inputs.horizontal).duration_s();
     return j;
   }
 };
@@ -266,6 +258,7 @@ RockingRun run_rock(const GroundMotion& motion, const RockingBody& body, const s
     }
   }
   run.inputs = RunInputs(motion, vertical);
+  run.inputs.with_duration = true;
   return run;
 }
 
@@ -275,20 +268,15 @@ RockingOptions make_rocking_options(const std::variant<double, std::string>& e, 
   RockingOptions o;
   o.g_m_s2 = g_m_s2;
   if (const auto* name = std::get_if<std::string>(&e)) {
-    if (*name != "housner") throw parameter_error("e", fmt::format("'{}' is neither a number in [0, 1] nor 'housner'", *name));
-    o.restitution = RestitutionMode::housner;
+    const RestitutionChoice choice = parse_restitution(*name, "e");
+    o.restitution = choice.mode;
+    o.e = choice.e;
   } else {
     o.restitution = RestitutionMode::given;
     o.e = std::get<double>(e);
   }
   o.mu = mu;
-  if (method == "adaptive") {
-    o.method = RockingMethod::adaptive;
-  } else if (method == "rk4") {
-    o.method = RockingMethod::rk4;
-  } else {
-    throw parameter_error("method", fmt::format("unknown method '{}' (known: adaptive, rk4)", method));
-  }
+  o.method = parse_rocking_method(method, "method");
   o.rel_tol = rel_tol;
   o.rk4_substeps = rk4_substeps;
   o.max_run_out_s = max_run_out_s;
@@ -297,57 +285,32 @@ RockingOptions make_rocking_options(const std::variant<double, std::string>& e, 
 
 // ---- intensity (the measures of `topple info`, undefined ones as None) ----
 
-template <class F>
-nb::object measure_or_none(F f) {
-  try {
-    return nb::cast(f());
-  } catch (const InputError&) {
-    return nb::none();
-  }
-}
+nb::object optional_measure(const OptionalMeasure& m) { return m.value ? nb::cast(*m.value) : nb::none(); }
 
 nb::dict intensity_dict(const GroundMotion& motion, double g_m_s2) {
-  BasicIntensity im;
-  std::optional<SignificantDuration> duration;
-  double cav = 0.0;
-  std::optional<double> tp, tm, fp;
+  IntensityMeasures im;
   {
     nb::gil_scoped_release release;
-    im = basic_intensity(motion, g_m_s2);
-    try {
-      duration = significant_duration(motion);
-    } catch (const InputError&) {
-      duration.reset();  // identically zero record
-    }
-    cav = cumulative_absolute_velocity_m_s(motion);
-    const auto attempt = [](auto f) -> std::optional<double> {
-      try {
-        return f();
-      } catch (const InputError&) {
-        return std::nullopt;
-      }
-    };
-    tp = attempt([&] { return predominant_period_s(motion); });
-    tm = attempt([&] { return mean_period_s(motion); });
-    fp = attempt([&] { return predominant_frequency_hz(motion); });
+    im = intensity_measures(motion, g_m_s2);
   }
+  const auto& duration = im.d5_95;
   nb::dict d;
   d["npts"] = motion.size();
   d["dt_s"] = motion.dt_s();
   d["duration_s"] = motion.duration_s();
-  d["pga_g"] = im.pga_m_s2 / g_m_s2;
-  d["pga_m_s2"] = im.pga_m_s2;
-  d["pga_time_s"] = im.pga_time_s;
-  d["pgv_m_s"] = im.pgv_m_s;
-  d["pgd_m"] = im.pgd_m;
-  d["arias_m_s"] = im.arias_m_s;
+  d["pga_g"] = im.basic.pga_m_s2 / g_m_s2;
+  d["pga_m_s2"] = im.basic.pga_m_s2;
+  d["pga_time_s"] = im.basic.pga_time_s;
+  d["pgv_m_s"] = im.basic.pgv_m_s;
+  d["pgd_m"] = im.basic.pgd_m;
+  d["arias_m_s"] = im.basic.arias_m_s;
   d["d5_95_s"] = duration ? nb::cast(duration->duration_s) : nb::none();
   d["d5_time_s"] = duration ? nb::cast(duration->start_s) : nb::none();
   d["d95_time_s"] = duration ? nb::cast(duration->end_s) : nb::none();
-  d["cav_m_s"] = cav;
-  d["tp_s"] = optional_float(tp);
-  d["tm_s"] = optional_float(tm);
-  d["predominant_frequency_hz"] = optional_float(fp);
+  d["cav_m_s"] = im.cav_m_s;
+  d["tp_s"] = optional_measure(im.tp_s);
+  d["tm_s"] = optional_measure(im.tm_s);
+  d["predominant_frequency_hz"] = optional_measure(im.predominant_frequency_hz);
   d["g_m_s2"] = g_m_s2;
   return d;
 }
@@ -398,17 +361,6 @@ nb::ndarray<nb::numpy, T, nb::ndim<2>> to_numpy_2d(std::vector<T> values, std::s
   return nb::ndarray<nb::numpy, T, nb::ndim<2>>(data, {rows, cols}, owner);
 }
 
-/// The periods of the predominant period Tp (spectra.hpp): 100 per decade from 0.02 s to 5 s.
-std::vector<double> tp_periods_s() {
-  constexpr double kLow = 0.02;
-  constexpr double kHigh = 5.0;
-  constexpr double kPerDecade = 100.0;
-  const auto n = static_cast<std::size_t>(std::floor(kPerDecade * std::log10(kHigh / kLow) + 0.5)) + 1;
-  std::vector<double> periods(n);
-  for (std::size_t j = 0; j < n; ++j) periods[j] = kLow * std::pow(10.0, static_cast<double>(j) / kPerDecade);
-  return periods;
-}
-
 nb::dict response_spectrum_dict(const GroundMotion& motion, nb::handle periods, double damping, double g_m_s2) {
   const std::vector<double> p = periods.is_none() ? tp_periods_s() : to_vector(periods, "periods_s");
   if (!(g_m_s2 > 0.0) || !std::isfinite(g_m_s2)) throw parameter_error("g", "g must be a finite number > 0 (m/s^2)");
@@ -433,19 +385,6 @@ nb::dict response_spectrum_dict(const GroundMotion& motion, nb::handle periods, 
   return d;
 }
 
-/// The centre frequencies of the predominant frequency (spectra.hpp): 200 per decade from 0.1 Hz to
-/// min(25 Hz, 0.8 f_Nyquist) of a record sampled at dt (empty when that band is empty).
-std::vector<double> fp_centres_hz(double dt_s) {
-  constexpr double kBandLow = 0.1;
-  constexpr double kPerDecade = 200.0;
-  const double top = std::min(25.0, 0.8 * 0.5 / dt_s);
-  if (!(top > kBandLow)) return {};
-  const auto n = static_cast<std::size_t>(std::floor(kPerDecade * std::log10(top / kBandLow))) + 1;
-  std::vector<double> centres(n);
-  for (std::size_t j = 0; j < n; ++j) centres[j] = kBandLow * std::pow(10.0, static_cast<double>(j) / kPerDecade);
-  return centres;
-}
-
 nb::dict fourier_spectrum_dict(const GroundMotion& motion, std::optional<double> smoothing_b, nb::handle centre_hz,
                                std::optional<std::size_t> fft_length) {
   std::vector<double> centres;
@@ -460,11 +399,10 @@ nb::dict fourier_spectrum_dict(const GroundMotion& motion, std::optional<double>
   {
     nb::gil_scoped_release release;
     const GroundMotion uniform = motion.to_uniform();
-    std::size_t n_fft = 1;
-    while (n_fft < 2 * uniform.size()) n_fft *= 2;
-    fas = fourier_amplitude_spectrum(uniform, fft_length.value_or(n_fft));
+    fas = fourier_amplitude_spectrum(uniform,
+                                     fft_length.value_or(predominant_frequency_fft_length(uniform.size())));
     if (smoothing_b) {
-      if (centre_hz.is_none()) centres = fp_centres_hz(uniform.dt_s());
+      if (centre_hz.is_none()) centres = predominant_frequency_centres_hz(uniform.dt_s());
       smooth = konno_ohmachi_smooth(fas, centres, *smoothing_b);
     }
     try {
@@ -535,8 +473,7 @@ nb::dict sliding_spectrum_dict(const GroundMotion& motion, nb::handle mu, double
 }
 
 RockingBody::Shape parse_family_shape(const std::string& shape) {
-  if (shape == "block") return RockingBody::Shape::block;
-  if (shape == "cylinder") return RockingBody::Shape::cylinder;
+  if (shape != "general") return parse_shape(shape, "shape");
   throw parameter_error("shape", fmt::format("unknown shape '{}' for a body family (known: block, cylinder)", shape));
 }
 
@@ -632,7 +569,7 @@ nb::object map_im(nb::handle im, F f) {
 }
 
 /// The IM's display unit in SI: g for PGA, 1 otherwise (m/s, m, m/s).
-double im_unit(IntensityMeasure im, double g_m_s2) { return im == IntensityMeasure::pga ? g_m_s2 : 1.0; }
+double im_unit(IntensityMeasure im, double g_m_s2) { return 1.0 / intensity_measure_display_factor(im, g_m_s2); }
 
 /// The fit with theta in the display unit (ln theta shifts by a constant: standard errors are unchanged).
 LognormalFragilityFit fit_in_unit(LognormalFragilityFit fit, double unit) {
@@ -663,7 +600,7 @@ nb::dict fragility_dict(nb::handle motions, nb::handle levels, const std::string
   }
   if (mu) {
     if (!threshold_m) throw parameter_error("threshold_m", "a sliding curve (mu given) needs threshold_m, m");
-    spec.sliding = SlidingFailure{SlidingBlock::make(*mu, mu_kinetic.value_or(-1.0), slope_deg * kPi / 180.0,
+    spec.sliding = SlidingFailure{SlidingBlock::make(*mu, mu_kinetic, slope_deg * kPi / 180.0,
                                                      parse_mode(mode), g_m_s2),
                                   *threshold_m};
   } else if (threshold_m) {
@@ -699,9 +636,7 @@ nb::dict fragility_dict(nb::handle motions, nb::handle levels, const std::string
   }
   nb::dict d;
   d["im"] = std::string(intensity_measure_name(result.im));
-  d["im_unit"] = std::string(result.im == IntensityMeasure::pga ? "g"
-                             : result.im == IntensityMeasure::pgd ? "m"
-                                                                  : "m/s");
+  d["im_unit"] = std::string(intensity_measure_unit(result.im));
   d["curves"] = curves;
   d["runs"] = result.runs;
   d["g_m_s2"] = g_m_s2;
@@ -788,6 +723,7 @@ NB_MODULE(_core, m) {
   using namespace topple::python;
   m.doc() = "topple's C++ library (see the topple package for the documented API)";
   m.attr("STANDARD_GRAVITY") = kStandardGravity;
+  const RockingOptions kRockingDefaults;  // the library's defaults are the Python defaults
 
   // The exception type lives as long as the module: it is an attribute of it.
   nb::object input_error = nb::steal(PyErr_NewExceptionWithDoc(
@@ -821,12 +757,13 @@ NB_MODULE(_core, m) {
                    nb::rv_policy::reference_internal)
       .def_prop_ro("accel_g", [](const GroundMotion& g) {
         std::vector<double> a(g.accel_m_s2().begin(), g.accel_m_s2().end());
-        for (double& v : a) v /= kStandardGravity;
+        for (double& v : a) v /= g.metadata().g_m_s2;  // the motion's own g
         return to_numpy(std::move(a));
       }, nb::rv_policy::move)
       .def_prop_ro("time_s", [](const GroundMotion& g) { return to_numpy(g.times_s()); }, nb::rv_policy::move)
       .def_prop_ro("pga_m_s2", &GroundMotion::pga_m_s2)
-      .def_prop_ro("pga_g", [](const GroundMotion& g) { return g.pga_m_s2() / kStandardGravity; })
+      .def_prop_ro("pga_g", [](const GroundMotion& g) { return g.pga_m_s2() / g.metadata().g_m_s2; })
+      .def_prop_ro("g_m_s2", [](const GroundMotion& g) { return g.metadata().g_m_s2; })
       .def_prop_ro("pga_time_s", &GroundMotion::pga_time_s)
       .def_prop_ro("metadata",
                    [](const GroundMotion& g) {
@@ -844,8 +781,10 @@ NB_MODULE(_core, m) {
       .def("accel_at", &GroundMotion::accel_at, "t_s"_a)
       .def("scaled", &GroundMotion::scaled, "factor"_a)
       .def("scaled_to_pga",
-           [](const GroundMotion& g, double pga_g, double gravity) { return g.scaled_to_pga(pga_g * gravity); },
-           "pga_g"_a, "g"_a = kStandardGravity)
+           [](const GroundMotion& g, double pga_g, std::optional<double> gravity) {
+             return g.scaled_to_pga(pga_g * gravity.value_or(g.metadata().g_m_s2));
+           },
+           "pga_g"_a, "g"_a = nb::none())
       .def("inverted", &GroundMotion::inverted)
       .def("time_scaled", &GroundMotion::time_scaled, "factor"_a)
       .def("trimmed", &GroundMotion::trimmed, "t_begin_s"_a, "t_end_s"_a)
@@ -853,7 +792,7 @@ NB_MODULE(_core, m) {
       .def("baseline_corrected", &GroundMotion::baseline_corrected, "order"_a)
       .def("__repr__", [](const GroundMotion& g) {
         return fmt::format("GroundMotion({} samples, dt_s={:.6g}, duration_s={:.6g}, pga_g={:.5g}{})", g.size(),
-                           g.dt_s(), g.duration_s(), g.pga_m_s2() / kStandardGravity,
+                           g.dt_s(), g.duration_s(), g.pga_m_s2() / g.metadata().g_m_s2,
                            motion_name(g).empty() ? "" : ", name='" + motion_name(g) + "'");
       });
 
@@ -867,7 +806,11 @@ NB_MODULE(_core, m) {
           o.dt_s = dt;
           o.g_m_s2 = g;
           nb::gil_scoped_release release;
-          return io::read_motion(path, o);
+          GroundMotion motion = io::read_motion(path, o);
+          RecordMetadata meta = motion.metadata();
+          meta.g_m_s2 = g;  // accel_g and pga_g are in the g the file was read with
+          motion.set_metadata(std::move(meta));
+          return motion;
         },
         "path"_a, "format"_a = nb::none(), "units"_a = nb::none(), "dt"_a = nb::none(), "channel"_a = nb::none(),
         "g"_a = kStandardGravity);
@@ -894,7 +837,7 @@ NB_MODULE(_core, m) {
       .def_prop_ro("mu_kinetic", [](const SlidingRun& r) { return r.block.mu_kinetic; })
       .def_prop_ro("slope_deg", [](const SlidingRun& r) { return r.block.slope_rad * 180.0 / kPi; })
       .def_prop_ro("mode", [](const SlidingRun& r) {
-        return std::string(r.block.mode == SlidingMode::one_way ? "one-way" : "two-way");
+        return std::string(sliding_mode_name(r.block.mode));
       })
       .def_prop_ro("g_m_s2", [](const SlidingRun& r) { return r.block.g_m_s2; })
       .def_prop_ro("time_s", [](const SlidingRun& r) { return view(r.history.time_s); }, nb::rv_policy::reference_internal)
@@ -970,7 +913,7 @@ NB_MODULE(_core, m) {
       .def_prop_ro("p_rad_s", [](const RockingRun& r) { return r.result.summary.p_rad_s; })
       .def_prop_ro("e", [](const RockingRun& r) { return r.result.summary.e; })
       .def_prop_ro("e_mode", [](const RockingRun& r) {
-        return std::string(r.options.restitution == RestitutionMode::housner ? "housner" : "given");
+        return std::string(restitution_mode_name(r.options.restitution));
       })
       .def_prop_ro("onset_mode",
                    [](const RockingRun& r) { return std::string(onset_mode_name(r.result.summary.onset_mode)); })
@@ -1010,8 +953,9 @@ NB_MODULE(_core, m) {
       });
 
   m.def("rock", &run_rock, "motion"_a, "shape"_a, nb::kw_only(), "e"_a = "housner", "mu"_a = nb::none(),
-        "g"_a = kStandardGravity, "method"_a = "adaptive", "rel_tol"_a = 1e-8, "rk4_substeps"_a = 10,
-        "max_run_out_s"_a = 60.0, "vertical"_a = nb::none(), "history"_a = true);
+        "g"_a = kStandardGravity, "method"_a = rocking_method_name(kRockingDefaults.method),
+        "rel_tol"_a = kRockingDefaults.rel_tol, "rk4_substeps"_a = kRockingDefaults.rk4_substeps,
+        "max_run_out_s"_a = kRockingDefaults.max_run_out_s, "vertical"_a = nb::none(), "history"_a = true);
 
   // ---- synthesis, intensity, inversion ----
   m.def("synth",
@@ -1027,7 +971,11 @@ NB_MODULE(_core, m) {
           spec.envelope = parse_envelope_kind(envelope, "envelope");
           spec.ground_damping = zeta_g;
           nb::gil_scoped_release release;
-          return synthesize(spec);
+          GroundMotion motion = synthesize(spec);
+          RecordMetadata meta = motion.metadata();
+          meta.g_m_s2 = g;  // pga_g is in the g it was asked in
+          motion.set_metadata(std::move(meta));
+          return motion;
         },
         nb::kw_only(), "pga_g"_a, "freq_hz"_a, "duration_s"_a, "seed"_a = 0, "dt_s"_a = 0.01,
         "model"_a = "clough-penzien", "envelope"_a = "saragoni-hart", "zeta_g"_a = 0.3, "g"_a = kStandardGravity);
@@ -1042,7 +990,8 @@ NB_MODULE(_core, m) {
         "centre_hz"_a = nb::none(), "fft_length"_a = nb::none());
   m.def("overturning_map", &overturning_map_dict, "motion"_a, nb::kw_only(), "alpha_rad"_a, "heights_m"_a, "pga_g"_a,
         "shape"_a = "block", "e"_a = "housner", "mu"_a = nb::none(), "g"_a = kStandardGravity,
-        "method"_a = "adaptive", "rel_tol"_a = 1e-8, "rk4_substeps"_a = 10, "max_run_out_s"_a = 60.0,
+        "method"_a = rocking_method_name(kRockingDefaults.method), "rel_tol"_a = kRockingDefaults.rel_tol,
+        "rk4_substeps"_a = kRockingDefaults.rk4_substeps, "max_run_out_s"_a = kRockingDefaults.max_run_out_s,
         "threads"_a = 0);
 
   nb::class_<LognormalFragilityFit>(m, "FragilityFit",
@@ -1084,7 +1033,8 @@ NB_MODULE(_core, m) {
   m.def("fragility", &fragility_dict, "motions"_a, "levels"_a, nb::kw_only(), "im"_a = "pga", "mu"_a = nb::none(),
         "threshold_m"_a = nb::none(), "mu_kinetic"_a = nb::none(), "mode"_a = "two-way", "slope_deg"_a = 0.0,
         "body"_a = nb::none(), "e"_a = "housner", "rock_mu"_a = nb::none(), "g"_a = kStandardGravity,
-        "method"_a = "adaptive", "rel_tol"_a = 1e-8, "rk4_substeps"_a = 10, "max_run_out_s"_a = 60.0,
+        "method"_a = rocking_method_name(kRockingDefaults.method), "rel_tol"_a = kRockingDefaults.rel_tol,
+        "rk4_substeps"_a = kRockingDefaults.rk4_substeps, "max_run_out_s"_a = kRockingDefaults.max_run_out_s,
         "threads"_a = 0);
   m.def("_sweep", &sweep_dict, "path"_a, nb::kw_only(), "threads"_a = 0);
 }

@@ -52,7 +52,7 @@ class GroundMotion:
         """Acceleration, m/s^2: a read-only view on the C++ data (no copy), valid as long as it is referenced."""
     @property
     def accel_g(self) -> npt.NDArray[np.float64]:
-        """Acceleration in standard g (a new array)."""
+        """Acceleration in the motion's own g (g_m_s2: the g it was built or read with), a new array."""
     @property
     def time_s(self) -> npt.NDArray[np.float64]:
         """Sample times, s (a new array; materialised for uniform records)."""
@@ -60,7 +60,11 @@ class GroundMotion:
     def pga_m_s2(self) -> float: ...
     @property
     def pga_g(self) -> float:
-        """Peak |a| in standard g (9.80665 m/s^2)."""
+        """Peak |a| in the motion's own g (g_m_s2)."""
+    @property
+    def g_m_s2(self) -> float:
+        """The g (m/s^2) the motion was built or read with (GroundMotion(..., g=), read(..., g=)); accel_g and pga_g
+        are in it. Operations (scaled, inverted, ...) keep it."""
     @property
     def pga_time_s(self) -> float: ...
     @property
@@ -71,7 +75,8 @@ class GroundMotion:
         """The source file as given, else the event description (synthetic and pulse motions)."""
     def accel_at(self, t_s: float) -> float: ...
     def scaled(self, factor: float) -> GroundMotion: ...
-    def scaled_to_pga(self, pga_g: float, g: float = 9.80665) -> GroundMotion: ...
+    def scaled_to_pga(self, pga_g: float, g: float | None = None) -> GroundMotion:
+        """Scaled so that the PGA is pga_g, in g (default: the motion's own g_m_s2)."""
     def inverted(self) -> GroundMotion: ...
     def time_scaled(self, factor: float) -> GroundMotion: ...
     def trimmed(self, t_begin_s: float, t_end_s: float) -> GroundMotion: ...

@@ -1,11 +1,11 @@
 #include "topple/io/inversion_output.hpp"
 
 #include <cmath>
-#include <fstream>
 
 #include <fmt/format.h>
 
 #include "topple/error.hpp"
+#include "topple/io/output_file.hpp"
 #include "topple/units.hpp"
 
 namespace topple::io {
@@ -22,12 +22,6 @@ nlohmann::ordered_json estimate_json(const Estimate& e) {
   j["ci68"] = {opt(e.ci68_low), opt(e.ci68_high)};
   j["ci95"] = {opt(e.ci95_low), opt(e.ci95_high)};
   return j;
-}
-
-std::ofstream open_out(const std::filesystem::path& path, const std::string& field) {
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw InputError(InputLocation{path.string(), {}, field}, "cannot open the file for writing");
-  return out;
 }
 
 }  // namespace
@@ -68,7 +62,8 @@ nlohmann::ordered_json inversion_json(const InversionResult& r, const Site& site
 }
 
 void write_inversion_grid_csv(const std::filesystem::path& path, const InversionResult& r) {
-  auto out = open_out(path, "--grid");
+  OutputFile file(path);
+  std::ostream& out = file.stream();
   out << "pga_g,freq_hz,log_likelihood,posterior";
   for (const auto& o : r.objects) out << ",p_" << o.id;
   out << "\n";
@@ -78,6 +73,7 @@ void write_inversion_grid_csv(const std::filesystem::path& path, const Inversion
     for (const auto& o : r.objects) out << fmt::format(",{}", o.probability[c]);
     out << "\n";
   }
+  file.commit();
 }
 
 double epicentral_distance_km(double lat1, double lon1, double lat2, double lon2) {
@@ -109,13 +105,13 @@ void write_sites_geojson(const std::filesystem::path& path, const std::vector<Si
                        {"freq_median_hz", r.freq.median}};
     fc["features"].push_back(f);
   }
-  auto out = open_out(path, "--map");
-  out << fc.dump(2) << "\n";
+  write_file_atomically(path, fc.dump(2) + "\n");
 }
 
 void write_distance_csv(const std::filesystem::path& path, const std::vector<Site>& sites,
                         const std::vector<InversionResult>& results, double lat, double lon) {
-  auto out = open_out(path, "--map");
+  OutputFile file(path);
+  std::ostream& out = file.stream();
   const auto cell = [](const std::optional<double>& v) { return v ? fmt::format("{}", *v) : std::string(); };
   out << "site,epicentral_distance_km,pga_median_g,pga_ci68_low_g,pga_ci68_high_g,pga_ci95_low_g,pga_ci95_high_g\n";
   for (std::size_t i = 0; i < sites.size(); ++i) {
@@ -131,6 +127,7 @@ void write_distance_csv(const std::filesystem::path& path, const std::vector<Sit
                        epicentral_distance_km(lat, lon, *sites[i].lat_deg, *sites[i].lon_deg), r.pga.median,
                        cell(r.pga.ci68_low), cell(r.pga.ci68_high), cell(r.pga.ci95_low), cell(r.pga.ci95_high));
   }
+  file.commit();
 }
 
 }  // namespace topple::io

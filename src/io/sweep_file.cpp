@@ -481,7 +481,9 @@ void read_slide(const Reader& r, const toml::table& o, const std::string& key, d
   for (const SlidingMode mode : modes) {
     for (const double slope_deg : slopes) {
       for (const double m : *mu) {
-        for (const double k : mu_k ? *mu_k : std::vector<double>{-1.0}) {
+        std::vector<std::optional<double>> kinetic{std::nullopt};  // none given: mu_kinetic = mu
+        if (mu_k) kinetic.assign(mu_k->begin(), mu_k->end());
+        for (const std::optional<double>& k : kinetic) {
           try {
             // slope_deg * pi / 180: the expression `topple slide --slope-deg` uses, so that rows match it exactly.
             const SlidingBlock b = SlidingBlock::make(m, k, slope_deg * kPi / 180.0, mode, g);

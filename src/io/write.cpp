@@ -1,12 +1,12 @@
 #include "topple/io/write.hpp"
 
 #include <cmath>
-#include <cstdio>
-#include <memory>
+#include <iterator>
 
 #include <fmt/format.h>
 
 #include "topple/error.hpp"
+#include "topple/io/output_file.hpp"
 #include "topple/units.hpp"
 
 namespace topple::io {
@@ -15,10 +15,6 @@ namespace {
 nlohmann::ordered_json optional_json(const std::optional<double>& value) {
   return value ? nlohmann::ordered_json(*value) : nlohmann::ordered_json(nullptr);
 }
-
-struct FileCloser {
-  void operator()(std::FILE* f) const { std::fclose(f); }
-};
 
 }  // namespace
 
@@ -100,16 +96,47 @@ nlohmann::ordered_json rocking_summary_json(const RockingSummary& s, const Rocki
   return j;
 }
 
+nlohmann::ordered_json run_input_json(const RunInput& input, const GroundMotion& horizontal, double g_m_s2) {
+  nlohmann::ordered_json in;
+  in["motion"] = input.motion;
+  in["pga_g"] = horizontal.pga_m_s2() / g_m_s2;
+  in["scale_factor"] = input.scale_factor;
+  in["invert"] = input.inverted;
+  in["vertical"] = input.vertical ? nlohmann::ordered_json(*input.vertical) : nlohmann::ordered_json(nullptr);
+  in["npts"] = horizontal.size();
+  in["dt_s"] = horizontal.dt_s();
+  if (input.with_duration) in["duration_s"] = horizontal.duration_s();
+  return in;
+}
+
 void write_sliding_history_csv(const std::filesystem::path& path, const SlidingHistory& h,
                                const GroundMotion& horizontal) {
-  std::unique_ptr<std::FILE, FileCloser> f(std::fopen(path.c_str(), "w"));
-  if (!f) throw InputError(InputLocation{path.string(), {}, "--out"}, "cannot open the file for writing");
-  fmt::print(f.get(), "time_s,ground_accel_m_s2,displacement_m,velocity_m_s,state\n");
+  OutputFile file(path);
+  std::ostream& out = file.stream();
+  out << "time_s,ground_accel_m_s2,displacement_m,velocity_m_s,state\n";
+  fmt::memory_buffer row;
   for (std::size_t i = 0; i < h.time_s.size(); ++i) {
-    fmt::print(f.get(), "{:.9g},{:.9g},{:.12g},{:.12g},{}\n", h.time_s[i], horizontal.accel_at(h.time_s[i]),
-               h.displacement_m[i], h.velocity_m_s[i], static_cast<int>(h.state[i]));
+    row.clear();
+    fmt::format_to(std::back_inserter(row), "{:.9g},{:.9g},{:.12g},{:.12g},{}\n", h.time_s[i],
+                   horizontal.accel_at(h.time_s[i]), h.displacement_m[i], h.velocity_m_s[i],
+                   static_cast<int>(h.state[i]));
+    out.write(row.data(), static_cast<std::streamsize>(row.size()));
   }
-  if (std::ferror(f.get())) throw InputError(InputLocation{path.string(), {}, "--out"}, "write failed");
+  file.commit();
+}
+
+void write_rocking_history_csv(const std::filesystem::path& path, const RockingHistory& h) {
+  OutputFile file(path);
+  std::ostream& out = file.stream();
+  out << "time_s,theta_rad,theta_dot_rad_s,state\n";
+  fmt::memory_buffer row;
+  for (std::size_t i = 0; i < h.time_s.size(); ++i) {
+    row.clear();
+    fmt::format_to(std::back_inserter(row), "{:.9g},{:.12g},{:.12g},{}\n", h.time_s[i], h.theta_rad[i],
+                   h.theta_dot_rad_s[i], rocking_state_name(h.state[i]));
+    out.write(row.data(), static_cast<std::streamsize>(row.size()));
+  }
+  file.commit();
 }
 
 }  // namespace topple::io

@@ -18,13 +18,8 @@
 namespace topple {
 namespace {
 
+using test::count;
 using test::slurp;
-
-std::size_t count(const std::string& text, const std::string& what) {
-  std::size_t n = 0;
-  for (auto pos = text.find(what); pos != std::string::npos; pos = text.find(what, pos + 1)) ++n;
-  return n;
-}
 
 std::string q(const std::filesystem::path& p) { return fmt::format("'{}'", p.string()); }
 

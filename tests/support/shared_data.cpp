@@ -76,4 +76,10 @@ void write_file(const std::filesystem::path& path, const std::string& text) {
   out << text;
 }
 
+std::size_t count(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (auto pos = text.find(what); pos != std::string::npos; pos = text.find(what, pos + 1)) ++n;
+  return n;
+}
+
 }  // namespace topple::test

@@ -28,6 +28,9 @@ struct CommandResult {
 /// The whole content of a file (binary); empty when it cannot be read.
 [[nodiscard]] std::string slurp(const std::filesystem::path& path);
 
+/// How many times `what` occurs in `text` (overlapping occurrences counted).
+[[nodiscard]] std::size_t count(const std::string& text, const std::string& what);
+
 /// A fresh temporary directory, removed when the object dies.
 class TempDir {
  public:

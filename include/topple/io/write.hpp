@@ -2,6 +2,8 @@
 // Writers: solver results to the files and JSON objects users and scripts read. Column and key names carry units;
 // the JSON keys are a stable interface shared by the CLI and the Python package.
 #include <filesystem>
+#include <optional>
+#include <string>
 
 #include <nlohmann/json.hpp>
 
@@ -21,9 +23,27 @@ namespace topple::io {
 [[nodiscard]] nlohmann::ordered_json rocking_summary_json(const RockingSummary& summary, const RockingBody& body,
                                                           const RockingOptions& options);
 
+/// What a single run saw, for the "input" object of `topple slide|rock --json` and of the Python results' json().
+struct RunInput {
+  std::string motion;                   ///< the record's file name, or the pulse's description
+  double scale_factor = 1.0;            ///< amplitude factor applied to the motion as read (GroundMotion::amplitude_factor)
+  bool inverted = false;                ///< polarity flipped
+  std::optional<std::string> vertical;  ///< the vertical record's name; none without one
+  bool with_duration = false;           ///< add duration_s (the rocking object has it)
+};
+
+/// The "input" object: motion, pga_g, scale_factor, invert, vertical (null when none), npts, dt_s [, duration_s].
+[[nodiscard]] nlohmann::ordered_json run_input_json(const RunInput& input, const GroundMotion& horizontal,
+                                                    double g_m_s2);
+
 /// History as CSV: time_s,ground_accel_m_s2,displacement_m,velocity_m_s,state (state: -1 slipping up-slope /
-/// negative, 0 stuck, 1 slipping down-slope / positive). Throws InputError when the file cannot be written.
+/// negative, 0 stuck, 1 slipping down-slope / positive). Written through OutputFile (temporary name, then rename);
+/// throws OutputError naming the path when it cannot be written.
 void write_sliding_history_csv(const std::filesystem::path& path, const SlidingHistory& history,
                                const GroundMotion& horizontal);
+
+/// Rocking history as CSV: time_s,theta_rad,theta_dot_rad_s,state (state: rocking-, rest, rocking+, fallen).
+/// Written through OutputFile; throws OutputError naming the path when it cannot be written.
+void write_rocking_history_csv(const std::filesystem::path& path, const RockingHistory& history);
 
 }  // namespace topple::io
