@@ -1,8 +1,10 @@
 #include <cmath>
+#include <vector>
 
 #include <gtest/gtest.h>
 
 #include "topple/intensity.hpp"
+#include "topple/spectra.hpp"
 #include "topple/units.hpp"
 
 namespace topple {
@@ -32,6 +34,60 @@ TEST(Intensity, PiecewiseLinearIntegralsAreExact) {
   EXPECT_NEAR(im.arias_m_s, kPi / 2.0 * 8.0 / 3.0, 1e-14);
   // displacement: first step 2/6 = 1/3, second: v0*h + h^2 (2*2 + 0)/6 = 1 + 2/3 -> 2
   EXPECT_NEAR(im.pgd_m, 2.0, 1e-14);
+}
+
+TEST(Intensity, MeasuresOfARecordAreTheSingleFunctions) {
+  // A 2 Hz sine of 0.3 g for 10 s at 0.01 s: intensity_measures() is each measure's own function, to the bit.
+  std::vector<double> a(1001);
+  for (std::size_t i = 0; i < a.size(); ++i) a[i] = 0.3 * kStandardGravity * std::sin(2.0 * kPi * 2.0 * 0.01 * i);
+  const GroundMotion m = GroundMotion::uniform(a, 0.01);
+  const IntensityMeasures im = intensity_measures(m, 9.81);
+  EXPECT_EQ(im.basic.arias_m_s, basic_intensity(m, 9.81).arias_m_s);
+  ASSERT_TRUE(im.d5_95);
+  EXPECT_EQ(im.d5_95->duration_s, significant_duration(m).duration_s);
+  EXPECT_EQ(im.cav_m_s, cumulative_absolute_velocity_m_s(m));
+  ASSERT_TRUE(im.tp_s.value && im.tm_s.value && im.predominant_frequency_hz.value);
+  EXPECT_EQ(*im.tp_s.value, predominant_period_s(m));
+  EXPECT_EQ(*im.tm_s.value, mean_period_s(m));
+  EXPECT_EQ(*im.predominant_frequency_hz.value, predominant_frequency_hz(m));
+  // The sine's own period and frequency within the grids' spacing (1 % per step of 100 and 200 per decade).
+  EXPECT_NEAR(*im.tp_s.value, 0.5, 0.5 * 0.025);
+  EXPECT_NEAR(*im.predominant_frequency_hz.value, 2.0, 2.0 * 0.012);
+  EXPECT_TRUE(im.tp_s.undefined_reason.empty());
+}
+
+TEST(Intensity, ZeroRecordLeavesTheUndefinedMeasuresEmptyWithTheirReason) {
+  const GroundMotion zero = GroundMotion::uniform(std::vector<double>(100, 0.0), 0.01);
+  const IntensityMeasures im = intensity_measures(zero);
+  EXPECT_EQ(im.basic.pga_m_s2, 0.0);
+  EXPECT_EQ(im.cav_m_s, 0.0);
+  EXPECT_FALSE(im.d5_95);
+  EXPECT_FALSE(im.tp_s.value);
+  EXPECT_NE(im.tp_s.undefined_reason.find("identically zero"), std::string::npos) << im.tp_s.undefined_reason;
+  EXPECT_FALSE(im.predominant_frequency_hz.value);
+  EXPECT_FALSE(im.predominant_frequency_hz.undefined_reason.empty());
+}
+
+TEST(Spectra, TpAndFpGridsAreThoseOfTheDefinitions) {
+  // Tp: 100 per decade from 0.02 s: floor(100 log10(250) + 0.5) + 1 = 241 periods, the last 0.02 * 10^2.4 = 5.02 s
+  // (1e-12 and 1e-15: a few roundings of pow).
+  const auto tp = tp_periods_s();
+  ASSERT_EQ(tp.size(), 241u);
+  EXPECT_DOUBLE_EQ(tp.front(), 0.02);
+  EXPECT_NEAR(tp[100], 0.2, 1e-15);
+  EXPECT_NEAR(tp.back(), 0.02 * std::pow(10.0, 2.4), 1e-12);
+  // f_p centres at dt = 0.01 s: 0.1 Hz to min(25, 0.8 * 50) = 25 Hz, 200 per decade: floor(200 log10(250)) + 1.
+  const auto fc = predominant_frequency_centres_hz(0.01);
+  ASSERT_EQ(fc.size(), static_cast<std::size_t>(std::floor(200.0 * std::log10(250.0))) + 1);
+  EXPECT_DOUBLE_EQ(fc.front(), 0.1);
+  EXPECT_LE(fc.back(), 25.0);
+  // At dt = 2 s the band 0.1 Hz .. 0.8 f_Nyquist = 0.2 Hz is still there; at dt = 5 s (0.08 Hz) it is empty.
+  EXPECT_FALSE(predominant_frequency_centres_hz(2.0).empty());
+  EXPECT_TRUE(predominant_frequency_centres_hz(5.0).empty());
+  // FFT length: the next power of two at least twice the samples.
+  EXPECT_EQ(predominant_frequency_fft_length(1000), 2048u);
+  EXPECT_EQ(predominant_frequency_fft_length(1024), 2048u);
+  EXPECT_EQ(predominant_frequency_fft_length(1025), 4096u);
 }
 
 }  // namespace

@@ -136,3 +136,24 @@ def test_threads_run_concurrently_and_agree():
     for t in threads:
         t.join()
     assert all(r == expected for r in results)
+
+
+def test_values_in_g_are_in_the_motions_own_g(tmp_path):
+    # A motion built with g = 9.81 from values in g gives them back in that g, not in standard gravity: 0.5 g of
+    # 9.81 m/s2 is 4.905 m/s2 and reads 0.5 again (1e-15: one rounding of the product and one of the quotient).
+    m = topple.GroundMotion([0.0, 0.5, -0.25, 0.0], dt=0.01, units="g", g=9.81)
+    assert m.g_m_s2 == 9.81
+    assert m.pga_m_s2 == pytest.approx(4.905, rel=1e-15)
+    assert m.pga_g == pytest.approx(0.5, rel=1e-15)
+    np.testing.assert_allclose(m.accel_g, [0.0, 0.5, -0.25, 0.0], rtol=1e-15)
+    # Operations keep the motion's g; scaled_to_pga's default g is the motion's own.
+    assert m.scaled(2.0).pga_g == pytest.approx(1.0, rel=1e-15)
+    assert m.scaled_to_pga(0.3).pga_m_s2 == pytest.approx(0.3 * 9.81, rel=1e-15)
+    # A file read with g = 9.81 likewise.
+    path = tmp_path / "m.csv"
+    path.write_text("time_s,accel_g\n0,0\n0.01,0.5\n0.02,0\n")
+    r = topple.read(str(path), g=9.81)
+    assert r.g_m_s2 == 9.81
+    assert r.pga_g == pytest.approx(0.5, rel=1e-15)
+    # Standard gravity stays the default.
+    assert topple.GroundMotion([0.0, 1.0], dt=0.01).g_m_s2 == topple.STANDARD_GRAVITY

@@ -1,9 +1,7 @@
 // Every option of every command is checked before any work, against a cap where it sizes the work, and the message
 // names the option the user typed (issue 11); every result file goes through a temporary name and a rename, so that
 // an unwritable place is exit 4 naming the path and SIGTERM/SIGINT leave nothing behind (130/143).
-#include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -18,8 +16,6 @@
 #include <gtest/gtest.h>
 
 #include "support/shared_data.hpp"
-
-extern char** environ;
 
 namespace topple {
 namespace {
@@ -130,19 +126,8 @@ TEST(CliOutputFiles, UnwritablePathExitsFourNamingIt) {
 
 /// Starts the CLI with `args`, sends `signo` after `delay`, and returns its exit status (-1: not a normal exit).
 int run_and_signal(const std::vector<std::string>& args, int signo, std::chrono::milliseconds delay) {
-  std::vector<std::string> argv_text{TOPPLE_CLI_PATH};
-  argv_text.insert(argv_text.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (auto& a : argv_text) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
-  pid_t pid = 0;
-  const int spawned = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (spawned != 0) return -2;
+  const pid_t pid = test::spawn_cli(args, "/dev/null");
+  if (pid < 0) return -2;
   std::this_thread::sleep_for(delay);
   ::kill(pid, signo);
   int status = 0;

@@ -287,22 +287,7 @@ TEST(CliSweep, SameBytesForOneThreadAllThreadsAndMpiRanks) {
   if (!mpi) GTEST_SKIP() << "threads compared; mpirun absent, topple built without MPI, or a sanitizer build";
 }
 
-/// Starts the CLI in the background with stderr to a file.
-pid_t spawn_cli(const std::vector<std::string>& args, const fs::path& err) {
-  std::vector<std::string> argv_s{TOPPLE_CLI_PATH};
-  argv_s.insert(argv_s.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (auto& a : argv_s) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  pid_t pid = -1;
-  const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  return rc == 0 ? pid : -1;
-}
+using test::spawn_cli;
 
 std::set<std::string> chunk_files(const fs::path& dir) {
   std::set<std::string> out;

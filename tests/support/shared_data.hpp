@@ -1,7 +1,10 @@
 #pragma once
 // Test fixtures: where ../shared lives, and running the built CLI.
+#include <sys/types.h>
+
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -27,6 +30,9 @@ struct CommandResult {
 
 /// The whole content of a file (binary); empty when it cannot be read.
 [[nodiscard]] std::string slurp(const std::filesystem::path& path);
+
+/// Starts the built CLI in the background (argv as given, stdout to /dev/null, stderr to `err`); its pid, or -1.
+[[nodiscard]] pid_t spawn_cli(const std::vector<std::string>& args, const std::filesystem::path& err);
 
 /// How many times `what` occurs in `text` (overlapping occurrences counted).
 [[nodiscard]] std::size_t count(const std::string& text, const std::string& what);
