@@ -953,7 +953,7 @@ NB_MODULE(_core, m) {
       });
 
   m.def("rock", &run_rock, "motion"_a, "shape"_a, nb::kw_only(), "e"_a = "housner", "mu"_a = nb::none(),
-        "g"_a = kStandardGravity, "method"_a = rocking_method_name(kRockingDefaults.method),
+        "g"_a = kStandardGravity, "method"_a = std::string(rocking_method_name(kRockingDefaults.method)),
         "rel_tol"_a = kRockingDefaults.rel_tol, "rk4_substeps"_a = kRockingDefaults.rk4_substeps,
         "max_run_out_s"_a = kRockingDefaults.max_run_out_s, "vertical"_a = nb::none(), "history"_a = true);
 
@@ -990,7 +990,7 @@ NB_MODULE(_core, m) {
         "centre_hz"_a = nb::none(), "fft_length"_a = nb::none());
   m.def("overturning_map", &overturning_map_dict, "motion"_a, nb::kw_only(), "alpha_rad"_a, "heights_m"_a, "pga_g"_a,
         "shape"_a = "block", "e"_a = "housner", "mu"_a = nb::none(), "g"_a = kStandardGravity,
-        "method"_a = rocking_method_name(kRockingDefaults.method), "rel_tol"_a = kRockingDefaults.rel_tol,
+        "method"_a = std::string(rocking_method_name(kRockingDefaults.method)), "rel_tol"_a = kRockingDefaults.rel_tol,
         "rk4_substeps"_a = kRockingDefaults.rk4_substeps, "max_run_out_s"_a = kRockingDefaults.max_run_out_s,
         "threads"_a = 0);
 
@@ -1033,7 +1033,7 @@ NB_MODULE(_core, m) {
   m.def("fragility", &fragility_dict, "motions"_a, "levels"_a, nb::kw_only(), "im"_a = "pga", "mu"_a = nb::none(),
         "threshold_m"_a = nb::none(), "mu_kinetic"_a = nb::none(), "mode"_a = "two-way", "slope_deg"_a = 0.0,
         "body"_a = nb::none(), "e"_a = "housner", "rock_mu"_a = nb::none(), "g"_a = kStandardGravity,
-        "method"_a = rocking_method_name(kRockingDefaults.method), "rel_tol"_a = kRockingDefaults.rel_tol,
+        "method"_a = std::string(rocking_method_name(kRockingDefaults.method)), "rel_tol"_a = kRockingDefaults.rel_tol,
         "rk4_substeps"_a = kRockingDefaults.rk4_substeps, "max_run_out_s"_a = kRockingDefaults.max_run_out_s,
         "threads"_a = 0);
   m.def("_sweep", &sweep_dict, "path"_a, nb::kw_only(), "threads"_a = 0);
