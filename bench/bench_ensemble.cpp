@@ -21,7 +21,7 @@
 
 #include <benchmark/benchmark.h>
 
-#include "topple/ensemble.hpp"
+#include "topple/sweep.hpp"
 #include "topple/pulses.hpp"
 #include "topple/sliding.hpp"
 

@@ -15,6 +15,7 @@
 #include "topple/ensemble.hpp"
 #include "topple/error.hpp"
 #include "topple/io/sweep_file.hpp"
+#include "topple/sweep.hpp"
 
 namespace topple::cli {
 namespace {

@@ -21,7 +21,7 @@
 #include <nlohmann/json.hpp>
 
 #include "support/shared_data.hpp"
-#include "topple/ensemble.hpp"
+#include "topple/sweep.hpp"
 #include "topple/error.hpp"
 #include "topple/pulses.hpp"
 #include "topple/rocking.hpp"

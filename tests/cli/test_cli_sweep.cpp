@@ -8,6 +8,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -439,6 +440,58 @@ TEST(CliSweep, QuietAndSummaryOutput) {
   ASSERT_EQ(q.exit_code, 0) << q.err;
   EXPECT_EQ(q.err, "");
   EXPECT_EQ(run_cli("sweep " + quote(p.string()) + " --threads -1").exit_code, 2);
+}
+
+/// FNV-1a, 64 bits, over a file's bytes: a fixed, dependency-free fingerprint of an output for the pins below.
+std::uint64_t fnv1a64(const std::string& bytes) {
+  std::uint64_t h = 14695981039346656037ULL;
+  for (const char c : bytes) {
+    h ^= static_cast<unsigned char>(c);
+    h *= 1099511628211ULL;
+  }
+  return h;
+}
+
+/// The outputs of the example sweeps are an interface promise: the same bytes from one version to the next. The
+/// pinned sizes and FNV-1a hashes were computed by running the example sweeps with the build of main before the
+/// ensemble engine was split into units (commit 4fefb96; sha256 of pulses.csv 56c16de6...cab006d, pulses.jsonl
+/// 540dd25e...ad7c6ab1, records.csv c919db16...c372e18, records.jsonl 12a2c297...28bea). The numbers are exact
+/// (shortest round-trip text of IEEE doubles), so any change of a digit, a column or an order shows here; a
+/// platform whose libm rounds a transcendental differently would also show, which is what a pin is for.
+struct PinnedOutput {
+  const char* file;
+  std::size_t bytes;
+  std::uint64_t fnv1a;
+};
+
+void expect_pinned(const fs::path& dir, const std::vector<PinnedOutput>& pins) {
+  for (const auto& pin : pins) {
+    SCOPED_TRACE(pin.file);
+    const std::string bytes = slurp(dir / pin.file);
+    EXPECT_EQ(bytes.size(), pin.bytes);
+    EXPECT_EQ(fnv1a64(bytes), pin.fnv1a) << fmt::format("got {:#x}", fnv1a64(bytes));
+  }
+}
+
+TEST(CliSweep, ExamplePulseSweepGivesThePinnedBytes) {
+  TempDir dir;
+  const fs::path example = fs::path(TOPPLE_SOURCE_DIR) / "examples" / "sweep" / "pulses.toml";
+  const auto r = run_cli("sweep " + quote(example.string()) + " --jsonl --quiet --out " +
+                         quote((dir.path() / "pulses.csv").string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  expect_pinned(dir.path(), {{"pulses.csv", 2313381, 0xd1f1104fb46e9309ULL},
+                             {"pulses.jsonl", 9804471, 0x07093f0c8bbe5c6aULL}});
+}
+
+TEST(CliSweep, ExampleRecordSweepGivesThePinnedBytes) {
+  if (!test::have_shared()) GTEST_SKIP() << "shared/records not found";
+  TempDir dir;
+  const fs::path example = fs::path(TOPPLE_SOURCE_DIR) / "examples" / "sweep" / "records.toml";
+  const auto r = run_cli("sweep " + quote(example.string()) + " --jsonl --quiet --out " +
+                         quote((dir.path() / "records.csv").string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  expect_pinned(dir.path(), {{"records.csv", 820476, 0xf5b67c25b2bc4652ULL},
+                             {"records.jsonl", 3122038, 0x17c20e0297a55fcdULL}});
 }
 
 }  // namespace

@@ -1,5 +1,5 @@
 // The standard sweep: records and pulses against sliding blocks and rocking bodies, expanded into an ensemble plan
-// whose run function calls the exact sliding solver and the rocking engine. See ensemble.hpp (make_plan) for the
+// whose run function calls the exact sliding solver and the rocking engine. See sweep.hpp (make_plan) for the
 // columns.
 #include <cmath>
 #include <cstdint>
@@ -11,7 +11,7 @@
 
 #include <fmt/format.h>
 
-#include "topple/ensemble.hpp"
+#include "topple/sweep.hpp"
 #include "topple/error.hpp"
 
 namespace topple::ensemble {
