@@ -12,6 +12,7 @@
 #include <fstream>
 #include <limits>
 #include <random>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -26,6 +27,7 @@
 #include "topple/pulses.hpp"
 #include "topple/rocking.hpp"
 #include "topple/sliding.hpp"
+#include "topple/summary_fields.hpp"
 
 namespace topple::ensemble {
 namespace {
@@ -147,6 +149,36 @@ TEST(EnsemblePlan, ExpansionOrderAndColumns) {
   EXPECT_EQ(std::get<std::string>(pulse[1]), "sine");
   EXPECT_EQ(std::get<double>(pulse[2]), 0.5);
   EXPECT_EQ(std::get<double>(pulse[3]), 0.5);
+}
+
+// The result columns are the field tables' sweep fields (summary_fields.hpp), in the order of the sweep outputs
+// written before the tables existed (the CSV header is an interface): sliding, then rocking, end_time_s once.
+TEST(EnsemblePlan, ResultColumnsComeFromTheFieldTables) {
+  const Plan plan = make_plan(mixed_spec());
+  const std::vector<std::string> expected{
+      "max_abs_displacement_m", "max_displacement_time_s", "residual_displacement_m", "max_abs_velocity_m_s",
+      "slip_episodes",          "first_slip_time_s",       "total_slip_duration_s",   "end_time_s",
+      "at_rest_at_end",         "contact_lost_time_s",     "yield_down_g",            "yield_up_g",
+      "max_abs_rotation_rad",   "max_rotation_over_alpha", "max_rotation_time_s",     "max_abs_theta_dot_rad_s",
+      "impacts",                "uplifts",                 "uplift_time_s",           "exceeded_alpha_time_s",
+      "overturned",             "overturn_time_s",         "energy_lost_j_per_kg",    "end_state",
+      "still_rocking_at_end",   "onset_mode",              "critical_mu",             "alpha_rad",
+      "p_rad_s",                "e"};
+  EXPECT_EQ(plan.result_columns, expected);
+  // Each table's sweep positions are 0..k-1, each once, and its names are unique.
+  const auto check = [](const auto& table, int sweep_count) {
+    std::vector<int> positions;
+    std::set<std::string> names;
+    for (const auto& f : table) {
+      EXPECT_TRUE(names.insert(f.name).second) << f.name;
+      if (f.sweep_column >= 0) positions.push_back(f.sweep_column);
+    }
+    std::sort(positions.begin(), positions.end());
+    ASSERT_EQ(positions.size(), static_cast<std::size_t>(sweep_count));
+    for (int i = 0; i < sweep_count; ++i) EXPECT_EQ(positions[static_cast<std::size_t>(i)], i);
+  };
+  check(kSlidingFields, 12);
+  check(kRockingFields, 19);
 }
 
 TEST(EnsemblePlan, DefaultChunkSizeDependsOnRunsOnly) {

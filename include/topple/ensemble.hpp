@@ -47,12 +47,14 @@
 #include <variant>
 #include <vector>
 
+#include "topple/field.hpp"
 #include "topple/ground_motion.hpp"
 
 namespace topple::ensemble {
 
-/// One cell of a result row: null (does not apply), boolean, integer, double or text.
-using Value = std::variant<std::monostate, bool, std::int64_t, double, std::string>;
+/// One cell of a result row: null (does not apply), boolean, integer, double or text (the value of a result field,
+/// topple/field.hpp).
+using Value = FieldValue;
 
 // ---------------------------------------------------------------------------------------------------------------
 // The generic engine
