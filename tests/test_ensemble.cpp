@@ -533,6 +533,235 @@ TEST(EnsembleStore, ALockedStoreIsRefused) {
   EXPECT_NO_THROW(static_cast<void>(run_to_files(cp.plan, store, {}, one)));
 }
 
+// ---- Corruption of the store (docs/sweeps.md, "The result store") ----
+
+/// A store left by a sweep that failed at run 70 (one thread): chunks 0-7 of 15 are there, with JSON lines.
+struct InterruptedStore {
+  TempDir tmp;
+  CountingPlan cp;
+  SingleProcess one;
+  StoreOptions store;
+  std::string expected_csv;
+  std::string expected_jsonl;
+  std::vector<fs::path> chunks;
+
+  InterruptedStore() {
+    store.csv_path = tmp.path() / "out.csv";
+    store.jsonl_path = tmp.path() / "out.jsonl";
+    const ResultTable t = run_in_memory(cp.plan);
+    expected_csv = to_csv(t);
+    expected_jsonl = to_jsonl(t);
+    cp.fail_from->store(70);
+    ExecuteOptions single;
+    single.threads = 1;
+    EXPECT_THROW(static_cast<void>(run_to_files(cp.plan, store, single, one)), std::runtime_error);
+    cp.fail_from->store(std::numeric_limits<std::size_t>::max());
+    chunks = chunk_files(parts_directory(store.csv_path));
+  }
+  [[nodiscard]] fs::path dir() const { return parts_directory(store.csv_path); }
+};
+
+/// The offset of the first row of a chunk file (after its header line).
+std::size_t rows_offset(const std::string& chunk) { return chunk.find('\n') + 1; }
+
+struct Corruption {
+  const char* name;
+  void (*apply)(const InterruptedStore& s);
+};
+
+void flip_digit(const InterruptedStore& s) {
+  std::string t = slurp(s.chunks[1]);
+  const std::size_t i = t.find_first_of("123456789", rows_offset(t) + 10);  // a digit of a value, not the run index
+  t[i] = t[i] == '9' ? '8' : static_cast<char>(t[i] + 1);
+  test::write_file(s.chunks[1], t);
+}
+void xor_byte(const InterruptedStore& s) {
+  std::string t = slurp(s.chunks[1]);
+  t[rows_offset(t) + (t.size() - rows_offset(t)) / 2] ^= 0x5a;
+  test::write_file(s.chunks[1], t);
+}
+void xor_header_fingerprint(const InterruptedStore& s) {  // damage, not another sweep: computed again, not refused
+  std::string t = slurp(s.chunks[1]);
+  t[t.find("fingerprint=") + 14] ^= 0x01;
+  test::write_file(s.chunks[1], t);
+}
+void swap_lines(const InterruptedStore& s) {
+  std::string t = slurp(s.chunks[1]);
+  const std::size_t a = rows_offset(t);
+  const std::size_t b = t.find('\n', a) + 1;
+  const std::size_t c = t.find('\n', b) + 1;
+  t = t.substr(0, a) + t.substr(b, c - b) + t.substr(a, b - a) + t.substr(c);
+  test::write_file(s.chunks[1], t);
+}
+void copy_over_another(const InterruptedStore& s) {
+  fs::copy_file(s.chunks[0], s.chunks[1], fs::copy_options::overwrite_existing);
+  fs::copy_file(fs::path(s.chunks[0]).replace_extension(".jsonl"), fs::path(s.chunks[1]).replace_extension(".jsonl"),
+                fs::copy_options::overwrite_existing);
+}
+void truncate_chunk(const InterruptedStore& s) {
+  const std::string t = slurp(s.chunks[1]);
+  test::write_file(s.chunks[1], t.substr(0, t.size() / 2));
+}
+void truncate_header(const InterruptedStore& s) {
+  const std::string t = slurp(s.chunks[1]);
+  test::write_file(s.chunks[1], t.substr(0, 20));
+}
+void xor_jsonl(const InterruptedStore& s) {
+  const fs::path p = fs::path(s.chunks[1]).replace_extension(".jsonl");
+  std::string t = slurp(p);
+  t[t.size() / 2] ^= 0x01;
+  test::write_file(p, t);
+}
+void delete_jsonl(const InterruptedStore& s) { fs::remove(fs::path(s.chunks[1]).replace_extension(".jsonl")); }
+
+class EnsembleStoreCorruption : public ::testing::TestWithParam<Corruption> {};
+
+// Each kind of damage to one committed chunk: the resumed sweep detects it, computes that chunk (only) again, and
+// writes the same bytes as an uninterrupted sweep.
+TEST_P(EnsembleStoreCorruption, IsDetectedAndTheChunkComputedAgain) {
+  InterruptedStore s;
+  ASSERT_GE(s.chunks.size(), 3u);
+  ASSERT_LE(s.chunks.size(), 9u);
+  GetParam().apply(s);
+  const SweepReport r = run_to_files(s.cp.plan, s.store, {}, s.one);
+  EXPECT_EQ(r.chunks_failed_verification, 1u);
+  EXPECT_EQ(r.chunks_already_done, s.chunks.size() - 1);
+  EXPECT_EQ(r.chunks_computed, 15u - s.chunks.size() + 1);
+  EXPECT_EQ(slurp(s.store.csv_path), s.expected_csv);
+  EXPECT_EQ(slurp(*s.store.jsonl_path), s.expected_jsonl);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Kinds, EnsembleStoreCorruption,
+    ::testing::Values(Corruption{"flipped_digit", flip_digit}, Corruption{"xored_byte", xor_byte},
+                      Corruption{"xored_fingerprint", xor_header_fingerprint}, Corruption{"swapped_lines", swap_lines},
+                      Corruption{"chunk_copied_over_another", copy_over_another},
+                      Corruption{"truncated_chunk", truncate_chunk}, Corruption{"truncated_header", truncate_header},
+                      Corruption{"xored_jsonl", xor_jsonl}, Corruption{"deleted_jsonl", delete_jsonl}),
+    [](const auto& info) { return std::string(info.param.name); });
+
+// The manifest records every verified chunk's checksum (the one in the chunk's header), and a chunk that checks out
+// on its own but differs from that record is computed again.
+TEST(EnsembleStore, TheManifestRecordsEveryChunkChecksum) {
+  InterruptedStore s;
+  ASSERT_GE(s.chunks.size(), 2u);
+  // A resume that computes nothing new records the chunks found (then fails again at run 70).
+  s.cp.fail_from->store(70);
+  ExecuteOptions single;
+  single.threads = 1;
+  EXPECT_THROW(static_cast<void>(run_to_files(s.cp.plan, s.store, single, s.one)), std::runtime_error);
+  s.cp.fail_from->store(std::numeric_limits<std::size_t>::max());
+  const auto m = nlohmann::json::parse(slurp(s.dir() / "manifest.json"));
+  EXPECT_EQ(m["format"], "topple-sweep-parts/2");
+  EXPECT_EQ(m["checksum"], "xxh3-64");
+  const std::string first = slurp(s.chunks[0]);
+  const std::string recorded = m["chunk_checksums"][s.chunks[0].filename().string()].get<std::string>();
+  EXPECT_EQ(recorded.size(), 16u);
+  EXPECT_NE(first.find(" xxh3=" + recorded + "\n"), std::string::npos) << "the header's checksum is the record";
+  // A record that differs from chunk 0's own checksum: the chunk is not trusted.
+  nlohmann::json forged = m;
+  forged["chunk_checksums"][s.chunks[0].filename().string()] = "0123456789abcdef";
+  test::write_file(s.dir() / "manifest.json", forged.dump(2));
+  const SweepReport r = run_to_files(s.cp.plan, s.store, {}, s.one);
+  EXPECT_EQ(r.chunks_failed_verification, 1u);
+  EXPECT_EQ(slurp(s.store.csv_path), s.expected_csv);
+}
+
+// With the manifest deleted, a different sweep resumed into the same output must not take the other's rows.
+TEST(EnsembleStore, ChunksOfAnotherSweepAreRefusedWithoutAManifest) {
+  InterruptedStore s;
+  fs::remove(s.dir() / "manifest.json");
+  CountingPlan other;
+  other.plan.motions[0].values[0] = Value{std::string("another record")};  // same runs and chunks, other sweep
+  StoreOptions store = s.store;
+  try {
+    static_cast<void>(run_to_files(other.plan, store, {}, s.one));
+    FAIL() << "chunks of another sweep must be refused";
+  } catch (const InputError& e) {
+    EXPECT_NE(e.problem().find("different sweep"), std::string::npos) << e.what();
+    EXPECT_NE(e.problem().find("no manifest"), std::string::npos) << e.what();
+    EXPECT_NE(e.problem().find("--restart"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(store.csv_path));
+  EXPECT_EQ(other.calls->load(), 0u) << "nothing computed before the refusal";
+  // The same sweep resumes without its manifest: its chunks carry its fingerprint.
+  const SweepReport same = run_to_files(s.cp.plan, s.store, {}, s.one);
+  EXPECT_EQ(same.chunks_already_done, s.chunks.size());
+  EXPECT_EQ(slurp(s.store.csv_path), s.expected_csv);
+  // --restart discards the store for the other sweep.
+  fs::remove(store.csv_path);
+  store.restart = true;
+  static_cast<void>(run_to_files(other.plan, store, {}, s.one));
+  const ResultTable t = run_in_memory(other.plan);
+  EXPECT_EQ(slurp(store.csv_path), to_csv(t));
+}
+
+/// A finished sweep's outputs damaged afterwards.
+class EnsembleStoreFinishedOutput : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(EnsembleStoreFinishedOutput, IsNotReportedCompleteButRefused) {
+  TempDir tmp;
+  CountingPlan cp;
+  SingleProcess one;
+  StoreOptions store;
+  store.csv_path = tmp.path() / "out.csv";
+  store.jsonl_path = tmp.path() / "out.jsonl";
+  static_cast<void>(run_to_files(cp.plan, store, {}, one));
+  const std::string csv = slurp(store.csv_path);
+  const std::string kind = GetParam();
+  if (kind == std::string("corrupted_csv")) {
+    std::string t = csv;
+    t[t.size() / 2] ^= 0x01;
+    test::write_file(store.csv_path, t);
+  } else if (kind == std::string("truncated_csv")) {
+    test::write_file(store.csv_path, csv.substr(0, csv.size() - 1));
+  } else {
+    std::string t = slurp(*store.jsonl_path);
+    t[10] ^= 0x01;
+    test::write_file(*store.jsonl_path, t);
+  }
+  try {
+    static_cast<void>(run_to_files(cp.plan, store, {}, one));
+    FAIL() << "a changed output must not be reported complete";
+  } catch (const InputError& e) {
+    EXPECT_NE(e.problem().find("has changed since this sweep finished"), std::string::npos) << e.what();
+    EXPECT_NE(e.problem().find("--restart"), std::string::npos) << e.what();
+  }
+  store.restart = true;
+  const SweepReport r = run_to_files(cp.plan, store, {}, one);
+  EXPECT_FALSE(r.was_complete);
+  EXPECT_EQ(slurp(store.csv_path), csv);
+  store.restart = false;
+  EXPECT_TRUE(run_to_files(cp.plan, store, {}, one).was_complete);
+}
+
+INSTANTIATE_TEST_SUITE_P(Kinds, EnsembleStoreFinishedOutput,
+                         ::testing::Values("corrupted_csv", "truncated_csv", "corrupted_jsonl"));
+
+// A store of the earlier format (no checksums) is refused with a message that says what to do.
+TEST(EnsembleStore, AStoreOfTheEarlierFormatIsRefused) {
+  TempDir tmp;
+  CountingPlan cp;
+  SingleProcess one;
+  StoreOptions store;
+  store.csv_path = tmp.path() / "out.csv";
+  fs::create_directories(parts_directory(store.csv_path));
+  test::write_file(parts_directory(store.csv_path) / "manifest.json",
+                   R"({"format": "topple-sweep-parts/1", "fingerprint": ")" + plan_fingerprint(cp.plan) +
+                       R"(", "runs": 120, "chunk_runs": 8, "chunks": 15, "complete": true})");
+  test::write_file(store.csv_path, "run,motion,k,value,note\n");
+  try {
+    static_cast<void>(run_to_files(cp.plan, store, {}, one));
+    FAIL() << "an earlier store format must be refused";
+  } catch (const InputError& e) {
+    EXPECT_NE(e.problem().find("topple-sweep-parts/1"), std::string::npos) << e.what();
+    EXPECT_NE(e.problem().find("--restart"), std::string::npos) << e.what();
+  }
+  store.restart = true;
+  static_cast<void>(run_to_files(cp.plan, store, {}, one));
+  EXPECT_EQ(slurp(store.csv_path), to_csv(run_in_memory(cp.plan)));
+}
+
 TEST(EnsembleStore, FingerprintFollowsRecordSamples) {
   SweepSpec a = mixed_spec();
   SweepSpec b = mixed_spec();

@@ -25,16 +25,26 @@
 // that does not apply to a row (a rocking column on a sliding row, a first slip that never happened) is an empty CSV
 // cell and a JSON null. Non-finite doubles are written the same way (they never carry a measurement).
 //
-// Store (run_to_files). Results of a sweep writing PATH (CSV) live, until it ends, in the directory PATH.parts/:
-//   manifest.json       plan fingerprint (hash of the expanded plan, the record samples and the chunk size), counts
-//   00000042.csv        the CSV rows of chunk 42 (and 00000042.jsonl when JSON lines are asked for), written under a
-//                       temporary name and renamed when complete: a chunk file exists only when it is whole
+// Store (run_to_files; docs/sweeps.md, "The result store"). Results of a sweep writing PATH (CSV) live, until it
+// ends, in the directory PATH.parts/:
+//   manifest.json       format "topple-sweep-parts/2", the plan fingerprint (hash of the expanded plan, the record
+//                       samples and the chunk size), counts, the XXH3-64 checksum of every chunk file verified so far,
+//                       and, once complete, the size and checksum of each output
+//   00000042.csv        chunk 42: a header line (its format, the plan fingerprint, its index, its row count, the
+//                       checksum of its JSON lines, and a checksum of the whole file but that checksum), then its
+//                       CSV rows; 00000042.jsonl holds its JSON lines when they are asked for. Written under a
+//                       temporary name and renamed when complete (the .jsonl first)
 //   lock                held (flock) by the process that owns the store, so that two sweeps cannot share it
-// Rerunning the same sweep skips the chunks whose files exist and hold the expected number of rows. A store whose
-// fingerprint differs from the plan (the sweep file, a record or the chunk size changed) is refused with InputError
-// unless StoreOptions::restart discards it. When every chunk is there, rank 0 writes PATH (header + chunks in order)
-// under a temporary name, renames it, marks the manifest complete and deletes the chunk files; a rerun of a complete
-// sweep whose outputs exist does nothing.
+// Rerunning the same sweep reads every chunk back and keeps those that check out (header, checksum, index, rows,
+// and the manifest's record); a damaged one is computed again (SweepReport::chunks_failed_verification). A chunk
+// that checks out but carries another plan's fingerprint, or a manifest of another plan, is refused with InputError
+// (the sweep file, a record or the chunk size changed) unless StoreOptions::restart discards the store; so is a store
+// of the earlier format topple-sweep-parts/1, which has no checksums. When every chunk is there, rank 0 reads each
+// back once more (recomputing any that fails), writes PATH (header + chunks in order) through io::OutputFile, records
+// the outputs' sizes and checksums in the manifest, marks it complete and deletes the chunk files. A rerun of a
+// complete sweep verifies its outputs: intact, it does nothing; missing, it computes them again; changed or
+// truncated, it is refused with InputError (--restart computes it again). A file that cannot be written throws
+// OutputError, and no temporary file stays behind.
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
@@ -209,7 +219,9 @@ struct SweepReport {
   std::size_t runs = 0;
   std::size_t chunks = 0;
   std::size_t chunk_runs = 0;
-  std::size_t chunks_already_done = 0;  ///< found complete in the store when the sweep started
+  std::size_t chunks_already_done = 0;  ///< found complete (and verified) in the store when the sweep started
+  std::size_t chunks_failed_verification = 0;  ///< found in the store but damaged (checksum, length, position) or
+                                                ///< failing at assembly: computed again (rank 0)
   std::size_t chunks_computed = 0;      ///< computed now, all ranks together
   std::size_t runs_computed = 0;        ///< all ranks together
   bool was_complete = false;            ///< the sweep had finished before: nothing was done
@@ -222,8 +234,9 @@ struct SweepReport {
 
 /// Runs the plan on every rank of `cluster` (each with its threads) into the store beside options.csv_path and
 /// writes the final files on rank 0. Every rank must call it with the same plan (checked: the fingerprints must
-/// agree). Throws InputError when the store belongs to another plan (without restart), is locked by another sweep,
-/// or a file cannot be written.
+/// agree). Throws InputError when the store belongs to another plan or an earlier store format (without restart),
+/// is locked by another sweep, or its finished outputs have changed; OutputError when a file cannot be written
+/// (disk full, permission), leaving no temporary file.
 SweepReport run_to_files(const Plan& plan, const StoreOptions& options, const ExecuteOptions& execute,
                          Cluster& cluster);
 

@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/mount.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -362,8 +363,13 @@ chunk_runs = 60
   const std::set<std::string> finished = chunk_files(parts);
   ASSERT_GE(finished.size(), 3u);
   ASSERT_LT(finished.size(), 80u);
+  // A chunk file is its header line (format, fingerprint, index, checksums) and then its rows.
   std::map<std::string, std::string> finished_text;
-  for (const auto& f : finished) finished_text[f] = slurp(parts / f);
+  for (const auto& f : finished) {
+    const std::string text = slurp(parts / f);
+    ASSERT_EQ(text.rfind("# topple-sweep-chunk/2 fingerprint=", 0), 0u) << f;
+    finished_text[f] = text.substr(text.find('\n') + 1);
+  }
 
   const auto r = run_cli("sweep " + quote(sweep) + " --verbose");
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -374,7 +380,7 @@ chunk_runs = 60
   EXPECT_NE(r.err.find("resumed"), std::string::npos) << r.err;
   const std::string result = slurp(out);
   EXPECT_EQ(result, slurp(ref));
-  // The committed chunks are in the result as they were written before the kill.
+  // The committed chunks' rows are in the result as they were written before the kill.
   for (const auto& [name, text] : finished_text) EXPECT_NE(result.find(text), std::string::npos) << name;
   // A third run has nothing to do.
   const auto again = run_cli("sweep " + quote(sweep) + " --verbose");
@@ -471,6 +477,52 @@ void expect_pinned(const fs::path& dir, const std::vector<PinnedOutput>& pins) {
     EXPECT_EQ(bytes.size(), pin.bytes);
     EXPECT_EQ(fnv1a64(bytes), pin.fnv1a) << fmt::format("got {:#x}", fnv1a64(bytes));
   }
+}
+
+/// A tmpfs of a given size mounted on a directory for the life of the object (needs CAP_SYS_ADMIN: root).
+class SmallDisk {
+ public:
+  SmallDisk(const fs::path& dir, const char* size) : dir_(dir) {
+    fs::create_directories(dir);
+    mounted_ = ::mount("tmpfs", dir.c_str(), "tmpfs", 0, (std::string("size=") + size).c_str()) == 0;
+  }
+  ~SmallDisk() {
+    if (mounted_) ::umount2(dir_.c_str(), MNT_DETACH);
+  }
+  SmallDisk(const SmallDisk&) = delete;
+  SmallDisk& operator=(const SmallDisk&) = delete;
+  [[nodiscard]] bool mounted() const { return mounted_; }
+
+ private:
+  fs::path dir_;
+  bool mounted_ = false;
+};
+
+// A disk that fills up while the output is assembled (the chunks fit, the output beside them does not): exit status 4
+// (an output failure, not bad input), the system's reason, no partial output and no temporary file left behind;
+// the chunks stay, so the same sweep finishes once there is room.
+TEST(CliSweep, DiskFullDuringAssemblyIsAnOutputFailure) {
+  TempDir dir;
+  const fs::path disk = dir.path() / "disk";
+  SmallDisk small(disk, "3m");  // pulses.toml: 2.3 MB of chunks, then 2.3 MB more of output
+  if (!small.mounted()) GTEST_SKIP() << "cannot mount a tmpfs here (needs root)";
+  const fs::path example = fs::path(TOPPLE_SOURCE_DIR) / "examples" / "sweep" / "pulses.toml";
+  const auto r = run_cli("sweep " + quote(example.string()) + " --quiet --out " + quote((disk / "p.csv").string()));
+  EXPECT_EQ(r.exit_code, 4) << r.err;
+  EXPECT_NE(r.err.find("No space left on device"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(disk / "p.csv"));
+  for (const auto& e : fs::recursive_directory_iterator(disk)) {
+    EXPECT_NE(e.path().filename().string().rfind(".tmp-", 0), 0u) << e.path();
+  }
+  const fs::path parts = disk / "p.csv.parts";
+  ASSERT_TRUE(fs::exists(parts));
+  // Room again: move the store to a normal disk; the sweep resumes from its chunks.
+  const fs::path out = dir.path() / "p.csv";
+  fs::copy(parts, dir.path() / "p.csv.parts", fs::copy_options::recursive);
+  const auto again = run_cli("sweep " + quote(example.string()) + " --verbose --out " + quote(out.string()));
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_EQ(verbose_count(again.err, "computed"), 0u) << again.err;
+  expect_pinned(dir.path(), {{"p.csv", 2313381, 0xd1f1104fb46e9309ULL}});
 }
 
 TEST(CliSweep, ExamplePulseSweepGivesThePinnedBytes) {
