@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <cstdlib>
 #include <fstream>
+#include <initializer_list>
 #include <limits>
 #include <random>
 #include <set>
@@ -533,6 +534,17 @@ TEST(EnsembleStore, ALockedStoreIsRefused) {
   EXPECT_NO_THROW(static_cast<void>(run_to_files(cp.plan, store, {}, one)));
 }
 
+/// run_to_files refuses the store with an InputError whose message holds every phrase.
+void expect_refused(const Plan& plan, const StoreOptions& store, std::initializer_list<const char*> phrases) {
+  SingleProcess one;
+  try {
+    static_cast<void>(run_to_files(plan, store, {}, one));
+    FAIL() << "the store must be refused";
+  } catch (const InputError& e) {
+    for (const char* phrase : phrases) EXPECT_NE(e.problem().find(phrase), std::string::npos) << e.what();
+  }
+}
+
 // ---- Corruption of the store (docs/sweeps.md, "The result store") ----
 
 /// A store left by a sweep that failed at run 70 (one thread): chunks 0-7 of 15 are there, with JSON lines.
@@ -638,7 +650,7 @@ INSTANTIATE_TEST_SUITE_P(
                       Corruption{"chunk_copied_over_another", copy_over_another},
                       Corruption{"truncated_chunk", truncate_chunk}, Corruption{"truncated_header", truncate_header},
                       Corruption{"xored_jsonl", xor_jsonl}, Corruption{"deleted_jsonl", delete_jsonl}),
-    [](const auto& info) { return std::string(info.param.name); });
+    [](const auto& param_info) { return std::string(param_info.param.name); });
 
 // The manifest records every verified chunk's checksum (the one in the chunk's header), and a chunk that checks out
 // on its own but differs from that record is computed again.
@@ -674,14 +686,7 @@ TEST(EnsembleStore, ChunksOfAnotherSweepAreRefusedWithoutAManifest) {
   CountingPlan other;
   other.plan.motions[0].values[0] = Value{std::string("another record")};  // same runs and chunks, other sweep
   StoreOptions store = s.store;
-  try {
-    static_cast<void>(run_to_files(other.plan, store, {}, s.one));
-    FAIL() << "chunks of another sweep must be refused";
-  } catch (const InputError& e) {
-    EXPECT_NE(e.problem().find("different sweep"), std::string::npos) << e.what();
-    EXPECT_NE(e.problem().find("no manifest"), std::string::npos) << e.what();
-    EXPECT_NE(e.problem().find("--restart"), std::string::npos) << e.what();
-  }
+  expect_refused(other.plan, store, {"different sweep", "no manifest", "--restart"});
   EXPECT_FALSE(fs::exists(store.csv_path));
   EXPECT_EQ(other.calls->load(), 0u) << "nothing computed before the refusal";
   // The same sweep resumes without its manifest: its chunks carry its fingerprint.
@@ -720,13 +725,8 @@ TEST_P(EnsembleStoreFinishedOutput, IsNotReportedCompleteButRefused) {
     t[10] ^= 0x01;
     test::write_file(*store.jsonl_path, t);
   }
-  try {
-    static_cast<void>(run_to_files(cp.plan, store, {}, one));
-    FAIL() << "a changed output must not be reported complete";
-  } catch (const InputError& e) {
-    EXPECT_NE(e.problem().find("has changed since this sweep finished"), std::string::npos) << e.what();
-    EXPECT_NE(e.problem().find("--restart"), std::string::npos) << e.what();
-  }
+  // Not reported complete: refused.
+  expect_refused(cp.plan, store, {"has changed since this sweep finished", "--restart"});
   store.restart = true;
   const SweepReport r = run_to_files(cp.plan, store, {}, one);
   EXPECT_FALSE(r.was_complete);
@@ -750,13 +750,7 @@ TEST(EnsembleStore, AStoreOfTheEarlierFormatIsRefused) {
                    R"({"format": "topple-sweep-parts/1", "fingerprint": ")" + plan_fingerprint(cp.plan) +
                        R"(", "runs": 120, "chunk_runs": 8, "chunks": 15, "complete": true})");
   test::write_file(store.csv_path, "run,motion,k,value,note\n");
-  try {
-    static_cast<void>(run_to_files(cp.plan, store, {}, one));
-    FAIL() << "an earlier store format must be refused";
-  } catch (const InputError& e) {
-    EXPECT_NE(e.problem().find("topple-sweep-parts/1"), std::string::npos) << e.what();
-    EXPECT_NE(e.problem().find("--restart"), std::string::npos) << e.what();
-  }
+  expect_refused(cp.plan, store, {"topple-sweep-parts/1", "--restart"});
   store.restart = true;
   static_cast<void>(run_to_files(cp.plan, store, {}, one));
   EXPECT_EQ(slurp(store.csv_path), to_csv(run_in_memory(cp.plan)));

@@ -525,25 +525,25 @@ TEST(CliSweep, DiskFullDuringAssemblyIsAnOutputFailure) {
   expect_pinned(dir.path(), {{"p.csv", 2313381, 0xd1f1104fb46e9309ULL}});
 }
 
-TEST(CliSweep, ExamplePulseSweepGivesThePinnedBytes) {
+/// Runs examples/sweep/<name>.toml with JSON lines into a fresh directory and checks the outputs against the pins.
+void expect_example_pinned(const std::string& name, const std::vector<PinnedOutput>& pins) {
   TempDir dir;
-  const fs::path example = fs::path(TOPPLE_SOURCE_DIR) / "examples" / "sweep" / "pulses.toml";
+  const fs::path example = fs::path(TOPPLE_SOURCE_DIR) / "examples" / "sweep" / (name + ".toml");
   const auto r = run_cli("sweep " + quote(example.string()) + " --jsonl --quiet --out " +
-                         quote((dir.path() / "pulses.csv").string()));
+                         quote((dir.path() / (name + ".csv")).string()));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  expect_pinned(dir.path(), {{"pulses.csv", 2313381, 0xd1f1104fb46e9309ULL},
-                             {"pulses.jsonl", 9804471, 0x07093f0c8bbe5c6aULL}});
+  expect_pinned(dir.path(), pins);
+}
+
+TEST(CliSweep, ExamplePulseSweepGivesThePinnedBytes) {
+  expect_example_pinned("pulses", {{"pulses.csv", 2313381, 0xd1f1104fb46e9309ULL},
+                                   {"pulses.jsonl", 9804471, 0x07093f0c8bbe5c6aULL}});
 }
 
 TEST(CliSweep, ExampleRecordSweepGivesThePinnedBytes) {
   if (!test::have_shared()) GTEST_SKIP() << "shared/records not found";
-  TempDir dir;
-  const fs::path example = fs::path(TOPPLE_SOURCE_DIR) / "examples" / "sweep" / "records.toml";
-  const auto r = run_cli("sweep " + quote(example.string()) + " --jsonl --quiet --out " +
-                         quote((dir.path() / "records.csv").string()));
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  expect_pinned(dir.path(), {{"records.csv", 820476, 0xf5b67c25b2bc4652ULL},
-                             {"records.jsonl", 3122038, 0x17c20e0297a55fcdULL}});
+  expect_example_pinned("records", {{"records.csv", 820476, 0xf5b67c25b2bc4652ULL},
+                                    {"records.jsonl", 3122038, 0x17c20e0297a55fcdULL}});
 }
 
 }  // namespace
