@@ -73,11 +73,15 @@ std::string checksum_of(std::string_view bytes) { return hex64(XXH3_64bits(bytes
 
 /// The whole file, or nullopt when it cannot be opened (absent).
 std::optional<std::string> read_file(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
   if (!in) return std::nullopt;
-  std::ostringstream s;
-  s << in.rdbuf();
-  return std::move(s).str();
+  const std::streamoff size = in.tellg();
+  if (size < 0) return std::nullopt;
+  std::string text(static_cast<std::size_t>(size), '\0');
+  in.seekg(0);
+  in.read(text.data(), size);
+  text.resize(static_cast<std::size_t>(in.gcount()));  // a file cut while it is read is damaged, not an error here
+  return text;
 }
 
 // ---- Chunk files ----
@@ -161,7 +165,8 @@ enum class ChunkState { ok, missing, foreign, damaged };
 
 /// A chunk as read back: its rows and checksums.
 struct ChunkText {
-  std::string csv_rows;
+  std::string csv_file;     ///< the whole CSV file; the rows start at rows_at
+  std::size_t rows_at = 0;
   std::string jsonl;
   std::string csv_hash;
   std::string jsonl_hash;
@@ -210,7 +215,8 @@ ChunkState read_chunk(const fs::path& dir, std::size_t c, std::size_t rows, cons
     }
     lines = std::move(*j);
   }
-  text->csv_rows = csv->substr(eol + 1);
+  text->csv_file = std::move(*csv);
+  text->rows_at = eol + 1;
   text->jsonl = std::move(lines);
   text->csv_hash = header->hash;
   text->jsonl_hash = header->jsonl_hash;
@@ -605,7 +611,7 @@ SweepReport run_to_files(const Plan& plan, const StoreOptions& store, const Exec
                                       "filesystem returns other bytes", c, dir.string()));
       }
     }
-    put(csv_out, csv_sum, csv_bytes, text.csv_rows);
+    put(csv_out, csv_sum, csv_bytes, std::string_view(text.csv_file).substr(text.rows_at));
     if (jsonl_out) put(*jsonl_out, jsonl_sum, jsonl_bytes, text.jsonl);
     done.chunk_hashes[chunk_name(c, "csv")] = text.csv_hash;
     if (jsonl) done.chunk_hashes[chunk_name(c, "jsonl")] = text.jsonl_hash;
