@@ -4,10 +4,12 @@
 // At each site, a field engineer notes household objects that slid (and how far), rocked, toppled or stayed put,
 // with their sizes, the surfaces they stood on and how sure the observation is. Read from a TOML file by
 // io::read_survey (topple/io/survey_file.hpp); inverted by topple/inversion.hpp.
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "topple/ground_motion.hpp"
 #include "topple/rocking.hpp"
 
 namespace topple {
@@ -72,6 +74,9 @@ enum class MotionFamily { synthetic, records };
 struct InversionSettings {
   MotionFamily family = MotionFamily::synthetic;
   std::vector<std::string> records;      ///< family = records: paths (relative to the survey file, resolved)
+  /// family = records: the records themselves, in the order of `records`, loaded at the edge (io::read_survey); the
+  /// inversion core reads no file.
+  std::vector<std::shared_ptr<const GroundMotion>> record_motions;
   double pga_min_g = 0.02, pga_max_g = 2.0;
   int pga_count = 30;
   double freq_min_hz = 0.3, freq_max_hz = 20.0;

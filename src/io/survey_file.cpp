@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <memory>
 #include <set>
 #include <sstream>
 
@@ -10,6 +11,7 @@
 #include <toml++/toml.h>
 
 #include "topple/error.hpp"
+#include "topple/io/read.hpp"
 #include "topple/units.hpp"
 
 namespace topple {
@@ -313,6 +315,8 @@ Survey parse_survey(std::string_view text, const std::string& name, const std::f
         if (p.is_relative()) p = base_dir / p;
         if (!std::filesystem::exists(p)) throw r.error("records", fmt::format("no such record file '{}'", p.string()), &item);
         st.records.push_back(p.string());
+        // Loaded here, at the edge, once: the inversion core reads no file. A record that does not read names itself.
+        st.record_motions.push_back(std::make_shared<const GroundMotion>(read_motion(p)));
       }
     }
     if (st.family == MotionFamily::records && st.records.empty()) {

@@ -1,5 +1,6 @@
 // `topple invert`: the JSON interface, bad surveys (exit 2 naming object and field), several sites with a GeoJSON
 // map and PGA vs distance, and the HTML report opened in a real headless browser (Debian chromium).
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -57,6 +58,55 @@ TEST(CliInvert, JsonCarriesEstimatesIntervalsAndBounds) {
   int rows = 0;
   for (std::string line; std::getline(grid, line);) ++rows;
   EXPECT_EQ(rows, 60);
+}
+
+/// Compares two JSON values: same structure, same keys in the same order, same strings, booleans and nulls, and
+/// numbers equal to a relative 1e-9. Why not bit-exact: the runs' discrete outcomes (fell or not) are what the
+/// interface promises; a solver change at rounding level (1e-15 in a sliding residual, which enters the likelihood
+/// through a continuous kernel) may move the last digits of a printed double, never the ninth. A real change of the
+/// inversion (one run's outcome among 240,000) moves the estimates far more than that.
+void expect_same_json(const nlohmann::ordered_json& want, const nlohmann::ordered_json& got, const std::string& where) {
+  if (want.is_number() && got.is_number()) {
+    const double a = want.get<double>();
+    const double b = got.get<double>();
+    EXPECT_LE(std::abs(a - b), 1e-9 * std::max(std::abs(a), std::abs(b))) << where << ": " << a << " vs " << b;
+    return;
+  }
+  ASSERT_EQ(want.type(), got.type()) << where;
+  if (want.is_object()) {
+    ASSERT_EQ(want.size(), got.size()) << where;
+    auto w = want.begin();
+    auto g = got.begin();
+    for (; w != want.end(); ++w, ++g) {
+      ASSERT_EQ(w.key(), g.key()) << where;
+      expect_same_json(w.value(), g.value(), where + "." + w.key());
+    }
+  } else if (want.is_array()) {
+    ASSERT_EQ(want.size(), got.size()) << where;
+    for (std::size_t i = 0; i < want.size(); ++i) expect_same_json(want[i], got[i], where + "[" + std::to_string(i) + "]");
+  } else {
+    EXPECT_EQ(want, got) << where;
+  }
+}
+
+// The interface promise: `topple invert examples/survey.toml --json` gives the output pinned in
+// tests/cli/fixtures/invert_example_survey.json (made by the build of 2026-11-23 before the inversion core was cut
+// into steps; regenerate only for a deliberate change of the method, and say so in the commit). Every key and value
+// but "seconds" (wall clock) must agree.
+TEST(CliInvert, ExampleSurveyJsonMatchesThePinnedOutput) {
+  const auto want = nlohmann::ordered_json::parse(
+      slurp(std::filesystem::path(TOPPLE_SOURCE_DIR) / "tests" / "cli" / "fixtures" / "invert_example_survey.json"));
+  ASSERT_FALSE(want.empty());
+  const std::filesystem::path survey = std::filesystem::path(TOPPLE_SOURCE_DIR) / "examples" / "survey.toml";
+  const auto r = test::run_cli("invert '" + survey.string() + "' --json --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto got = nlohmann::ordered_json::parse(r.out);
+  auto expected = want;
+  ASSERT_TRUE(got.contains("seconds"));
+  EXPECT_GT(got.at("seconds").get<double>(), 0.0);
+  got.erase("seconds");
+  expected.erase("seconds");
+  expect_same_json(expected, got, "$");
 }
 
 TEST(CliInvert, BadSurveysExitTwoNamingObjectAndField) {
