@@ -10,6 +10,8 @@
 #include "topple/error.hpp"
 #include "topple/inversion.hpp"
 #include "topple/io/survey_file.hpp"
+#include "topple/rocking.hpp"
+#include "topple/sliding.hpp"
 #include "topple/spectra.hpp"
 #include "topple/synthesis.hpp"
 
@@ -246,8 +248,10 @@ TEST(InversionSteps, RecordFamilyTakesLoadedMotionsInBothPolarities) {
 // Recovery: draw a true (PGA, f), make a motion of the family (a seed the inversion never uses), observe what a set
 // of objects does under it, invert, and check that the truth lies in the 95 % (68 %) HPD region. With a calibrated
 // likelihood the coverage is about 95 % (68 %); the test requires at least 85 % (55 %) over 30 trials (the issue's
-// criterion). Measured when written: 30/30 in the 95 % region, 21/30 in the 68 % one. The truths and the
-// observations are drawn with fixed seeds, so the test is deterministic.
+// criterion). The observations come from the solvers directly (rock_summary, slide_summary), never from the
+// observation_match under test. Measured: 30/30 in the 95 % region, 19/30 in the 68 % one (21/30 when the
+// observations were made with observation_match itself). The truths and the observations are drawn with fixed seeds,
+// so the test is deterministic.
 TEST(Inversion, RecoversKnownShakingWithCalibratedIntervals) {
   const InversionSettings st = small_grid(10);
   std::vector<ObservedObject> objects;
@@ -258,7 +262,8 @@ TEST(Inversion, RecoversKnownShakingWithCalibratedIntervals) {
   objects.push_back(block("pan", 0.2, 0.1, {0.15, 0.25}, Outcome::slid));
   objects.push_back(block("crate", 0.3, 0.3, {0.4, 0.6}, Outcome::slid));
   objects.push_back(block("bin", 0.3, 0.3, {0.7, 0.9}, Outcome::slid));
-  PortableRandom rng(2026);
+  PortableRandom rng(2026);     // the truths
+  PortableRandom params(777);   // the objects' true friction coefficients
   int in95 = 0;
   int in68 = 0;
   const int trials = 30;
@@ -278,16 +283,20 @@ TEST(Inversion, RecoversKnownShakingWithCalibratedIntervals) {
     const double true_freq = predominant_frequency_hz(truth);
     Site site;
     site.name = fmt::format("trial {}", t);
-    for (std::size_t o = 0; o < objects.size(); ++o) {
-      ObservedObject obj = objects[o];
-      const DrawnParameters p = draw_parameters(obj, 777 + static_cast<std::uint64_t>(t), 0, o);
-      // What happened: the categorical outcome the truth produces with these parameters.
+    // What happened, from the solvers themselves (not from observation_match, which is under test): each object's
+    // friction drawn uniformly in its range with the test's own generator, Housner's restitution, the solvers'
+    // default tolerances and run-out (tighter than the inversion's rel_tol 1e-6 and 20 s run-out).
+    for (const ObservedObject& proto : objects) {
+      ObservedObject obj = proto;
+      const double mu = obj.mu.low + (obj.mu.high - obj.mu.low) * params.uniform();
       if (obj.outcome == Outcome::overturned || obj.outcome == Outcome::not_overturned) {
-        obj.outcome = Outcome::overturned;
-        obj.outcome = observation_match(obj, p, truth, st.g_m_s2) > 0.5 ? Outcome::overturned : Outcome::not_overturned;
+        RockingOptions ro;
+        ro.g_m_s2 = st.g_m_s2;
+        const RockingSummary s = rock_summary(truth, obj.body, ro);
+        obj.outcome = s.overturned ? Outcome::overturned : Outcome::not_overturned;
       } else {
-        obj.outcome = Outcome::slid;
-        obj.outcome = observation_match(obj, p, truth, st.g_m_s2) > 0.5 ? Outcome::slid : Outcome::not_slid;
+        const SlidingSummary s = slide_summary(truth, SlidingBlock::make(mu, mu, 0.0, SlidingMode::two_way, st.g_m_s2));
+        obj.outcome = s.max_abs_displacement_m >= kVisibleSlipM ? Outcome::slid : Outcome::not_slid;
       }
       site.objects.push_back(obj);
     }

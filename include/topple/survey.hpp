@@ -14,10 +14,11 @@
 
 namespace topple {
 
-/// A quantity known as a value (low == high) or a range [low, high], sampled uniformly in the inversion.
+/// A quantity known as a value (low == high) or a range [low, high], sampled uniformly in the inversion. The ends are
+/// in the unit of the field that holds the interval (all of them dimensionless today: mu, e, amplification).
 struct Interval {
-  double low = 0.0;
-  double high = 0.0;
+  double low = 0.0;   ///< in the holder's unit
+  double high = 0.0;  ///< in the holder's unit
   [[nodiscard]] bool is_value() const noexcept { return low == high; }
   [[nodiscard]] double mid() const noexcept { return 0.5 * (low + high); }
 };
@@ -47,11 +48,11 @@ struct ObservedObject {
   std::string description;
   RockingBody body;            ///< nominal geometry (shape, a, h, D)
   std::optional<double> width_m, height_m, diameter_m;  ///< dimensions as given (for reports)
-  Interval mu;                 ///< friction coefficient (value or range)
+  Interval mu;                 ///< friction coefficient, dimensionless (value or range)
   bool e_housner = true;       ///< restitution from Housner's formula for the shape
-  Interval e;                  ///< given restitution (value or range) when !e_housner
+  Interval e;                  ///< given restitution, dimensionless (value or range) when !e_housner
   std::string support = "ground";  ///< "ground", "furniture", "upper floor" (free text)
-  Interval amplification{1.0, 1.0};  ///< support motion / ground motion (>= 1 for furniture and upper floors)
+  Interval amplification{1.0, 1.0};  ///< support motion / ground motion, dimensionless (>= 1 for furniture, floors)
   std::optional<double> orientation_deg;  ///< angle between the object's rocking plane and the shaking direction;
                                           ///< the rocking model sees cos(angle) of the motion (0 when unknown)
   Outcome outcome = Outcome::not_overturned;
@@ -81,7 +82,7 @@ struct InversionSettings {
   int pga_count = 30;
   double freq_min_hz = 0.3, freq_max_hz = 20.0;
   int freq_count = 25;
-  int motions_per_cell = 40;
+  int motions_per_cell = 40;             ///< synthetic family: N motions per cell (records: 2 per record)
   std::uint64_t seed = 1;
   double duration_s = 20.0;              ///< synthetic motions' length
   double g_m_s2 = kStandardGravity;
