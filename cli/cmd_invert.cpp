@@ -52,22 +52,35 @@ void print_site(const Site& site, const InversionResult& r) {
 
 /// Output files may name folders that do not exist yet (as --report does): made before the runs, so that a path
 /// that cannot be written fails in a second instead of after the inversion.
-void prepare_output_folder(const std::string& path, const char* option) {
+void prepare_output_folder(const std::string& path, const char* option, bool is_folder = false) {
+  std::error_code ec;
+  if (!is_folder && std::filesystem::is_directory(path, ec)) {
+    throw InputError(InputLocation{path, {}, option}, "is a directory; give a file name");
+  }
+  if (is_folder && std::filesystem::exists(path, ec) && !std::filesystem::is_directory(path, ec)) {
+    throw InputError(InputLocation{path, {}, option}, "exists and is not a directory");
+  }
   const std::filesystem::path parent = std::filesystem::path(path).parent_path();
   if (parent.empty()) return;
-  std::error_code ec;
   std::filesystem::create_directories(parent, ec);
   if (ec) throw InputError(InputLocation{parent.string(), {}, option}, "cannot create the folder: " + ec.message());
 }
 
 void run_invert(const InvertOptions& o) {
+  // Every option is checked before any work (the survey is read in milliseconds; the runs take seconds).
+  const InversionOptions options{o.threads};
+  validate_inversion_options(options);
   const Survey survey = io::read_survey(o.survey);
   if (!o.grid.empty()) prepare_output_folder(o.grid, "--grid");
   if (!o.map.empty()) prepare_output_folder(o.map, "--map");
+  if (!o.report.empty()) prepare_output_folder(o.report, "--report", true);
+  if (!o.quiet) {
+    for (const std::string& note : survey.notes) fmt::print(stderr, "topple: note: {}\n", note);
+  }
   std::vector<InversionResult> results;
   for (const Site& site : survey.sites) {
     if (!o.quiet) fmt::print(stderr, "topple: inverting {} ({} objects)...\n", site.name, site.objects.size());
-    results.push_back(invert_site(site, survey.inversion, InversionOptions{o.threads}));
+    results.push_back(invert_site(site, survey.inversion, options));
   }
   const bool multi = survey.sites.size() > 1;
   const auto site_path = [&](const std::string& base, std::size_t i) {

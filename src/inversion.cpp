@@ -202,18 +202,64 @@ double observation_match(const ObservedObject& object, const DrawnParameters& p,
   }
 }
 
+namespace {
+
+/// The synthesis of motion k of a synthetic family's column: 20 samples per period of the column's frequency (at most
+/// 0.01 s) and at least 8 periods.
+SynthesisSpec family_spec(const InversionSettings& st, double freq_hz, int k) {
+  SynthesisSpec spec;
+  spec.pga_m_s2 = 1.0;
+  spec.predominant_frequency_hz = freq_hz;
+  spec.duration_s = std::max(st.duration_s, 8.0 / freq_hz);
+  spec.dt_s = std::min(0.01, 1.0 / (20.0 * freq_hz));
+  spec.seed = mix(st.seed, static_cast<std::uint64_t>(k) + 1);  // the same seeds in every column
+  return spec;
+}
+
+}  // namespace
+
+void validate_inversion_settings(const InversionSettings& st) {
+  const auto axis = [](const char* field, double lo, double hi, int count, const char* unit) {
+    if (!(lo > 0.0) || !(hi > lo) || !std::isfinite(hi)) {
+      throw parameter_error(field, fmt::format("need 0 < min < max, got [{}, {}] {}", lo, hi, unit));
+    }
+    if (count < 2 || count > 1000) throw parameter_error(field, fmt::format("count must be 2 to 1000, got {}", count));
+  };
+  axis("inversion.pga_g", st.pga_min_g, st.pga_max_g, st.pga_count, "g");
+  axis("inversion.freq_hz", st.freq_min_hz, st.freq_max_hz, st.freq_count, "Hz");
+  if (st.motions_per_cell < 1) {
+    throw parameter_error("inversion.motions_per_cell", fmt::format("must be >= 1, got {}", st.motions_per_cell));
+  }
+  if (!(st.duration_s > 0.0) || !std::isfinite(st.duration_s)) {
+    throw parameter_error("inversion.duration_s", fmt::format("must be positive, got {} s", st.duration_s));
+  }
+  if (!(st.g_m_s2 > 0.0) || !std::isfinite(st.g_m_s2)) {
+    throw parameter_error("inversion.g_m_s2", fmt::format("must be positive, got {} m/s2", st.g_m_s2));
+  }
+  if (st.family == MotionFamily::records) {
+    if (st.record_motions.empty()) {
+      throw parameter_error("inversion.records", "family = \"records\" needs the records loaded (io::read_survey does)");
+    }
+    return;
+  }
+  for (const double f : {st.freq_min_hz, st.freq_max_hz}) {
+    try {
+      validate(family_spec(st, f, 0));
+    } catch (const InputError& e) {
+      throw parameter_error("inversion.freq_hz",
+                            fmt::format("the synthetic family cannot make motions with a predominant frequency of {} Hz "
+                                        "(the grid is [{}, {}] Hz): {}: {}",
+                                        f, st.freq_min_hz, st.freq_max_hz, e.where().field, e.problem()));
+    }
+  }
+}
+
 std::vector<GroundMotion> family_motions(const InversionSettings& st, double freq_hz) {
   std::vector<GroundMotion> out;
   if (st.family == MotionFamily::synthetic) {
     out.reserve(static_cast<std::size_t>(st.motions_per_cell));
     for (int k = 0; k < st.motions_per_cell; ++k) {
-      SynthesisSpec spec;
-      spec.pga_m_s2 = 1.0;
-      spec.predominant_frequency_hz = freq_hz;
-      spec.duration_s = std::max(st.duration_s, 8.0 / freq_hz);
-      spec.dt_s = std::min(0.01, 1.0 / (20.0 * freq_hz));
-      spec.seed = mix(st.seed, static_cast<std::uint64_t>(k) + 1);  // the same seeds in every column
-      GroundMotion m = synthesize(spec);
+      GroundMotion m = synthesize(family_spec(st, freq_hz, k));
       // Put the motion's measured predominant frequency exactly on the column's: time scaling by c divides every
       // frequency by c.
       const double measured = predominant_frequency_hz(m);
@@ -496,6 +542,7 @@ std::vector<std::string> inversion_notes(const InversionResult& r, const MatchTa
 
 InversionResult invert_site(const Site& site, const InversionSettings& st, const InversionOptions& options) {
   validate_inversion_options(options);
+  validate_inversion_settings(st);
   const auto start = std::chrono::steady_clock::now();
   InversionResult r;
   r.site = site.name;

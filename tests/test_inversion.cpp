@@ -110,6 +110,67 @@ TEST(SurveyFile, ExampleParses) {
   EXPECT_DOUBLE_EQ(s.sites[0].objects[0].amplification.high, 1.3);
 }
 
+// Documented defaults (docs/survey.md) that old surveys rely on: a missing shape is a block, a missing site name is
+// "site N". Dangerous guesses are errors (test_cli_invert: a diameter or a/h/D without a shape).
+TEST(SurveyFile, MissingShapeIsABlockAndMissingNameIsSiteN) {
+  const Survey one = io::parse_survey("[[object]]\nid = \"b\"\nwidth = \"10cm\"\nheight = \"40cm\"\nmu = 0.5\n"
+                                      "outcome = \"overturned\"\n", "s.toml");
+  ASSERT_EQ(one.sites.size(), 1u);
+  EXPECT_EQ(one.sites[0].name, "site 1");
+  EXPECT_EQ(one.sites[0].objects[0].body.shape, RockingBody::Shape::block);
+  EXPECT_DOUBLE_EQ(one.sites[0].objects[0].body.a_m, 0.05);  // half the width
+  const std::string object = "[[sites.object]]\nid = \"b\"\nwidth = \"10cm\"\nheight = \"40cm\"\nmu = 0.5\n"
+                             "outcome = \"overturned\"\n";
+  const Survey two = io::parse_survey("[[sites]]\nname = \"north\"\n" + object + "[[sites]]\n" + object, "s.toml");
+  ASSERT_EQ(two.sites.size(), 2u);
+  EXPECT_EQ(two.sites[0].name, "north");
+  EXPECT_EQ(two.sites[1].name, "site 2");
+}
+
+// The sliding-distance uncertainty: max(given, 25 % of slid, 2 mm) (docs/survey.md), said in Survey::notes only when
+// a given value is raised.
+TEST(SurveyFile, SlidingUncertaintyFloorIsDocumentedAndSaid) {
+  ObservedObject o;
+  o.outcome = Outcome::slid;
+  o.slid_m = 0.04;
+  EXPECT_DOUBLE_EQ(sliding_sigma_m(o), 0.01);  // 25 % of 4 cm
+  o.slid_uncertainty_m = 0.02;
+  EXPECT_DOUBLE_EQ(sliding_sigma_m(o), 0.02);  // a larger given value is kept
+  o.slid_m = 0.004;
+  o.slid_uncertainty_m = 0.0;
+  EXPECT_DOUBLE_EQ(sliding_sigma_m(o), kVisibleSlipM);  // 25 % of 4 mm is 1 mm: the 2 mm floor
+  const std::string head = "[[object]]\nid = \"pot\"\nshape = \"cylinder\"\ndiameter = \"25cm\"\nheight = \"15cm\"\n"
+                           "mu = 0.25\noutcome = \"slid\"\nslid = \"4cm\"\n";
+  EXPECT_TRUE(io::parse_survey(head, "s.toml").notes.empty());  // the default: documented, not a change
+  EXPECT_TRUE(io::parse_survey(head + "slid_uncertainty = \"1cm\"\n", "s.toml").notes.empty());  // 25 % exactly
+  const Survey raised = io::parse_survey(head + "slid_uncertainty = \"3mm\"\n", "s.toml");
+  ASSERT_EQ(raised.notes.size(), 1u);
+  EXPECT_NE(raised.notes[0].find("s.toml:9: object[1](pot).slid_uncertainty"), std::string::npos) << raised.notes[0];
+  EXPECT_NE(raised.notes[0].find("used is 1 cm"), std::string::npos) << raised.notes[0];
+}
+
+TEST(InversionSettingsCheck, FrequencyAxisMustBeWithinTheFamilysReach) {
+  InversionSettings st;
+  EXPECT_NO_THROW(validate_inversion_settings(st));  // the defaults: 0.3 to 20 Hz
+  st.freq_max_hz = 1000.0;
+  try {
+    validate_inversion_settings(st);
+    FAIL() << "1000 Hz accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().field, "inversion.freq_hz");
+    EXPECT_NE(e.problem().find("1000 Hz"), std::string::npos) << e.what();
+  }
+  st.freq_max_hz = 20.0;
+  st.freq_min_hz = 0.1;
+  EXPECT_THROW(validate_inversion_settings(st), InputError);
+  st.freq_min_hz = 0.3;
+  st.family = MotionFamily::records;  // records are time-scaled to any frequency, but must have been loaded
+  EXPECT_THROW(validate_inversion_settings(st), InputError);
+  InversionOptions bad;
+  bad.threads = -1;
+  EXPECT_THROW(validate_inversion_options(bad), InputError);
+}
+
 InversionSettings small_grid(int motions = 10) {
   InversionSettings st;
   st.pga_min_g = 0.05;

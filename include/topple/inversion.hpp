@@ -99,6 +99,12 @@ struct InversionOptions {
 /// Checks options before any work: InputError naming "--threads" for a negative thread count.
 void validate_inversion_options(const InversionOptions& options);
 
+/// Checks settings before any work: InputError naming the field ("inversion.pga_g", "inversion.freq_hz",
+/// "inversion.motions_per_cell", "inversion.duration_s", "inversion.g_m_s2", "inversion.records"). For the synthetic
+/// family, both ends of the frequency axis must be frequencies the synthesis can make (synthesis.hpp: 0.2 to 20 Hz)
+/// with the family's own step and duration. io::read_survey calls it and adds the file and line.
+void validate_inversion_settings(const InversionSettings& settings);
+
 /// The motions of one frequency column (PGA scaling is applied per row): synthetic motions (seeds 1..N) or the
 /// survey's records (settings.record_motions, loaded at the edge by io::read_survey: the core reads no file), each
 /// with both polarities and each time-scaled to the column's measured predominant frequency. Exposed for tests and for

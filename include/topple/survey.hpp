@@ -93,6 +93,9 @@ struct Survey {
   std::vector<Site> sites;
   InversionSettings inversion;
   std::optional<double> epicentre_lat_deg, epicentre_lon_deg;
+  /// What the reader applied by a documented rule that changes a given value (the sliding-uncertainty floor), one
+  /// "file:line: field: text" line each, for the front ends to show.
+  std::vector<std::string> notes;
 };
 
 }  // namespace topple

@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -129,6 +131,73 @@ TEST(CliInvert, BadSurveysExitTwoNamingObjectAndField) {
         "\"2cm\"\nmu = 0.5\noutcome = \"slid\"\n", "inversion.pga_g");
   check("[site]\nname = \"empty\"\n", "at least one observed object");
   check("this is = not toml [", "bad.toml");
+}
+
+// Issue 11: bad input refused before any work, with a message naming the file (or option), the line and the field.
+// "Before any work" is checked by the absence of the progress line "inverting", which the CLI prints when the runs
+// of a site start (no timing: the machine may be loaded).
+struct RefusedCase {
+  const char* name;
+  std::string survey;       ///< the survey text ("" = use a directory as the survey)
+  std::string options;      ///< extra options (%T = the temporary folder)
+  std::vector<std::string> needles;  ///< each must appear in stderr (%F = the survey's path)
+};
+
+TEST(CliInvert, BadSurveysAndOptionsAreRefusedBeforeAnyWork) {
+  const std::string one_object = "[[object]]\nid = \"x\"\nshape = \"block\"\nwidth = \"10cm\"\nheight = \"30cm\"\n"
+                                 "mu = 0.5\noutcome = \"overturned\"\n";
+  const std::vector<RefusedCase> cases = {
+      {"frequency above what the family can make", "[inversion]\nfreq_hz = [1.0, 1000.0, 3]\n" + one_object, "",
+       {"%F:2:", "inversion.freq_hz", "1000 Hz", "[0.2, 20] Hz"}},
+      {"frequency below what the family can make", "[inversion]\nfreq_hz = [0.1, 2.0, 3]\n" + one_object,
+       "", {"%F:2:", "inversion.freq_hz", "0.1 Hz"}},
+      {"a directory as the survey", "", "", {"%F", "is a directory"}},
+      {"negative thread count", one_object, "--threads -1", {"--threads", "got -1"}},
+      {"grid file that is a directory", one_object, "--grid '%T'", {"--grid", "is a directory"}},
+      {"report folder that is a file", one_object, "--report '%F'", {"--report", "not a directory"}},
+      {"a diameter without a shape", "[[object]]\nid = \"x\"\ndiameter = \"8cm\"\nheight = \"30cm\"\nmu = 0.5\n"
+                                     "outcome = \"overturned\"\n",
+       "", {"%F:1:", "object[1](x).shape", "shape = \"cylinder\""}},
+      {"a, h, D without a shape", "[[object]]\nid = \"x\"\na = \"4cm\"\nh = \"15cm\"\nD = \"0.03m2\"\nmu = 0.5\n"
+                                  "outcome = \"overturned\"\n",
+       "", {"%F:1:", "object[1](x).shape", "shape = \"general\""}},
+  };
+  for (const RefusedCase& c : cases) {
+    SCOPED_TRACE(c.name);
+    test::TempDir tmp;
+    std::filesystem::path survey = tmp.path() / "s.toml";
+    if (c.survey.empty()) {
+      survey = tmp.path() / "folder.toml";
+      std::filesystem::create_directory(survey);
+    } else {
+      test::write_file(survey, c.survey);
+    }
+    std::string options = c.options;
+    for (auto at = options.find("%T"); at != std::string::npos; at = options.find("%T")) options.replace(at, 2, tmp.path().string());
+    for (auto at = options.find("%F"); at != std::string::npos; at = options.find("%F")) options.replace(at, 2, survey.string());
+    const auto r = test::run_cli("invert '" + survey.string() + "' " + options);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_EQ(r.err.find("inverting"), std::string::npos) << "work started before the refusal:\n" << r.err;
+    for (std::string needle : c.needles) {
+      if (const auto at = needle.find("%F"); at != std::string::npos) needle.replace(at, 2, survey.string());
+      EXPECT_NE(r.err.find(needle), std::string::npos) << "missing '" << needle << "' in:\n" << r.err;
+    }
+  }
+}
+
+TEST(CliInvert, RaisedSlidingUncertaintyIsSaidWithItsLine) {
+  test::TempDir tmp;
+  const auto survey = tmp.path() / "s.toml";
+  // slid 4 cm +- 0.5 cm: the floor (25 % of slid = 1 cm) applies, and the CLI says so, naming line 14 (5 lines of [inversion], then the object).
+  test::write_file(survey, std::string(kSmallInversion) +
+                               "[[object]]\nid = \"pot\"\nshape = \"cylinder\"\ndiameter = \"25cm\"\nheight = \"15cm\"\n"
+                               "mu = 0.25\noutcome = \"slid\"\nslid = \"4cm\"\nslid_uncertainty = \"0.5cm\"\n");
+  const auto r = test::run_cli("invert '" + survey.string() + "' --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find(survey.string() + ":14: object[1](pot).slid_uncertainty"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("uncertainty used is 1 cm = max(the given 0.5 cm, 25 % of slid, 2 mm)"), std::string::npos) << r.err;
+  const auto q = test::run_cli("invert '" + survey.string() + "' --json --quiet");
+  EXPECT_EQ(q.err.find("uncertainty used"), std::string::npos) << q.err;  // --quiet: nothing on stderr
 }
 
 TEST(CliInvert, SeveralSitesGiveAGeoJsonMapAndDistances) {
