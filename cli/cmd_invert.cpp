@@ -77,11 +77,13 @@ void run_invert(const InvertOptions& o) {
   if (!o.quiet) {
     for (const std::string& note : survey.notes) fmt::print(stderr, "topple: note: {}\n", note);
   }
-  std::vector<InversionResult> results;
-  for (const Site& site : survey.sites) {
-    if (!o.quiet) fmt::print(stderr, "topple: inverting {} ({} objects)...\n", site.name, site.objects.size());
-    results.push_back(invert_site(site, survey.inversion, options));
+  if (!o.quiet) {
+    for (const Site& site : survey.sites) {
+      fmt::print(stderr, "topple: inverting {} ({} objects)...\n", site.name, site.objects.size());
+    }
   }
+  // One family for every site (invert_sites): the same results as site by site, without re-synthesising it.
+  const std::vector<InversionResult> results = invert_sites(survey.sites, survey.inversion, options);
   const bool multi = survey.sites.size() > 1;
   const auto site_path = [&](const std::string& base, std::size_t i) {
     if (!multi) return std::filesystem::path(base);

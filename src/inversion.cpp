@@ -540,21 +540,19 @@ std::vector<std::string> inversion_notes(const InversionResult& r, const MatchTa
   return notes;
 }
 
-InversionResult invert_site(const Site& site, const InversionSettings& st, const InversionOptions& options) {
-  validate_inversion_options(options);
-  validate_inversion_settings(st);
-  const auto start = std::chrono::steady_clock::now();
+namespace {
+
+/// Steps 2-5 on a built family (step 1). `started` is when the inversion began (for InversionResult::seconds).
+InversionResult invert_on_family(const Site& site, const InversionSettings& st, const FamilyGrid& family,
+                                 const InversionOptions& options, std::chrono::steady_clock::time_point started) {
   InversionResult r;
   r.site = site.name;
   r.pga_g = log_spaced(st.pga_min_g, st.pga_max_g, static_cast<std::size_t>(st.pga_count));
-  r.freq_hz = log_spaced(st.freq_min_hz, st.freq_max_hz, static_cast<std::size_t>(st.freq_count));
+  r.freq_hz = family.freq_hz;
   r.bounds = static_bounds(site);
-
-  FamilyGrid family = build_family(st, r.freq_hz, options);
   r.measured_freq_hz = family.measured_freq_hz;
   const MatchTable matches = simulate_matches(site, st, r.pga_g, family, options);
   r.runs = matches.match.size();
-  family = {};  // the motions are no longer needed
 
   std::vector<double> error_rates;
   for (const ObservedObject& o : site.objects) error_rates.push_back(evidence_error_rate(o.evidence));
@@ -571,8 +569,35 @@ InversionResult invert_site(const Site& site, const InversionSettings& st, const
   }
   fill_posterior_and_estimates(r);
   r.notes = inversion_notes(r, matches);
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return r;
+}
+
+}  // namespace
+
+InversionResult invert_site(const Site& site, const InversionSettings& st, const InversionOptions& options) {
+  validate_inversion_options(options);
+  validate_inversion_settings(st);
+  const auto start = std::chrono::steady_clock::now();
+  const FamilyGrid family =
+      build_family(st, log_spaced(st.freq_min_hz, st.freq_max_hz, static_cast<std::size_t>(st.freq_count)), options);
+  return invert_on_family(site, st, family, options, start);
+}
+
+std::vector<InversionResult> invert_sites(const std::vector<Site>& sites, const InversionSettings& st,
+                                          const InversionOptions& options) {
+  validate_inversion_options(options);
+  validate_inversion_settings(st);
+  std::vector<InversionResult> out;
+  if (sites.empty()) return out;
+  auto start = std::chrono::steady_clock::now();
+  const FamilyGrid family =
+      build_family(st, log_spaced(st.freq_min_hz, st.freq_max_hz, static_cast<std::size_t>(st.freq_count)), options);
+  for (const Site& site : sites) {
+    out.push_back(invert_on_family(site, st, family, options, start));
+    start = std::chrono::steady_clock::now();  // the family's time is counted in the first site's
+  }
+  return out;
 }
 
 }  // namespace topple

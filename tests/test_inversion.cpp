@@ -218,14 +218,20 @@ TEST(Inversion, ObservationsNeverReproducedAreNamed) {
 
 // ---- The steps of invert_site, each on inputs small enough to compute by hand ----
 
+MatchTable match_table(std::size_t pga_count, std::size_t freq_count, std::size_t motions, std::size_t objects,
+                       std::vector<double> match) {
+  MatchTable m;
+  m.pga_count = pga_count;
+  m.freq_count = freq_count;
+  m.motions = motions;
+  m.objects = objects;
+  m.match = std::move(match);
+  return m;
+}
+
 TEST(InversionSteps, LikelihoodOfOneCellAveragesProductsOverMotions) {
   // One cell, two motions, two objects: m = (1, 0) under motion 0, (1, 1) under motion 1; eps = 0.02 and 0.10.
-  MatchTable m;
-  m.pga_count = 1;
-  m.freq_count = 1;
-  m.motions = 2;
-  m.objects = 2;
-  m.match = {1.0, 0.0, 1.0, 1.0};
+  const MatchTable m = match_table(1, 1, 2, 2, {1.0, 0.0, 1.0, 1.0});
   const LikelihoodReduction r = reduce_likelihood(m, {0.02, 0.10});
   // q(k=0) = 0.98 * 0.10 = 0.098, q(k=1) = 0.98 * 0.90 = 0.882: mean 0.49. Tolerance: a few ulps of log-sum-exp.
   ASSERT_EQ(r.log_likelihood.size(), 1u);
@@ -239,12 +245,7 @@ TEST(InversionSteps, LikelihoodOfOneCellAveragesProductsOverMotions) {
 
 TEST(InversionSteps, NeighbourCellsArePooledWithWeightsFourTwoOne) {
   // Two PGA rows, one frequency column, one motion, one object (eps 0.02) that matches in row 0 only.
-  MatchTable m;
-  m.pga_count = 2;
-  m.freq_count = 1;
-  m.motions = 1;
-  m.objects = 1;
-  m.match = {1.0, 0.0};
+  const MatchTable m = match_table(2, 1, 1, 1, {1.0, 0.0});
   const LikelihoodReduction r = reduce_likelihood(m, {0.02});
   // Row 0 pools itself (weight 4, q = 0.98) and row 1 (weight 2, q = 0.02): (3.92 + 0.04) / 6 = 0.66.
   EXPECT_NEAR(r.log_likelihood[0], std::log(0.66), 1e-14);
@@ -257,12 +258,7 @@ TEST(InversionSteps, NeighbourCellsArePooledWithWeightsFourTwoOne) {
 
 TEST(InversionSteps, NotesNameObservationsThatContradictEachOtherEverywhere) {
   // Two cells; "a" is reproduced only in cell 0, "b" only in cell 1: no cell reproduces both.
-  MatchTable m;
-  m.pga_count = 2;
-  m.freq_count = 1;
-  m.motions = 1;
-  m.objects = 2;
-  m.match = {1.0, 0.0, 0.0, 1.0};
+  const MatchTable m = match_table(2, 1, 1, 2, {1.0, 0.0, 0.0, 1.0});
   InversionResult r;
   r.pga_g = {0.1, 0.2};
   r.freq_hz = {1.0};
@@ -304,6 +300,28 @@ TEST(InversionSteps, RecordFamilyTakesLoadedMotionsInBothPolarities) {
   // Time-scaled onto the column: the measured predominant frequency moves by less than the spectrum's peak
   // interpolation (7e-5 relative on the example's columns), so 1e-3.
   EXPECT_NEAR(predominant_frequency_hz(motions[0]), 3.0, 3e-3);
+}
+
+TEST(InversionSteps, SitesSharingTheFamilyGiveTheSameResultsAsSiteBySite) {
+  Site a;
+  a.name = "a";
+  a.objects.push_back(block("tall", 0.05, 0.5, {0.5, 0.5}, Outcome::overturned));
+  a.objects.push_back(block("box", 0.3, 0.3, {0.5, 0.5}, Outcome::not_slid));
+  Site b;
+  b.name = "b";
+  b.objects.push_back(block("pan", 0.2, 0.1, {0.2, 0.3}, Outcome::slid));
+  InversionSettings st = small_grid(3);
+  st.pga_count = 6;
+  st.freq_count = 4;
+  const std::vector<InversionResult> both = invert_sites({a, b}, st);
+  ASSERT_EQ(both.size(), 2u);
+  const InversionResult alone = invert_site(b, st);
+  // The same motions, parameters and runs in the same order: bit for bit the same numbers.
+  EXPECT_EQ(both[1].log_likelihood, alone.log_likelihood);
+  EXPECT_EQ(both[1].measured_freq_hz, alone.measured_freq_hz);
+  EXPECT_EQ(both[1].pga_estimate_g.median, alone.pga_estimate_g.median);
+  EXPECT_EQ(both[0].site, "a");
+  EXPECT_EQ(both[0].runs, 6u * 4u * 3u * 2u);
 }
 
 // Recovery: draw a true (PGA, f), make a motion of the family (a seed the inversion never uses), observe what a set

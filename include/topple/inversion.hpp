@@ -115,6 +115,11 @@ void validate_inversion_settings(const InversionSettings& settings);
 [[nodiscard]] InversionResult invert_site(const Site& site, const InversionSettings& settings,
                                           const InversionOptions& options = {});
 
+/// Every site of a survey with the same settings: the family (the same motions for every site) is built once and
+/// shared, which gives the same results as invert_site per site without synthesising the motions again.
+[[nodiscard]] std::vector<InversionResult> invert_sites(const std::vector<Site>& sites, const InversionSettings& settings,
+                                                        const InversionOptions& options = {});
+
 // ---- The steps of invert_site (each exposed for its own tests) ----
 
 /// Step 1, the family: the motions of every frequency column, shared read-only by the runs, and each column's mean
