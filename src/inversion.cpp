@@ -237,8 +237,8 @@ void validate_inversion_settings(const InversionSettings& st) {
     throw parameter_error("inversion.g_m_s2", fmt::format("must be positive, got {} m/s2", st.g_m_s2));
   }
   if (st.family == MotionFamily::records) {
-    if (st.record_motions.empty()) {
-      throw parameter_error("inversion.records", "family = \"records\" needs the records loaded (io::read_survey does)");
+    if (st.records.empty() && st.record_motions.empty()) {
+      throw parameter_error("inversion.records", "family = \"records\" needs records = [\"file\", ...]");
     }
     return;
   }
@@ -288,6 +288,12 @@ void validate_inversion_options(const InversionOptions& options) {
 
 FamilyGrid build_family(const InversionSettings& st, const std::vector<double>& freq_hz, const InversionOptions& options) {
   validate_inversion_options(options);
+  const bool loaded = st.records.empty() ? !st.record_motions.empty() : st.record_motions.size() == st.records.size();
+  if (st.family == MotionFamily::records && !loaded) {
+    throw parameter_error("inversion.records", fmt::format("{} record(s) named but {} loaded: the inversion core reads "
+                                                           "no file (io::read_survey loads them)",
+                                                           st.records.size(), st.record_motions.size()));
+  }
   const std::size_t nf = freq_hz.size();
   FamilyGrid family;
   family.freq_hz = freq_hz;

@@ -7,8 +7,11 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "support/shared_data.hpp"
+
 #include "topple/error.hpp"
 #include "topple/inversion.hpp"
+#include "topple/io/read.hpp"
 #include "topple/io/survey_file.hpp"
 #include "topple/rocking.hpp"
 #include "topple/sliding.hpp"
@@ -149,6 +152,27 @@ TEST(SurveyFile, SlidingUncertaintyFloorIsDocumentedAndSaid) {
   EXPECT_NE(raised.notes[0].find("used is 1 cm"), std::string::npos) << raised.notes[0];
 }
 
+// The edge loads the records (read_survey), the text parser reads no file (parse_survey: fuzz-safe), and the core
+// takes what was loaded.
+TEST(SurveyFile, RecordsAreLoadedAtTheEdgeNotByTheParser) {
+  if (!test::have_shared()) GTEST_SKIP() << "../shared/records is absent";
+  const std::filesystem::path record = test::shared_record("CPM000.AT2");
+  const std::string text = "[inversion]\nfamily = \"records\"\nrecords = [\"" + record.string() + "\"]\n"
+                           "pga_g = [0.1, 1.0, 3]\nfreq_hz = [1.0, 4.0, 2]\n"
+                           "[[object]]\nid = \"b\"\nwidth = \"10cm\"\nheight = \"40cm\"\nmu = 0.5\noutcome = \"overturned\"\n";
+  const Survey parsed = io::parse_survey(text, "s.toml");
+  EXPECT_EQ(parsed.inversion.records.size(), 1u);
+  EXPECT_TRUE(parsed.inversion.record_motions.empty());
+  test::TempDir tmp;
+  test::write_file(tmp.path() / "s.toml", text);
+  const Survey read = io::read_survey(tmp.path() / "s.toml");
+  ASSERT_EQ(read.inversion.record_motions.size(), 1u);
+  EXPECT_EQ(read.inversion.record_motions[0]->size(), io::read_motion(record).size());
+  const FamilyGrid family = build_family(read.inversion, {1.0, 4.0});
+  ASSERT_EQ(family.motions_per_column(), 2u);  // one record, both polarities
+  EXPECT_NEAR(family.measured_freq_hz[1], 4.0, 4e-3);  // time-scaled onto the column (peak interpolation: 1e-3)
+}
+
 TEST(InversionSettingsCheck, FrequencyAxisMustBeWithinTheFamilysReach) {
   InversionSettings st;
   EXPECT_NO_THROW(validate_inversion_settings(st));  // the defaults: 0.3 to 20 Hz
@@ -164,8 +188,11 @@ TEST(InversionSettingsCheck, FrequencyAxisMustBeWithinTheFamilysReach) {
   st.freq_min_hz = 0.1;
   EXPECT_THROW(validate_inversion_settings(st), InputError);
   st.freq_min_hz = 0.3;
-  st.family = MotionFamily::records;  // records are time-scaled to any frequency, but must have been loaded
+  st.family = MotionFamily::records;  // records are time-scaled to any frequency, but there must be some
   EXPECT_THROW(validate_inversion_settings(st), InputError);
+  st.records = {"a.AT2"};
+  EXPECT_NO_THROW(validate_inversion_settings(st));
+  EXPECT_THROW((void)build_family(st, {1.0}), InputError);  // named but not loaded: the core reads no file
   InversionOptions bad;
   bad.threads = -1;
   EXPECT_THROW(validate_inversion_options(bad), InputError);

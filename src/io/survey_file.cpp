@@ -342,9 +342,7 @@ Survey parse_survey(std::string_view text, const std::string& name, const std::f
         std::filesystem::path p(item.as_string()->get());
         if (p.is_relative()) p = base_dir / p;
         if (!std::filesystem::exists(p)) throw r.error("records", fmt::format("no such record file '{}'", p.string()), &item);
-        st.records.push_back(p.string());
-        // Loaded here, at the edge, once: the inversion core reads no file. A record that does not read names itself.
-        st.record_motions.push_back(std::make_shared<const GroundMotion>(read_motion(p)));
+        st.records.push_back(p.string());  // loaded by load_survey_records (read_survey): parsing reads no file
       }
     }
     if (st.family == MotionFamily::records && st.records.empty()) {
@@ -431,6 +429,15 @@ Survey parse_survey(std::string_view text, const std::string& name, const std::f
   return s;
 }
 
+void load_survey_records(Survey& survey) {
+  InversionSettings& st = survey.inversion;
+  st.record_motions.clear();
+  for (const std::string& path : st.records) {
+    // A record that does not read names itself (file, line, field) in read_motion's InputError.
+    st.record_motions.push_back(std::make_shared<const GroundMotion>(read_motion(path)));
+  }
+}
+
 Survey read_survey(const std::filesystem::path& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) {
@@ -440,7 +447,9 @@ Survey read_survey(const std::filesystem::path& path) {
   if (!in) throw InputError(InputLocation{path.string(), {}, {}}, "cannot open the survey file");
   std::ostringstream text;
   text << in.rdbuf();
-  return parse_survey(text.str(), path.string(), path.parent_path());
+  Survey survey = parse_survey(text.str(), path.string(), path.parent_path());
+  load_survey_records(survey);
+  return survey;
 }
 
 }  // namespace io
