@@ -40,11 +40,12 @@ void print_site(const Site& site, const InversionResult& r) {
   fmt::print("static bounds on PGA: {}\n", interval_text(r.bounds.lower_g, r.bounds.upper_g, "g"));
   for (const auto& b : r.bounds.lower) fmt::print("  lower {:.3g} g  {}: {}\n", b.pga_g, b.object_id, b.reason);
   for (const auto& b : r.bounds.upper) fmt::print("  upper {:.3g} g  {}: {}\n", b.pga_g, b.object_id, b.reason);
-  fmt::print("PGA:       best {:.3g} g, median {:.3g} g, 68 % {}, 95 % {}\n", r.pga_estimate_g.best, r.pga_estimate_g.median,
-             interval_text(r.pga_estimate_g.ci68_low, r.pga_estimate_g.ci68_high, "g"), interval_text(r.pga_estimate_g.ci95_low, r.pga_estimate_g.ci95_high, "g"));
-  fmt::print("frequency: best {:.3g} Hz, median {:.3g} Hz, 68 % {}, 95 % {}\n", r.freq_estimate_hz.best, r.freq_estimate_hz.median,
-             interval_text(r.freq_estimate_hz.ci68_low, r.freq_estimate_hz.ci68_high, "Hz"),
-             interval_text(r.freq_estimate_hz.ci95_low, r.freq_estimate_hz.ci95_high, "Hz"));
+  const Estimate& pga = r.pga_estimate_g;
+  const Estimate& freq = r.freq_estimate_hz;
+  fmt::print("PGA:       best {:.3g} g, median {:.3g} g, 68 % {}, 95 % {}\n", pga.best, pga.median,
+             interval_text(pga.ci68_low, pga.ci68_high, "g"), interval_text(pga.ci95_low, pga.ci95_high, "g"));
+  fmt::print("frequency: best {:.3g} Hz, median {:.3g} Hz, 68 % {}, 95 % {}\n", freq.best, freq.median,
+             interval_text(freq.ci68_low, freq.ci68_high, "Hz"), interval_text(freq.ci95_low, freq.ci95_high, "Hz"));
   fmt::print("objects (probability of the observation at the best cell):\n");
   for (const auto& o : r.objects) fmt::print("  {:<16} {:<15} {:.2f}\n", o.id, outcome_name(o.outcome), o.probability_at_best);
   for (const auto& note : r.notes) fmt::print("note: {}\n", note);

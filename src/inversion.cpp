@@ -247,8 +247,8 @@ void validate_inversion_settings(const InversionSettings& st) {
       validate(family_spec(st, f, 0));
     } catch (const InputError& e) {
       throw parameter_error("inversion.freq_hz",
-                            fmt::format("the synthetic family cannot make motions with a predominant frequency of {} Hz "
-                                        "(the grid is [{}, {}] Hz): {}: {}",
+                            fmt::format("the synthetic family cannot make motions with a predominant frequency of "
+                                        "{} Hz (the grid is [{}, {}] Hz): {}: {}",
                                         f, st.freq_min_hz, st.freq_max_hz, e.where().field, e.problem()));
     }
   }
@@ -286,7 +286,8 @@ void validate_inversion_options(const InversionOptions& options) {
   }
 }
 
-FamilyGrid build_family(const InversionSettings& st, const std::vector<double>& freq_hz, const InversionOptions& options) {
+FamilyGrid build_family(const InversionSettings& st, const std::vector<double>& freq_hz,
+                        const InversionOptions& options) {
   validate_inversion_options(options);
   const bool loaded = st.records.empty() ? !st.record_motions.empty() : st.record_motions.size() == st.records.size();
   if (st.family == MotionFamily::records && !loaded) {
@@ -364,7 +365,9 @@ MatchTable simulate_matches(const Site& site, const InversionSettings& st, const
   // Rows come in run order: row = (cell * N + k) * objects + o, the MatchTable's own indexing.
   const std::size_t match_col = rows.columns.size() - 1;
   table.match.resize(rows.rows.size());
-  for (std::size_t row = 0; row < rows.rows.size(); ++row) table.match[row] = std::get<double>(rows.rows[row][match_col]);
+  for (std::size_t row = 0; row < rows.rows.size(); ++row) {
+    table.match[row] = std::get<double>(rows.rows[row][match_col]);
+  }
   return table;
 }
 
@@ -501,14 +504,16 @@ std::vector<std::string> inversion_notes(const InversionResult& r, const MatchTa
     notes.push_back("No object moved: the observations give no static lower bound on PGA.");
   }
   if (!r.bounds.upper_g) {
-    notes.push_back("No object stayed put on its friction surface: the observations give no static upper bound on PGA.");
+    notes.push_back("No object stayed put on its friction surface: the observations give no static upper bound on "
+                    "PGA.");
   }
   for (const std::string& c : r.bounds.contradictions) notes.push_back("Static contradiction: " + c + ".");
   const Estimate& pga = r.pga_estimate_g;
   if (!pga.ci95_low || !pga.ci95_high) {
     notes.push_back(fmt::format("The 95 % interval of PGA reaches the {} of the grid ({}): the observations do not "
                                 "constrain it there.",
-                                !pga.ci95_low && !pga.ci95_high ? "both ends" : (!pga.ci95_low ? "lower end" : "upper end"),
+                                !pga.ci95_low && !pga.ci95_high ? "both ends"
+                                                                : (!pga.ci95_low ? "lower end" : "upper end"),
                                 !pga.ci95_low ? fmt_g(r.pga_g.front()) : fmt_g(r.pga_g.back())));
   }
   if (!r.freq_estimate_hz.ci95_low || !r.freq_estimate_hz.ci95_high) {

@@ -67,7 +67,7 @@ struct Estimate {
 struct ObjectReport {
   std::string id;
   Outcome outcome = Outcome::not_overturned;
-  std::vector<double> probability;  ///< P(observation | cell), dimensionless, per cell (index = i_pga * freq_count + j_freq)
+  std::vector<double> probability;  ///< P(observation | cell), dimensionless; index i_pga * freq_count + j_freq
   double probability_at_best = 0.0;  ///< dimensionless
   double max_probability = 0.0;      ///< dimensionless
   bool reproduced_anywhere = true;  ///< some run in some cell matched the observation
@@ -117,7 +117,8 @@ void validate_inversion_settings(const InversionSettings& settings);
 
 /// Every site of a survey with the same settings: the family (the same motions for every site) is built once and
 /// shared, which gives the same results as invert_site per site without synthesising the motions again.
-[[nodiscard]] std::vector<InversionResult> invert_sites(const std::vector<Site>& sites, const InversionSettings& settings,
+[[nodiscard]] std::vector<InversionResult> invert_sites(const std::vector<Site>& sites,
+                                                        const InversionSettings& settings,
                                                         const InversionOptions& options = {});
 
 // ---- The steps of invert_site (each exposed for its own tests) ----

@@ -127,9 +127,10 @@ void write_distance_csv(const std::filesystem::path& path, const std::vector<Sit
       for (char c : name) q += (c == '"') ? std::string("\"\"") : std::string(1, c);
       name = q + "\"";
     }
+    const Estimate& pga = r.pga_estimate_g;
     out << fmt::format("{},{},{},{},{},{},{}\n", name,
-                       epicentral_distance_km(lat, lon, *sites[i].lat_deg, *sites[i].lon_deg), r.pga_estimate_g.median,
-                       cell(r.pga_estimate_g.ci68_low), cell(r.pga_estimate_g.ci68_high), cell(r.pga_estimate_g.ci95_low), cell(r.pga_estimate_g.ci95_high));
+                       epicentral_distance_km(lat, lon, *sites[i].lat_deg, *sites[i].lon_deg), pga.median,
+                       cell(pga.ci68_low), cell(pga.ci68_high), cell(pga.ci95_low), cell(pga.ci95_high));
   }
 }
 

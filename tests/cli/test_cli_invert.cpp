@@ -85,7 +85,9 @@ void expect_same_json(const nlohmann::ordered_json& want, const nlohmann::ordere
     }
   } else if (want.is_array()) {
     ASSERT_EQ(want.size(), got.size()) << where;
-    for (std::size_t i = 0; i < want.size(); ++i) expect_same_json(want[i], got[i], where + "[" + std::to_string(i) + "]");
+    for (std::size_t i = 0; i < want.size(); ++i) {
+      expect_same_json(want[i], got[i], where + "[" + std::to_string(i) + "]");
+    }
   } else {
     EXPECT_EQ(want, got) << where;
   }
@@ -173,8 +175,12 @@ TEST(CliInvert, BadSurveysAndOptionsAreRefusedBeforeAnyWork) {
       test::write_file(survey, c.survey);
     }
     std::string options = c.options;
-    for (auto at = options.find("%T"); at != std::string::npos; at = options.find("%T")) options.replace(at, 2, tmp.path().string());
-    for (auto at = options.find("%F"); at != std::string::npos; at = options.find("%F")) options.replace(at, 2, survey.string());
+    for (auto at = options.find("%T"); at != std::string::npos; at = options.find("%T")) {
+      options.replace(at, 2, tmp.path().string());
+    }
+    for (auto at = options.find("%F"); at != std::string::npos; at = options.find("%F")) {
+      options.replace(at, 2, survey.string());
+    }
     const auto r = test::run_cli("invert '" + survey.string() + "' " + options);
     EXPECT_EQ(r.exit_code, 2) << r.err;
     EXPECT_EQ(r.err.find("inverting"), std::string::npos) << "work started before the refusal:\n" << r.err;
@@ -188,14 +194,16 @@ TEST(CliInvert, BadSurveysAndOptionsAreRefusedBeforeAnyWork) {
 TEST(CliInvert, RaisedSlidingUncertaintyIsSaidWithItsLine) {
   test::TempDir tmp;
   const auto survey = tmp.path() / "s.toml";
-  // slid 4 cm +- 0.5 cm: the floor (25 % of slid = 1 cm) applies, and the CLI says so, naming line 14 (5 lines of [inversion], then the object).
+  // slid 4 cm +- 0.5 cm: the floor (25 % of slid = 1 cm) applies, and the CLI says so, naming line 14 (5 lines of
+  // [inversion], then the object).
   test::write_file(survey, std::string(kSmallInversion) +
                                "[[object]]\nid = \"pot\"\nshape = \"cylinder\"\ndiameter = \"25cm\"\nheight = \"15cm\"\n"
                                "mu = 0.25\noutcome = \"slid\"\nslid = \"4cm\"\nslid_uncertainty = \"0.5cm\"\n");
   const auto r = test::run_cli("invert '" + survey.string() + "' --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find(survey.string() + ":14: object[1](pot).slid_uncertainty"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("uncertainty used is 1 cm = max(the given 0.5 cm, 25 % of slid, 2 mm)"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("uncertainty used is 1 cm = max(the given 0.5 cm, 25 % of slid, 2 mm)"), std::string::npos)
+      << r.err;
   const auto q = test::run_cli("invert '" + survey.string() + "' --json --quiet");
   EXPECT_EQ(q.err.find("uncertainty used"), std::string::npos) << q.err;  // --quiet: nothing on stderr
 }

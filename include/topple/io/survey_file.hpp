@@ -18,8 +18,9 @@
 
 namespace topple::io {
 
-/// Reads and validates a survey, and loads its records (load_survey_records). Throws InputError naming the file, the object (by id or index) and the field for
-/// unknown keys, unknown shapes or outcomes, missing dimensions, missing units, non-positive sizes, bad ranges.
+/// Reads and validates a survey, and loads its records (load_survey_records). Throws InputError naming the file, the
+/// object (by id or index) and the field for unknown keys, unknown shapes or outcomes, missing dimensions, missing
+/// units, non-positive sizes, bad ranges, a frequency axis the motion family cannot make; and for a directory.
 [[nodiscard]] Survey read_survey(const std::filesystem::path& path);
 
 /// Same from text (name used in messages; relative record paths resolve against `base_dir`). Reads no file: the
