@@ -19,6 +19,7 @@
 #include <fmt/format.h>
 
 #include "topple/error.hpp"
+#include "topple/input_grid.hpp"
 
 namespace topple {
 namespace {
@@ -35,66 +36,28 @@ void require_positive(double value, const char* field, const char* what) {
 }
 
 // ---------------------------------------------------------------------------------------------------------------
-// Input on one time grid: the horizontal samples (jumps kept) and, with a vertical record, the union of both grids.
+// Input on one time grid (input_grid.hpp: the union of the components' grids, jumps of either kept): horizontal a_h
+// and, with a vertical record, the effective gravity g + a_v per point.
 
 struct Input {
-  std::span<const double> accel;
-  std::vector<double> accel_store;  // merged grid storage
-  std::vector<double> gravity;      // g + a_v per point; empty without vertical input
-  std::vector<double> times;        // empty for a uniform grid
-  double t0 = 0.0;
-  double dt = 0.0;                  // sample interval (mean interval when irregular): the run-out grid and RK4 h
-  [[nodiscard]] std::size_t size() const { return accel.size(); }
-  [[nodiscard]] double time(std::size_t i) const {
-    return times.empty() ? t0 + static_cast<double>(i) * dt : times[i];
-  }
-};
-
-Input make_input(const GroundMotion& horizontal, const GroundMotion* vertical, double g) {
-  Input in;
-  in.t0 = horizontal.start_time_s();
-  in.dt = horizontal.dt_s();
-  if (vertical == nullptr) {
-    in.accel = horizontal.accel_m_s2();
-    if (!horizontal.is_uniform()) in.times = horizontal.times_s();
-    return in;
-  }
-  const auto av = vertical->accel_m_s2();
-  const double lowest = *std::min_element(av.begin(), av.end());
-  if (!(g + lowest > 0.0)) {
-    throw parameter_error("vertical", fmt::format("the vertical acceleration reaches {} m/s2, so g + a_v = {} m/s2 "
-                                                  "<= 0: the body would leave the ground, which this model excludes",
-                                                  lowest, g + lowest));
-  }
-  // Horizontal points (repeated times of a jump kept) plus the vertical points strictly inside the horizontal
-  // record. Both inputs are piecewise linear, so they stay exact on the union (a jump of the vertical record is
-  // taken at its value after the jump). Outside its own record the vertical component is zero.
-  const std::vector<double> th = horizontal.times_s();
-  const std::vector<double> tv = vertical->times_s();
-  const auto ah = horizontal.accel_m_s2();
-  std::vector<double> t;
-  std::vector<double> a;
-  t.reserve(th.size() + tv.size());
-  a.reserve(th.size() + tv.size());
-  std::size_t j = 0;
-  for (std::size_t i = 0; i < th.size(); ++i) {
-    while (j < tv.size() && tv[j] < th[i]) {
-      if (tv[j] > th.front() && (t.empty() || tv[j] > t.back())) {
-        t.push_back(tv[j]);
-        a.push_back(horizontal.accel_at(tv[j]));
-      }
-      ++j;
+  Input(const GroundMotion& horizontal, const GroundMotion* vertical, double g)
+      : grid(horizontal, vertical), accel(grid.accel_m_s2(0)), gravity(effective_gravity(grid, 1, g)) {
+    if (gravity.empty()) return;
+    const double lowest = *std::min_element(gravity.begin(), gravity.end());
+    if (!(lowest > 0.0)) {
+      throw parameter_error("vertical", fmt::format("the vertical acceleration reaches {} m/s2, so g + a_v = {} m/s2 "
+                                                    "<= 0: the body would leave the ground, which this model excludes",
+                                                    lowest - g, lowest));
     }
-    t.push_back(th[i]);
-    a.push_back(ah[i]);
   }
-  in.gravity.resize(t.size());
-  for (std::size_t i = 0; i < t.size(); ++i) in.gravity[i] = g + vertical->accel_at(t[i]);
-  in.accel_store = std::move(a);
-  in.accel = in.accel_store;
-  in.times = std::move(t);
-  return in;
-}
+  InputGrid grid;
+  std::span<const double> accel;
+  std::vector<double> gravity;  // g + a_v per point; empty without vertical input
+  [[nodiscard]] std::size_t size() const { return grid.size(); }
+  [[nodiscard]] double time(std::size_t i) const { return grid.time_s(i); }
+  /// Sample interval (mean interval when irregular): the run-out grid and the RK4 step.
+  [[nodiscard]] double dt() const { return grid.dt_s(); }
+};
 
 // ---------------------------------------------------------------------------------------------------------------
 // Right-hand side: the equation of motion of rocking.hpp in the scaled state, with the forcing linear in time over
@@ -642,7 +605,7 @@ class Engine {
     // History rows continue the record's spacing (at most 1e5 of them) from the dense output of each step.
     in_run_out_ = true;
     grid_t0_ = t_end;
-    grid_dt_ = std::max(in_.dt, opt_.max_run_out_s * 1e-5);
+    grid_dt_ = std::max(in_.dt(), opt_.max_run_out_s * 1e-5);
     std::size_t stalls = 0;
     while (!done_ && mode_ == Mode::rocking && t_ < t_stop) {
       const double before = t_;
@@ -826,7 +789,7 @@ template <bool kRecord>
 RockingResult run(const GroundMotion& horizontal, const RockingBody& body, const RockingOptions& o,
                   const GroundMotion* vertical) {
   validate(body, o);
-  const Input in = make_input(horizontal, vertical, o.g_m_s2);
+  const Input in(horizontal, vertical, o.g_m_s2);
   const Params par = make_params(body, o);
   Rhs rhs;
   rhs.p = par.p;
@@ -838,12 +801,12 @@ RockingResult run(const GroundMotion& horizontal, const RockingBody& body, const
   const bool started_rocking = o.initial_theta_rad != 0.0 || o.initial_theta_dot_rad_s != 0.0;
   if (o.method == RockingMethod::adaptive) {
     // First step guess: a tenth of the sample interval (the controller adapts it within a few steps).
-    AdaptiveStepper stepper(rhs, o.abs_tol, o.rel_tol, 0.1 * in.dt);
+    AdaptiveStepper stepper(rhs, o.abs_tol, o.rel_tol, 0.1 * in.dt());
     Engine<AdaptiveStepper, kRecord> engine(in, par, o, stepper, rhs);
     result = engine.run();
     uplift_ratio = engine.first_uplift_ratio_;
   } else {
-    Rk4Stepper stepper(rhs, in.dt / static_cast<double>(o.rk4_substeps));
+    Rk4Stepper stepper(rhs, in.dt() / static_cast<double>(o.rk4_substeps));
     Engine<Rk4Stepper, kRecord> engine(in, par, o, stepper, rhs);
     result = engine.run();
     uplift_ratio = engine.first_uplift_ratio_;

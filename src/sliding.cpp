@@ -12,64 +12,24 @@
 #include <fmt/format.h>
 
 #include "topple/error.hpp"
+#include "topple/input_grid.hpp"
 
 namespace topple {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-/// The inputs as flat arrays on one time grid: horizontal a_h, optional effective gravity g_e = g + a_v.
+/// The inputs on one time grid (input_grid.hpp: jumps of either component kept): horizontal a_h and, with a vertical
+/// record, the effective gravity g_e = g + a_v per point.
 struct Input {
+  Input(const GroundMotion& horizontal, const GroundMotion* vertical, double g)
+      : grid(horizontal, vertical), accel(grid.accel_m_s2(0)), gravity(effective_gravity(grid, 1, g)) {}
+  InputGrid grid;
   std::span<const double> accel;
-  std::vector<double> merged_accel;  // storage when a vertical component forced a merged grid
-  std::vector<double> gravity;       // g_e per sample; empty without vertical input
-  std::vector<double> times;         // empty for a uniform grid
-  double t0 = 0.0;
-  double dt = 0.0;
-  [[nodiscard]] std::size_t size() const { return accel.size(); }
-  [[nodiscard]] double time(std::size_t i) const {
-    return times.empty() ? t0 + static_cast<double>(i) * dt : times[i];
-  }
+  std::vector<double> gravity;  // g_e per point; empty without vertical input
+  [[nodiscard]] std::size_t size() const { return grid.size(); }
+  [[nodiscard]] double time(std::size_t i) const { return grid.time_s(i); }
 };
-
-Input make_input(const GroundMotion& horizontal, const GroundMotion* vertical, double g) {
-  Input in;
-  if (vertical == nullptr) {
-    in.accel = horizontal.accel_m_s2();
-    if (!horizontal.is_uniform()) in.times = horizontal.times_s();
-    in.t0 = horizontal.start_time_s();
-    in.dt = horizontal.dt_s();
-    return in;
-  }
-  const bool same_grid = horizontal.is_uniform() && vertical->is_uniform() && horizontal.size() == vertical->size() &&
-                         horizontal.dt_s() == vertical->dt_s() &&
-                         horizontal.start_time_s() == vertical->start_time_s();
-  if (same_grid) {
-    in.accel = horizontal.accel_m_s2();
-    in.t0 = horizontal.start_time_s();
-    in.dt = horizontal.dt_s();
-    in.gravity.resize(horizontal.size());
-    const auto av = vertical->accel_m_s2();
-    for (std::size_t i = 0; i < av.size(); ++i) in.gravity[i] = g + av[i];
-    return in;
-  }
-  // Union of both grids: both inputs are piecewise linear, so they stay exact on it. Outside its own record a
-  // component is zero (GroundMotion::accel_at), which is the still ground.
-  std::vector<double> t = horizontal.times_s();
-  const std::vector<double> tv = vertical->times_s();
-  t.insert(t.end(), tv.begin(), tv.end());
-  std::sort(t.begin(), t.end());
-  t.erase(std::unique(t.begin(), t.end()), t.end());
-  in.merged_accel.resize(t.size());
-  in.gravity.resize(t.size());
-  for (std::size_t i = 0; i < t.size(); ++i) {
-    in.merged_accel[i] = horizontal.accel_at(t[i]);
-    in.gravity[i] = g + vertical->accel_at(t[i]);
-  }
-  in.accel = in.merged_accel;
-  in.times = std::move(t);
-  return in;
-}
 
 /// Friction coefficients turned into the linear forms of sliding.hpp.
 struct Coefficients {
@@ -275,11 +235,11 @@ void integrate(const Input& in, const Coefficients& k, Recorder<kRecord>& rec, c
     }
 
     if constexpr (!kVertical) {
-      if (tau == 0.0 && in.times.empty()) {
+      if (tau == 0.0 && in.grid.is_uniform()) {
         // Fast slip on a uniform grid, whole steps: no stop can occur in a step when the relative speed keeps its
         // sign at the step's end and the acceleration does not turn from braking to driving inside it (the only
         // way the quadratic speed can touch zero in between). Anything else goes to the general path below.
-        const double h = in.dt;
+        const double h = in.grid.dt_s();
         const double sd = static_cast<double>(s);
         const int idx = s > 0 ? 1 : 0;
         const double p = k.p[idx];
@@ -402,7 +362,7 @@ std::optional<double> contact_lost(const Input& in, const SlidingBlock& b) {
 
 template <bool kRecord>
 Recorder<kRecord> run(const GroundMotion& horizontal, const SlidingBlock& block, const GroundMotion* vertical) {
-  const Input in = make_input(horizontal, vertical, block.g_m_s2);
+  const Input in(horizontal, vertical, block.g_m_s2);
   const Coefficients k = coefficients(block);
   Recorder<kRecord> rec;
   if constexpr (kRecord) {
@@ -461,7 +421,7 @@ SlidingSummary slide_summary(const GroundMotion& horizontal, const SlidingBlock&
 
 std::vector<SlidingSummary> slide_summaries(const GroundMotion& horizontal, std::span<const double> mu,
                                             double slope_rad, SlidingMode mode, double g_m_s2) {
-  const Input in = make_input(horizontal, nullptr, g_m_s2);
+  const Input in(horizontal, nullptr, g_m_s2);
   const BlockExtrema blocks(in.accel);
   std::vector<SlidingSummary> out;
   out.reserve(mu.size());

@@ -162,6 +162,60 @@ TEST(Sliding, VerticalAccelerationScalesFriction) {
   EXPECT_TRUE(slide_summary(rec, SlidingBlock::make(mu), &lift).contact_lost_time_s.has_value());
 }
 
+TEST(Sliding, AJumpSurvivesAVerticalRecordOnAnotherGrid) {
+  // Issue 12's bug: a rectangular pulse (jumps at 0.3 s) with an all-zero vertical record every 0.1 s gave 0.2419 m,
+  // not the closed form 0.3530 m, because merging the grids dropped the repeated time of the jump.
+  const double amp = 0.8;
+  const double T = 0.3;
+  const double mu = 0.4;
+  const auto pulse = make_pulse({PulseKind::rectangular, amp * kG, T, 0.0, 0.0});
+  const auto zeros = GroundMotion::uniform(std::vector<double>(11, 0.0), 0.1);
+  const auto cf = rectangular_pulse_sliding(amp, T, mu);
+  const auto with_zeros = slide_summary(pulse, SlidingBlock::make(mu), &zeros);
+  // Exact solver, closed-form oracle: round-off of a few operations on O(1) numbers.
+  EXPECT_NEAR(with_zeros.residual_displacement_m, cf.max_displacement_m, 1e-12 * cf.max_displacement_m);
+  EXPECT_NEAR(cf.max_displacement_m, 0.3530, 5e-5);  // the figure quoted in the issue (4 digits)
+  // Zero vertical == no vertical: on another grid the steps are split at the vertical's samples, and on the same
+  // grid the solver takes its path with a varying g_e (no stick-phase skipping), which changes round-off only:
+  // 1e-12 relative is about 1e4 ulp, room for the ~1e3 steps that accumulate it.
+  const auto plain = slide_summary(pulse, SlidingBlock::make(mu));
+  EXPECT_NEAR(with_zeros.residual_displacement_m, plain.residual_displacement_m, 1e-12 * plain.residual_displacement_m);
+  EXPECT_EQ(with_zeros.slip_episodes, plain.slip_episodes);
+  const auto rec = noisy_record();
+  const auto same_grid_zeros = GroundMotion::uniform(std::vector<double>(rec.size(), 0.0), rec.dt_s());
+  const auto other_grid_zeros = GroundMotion::uniform(std::vector<double>(300, 0.0), 0.137);
+  const auto r0 = slide_summary(rec, SlidingBlock::make(0.2));
+  const auto r1 = slide_summary(rec, SlidingBlock::make(0.2), &same_grid_zeros);
+  const auto r2 = slide_summary(rec, SlidingBlock::make(0.2), &other_grid_zeros);
+  ASSERT_GT(r0.slip_episodes, 3);
+  EXPECT_NEAR(r1.residual_displacement_m, r0.residual_displacement_m, 1e-12 * r0.max_abs_displacement_m);
+  EXPECT_NEAR(r1.max_abs_displacement_m, r0.max_abs_displacement_m, 1e-12 * r0.max_abs_displacement_m);
+  EXPECT_EQ(r1.slip_episodes, r0.slip_episodes);
+  EXPECT_NEAR(r2.residual_displacement_m, r0.residual_displacement_m, 1e-12 * r0.max_abs_displacement_m);
+  EXPECT_NEAR(r2.max_abs_displacement_m, r0.max_abs_displacement_m, 1e-12 * r0.max_abs_displacement_m);
+  EXPECT_EQ(r2.slip_episodes, r0.slip_episodes);
+}
+
+TEST(Sliding, ConstantVerticalScalesFrictionClosedForm) {
+  // A constant a_v on level ground makes the friction mu (g + a_v) = mu' g with mu' = mu (1 + a_v / g). Rectangular
+  // pulse A g over T: v = (A - mu') g T, d = (A - mu') g T^2 / 2 + v^2 / (2 mu' g) (Newmark 1965), provided the
+  // vertical record lasts through the run-out (here to 2 s; the block stops at T + v / (mu' g) = 0.8 s).
+  const double amp = 0.8;
+  const double T = 0.3;
+  const double mu = 0.4;
+  const double av = -0.25 * kG;
+  const double mu_eff = mu * (1.0 + av / kG);
+  const auto pulse = make_pulse({PulseKind::rectangular, amp * kG, T, 0.0, 0.0});
+  const auto vertical = GroundMotion::uniform(std::vector<double>(21, av), 0.1);
+  const double v = (amp - mu_eff) * kG * T;
+  const double expected = 0.5 * (amp - mu_eff) * kG * T * T + v * v / (2.0 * mu_eff * kG);
+  const auto s = slide_summary(pulse, SlidingBlock::make(mu), &vertical);
+  // Exact solver: round-off only.
+  EXPECT_NEAR(s.residual_displacement_m, expected, 1e-12 * expected);
+  EXPECT_NEAR(s.max_displacement_time_s, T + v / (mu_eff * kG), 1e-12);  // the stop; round-off on O(1) s
+  EXPECT_EQ(s.slip_episodes, 1);
+}
+
 TEST(Sliding, StaticAboveKineticFriction) {
   // mu_s > mu_k: slip starts at mu_s g but proceeds at mu_k g. Rectangular pulse A: d = (A - mu_k) g T^2/2 +
   // ((A - mu_k) g T)^2 / (2 mu_k g).
