@@ -148,7 +148,8 @@ class AdaptiveStepper {
     (*rhs_)(x1_, dx1_, t1_);
   }
 
-  void step(double t_limit, std::size_t& steps, std::size_t max_steps) {
+  /// False (and no step taken) when the step count would pass max_steps: the engine reports the limit.
+  [[nodiscard]] bool step(double t_limit, std::size_t& steps, std::size_t max_steps) {
     t0_ = t1_;
     x0_ = x1_;
     dx0_ = dx1_;
@@ -156,8 +157,9 @@ class AdaptiveStepper {
     rhs_->set_reference(x0_[0]);
     for (;;) {
       if (++steps > max_steps) {
-        throw std::runtime_error(fmt::format("rocking: more than {} integrator steps (max_steps) at t = {} s",
-                                             max_steps, t0_));
+        x1_ = x0_;
+        t1_ = t0_;
+        return false;
       }
       const bool clamped = dt_ >= remaining;
       double dt = clamped ? remaining : dt_;
@@ -166,7 +168,7 @@ class AdaptiveStepper {
         t1_ = clamped ? t_limit : t;
         // A step shortened to reach the sample instant says little about the step the solution allows.
         dt_ = clamped ? std::max(dt_, dt) : dt;
-        return;
+        return true;
       }
       dt_ = dt;  // rejected: the controller has reduced it
     }
@@ -204,11 +206,9 @@ class Rk4Stepper {
     x1_ = x;
   }
 
-  void step(double t_limit, std::size_t& steps, std::size_t max_steps) {
-    if (++steps > max_steps) {
-      throw std::runtime_error(fmt::format("rocking: more than {} integrator steps (max_steps) at t = {} s",
-                                           max_steps, t1_));
-    }
+  /// False (and no step taken) when the step count would pass max_steps: the engine reports the limit.
+  [[nodiscard]] bool step(double t_limit, std::size_t& steps, std::size_t max_steps) {
+    if (++steps > max_steps) return false;
     t0_ = t1_;
     x0_ = x1_;
     const double remaining = t_limit - t0_;
@@ -218,6 +218,7 @@ class Rk4Stepper {
     rhs_->set_reference(x0_[0]);
     rk4_.do_step(std::cref(*rhs_), x0_, t0_, x1_, dt);
     t1_ = n == 1.0 ? t_limit : t0_ + dt;
+    return true;
   }
 
   /// A classical RK4 step of length t - t0 from the step's start: a continuous extension of order 4.
@@ -243,22 +244,22 @@ class Rk4Stepper {
   State x1_{};
 };
 
-/// Root of f on [a, b] with f(a), f(b) of opposite signs (or zero), by TOMS 748, to a few ulps of the time.
+/// Cap on TOMS 748 iterations per event: it converges in about 10 on smooth dense output; 200 means a broken bracket.
+constexpr std::uintmax_t kMaxRootIterations = 200;
+
+/// Root of f on [a, b] with f(a), f(b) of opposite signs (or zero), by TOMS 748, to a few ulps of the time. NaN when
+/// the iterations ran out (the engine reports it with the run's parameters).
 template <class F>
 double find_root(F f, double a, double b, double fa, double fb) {
   if (fa == 0.0) return a;
   if (fb == 0.0) return b;
-  constexpr std::uintmax_t kMaxIterations = 200;
-  std::uintmax_t iterations = kMaxIterations;
+  std::uintmax_t iterations = kMaxRootIterations;
   // Relative to the time itself, with a floor of 1 s so that events near t = 0 converge too.
   const auto tol = [](double lo, double hi) {
     return std::abs(hi - lo) <= 4.0 * std::numeric_limits<double>::epsilon() * std::max({std::abs(lo), std::abs(hi), 1.0});
   };
   const auto r = boost::math::tools::toms748_solve(f, a, b, fa, fb, tol, iterations);
-  if (iterations >= kMaxIterations) {
-    throw std::runtime_error(fmt::format("rocking: event location did not converge in {} iterations on [{}, {}] s",
-                                         kMaxIterations, a, b));
-  }
+  if (iterations >= kMaxRootIterations) return std::numeric_limits<double>::quiet_NaN();
   return 0.5 * (r.first + r.second);
 }
 
@@ -400,8 +401,9 @@ class Engine {
     int events_here = 0;
     while (!done_ && t_ < tb) {
       if (++events_here > kMaxEventsPerInterval) {
-        throw std::runtime_error(fmt::format("rocking: more than {} events in the sample interval [{}, {}] s",
-                                             kMaxEventsPerInterval, ta, tb));
+        throw EventLimitError(fmt::format("rocking: more than {} events in the sample interval [{}, {}] s ({}): the "
+                                          "input is outside the model (check its accelerations)",
+                                          kMaxEventsPerInterval, ta, tb, describe()));
       }
       if (mode_ == Mode::rest) {
         rest_phase(ta, tb, ah0, ahs, ge0, ges);
@@ -466,7 +468,11 @@ class Engine {
       t_ = tb;  // an event left only round-off of the interval
       return;
     }
-    stepper_.step(tb, out_.summary.steps, opt_.max_steps);
+    if (!stepper_.step(tb, out_.summary.steps, opt_.max_steps)) {
+      throw StepLimitError(fmt::format("rocking: more than max_steps = {} integrator steps (accepted and rejected) by "
+                                       "t = {} s ({}): raise max_steps or check the input",
+                                       opt_.max_steps, t_, describe()));
+    }
     const double t0 = stepper_.t0();
     const double t1 = stepper_.t1();
     const State& x0 = stepper_.x0();
@@ -484,7 +490,7 @@ class Engine {
     double tp = t1;
     bool split = false;
     if ((v0 > 0.0 && v1 <= 0.0) || (v0 < 0.0 && v1 > 0.0)) {
-      tp = v1 == 0.0 ? t1 : find_root(v, t0, t1, v0, v1);
+      tp = v1 == 0.0 ? t1 : root(v, t0, t1, v0, v1);
       split = tp < t1;
     }
     const bool first_up = v0 > 0.0 || (v0 == 0.0 && (v1 > 0.0 || (v1 == 0.0 && f1 > f0)));
@@ -508,7 +514,7 @@ class Engine {
     RockingSummary& sum = out_.summary;
     if (up) {
       if (!sum.exceeded_alpha_time_s && fa < 1.0 && fb >= 1.0) {
-        const double te = find_root(level(1.0), ta, tb, fa - 1.0, fb - 1.0);
+        const double te = root(level(1.0), ta, tb, fa - 1.0, fb - 1.0);
         sum.exceeded_alpha_time_s = te;
         const State x = stepper_.dense(te);
         event(RockingEventKind::exceeded_alpha, te, s * par_.alpha, par_.w_scale * x[1], par_.w_scale * x[1]);
@@ -522,7 +528,7 @@ class Engine {
         }
       }
       if (fb >= par_.overturn_level) {
-        const double tf = find_root(level(par_.overturn_level), ta, tb, fa - par_.overturn_level,
+        const double tf = root(level(par_.overturn_level), ta, tb, fa - par_.overturn_level,
                                     fb - par_.overturn_level);
         const State x = stepper_.dense(tf);
         before_state_change(tf);
@@ -551,7 +557,7 @@ class Engine {
       row(tb, u_);
       return true;
     }
-    impact(find_root(level(0.0), ta, tb, fa, fb));
+    impact(root(level(0.0), ta, tb, fa, fb));
     return true;
   }
 
@@ -591,6 +597,24 @@ class Engine {
     row(ti, u_);
   }
 
+  /// An event time by find_root, or RootFindingError with the run's parameters.
+  template <class F>
+  double root(F f, double ta, double tb, double fa, double fb) const {
+    const double r = find_root(f, ta, tb, fa, fb);
+    if (std::isnan(r)) {
+      throw RootFindingError(fmt::format("rocking: event location (TOMS 748) did not converge in {} iterations on "
+                                         "[{}, {}] s ({})", kMaxRootIterations, ta, tb, describe()));
+    }
+    return r;
+  }
+
+  /// The run's parameters, for limit messages.
+  [[nodiscard]] std::string describe() const {
+    return fmt::format("a = {:.6g} m, h = {:.6g} m, e = {:.6g}, method {}, rel_tol = {:.3g}, rk4_substeps = {}", par_.a,
+                       par_.h, par_.e, opt_.method == RockingMethod::adaptive ? "adaptive" : "rk4", opt_.rel_tol,
+                       opt_.rk4_substeps);
+  }
+
   // ---- after the record: still ground until rest, fall, or the run-out cap ----
   void run_out(double t_end) {
     if (mode_ == Mode::rest || opt_.max_run_out_s == 0.0) return;
@@ -614,7 +638,8 @@ class Engine {
         if (!done_ && mode_ == Mode::rocking && t_ == stepper_.t1()) flush_grid(t_, true);
       }
       if (t_ == before && ++stalls > static_cast<std::size_t>(kMaxEventsPerInterval)) {
-        throw std::runtime_error(fmt::format("rocking: no progress in the run-out at t = {} s", t_));
+        throw EventLimitError(fmt::format("rocking: more than {} events without time advancing in the run-out at "
+                                          "t = {} s ({})", kMaxEventsPerInterval, t_, describe()));
       }
     }
     in_run_out_ = false;
@@ -719,6 +744,7 @@ void validate(const RockingBody& body, const RockingOptions& o) {
                           fmt::format("initial rotation must be finite and below pi/2 in magnitude, got {}",
                                       o.initial_theta_rad));
   }
+  if (o.max_steps < 1) throw parameter_error("max_steps", "the integrator needs at least 1 step, got 0");
   if (!std::isfinite(o.initial_theta_dot_rad_s)) {
     throw parameter_error("initial_theta_dot_rad_s", "initial angular velocity must be finite");
   }
@@ -1028,8 +1054,9 @@ ThresholdResult first_overturning_amplitude(const std::function<GroundMotion(dou
   ThresholdResult result;
   const auto overturns = [&](double amplitude) {
     if (++result.runs > search.max_runs) {
-      throw std::runtime_error(fmt::format("first_overturning_amplitude: more than {} runs (max_runs)",
-                                           search.max_runs));
+      throw SearchLimitError(fmt::format("first_overturning_amplitude: more than max_runs = {} runs (scan {} to {} "
+                                         "by {}, rel_tol = {:.3g}): raise max_runs or narrow the scan",
+                                         search.max_runs, search.start, search.max, search.step, search.rel_tol));
     }
     const RockingSummary s = rock_summary(motion_for(amplitude), body, o);
     return criterion == OverturnCriterion::falls ? s.overturned : s.exceeded_alpha_time_s.has_value();

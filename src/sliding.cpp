@@ -40,7 +40,25 @@ struct Coefficients {
   bool one_way;
   double g;
   double yield_down, yield_up;  // thresholds on a for g_e = g
+  const SlidingBlock* block;    // for limit messages
 };
+
+/// Cap on slip starts and stops inside one step: a stop and a restart the other way make two, and a linear input can
+/// reverse the stick test only once per step, so a handful is the most a valid input gives.
+constexpr int kMaxEventsPerStep = 64;
+/// Cap on TOMS 748 iterations for a slip stop: a quadratic on a certain bracket converges in a few.
+constexpr boost::uintmax_t kMaxRootIterations = 100;
+
+std::string describe(const SlidingBlock& b) {
+  return fmt::format("mu_static = {:.6g}, mu_kinetic = {:.6g}, slope = {:.6g} deg, {}", b.mu_static, b.mu_kinetic,
+                     b.slope_rad * 180.0 / kPi, b.mode == SlidingMode::one_way ? "one-way" : "two-way");
+}
+
+[[noreturn]] void too_many_events(const Coefficients& k, double t_s) {
+  throw EventLimitError(fmt::format("sliding: more than {} slip starts and stops in the step at t = {} s ({}): the "
+                                    "input is outside the model (check its accelerations)",
+                                    kMaxEventsPerStep, t_s, describe(*k.block)));
+}
 
 Coefficients coefficients(const SlidingBlock& b) {
   const double c = std::cos(b.slope_rad);
@@ -58,11 +76,13 @@ Coefficients coefficients(const SlidingBlock& b) {
   k.g = b.g_m_s2;
   k.yield_down = -k.qd * k.g / k.cd;  // cd > 0 for 0 <= beta < 90 deg
   k.yield_up = k.one_way ? -kInf : -k.qu * k.g / k.cu;  // cu > 0 is enforced by make()
+  k.block = &b;
   return k;
 }
 
 /// Smallest sigma in (0, L] where q(sigma) = C + B sigma + A sigma^2 reaches 0, given q(0) = C >= 0; negative when
-/// q stays positive on (0, L]. q is s*d' (relative speed in the slip direction) over the rest of a step.
+/// q stays positive on (0, L]; NaN when the root finder ran out of iterations (the caller reports it). q is s*d'
+/// (relative speed in the slip direction) over the rest of a step.
 double first_stop(double C, double B, double A, double L) {
   const double qL = C + L * (B + A * L);
   if (C == 0.0) {
@@ -94,10 +114,11 @@ double first_stop(double C, double B, double A, double L) {
   if (root > 0.0 && root <= L) return root;
   if (!(qL <= 0.0)) return -1.0;  // tangency lost to round-off: no sign change, keep sliding
   // Round-off pushed the closed-form root out of its bracket (0, L]: TOMS 748 on the bracket, which is certain.
-  boost::uintmax_t iterations = 100;
+  boost::uintmax_t iterations = kMaxRootIterations;
   const auto q = [&](double x) { return C + x * (B + A * x); };
   const auto tol = [](double lo, double hi) { return std::abs(hi - lo) <= 4.0 * std::numeric_limits<double>::epsilon() * std::abs(hi); };
   const auto bracket = boost::math::tools::toms748_solve(q, 0.0, L, C, qL, tol, iterations);
+  if (iterations >= kMaxRootIterations) return std::numeric_limits<double>::quiet_NaN();
   return 0.5 * (bracket.first + bracket.second);
 }
 
@@ -228,9 +249,7 @@ void integrate(const Input& in, const Coefficients& k, Recorder<kRecord>& rec, c
       v = 0.0;
       rec.start(t_i + tau);
       rec.row(t_i + tau, d, 0.0, s);
-      if (++events_in_step > 64) {
-        throw std::logic_error(fmt::format("sliding solver: more than 64 events in the step at t = {} s", t_i));
-      }
+      if (++events_in_step > kMaxEventsPerStep) too_many_events(k, t_i);
       continue;
     }
 
@@ -289,6 +308,10 @@ void integrate(const Input& in, const Coefficients& k, Recorder<kRecord>& rec, c
     const double slope = (acc1 - acc0) / L;
     const double sd = static_cast<double>(s);
     const double sigma = first_stop(sd * v, sd * acc0, 0.5 * sd * slope, L);
+    if (std::isnan(sigma)) {
+      throw RootFindingError(fmt::format("sliding: the slip stop (TOMS 748) did not converge in {} iterations in the "
+                                         "step [{}, {}] s ({})", kMaxRootIterations, t_i, t_i + h, describe(*k.block)));
+    }
     const double span = sigma < 0.0 ? L : sigma;
     // Peak speed inside the step, where the acceleration changes sign.
     if (acc0 * acc1 < 0.0) {
@@ -315,9 +338,7 @@ void integrate(const Input& in, const Coefficients& k, Recorder<kRecord>& rec, c
     rec.stop(t_i + tau);
     rec.track(t_i + tau, d);
     rec.row(t_i + tau, d, 0.0, 0);
-    if (++events_in_step > 64) {
-      throw std::logic_error(fmt::format("sliding solver: more than 64 events in the step at t = {} s", t_i));
-    }
+    if (++events_in_step > kMaxEventsPerStep) too_many_events(k, t_i);
   }
 
   const double t_end = in.time(n - 1);

@@ -131,6 +131,7 @@ TEST(RockingBody, InvalidGeometryIsAnInputErrorNamingTheField) {
   expect_field([] { return RockingBody::general(0.1, 0.1, 0.0199); }, "D");
   try {
     (void)RockingBody::general(0.1, 0.1, 0.0199);
+    FAIL() << "expected InputError for D";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("a^2 + h^2"), std::string::npos) << e.what();
   }
@@ -178,6 +179,58 @@ TEST(RockingOptions, InvalidOptionsAreInputErrors) {
     FAIL();
   } catch (const InputError& e) {
     EXPECT_EQ(e.where().field, "vertical");
+  }
+}
+
+TEST(RockingLimits, MaxStepsIsAStepLimitErrorQuotingTheLimitAndTheBody) {
+  // A sine pulse that rocks the block needs hundreds of steps; a cap of 10 is reached, for either method.
+  const auto b = RockingBody::block(0.04, 0.20);
+  PulseSpec spec;
+  spec.kind = PulseKind::sine;
+  spec.amplitude_m_s2 = 0.5 * kG;
+  spec.duration_s = 0.5;
+  const auto pulse = make_pulse(spec);
+  for (const auto method : {RockingMethod::adaptive, RockingMethod::rk4}) {
+    auto o = housner();
+    o.method = method;
+    ASSERT_GT(rock_summary(pulse, b, o).steps, 10u);
+    o.max_steps = 10;
+    try {
+      (void)rock_summary(pulse, b, o);
+      FAIL() << "expected StepLimitError";
+    } catch (const StepLimitError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("max_steps = 10"), std::string::npos) << what;
+      EXPECT_NE(what.find("a = 0.02 m, h = 0.1 m"), std::string::npos) << what;
+      EXPECT_NE(what.find("raise max_steps"), std::string::npos) << what;
+    }
+    // The typed error is a SolverError (exit status 3 in the CLI).
+    EXPECT_THROW((void)rock(pulse, b, o), SolverError);
+  }
+  auto o = housner();
+  o.max_steps = 0;
+  EXPECT_THROW((void)rock_summary(pulse, b, o), InputError);
+}
+
+TEST(RockingLimits, ThresholdSearchMaxRunsIsASearchLimitError) {
+  const auto b = RockingBody::block(0.04, 0.20);
+  const auto motion_for = [](double amp_g) {
+    PulseSpec spec;
+    spec.kind = PulseKind::sine;
+    spec.amplitude_m_s2 = amp_g * kG;
+    spec.duration_s = 0.5;
+    return make_pulse(spec);
+  };
+  ThresholdSearch search;
+  search.start = 0.1;
+  search.step = 0.1;
+  search.max = 3.0;
+  search.max_runs = 2;
+  try {
+    (void)first_overturning_amplitude(motion_for, b, housner(), OverturnCriterion::falls, search);
+    FAIL() << "expected SearchLimitError";
+  } catch (const SearchLimitError& e) {
+    EXPECT_NE(std::string(e.what()).find("max_runs = 2"), std::string::npos) << e.what();
   }
 }
 

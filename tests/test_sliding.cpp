@@ -288,6 +288,7 @@ TEST(Sliding, InvalidBlocksThrowNamingTheParameter) {
   EXPECT_THROW((void)SlidingBlock::make(0.3, 0.3, 0.0, SlidingMode::two_way, 0.0), InputError);
   try {
     (void)SlidingBlock::make(0.3, 0.5);
+    FAIL() << "expected InputError for mu_kinetic";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("mu_kinetic"), std::string::npos);
   }
