@@ -53,7 +53,8 @@ InputGrid::InputGrid(std::span<const GroundMotion* const> components) {
   const GroundMotion& primary = *components.front();
   dt_ = primary.dt_s();
   accel_.resize(components.size());
-  const bool alone = std::all_of(components.begin() + 1, components.end(), [](const GroundMotion* m) { return m == nullptr; });
+  const bool alone =
+      std::all_of(components.begin() + 1, components.end(), [](const GroundMotion* m) { return m == nullptr; });
   if (alone || same_uniform_grid(components)) {
     size_ = primary.size();
     t0_ = primary.start_time_s();

@@ -977,13 +977,13 @@ void require_amplitude(const RockingBody& body, double theta0) {
 }
 }  // namespace
 
-double linearized_free_rocking_period(const RockingBody& body, double theta0_rad, double g_m_s2) {
+double linearized_free_rocking_period_s(const RockingBody& body, double theta0_rad, double g_m_s2) {
   require_amplitude(body, theta0_rad);
   require_positive(g_m_s2, "g", "g");
   return 4.0 / body.p_rad_s(g_m_s2) * std::acosh(1.0 / (1.0 - theta0_rad / body.alpha_rad()));
 }
 
-double free_rocking_period(const RockingBody& body, double theta0_rad, double g_m_s2) {
+double free_rocking_period_s(const RockingBody& body, double theta0_rad, double g_m_s2) {
   require_amplitude(body, theta0_rad);
   require_positive(g_m_s2, "g", "g");
   const double alpha = body.alpha_rad();
@@ -1001,7 +1001,7 @@ double free_rocking_period(const RockingBody& body, double theta0_rad, double g_
   return 4.0 * quarter;
 }
 
-double free_rocking_impact_speed(const RockingBody& body, double theta0_rad, double g_m_s2) {
+double free_rocking_impact_speed_rad_s(const RockingBody& body, double theta0_rad, double g_m_s2) {
   require_amplitude(body, theta0_rad);
   require_positive(g_m_s2, "g", "g");
   const double alpha = body.alpha_rad();
@@ -1010,7 +1010,7 @@ double free_rocking_impact_speed(const RockingBody& body, double theta0_rad, dou
   return std::sqrt(2.0 * p * p * 2.0 * std::sin(alpha - 0.5 * theta0_rad) * std::sin(0.5 * theta0_rad));
 }
 
-double free_rocking_amplitude(const RockingBody& body, double theta0_rad, double e, int impacts) {
+double free_rocking_amplitude_rad(const RockingBody& body, double theta0_rad, double e, int impacts) {
   require_amplitude(body, theta0_rad);
   if (!std::isfinite(e) || e < 0.0 || e > 1.0) {
     throw parameter_error("e", fmt::format("coefficient of restitution must be in [0, 1], got {}", e));
@@ -1025,13 +1025,13 @@ double free_rocking_amplitude(const RockingBody& body, double theta0_rad, double
   return theta;
 }
 
-double rectangular_pulse_threshold_linearized(const RockingBody& body, double duration_s, double g_m_s2) {
+double rectangular_pulse_threshold_linearized_m_s2(const RockingBody& body, double duration_s, double g_m_s2) {
   require_positive(duration_s, "duration", "pulse duration");
   require_positive(g_m_s2, "g", "g");
   return g_m_s2 * body.alpha_rad() / (-std::expm1(-body.p_rad_s(g_m_s2) * duration_s));
 }
 
-double velocity_impulse_threshold(const RockingBody& body, double g_m_s2) {
+double velocity_impulse_threshold_m_s(const RockingBody& body, double g_m_s2) {
   require_positive(g_m_s2, "g", "g");
   const double alpha = body.alpha_rad();
   const double sh = std::sin(0.5 * alpha);

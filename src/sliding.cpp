@@ -64,18 +64,20 @@ Coefficients coefficients(const SlidingBlock& b) {
   const double c = std::cos(b.slope_rad);
   const double s = std::sin(b.slope_rad);
   Coefficients k{};
+  // Stick test |f_t| <= mu_s n, f_t = a cos + g sin and n = g cos - a sin (thesis eq 2.2, Goodman & Seed's R).
   k.cd = c + b.mu_static * s;
   k.qd = s - b.mu_static * c;
   k.cu = c - b.mu_static * s;
   k.qu = s + b.mu_static * c;
+  // d'' = P_s a + Q_s g_e: eq 2.2's equation of motion with kinetic friction, both ways (eq 3.9 on level ground).
   k.p[1] = c + b.mu_kinetic * s;
   k.q[1] = s - b.mu_kinetic * c;
   k.p[0] = c - b.mu_kinetic * s;
   k.q[0] = s + b.mu_kinetic * c;
   k.one_way = b.mode == SlidingMode::one_way;
   k.g = b.g_m_s2;
-  k.yield_down = -k.qd * k.g / k.cd;  // cd > 0 for 0 <= beta < 90 deg
-  k.yield_up = k.one_way ? -kInf : -k.qu * k.g / k.cu;  // cu > 0 is enforced by make()
+  k.yield_down = -k.qd * k.g / k.cd;  // g tan(phi - beta), thesis eq 2.2; cd > 0 for 0 <= beta < 90 deg
+  k.yield_up = k.one_way ? -kInf : -k.qu * k.g / k.cu;  // -g tan(phi + beta), eq 2.2; cu > 0 is enforced by make()
   k.block = &b;
   return k;
 }
@@ -266,14 +268,14 @@ void integrate(const Input& in, const Coefficients& k, Recorder<kRecord>& rec, c
         double acc0 = p * a[i] + q;
         while (i + 1 < n) {
           const double acc1 = p * a[i + 1] + q;
-          const double v1 = v + 0.5 * h * (acc0 + acc1);
+          const double v1 = v + 0.5 * h * (acc0 + acc1);  // trapezoid (eq 3.10): exact for linear d''
           if (sd * v1 <= 0.0 || (sd * acc0 < 0.0 && sd * acc1 > 0.0)) break;
           if (sd * acc0 > 0.0 && sd * acc1 < 0.0) {  // speed peaks inside the step
             const double at = acc0 * h / (acc0 - acc1);
             const double vp = v + at * (acc0 + 0.5 * (acc1 - acc0) / h * at);
             rec.summary.max_abs_velocity_m_s = std::max(rec.summary.max_abs_velocity_m_s, std::abs(vp));
           }
-          d += h * (v + h * (2.0 * acc0 + acc1) / 6.0);
+          d += h * (v + h * (2.0 * acc0 + acc1) / 6.0);  // cubic, as eq 3.10's ground term: exact
           v = v1;
           acc0 = acc1;
           ++i;
@@ -321,9 +323,9 @@ void integrate(const Input& in, const Coefficients& k, Recorder<kRecord>& rec, c
             std::max(rec.summary.max_abs_velocity_m_s, std::abs(v + at * (acc0 + 0.5 * slope * at)));
       }
     }
-    d += span * (v + span * (0.5 * acc0 + span * slope / 6.0));
+    d += span * (v + span * (0.5 * acc0 + span * slope / 6.0));  // cubic (eq 3.10), exact: method.md
     if (sigma < 0.0) {
-      v += span * (acc0 + 0.5 * slope * span);
+      v += span * (acc0 + 0.5 * slope * span);  // d'(sigma), same
       rec.summary.max_abs_velocity_m_s = std::max(rec.summary.max_abs_velocity_m_s, std::abs(v));
       ++i;
       tau = 0.0;
@@ -347,8 +349,8 @@ void integrate(const Input& in, const Coefficients& k, Recorder<kRecord>& rec, c
     // Run-out on still ground (a_h = 0, g_e = g): constant relative acceleration Q_s g.
     const double acc = k.q[s > 0 ? 1 : 0] * k.g;
     if (static_cast<double>(s) * acc < 0.0) {
-      const double sigma = -v / acc;
-      d += sigma * (v + 0.5 * acc * sigma);
+      const double sigma = -v / acc;         // Newmark's run-out (thesis eqs 2.5, 2.6): t = v / (N g) on level ground
+      d += sigma * (v + 0.5 * acc * sigma);  // ... and v^2 / (2 N g) more displacement
       rec.stop(t_end + sigma);
       rec.track(t_end + sigma, d);
       rec.row(t_end + sigma, d, 0.0, 0);

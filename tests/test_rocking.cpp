@@ -416,8 +416,8 @@ TEST(RockingFree, R4PeriodOfFreeRockingWithoutLoss) {
   const auto b = r4_block();
   const double theta0 = 0.5 * b.alpha_rad();
   // Closed forms (library benchmarks) against rocking.md: T_lin = 3.080962 s (formula), T = 3.084580 s (quadrature).
-  EXPECT_NEAR(linearized_free_rocking_period(b, theta0, kG), 3.080962, kPrinted6);
-  EXPECT_NEAR(free_rocking_period(b, theta0, kG), 3.084580, kPrinted6);
+  EXPECT_NEAR(linearized_free_rocking_period_s(b, theta0, kG), 3.080962, kPrinted6);
+  EXPECT_NEAR(free_rocking_period_s(b, theta0, kG), 3.084580, kPrinted6);
   // Integrated with e = 1 from rest at theta0: impacts at T/4, 3T/4, 5T/4, ... Tolerance 1e-6 relative
   // (rocking.md); rel_tol 1e-10 puts the integration error two orders below it.
   auto o = with_e(1.0);
@@ -426,13 +426,13 @@ TEST(RockingFree, R4PeriodOfFreeRockingWithoutLoss) {
   const auto r = rock(still_ground(10.0), b, o);
   const auto impacts = events_of(r, RockingEventKind::impact);
   ASSERT_GE(impacts.size(), 5u);
-  const double T = free_rocking_period(b, theta0, kG);
+  const double T = free_rocking_period_s(b, theta0, kG);
   EXPECT_NEAR(impacts[0].time_s, T / 4.0, 1e-6 * T);
   EXPECT_NEAR(impacts[2].time_s - impacts[0].time_s, T, 1e-6 * T);
   EXPECT_NEAR(impacts[4].time_s - impacts[2].time_s, T, 1e-6 * T);
   // The nonlinear period is longer than Housner's linearised one by ~0.12% at alpha = 0.2 (rocking.md: do not test
   // the nonlinear solver against T_lin tighter than ~0.2%).
-  EXPECT_NEAR(impacts[2].time_s - impacts[0].time_s, linearized_free_rocking_period(b, theta0, kG), 2e-3 * T);
+  EXPECT_NEAR(impacts[2].time_s - impacts[0].time_s, linearized_free_rocking_period_s(b, theta0, kG), 2e-3 * T);
 }
 
 TEST(RockingFree, CylinderAndGeneralBodiesFollowTheSameClosedFormsInPAndAlpha) {
@@ -443,19 +443,19 @@ TEST(RockingFree, CylinderAndGeneralBodiesFollowTheSameClosedFormsInPAndAlpha) {
     auto o = with_e(1.0);
     o.initial_theta_rad = theta0;
     o.rel_tol = 1e-10;
-    const double T = free_rocking_period(b, theta0, kG);
+    const double T = free_rocking_period_s(b, theta0, kG);
     const auto r = rock(still_ground(3.5 * T), b, o);
     const auto impacts = events_of(r, RockingEventKind::impact);
     ASSERT_GE(impacts.size(), 3u);
     EXPECT_NEAR(impacts[2].time_s - impacts[0].time_s, T, 1e-6 * T);
-    EXPECT_NEAR(std::abs(impacts[0].theta_dot_before_rad_s), free_rocking_impact_speed(b, theta0, kG), 1e-7);
+    EXPECT_NEAR(std::abs(impacts[0].theta_dot_before_rad_s), free_rocking_impact_speed_rad_s(b, theta0, kG), 1e-7);
   }
 }
 
 TEST(RockingFree, R5SpeedAtFirstImpact) {
   const auto b = r4_block();
   const double theta0 = 0.5 * b.alpha_rad();
-  EXPECT_NEAR(free_rocking_impact_speed(b, theta0, kG), 0.295529, kPrinted6);
+  EXPECT_NEAR(free_rocking_impact_speed_rad_s(b, theta0, kG), 0.295529, kPrinted6);
   EXPECT_NEAR(housner_restitution(b), 0.940796, kPrinted6);
   auto o = housner();
   o.initial_theta_rad = theta0;
@@ -476,7 +476,7 @@ TEST(RockingFree, R6AmplitudeDecayFollowsTheExactRecursion) {
   // rocking.md R6 nonlinear column, theta_n / alpha (6 decimals).
   const double table[] = {0.420356, 0.358023, 0.307494};
   for (int n = 1; n <= 3; ++n) {
-    EXPECT_NEAR(free_rocking_amplitude(b, theta0, e, n) / alpha, table[n - 1], kPrinted6) << n;
+    EXPECT_NEAR(free_rocking_amplitude_rad(b, theta0, e, n) / alpha, table[n - 1], kPrinted6) << n;
   }
   auto o = housner();
   o.initial_theta_rad = theta0;
@@ -487,7 +487,7 @@ TEST(RockingFree, R6AmplitudeDecayFollowsTheExactRecursion) {
   ASSERT_GE(peaks.size(), 6u);
   for (int n = 1; n <= 6; ++n) {
     EXPECT_NEAR(std::abs(peaks[static_cast<std::size_t>(n - 1)].theta_rad) / alpha,
-                free_rocking_amplitude(b, theta0, e, n) / alpha, 1e-6)
+                free_rocking_amplitude_rad(b, theta0, e, n) / alpha, 1e-6)
         << n;
   }
   EXPECT_NEAR(r.summary.max_abs_rotation_rad, theta0, 1e-15);  // the start is the largest rotation
@@ -502,11 +502,11 @@ TEST(RockingFree, LosslessRockingConservesEnergyOver100Impacts) {
   o.initial_theta_rad = 0.5 * b.alpha_rad();
   o.rel_tol = 1e-13;
   o.abs_tol = 1e-13;
-  const double T = free_rocking_period(b, o.initial_theta_rad, kG);
+  const double T = free_rocking_period_s(b, o.initial_theta_rad, kG);
   const auto r = rock(still_ground(52.0 * T, 0.05), b, o);
   const auto impacts = events_of(r, RockingEventKind::impact);
   ASSERT_GE(impacts.size(), 100u);
-  const double w0 = free_rocking_impact_speed(b, o.initial_theta_rad, kG);
+  const double w0 = free_rocking_impact_speed_rad_s(b, o.initial_theta_rad, kG);
   for (std::size_t k = 0; k < 100; ++k) {
     EXPECT_NEAR(std::abs(impacts[k].theta_dot_before_rad_s) / w0, 1.0, 1e-9) << k;
   }
@@ -545,7 +545,7 @@ TEST(RockingThreshold, R7RectangularPulse) {
   const double pt1[] = {0.25, 0.5, 1.0, 2.0, 4.0};
   const double lin[] = {4.520812, 2.541494, 1.581977, 1.156518, 1.018657};
   for (int i = 0; i < 5; ++i) {
-    EXPECT_NEAR(rectangular_pulse_threshold_linearized(b, pt1[i] / p, kG) / (kG * alpha), lin[i], kPrinted6);
+    EXPECT_NEAR(rectangular_pulse_threshold_linearized_m_s2(b, pt1[i] / p, kG) / (kG * alpha), lin[i], kPrinted6);
   }
   // Nonlinear with Housner impacts, falls at pi/2: [INDEP] row to 1e-3 (rocking.md). Subset p t1 = 0.5, 1, 2.
   const double tan_a = std::tan(alpha);
@@ -577,11 +577,11 @@ TEST(RockingThreshold, R8VelocityImpulse) {
   const double small[] = {0.428042, 0.856084, 1.712168};
   for (int i = 0; i < 3; ++i) {
     const auto b = block_alpha_p(deg(alphas[i]), 2.0);
-    EXPECT_NEAR(velocity_impulse_threshold(b, kG), table[i], kPrinted6);
+    EXPECT_NEAR(velocity_impulse_threshold_m_s(b, kG), table[i], kPrinted6);
     EXPECT_NEAR(kG * deg(alphas[i]) / 2.0, small[i], kPrinted6);
   }
   const auto b = r4_block();
-  const double dv = velocity_impulse_threshold(b, kG);
+  const double dv = velocity_impulse_threshold_m_s(b, kG);
   EXPECT_NEAR(dv, 1.168890, kPrinted6);
   // Integrated from the impulse's angular velocity theta'_0 = dv p^2 cos(alpha) / g, 0.01% either side of the
   // threshold: the energy margin (2e-4) is far above the integration error (rel_tol 1e-10).
