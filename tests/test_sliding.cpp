@@ -1,9 +1,9 @@
 // The exact sliding solver: invariants, Goodman-Seed incline, vertical acceleration, convergence on smooth input.
 #include <cmath>
-#include <random>
 
 #include <gtest/gtest.h>
 
+#include "support/noise_record.hpp"
 #include "topple/error.hpp"
 #include "topple/pulses.hpp"
 #include "topple/sliding.hpp"
@@ -13,23 +13,10 @@ namespace {
 
 constexpr double kG = kStandardGravity;
 
-/// A reproducible broadband "record": filtered noise, 4000 samples at 0.01 s, PGA ~0.5 g.
+/// A reproducible broadband "record" (tests/support): filtered noise near 3 Hz, 4000 samples at 0.01 s, PGA 0.5 g.
 GroundMotion noisy_record(unsigned seed = 3, std::size_t n = 4000, double dt = 0.01) {
-  std::mt19937_64 rng(seed);
-  std::normal_distribution<double> noise(0.0, 1.0);
-  std::vector<double> a(n);
-  double y1 = 0.0;
-  double y2 = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    // second-order resonator near 3 Hz, then an envelope
-    const double w = 2.0 * kPi * 3.0 * dt;
-    const double y = 2.0 * std::cos(w) * 0.97 * y1 - 0.97 * 0.97 * y2 + noise(rng);
-    y2 = y1;
-    y1 = y;
-    const double t = static_cast<double>(i) * dt;
-    a[i] = y * (t / 5.0) * std::exp(1.0 - t / 5.0);
-  }
-  return GroundMotion::uniform(a, dt).scaled_to_pga(0.5 * kG);
+  return test::noise_record({.seed = seed, .samples = n, .dt_s = dt, .pga_m_s2 = 0.5 * kG, .resonance_hz = 3.0,
+                             .pole_radius = 0.97, .envelope_peak_s = 5.0});
 }
 
 TEST(Sliding, NoResponseBelowFriction) {
