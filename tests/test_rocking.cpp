@@ -258,6 +258,7 @@ TEST(RockingRestitution, R3CylinderTable) {
     EXPECT_NEAR(c.alpha_rad(), alpha_tab[i], kPrinted6);
     EXPECT_NEAR(housner_restitution(c), e_cyl[i], kPrinted6);
     EXPECT_NEAR(housner_restitution(r), e_rect[i], kPrinted6);
+    // Two algebraic routes to the same number (1 - 2a^2/D vs the cylinder's form): round-off.
     EXPECT_NEAR(housner_restitution(c), 1.0 - 24.0 * a * a / (15.0 * a * a + 16.0 * h * h), 1e-12);
     EXPECT_NEAR(c.p_rad_s(kG) * std::sqrt(c.R_m()), p_cyl[i], 5e-6);  // printed to 5 decimals
     EXPECT_NEAR(r.p_rad_s(kG) * std::sqrt(r.R_m()), 2.71247, 5e-6);
@@ -280,6 +281,7 @@ TEST(RockingImpact, IntegratedImpactScalesVelocityByEAndEnergyByESquared) {
     const auto impacts = events_of(r, RockingEventKind::impact);
     ASSERT_GE(impacts.size(), 3u) << e;
     for (const auto& ev : impacts) {
+      // The law is applied exactly; 1e-6 is the reference's printed precision (rocking.md R2), kept as the bound.
       EXPECT_NEAR(ev.theta_dot_after_rad_s / ev.theta_dot_before_rad_s, e, 1e-6);
       EXPECT_GT(ev.theta_dot_after_rad_s * ev.theta_dot_before_rad_s, 0.0);
     }
@@ -332,6 +334,7 @@ TEST(RockingOnset, UpliftIsLocatedExactlyOnThePiecewiseLinearInput) {
   spec.duration_s = t0;
   const auto r = rock_summary(make_pulse(spec), b, housner());
   ASSERT_TRUE(r.uplift_time_s);
+  // The uplift is the root of a linear function, located exactly: round-off on t ~ 0.08 s.
   EXPECT_NEAR(*r.uplift_time_s, kG * 0.2 / A * t0 / 2.0, 1e-14);
   EXPECT_GE(r.uplifts, 1u);
 }
@@ -366,6 +369,8 @@ TEST(RockingOnset, VerticalAccelerationScalesTheThreshold) {
   const auto with_zeros = rock_summary(rect, b, housner(), &zeros);
   ASSERT_TRUE(alone.overturned);
   ASSERT_TRUE(with_zeros.overturned);
+  // The zero record extends the grid past the pulse (steps then stop at its samples instead of running free):
+  // the integration error at rel_tol 1e-8 over ~1 s of motion, ~1e-10 s, with a margin of 10.
   EXPECT_NEAR(*with_zeros.overturn_time_s, *alone.overturn_time_s, 1e-9);
 }
 
@@ -486,6 +491,7 @@ TEST(RockingFree, CylinderAndGeneralBodiesFollowTheSameClosedFormsInPAndAlpha) {
     const auto impacts = events_of(r, RockingEventKind::impact);
     ASSERT_GE(impacts.size(), 3u);
     EXPECT_NEAR(impacts[2].time_s - impacts[0].time_s, T, 1e-6 * T);
+    // Energy closed form; rel_tol 1e-10 integration leaves ~1e-9 rad/s, 1e-7 is the printed-digit scale of R5.
     EXPECT_NEAR(std::abs(impacts[0].theta_dot_before_rad_s), free_rocking_impact_speed_rad_s(b, theta0, kG), 1e-7);
   }
 }
@@ -545,10 +551,11 @@ TEST(RockingFree, LosslessRockingConservesEnergyOver100Impacts) {
   const auto impacts = events_of(r, RockingEventKind::impact);
   ASSERT_GE(impacts.size(), 100u);
   const double w0 = free_rocking_impact_speed_rad_s(b, o.initial_theta_rad, kG);
+  // e = 1 conserves energy; at rel_tol 1e-13 the drift over 100 impacts stays below 1e-9 (measured ~1e-11).
   for (std::size_t k = 0; k < 100; ++k) {
     EXPECT_NEAR(std::abs(impacts[k].theta_dot_before_rad_s) / w0, 1.0, 1e-9) << k;
   }
-  EXPECT_NEAR(r.summary.energy_lost_j_per_kg, 0.0, 1e-15);
+  EXPECT_NEAR(r.summary.energy_lost_j_per_kg, 0.0, 1e-15);  // e = 1: (1 - e^2) is exactly 0; only round-off
 }
 
 TEST(RockingFree, ZenoRockingComesToRestByTheRestRule) {
@@ -566,6 +573,7 @@ TEST(RockingFree, ZenoRockingComesToRestByTheRestRule) {
   EXPECT_EQ(events_of(r, RockingEventKind::rest).size(), 1u);
   const double alpha = b.alpha_rad();
   const double e0 = kG * b.R_m() * (std::cos(alpha - o.initial_theta_rad) - std::cos(alpha));
+  // All the initial energy is lost by the rest; integration error at the default rel_tol (1e-8) over > 50 impacts.
   EXPECT_NEAR(r.summary.energy_lost_j_per_kg / e0, 1.0, 1e-6);
   EXPECT_EQ(r.history.state.back(), RockingState::rest);
   // Time history rows are ordered in time.
@@ -829,7 +837,7 @@ TEST(RockingShenton, OnsetModes) {
   o.mu = 0.3;
   const auto sr = rock_summary(make_pulse(spec), b, o);
   EXPECT_EQ(sr.onset_mode, OnsetMode::slide_rock);
-  EXPECT_NEAR(*sr.onset_accel_ratio, 1.0, 1e-12);
+  EXPECT_NEAR(*sr.onset_accel_ratio, 1.0, 1e-12);  // |a_h| / g of a -g pulse: one division, round-off
   o.mu.reset();
   EXPECT_EQ(rock_summary(rec, b, o).onset_mode, OnsetMode::unchecked);
 }
@@ -899,6 +907,7 @@ TEST(RockingMethod, AdaptiveAgreesWithFixedStepRk4) {
   const auto a = rock_summary(rec, b, adaptive);
   const auto r = rock_summary(rec, b, rk4);
   ASSERT_GT(a.impacts, 2u);
+  // Two independent integrators, both converged far below it: 1e-6 is the precision the comparison is meant to show.
   EXPECT_NEAR(r.max_abs_rotation_rad / a.max_abs_rotation_rad, 1.0, 1e-6);
   // The thesis' own step (dt/4 on a 0.01 s record) is visibly coarser but still within a few percent.
   rk4.rk4_substeps = 4;
@@ -944,7 +953,7 @@ TEST(RockingRecord, AdaptiveAgreesWithFixedStepRk4OnElCentro) {
   const auto r = rock_summary(window, b, rk4);
   ASSERT_TRUE(a.overturned);
   ASSERT_TRUE(r.overturned);
-  EXPECT_NEAR(*r.overturn_time_s, *a.overturn_time_s, 1e-6);
+  EXPECT_NEAR(*r.overturn_time_s, *a.overturn_time_s, 1e-6);  // as above: two converged integrators, 1e-6 s
 }
 
 TEST(RockingRecord, ThesisChapter5ObjectsOnTheSharedRecords) {
@@ -975,7 +984,7 @@ TEST(RockingRecord, ThesisChapter5ObjectsOnTheSharedRecords) {
           EXPECT_EQ(s.max_abs_rotation_rad, 0.0);
         }
         if (s.overturned) {
-          EXPECT_NEAR(s.max_abs_rotation_rad, kPi / 2.0, 1e-12);
+          EXPECT_NEAR(s.max_abs_rotation_rad, kPi / 2.0, 1e-12);  // the fall is recorded at pi/2: round-off of alpha
         } else {
           EXPECT_LT(s.max_abs_rotation_rad, kPi / 2.0);
           EXPECT_FALSE(s.still_rocking_at_end);

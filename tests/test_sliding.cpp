@@ -93,6 +93,7 @@ TEST(Sliding, GoodmanSeedYieldAccelerations) {
   const double beta = 10.0 * kPi / 180.0;
   const auto b = SlidingBlock::make(mu, mu, beta);
   const double phi = std::atan(mu);
+  // Two routes to the same trigonometry (the solver's linear forms vs tan of a difference): a few ulp of g.
   EXPECT_NEAR(b.yield_down_m_s2(), kG * std::tan(phi - beta), 1e-14 * kG);
   EXPECT_NEAR(b.yield_up_m_s2(), -kG * std::tan(phi + beta), 1e-14 * kG);
   EXPECT_EQ(SlidingBlock::make(mu, mu, beta, SlidingMode::one_way).yield_up_m_s2(),
@@ -113,6 +114,7 @@ TEST(Sliding, ConstantAccelerationOnAnInclineMatchesTheClosedForm) {
   const double v = acc * T;
   const double dec = kG * (mu * std::cos(beta) - std::sin(beta));
   const double expected = 0.5 * acc * T * T + v * v / (2.0 * dec);
+  // Exact solver against the closed form: round-off of a few dozen operations on O(1) numbers (1e-12 is ~5000 ulp).
   EXPECT_NEAR(s.residual_displacement_m, expected, 1e-12 * expected);
   EXPECT_NEAR(s.end_time_s, T + v / dec, 1e-12);
   // Up-slope push: yield is tan(phi + beta), larger; a = -0.6 g gives nothing, -1.2 g gives up-slope slip.
@@ -122,6 +124,7 @@ TEST(Sliding, ConstantAccelerationOnAnInclineMatchesTheClosedForm) {
   const double v_up = acc_up * T;
   const double dec_up = kG * (std::sin(beta) + mu * std::cos(beta));
   const double expected_up = 0.5 * acc_up * T * T - v_up * v_up / (2.0 * dec_up);
+  // Same round-off argument.
   EXPECT_NEAR(slide_summary(strong, SlidingBlock::make(mu, mu, beta)).residual_displacement_m, expected_up,
               1e-12 * std::abs(expected_up));
 }
@@ -136,6 +139,8 @@ TEST(Sliding, VerticalAccelerationScalesFriction) {
   const auto with_v = slide_summary(rec, SlidingBlock::make(mu), &vertical);
   const auto equivalent = slide_summary(rec, SlidingBlock::make(mu * (kG + av) / kG));
   ASSERT_GT(equivalent.max_abs_displacement_m, 1e-3);
+  // mu (g + a_v) and mu' g round differently, and slip starts shift by that round-off times the record's slope:
+  // 1e-10 relative over ~4000 steps and dozens of episodes.
   EXPECT_NEAR(with_v.max_abs_displacement_m, equivalent.max_abs_displacement_m,
               1e-10 * equivalent.max_abs_displacement_m);
   EXPECT_EQ(with_v.slip_episodes, equivalent.slip_episodes);
@@ -212,7 +217,7 @@ TEST(Sliding, StaticAboveKineticFriction) {
   const auto s = slide_summary(motion, SlidingBlock::make(0.6, 0.4));
   const double v = (amp - 0.4) * kG * T;
   const double expected = 0.5 * (amp - 0.4) * kG * T * T + v * v / (2.0 * 0.4 * kG);
-  EXPECT_NEAR(s.residual_displacement_m, expected, 1e-12 * expected);
+  EXPECT_NEAR(s.residual_displacement_m, expected, 1e-12 * expected);  // exact solver: round-off only
   EXPECT_EQ(slide_summary(motion, SlidingBlock::make(0.81, 0.1)).max_abs_displacement_m, 0.0);
 }
 
@@ -226,6 +231,8 @@ TEST(Sliding, ConvergesOnSmoothInputAtSecondOrder) {
   }
   const double r1 = (d[0] - d[1]) / (d[1] - d[2]);
   const double r2 = (d[1] - d[2]) / (d[2] - d[3]);
+  // Ratio 4 = 2^2 for second order; +-0.4 (orders 1.86 ... 2.13) leaves room for the higher-order terms of the
+  // sampling error at these dt, and still fails for first order (2) or third (8).
   EXPECT_NEAR(r1, 4.0, 0.4);
   EXPECT_NEAR(r2, 4.0, 0.4);
 }
