@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
+#include <cstdint>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -110,23 +112,25 @@ struct Rhs {
     ++moves;
   }
 
-  static constexpr double kSeriesRange = 0.03;
+  static constexpr double kSeriesRange = 0.1;
 
   [[gnu::always_inline]] void sin_cos(double phi, double& sn, double& cs) const {
     const double d = phi - phi_ref;
-    // |d| <= 0.03 (theta moves less than that within most steps): sin d to d^7 and cos d - 1 to d^6 leave out less
-    // than 2e-17. Estrin's scheme keeps the dependency chain short (the stages of a step are sequential, so this
-    // function's latency is the step's). Reciprocals are constants: a division by a literal stays a division.
+    // |d| <= 0.1 (theta moves less than that within a step but for large steps on slow motions): sin d to d^9 and
+    // cos d - 1 to d^10 leave out less than 3e-19. Estrin's scheme keeps the dependency chain short (the stages of a
+    // step are sequential, so this function's latency is the step's). Reciprocals are constants: a division by a
+    // literal stays a division.
     if (std::abs(d) > kSeriesRange) {
       sn = std::sin(phi);
       cs = std::cos(phi);
       return;
     }
-    constexpr double k6 = 1.0 / 6.0, k120 = 1.0 / 120.0, k5040 = 1.0 / 5040.0, k24 = 1.0 / 24.0, k720 = 1.0 / 720.0;
+    constexpr double k6 = 1.0 / 6.0, k120 = 1.0 / 120.0, k5040 = 1.0 / 5040.0, k362880 = 1.0 / 362880.0;
+    constexpr double k24 = 1.0 / 24.0, k720 = 1.0 / 720.0, k40320 = 1.0 / 40320.0, k3628800 = 1.0 / 3628800.0;
     const double d2 = d * d;
     const double d4 = d2 * d2;
-    const double sd = d + (d * d2) * ((k120 * d2 - k6) - k5040 * d4);
-    const double cd_minus_1 = d2 * ((k24 * d2 - 0.5) - k720 * d4);
+    const double sd = d + (d * d2) * ((k120 * d2 - k6) + d4 * (k362880 * d2 - k5040));
+    const double cd_minus_1 = d2 * ((k24 * d2 - 0.5) + d4 * (k40320 * d2 - k720 - k3628800 * d4));
     sn = sin_ref + (sin_ref * cd_minus_1 + cos_ref * sd);
     cs = cos_ref + (cos_ref * cd_minus_1 - sin_ref * sd);
   }
@@ -159,9 +163,11 @@ class StepAdjuster : public odeint::default_step_adjuster<double, double> {
   /// steps on every machine; a tenth of a libm pow (which was 4 % of the inversion's instructions).
   static double inverse_fifth_root(double x) {
     // x = m 2^e, m in [0.5, 1): y0 = 2^(-e/5) times the chord of m^(-1/5) on [0.5, 1] (within 1.5 % of the root).
-    int e = 0;
-    const double m = std::frexp(x, &e);
-    double y = std::ldexp(1.0, -e / 5);
+    // The exponent and mantissa from the bits (x is normal and positive here): std::frexp is a library call.
+    const auto bits = std::bit_cast<std::uint64_t>(x);
+    const int e = static_cast<int>((bits >> 52) & 0x7ff) - 1022;
+    const double m = std::bit_cast<double>((bits & 0x000f'ffff'ffff'ffffULL) | 0x3fe0'0000'0000'0000ULL);
+    double y = std::bit_cast<double>(static_cast<std::uint64_t>(1023 - e / 5) << 52);  // 2^(-e/5), e/5 truncated
     const int r = -e % 5;  // remaining exponent fifths, -4 .. 4
     constexpr double kFifth[9] = {0.5743491774985174, 0.6597539553864471, 0.7578582832551990,
                                   0.8705505632961241, 1.0, 1.1486983549970351, 1.3195079107728942,
