@@ -22,6 +22,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "support/noise_record.hpp"
 #include "support/shared_data.hpp"
 #include "topple/sweep.hpp"
 #include "topple/error.hpp"
@@ -38,22 +39,11 @@ using test::TempDir;
 
 constexpr double kG = kStandardGravity;
 
-/// A reproducible broadband record: filtered noise, n samples at dt, PGA 0.4 g.
+/// A reproducible broadband record (tests/support): filtered noise near 2.5 Hz, n samples at dt, PGA 0.4 g.
 std::shared_ptr<const GroundMotion> noise_record(unsigned seed, std::size_t n = 1500, double dt = 0.01) {
-  std::mt19937_64 rng(seed);
-  std::normal_distribution<double> noise(0.0, 1.0);
-  std::vector<double> a(n);
-  double y1 = 0.0;
-  double y2 = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double w = 2.0 * kPi * 2.5 * dt;
-    const double y = 2.0 * std::cos(w) * 0.95 * y1 - 0.95 * 0.95 * y2 + noise(rng);
-    y2 = y1;
-    y1 = y;
-    const double t = static_cast<double>(i) * dt;
-    a[i] = y * (t / 4.0) * std::exp(1.0 - t / 4.0);
-  }
-  return std::make_shared<const GroundMotion>(GroundMotion::uniform(a, dt).scaled_to_pga(0.4 * kG));
+  return std::make_shared<const GroundMotion>(test::noise_record({.seed = seed, .samples = n, .dt_s = dt,
+                                                                  .pga_m_s2 = 0.4 * kG, .resonance_hz = 2.5,
+                                                                  .pole_radius = 0.95, .envelope_peak_s = 4.0}));
 }
 
 std::string slurp(const fs::path& p) {
