@@ -22,15 +22,7 @@ namespace {
 
 using topple::GroundMotion;
 
-GroundMotion load_record() {
-  // The shared loader (kocaeli_record.hpp): Kocaeli, or its synthetic stand-in near 4 Hz without ../shared.
-  return topple::bench::kocaeli_record(20000, 4.0);
-}
-
-const GroundMotion& record() {
-  static const GroundMotion r = load_record();
-  return r;
-}
+const GroundMotion& record() { return topple::bench::kocaeli_20000(); }
 
 topple::RockingBody body_from(const benchmark::State& state) {
   const double width = static_cast<double>(state.range(0)) / 100.0;

@@ -15,15 +15,7 @@ namespace {
 
 using topple::GroundMotion;
 
-GroundMotion load_record() {
-  // The shared loader (kocaeli_record.hpp): Kocaeli, or its synthetic stand-in near 4 Hz without ../shared.
-  return topple::bench::kocaeli_record(20000, 4.0);
-}
-
-const GroundMotion& record() {
-  static const GroundMotion r = load_record();
-  return r;
-}
+const GroundMotion& record() { return topple::bench::kocaeli_20000(); }
 
 /// mu giving the wanted fraction of time sliding, as a benchmark argument in percent of PGA.
 void single_block(benchmark::State& state, topple::SlidingMode mode) {
