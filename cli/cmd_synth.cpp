@@ -71,9 +71,7 @@ void write_motion_csv(const std::string& path, const GroundMotion& motion, const
 }
 
 void run_synth(const SynthOptions& o) {
-  if (!(o.g_m_s2 > 0.0) || !std::isfinite(o.g_m_s2)) {
-    throw parameter_error("--g", fmt::format("g must be positive and finite, got {}", o.g_m_s2));
-  }
+  check_g(o.g_m_s2);
   if (o.out.empty() && o.plot.empty()) {
     throw parameter_error("--out",
                           "give the CSV file to write (--out motion.csv), a figure (--plot motion.svg), or both");
