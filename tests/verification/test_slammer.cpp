@@ -22,54 +22,16 @@
 #include <nlohmann/json.hpp>
 
 #include "support/shared_data.hpp"
+#include "support/slammer_suite.hpp"
 #include "topple/io/read.hpp"
 #include "topple/sliding.hpp"
 
 namespace topple {
 namespace {
 
-struct Pclose {
-  void operator()(std::FILE* f) const { pclose(f); }
-};
-
-std::string gunzip(const std::filesystem::path& path) {
-  std::unique_ptr<std::FILE, Pclose> pipe(popen(("gzip -dc '" + path.string() + "'").c_str(), "r"));
-  std::string text;
-  char buffer[65536];
-  std::size_t got = 0;
-  while (pipe && (got = std::fread(buffer, 1, sizeof buffer, pipe.get())) > 0) text.append(buffer, got);
-  return text;
-}
-
-struct RecordInfo {
-  double dt_s = 0.0;
-  double pga_g_rounded = 0.0;
-};
-
-/// "Chi-Chi, Taiwan 1999" (eq.sql) and "Chi-Chi 1999" (results) name the same event: drop ", country".
-std::string event_key(std::string name) {
-  const auto comma = name.find(',');
-  if (comma != std::string::npos) {
-    const auto year = name.rfind(' ');
-    name = name.substr(0, comma) + name.substr(year);
-  }
-  return name;
-}
-
-std::map<std::string, RecordInfo> read_eq_sql(const std::filesystem::path& path) {
-  std::map<std::string, RecordInfo> out;
-  std::ifstream in(path);
-  std::string line;
-  while (std::getline(in, line)) {
-    std::vector<std::string> cols;
-    std::stringstream ss(line);
-    std::string col;
-    while (std::getline(ss, col, '\t')) cols.push_back(col);
-    if (cols.size() < 7) continue;
-    out[event_key(cols[0]) + "|" + cols[1]] = RecordInfo{std::stod(cols[2]), std::stod(cols[6])};
-  }
-  return out;
-}
+using test::gunzip;
+const auto event_key = test::slammer_event_key;
+const auto read_eq_sql = test::read_slammer_eq_sql;
 
 TEST(SlammerVerification, RigidBlockOneWayAll180Results) {
   if (!test::have_shared()) GTEST_SKIP() << "../shared not present";

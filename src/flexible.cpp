@@ -1,0 +1,554 @@
+// Flexible supports: decoupled and coupled sliding (flexible.hpp has the model, its sources and sign conventions).
+#include "topple/flexible.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <utility>
+
+#include <boost/math/tools/toms748_solve.hpp>
+#include <fmt/format.h>
+
+#include "topple/error.hpp"
+
+namespace topple {
+namespace {
+
+// ---- small dense matrices and the exact propagator exp(A t) ----------------------------------------------------
+
+template <std::size_t N>
+using Vec = std::array<double, N>;
+
+template <std::size_t N>
+struct Mat {
+  std::array<double, N * N> v{};
+  double& operator()(std::size_t i, std::size_t j) { return v[i * N + j]; }
+  double operator()(std::size_t i, std::size_t j) const { return v[i * N + j]; }
+};
+
+template <std::size_t N>
+Mat<N> mul(const Mat<N>& a, const Mat<N>& b) {
+  Mat<N> c;
+  for (std::size_t i = 0; i < N; ++i)
+    for (std::size_t k = 0; k < N; ++k) {
+      const double aik = a(i, k);
+      if (aik == 0.0) continue;
+      for (std::size_t j = 0; j < N; ++j) c(i, j) += aik * b(k, j);
+    }
+  return c;
+}
+
+template <std::size_t N>
+Vec<N> mul(const Mat<N>& a, const Vec<N>& x) {
+  Vec<N> y{};
+  for (std::size_t i = 0; i < N; ++i) {
+    double s = 0.0;
+    for (std::size_t j = 0; j < N; ++j) s += a(i, j) * x[j];
+    y[i] = s;
+  }
+  return y;
+}
+
+/// exp(A t) by scaling and squaring with a Taylor series: the norm is scaled below 1/4, where 18 terms leave a
+/// truncation error below (1/4)^19/19! ~ 1e-29 relative, far under round-off; squaring loses a few ulps per level.
+template <std::size_t N>
+Mat<N> expm(const Mat<N>& a, double t) {
+  double norm = 0.0;
+  for (std::size_t i = 0; i < N; ++i) {
+    double row = 0.0;
+    for (std::size_t j = 0; j < N; ++j) row += std::abs(a(i, j) * t);
+    norm = std::max(norm, row);
+  }
+  int squarings = 0;
+  double scale = t;
+  while (norm > 0.25) {
+    norm *= 0.5;
+    scale *= 0.5;
+    ++squarings;
+  }
+  Mat<N> x;
+  for (std::size_t i = 0; i < N * N; ++i) x.v[i] = a.v[i] * scale;
+  Mat<N> result;
+  Mat<N> term;
+  for (std::size_t i = 0; i < N; ++i) result(i, i) = term(i, i) = 1.0;
+  for (int k = 1; k <= 18; ++k) {
+    term = mul(term, x);
+    for (double& e : term.v) e /= k;
+    for (std::size_t i = 0; i < N * N; ++i) result.v[i] += term.v[i];
+  }
+  for (int s = 0; s < squarings; ++s) result = mul(result, result);
+  return result;
+}
+
+// ---- the mode, its decoupled response ----------------------------------------------------------------------------
+
+/// Decoupled modal response to piecewise-linear a_g. State (Y, Y', a, a') with a' constant in a step: the exact
+/// propagator of  Y'' + 2 zeta omega Y' + omega^2 Y = -p a.
+Mat<4> decoupled_generator(const ModalProperties& m) {
+  Mat<4> a;
+  a(0, 1) = 1.0;
+  a(1, 0) = -m.omega_rad_s * m.omega_rad_s;
+  a(1, 1) = -2.0 * m.damping_ratio * m.omega_rad_s;
+  a(1, 2) = -m.participation;
+  a(2, 3) = 1.0;
+  return a;
+}
+
+void require_uniform(const GroundMotion& ground) {
+  if (!ground.is_uniform()) {
+    throw parameter_error("record", "flexible-support analyses need a uniformly sampled record (resample it first)");
+  }
+  if (ground.size() < 2) throw parameter_error("record", "flexible-support analyses need at least 2 samples");
+}
+
+struct LinearResponse {
+  double max_abs_y = 0.0;              ///< peak |Y| (m): the strain measure of the equivalent-linear iteration
+  double max_abs_demand_m_s2 = 0.0;    ///< peak |a_g + (L1/m) Y''|
+  std::vector<double> demand_m_s2;     ///< filled when asked
+};
+
+LinearResponse linear_response(const GroundMotion& ground, const ModalProperties& m, bool keep_history) {
+  const auto acc = ground.accel_m_s2();
+  const double dt = ground.dt_s();
+  const Mat<4> p = expm(decoupled_generator(m), dt);
+  const double w2 = m.omega_rad_s * m.omega_rad_s;
+  const double c = 2.0 * m.damping_ratio * m.omega_rad_s;
+  LinearResponse out;
+  if (keep_history) out.demand_m_s2.resize(acc.size());
+  double y = 0.0;
+  double v = 0.0;
+  const auto demand = [&](double a) { return a + m.mass_fraction * (-m.participation * a - c * v - w2 * y); };
+  double d0 = demand(acc[0]);
+  if (keep_history) out.demand_m_s2[0] = d0;
+  out.max_abs_demand_m_s2 = std::abs(d0);
+  for (std::size_t k = 0; k + 1 < acc.size(); ++k) {
+    const double a0 = acc[k];
+    const double slope = (acc[k + 1] - a0) / dt;
+    const double y1 = p(0, 0) * y + p(0, 1) * v + p(0, 2) * a0 + p(0, 3) * slope;
+    const double v1 = p(1, 0) * y + p(1, 1) * v + p(1, 2) * a0 + p(1, 3) * slope;
+    y = y1;
+    v = v1;
+    out.max_abs_y = std::max(out.max_abs_y, std::abs(y));
+    const double d = demand(acc[k + 1]);
+    out.max_abs_demand_m_s2 = std::max(out.max_abs_demand_m_s2, std::abs(d));
+    if (keep_history) out.demand_m_s2[k + 1] = d;
+  }
+  return out;
+}
+
+// Column constants: phi(z) = sin(pi z / 2H), L1/M1 = 4/pi, L1/m = 2/pi.
+constexpr double kColumnParticipation = 4.0 / kPi;
+constexpr double kColumnMassFraction = 2.0 / kPi;
+
+ModalProperties column_mode(double height_m, double vs_m_s, double damping_total) {
+  ModalProperties m;
+  m.omega_rad_s = kPi * vs_m_s / (2.0 * height_m);
+  m.damping_ratio = damping_total;
+  m.participation = kColumnParticipation;
+  m.mass_fraction = kColumnMassFraction;
+  m.vs_m_s = vs_m_s;
+  return m;
+}
+
+/// Darendeli's (2001) damping form on the hyperbolic backbone, as SLAMMER uses it (pySLAMMER strain_damp_update):
+/// Masing damping of the hyperbola, scaled by 0.62 (G/Gmax)^0.1, plus 1 % small-strain damping.
+double equivalent_damping(double g_ratio, double strain, double ref_strain) {
+  const double sum = strain + ref_strain;
+  const double masing = (4.0 * (strain - ref_strain * std::log(sum / ref_strain)) / (strain * strain / sum) - 2.0) / kPi;
+  return 0.62 * std::pow(g_ratio, 0.1) * masing + 0.01;
+}
+
+// ---- coupled analysis: the two-phase linear system --------------------------------------------------------------
+
+constexpr std::size_t kN = 7;  // Y, Y', s, s', a, a', 1
+enum Phase : int { stick = 0, slip_down = 1, slip_up = 2 };
+
+struct CoupledSystem {
+  std::array<Mat<kN>, 3> generator;  ///< d/dt state per phase
+  Vec<kN> demand{};                  ///< stick-phase demand D(w) (m/s^2): sliding force per unit sliding mass
+  double yield_m_s2 = 0.0;           ///< k_y g (column) or mu g (shelf)
+  double omega_max = 0.0;            ///< fastest mode over the phases (sets the sub-step)
+  bool two_way = false;
+};
+
+void fill_input_rows(Mat<kN>& a) {
+  a(0, 1) = 1.0;  // Y' = Y'
+  a(2, 3) = 1.0;  // s' = s'
+  a(4, 5) = 1.0;  // a_g' = slope, constant within a step
+}
+
+/// Column (Chopra & Zhang 1991 as SLAMMER's Coupled): equations in flexible.hpp.
+CoupledSystem column_system(const ModalProperties& m, double yield_m_s2, bool two_way) {
+  CoupledSystem sys;
+  const double w2 = m.omega_rad_s * m.omega_rad_s;
+  const double c = 2.0 * m.damping_ratio * m.omega_rad_s;
+  const double p = m.participation;
+  const double q = m.mass_fraction;
+  const double d1 = 1.0 - p * q;  // 1 - L1^2 / (M1 m) = 1 - 8/pi^2
+  for (auto& g : sys.generator) fill_input_rows(g);
+  // stick: Y'' = -p a - c Y' - w2 Y
+  sys.generator[stick](1, 0) = -w2;
+  sys.generator[stick](1, 1) = -c;
+  sys.generator[stick](1, 4) = -p;
+  // D = a + q Y''
+  sys.demand[0] = -q * w2;
+  sys.demand[1] = -q * c;
+  sys.demand[4] = 1.0 - q * p;
+  for (int ph : {slip_down, slip_up}) {
+    const double sigma = ph == slip_down ? 1.0 : -1.0;
+    auto& g = sys.generator[ph];
+    // d1 Y'' = -p sigma ky g - c Y' - w2 Y
+    g(1, 0) = -w2 / d1;
+    g(1, 1) = -c / d1;
+    g(1, 6) = -p * sigma * yield_m_s2 / d1;
+    // s'' = a + q Y'' - sigma ky g
+    g(3, 0) = q * g(1, 0);
+    g(3, 1) = q * g(1, 1);
+    g(3, 4) = 1.0;
+    g(3, 6) = q * g(1, 6) - sigma * yield_m_s2;
+  }
+  sys.yield_m_s2 = yield_m_s2;
+  sys.omega_max = m.omega_rad_s / std::sqrt(d1);
+  sys.two_way = two_way;
+  return sys;
+}
+
+/// Shelf or floor: object of mass r M_s on a one-mode support (flexible.hpp).
+CoupledSystem shelf_system(const ModalProperties& m, double mass_ratio, double yield_m_s2, bool two_way) {
+  CoupledSystem sys;
+  const double w2 = m.omega_rad_s * m.omega_rad_s;
+  const double c = 2.0 * m.damping_ratio * m.omega_rad_s;
+  const double r = mass_ratio;
+  for (auto& g : sys.generator) fill_input_rows(g);
+  // stick: Y'' = -a - (c Y' + w2 Y) / (1 + r), D = a + Y''
+  sys.generator[stick](1, 0) = -w2 / (1.0 + r);
+  sys.generator[stick](1, 1) = -c / (1.0 + r);
+  sys.generator[stick](1, 4) = -1.0;
+  sys.demand[0] = -w2 / (1.0 + r);
+  sys.demand[1] = -c / (1.0 + r);
+  for (int ph : {slip_down, slip_up}) {
+    const double sigma = ph == slip_down ? 1.0 : -1.0;
+    auto& g = sys.generator[ph];
+    // Y'' = -a - c Y' - w2 Y - r sigma mu g ; s'' = a + Y'' - sigma mu g
+    g(1, 0) = -w2;
+    g(1, 1) = -c;
+    g(1, 4) = -1.0;
+    g(1, 6) = -r * sigma * yield_m_s2;
+    g(3, 0) = -w2;
+    g(3, 1) = -c;
+    g(3, 6) = -r * sigma * yield_m_s2 - sigma * yield_m_s2;
+  }
+  sys.yield_m_s2 = yield_m_s2;
+  sys.omega_max = m.omega_rad_s;
+  sys.two_way = two_way;
+  return sys;
+}
+
+double dot(const Vec<kN>& a, const Vec<kN>& b) {
+  double s = 0.0;
+  for (std::size_t i = 0; i < kN; ++i) s += a[i] * b[i];
+  return s;
+}
+
+/// Event function of a phase: an event happens where it rises through 0. Stick: the demand beyond the yield level
+/// (the larger of the two directions in two-way mode); slip: the velocity back through zero.
+double event_value(const CoupledSystem& sys, Phase phase, const Vec<kN>& w) {
+  switch (phase) {
+    case stick: {
+      const double d = dot(sys.demand, w);
+      return sys.two_way ? std::abs(d) - sys.yield_m_s2 : d - sys.yield_m_s2;
+    }
+    case slip_down: return -w[3];
+    case slip_up: return w[3];
+  }
+  return 0.0;
+}
+
+/// Phase entered from stick (demand above yield) or after a slip stops (checking that the stick demand holds).
+Phase stick_or_slip(const CoupledSystem& sys, const Vec<kN>& w) {
+  const double d = dot(sys.demand, w);
+  if (d > sys.yield_m_s2) return slip_down;
+  if (sys.two_way && d < -sys.yield_m_s2) return slip_up;
+  return stick;
+}
+
+SlidingSummary run_coupled(const GroundMotion& ground, const CoupledSystem& sys) {
+  const auto acc = ground.accel_m_s2();
+  const double dt = ground.dt_s();
+  const int n_sub = std::max(1, static_cast<int>(std::ceil(sys.omega_max * dt / 0.5)));
+  const double h = dt / n_sub;
+  std::array<Mat<kN>, 3> full;
+  std::array<Mat<kN>, 3> half;
+  for (int ph = 0; ph < 3; ++ph) {
+    full[ph] = expm(sys.generator[ph], h);
+    half[ph] = expm(sys.generator[ph], 0.5 * h);
+  }
+
+  SlidingSummary out;
+  Vec<kN> w{};
+  w[6] = 1.0;
+  Phase phase = stick;
+  double slip_start_time = 0.0;
+  const auto note_state = [&](double t) {
+    const double s = std::abs(w[2]);
+    if (s > out.max_abs_displacement_m) {
+      out.max_abs_displacement_m = s;
+      out.max_displacement_time_s = t;
+    }
+    out.max_abs_velocity_m_s = std::max(out.max_abs_velocity_m_s, std::abs(w[3]));
+  };
+  // One sub-step of length h from time t0 with the current input slope (already in w[4], w[5]).
+  const auto substep = [&](double t0) {
+    double tau = 0.0;
+    int events = 0;
+    while (tau < h) {
+      if (++events > 64) {
+        throw SolverError(fmt::format("coupled sliding: more than 64 slip events in one sub-step of {} s at t = {} s",
+                                      h, t0 + tau));
+      }
+      const double rest = h - tau;
+      const bool whole = tau == 0.0;
+      if (rest <= 1e-12 * h) {
+        // An event within round-off of the sub-step's end: finish the sub-step without looking for another one.
+        w = mul(expm(sys.generator[phase], rest), w);
+        break;
+      }
+      const Mat<kN> p_end = whole ? full[phase] : expm(sys.generator[phase], rest);
+      const Mat<kN> p_mid = whole ? half[phase] : expm(sys.generator[phase], 0.5 * rest);
+      const Vec<kN> w_mid = mul(p_mid, w);
+      const Vec<kN> w_end = mul(p_end, w);
+      const double e_mid = event_value(sys, phase, w_mid);
+      const double e_end = event_value(sys, phase, w_end);
+      if (e_mid <= 0.0 && e_end <= 0.0) {
+        w = w_end;
+        tau = h;
+        break;
+      }
+      // Bracket [lo, hi]: hi is the first probe where the event function is positive; lo a point before it where it
+      // is negative. At a phase's start the function may be exactly 0 (slip has just started: s' = 0): then probe
+      // inward from hi by halving until it is negative.
+      const Mat<kN>& gen = sys.generator[phase];
+      const Vec<kN> w0 = w;
+      const auto f = [&](double t) { return event_value(sys, phase, mul(expm(gen, t), w0)); };
+      const double hi = e_mid > 0.0 ? 0.5 * rest : rest;
+      double lo = e_mid > 0.0 ? 0.0 : 0.5 * rest;
+      double f_lo = e_mid > 0.0 ? event_value(sys, phase, w0) : e_mid;
+      for (int halvings = 0; f_lo >= 0.0 && halvings < 60; ++halvings) {
+        lo = (lo == 0.0 ? hi : lo) * 0.5;
+        f_lo = f(lo);
+      }
+      double t_event = hi;
+      if (f_lo < 0.0) {
+        std::uintmax_t iters = 200;
+        const auto r = boost::math::tools::toms748_solve(f, lo, hi, f_lo, f(hi),
+                                                         boost::math::tools::eps_tolerance<double>(50), iters);
+        if (iters >= 200) {
+          throw SolverError(fmt::format("coupled sliding: slip event not located in 200 iterations at t = {} s", t0 + tau));
+        }
+        t_event = r.second;  // the side where the event function is >= 0: the event has happened
+      } else {
+        t_event = lo;  // the function never went negative: the event is at the phase's start (to 2^-60 h)
+      }
+      w = mul(expm(gen, t_event), w0);
+      tau += t_event;
+      const double t_now = t0 + tau;
+      if (phase == stick) {
+        // The demand has reached the yield level: slip in its direction (not re-tested, round-off could undo it).
+        phase = dot(sys.demand, w) >= 0.0 ? slip_down : slip_up;
+        ++out.slip_episodes;
+        if (!out.first_slip_time_s) out.first_slip_time_s = t_now;
+        slip_start_time = t_now;
+      } else {
+        w[3] = 0.0;  // the slip velocity is zero at the stop, by definition of the event
+        out.total_slip_duration_s += t_now - slip_start_time;
+        const Phase next = stick_or_slip(sys, w);
+        // At a stop s'' has the stopping sign, so the stick demand is inside the yield level on that side (s'' =
+        // (D - sigma k_y g) / d1); only a two-way reversal can follow at once.
+        phase = next == phase ? stick : next;
+        if (phase != stick) {
+          ++out.slip_episodes;  // a reversal through s' = 0 counts as a new episode (as sliding.hpp)
+          slip_start_time = t_now;
+        }
+      }
+      note_state(t_now);
+    }
+  };
+
+  const double t_begin = ground.start_time_s();
+  for (std::size_t k = 0; k + 1 < acc.size(); ++k) {
+    const double slope = (acc[k + 1] - acc[k]) / dt;
+    const double tk = t_begin + static_cast<double>(k) * dt;
+    for (int j = 0; j < n_sub; ++j) {
+      w[4] = acc[k] + slope * (static_cast<double>(j) * h);
+      w[5] = slope;
+      substep(tk + static_cast<double>(j) * h);
+      note_state(tk + static_cast<double>(j + 1) * h);
+    }
+  }
+  // Run-out: the ground is still after the record; a sliding body decelerates to rest on the still-ringing support.
+  double t = ground.end_time_s();
+  constexpr long kMaxRunOutSubsteps = 10'000'000;
+  long runout = 0;
+  while (phase != stick) {
+    if (++runout > kMaxRunOutSubsteps) {
+      throw SolverError(fmt::format("coupled sliding: still sliding {} s after the record's end", static_cast<double>(runout) * h));
+    }
+    w[4] = 0.0;
+    w[5] = 0.0;
+    substep(t);
+    t += h;
+    note_state(t);
+  }
+  out.residual_displacement_m = w[2];
+  out.end_time_s = std::max(t, ground.end_time_s());
+  out.at_rest_at_end = true;
+  return out;
+}
+
+double check_ky(double ky_g) {
+  if (!std::isfinite(ky_g) || !(ky_g > 0.0)) {
+    throw parameter_error("ky", fmt::format("yield coefficient must be positive and finite, got {}", ky_g));
+  }
+  return ky_g;
+}
+
+}  // namespace
+
+// ---- value types ---------------------------------------------------------------------------------------------------
+
+SupportOscillator SupportOscillator::make(double freq_hz, double damping_ratio, double mass_ratio) {
+  if (!std::isfinite(freq_hz) || !(freq_hz > 0.0)) {
+    throw parameter_error("support_freq", fmt::format("support frequency must be positive and finite, got {} Hz", freq_hz));
+  }
+  if (!std::isfinite(damping_ratio) || damping_ratio < 0.0 || damping_ratio >= 1.0) {
+    throw parameter_error("support_damping",
+                          fmt::format("support damping ratio must be in [0, 1), got {}", damping_ratio));
+  }
+  if (!std::isfinite(mass_ratio) || mass_ratio < 0.0) {
+    throw parameter_error("mass_ratio", fmt::format("mass ratio must be finite and >= 0, got {}", mass_ratio));
+  }
+  return SupportOscillator{freq_hz, damping_ratio, mass_ratio};
+}
+
+double SlidingMassColumn::impedance_damping(double vs_base_m_s, double vs_slope_m_s) noexcept {
+  return std::min(0.55016 * std::pow(vs_base_m_s / vs_slope_m_s, -0.9904), 0.2);
+}
+
+SlidingMassColumn SlidingMassColumn::make(double height_m, double vs_slope_m_s, double vs_base_m_s,
+                                          double damping_ratio, std::optional<double> reference_strain) {
+  const auto positive = [](double v, const char* field, const char* what, const char* unit) {
+    if (!std::isfinite(v) || !(v > 0.0)) {
+      throw parameter_error(field, fmt::format("{} must be positive and finite, got {} {}", what, v, unit));
+    }
+  };
+  positive(height_m, "height", "sliding-mass height", "m");
+  positive(vs_slope_m_s, "vs_slope", "shear-wave velocity of the sliding mass", "m/s");
+  positive(vs_base_m_s, "vs_base", "shear-wave velocity of the base", "m/s");
+  if (reference_strain) positive(*reference_strain, "reference_strain", "reference strain", "(decimal)");
+  const double total = damping_ratio + impedance_damping(vs_base_m_s, vs_slope_m_s);
+  if (!std::isfinite(damping_ratio) || total < 0.0 || total >= 1.0) {
+    throw parameter_error("damping", fmt::format("damping ratio {} plus the base impedance damping {} must be in "
+                                                 "[0, 1), got {}",
+                                                 damping_ratio, impedance_damping(vs_base_m_s, vs_slope_m_s), total));
+  }
+  return SlidingMassColumn{height_m, vs_slope_m_s, vs_base_m_s, damping_ratio, reference_strain};
+}
+
+// ---- modal properties ------------------------------------------------------------------------------------------
+
+ModalProperties modal_properties(const SupportOscillator& support) {
+  ModalProperties m;
+  m.omega_rad_s = 2.0 * kPi * support.freq_hz;
+  m.damping_ratio = support.damping_ratio;
+  return m;
+}
+
+ModalProperties modal_properties(const SlidingMassColumn& column, const GroundMotion& ground) {
+  const double imp0 = SlidingMassColumn::impedance_damping(column.vs_base_m_s, column.vs_slope_m_s);
+  ModalProperties m = column_mode(column.height_m, column.vs_slope_m_s, column.damping_ratio + imp0);
+  if (!column.reference_strain) return m;
+  require_uniform(ground);
+  // SLAMMER's iteration (pySLAMMER Decoupled.equivalent_linear): response with the current properties, strain,
+  // new G and D, convergence when both moved by less than 5 % relative to the previous iteration.
+  const double gamma_r = *column.reference_strain;
+  const double g_max_ratio = 1.0;
+  double g_ratio_prev = g_max_ratio;
+  double damp_prev = column.damping_ratio;
+  constexpr int kMaxIterations = 100;
+  constexpr double kTolerance = 0.05;
+  for (int it = 1;; ++it) {
+    if (it > kMaxIterations) {
+      throw SolverError(fmt::format("equivalent-linear iteration did not converge in {} iterations (G/Gmax {}, "
+                                    "damping {})", kMaxIterations, g_ratio_prev, damp_prev));
+    }
+    const double y_max = linear_response(ground, m, false).max_abs_y;
+    // Effective strain: 0.65 of the peak strain at the base of the mode, phi'(0) = pi / 2H.
+    const double strain = 0.65 * (kPi / 2.0) * y_max / column.height_m;
+    const double g_ratio = 1.0 / (1.0 + strain / gamma_r);
+    const double damp = strain > 0.0 ? equivalent_damping(g_ratio, strain, gamma_r) : 0.01;
+    const double vs = column.vs_slope_m_s * std::sqrt(g_ratio);
+    m = column_mode(column.height_m, vs, damp + SlidingMassColumn::impedance_damping(column.vs_base_m_s, vs));
+    m.iterations = it;
+    const double change_g = std::abs(g_ratio - g_ratio_prev) / g_ratio_prev;
+    const double change_d = damp_prev != 0.0 ? std::abs(damp - damp_prev) / std::abs(damp_prev) : 1.0;
+    g_ratio_prev = g_ratio;
+    damp_prev = damp;
+    if (change_g <= kTolerance && change_d <= kTolerance) return m;
+  }
+}
+
+std::vector<double> support_acceleration_m_s2(const GroundMotion& ground, const ModalProperties& mode) {
+  require_uniform(ground);
+  return linear_response(ground, mode, true).demand_m_s2;
+}
+
+// ---- analyses ----------------------------------------------------------------------------------------------------
+
+namespace {
+
+FlexibleSummary decoupled(const GroundMotion& ground, const ModalProperties& mode, const SlidingBlock& block) {
+  LinearResponse r = linear_response(ground, mode, true);
+  FlexibleSummary out;
+  out.mode = mode;
+  out.kmax = r.max_abs_demand_m_s2 / block.g_m_s2;
+  const GroundMotion support = GroundMotion::uniform(std::move(r.demand_m_s2), ground.dt_s(), ground.start_time_s());
+  out.sliding = slide_summary(support, block);
+  return out;
+}
+
+}  // namespace
+
+FlexibleSummary slide_flexible(const GroundMotion& ground, const SupportOscillator& support, const SlidingBlock& block,
+                               FlexibleAnalysis analysis) {
+  require_uniform(ground);
+  const ModalProperties mode = modal_properties(support);
+  if (analysis == FlexibleAnalysis::decoupled) return decoupled(ground, mode, block);
+  if (block.slope_rad != 0.0 || block.mu_kinetic != block.mu_static) {
+    throw parameter_error("mu_kinetic", "the coupled analysis models level ground with one friction coefficient "
+                                        "(mu_kinetic = mu_static, slope 0)");
+  }
+  FlexibleSummary out;
+  out.mode = mode;
+  out.kmax = linear_response(ground, mode, false).max_abs_demand_m_s2 / block.g_m_s2;
+  out.sliding = run_coupled(ground, shelf_system(mode, support.mass_ratio, block.mu_static * block.g_m_s2,
+                                                 block.mode == SlidingMode::two_way));
+  return out;
+}
+
+FlexibleSummary slide_flexible(const GroundMotion& ground, const SlidingMassColumn& column, double ky_g,
+                               FlexibleAnalysis analysis, SlidingMode mode, double g_m_s2) {
+  require_uniform(ground);
+  check_ky(ky_g);
+  const SlidingBlock block = SlidingBlock::make(ky_g, ky_g, 0.0, mode, g_m_s2);
+  const ModalProperties props = modal_properties(column, ground);
+  if (analysis == FlexibleAnalysis::decoupled) return decoupled(ground, props, block);
+  FlexibleSummary out;
+  out.mode = props;
+  out.kmax = linear_response(ground, props, false).max_abs_demand_m_s2 / g_m_s2;
+  out.sliding = run_coupled(ground, column_system(props, ky_g * g_m_s2, mode == SlidingMode::two_way));
+  return out;
+}
+
+}  // namespace topple
