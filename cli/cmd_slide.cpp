@@ -7,6 +7,7 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "slide_flexible.hpp"
 #include "topple/error.hpp"
 #include "topple/io/write.hpp"
 #include "topple/plot.hpp"
@@ -27,6 +28,7 @@ struct SlideOptions {
   std::string out;
   std::string plot;
   bool json = false;
+  FlexibleOptions flexible;
 };
 
 void run_slide(const SlideOptions& o) {
@@ -50,6 +52,13 @@ void run_slide(const SlideOptions& o) {
     vertical = io::read_motion(o.vertical, read_options(o.motion)).scaled(factor);
   }
   const GroundMotion* vertical_ptr = vertical ? &*vertical : nullptr;
+  if (o.flexible.active()) {
+    if (vertical || !o.out.empty() || !o.plot.empty()) {
+      throw parameter_error("--support-freq", "--vertical, --out and --plot are not available on a flexible support yet");
+    }
+    run_flexible_slide(horizontal, block, o.flexible, o.json, from_pulse ? horizontal.metadata().event : o.motion.file);
+    return;
+  }
 
   SlidingSummary summary;
   if (!o.out.empty() || !o.plot.empty()) {
@@ -121,6 +130,7 @@ void add_slide_command(CLI::App& app) {
   cmd->add_option("--out", o->out, "Write the time history to this CSV file");
   cmd->add_option("--plot", o->plot, "Draw record, thresholds and response to this .svg or .png file (gnuplot)");
   cmd->add_flag("--json", o->json, "Print the summary as one JSON object");
+  add_flexible_options(*cmd, o->flexible);
   cmd->callback([o] { run_slide(*o); });
 }
 
