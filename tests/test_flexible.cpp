@@ -89,22 +89,25 @@ TEST(Flexible, CoupledIsExactUnderLinearUpSampling) {
 
 TEST(Flexible, DecoupledConvergesToCoupledWithMasslessObject) {
   // With mass ratio 0 the coupled shelf is the decoupled one computed exactly; the decoupled analysis reads the
-  // support acceleration as piecewise linear between samples, an O(dt^2) error. Up-sampling the record by 2 must
-  // cut the gap by about 4 (we ask for > 3), and the gap at dt = 2.5 ms must be under 0.5 %.
+  // support acceleration as piecewise linear between points h apart (h <= 0.1 / omega), an O(h^2) error. At
+  // dt <= 5 ms this 2.5 Hz support needs no sub-step (h = dt): halving dt must cut the gap by about 4 (we ask > 3).
+  // At the 20 ms record itself (4 sub-steps, h = 5 ms) the gap must be under 0.2 % (the (omega h)^2 / 8 = 0.08 %
+  // interpolation bound on the support's part of the demand, with margin for its effect on the slip).
   const GroundMotion g = test_motion(0.02);
   const SlidingBlock block = SlidingBlock::make(0.12, 0.12, 0.0, SlidingMode::one_way);
   const auto s = SupportOscillator::make(2.5, 0.05, 0.0);
   const double exact = slide_flexible(g, s, block, FlexibleAnalysis::coupled).sliding.residual_displacement_m;
   ASSERT_GT(std::abs(exact), 0.01);
-  std::vector<double> gaps;
-  for (const double dt : {0.02, 0.01, 0.005, 0.0025}) {
+  const auto gap = [&](double dt) {
     const GroundMotion r = dt == 0.02 ? g : g.resampled(dt);
     EXPECT_NEAR(slide_flexible(r, s, block, FlexibleAnalysis::coupled).sliding.residual_displacement_m, exact,
                 1e-9 * std::abs(exact));
-    gaps.push_back(std::abs(slide_flexible(r, s, block, FlexibleAnalysis::decoupled).sliding.residual_displacement_m - exact));
-  }
+    return std::abs(slide_flexible(r, s, block, FlexibleAnalysis::decoupled).sliding.residual_displacement_m - exact);
+  };
+  EXPECT_LT(gap(0.02), 2e-3 * std::abs(exact));
+  std::vector<double> gaps;
+  for (const double dt : {0.005, 0.0025, 0.00125}) gaps.push_back(gap(dt));
   for (std::size_t i = 1; i < gaps.size(); ++i) EXPECT_GT(gaps[i - 1] / gaps[i], 3.0) << i;
-  EXPECT_LT(gaps.back(), 5e-3 * std::abs(exact));
 }
 
 TEST(Flexible, MassRatioToZeroCoupledEqualsDecoupledLimit) {

@@ -97,7 +97,8 @@ struct ModalProperties {
 struct FlexibleSummary {
   SlidingSummary sliding;          ///< displacement of the body relative to the surface it slides on
   ModalProperties mode;            ///< the mode used (final equivalent-linear properties)
-  double kmax = 0.0;               ///< peak |support acceleration| / g of the decoupled response (SLAMMER's k_max)
+  double kmax = 0.0;               ///< peak |support acceleration| / g of the decoupled response (SLAMMER's k_max),
+                                   ///< read at points omega h <= 0.1 apart (the record's samples when they are closer)
 };
 
 /// Support (or sliding-mass average) acceleration of the decoupled response on the record's samples (m/s^2):
