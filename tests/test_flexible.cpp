@@ -110,6 +110,25 @@ TEST(Flexible, DecoupledConvergesToCoupledWithMasslessObject) {
   for (std::size_t i = 1; i < gaps.size(); ++i) EXPECT_GT(gaps[i - 1] / gaps[i], 3.0) << i;
 }
 
+TEST(Flexible, TwoWayIsOddInThePolarity) {
+  // Two-way sliding on a symmetric support is odd in the input: inverting the record negates the displacement. Both
+  // runs do the same arithmetic with flipped signs, so the match is to round-off (1e-12 relative).
+  const GroundMotion g = test_motion(0.01, 0.6);
+  const SlidingBlock block = SlidingBlock::make(0.1);
+  const auto s = SupportOscillator::make(3.0, 0.05, 0.3);
+  const auto col = SlidingMassColumn::make(20.0, 300.0, 600.0, 0.05);
+  for (const auto analysis : {FlexibleAnalysis::decoupled, FlexibleAnalysis::coupled}) {
+    const double up = slide_flexible(g, s, block, analysis).sliding.residual_displacement_m;
+    const double down = slide_flexible(g.inverted(), s, block, analysis).sliding.residual_displacement_m;
+    ASSERT_GT(std::abs(up), 1e-3);
+    EXPECT_NEAR(down, -up, 1e-12 * std::abs(up));
+    const double c_up = slide_flexible(g, col, 0.1, analysis, SlidingMode::two_way).sliding.residual_displacement_m;
+    const double c_down =
+        slide_flexible(g.inverted(), col, 0.1, analysis, SlidingMode::two_way).sliding.residual_displacement_m;
+    EXPECT_NEAR(c_down, -c_up, 1e-12 * std::abs(c_up));
+  }
+}
+
 TEST(Flexible, MassRatioToZeroCoupledEqualsDecoupledLimit) {
   // The coupled shelf is continuous in the mass ratio: r = 1e-6 differs from r = 0 by O(r) (1e-5 relative bound).
   const GroundMotion g = test_motion(0.005);

@@ -32,7 +32,7 @@
 // Slip starts when D crosses sigma k_y g and stops when s' returns to 0. Each phase is a linear system driven by a
 // piecewise-linear a_g, so the state (Y, Y', s, s', a_g, a_g', 1) is advanced by the exact propagator exp(A h); slip
 // start and stop are located inside the step by root finding on the exact state (TOMS 748). Steps are split so that
-// omega h <= 0.5, and each sub-step is also tested at its midpoint, so that an excursion of the demand above k_y g
+// omega h <= 0.5 (at most 256 sub-steps per record step), and each sub-step is also tested at its midpoint, so that an excursion of the demand above k_y g
 // lasting longer than h/2 is never missed. After the record the ground is still and a sliding body runs out to rest.
 //
 // Equivalent linear (SLAMMER; formulas from pySLAMMER 0.2.3 decoupled_analysis.py and its SoftwareX paper,
