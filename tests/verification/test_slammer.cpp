@@ -29,41 +29,20 @@
 namespace topple {
 namespace {
 
-using test::gunzip;
-const auto event_key = test::slammer_event_key;
-const auto read_eq_sql = test::read_slammer_eq_sql;
-
 TEST(SlammerVerification, RigidBlockOneWayAll180Results) {
   if (!test::have_shared()) GTEST_SKIP() << "../shared not present";
-  const auto dir = test::shared_dir() / "verification" / "slammer";
-  const auto records = read_eq_sql(dir / "slammer_library" / "eq.sql");
-  const auto results = nlohmann::json::parse(gunzip(dir / "slammer_results.json.gz"));
-
-  std::map<std::string, GroundMotion> cache;
+  test::SlammerSuite suite;
   std::vector<double> rel_diffs;  // (topple - SLAMMER) / SLAMMER for SLAMMER >= 0.5 cm
   std::vector<std::pair<double, std::string>> largest;
   int cases = 0;
   int failures = 0;
   double worst_small_abs = 0.0;
-  for (const auto& analysis : results.at("analyses")) {
+  for (const auto& analysis : suite.results().at("analyses")) {
     if (analysis.at("analysis").at("method") != "rigid") continue;
-    const auto& gm = analysis.at("ground_motion_parameters");
-    const std::string key = event_key(gm.at("earthquake").get<std::string>()) + "|" + gm.at("record_station").get<std::string>();
-    const auto info = records.find(key);
-    ASSERT_NE(info, records.end()) << key;
-    std::string file = gm.at("ground_motion_file").get<std::string>();
-    file = file.substr(0, file.rfind('.')) + ".txt";
-    if (!cache.contains(file)) {
-      io::ReadOptions opt;
-      opt.format = io::Format::plain;
-      opt.dt_s = info->second.dt_s;
-      opt.units = "g";
-      cache.emplace(file, io::read_motion(dir / "slammer_library" / file, opt));
-    }
-    const GroundMotion& record = cache.at(file);
-    const double target = gm.at("target_pga_g").get<double>();
+    const std::string file = test::SlammerSuite::record_file(analysis);
+    const double target = analysis.at("ground_motion_parameters").at("target_pga_g").get<double>();
     const double ky = analysis.at("site_parameters").at("ky_g").get<double>();
-    const GroundMotion scaled = record.scaled(target / info->second.pga_g_rounded);
+    const GroundMotion scaled = suite.scaled_record(analysis);  // target / the rounded eq.sql PGA, as SLAMMER
     const SlidingBlock block = SlidingBlock::make(ky, ky, 0.0, SlidingMode::one_way);
     for (const bool inverse : {false, true}) {
       const double slammer_cm =
