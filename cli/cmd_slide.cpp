@@ -53,10 +53,11 @@ void run_slide(const SlideOptions& o) {
   }
   const GroundMotion* vertical_ptr = vertical ? &*vertical : nullptr;
   if (o.flexible.active()) {
-    if (vertical || !o.out.empty() || !o.plot.empty()) {
-      throw parameter_error("--support-freq", "--vertical, --out and --plot are not available on a flexible support yet");
+    if (!o.out.empty() || !o.plot.empty()) {
+      throw parameter_error("--support-freq", "--out and --plot are not available on a flexible support yet");
     }
-    run_flexible_slide(horizontal, block, o.flexible, o.json, from_pulse ? horizontal.metadata().event : o.motion.file);
+    run_flexible_slide(horizontal, block, o.flexible, o.json, from_pulse ? horizontal.metadata().event : o.motion.file,
+                       vertical_ptr);
     return;
   }
 

@@ -48,7 +48,7 @@ void add_flexible_options(CLI::App& cmd, FlexibleOptions& o) {
 }
 
 void run_flexible_slide(const GroundMotion& horizontal, const SlidingBlock& block, const FlexibleOptions& o, bool json,
-                        const std::string& motion_name) {
+                        const std::string& motion_name, const GroundMotion* vertical) {
   if (!o.support_freq.empty() && !o.height.empty()) {
     throw parameter_error("--height", "give either --support-freq (shelf, floor) or --height (sliding mass)");
   }
@@ -65,7 +65,7 @@ void run_flexible_slide(const GroundMotion& horizontal, const SlidingBlock& bloc
     const SupportOscillator s = SupportOscillator::make(
         parse_frequency_hz(o.support_freq, "--support-freq"),
         o.support_damping.empty() ? 0.05 : parse_ratio(o.support_damping, "--support-damping"), o.mass_ratio);
-    r = slide_flexible(horizontal, s, block, analysis);
+    r = slide_flexible(horizontal, s, block, analysis, vertical);
     support["kind"] = "oscillator";
     support["freq_hz"] = s.freq_hz;
     support["damping_ratio"] = s.damping_ratio;
@@ -84,7 +84,7 @@ void run_flexible_slide(const GroundMotion& horizontal, const SlidingBlock& bloc
     if (!o.reference_strain.empty()) ref = parse_ratio(o.reference_strain, "--ref-strain");
     const SlidingMassColumn col = SlidingMassColumn::make(parse_length_m(o.height, "--height"), *o.vs_slope_m_s,
                                                           *o.vs_base_m_s, parse_ratio(o.damping, "--damping"), ref);
-    r = slide_flexible(horizontal, col, block.mu_static, analysis, block.mode, g);
+    r = slide_flexible(horizontal, col, block.mu_static, analysis, block.mode, g, vertical);
     support["kind"] = "sliding_mass";
     support["height_m"] = col.height_m;
     support["vs_slope_m_s"] = col.vs_slope_m_s;
@@ -103,6 +103,7 @@ void run_flexible_slide(const GroundMotion& horizontal, const SlidingBlock& bloc
     nlohmann::ordered_json input;
     input["motion"] = motion_name;
     input["pga_g"] = horizontal.pga_m_s2() / g;
+    input["vertical"] = vertical != nullptr;
     input["npts"] = horizontal.size();
     input["dt_s"] = horizontal.dt_s();
     j["input"] = input;

@@ -27,8 +27,8 @@ struct FlexibleOptions {
 void add_flexible_options(CLI::App& cmd, FlexibleOptions& options);
 
 /// Runs and prints (text or JSON) the flexible-support analysis; `mu` is the friction coefficient (shelf) or the
-/// yield coefficient k_y (sliding mass). `input` is the JSON "input" object the rigid run also prints.
+/// yield coefficient k_y (sliding mass); `vertical` (decoupled only) as in the rigid run.
 void run_flexible_slide(const GroundMotion& horizontal, const SlidingBlock& block, const FlexibleOptions& o, bool json,
-                        const std::string& motion_name);
+                        const std::string& motion_name, const GroundMotion* vertical = nullptr);
 
 }  // namespace topple::cli

@@ -609,7 +609,8 @@ std::vector<double> support_acceleration_m_s2(const GroundMotion& ground, const 
 
 namespace {
 
-FlexibleSummary decoupled(const GroundMotion& ground, const ModalProperties& mode, const SlidingBlock& block) {
+FlexibleSummary decoupled(const GroundMotion& ground, const ModalProperties& mode, const SlidingBlock& block,
+                          const GroundMotion* vertical) {
   const int substeps = decoupled_substeps(mode.omega_rad_s, ground.dt_s());
   LinearResponse r = linear_response(ground, mode, true, substeps);
   FlexibleSummary out;
@@ -617,17 +618,24 @@ FlexibleSummary decoupled(const GroundMotion& ground, const ModalProperties& mod
   out.kmax = r.max_abs_demand_m_s2 / block.g_m_s2;
   const GroundMotion support =
       GroundMotion::uniform(std::move(r.demand_m_s2), ground.dt_s() / substeps, ground.start_time_s());
-  out.sliding = slide_summary(support, block);
+  out.sliding = slide_summary(support, block, vertical);
   return out;
 }
 
 }  // namespace
 
+void require_no_vertical(const GroundMotion* vertical) {
+  if (vertical) {
+    throw parameter_error("vertical", "the coupled analysis has no vertical input (the decoupled one has)");
+  }
+}
+
 FlexibleSummary slide_flexible(const GroundMotion& ground, const SupportOscillator& support, const SlidingBlock& block,
-                               FlexibleAnalysis analysis) {
+                               FlexibleAnalysis analysis, const GroundMotion* vertical) {
   require_uniform(ground);
   const ModalProperties mode = modal_properties(support);
-  if (analysis == FlexibleAnalysis::decoupled) return decoupled(ground, mode, block);
+  if (analysis == FlexibleAnalysis::decoupled) return decoupled(ground, mode, block, vertical);
+  require_no_vertical(vertical);
   if (block.slope_rad != 0.0 || block.mu_kinetic != block.mu_static) {
     throw parameter_error("mu_kinetic", "the coupled analysis models level ground with one friction coefficient "
                                         "(mu_kinetic = mu_static, slope 0)");
@@ -642,12 +650,14 @@ FlexibleSummary slide_flexible(const GroundMotion& ground, const SupportOscillat
 }
 
 FlexibleSummary slide_flexible(const GroundMotion& ground, const SlidingMassColumn& column, double ky_g,
-                               FlexibleAnalysis analysis, SlidingMode mode, double g_m_s2) {
+                               FlexibleAnalysis analysis, SlidingMode mode, double g_m_s2,
+                               const GroundMotion* vertical) {
   require_uniform(ground);
   check_ky(ky_g);
   const SlidingBlock block = SlidingBlock::make(ky_g, ky_g, 0.0, mode, g_m_s2);
   const ModalProperties props = modal_properties(column, ground);
-  if (analysis == FlexibleAnalysis::decoupled) return decoupled(ground, props, block);
+  if (analysis == FlexibleAnalysis::decoupled) return decoupled(ground, props, block, vertical);
+  require_no_vertical(vertical);
   FlexibleSummary out;
   out.mode = props;
   out.kmax =

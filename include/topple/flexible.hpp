@@ -112,15 +112,19 @@ struct FlexibleSummary {
 /// (SolverError if the iteration has not converged in 100 iterations).
 [[nodiscard]] ModalProperties modal_properties(const SlidingMassColumn& column, const GroundMotion& ground);
 
-/// Object on a shelf or floor. `block` gives mu (mu_static is the threshold; mu_kinetic must equal it in the coupled
-/// analysis, where one friction level is modelled), level ground only (slope 0), one- or two-way.
+/// Object on a shelf or floor. `block` gives mu: the decoupled analysis takes any block of sliding.hpp (static and
+/// kinetic friction, slope); the coupled one models level ground and one friction level (slope 0, mu_kinetic =
+/// mu_static, else InputError). `vertical` (optional, positive up) reaches the body unfiltered (the support is
+/// flexible horizontally only) and changes its normal force as in sliding.hpp: decoupled analysis only.
 [[nodiscard]] FlexibleSummary slide_flexible(const GroundMotion& ground, const SupportOscillator& support,
-                                             const SlidingBlock& block, FlexibleAnalysis analysis);
+                                             const SlidingBlock& block, FlexibleAnalysis analysis,
+                                             const GroundMotion* vertical = nullptr);
 
-/// SLAMMER's flexible sliding mass with yield coefficient k_y (> 0), one-way (SLAMMER) or two-way.
+/// SLAMMER's flexible sliding mass with yield coefficient k_y (> 0), one-way (SLAMMER) or two-way; `vertical` as
+/// above (decoupled only; SLAMMER has none).
 [[nodiscard]] FlexibleSummary slide_flexible(const GroundMotion& ground, const SlidingMassColumn& column,
                                              double ky_g, FlexibleAnalysis analysis,
                                              SlidingMode mode = SlidingMode::one_way,
-                                             double g_m_s2 = kStandardGravity);
+                                             double g_m_s2 = kStandardGravity, const GroundMotion* vertical = nullptr);
 
 }  // namespace topple

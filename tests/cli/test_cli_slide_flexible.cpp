@@ -60,6 +60,8 @@ TEST(CliSlideFlexible, BadInputExitsTwo) {
   expect_2(run_cli(rec + "--support-freq 4Hz --height 10m"), "either --support-freq");
   expect_2(run_cli(rec + "--height 10m --vs-slope 300"), "needs --vs-slope, --vs-base and --damping");
   expect_2(run_cli(rec + "--support-freq 4Hz --out /tmp/never.csv"), "not available");
+  expect_2(run_cli(rec + "--support-freq 4Hz --coupled --vertical '" + test::shared_record(kRecord).string() + "'"),
+           "no vertical input");
   expect_2(run_cli(rec + "--support-freq 4Hz --mu-kinetic 0.05 --coupled"), "mu_kinetic");
 }
 
