@@ -609,26 +609,40 @@ std::vector<double> support_acceleration_m_s2(const GroundMotion& ground, const 
 
 namespace {
 
-FlexibleSummary decoupled(const GroundMotion& ground, const ModalProperties& mode, const SlidingBlock& block,
-                          const GroundMotion* vertical) {
+/// The demand as a record on the sub-stepped grid, and its peak.
+std::pair<GroundMotion, double> demand_motion(const GroundMotion& ground, const ModalProperties& mode) {
   const int substeps = decoupled_substeps(mode.omega_rad_s, ground.dt_s());
   LinearResponse r = linear_response(ground, mode, true, substeps);
+  RecordMetadata meta = ground.metadata();
+  return {GroundMotion::uniform(std::move(r.demand_m_s2), ground.dt_s() / substeps, ground.start_time_s(),
+                                std::move(meta)),
+          r.max_abs_demand_m_s2};
+}
+
+FlexibleSummary decoupled(const GroundMotion& ground, const ModalProperties& mode, const SlidingBlock& block,
+                          const GroundMotion* vertical) {
+  const auto [support, peak] = demand_motion(ground, mode);
   FlexibleSummary out;
   out.mode = mode;
-  out.kmax = r.max_abs_demand_m_s2 / block.g_m_s2;
-  const GroundMotion support =
-      GroundMotion::uniform(std::move(r.demand_m_s2), ground.dt_s() / substeps, ground.start_time_s());
+  out.kmax = peak / block.g_m_s2;
   out.sliding = slide_summary(support, block, vertical);
   return out;
 }
 
 }  // namespace
 
+GroundMotion support_motion(const GroundMotion& ground, const SupportOscillator& support) {
+  require_uniform(ground);
+  return demand_motion(ground, modal_properties(support)).first;
+}
+
+namespace {
 void require_no_vertical(const GroundMotion* vertical) {
   if (vertical) {
     throw parameter_error("vertical", "the coupled analysis has no vertical input (the decoupled one has)");
   }
 }
+}  // namespace
 
 FlexibleSummary slide_flexible(const GroundMotion& ground, const SupportOscillator& support, const SlidingBlock& block,
                                FlexibleAnalysis analysis, const GroundMotion* vertical) {

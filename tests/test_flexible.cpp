@@ -88,6 +88,21 @@ TEST(Flexible, HarmonicSteadyStateAmplification) {
   EXPECT_NEAR(peak / amp, tr, 1e-3 * tr);
 }
 
+TEST(Flexible, SupportMotionIsWhatTheDecoupledAnalysisSlidesOn) {
+  // support_motion is the filter surveys and sweeps can apply: the rigid solver on it must give the decoupled
+  // analysis' number exactly (same samples, same solver), and its samples at the record's times must be the
+  // sample-exact support acceleration (the sub-steps of a 2.5 Hz support at dt = 0.02 s are 4: every 4th point).
+  const GroundMotion g = test_motion(0.02);
+  const auto s = SupportOscillator::make(2.5, 0.05);
+  const SlidingBlock block = SlidingBlock::make(0.1);
+  const GroundMotion m = support_motion(g, s);
+  EXPECT_EQ(slide_summary(m, block).residual_displacement_m,
+            slide_flexible(g, s, block, FlexibleAnalysis::decoupled).sliding.residual_displacement_m);
+  const auto at_samples = support_acceleration_m_s2(g, modal_properties(s));
+  ASSERT_EQ(m.size(), 4 * (g.size() - 1) + 1);
+  for (std::size_t i = 0; i < g.size(); i += 97) EXPECT_NEAR(m.accel_m_s2()[4 * i], at_samples[i], 1e-12) << i;
+}
+
 TEST(Flexible, CoupledIsExactUnderLinearUpSampling) {
   // The coupled solver integrates each phase exactly and locates slip events by root finding, so up-sampling the
   // piecewise-linear record (the same function) changes only round-off and the event search (50-bit tolerance):

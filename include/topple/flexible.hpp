@@ -105,6 +105,12 @@ struct FlexibleSummary {
 /// a_g + (L1/m) Y'' with Y exact for piecewise-linear a_g, starting at rest. The record must be uniformly sampled.
 [[nodiscard]] std::vector<double> support_acceleration_m_s2(const GroundMotion& ground, const ModalProperties& mode);
 
+/// The motion a shelf or floor passes to what rests on it (decoupled: its absolute acceleration), as a record on the
+/// record's step split so that omega h <= 0.1 (the grid the decoupled analysis slides on). Any solver that takes a
+/// GroundMotion (rocking, sliding, spectra) can run on it: this is the support filter a survey or sweep applies to
+/// an object's motion. The record must be uniformly sampled; metadata is kept.
+[[nodiscard]] GroundMotion support_motion(const GroundMotion& ground, const SupportOscillator& support);
+
 /// Modal properties of a shelf (for `mode`-level calls and tests).
 [[nodiscard]] ModalProperties modal_properties(const SupportOscillator& support);
 
