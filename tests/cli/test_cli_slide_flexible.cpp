@@ -1,4 +1,6 @@
 // topple slide on a flexible support: the CLI prints what the library computes, and rejects bad input with exit 2.
+#include <algorithm>
+#include <cstdio>
 #include <string>
 
 #include <fmt/format.h>
@@ -63,6 +65,21 @@ TEST(CliSlideFlexible, BadInputExitsTwo) {
   expect_2(run_cli(rec + "--support-freq 4Hz --coupled --vertical '" + test::shared_record(kRecord).string() + "'"),
            "no vertical input");
   expect_2(run_cli(rec + "--support-freq 4Hz --mu-kinetic 0.05 --coupled"), "mu_kinetic");
+}
+
+TEST(CliSlideFlexible, UpperFloorExampleRuns) {
+  // examples/upper_floor.sh (README) must keep working: four runs, the coupled one included, exit status 0.
+  if (!test::have_shared()) GTEST_SKIP() << "../shared not present";
+  const std::string cmd = std::string("TOPPLE='") + TOPPLE_CLI_PATH + "' '" + TOPPLE_SOURCE_DIR +
+                          "/examples/upper_floor.sh' '" + test::shared_record(kRecord).string() + "' 2>&1";
+  std::FILE* pipe = popen(cmd.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string out;
+  char buf[4096];
+  while (std::size_t n = std::fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
+  EXPECT_EQ(pclose(pipe), 0) << out;
+  EXPECT_NE(out.find("coupled analysis on a shelf/floor oscillator"), std::string::npos) << out;
+  EXPECT_EQ(std::count(out.begin(), out.end(), '='), 8) << out;  // four "== ..." headers
 }
 
 }  // namespace
