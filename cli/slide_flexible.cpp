@@ -9,7 +9,7 @@
 
 #include "topple/error.hpp"
 #include "topple/flexible.hpp"
-#include "topple/io/write.hpp"
+#include "topple/io/flexible_json.hpp"
 #include "topple/units.hpp"
 
 namespace topple::cli {
@@ -55,8 +55,7 @@ void run_flexible_slide(const GroundMotion& horizontal, const SlidingBlock& bloc
   const FlexibleAnalysis analysis = o.coupled ? FlexibleAnalysis::coupled : FlexibleAnalysis::decoupled;
   const double g = block.g_m_s2;
   FlexibleSummary r;
-  nlohmann::ordered_json support;
-  support["analysis"] = o.coupled ? "coupled" : "decoupled";
+  nlohmann::ordered_json j;
   if (!o.support_freq.empty()) {
     if (!o.height.empty() || o.vs_slope_m_s || o.vs_base_m_s || !o.damping.empty() || !o.reference_strain.empty()) {
       throw parameter_error("--support-freq", "--height, --vs-slope, --vs-base, --damping and --ref-strain describe a "
@@ -66,10 +65,7 @@ void run_flexible_slide(const GroundMotion& horizontal, const SlidingBlock& bloc
         parse_frequency_hz(o.support_freq, "--support-freq"),
         o.support_damping.empty() ? 0.05 : parse_ratio(o.support_damping, "--support-damping"), o.mass_ratio);
     r = slide_flexible(horizontal, s, block, analysis, vertical);
-    support["kind"] = "oscillator";
-    support["freq_hz"] = s.freq_hz;
-    support["damping_ratio"] = s.damping_ratio;
-    support["mass_ratio"] = s.mass_ratio;
+    j = io::flexible_summary_json(r, block, s, analysis);
   } else {
     if (!o.vs_slope_m_s || !o.vs_base_m_s || o.damping.empty()) {
       throw parameter_error("--height", "a sliding mass needs --vs-slope, --vs-base and --damping");
@@ -85,21 +81,9 @@ void run_flexible_slide(const GroundMotion& horizontal, const SlidingBlock& bloc
     const SlidingMassColumn col = SlidingMassColumn::make(parse_length_m(o.height, "--height"), *o.vs_slope_m_s,
                                                           *o.vs_base_m_s, parse_ratio(o.damping, "--damping"), ref);
     r = slide_flexible(horizontal, col, block.mu_static, analysis, block.mode, g, vertical);
-    support["kind"] = "sliding_mass";
-    support["height_m"] = col.height_m;
-    support["vs_slope_m_s"] = col.vs_slope_m_s;
-    support["vs_base_m_s"] = col.vs_base_m_s;
-    support["damping_ratio"] = col.damping_ratio;
-    support["reference_strain"] = ref ? nlohmann::ordered_json(*ref) : nlohmann::ordered_json(nullptr);
-    support["vs_final_m_s"] = r.mode.vs_m_s;
-    support["equivalent_linear_iterations"] = r.mode.iterations;
+    j = io::flexible_summary_json(r, block, col, analysis);
   }
-  support["mode_freq_hz"] = r.mode.omega_rad_s / (2.0 * kPi);
-  support["mode_damping_ratio"] = r.mode.damping_ratio;
-  support["kmax"] = r.kmax;
   if (json) {
-    nlohmann::ordered_json j = io::sliding_summary_json(r.sliding, block);
-    j["support"] = support;
     nlohmann::ordered_json input;
     input["motion"] = motion_name;
     input["pga_g"] = horizontal.pga_m_s2() / g;
@@ -110,7 +94,7 @@ void run_flexible_slide(const GroundMotion& horizontal, const SlidingBlock& bloc
     fmt::print("{}\n", j.dump(2));
     return;
   }
-  fmt::print("{} analysis on a {}: mode {:.4g} Hz, damping {:.4g}, k_max {:.4f}\n", support["analysis"].get<std::string>(),
+  fmt::print("{} analysis on a {}: mode {:.4g} Hz, damping {:.4g}, k_max {:.4f}\n", j["support"]["analysis"].get<std::string>(),
              o.support_freq.empty() ? "flexible sliding mass" : "shelf/floor oscillator",
              r.mode.omega_rad_s / (2.0 * kPi), r.mode.damping_ratio, r.kmax);
   if (o.support_freq.empty()) fmt::print("final V_s {:.4g} m/s after {} equivalent-linear iterations\n", r.mode.vs_m_s, r.mode.iterations);
