@@ -15,13 +15,13 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
-#include <random>
 #include <string>
 #include <vector>
 
 #include <benchmark/benchmark.h>
 
-#include "topple/ensemble.hpp"
+#include "support/noise_record.hpp"
+#include "topple/sweep.hpp"
 #include "topple/pulses.hpp"
 #include "topple/sliding.hpp"
 
@@ -32,23 +32,11 @@ constexpr double kG = kStandardGravity;
 constexpr std::size_t kMotions = 20;
 constexpr std::size_t kMus = 500;
 
+/// The tests' broadband record (tests/support/noise_record.hpp): 40 s at 0.01 s, PGA 0.4 g.
 std::shared_ptr<const GroundMotion> noise_record(unsigned seed) {
-  std::mt19937_64 rng(seed);
-  std::normal_distribution<double> noise(0.0, 1.0);
-  const std::size_t n = 4000;
-  const double dt = 0.01;
-  std::vector<double> a(n);
-  double y1 = 0.0;
-  double y2 = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double w = 2.0 * kPi * 2.5 * dt;
-    const double y = 2.0 * std::cos(w) * 0.95 * y1 - 0.95 * 0.95 * y2 + noise(rng);
-    y2 = y1;
-    y1 = y;
-    const double t = static_cast<double>(i) * dt;
-    a[i] = y * (t / 8.0) * std::exp(1.0 - t / 8.0);
-  }
-  return std::make_shared<const GroundMotion>(GroundMotion::uniform(a, dt).scaled_to_pga(0.4 * kG));
+  return std::make_shared<const GroundMotion>(test::noise_record({.seed = seed, .samples = 4000, .dt_s = 0.01,
+                                                                  .pga_m_s2 = 0.4 * kG, .resonance_hz = 2.5,
+                                                                  .pole_radius = 0.95, .envelope_peak_s = 8.0}));
 }
 
 SweepSpec make_spec(bool records, bool batched) {

@@ -4,45 +4,18 @@
 // Run:  build/release/bench/bench_sliding  (figures in docs/performance.md)
 #include <cmath>
 #include <filesystem>
-#include <random>
 #include <vector>
 
 #include <benchmark/benchmark.h>
 
-#include "topple/io/read.hpp"
+#include "kocaeli_record.hpp"
 #include "topple/sliding.hpp"
 
 namespace {
 
 using topple::GroundMotion;
 
-GroundMotion load_record() {
-  const std::filesystem::path path =
-      std::filesystem::path(TOPPLE_SHARED_DIR) / "records" / "slammer" / "Kocaeli_1999_ATS-090.csv";
-  constexpr std::size_t n = 20000;
-  if (std::filesystem::exists(path)) {
-    const GroundMotion full = topple::io::read_motion(path);
-    std::vector<double> a(full.accel_m_s2().begin(), full.accel_m_s2().begin() + n);
-    return GroundMotion::uniform(std::move(a), full.dt_s());
-  }
-  std::mt19937_64 rng(42);
-  std::normal_distribution<double> noise(0.0, 1.0);
-  std::vector<double> a(n);
-  double y1 = 0.0;
-  double y2 = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double y = 1.9 * y1 - 0.92 * y2 + noise(rng);
-    y2 = y1;
-    y1 = y;
-    a[i] = y;
-  }
-  return GroundMotion::uniform(std::move(a), 0.005).scaled_to_pga(0.185 * topple::kStandardGravity);
-}
-
-const GroundMotion& record() {
-  static const GroundMotion r = load_record();
-  return r;
-}
+const GroundMotion& record() { return topple::bench::kocaeli_20000(); }
 
 /// mu giving the wanted fraction of time sliding, as a benchmark argument in percent of PGA.
 void single_block(benchmark::State& state, topple::SlidingMode mode) {

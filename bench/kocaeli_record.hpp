@@ -29,4 +29,10 @@ inline GroundMotion kocaeli_record(std::size_t n, double fallback_frequency_hz) 
   return synthesize(s);
 }
 
+/// The 20,000-sample record (100 s) that bench_sliding and bench_rocking time, loaded once per process.
+inline const GroundMotion& kocaeli_20000() {
+  static const GroundMotion r = kocaeli_record(20000, 4.0);
+  return r;
+}
+
 }  // namespace topple::bench

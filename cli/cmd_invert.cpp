@@ -40,11 +40,12 @@ void print_site(const Site& site, const InversionResult& r) {
   fmt::print("static bounds on PGA: {}\n", interval_text(r.bounds.lower_g, r.bounds.upper_g, "g"));
   for (const auto& b : r.bounds.lower) fmt::print("  lower {:.3g} g  {}: {}\n", b.pga_g, b.object_id, b.reason);
   for (const auto& b : r.bounds.upper) fmt::print("  upper {:.3g} g  {}: {}\n", b.pga_g, b.object_id, b.reason);
-  fmt::print("PGA:       best {:.3g} g, median {:.3g} g, 68 % {}, 95 % {}\n", r.pga.best, r.pga.median,
-             interval_text(r.pga.ci68_low, r.pga.ci68_high, "g"), interval_text(r.pga.ci95_low, r.pga.ci95_high, "g"));
-  fmt::print("frequency: best {:.3g} Hz, median {:.3g} Hz, 68 % {}, 95 % {}\n", r.freq.best, r.freq.median,
-             interval_text(r.freq.ci68_low, r.freq.ci68_high, "Hz"),
-             interval_text(r.freq.ci95_low, r.freq.ci95_high, "Hz"));
+  const Estimate& pga = r.pga_estimate_g;
+  const Estimate& freq = r.freq_estimate_hz;
+  fmt::print("PGA:       best {:.3g} g, median {:.3g} g, 68 % {}, 95 % {}\n", pga.best, pga.median,
+             interval_text(pga.ci68_low, pga.ci68_high, "g"), interval_text(pga.ci95_low, pga.ci95_high, "g"));
+  fmt::print("frequency: best {:.3g} Hz, median {:.3g} Hz, 68 % {}, 95 % {}\n", freq.best, freq.median,
+             interval_text(freq.ci68_low, freq.ci68_high, "Hz"), interval_text(freq.ci95_low, freq.ci95_high, "Hz"));
   fmt::print("objects (probability of the observation at the best cell):\n");
   for (const auto& o : r.objects) fmt::print("  {:<16} {:<15} {:.2f}\n", o.id, outcome_name(o.outcome), o.probability_at_best);
   for (const auto& note : r.notes) fmt::print("note: {}\n", note);
@@ -52,23 +53,38 @@ void print_site(const Site& site, const InversionResult& r) {
 
 /// Output files may name folders that do not exist yet (as --report does): made before the runs, so that a path
 /// that cannot be written fails in a second instead of after the inversion.
-void prepare_output_folder(const std::string& path, const char* option) {
+void prepare_output_folder(const std::string& path, const char* option, bool is_folder = false) {
+  std::error_code ec;
+  if (!is_folder && std::filesystem::is_directory(path, ec)) {
+    throw InputError(InputLocation{path, {}, option}, "is a directory; give a file name");
+  }
+  if (is_folder && std::filesystem::exists(path, ec) && !std::filesystem::is_directory(path, ec)) {
+    throw InputError(InputLocation{path, {}, option}, "exists and is not a directory");
+  }
   const std::filesystem::path parent = std::filesystem::path(path).parent_path();
   if (parent.empty()) return;
-  std::error_code ec;
   std::filesystem::create_directories(parent, ec);
   if (ec) throw InputError(InputLocation{parent.string(), {}, option}, "cannot create the folder: " + ec.message());
 }
 
 void run_invert(const InvertOptions& o) {
+  // Every option is checked before any work (the survey is read in milliseconds; the runs take seconds).
+  const InversionOptions options{o.threads};
+  validate_inversion_options(options);
   const Survey survey = io::read_survey(o.survey);
   if (!o.grid.empty()) prepare_output_folder(o.grid, "--grid");
   if (!o.map.empty()) prepare_output_folder(o.map, "--map");
-  std::vector<InversionResult> results;
-  for (const Site& site : survey.sites) {
-    if (!o.quiet) fmt::print(stderr, "topple: inverting {} ({} objects)...\n", site.name, site.objects.size());
-    results.push_back(invert_site(site, survey.inversion, InversionOptions{o.threads}));
+  if (!o.report.empty()) prepare_output_folder(o.report, "--report", true);
+  if (!o.quiet) {
+    for (const std::string& note : survey.notes) fmt::print(stderr, "topple: note: {}\n", note);
   }
+  if (!o.quiet) {
+    for (const Site& site : survey.sites) {
+      fmt::print(stderr, "topple: inverting {} ({} objects)...\n", site.name, site.objects.size());
+    }
+  }
+  // One family for every site (invert_sites): the same results as site by site, without re-synthesising it.
+  const std::vector<InversionResult> results = invert_sites(survey.sites, survey.inversion, options);
   const bool multi = survey.sites.size() > 1;
   const auto site_path = [&](const std::string& base, std::size_t i) {
     if (!multi) return std::filesystem::path(base);

@@ -39,6 +39,7 @@ struct RockOptions {
   std::string method = "adaptive";
   std::optional<double> rtol;
   std::optional<int> rk4_substeps;
+  std::optional<std::size_t> max_steps;
   std::string run_out;
   std::string out;
   std::string plot;
@@ -51,6 +52,7 @@ const std::map<std::string, std::string>& option_names() {
       {"width", "--width"},   {"height", "--height"}, {"diameter", "--diameter"},     {"a", "--a"},
       {"h", "--h"},           {"D", "--D"},           {"e", "--e"},                   {"mu", "--mu"},
       {"g", "--g"},           {"rel_tol", "--rtol"},  {"rk4_substeps", "--rk4-substeps"},
+      {"max_steps", "--max-steps"},
       {"max_run_out_s", "--run-out"}, {"vertical", "--vertical"}};
   return names;
 }
@@ -161,6 +163,7 @@ RockingOptions make_options(const RockOptions& o) {
   }
   if (o.rtol) r.rel_tol = *o.rtol;
   if (o.rk4_substeps) r.rk4_substeps = *o.rk4_substeps;
+  if (o.max_steps) r.max_steps = *o.max_steps;
   if (!o.run_out.empty()) r.max_run_out_s = parse_seconds(o.run_out, "--run-out");
   return r;
 }
@@ -274,6 +277,8 @@ void add_rock_command(CLI::App& app) {
                                          "as in the thesis)")->capture_default_str();
   cmd->add_option("--rtol", o->rtol, "Relative tolerance of the adaptive method (default 1e-8)");
   cmd->add_option("--rk4-substeps", o->rk4_substeps, "RK4 steps per sample interval (default 10)");
+  cmd->add_option("--max-steps", o->max_steps, "Cap on integrator steps; past it the run stops with exit status 3 "
+                                               "(default 100000000)");
   cmd->add_option("--run-out", o->run_out, "Longest integration after the record on still ground, s (default 60)");
   cmd->add_option("--out", o->out, "Write the time history to this CSV file (time_s,theta_rad,theta_dot_rad_s,state)");
   cmd->add_option("--plot", o->plot, "Draw record with the uplift levels, theta/alpha with the overturning limits, "

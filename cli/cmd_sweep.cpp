@@ -15,6 +15,7 @@
 #include "topple/ensemble.hpp"
 #include "topple/error.hpp"
 #include "topple/io/sweep_file.hpp"
+#include "topple/sweep.hpp"
 
 namespace topple::cli {
 namespace {
@@ -138,16 +139,24 @@ void run_sweep(const SweepOptions& o) {
   bar.finish();
   if (rank != 0 || o.quiet) return;
   if (o.verbose) {
-    fmt::print(stderr, "topple sweep: chunks total={} already_done={} computed={} runs_computed={} threads={} "
-                       "ranks={} seconds={:.3f}{}\n",
+    fmt::print(stderr, "topple sweep: chunks total={} already_done={} computed={} runs_computed={} "
+                       "failed_verification={} threads={} ranks={} seconds={:.3f}{}\n",
                report.chunks, report.chunks_already_done, report.chunks_computed, report.runs_computed,
-               report.threads, report.ranks, report.seconds, report.restarted ? " (restarted)" : "");
+               report.chunks_failed_verification, report.threads, report.ranks, report.seconds,
+               report.restarted ? " (restarted)" : "");
   }
   const std::string outputs =
       store.csv_path.string() + (store.jsonl_path ? " and " + store.jsonl_path->string() : std::string());
   if (report.was_complete) {
     fmt::print(stderr, "topple sweep: already complete, nothing to do: {} ({} rows)\n", outputs, report.runs);
     return;
+  }
+  if (report.chunks_failed_verification > 0) {
+    fmt::print(stderr, "topple sweep: {} chunk{} in {} failed verification (checksum, length or position) and "
+                       "{} computed again\n",
+               report.chunks_failed_verification, report.chunks_failed_verification == 1 ? "" : "s",
+               ensemble::parts_directory(store.csv_path).string(),
+               report.chunks_failed_verification == 1 ? "was" : "were");
   }
   const double rate = report.seconds > 0.0 ? static_cast<double>(report.runs_computed) / report.seconds : 0.0;
   fmt::print(stderr, "topple sweep: wrote {} ({} rows); computed {} runs in {:.2f} s ({:.0f} runs/s){}\n", outputs,

@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config clang
   libcli11-dev libfmt-dev nlohmann-json3-dev libtomlplusplus-dev libboost-dev
-  libtbb-dev libopenmpi-dev openmpi-bin libfftw3-dev
+  libtbb-dev libopenmpi-dev openmpi-bin libfftw3-dev libxxhash-dev
   libgtest-dev libgmock-dev googletest libbenchmark-dev
   gnuplot-nox python3 python3-venv
   chromium  # test only: the inversion report is opened in a real headless browser

@@ -20,6 +20,8 @@
 
 namespace topple::ensemble {
 
+[[noreturn]] void SingleProcess::abort(int exit_code) { std::exit(exit_code); }
+
 bool built_with_mpi() noexcept { return TOPPLE_HAVE_MPI != 0; }
 
 bool launched_by_mpi() noexcept {

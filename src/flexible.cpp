@@ -401,7 +401,7 @@ SlidingSummary run_coupled(const GroundMotion& ground, const CoupledSystem& sys)
     int events = 0;
     while (tau < h) {
       if (++events > 64) {
-        throw SolverError(fmt::format("coupled sliding: more than 64 slip events in one sub-step of {} s at t = {} s",
+        throw EventLimitError(fmt::format("coupled sliding: more than 64 slip events in one sub-step of {} s at t = {} s",
                                       h, t0 + tau));
       }
       const double rest = h - tau;
@@ -446,7 +446,7 @@ SlidingSummary run_coupled(const GroundMotion& ground, const CoupledSystem& sys)
         const auto r = boost::math::tools::toms748_solve(f, lo, hi, f_lo, f(hi),
                                                          boost::math::tools::eps_tolerance<double>(50), iters);
         if (iters >= 200) {
-          throw SolverError(fmt::format("coupled sliding: slip event not located in 200 iterations at t = {} s", t0 + tau));
+          throw RootFindingError(fmt::format("coupled sliding: slip event not located in 200 iterations at t = {} s", t0 + tau));
         }
         t_event = r.second;  // the side where the event function is >= 0: the event has happened
       } else {
@@ -494,7 +494,7 @@ SlidingSummary run_coupled(const GroundMotion& ground, const CoupledSystem& sys)
   long runout = 0;
   while (phase != stick) {
     if (++runout > kMaxRunOutSubsteps) {
-      throw SolverError(fmt::format("coupled sliding: still sliding {} s after the record's end", static_cast<double>(runout) * h));
+      throw StepLimitError(fmt::format("coupled sliding: still sliding {} s after the record's end", static_cast<double>(runout) * h));
     }
     w[4] = 0.0;
     w[5] = 0.0;
@@ -581,7 +581,7 @@ ModalProperties modal_properties(const SlidingMassColumn& column, const GroundMo
   constexpr double kTolerance = 0.05;
   for (int it = 1;; ++it) {
     if (it > kMaxIterations) {
-      throw SolverError(fmt::format("equivalent-linear iteration did not converge in {} iterations (G/Gmax {}, "
+      throw EquivalentLinearError(fmt::format("equivalent-linear iteration did not converge in {} iterations (G/Gmax {}, "
                                     "damping {})", kMaxIterations, g_ratio_prev, damp_prev));
     }
     const double y_max = linear_response(ground, m, false).max_abs_y;

@@ -84,6 +84,7 @@ struct Likelihood {
   std::vector<double> n;
   std::vector<double> z;
 
+  /// ln L of Baker (2015) eq 11 (binomial counts per level), p_j = Phi(u_j), 1 - p_j = Phi(-u_j).
   [[nodiscard]] double value(double mu, double beta) const {
     double sum = 0.0;
     for (std::size_t j = 0; j < ln_x.size(); ++j) {
@@ -160,7 +161,7 @@ double fragility_log_likelihood(const FragilityData& data, double theta, double 
 
 double LognormalFragilityFit::probability(double im) const {
   if (!(im > 0.0)) return 0.0;
-  return normal_cdf(std::log(im / theta) / beta);
+  return normal_cdf(std::log(im / theta) / beta);  // Phi(ln(x / theta) / beta), Baker (2015) eq 1
 }
 
 std::pair<double, double> LognormalFragilityFit::band(double im, double level) const {
@@ -169,7 +170,7 @@ std::pair<double, double> LognormalFragilityFit::band(double im, double level) c
   // var u = g^T C g, g = (-1/beta, -u/beta) (delta method; header)
   const double var = (se_ln_theta * se_ln_theta + 2.0 * u * cov_ln_theta_beta + u * u * se_beta * se_beta) /
                      (beta * beta);
-  const double z = boost::math::quantile(kStandardNormal, 0.5 * (1.0 + level));
+  const double z = boost::math::quantile(kStandardNormal, 0.5 * (1.0 + level));  // z = Phi^-1((1 + c) / 2)
   const double s = std::sqrt(std::max(0.0, var));
   return {normal_cdf(u - z * s), normal_cdf(u + z * s)};
 }

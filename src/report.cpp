@@ -135,7 +135,8 @@ plot::MapFigure likelihood_map_figure(const InversionResult& r, const Site& site
     c.width = 1.5;
     if (!c.x.empty()) m.overlay.push_back(std::move(c));
   }
-  m.overlay.push_back({"best", {r.pga.best}, {r.freq.best}, "points pt 7 ps 1.8", "#000000", 1.0});
+  m.overlay.push_back(
+      {"best", {r.pga_estimate_g.best}, {r.freq_estimate_hz.best}, "points pt 7 ps 1.8", "#000000", 1.0});
   m.height_px = 760;
   return m;
 }
@@ -143,7 +144,7 @@ plot::MapFigure likelihood_map_figure(const InversionResult& r, const Site& site
 plot::Figure marginal_figure(const InversionResult& r, bool pga) {
   const auto& x = pga ? r.pga_g : r.freq_hz;
   const auto& p = pga ? r.marginal_pga : r.marginal_freq;
-  const Estimate& e = pga ? r.pga : r.freq;
+  const Estimate& e = pga ? r.pga_estimate_g : r.freq_estimate_hz;
   const char* unit = pga ? "g" : "Hz";
   plot::Figure f;
   f.title = pga ? "Marginal posterior of PGA" : "Marginal posterior of the predominant frequency";
@@ -236,11 +237,13 @@ void write_report(const std::filesystem::path& dir, const Survey& survey, const 
   if (!site.notes.empty()) h << "<p>" << html_escape(site.notes) << "</p>\n";
   h << "<h2 id=\"estimate\">Estimate</h2>\n<table id=\"numbers\"><tr><th></th><th>best</th><th>median</th><th>68 % interval</th><th>95 % interval</th></tr>\n";
   h << fmt::format("<tr><td>PGA</td><td class=\"num\">{:.3g} g</td><td class=\"num\">{:.3g} g</td><td>{} &ndash; {}</td><td>{} &ndash; {}</td></tr>\n",
-                   r.pga.best, r.pga.median, opt_text(r.pga.ci68_low, "g"), opt_text(r.pga.ci68_high, "g"),
-                   opt_text(r.pga.ci95_low, "g"), opt_text(r.pga.ci95_high, "g"));
+                   r.pga_estimate_g.best, r.pga_estimate_g.median, opt_text(r.pga_estimate_g.ci68_low, "g"),
+                   opt_text(r.pga_estimate_g.ci68_high, "g"), opt_text(r.pga_estimate_g.ci95_low, "g"),
+                   opt_text(r.pga_estimate_g.ci95_high, "g"));
   h << fmt::format("<tr><td>predominant frequency</td><td class=\"num\">{:.3g} Hz</td><td class=\"num\">{:.3g} Hz</td><td>{} &ndash; {}</td><td>{} &ndash; {}</td></tr>\n",
-                   r.freq.best, r.freq.median, opt_text(r.freq.ci68_low, "Hz"), opt_text(r.freq.ci68_high, "Hz"),
-                   opt_text(r.freq.ci95_low, "Hz"), opt_text(r.freq.ci95_high, "Hz"));
+                   r.freq_estimate_hz.best, r.freq_estimate_hz.median, opt_text(r.freq_estimate_hz.ci68_low, "Hz"),
+                   opt_text(r.freq_estimate_hz.ci68_high, "Hz"), opt_text(r.freq_estimate_hz.ci95_low, "Hz"),
+                   opt_text(r.freq_estimate_hz.ci95_high, "Hz"));
   h << fmt::format("<tr><td>static bounds on PGA</td><td colspan=\"4\">{} &ndash; {}</td></tr>\n</table>\n",
                    opt_text(r.bounds.lower_g, "g"), opt_text(r.bounds.upper_g, "g"));
   for (const auto& note : r.notes) h << "<p class=\"note\">" << html_escape(note) << "</p>\n";

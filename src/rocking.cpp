@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
+#include <cstdint>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -19,6 +21,7 @@
 #include <fmt/format.h>
 
 #include "topple/error.hpp"
+#include "topple/input_grid.hpp"
 
 namespace topple {
 namespace {
@@ -35,66 +38,28 @@ void require_positive(double value, const char* field, const char* what) {
 }
 
 // ---------------------------------------------------------------------------------------------------------------
-// Input on one time grid: the horizontal samples (jumps kept) and, with a vertical record, the union of both grids.
+// Input on one time grid (input_grid.hpp: the union of the components' grids, jumps of either kept): horizontal a_h
+// and, with a vertical record, the effective gravity g + a_v per point.
 
 struct Input {
-  std::span<const double> accel;
-  std::vector<double> accel_store;  // merged grid storage
-  std::vector<double> gravity;      // g + a_v per point; empty without vertical input
-  std::vector<double> times;        // empty for a uniform grid
-  double t0 = 0.0;
-  double dt = 0.0;                  // sample interval (mean interval when irregular): the run-out grid and RK4 h
-  [[nodiscard]] std::size_t size() const { return accel.size(); }
-  [[nodiscard]] double time(std::size_t i) const {
-    return times.empty() ? t0 + static_cast<double>(i) * dt : times[i];
-  }
-};
-
-Input make_input(const GroundMotion& horizontal, const GroundMotion* vertical, double g) {
-  Input in;
-  in.t0 = horizontal.start_time_s();
-  in.dt = horizontal.dt_s();
-  if (vertical == nullptr) {
-    in.accel = horizontal.accel_m_s2();
-    if (!horizontal.is_uniform()) in.times = horizontal.times_s();
-    return in;
-  }
-  const auto av = vertical->accel_m_s2();
-  const double lowest = *std::min_element(av.begin(), av.end());
-  if (!(g + lowest > 0.0)) {
-    throw parameter_error("vertical", fmt::format("the vertical acceleration reaches {} m/s2, so g + a_v = {} m/s2 "
-                                                  "<= 0: the body would leave the ground, which this model excludes",
-                                                  lowest, g + lowest));
-  }
-  // Horizontal points (repeated times of a jump kept) plus the vertical points strictly inside the horizontal
-  // record. Both inputs are piecewise linear, so they stay exact on the union (a jump of the vertical record is
-  // taken at its value after the jump). Outside its own record the vertical component is zero.
-  const std::vector<double> th = horizontal.times_s();
-  const std::vector<double> tv = vertical->times_s();
-  const auto ah = horizontal.accel_m_s2();
-  std::vector<double> t;
-  std::vector<double> a;
-  t.reserve(th.size() + tv.size());
-  a.reserve(th.size() + tv.size());
-  std::size_t j = 0;
-  for (std::size_t i = 0; i < th.size(); ++i) {
-    while (j < tv.size() && tv[j] < th[i]) {
-      if (tv[j] > th.front() && (t.empty() || tv[j] > t.back())) {
-        t.push_back(tv[j]);
-        a.push_back(horizontal.accel_at(tv[j]));
-      }
-      ++j;
+  Input(const GroundMotion& horizontal, const GroundMotion* vertical, double g)
+      : grid(horizontal, vertical), accel(grid.accel_m_s2(0)), gravity(effective_gravity(grid, 1, g)) {
+    if (gravity.empty()) return;
+    const double lowest = *std::min_element(gravity.begin(), gravity.end());
+    if (!(lowest > 0.0)) {
+      throw parameter_error("vertical", fmt::format("the vertical acceleration reaches {} m/s2, so g + a_v = {} m/s2 "
+                                                    "<= 0: the body would leave the ground, which this model excludes",
+                                                    lowest - g, lowest));
     }
-    t.push_back(th[i]);
-    a.push_back(ah[i]);
   }
-  in.gravity.resize(t.size());
-  for (std::size_t i = 0; i < t.size(); ++i) in.gravity[i] = g + vertical->accel_at(t[i]);
-  in.accel_store = std::move(a);
-  in.accel = in.accel_store;
-  in.times = std::move(t);
-  return in;
-}
+  InputGrid grid;
+  std::span<const double> accel;
+  std::vector<double> gravity;  // g + a_v per point; empty without vertical input
+  [[nodiscard]] std::size_t size() const { return grid.size(); }
+  [[nodiscard]] double time(std::size_t i) const { return grid.time_s(i); }
+  /// Sample interval (mean interval when irregular): the run-out grid and the RK4 step.
+  [[nodiscard]] double dt() const { return grid.dt_s(); }
+};
 
 // ---------------------------------------------------------------------------------------------------------------
 // Right-hand side: the equation of motion of rocking.hpp in the scaled state, with the forcing linear in time over
@@ -117,32 +82,60 @@ struct Rhs {
   double sin_ref = 0.0;
   double cos_ref = 1.0;
 
+  // Reference moves since the last exact sin/cos: each move by the series below adds ~1e-17 to sin and cos, so
+  // after kMaxMoves moves the reference is recomputed exactly (drift stays below 1e-14).
+  static constexpr int kMaxMoves = 256;
+  int moves = 0;
+
   void set_reference(double u0) {
     phi_ref = s_alpha - alpha * u0;
     sin_ref = std::sin(phi_ref);
     cos_ref = std::cos(phi_ref);
+    moves = 0;
   }
 
-  void sin_cos(double phi, double& sn, double& cs) const {
+  /// The reference moved to the start of the next step: sin and cos there follow from the current reference by the
+  /// same short series as the stages (the move is a step's change of phi, small), instead of a libm sincos per step
+  /// (it was 13 % of the inversion's instructions).
+  void move_reference(double u0) {
+    const double phi = s_alpha - alpha * u0;
+    if (moves >= kMaxMoves || !(std::abs(phi - phi_ref) <= kSeriesRange)) {
+      set_reference(u0);
+      return;
+    }
+    double sn = 0.0;
+    double cs = 0.0;
+    sin_cos(phi, sn, cs);
+    phi_ref = phi;
+    sin_ref = sn;
+    cos_ref = cs;
+    ++moves;
+  }
+
+  static constexpr double kSeriesRange = 0.1;
+
+  [[gnu::always_inline]] void sin_cos(double phi, double& sn, double& cs) const {
     const double d = phi - phi_ref;
-    // |d| <= 0.03 (theta moves less than that within most steps): sin d to d^7 and cos d - 1 to d^6 leave out less
-    // than 2e-17. Estrin's scheme keeps the dependency chain short (the stages of a step are sequential, so this
-    // function's latency is the step's). Reciprocals are constants: a division by a literal stays a division.
-    if (std::abs(d) > 0.03) {
+    // |d| <= 0.1 (theta moves less than that within a step but for large steps on slow motions): sin d to d^9 and
+    // cos d - 1 to d^10 leave out less than 3e-19. Estrin's scheme keeps the dependency chain short (the stages of a
+    // step are sequential, so this function's latency is the step's). Reciprocals are constants: a division by a
+    // literal stays a division.
+    if (std::abs(d) > kSeriesRange) {
       sn = std::sin(phi);
       cs = std::cos(phi);
       return;
     }
-    constexpr double k6 = 1.0 / 6.0, k120 = 1.0 / 120.0, k5040 = 1.0 / 5040.0, k24 = 1.0 / 24.0, k720 = 1.0 / 720.0;
+    constexpr double k6 = 1.0 / 6.0, k120 = 1.0 / 120.0, k5040 = 1.0 / 5040.0, k362880 = 1.0 / 362880.0;
+    constexpr double k24 = 1.0 / 24.0, k720 = 1.0 / 720.0, k40320 = 1.0 / 40320.0, k3628800 = 1.0 / 3628800.0;
     const double d2 = d * d;
     const double d4 = d2 * d2;
-    const double sd = d + (d * d2) * ((k120 * d2 - k6) - k5040 * d4);
-    const double cd_minus_1 = d2 * ((k24 * d2 - 0.5) - k720 * d4);
+    const double sd = d + (d * d2) * ((k120 * d2 - k6) + d4 * (k362880 * d2 - k5040));
+    const double cd_minus_1 = d2 * ((k24 * d2 - 0.5) + d4 * (k40320 * d2 - k720 - k3628800 * d4));
     sn = sin_ref + (sin_ref * cd_minus_1 + cos_ref * sd);
     cs = cos_ref + (cos_ref * cd_minus_1 - sin_ref * sd);
   }
 
-  void operator()(const State& u, State& du, double t) const {
+  [[gnu::always_inline]] void operator()(const State& u, State& du, double t) const {
     double sn = 0.0;
     double cs = 0.0;
     sin_cos(s_alpha - alpha * u[0], sn, cs);
@@ -160,7 +153,31 @@ class StepAdjuster : public odeint::default_step_adjuster<double, double> {
     if (!(error < 0.5)) return dt;
     const double floor = std::pow(5.0, -static_cast<double>(stepper_order));  // constant after inlining
     if (error <= floor) return dt * 4.5;
+    if (stepper_order == 5) return dt * 0.9 * inverse_fifth_root(error);
     return dt * 0.9 * std::pow(error, -1.0 / static_cast<double>(stepper_order));
+  }
+
+ private:
+  /// x^(-1/5) for 5^-5 < x < 0.5 (the range increase_step uses it on), to round-off: a first guess from the
+  /// exponent bits, then Newton on y^-5 = x (y <- y (6 - x y^5) / 5, quadratic). IEEE operations only, so the same
+  /// steps on every machine; a tenth of a libm pow (which was 4 % of the inversion's instructions).
+  static double inverse_fifth_root(double x) {
+    // x = m 2^e, m in [0.5, 1): y0 = 2^(-e/5) times the chord of m^(-1/5) on [0.5, 1] (within 1.5 % of the root).
+    // The exponent and mantissa from the bits (x is normal and positive here): std::frexp is a library call.
+    const auto bits = std::bit_cast<std::uint64_t>(x);
+    const int e = static_cast<int>((bits >> 52) & 0x7ff) - 1022;
+    const double m = std::bit_cast<double>((bits & 0x000f'ffff'ffff'ffffULL) | 0x3fe0'0000'0000'0000ULL);
+    double y = std::bit_cast<double>(static_cast<std::uint64_t>(1023 - e / 5) << 52);  // 2^(-e/5), e/5 truncated
+    const int r = -e % 5;  // remaining exponent fifths, -4 .. 4
+    constexpr double kFifth[9] = {0.5743491774985174, 0.6597539553864471, 0.7578582832551990,
+                                  0.8705505632961241, 1.0, 1.1486983549970351, 1.3195079107728942,
+                                  1.5157165665103980, 1.7411011265922482};  // 2^(k/5), k = -4 .. 4
+    y *= kFifth[r + 4] * (1.2973967099940701 - 0.2973967099940701 * m);
+    for (int k = 0; k < 4; ++k) {  // error 1.5e-2 -> 6e-4 -> 1e-6 -> 3e-12 -> round-off
+      const double y2 = y * y;
+      y = y * (6.0 - x * (y2 * y2 * y)) * 0.2;
+    }
+    return y;
   }
 };
 
@@ -185,16 +202,18 @@ class AdaptiveStepper {
     (*rhs_)(x1_, dx1_, t1_);
   }
 
-  void step(double t_limit, std::size_t& steps, std::size_t max_steps) {
+  /// False (and no step taken) when the step count would pass max_steps: the engine reports the limit.
+  [[nodiscard]] bool step(double t_limit, std::size_t& steps, std::size_t max_steps) {
     t0_ = t1_;
     x0_ = x1_;
     dx0_ = dx1_;
     const double remaining = t_limit - t0_;
-    rhs_->set_reference(x0_[0]);
+    rhs_->move_reference(x0_[0]);
     for (;;) {
       if (++steps > max_steps) {
-        throw std::runtime_error(fmt::format("rocking: more than {} integrator steps (max_steps) at t = {} s",
-                                             max_steps, t0_));
+        x1_ = x0_;
+        t1_ = t0_;
+        return false;
       }
       const bool clamped = dt_ >= remaining;
       double dt = clamped ? remaining : dt_;
@@ -203,7 +222,7 @@ class AdaptiveStepper {
         t1_ = clamped ? t_limit : t;
         // A step shortened to reach the sample instant says little about the step the solution allows.
         dt_ = clamped ? std::max(dt_, dt) : dt;
-        return;
+        return true;
       }
       dt_ = dt;  // rejected: the controller has reduced it
     }
@@ -241,11 +260,9 @@ class Rk4Stepper {
     x1_ = x;
   }
 
-  void step(double t_limit, std::size_t& steps, std::size_t max_steps) {
-    if (++steps > max_steps) {
-      throw std::runtime_error(fmt::format("rocking: more than {} integrator steps (max_steps) at t = {} s",
-                                           max_steps, t1_));
-    }
+  /// False (and no step taken) when the step count would pass max_steps: the engine reports the limit.
+  [[nodiscard]] bool step(double t_limit, std::size_t& steps, std::size_t max_steps) {
+    if (++steps > max_steps) return false;
     t0_ = t1_;
     x0_ = x1_;
     const double remaining = t_limit - t0_;
@@ -255,6 +272,7 @@ class Rk4Stepper {
     rhs_->set_reference(x0_[0]);
     rk4_.do_step(std::cref(*rhs_), x0_, t0_, x1_, dt);
     t1_ = n == 1.0 ? t_limit : t0_ + dt;
+    return true;
   }
 
   /// A classical RK4 step of length t - t0 from the step's start: a continuous extension of order 4.
@@ -280,22 +298,22 @@ class Rk4Stepper {
   State x1_{};
 };
 
-/// Root of f on [a, b] with f(a), f(b) of opposite signs (or zero), by TOMS 748, to a few ulps of the time.
+/// Cap on TOMS 748 iterations per event: it converges in about 10 on smooth dense output; 200 means a broken bracket.
+constexpr std::uintmax_t kMaxRootIterations = 200;
+
+/// Root of f on [a, b] with f(a), f(b) of opposite signs (or zero), by TOMS 748, to a few ulps of the time. NaN when
+/// the iterations ran out (the engine reports it with the run's parameters).
 template <class F>
 double find_root(F f, double a, double b, double fa, double fb) {
   if (fa == 0.0) return a;
   if (fb == 0.0) return b;
-  constexpr std::uintmax_t kMaxIterations = 200;
-  std::uintmax_t iterations = kMaxIterations;
+  std::uintmax_t iterations = kMaxRootIterations;
   // Relative to the time itself, with a floor of 1 s so that events near t = 0 converge too.
   const auto tol = [](double lo, double hi) {
     return std::abs(hi - lo) <= 4.0 * std::numeric_limits<double>::epsilon() * std::max({std::abs(lo), std::abs(hi), 1.0});
   };
   const auto r = boost::math::tools::toms748_solve(f, a, b, fa, fb, tol, iterations);
-  if (iterations >= kMaxIterations) {
-    throw std::runtime_error(fmt::format("rocking: event location did not converge in {} iterations on [{}, {}] s",
-                                         kMaxIterations, a, b));
-  }
+  if (iterations >= kMaxRootIterations) return std::numeric_limits<double>::quiet_NaN();
   return 0.5 * (r.first + r.second);
 }
 
@@ -437,8 +455,9 @@ class Engine {
     int events_here = 0;
     while (!done_ && t_ < tb) {
       if (++events_here > kMaxEventsPerInterval) {
-        throw std::runtime_error(fmt::format("rocking: more than {} events in the sample interval [{}, {}] s",
-                                             kMaxEventsPerInterval, ta, tb));
+        throw EventLimitError(fmt::format("rocking: more than {} events in the sample interval [{}, {}] s ({}): the "
+                                          "input is outside the model (check its accelerations)",
+                                          kMaxEventsPerInterval, ta, tb, describe()));
       }
       if (mode_ == Mode::rest) {
         rest_phase(ta, tb, ah0, ahs, ge0, ges);
@@ -503,7 +522,11 @@ class Engine {
       t_ = tb;  // an event left only round-off of the interval
       return;
     }
-    stepper_.step(tb, out_.summary.steps, opt_.max_steps);
+    if (!stepper_.step(tb, out_.summary.steps, opt_.max_steps)) {
+      throw StepLimitError(fmt::format("rocking: more than max_steps = {} integrator steps (accepted and rejected) by "
+                                       "t = {} s ({}): raise max_steps or check the input",
+                                       opt_.max_steps, t_, describe()));
+    }
     const double t0 = stepper_.t0();
     const double t1 = stepper_.t1();
     const State& x0 = stepper_.x0();
@@ -521,7 +544,7 @@ class Engine {
     double tp = t1;
     bool split = false;
     if ((v0 > 0.0 && v1 <= 0.0) || (v0 < 0.0 && v1 > 0.0)) {
-      tp = v1 == 0.0 ? t1 : find_root(v, t0, t1, v0, v1);
+      tp = v1 == 0.0 ? t1 : root(v, t0, t1, v0, v1);
       split = tp < t1;
     }
     const bool first_up = v0 > 0.0 || (v0 == 0.0 && (v1 > 0.0 || (v1 == 0.0 && f1 > f0)));
@@ -545,7 +568,7 @@ class Engine {
     RockingSummary& sum = out_.summary;
     if (up) {
       if (!sum.exceeded_alpha_time_s && fa < 1.0 && fb >= 1.0) {
-        const double te = find_root(level(1.0), ta, tb, fa - 1.0, fb - 1.0);
+        const double te = root(level(1.0), ta, tb, fa - 1.0, fb - 1.0);
         sum.exceeded_alpha_time_s = te;
         const State x = stepper_.dense(te);
         event(RockingEventKind::exceeded_alpha, te, s * par_.alpha, par_.w_scale * x[1], par_.w_scale * x[1]);
@@ -559,7 +582,7 @@ class Engine {
         }
       }
       if (fb >= par_.overturn_level) {
-        const double tf = find_root(level(par_.overturn_level), ta, tb, fa - par_.overturn_level,
+        const double tf = root(level(par_.overturn_level), ta, tb, fa - par_.overturn_level,
                                     fb - par_.overturn_level);
         const State x = stepper_.dense(tf);
         before_state_change(tf);
@@ -588,7 +611,7 @@ class Engine {
       row(tb, u_);
       return true;
     }
-    impact(find_root(level(0.0), ta, tb, fa, fb));
+    impact(root(level(0.0), ta, tb, fa, fb));
     return true;
   }
 
@@ -628,6 +651,24 @@ class Engine {
     row(ti, u_);
   }
 
+  /// An event time by find_root, or RootFindingError with the run's parameters.
+  template <class F>
+  double root(F f, double ta, double tb, double fa, double fb) const {
+    const double r = find_root(f, ta, tb, fa, fb);
+    if (std::isnan(r)) {
+      throw RootFindingError(fmt::format("rocking: event location (TOMS 748) did not converge in {} iterations on "
+                                         "[{}, {}] s ({})", kMaxRootIterations, ta, tb, describe()));
+    }
+    return r;
+  }
+
+  /// The run's parameters, for limit messages.
+  [[nodiscard]] std::string describe() const {
+    return fmt::format("a = {:.6g} m, h = {:.6g} m, e = {:.6g}, method {}, rel_tol = {:.3g}, rk4_substeps = {}", par_.a,
+                       par_.h, par_.e, opt_.method == RockingMethod::adaptive ? "adaptive" : "rk4", opt_.rel_tol,
+                       opt_.rk4_substeps);
+  }
+
   // ---- after the record: still ground until rest, fall, or the run-out cap ----
   void run_out(double t_end) {
     if (mode_ == Mode::rest || opt_.max_run_out_s == 0.0) return;
@@ -642,7 +683,7 @@ class Engine {
     // History rows continue the record's spacing (at most 1e5 of them) from the dense output of each step.
     in_run_out_ = true;
     grid_t0_ = t_end;
-    grid_dt_ = std::max(in_.dt, opt_.max_run_out_s * 1e-5);
+    grid_dt_ = std::max(in_.dt(), opt_.max_run_out_s * 1e-5);
     std::size_t stalls = 0;
     while (!done_ && mode_ == Mode::rocking && t_ < t_stop) {
       const double before = t_;
@@ -651,7 +692,8 @@ class Engine {
         if (!done_ && mode_ == Mode::rocking && t_ == stepper_.t1()) flush_grid(t_, true);
       }
       if (t_ == before && ++stalls > static_cast<std::size_t>(kMaxEventsPerInterval)) {
-        throw std::runtime_error(fmt::format("rocking: no progress in the run-out at t = {} s", t_));
+        throw EventLimitError(fmt::format("rocking: more than {} events without time advancing in the run-out at "
+                                          "t = {} s ({})", kMaxEventsPerInterval, t_, describe()));
       }
     }
     in_run_out_ = false;
@@ -756,6 +798,7 @@ void validate(const RockingBody& body, const RockingOptions& o) {
                           fmt::format("initial rotation must be finite and below pi/2 in magnitude, got {}",
                                       o.initial_theta_rad));
   }
+  if (o.max_steps < 1) throw parameter_error("max_steps", "the integrator needs at least 1 step, got 0");
   if (!std::isfinite(o.initial_theta_dot_rad_s)) {
     throw parameter_error("initial_theta_dot_rad_s", "initial angular velocity must be finite");
   }
@@ -826,7 +869,7 @@ template <bool kRecord>
 RockingResult run(const GroundMotion& horizontal, const RockingBody& body, const RockingOptions& o,
                   const GroundMotion* vertical) {
   validate(body, o);
-  const Input in = make_input(horizontal, vertical, o.g_m_s2);
+  const Input in(horizontal, vertical, o.g_m_s2);
   const Params par = make_params(body, o);
   Rhs rhs;
   rhs.p = par.p;
@@ -838,12 +881,12 @@ RockingResult run(const GroundMotion& horizontal, const RockingBody& body, const
   const bool started_rocking = o.initial_theta_rad != 0.0 || o.initial_theta_dot_rad_s != 0.0;
   if (o.method == RockingMethod::adaptive) {
     // First step guess: a tenth of the sample interval (the controller adapts it within a few steps).
-    AdaptiveStepper stepper(rhs, o.abs_tol, o.rel_tol, 0.1 * in.dt);
+    AdaptiveStepper stepper(rhs, o.abs_tol, o.rel_tol, 0.1 * in.dt());
     Engine<AdaptiveStepper, kRecord> engine(in, par, o, stepper, rhs);
     result = engine.run();
     uplift_ratio = engine.first_uplift_ratio_;
   } else {
-    Rk4Stepper stepper(rhs, in.dt / static_cast<double>(o.rk4_substeps));
+    Rk4Stepper stepper(rhs, in.dt() / static_cast<double>(o.rk4_substeps));
     Engine<Rk4Stepper, kRecord> engine(in, par, o, stepper, rhs);
     result = engine.run();
     uplift_ratio = engine.first_uplift_ratio_;
@@ -988,13 +1031,13 @@ void require_amplitude(const RockingBody& body, double theta0) {
 }
 }  // namespace
 
-double linearized_free_rocking_period(const RockingBody& body, double theta0_rad, double g_m_s2) {
+double linearized_free_rocking_period_s(const RockingBody& body, double theta0_rad, double g_m_s2) {
   require_amplitude(body, theta0_rad);
   require_positive(g_m_s2, "g", "g");
   return 4.0 / body.p_rad_s(g_m_s2) * std::acosh(1.0 / (1.0 - theta0_rad / body.alpha_rad()));
 }
 
-double free_rocking_period(const RockingBody& body, double theta0_rad, double g_m_s2) {
+double free_rocking_period_s(const RockingBody& body, double theta0_rad, double g_m_s2) {
   require_amplitude(body, theta0_rad);
   require_positive(g_m_s2, "g", "g");
   const double alpha = body.alpha_rad();
@@ -1012,7 +1055,7 @@ double free_rocking_period(const RockingBody& body, double theta0_rad, double g_
   return 4.0 * quarter;
 }
 
-double free_rocking_impact_speed(const RockingBody& body, double theta0_rad, double g_m_s2) {
+double free_rocking_impact_speed_rad_s(const RockingBody& body, double theta0_rad, double g_m_s2) {
   require_amplitude(body, theta0_rad);
   require_positive(g_m_s2, "g", "g");
   const double alpha = body.alpha_rad();
@@ -1021,7 +1064,7 @@ double free_rocking_impact_speed(const RockingBody& body, double theta0_rad, dou
   return std::sqrt(2.0 * p * p * 2.0 * std::sin(alpha - 0.5 * theta0_rad) * std::sin(0.5 * theta0_rad));
 }
 
-double free_rocking_amplitude(const RockingBody& body, double theta0_rad, double e, int impacts) {
+double free_rocking_amplitude_rad(const RockingBody& body, double theta0_rad, double e, int impacts) {
   require_amplitude(body, theta0_rad);
   if (!std::isfinite(e) || e < 0.0 || e > 1.0) {
     throw parameter_error("e", fmt::format("coefficient of restitution must be in [0, 1], got {}", e));
@@ -1036,13 +1079,13 @@ double free_rocking_amplitude(const RockingBody& body, double theta0_rad, double
   return theta;
 }
 
-double rectangular_pulse_threshold_linearized(const RockingBody& body, double duration_s, double g_m_s2) {
+double rectangular_pulse_threshold_linearized_m_s2(const RockingBody& body, double duration_s, double g_m_s2) {
   require_positive(duration_s, "duration", "pulse duration");
   require_positive(g_m_s2, "g", "g");
   return g_m_s2 * body.alpha_rad() / (-std::expm1(-body.p_rad_s(g_m_s2) * duration_s));
 }
 
-double velocity_impulse_threshold(const RockingBody& body, double g_m_s2) {
+double velocity_impulse_threshold_m_s(const RockingBody& body, double g_m_s2) {
   require_positive(g_m_s2, "g", "g");
   const double alpha = body.alpha_rad();
   const double sh = std::sin(0.5 * alpha);
@@ -1065,8 +1108,9 @@ ThresholdResult first_overturning_amplitude(const std::function<GroundMotion(dou
   ThresholdResult result;
   const auto overturns = [&](double amplitude) {
     if (++result.runs > search.max_runs) {
-      throw std::runtime_error(fmt::format("first_overturning_amplitude: more than {} runs (max_runs)",
-                                           search.max_runs));
+      throw SearchLimitError(fmt::format("first_overturning_amplitude: more than max_runs = {} runs (scan {} to {} "
+                                         "by {}, rel_tol = {:.3g}): raise max_runs or narrow the scan",
+                                         search.max_runs, search.start, search.max, search.step, search.rel_tol));
     }
     const RockingSummary s = rock_summary(motion_for(amplitude), body, o);
     return criterion == OverturnCriterion::falls ? s.overturned : s.exceeded_alpha_time_s.has_value();

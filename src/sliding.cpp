@@ -12,64 +12,24 @@
 #include <fmt/format.h>
 
 #include "topple/error.hpp"
+#include "topple/input_grid.hpp"
 
 namespace topple {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-/// The inputs as flat arrays on one time grid: horizontal a_h, optional effective gravity g_e = g + a_v.
+/// The inputs on one time grid (input_grid.hpp: jumps of either component kept): horizontal a_h and, with a vertical
+/// record, the effective gravity g_e = g + a_v per point.
 struct Input {
+  Input(const GroundMotion& horizontal, const GroundMotion* vertical, double g)
+      : grid(horizontal, vertical), accel(grid.accel_m_s2(0)), gravity(effective_gravity(grid, 1, g)) {}
+  InputGrid grid;
   std::span<const double> accel;
-  std::vector<double> merged_accel;  // storage when a vertical component forced a merged grid
-  std::vector<double> gravity;       // g_e per sample; empty without vertical input
-  std::vector<double> times;         // empty for a uniform grid
-  double t0 = 0.0;
-  double dt = 0.0;
-  [[nodiscard]] std::size_t size() const { return accel.size(); }
-  [[nodiscard]] double time(std::size_t i) const {
-    return times.empty() ? t0 + static_cast<double>(i) * dt : times[i];
-  }
+  std::vector<double> gravity;  // g_e per point; empty without vertical input
+  [[nodiscard]] std::size_t size() const { return grid.size(); }
+  [[nodiscard]] double time(std::size_t i) const { return grid.time_s(i); }
 };
-
-Input make_input(const GroundMotion& horizontal, const GroundMotion* vertical, double g) {
-  Input in;
-  if (vertical == nullptr) {
-    in.accel = horizontal.accel_m_s2();
-    if (!horizontal.is_uniform()) in.times = horizontal.times_s();
-    in.t0 = horizontal.start_time_s();
-    in.dt = horizontal.dt_s();
-    return in;
-  }
-  const bool same_grid = horizontal.is_uniform() && vertical->is_uniform() && horizontal.size() == vertical->size() &&
-                         horizontal.dt_s() == vertical->dt_s() &&
-                         horizontal.start_time_s() == vertical->start_time_s();
-  if (same_grid) {
-    in.accel = horizontal.accel_m_s2();
-    in.t0 = horizontal.start_time_s();
-    in.dt = horizontal.dt_s();
-    in.gravity.resize(horizontal.size());
-    const auto av = vertical->accel_m_s2();
-    for (std::size_t i = 0; i < av.size(); ++i) in.gravity[i] = g + av[i];
-    return in;
-  }
-  // Union of both grids: both inputs are piecewise linear, so they stay exact on it. Outside its own record a
-  // component is zero (GroundMotion::accel_at), which is the still ground.
-  std::vector<double> t = horizontal.times_s();
-  const std::vector<double> tv = vertical->times_s();
-  t.insert(t.end(), tv.begin(), tv.end());
-  std::sort(t.begin(), t.end());
-  t.erase(std::unique(t.begin(), t.end()), t.end());
-  in.merged_accel.resize(t.size());
-  in.gravity.resize(t.size());
-  for (std::size_t i = 0; i < t.size(); ++i) {
-    in.merged_accel[i] = horizontal.accel_at(t[i]);
-    in.gravity[i] = g + vertical->accel_at(t[i]);
-  }
-  in.accel = in.merged_accel;
-  in.times = std::move(t);
-  return in;
-}
 
 /// Friction coefficients turned into the linear forms of sliding.hpp.
 struct Coefficients {
@@ -80,29 +40,51 @@ struct Coefficients {
   bool one_way;
   double g;
   double yield_down, yield_up;  // thresholds on a for g_e = g
+  const SlidingBlock* block;    // for limit messages
 };
+
+/// Cap on slip starts and stops inside one step: a stop and a restart the other way make two, and a linear input can
+/// reverse the stick test only once per step, so a handful is the most a valid input gives.
+constexpr int kMaxEventsPerStep = 64;
+/// Cap on TOMS 748 iterations for a slip stop: a quadratic on a certain bracket converges in a few.
+constexpr boost::uintmax_t kMaxRootIterations = 100;
+
+std::string describe(const SlidingBlock& b) {
+  return fmt::format("mu_static = {:.6g}, mu_kinetic = {:.6g}, slope = {:.6g} deg, {}", b.mu_static, b.mu_kinetic,
+                     b.slope_rad * 180.0 / kPi, b.mode == SlidingMode::one_way ? "one-way" : "two-way");
+}
+
+[[noreturn]] void too_many_events(const Coefficients& k, double t_s) {
+  throw EventLimitError(fmt::format("sliding: more than {} slip starts and stops in the step at t = {} s ({}): the "
+                                    "input is outside the model (check its accelerations)",
+                                    kMaxEventsPerStep, t_s, describe(*k.block)));
+}
 
 Coefficients coefficients(const SlidingBlock& b) {
   const double c = std::cos(b.slope_rad);
   const double s = std::sin(b.slope_rad);
   Coefficients k{};
+  // Stick test |f_t| <= mu_s n, f_t = a cos + g sin and n = g cos - a sin (thesis eq 2.2, Goodman & Seed's R).
   k.cd = c + b.mu_static * s;
   k.qd = s - b.mu_static * c;
   k.cu = c - b.mu_static * s;
   k.qu = s + b.mu_static * c;
+  // d'' = P_s a + Q_s g_e: eq 2.2's equation of motion with kinetic friction, both ways (eq 3.9 on level ground).
   k.p[1] = c + b.mu_kinetic * s;
   k.q[1] = s - b.mu_kinetic * c;
   k.p[0] = c - b.mu_kinetic * s;
   k.q[0] = s + b.mu_kinetic * c;
   k.one_way = b.mode == SlidingMode::one_way;
   k.g = b.g_m_s2;
-  k.yield_down = -k.qd * k.g / k.cd;  // cd > 0 for 0 <= beta < 90 deg
-  k.yield_up = k.one_way ? -kInf : -k.qu * k.g / k.cu;  // cu > 0 is enforced by make()
+  k.yield_down = -k.qd * k.g / k.cd;  // g tan(phi - beta), thesis eq 2.2; cd > 0 for 0 <= beta < 90 deg
+  k.yield_up = k.one_way ? -kInf : -k.qu * k.g / k.cu;  // -g tan(phi + beta), eq 2.2; cu > 0 is enforced by make()
+  k.block = &b;
   return k;
 }
 
 /// Smallest sigma in (0, L] where q(sigma) = C + B sigma + A sigma^2 reaches 0, given q(0) = C >= 0; negative when
-/// q stays positive on (0, L]. q is s*d' (relative speed in the slip direction) over the rest of a step.
+/// q stays positive on (0, L]; NaN when the root finder ran out of iterations (the caller reports it). q is s*d'
+/// (relative speed in the slip direction) over the rest of a step.
 double first_stop(double C, double B, double A, double L) {
   const double qL = C + L * (B + A * L);
   if (C == 0.0) {
@@ -134,10 +116,11 @@ double first_stop(double C, double B, double A, double L) {
   if (root > 0.0 && root <= L) return root;
   if (!(qL <= 0.0)) return -1.0;  // tangency lost to round-off: no sign change, keep sliding
   // Round-off pushed the closed-form root out of its bracket (0, L]: TOMS 748 on the bracket, which is certain.
-  boost::uintmax_t iterations = 100;
+  boost::uintmax_t iterations = kMaxRootIterations;
   const auto q = [&](double x) { return C + x * (B + A * x); };
   const auto tol = [](double lo, double hi) { return std::abs(hi - lo) <= 4.0 * std::numeric_limits<double>::epsilon() * std::abs(hi); };
   const auto bracket = boost::math::tools::toms748_solve(q, 0.0, L, C, qL, tol, iterations);
+  if (iterations >= kMaxRootIterations) return std::numeric_limits<double>::quiet_NaN();
   return 0.5 * (bracket.first + bracket.second);
 }
 
@@ -268,18 +251,16 @@ void integrate(const Input& in, const Coefficients& k, Recorder<kRecord>& rec, c
       v = 0.0;
       rec.start(t_i + tau);
       rec.row(t_i + tau, d, 0.0, s);
-      if (++events_in_step > 64) {
-        throw std::logic_error(fmt::format("sliding solver: more than 64 events in the step at t = {} s", t_i));
-      }
+      if (++events_in_step > kMaxEventsPerStep) too_many_events(k, t_i);
       continue;
     }
 
     if constexpr (!kVertical) {
-      if (tau == 0.0 && in.times.empty()) {
+      if (tau == 0.0 && in.grid.is_uniform()) {
         // Fast slip on a uniform grid, whole steps: no stop can occur in a step when the relative speed keeps its
         // sign at the step's end and the acceleration does not turn from braking to driving inside it (the only
         // way the quadratic speed can touch zero in between). Anything else goes to the general path below.
-        const double h = in.dt;
+        const double h = in.grid.dt_s();
         const double sd = static_cast<double>(s);
         const int idx = s > 0 ? 1 : 0;
         const double p = k.p[idx];
@@ -287,14 +268,14 @@ void integrate(const Input& in, const Coefficients& k, Recorder<kRecord>& rec, c
         double acc0 = p * a[i] + q;
         while (i + 1 < n) {
           const double acc1 = p * a[i + 1] + q;
-          const double v1 = v + 0.5 * h * (acc0 + acc1);
+          const double v1 = v + 0.5 * h * (acc0 + acc1);  // trapezoid (eq 3.10): exact for linear d''
           if (sd * v1 <= 0.0 || (sd * acc0 < 0.0 && sd * acc1 > 0.0)) break;
           if (sd * acc0 > 0.0 && sd * acc1 < 0.0) {  // speed peaks inside the step
             const double at = acc0 * h / (acc0 - acc1);
             const double vp = v + at * (acc0 + 0.5 * (acc1 - acc0) / h * at);
             rec.summary.max_abs_velocity_m_s = std::max(rec.summary.max_abs_velocity_m_s, std::abs(vp));
           }
-          d += h * (v + h * (2.0 * acc0 + acc1) / 6.0);
+          d += h * (v + h * (2.0 * acc0 + acc1) / 6.0);  // cubic, as eq 3.10's ground term: exact
           v = v1;
           acc0 = acc1;
           ++i;
@@ -329,6 +310,10 @@ void integrate(const Input& in, const Coefficients& k, Recorder<kRecord>& rec, c
     const double slope = (acc1 - acc0) / L;
     const double sd = static_cast<double>(s);
     const double sigma = first_stop(sd * v, sd * acc0, 0.5 * sd * slope, L);
+    if (std::isnan(sigma)) {
+      throw RootFindingError(fmt::format("sliding: the slip stop (TOMS 748) did not converge in {} iterations in the "
+                                         "step [{}, {}] s ({})", kMaxRootIterations, t_i, t_i + h, describe(*k.block)));
+    }
     const double span = sigma < 0.0 ? L : sigma;
     // Peak speed inside the step, where the acceleration changes sign.
     if (acc0 * acc1 < 0.0) {
@@ -338,9 +323,9 @@ void integrate(const Input& in, const Coefficients& k, Recorder<kRecord>& rec, c
             std::max(rec.summary.max_abs_velocity_m_s, std::abs(v + at * (acc0 + 0.5 * slope * at)));
       }
     }
-    d += span * (v + span * (0.5 * acc0 + span * slope / 6.0));
+    d += span * (v + span * (0.5 * acc0 + span * slope / 6.0));  // cubic (eq 3.10), exact: method.md
     if (sigma < 0.0) {
-      v += span * (acc0 + 0.5 * slope * span);
+      v += span * (acc0 + 0.5 * slope * span);  // d'(sigma), same
       rec.summary.max_abs_velocity_m_s = std::max(rec.summary.max_abs_velocity_m_s, std::abs(v));
       ++i;
       tau = 0.0;
@@ -355,9 +340,7 @@ void integrate(const Input& in, const Coefficients& k, Recorder<kRecord>& rec, c
     rec.stop(t_i + tau);
     rec.track(t_i + tau, d);
     rec.row(t_i + tau, d, 0.0, 0);
-    if (++events_in_step > 64) {
-      throw std::logic_error(fmt::format("sliding solver: more than 64 events in the step at t = {} s", t_i));
-    }
+    if (++events_in_step > kMaxEventsPerStep) too_many_events(k, t_i);
   }
 
   const double t_end = in.time(n - 1);
@@ -366,8 +349,8 @@ void integrate(const Input& in, const Coefficients& k, Recorder<kRecord>& rec, c
     // Run-out on still ground (a_h = 0, g_e = g): constant relative acceleration Q_s g.
     const double acc = k.q[s > 0 ? 1 : 0] * k.g;
     if (static_cast<double>(s) * acc < 0.0) {
-      const double sigma = -v / acc;
-      d += sigma * (v + 0.5 * acc * sigma);
+      const double sigma = -v / acc;         // Newmark's run-out (thesis eqs 2.5, 2.6): t = v / (N g) on level ground
+      d += sigma * (v + 0.5 * acc * sigma);  // ... and v^2 / (2 N g) more displacement
       rec.stop(t_end + sigma);
       rec.track(t_end + sigma, d);
       rec.row(t_end + sigma, d, 0.0, 0);
@@ -402,7 +385,7 @@ std::optional<double> contact_lost(const Input& in, const SlidingBlock& b) {
 
 template <bool kRecord>
 Recorder<kRecord> run(const GroundMotion& horizontal, const SlidingBlock& block, const GroundMotion* vertical) {
-  const Input in = make_input(horizontal, vertical, block.g_m_s2);
+  const Input in(horizontal, vertical, block.g_m_s2);
   const Coefficients k = coefficients(block);
   Recorder<kRecord> rec;
   if constexpr (kRecord) {
@@ -461,7 +444,7 @@ SlidingSummary slide_summary(const GroundMotion& horizontal, const SlidingBlock&
 
 std::vector<SlidingSummary> slide_summaries(const GroundMotion& horizontal, std::span<const double> mu,
                                             double slope_rad, SlidingMode mode, double g_m_s2) {
-  const Input in = make_input(horizontal, nullptr, g_m_s2);
+  const Input in(horizontal, nullptr, g_m_s2);
   const BlockExtrema blocks(in.accel);
   std::vector<SlidingSummary> out;
   out.reserve(mu.size());

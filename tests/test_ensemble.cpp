@@ -10,8 +10,10 @@
 #include <filesystem>
 #include <cstdlib>
 #include <fstream>
+#include <initializer_list>
 #include <limits>
 #include <random>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -20,12 +22,14 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "support/noise_record.hpp"
 #include "support/shared_data.hpp"
-#include "topple/ensemble.hpp"
+#include "topple/sweep.hpp"
 #include "topple/error.hpp"
 #include "topple/pulses.hpp"
 #include "topple/rocking.hpp"
 #include "topple/sliding.hpp"
+#include "topple/summary_fields.hpp"
 
 namespace topple::ensemble {
 namespace {
@@ -35,22 +39,11 @@ using test::TempDir;
 
 constexpr double kG = kStandardGravity;
 
-/// A reproducible broadband record: filtered noise, n samples at dt, PGA 0.4 g.
+/// A reproducible broadband record (tests/support): filtered noise near 2.5 Hz, n samples at dt, PGA 0.4 g.
 std::shared_ptr<const GroundMotion> noise_record(unsigned seed, std::size_t n = 1500, double dt = 0.01) {
-  std::mt19937_64 rng(seed);
-  std::normal_distribution<double> noise(0.0, 1.0);
-  std::vector<double> a(n);
-  double y1 = 0.0;
-  double y2 = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double w = 2.0 * kPi * 2.5 * dt;
-    const double y = 2.0 * std::cos(w) * 0.95 * y1 - 0.95 * 0.95 * y2 + noise(rng);
-    y2 = y1;
-    y1 = y;
-    const double t = static_cast<double>(i) * dt;
-    a[i] = y * (t / 4.0) * std::exp(1.0 - t / 4.0);
-  }
-  return std::make_shared<const GroundMotion>(GroundMotion::uniform(a, dt).scaled_to_pga(0.4 * kG));
+  return std::make_shared<const GroundMotion>(test::noise_record({.seed = seed, .samples = n, .dt_s = dt,
+                                                                  .pga_m_s2 = 0.4 * kG, .resonance_hz = 2.5,
+                                                                  .pole_radius = 0.95, .envelope_peak_s = 4.0}));
 }
 
 std::string slurp(const fs::path& p) {
@@ -147,6 +140,36 @@ TEST(EnsemblePlan, ExpansionOrderAndColumns) {
   EXPECT_EQ(std::get<std::string>(pulse[1]), "sine");
   EXPECT_EQ(std::get<double>(pulse[2]), 0.5);
   EXPECT_EQ(std::get<double>(pulse[3]), 0.5);
+}
+
+// The result columns are the field tables' sweep fields (summary_fields.hpp), in the order of the sweep outputs
+// written before the tables existed (the CSV header is an interface): sliding, then rocking, end_time_s once.
+TEST(EnsemblePlan, ResultColumnsComeFromTheFieldTables) {
+  const Plan plan = make_plan(mixed_spec());
+  const std::vector<std::string> expected{
+      "max_abs_displacement_m", "max_displacement_time_s", "residual_displacement_m", "max_abs_velocity_m_s",
+      "slip_episodes",          "first_slip_time_s",       "total_slip_duration_s",   "end_time_s",
+      "at_rest_at_end",         "contact_lost_time_s",     "yield_down_g",            "yield_up_g",
+      "max_abs_rotation_rad",   "max_rotation_over_alpha", "max_rotation_time_s",     "max_abs_theta_dot_rad_s",
+      "impacts",                "uplifts",                 "uplift_time_s",           "exceeded_alpha_time_s",
+      "overturned",             "overturn_time_s",         "energy_lost_j_per_kg",    "end_state",
+      "still_rocking_at_end",   "onset_mode",              "critical_mu",             "alpha_rad",
+      "p_rad_s",                "e"};
+  EXPECT_EQ(plan.result_columns, expected);
+  // Each table's sweep positions are 0..k-1, each once, and its names are unique.
+  const auto check = [](const auto& table, int sweep_count) {
+    std::vector<int> positions;
+    std::set<std::string> names;
+    for (const auto& f : table) {
+      EXPECT_TRUE(names.insert(f.name).second) << f.name;
+      if (f.sweep_column >= 0) positions.push_back(f.sweep_column);
+    }
+    std::sort(positions.begin(), positions.end());
+    ASSERT_EQ(positions.size(), static_cast<std::size_t>(sweep_count));
+    for (int i = 0; i < sweep_count; ++i) EXPECT_EQ(positions[static_cast<std::size_t>(i)], i);
+  };
+  check(kSlidingFields, 12);
+  check(kRockingFields, 19);
 }
 
 TEST(EnsemblePlan, DefaultChunkSizeDependsOnRunsOnly) {
@@ -499,6 +522,228 @@ TEST(EnsembleStore, ALockedStoreIsRefused) {
   }
   ::close(fd);
   EXPECT_NO_THROW(static_cast<void>(run_to_files(cp.plan, store, {}, one)));
+}
+
+/// run_to_files refuses the store with an InputError whose message holds every phrase.
+void expect_refused(const Plan& plan, const StoreOptions& store, std::initializer_list<const char*> phrases) {
+  SingleProcess one;
+  try {
+    static_cast<void>(run_to_files(plan, store, {}, one));
+    FAIL() << "the store must be refused";
+  } catch (const InputError& e) {
+    for (const char* phrase : phrases) EXPECT_NE(e.problem().find(phrase), std::string::npos) << e.what();
+  }
+}
+
+// ---- Corruption of the store (docs/sweeps.md, "The result store") ----
+
+/// A store left by a sweep that failed at run 70 (one thread): chunks 0-7 of 15 are there, with JSON lines.
+struct InterruptedStore {
+  TempDir tmp;
+  CountingPlan cp;
+  SingleProcess one;
+  StoreOptions store;
+  std::string expected_csv;
+  std::string expected_jsonl;
+  std::vector<fs::path> chunks;
+
+  InterruptedStore() {
+    store.csv_path = tmp.path() / "out.csv";
+    store.jsonl_path = tmp.path() / "out.jsonl";
+    const ResultTable t = run_in_memory(cp.plan);
+    expected_csv = to_csv(t);
+    expected_jsonl = to_jsonl(t);
+    cp.fail_from->store(70);
+    ExecuteOptions single;
+    single.threads = 1;
+    EXPECT_THROW(static_cast<void>(run_to_files(cp.plan, store, single, one)), std::runtime_error);
+    cp.fail_from->store(std::numeric_limits<std::size_t>::max());
+    chunks = chunk_files(parts_directory(store.csv_path));
+  }
+  [[nodiscard]] fs::path dir() const { return parts_directory(store.csv_path); }
+};
+
+/// The offset of the first row of a chunk file (after its header line).
+std::size_t rows_offset(const std::string& chunk) { return chunk.find('\n') + 1; }
+
+struct Corruption {
+  const char* name;
+  void (*apply)(const InterruptedStore& s);
+};
+
+void flip_digit(const InterruptedStore& s) {
+  std::string t = slurp(s.chunks[1]);
+  const std::size_t i = t.find_first_of("123456789", rows_offset(t) + 10);  // a digit of a value, not the run index
+  t[i] = t[i] == '9' ? '8' : static_cast<char>(t[i] + 1);
+  test::write_file(s.chunks[1], t);
+}
+void xor_byte(const InterruptedStore& s) {
+  std::string t = slurp(s.chunks[1]);
+  t[rows_offset(t) + (t.size() - rows_offset(t)) / 2] ^= 0x5a;
+  test::write_file(s.chunks[1], t);
+}
+void xor_header_fingerprint(const InterruptedStore& s) {  // damage, not another sweep: computed again, not refused
+  std::string t = slurp(s.chunks[1]);
+  t[t.find("fingerprint=") + 14] ^= 0x01;
+  test::write_file(s.chunks[1], t);
+}
+void swap_lines(const InterruptedStore& s) {
+  std::string t = slurp(s.chunks[1]);
+  const std::size_t a = rows_offset(t);
+  const std::size_t b = t.find('\n', a) + 1;
+  const std::size_t c = t.find('\n', b) + 1;
+  t = t.substr(0, a) + t.substr(b, c - b) + t.substr(a, b - a) + t.substr(c);
+  test::write_file(s.chunks[1], t);
+}
+void copy_over_another(const InterruptedStore& s) {
+  fs::copy_file(s.chunks[0], s.chunks[1], fs::copy_options::overwrite_existing);
+  fs::copy_file(fs::path(s.chunks[0]).replace_extension(".jsonl"), fs::path(s.chunks[1]).replace_extension(".jsonl"),
+                fs::copy_options::overwrite_existing);
+}
+void truncate_chunk(const InterruptedStore& s) {
+  const std::string t = slurp(s.chunks[1]);
+  test::write_file(s.chunks[1], t.substr(0, t.size() / 2));
+}
+void truncate_header(const InterruptedStore& s) {
+  const std::string t = slurp(s.chunks[1]);
+  test::write_file(s.chunks[1], t.substr(0, 20));
+}
+void xor_jsonl(const InterruptedStore& s) {
+  const fs::path p = fs::path(s.chunks[1]).replace_extension(".jsonl");
+  std::string t = slurp(p);
+  t[t.size() / 2] ^= 0x01;
+  test::write_file(p, t);
+}
+void delete_jsonl(const InterruptedStore& s) { fs::remove(fs::path(s.chunks[1]).replace_extension(".jsonl")); }
+
+class EnsembleStoreCorruption : public ::testing::TestWithParam<Corruption> {};
+
+// Each kind of damage to one committed chunk: the resumed sweep detects it, computes that chunk (only) again, and
+// writes the same bytes as an uninterrupted sweep.
+TEST_P(EnsembleStoreCorruption, IsDetectedAndTheChunkComputedAgain) {
+  InterruptedStore s;
+  ASSERT_GE(s.chunks.size(), 3u);
+  ASSERT_LE(s.chunks.size(), 9u);
+  GetParam().apply(s);
+  const SweepReport r = run_to_files(s.cp.plan, s.store, {}, s.one);
+  EXPECT_EQ(r.chunks_failed_verification, 1u);
+  EXPECT_EQ(r.chunks_already_done, s.chunks.size() - 1);
+  EXPECT_EQ(r.chunks_computed, 15u - s.chunks.size() + 1);
+  EXPECT_EQ(slurp(s.store.csv_path), s.expected_csv);
+  EXPECT_EQ(slurp(*s.store.jsonl_path), s.expected_jsonl);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Kinds, EnsembleStoreCorruption,
+    ::testing::Values(Corruption{"flipped_digit", flip_digit}, Corruption{"xored_byte", xor_byte},
+                      Corruption{"xored_fingerprint", xor_header_fingerprint}, Corruption{"swapped_lines", swap_lines},
+                      Corruption{"chunk_copied_over_another", copy_over_another},
+                      Corruption{"truncated_chunk", truncate_chunk}, Corruption{"truncated_header", truncate_header},
+                      Corruption{"xored_jsonl", xor_jsonl}, Corruption{"deleted_jsonl", delete_jsonl}),
+    [](const auto& param_info) { return std::string(param_info.param.name); });
+
+// The manifest records every verified chunk's checksum (the one in the chunk's header), and a chunk that checks out
+// on its own but differs from that record is computed again.
+TEST(EnsembleStore, TheManifestRecordsEveryChunkChecksum) {
+  InterruptedStore s;
+  ASSERT_GE(s.chunks.size(), 2u);
+  // A resume that computes nothing new records the chunks found (then fails again at run 70).
+  s.cp.fail_from->store(70);
+  ExecuteOptions single;
+  single.threads = 1;
+  EXPECT_THROW(static_cast<void>(run_to_files(s.cp.plan, s.store, single, s.one)), std::runtime_error);
+  s.cp.fail_from->store(std::numeric_limits<std::size_t>::max());
+  const auto m = nlohmann::json::parse(slurp(s.dir() / "manifest.json"));
+  EXPECT_EQ(m["format"], "topple-sweep-parts/2");
+  EXPECT_EQ(m["checksum"], "xxh3-64");
+  const std::string first = slurp(s.chunks[0]);
+  const std::string recorded = m["chunk_checksums"][s.chunks[0].filename().string()].get<std::string>();
+  EXPECT_EQ(recorded.size(), 16u);
+  EXPECT_NE(first.find(" xxh3=" + recorded + "\n"), std::string::npos) << "the header's checksum is the record";
+  // A record that differs from chunk 0's own checksum: the chunk is not trusted.
+  nlohmann::json forged = m;
+  forged["chunk_checksums"][s.chunks[0].filename().string()] = "0123456789abcdef";
+  test::write_file(s.dir() / "manifest.json", forged.dump(2));
+  const SweepReport r = run_to_files(s.cp.plan, s.store, {}, s.one);
+  EXPECT_EQ(r.chunks_failed_verification, 1u);
+  EXPECT_EQ(slurp(s.store.csv_path), s.expected_csv);
+}
+
+// With the manifest deleted, a different sweep resumed into the same output must not take the other's rows.
+TEST(EnsembleStore, ChunksOfAnotherSweepAreRefusedWithoutAManifest) {
+  InterruptedStore s;
+  fs::remove(s.dir() / "manifest.json");
+  CountingPlan other;
+  other.plan.motions[0].values[0] = Value{std::string("another record")};  // same runs and chunks, other sweep
+  StoreOptions store = s.store;
+  expect_refused(other.plan, store, {"different sweep", "no manifest", "--restart"});
+  EXPECT_FALSE(fs::exists(store.csv_path));
+  EXPECT_EQ(other.calls->load(), 0u) << "nothing computed before the refusal";
+  // The same sweep resumes without its manifest: its chunks carry its fingerprint.
+  const SweepReport same = run_to_files(s.cp.plan, s.store, {}, s.one);
+  EXPECT_EQ(same.chunks_already_done, s.chunks.size());
+  EXPECT_EQ(slurp(s.store.csv_path), s.expected_csv);
+  // --restart discards the store for the other sweep.
+  fs::remove(store.csv_path);
+  store.restart = true;
+  static_cast<void>(run_to_files(other.plan, store, {}, s.one));
+  const ResultTable t = run_in_memory(other.plan);
+  EXPECT_EQ(slurp(store.csv_path), to_csv(t));
+}
+
+/// A finished sweep's outputs damaged afterwards.
+class EnsembleStoreFinishedOutput : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(EnsembleStoreFinishedOutput, IsNotReportedCompleteButRefused) {
+  TempDir tmp;
+  CountingPlan cp;
+  SingleProcess one;
+  StoreOptions store;
+  store.csv_path = tmp.path() / "out.csv";
+  store.jsonl_path = tmp.path() / "out.jsonl";
+  static_cast<void>(run_to_files(cp.plan, store, {}, one));
+  const std::string csv = slurp(store.csv_path);
+  const std::string kind = GetParam();
+  if (kind == std::string("corrupted_csv")) {
+    std::string t = csv;
+    t[t.size() / 2] ^= 0x01;
+    test::write_file(store.csv_path, t);
+  } else if (kind == std::string("truncated_csv")) {
+    test::write_file(store.csv_path, csv.substr(0, csv.size() - 1));
+  } else {
+    std::string t = slurp(*store.jsonl_path);
+    t[10] ^= 0x01;
+    test::write_file(*store.jsonl_path, t);
+  }
+  // Not reported complete: refused.
+  expect_refused(cp.plan, store, {"has changed since this sweep finished", "--restart"});
+  store.restart = true;
+  const SweepReport r = run_to_files(cp.plan, store, {}, one);
+  EXPECT_FALSE(r.was_complete);
+  EXPECT_EQ(slurp(store.csv_path), csv);
+  store.restart = false;
+  EXPECT_TRUE(run_to_files(cp.plan, store, {}, one).was_complete);
+}
+
+INSTANTIATE_TEST_SUITE_P(Kinds, EnsembleStoreFinishedOutput,
+                         ::testing::Values("corrupted_csv", "truncated_csv", "corrupted_jsonl"));
+
+// A store of the earlier format (no checksums) is refused with a message that says what to do.
+TEST(EnsembleStore, AStoreOfTheEarlierFormatIsRefused) {
+  TempDir tmp;
+  CountingPlan cp;
+  SingleProcess one;
+  StoreOptions store;
+  store.csv_path = tmp.path() / "out.csv";
+  fs::create_directories(parts_directory(store.csv_path));
+  test::write_file(parts_directory(store.csv_path) / "manifest.json",
+                   R"({"format": "topple-sweep-parts/1", "fingerprint": ")" + plan_fingerprint(cp.plan) +
+                       R"(", "runs": 120, "chunk_runs": 8, "chunks": 15, "complete": true})");
+  test::write_file(store.csv_path, "run,motion,k,value,note\n");
+  expect_refused(cp.plan, store, {"topple-sweep-parts/1", "--restart"});
+  store.restart = true;
+  static_cast<void>(run_to_files(cp.plan, store, {}, one));
+  EXPECT_EQ(slurp(store.csv_path), to_csv(run_in_memory(cp.plan)));
 }
 
 TEST(EnsembleStore, FingerprintFollowsRecordSamples) {

@@ -2,8 +2,9 @@
 // The ensemble engine: many (ground motion x object x parameters) simulations, reduced to a table.
 //
 // Spectra, fragility curves and the inversion of field observations all run the same thing. This header is the one
-// engine for it; features build a Plan in code (or from a sweep file, topple/io/sweep_file.hpp) and call it rather
-// than loop on their own.
+// engine for it; features build a Plan in code (the standard sweep of records and pulses against blocks and bodies
+// is topple/sweep.hpp, read from a sweep file by topple/io/sweep_file.hpp) and call it rather than loop on their
+// own. The engine knows runs, chunks and stores, never the physics: it includes no solver header.
 //
 // Plan. A list of motion cases (a base record or pulse, loaded once and shared read-only, plus a transform: time
 // scale, scale to a PGA or by a factor, polarity) and a list of object variants (a friction block with its mu,
@@ -24,16 +25,26 @@
 // that does not apply to a row (a rocking column on a sliding row, a first slip that never happened) is an empty CSV
 // cell and a JSON null. Non-finite doubles are written the same way (they never carry a measurement).
 //
-// Store (run_to_files). Results of a sweep writing PATH (CSV) live, until it ends, in the directory PATH.parts/:
-//   manifest.json       plan fingerprint (hash of the expanded plan, the record samples and the chunk size), counts
-//   00000042.csv        the CSV rows of chunk 42 (and 00000042.jsonl when JSON lines are asked for), written under a
-//                       temporary name and renamed when complete: a chunk file exists only when it is whole
+// Store (run_to_files; docs/sweeps.md, "The result store"). Results of a sweep writing PATH (CSV) live, until it
+// ends, in the directory PATH.parts/:
+//   manifest.json       format "topple-sweep-parts/2", the plan fingerprint (hash of the expanded plan, the record
+//                       samples and the chunk size), counts, the XXH3-64 checksum of every chunk file verified so far,
+//                       and, once complete, the size and checksum of each output
+//   00000042.csv        chunk 42: a header line (its format, the plan fingerprint, its index, its row count, the
+//                       checksum of its JSON lines, and a checksum of the whole file but that checksum), then its
+//                       CSV rows; 00000042.jsonl holds its JSON lines when they are asked for. Written under a
+//                       temporary name and renamed when complete (the .jsonl first)
 //   lock                held (flock) by the process that owns the store, so that two sweeps cannot share it
-// Rerunning the same sweep skips the chunks whose files exist and hold the expected number of rows. A store whose
-// fingerprint differs from the plan (the sweep file, a record or the chunk size changed) is refused with InputError
-// unless StoreOptions::restart discards it. When every chunk is there, rank 0 writes PATH (header + chunks in order)
-// under a temporary name, renames it, marks the manifest complete and deletes the chunk files; a rerun of a complete
-// sweep whose outputs exist does nothing.
+// Rerunning the same sweep reads every chunk back and keeps those that check out (header, checksum, index, rows,
+// and the manifest's record); a damaged one is computed again (SweepReport::chunks_failed_verification). A chunk
+// that checks out but carries another plan's fingerprint, or a manifest of another plan, is refused with InputError
+// (the sweep file, a record or the chunk size changed) unless StoreOptions::restart discards the store; so is a store
+// of the earlier format topple-sweep-parts/1, which has no checksums. When every chunk is there, rank 0 reads each
+// back once more (recomputing any that fails), writes PATH (header + chunks in order) through io::OutputFile, records
+// the outputs' sizes and checksums in the manifest, marks it complete and deletes the chunk files. A rerun of a
+// complete sweep verifies its outputs: intact, it does nothing; missing, it computes them again; changed or
+// truncated, it is refused with InputError (--restart computes it again). A file that cannot be written throws
+// OutputError, and no temporary file stays behind.
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
@@ -46,16 +57,14 @@
 #include <variant>
 #include <vector>
 
+#include "topple/field.hpp"
 #include "topple/ground_motion.hpp"
-#include "topple/pulses.hpp"
-#include "topple/rocking.hpp"
-#include "topple/sliding.hpp"
-#include "topple/units.hpp"
 
 namespace topple::ensemble {
 
-/// One cell of a result row: null (does not apply), boolean, integer, double or text.
-using Value = std::variant<std::monostate, bool, std::int64_t, double, std::string>;
+/// One cell of a result row: null (does not apply), boolean, integer, double or text (the value of a result field,
+/// topple/field.hpp).
+using Value = FieldValue;
 
 // ---------------------------------------------------------------------------------------------------------------
 // The generic engine
@@ -210,7 +219,9 @@ struct SweepReport {
   std::size_t runs = 0;
   std::size_t chunks = 0;
   std::size_t chunk_runs = 0;
-  std::size_t chunks_already_done = 0;  ///< found complete in the store when the sweep started
+  std::size_t chunks_already_done = 0;  ///< found complete (and verified) in the store when the sweep started
+  std::size_t chunks_failed_verification = 0;  ///< found in the store but damaged (checksum, length, position) or
+                                                ///< failing at assembly: computed again (rank 0)
   std::size_t chunks_computed = 0;      ///< computed now, all ranks together
   std::size_t runs_computed = 0;        ///< all ranks together
   bool was_complete = false;            ///< the sweep had finished before: nothing was done
@@ -223,84 +234,13 @@ struct SweepReport {
 
 /// Runs the plan on every rank of `cluster` (each with its threads) into the store beside options.csv_path and
 /// writes the final files on rank 0. Every rank must call it with the same plan (checked: the fingerprints must
-/// agree). Throws InputError when the store belongs to another plan (without restart), is locked by another sweep,
-/// or a file cannot be written.
+/// agree). Throws InputError when the store belongs to another plan or an earlier store format (without restart),
+/// is locked by another sweep, or its finished outputs have changed; OutputError when a file cannot be written
+/// (disk full, permission), leaving no temporary file.
 SweepReport run_to_files(const Plan& plan, const StoreOptions& options, const ExecuteOptions& execute,
                          Cluster& cluster);
 
 /// The store directory of a CSV output: "results.csv" -> "results.csv.parts".
 [[nodiscard]] std::filesystem::path parts_directory(const std::filesystem::path& csv_path);
-
-// ---------------------------------------------------------------------------------------------------------------
-// The standard sweep: records and pulses against sliding blocks and rocking bodies (what `topple sweep` runs).
-// Build a SweepSpec in code, or read one from a sweep file (topple/io/sweep_file.hpp).
-// ---------------------------------------------------------------------------------------------------------------
-
-/// A record read from a file (or built in code).
-struct RecordInput {
-  std::string name;                          ///< the "motion" column, e.g. the path as the sweep file matched it
-  std::shared_ptr<const GroundMotion> motion;
-};
-
-/// An analytic pulse (pulses.hpp). Its amplitude and duration are its own, so sweep scaling (scales, time_scales)
-/// does not apply to it; polarity does.
-struct PulseInput {
-  std::string name;  ///< the "motion" column, e.g. "sine amp_g=0.2 freq_hz=1"
-  PulseSpec spec;
-};
-
-/// How records are scaled: each record is run once per ScaleSpec.
-struct ScaleSpec {
-  enum class Kind : std::uint8_t { none, factor, pga };
-  Kind kind = Kind::none;
-  double value = 1.0;  ///< factor (dimensionless) or target PGA (m/s^2)
-};
-
-/// A friction block (sliding.hpp). `slope_deg` is the inclination as given, for the slope_deg column
-/// (block.slope_rad = slope_deg * pi / 180, as `topple slide --slope-deg` computes it).
-struct SlideObject {
-  SlidingBlock block;
-  double slope_deg = 0.0;
-};
-
-/// A rocking body (rocking.hpp). The dimension columns hold what was given: width and height for a block, diameter
-/// and height for a cylinder.
-struct RockObject {
-  RockingBody body;
-  RockingOptions options;
-  std::optional<double> width_m;
-  std::optional<double> height_m;
-  std::optional<double> diameter_m;
-};
-
-using ObjectSpec = std::variant<SlideObject, RockObject>;
-
-struct SweepSpec {
-  std::vector<RecordInput> records;
-  std::vector<PulseInput> pulses;
-  std::vector<double> time_scales{1.0};  ///< records only
-  std::vector<ScaleSpec> scales{ScaleSpec{}};  ///< records only
-  std::vector<bool> inverse{false};     ///< polarities, records and pulses: false = "normal", true = "inverse"
-  std::vector<ObjectSpec> objects;
-  double g_m_s2 = kStandardGravity;     ///< for the *_g columns and amplitudes in g
-  std::size_t chunk_runs = 0;           ///< 0 = default
-};
-
-/// Expands the spec (motions: records x time scales x scales x polarities, then pulses x polarities; objects in the
-/// given order) into a plan whose run function calls slide_summary / slide_summaries and rock_summary.
-///
-/// Columns, present when some run uses them:
-///   motion: motion, [pulse_kind, pulse_amp_g, pulse_duration_s], time_scale, scale_factor, pga_g, polarity
-///   object: model, g_m_s2, [mu, mu_kinetic, slope_deg, mode], [shape, width_m, height_m, diameter_m, restitution]
-///           (mu also holds the friction coefficient a rocking body's onset check uses)
-///   results: sliding: max_abs_displacement_m, max_displacement_time_s, residual_displacement_m,
-///            max_abs_velocity_m_s, slip_episodes, first_slip_time_s, total_slip_duration_s, end_time_s,
-///            at_rest_at_end, contact_lost_time_s, yield_down_g, yield_up_g;
-///            rocking: max_abs_rotation_rad, max_rotation_over_alpha, max_rotation_time_s, max_abs_theta_dot_rad_s,
-///            impacts, uplifts, uplift_time_s, exceeded_alpha_time_s, overturned, overturn_time_s,
-///            energy_lost_j_per_kg, end_time_s, end_state, still_rocking_at_end, onset_mode, critical_mu,
-///            alpha_rad, p_rad_s, e
-/// Throws InputError for an empty spec (no motion or no object) or a motion that cannot be scaled (zero record).
-[[nodiscard]] Plan make_plan(const SweepSpec& spec);
 
 }  // namespace topple::ensemble

@@ -54,6 +54,34 @@ class SolverError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// The kinds of solver limit (after Boost.Odeint's step_adjustment_error / no_progress_error). Each message says
+// which limit (by its option name), its value, where in time it was reached and the parameters of the run.
+
+/// More integrator steps than the caller's cap (RockingOptions::max_steps).
+class StepLimitError : public SolverError {
+ public:
+  using SolverError::SolverError;
+};
+
+/// More events (slip starts and stops, impacts, uplifts) inside one sample interval, or without time advancing, than
+/// the solver's cap: a sign of an input outside the model (e.g. accelerations of 1e300 g).
+class EventLimitError : public SolverError {
+ public:
+  using SolverError::SolverError;
+};
+
+/// A root finder (TOMS 748 for events) used up its iterations without bracketing the root to its tolerance.
+class RootFindingError : public SolverError {
+ public:
+  using SolverError::SolverError;
+};
+
+/// A search over many solver runs (an overturning-amplitude scan) reached its cap on runs (ThresholdSearch::max_runs).
+class SearchLimitError : public SolverError {
+ public:
+  using SolverError::SolverError;
+};
+
 /// A result file could not be written or renamed into place (disk full, permission denied, I/O error). The message
 /// names the path and the system's reason. Never a partial file under the final name (io/output_file.hpp).
 class OutputError : public std::runtime_error {

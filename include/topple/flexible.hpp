@@ -40,12 +40,13 @@
 //   effective strain  gamma = 0.65 * (pi/2) * max|Y| / H,   G/Gmax = 1 / (1 + gamma/gamma_r)  (hyperbolic),
 //   damping D = 0.62 (G/Gmax)^0.1 D_Masing + 0.01  (Darendeli 2001 form), D_Masing from the hyperbola,
 //   V_s = V_s0 sqrt(G/Gmax), and the base impedance damping zeta_imp = min(0.55016 (V_b/V_s)^-0.9904, 0.2)
-// until G and D each change by less than 5 % (at most 100 iterations, else SolverError). The total damping of the
+// until G and D each change by less than 5 % (at most 100 iterations, else EquivalentLinearError). The total damping of the
 // mode is D + zeta_imp (linear elastic: the given damping + zeta_imp).
 #include <cstdint>
 #include <optional>
 #include <vector>
 
+#include "topple/error.hpp"
 #include "topple/ground_motion.hpp"
 #include "topple/sliding.hpp"
 #include "topple/units.hpp"
@@ -84,6 +85,15 @@ struct SlidingMassColumn {
 
 enum class FlexibleAnalysis : std::uint8_t { decoupled, coupled };
 
+/// The equivalent-linear iteration did not settle (G and D within 5 %) in its 100 iterations (exit 3). The coupled
+/// solver's limits throw the common kinds of error.hpp: EventLimitError (64 slip events in one sub-step),
+/// RootFindingError (an event not located in 200 TOMS 748 iterations), StepLimitError (still sliding 10^7 sub-steps
+/// after the record).
+class EquivalentLinearError : public SolverError {
+ public:
+  using SolverError::SolverError;
+};
+
 /// The mode the body slides on, after any equivalent-linear iteration.
 struct ModalProperties {
   double omega_rad_s = 0.0;       ///< circular frequency of the mode
@@ -115,7 +125,7 @@ struct FlexibleSummary {
 [[nodiscard]] ModalProperties modal_properties(const SupportOscillator& support);
 
 /// Modal properties of a column: the linear ones, or the converged equivalent-linear ones for this record
-/// (SolverError if the iteration has not converged in 100 iterations).
+/// (EquivalentLinearError if the iteration has not converged in 100 iterations).
 [[nodiscard]] ModalProperties modal_properties(const SlidingMassColumn& column, const GroundMotion& ground);
 
 /// Object on a shelf or floor. `block` gives mu: the decoupled analysis takes any block of sliding.hpp (static and

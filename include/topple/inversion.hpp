@@ -28,6 +28,7 @@
 //    unconstrained (null): the observations do not move it off the grid's edge.
 // All runs go through the ensemble engine (ensemble.hpp), so a survey uses every core.
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -54,53 +55,122 @@ struct StaticBounds {
 /// The static bounds of a site (g used for nothing but the wording; bounds are in g).
 [[nodiscard]] StaticBounds static_bounds(const Site& site);
 
-/// A marginal estimate; interval ends are null when unconstrained (see the header).
+/// A marginal estimate. Every value is in the unit of the axis it estimates, named by the member that holds it:
+/// InversionResult::pga_estimate_g (g) and InversionResult::freq_estimate_hz (Hz). Interval ends are null when
+/// unconstrained (see the header).
 struct Estimate {
-  double best = 0.0;    ///< at the maximum-likelihood cell
-  double median = 0.0;
-  std::optional<double> ci68_low, ci68_high, ci95_low, ci95_high;
+  double best = 0.0;    ///< the axis value of the maximum-likelihood cell (g or Hz, see above)
+  double median = 0.0;  ///< the marginal posterior's median (g or Hz)
+  std::optional<double> ci68_low, ci68_high, ci95_low, ci95_high;  ///< equal-tailed credible intervals (g or Hz)
 };
 
 struct ObjectReport {
   std::string id;
   Outcome outcome = Outcome::not_overturned;
-  std::vector<double> probability;  ///< P(observation | cell), per cell (index = i_pga * freq_count + j_freq)
-  double probability_at_best = 0.0;
-  double max_probability = 0.0;
+  std::vector<double> probability;  ///< P(observation | cell), dimensionless; index i_pga * freq_count + j_freq
+  double probability_at_best = 0.0;  ///< dimensionless
+  double max_probability = 0.0;      ///< dimensionless
   bool reproduced_anywhere = true;  ///< some run in some cell matched the observation
 };
 
 struct InversionResult {
   std::string site;
-  std::vector<double> pga_g;     ///< grid rows
-  std::vector<double> freq_hz;   ///< grid columns
-  std::vector<double> measured_freq_hz;  ///< mean measured predominant frequency of each column's motions
-  std::vector<double> log_likelihood;    ///< per cell, index = i_pga * freq_hz.size() + j_freq
-  std::vector<double> posterior;         ///< normalised, same indexing
+  std::vector<double> pga_g;     ///< grid rows, g
+  std::vector<double> freq_hz;   ///< grid columns, Hz
+  std::vector<double> measured_freq_hz;  ///< mean measured predominant frequency of each column's motions, Hz
+  std::vector<double> log_likelihood;    ///< natural log, per cell, index = i_pga * freq_hz.size() + j_freq
+  std::vector<double> posterior;         ///< normalised (dimensionless), same indexing
   std::vector<double> marginal_pga;      ///< sums to 1
-  std::vector<double> marginal_freq;
+  std::vector<double> marginal_freq;     ///< sums to 1
   std::size_t best_cell = 0;
-  Estimate pga;                 ///< in g
-  Estimate freq;                ///< in Hz
+  Estimate pga_estimate_g;      ///< PGA, in g
+  Estimate freq_estimate_hz;    ///< predominant frequency, in Hz
   StaticBounds bounds;
   std::vector<ObjectReport> objects;
   std::vector<std::string> notes;  ///< honesty: what the observations cannot constrain, contradictions
   std::size_t runs = 0;
-  double seconds = 0.0;
+  double seconds = 0.0;         ///< wall-clock time of the inversion, s
 };
 
 struct InversionOptions {
-  int threads = 0;  ///< 0: all cores
+  int threads = 0;  ///< worker threads, >= 0 (0: all cores)
 };
 
+/// Checks options before any work: InputError naming "--threads" for a negative thread count.
+void validate_inversion_options(const InversionOptions& options);
+
+/// Checks settings before any work: InputError naming the field ("inversion.pga_g", "inversion.freq_hz",
+/// "inversion.motions_per_cell", "inversion.duration_s", "inversion.g_m_s2", "inversion.records"). For the synthetic
+/// family, both ends of the frequency axis must be frequencies the synthesis can make (synthesis.hpp: 0.2 to 20 Hz)
+/// with the family's own step and duration. io::read_survey calls it and adds the file and line.
+void validate_inversion_settings(const InversionSettings& settings);
+
 /// The motions of one frequency column (PGA scaling is applied per row): synthetic motions (seeds 1..N) or the
-/// survey's records (both polarities), each time-scaled to the column's measured predominant frequency. Exposed for
-/// tests and for the report's example motion. Motions have PGA 1 m/s^2.
+/// survey's records (settings.record_motions, loaded at the edge by io::read_survey: the core reads no file), each
+/// with both polarities and each time-scaled to the column's measured predominant frequency. Exposed for tests and for
+/// the report's example motion. Motions have PGA 1 m/s^2.
 [[nodiscard]] std::vector<GroundMotion> family_motions(const InversionSettings& settings, double freq_hz);
 
-/// The inversion of one site.
+/// The inversion of one site: family, runs, likelihood, estimates and notes (the steps below, in that order).
 [[nodiscard]] InversionResult invert_site(const Site& site, const InversionSettings& settings,
                                           const InversionOptions& options = {});
+
+/// Every site of a survey with the same settings: the family (the same motions for every site) is built once and
+/// shared, which gives the same results as invert_site per site without synthesising the motions again.
+[[nodiscard]] std::vector<InversionResult> invert_sites(const std::vector<Site>& sites,
+                                                        const InversionSettings& settings,
+                                                        const InversionOptions& options = {});
+
+// ---- The steps of invert_site (each exposed for its own tests) ----
+
+/// Step 1, the family: the motions of every frequency column, shared read-only by the runs, and each column's mean
+/// measured predominant frequency (Hz; a check of the time scaling).
+struct FamilyGrid {
+  std::vector<std::vector<std::shared_ptr<const GroundMotion>>> motions;  ///< [column j][motion k]
+  std::vector<double> freq_hz;                                            ///< the columns' frequencies, Hz
+  std::vector<double> measured_freq_hz;                                   ///< per column, Hz
+  [[nodiscard]] std::size_t motions_per_column() const noexcept { return motions.empty() ? 0 : motions.front().size(); }
+};
+[[nodiscard]] FamilyGrid build_family(const InversionSettings& settings, const std::vector<double>& freq_hz,
+                                      const InversionOptions& options = {});
+
+/// The match m in [0, 1] of every run (dimensionless): cell c = i_pga * freq_count + j_freq, motion k, object o.
+struct MatchTable {
+  std::size_t pga_count = 0, freq_count = 0, motions = 0, objects = 0;
+  std::vector<double> match;  ///< index ((c * motions) + k) * objects + o
+  [[nodiscard]] std::size_t cells() const noexcept { return pga_count * freq_count; }
+  [[nodiscard]] double at(std::size_t cell, std::size_t k, std::size_t o) const {
+    return match[(cell * motions + k) * objects + o];
+  }
+};
+
+/// Step 2, the plan and its runs: every object of `site` under every motion of `family` scaled to every PGA of
+/// `pga_g` (g), with the parameters drawn per (motion k, object) by draw_parameters: the same draw in every cell.
+[[nodiscard]] MatchTable simulate_matches(const Site& site, const InversionSettings& settings,
+                                          const std::vector<double>& pga_g, const FamilyGrid& family,
+                                          const InversionOptions& options = {});
+
+/// Step 3, the likelihood reduction (header, item 2): per cell, the log of the average over the 3 x 3 neighbourhood's
+/// motions (weights 4/2/1) of the product over objects of eps_o + (1 - 2 eps_o) m; and per object its smoothed
+/// probability of the observation (sum m + 1/2) / (N + 1) over the same neighbourhood. `error_rates` holds eps_o of
+/// each object (evidence_error_rate). Fills log_likelihood and objects[o].probability / max_probability /
+/// reproduced_anywhere (ids and outcomes are the caller's).
+struct LikelihoodReduction {
+  std::vector<double> log_likelihood;  ///< per cell (natural log)
+  std::vector<std::vector<double>> probability;  ///< [object][cell], dimensionless
+  std::vector<double> max_probability;           ///< per object
+  std::vector<bool> reproduced_anywhere;         ///< per object: some run of some cell matched (m > 0)
+};
+[[nodiscard]] LikelihoodReduction reduce_likelihood(const MatchTable& matches, const std::vector<double>& error_rates);
+
+/// Step 4, the posterior (uniform prior over the log grid), its marginals, the best cell and the estimates, from
+/// result.log_likelihood, result.pga_g and result.freq_hz.
+void fill_posterior_and_estimates(InversionResult& result);
+
+/// Step 5, the notes: what the observations cannot constrain (no static lower/upper bound, interval ends at the grid's
+/// edges), static contradictions, observations no run reproduced, and observations that contradict each other in every
+/// cell. Needs result.bounds, estimates, objects and best_cell.
+[[nodiscard]] std::vector<std::string> inversion_notes(const InversionResult& result, const MatchTable& matches);
 
 /// Whether (pga_g, freq_hz) lies in the highest-posterior-density region of the given probability (e.g. 0.95):
 /// the smallest set of cells, taken by decreasing posterior, whose mass reaches `level`; the point belongs to the cell
@@ -110,12 +180,17 @@ struct InversionOptions {
 /// Per-run match of an object's observation (exposed for tests): simulate `object` with the given parameters under
 /// `motion` (already scaled to the cell's PGA) and compare with the observation.
 struct DrawnParameters {
-  double mu = 0.0;
-  double e = 0.0;  ///< used when !object.e_housner
-  double amplification = 1.0;
+  double mu = 0.0;              ///< friction coefficient (dimensionless)
+  double e = 0.0;               ///< restitution (dimensionless), used when !object.e_housner
+  double amplification = 1.0;   ///< support motion / ground motion (dimensionless)
 };
 [[nodiscard]] double observation_match(const ObservedObject& object, const DrawnParameters& parameters,
                                        const GroundMotion& motion, double g_m_s2);
+
+/// The one-sigma width (m) of the Gaussian kernel that scores a measured sliding distance: the larger of the given
+/// slid_uncertainty, 25 % of slid (a distance read off marks is rarely better than that) and kVisibleSlipM (2 mm).
+/// docs/survey.md states this floor; the survey keeps the given value, the report shows the one used.
+[[nodiscard]] double sliding_sigma_m(const ObservedObject& object);
 
 /// The drawn parameters of object o for motion k (deterministic in seed, k, o; uniform in each range).
 [[nodiscard]] DrawnParameters draw_parameters(const ObservedObject& object, std::uint64_t seed, std::size_t k,

@@ -24,7 +24,7 @@ struct Series {
   std::vector<double> y;
   std::string style = "lines";  ///< gnuplot style: "lines", "points", "linespoints", "steps", "impulses"
   std::string color;            ///< "#rrggbb"; empty: gnuplot's cycle
-  double width = 1.5;
+  double width = 1.5;           ///< line width, a multiple of gnuplot's default line width (dimensionless)
 };
 
 /// Horizontal reference line (e.g. a yield acceleration), drawn dashed with its label.

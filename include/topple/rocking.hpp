@@ -29,15 +29,16 @@
 // function inside a sample interval and is located exactly.
 //
 // Impact. When theta returns to 0 the body lands on the other edge and continues rocking about it; the angular
-// velocity keeps its sign and is multiplied by the coefficient of restitution e (rocking.md R2). Housner's e
+// velocity keeps its sign and is multiplied by the coefficient of restitution e (Housner 1963). Housner's e
 // follows from conservation of angular momentum about the new pivot:
 //   e = 1 - 2 m R^2 sin^2(alpha) / I_O = 1 - 2 a^2 / D
 //   (block: 1 - 1.5 sin^2(alpha); cylinder: 1 - 24 a^2 / (15 a^2 + 16 h^2)); the kinetic energy is multiplied by e^2.
 // A body so squat that Housner's e < 0 (block alpha > 54.7 deg) cannot continue onto the other edge; e must then be
 // given explicitly.
 //
-// Rest rule (the free rocking of a body with e < 1 has infinitely many impacts in finite time: Zeno behaviour,
-// rocking.md R6). After an impact, when the kinetic energy left, D theta'^2 / 2, is below
+// Rest rule (the free rocking of a body with e < 1 has infinitely many impacts in finite time: Zeno behaviour; the
+// half-cycles shrink geometrically with the amplitude, Housner 1963). After an impact, when the kinetic energy left,
+// D theta'^2 / 2, is below
 // RockingOptions::rest_energy_fraction (default 1e-8) times the energy needed to lift the CM over the pivot,
 // g R (1 - cos(alpha)), the body is put in full contact at rest (theta = theta' = 0; the energy dropped is counted as
 // lost). It then waits for the next uplift. With the default the motion dropped would have had an amplitude of
@@ -52,7 +53,7 @@
 // Overturning is not monotone in the amplitude of the input: a larger motion may leave the body standing.
 //
 // Onset mode (Shenton 1996, J. Eng. Mech. 122(7), "Criteria for initiation of slide, rock, and slide-rock rigid-body
-// modes"; rocking.md S1). At the instant theta = theta' = 0 that rocking starts, with A = |a_h| / (g + a_v):
+// modes"). At the instant theta = theta' = 0 that rocking starts, with A = |a_h| / (g + a_v):
 //   theta'' = g (A h - a) / D,  friction needed H = m (A g - h theta''),  normal force N = m (g + a theta'').
 // Pure rocking needs H <= mu N, i.e. mu >= mu_crit(A) = [A (D - h^2) + a h] / [(D - a^2) + A a h]; for a block this is
 // [A (4 beta^2 + 1) + 3 beta] / [(beta^2 + 4) + 3 A beta], beta = a / h, the form attributed to Shenton (his printed
@@ -219,31 +220,36 @@ struct RockingResult {
 /// mu < a/h; otherwise rock if mu >= mu_crit(A), else slide-rock. Throws InputError for mu or A < 0 or not finite.
 [[nodiscard]] OnsetMode shenton_onset_mode(const RockingBody& body, double accel_ratio, double mu);
 
-// ---- Closed forms (benchmarks for the solver; rocking.md R4-R8; p and alpha of the body, g given) ----
+// ---- Closed forms (benchmarks for the solver; p and alpha of the body, g given). Sources: Housner 1963, "The
+// behavior of inverted pendulum structures during earthquakes", Bull. Seismol. Soc. Am. 53(2), 403-417 (the period, the impact law, the energy argument); the pulse and impulse thresholds are derived from
+// Housner's equation of motion in docs/method.md ("Rocking"). ----
 
-/// Housner's linearised free-rocking period from rest at theta0 (0 < theta0 < alpha), e = 1:
+/// Housner's linearised free-rocking period, s, from rest at theta0 (rad, 0 < theta0 < alpha), e = 1 (Housner 1963):
 /// T = (4 / p) acosh(1 / (1 - theta0 / alpha)).
-[[nodiscard]] double linearized_free_rocking_period(const RockingBody& body, double theta0_rad, double g_m_s2);
+[[nodiscard]] double linearized_free_rocking_period_s(const RockingBody& body, double theta0_rad, double g_m_s2);
 
-/// Exact nonlinear free-rocking period, e = 1: T = 4 integral_0^theta0 dtheta / theta'(theta) with
+/// Exact nonlinear free-rocking period, s, from rest at theta0 (rad), e = 1:
+/// T = 4 integral_0^theta0 dtheta / theta'(theta) with
 /// theta'^2 = 2 p^2 (cos(alpha - theta0) - cos(alpha - theta)), by Gauss-Legendre quadrature after the substitution
 /// that removes the inverse-square-root end point.
-[[nodiscard]] double free_rocking_period(const RockingBody& body, double theta0_rad, double g_m_s2);
+[[nodiscard]] double free_rocking_period_s(const RockingBody& body, double theta0_rad, double g_m_s2);
 
-/// |theta'| on reaching theta = 0 from rest at theta0: sqrt(2 p^2 (cos(alpha - theta0) - cos(alpha))) (energy).
-[[nodiscard]] double free_rocking_impact_speed(const RockingBody& body, double theta0_rad, double g_m_s2);
+/// |theta'|, rad/s, on reaching theta = 0 from rest at theta0 (rad): sqrt(2 p^2 (cos(alpha - theta0) - cos(alpha)))
+/// (conservation of energy).
+[[nodiscard]] double free_rocking_impact_speed_rad_s(const RockingBody& body, double theta0_rad, double g_m_s2);
 
-/// Amplitude after n impacts of free rocking from rest at theta0 with restitution e, exact recursion
+/// Amplitude, rad, after n impacts of free rocking from rest at theta0 (rad) with restitution e, exact recursion
 /// cos(alpha - theta_{k+1}) = cos(alpha) + e^2 (cos(alpha - theta_k) - cos(alpha)).
-[[nodiscard]] double free_rocking_amplitude(const RockingBody& body, double theta0_rad, double e, int impacts);
+[[nodiscard]] double free_rocking_amplitude_rad(const RockingBody& body, double theta0_rad, double e, int impacts);
 
-/// Linearised overturning threshold of a rectangular acceleration pulse of duration t1 (rocking.md R7):
-/// a / (g alpha) = 1 / (1 - exp(-p t1)); returns a in m/s^2.
-[[nodiscard]] double rectangular_pulse_threshold_linearized(const RockingBody& body, double duration_s, double g_m_s2);
+/// Linearised overturning threshold of a rectangular acceleration pulse of duration t1 (derived from Housner's
+/// linearised equation, docs/method.md): a / (g alpha) = 1 / (1 - exp(-p t1)); returns a in m/s^2.
+[[nodiscard]] double rectangular_pulse_threshold_linearized_m_s2(const RockingBody& body, double duration_s,
+                                                                 double g_m_s2);
 
-/// Smallest sudden base-velocity change that overturns the body (rocking.md R8): the impulse gives
-/// theta'_0 = dv p^2 cos(alpha) / g, which must reach sqrt(2 p^2 (1 - cos alpha)); returns dv in m/s.
-[[nodiscard]] double velocity_impulse_threshold(const RockingBody& body, double g_m_s2);
+/// Smallest sudden base-velocity change that overturns the body (Housner's impulse argument, 1963): the impulse
+/// gives theta'_0 = dv p^2 cos(alpha) / g, which must reach sqrt(2 p^2 (1 - cos alpha)); returns dv in m/s.
+[[nodiscard]] double velocity_impulse_threshold_m_s(const RockingBody& body, double g_m_s2);
 
 // ---- Threshold search ----
 

@@ -48,7 +48,8 @@ struct FourierSpectrum {
 [[nodiscard]] FourierSpectrum fourier_amplitude_spectrum(const GroundMotion& motion, std::size_t fft_length = 0);
 
 /// Konno-Ohmachi smoothing of `spectrum` at the centre frequencies (Hz, > 0), bandwidth b (> 0; 40 for the
-/// predominant frequency). A centre whose window holds no frequency gives 0.
+/// predominant frequency). Returns the smoothed amplitudes at the centres, in m/s (the unit of
+/// FourierSpectrum::amplitude_m_s). A centre whose window holds no frequency gives 0.
 [[nodiscard]] std::vector<double> konno_ohmachi_smooth(const FourierSpectrum& spectrum,
                                                        std::span<const double> centre_hz, double bandwidth = 40.0);
 
@@ -65,7 +66,7 @@ struct FourierSpectrum {
 
 struct ResponseSpectrum {
   std::vector<double> period_s;
-  double damping = 0.05;
+  double damping = 0.05;          ///< damping ratio zeta (dimensionless fraction of critical; 0.05 = 5 %)
   std::vector<double> sd_m;       ///< max |x|
   std::vector<double> psv_m_s;    ///< w SD
   std::vector<double> psa_m_s2;   ///< w^2 SD
@@ -79,7 +80,7 @@ class OscillatorBank {
  public:
   OscillatorBank(std::vector<double> period_s, double damping, double dt_s);
   [[nodiscard]] const std::vector<double>& period_s() const noexcept { return period_; }
-  [[nodiscard]] double damping() const noexcept { return damping_; }
+  [[nodiscard]] double damping() const noexcept { return damping_; }  ///< damping ratio (dimensionless)
   [[nodiscard]] double dt_s() const noexcept { return dt_; }
   /// Spectrum of a uniform record sampled at dt_s() (throws InputError otherwise).
   [[nodiscard]] ResponseSpectrum respond(const GroundMotion& motion) const;

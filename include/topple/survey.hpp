@@ -4,18 +4,21 @@
 // At each site, a field engineer notes household objects that slid (and how far), rocked, toppled or stayed put,
 // with their sizes, the surfaces they stood on and how sure the observation is. Read from a TOML file by
 // io::read_survey (topple/io/survey_file.hpp); inverted by topple/inversion.hpp.
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "topple/ground_motion.hpp"
 #include "topple/rocking.hpp"
 
 namespace topple {
 
-/// A quantity known as a value (low == high) or a range [low, high], sampled uniformly in the inversion.
+/// A quantity known as a value (low == high) or a range [low, high], sampled uniformly in the inversion. The ends are
+/// in the unit of the field that holds the interval (all of them dimensionless today: mu, e, amplification).
 struct Interval {
-  double low = 0.0;
-  double high = 0.0;
+  double low = 0.0;   ///< in the holder's unit
+  double high = 0.0;  ///< in the holder's unit
   [[nodiscard]] bool is_value() const noexcept { return low == high; }
   [[nodiscard]] double mid() const noexcept { return 0.5 * (low + high); }
 };
@@ -45,11 +48,11 @@ struct ObservedObject {
   std::string description;
   RockingBody body;            ///< nominal geometry (shape, a, h, D)
   std::optional<double> width_m, height_m, diameter_m;  ///< dimensions as given (for reports)
-  Interval mu;                 ///< friction coefficient (value or range)
+  Interval mu;                 ///< friction coefficient, dimensionless (value or range)
   bool e_housner = true;       ///< restitution from Housner's formula for the shape
-  Interval e;                  ///< given restitution (value or range) when !e_housner
+  Interval e;                  ///< given restitution, dimensionless (value or range) when !e_housner
   std::string support = "ground";  ///< "ground", "furniture", "upper floor" (free text)
-  Interval amplification{1.0, 1.0};  ///< support motion / ground motion (>= 1 for furniture and upper floors)
+  Interval amplification{1.0, 1.0};  ///< support motion / ground motion, dimensionless (>= 1 for furniture, floors)
   std::optional<double> orientation_deg;  ///< angle between the object's rocking plane and the shaking direction;
                                           ///< the rocking model sees cos(angle) of the motion (0 when unknown)
   Outcome outcome = Outcome::not_overturned;
@@ -72,11 +75,14 @@ enum class MotionFamily { synthetic, records };
 struct InversionSettings {
   MotionFamily family = MotionFamily::synthetic;
   std::vector<std::string> records;      ///< family = records: paths (relative to the survey file, resolved)
+  /// family = records: the records themselves, in the order of `records`, loaded at the edge (io::read_survey); the
+  /// inversion core reads no file.
+  std::vector<std::shared_ptr<const GroundMotion>> record_motions;
   double pga_min_g = 0.02, pga_max_g = 2.0;
   int pga_count = 30;
   double freq_min_hz = 0.3, freq_max_hz = 20.0;
   int freq_count = 25;
-  int motions_per_cell = 40;
+  int motions_per_cell = 40;             ///< synthetic family: N motions per cell (records: 2 per record)
   std::uint64_t seed = 1;
   double duration_s = 20.0;              ///< synthetic motions' length
   double g_m_s2 = kStandardGravity;
@@ -87,6 +93,9 @@ struct Survey {
   std::vector<Site> sites;
   InversionSettings inversion;
   std::optional<double> epicentre_lat_deg, epicentre_lon_deg;
+  /// What the reader applied by a documented rule that changes a given value (the sliding-uncertainty floor), one
+  /// "file:line: field: text" line each, for the front ends to show.
+  std::vector<std::string> notes;
 };
 
 }  // namespace topple

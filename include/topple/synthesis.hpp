@@ -107,6 +107,8 @@ void validate(const SynthesisSpec& spec);
 
 /// The stationary filtered noise of a spec before envelope, baseline and scaling: the filter output at
 /// t_i = i dt for the unit normal samples w_i of PortableRandom(seed), f_g = ground_frequency_for_request_hz(...).
+/// Dimensionless (the white noise has unit variance and no unit; synthesize() scales the enveloped, baseline-
+/// corrected result to the PGA in m/s^2).
 [[nodiscard]] std::vector<double> filtered_noise(const SynthesisSpec& spec);
 
 /// The synthetic motion: uniform, n = round(T / dt) + 1 samples from t = 0, a(0) = 0, zero final velocity and

@@ -17,6 +17,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <variant>
 #include <vector>
@@ -47,6 +48,7 @@
 #include "topple/rocking.hpp"
 #include "topple/sliding.hpp"
 #include "topple/spectra.hpp"
+#include "topple/summary_fields.hpp"
 #include "topple/synthesis.hpp"
 #include "topple/units.hpp"
 
@@ -140,6 +142,19 @@ nb::object to_python(const nlohmann::ordered_json& j) {
 }
 
 nb::object optional_float(const std::optional<double>& v) { return v ? nb::cast(*v) : nb::none(); }
+
+/// A result field's value (topple/field.hpp): None, bool, int, float or str.
+nb::object field_to_python(const FieldValue& value) {
+  return std::visit(
+      [](const auto& v) -> nb::object {
+        if constexpr (std::is_same_v<std::decay_t<decltype(v)>, std::monostate>) {
+          return nb::none();
+        } else {
+          return nb::cast(v);
+        }
+      },
+      value);
+}
 
 // ---- ground motions ----
 
@@ -913,30 +928,15 @@ NB_MODULE(_core, m) {
         "g"_a = kStandardGravity);
 
   // ---- sliding ----
-  nb::class_<SlidingRun>(m, "SlidingResult", "Sliding response: summary attributes as in `topple slide --json`.")
-      .def_prop_ro("max_abs_displacement_m", [](const SlidingRun& r) { return r.summary.max_abs_displacement_m; })
-      .def_prop_ro("max_displacement_time_s", [](const SlidingRun& r) { return r.summary.max_displacement_time_s; })
-      .def_prop_ro("residual_displacement_m", [](const SlidingRun& r) { return r.summary.residual_displacement_m; })
-      .def_prop_ro("max_abs_velocity_m_s", [](const SlidingRun& r) { return r.summary.max_abs_velocity_m_s; })
-      .def_prop_ro("slip_episodes", [](const SlidingRun& r) { return r.summary.slip_episodes; })
-      .def_prop_ro("first_slip_time_s", [](const SlidingRun& r) { return r.summary.first_slip_time_s; })
-      .def_prop_ro("total_slip_duration_s", [](const SlidingRun& r) { return r.summary.total_slip_duration_s; })
-      .def_prop_ro("end_time_s", [](const SlidingRun& r) { return r.summary.end_time_s; })
-      .def_prop_ro("at_rest_at_end", [](const SlidingRun& r) { return r.summary.at_rest_at_end; })
-      .def_prop_ro("contact_lost_time_s", [](const SlidingRun& r) { return r.summary.contact_lost_time_s; })
-      .def_prop_ro("yield_down_g", [](const SlidingRun& r) { return r.block.yield_down_m_s2() / r.block.g_m_s2; })
-      .def_prop_ro("yield_up_g",
-                   [](const SlidingRun& r) {
-                     const double up = r.block.yield_up_m_s2();
-                     return std::isfinite(up) ? std::optional<double>(up / r.block.g_m_s2) : std::nullopt;
-                   })
-      .def_prop_ro("mu_static", [](const SlidingRun& r) { return r.block.mu_static; })
-      .def_prop_ro("mu_kinetic", [](const SlidingRun& r) { return r.block.mu_kinetic; })
-      .def_prop_ro("slope_deg", [](const SlidingRun& r) { return r.block.slope_rad * 180.0 / kPi; })
-      .def_prop_ro("mode", [](const SlidingRun& r) {
-        return std::string(r.block.mode == SlidingMode::one_way ? "one-way" : "two-way");
-      })
-      .def_prop_ro("g_m_s2", [](const SlidingRun& r) { return r.block.g_m_s2; })
+  // The summary attributes come from the field table (topple/summary_fields.hpp), as the JSON keys do.
+  nb::class_<SlidingRun> sliding_result(m, "SlidingResult",
+                                        "Sliding response: summary attributes as in `topple slide --json`.");
+  for (const Field<SlidingOutcome>& field : kSlidingFields) {
+    sliding_result.def_prop_ro(field.name, [get = field.get](const SlidingRun& r) {
+      return field_to_python(get(SlidingOutcome{r.summary, r.block}));
+    });
+  }
+  sliding_result
       .def_prop_ro("time_s", [](const SlidingRun& r) { return view(r.history.time_s); }, nb::rv_policy::reference_internal)
       .def_prop_ro("displacement_m", [](const SlidingRun& r) { return view(r.history.displacement_m); },
                    nb::rv_policy::reference_internal)
@@ -990,38 +990,14 @@ NB_MODULE(_core, m) {
   m.def("Cylinder", &RockingBody::cylinder, "diameter"_a, "height"_a);
   m.def("General", &RockingBody::general, "a"_a, "h"_a, "D"_a);
 
-  nb::class_<RockingRun>(m, "RockingResult", "Rocking response: summary attributes as in `topple rock --json`.")
-      .def_prop_ro("max_abs_rotation_rad", [](const RockingRun& r) { return r.result.summary.max_abs_rotation_rad; })
-      .def_prop_ro("max_rotation_over_alpha",
-                   [](const RockingRun& r) { return r.result.summary.max_rotation_over_alpha; })
-      .def_prop_ro("max_rotation_time_s", [](const RockingRun& r) { return r.result.summary.max_rotation_time_s; })
-      .def_prop_ro("max_abs_theta_dot_rad_s",
-                   [](const RockingRun& r) { return r.result.summary.max_abs_theta_dot_rad_s; })
-      .def_prop_ro("impacts", [](const RockingRun& r) { return r.result.summary.impacts; })
-      .def_prop_ro("uplifts", [](const RockingRun& r) { return r.result.summary.uplifts; })
-      .def_prop_ro("uplift_time_s", [](const RockingRun& r) { return r.result.summary.uplift_time_s; })
-      .def_prop_ro("exceeded_alpha_time_s", [](const RockingRun& r) { return r.result.summary.exceeded_alpha_time_s; })
-      .def_prop_ro("overturned", [](const RockingRun& r) { return r.result.summary.overturned; })
-      .def_prop_ro("overturn_time_s", [](const RockingRun& r) { return r.result.summary.overturn_time_s; })
-      .def_prop_ro("end_state",
-                   [](const RockingRun& r) { return std::string(rocking_state_name(r.result.summary.end_state)); })
-      .def_prop_ro("end_time_s", [](const RockingRun& r) { return r.result.summary.end_time_s; })
-      .def_prop_ro("still_rocking_at_end", [](const RockingRun& r) { return r.result.summary.still_rocking_at_end; })
-      .def_prop_ro("energy_lost_j_per_kg", [](const RockingRun& r) { return r.result.summary.energy_lost_j_per_kg; })
-      .def_prop_ro("alpha_rad", [](const RockingRun& r) { return r.result.summary.alpha_rad; })
-      .def_prop_ro("alpha_deg", [](const RockingRun& r) { return r.result.summary.alpha_rad * 180.0 / kPi; })
-      .def_prop_ro("R_m", [](const RockingRun& r) { return r.result.summary.R_m; })
-      .def_prop_ro("p_rad_s", [](const RockingRun& r) { return r.result.summary.p_rad_s; })
-      .def_prop_ro("e", [](const RockingRun& r) { return r.result.summary.e; })
-      .def_prop_ro("e_mode", [](const RockingRun& r) {
-        return std::string(r.options.restitution == RestitutionMode::housner ? "housner" : "given");
-      })
-      .def_prop_ro("onset_mode",
-                   [](const RockingRun& r) { return std::string(onset_mode_name(r.result.summary.onset_mode)); })
-      .def_prop_ro("onset_accel_ratio", [](const RockingRun& r) { return r.result.summary.onset_accel_ratio; })
-      .def_prop_ro("critical_mu", [](const RockingRun& r) { return r.result.summary.critical_mu; })
-      .def_prop_ro("mu", [](const RockingRun& r) { return r.options.mu; })
-      .def_prop_ro("g_m_s2", [](const RockingRun& r) { return r.options.g_m_s2; })
+  nb::class_<RockingRun> rocking_result(m, "RockingResult",
+                                        "Rocking response: summary attributes as in `topple rock --json`.");
+  for (const Field<RockingOutcome>& field : kRockingFields) {
+    rocking_result.def_prop_ro(field.name, [get = field.get](const RockingRun& r) {
+      return field_to_python(get(RockingOutcome{r.result.summary, r.body, r.options}));
+    });
+  }
+  rocking_result
       .def_prop_ro("warnings", [](const RockingRun& r) { return r.result.summary.warnings; })
       .def_prop_ro("body", [](const RockingRun& r) { return r.body; })
       .def_prop_ro("time_s", [](const RockingRun& r) { return view(r.result.history.time_s); },

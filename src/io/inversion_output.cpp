@@ -37,8 +37,8 @@ nlohmann::ordered_json inversion_json(const InversionResult& r, const Site& site
   j["site"] = site.name;
   j["lat"] = opt(site.lat_deg);
   j["lon"] = opt(site.lon_deg);
-  j["pga_g"] = estimate_json(r.pga);
-  j["freq_hz"] = estimate_json(r.freq);
+  j["pga_g"] = estimate_json(r.pga_estimate_g);
+  j["freq_hz"] = estimate_json(r.freq_estimate_hz);
   j["static_bounds_pga_g"] = {opt(r.bounds.lower_g), opt(r.bounds.upper_g)};
   j["contradictions"] = r.bounds.contradictions;
   j["notes"] = r.notes;
@@ -101,12 +101,12 @@ void write_sites_geojson(const std::filesystem::path& path, const std::vector<Si
     f["geometry"] = {{"type", "Point"}, {"coordinates", {*sites[i].lon_deg, *sites[i].lat_deg}}};
     const auto& r = results[i];
     f["properties"] = {{"site", sites[i].name},
-                       {"pga_median_g", r.pga.median},
-                       {"pga_best_g", r.pga.best},
-                       {"pga_ci68_g", {opt(r.pga.ci68_low), opt(r.pga.ci68_high)}},
-                       {"pga_ci95_g", {opt(r.pga.ci95_low), opt(r.pga.ci95_high)}},
+                       {"pga_median_g", r.pga_estimate_g.median},
+                       {"pga_best_g", r.pga_estimate_g.best},
+                       {"pga_ci68_g", {opt(r.pga_estimate_g.ci68_low), opt(r.pga_estimate_g.ci68_high)}},
+                       {"pga_ci95_g", {opt(r.pga_estimate_g.ci95_low), opt(r.pga_estimate_g.ci95_high)}},
                        {"static_bounds_pga_g", {opt(r.bounds.lower_g), opt(r.bounds.upper_g)}},
-                       {"freq_median_hz", r.freq.median}};
+                       {"freq_median_hz", r.freq_estimate_hz.median}};
     fc["features"].push_back(f);
   }
   auto out = open_out(path, "--map");
@@ -127,9 +127,10 @@ void write_distance_csv(const std::filesystem::path& path, const std::vector<Sit
       for (char c : name) q += (c == '"') ? std::string("\"\"") : std::string(1, c);
       name = q + "\"";
     }
+    const Estimate& pga = r.pga_estimate_g;
     out << fmt::format("{},{},{},{},{},{},{}\n", name,
-                       epicentral_distance_km(lat, lon, *sites[i].lat_deg, *sites[i].lon_deg), r.pga.median,
-                       cell(r.pga.ci68_low), cell(r.pga.ci68_high), cell(r.pga.ci95_low), cell(r.pga.ci95_high));
+                       epicentral_distance_km(lat, lon, *sites[i].lat_deg, *sites[i].lon_deg), pga.median,
+                       cell(pga.ci68_low), cell(pga.ci68_high), cell(pga.ci95_low), cell(pga.ci95_high));
   }
 }
 

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <type_traits>
+#include <variant>
 
 #include <fmt/format.h>
 
@@ -12,36 +14,27 @@
 namespace topple::io {
 namespace {
 
-nlohmann::ordered_json optional_json(const std::optional<double>& value) {
-  return value ? nlohmann::ordered_json(*value) : nlohmann::ordered_json(nullptr);
-}
-
 struct FileCloser {
   void operator()(std::FILE* f) const { std::fclose(f); }
 };
 
 }  // namespace
 
+nlohmann::ordered_json field_json(const FieldValue& value) {
+  return std::visit(
+      [](const auto& v) -> nlohmann::ordered_json {
+        using T = std::decay_t<decltype(v)>;
+        if constexpr (std::is_same_v<T, std::monostate>) {
+          return nullptr;
+        } else {
+          return v;  // a non-finite double dumps as null (nlohmann::json): never NaN in the output
+        }
+      },
+      value);
+}
+
 nlohmann::ordered_json sliding_summary_json(const SlidingSummary& s, const SlidingBlock& block) {
-  nlohmann::ordered_json j;
-  j["max_abs_displacement_m"] = s.max_abs_displacement_m;
-  j["max_displacement_time_s"] = s.max_displacement_time_s;
-  j["residual_displacement_m"] = s.residual_displacement_m;
-  j["max_abs_velocity_m_s"] = s.max_abs_velocity_m_s;
-  j["slip_episodes"] = s.slip_episodes;
-  j["first_slip_time_s"] = optional_json(s.first_slip_time_s);
-  j["total_slip_duration_s"] = s.total_slip_duration_s;
-  j["end_time_s"] = s.end_time_s;
-  j["at_rest_at_end"] = s.at_rest_at_end;
-  j["contact_lost_time_s"] = optional_json(s.contact_lost_time_s);
-  j["yield_down_g"] = block.yield_down_m_s2() / block.g_m_s2;
-  const double up = block.yield_up_m_s2();
-  j["yield_up_g"] = std::isfinite(up) ? nlohmann::ordered_json(up / block.g_m_s2) : nlohmann::ordered_json(nullptr);
-  j["mu_static"] = block.mu_static;
-  j["mu_kinetic"] = block.mu_kinetic;
-  j["slope_deg"] = block.slope_rad * 180.0 / kPi;
-  j["mode"] = block.mode == SlidingMode::one_way ? "one-way" : "two-way";
-  j["g_m_s2"] = block.g_m_s2;
+  nlohmann::ordered_json j = fields_json(kSlidingFields, SlidingOutcome{s, block});
   j["sign_convention"] = "displacement positive in the direction a positive ground acceleration pushes the block "
                          "(down-slope on an incline)";
   return j;
@@ -49,32 +42,7 @@ nlohmann::ordered_json sliding_summary_json(const SlidingSummary& s, const Slidi
 
 nlohmann::ordered_json rocking_summary_json(const RockingSummary& s, const RockingBody& body,
                                             const RockingOptions& options) {
-  nlohmann::ordered_json j;
-  j["max_abs_rotation_rad"] = s.max_abs_rotation_rad;
-  j["max_rotation_over_alpha"] = s.max_rotation_over_alpha;
-  j["max_rotation_time_s"] = s.max_rotation_time_s;
-  j["max_abs_theta_dot_rad_s"] = s.max_abs_theta_dot_rad_s;
-  j["impacts"] = s.impacts;
-  j["uplifts"] = s.uplifts;
-  j["uplift_time_s"] = optional_json(s.uplift_time_s);
-  j["exceeded_alpha_time_s"] = optional_json(s.exceeded_alpha_time_s);
-  j["overturned"] = s.overturned;
-  j["overturn_time_s"] = optional_json(s.overturn_time_s);
-  j["end_state"] = rocking_state_name(s.end_state);
-  j["end_time_s"] = s.end_time_s;
-  j["still_rocking_at_end"] = s.still_rocking_at_end;
-  j["energy_lost_j_per_kg"] = s.energy_lost_j_per_kg;
-  j["alpha_rad"] = s.alpha_rad;
-  j["alpha_deg"] = s.alpha_rad * 180.0 / kPi;
-  j["R_m"] = s.R_m;
-  j["p_rad_s"] = s.p_rad_s;
-  j["e"] = s.e;
-  j["e_mode"] = options.restitution == RestitutionMode::housner ? "housner" : "given";
-  j["onset_mode"] = onset_mode_name(s.onset_mode);
-  j["onset_accel_ratio"] = optional_json(s.onset_accel_ratio);
-  j["critical_mu"] = optional_json(s.critical_mu);
-  j["mu"] = optional_json(options.mu);
-  j["g_m_s2"] = options.g_m_s2;
+  nlohmann::ordered_json j = fields_json(kRockingFields, RockingOutcome{s, body, options});
   j["warnings"] = s.warnings;
   nlohmann::ordered_json b;
   b["shape"] = shape_name(body.shape);

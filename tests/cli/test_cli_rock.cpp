@@ -161,6 +161,17 @@ TEST(CliRock, VerticalInputIsReadAndScaled) {
   EXPECT_EQ(j.at("input").at("vertical").get<std::string>(), v.string());
 }
 
+TEST(CliRock, StepLimitIsExitStatus3NamingTheLimit) {
+  // --max-steps sets RockingOptions::max_steps; a rocking sine pulse needs hundreds of steps, so 10 is exceeded.
+  const auto r = test::run_cli("rock --shape block --width 4cm --height 20cm --pulse sine --amp-g 0.5 --duration 0.5 "
+                               "--max-steps 10");
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find("max_steps = 10"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("solver limit"), std::string::npos) << r.err;
+  EXPECT_EQ(test::run_cli("rock --shape block --width 4cm --height 20cm --pulse sine --amp-g 0.5 --duration 0.5 "
+                          "--max-steps 0").exit_code, 2);
+}
+
 TEST(CliRock, MethodsAgree) {
   // Fixed-step RK4 (dt/100 on the pulse's 0.25 ms samples) and the adaptive method: max |theta| to 1e-6 relative.
   const std::string base = "rock --shape block --width 4cm --height 20cm --pulse sine --amp-g 0.3 --duration 0.5 --e 0.7 --json";

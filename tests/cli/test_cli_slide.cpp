@@ -30,6 +30,21 @@ TEST(CliSlide, PulseJsonMatchesTheClosedForm) {
   }
 }
 
+TEST(CliSlide, AZeroVerticalRecordKeepsThePulseJump) {
+  // Issue 12's bug through the CLI: with an all-zero vertical record every 0.1 s the residual was 0.2419 m instead of
+  // the closed form 0.3530 m (the merged grid lost the pulse's jump).
+  test::TempDir tmp;
+  const auto v = tmp.path() / "zeros.csv";
+  std::string text = "time_s,accel_g\n";
+  for (int i = 0; i <= 10; ++i) text += std::to_string(0.1 * i) + ",0\n";
+  test::write_file(v, text);
+  const auto j = run_json("slide --pulse rect --amp-g 0.8 --duration 0.3 --mu 0.4 --json --vertical '" + v.string() + "'");
+  const auto cf = rectangular_pulse_sliding(0.8, 0.3, 0.4);
+  // Exact solver against the closed form; the JSON prints 17 significant digits, so round-off only.
+  EXPECT_NEAR(j.at("residual_displacement_m").get<double>(), cf.max_displacement_m, 1e-12 * cf.max_displacement_m);
+  EXPECT_NEAR(j.at("residual_displacement_m").get<double>(), 0.3530, 5e-5);  // the issue's 4 digits
+}
+
 TEST(CliSlide, NoSlipGivesNullFirstSlip) {
   const auto j = run_json("slide --pulse tri --amp-g 0.2 --duration 0.1 --mu 0.3 --json");
   EXPECT_TRUE(j.at("first_slip_time_s").is_null());

@@ -3,11 +3,13 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/mount.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -361,8 +363,13 @@ chunk_runs = 60
   const std::set<std::string> finished = chunk_files(parts);
   ASSERT_GE(finished.size(), 3u);
   ASSERT_LT(finished.size(), 80u);
+  // A chunk file is its header line (format, fingerprint, index, checksums) and then its rows.
   std::map<std::string, std::string> finished_text;
-  for (const auto& f : finished) finished_text[f] = slurp(parts / f);
+  for (const auto& f : finished) {
+    const std::string text = slurp(parts / f);
+    ASSERT_EQ(text.rfind("# topple-sweep-chunk/2 fingerprint=", 0), 0u) << f;
+    finished_text[f] = text.substr(text.find('\n') + 1);
+  }
 
   const auto r = run_cli("sweep " + quote(sweep) + " --verbose");
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -373,7 +380,7 @@ chunk_runs = 60
   EXPECT_NE(r.err.find("resumed"), std::string::npos) << r.err;
   const std::string result = slurp(out);
   EXPECT_EQ(result, slurp(ref));
-  // The committed chunks are in the result as they were written before the kill.
+  // The committed chunks' rows are in the result as they were written before the kill.
   for (const auto& [name, text] : finished_text) EXPECT_NE(result.find(text), std::string::npos) << name;
   // A third run has nothing to do.
   const auto again = run_cli("sweep " + quote(sweep) + " --verbose");
@@ -439,6 +446,108 @@ TEST(CliSweep, QuietAndSummaryOutput) {
   ASSERT_EQ(q.exit_code, 0) << q.err;
   EXPECT_EQ(q.err, "");
   EXPECT_EQ(run_cli("sweep " + quote(p.string()) + " --threads -1").exit_code, 2);
+}
+
+/// FNV-1a, 64 bits, over a file's bytes: a fixed, dependency-free fingerprint of an output for the pins below.
+std::uint64_t fnv1a64(const std::string& bytes) {
+  std::uint64_t h = 14695981039346656037ULL;
+  for (const char c : bytes) {
+    h ^= static_cast<unsigned char>(c);
+    h *= 1099511628211ULL;
+  }
+  return h;
+}
+
+/// The outputs of the example sweeps are an interface promise: the same bytes from one version to the next. The
+/// pinned sizes and FNV-1a hashes were computed by running the example sweeps with the build of main before the
+/// ensemble engine was split into units (commit 4fefb96; sha256 of pulses.csv 56c16de6...cab006d, pulses.jsonl
+/// 540dd25e...ad7c6ab1, records.csv c919db16...c372e18, records.jsonl 12a2c297...28bea). The numbers are exact
+/// (shortest round-trip text of IEEE doubles), so any change of a digit, a column or an order shows here; a
+/// platform whose libm rounds a transcendental differently would also show, which is what a pin is for.
+/// Re-pinned once, after the rocking integrator's per-step sincos became a series (branch solvers): the rows were
+/// compared with the earlier build's column by column, every difference was in a rocking result column and at most
+/// 1.5e-7 relative (energy_lost_j_per_kg of 7.8e-6 J/kg), inside the integrator's tolerance; the format, the order
+/// and every sliding column stayed byte-identical.
+struct PinnedOutput {
+  const char* file;
+  std::size_t bytes;
+  std::uint64_t fnv1a;
+};
+
+void expect_pinned(const fs::path& dir, const std::vector<PinnedOutput>& pins) {
+  for (const auto& pin : pins) {
+    SCOPED_TRACE(pin.file);
+    const std::string bytes = slurp(dir / pin.file);
+    EXPECT_EQ(bytes.size(), pin.bytes);
+    EXPECT_EQ(fnv1a64(bytes), pin.fnv1a) << fmt::format("got {:#x}", fnv1a64(bytes));
+  }
+}
+
+/// A tmpfs of a given size mounted on a directory for the life of the object (needs CAP_SYS_ADMIN: root).
+class SmallDisk {
+ public:
+  SmallDisk(const fs::path& dir, const char* size) : dir_(dir) {
+    fs::create_directories(dir);
+    mounted_ = ::mount("tmpfs", dir.c_str(), "tmpfs", 0, (std::string("size=") + size).c_str()) == 0;
+  }
+  ~SmallDisk() {
+    if (mounted_) ::umount2(dir_.c_str(), MNT_DETACH);
+  }
+  SmallDisk(const SmallDisk&) = delete;
+  SmallDisk& operator=(const SmallDisk&) = delete;
+  [[nodiscard]] bool mounted() const { return mounted_; }
+
+ private:
+  fs::path dir_;
+  bool mounted_ = false;
+};
+
+// A disk that fills up while the output is assembled (the chunks fit, the output beside them does not): exit status 4
+// (an output failure, not bad input), the system's reason, no partial output and no temporary file left behind;
+// the chunks stay, so the same sweep finishes once there is room.
+TEST(CliSweep, DiskFullDuringAssemblyIsAnOutputFailure) {
+  TempDir dir;
+  const fs::path disk = dir.path() / "disk";
+  SmallDisk small(disk, "3m");  // pulses.toml: 2.3 MB of chunks, then 2.3 MB more of output
+  if (!small.mounted()) GTEST_SKIP() << "cannot mount a tmpfs here (needs root)";
+  const fs::path example = fs::path(TOPPLE_SOURCE_DIR) / "examples" / "sweep" / "pulses.toml";
+  const auto r = run_cli("sweep " + quote(example.string()) + " --quiet --out " + quote((disk / "p.csv").string()));
+  EXPECT_EQ(r.exit_code, 4) << r.err;
+  EXPECT_NE(r.err.find("No space left on device"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(disk / "p.csv"));
+  for (const auto& e : fs::recursive_directory_iterator(disk)) {
+    EXPECT_NE(e.path().filename().string().rfind(".tmp-", 0), 0u) << e.path();
+  }
+  const fs::path parts = disk / "p.csv.parts";
+  ASSERT_TRUE(fs::exists(parts));
+  // Room again: move the store to a normal disk; the sweep resumes from its chunks.
+  const fs::path out = dir.path() / "p.csv";
+  fs::copy(parts, dir.path() / "p.csv.parts", fs::copy_options::recursive);
+  const auto again = run_cli("sweep " + quote(example.string()) + " --verbose --out " + quote(out.string()));
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_EQ(verbose_count(again.err, "computed"), 0u) << again.err;
+  expect_pinned(dir.path(), {{"p.csv", 2313235, 0x5ccf7b62af7ba441ULL}});
+}
+
+/// Runs examples/sweep/<name>.toml with JSON lines into a fresh directory and checks the outputs against the pins.
+void expect_example_pinned(const std::string& name, const std::vector<PinnedOutput>& pins) {
+  TempDir dir;
+  const fs::path example = fs::path(TOPPLE_SOURCE_DIR) / "examples" / "sweep" / (name + ".toml");
+  const auto r = run_cli("sweep " + quote(example.string()) + " --jsonl --quiet --out " +
+                         quote((dir.path() / (name + ".csv")).string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  expect_pinned(dir.path(), pins);
+}
+
+TEST(CliSweep, ExamplePulseSweepGivesThePinnedBytes) {
+  expect_example_pinned("pulses", {{"pulses.csv", 2313235, 0x5ccf7b62af7ba441ULL},
+                                   {"pulses.jsonl", 9804325, 0x6d4caf6b0172b44aULL}});
+}
+
+TEST(CliSweep, ExampleRecordSweepGivesThePinnedBytes) {
+  if (!test::have_shared()) GTEST_SKIP() << "shared/records not found";
+  expect_example_pinned("records", {{"records.csv", 820436, 0xa9e3b259bd7c91daULL},
+                                    {"records.jsonl", 3121998, 0x2a208ee51ebbfc9bULL}});
 }
 
 }  // namespace

@@ -18,12 +18,18 @@
 
 namespace topple::io {
 
-/// Reads and validates a survey. Throws InputError naming the file, the object (by id or index) and the field for
-/// unknown keys, unknown shapes or outcomes, missing dimensions, missing units, non-positive sizes, bad ranges.
+/// Reads and validates a survey, and loads its records (load_survey_records). Throws InputError naming the file, the
+/// object (by id or index) and the field for unknown keys, unknown shapes or outcomes, missing dimensions, missing
+/// units, non-positive sizes, bad ranges, a frequency axis the motion family cannot make; and for a directory.
 [[nodiscard]] Survey read_survey(const std::filesystem::path& path);
 
-/// Same from text (name used in messages; relative record paths resolve against `base_dir`).
+/// Same from text (name used in messages; relative record paths resolve against `base_dir`). Reads no file: the
+/// records of a records family are only checked to exist (load_survey_records loads them).
 [[nodiscard]] Survey parse_survey(std::string_view text, const std::string& name,
                                   const std::filesystem::path& base_dir = {});
+
+/// Loads the records named by survey.inversion.records into survey.inversion.record_motions (the inversion core reads
+/// no file; read_survey calls this). Throws InputError naming the record file that does not read.
+void load_survey_records(Survey& survey);
 
 }  // namespace topple::io

@@ -1,5 +1,5 @@
 #pragma once
-// Sweep files: a TOML description of an ensemble (motions x objects x parameters), read into an ensemble::SweepSpec.
+// Sweep files: a TOML description of an ensemble (motions x objects x parameters), read into an ensemble::SweepSpec (topple/sweep.hpp).
 // docs/sweeps.md describes every key; examples/sweep/ holds commented examples.
 //
 // Validation happens here, before any run: unknown keys, wrong types, empty lists or ranges, dimensional values
@@ -17,7 +17,7 @@
 #include <filesystem>
 #include <string_view>
 
-#include "topple/ensemble.hpp"
+#include "topple/sweep.hpp"
 
 namespace topple::io {
 

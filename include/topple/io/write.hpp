@@ -1,23 +1,41 @@
 #pragma once
 // Writers: solver results to the files and JSON objects users and scripts read. Column and key names carry units;
 // the JSON keys are a stable interface shared by the CLI and the Python package.
+#include <array>
+#include <cstddef>
 #include <filesystem>
 
 #include <nlohmann/json.hpp>
 
+#include "topple/field.hpp"
 #include "topple/ground_motion.hpp"
 #include "topple/rocking.hpp"
 #include "topple/sliding.hpp"
+#include "topple/summary_fields.hpp"
 
 namespace topple::io {
 
-/// Summary of a sliding run as JSON (keys: max_abs_displacement_m, residual_displacement_m, slip_episodes,
-/// first_slip_time_s (null when none), ...). Never emits NaN: absent values are null.
+/// A field's value as JSON: null for null, booleans, integers, numbers (a non-finite double dumps as null), text.
+[[nodiscard]] nlohmann::ordered_json field_json(const FieldValue& value);
+
+/// The fields of a result as a JSON object, keys in the table's order (topple/summary_fields.hpp): the one
+/// mechanism behind the summary objects below.
+template <class Result, std::size_t N>
+[[nodiscard]] nlohmann::ordered_json fields_json(const std::array<Field<Result>, N>& table, const Result& result) {
+  nlohmann::ordered_json j = nlohmann::ordered_json::object();
+  for (const auto& field : table) j[field.name] = field_json(field.get(result));
+  return j;
+}
+
+/// Summary of a sliding run as JSON: the fields of kSlidingFields (max_abs_displacement_m, residual_displacement_m,
+/// slip_episodes, first_slip_time_s (null when none), ..., the block), then sign_convention. Never emits NaN: absent
+/// values are null.
 [[nodiscard]] nlohmann::ordered_json sliding_summary_json(const SlidingSummary& summary, const SlidingBlock& block);
 
-/// Summary of a rocking run as JSON, as `topple rock --json` prints it less its "input" object (keys:
-/// max_abs_rotation_rad, max_rotation_over_alpha, overturned, overturn_time_s (null when none), ..., body {shape,
-/// dimensions in m, a_m, h_m, D_m2}, solver {method, rel_tol, ...}). Never emits NaN: absent values are null.
+/// Summary of a rocking run as JSON, as `topple rock --json` prints it less its "input" object: the fields of
+/// kRockingFields (max_abs_rotation_rad, max_rotation_over_alpha, overturned, overturn_time_s (null when none), ...),
+/// then warnings, body {shape, dimensions in m, a_m, h_m, D_m2} and solver {method, rel_tol, ...}. Never emits NaN:
+/// absent values are null.
 [[nodiscard]] nlohmann::ordered_json rocking_summary_json(const RockingSummary& summary, const RockingBody& body,
                                                           const RockingOptions& options);
 

@@ -1,6 +1,8 @@
 // The standard sweep: records and pulses against sliding blocks and rocking bodies, expanded into an ensemble plan
-// whose run function calls the exact sliding solver and the rocking engine. See ensemble.hpp (make_plan) for the
+// whose run function calls the exact sliding solver and the rocking engine. See sweep.hpp (make_plan) for the
 // columns.
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -11,7 +13,8 @@
 
 #include <fmt/format.h>
 
-#include "topple/ensemble.hpp"
+#include "topple/summary_fields.hpp"
+#include "topple/sweep.hpp"
 #include "topple/error.hpp"
 
 namespace topple::ensemble {
@@ -39,50 +42,42 @@ class ColumnSet {
   std::map<std::string, std::size_t> index_;
 };
 
-Value optional_value(const std::optional<double>& v) { return v ? Value{*v} : Value{}; }
+/// The sweep's result columns of a result type: its table's fields that have a sweep position, in that order.
+template <class Result, std::size_t N>
+std::vector<const Field<Result>*> sweep_fields(const std::array<Field<Result>, N>& table) {
+  std::vector<const Field<Result>*> fields;
+  for (const auto& f : table) {
+    if (f.sweep_column >= 0) fields.push_back(&f);
+  }
+  std::sort(fields.begin(), fields.end(), [](const auto* x, const auto* y) { return x->sweep_column < y->sweep_column; });
+  return fields;
+}
 
-struct SlideColumns {
-  std::size_t max_abs_displacement_m, max_displacement_time_s, residual_displacement_m, max_abs_velocity_m_s,
-      slip_episodes, first_slip_time_s, total_slip_duration_s, end_time_s, at_rest_at_end, contact_lost_time_s,
-      yield_down_g, yield_up_g;
+/// Where each sweep field of a table goes in a row of result columns.
+template <class Result>
+struct FieldSlots {
+  std::vector<std::pair<const Field<Result>*, std::size_t>> slots;
+
+  template <std::size_t N>
+  FieldSlots(const std::array<Field<Result>, N>& table, const ColumnSet& columns) {
+    for (const auto* f : sweep_fields(table)) {
+      const std::size_t i = columns.at(f->name);
+      if (i != kAbsent) slots.emplace_back(f, i);
+    }
+  }
+  void fill(const Result& result, Value* row) const {
+    for (const auto& [field, column] : slots) row[column] = field->get(result);
+  }
 };
-
-struct RockColumns {
-  std::size_t max_abs_rotation_rad, max_rotation_over_alpha, max_rotation_time_s, max_abs_theta_dot_rad_s, impacts,
-      uplifts, uplift_time_s, exceeded_alpha_time_s, overturned, overturn_time_s, energy_lost_j_per_kg, end_time_s,
-      end_state, still_rocking_at_end, onset_mode, critical_mu, alpha_rad, p_rad_s, e;
-};
-
-const std::vector<std::string> kSlideResults{
-    "max_abs_displacement_m", "max_displacement_time_s", "residual_displacement_m", "max_abs_velocity_m_s",
-    "slip_episodes",          "first_slip_time_s",       "total_slip_duration_s",   "end_time_s",
-    "at_rest_at_end",         "contact_lost_time_s",     "yield_down_g",            "yield_up_g"};
-
-const std::vector<std::string> kRockResults{
-    "max_abs_rotation_rad", "max_rotation_over_alpha", "max_rotation_time_s", "max_abs_theta_dot_rad_s",
-    "impacts",              "uplifts",                 "uplift_time_s",       "exceeded_alpha_time_s",
-    "overturned",           "overturn_time_s",         "energy_lost_j_per_kg", "end_time_s",
-    "end_state",            "still_rocking_at_end",    "onset_mode",          "critical_mu",
-    "alpha_rad",            "p_rad_s",                 "e"};
 
 /// The run function of the standard sweep. Consecutive level-or-inclined blocks with mu_kinetic = mu_static and the
 /// same slope, mode and g go through slide_summaries, which shares the input scan across them and gives the same
 /// numbers as slide_summary block by block.
 class Runner {
  public:
-  Runner(std::vector<ObjectSpec> objects, const ColumnSet& results) : objects_(std::move(objects)) {
-    const auto& c = results;
-    slide_ = {c.at("max_abs_displacement_m"), c.at("max_displacement_time_s"), c.at("residual_displacement_m"),
-              c.at("max_abs_velocity_m_s"),   c.at("slip_episodes"),           c.at("first_slip_time_s"),
-              c.at("total_slip_duration_s"),  c.at("end_time_s"),              c.at("at_rest_at_end"),
-              c.at("contact_lost_time_s"),    c.at("yield_down_g"),            c.at("yield_up_g")};
-    rock_ = {c.at("max_abs_rotation_rad"), c.at("max_rotation_over_alpha"), c.at("max_rotation_time_s"),
-             c.at("max_abs_theta_dot_rad_s"), c.at("impacts"), c.at("uplifts"), c.at("uplift_time_s"),
-             c.at("exceeded_alpha_time_s"), c.at("overturned"), c.at("overturn_time_s"),
-             c.at("energy_lost_j_per_kg"), c.at("end_time_s"), c.at("end_state"), c.at("still_rocking_at_end"),
-             c.at("onset_mode"), c.at("critical_mu"), c.at("alpha_rad"), c.at("p_rad_s"), c.at("e")};
-    stride_ = c.names().size();
-  }
+  Runner(std::vector<ObjectSpec> objects, const ColumnSet& results)
+      : objects_(std::move(objects)), slide_(kSlidingFields, results), rock_(kRockingFields, results),
+        stride_(results.names().size()) {}
 
   void operator()(const GroundMotion& motion, std::size_t /*motion_index*/, std::size_t begin, std::size_t end,
                   std::span<Value> out) const {
@@ -98,15 +93,16 @@ class Runner {
           for (std::size_t k = o; k < last; ++k) mus.push_back(std::get<SlideObject>(objects_[k]).block.mu_static);
           const auto summaries = slide_summaries(motion, mus, s->block.slope_rad, s->block.mode, s->block.g_m_s2);
           for (std::size_t k = o; k < last; ++k) {
-            fill(summaries[k - o], std::get<SlideObject>(objects_[k]).block, out.data() + (k - begin) * stride_);
+            slide_.fill(SlidingOutcome{summaries[k - o], std::get<SlideObject>(objects_[k]).block},
+                        out.data() + (k - begin) * stride_);
           }
           o = last;
           continue;
         }
-        fill(slide_summary(motion, s->block), s->block, row);
+        slide_.fill(SlidingOutcome{slide_summary(motion, s->block), s->block}, row);
       } else {
         const auto& r = std::get<RockObject>(objects_[o]);
-        fill(rock_summary(motion, r.body, r.options), row);
+        rock_.fill(RockingOutcome{rock_summary(motion, r.body, r.options), r.body, r.options}, row);
       }
       ++o;
     }
@@ -120,49 +116,9 @@ class Runner {
            s->block.mode == first.block.mode && s->block.g_m_s2 == first.block.g_m_s2;
   }
 
-  void fill(const SlidingSummary& s, const SlidingBlock& b, Value* row) const {
-    const SlideColumns& c = slide_;
-    row[c.max_abs_displacement_m] = s.max_abs_displacement_m;
-    row[c.max_displacement_time_s] = s.max_displacement_time_s;
-    row[c.residual_displacement_m] = s.residual_displacement_m;
-    row[c.max_abs_velocity_m_s] = s.max_abs_velocity_m_s;
-    row[c.slip_episodes] = static_cast<std::int64_t>(s.slip_episodes);
-    row[c.first_slip_time_s] = optional_value(s.first_slip_time_s);
-    row[c.total_slip_duration_s] = s.total_slip_duration_s;
-    row[c.end_time_s] = s.end_time_s;
-    row[c.at_rest_at_end] = s.at_rest_at_end;
-    row[c.contact_lost_time_s] = optional_value(s.contact_lost_time_s);
-    row[c.yield_down_g] = b.yield_down_m_s2() / b.g_m_s2;
-    const double up = b.yield_up_m_s2();
-    row[c.yield_up_g] = std::isfinite(up) ? Value{up / b.g_m_s2} : Value{};
-  }
-
-  void fill(const RockingSummary& s, Value* row) const {
-    const RockColumns& c = rock_;
-    row[c.max_abs_rotation_rad] = s.max_abs_rotation_rad;
-    row[c.max_rotation_over_alpha] = s.max_rotation_over_alpha;
-    row[c.max_rotation_time_s] = s.max_rotation_time_s;
-    row[c.max_abs_theta_dot_rad_s] = s.max_abs_theta_dot_rad_s;
-    row[c.impacts] = static_cast<std::int64_t>(s.impacts);
-    row[c.uplifts] = static_cast<std::int64_t>(s.uplifts);
-    row[c.uplift_time_s] = optional_value(s.uplift_time_s);
-    row[c.exceeded_alpha_time_s] = optional_value(s.exceeded_alpha_time_s);
-    row[c.overturned] = s.overturned;
-    row[c.overturn_time_s] = optional_value(s.overturn_time_s);
-    row[c.energy_lost_j_per_kg] = s.energy_lost_j_per_kg;
-    row[c.end_time_s] = s.end_time_s;
-    row[c.end_state] = std::string(rocking_state_name(s.end_state));
-    row[c.still_rocking_at_end] = s.still_rocking_at_end;
-    row[c.onset_mode] = std::string(onset_mode_name(s.onset_mode));
-    row[c.critical_mu] = optional_value(s.critical_mu);
-    row[c.alpha_rad] = s.alpha_rad;
-    row[c.p_rad_s] = s.p_rad_s;
-    row[c.e] = s.e;
-  }
-
   std::vector<ObjectSpec> objects_;
-  SlideColumns slide_{};
-  RockColumns rock_{};
+  FieldSlots<SlidingOutcome> slide_;
+  FieldSlots<RockingOutcome> rock_;
   std::size_t stride_ = 0;
 };
 
@@ -243,11 +199,13 @@ Plan make_plan(const SweepSpec& spec) {
   }
 
   ColumnSet result_cols;
+  // The result columns come from the field tables (summary_fields.hpp); a name both have (end_time_s) is one
+  // column.
   if (any_slide) {
-    for (const auto& c : kSlideResults) result_cols.add(c);
+    for (const auto* f : sweep_fields(kSlidingFields)) result_cols.add(f->name);
   }
   if (any_rock) {
-    for (const auto& c : kRockResults) result_cols.add(c);
+    for (const auto* f : sweep_fields(kRockingFields)) result_cols.add(f->name);
   }
 
   Plan plan;

@@ -1,0 +1,92 @@
+#pragma once
+// The standard sweep: records and pulses against sliding blocks and rocking bodies (what `topple sweep` runs).
+//
+// A SweepSpec (built in code, or read from a sweep file by topple/io/sweep_file.hpp) says which motions and which
+// objects; make_plan turns it into the runs of a generic ensemble plan (topple/ensemble.hpp), whose run function
+// calls the solvers. This is where physics meets the engine: the engine itself knows only runs, chunks and stores.
+// The types stay in namespace topple::ensemble, where callers have always found them.
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "topple/ensemble.hpp"
+#include "topple/ground_motion.hpp"
+#include "topple/pulses.hpp"
+#include "topple/rocking.hpp"
+#include "topple/sliding.hpp"
+#include "topple/units.hpp"
+
+namespace topple::ensemble {
+
+/// A record read from a file (or built in code).
+struct RecordInput {
+  std::string name;                          ///< the "motion" column, e.g. the path as the sweep file matched it
+  std::shared_ptr<const GroundMotion> motion;
+};
+
+/// An analytic pulse (pulses.hpp). Its amplitude and duration are its own, so sweep scaling (scales, time_scales)
+/// does not apply to it; polarity does.
+struct PulseInput {
+  std::string name;  ///< the "motion" column, e.g. "sine amp_g=0.2 freq_hz=1"
+  PulseSpec spec;
+};
+
+/// How records are scaled: each record is run once per ScaleSpec.
+struct ScaleSpec {
+  enum class Kind : std::uint8_t { none, factor, pga };
+  Kind kind = Kind::none;
+  double value = 1.0;  ///< factor (dimensionless) or target PGA (m/s^2)
+};
+
+/// A friction block (sliding.hpp). `slope_deg` is the inclination as given, for the slope_deg column
+/// (block.slope_rad = slope_deg * pi / 180, as `topple slide --slope-deg` computes it).
+struct SlideObject {
+  SlidingBlock block;
+  double slope_deg = 0.0;
+};
+
+/// A rocking body (rocking.hpp). The dimension columns hold what was given: width and height for a block, diameter
+/// and height for a cylinder.
+struct RockObject {
+  RockingBody body;
+  RockingOptions options;
+  std::optional<double> width_m;
+  std::optional<double> height_m;
+  std::optional<double> diameter_m;
+};
+
+using ObjectSpec = std::variant<SlideObject, RockObject>;
+
+struct SweepSpec {
+  std::vector<RecordInput> records;
+  std::vector<PulseInput> pulses;
+  std::vector<double> time_scales{1.0};  ///< records only
+  std::vector<ScaleSpec> scales{ScaleSpec{}};  ///< records only
+  std::vector<bool> inverse{false};     ///< polarities, records and pulses: false = "normal", true = "inverse"
+  std::vector<ObjectSpec> objects;
+  double g_m_s2 = kStandardGravity;     ///< for the *_g columns and amplitudes in g
+  std::size_t chunk_runs = 0;           ///< 0 = default
+};
+
+/// Expands the spec (motions: records x time scales x scales x polarities, then pulses x polarities; objects in the
+/// given order) into a plan whose run function calls slide_summary / slide_summaries and rock_summary.
+///
+/// Columns, present when some run uses them:
+///   motion: motion, [pulse_kind, pulse_amp_g, pulse_duration_s], time_scale, scale_factor, pga_g, polarity
+///   object: model, g_m_s2, [mu, mu_kinetic, slope_deg, mode], [shape, width_m, height_m, diameter_m, restitution]
+///           (mu also holds the friction coefficient a rocking body's onset check uses)
+///   results: sliding: max_abs_displacement_m, max_displacement_time_s, residual_displacement_m,
+///            max_abs_velocity_m_s, slip_episodes, first_slip_time_s, total_slip_duration_s, end_time_s,
+///            at_rest_at_end, contact_lost_time_s, yield_down_g, yield_up_g;
+///            rocking: max_abs_rotation_rad, max_rotation_over_alpha, max_rotation_time_s, max_abs_theta_dot_rad_s,
+///            impacts, uplifts, uplift_time_s, exceeded_alpha_time_s, overturned, overturn_time_s,
+///            energy_lost_j_per_kg, end_time_s, end_state, still_rocking_at_end, onset_mode, critical_mu,
+///            alpha_rad, p_rad_s, e
+/// Throws InputError for an empty spec (no motion or no object) or a motion that cannot be scaled (zero record).
+[[nodiscard]] Plan make_plan(const SweepSpec& spec);
+
+}  // namespace topple::ensemble

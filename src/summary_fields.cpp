@@ -1,0 +1,83 @@
+// The field tables of the sliding and rocking summaries (summary_fields.hpp).
+#include "topple/summary_fields.hpp"
+
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "topple/units.hpp"
+
+namespace topple {
+namespace {
+
+FieldValue optional_value(const std::optional<double>& v) { return v ? FieldValue{*v} : FieldValue{}; }
+
+FieldValue count(std::size_t n) { return static_cast<std::int64_t>(n); }
+
+using S = SlidingOutcome;
+using R = RockingOutcome;
+
+}  // namespace
+
+const std::array<Field<SlidingOutcome>, 17> kSlidingFields{{
+    {"max_abs_displacement_m", [](const S& r) -> FieldValue { return r.summary.max_abs_displacement_m; }, 0},
+    {"max_displacement_time_s", [](const S& r) -> FieldValue { return r.summary.max_displacement_time_s; }, 1},
+    {"residual_displacement_m", [](const S& r) -> FieldValue { return r.summary.residual_displacement_m; }, 2},
+    {"max_abs_velocity_m_s", [](const S& r) -> FieldValue { return r.summary.max_abs_velocity_m_s; }, 3},
+    {"slip_episodes", [](const S& r) -> FieldValue { return std::int64_t{r.summary.slip_episodes}; }, 4},
+    {"first_slip_time_s", [](const S& r) { return optional_value(r.summary.first_slip_time_s); }, 5},
+    {"total_slip_duration_s", [](const S& r) -> FieldValue { return r.summary.total_slip_duration_s; }, 6},
+    {"end_time_s", [](const S& r) -> FieldValue { return r.summary.end_time_s; }, 7},
+    {"at_rest_at_end", [](const S& r) -> FieldValue { return r.summary.at_rest_at_end; }, 8},
+    {"contact_lost_time_s", [](const S& r) { return optional_value(r.summary.contact_lost_time_s); }, 9},
+    {"yield_down_g", [](const S& r) -> FieldValue { return r.block.yield_down_m_s2() / r.block.g_m_s2; }, 10},
+    // A one-way block never slips up-slope: its up-slope yield acceleration is infinite, reported as null.
+    {"yield_up_g",
+     [](const S& r) -> FieldValue {
+       const double up = r.block.yield_up_m_s2();
+       return std::isfinite(up) ? FieldValue{up / r.block.g_m_s2} : FieldValue{};
+     },
+     11},
+    {"mu_static", [](const S& r) -> FieldValue { return r.block.mu_static; }},
+    {"mu_kinetic", [](const S& r) -> FieldValue { return r.block.mu_kinetic; }},
+    {"slope_deg", [](const S& r) -> FieldValue { return r.block.slope_rad * 180.0 / kPi; }},
+    {"mode",
+     [](const S& r) -> FieldValue {
+       return std::string(r.block.mode == SlidingMode::one_way ? "one-way" : "two-way");
+     }},
+    {"g_m_s2", [](const S& r) -> FieldValue { return r.block.g_m_s2; }},
+}};
+
+const std::array<Field<RockingOutcome>, 25> kRockingFields{{
+    {"max_abs_rotation_rad", [](const R& r) -> FieldValue { return r.summary.max_abs_rotation_rad; }, 0},
+    {"max_rotation_over_alpha", [](const R& r) -> FieldValue { return r.summary.max_rotation_over_alpha; }, 1},
+    {"max_rotation_time_s", [](const R& r) -> FieldValue { return r.summary.max_rotation_time_s; }, 2},
+    {"max_abs_theta_dot_rad_s", [](const R& r) -> FieldValue { return r.summary.max_abs_theta_dot_rad_s; }, 3},
+    {"impacts", [](const R& r) { return count(r.summary.impacts); }, 4},
+    {"uplifts", [](const R& r) { return count(r.summary.uplifts); }, 5},
+    {"uplift_time_s", [](const R& r) { return optional_value(r.summary.uplift_time_s); }, 6},
+    {"exceeded_alpha_time_s", [](const R& r) { return optional_value(r.summary.exceeded_alpha_time_s); }, 7},
+    {"overturned", [](const R& r) -> FieldValue { return r.summary.overturned; }, 8},
+    {"overturn_time_s", [](const R& r) { return optional_value(r.summary.overturn_time_s); }, 9},
+    {"end_state", [](const R& r) -> FieldValue { return std::string(rocking_state_name(r.summary.end_state)); }, 12},
+    {"end_time_s", [](const R& r) -> FieldValue { return r.summary.end_time_s; }, 11},
+    {"still_rocking_at_end", [](const R& r) -> FieldValue { return r.summary.still_rocking_at_end; }, 13},
+    {"energy_lost_j_per_kg", [](const R& r) -> FieldValue { return r.summary.energy_lost_j_per_kg; }, 10},
+    {"alpha_rad", [](const R& r) -> FieldValue { return r.summary.alpha_rad; }, 16},
+    {"alpha_deg", [](const R& r) -> FieldValue { return r.summary.alpha_rad * 180.0 / kPi; }},
+    {"R_m", [](const R& r) -> FieldValue { return r.summary.R_m; }},
+    {"p_rad_s", [](const R& r) -> FieldValue { return r.summary.p_rad_s; }, 17},
+    {"e", [](const R& r) -> FieldValue { return r.summary.e; }, 18},
+    {"e_mode",
+     [](const R& r) -> FieldValue {
+       return std::string(r.options.restitution == RestitutionMode::housner ? "housner" : "given");
+     }},
+    {"onset_mode", [](const R& r) -> FieldValue { return std::string(onset_mode_name(r.summary.onset_mode)); }, 14},
+    {"onset_accel_ratio", [](const R& r) { return optional_value(r.summary.onset_accel_ratio); }},
+    {"critical_mu", [](const R& r) { return optional_value(r.summary.critical_mu); }, 15},
+    {"mu", [](const R& r) { return optional_value(r.options.mu); }},
+    {"g_m_s2", [](const R& r) -> FieldValue { return r.options.g_m_s2; }},
+}};
+
+}  // namespace topple
