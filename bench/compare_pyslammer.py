@@ -8,22 +8,15 @@ topple's figure comes from its Google Benchmark program (BM_OneWaySliding/20: ky
 timing RigidAnalysis on the same samples with the same ky (best of 5 runs).
 """
 import json
-import pathlib
 import subprocess
-import sys
 import time
 
-import numpy as np
 import pyslammer
 
-root = pathlib.Path(__file__).resolve().parents[1]
-build = pathlib.Path(sys.argv[1]) if len(sys.argv) > 1 else root / "build" / "release"
-record = root.parent / "shared" / "records" / "slammer" / "Kocaeli_1999_ATS-090.csv"
+from kocaeli_record import build_dir, load
 
-data = np.loadtxt(record, delimiter=",", comments="#")[:20000]
-dt = float(data[1, 0] - data[0, 0])
-accel_g = data[:, 1]
-ky_g = 0.20 * float(np.max(np.abs(accel_g)))
+build = build_dir()
+accel_g, dt, ky_g = load()
 
 gm = pyslammer.GroundMotion(accel_g, dt, "Kocaeli_1999_ATS-090")
 best = float("inf")

@@ -7,6 +7,7 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "slide_flexible.hpp"
 #include "topple/error.hpp"
 #include "topple/io/write.hpp"
 #include "topple/plot.hpp"
@@ -27,6 +28,7 @@ struct SlideOptions {
   std::string out;
   std::string plot;
   bool json = false;
+  FlexibleOptions flexible;
 };
 
 void run_slide(const SlideOptions& o) {
@@ -50,6 +52,14 @@ void run_slide(const SlideOptions& o) {
   const RunMotion run = load_run_motion(o.motion, o.pulse, o.vertical);
   const GroundMotion& horizontal = run.horizontal;
   const GroundMotion* vertical_ptr = run.vertical_ptr();
+  if (o.flexible.active()) {
+    if (!o.out.empty() || !o.plot.empty()) {
+      throw parameter_error("--support-freq", "--out and --plot are not available on a flexible support yet");
+    }
+    run_flexible_slide(horizontal, block, o.flexible, o.json,
+                       o.pulse.kind.empty() ? o.motion.file : horizontal.metadata().event, vertical_ptr);
+    return;
+  }
 
   SlidingSummary summary;
   if (!o.out.empty() || !o.plot.empty()) {
@@ -112,6 +122,7 @@ void add_slide_command(CLI::App& app) {
   cmd->add_option("--out", o->out, "Write the time history to this CSV file");
   cmd->add_option("--plot", o->plot, "Draw record, thresholds and response to this .svg or .png file (gnuplot)");
   cmd->add_flag("--json", o->json, "Print the summary as one JSON object");
+  add_flexible_options(*cmd, o->flexible);
   cmd->callback([o] { run_slide(*o); });
 }
 

@@ -32,12 +32,14 @@
 #include <nlohmann/json.hpp>
 
 #include "topple/ensemble.hpp"
+#include "topple/flexible.hpp"
 #include "topple/error.hpp"
 #include "topple/fragility.hpp"
 #include "topple/ground_motion.hpp"
 #include "topple/intensity.hpp"
 #include "topple/inversion.hpp"
 #include "topple/object_spectra.hpp"
+#include "topple/io/flexible_json.hpp"
 #include "topple/io/inversion_output.hpp"
 #include "topple/io/read.hpp"
 #include "topple/io/survey_file.hpp"
@@ -237,6 +239,44 @@ SlidingRun run_slide(const GroundMotion& motion, double mu, std::optional<double
   }
   run.inputs = RunInputs(motion, vertical);
   return run;
+}
+
+/// slide_flexible: an object on a shelf or floor (support_freq_hz) or SLAMMER's sliding mass (height_m); the dict is
+/// `topple slide --support-freq|--height --json` (io::flexible_summary_json plus "input").
+nb::dict run_slide_flexible(const GroundMotion& motion, double mu, const std::string& mode,
+                            std::optional<double> support_freq_hz, double support_damping, double mass_ratio,
+                            std::optional<double> height_m, std::optional<double> vs_slope_m_s,
+                            std::optional<double> vs_base_m_s, std::optional<double> damping,
+                            std::optional<double> reference_strain, bool coupled, const GroundMotion* vertical,
+                            double g_m_s2) {
+  if (support_freq_hz.has_value() == height_m.has_value()) {
+    throw parameter_error("support_freq_hz", "give either support_freq_hz (shelf, floor) or height_m (sliding mass)");
+  }
+  const FlexibleAnalysis analysis = coupled ? FlexibleAnalysis::coupled : FlexibleAnalysis::decoupled;
+  const SlidingBlock block = SlidingBlock::make(mu, -1.0, 0.0, parse_mode(mode), g_m_s2);
+  nlohmann::ordered_json j;
+  if (support_freq_hz) {
+    const SupportOscillator s = SupportOscillator::make(*support_freq_hz, support_damping, mass_ratio);
+    FlexibleSummary r;
+    {
+      nb::gil_scoped_release release;
+      r = slide_flexible(motion, s, block, analysis, vertical);
+    }
+    j = io::flexible_summary_json(r, block, s, analysis);
+  } else {
+    if (!vs_slope_m_s || !vs_base_m_s || !damping) {
+      throw parameter_error("height_m", "a sliding mass needs vs_slope_m_s, vs_base_m_s and damping");
+    }
+    const SlidingMassColumn c = SlidingMassColumn::make(*height_m, *vs_slope_m_s, *vs_base_m_s, *damping, reference_strain);
+    FlexibleSummary r;
+    {
+      nb::gil_scoped_release release;
+      r = slide_flexible(motion, c, mu, analysis, block.mode, g_m_s2, vertical);
+    }
+    j = io::flexible_summary_json(r, block, c, analysis);
+  }
+  j["input"] = RunInputs(motion, vertical).json(g_m_s2);
+  return nb::cast<nb::dict>(to_python(j));
 }
 
 // ---- rocking ----
@@ -864,6 +904,10 @@ NB_MODULE(_core, m) {
 
   m.def("slide_spectrum", &sliding_spectrum_dict, "motion"_a, "mu"_a, nb::kw_only(), "slope_deg"_a = 0.0,
         "mode"_a = "two-way", "g"_a = kStandardGravity);
+  m.def("slide_flexible", &run_slide_flexible, "motion"_a, nb::kw_only(), "mu"_a, "mode"_a = "two-way",
+        "support_freq_hz"_a = nb::none(), "support_damping"_a = 0.05, "mass_ratio"_a = 0.0, "height_m"_a = nb::none(),
+        "vs_slope_m_s"_a = nb::none(), "vs_base_m_s"_a = nb::none(), "damping"_a = nb::none(),
+        "reference_strain"_a = nb::none(), "coupled"_a = false, "vertical"_a = nb::none(), "g"_a = kStandardGravity);
 
   // ---- rocking ----
   nb::class_<RockingBody>(m, "RockingBody", "A rigid body that rocks: made by Block, Cylinder or General (metres).")

@@ -34,6 +34,7 @@ from ._core import (
     response_spectrum,
     rock,
     slide,
+    slide_flexible,
     slide_spectrum,
     synth,
 )
@@ -62,6 +63,7 @@ __all__ = [
     "response_spectrum",
     "rock",
     "slide",
+    "slide_flexible",
     "slide_spectrum",
     "sweep",
     "synth",

@@ -123,6 +123,19 @@ def slide(motion: GroundMotion, *, mu: float, mu_kinetic: Optional[float] = None
     inclined at slope_deg; one-way: down-slope slip only (SLAMMER rigid block). vertical: vertical acceleration,
     positive up. history=False takes the summary-only fast path."""
 
+def slide_flexible(motion: GroundMotion, *, mu: float, mode: Literal["two-way", "one-way"] = "two-way",
+                   support_freq_hz: Optional[float] = None, support_damping: float = 0.05, mass_ratio: float = 0.0,
+                   height_m: Optional[float] = None, vs_slope_m_s: Optional[float] = None,
+                   vs_base_m_s: Optional[float] = None, damping: Optional[float] = None,
+                   reference_strain: Optional[float] = None, coupled: bool = False,
+                   vertical: Optional[GroundMotion] = None, g: float = 9.80665) -> dict[str, Any]:
+    """Sliding on a flexible support (topple/flexible.hpp), decoupled or coupled. Either an object (friction mu) on a
+    shelf or floor: support_freq_hz (Hz, the support alone), support_damping (ratio), mass_ratio (object / support
+    mass); or SLAMMER's flexible sliding mass (mu is k_y): height_m, vs_slope_m_s, vs_base_m_s (m/s), damping
+    (material damping ratio; the mode adds the base impedance damping), reference_strain (decimal: equivalent
+    linear when given). vertical: decoupled only. Returns the dict of `topple slide --support-freq|--height --json`:
+    the sliding summary fields and "support" (mode_freq_hz, mode_damping_ratio, kmax, vs_final_m_s ...)."""
+
 def slide_spectrum(motion: GroundMotion, mu: ArrayIn, *, slope_deg: float = 0.0,
                    mode: Literal["two-way", "one-way"] = "two-way", g: float = 9.80665) -> dict[str, Any]:
     """Sliding displacement spectrum (topple/object_spectra.hpp) of blocks with mu static = kinetic on a plane at

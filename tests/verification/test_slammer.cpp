@@ -22,86 +22,27 @@
 #include <nlohmann/json.hpp>
 
 #include "support/shared_data.hpp"
+#include "support/slammer_suite.hpp"
 #include "topple/io/read.hpp"
 #include "topple/sliding.hpp"
 
 namespace topple {
 namespace {
 
-struct Pclose {
-  void operator()(std::FILE* f) const { pclose(f); }
-};
-
-std::string gunzip(const std::filesystem::path& path) {
-  std::unique_ptr<std::FILE, Pclose> pipe(popen(("gzip -dc '" + path.string() + "'").c_str(), "r"));
-  std::string text;
-  char buffer[65536];
-  std::size_t got = 0;
-  while (pipe && (got = std::fread(buffer, 1, sizeof buffer, pipe.get())) > 0) text.append(buffer, got);
-  return text;
-}
-
-struct RecordInfo {
-  double dt_s = 0.0;
-  double pga_g_rounded = 0.0;
-};
-
-/// "Chi-Chi, Taiwan 1999" (eq.sql) and "Chi-Chi 1999" (results) name the same event: drop ", country".
-std::string event_key(std::string name) {
-  const auto comma = name.find(',');
-  if (comma != std::string::npos) {
-    const auto year = name.rfind(' ');
-    name = name.substr(0, comma) + name.substr(year);
-  }
-  return name;
-}
-
-std::map<std::string, RecordInfo> read_eq_sql(const std::filesystem::path& path) {
-  std::map<std::string, RecordInfo> out;
-  std::ifstream in(path);
-  std::string line;
-  while (std::getline(in, line)) {
-    std::vector<std::string> cols;
-    std::stringstream ss(line);
-    std::string col;
-    while (std::getline(ss, col, '\t')) cols.push_back(col);
-    if (cols.size() < 7) continue;
-    out[event_key(cols[0]) + "|" + cols[1]] = RecordInfo{std::stod(cols[2]), std::stod(cols[6])};
-  }
-  return out;
-}
-
 TEST(SlammerVerification, RigidBlockOneWayAll180Results) {
   if (!test::have_shared()) GTEST_SKIP() << "../shared not present";
-  const auto dir = test::shared_dir() / "verification" / "slammer";
-  const auto records = read_eq_sql(dir / "slammer_library" / "eq.sql");
-  const auto results = nlohmann::json::parse(gunzip(dir / "slammer_results.json.gz"));
-
-  std::map<std::string, GroundMotion> cache;
+  test::SlammerSuite suite;
   std::vector<double> rel_diffs;  // (topple - SLAMMER) / SLAMMER for SLAMMER >= 0.5 cm
   std::vector<std::pair<double, std::string>> largest;
   int cases = 0;
   int failures = 0;
   double worst_small_abs = 0.0;
-  for (const auto& analysis : results.at("analyses")) {
+  for (const auto& analysis : suite.results().at("analyses")) {
     if (analysis.at("analysis").at("method") != "rigid") continue;
-    const auto& gm = analysis.at("ground_motion_parameters");
-    const std::string key = event_key(gm.at("earthquake").get<std::string>()) + "|" + gm.at("record_station").get<std::string>();
-    const auto info = records.find(key);
-    ASSERT_NE(info, records.end()) << key;
-    std::string file = gm.at("ground_motion_file").get<std::string>();
-    file = file.substr(0, file.rfind('.')) + ".txt";
-    if (!cache.contains(file)) {
-      io::ReadOptions opt;
-      opt.format = io::Format::plain;
-      opt.dt_s = info->second.dt_s;
-      opt.units = "g";
-      cache.emplace(file, io::read_motion(dir / "slammer_library" / file, opt));
-    }
-    const GroundMotion& record = cache.at(file);
-    const double target = gm.at("target_pga_g").get<double>();
+    const std::string file = test::SlammerSuite::record_file(analysis);
+    const double target = analysis.at("ground_motion_parameters").at("target_pga_g").get<double>();
     const double ky = analysis.at("site_parameters").at("ky_g").get<double>();
-    const GroundMotion scaled = record.scaled(target / info->second.pga_g_rounded);
+    const GroundMotion scaled = suite.scaled_record(analysis);  // target / the rounded eq.sql PGA, as SLAMMER
     const SlidingBlock block = SlidingBlock::make(ky, ky, 0.0, SlidingMode::one_way);
     for (const bool inverse : {false, true}) {
       const double slammer_cm =

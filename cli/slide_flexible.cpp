@@ -1,0 +1,109 @@
+// topple slide --support-freq ... | --height ...: parsing and printing only (physics in topple/flexible.hpp).
+#include "slide_flexible.hpp"
+
+#include <charconv>
+#include <cmath>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "topple/error.hpp"
+#include "topple/flexible.hpp"
+#include "topple/io/flexible_json.hpp"
+#include "topple/units.hpp"
+
+namespace topple::cli {
+namespace {
+
+/// "5%" -> 0.05, "0.05" -> 0.05.
+double parse_ratio(const std::string& text, const std::string& field) {
+  std::string body = text;
+  double factor = 1.0;
+  if (!body.empty() && body.back() == '%') {
+    body.pop_back();
+    factor = 0.01;
+  }
+  double value = 0.0;
+  const auto [end, ec] = std::from_chars(body.data(), body.data() + body.size(), value);
+  if (ec != std::errc() || end != body.data() + body.size() || body.empty() || !std::isfinite(value)) {
+    throw parameter_error(field, fmt::format("expected a ratio such as 0.05 or 5%, got '{}'", text));
+  }
+  return value * factor;
+}
+
+}  // namespace
+
+void add_flexible_options(CLI::App& cmd, FlexibleOptions& o) {
+  cmd.add_option("--support-freq", o.support_freq, "Object on a shelf or floor: the support's natural frequency "
+                                                   "(e.g. 4Hz or 0.25s)");
+  cmd.add_option("--support-damping", o.support_damping, "Damping ratio of the support (5% or 0.05; default 5%)");
+  cmd.add_option("--mass-ratio", o.mass_ratio, "Object mass / support mass (coupled analysis; default 0)");
+  cmd.add_option("--height", o.height, "SLAMMER flexible sliding mass: its height (e.g. 50m); --mu is then k_y");
+  cmd.add_option("--vs-slope", o.vs_slope_m_s, "Shear-wave velocity of the sliding mass, m/s");
+  cmd.add_option("--vs-base", o.vs_base_m_s, "Shear-wave velocity below the sliding surface, m/s");
+  cmd.add_option("--damping", o.damping, "Material damping ratio of the sliding mass (5% or 0.05)");
+  cmd.add_option("--ref-strain", o.reference_strain, "Equivalent-linear analysis with this reference shear strain "
+                                                     "(0.05% or 0.0005); linear elastic without it");
+  cmd.add_flag("--coupled", o.coupled, "Coupled analysis (the slip feeds back on the support); decoupled without it");
+}
+
+void run_flexible_slide(const GroundMotion& horizontal, const SlidingBlock& block, const FlexibleOptions& o, bool json,
+                        const std::string& motion_name, const GroundMotion* vertical) {
+  if (!o.support_freq.empty() && !o.height.empty()) {
+    throw parameter_error("--height", "give either --support-freq (shelf, floor) or --height (sliding mass)");
+  }
+  const FlexibleAnalysis analysis = o.coupled ? FlexibleAnalysis::coupled : FlexibleAnalysis::decoupled;
+  const double g = block.g_m_s2;
+  FlexibleSummary r;
+  nlohmann::ordered_json j;
+  if (!o.support_freq.empty()) {
+    if (!o.height.empty() || o.vs_slope_m_s || o.vs_base_m_s || !o.damping.empty() || !o.reference_strain.empty()) {
+      throw parameter_error("--support-freq", "--height, --vs-slope, --vs-base, --damping and --ref-strain describe a "
+                                              "sliding mass, not a shelf or floor");
+    }
+    const SupportOscillator s = SupportOscillator::make(
+        parse_frequency_hz(o.support_freq, "--support-freq"),
+        o.support_damping.empty() ? 0.05 : parse_ratio(o.support_damping, "--support-damping"), o.mass_ratio);
+    r = slide_flexible(horizontal, s, block, analysis, vertical);
+    j = io::flexible_summary_json(r, block, s, analysis);
+  } else {
+    if (!o.vs_slope_m_s || !o.vs_base_m_s || o.damping.empty()) {
+      throw parameter_error("--height", "a sliding mass needs --vs-slope, --vs-base and --damping");
+    }
+    if (!o.support_damping.empty() || o.mass_ratio != 0.0) {
+      throw parameter_error("--height", "--support-damping and --mass-ratio describe a shelf or floor");
+    }
+    if (block.slope_rad != 0.0 || block.mu_kinetic != block.mu_static) {
+      throw parameter_error("--height", "the sliding mass is described by k_y (--mu) alone: no --slope-deg or --mu-kinetic");
+    }
+    std::optional<double> ref;
+    if (!o.reference_strain.empty()) ref = parse_ratio(o.reference_strain, "--ref-strain");
+    const SlidingMassColumn col = SlidingMassColumn::make(parse_length_m(o.height, "--height"), *o.vs_slope_m_s,
+                                                          *o.vs_base_m_s, parse_ratio(o.damping, "--damping"), ref);
+    r = slide_flexible(horizontal, col, block.mu_static, analysis, block.mode, g, vertical);
+    j = io::flexible_summary_json(r, block, col, analysis);
+  }
+  if (json) {
+    nlohmann::ordered_json input;
+    input["motion"] = motion_name;
+    input["pga_g"] = horizontal.pga_m_s2() / g;
+    input["vertical"] = vertical != nullptr;
+    input["npts"] = horizontal.size();
+    input["dt_s"] = horizontal.dt_s();
+    j["input"] = input;
+    fmt::print("{}\n", j.dump(2));
+    return;
+  }
+  fmt::print("{} analysis on a {}: mode {:.4g} Hz, damping {:.4g}, k_max {:.4f}\n", j["support"]["analysis"].get<std::string>(),
+             o.support_freq.empty() ? "flexible sliding mass" : "shelf/floor oscillator",
+             r.mode.omega_rad_s / (2.0 * kPi), r.mode.damping_ratio, r.kmax);
+  if (o.support_freq.empty()) fmt::print("final V_s {:.4g} m/s after {} equivalent-linear iterations\n", r.mode.vs_m_s, r.mode.iterations);
+  fmt::print("motion: {} (PGA {:.4f} g, {} samples), yield {:.4f} g, {}\n", motion_name, horizontal.pga_m_s2() / g,
+             horizontal.size(), block.mu_static, block.mode == SlidingMode::one_way ? "one-way" : "two-way");
+  fmt::print("max |displacement|     {:.6g} m at {:.4f} s\n", r.sliding.max_abs_displacement_m,
+             r.sliding.max_displacement_time_s);
+  fmt::print("residual displacement  {:.6g} m\n", r.sliding.residual_displacement_m);
+  fmt::print("slip episodes          {}\n", r.sliding.slip_episodes);
+}
+
+}  // namespace topple::cli

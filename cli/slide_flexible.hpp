@@ -1,0 +1,34 @@
+#pragma once
+// `topple slide` on a flexible support (shelf, floor, or SLAMMER's flexible sliding mass): options and printing.
+#include <optional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "topple/ground_motion.hpp"
+#include "topple/sliding.hpp"
+
+namespace topple::cli {
+
+struct FlexibleOptions {
+  std::string support_freq;      ///< "4Hz", "0.25s" ... (a shelf or floor)
+  std::string support_damping;   ///< "5%" or 0.05
+  double mass_ratio = 0.0;
+  std::string height;            ///< SLAMMER sliding mass: "50m"
+  std::optional<double> vs_slope_m_s;
+  std::optional<double> vs_base_m_s;
+  std::string damping;           ///< SLAMMER material damping, "5%" or 0.05
+  std::string reference_strain;  ///< SLAMMER equivalent linear: "0.05%" or 0.0005
+  bool coupled = false;
+
+  [[nodiscard]] bool active() const { return !support_freq.empty() || !height.empty(); }
+};
+
+void add_flexible_options(CLI::App& cmd, FlexibleOptions& options);
+
+/// Runs and prints (text or JSON) the flexible-support analysis; `mu` is the friction coefficient (shelf) or the
+/// yield coefficient k_y (sliding mass); `vertical` (decoupled only) as in the rigid run.
+void run_flexible_slide(const GroundMotion& horizontal, const SlidingBlock& block, const FlexibleOptions& o, bool json,
+                        const std::string& motion_name, const GroundMotion* vertical = nullptr);
+
+}  // namespace topple::cli

@@ -1,0 +1,21 @@
+#pragma once
+// The JSON of a flexible-support run (`topple slide --support-freq|--height --json`, Python's slide_flexible): the
+// rigid block's summary fields (sliding_summary_json) plus a "support" object, one table for every front end.
+#include <nlohmann/json.hpp>
+
+#include "topple/flexible.hpp"
+
+namespace topple::io {
+
+/// sliding_summary_json(summary.sliding, block) with "support": {analysis, kind "oscillator", freq_hz, damping_ratio,
+/// mass_ratio, mode_freq_hz, mode_damping_ratio, kmax}.
+[[nodiscard]] nlohmann::ordered_json flexible_summary_json(const FlexibleSummary& summary, const SlidingBlock& block,
+                                                           const SupportOscillator& support, FlexibleAnalysis analysis);
+
+/// The same for SLAMMER's sliding mass: "support": {analysis, kind "sliding_mass", height_m, vs_slope_m_s, vs_base_m_s,
+/// damping_ratio, reference_strain (null when linear), vs_final_m_s, equivalent_linear_iterations, mode_freq_hz,
+/// mode_damping_ratio, kmax}; `block` is the rigid block with mu = k_y that the summary's yield fields describe.
+[[nodiscard]] nlohmann::ordered_json flexible_summary_json(const FlexibleSummary& summary, const SlidingBlock& block,
+                                                           const SlidingMassColumn& column, FlexibleAnalysis analysis);
+
+}  // namespace topple::io

@@ -1,0 +1,683 @@
+// Flexible supports: decoupled and coupled sliding (flexible.hpp has the model, its sources and sign conventions).
+#include "topple/flexible.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <utility>
+
+#include <boost/math/tools/toms748_solve.hpp>
+#include <fmt/format.h>
+
+#include "topple/error.hpp"
+
+namespace topple {
+namespace {
+
+// ---- small dense matrices and the exact propagator exp(A t) ----------------------------------------------------
+
+template <std::size_t N>
+using Vec = std::array<double, N>;
+
+template <std::size_t N>
+struct Mat {
+  std::array<double, N * N> v{};
+  double& operator()(std::size_t i, std::size_t j) { return v[i * N + j]; }
+  double operator()(std::size_t i, std::size_t j) const { return v[i * N + j]; }
+};
+
+template <std::size_t N>
+Mat<N> mul(const Mat<N>& a, const Mat<N>& b) {
+  Mat<N> c;
+  for (std::size_t i = 0; i < N; ++i)
+    for (std::size_t k = 0; k < N; ++k) {
+      const double aik = a(i, k);
+      if (aik == 0.0) continue;
+      for (std::size_t j = 0; j < N; ++j) c(i, j) += aik * b(k, j);
+    }
+  return c;
+}
+
+template <std::size_t N>
+Vec<N> mul(const Mat<N>& a, const Vec<N>& x) {
+  Vec<N> y{};
+  for (std::size_t i = 0; i < N; ++i) {
+    double s = 0.0;
+    for (std::size_t j = 0; j < N; ++j) s += a(i, j) * x[j];
+    y[i] = s;
+  }
+  return y;
+}
+
+/// exp(A t) by balancing, scaling and squaring with a Taylor series. The modal generators are badly scaled (omega^2
+/// next to 1), so a diagonal similarity D^-1 A D with powers of 2 (exact; Parlett & Reinsch 1969) first brings the
+/// rows and columns to comparable norms; the balanced matrix is scaled below norm 1/4, where the series is summed
+/// until a term no longer changes the sum (at most 20 terms: (1/4)^21/21! ~ 1e-32), and squared back.
+template <std::size_t N>
+Mat<N> expm(const Mat<N>& a, double t) {
+  Mat<N> x;
+  for (std::size_t i = 0; i < N * N; ++i) x.v[i] = a.v[i] * t;
+  std::array<double, N> d;
+  d.fill(1.0);
+  for (int sweep = 0; sweep < 8; ++sweep) {
+    bool changed = false;
+    for (std::size_t i = 0; i < N; ++i) {
+      double col = 0.0;
+      double row = 0.0;
+      for (std::size_t j = 0; j < N; ++j) {
+        if (j == i) continue;
+        col += std::abs(x(j, i));
+        row += std::abs(x(i, j));
+      }
+      if (col == 0.0 || row == 0.0) continue;
+      double f = 1.0;
+      const double sum = col + row;
+      while (col < row / 2.0) {
+        col *= 4.0;
+        row /= 4.0;
+        f *= 2.0;
+      }
+      while (col >= row * 2.0) {
+        col /= 4.0;
+        row *= 4.0;
+        f /= 2.0;
+      }
+      if (col + row < 0.95 * sum) {
+        changed = true;
+        d[i] *= f;
+        for (std::size_t j = 0; j < N; ++j) {
+          x(i, j) /= f;
+          x(j, i) *= f;
+        }
+      }
+    }
+    if (!changed) break;
+  }
+  double norm = 0.0;
+  for (std::size_t i = 0; i < N; ++i) {
+    double row = 0.0;
+    for (std::size_t j = 0; j < N; ++j) row += std::abs(x(i, j));
+    norm = std::max(norm, row);
+  }
+  int squarings = 0;
+  while (norm > 0.25) {
+    norm *= 0.5;
+    ++squarings;
+  }
+  const double scale = std::ldexp(1.0, -squarings);
+  for (double& e : x.v) e *= scale;
+  Mat<N> result;
+  Mat<N> term;
+  for (std::size_t i = 0; i < N; ++i) result(i, i) = term(i, i) = 1.0;
+  for (int k = 1; k <= 20; ++k) {
+    term = mul(term, x);
+    double biggest = 0.0;
+    for (double& e : term.v) {
+      e /= k;
+      biggest = std::max(biggest, std::abs(e));
+    }
+    for (std::size_t i = 0; i < N * N; ++i) result.v[i] += term.v[i];
+    if (biggest < 1e-18) break;  // entries of the sum are O(1): the next terms are below round-off
+  }
+  for (int sq = 0; sq < squarings; ++sq) result = mul(result, result);
+  for (std::size_t i = 0; i < N; ++i)
+    for (std::size_t j = 0; j < N; ++j) result(i, j) *= d[i] / d[j];
+  return result;
+}
+
+// ---- the mode, its decoupled response ----------------------------------------------------------------------------
+
+/// Decoupled modal response to piecewise-linear a_g. State (Y, Y', a, a') with a' constant in a step: the exact
+/// propagator of  Y'' + 2 zeta omega Y' + omega^2 Y = -p a.
+Mat<4> decoupled_generator(const ModalProperties& m) {
+  Mat<4> a;
+  a(0, 1) = 1.0;
+  a(1, 0) = -m.omega_rad_s * m.omega_rad_s;
+  a(1, 1) = -2.0 * m.damping_ratio * m.omega_rad_s;
+  a(1, 2) = -m.participation;
+  a(2, 3) = 1.0;
+  return a;
+}
+
+void require_uniform(const GroundMotion& ground) {
+  if (!ground.is_uniform()) {
+    throw parameter_error("record", "flexible-support analyses need a uniformly sampled record (resample it first)");
+  }
+  if (ground.size() < 2) throw parameter_error("record", "flexible-support analyses need at least 2 samples");
+}
+
+struct LinearResponse {
+  double max_abs_y = 0.0;              ///< peak |Y| (m): the strain measure of the equivalent-linear iteration
+  double max_abs_demand_m_s2 = 0.0;    ///< peak |a_g + (L1/m) Y''|
+  std::vector<double> demand_m_s2;     ///< filled when asked
+};
+
+/// Sub-steps per record step so that omega h <= limit (coupled: 0.5, for the event search).
+int substeps_for(double omega_rad_s, double dt_s, double limit = 0.5) {
+  return std::max(1, static_cast<int>(std::ceil(omega_rad_s * dt_s / limit)));
+}
+
+/// Decoupled sliding reads the support's demand as piecewise linear between points h apart; its oscillating part
+/// (L1/m) Y'' is then off by up to (omega h)^2 / 8 of its amplitude between points. omega h <= 0.1 keeps that under
+/// 0.13 %; the cap of 64 sub-steps only binds above omega dt = 6.4, where the support is so stiff (a 50 Hz shelf
+/// under a 0.02 s record) that its demand is the ground's, linear between samples, up to decaying transients.
+int decoupled_substeps(double omega_rad_s, double dt_s) { return std::min(64, substeps_for(omega_rad_s, dt_s, 0.1)); }
+
+/// The decoupled response on the record's steps split in `substeps` (values at the record's samples do not depend on
+/// it: the propagator is exact). The demand history, when kept, has (n - 1) substeps + 1 points.
+LinearResponse linear_response(const GroundMotion& ground, const ModalProperties& m, bool keep_history,
+                               int substeps = 1) {
+  const auto acc = ground.accel_m_s2();
+  const double dt = ground.dt_s();
+  const double h = dt / substeps;
+  const Mat<4> p = expm(decoupled_generator(m), h);
+  const double w2 = m.omega_rad_s * m.omega_rad_s;
+  const double c = 2.0 * m.damping_ratio * m.omega_rad_s;
+  LinearResponse out;
+  const std::size_t points = (acc.size() - 1) * static_cast<std::size_t>(substeps) + 1;
+  if (keep_history) out.demand_m_s2.resize(points);
+  double* hist = keep_history ? out.demand_m_s2.data() : nullptr;
+  // Demand a + q Y'' with Y'' = -p a - c Y' - w2 Y: (1 - q p) a - q c Y' - q w2 Y.
+  const double da = 1.0 - m.mass_fraction * m.participation;
+  const double dv = -m.mass_fraction * c;
+  const double dy = -m.mass_fraction * w2;
+  const double inv_dt = 1.0 / dt;
+  double y = 0.0;
+  double v = 0.0;
+  double max_y = 0.0;
+  double max_d = std::abs(da * acc[0]);
+  if (hist) hist[0] = da * acc[0];
+  std::size_t at = 1;
+  for (std::size_t k = 0; k + 1 < acc.size(); ++k) {
+    const double slope = (acc[k + 1] - acc[k]) * inv_dt;
+    for (int j = 0; j < substeps; ++j) {
+      const double a0 = acc[k] + slope * (static_cast<double>(j) * h);
+      const double a1 = j + 1 == substeps ? acc[k + 1] : acc[k] + slope * (static_cast<double>(j + 1) * h);
+      // The input terms do not depend on the state: only two products per component lie on the recurrence's chain.
+      const double fy = p(0, 2) * a0 + p(0, 3) * slope;
+      const double fv = p(1, 2) * a0 + p(1, 3) * slope;
+      const double y1 = p(0, 0) * y + p(0, 1) * v + fy;
+      const double v1 = p(1, 0) * y + p(1, 1) * v + fv;
+      y = y1;
+      v = v1;
+      const double d = da * a1 + dv * v + dy * y;
+      max_y = std::max(max_y, std::abs(y));
+      max_d = std::max(max_d, std::abs(d));
+      if (hist) hist[at] = d;
+      ++at;
+    }
+  }
+  out.max_abs_y = max_y;
+  out.max_abs_demand_m_s2 = max_d;
+  return out;
+}
+
+// Column constants: phi(z) = sin(pi z / 2H), L1/M1 = 4/pi, L1/m = 2/pi.
+constexpr double kColumnParticipation = 4.0 / kPi;
+constexpr double kColumnMassFraction = 2.0 / kPi;
+
+ModalProperties column_mode(double height_m, double vs_m_s, double damping_total) {
+  ModalProperties m;
+  m.omega_rad_s = kPi * vs_m_s / (2.0 * height_m);
+  m.damping_ratio = damping_total;
+  m.participation = kColumnParticipation;
+  m.mass_fraction = kColumnMassFraction;
+  m.vs_m_s = vs_m_s;
+  return m;
+}
+
+/// Darendeli's (2001) damping form on the hyperbolic backbone, as SLAMMER uses it (pySLAMMER strain_damp_update):
+/// Masing damping of the hyperbola, scaled by 0.62 (G/Gmax)^0.1, plus 1 % small-strain damping.
+double equivalent_damping(double g_ratio, double strain, double ref_strain) {
+  const double sum = strain + ref_strain;
+  const double masing = (4.0 * (strain - ref_strain * std::log(sum / ref_strain)) / (strain * strain / sum) - 2.0) / kPi;
+  return 0.62 * std::pow(g_ratio, 0.1) * masing + 0.01;
+}
+
+// ---- coupled analysis: the two-phase linear system --------------------------------------------------------------
+
+constexpr std::size_t kN = 7;  // Y, Y', s, s', a, a', 1
+enum Phase : int { stick = 0, slip_down = 1, slip_up = 2 };
+
+struct CoupledSystem {
+  std::array<Mat<kN>, 3> generator;  ///< d/dt state per phase
+  Vec<kN> demand{};                  ///< stick-phase demand D(w) (m/s^2): sliding force per unit sliding mass
+  double yield_m_s2 = 0.0;           ///< k_y g (column) or mu g (shelf)
+  double omega_max = 0.0;            ///< fastest mode over the phases (sets the sub-step)
+  bool two_way = false;
+};
+
+void fill_input_rows(Mat<kN>& a) {
+  a(0, 1) = 1.0;  // Y' = Y'
+  a(2, 3) = 1.0;  // s' = s'
+  a(4, 5) = 1.0;  // a_g' = slope, constant within a step
+}
+
+/// Column (Chopra & Zhang 1991 as SLAMMER's Coupled): equations in flexible.hpp.
+CoupledSystem column_system(const ModalProperties& m, double yield_m_s2, bool two_way) {
+  CoupledSystem sys;
+  const double w2 = m.omega_rad_s * m.omega_rad_s;
+  const double c = 2.0 * m.damping_ratio * m.omega_rad_s;
+  const double p = m.participation;
+  const double q = m.mass_fraction;
+  const double d1 = 1.0 - p * q;  // 1 - L1^2 / (M1 m) = 1 - 8/pi^2
+  for (auto& g : sys.generator) fill_input_rows(g);
+  // stick: Y'' = -p a - c Y' - w2 Y
+  sys.generator[stick](1, 0) = -w2;
+  sys.generator[stick](1, 1) = -c;
+  sys.generator[stick](1, 4) = -p;
+  // D = a + q Y''
+  sys.demand[0] = -q * w2;
+  sys.demand[1] = -q * c;
+  sys.demand[4] = 1.0 - q * p;
+  for (int ph : {slip_down, slip_up}) {
+    const double sigma = ph == slip_down ? 1.0 : -1.0;
+    auto& g = sys.generator[ph];
+    // d1 Y'' = -p sigma ky g - c Y' - w2 Y
+    g(1, 0) = -w2 / d1;
+    g(1, 1) = -c / d1;
+    g(1, 6) = -p * sigma * yield_m_s2 / d1;
+    // s'' = a + q Y'' - sigma ky g
+    g(3, 0) = q * g(1, 0);
+    g(3, 1) = q * g(1, 1);
+    g(3, 4) = 1.0;
+    g(3, 6) = q * g(1, 6) - sigma * yield_m_s2;
+  }
+  sys.yield_m_s2 = yield_m_s2;
+  sys.omega_max = m.omega_rad_s / std::sqrt(d1);
+  sys.two_way = two_way;
+  return sys;
+}
+
+/// Shelf or floor: object of mass r M_s on a one-mode support (flexible.hpp).
+CoupledSystem shelf_system(const ModalProperties& m, double mass_ratio, double yield_m_s2, bool two_way) {
+  CoupledSystem sys;
+  const double w2 = m.omega_rad_s * m.omega_rad_s;
+  const double c = 2.0 * m.damping_ratio * m.omega_rad_s;
+  const double r = mass_ratio;
+  for (auto& g : sys.generator) fill_input_rows(g);
+  // stick: Y'' = -a - (c Y' + w2 Y) / (1 + r), D = a + Y''
+  sys.generator[stick](1, 0) = -w2 / (1.0 + r);
+  sys.generator[stick](1, 1) = -c / (1.0 + r);
+  sys.generator[stick](1, 4) = -1.0;
+  sys.demand[0] = -w2 / (1.0 + r);
+  sys.demand[1] = -c / (1.0 + r);
+  for (int ph : {slip_down, slip_up}) {
+    const double sigma = ph == slip_down ? 1.0 : -1.0;
+    auto& g = sys.generator[ph];
+    // Y'' = -a - c Y' - w2 Y - r sigma mu g ; s'' = a + Y'' - sigma mu g
+    g(1, 0) = -w2;
+    g(1, 1) = -c;
+    g(1, 4) = -1.0;
+    g(1, 6) = -r * sigma * yield_m_s2;
+    g(3, 0) = -w2;
+    g(3, 1) = -c;
+    g(3, 6) = -r * sigma * yield_m_s2 - sigma * yield_m_s2;
+  }
+  sys.yield_m_s2 = yield_m_s2;
+  sys.omega_max = m.omega_rad_s;
+  sys.two_way = two_way;
+  return sys;
+}
+
+double dot(const Vec<kN>& a, const Vec<kN>& b) {
+  double s = 0.0;
+  for (std::size_t i = 0; i < kN; ++i) s += a[i] * b[i];
+  return s;
+}
+
+/// The linear quantity an event watches: the demand in stick, the slip velocity s' while slipping.
+Vec<kN> watched(const CoupledSystem& sys, Phase phase) {
+  if (phase == stick) return sys.demand;
+  Vec<kN> c{};
+  c[3] = 1.0;
+  return c;
+}
+
+/// Event function of a phase from its watched quantity x: an event happens where it rises through 0. Stick: the
+/// demand beyond the yield level (either direction in two-way mode); slip: the velocity back through zero.
+double event_from(const CoupledSystem& sys, Phase phase, double x) {
+  switch (phase) {
+    case stick: return sys.two_way ? std::abs(x) - sys.yield_m_s2 : x - sys.yield_m_s2;
+    case slip_down: return -x;
+    case slip_up: return x;
+  }
+  return 0.0;
+}
+
+double event_value(const CoupledSystem& sys, Phase phase, const Vec<kN>& w) {
+  return event_from(sys, phase, dot(watched(sys, phase), w));
+}
+
+/// c^T P: the watched quantity after the step P as one dot product with the state before it.
+Vec<kN> row_through(const Vec<kN>& c, const Mat<kN>& p) {
+  Vec<kN> r{};
+  for (std::size_t i = 0; i < kN; ++i)
+    for (std::size_t j = 0; j < kN; ++j) r[j] += c[i] * p(i, j);
+  return r;
+}
+
+/// Phase entered from stick (demand above yield) or after a slip stops (checking that the stick demand holds).
+Phase stick_or_slip(const CoupledSystem& sys, const Vec<kN>& w) {
+  const double d = dot(sys.demand, w);
+  if (d > sys.yield_m_s2) return slip_down;
+  if (sys.two_way && d < -sys.yield_m_s2) return slip_up;
+  return stick;
+}
+
+SlidingSummary run_coupled(const GroundMotion& ground, const CoupledSystem& sys) {
+  const auto acc = ground.accel_m_s2();
+  const double dt = ground.dt_s();
+  // omega h <= 0.5 for the event search; capped at 256 sub-steps (omega dt > 128: a support so stiff that its demand
+  // follows the ground, linear within a record step, apart from transients that decay within the step).
+  const int n_sub = std::min(256, substeps_for(sys.omega_max, dt));
+  const double h = dt / n_sub;
+  std::array<Mat<kN>, 3> full;
+  std::array<Vec<kN>, 3> mid_row;  // the watched quantity at the sub-step's midpoint, as a row on the state
+  for (int ph = 0; ph < 3; ++ph) {
+    const Mat<kN> half = expm(sys.generator[ph], 0.5 * h);
+    full[ph] = mul(half, half);
+    mid_row[ph] = row_through(watched(sys, static_cast<Phase>(ph)), half);
+  }
+
+  SlidingSummary out;
+  Vec<kN> w{};
+  w[6] = 1.0;
+  Phase phase = stick;
+  double slip_start_time = 0.0;
+  const auto note_state = [&](double t) {
+    const double s = std::abs(w[2]);
+    if (s > out.max_abs_displacement_m) {
+      out.max_abs_displacement_m = s;
+      out.max_displacement_time_s = t;
+    }
+    out.max_abs_velocity_m_s = std::max(out.max_abs_velocity_m_s, std::abs(w[3]));
+  };
+  // One sub-step of length h from time t0 with the current input slope (already in w[4], w[5]).
+  const auto substep = [&](double t0) {
+    double tau = 0.0;
+    int events = 0;
+    while (tau < h) {
+      if (++events > 64) {
+        throw EventLimitError(fmt::format("coupled sliding: more than 64 slip events in one sub-step of {} s at t = {} s",
+                                      h, t0 + tau));
+      }
+      const double rest = h - tau;
+      const bool whole = tau == 0.0;
+      if (rest <= 1e-12 * h) {
+        // An event within round-off of the sub-step's end: finish the sub-step without looking for another one.
+        w = mul(expm(sys.generator[phase], rest), w);
+        break;
+      }
+      double e_mid = 0.0;
+      Vec<kN> w_end;
+      if (whole) {
+        w_end = mul(full[phase], w);
+        e_mid = event_from(sys, phase, dot(mid_row[phase], w));
+      } else {
+        const Mat<kN> p_mid = expm(sys.generator[phase], 0.5 * rest);
+        w_end = mul(mul(p_mid, p_mid), w);
+        e_mid = event_value(sys, phase, mul(p_mid, w));
+      }
+      const double e_end = event_value(sys, phase, w_end);
+      if (e_mid <= 0.0 && e_end <= 0.0) {
+        w = w_end;
+        tau = h;
+        break;
+      }
+      // Bracket [lo, hi]: hi is the first probe where the event function is positive; lo a point before it where it
+      // is negative. At a phase's start the function may be exactly 0 (slip has just started: s' = 0): then probe
+      // inward from hi by halving until it is negative.
+      const Mat<kN>& gen = sys.generator[phase];
+      const Vec<kN> w0 = w;
+      const auto f = [&](double t) { return event_value(sys, phase, mul(expm(gen, t), w0)); };
+      const double hi = e_mid > 0.0 ? 0.5 * rest : rest;
+      double lo = e_mid > 0.0 ? 0.0 : 0.5 * rest;
+      double f_lo = e_mid > 0.0 ? event_value(sys, phase, w0) : e_mid;
+      for (int halvings = 0; f_lo >= 0.0 && halvings < 60; ++halvings) {
+        lo = (lo == 0.0 ? hi : lo) * 0.5;
+        f_lo = f(lo);
+      }
+      double t_event = hi;
+      if (f_lo < 0.0) {
+        std::uintmax_t iters = 200;
+        const auto r = boost::math::tools::toms748_solve(f, lo, hi, f_lo, f(hi),
+                                                         boost::math::tools::eps_tolerance<double>(50), iters);
+        if (iters >= 200) {
+          throw RootFindingError(fmt::format("coupled sliding: slip event not located in 200 iterations at t = {} s", t0 + tau));
+        }
+        t_event = r.second;  // the side where the event function is >= 0: the event has happened
+      } else {
+        t_event = lo;  // the function never went negative: the event is at the phase's start (to 2^-60 h)
+      }
+      w = mul(expm(gen, t_event), w0);
+      tau += t_event;
+      const double t_now = t0 + tau;
+      if (phase == stick) {
+        // The demand has reached the yield level: slip in its direction (not re-tested, round-off could undo it).
+        phase = dot(sys.demand, w) >= 0.0 ? slip_down : slip_up;
+        ++out.slip_episodes;
+        if (!out.first_slip_time_s) out.first_slip_time_s = t_now;
+        slip_start_time = t_now;
+      } else {
+        w[3] = 0.0;  // the slip velocity is zero at the stop, by definition of the event
+        out.total_slip_duration_s += t_now - slip_start_time;
+        const Phase next = stick_or_slip(sys, w);
+        // At a stop s'' has the stopping sign, so the stick demand is inside the yield level on that side (s'' =
+        // (D - sigma k_y g) / d1); only a two-way reversal can follow at once.
+        phase = next == phase ? stick : next;
+        if (phase != stick) {
+          ++out.slip_episodes;  // a reversal through s' = 0 counts as a new episode (as sliding.hpp)
+          slip_start_time = t_now;
+        }
+      }
+      note_state(t_now);
+    }
+  };
+
+  const double t_begin = ground.start_time_s();
+  for (std::size_t k = 0; k + 1 < acc.size(); ++k) {
+    const double slope = (acc[k + 1] - acc[k]) / dt;
+    const double tk = t_begin + static_cast<double>(k) * dt;
+    for (int j = 0; j < n_sub; ++j) {
+      w[4] = acc[k] + slope * (static_cast<double>(j) * h);
+      w[5] = slope;
+      substep(tk + static_cast<double>(j) * h);
+      note_state(tk + static_cast<double>(j + 1) * h);
+    }
+  }
+  // Run-out: the ground is still after the record; a sliding body decelerates to rest on the still-ringing support.
+  double t = ground.end_time_s();
+  constexpr long kMaxRunOutSubsteps = 10'000'000;
+  long runout = 0;
+  while (phase != stick) {
+    if (++runout > kMaxRunOutSubsteps) {
+      throw StepLimitError(fmt::format("coupled sliding: still sliding {} s after the record's end", static_cast<double>(runout) * h));
+    }
+    w[4] = 0.0;
+    w[5] = 0.0;
+    substep(t);
+    t += h;
+    note_state(t);
+  }
+  out.residual_displacement_m = w[2];
+  out.end_time_s = std::max(t, ground.end_time_s());
+  out.at_rest_at_end = true;
+  return out;
+}
+
+double check_ky(double ky_g) {
+  if (!std::isfinite(ky_g) || !(ky_g > 0.0)) {
+    throw parameter_error("ky", fmt::format("yield coefficient must be positive and finite, got {}", ky_g));
+  }
+  return ky_g;
+}
+
+}  // namespace
+
+// ---- value types ---------------------------------------------------------------------------------------------------
+
+SupportOscillator SupportOscillator::make(double freq_hz, double damping_ratio, double mass_ratio) {
+  if (!std::isfinite(freq_hz) || !(freq_hz > 0.0)) {
+    throw parameter_error("support_freq", fmt::format("support frequency must be positive and finite, got {} Hz", freq_hz));
+  }
+  if (!std::isfinite(damping_ratio) || damping_ratio < 0.0 || damping_ratio >= 1.0) {
+    throw parameter_error("support_damping",
+                          fmt::format("support damping ratio must be in [0, 1), got {}", damping_ratio));
+  }
+  if (!std::isfinite(mass_ratio) || mass_ratio < 0.0) {
+    throw parameter_error("mass_ratio", fmt::format("mass ratio must be finite and >= 0, got {}", mass_ratio));
+  }
+  return SupportOscillator{freq_hz, damping_ratio, mass_ratio};
+}
+
+double SlidingMassColumn::impedance_damping(double vs_base_m_s, double vs_slope_m_s) noexcept {
+  return std::min(0.55016 * std::pow(vs_base_m_s / vs_slope_m_s, -0.9904), 0.2);
+}
+
+SlidingMassColumn SlidingMassColumn::make(double height_m, double vs_slope_m_s, double vs_base_m_s,
+                                          double damping_ratio, std::optional<double> reference_strain) {
+  const auto positive = [](double v, const char* field, const char* what, const char* unit) {
+    if (!std::isfinite(v) || !(v > 0.0)) {
+      throw parameter_error(field, fmt::format("{} must be positive and finite, got {} {}", what, v, unit));
+    }
+  };
+  positive(height_m, "height", "sliding-mass height", "m");
+  positive(vs_slope_m_s, "vs_slope", "shear-wave velocity of the sliding mass", "m/s");
+  positive(vs_base_m_s, "vs_base", "shear-wave velocity of the base", "m/s");
+  if (reference_strain) positive(*reference_strain, "reference_strain", "reference strain", "(decimal)");
+  const double total = damping_ratio + impedance_damping(vs_base_m_s, vs_slope_m_s);
+  if (!std::isfinite(damping_ratio) || total < 0.0 || total >= 1.0) {
+    throw parameter_error("damping", fmt::format("damping ratio {} plus the base impedance damping {} must be in "
+                                                 "[0, 1), got {}",
+                                                 damping_ratio, impedance_damping(vs_base_m_s, vs_slope_m_s), total));
+  }
+  return SlidingMassColumn{height_m, vs_slope_m_s, vs_base_m_s, damping_ratio, reference_strain};
+}
+
+// ---- modal properties ------------------------------------------------------------------------------------------
+
+ModalProperties modal_properties(const SupportOscillator& support) {
+  ModalProperties m;
+  m.omega_rad_s = 2.0 * kPi * support.freq_hz;
+  m.damping_ratio = support.damping_ratio;
+  return m;
+}
+
+ModalProperties modal_properties(const SlidingMassColumn& column, const GroundMotion& ground) {
+  const double imp0 = SlidingMassColumn::impedance_damping(column.vs_base_m_s, column.vs_slope_m_s);
+  ModalProperties m = column_mode(column.height_m, column.vs_slope_m_s, column.damping_ratio + imp0);
+  if (!column.reference_strain) return m;
+  require_uniform(ground);
+  // SLAMMER's iteration (pySLAMMER Decoupled.equivalent_linear): response with the current properties, strain,
+  // new G and D, convergence when both moved by less than 5 % relative to the previous iteration.
+  const double gamma_r = *column.reference_strain;
+  const double g_max_ratio = 1.0;
+  double g_ratio_prev = g_max_ratio;
+  double damp_prev = column.damping_ratio;
+  constexpr int kMaxIterations = 100;
+  constexpr double kTolerance = 0.05;
+  for (int it = 1;; ++it) {
+    if (it > kMaxIterations) {
+      throw EquivalentLinearError(fmt::format("equivalent-linear iteration did not converge in {} iterations (G/Gmax {}, "
+                                    "damping {})", kMaxIterations, g_ratio_prev, damp_prev));
+    }
+    const double y_max = linear_response(ground, m, false).max_abs_y;
+    // Effective strain: 0.65 of the peak strain at the base of the mode, phi'(0) = pi / 2H.
+    const double strain = 0.65 * (kPi / 2.0) * y_max / column.height_m;
+    const double g_ratio = 1.0 / (1.0 + strain / gamma_r);
+    const double damp = strain > 0.0 ? equivalent_damping(g_ratio, strain, gamma_r) : 0.01;
+    const double vs = column.vs_slope_m_s * std::sqrt(g_ratio);
+    m = column_mode(column.height_m, vs, damp + SlidingMassColumn::impedance_damping(column.vs_base_m_s, vs));
+    m.iterations = it;
+    const double change_g = std::abs(g_ratio - g_ratio_prev) / g_ratio_prev;
+    const double change_d = damp_prev != 0.0 ? std::abs(damp - damp_prev) / std::abs(damp_prev) : 1.0;
+    g_ratio_prev = g_ratio;
+    damp_prev = damp;
+    if (change_g <= kTolerance && change_d <= kTolerance) return m;
+  }
+}
+
+std::vector<double> support_acceleration_m_s2(const GroundMotion& ground, const ModalProperties& mode) {
+  require_uniform(ground);
+  return linear_response(ground, mode, true).demand_m_s2;
+}
+
+// ---- analyses ----------------------------------------------------------------------------------------------------
+
+namespace {
+
+/// The demand as a record on the sub-stepped grid, and its peak.
+std::pair<GroundMotion, double> demand_motion(const GroundMotion& ground, const ModalProperties& mode) {
+  const int substeps = decoupled_substeps(mode.omega_rad_s, ground.dt_s());
+  LinearResponse r = linear_response(ground, mode, true, substeps);
+  RecordMetadata meta = ground.metadata();
+  return {GroundMotion::uniform(std::move(r.demand_m_s2), ground.dt_s() / substeps, ground.start_time_s(),
+                                std::move(meta)),
+          r.max_abs_demand_m_s2};
+}
+
+FlexibleSummary decoupled(const GroundMotion& ground, const ModalProperties& mode, const SlidingBlock& block,
+                          const GroundMotion* vertical) {
+  const auto [support, peak] = demand_motion(ground, mode);
+  FlexibleSummary out;
+  out.mode = mode;
+  out.kmax = peak / block.g_m_s2;
+  out.sliding = slide_summary(support, block, vertical);
+  return out;
+}
+
+}  // namespace
+
+GroundMotion support_motion(const GroundMotion& ground, const SupportOscillator& support) {
+  require_uniform(ground);
+  return demand_motion(ground, modal_properties(support)).first;
+}
+
+namespace {
+void require_no_vertical(const GroundMotion* vertical) {
+  if (vertical) {
+    throw parameter_error("vertical", "the coupled analysis has no vertical input (the decoupled one has)");
+  }
+}
+}  // namespace
+
+FlexibleSummary slide_flexible(const GroundMotion& ground, const SupportOscillator& support, const SlidingBlock& block,
+                               FlexibleAnalysis analysis, const GroundMotion* vertical) {
+  require_uniform(ground);
+  const ModalProperties mode = modal_properties(support);
+  if (analysis == FlexibleAnalysis::decoupled) return decoupled(ground, mode, block, vertical);
+  require_no_vertical(vertical);
+  if (block.slope_rad != 0.0 || block.mu_kinetic != block.mu_static) {
+    throw parameter_error("mu_kinetic", "the coupled analysis models level ground with one friction coefficient "
+                                        "(mu_kinetic = mu_static, slope 0)");
+  }
+  FlexibleSummary out;
+  out.mode = mode;
+  out.kmax = linear_response(ground, mode, false, decoupled_substeps(mode.omega_rad_s, ground.dt_s())).max_abs_demand_m_s2 /
+             block.g_m_s2;
+  out.sliding = run_coupled(ground, shelf_system(mode, support.mass_ratio, block.mu_static * block.g_m_s2,
+                                                 block.mode == SlidingMode::two_way));
+  return out;
+}
+
+FlexibleSummary slide_flexible(const GroundMotion& ground, const SlidingMassColumn& column, double ky_g,
+                               FlexibleAnalysis analysis, SlidingMode mode, double g_m_s2,
+                               const GroundMotion* vertical) {
+  require_uniform(ground);
+  check_ky(ky_g);
+  const SlidingBlock block = SlidingBlock::make(ky_g, ky_g, 0.0, mode, g_m_s2);
+  const ModalProperties props = modal_properties(column, ground);
+  if (analysis == FlexibleAnalysis::decoupled) return decoupled(ground, props, block, vertical);
+  require_no_vertical(vertical);
+  FlexibleSummary out;
+  out.mode = props;
+  out.kmax =
+      linear_response(ground, props, false, decoupled_substeps(props.omega_rad_s, ground.dt_s())).max_abs_demand_m_s2 / g_m_s2;
+  out.sliding = run_coupled(ground, column_system(props, ky_g * g_m_s2, mode == SlidingMode::two_way));
+  return out;
+}
+
+}  // namespace topple

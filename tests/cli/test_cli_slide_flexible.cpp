@@ -1,0 +1,86 @@
+// topple slide on a flexible support: the CLI prints what the library computes, and rejects bad input with exit 2.
+#include <algorithm>
+#include <cstdio>
+#include <string>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include "support/shared_data.hpp"
+#include "topple/flexible.hpp"
+#include "topple/io/read.hpp"
+
+namespace topple {
+namespace {
+
+using test::run_cli;
+using test::run_json;
+
+const char* kRecord = "RSN6_IMPVALL.I_I-ELC180.AT2";
+
+TEST(CliSlideFlexible, ShelfJsonMatchesTheLibrary) {
+  if (!test::have_shared()) GTEST_SKIP() << "../shared not present";
+  const auto path = test::shared_record(kRecord);
+  const GroundMotion g = io::read_motion(path);
+  for (const bool coupled : {false, true}) {
+    const auto j = run_json(fmt::format("slide '{}' --mu 0.1 --support-freq 4Hz --support-damping 5% --mass-ratio 0.2 {} --json",
+                                        path.string(), coupled ? "--coupled" : ""));
+    const auto r = slide_flexible(g, SupportOscillator::make(4.0, 0.05, 0.2), SlidingBlock::make(0.1),
+                                  coupled ? FlexibleAnalysis::coupled : FlexibleAnalysis::decoupled);
+    // Same library call on the same record: only the JSON's 17 significant digits separate them.
+    EXPECT_NEAR(j.at("residual_displacement_m").get<double>(), r.sliding.residual_displacement_m, 1e-15);
+    EXPECT_EQ(j.at("support").at("analysis"), coupled ? "coupled" : "decoupled");
+    EXPECT_DOUBLE_EQ(j.at("support").at("freq_hz").get<double>(), 4.0);
+    EXPECT_DOUBLE_EQ(j.at("support").at("damping_ratio").get<double>(), 0.05);
+    EXPECT_NEAR(j.at("support").at("kmax").get<double>(), r.kmax, 1e-15);
+  }
+}
+
+TEST(CliSlideFlexible, SlidingMassJsonMatchesTheLibrary) {
+  if (!test::have_shared()) GTEST_SKIP() << "../shared not present";
+  const auto path = test::shared_record(kRecord);
+  const GroundMotion g = io::read_motion(path);
+  const auto j = run_json(fmt::format("slide '{}' --mu 0.1 --one-way --height 50m --vs-slope 600 --vs-base 600 "
+                                      "--damping 5% --ref-strain 0.05% --coupled --json", path.string()));
+  const auto r = slide_flexible(g, SlidingMassColumn::make(50.0, 600.0, 600.0, 0.05, 0.0005), 0.1,
+                                FlexibleAnalysis::coupled, SlidingMode::one_way);
+  EXPECT_NEAR(j.at("residual_displacement_m").get<double>(), r.sliding.residual_displacement_m, 1e-15);
+  EXPECT_NEAR(j.at("support").at("vs_final_m_s").get<double>(), r.mode.vs_m_s, 1e-9);
+  EXPECT_DOUBLE_EQ(j.at("support").at("reference_strain").get<double>(), 0.0005);
+  EXPECT_GT(r.mode.iterations, 0);
+}
+
+TEST(CliSlideFlexible, BadInputExitsTwo) {
+  if (!test::have_shared()) GTEST_SKIP() << "../shared not present";
+  const std::string rec = "slide '" + test::shared_record(kRecord).string() + "' --mu 0.1 ";
+  const auto expect_2 = [](const test::CommandResult& r, const std::string& text) {
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find(text), std::string::npos) << r.err;
+  };
+  expect_2(run_cli(rec + "--support-freq 0Hz"), "got 0 Hz");
+  expect_2(run_cli(rec + "--support-freq 4Hz --support-damping 5x"), "5x");
+  expect_2(run_cli(rec + "--support-freq 4Hz --height 10m"), "either --support-freq");
+  expect_2(run_cli(rec + "--height 10m --vs-slope 300"), "needs --vs-slope, --vs-base and --damping");
+  expect_2(run_cli(rec + "--support-freq 4Hz --out /tmp/never.csv"), "not available");
+  expect_2(run_cli(rec + "--support-freq 4Hz --coupled --vertical '" + test::shared_record(kRecord).string() + "'"),
+           "no vertical input");
+  expect_2(run_cli(rec + "--support-freq 4Hz --mu-kinetic 0.05 --coupled"), "mu_kinetic");
+}
+
+TEST(CliSlideFlexible, UpperFloorExampleRuns) {
+  // examples/upper_floor.sh (README) must keep working: four runs, the coupled one included, exit status 0.
+  if (!test::have_shared()) GTEST_SKIP() << "../shared not present";
+  const std::string cmd = std::string("TOPPLE='") + TOPPLE_CLI_PATH + "' '" + TOPPLE_SOURCE_DIR +
+                          "/examples/upper_floor.sh' '" + test::shared_record(kRecord).string() + "' 2>&1";
+  std::FILE* pipe = popen(cmd.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string out;
+  char buf[4096];
+  while (std::size_t n = std::fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
+  EXPECT_EQ(pclose(pipe), 0) << out;
+  EXPECT_NE(out.find("coupled analysis on a shelf/floor oscillator"), std::string::npos) << out;
+  EXPECT_EQ(std::count(out.begin(), out.end(), '='), 8) << out;  // four "== ..." headers
+}
+
+}  // namespace
+}  // namespace topple

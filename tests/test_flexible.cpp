@@ -1,0 +1,228 @@
+// Flexible supports (flexible.hpp): limiting cases against the rigid solver, the harmonic steady state of the
+// support, exactness of the coupled solver under up-sampling, second-order convergence of the decoupled analysis to
+// the exact coupled one with a massless object, and input validation.
+#include <cmath>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "topple/error.hpp"
+#include "topple/flexible.hpp"
+#include "topple/sliding.hpp"
+
+namespace topple {
+namespace {
+
+/// A smooth, non-harmonic test motion (two tones with an envelope), m/s^2, sampled at dt.
+GroundMotion test_motion(double dt, double pga_g = 0.4, double duration = 8.0) {
+  const auto n = static_cast<std::size_t>(duration / dt) + 1;
+  std::vector<double> a(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double t = static_cast<double>(i) * dt;
+    const double env = std::sin(kPi * t / duration);
+    a[i] = pga_g * kStandardGravity * env * env * (0.7 * std::sin(2 * kPi * 1.3 * t) + 0.3 * std::sin(2 * kPi * 3.7 * t + 0.4));
+  }
+  return GroundMotion::uniform(std::move(a), dt);
+}
+
+TEST(Flexible, StiffSupportDecoupledEqualsRigid) {
+  // A support at 100 kHz follows the ground: at the samples its absolute acceleration is the ground's up to the
+  // transients of each slope change, which decay as exp(-zeta omega dt) = exp(-3000) before the next sample.
+  // Round-off in omega^2 Y ~ a leaves ~1e-15 relative, so 1e-9 is a wide margin.
+  const GroundMotion g = test_motion(0.01);
+  const SlidingBlock block = SlidingBlock::make(0.15, -1.0, 0.0, SlidingMode::one_way);
+  const double rigid = slide_summary(g, block).residual_displacement_m;
+  ASSERT_GT(std::abs(rigid), 0.01);
+  const auto s = SupportOscillator::make(1e5, 0.05);
+  const FlexibleSummary f = slide_flexible(g, s, block, FlexibleAnalysis::decoupled);
+  EXPECT_NEAR(f.sliding.residual_displacement_m, rigid, 1e-9 * std::abs(rigid));
+  EXPECT_NEAR(f.kmax, g.pga_m_s2() / kStandardGravity, 1e-9);
+}
+
+TEST(Flexible, StiffSupportDecoupledWithVerticalEqualsRigid) {
+  // The vertical component reaches the body unfiltered; on a 100 kHz support the decoupled run is the rigid block's
+  // with the same vertical record, to the same 1e-9 as without it. A strong vertical motion must change the answer.
+  const GroundMotion g = test_motion(0.01, 0.4);
+  const GroundMotion v = test_motion(0.01, 0.3).time_scaled(0.5).trimmed(0.0, 4.0);
+  const SlidingBlock block = SlidingBlock::make(0.15, -1.0, 0.0, SlidingMode::one_way);
+  const double rigid = slide_summary(g, block, &v).residual_displacement_m;
+  const double plain = slide_summary(g, block).residual_displacement_m;
+  ASSERT_GT(std::abs(rigid - plain), 1e-3 * std::abs(plain));
+  const FlexibleSummary f = slide_flexible(g, SupportOscillator::make(1e5, 0.05), block, FlexibleAnalysis::decoupled, &v);
+  EXPECT_NEAR(f.sliding.residual_displacement_m, rigid, 1e-9 * std::abs(rigid));
+  EXPECT_THROW((void)slide_flexible(g, SupportOscillator::make(4.0, 0.05), SlidingBlock::make(0.15),
+                                    FlexibleAnalysis::coupled, &v),
+               InputError);
+}
+
+TEST(Flexible, StiffSupportCoupledApproachesRigid) {
+  // Coupled, massless object, support at 1 kHz (omega dt = 63, sub-stepped): the support's absolute acceleration
+  // lags the ground's by 2 zeta / omega = 16 us, a relative error 2 zeta W / omega ~ 1e-4 at the motion's 1.3 and
+  // 3.7 Hz; the displacement, which integrates the excess over the yield level, moves by a few times that: 1e-3.
+  const GroundMotion g = test_motion(0.01);
+  const SlidingBlock block = SlidingBlock::make(0.15, -1.0, 0.0, SlidingMode::one_way);
+  const double rigid = slide_summary(g, block).residual_displacement_m;
+  const FlexibleSummary f =
+      slide_flexible(g, SupportOscillator::make(1000.0, 0.05, 0.0), block, FlexibleAnalysis::coupled);
+  EXPECT_NEAR(f.sliding.residual_displacement_m, rigid, 1e-3 * std::abs(rigid));
+}
+
+TEST(Flexible, HarmonicSteadyStateAmplification) {
+  // a_g = A sin(W t) on a 4 Hz, 5 % support driven at 3 Hz: after the transient (exp(-zeta omega t) < 1e-9 after
+  // 20 s) the absolute acceleration's amplitude is A sqrt((1 + (2 zeta b)^2) / ((1 - b^2)^2 + (2 zeta b)^2)),
+  // b = W / omega (Chopra, Dynamics of Structures, eq 3.6.6). The record is the sine sampled at 1 ms and read as
+  // piecewise linear, and the peak is read at the samples: both O((W dt)^2) ~ 4e-4, so the tolerance is 1e-3.
+  const double dt = 0.001;
+  const double f_in = 3.0;
+  const double amp = 1.0;
+  std::vector<double> a(static_cast<std::size_t>(30.0 / dt) + 1);
+  for (std::size_t i = 0; i < a.size(); ++i) a[i] = amp * std::sin(2 * kPi * f_in * static_cast<double>(i) * dt);
+  const GroundMotion g = GroundMotion::uniform(a, dt);
+  const auto s = SupportOscillator::make(4.0, 0.05);
+  const auto hea = support_acceleration_m_s2(g, modal_properties(s));
+  double peak = 0.0;
+  for (std::size_t i = static_cast<std::size_t>(20.0 / dt); i < hea.size(); ++i) peak = std::max(peak, std::abs(hea[i]));
+  const double b = f_in / 4.0;
+  const double z = 0.05;
+  const double tr = std::sqrt((1 + std::pow(2 * z * b, 2)) / (std::pow(1 - b * b, 2) + std::pow(2 * z * b, 2)));
+  EXPECT_NEAR(peak / amp, tr, 1e-3 * tr);
+}
+
+TEST(Flexible, SupportMotionIsWhatTheDecoupledAnalysisSlidesOn) {
+  // support_motion is the filter surveys and sweeps can apply: the rigid solver on it must give the decoupled
+  // analysis' number exactly (same samples, same solver), and its samples at the record's times must be the
+  // sample-exact support acceleration (the sub-steps of a 2.5 Hz support at dt = 0.02 s are 4: every 4th point).
+  const GroundMotion g = test_motion(0.02);
+  const auto s = SupportOscillator::make(2.5, 0.05);
+  const SlidingBlock block = SlidingBlock::make(0.1);
+  const GroundMotion m = support_motion(g, s);
+  EXPECT_EQ(slide_summary(m, block).residual_displacement_m,
+            slide_flexible(g, s, block, FlexibleAnalysis::decoupled).sliding.residual_displacement_m);
+  const auto at_samples = support_acceleration_m_s2(g, modal_properties(s));
+  ASSERT_EQ(m.size(), 4 * (g.size() - 1) + 1);
+  for (std::size_t i = 0; i < g.size(); i += 97) EXPECT_NEAR(m.accel_m_s2()[4 * i], at_samples[i], 1e-12) << i;
+}
+
+TEST(Flexible, CoupledIsExactUnderLinearUpSampling) {
+  // The coupled solver integrates each phase exactly and locates slip events by root finding, so up-sampling the
+  // piecewise-linear record (the same function) changes only round-off and the event search (50-bit tolerance):
+  // 1e-9 relative.
+  const GroundMotion g = test_motion(0.01, 0.5);
+  const SlidingMassColumn col = SlidingMassColumn::make(30.0, 300.0, 600.0, 0.05);
+  for (const SlidingMode mode : {SlidingMode::one_way, SlidingMode::two_way}) {
+    const double coarse = slide_flexible(g, col, 0.1, FlexibleAnalysis::coupled, mode).sliding.residual_displacement_m;
+    const double fine =
+        slide_flexible(g.resampled(0.0025), col, 0.1, FlexibleAnalysis::coupled, mode).sliding.residual_displacement_m;
+    ASSERT_GT(std::abs(coarse), 1e-3);
+    EXPECT_NEAR(fine, coarse, 1e-9 * std::abs(coarse));
+  }
+}
+
+TEST(Flexible, DecoupledConvergesToCoupledWithMasslessObject) {
+  // With mass ratio 0 the coupled shelf is the decoupled one computed exactly; the decoupled analysis reads the
+  // support acceleration as piecewise linear between points h apart (h <= 0.1 / omega), an O(h^2) error. At
+  // dt <= 5 ms this 2.5 Hz support needs no sub-step (h = dt): halving dt must cut the gap by about 4 (we ask > 3).
+  // At the 20 ms record itself (4 sub-steps, h = 5 ms) the gap must be under 0.2 % (the (omega h)^2 / 8 = 0.08 %
+  // interpolation bound on the support's part of the demand, with margin for its effect on the slip).
+  const GroundMotion g = test_motion(0.02);
+  const SlidingBlock block = SlidingBlock::make(0.12, 0.12, 0.0, SlidingMode::one_way);
+  const auto s = SupportOscillator::make(2.5, 0.05, 0.0);
+  const double exact = slide_flexible(g, s, block, FlexibleAnalysis::coupled).sliding.residual_displacement_m;
+  ASSERT_GT(std::abs(exact), 0.01);
+  const auto gap = [&](double dt) {
+    const GroundMotion r = dt == 0.02 ? g : g.resampled(dt);
+    EXPECT_NEAR(slide_flexible(r, s, block, FlexibleAnalysis::coupled).sliding.residual_displacement_m, exact,
+                1e-9 * std::abs(exact));
+    return std::abs(slide_flexible(r, s, block, FlexibleAnalysis::decoupled).sliding.residual_displacement_m - exact);
+  };
+  EXPECT_LT(gap(0.02), 2e-3 * std::abs(exact));
+  std::vector<double> gaps;
+  for (const double dt : {0.005, 0.0025, 0.00125}) gaps.push_back(gap(dt));
+  for (std::size_t i = 1; i < gaps.size(); ++i) EXPECT_GT(gaps[i - 1] / gaps[i], 3.0) << i;
+}
+
+TEST(Flexible, TwoWayIsOddInThePolarity) {
+  // Two-way sliding on a symmetric support is odd in the input: inverting the record negates the displacement. Both
+  // runs do the same arithmetic with flipped signs, so the match is to round-off (1e-12 relative).
+  const GroundMotion g = test_motion(0.01, 0.6);
+  const SlidingBlock block = SlidingBlock::make(0.1);
+  const auto s = SupportOscillator::make(3.0, 0.05, 0.3);
+  const auto col = SlidingMassColumn::make(20.0, 300.0, 600.0, 0.05);
+  for (const auto analysis : {FlexibleAnalysis::decoupled, FlexibleAnalysis::coupled}) {
+    const double up = slide_flexible(g, s, block, analysis).sliding.residual_displacement_m;
+    const double down = slide_flexible(g.inverted(), s, block, analysis).sliding.residual_displacement_m;
+    ASSERT_GT(std::abs(up), 1e-3);
+    EXPECT_NEAR(down, -up, 1e-12 * std::abs(up));
+    const double c_up = slide_flexible(g, col, 0.1, analysis, SlidingMode::two_way).sliding.residual_displacement_m;
+    const double c_down =
+        slide_flexible(g.inverted(), col, 0.1, analysis, SlidingMode::two_way).sliding.residual_displacement_m;
+    EXPECT_NEAR(c_down, -c_up, 1e-12 * std::abs(c_up));
+  }
+}
+
+TEST(Flexible, MassRatioToZeroCoupledEqualsDecoupledLimit) {
+  // The coupled shelf is continuous in the mass ratio: r = 1e-6 differs from r = 0 by O(r) (1e-5 relative bound).
+  const GroundMotion g = test_motion(0.005);
+  const SlidingBlock block = SlidingBlock::make(0.12, -1.0, 0.0, SlidingMode::one_way);
+  const double r0 = slide_flexible(g, SupportOscillator::make(3.0, 0.05, 0.0), block, FlexibleAnalysis::coupled)
+                        .sliding.residual_displacement_m;
+  const double r1 = slide_flexible(g, SupportOscillator::make(3.0, 0.05, 1e-6), block, FlexibleAnalysis::coupled)
+                        .sliding.residual_displacement_m;
+  const double r2 = slide_flexible(g, SupportOscillator::make(3.0, 0.05, 0.5), block, FlexibleAnalysis::coupled)
+                        .sliding.residual_displacement_m;
+  EXPECT_NEAR(r1, r0, 1e-5 * std::abs(r0));
+  EXPECT_GT(std::abs(r2 - r0), 1e-3 * std::abs(r0));  // a heavy object does change the answer
+}
+
+TEST(Flexible, ColumnModeAndImpedanceDamping) {
+  // omega = pi Vs / 2H; SLAMMER's impedance damping 0.55016 (Vb/Vs)^-0.9904 capped at 0.2.
+  const GroundMotion g = test_motion(0.01);
+  const auto m = modal_properties(SlidingMassColumn::make(50.0, 600.0, 600.0, -0.05), g);
+  EXPECT_DOUBLE_EQ(m.omega_rad_s, kPi * 600.0 / 100.0);
+  EXPECT_DOUBLE_EQ(m.damping_ratio, 0.15);
+  EXPECT_NEAR(SlidingMassColumn::impedance_damping(1200.0, 400.0), 0.55016 * std::pow(3.0, -0.9904), 1e-15);
+  EXPECT_NEAR(m.participation, 4.0 / kPi, 1e-15);
+  EXPECT_NEAR(m.mass_fraction, 2.0 / kPi, 1e-15);
+}
+
+TEST(Flexible, EquivalentLinearSoftensAndDamps) {
+  // A strong motion strains the column: the converged V_s is below V_s0 and the damping above the small-strain 1 %
+  // plus impedance damping; a tiny reference strain softens more than a large one.
+  const GroundMotion g = test_motion(0.01, 0.5);
+  const auto soft = modal_properties(SlidingMassColumn::make(50.0, 400.0, 800.0, 0.05, 0.0001), g);
+  const auto stiff = modal_properties(SlidingMassColumn::make(50.0, 400.0, 800.0, 0.05, 0.01), g);
+  EXPECT_LT(soft.vs_m_s, stiff.vs_m_s);
+  EXPECT_LT(stiff.vs_m_s, 400.0);
+  EXPECT_GT(soft.damping_ratio, 0.01 + SlidingMassColumn::impedance_damping(800.0, soft.vs_m_s));
+  EXPECT_GE(soft.iterations, 2);
+}
+
+TEST(Flexible, RejectsBadParameters) {
+  const auto msg = [](auto&& f) {
+    try {
+      f();
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    ADD_FAILURE() << "no InputError";
+    return std::string();
+  };
+  EXPECT_NE(msg([] { (void)SupportOscillator::make(0.0, 0.05); }).find("got 0 Hz"), std::string::npos);
+  EXPECT_NE(msg([] { (void)SupportOscillator::make(4.0, 1.0); }).find("[0, 1)"), std::string::npos);
+  EXPECT_NE(msg([] { (void)SupportOscillator::make(4.0, 0.05, -1.0); }).find("mass ratio"), std::string::npos);
+  EXPECT_NE(msg([] { (void)SlidingMassColumn::make(-1.0, 600.0, 600.0, 0.05); }).find("height"), std::string::npos);
+  EXPECT_NE(msg([] { (void)SlidingMassColumn::make(10.0, 600.0, 600.0, -0.3); }).find("[0, 1)"), std::string::npos);
+  const GroundMotion g = test_motion(0.01);
+  EXPECT_NE(msg([&] {
+              (void)slide_flexible(g, SlidingMassColumn::make(10.0, 600.0, 600.0, 0.05), 0.0, FlexibleAnalysis::coupled);
+            }).find("yield coefficient"),
+            std::string::npos);
+  EXPECT_NE(msg([&] {
+              (void)slide_flexible(g, SupportOscillator::make(4.0, 0.05), SlidingBlock::make(0.3, 0.2),
+                                   FlexibleAnalysis::coupled);
+            }).find("mu_kinetic"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace topple
