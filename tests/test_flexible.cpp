@@ -30,7 +30,7 @@ TEST(Flexible, StiffSupportDecoupledEqualsRigid) {
   // transients of each slope change, which decay as exp(-zeta omega dt) = exp(-3000) before the next sample.
   // Round-off in omega^2 Y ~ a leaves ~1e-15 relative, so 1e-9 is a wide margin.
   const GroundMotion g = test_motion(0.01);
-  const SlidingBlock block = SlidingBlock::make(0.15, -1.0, 0.0, SlidingMode::one_way);
+  const SlidingBlock block = SlidingBlock::make(0.15, std::nullopt, 0.0, SlidingMode::one_way);
   const double rigid = slide_summary(g, block).residual_displacement_m;
   ASSERT_GT(std::abs(rigid), 0.01);
   const auto s = SupportOscillator::make(1e5, 0.05);
@@ -44,7 +44,7 @@ TEST(Flexible, StiffSupportDecoupledWithVerticalEqualsRigid) {
   // with the same vertical record, to the same 1e-9 as without it. A strong vertical motion must change the answer.
   const GroundMotion g = test_motion(0.01, 0.4);
   const GroundMotion v = test_motion(0.01, 0.3).time_scaled(0.5).trimmed(0.0, 4.0);
-  const SlidingBlock block = SlidingBlock::make(0.15, -1.0, 0.0, SlidingMode::one_way);
+  const SlidingBlock block = SlidingBlock::make(0.15, std::nullopt, 0.0, SlidingMode::one_way);
   const double rigid = slide_summary(g, block, &v).residual_displacement_m;
   const double plain = slide_summary(g, block).residual_displacement_m;
   ASSERT_GT(std::abs(rigid - plain), 1e-3 * std::abs(plain));
@@ -60,7 +60,7 @@ TEST(Flexible, StiffSupportCoupledApproachesRigid) {
   // lags the ground's by 2 zeta / omega = 16 us, a relative error 2 zeta W / omega ~ 1e-4 at the motion's 1.3 and
   // 3.7 Hz; the displacement, which integrates the excess over the yield level, moves by a few times that: 1e-3.
   const GroundMotion g = test_motion(0.01);
-  const SlidingBlock block = SlidingBlock::make(0.15, -1.0, 0.0, SlidingMode::one_way);
+  const SlidingBlock block = SlidingBlock::make(0.15, std::nullopt, 0.0, SlidingMode::one_way);
   const double rigid = slide_summary(g, block).residual_displacement_m;
   const FlexibleSummary f =
       slide_flexible(g, SupportOscillator::make(1000.0, 0.05, 0.0), block, FlexibleAnalysis::coupled);
@@ -163,7 +163,7 @@ TEST(Flexible, TwoWayIsOddInThePolarity) {
 TEST(Flexible, MassRatioToZeroCoupledEqualsDecoupledLimit) {
   // The coupled shelf is continuous in the mass ratio: r = 1e-6 differs from r = 0 by O(r) (1e-5 relative bound).
   const GroundMotion g = test_motion(0.005);
-  const SlidingBlock block = SlidingBlock::make(0.12, -1.0, 0.0, SlidingMode::one_way);
+  const SlidingBlock block = SlidingBlock::make(0.12, std::nullopt, 0.0, SlidingMode::one_way);
   const double r0 = slide_flexible(g, SupportOscillator::make(3.0, 0.05, 0.0), block, FlexibleAnalysis::coupled)
                         .sliding.residual_displacement_m;
   const double r1 = slide_flexible(g, SupportOscillator::make(3.0, 0.05, 1e-6), block, FlexibleAnalysis::coupled)

@@ -253,7 +253,7 @@ nb::dict run_slide_flexible(const GroundMotion& motion, double mu, const std::st
     throw parameter_error("support_freq_hz", "give either support_freq_hz (shelf, floor) or height_m (sliding mass)");
   }
   const FlexibleAnalysis analysis = coupled ? FlexibleAnalysis::coupled : FlexibleAnalysis::decoupled;
-  const SlidingBlock block = SlidingBlock::make(mu, -1.0, 0.0, parse_mode(mode), g_m_s2);
+  const SlidingBlock block = SlidingBlock::make(mu, std::nullopt, 0.0, parse_mode(mode), g_m_s2);
   nlohmann::ordered_json j;
   if (support_freq_hz) {
     const SupportOscillator s = SupportOscillator::make(*support_freq_hz, support_damping, mass_ratio);
