@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 
 #include <charconv>
+#include <cmath>
+#include <stdexcept>
 
 #include "topple/error.hpp"
 #include "topple/pulses.hpp"
@@ -35,8 +37,20 @@ io::ReadOptions read_options(const MotionOptions& o) {
 
 GroundMotion transform_motion(GroundMotion motion, const MotionOptions& o) {
   if (!o.scale_pga.empty() && o.scale) throw parameter_error("--scale-pga", "give either --scale-pga or --scale");
-  if (!o.scale_pga.empty()) motion = motion.scaled_to_pga(parse_acceleration_m_s2(o.scale_pga, "--scale-pga", o.g_m_s2));
-  if (o.scale) motion = motion.scaled(*o.scale);
+  // The library names its parameter ("scale", "pga"); the user typed an option, about this file.
+  const auto naming = [&](const char* option, const auto& f) {
+    try {
+      return f();
+    } catch (const InputError& e) {
+      if (!e.where().file.empty()) throw;
+      throw InputError(InputLocation{.file = o.file, .line = {}, .field = option}, e.problem());
+    }
+  };
+  if (!o.scale_pga.empty()) {
+    const double pga = parse_acceleration_m_s2(o.scale_pga, "--scale-pga", o.g_m_s2);
+    motion = naming("--scale-pga", [&] { return motion.scaled_to_pga(pga); });
+  }
+  if (o.scale) motion = naming("--scale", [&] { return motion.scaled(*o.scale); });
   if (o.invert) motion = motion.inverted();
   return motion;
 }
@@ -157,6 +171,15 @@ void check_plot_path(const std::string& path) {
   const std::string ext = dot == std::string::npos ? std::string() : path.substr(dot);
   if (ext != ".svg" && ext != ".png") {
     throw parameter_error("--plot", fmt::format("'{}': figures are written as .svg or .png", path));
+  }
+}
+
+void require_finite(std::initializer_list<std::pair<std::string_view, double>> values) {
+  for (const auto& [name, value] : values) {
+    if (!std::isfinite(value)) {
+      throw std::logic_error(fmt::format("{} came out as {} from finite input within the limits of a ground motion",
+                                         name, value));
+    }
   }
 }
 

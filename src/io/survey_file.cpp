@@ -10,6 +10,7 @@
 #include <toml++/toml.h>
 
 #include "topple/error.hpp"
+#include "topple/io/read.hpp"
 #include "topple/units.hpp"
 
 namespace topple {
@@ -390,11 +391,7 @@ Survey parse_survey(std::string_view text, const std::string& name, const std::f
 }
 
 Survey read_survey(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(InputLocation{path.string(), {}, {}}, "cannot open the survey file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_survey(text.str(), path.string(), path.parent_path());
+  return parse_survey(read_input_file(path, "survey"), path.string(), path.parent_path());
 }
 
 }  // namespace io
