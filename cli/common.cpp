@@ -51,6 +51,9 @@ GroundMotion transform_motion(GroundMotion motion, const MotionOptions& o) {
     motion = naming("--scale-pga", [&] { return motion.scaled_to_pga(pga); });
   }
   if (o.scale) motion = naming("--scale", [&] { return motion.scaled(*o.scale); });
+  // A record the user scaled stays a record: at most 100 g (README "Limits").
+  if (!o.scale_pga.empty()) naming("--scale-pga", [&] { require_record_acceleration(motion, "--scale-pga"); return 0; });
+  if (o.scale) naming("--scale", [&] { require_record_acceleration(motion, "--scale"); return 0; });
   if (o.invert) motion = motion.inverted();
   return motion;
 }

@@ -27,7 +27,7 @@ void require_accel_within_limit(const std::vector<double>& values, const char* f
   for (std::size_t i = 0; i < values.size(); ++i) {
     if (std::abs(values[i]) > Limits::max_abs_accel_m_s2) {
       throw parameter_error(field, fmt::format("{} {} is {:.6g} m/s2 ({:.6g} g), beyond the limit of {:.6g} m/s2 "
-                                               "(100 g) of a ground motion",
+                                               "of a ground motion",
                                                what, i, values[i], values[i] / kStandardGravity, Limits::max_abs_accel_m_s2));
     }
   }
@@ -88,6 +88,15 @@ std::vector<double> solve_dense(std::vector<double> a, std::vector<double> b) {
 }
 
 }  // namespace
+
+void require_record_acceleration(const GroundMotion& motion, const std::string& field) {
+  const double pga = motion.pga_m_s2();
+  if (pga > Limits::max_record_accel_m_s2) {
+    throw parameter_error(field, fmt::format("the PGA would be {:.6g} m/s2 ({:.6g} g), beyond the limit of {:.6g} m/s2 "
+                                             "(100 g) of a record",
+                                             pga, pga / kStandardGravity, Limits::max_record_accel_m_s2));
+  }
+}
 
 GroundMotion GroundMotion::uniform(std::vector<double> accel_m_s2, double dt_s, double start_time_s,
                                    RecordMetadata metadata) {
@@ -191,7 +200,7 @@ GroundMotion GroundMotion::scaled(double factor) const {
   // Checked before multiplying: 1e308 x a record would overflow to inf.
   if (std::abs(factor) * pga_m_s2() > Limits::max_abs_accel_m_s2) {
     throw parameter_error("scale", fmt::format("scale factor {:.6g} makes the PGA {:.6g} m/s2 ({:.6g} g), beyond the "
-                                               "limit of {:.6g} m/s2 (100 g) of a ground motion",
+                                               "limit of {:.6g} m/s2 of a ground motion",
                                                factor, std::abs(factor) * pga_m_s2(),
                                                std::abs(factor) * pga_m_s2() / kStandardGravity, Limits::max_abs_accel_m_s2));
   }

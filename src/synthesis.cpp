@@ -196,7 +196,11 @@ double predominant_frequency_ratio(double zeta_g, FilterModel model, double f_g_
   const auto [i, wz] = bracket(kCalibrationDamping, zeta_g);
   std::array<double, 5> log_f{};
   for (std::size_t k = 0; k < log_f.size(); ++k) log_f[k] = portable_log(kCalibrationFrequency[k]);
-  const auto [j, wf] = bracket(log_f, portable_log(f_g_hz));
+  // Not a structured binding: a lambda may not capture one before C++20 compilers caught up (clang < 16, which the
+  // fuzz preset uses).
+  const std::pair<std::size_t, double> jf = bracket(log_f, portable_log(f_g_hz));
+  const std::size_t j = jf.first;
+  const double wf = jf.second;
   const auto row = [&](std::size_t r) { return kappa[r][j - 1] + wf * (kappa[r][j] - kappa[r][j - 1]); };
   return row(i - 1) + wz * (row(i) - row(i - 1));
 }
@@ -223,10 +227,10 @@ double ground_frequency_for_request_hz(double request_hz, double zeta_g, FilterM
 void validate(const SynthesisSpec& s) {
   const auto finite_positive = [](double v) { return std::isfinite(v) && v > 0.0; };
   using Limits = GroundMotionLimits;
-  if (!finite_positive(s.pga_m_s2) || s.pga_m_s2 > Limits::max_abs_accel_m_s2) {
+  if (!finite_positive(s.pga_m_s2) || s.pga_m_s2 > Limits::max_record_accel_m_s2) {
     throw parameter_error("pga", fmt::format("the PGA must be positive and at most {:.6g} m/s2 (100 g, the limit of a "
                                              "ground motion), got {} m/s2",
-                                             Limits::max_abs_accel_m_s2, s.pga_m_s2));
+                                             Limits::max_record_accel_m_s2, s.pga_m_s2));
   }
   if (!(s.dt_s >= Limits::min_dt_s && s.dt_s <= 0.1)) {
     throw parameter_error("dt", fmt::format("the time step must be in [{:.6g}, 0.1] s, got {} s", Limits::min_dt_s,

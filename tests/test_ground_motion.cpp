@@ -115,20 +115,25 @@ void expect_limit(F f, std::initializer_list<const char*> parts) {
 }
 
 TEST(GroundMotionLimits, AccelerationAtAndBeyondTheLimit) {
+  // Two tiers: 1e6 m/s2 for any GroundMotion (idealised impulses, rocking.md R8), 100 g for a record.
   using L = GroundMotionLimits;
-  EXPECT_DOUBLE_EQ(L::max_abs_accel_m_s2, 100.0 * kStandardGravity);
+  EXPECT_DOUBLE_EQ(L::max_record_accel_m_s2, 100.0 * kStandardGravity);
+  EXPECT_DOUBLE_EQ(L::max_abs_accel_m_s2, 1e6);
   EXPECT_DOUBLE_EQ(GroundMotion::uniform({0.0, -L::max_abs_accel_m_s2}, 0.01).pga_m_s2(), L::max_abs_accel_m_s2);
-  expect_limit([] { return GroundMotion::uniform({0.0, 1e300}, 0.01); }, {"accel", "sample 1", "100 g"});
-  expect_limit([] { return GroundMotion::irregular({0.0, 1.0}, {-1e3, 0.0}); }, {"accel", "100 g"});
+  expect_limit([] { return GroundMotion::uniform({0.0, 1e300}, 0.01); }, {"accel", "sample 1", "1e+06 m/s2"});
+  expect_limit([] { return GroundMotion::irregular({0.0, 1.0}, {-1.1e6, 0.0}); }, {"accel", "1e+06 m/s2"});
+  const auto record = GroundMotion::uniform({0.0, 1000.0}, 0.01);  // 102 g: a GroundMotion, not a record
+  expect_limit([&] { require_record_acceleration(record, "--scale"); return 0; }, {"--scale", "100 g", "101.97 g"});
+  EXPECT_NO_THROW(require_record_acceleration(GroundMotion::uniform({0.0, 980.0}, 0.01), "--scale"));
 }
 
 TEST(GroundMotionLimits, ScalingIsCheckedBeforeItOverflows) {
   // --scale 1e308 used to give PGA inf and Arias NaN.
   const auto m = ramp();  // PGA 4 m/s2
-  expect_limit([&] { return m.scaled(1e308); }, {"scale", "1e+308", "100 g"});
-  expect_limit([&] { return m.scaled(-250.0); }, {"scale", "1000 m/s2"});
-  EXPECT_DOUBLE_EQ(m.scaled(-245.0).pga_m_s2(), 980.0);  // 245 x 4 = 980 m/s2 < 980.665
-  expect_limit([&] { return m.scaled_to_pga(101.0 * kStandardGravity); }, {"100 g"});
+  expect_limit([&] { return m.scaled(1e308); }, {"scale", "1e+308", "1e+06 m/s2"});
+  expect_limit([&] { return m.scaled(-250001.0); }, {"scale", "1e+06 m/s2"});
+  EXPECT_DOUBLE_EQ(m.scaled(-250000.0).pga_m_s2(), 1e6);  // 250000 x 4 = the limit, accepted
+  expect_limit([&] { return m.scaled_to_pga(1.1e6); }, {"1e+06 m/s2"});
   EXPECT_DOUBLE_EQ(m.scaled(0.0).pga_m_s2(), 0.0);
 }
 

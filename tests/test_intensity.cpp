@@ -37,7 +37,7 @@ TEST(Intensity, PiecewiseLinearIntegralsAreExact) {
 
 
 TEST(Intensity, FiniteAtTheCornerOfTheLimits) {
-  // The largest acceleration for the longest record (GroundMotionLimits: 100 g for 6 h), constant: every measure is
+  // The largest acceleration for the longest record (GroundMotionLimits: 1e6 m/s2 for 6 h), constant: every measure is
   // finite and the integrals take their closed forms PGV = a T, PGD = a T^2 / 2, Arias = pi / (2 g) a^2 T. The
   // trapezoid and the cubic per step are exact for a constant, so the tolerance is rounding over 21,600 steps.
   using L = GroundMotionLimits;

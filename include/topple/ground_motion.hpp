@@ -13,8 +13,10 @@
 // it lies outside what any earthquake record or shaking-table motion is, by a wide margin. Within them every
 // quantity derived from a record (velocity, displacement, Arias intensity, spectra, sliding and rocking responses)
 // is far from the range of double precision, so that no inf or NaN can come out of a finite input:
-//   |a| <= 100 g, duration <= 6 h, |t0| <= 1 day, 1 us <= uniform dt <= 10 s, positive irregular steps >= 1 us,
-//   at most 5e7 samples. Worst cases: PGV <= a T = 2.1e7 m/s, PGD <= a T^2 / 2 = 2.3e11 m, integral a^2 dt <= 2.1e10.
+//   records (readers, scaled records, synthesis) |a| <= 100 g; any GroundMotion (idealised pulses too) |a| <= 1e6
+//   m/s^2; duration <= 6 h, |t0| <= 1 day, 1 us <= uniform dt <= 10 s, positive irregular steps >= 1 us, at most
+//   5e7 samples. Worst cases at 1e6 m/s^2 for 6 h: PGV <= a T = 2.2e10 m/s, PGD <= a T^2 / 2 = 2.3e14 m,
+//   integral a^2 dt <= 2.2e16; at 100 g: 2.1e7 m/s, 2.3e11 m, 2.1e10.
 #include <cstddef>
 #include <span>
 #include <string>
@@ -27,9 +29,14 @@ namespace topple {
 /// The physically sensible range of a ground motion (see the header). Every GroundMotion satisfies them: the
 /// constructors, scaled(), time_scaled() and resampled() throw InputError naming the limit otherwise.
 struct GroundMotionLimits {
-  /// |a| <= 100 g (980.665 m/s^2). The largest accelerations ever recorded are about 4 g (Iwate-Miyagi 2008,
-  /// IWTH25); threshold searches of small, stiff objects under short pulses legitimately scale inputs to tens of g.
-  static constexpr double max_abs_accel_m_s2 = 100.0 * kStandardGravity;
+  /// |a| <= 100 g (980.665 m/s^2) for a record: what readers return, a record scaled by the user (require_record_
+  /// acceleration), a synthetic motion. The largest accelerations ever recorded are about 4 g (Iwate-Miyagi 2008,
+  /// IWTH25); threshold searches of small, stiff objects under short pulses legitimately reach tens of g.
+  static constexpr double max_record_accel_m_s2 = 100.0 * kStandardGravity;
+  /// |a| <= 1e6 m/s^2 for any GroundMotion: an idealised velocity impulse is a rectangular pulse of a few
+  /// microseconds carrying metres per second (1e5 m/s^2 for 1 m/s in 10 us; tests/test_rocking.cpp,
+  /// R8VelocityImpulse); a million m/s^2 for 6 h still keeps every derived quantity below 1e17.
+  static constexpr double max_abs_accel_m_s2 = 1e6;
   /// Duration <= 6 h. Strong shaking lasts minutes (the longest K-NET records, Tohoku 2011, are 300 s); continuous
   /// recordings cut around an event are at most hours.
   static constexpr double max_duration_s = 6.0 * 3600.0;
@@ -121,5 +128,9 @@ class GroundMotion {
   double t0_ = 0.0;
   RecordMetadata meta_;
 };
+
+/// Throws InputError naming `field` (e.g. "--scale") when the record's PGA exceeds
+/// GroundMotionLimits::max_record_accel_m_s2 (100 g): for records scaled at a user's request.
+void require_record_acceleration(const GroundMotion& motion, const std::string& field);
 
 }  // namespace topple

@@ -129,7 +129,8 @@ std::string read_input_file(const std::filesystem::path& path, std::string_view 
   };
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);  // follows links: a link to /dev/zero is a device
-  if (ec || !fs::exists(status)) fail(fmt::format("cannot open the {} file: it does not exist", what));
+  if (!fs::exists(status)) fail(fmt::format("cannot open the {} file: it does not exist", what));
+  if (ec) fail(fmt::format("cannot open the {} file: {}", what, ec.message()));
   if (fs::is_directory(status)) fail(fmt::format("is a directory, not a {} file", what));
   if (!fs::is_regular_file(status)) {
     const char* kind = fs::is_character_file(status) ? "a character device"

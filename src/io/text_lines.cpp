@@ -297,7 +297,7 @@ double file_unit_factor(const Text& text, std::string_view unit, std::optional<s
 
 std::vector<double> to_m_s2(const Text& text, const Samples& samples, double factor, std::string_view field) {
   std::vector<double> out(samples.values.size());
-  constexpr double kLimit = GroundMotionLimits::max_abs_accel_m_s2;
+  constexpr double kLimit = GroundMotionLimits::max_record_accel_m_s2;
   for (std::size_t i = 0; i < out.size(); ++i) {
     out[i] = samples.values[i] * factor;
     if (!std::isfinite(out[i]) || std::abs(out[i]) > kLimit) {
