@@ -46,14 +46,20 @@ GroundMotion transform_motion(GroundMotion motion, const MotionOptions& o) {
       throw InputError(InputLocation{.file = o.file, .line = {}, .field = option}, e.problem());
     }
   };
+  // A record the user scales stays a record: at most 100 g (README "Limits"), checked before scaling.
   if (!o.scale_pga.empty()) {
     const double pga = parse_acceleration_m_s2(o.scale_pga, "--scale-pga", o.g_m_s2);
-    motion = naming("--scale-pga", [&] { return motion.scaled_to_pga(pga); });
+    motion = naming("--scale-pga", [&] {
+      require_record_acceleration(pga, "--scale-pga");
+      return motion.scaled_to_pga(pga);
+    });
   }
-  if (o.scale) motion = naming("--scale", [&] { return motion.scaled(*o.scale); });
-  // A record the user scaled stays a record: at most 100 g (README "Limits").
-  if (!o.scale_pga.empty()) naming("--scale-pga", [&] { require_record_acceleration(motion, "--scale-pga"); return 0; });
-  if (o.scale) naming("--scale", [&] { require_record_acceleration(motion, "--scale"); return 0; });
+  if (o.scale) {
+    motion = naming("--scale", [&] {
+      require_record_acceleration(std::abs(*o.scale) * motion.pga_m_s2(), "--scale");
+      return motion.scaled(*o.scale);
+    });
+  }
   if (o.invert) motion = motion.inverted();
   return motion;
 }

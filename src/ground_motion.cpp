@@ -89,12 +89,20 @@ std::vector<double> solve_dense(std::vector<double> a, std::vector<double> b) {
 
 }  // namespace
 
-void require_record_acceleration(const GroundMotion& motion, const std::string& field) {
-  const double pga = motion.pga_m_s2();
-  if (pga > Limits::max_record_accel_m_s2) {
-    throw parameter_error(field, fmt::format("the PGA would be {:.6g} m/s2 ({:.6g} g), beyond the limit of {:.6g} m/s2 "
-                                             "(100 g) of a record",
-                                             pga, pga / kStandardGravity, Limits::max_record_accel_m_s2));
+namespace {
+
+/// "12.3 m/s2 (1.25 g)", or what an overflowed product means.
+std::string describe_accel(double a_m_s2) {
+  if (!std::isfinite(a_m_s2)) return "beyond the range of double precision";
+  return fmt::format("{:.6g} m/s2 ({:.6g} g)", a_m_s2, a_m_s2 / kStandardGravity);
+}
+
+}  // namespace
+
+void require_record_acceleration(double pga_m_s2, const std::string& field) {
+  if (!(pga_m_s2 <= Limits::max_record_accel_m_s2)) {
+    throw parameter_error(field, fmt::format("the PGA would be {}, beyond the limit of {:.6g} m/s2 (100 g) of a record",
+                                             describe_accel(pga_m_s2), Limits::max_record_accel_m_s2));
   }
 }
 
@@ -199,10 +207,10 @@ GroundMotion GroundMotion::scaled(double factor) const {
   if (!std::isfinite(factor)) throw parameter_error("scale", fmt::format("scale factor must be finite, got {}", factor));
   // Checked before multiplying: 1e308 x a record would overflow to inf.
   if (std::abs(factor) * pga_m_s2() > Limits::max_abs_accel_m_s2) {
-    throw parameter_error("scale", fmt::format("scale factor {:.6g} makes the PGA {:.6g} m/s2 ({:.6g} g), beyond the "
-                                               "limit of {:.6g} m/s2 of a ground motion",
-                                               factor, std::abs(factor) * pga_m_s2(),
-                                               std::abs(factor) * pga_m_s2() / kStandardGravity, Limits::max_abs_accel_m_s2));
+    throw parameter_error("scale", fmt::format("scale factor {:.6g} makes the PGA {}, beyond the limit of {:.6g} m/s2 "
+                                               "of a ground motion",
+                                               factor, describe_accel(std::abs(factor) * pga_m_s2()),
+                                               Limits::max_abs_accel_m_s2));
   }
   GroundMotion m = *this;
   for (double& a : m.accel_) a *= factor;

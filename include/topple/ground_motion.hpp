@@ -129,8 +129,9 @@ class GroundMotion {
   RecordMetadata meta_;
 };
 
-/// Throws InputError naming `field` (e.g. "--scale") when the record's PGA exceeds
-/// GroundMotionLimits::max_record_accel_m_s2 (100 g): for records scaled at a user's request.
-void require_record_acceleration(const GroundMotion& motion, const std::string& field);
+/// Throws InputError naming `field` (e.g. "--scale") when `pga_m_s2`, the PGA a record would have (say |factor| x
+/// its PGA, before scaling it), exceeds GroundMotionLimits::max_record_accel_m_s2 (100 g), or is not finite: for
+/// records scaled at a user's request.
+void require_record_acceleration(double pga_m_s2, const std::string& field);
 
 }  // namespace topple
