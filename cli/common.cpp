@@ -17,8 +17,10 @@ void add_motion_options(CLI::App& cmd, MotionOptions& o) {
                                        "knet, usgs-smc, esm, plain")
       ->capture_default_str();
   cmd.add_option("--channel", o.channel, "Channel of a multi-channel file (CSMIP V2), 1-based");
-  cmd.add_option("--units", o.units, "Unit of the values of a plain file: g, m/s2, cm/s2, gal");
-  cmd.add_option("--dt", o.dt_s, "Time step of a one-column plain file, s");
+  cmd.add_option("--units", o.units, "Unit of the values (g, m/s2, cm/s2, gal) of a plain file that does not name it; "
+                                     "for a file that states its unit, it must agree");
+  cmd.add_option("--dt", o.dt_s, "Time step of a one-column plain file, s; for a file that states its dt, it must "
+                                 "agree");
   cmd.add_option("--scale-pga", o.scale_pga, "Scale the record to this PGA, with a unit (e.g. 0.5g, 3m/s2)");
   cmd.add_option("--scale", o.scale, "Multiply the record by this factor");
   cmd.add_flag("--invert", o.invert, "Flip the polarity of the record");
