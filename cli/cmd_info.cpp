@@ -50,6 +50,11 @@ void add_info_command(CLI::App& app) {
     const OptionalMeasure& tp = all.tp_s;
     const OptionalMeasure& tm = all.tm_s;
     const OptionalMeasure& fp = all.predominant_frequency_hz;
+    require_finite({{"dt", motion.dt_s()}, {"start time", motion.start_time_s()}, {"duration", motion.duration_s()},
+                    {"PGA", im.pga_m_s2}, {"PGA time", im.pga_time_s}, {"PGV", im.pgv_m_s}, {"PGD", im.pgd_m},
+                    {"Arias intensity", im.arias_m_s}, {"CAV", cav}, {"Tp", tp.value.value_or(0.0)},
+                    {"Tm", tm.value.value_or(0.0)}, {"f_p", fp.value.value_or(0.0)}});
+    if (duration) require_finite({{"D5-95", duration->duration_s}, {"D5", duration->start_s}, {"D95", duration->end_s}});
     if (!plot_path->empty()) {
       // Tp's own spectrum (spectra.hpp): 5 % damping on Tp's periods.
       const auto periods = tp_periods_s();

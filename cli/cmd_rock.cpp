@@ -125,6 +125,13 @@ void run_rock(const RockOptions& o) {
     s = naming_options([&] { return rock_summary(horizontal, body, options, vertical_ptr); });
   }
   for (const auto& w : s.warnings) fmt::print(stderr, "topple: warning: {}\n", w);
+  require_finite({{"PGA", horizontal.pga_m_s2()}, {"max |theta|", s.max_abs_rotation_rad},
+                  {"max |theta| / alpha", s.max_rotation_over_alpha}, {"time of max |theta|", s.max_rotation_time_s},
+                  {"first uplift", s.uplift_time_s.value_or(0.0)}, {"|theta| > alpha", s.exceeded_alpha_time_s.value_or(0.0)},
+                  {"overturning time", s.overturn_time_s.value_or(0.0)}, {"end time", s.end_time_s},
+                  {"energy lost", s.energy_lost_j_per_kg}, {"max |theta dot|", s.max_abs_theta_dot_rad_s},
+                  {"onset ratio", s.onset_accel_ratio.value_or(0.0)}, {"critical mu", s.critical_mu.value_or(0.0)},
+                  {"alpha", s.alpha_rad}, {"R", s.R_m}, {"p", s.p_rad_s}, {"e", s.e}});
 
   if (o.json) {
     nlohmann::ordered_json j = io::rocking_summary_json(s, body, options);

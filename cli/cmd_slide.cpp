@@ -75,6 +75,13 @@ void run_slide(const SlideOptions& o) {
     summary = slide_summary(horizontal, block, vertical_ptr);
   }
 
+  require_finite({{"PGA", horizontal.pga_m_s2()}, {"max |displacement|", summary.max_abs_displacement_m},
+                  {"time of max |displacement|", summary.max_displacement_time_s},
+                  {"residual displacement", summary.residual_displacement_m},
+                  {"max |velocity|", summary.max_abs_velocity_m_s}, {"end time", summary.end_time_s},
+                  {"first slip", summary.first_slip_time_s.value_or(0.0)},
+                  {"total slip duration", summary.total_slip_duration_s},
+                  {"contact lost", summary.contact_lost_time_s.value_or(0.0)}});
   if (o.json) {
     nlohmann::ordered_json j = io::sliding_summary_json(summary, block);
     j["input"] = io::run_input_json(run.input, horizontal, g);

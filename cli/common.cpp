@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 
 #include <charconv>
+#include <cmath>
+#include <stdexcept>
 
 #include "topple/error.hpp"
 #include "topple/io/output_file.hpp"
@@ -16,8 +18,10 @@ void add_motion_options(CLI::App& cmd, MotionOptions& o) {
                                        "knet, usgs-smc, esm, plain")
       ->capture_default_str();
   cmd.add_option("--channel", o.channel, "Channel of a multi-channel file (CSMIP V2), 1-based");
-  cmd.add_option("--units", o.units, "Unit of the values of a plain file: g, m/s2, cm/s2, gal");
-  cmd.add_option("--dt", o.dt_s, "Time step of a one-column plain file, s");
+  cmd.add_option("--units", o.units, "Unit of the values (g, m/s2, cm/s2, gal) of a plain file that does not name it; "
+                                     "for a file that states its unit, it must agree");
+  cmd.add_option("--dt", o.dt_s, "Time step of a one-column plain file, s; for a file that states its dt, it must "
+                                 "agree");
   cmd.add_option("--scale-pga", o.scale_pga, "Scale the record to this PGA, with a unit (e.g. 0.5g, 3m/s2)");
   cmd.add_option("--scale", o.scale, "Multiply the record by this factor");
   cmd.add_flag("--invert", o.invert, "Flip the polarity of the record");
@@ -36,8 +40,29 @@ io::ReadOptions read_options(const MotionOptions& o) {
 
 GroundMotion transform_motion(GroundMotion motion, const MotionOptions& o) {
   if (!o.scale_pga.empty() && o.scale) throw parameter_error("--scale-pga", "give either --scale-pga or --scale");
-  if (!o.scale_pga.empty()) motion = motion.scaled_to_pga(parse_acceleration_m_s2(o.scale_pga, "--scale-pga", o.g_m_s2));
-  if (o.scale) motion = motion.scaled(*o.scale);
+  // The library names its parameter ("scale", "pga"); the user typed an option, about this file.
+  const auto naming = [&](const char* option, const auto& f) {
+    try {
+      return f();
+    } catch (const InputError& e) {
+      if (!e.where().file.empty()) throw;
+      throw InputError(InputLocation{.file = o.file, .line = {}, .field = option}, e.problem());
+    }
+  };
+  // A record the user scales stays a record: at most 100 g (README "Limits"), checked before scaling.
+  if (!o.scale_pga.empty()) {
+    const double pga = parse_acceleration_m_s2(o.scale_pga, "--scale-pga", o.g_m_s2);
+    motion = naming("--scale-pga", [&] {
+      require_record_acceleration(pga, "--scale-pga");
+      return motion.scaled_to_pga(pga);
+    });
+  }
+  if (o.scale) {
+    motion = naming("--scale", [&] {
+      require_record_acceleration(std::abs(*o.scale) * motion.pga_m_s2(), "--scale");
+      return motion.scaled(*o.scale);
+    });
+  }
   if (o.invert) motion = motion.inverted();
   return motion;
 }
@@ -189,6 +214,15 @@ void check_plot_path(const std::string& path) {
     throw parameter_error("--plot", fmt::format("'{}': figures are written as .svg or .png", path));
   }
   check_output_path(path);
+}
+
+void require_finite(std::initializer_list<std::pair<std::string_view, double>> values) {
+  for (const auto& [name, value] : values) {
+    if (!std::isfinite(value)) {
+      throw std::logic_error(fmt::format("{} came out as {} from finite input within the limits of a ground motion",
+                                         name, value));
+    }
+  }
 }
 
 std::string format_seconds_or_none(const std::optional<double>& t) {

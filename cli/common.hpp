@@ -1,8 +1,11 @@
 #pragma once
 // Shared pieces of the `topple` command line: how a motion is named and loaded, unit-bearing option values, and
 // printing. No physics here.
+#include <initializer_list>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <utility>
 
 #include <CLI/CLI.hpp>
 
@@ -85,6 +88,10 @@ void check_plot_path(const std::string& path);
 /// Checks before any work that a result file can be created where `path` says (empty: none asked): OutputError
 /// naming the path (exit 4) otherwise. Nothing is left behind.
 void check_output_path(const std::string& path);
+/// Every number a command prints must be finite. Within GroundMotionLimits all derived quantities are (README
+/// "Limits"), so a non-finite one is a bug: it is reported as an internal error (exit 1) naming the quantity, never
+/// printed. Call before printing anything.
+void require_finite(std::initializer_list<std::pair<std::string_view, double>> values);
 
 /// JSON-friendly number: NaN/Inf never reach output (callers pass optionals for "none").
 [[nodiscard]] std::string format_seconds_or_none(const std::optional<double>& t);

@@ -2,6 +2,8 @@
 # Builds the libFuzzer targets (the `fuzz` preset: clang, ASan + UBSan) and runs each for a bounded time.
 #
 #   scripts/fuzz.sh [seconds-per-target]     (default 20)
+#   TOPPLE_FUZZ_RUNS=1000000 scripts/fuzz.sh 3600   (stop each target at 10^6 executions, or after an hour)
+#   TOPPLE_FUZZ_TARGETS="fuzz_knet fuzz_sweep" scripts/fuzz.sh 60   (only these targets)
 #
 # Seed corpora are made at run time from ../shared/records when it is there (TOPPLE_SHARED_DIR overrides): each
 # record, cut to its first 16 KiB, plus a small well-formed version of it (header kept, a few samples, counts
@@ -13,7 +15,8 @@ cd "$(dirname "$0")/.."
 seconds="${1:-20}"
 jobs="${TOPPLE_JOBS:-2}"
 shared="${TOPPLE_SHARED_DIR:-$(pwd)/../shared}"
-targets=(fuzz_peer_at2 fuzz_cosmos_v2 fuzz_csmip_v2 fuzz_knet fuzz_usgs_smc fuzz_esm fuzz_plain fuzz_detect)
+runs="${TOPPLE_FUZZ_RUNS:--1}"   # -1: no limit on executions, only on time
+read -r -a targets <<<"${TOPPLE_FUZZ_TARGETS:-fuzz_peer_at2 fuzz_cosmos_v2 fuzz_csmip_v2 fuzz_knet fuzz_usgs_smc fuzz_esm fuzz_plain fuzz_detect fuzz_survey fuzz_sweep}"
 
 cmake --preset fuzz >/dev/null
 cmake --build --preset fuzz -j "$jobs" --target "${targets[@]}"
@@ -31,6 +34,7 @@ seeds_for() {
     fuzz_usgs_smc) echo '*.smc' ;;
     fuzz_esm) echo '*.ASC' ;;
     fuzz_plain) echo '*.csv slammer/*.csv' ;;
+    fuzz_survey|fuzz_sweep) echo '' ;;  # seeded from examples/ below
     *) echo '*' ;;
   esac
 }
@@ -102,14 +106,20 @@ for target in "${targets[@]}"; do
       done
     done
   fi
-  echo "== $target: ${seconds} s"
-  if ! "$out/fuzz/$target" "$corpus" -max_total_time="$seconds" -max_len=65536 -timeout=10 -rss_limit_mb=2048 \
-       -dict=fuzz/readers.dict -print_final_stats=1 -artifact_prefix="$out/artifacts/$target-" 2>"$out/$target.log"; then
+  dict=fuzz/readers.dict
+  case "$target" in
+    fuzz_survey) cp examples/survey.toml "$corpus/seed-survey.toml"; dict=fuzz/toml.dict ;;
+    fuzz_sweep) for f in examples/sweep/*.toml; do cp "$f" "$corpus/seed-$(basename "$f")"; done; dict=fuzz/toml.dict ;;
+  esac
+  echo "== $target: ${seconds} s$([[ "$runs" == -1 ]] || echo ", at most $runs runs")"
+  if ! "$out/fuzz/$target" "$corpus" -max_total_time="$seconds" -runs="$runs" -max_len=65536 -timeout=10 \
+       -rss_limit_mb=2048 -dict="$dict" -print_final_stats=1 -artifact_prefix="$out/artifacts/$target-" \
+       2>"$out/$target.log"; then
     echo "!! $target found a problem; reproducer in $out/artifacts, log in $out/$target.log"
     tail -n 40 "$out/$target.log"
     status=1
   else
-    grep -E '^stat::number_of_executed_units|^Done' "$out/$target.log" || true
+    grep -E '^stat::number_of_executed_units|^stat::average_exec_per_sec|^Done' "$out/$target.log" || true
   fi
 done
 exit "$status"

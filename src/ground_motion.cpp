@@ -20,6 +20,47 @@ void require_finite_samples(const std::vector<double>& values, const char* field
   }
 }
 
+using Limits = GroundMotionLimits;
+
+/// |a| within the acceleration limit, for the samples of a record (field "accel") or a scaled one ("scale").
+void require_accel_within_limit(const std::vector<double>& values, const char* field, const char* what) {
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (std::abs(values[i]) > Limits::max_abs_accel_m_s2) {
+      throw parameter_error(field, fmt::format("{} {} is {:.6g} m/s2 ({:.6g} g), beyond the limit of {:.6g} m/s2 "
+                                               "of a ground motion",
+                                               what, i, values[i], values[i] / kStandardGravity, Limits::max_abs_accel_m_s2));
+    }
+  }
+}
+
+void require_sample_count(std::size_t n, const char* field) {
+  if (n > Limits::max_samples) {
+    throw parameter_error(field, fmt::format("{} samples, more than the limit of {} samples of a ground motion", n,
+                                             Limits::max_samples));
+  }
+}
+
+void require_duration(double duration_s, double start_s, const char* field) {
+  if (!(duration_s <= Limits::max_duration_s)) {
+    throw parameter_error(field, fmt::format("the record lasts {:.6g} s, more than the limit of {:.6g} s (6 h) of a "
+                                             "ground motion",
+                                             duration_s, Limits::max_duration_s));
+  }
+  if (!(std::abs(start_s) <= Limits::max_abs_start_time_s)) {
+    throw parameter_error(field, fmt::format("the record starts at {:.6g} s, beyond the limit of +-{:.6g} s (1 day); "
+                                             "shift its times",
+                                             start_s, Limits::max_abs_start_time_s));
+  }
+}
+
+void require_uniform_dt(double dt_s, const char* field) {
+  if (!(dt_s >= Limits::min_dt_s && dt_s <= Limits::max_dt_s)) {
+    throw parameter_error(field, fmt::format("time step {:.6g} s is outside the limits [{:.6g}, {:.6g}] s of a ground "
+                                             "motion",
+                                             dt_s, Limits::min_dt_s, Limits::max_dt_s));
+  }
+}
+
 /// Solves the small dense system A x = b (Gaussian elimination with partial pivoting); A is n x n row-major.
 std::vector<double> solve_dense(std::vector<double> a, std::vector<double> b) {
   const std::size_t n = b.size();
@@ -48,6 +89,23 @@ std::vector<double> solve_dense(std::vector<double> a, std::vector<double> b) {
 
 }  // namespace
 
+namespace {
+
+/// "12.3 m/s2 (1.25 g)", or what an overflowed product means.
+std::string describe_accel(double a_m_s2) {
+  if (!std::isfinite(a_m_s2)) return "beyond the range of double precision";
+  return fmt::format("{:.6g} m/s2 ({:.6g} g)", a_m_s2, a_m_s2 / kStandardGravity);
+}
+
+}  // namespace
+
+void require_record_acceleration(double pga_m_s2, const std::string& field) {
+  if (!(pga_m_s2 <= Limits::max_record_accel_m_s2)) {
+    throw parameter_error(field, fmt::format("the PGA would be {}, beyond the limit of {:.6g} m/s2 (100 g) of a record",
+                                             describe_accel(pga_m_s2), Limits::max_record_accel_m_s2));
+  }
+}
+
 GroundMotion GroundMotion::uniform(std::vector<double> accel_m_s2, double dt_s, double start_time_s,
                                    RecordMetadata metadata) {
   if (accel_m_s2.empty()) throw parameter_error("accel", "a ground motion needs at least one sample");
@@ -55,7 +113,11 @@ GroundMotion GroundMotion::uniform(std::vector<double> accel_m_s2, double dt_s, 
     throw parameter_error("dt_s", fmt::format("time step must be positive and finite, got {}", dt_s));
   }
   if (!std::isfinite(start_time_s)) throw parameter_error("start_time_s", "start time must be finite");
+  require_uniform_dt(dt_s, "dt_s");
+  require_sample_count(accel_m_s2.size(), "accel");
+  require_duration(dt_s * static_cast<double>(accel_m_s2.size() - 1), start_time_s, "dt_s");
   require_finite_samples(accel_m_s2, "accel");
+  require_accel_within_limit(accel_m_s2, "accel", "sample");
   GroundMotion m;
   m.accel_ = std::move(accel_m_s2);
   m.dt_ = dt_s;
@@ -70,15 +132,23 @@ GroundMotion GroundMotion::irregular(std::vector<double> time_s, std::vector<dou
     throw parameter_error("time", fmt::format("{} times but {} accelerations", time_s.size(), accel_m_s2.size()));
   }
   if (time_s.size() < 2) throw parameter_error("time", "an irregular record needs at least two samples");
+  require_sample_count(time_s.size(), "time");
   require_finite_samples(time_s, "time");
   require_finite_samples(accel_m_s2, "accel");
+  require_accel_within_limit(accel_m_s2, "accel", "sample");
   for (std::size_t i = 1; i < time_s.size(); ++i) {
     if (time_s[i] < time_s[i - 1]) {
       throw parameter_error("time", fmt::format("times decrease at sample {} ({} after {})", i, time_s[i],
                                                 time_s[i - 1]));
     }
+    if (time_s[i] > time_s[i - 1] && time_s[i] - time_s[i - 1] < Limits::min_dt_s) {
+      throw parameter_error("time", fmt::format("samples {} and {} are {:.6g} s apart, closer than the limit of {:.6g} "
+                                                "s (equal times, a jump, are allowed)",
+                                                i - 1, i, time_s[i] - time_s[i - 1], Limits::min_dt_s));
+    }
   }
   if (!(time_s.back() > time_s.front())) throw parameter_error("time", "the record has zero duration");
+  require_duration(time_s.back() - time_s.front(), time_s.front(), "time");
   GroundMotion m;
   m.t0_ = time_s.front();
   m.dt_ = (time_s.back() - time_s.front()) / static_cast<double>(time_s.size() - 1);
@@ -135,6 +205,13 @@ double GroundMotion::pga_time_s() const noexcept {
 
 GroundMotion GroundMotion::scaled(double factor) const {
   if (!std::isfinite(factor)) throw parameter_error("scale", fmt::format("scale factor must be finite, got {}", factor));
+  // Checked before multiplying: 1e308 x a record would overflow to inf.
+  if (std::abs(factor) * pga_m_s2() > Limits::max_abs_accel_m_s2) {
+    throw parameter_error("scale", fmt::format("scale factor {:.6g} makes the PGA {}, beyond the limit of {:.6g} m/s2 "
+                                               "of a ground motion",
+                                               factor, describe_accel(std::abs(factor) * pga_m_s2()),
+                                               Limits::max_abs_accel_m_s2));
+  }
   GroundMotion m = *this;
   for (double& a : m.accel_) a *= factor;
   return m;
@@ -153,10 +230,12 @@ GroundMotion GroundMotion::time_scaled(double factor) const {
   if (!(factor > 0.0) || !std::isfinite(factor)) {
     throw parameter_error("time_scale", fmt::format("time scale factor must be positive and finite, got {}", factor));
   }
-  GroundMotion m = *this;
-  m.dt_ *= factor;
-  for (double& t : m.time_) t = t0_ + factor * (t - t0_);
-  return m;
+  if (is_uniform()) {
+    return uniform(accel_, dt_ * factor, t0_, meta_);  // checks the new dt and duration
+  }
+  std::vector<double> t = time_;
+  for (double& ti : t) ti = t0_ + factor * (ti - t0_);
+  return irregular(std::move(t), accel_, meta_);
 }
 
 GroundMotion GroundMotion::trimmed(double t_begin, double t_end) const {
@@ -199,7 +278,14 @@ GroundMotion GroundMotion::resampled(double dt_s) const {
   if (!(dt_s > 0.0) || !std::isfinite(dt_s)) {
     throw parameter_error("dt_s", fmt::format("resampling step must be positive and finite, got {}", dt_s));
   }
-  const auto n = static_cast<std::size_t>(std::floor(duration_s() / dt_s * (1.0 + 1e-12))) + 1;
+  require_uniform_dt(dt_s, "dt_s");
+  const double steps = std::floor(duration_s() / dt_s * (1.0 + 1e-12));
+  if (!(steps < static_cast<double>(Limits::max_samples))) {
+    throw parameter_error("dt_s", fmt::format("resampling {:.6g} s at {:.6g} s gives {:.6g} samples, more than the "
+                                              "limit of {} samples of a ground motion",
+                                              duration_s(), dt_s, steps + 1.0, Limits::max_samples));
+  }
+  const auto n = static_cast<std::size_t>(steps) + 1;
   std::vector<double> a(n);
   for (std::size_t i = 0; i < n; ++i) a[i] = accel_at(t0_ + static_cast<double>(i) * dt_s);
   return uniform(std::move(a), dt_s, t0_, meta_);

@@ -196,7 +196,11 @@ double predominant_frequency_ratio(double zeta_g, FilterModel model, double f_g_
   const auto [i, wz] = bracket(kCalibrationDamping, zeta_g);
   std::array<double, 5> log_f{};
   for (std::size_t k = 0; k < log_f.size(); ++k) log_f[k] = portable_log(kCalibrationFrequency[k]);
-  const auto [j, wf] = bracket(log_f, portable_log(f_g_hz));
+  // Not a structured binding: a lambda may not capture one before C++20 compilers caught up (clang < 16, which the
+  // fuzz preset uses).
+  const std::pair<std::size_t, double> jf = bracket(log_f, portable_log(f_g_hz));
+  const std::size_t j = jf.first;
+  const double wf = jf.second;
   const auto row = [&](std::size_t r) { return kappa[r][j - 1] + wf * (kappa[r][j] - kappa[r][j - 1]); };
   return row(i - 1) + wz * (row(i) - row(i - 1));
 }
@@ -222,11 +226,15 @@ double ground_frequency_for_request_hz(double request_hz, double zeta_g, FilterM
 
 void validate(const SynthesisSpec& s) {
   const auto finite_positive = [](double v) { return std::isfinite(v) && v > 0.0; };
-  if (!finite_positive(s.pga_m_s2)) {
-    throw parameter_error("pga", fmt::format("the PGA must be positive and finite, got {} m/s2", s.pga_m_s2));
+  using Limits = GroundMotionLimits;
+  if (!finite_positive(s.pga_m_s2) || s.pga_m_s2 > Limits::max_record_accel_m_s2) {
+    throw parameter_error("pga", fmt::format("the PGA must be positive and at most {:.6g} m/s2 (100 g, the limit of a "
+                                             "ground motion), got {} m/s2",
+                                             Limits::max_record_accel_m_s2, s.pga_m_s2));
   }
-  if (!finite_positive(s.dt_s) || s.dt_s > 0.1) {
-    throw parameter_error("dt", fmt::format("the time step must be in (0, 0.1] s, got {} s", s.dt_s));
+  if (!(s.dt_s >= Limits::min_dt_s && s.dt_s <= 0.1)) {
+    throw parameter_error("dt", fmt::format("the time step must be in [{:.6g}, 0.1] s, got {} s", Limits::min_dt_s,
+                                            s.dt_s));
   }
   const double f = s.predominant_frequency_hz;
   const double f_max = std::min(20.0, 0.1 / s.dt_s);
@@ -240,8 +248,15 @@ void validate(const SynthesisSpec& s) {
     throw parameter_error("duration", fmt::format("the duration must be at least {:.6g} s (5 predominant periods "
                                                   "and 100 samples), got {} s", t_min, s.duration_s));
   }
-  if (s.duration_s / s.dt_s > 5e7) {
-    throw parameter_error("duration", fmt::format("{} s at dt = {} s is more than 5e7 samples", s.duration_s, s.dt_s));
+  if (s.duration_s > Limits::max_duration_s) {
+    throw parameter_error("duration", fmt::format("the duration must be at most {:.6g} s (6 h, the limit of a ground "
+                                                  "motion), got {} s",
+                                                  Limits::max_duration_s, s.duration_s));
+  }
+  if (s.duration_s / s.dt_s > static_cast<double>(Limits::max_samples)) {
+    throw parameter_error("duration", fmt::format("{} s at dt = {} s is more than {} samples (the limit of a ground "
+                                                  "motion)",
+                                                  s.duration_s, s.dt_s, Limits::max_samples));
   }
   if (!(s.ground_damping >= 0.1 && s.ground_damping <= 0.5)) {
     throw parameter_error("ground_damping", fmt::format("zeta_g must be in [0.1, 0.5] (the calibrated range), got {}",

@@ -90,5 +90,26 @@ TEST(Spectra, TpAndFpGridsAreThoseOfTheDefinitions) {
   EXPECT_EQ(predominant_frequency_fft_length(1025), 4096u);
 }
 
+TEST(Intensity, FiniteAtTheCornerOfTheLimits) {
+  // The largest acceleration for the longest record (GroundMotionLimits: 1e6 m/s2 for 6 h), constant: every measure is
+  // finite and the integrals take their closed forms PGV = a T, PGD = a T^2 / 2, Arias = pi / (2 g) a^2 T. The
+  // trapezoid and the cubic per step are exact for a constant, so the tolerance is rounding over 21,600 steps.
+  using L = GroundMotionLimits;
+  const double a = L::max_abs_accel_m_s2;
+  const double dt = 1.0;
+  const auto n = static_cast<std::size_t>(L::max_duration_s / dt) + 1;
+  const GroundMotion m = GroundMotion::uniform(std::vector<double>(n, a), dt);
+  const double t = L::max_duration_s;
+  const IntensityMeasures im = intensity_measures(m);
+  EXPECT_NEAR(im.basic.pgv_m_s, a * t, 1e-12 * a * t);
+  EXPECT_NEAR(im.basic.pgd_m, 0.5 * a * t * t, 1e-10 * a * t * t);
+  EXPECT_NEAR(im.basic.arias_m_s, kPi / (2.0 * kStandardGravity) * a * a * t, 1e-10 * a * a * t);
+  EXPECT_NEAR(im.cav_m_s, a * t, 1e-10 * a * t);
+  ASSERT_TRUE(im.d5_95);
+  EXPECT_NEAR(im.d5_95->duration_s, 0.9 * t, 1e-9 * t);  // constant power: 5 % and 95 % of the time
+  for (const OptionalMeasure* v : {&im.tp_s, &im.tm_s, &im.predominant_frequency_hz}) {
+    if (v->value) EXPECT_TRUE(std::isfinite(*v->value)) << *v->value;
+  }
+}
 }  // namespace
 }  // namespace topple

@@ -8,6 +8,15 @@
 // is exact that way); readers refuse repeated times in files, where they are a digitising error.
 //
 // Units. Acceleration in m/s^2, time in s. Readers convert at the edge and keep what they read in Metadata.
+//
+// Limits (GroundMotionLimits below; README "Limits"). A record is refused, with an InputError naming the limit, when
+// it lies outside what any earthquake record or shaking-table motion is, by a wide margin. Within them every
+// quantity derived from a record (velocity, displacement, Arias intensity, spectra, sliding and rocking responses)
+// is far from the range of double precision, so that no inf or NaN can come out of a finite input:
+//   records (readers, scaled records, synthesis) |a| <= 100 g; any GroundMotion (idealised pulses too) |a| <= 1e6
+//   m/s^2; duration <= 6 h, |t0| <= 1 day, 1 us <= uniform dt <= 10 s, positive irregular steps >= 1 us, at most
+//   5e7 samples. Worst cases at 1e6 m/s^2 for 6 h: PGV <= a T = 2.2e10 m/s, PGD <= a T^2 / 2 = 2.3e14 m,
+//   integral a^2 dt <= 2.2e16; at 100 g: 2.1e7 m/s, 2.3e11 m, 2.1e10.
 #include <cstddef>
 #include <span>
 #include <string>
@@ -16,6 +25,33 @@
 #include "topple/units.hpp"
 
 namespace topple {
+
+/// The physically sensible range of a ground motion (see the header). Every GroundMotion satisfies them: the
+/// constructors, scaled(), time_scaled() and resampled() throw InputError naming the limit otherwise.
+struct GroundMotionLimits {
+  /// |a| <= 100 g (980.665 m/s^2) for a record: what readers return, a record scaled by the user (require_record_
+  /// acceleration), a synthetic motion. The largest accelerations ever recorded are about 4 g (Iwate-Miyagi 2008,
+  /// IWTH25); threshold searches of small, stiff objects under short pulses legitimately reach tens of g.
+  static constexpr double max_record_accel_m_s2 = 100.0 * kStandardGravity;
+  /// |a| <= 1e6 m/s^2 for any GroundMotion: an idealised velocity impulse is a rectangular pulse of a few
+  /// microseconds carrying metres per second (1e5 m/s^2 for 1 m/s in 10 us; tests/test_rocking.cpp,
+  /// R8VelocityImpulse); a million m/s^2 for 6 h still keeps every derived quantity below 1e17.
+  static constexpr double max_abs_accel_m_s2 = 1e6;
+  /// Duration <= 6 h. Strong shaking lasts minutes (the longest K-NET records, Tohoku 2011, are 300 s); continuous
+  /// recordings cut around an event are at most hours.
+  static constexpr double max_duration_s = 6.0 * 3600.0;
+  /// |t0| <= 1 day: times of day in seconds are accepted; epoch times (1.7e9 s) would leave dt at the resolution
+  /// of the time variable (ulp(1.7e9) = 2.4e-7 s) and are refused.
+  static constexpr double max_abs_start_time_s = 86400.0;
+  /// Uniform dt >= 1 us and positive irregular steps >= 1 us: accelerographs sample at 50 Hz to a few kHz (a
+  /// shaking-table controller at tens of kHz); 1 MHz is three orders beyond. Below it 1/dt and FFT frequencies
+  /// lose meaning.
+  static constexpr double min_dt_s = 1e-6;
+  /// Uniform dt <= 10 s: a coarser grid cannot describe any shaking (Nyquist 0.05 Hz).
+  static constexpr double max_dt_s = 10.0;
+  /// At most 5e7 samples (400 MB of doubles per array): 6 h at 2 kHz; the same cap as synthesis.
+  static constexpr std::size_t max_samples = 50'000'000;
+};
 
 /// Where a record came from; all fields optional and informative only (no computation depends on them).
 struct RecordMetadata {
@@ -32,12 +68,14 @@ struct RecordMetadata {
 
 class GroundMotion {
  public:
-  /// Uniformly sampled record. Throws InputError for an empty record, dt_s <= 0 or a non-finite value.
+  /// Uniformly sampled record. Throws InputError for an empty record, a non-finite value, or anything outside
+  /// GroundMotionLimits.
   static GroundMotion uniform(std::vector<double> accel_m_s2, double dt_s, double start_time_s = 0.0,
                               RecordMetadata metadata = {});
 
   /// Record at arbitrary non-decreasing times (equal consecutive times mean a jump). Throws InputError for
-  /// mismatched lengths, fewer than 2 samples, decreasing or non-finite times, non-finite accelerations.
+  /// mismatched lengths, fewer than 2 samples, decreasing or non-finite times, non-finite accelerations, or anything
+  /// outside GroundMotionLimits.
   static GroundMotion irregular(std::vector<double> time_s, std::vector<double> accel_m_s2,
                                 RecordMetadata metadata = {});
 
@@ -66,7 +104,7 @@ class GroundMotion {
   [[nodiscard]] double pga_time_s() const noexcept;
 
   // ---- Operations: each returns a new record; metadata is kept. ----
-  /// a -> factor * a. factor must be finite.
+  /// a -> factor * a. factor must be finite and the result within GroundMotionLimits::max_abs_accel_m_s2.
   [[nodiscard]] GroundMotion scaled(double factor) const;
   /// Scaled so that max |a| = pga_m_s2 (> 0). Throws when the record is identically zero.
   [[nodiscard]] GroundMotion scaled_to_pga(double pga_m_s2) const;
@@ -98,5 +136,9 @@ class GroundMotion {
 /// It is the factor a vertical component gets when its horizontal is scaled: scaling scales the whole shaking,
 /// while a polarity flip is the horizontal's own.
 [[nodiscard]] double amplitude_factor(const GroundMotion& original, const GroundMotion& transformed) noexcept;
+/// Throws InputError naming `field` (e.g. "--scale") when `pga_m_s2`, the PGA a record would have (say |factor| x
+/// its PGA, before scaling it), exceeds GroundMotionLimits::max_record_accel_m_s2 (100 g), or is not finite: for
+/// records scaled at a user's request.
+void require_record_acceleration(double pga_m_s2, const std::string& field);
 
 }  // namespace topple

@@ -65,10 +65,10 @@ enum class EnvelopeKind {
 
 /// Everything that defines a synthetic motion. (SynthesisSpec, seed) -> the same motion, bit for bit, everywhere.
 struct SynthesisSpec {
-  double pga_m_s2 = 0.0;                  ///< peak |a| of the result, m/s^2 (> 0; typical 1-10)
+  double pga_m_s2 = 0.0;                  ///< peak |a| of the result, m/s^2 (> 0 and <= 100 g, GroundMotionLimits; typical 1-10)
   double predominant_frequency_hz = 0.0;  ///< requested measured predominant frequency, Hz (0.1 ... 1/(10 dt))
-  double duration_s = 0.0;                ///< record length T, s (>= 5 predominant periods and >= 100 dt)
-  double dt_s = 0.01;                     ///< sample interval, s (typical 0.005-0.02)
+  double duration_s = 0.0;                ///< record length T, s (>= 5 predominant periods and >= 100 dt; <= 6 h)
+  double dt_s = 0.01;                     ///< sample interval, s (in [1e-6, 0.1]; typical 0.005-0.02)
   std::uint64_t seed = 0;                 ///< any 64-bit value
   FilterModel model = FilterModel::clough_penzien;
   EnvelopeKind envelope = EnvelopeKind::saragoni_hart;

@@ -235,7 +235,7 @@ GroundMotion read_cosmos_v2(const Text& text, const ReadOptions& options) {
   if (b.unit.empty()) {
     text.fail(data.number, "units", "the data line names no units (expected e.g. 'units=cm/sec2(04)')");
   }
-  const double factor = unit_factor(text, b.unit, data.number, "units", options.g_m_s2);
+  const double factor = file_unit_factor(text, b.unit, data.number, "units", options);
 
   Samples samples;
   const std::size_t next = read_count(
@@ -250,10 +250,21 @@ GroundMotion read_cosmos_v2(const Text& text, const ReadOptions& options) {
   if (b.end >= text.size()) {
     text.fail(text.last_line_number(), "End-of-data", "the file ends without its 'End-of-data' line (truncated?)");
   }
+  // "42000 acceleration pts, approx  210 secs": the duration is stated to whole seconds ("approx"), as npts x dt
+  // (42000 x 5 ms = 210 s). A difference of more than a second and a sample is a wrong count or time step.
+  if (const std::size_t approx = find_ci(data.text, "approx"); approx != std::string_view::npos) {
+    const auto after = split_whitespace(data.text.substr(approx + 6));
+    if (after.size() >= 2 && starts_with_ci(after[1], "sec")) {
+      const double dt_s = dt_ms / 1000.0;
+      check_declared_duration(text, parse_number(text, after[0], data.number, "approx secs"),
+                              static_cast<double>(b.npts) * dt_s, 1.0 + dt_s, data.number, "approx secs",
+                              fmt::format("pts x Real header 62 = {} x {} ms", b.npts, dt_ms));
+    }
+  }
   RecordMetadata meta = b.meta;
   meta.units_as_read = b.unit;
   return uniform_record(text, to_m_s2(text, samples, factor, "acceleration"), dt_ms / 1000.0, dt_line,
-                        "Real header 62", std::move(meta));
+                        "Real header 62", std::move(meta), options);
 }
 
 }  // namespace topple::io::detail

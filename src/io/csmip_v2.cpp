@@ -113,7 +113,7 @@ GroundMotion read_csmip_v2(const Text& text, const ReadOptions& options) {
   }
   const std::string_view unit_text = section.text.substr(units_at + 6);
   const std::string unit = to_lower(trim(unit_text.substr(0, unit_text.find(')'))));
-  const double factor = unit_factor(text, unit, section.number, "UNITS", options.g_m_s2);
+  const double factor = file_unit_factor(text, unit, section.number, "UNITS", options);
 
   Samples samples;
   const std::size_t next =
@@ -141,7 +141,8 @@ GroundMotion read_csmip_v2(const Text& text, const ReadOptions& options) {
   meta.station = station + collapse_spaces(block_line(7));
   meta.component = c.name;
   meta.units_as_read = unit;
-  return uniform_record(text, to_m_s2(text, samples, factor, "ACCEL"), dt, section.number, "DT", std::move(meta));
+  return uniform_record(text, to_m_s2(text, samples, factor, "ACCEL"), dt, section.number, "DT", std::move(meta),
+                        options);
 }
 
 }  // namespace topple::io::detail

@@ -78,12 +78,19 @@ GroundMotion read_esm(const Text& text, const ReadOptions& options) {
   const auto npts = static_cast<std::size_t>(parse_integer(text, n_entry.value, n_entry.line, "NDATA", 1,
                                                            1'000'000'000));
   const Entry units = required("UNITS");
-  const double factor = unit_factor(text, units.value, units.line, "UNITS", options.g_m_s2);
+  const double factor = file_unit_factor(text, units.value, units.line, "UNITS", options);
 
   Samples samples;
   const std::size_t next =
       read_count(text, i, npts, Layout{}, "acceleration", "NDATA", [](std::string_view) { return false; }, samples);
   require_no_more_values(text, next, "NDATA", npts);
+  // DURATION_S is NDATA x SAMPLING_INTERVAL_S (HI.ARS1: 19128 x 0.005 = 95.640), printed to 1 ms: a difference
+  // beyond one sample interval means the header and the data disagree.
+  if (const auto declared = get("DURATION_S")) {
+    check_declared_duration(text, parse_number(text, declared->value, declared->line, "DURATION_S"),
+                            static_cast<double>(npts) * dt, dt + 1e-3, declared->line, "DURATION_S",
+                            fmt::format("NDATA x SAMPLING_INTERVAL_S = {} x {}", npts, dt));
+  }
 
   RecordMetadata meta;
   std::string event;
@@ -105,7 +112,7 @@ GroundMotion read_esm(const Text& text, const ReadOptions& options) {
   if (const auto stream = get("STREAM")) meta.component = std::string(stream->value);
   meta.units_as_read = std::string(units.value);
   return uniform_record(text, to_m_s2(text, samples, factor, "acceleration"), dt, dt_entry.line,
-                        "SAMPLING_INTERVAL_S", std::move(meta));
+                        "SAMPLING_INTERVAL_S", std::move(meta), options);
 }
 
 }  // namespace topple::io::detail

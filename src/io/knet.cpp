@@ -59,7 +59,7 @@ bool looks_like_knet(const std::vector<Line>& head) {
   return false;
 }
 
-GroundMotion read_knet(const Text& text, const ReadOptions&) {
+GroundMotion read_knet(const Text& text, const ReadOptions& options) {
   if (text.size() <= kHeaderLines) {
     text.fail(text.last_line_number(), "data", "the file ends inside or right after the 17 header lines: no data");
   }
@@ -87,6 +87,17 @@ GroundMotion read_knet(const Text& text, const ReadOptions&) {
   Samples counts;
   for (std::size_t i = kHeaderLines; i < text.size(); ++i) parse_values(text, text[i], Layout{}, "counts", counts);
   if (counts.size() == 0) text.fail(text.last_line_number(), "data", "no data after the 17 header lines");
+  // "Duration Time(s)  143" with 200 Hz: 28600 counts. NIED records whole seconds, and the count is exactly
+  // duration x frequency (AICH04: 143 s x 200 Hz = 28600; AOM008: 138 s x 100 Hz = 13800). A file cut anywhere,
+  // even inside a number (the tail of "2516" read as 25), has fewer.
+  const Line duration = required(text, "Duration Time(s)");
+  const double seconds = parse_number(text, duration.text, duration.number, "Duration Time(s)");
+  const double expected = seconds * hz;
+  if (!(std::abs(expected - static_cast<double>(counts.size())) < 0.5)) {
+    text.fail(duration.number, "Duration Time(s)",
+              fmt::format("{} s at {} Hz announces {:.0f} counts but the data hold {} (truncated or padded file)",
+                          seconds, hz, expected, counts.size()));
+  }
 
   // Mean as the sum of count/n: no intermediate sum can overflow.
   double mean = 0.0;
@@ -105,8 +116,9 @@ GroundMotion read_knet(const Text& text, const ReadOptions&) {
   if (const auto station = header_value(text, "Station Code")) meta.station = std::string(station->text);
   if (const auto dir = header_value(text, "Dir.")) meta.component = kiknet_direction(dir->text);
   meta.units_as_read = fmt::format("counts*{}/{} gal, record mean removed", numerator, denominator);
-  return uniform_record(text, to_m_s2(text, centred, gal_per_count * 0.01, "counts"), 1.0 / hz, freq.number,
-                        "Sampling Freq(Hz)", std::move(meta));
+  const double m_s2_per_gal = file_unit_factor(text, "gal", scale.number, "Scale Factor", options);
+  return uniform_record(text, to_m_s2(text, centred, gal_per_count * m_s2_per_gal, "counts"), 1.0 / hz, freq.number,
+                        "Sampling Freq(Hz)", std::move(meta), options);
 }
 
 }  // namespace topple::io::detail

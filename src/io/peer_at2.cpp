@@ -126,7 +126,7 @@ GroundMotion read_peer_at2(const Text& text, const ReadOptions& options) {
       unit = to_lower(word);
     }
   }
-  const double factor = unit_factor(text, unit, units_line.number, "units", options.g_m_s2);
+  const double factor = file_unit_factor(text, unit, units_line.number, "units", options);
 
   const auto tokens = find_npts_dt(npts_line.text);
   if (!tokens) {
@@ -149,7 +149,7 @@ GroundMotion read_peer_at2(const Text& text, const ReadOptions& options) {
   metadata_from_line2(text[1].text, meta);
   meta.units_as_read = unit;
   return uniform_record(text, to_m_s2(text, samples, factor, "acceleration"), dt, npts_line.number, "DT",
-                        std::move(meta));
+                        std::move(meta), options);
 }
 
 }  // namespace topple::io::detail

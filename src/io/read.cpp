@@ -59,6 +59,7 @@ GroundMotion parse_motion(std::string_view content, const std::string& name, con
   if (!(options.g_m_s2 > 0.0) || !std::isfinite(options.g_m_s2)) {
     throw parameter_error("g", fmt::format("g must be positive and finite, got {}", options.g_m_s2));
   }
+  check_input_text(content, name);
   const Format format = options.format == Format::automatic ? detect_format(content) : options.format;
   const detail::Text text(content, name);
   if (options.channel && *options.channel < 1) {
@@ -73,17 +74,24 @@ GroundMotion parse_motion(std::string_view content, const std::string& name, con
     text.fail_file("", "the file is empty");
   }
   GroundMotion motion = [&] {
-    switch (format) {
-      case Format::peer_at2: return detail::read_peer_at2(text, options);
-      case Format::cosmos_v2: return detail::read_cosmos_v2(text, options);
-      case Format::csmip_v2: return detail::read_csmip_v2(text, options);
-      case Format::knet: return detail::read_knet(text, options);
-      case Format::usgs_smc: return detail::read_usgs_smc(text, options);
-      case Format::esm: return detail::read_esm(text, options);
-      case Format::plain:
-      case Format::automatic: break;
+    try {
+      switch (format) {
+        case Format::peer_at2: return detail::read_peer_at2(text, options);
+        case Format::cosmos_v2: return detail::read_cosmos_v2(text, options);
+        case Format::csmip_v2: return detail::read_csmip_v2(text, options);
+        case Format::knet: return detail::read_knet(text, options);
+        case Format::usgs_smc: return detail::read_usgs_smc(text, options);
+        case Format::esm: return detail::read_esm(text, options);
+        case Format::plain:
+        case Format::automatic: break;
+      }
+      return detail::read_plain(text, options);
+    } catch (const InputError& e) {
+      // The readers check the limits of GroundMotion themselves, at the line concerned; a check that only the
+      // constructor makes still names the file.
+      if (!e.where().file.empty()) throw;
+      text.fail_file(e.where().field, e.problem());
     }
-    return detail::read_plain(text, options);
   }();
   RecordMetadata meta = motion.metadata();
   meta.format = std::string(format_name(format));
@@ -92,18 +100,71 @@ GroundMotion parse_motion(std::string_view content, const std::string& name, con
   return motion;
 }
 
-GroundMotion read_motion(const std::filesystem::path& path, const ReadOptions& options) {
+void check_input_text(std::string_view content, const std::string& name) {
+  const auto fail = [&](std::optional<std::size_t> line, const std::string& problem) {
+    throw InputError(InputLocation{.file = name, .line = line, .field = {}}, problem);
+  };
+  if (content.size() > kMaxInputFileBytes) {
+    fail(std::nullopt, fmt::format("the file is larger than the limit of {} MiB of an input file",
+                                   kMaxInputFileBytes >> 20));
+  }
+  std::size_t line = 1;
+  for (std::size_t begin = 0; begin < content.size(); ++line) {
+    const std::size_t nl = content.find('\n', begin);
+    const std::size_t end = nl == std::string_view::npos ? content.size() : nl;
+    if (end - begin > kMaxInputLineBytes) {
+      fail(line, fmt::format("the line is longer than the limit of {} KiB of a line (is this a text file?)",
+                             kMaxInputLineBytes >> 10));
+    }
+    if (nl == std::string_view::npos) break;
+    begin = nl + 1;
+  }
+}
+
+std::string read_input_file(const std::filesystem::path& path, std::string_view what) {
+  namespace fs = std::filesystem;
   const std::string name = path.string();
+  const auto fail = [&](const std::string& problem) {
+    throw InputError(InputLocation{.file = name, .line = {}, .field = {}}, problem);
+  };
   std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) {
-    throw InputError(InputLocation{.file = name, .line = {}, .field = {}}, "is a directory, not a record file");
+  const fs::file_status status = fs::status(path, ec);  // follows links: a link to /dev/zero is a device
+  if (!fs::exists(status)) fail(fmt::format("cannot open the {} file: it does not exist", what));
+  if (ec) fail(fmt::format("cannot open the {} file: {}", what, ec.message()));
+  if (fs::is_directory(status)) fail(fmt::format("is a directory, not a {} file", what));
+  if (!fs::is_regular_file(status)) {
+    const char* kind = fs::is_character_file(status) ? "a character device"
+                       : fs::is_block_file(status)   ? "a block device"
+                       : fs::is_fifo(status)         ? "a FIFO (named pipe)"
+                       : fs::is_socket(status)       ? "a socket"
+                                                     : "not a regular file";
+    fail(fmt::format("is {}, not a {} file (only regular files are read)", kind, what));
+  }
+  const std::uintmax_t size = fs::file_size(path, ec);
+  if (!ec && size > kMaxInputFileBytes) {
+    fail(fmt::format("the file holds {} bytes, more than the limit of {} MiB of an input file", size,
+                     kMaxInputFileBytes >> 20));
   }
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(InputLocation{.file = name, .line = {}, .field = {}}, "cannot open file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw InputError(InputLocation{.file = name, .line = {}, .field = {}}, "cannot read file");
-  return parse_motion(text.str(), name, options);
+  if (!in) fail(fmt::format("cannot open the {} file", what));
+  // Read at most one byte past the limit: a file that grows while it is read is still bounded.
+  std::string text(static_cast<std::size_t>(std::min<std::uintmax_t>(ec ? 0 : size, kMaxInputFileBytes)), '\0');
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  text.resize(static_cast<std::size_t>(in.gcount()));
+  if (in.bad()) fail(fmt::format("cannot read the {} file", what));
+  if (in) {
+    char buffer[65536];
+    while (text.size() <= kMaxInputFileBytes && in.read(buffer, sizeof buffer).gcount() > 0) {
+      text.append(buffer, static_cast<std::size_t>(in.gcount()));
+    }
+    if (in.bad()) fail(fmt::format("cannot read the {} file", what));
+  }
+  check_input_text(text, name);
+  return text;
+}
+
+GroundMotion read_motion(const std::filesystem::path& path, const ReadOptions& options) {
+  return parse_motion(read_input_file(path, "record"), path.string(), options);
 }
 
 // ---------------------------------------------------------------------------------------------------------------
@@ -315,16 +376,17 @@ GroundMotion read_plain(const Text& text, const ReadOptions& options) {
   RecordMetadata meta;
   if (first_comment) metadata_from_title(first_comment->text, meta);
   double factor = 0.0;
-  if (!options.units.empty()) {
+  if (!accel_unit.empty()) {
+    // The header states the unit: --units may only confirm it.
+    factor = file_unit_factor(text, accel_unit, unit_line, accel_field, options);
+    meta.units_as_read = accel_unit;
+  } else if (!options.units.empty()) {
     try {
       factor = acceleration_unit_factor(options.units, "--units", options.g_m_s2);
     } catch (const InputError& e) {
       text.fail_file("--units", e.problem());
     }
     meta.units_as_read = options.units;
-  } else if (!accel_unit.empty()) {
-    factor = unit_factor(text, accel_unit, unit_line, accel_field, options.g_m_s2);
-    meta.units_as_read = accel_unit;
   } else if (header) {
     text.fail(header->line, accel_field,
               "the header names no acceleration unit; name it (e.g. 'accel_g', 'accel_m_s2', 'accel_cm_s2') or "
@@ -342,7 +404,7 @@ GroundMotion read_plain(const Text& text, const ReadOptions& options) {
     if (!(*options.dt_s > 0.0) || !std::isfinite(*options.dt_s)) {
       text.fail_file("--dt", fmt::format("the time step must be positive and finite, got {}", *options.dt_s));
     }
-    return uniform_record(text, std::move(accel), *options.dt_s, std::nullopt, "--dt", std::move(meta));
+    return uniform_record(text, std::move(accel), *options.dt_s, std::nullopt, "--dt", std::move(meta), options);
   }
 
   if (options.dt_s) {
@@ -355,7 +417,13 @@ GroundMotion read_plain(const Text& text, const ReadOptions& options) {
     text.fail(header->line, header->columns[0].name,
               fmt::format("unknown time unit {} (known: s, ms)", detail::quoted(time_unit)));
   }
+  using Limits = GroundMotionLimits;
   std::vector<double> t = times.values;
+  if (t.size() > Limits::max_samples) {
+    text.fail(times.lines.back(), "time",
+              fmt::format("{} rows, more than the limit of {} samples of a ground motion", t.size(),
+                          Limits::max_samples));
+  }
   for (std::size_t i = 0; i < t.size(); ++i) {
     t[i] *= time_factor;
     if (i > 0 && !(t[i] > t[i - 1])) {
@@ -363,13 +431,28 @@ GroundMotion read_plain(const Text& text, const ReadOptions& options) {
                 fmt::format("time {} {} the time {} of line {}; times must increase", times.values[i],
                             t[i] == t[i - 1] ? "repeats" : "is before", times.values[i - 1], times.lines[i - 1]));
     }
+    if (i > 0 && t[i] - t[i - 1] < Limits::min_dt_s) {
+      text.fail(times.lines[i], "time",
+                fmt::format("time {} is {:.6g} s after the time {} of line {}, closer than the limit of {:.6g} s "
+                            "between samples",
+                            times.values[i], t[i] - t[i - 1], times.values[i - 1], times.lines[i - 1],
+                            Limits::min_dt_s));
+    }
   }
   if (t.size() < 2) {
     text.fail(times.lines.front(), "time", "a time/acceleration file needs at least two rows");
   }
+  if (!(std::abs(t.front()) <= Limits::max_abs_start_time_s)) {
+    text.fail(times.lines.front(), "time",
+              fmt::format("the record starts at {:.6g} s, beyond the limit of +-{:.6g} s (1 day); shift its times",
+                          t.front(), Limits::max_abs_start_time_s));
+  }
   const double span = t.back() - t.front();
-  if (!std::isfinite(span)) {
-    text.fail(times.lines.back(), "time", "the time span of the record is too large to represent");
+  if (!(span <= Limits::max_duration_s)) {
+    text.fail(times.lines.back(), "time",
+              fmt::format("the record lasts {:.6g} s (from {:.6g} s to {:.6g} s), more than the limit of {:.6g} s "
+                          "(6 h) of a ground motion",
+                          span, t.front(), t.back(), Limits::max_duration_s));
   }
   // Uniform when every interval equals the mean interval to 1e-9 relative: times printed with a few decimals
   // ("40.13", "40.14") differ from a uniform grid only by the rounding of their decimal representation.
@@ -378,8 +461,6 @@ GroundMotion read_plain(const Text& text, const ReadOptions& options) {
   for (std::size_t i = 1; i < t.size() && uniform; ++i) {
     if (std::abs((t[i] - t[i - 1]) - dt) > 1e-9 * dt) uniform = false;
   }
-  // Near the top of the double range, t0 + i*dt could round past the last time and overflow.
-  uniform = uniform && std::isfinite(t.front() + dt * static_cast<double>(t.size() - 1));
   if (uniform) return GroundMotion::uniform(std::move(accel), dt, t.front(), std::move(meta));
   return GroundMotion::irregular(std::move(t), std::move(accel), std::move(meta));
 }

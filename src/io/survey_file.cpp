@@ -439,15 +439,7 @@ void load_survey_records(Survey& survey) {
 }
 
 Survey read_survey(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) {
-    throw InputError(InputLocation{path.string(), {}, {}}, "is a directory, not a survey file (give the .toml file)");
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(InputLocation{path.string(), {}, {}}, "cannot open the survey file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  Survey survey = parse_survey(text.str(), path.string(), path.parent_path());
+  Survey survey = parse_survey(read_input_file(path, "survey"), path.string(), path.parent_path());
   load_survey_records(survey);
   return survey;
 }

@@ -696,11 +696,7 @@ SweepFile parse_sweep_file(std::string_view text, const fs::path& path) {
 }
 
 SweepFile read_sweep_file(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(InputLocation{path.string(), std::nullopt, ""}, "cannot open the sweep file");
-  std::stringstream s;
-  s << in.rdbuf();
-  return parse_sweep_file(s.str(), path);
+  return parse_sweep_file(read_input_file(path, "sweep"), path);
 }
 
 }  // namespace topple::io

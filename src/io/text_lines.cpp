@@ -266,32 +266,95 @@ double unit_factor(const Text& text, std::string_view unit, std::size_t line, st
   }
 }
 
+double file_unit_factor(const Text& text, std::string_view unit, std::optional<std::size_t> line,
+                        std::string_view field, const ReadOptions& options) {
+  const auto fail = [&](const std::string& f, const std::string& problem) {
+    if (line) text.fail(*line, f, problem);
+    text.fail_file(f, problem);
+  };
+  double factor = 0.0;
+  try {
+    factor = acceleration_unit_factor(unit, std::string(field), options.g_m_s2);
+  } catch (const InputError& e) {
+    fail(std::string(field), e.problem());
+  }
+  if (!options.units.empty()) {
+    double given = 0.0;
+    try {
+      given = acceleration_unit_factor(options.units, "--units", options.g_m_s2);
+    } catch (const InputError& e) {
+      text.fail_file("--units", e.problem());
+    }
+    // Equal factors (gal and cm/s2) agree; anything else would silently rescale the record.
+    if (std::abs(given - factor) > 1e-12 * factor) {
+      fail("--units", fmt::format("the file states its values in {} ({}); --units {} disagrees (leave --units out, "
+                                  "or give the unit the file states)",
+                                  detail::quoted(unit), field, detail::quoted(options.units)));
+    }
+  }
+  return factor;
+}
+
 std::vector<double> to_m_s2(const Text& text, const Samples& samples, double factor, std::string_view field) {
   std::vector<double> out(samples.values.size());
+  constexpr double kLimit = GroundMotionLimits::max_record_accel_m_s2;
   for (std::size_t i = 0; i < out.size(); ++i) {
     out[i] = samples.values[i] * factor;
-    if (!std::isfinite(out[i])) {
+    if (!std::isfinite(out[i]) || std::abs(out[i]) > kLimit) {
       text.fail(samples.lines[i], field,
-                fmt::format("value {} is too large to convert to m/s2 (factor {})", samples.values[i], factor));
+                fmt::format("value {} is too large: x {} = {:.6g} m/s2, beyond the limit of {:.6g} m/s2 (100 g) of a "
+                            "ground motion",
+                            samples.values[i], factor, out[i], kLimit));
     }
   }
   return out;
 }
 
 GroundMotion uniform_record(const Text& text, std::vector<double> accel_m_s2, double dt_s,
-                            std::optional<std::size_t> line, std::string_view field, RecordMetadata meta) {
-  std::string problem;
+                            std::optional<std::size_t> line, std::string_view field, RecordMetadata meta,
+                            const ReadOptions& options) {
+  using Limits = GroundMotionLimits;
+  const auto fail = [&](std::string_view f, const std::string& problem) {
+    if (line) text.fail(*line, f, problem);
+    text.fail_file(f, problem);
+  };
   if (!(dt_s > 0.0) || !std::isfinite(dt_s)) {
-    problem = fmt::format("the time step must be positive and finite, got {} s", dt_s);
-  } else if (accel_m_s2.size() > 1 && !std::isfinite(dt_s * static_cast<double>(accel_m_s2.size() - 1))) {
-    problem = fmt::format("a time step of {} s over {} samples gives a record too long to represent", dt_s,
-                          accel_m_s2.size());
+    fail(field, fmt::format("the time step must be positive and finite, got {} s", dt_s));
   }
-  if (!problem.empty()) {
-    if (line) text.fail(*line, field, problem);
-    text.fail_file(field, problem);
+  if (accel_m_s2.size() > 1 && !std::isfinite(dt_s * static_cast<double>(accel_m_s2.size() - 1))) {
+    fail(field, fmt::format("a time step of {} s over {} samples gives a record too long to represent", dt_s,
+                            accel_m_s2.size()));
+  }
+  if (!(dt_s >= Limits::min_dt_s && dt_s <= Limits::max_dt_s)) {
+    fail(field, fmt::format("the time step {:.6g} s is outside the limits [{:.6g}, {:.6g}] s of a ground motion",
+                            dt_s, Limits::min_dt_s, Limits::max_dt_s));
+  }
+  if (accel_m_s2.size() > Limits::max_samples) {
+    fail(field, fmt::format("{} samples, more than the limit of {} samples of a ground motion", accel_m_s2.size(),
+                            Limits::max_samples));
+  }
+  const double duration = dt_s * static_cast<double>(accel_m_s2.size() - 1);
+  if (!(duration <= Limits::max_duration_s)) {
+    fail(field, fmt::format("{} samples at {:.6g} s last {:.6g} s, more than the limit of {:.6g} s (6 h) of a ground "
+                            "motion",
+                            accel_m_s2.size(), dt_s, duration, Limits::max_duration_s));
+  }
+  if (options.dt_s && !(std::abs(*options.dt_s - dt_s) <= 1e-6 * dt_s)) {
+    fail("--dt", fmt::format("the file states a time step of {:.9g} s ({}); --dt {} disagrees (leave --dt out, or give "
+                             "the file's time step)",
+                             dt_s, field, *options.dt_s));
   }
   return GroundMotion::uniform(std::move(accel_m_s2), dt_s, 0.0, std::move(meta));
+}
+
+void check_declared_duration(const Text& text, double declared_s, double data_s, double tolerance_s,
+                             std::size_t line, std::string_view field, std::string_view data_description) {
+  if (!(std::abs(declared_s - data_s) <= tolerance_s)) {
+    text.fail(line, field,
+              fmt::format("the header declares {:.6g} s but the data hold {} = {:.6g} s (truncated or padded file, "
+                          "or a wrong time step)",
+                          declared_s, data_description, data_s));
+  }
 }
 
 void require_no_more_values(const Text& text, std::size_t from, std::string_view count_field, std::size_t count) {

@@ -109,15 +109,28 @@ std::size_t read_count(const Text& text, std::size_t first, std::size_t count, c
 [[nodiscard]] double unit_factor(const Text& text, std::string_view unit, std::size_t line, std::string_view field,
                                  double g_m_s2);
 
-/// values * factor, checking each product is finite (a huge value times a unit factor can overflow).
+/// The factor to m/s^2 of the unit `unit` that the file states (at `line`, or the whole file when nullopt, in
+/// `field`), refusing a ReadOptions::units that disagrees with it: a unit given by the user is a check, never an
+/// override of what the file says.
+[[nodiscard]] double file_unit_factor(const Text& text, std::string_view unit, std::optional<std::size_t> line,
+                                      std::string_view field, const ReadOptions& options);
+
+/// values * factor, checking each product is finite (a huge value times a unit factor can overflow) and within
+/// GroundMotionLimits::max_abs_accel_m_s2, naming the line of the value.
 [[nodiscard]] std::vector<double> to_m_s2(const Text& text, const Samples& samples, double factor,
                                           std::string_view field);
 
-/// GroundMotion::uniform, refusing here (at `line` of the file, or the whole file when nullopt) a time step that is
-/// not positive or whose record length overflows, so that no record with an infinite duration comes out.
+/// GroundMotion::uniform, refusing here (at `line` of the file, or the whole file when nullopt, in `field`) a time
+/// step outside GroundMotionLimits, a record longer than their duration or sample count, and a ReadOptions::dt_s
+/// that disagrees with the file's time step by more than 1e-6 relative.
 [[nodiscard]] GroundMotion uniform_record(const Text& text, std::vector<double> accel_m_s2, double dt_s,
                                           std::optional<std::size_t> line, std::string_view field,
-                                          RecordMetadata meta);
+                                          RecordMetadata meta, const ReadOptions& options);
+
+/// Cross-check of a duration a header declares (`declared_s`, at `line` in `field`) against the data: refuses a
+/// difference beyond `tolerance_s` (a truncated or padded file, or a wrong time step).
+void check_declared_duration(const Text& text, double declared_s, double data_s, double tolerance_s,
+                             std::size_t line, std::string_view field, std::string_view data_description);
 
 /// Throws unless no non-blank line remains from index `from` on: values beyond the announced count.
 void require_no_more_values(const Text& text, std::size_t from, std::string_view count_field, std::size_t count);

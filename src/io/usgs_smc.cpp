@@ -48,7 +48,7 @@ bool looks_like_usgs_smc(const std::vector<Line>& head) {
          starts_with_ci(name, "DISPLACEMENT") || contains_ci(name, "SPECTR");
 }
 
-GroundMotion read_usgs_smc(const Text& text, const ReadOptions&) {  // values are always cm/s^2: no g needed
+GroundMotion read_usgs_smc(const Text& text, const ReadOptions& options) {  // values are always cm/s^2
   constexpr std::size_t kFirstData = kTextLines + kIntLines + kRealLines;  // index of the first comment line
   if (text.size() < kFirstData) {
     text.fail(text.last_line_number(), "header",
@@ -115,8 +115,9 @@ GroundMotion read_usgs_smc(const Text& text, const ReadOptions&) {  // values ar
   }
   if (comp != std::string_view::npos) meta.component = collapse_spaces(station_line.substr(comp + 10));
   meta.units_as_read = "cm/s2";
-  return uniform_record(text, to_m_s2(text, samples, 0.01, "acceleration"), 1.0 / rate, reals.lines[1],
-                        "real header #2", std::move(meta));
+  const double factor = file_unit_factor(text, "cm/s2", std::nullopt, "units", options);
+  return uniform_record(text, to_m_s2(text, samples, factor, "acceleration"), 1.0 / rate, reals.lines[1],
+                        "real header #2", std::move(meta), options);
 }
 
 }  // namespace topple::io::detail

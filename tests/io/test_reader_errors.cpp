@@ -2,6 +2,7 @@
 // line and the problem. The small well-formed files built here follow the layouts of shared/records/SOURCES.md; each
 // test breaks one thing.
 #include <cmath>
+#include <filesystem>
 #include <functional>
 #include <string>
 #include <vector>
@@ -101,7 +102,9 @@ std::string smc(long npts, const std::vector<std::string>& data_lines, double ra
   return s;
 }
 
-std::string knet(const std::string& freq, const std::string& scale, const std::string& data) {
+/// `duration` is the "Duration Time(s)" header: counts / frequency (3 counts at 100 Hz by default).
+std::string knet(const std::string& freq, const std::string& scale, const std::string& data,
+                 const std::string& duration = "0.03") {
   std::string s;
   auto label = [&](const char* l, const std::string& v) { s += fmt::format("{:<18}{}\n", l, v); };
   label("Origin Time", "2024/01/01 00:00:00");
@@ -116,7 +119,7 @@ std::string knet(const std::string& freq, const std::string& scale, const std::s
   label("Record Time", "2024/01/01 00:00:10");
   if (!freq.empty()) label("Sampling Freq(Hz)", freq);
   else label("Padding", "x");
-  label("Duration Time(s)", "1");
+  label("Duration Time(s)", duration);
   label("Dir.", "N-S");
   label("Scale Factor", scale);
   label("Max. Acc. (gal)", "1.0");
@@ -420,5 +423,141 @@ TEST_F(ReaderErrors, PlainBadTokensAndColumns) {
   expect_error("accel_g,time_s\n0,0\n1,1\n", {1, "accel_g", {"first of two columns must be the time"}});
 }
 
+
+// ---- hardening (issue 11): non-regular files, size and line caps, limits, declared lengths, option conflicts ----
+
+TEST_F(ReaderErrors, NonRegularFilesAreRefusedBeforeReading) {
+  // A device or a FIFO would be read for ever (or block); a directory is not a record. Refused from the file's type.
+  const auto expect_kind = [](const std::filesystem::path& path, const std::string& kind) {
+    try {
+      (void)read_motion(path);
+      ADD_FAILURE() << "no InputError for " << path;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.where().file, path.string()) << e.what();
+      EXPECT_NE(e.problem().find(kind), std::string::npos) << e.what();
+      EXPECT_NE(e.problem().find("record file"), std::string::npos) << e.what();
+    }
+  };
+  expect_kind("/dev/zero", "character device");
+  expect_kind(dir.path(), "directory");
+  std::filesystem::create_symlink("/dev/zero", dir.path() / "link-to-zero.AT2");
+  expect_kind(dir.path() / "link-to-zero.AT2", "character device");
+}
+
+TEST_F(ReaderErrors, FileAndLineCaps) {
+  // A sparse file one byte over the cap: refused from its size, without reading 64 MiB.
+  const auto big = dir.path() / "big.csv";
+  write_file(big, "time_s,accel_g\n");
+  std::filesystem::resize_file(big, kMaxInputFileBytes + 1);
+  try {
+    (void)read_motion(big);
+    ADD_FAILURE() << "no InputError for a file over the cap";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().file, big.string());
+    EXPECT_NE(e.problem().find("64 MiB"), std::string::npos) << e.what();
+  }
+  // A line one byte over the cap (line 2), and the same through parse_motion (what the fuzz targets call).
+  const std::string long_line = "time_s,accel_g\n" + std::string(kMaxInputLineBytes + 1, '1') + "\n";
+  expect_error(long_line, {2, "", {"longer than the limit of 1024 KiB"}});
+  EXPECT_THROW((void)parse_motion(long_line, "in-memory"), InputError);
+  // Exactly at the cap is a line like any other (here a bad number, refused for that reason).
+  expect_error("time_s,accel_g\n" + std::string(kMaxInputLineBytes, '1') + "\n", {2, "acceleration", {"not a number"}});
+}
+
+TEST_F(ReaderErrors, AccelerationLimit) {
+  // 100 g is accepted, anything beyond refused at its line: 1e300 g used to reach the solvers (inf Arias, NaN Tm).
+  ReadOptions o;
+  o.dt_s = 0.01;
+  o.units = "g";
+  const auto path = dir.path() / "at-limit.txt";
+  write_file(path, "0\n100\n-100\n");
+  EXPECT_DOUBLE_EQ(read_motion(path, o).pga_m_s2(), 100.0 * kStandardGravity);
+  expect_error("0\n100.001\n", {2, "acceleration", {"too large", "limit", "100 g"}}, o);
+  expect_error(at2("NPTS=      3, DT=   .0100 SEC,", {"0.1", "1e300", "0.3"}), {5, "acceleration", {"limit", "100 g"}});
+  expect_error("time_s,accel_g\n0,0\n0.01,1e300\n", {3, "accel_g", {"limit"}});
+  expect_error(knet("100Hz", "1(gal)/1", "  1  2  2000000\n"), {18, "counts", {"limit"}});  // 1.33e6 gal after the mean
+}
+
+TEST_F(ReaderErrors, DurationTimeStepAndStartLimits) {
+  // Times 0 and 1e300: an "infinite" record (slide printed inf m, info PGD inf).
+  expect_error("time_s,accel_g\n0,0\n1e300,1\n", {3, "time", {"6 h"}});
+  expect_error("time_s,accel_g\n0,0\n21600.01,1\n", {3, "time", {"6 h"}});
+  expect_error("time_s,accel_g\n1e9,0\n1000000010,1\n", {2, "time", {"1 day"}});
+  expect_error("time_s,accel_g\n0,0\n1e-7,1\n", {3, "time", {"closer than the limit"}});
+  expect_error(at2("NPTS=      3, DT=  20 SEC,", {"0.1", "0.2", "0.3"}), {4, "DT", {"outside the limits"}});
+  expect_error(at2("NPTS=      3, DT=  1e-9 SEC,", {"0.1", "0.2", "0.3"}), {4, "DT", {"outside the limits"}});
+  std::vector<std::string> long_record(2200, "0.1");  // 2199 x 10 s = 6.1 h
+  expect_error(at2("NPTS=   2200, DT=  10 SEC,", long_record), {4, "DT", {"6 h"}});
+  ReadOptions o;
+  o.units = "g";
+  o.dt_s = 1e-7;
+  expect_error("0\n1\n", {std::nullopt, "--dt", {"outside the limits"}}, o);
+}
+
+TEST_F(ReaderErrors, KnetDurationTimeAgainstCounts) {
+  // "Duration Time(s)" x frequency is the number of counts (AICH04: 143 s x 200 Hz = 28600).
+  expect_error(knet("100Hz", "1(gal)/1", "  1  2  3\n", "0.04"),
+               {12, "Duration Time(s)", {"4 counts", "data hold 3", "truncated"}});
+  expect_error(knet("100Hz", "1(gal)/1", "  1  2  3  4\n", "0.03"), {12, "Duration Time(s)", {"data hold 4"}});
+}
+
+TEST_F(ReaderErrors, KnetRealRecordCutInsideANumber) {
+  // The issue's case: a real K-NET file cut inside its last value ("2516" read as "25") was accepted.
+  if (!test::have_shared()) GTEST_SKIP() << "shared/records not found";
+  std::string content = test::slurp(test::shared_record("AOM0081801241951.NS"));
+  ASSERT_GT(content.size(), 60000u);
+  content.resize(60000);
+  while (content.back() == ' ' || content.back() == '\n') content.pop_back();
+  content.pop_back();  // now inside a number
+  expect_error(content, {12, "Duration Time(s)", {"138 s at 100 Hz", "13800 counts", "truncated"}}, {}, "cut.NS");
+}
+
+TEST_F(ReaderErrors, EsmAndCosmosDeclaredDuration) {
+  std::string e = esm("3", "cm/s^2", "1\n2\n3\n");
+  e.insert(e.find("STREAM"), "DURATION_S: 1.000\n");
+  expect_error(e, {6, "DURATION_S", {"declares 1 s", "0.03 s"}});
+  std::string ok = esm("3", "cm/s^2", "1\n2\n3\n");
+  ok.insert(ok.find("STREAM"), "DURATION_S: 0.030\n");
+  const auto path = dir.path() / "ok.asc";
+  write_file(path, ok);
+  EXPECT_EQ(read_motion(path).size(), 3u);
+  // 300 points at 10 ms are 3 s; the data line says "approx 1 secs".
+  expect_error(cosmos(300, std::vector<double>(300, 1.0)), {48, "approx secs", {"declares 1 s", "3 s"}});
+}
+
+TEST_F(ReaderErrors, UnitsOptionMustAgreeWithTheFile) {
+  ReadOptions gal;
+  gal.units = "gal";
+  ReadOptions g;
+  g.units = "g";
+  expect_error(at2_ok(), {3, "--units", {"'g'", "'gal' disagrees"}}, gal);
+  expect_error("time_s,accel_g\n0,0\n0.01,1\n", {1, "--units", {"'g'", "'gal' disagrees"}}, gal);
+  expect_error(knet("100Hz", "1(gal)/1", "  1  2  3\n"), {14, "--units", {"disagrees"}}, g);
+  expect_error(smc(3, {" 1.000E+00-2.000E+00 3.000E+00"}), {std::nullopt, "--units", {"disagrees"}}, g);
+  expect_error(esm("3", "cm/s^2", "1\n2\n3\n"), {7, "--units", {"disagrees"}}, g);
+  expect_error(cosmos(3, {1.0, -2.0, 3.0}), {48, "--units", {"disagrees"}}, g);
+  // Agreeing units are accepted (gal = cm/s2), and read the same values.
+  const auto read = [&](const std::string& content, const ReadOptions& o) {
+    const auto path = dir.path() / "agree.txt";
+    write_file(path, content);
+    return read_motion(path, o);
+  };
+  EXPECT_DOUBLE_EQ(read(at2_ok(), g).pga_m_s2(), 0.3 * kStandardGravity);
+  EXPECT_DOUBLE_EQ(read(knet("100Hz", "1(gal)/1", "  1  2  3\n"), gal).pga_m_s2(), 0.01);
+  EXPECT_DOUBLE_EQ(read(esm("3", "cm/s^2", "1\n2\n3\n"), gal).pga_m_s2(), 0.03);
+  EXPECT_DOUBLE_EQ(read("time_s,accel_g\n0,0\n0.01,1\n", g).pga_m_s2(), kStandardGravity);
+}
+
+TEST_F(ReaderErrors, DtOptionMustAgreeWithTheFile) {
+  ReadOptions o;
+  o.dt_s = 0.02;
+  expect_error(at2_ok(), {4, "--dt", {"0.01 s", "--dt 0.02 disagrees"}}, o);
+  expect_error(knet("100Hz", "1(gal)/1", "  1  2  3\n"), {11, "--dt", {"disagrees"}}, o);
+  expect_error(esm("3", "cm/s^2", "1\n2\n3\n"), {4, "--dt", {"disagrees"}}, o);
+  o.dt_s = 0.01;  // agrees: accepted
+  const auto path = dir.path() / "agree.AT2";
+  write_file(path, at2_ok());
+  EXPECT_EQ(read_motion(path, o).size(), 7u);
+}
 }  // namespace
 }  // namespace topple::io

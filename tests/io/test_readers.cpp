@@ -200,10 +200,12 @@ TEST(ReaderPlain, HeaderUnitsConvert) {
   o.dt_s = 0.01;
   EXPECT_DOUBLE_EQ(parse("accel_cm_s2\n0\n50\n0\n", o).pga_m_s2(), 0.5);
   EXPECT_DOUBLE_EQ(parse("time [s], accel [gal]\n0, 0\n0.01, 50\n0.02, 0\n").pga_m_s2(), 0.5);
-  // ReadOptions::units overrides the header.
+  // ReadOptions::units no longer overrides the header (issue 11: that was a silent guess): it may confirm it, and a
+  // conflict is refused naming --units (tests/io/test_reader_errors.cpp, UnitsOptionMustAgreeWithTheFile).
   ReadOptions g;
   g.units = "g";
-  EXPECT_DOUBLE_EQ(parse("time_s,accel_m_s2\n0,0\n0.01,0.5\n0.02,0\n", g).pga_m_s2(), 0.5 * kStandardGravity);
+  EXPECT_THROW((void)parse("time_s,accel_m_s2\n0,0\n0.01,0.5\n0.02,0\n", g), InputError);
+  EXPECT_DOUBLE_EQ(parse("time_s,accel_g\n0,0\n0.01,0.5\n0.02,0\n", g).pga_m_s2(), 0.5 * kStandardGravity);
   // g itself is an option.
   ReadOptions g981;
   g981.g_m_s2 = 9.81;

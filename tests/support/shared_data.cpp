@@ -43,11 +43,12 @@ nlohmann::json run_json(const std::string& args) {
   return nlohmann::json::parse(r.out);
 }
 
-CommandResult run_cli(const std::string& args) {
+CommandResult run_cli(const std::string& args, int timeout_s) {
   TempDir tmp;
   const auto out = tmp.path() / "out.txt";
   const auto err = tmp.path() / "err.txt";
-  const std::string cmd = std::string("'") + TOPPLE_CLI_PATH + "' " + args + " >'" + out.string() + "' 2>'" +
+  const std::string limit = timeout_s > 0 ? "timeout -s KILL " + std::to_string(timeout_s) + " " : "";
+  const std::string cmd = limit + "'" + TOPPLE_CLI_PATH + "' " + args + " >'" + out.string() + "' 2>'" +
                           err.string() + "' </dev/null";
   const int status = std::system(cmd.c_str());
   CommandResult r;

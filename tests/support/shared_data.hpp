@@ -21,8 +21,10 @@ struct CommandResult {
   std::string err;  ///< stderr
 };
 
-/// Runs the built `topple` CLI with the given argument string (shell-quoted by the caller).
-[[nodiscard]] CommandResult run_cli(const std::string& args);
+/// Runs the built `topple` CLI with the given argument string (shell-quoted by the caller). With `timeout_s` > 0 the
+/// command is killed (SIGKILL) after that many seconds and the exit code is 137, so that a regression that hangs or
+/// eats memory fails the test instead of stalling it.
+[[nodiscard]] CommandResult run_cli(const std::string& args, int timeout_s = 0);
 
 /// Runs the CLI, expects exit status 0 (a test failure naming the arguments and stderr otherwise) and parses stdout
 /// as JSON.

@@ -5,6 +5,8 @@
 // 1-based line and the field for any problem (truncated data, NPTS mismatch, non-numeric token, non-positive dt,
 // NaN/Inf, decreasing or repeated times, empty file, unknown units). Nothing is guessed: a plain file without units
 // in its header needs ReadOptions::units.
+#include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -33,14 +35,32 @@ struct ReadOptions {
   /// 1-based channel for multi-channel files (CSMIP V2, COSMOS files holding several acceleration channels); required
   /// there when the file holds more than one. Any other value than 1 is an error for a single-channel file.
   std::optional<int> channel;
-  /// Acceleration unit of a plain file's values ("g", "m/s2", "cm/s2", "gal"); overrides a unit named in its
-  /// header (e.g. "accel_g"). Ignored for self-describing formats.
+  /// Acceleration unit of the file's values ("g", "m/s2", "cm/s2", "gal"). Required for a plain file whose header
+  /// names no unit. For a file that states its unit (every agency format, a plain header such as "accel_g") it may
+  /// be given only when it agrees with the file (gal = cm/s2); a conflict is an InputError naming --units.
   std::string units;
-  /// Time step of a one-column plain file, s (an error for a file that has a time column).
+  /// Time step, s. Required for a one-column plain file; for a file that states its time step (every agency
+  /// format) it may be given only when it agrees to 1e-6 relative; a conflict is an InputError naming --dt. An error
+  /// for a plain file with a time column.
   std::optional<double> dt_s;
   /// g used to convert values in g to m/s^2.
   double g_m_s2 = kStandardGravity;
 };
+
+/// Limits on every text file topple reads (records, survey and sweep files), README "Limits". Records of real
+/// agencies are at most a few MB (a 300 s K-NET record is 0.3 MB, a 42000-point COSMOS V2c 0.7 MB; one hour of
+/// one-column text at 1 kHz about 50 MB), and their lines are shorter than 200 characters.
+inline constexpr std::uintmax_t kMaxInputFileBytes = std::uintmax_t{64} << 20;  ///< 64 MiB
+inline constexpr std::size_t kMaxInputLineBytes = std::size_t{1} << 20;         ///< 1 MiB
+
+/// The whole content of a text input file. Throws InputError naming the file (and `what` it should be, e.g.
+/// "record", "survey", "sweep") for something that is not a regular file (a directory, a device such as /dev/zero,
+/// a FIFO), a file that cannot be opened or read, a file over kMaxInputFileBytes, or a line over
+/// kMaxInputLineBytes. Every reader of topple goes through it, so that no input can make memory grow without bound.
+[[nodiscard]] std::string read_input_file(const std::filesystem::path& path, std::string_view what);
+
+/// The size and line-length checks of read_input_file on text already in memory; `name` is used in messages.
+void check_input_text(std::string_view content, const std::string& name);
 
 /// Reads one ground-motion component from `path`.
 [[nodiscard]] GroundMotion read_motion(const std::filesystem::path& path, const ReadOptions& options = {});
