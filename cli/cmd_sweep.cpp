@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include "commands.hpp"
+#include "grids.hpp"
 #include "topple/ensemble.hpp"
 #include "topple/error.hpp"
 #include "topple/io/sweep_file.hpp"
@@ -87,6 +88,7 @@ class ProgressBar {
 }
 
 void run_sweep(const SweepOptions& o) {
+  check_threads(o.threads);  // before any work; oneTBB aborts on absurd counts (100000)
   std::unique_ptr<ensemble::Cluster> cluster = ensemble::join_cluster();
   const int rank = cluster->rank();
 

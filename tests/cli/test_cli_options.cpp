@@ -65,6 +65,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadOption{"--mu", "spectrum slide missing.at2 --mu 0.1,-0.5"},
         BadOption{"--threads", "spectrum rock missing.at2 --slenderness 0.2 --heights 1m --pga 0.3g --threads -1"},
         BadOption{"--threads", "fragility missing.at2 --im-range 0.1:1:4 --mu 0.3 --threshold 5cm --threads -1"},
+        BadOption{"--threads", "sweep missing.toml --threads 100000"},  // oneTBB aborted ("terminate called")
         // Seeds do not wrap around 2^64.
         BadOption{"--seed", "synth --pga 0.3g --freq 3Hz --duration 20s --seed -1 --out never.csv"},
         BadOption{"--seed", "synth --pga 0.3g --freq 3Hz --duration 20s --seed 18446744073709551616 --out never.csv"},
