@@ -607,7 +607,7 @@ std::string interval_words(const char* level, const std::optional<double>& lo, c
 std::string median_words(const Estimate& e, const std::vector<double>& axis, const char* unit) {
   if (e.median_edge < 0) return fmt::format("below the grid (at most about {} {})", two_digits(axis.front()), unit);
   if (e.median_edge > 0) return fmt::format("above the grid (at least about {} {})", two_digits(axis.back()), unit);
-  return fmt::format("about {} {}", two_digits(e.median), unit);
+  return fmt::format("of about {} {}", two_digits(e.median), unit);
 }
 
 }  // namespace
@@ -616,7 +616,7 @@ std::string inversion_summary(const InversionResult& r) {
   const Estimate& pga = r.pga_estimate_g;
   const Estimate& f = r.freq_estimate_hz;
   std::string s = fmt::format(
-      "The shaking at {} most likely had a PGA of {} (median; {}, {}) and a predominant frequency of {} (median; {}, "
+      "The shaking at {} most likely had a PGA {} (median; {}, {}) and a predominant frequency {} (median; {}, "
       "{})",
       r.site.empty() ? std::string("the site") : r.site, median_words(pga, r.pga_g, "g"),
       interval_words("68 %", pga.ci68_low, pga.ci68_high, "g"), interval_words("95 %", pga.ci95_low, pga.ci95_high, "g"),
