@@ -650,8 +650,8 @@ std::vector<std::string> inversion_notes(const InversionResult& r, const MatchTa
     notes.push_back("No object moved: the observations give no static lower bound on PGA.");
   }
   if (!r.bounds.upper_g) {
-    notes.push_back("No object stayed put on its friction surface: the observations give no static upper bound on "
-                    "PGA.");
+    notes.push_back("No object stayed put on its friction surface: the observations give no static upper threshold "
+                    "on PGA.");
   }
   for (const std::string& c : r.bounds.contradictions) notes.push_back("Static contradiction: " + c + ".");
   const Estimate& pga = r.pga_estimate_g;

@@ -397,6 +397,7 @@ void write_report(const std::filesystem::path& dir, const Survey& survey, const 
        ".num{font-size:1.15em}.note{background:#fff7e6;border-left:4px solid #e6a100;padding:6px 10px;margin:6px 0}\n"
        ".summary{font-size:1.2em;background:#eef5fb;border-left:5px solid #2171b5;padding:10px 14px}\n"
        "tr.misfit td{background:#fde0dc}.flag{color:#b71c1c;font-weight:bold}.def{color:#444;font-size:.92em}\n"
+       "#observations{font-size:.85em}.wide{overflow-x:auto}\n"
        "pre{background:#f7f7f7;border:1px solid #ddd;padding:8px;overflow-x:auto;font-size:.85em}\n"
        "figure{margin:1.5em 0}figure svg{max-width:100%;height:auto}figcaption{color:#444;font-size:.92em}\n</style></head><body>\n";
   h << "<h1>Shaking estimated from objects: " << html_escape(site.name) << "</h1>\n";
@@ -471,7 +472,7 @@ void write_report(const std::filesystem::path& dir, const Survey& survey, const 
        "the median and the 68 % and 95 % intervals.</figcaption></figure>\n";
 
   // ---- Observations and how well the answer explains each ----
-  h << "<h2 id=\"objects\">Observations</h2>\n<table id=\"observations\"><tr><th>id</th><th>description</th>"
+  h << "<h2 id=\"objects\">Observations</h2>\n<div class=\"wide\"><table id=\"observations\"><tr><th>id</th><th>description</th>"
        "<th>geometry</th><th>&mu;</th><th>e</th><th>support (amplification)</th><th>observed</th><th>evidence</th>"
        "<th>static threshold</th><th>P(observation), posterior-predictive</th><th>P at the maximum-likelihood cell</th>"
        "<th>information (bits)</th></tr>\n";
@@ -493,7 +494,7 @@ void write_report(const std::filesystem::path& dir, const Survey& survey, const 
                      rep.misfit ? " <span class=\"flag\">MISFIT</span>" : "", rep.probability_at_best,
                      rep.constraint_bits);
   }
-  h << "</table>\n<p class=\"def\"><b>P(observation), posterior-predictive</b>: the probability of the object's "
+  h << "</table></div>\n<p class=\"def\"><b>P(observation), posterior-predictive</b>: the probability of the object's "
        "observation averaged over the posterior (each cell's share of runs that reproduce it, weighted by the cell's "
        "posterior probability); below "
     << kMisfitProbability

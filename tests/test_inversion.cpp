@@ -13,6 +13,8 @@
 #include "topple/inversion.hpp"
 #include "topple/io/read.hpp"
 #include "topple/io/survey_file.hpp"
+#include "topple/plot.hpp"
+#include "topple/report.hpp"
 #include "topple/rocking.hpp"
 #include "topple/sliding.hpp"
 #include "topple/spectra.hpp"
@@ -564,6 +566,52 @@ TEST(InversionSummary, LeadsWithTheMedianAndSaysGridEdgesInWords) {
             "0.38 g to above the grid) and a predominant frequency below the grid (at most about 0.3 Hz) (median; "
             "68 %: anywhere on the grid, 95 %: anywhere on the grid); the object that constrains it most is tv; not "
             "explained by this answer (posterior-predictive P below 0.05): fridge (slid, P = 0.01).");
+}
+
+
+// The map: log axes ticked at 1-2-5, both credible regions, each object's line in its colour with the side that fits;
+// objects without a line do not appear in the legend (the report's caption names them with the reason).
+TEST(InversionMap, TicsRegionsAndObjectLines) {
+  const auto f = [](std::size_t c, std::size_t k, std::size_t o) -> double {
+    if (o == 0) return c / 3 == 2 && k < 3 ? 1.0 : 0.0;  // fits at high PGA
+    return o == 1 ? 1.0 : 0.0;                              // fits everywhere / nowhere: no P = 0.5 line
+  };
+  const MatchTable m = table_of(3, f);
+  InversionResult r = result_of(m, {0.02, 0.02, 0.02});
+  assess_objects(r, m, {0.02, 0.02, 0.02});
+  Site site;
+  site.name = "t";
+  const plot::MapFigure map = likelihood_map_figure(r, site);
+  const std::string script = plot::gnuplot_script(map, "map.svg");
+  // PGA cells 0.1, 0.3, 0.9 g span 0.058-1.56 g: labelled tics at 0.1, 0.2, 0.5 and 1.
+  for (const char* tic : {"\"0.1\" 0.1", "\"0.2\" 0.2", "\"0.5\" 0.5", "\"1\" 1"}) {
+    EXPECT_NE(script.find(tic), std::string::npos) << tic << "\n" << script;
+  }
+  EXPECT_NE(script.find("title \"68 % credible region\""), std::string::npos);
+  EXPECT_NE(script.find("title \"95 % credible region\""), std::string::npos);
+  EXPECT_NE(script.find("title \"o0 (not_overturned): fits at higher PGA\""), std::string::npos) << script;
+  EXPECT_EQ(script.find("title \"o1 ("), std::string::npos);
+  EXPECT_EQ(script.find("title \"o2 ("), std::string::npos);
+  // The legend sits beside the plot, not under the x label.
+  EXPECT_NE(script.find("set key outside right"), std::string::npos);
+}
+
+// The example motion of the maximum-likelihood cell: an object observed standing that falls in that one motion is
+// labelled so, never just "(falls)".
+TEST(InversionMap, BestCellFigureSaysWhenOneMotionContradictsTheObservation) {
+  InversionResult r;
+  r.site = "t";
+  r.pga_g = {1.5, 2.0};
+  r.freq_hz = {1.0, 2.0};
+  r.best_cell = 1;  // 1.5 g at 2 Hz
+  Site site;
+  site.objects.push_back(block("pole", 0.05, 0.5, {0.6, 0.6}, Outcome::not_overturned));  // uplift at 0.1 g
+  InversionSettings settings;
+  settings.duration_s = 8.0;
+  const plot::Figure fig = best_cell_figure(r, site, settings);
+  ASSERT_EQ(fig.panels.size(), 2u);  // ground and rocking
+  ASSERT_EQ(fig.panels[1].series.size(), 1u);
+  EXPECT_EQ(fig.panels[1].series[0].label, "pole (falls in this one motion; observed standing)");
 }
 
 }  // namespace

@@ -436,6 +436,9 @@ TEST(CliInvert, ReportInAHeadlessBrowserSaysTheAnswerNamesTheMisfitAndEchoesTheS
   for (auto at = page.find("<figure"); at != std::string::npos; at = page.find("<figure", at + 1)) ++figures;
   for (auto at = page.find("<figcaption>"); at != std::string::npos; at = page.find("<figcaption>", at + 1)) ++captions;
   EXPECT_EQ(figures, 4u);
+  // The fridge has no P = 0.5 line (its P stays below 0.5 everywhere): the map's caption says so.
+  EXPECT_NE(html_unescape(element_text(page, "<figure id=\"map\"", "</figure>")).find("Not drawn: fridge (slid): P(observation) < 0.5 "
+                                                                         "in every cell"), std::string::npos);
   EXPECT_EQ(captions, figures);
   const std::string browser_log = slurp(log);
   EXPECT_EQ(browser_log.find("Uncaught"), std::string::npos) << browser_log;
