@@ -274,6 +274,18 @@ TEST(CliInvert, SeveralSitesGiveAGeoJsonMapAndDistances) {
   EXPECT_NEAR(d2, 44.8, 0.3);
 }
 
+/// Loads `page` in headless chromium and returns the DOM it built and the browser's log: chromium logs page errors to
+/// stderr with --enable-logging=stderr (lines with "CONSOLE" or "Uncaught"). A failed load fails the test (the DOM is
+/// then empty). The caller skips when chromium is absent.
+std::pair<std::string, std::string> dump_dom(const std::filesystem::path& page, const std::filesystem::path& tmp) {
+  const auto dom = tmp / "dom.html";
+  const auto log = tmp / "browser.log";
+  const std::string cmd = "timeout 120 chromium --headless --no-sandbox --disable-gpu --enable-logging=stderr --v=0 "
+                          "--dump-dom 'file://" + page.string() + "' >'" + dom.string() + "' 2>'" + log.string() + "'";
+  EXPECT_EQ(std::system(cmd.c_str()), 0) << slurp(log);
+  return {slurp(dom), slurp(log)};
+}
+
 TEST(CliInvert, ReportOpensInAHeadlessBrowserWithMapAndTable) {
   test::TempDir tmp;
   const auto survey = tmp.path() / "s.toml";
@@ -289,20 +301,11 @@ TEST(CliInvert, ReportOpensInAHeadlessBrowserWithMapAndTable) {
     EXPECT_TRUE(std::filesystem::exists(dir / f)) << f;
   }
   if (std::system("command -v chromium >/dev/null 2>&1") != 0) GTEST_SKIP() << "chromium is not installed";
-  // Load the page in a real browser and dump the DOM it built; chromium logs page errors to stderr with
-  // --enable-logging=stderr (lines with "CONSOLE" or "Uncaught").
-  const auto dom = tmp.path() / "dom.html";
-  const auto log = tmp.path() / "browser.log";
-  const std::string cmd = "timeout 120 chromium --headless --no-sandbox --disable-gpu --enable-logging=stderr --v=0 "
-                          "--dump-dom 'file://" + (dir / "index.html").string() + "' >'" + dom.string() + "' 2>'" +
-                          log.string() + "'";
-  ASSERT_EQ(std::system(cmd.c_str()), 0) << slurp(log);
-  const std::string rendered = slurp(dom);
+  const auto [rendered, browser_log] = dump_dom(dir / "index.html", tmp.path());
   EXPECT_NE(rendered.find("<svg"), std::string::npos);
   EXPECT_NE(rendered.find("posterior over PGA x predominant frequency"), std::string::npos);
   EXPECT_NE(rendered.find("id=\"observations\""), std::string::npos);
   EXPECT_NE(rendered.find(">vase<"), std::string::npos);
-  const std::string browser_log = slurp(log);
   EXPECT_EQ(browser_log.find("Uncaught"), std::string::npos) << browser_log;
   EXPECT_EQ(browser_log.find("Not allowed to load"), std::string::npos) << browser_log;
   // and a screenshot of the first screen is a real image
@@ -395,13 +398,7 @@ TEST(CliInvert, ReportInAHeadlessBrowserSaysTheAnswerNamesTheMisfitAndEchoesTheS
 
   if (std::system("command -v chromium >/dev/null 2>&1") != 0) GTEST_SKIP() << "chromium is not installed";
   // The page as a real browser builds it (scripts/install-deps.sh installs Debian's chromium).
-  const auto dom = tmp.path() / "dom.html";
-  const auto log = tmp.path() / "browser.log";
-  const std::string cmd = "timeout 120 chromium --headless --no-sandbox --disable-gpu --enable-logging=stderr --v=0 "
-                          "--dump-dom 'file://" + (dir / "index.html").string() + "' >'" + dom.string() + "' 2>'" +
-                          log.string() + "'";
-  ASSERT_EQ(std::system(cmd.c_str()), 0) << slurp(log);
-  const std::string page = slurp(dom);
+  const auto [page, browser_log] = dump_dom(dir / "index.html", tmp.path());
   // The summary sentence opens the page, word for word as in JSON.
   EXPECT_EQ(html_unescape(element_text(page, "<p id=\"summary\"", "</p>")), summary);
   EXPECT_LT(page.find("id=\"summary\""), page.find("id=\"numbers\""));
@@ -440,7 +437,6 @@ TEST(CliInvert, ReportInAHeadlessBrowserSaysTheAnswerNamesTheMisfitAndEchoesTheS
   EXPECT_NE(html_unescape(element_text(page, "<figure id=\"map\"", "</figure>")).find("Not drawn: fridge (slid): P(observation) < 0.5 "
                                                                          "in every cell"), std::string::npos);
   EXPECT_EQ(captions, figures);
-  const std::string browser_log = slurp(log);
   EXPECT_EQ(browser_log.find("Uncaught"), std::string::npos) << browser_log;
 }
 
