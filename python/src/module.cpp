@@ -852,8 +852,11 @@ NB_MODULE(_core, m) {
       nb::steal(PyErr_NewExceptionWithDoc("topple.InputError", doc::input_error, PyExc_ValueError, nullptr));
   m.attr("InputError") = input_error;
   nb::object missing_file_bases = nb::make_tuple(input_error, nb::handle(PyExc_FileNotFoundError));
+  // str() stays the CLI's message: BaseException's __str__, not OSError's "[Errno 2] ...: 'path'".
+  nb::dict missing_file_dict;
+  missing_file_dict["__str__"] = nb::handle(PyExc_BaseException).attr("__str__");
   nb::object missing_file_error = nb::steal(PyErr_NewExceptionWithDoc(
-      "topple.MissingFileError", doc::missing_file_error, missing_file_bases.ptr(), nullptr));
+      "topple.MissingFileError", doc::missing_file_error, missing_file_bases.ptr(), missing_file_dict.ptr()));
   m.attr("MissingFileError") = missing_file_error;
   // The translator's payload: both types, alive as long as the module (they are its attributes).
   static std::pair<PyObject*, PyObject*> error_types{input_error.ptr(), missing_file_error.ptr()};

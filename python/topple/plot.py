@@ -33,6 +33,7 @@ from typing import Any, Mapping, Optional, Sequence
 import numpy as np
 
 try:
+    from matplotlib import patheffects
     from matplotlib.figure import Figure
     from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 except ImportError as _err:  # pragma: no cover - exercised by a subprocess test
@@ -442,6 +443,7 @@ def fragility(result: Mapping[str, Any], title: Optional[str] = None, *, level: 
             lower, upper = fit.band(xs, level)
             ax.fill_between(xs, lower, upper, color=color, alpha=0.2, lw=0)
     ax.set_xscale("log")
+    _log_axis_125(ax.xaxis)
     ax.set_ylim(-0.02, 1.02)
     ax.set_xlabel(f"{str(im).upper()} ({unit})" if unit else str(im))
     ax.set_ylabel("probability of failure")
@@ -515,12 +517,15 @@ def inversion_map(result: Mapping[str, Any], title: Optional[str] = None, *, ax:
     _log_axis_125(ax.xaxis)
     _log_axis_125(ax.yaxis)
     handles = []
+    edge = [patheffects.Stroke(linewidth=2.8, foreground="black"), patheffects.Normal()]
     if len(pga) > 1 and len(freq) > 1 and post.max() > 0:
         l68, l95 = _credible_levels(post, (0.68, 0.95))
         for level, ls, name in ((l95, "--", "95 % credible region"), (l68, "-", "68 % credible region")):
             if 0 < level < post.max():
-                ax.contour(pga, freq, post.T, levels=[level], colors="white", linestyles=ls, linewidths=1.3)
-                handles.append(ax.plot([], [], color="white", ls=ls, lw=1.3, label=name)[0])
+                # White with a black edge: visible on the dark map and in the light legend alike.
+                cs = ax.contour(pga, freq, post.T, levels=[level], colors="white", linestyles=ls, linewidths=1.3)
+                cs.set(path_effects=edge)
+                handles.append(ax.plot([], [], color="white", ls=ls, lw=1.3, label=name, path_effects=edge)[0])
     med_pga = result["pga_g"].get("median")
     med_freq = result["freq_hz"].get("median")
     if med_pga is not None and med_freq is not None:
