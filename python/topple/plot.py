@@ -38,7 +38,8 @@ try:
     from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 except ImportError as _err:  # pragma: no cover - exercised by a subprocess test
     raise ImportError("topple.plot needs matplotlib, which the plot extra installs: "
-                      "pip install \"topple-quake[plot]\" (or pip install matplotlib)") from _err
+                      "pip install \"topple-quake[plot]\" (from a checkout: pip install \".[plot]\"; "
+                      "or pip install matplotlib)") from _err
 
 from . import GroundMotion, RockingResult, SlidingResult
 from . import fourier_spectrum as _fourier_spectrum
