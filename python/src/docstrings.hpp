@@ -3,6 +3,14 @@
 // module.cpp stays readable. Every parameter and returned value names its unit; python/tests/test_docstrings.py
 // checks that each public name has Parameters / Returns sections and that unit-suffixed names (_m, _s, _g, _hz ...)
 // are documented with their unit. The stubs (python/topple/__init__.pyi) carry each docstring's first line.
+// The rocking solver's options, shared by rock, overturning_map and fragility (adjacent literals concatenate).
+#define TOPPLE_DOC_ROCKING_SOLVER                                                  \
+  "g : float\n    Gravity, m/s^2.\n"                                              \
+  "method : {\"adaptive\", \"rk4\"}\n    Integrator of the rocking motion between events.\n" \
+  "rel_tol : float\n    Relative tolerance of the adaptive integrator (dimensionless).\n" \
+  "rk4_substeps : int\n    RK4 steps per record interval.\n"                       \
+  "max_run_out_s : float\n    Longest time the body is followed after the record ends, s.\n"
+
 namespace topple::python::doc {
 
 inline constexpr const char* input_error = R"(Bad caller input (file, parameter, array value).
@@ -542,17 +550,7 @@ e : float or "housner"
     Coefficient of restitution in [0, 1] (dimensionless), or "housner" for Housner's value of the body.
 mu : float, optional
     Friction coefficient (dimensionless) for Shenton's slide/rock onset check.
-g : float
-    Gravity, m/s^2.
-method : {"adaptive", "rk4"}
-    Integrator between events.
-rel_tol : float
-    Relative tolerance of the adaptive integrator (dimensionless).
-rk4_substeps : int
-    RK4 steps per record interval.
-max_run_out_s : float
-    Longest time the body is followed after the record ends, s.
-vertical : GroundMotion, optional
+)" TOPPLE_DOC_ROCKING_SOLVER R"(vertical : GroundMotion, optional
     Vertical ground acceleration, positive up.
 history : bool
     False: summary only.
@@ -612,43 +610,10 @@ dict
     undefined.
 )";
 
-inline constexpr const char* invert_text = R"(The inversion of a survey's TOML text (used by topple.invert).
-
-Parameters
-----------
-text : str
-    The survey, TOML.
-name : str
-    Name used in error messages.
-base_dir : str
-    Folder that relative record paths resolve against.
-threads : int
-    Worker threads (0: all cores).
-report_dir : str, optional
-    Folder to write the HTML report into.
-
-Returns
--------
-dict
-    As topple.invert.
-)";
-
-inline constexpr const char* invert_file = R"(The inversion of a survey file (used by topple.invert).
-
-Parameters
-----------
-path : str
-    The survey file.
-threads : int
-    Worker threads (0: all cores).
-report_dir : str, optional
-    Folder to write the HTML report into.
-
-Returns
--------
-dict
-    As topple.invert.
-)";
+// Private workers of topple.invert (python/topple/__init__.py documents the parameters).
+inline constexpr const char* invert_text =
+    "topple.invert's worker for a survey given as TOML text (text, name for messages, base_dir for records).";
+inline constexpr const char* invert_file = "topple.invert's worker for a survey file.";
 
 inline constexpr const char* response_spectrum = R"(Elastic response spectrum of linear oscillators, by the exact Nigam-Jennings recurrence.
 
@@ -718,17 +683,7 @@ e : float or "housner"
     Coefficient of restitution (dimensionless).
 mu : float, optional
     Friction coefficient (dimensionless) for the onset check.
-g : float
-    Gravity, m/s^2.
-method : {"adaptive", "rk4"}
-    Integrator.
-rel_tol : float
-    Relative tolerance (dimensionless).
-rk4_substeps : int
-    RK4 steps per record interval.
-max_run_out_s : float
-    Longest time followed after the record ends, s.
-threads : int
+)" TOPPLE_DOC_ROCKING_SOLVER R"(threads : int
     Worker threads (0: all cores).
 
 Returns
@@ -839,25 +794,15 @@ e : float or "housner"
     Coefficient of restitution (dimensionless).
 rock_mu : float, optional
     Friction coefficient for the rocking onset check (dimensionless).
-g : float
-    Gravity, m/s^2.
-method : {"adaptive", "rk4"}
-    Rocking integrator.
-rel_tol : float
-    Relative tolerance (dimensionless).
-rk4_substeps : int
-    RK4 steps per record interval.
-max_run_out_s : float
-    Longest time followed after the record ends, s.
-threads : int
+)" TOPPLE_DOC_ROCKING_SOLVER R"(threads : int
     Worker threads (0: all cores).
 
 Returns
 -------
 dict
-    im, im_unit, runs, g_m_s2 (m/s^2), motions (count), mu, threshold_m (m) and body as given, and curves: a list (slide first, then overturn) of dicts name, im (levels, in
-    im_unit), trials, failures (int64), fraction, fit (FragilityFit, theta in im_unit; None when the counts cannot be
-    fitted) and fit_note.
+    im, im_unit, runs, g_m_s2 (m/s^2), motions (count), mu, threshold_m (m) and body as given, and curves: a
+    list (slide first, then overturn) of dicts name, im (levels, in im_unit), trials, failures (int64), fraction,
+    fit (FragilityFit, theta in im_unit; None when the counts cannot be fitted) and fit_note.
 )";
 
 inline constexpr const char* sweep = R"(Run a sweep file in memory (used by topple.sweep).
@@ -876,3 +821,5 @@ dict
 )";
 
 }  // namespace topple::python::doc
+
+#undef TOPPLE_DOC_ROCKING_SOLVER

@@ -98,11 +98,21 @@ def _need_history(result: Any) -> None:
         raise ValueError("this result has no time history: run it with history=True (the default)")
 
 
-def _three_panels(fig: Any) -> tuple:
-    """(figure to return, 3 axes sharing x) in the caller's figure or subfigure, or a new one."""
+def _history_panels(fig: Any, motion: GroundMotion, result: Any, thresholds: Sequence[tuple], middle: tuple,
+                    bottom: tuple) -> tuple:
+    """Three panels sharing the time axis, in the caller's figure or subfigure or a new one: the record with its
+    threshold lines, then `middle` and `bottom` = (values, y label, colour). Returns (figure, target, axes)."""
+    _need_history(result)
     if fig is None:
         fig = Figure(figsize=(9, 7), layout="constrained")
-    return _root_figure(fig), fig, fig.subplots(3, 1, sharex=True)
+    ax = fig.subplots(3, 1, sharex=True)
+    _record_panel(ax[0], motion, result.g_m_s2, thresholds)
+    for a, (values, label, color) in zip(ax[1:], (middle, bottom)):
+        a.plot(result.time_s, values, color=color)
+        a.set_ylabel(label)
+        a.grid(alpha=0.3)
+    ax[2].set_xlabel("time (s)")
+    return _root_figure(fig), fig, ax
 
 
 def _record_panel(ax: Any, motion: GroundMotion, g_m_s2: float, thresholds: Sequence[tuple]) -> None:
@@ -137,19 +147,12 @@ def sliding(motion: GroundMotion, result: SlidingResult, title: Optional[str] = 
         Panels: ground acceleration (g) with the yield accelerations (g), relative displacement (m), relative
         velocity (m/s), against time (s).
     """
-    _need_history(result)
-    root, target, ax = _three_panels(fig)
     lines = [(result.yield_down_g, f"yield +{result.yield_down_g:.3g} g")]
     if result.yield_up_g is not None:
         lines.append((result.yield_up_g, f"yield {result.yield_up_g:.3g} g"))
-    _record_panel(ax[0], motion, result.g_m_s2, lines)
-    ax[1].plot(result.time_s, result.displacement_m, color="tab:blue")
-    ax[1].set_ylabel("displacement (m)")
-    ax[2].plot(result.time_s, result.velocity_m_s, color="tab:green")
-    ax[2].set_ylabel("rel. velocity (m/s)")
-    ax[2].set_xlabel("time (s)")
-    for a in ax[1:]:
-        a.grid(alpha=0.3)
+    root, target, _ = _history_panels(fig, motion, result, lines,
+                                      (result.displacement_m, "displacement (m)", "tab:blue"),
+                                      (result.velocity_m_s, "rel. velocity (m/s)", "tab:green"))
     mu = f"mu = {result.mu_static:g}"
     if result.mu_kinetic != result.mu_static:
         mu += f", mu_k = {result.mu_kinetic:g}"
@@ -179,19 +182,14 @@ def rocking(motion: GroundMotion, result: RockingResult, title: Optional[str] = 
         Panels: ground acceleration (g) with +-tan(alpha) (g), rotation theta / alpha (dimensionless), angular
         velocity theta' (rad/s), against time (s).
     """
-    _need_history(result)
-    root, target, ax = _three_panels(fig)
+    _need_history(result)  # before dividing by alpha: an empty history is the caller's mistake, said plainly
     tan_alpha = math.tan(result.alpha_rad)
-    _record_panel(ax[0], motion, result.g_m_s2, [(tan_alpha, f"±g tan(alpha) = ±{tan_alpha:.3g} g"), (-tan_alpha, "")])
-    ax[1].plot(result.time_s, np.asarray(result.theta_rad) / result.alpha_rad, color="tab:blue")
+    root, target, ax = _history_panels(fig, motion, result,
+                                       [(tan_alpha, f"±g tan(alpha) = ±{tan_alpha:.3g} g"), (-tan_alpha, "")],
+                                       (np.asarray(result.theta_rad) / result.alpha_rad, "theta / alpha", "tab:blue"),
+                                       (result.theta_dot_rad_s, "theta' (rad/s)", "tab:green"))
     for level in (1.0, -1.0):
         ax[1].axhline(level, color="tab:red", lw=0.8, ls=":")
-    ax[1].set_ylabel("theta / alpha")
-    ax[2].plot(result.time_s, result.theta_dot_rad_s, color="tab:green")
-    ax[2].set_ylabel("theta' (rad/s)")
-    ax[2].set_xlabel("time (s)")
-    for a in ax[1:]:
-        a.grid(alpha=0.3)
     verdict = "overturned" if result.overturned else f"max |theta| = {result.max_rotation_over_alpha:.3g} alpha"
     target.suptitle(_wrap(title or f"Rocking {result.body!r}, e = {result.e:.3g} ({result.e_mode}): {verdict}: "
                                    f"{_record_label(motion.name)}"))
