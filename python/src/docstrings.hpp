@@ -50,7 +50,8 @@ filename : str
     Path as given (as FileNotFoundError has it).
 )";
 
-inline constexpr const char* ground_motion = R"(One component of ground acceleration, piecewise linear between samples (SI).
+inline constexpr const char* ground_motion =
+    R"(One component of ground acceleration, piecewise linear between samples (SI).
 
 GroundMotion(accel, dt=None, units="g", *, time=None, start_time_s=0.0, g=9.80665)
 
@@ -149,7 +150,8 @@ GroundMotion
     -a(t), same times.
 )";
 
-inline constexpr const char* time_scaled = R"(The motion compressed or stretched in time (frequencies multiplied by 1 / factor).
+inline constexpr const char* time_scaled =
+    R"(The motion compressed or stretched in time (frequencies multiplied by 1 / factor).
 
 Parameters
 ----------
@@ -177,7 +179,8 @@ GroundMotion
     The trimmed motion.
 )";
 
-inline constexpr const char* resampled = R"(The motion resampled at a uniform interval (linear interpolation: exact for this motion).
+inline constexpr const char* resampled =
+    R"(The motion resampled at a uniform interval (linear interpolation: exact for this motion).
 
 Parameters
 ----------
@@ -285,7 +288,8 @@ dict
     The JSON object (keys with units, e.g. residual_displacement_m in m) with its "input".
 )";
 
-inline constexpr const char* slide = R"(Exact sliding of a rigid block with Coulomb friction on a level or inclined plane.
+inline constexpr const char* slide =
+    R"(Exact sliding of a rigid block with Coulomb friction on a level or inclined plane.
 
 Parameters
 ----------
@@ -312,7 +316,8 @@ SlidingResult
     Summary (displacements in m, times in s, yield accelerations in g) and histories.
 )";
 
-inline constexpr const char* slide_spectrum = R"(Sliding displacement spectrum: one block per friction coefficient (topple/object_spectra.hpp).
+inline constexpr const char* slide_spectrum =
+    R"(Sliding displacement spectrum: one block per friction coefficient (topple/object_spectra.hpp).
 
 Blocks have mu static = kinetic, on a plane at slope_deg. Draw it with topple.plot.sliding_spectrum.
 
@@ -338,7 +343,8 @@ dict
     mode, g_m_s2 (m/s^2), motion (the record's name).
 )";
 
-inline constexpr const char* slide_flexible = R"(Sliding on a flexible support (topple/flexible.hpp), decoupled or coupled.
+inline constexpr const char* slide_flexible =
+    R"(Sliding on a flexible support (topple/flexible.hpp), decoupled or coupled.
 
 Either an object (friction mu) on a shelf or floor, given by support_freq_hz, support_damping and mass_ratio; or
 SLAMMER's flexible sliding mass (mu is k_y), given by height_m, vs_slope_m_s, vs_base_m_s and damping.
@@ -381,7 +387,8 @@ dict
     times in s) and "support" (mode_freq_hz in Hz, mode_damping_ratio, kmax in g, vs_final_m_s in m/s ...).
 )";
 
-inline constexpr const char* rocking_body = R"(A rigid body that rocks about its base edges (made by Block, Cylinder or General).
+inline constexpr const char* rocking_body =
+    R"(A rigid body that rocks about its base edges (made by Block, Cylinder or General).
 
 Attributes
 ----------
@@ -538,7 +545,8 @@ dict
     The JSON object (keys with units, e.g. max_rotation_time_s in s).
 )";
 
-inline constexpr const char* rock = R"(Housner rocking and overturning of a rigid body on a level base that does not slide.
+inline constexpr const char* rock =
+    R"(Housner rocking and overturning of a rigid body on a level base that does not slide.
 
 Parameters
 ----------
@@ -561,7 +569,8 @@ RockingResult
     Summary (angles in rad, times in s) and histories.
 )";
 
-inline constexpr const char* synth = R"(A synthetic ground motion, as `topple synth`: the same parameters and seed give the same bits everywhere.
+inline constexpr const char* synth =
+    R"(A synthetic ground motion, as `topple synth`: the same parameters and seed give the same bits everywhere.
 
 Filtered white noise (Clough-Penzien or Kanai-Tajimi) under an envelope, scaled to the PGA.
 
@@ -615,7 +624,8 @@ inline constexpr const char* invert_text =
     "topple.invert's worker for a survey given as TOML text (text, name for messages, base_dir for records).";
 inline constexpr const char* invert_file = "topple.invert's worker for a survey file.";
 
-inline constexpr const char* response_spectrum = R"(Elastic response spectrum of linear oscillators, by the exact Nigam-Jennings recurrence.
+inline constexpr const char* response_spectrum =
+    R"(Elastic response spectrum of linear oscillators, by the exact Nigam-Jennings recurrence.
 
 x'' + 2 zeta w x' + w^2 x = -a_g from rest (topple/spectra.hpp; maxima at the samples, over the record only). Draw
 it with topple.plot.response_spectrum.
@@ -639,7 +649,8 @@ dict
     (m/s^2), motion (name).
 )";
 
-inline constexpr const char* fourier_spectrum = R"(Fourier amplitude spectrum |A(f)| = dt |DFT| and its Konno-Ohmachi smoothing.
+inline constexpr const char* fourier_spectrum =
+    R"(Fourier amplitude spectrum |A(f)| = dt |DFT| and its Konno-Ohmachi smoothing.
 
 Irregular records are resampled at their smallest interval first. Draw it with topple.plot.fourier_spectrum.
 
@@ -662,7 +673,8 @@ dict
     when undefined), motion (name).
 )";
 
-inline constexpr const char* overturning_map = R"(Overturning map: which bodies of one slenderness overturn at which PGA (topple/object_spectra.hpp).
+inline constexpr const char* overturning_map =
+    R"(Overturning map: which bodies of one slenderness overturn at which PGA (topple/object_spectra.hpp).
 
 Bodies of one shape and slenderness alpha_rad = atan(a / h), of the given full heights, under the motion scaled to
 each PGA. Runs on `threads` cores with the GIL released. Draw it with topple.plot.overturning_map.
@@ -695,7 +707,8 @@ dict
     uplift_pga_g (tan(alpha), g), shape, g_m_s2 (m/s^2), motion (name).
 )";
 
-inline constexpr const char* fragility_fit_class = R"(Lognormal fragility P(failure | IM = x) = Phi(ln(x / theta) / beta).
+inline constexpr const char* fragility_fit_class =
+    R"(Lognormal fragility P(failure | IM = x) = Phi(ln(x / theta) / beta).
 
 Maximum-likelihood fit to binomial counts (Baker 2015; topple/fragility.hpp).
 
@@ -764,7 +777,8 @@ FragilityFit
     The fit.
 )";
 
-inline constexpr const char* fragility = R"(Fragility analysis: failure counts over scaled motions and their lognormal fits (topple/fragility.hpp).
+inline constexpr const char* fragility =
+    R"(Fragility analysis: failure counts over scaled motions and their lognormal fits (topple/fragility.hpp).
 
 Every motion is scaled so that its IM equals each level and run on a sliding block (failure: max |d| >
 threshold_m) and/or a rocking body (failure: overturning). Warns (RuntimeWarning) for each curve whose fit has beta

@@ -181,6 +181,9 @@ def test_titles_name_the_analysis_never_a_folder(tmp_path, made_record):
         assert folder not in t and "made.csv" in t
     assert "mu = 0.25" in titles[0] and "slope 3 deg" in titles[0]
     assert "5 % damping" in titles[1]
+    # A synthetic motion's name is its description, slashes ("m/s2") and all: kept, not cut at the last "/".
+    synthetic = topple.plot.fourier_spectrum(topple.synth(pga_g=0.3, freq_hz=3.0, duration_s=5.0, seed=1))
+    assert "synthetic clough-penzien motion" in synthetic.axes[0].get_title().replace("\n", " ")
 
 
 def test_inversion_map_has_the_reports_axes_and_every_object():

@@ -81,7 +81,8 @@ def _record_label(name: Optional[str]) -> str:
     the figure), else the description (synthetic motions)."""
     if not name:
         return "record"
-    if os.path.isabs(name) or os.path.exists(name) or os.sep in name:
+    # A description may hold a slash ("PGA 2.9 m/s2"): only a name that is a path loses its folders.
+    if os.path.isabs(name) or os.path.exists(name) or (os.sep in name and " " not in name):
         return os.path.basename(name) or name
     return name
 
