@@ -531,11 +531,15 @@ def inversion_map(result: Mapping[str, Any], title: Optional[str] = None, *, ax:
     if med_pga is not None and med_freq is not None:
         handles.append(ax.plot([med_pga], [med_freq], marker="o", ms=8, color="white", mec="black", ls="none",
                                label=f"median: {med_pga:.3g} g, {med_freq:.3g} Hz")[0])
+    # Static thresholds are hard (PGA > g b/h, mu g for an object that moved) or soft (mu g for an object that did not
+    # slide visibly: it may slip below the visibility threshold); only a hard one is called a bound.
     low, high = result["static_bounds_pga_g"]
-    for v, name in ((low, "static lower bound"), (high, "static upper bound")):
+    hard_low, hard_high = result.get("static_bounds_hard_pga_g", [None, None])
+    for v, hard, side, ls in ((low, hard_low, "lower", ":"), (high, hard_high, "upper", "-.")):
         if v is not None:
-            handles.append(ax.axvline(v, color="tab:red", ls="-." if name.endswith("upper bound") else ":", lw=1.4,
-                                      label=f"{name} {v:.3g} g"))
+            kind = "hard" if hard is not None and abs(hard - v) <= 1e-12 * abs(v) else "soft"
+            handles.append(ax.axvline(v, color="tab:red", ls=ls, lw=1.4,
+                                      label=f"static {side} threshold ({kind}) {v:.3g} g"))
     styles = ["-", "--", ":", "-."]
     for k, obj in enumerate(result.get("objects", [])):
         color = f"C{k % 10}"
