@@ -75,7 +75,8 @@ struct Input {
 /// direction of w is not resolved by the integration (the direction equation is stiff there, relaxing toward -a at
 /// the rate |a| / |w|, docs/method.md), so until the speed first exceeds kLaunchSpeedTolerances x abs_tol the friction
 /// acts along the quasi-static direction -a / |a| (for collinear input it is w / |w| itself; in two dimensions the
-/// lag of w behind -a there is |w| psi' / |a|, psi' the turning rate of a: below 1e-7 rad at the default tolerance).
+/// lag of w behind -a there is |w| psi' / |a|, psi' the turning rate of a: below 6e-6 rad at the default 1e-7 m/s
+/// for psi' = 60 rad/s and |a| = 1 m/s^2).
 struct Rhs {
   double a01 = 0.0, a02 = 0.0, as1 = 0.0, as2 = 0.0, g0 = 0.0, gs = 0.0;
   double mu = 0.0;               // kinetic friction coefficient

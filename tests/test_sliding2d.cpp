@@ -168,7 +168,6 @@ TEST(Sliding2d, SteadyStateUnderARotatingAccelerationMatchesTheClosedForm) {
   EXPECT_EQ(r.summary.slip_episodes, 1);
   const auto& h = r.history;
   std::size_t checked = 0;
-  double path_6 = 0.0;
   for (std::size_t k = 0; k < h.time_s.size(); ++k) {
     const double t = h.time_s[k];
     if (t < 6.0 || t > 7.99) continue;
@@ -179,7 +178,6 @@ TEST(Sliding2d, SteadyStateUnderARotatingAccelerationMatchesTheClosedForm) {
     const double lag = std::remainder(std::atan2(w2, w1) - (omega * t + kPi), 2.0 * kPi);
     EXPECT_NEAR(lag, -steady.lag_rad, 1e-4) << t;
     ++checked;
-    (void)path_6;
   }
   EXPECT_GT(checked, 1900u);
   EXPECT_NEAR(steady.speed_m_s, 0.3121554, 1e-7);  // 9.80665 x 0.4 / (4 pi), by hand
@@ -201,21 +199,37 @@ TEST(Sliding2d, WorkEnergyBalance) {
 }
 
 TEST(Sliding2d, ErrorShrinksWithTheTolerance) {
-  // Against a run at rel_tol 1e-12: the error of the residual displacement falls with the tolerance (DP5 with
-  // per-step error control: the global error is roughly proportional to the tolerance, Hairer et al. II.4).
+  // Against a run at rel_tol 1e-12 (abs_tol 1e-15), on a record with 28 slip episodes: the error of the residual
+  // displacement falls with the tolerance. DP5 with per-step error control has a global error roughly proportional
+  // to the tolerance on smooth stretches (Hairer et al. II.4); the stops, located on the dense output and at the
+  // velocity noise floor (docs/method.md), add terms that fall more slowly. Asserted: every error below
+  // 100 x tol x the displacement scale, and a least-squares slope of log(error) against log(tol) of at least 0.5
+  // over six decades (measured: 0.6).
   const auto h1 = noisy_record(31);
   const auto h2 = noisy_record(32);
   const auto block = SlidingBlock::make(0.2, 0.18);
   const auto ref = slide_2d_summary(h1, h2, {}, block, nullptr, {.rel_tol = 1e-12, .abs_tol = 1e-15});
-  double previous = std::numeric_limits<double>::infinity();
+  ASSERT_GT(ref.slip_episodes, 20);
+  std::vector<double> log_tol, log_err;
   for (double tol : {1e-4, 1e-6, 1e-8, 1e-10}) {
     const auto s = slide_2d_summary(h1, h2, {}, block, nullptr, {.rel_tol = tol, .abs_tol = 1e-3 * tol});
     const double err = std::hypot(s.residual_east_m - ref.residual_east_m, s.residual_north_m - ref.residual_north_m);
-    std::printf("tol %g err %g steps %zu\n", tol, err, s.integrator_steps);
     EXPECT_LT(err, 100.0 * tol * ref.max_abs_displacement_m) << tol;
-    EXPECT_LT(err, previous) << tol;
-    previous = err;
+    ASSERT_GT(err, 0.0);
+    log_tol.push_back(std::log10(tol));
+    log_err.push_back(std::log10(err));
   }
+  double mx = 0.0, my = 0.0;
+  for (std::size_t k = 0; k < log_tol.size(); ++k) {
+    mx += log_tol[k] / static_cast<double>(log_tol.size());
+    my += log_err[k] / static_cast<double>(log_tol.size());
+  }
+  double sxy = 0.0, sxx = 0.0;
+  for (std::size_t k = 0; k < log_tol.size(); ++k) {
+    sxy += (log_tol[k] - mx) * (log_err[k] - my);
+    sxx += (log_tol[k] - mx) * (log_tol[k] - mx);
+  }
+  EXPECT_GE(sxy / sxx, 0.5);
 }
 
 TEST(Sliding2d, ZeroVerticalEqualsNone) {
@@ -225,7 +239,6 @@ TEST(Sliding2d, ZeroVerticalEqualsNone) {
   const auto block = SlidingBlock::make(0.2);
   const auto a = slide_2d_summary(h1, h2, {}, block);
   const auto b = slide_2d_summary(h1, h2, {}, block, &zero);
-  std::printf("steps %zu episodes %d slip %g of %g\n", a.integrator_steps, a.slip_episodes, a.total_slip_duration_s, h1.duration_s());
   ASSERT_GT(a.residual_displacement_m, 1e-3);
   // 1e-12 relative: the same operations (g_e = g + 0 per point instead of g).
   EXPECT_NEAR(a.residual_east_m, b.residual_east_m, 1e-12 * a.max_abs_displacement_m);

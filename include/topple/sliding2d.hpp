@@ -30,6 +30,12 @@
 // 1-D solver's exactness carries over. After the record the ground is still and a sliding block runs out in a
 // straight line to rest (closed form).
 //
+// Low speeds (method.md, "stiffness"). The direction of w relaxes toward -a at the rate |a| / |w|: stiff near every
+// onset and stop. Below the velocity tolerance the integration cannot resolve the direction, so (1) until the speed
+// first exceeds 1000 abs_tol after an onset, friction acts along the quasi-static direction -a / |a|; (2) a sliding
+// block that slows to 100 abs_tol has stopped (the remaining run-in, extrapolated along its direction, is added).
+// The stiff phases cost a few hundred steps per slip episode: the slip path is ~100x slower than the 1-D solver's.
+//
 // Scope. Level ground only (the incline, where gravity's downslope pull breaks the isotropy, is not implemented:
 // make() refuses a slope) and two-way sliding only.
 #include <cstddef>
