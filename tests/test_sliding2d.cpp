@@ -7,6 +7,7 @@
 
 #include "support/noise_record.hpp"
 #include "topple/error.hpp"
+#include "topple/pulses.hpp"
 #include "topple/sliding.hpp"
 #include "topple/sliding2d.hpp"
 
@@ -102,6 +103,42 @@ TEST(Sliding2d, CollinearInputWithAVerticalEqualsTheExact1dSolver) {
   for (double alpha : {0.0, 200.0}) expect_collinear_equals_1d(rec, alpha, 0.25, 0.2, &vertical);
 }
 
+TEST(Sliding2d, RectangularPulseAtAnAzimuthMatchesNewmarksClosedForm) {
+  // Newmark's rectangular pulse (thesis eqs 2.5-2.6, Table 3.1 row 1: A = 2, t0 = 0.1 s, mu = 0.3) on one component
+  // at azimuth 30 deg, a zero record on the other: the block slides against the pulse's axis (toward 210 deg), by
+  // the closed form. Slip starts at the jump, stops after the pulse on still ground: exact integration, so 1e-9.
+  const auto pulse = make_pulse({PulseKind::rectangular, 2.0 * kG, 0.1, 0.5, 0.0});
+  const auto cf = rectangular_pulse_sliding(2.0, 0.1, 0.3);
+  const auto r = slide_2d(pulse, zeros_like(pulse), {30.0, 120.0}, SlidingBlock::make(0.3));
+  EXPECT_NEAR(r.summary.residual_displacement_m, cf.max_displacement_m, 1e-9 * cf.max_displacement_m);
+  EXPECT_NEAR(r.summary.max_abs_displacement_m, cf.max_displacement_m, 1e-9 * cf.max_displacement_m);
+  EXPECT_NEAR(*r.summary.residual_azimuth_deg, 210.0, 1e-9);
+  EXPECT_EQ(r.summary.slip_episodes, 1);
+  // The path is straight: its length is the displacement; the history ends on the residual.
+  EXPECT_NEAR(r.summary.path_length_m, cf.max_displacement_m, 1e-9 * cf.max_displacement_m);
+  EXPECT_NEAR(r.history.east_m.back(), r.summary.residual_east_m, 1e-15);
+  EXPECT_NEAR(r.history.north_m.back(), r.summary.residual_north_m, 1e-15);
+  EXPECT_GE(r.history.time_s.size(), pulse.size());
+}
+
+TEST(Sliding2d, LinearUpsamplingChangesNothingButTheSteps) {
+  // The same piecewise-linear input on a grid twice as fine: the same solution; the steps end on other points, so
+  // agreement to the integration error (1e-7 relative, as for rotations; measured 1e-9). mu_s = mu_k: with
+  // mu_s > mu_k a velocity that passes close to zero without stopping (a near miss, common in two dimensions) sticks
+  // or slides on depending on whether it reached the noise floor, a discontinuous outcome of the model itself.
+  const auto h1 = noisy_record(51, 2000);
+  const auto h2 = noisy_record(52, 2000);
+  const auto block = SlidingBlock::make(0.2);
+  const auto a = slide_2d_summary(h1, h2, {}, block);
+  const auto b = slide_2d_summary(h1.resampled(h1.dt_s() / 2.0), h2.resampled(h2.dt_s() / 2.0), {}, block);
+  ASSERT_GT(a.max_abs_displacement_m, 1e-3);
+  const double tol = 1e-7 * a.max_abs_displacement_m;
+  EXPECT_NEAR(a.residual_east_m, b.residual_east_m, tol);
+  EXPECT_NEAR(a.residual_north_m, b.residual_north_m, tol);
+  EXPECT_NEAR(a.max_abs_displacement_m, b.max_abs_displacement_m, tol);
+  EXPECT_EQ(a.slip_episodes, b.slip_episodes);
+}
+
 TEST(Sliding2d, TurningTheAzimuthsTurnsTheResult) {
   // The same records at azimuths turned by theta: the solve (in the components' frame) is the same, the result
   // turns by theta. Magnitudes to 1e-12 relative (round-off of the frame change only).
@@ -123,10 +160,10 @@ TEST(Sliding2d, RotatingTheInputRotatesTheResultAndChangesNothingElse) {
   // The records themselves mixed (east, north) -> turned by theta: the solver sees other component values and takes
   // other steps (the error norm is per component), so agreement is to the integration error. Tolerance 1e-7
   // relative: 100 x rel_tol (1e-9), the global error of a run measured by the convergence test below being below
-  // 10 x rel_tol x the displacement scale.
+  // 10 x rel_tol x the displacement scale. mu_s = mu_k, as in the up-sampling test (near misses).
   const auto h1 = noisy_record(11);
   const auto h2 = noisy_record(12);
-  const auto block = SlidingBlock::make(0.25, 0.2);
+  const auto block = SlidingBlock::make(0.2);
   const auto base = slide_2d_summary(h1, h2, {90.0, 0.0}, block);
   const double tol = 1e-7 * base.max_abs_displacement_m;
   for (double theta : {17.0, 90.0, 123.4, -60.0}) {

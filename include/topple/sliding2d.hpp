@@ -60,7 +60,7 @@ struct Sliding2dOptions {
   /// Relative tolerance per step on each state (dimensionless, typical 1e-9); > 0.
   double rel_tol = 1e-9;
   /// Absolute tolerance per step (m for displacements, m/s for velocities, m^2/s^2 for work per mass; typical
-  /// 1e-10); > 0. A decelerating block slower than 10 abs_tol has stopped.
+  /// 1e-10); > 0. It also sets the velocity noise floor: a slipping block that slows to 100 abs_tol has stopped.
   double abs_tol = 1e-10;
   /// Cap on integrator steps (accepted and rejected) over the run: a sign of an input outside the model.
   std::size_t max_steps = 100'000'000;
