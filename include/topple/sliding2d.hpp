@@ -34,7 +34,8 @@
 // onset and stop. Below the velocity tolerance the integration cannot resolve the direction, so (1) until the speed
 // first exceeds 1000 abs_tol after an onset, friction acts along the quasi-static direction -a / |a|; (2) a sliding
 // block that slows to 100 abs_tol has stopped (the remaining run-in, extrapolated along its direction, is added).
-// The stiff phases cost a few hundred steps per slip episode: the slip path is ~100x slower than the 1-D solver's.
+// The stiff phases cost a few hundred steps per slip episode: with 5-15 % of a record slipping the 2-D solver runs
+// at 3-5 M samples/s, ~250x slower than the 1-D one (docs/performance.md).
 //
 // Scope. Level ground only (the incline, where gravity's downslope pull breaks the isotropy, is not implemented:
 // make() refuses a slope) and two-way sliding only.
