@@ -32,7 +32,8 @@
 //
 // Low speeds (method.md, "stiffness"). The direction of w relaxes toward -a at the rate |a| / |w|: stiff near every
 // onset and stop. Below the velocity tolerance the integration cannot resolve the direction, so (1) until the speed
-// first exceeds 1000 abs_tol after an onset, friction acts along the quasi-static direction -a / |a|; (2) a sliding
+// first exceeds 1000 abs_tol after an onset, the velocity is slaved to the quasi-static direction -a / |a| (w = r n,
+// n = -a / |a|, r' = |a| - mu_k g_e; method.md eq S5'); (2) a sliding
 // block that slows to 100 abs_tol has stopped (the remaining run-in, extrapolated along its direction, is added).
 // The stiff phases cost a few hundred steps per slip episode: with 5-15 % of a record slipping the 2-D solver runs
 // at 3-5 M samples/s, ~250x slower than the 1-D one (docs/performance.md).
