@@ -15,6 +15,7 @@
 
 #include "topple/ensemble.hpp"
 #include "topple/error.hpp"
+#include "topple/flexible.hpp"
 #include "topple/rocking.hpp"
 #include "topple/sliding.hpp"
 #include "topple/spectra.hpp"
@@ -86,6 +87,9 @@ std::uint64_t mix(std::uint64_t a, std::uint64_t b) {
 StaticBounds static_bounds(const Site& site) {
   StaticBounds b;
   for (const ObservedObject& o : site.objects) {
+    // A flexible support amplifies or attenuates the ground's peak by the motion's frequency content (up to about
+    // 1 / (2 zeta) at resonance, towards 0 well above its frequency): no static bound follows from such an object.
+    if (o.support_filter) continue;
     const double amp_hi = o.amplification.high;
     const double amp_lo = o.amplification.low;
     const double tan_alpha = std::tan(o.body.alpha_rad());
@@ -157,6 +161,11 @@ DrawnParameters draw_parameters(const ObservedObject& object, std::uint64_t seed
   p.mu = draw(object.mu);
   p.e = object.e_housner ? housner_restitution(object.body) : draw(object.e);
   p.amplification = draw(object.amplification);
+  // Drawn last, and only for a flexible support: the draws above, and with them a survey without one, are unchanged.
+  if (object.support_filter) {
+    p.support_freq_hz = draw(object.support_filter->freq_hz);
+    p.support_damping = draw(object.support_filter->damping);
+  }
   return p;
 }
 
@@ -165,8 +174,25 @@ double sliding_sigma_m(const ObservedObject& object) {
   return std::max({object.slid_uncertainty_m, 0.25 * d, kVisibleSlipM});
 }
 
-double observation_match(const ObservedObject& object, const DrawnParameters& p, const GroundMotion& motion,
+namespace {
+/// The motion on the object's flexible support (its absolute acceleration, decoupled), or none for a rigid support.
+std::optional<GroundMotion> on_flexible_support(const ObservedObject& object, const DrawnParameters& p,
+                                                const GroundMotion& ground) {
+  if (!object.support_filter) return std::nullopt;
+  return support_motion(ground, SupportOscillator::make(p.support_freq_hz, p.support_damping));
+}
+}  // namespace
+
+GroundMotion nominal_object_motion(const ObservedObject& object, const GroundMotion& ground) {
+  if (!object.support_filter) return ground;
+  return support_motion(ground, SupportOscillator::make(object.support_filter->freq_hz.mid(),
+                                                        object.support_filter->damping.mid()));
+}
+
+double observation_match(const ObservedObject& object, const DrawnParameters& p, const GroundMotion& ground,
                          double g) {
+  const std::optional<GroundMotion> filtered = on_flexible_support(object, p, ground);
+  const GroundMotion& motion = filtered ? *filtered : ground;
   if (is_sliding_outcome(object.outcome)) {
     // Level ground, no vertical input: the response to amp * a with mu is amp times the response to a with
     // mu / amp (divide the equation of motion by amp), which spares a copy of the motion.
