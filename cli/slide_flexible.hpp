@@ -28,7 +28,9 @@ void add_flexible_options(CLI::App& cmd, FlexibleOptions& options);
 
 /// Runs and prints (text or JSON) the flexible-support analysis; `mu` is the friction coefficient (shelf) or the
 /// yield coefficient k_y (sliding mass); `vertical` (decoupled only) as in the rigid run.
+/// `out` / `plot` (empty: none) receive the history CSV and the figure, as the rigid run's --out / --plot.
 void run_flexible_slide(const GroundMotion& horizontal, const SlidingBlock& block, const FlexibleOptions& o, bool json,
-                        const std::string& motion_name, const GroundMotion* vertical = nullptr);
+                        const std::string& motion_name, const GroundMotion* vertical = nullptr,
+                        const std::string& out = {}, const std::string& plot = {});
 
 }  // namespace topple::cli

@@ -246,6 +246,7 @@ struct CoupledSystem {
   Vec<kN> demand{};                  ///< stick-phase demand D(w) (m/s^2): sliding force per unit sliding mass
   double yield_m_s2 = 0.0;           ///< k_y g (column) or mu g (shelf)
   double omega_max = 0.0;            ///< fastest mode over the phases (sets the sub-step)
+  double mass_fraction = 1.0;        ///< L1/m: the surface's absolute acceleration is a_g + (L1/m) Y''
   bool two_way = false;
 };
 
@@ -287,6 +288,7 @@ CoupledSystem column_system(const ModalProperties& m, double yield_m_s2, bool tw
   }
   sys.yield_m_s2 = yield_m_s2;
   sys.omega_max = m.omega_rad_s / std::sqrt(d1);
+  sys.mass_fraction = q;
   sys.two_way = two_way;
   return sys;
 }
@@ -367,7 +369,8 @@ Phase stick_or_slip(const CoupledSystem& sys, const Vec<kN>& w) {
   return stick;
 }
 
-SlidingSummary run_coupled(const GroundMotion& ground, const CoupledSystem& sys) {
+/// The coupled response; `history` (optional) receives every sub-step end and every event.
+SlidingSummary run_coupled(const GroundMotion& ground, const CoupledSystem& sys, FlexibleHistory* history = nullptr) {
   const auto acc = ground.accel_m_s2();
   const double dt = ground.dt_s();
   // omega h <= 0.5 for the event search; capped at 256 sub-steps (omega dt > 128: a support so stiff that its demand
@@ -388,6 +391,19 @@ SlidingSummary run_coupled(const GroundMotion& ground, const CoupledSystem& sys)
   Phase phase = stick;
   double slip_start_time = 0.0;
   const auto note_state = [&](double t) {
+    if (history != nullptr) {
+      // The sliding surface's absolute acceleration a_g + (L1/m) Y'', Y'' from the current phase's equation.
+      const Mat<kN>& gen = sys.generator[phase];
+      double y_dd = 0.0;
+      for (std::size_t j = 0; j < kN; ++j) y_dd += gen(1, j) * w[j];
+      history->sliding.time_s.push_back(t);
+      history->sliding.displacement_m.push_back(w[2]);
+      history->sliding.velocity_m_s.push_back(w[3]);
+      history->sliding.state.push_back(phase == stick       ? SlipState::stuck
+                                       : phase == slip_down ? SlipState::slipping_down
+                                                            : SlipState::slipping_up);
+      history->support_accel_m_s2.push_back(w[4] + sys.mass_fraction * y_dd);
+    }
     const double s = std::abs(w[2]);
     if (s > out.max_abs_displacement_m) {
       out.max_abs_displacement_m = s;
@@ -478,6 +494,10 @@ SlidingSummary run_coupled(const GroundMotion& ground, const CoupledSystem& sys)
   };
 
   const double t_begin = ground.start_time_s();
+  if (history != nullptr) {
+    w[4] = acc[0];
+    note_state(t_begin);
+  }
   for (std::size_t k = 0; k + 1 < acc.size(); ++k) {
     const double slope = (acc[k + 1] - acc[k]) / dt;
     const double tk = t_begin + static_cast<double>(k) * dt;
@@ -620,12 +640,20 @@ std::pair<GroundMotion, double> demand_motion(const GroundMotion& ground, const 
 }
 
 FlexibleSummary decoupled(const GroundMotion& ground, const ModalProperties& mode, const SlidingBlock& block,
-                          const GroundMotion* vertical) {
+                          const GroundMotion* vertical, FlexibleHistory* history) {
   const auto [support, peak] = demand_motion(ground, mode);
   FlexibleSummary out;
   out.mode = mode;
   out.kmax = peak / block.g_m_s2;
-  out.sliding = slide_summary(support, block, vertical);
+  if (history == nullptr) {
+    out.sliding = slide_summary(support, block, vertical);
+    return out;
+  }
+  SlidingResult r = slide(support, block, vertical);
+  out.sliding = r.summary;
+  history->sliding = std::move(r.history);
+  history->support_accel_m_s2.clear();
+  for (const double t : history->sliding.time_s) history->support_accel_m_s2.push_back(support.accel_at(t));
   return out;
 }
 
@@ -644,11 +672,12 @@ void require_no_vertical(const GroundMotion* vertical) {
 }
 }  // namespace
 
-FlexibleSummary slide_flexible(const GroundMotion& ground, const SupportOscillator& support, const SlidingBlock& block,
-                               FlexibleAnalysis analysis, const GroundMotion* vertical) {
+namespace {
+FlexibleSummary shelf_analysis(const GroundMotion& ground, const SupportOscillator& support, const SlidingBlock& block,
+                               FlexibleAnalysis analysis, const GroundMotion* vertical, FlexibleHistory* history) {
   require_uniform(ground);
   const ModalProperties mode = modal_properties(support);
-  if (analysis == FlexibleAnalysis::decoupled) return decoupled(ground, mode, block, vertical);
+  if (analysis == FlexibleAnalysis::decoupled) return decoupled(ground, mode, block, vertical, history);
   require_no_vertical(vertical);
   if (block.slope_rad != 0.0 || block.mu_kinetic != block.mu_static) {
     throw parameter_error("mu_kinetic", "the coupled analysis models level ground with one friction coefficient "
@@ -659,25 +688,53 @@ FlexibleSummary slide_flexible(const GroundMotion& ground, const SupportOscillat
   out.kmax = linear_response(ground, mode, false, decoupled_substeps(mode.omega_rad_s, ground.dt_s())).max_abs_demand_m_s2 /
              block.g_m_s2;
   out.sliding = run_coupled(ground, shelf_system(mode, support.mass_ratio, block.mu_static * block.g_m_s2,
-                                                 block.mode == SlidingMode::two_way));
+                                                 block.mode == SlidingMode::two_way), history);
   return out;
 }
 
-FlexibleSummary slide_flexible(const GroundMotion& ground, const SlidingMassColumn& column, double ky_g,
-                               FlexibleAnalysis analysis, SlidingMode mode, double g_m_s2,
-                               const GroundMotion* vertical) {
+FlexibleSummary column_analysis(const GroundMotion& ground, const SlidingMassColumn& column, double ky_g,
+                                FlexibleAnalysis analysis, SlidingMode mode, double g_m_s2,
+                                const GroundMotion* vertical, FlexibleHistory* history) {
   require_uniform(ground);
   check_ky(ky_g);
   const SlidingBlock block = SlidingBlock::make(ky_g, ky_g, 0.0, mode, g_m_s2);
   const ModalProperties props = modal_properties(column, ground);
-  if (analysis == FlexibleAnalysis::decoupled) return decoupled(ground, props, block, vertical);
+  if (analysis == FlexibleAnalysis::decoupled) return decoupled(ground, props, block, vertical, history);
   require_no_vertical(vertical);
   FlexibleSummary out;
   out.mode = props;
   out.kmax =
       linear_response(ground, props, false, decoupled_substeps(props.omega_rad_s, ground.dt_s())).max_abs_demand_m_s2 / g_m_s2;
-  out.sliding = run_coupled(ground, column_system(props, ky_g * g_m_s2, mode == SlidingMode::two_way));
+  out.sliding = run_coupled(ground, column_system(props, ky_g * g_m_s2, mode == SlidingMode::two_way), history);
   return out;
+}
+}  // namespace
+
+FlexibleSummary slide_flexible(const GroundMotion& ground, const SupportOscillator& support, const SlidingBlock& block,
+                               FlexibleAnalysis analysis, const GroundMotion* vertical) {
+  return shelf_analysis(ground, support, block, analysis, vertical, nullptr);
+}
+
+FlexibleSummary slide_flexible(const GroundMotion& ground, const SlidingMassColumn& column, double ky_g,
+                               FlexibleAnalysis analysis, SlidingMode mode, double g_m_s2,
+                               const GroundMotion* vertical) {
+  return column_analysis(ground, column, ky_g, analysis, mode, g_m_s2, vertical, nullptr);
+}
+
+FlexibleResult slide_flexible_history(const GroundMotion& ground, const SupportOscillator& support,
+                                      const SlidingBlock& block, FlexibleAnalysis analysis,
+                                      const GroundMotion* vertical) {
+  FlexibleResult r;
+  r.summary = shelf_analysis(ground, support, block, analysis, vertical, &r.history);
+  return r;
+}
+
+FlexibleResult slide_flexible_history(const GroundMotion& ground, const SlidingMassColumn& column, double ky_g,
+                                      FlexibleAnalysis analysis, SlidingMode mode, double g_m_s2,
+                                      const GroundMotion* vertical) {
+  FlexibleResult r;
+  r.summary = column_analysis(ground, column, ky_g, analysis, mode, g_m_s2, vertical, &r.history);
+  return r;
 }
 
 }  // namespace topple

@@ -111,6 +111,21 @@ struct FlexibleSummary {
                                    ///< read at points omega h <= 0.1 apart (the record's samples when they are closer)
 };
 
+/// The response as a time history (`topple slide --out/--plot` on a flexible support).
+struct FlexibleHistory {
+  /// The body relative to the surface it slides on. Decoupled: the rigid solver's history on the support's motion
+  /// (its sub-stepped grid plus every slip event); coupled: the start, every sub-step end (omega h <= 0.5) and every
+  /// slip event, through the run-out.
+  SlidingHistory sliding;
+  /// Absolute acceleration of the sliding surface at those times (m/s^2): shelf a_g + Y'', column a_g + (L1/m) Y''.
+  std::vector<double> support_accel_m_s2;
+};
+
+struct FlexibleResult {
+  FlexibleSummary summary;   ///< the same numbers slide_flexible gives
+  FlexibleHistory history;
+};
+
 /// Support (or sliding-mass average) acceleration of the decoupled response on the record's samples (m/s^2):
 /// a_g + (L1/m) Y'' with Y exact for piecewise-linear a_g, starting at rest. The record must be uniformly sampled.
 [[nodiscard]] std::vector<double> support_acceleration_m_s2(const GroundMotion& ground, const ModalProperties& mode);
@@ -142,5 +157,15 @@ struct FlexibleSummary {
                                              double ky_g, FlexibleAnalysis analysis,
                                              SlidingMode mode = SlidingMode::one_way,
                                              double g_m_s2 = kStandardGravity, const GroundMotion* vertical = nullptr);
+
+/// slide_flexible with the time history (same arguments, same summary).
+[[nodiscard]] FlexibleResult slide_flexible_history(const GroundMotion& ground, const SupportOscillator& support,
+                                                    const SlidingBlock& block, FlexibleAnalysis analysis,
+                                                    const GroundMotion* vertical = nullptr);
+[[nodiscard]] FlexibleResult slide_flexible_history(const GroundMotion& ground, const SlidingMassColumn& column,
+                                                    double ky_g, FlexibleAnalysis analysis,
+                                                    SlidingMode mode = SlidingMode::one_way,
+                                                    double g_m_s2 = kStandardGravity,
+                                                    const GroundMotion* vertical = nullptr);
 
 }  // namespace topple
