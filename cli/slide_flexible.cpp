@@ -36,6 +36,13 @@ double parse_ratio(const std::string& text, const std::string& field) {
 
 }  // namespace
 
+SupportOscillator support_from_options(const std::string& support_freq, const std::string& support_damping,
+                                       double mass_ratio) {
+  return SupportOscillator::make(parse_frequency_hz(support_freq, "--support-freq"),
+                                 support_damping.empty() ? 0.05 : parse_ratio(support_damping, "--support-damping"),
+                                 mass_ratio);
+}
+
 void add_flexible_options(CLI::App& cmd, FlexibleOptions& o) {
   cmd.add_option("--support-freq", o.support_freq, "Object on a shelf or floor: the support's natural frequency "
                                                    "(e.g. 4Hz or 0.25s)");
@@ -67,9 +74,7 @@ void run_flexible_slide(const GroundMotion& horizontal, const SlidingBlock& bloc
       throw parameter_error("--support-freq", "--height, --vs-slope, --vs-base, --damping and --ref-strain describe a "
                                               "sliding mass, not a shelf or floor");
     }
-    const SupportOscillator s = SupportOscillator::make(
-        parse_frequency_hz(o.support_freq, "--support-freq"),
-        o.support_damping.empty() ? 0.05 : parse_ratio(o.support_damping, "--support-damping"), o.mass_ratio);
+    const SupportOscillator s = support_from_options(o.support_freq, o.support_damping, o.mass_ratio);
     if (with_history) {
       FlexibleResult full = slide_flexible_history(horizontal, s, block, analysis, vertical);
       r = full.summary;

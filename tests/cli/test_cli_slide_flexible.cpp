@@ -4,6 +4,7 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -11,6 +12,7 @@
 #include "support/shared_data.hpp"
 #include "topple/flexible.hpp"
 #include "topple/io/read.hpp"
+#include "topple/object_spectra.hpp"
 
 namespace topple {
 namespace {
@@ -109,6 +111,33 @@ TEST(CliSlideFlexible, OutAndPlotWriteTheHistoryAndTheFigure) {
     EXPECT_NE(text.find("<svg"), std::string::npos);
     EXPECT_NE(text.find("support"), std::string::npos);  // the support's acceleration is drawn and named
   }
+}
+
+TEST(CliSlideFlexible, SpectraOnAFlexibleSupport) {
+  // `topple spectrum slide|rock --support-freq`: the spectrum of the support's motion (support_motion), against the
+  // library's functions directly; JSON's 17 significant digits are the only difference.
+  if (!test::have_shared()) GTEST_SKIP() << "../shared not present";
+  const auto path = test::shared_record(kRecord);
+  const GroundMotion g = io::read_motion(path);
+  const GroundMotion on_support = support_motion(g, SupportOscillator::make(2.0, 0.05));
+  const auto j = run_json(fmt::format("spectrum slide '{}' --mu 0.1,0.3 --support-freq 2Hz --support-damping 5% --json",
+                                      path.string()));
+  const std::vector<double> mu{0.1, 0.3};
+  const SlidingSpectrum lib = sliding_spectrum(on_support, mu);
+  ASSERT_EQ(j.at("points").size(), 2u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_NEAR(j.at("points")[i].at("max_abs_displacement_m").get<double>(), lib.points[i].max_abs_displacement_m,
+                1e-15);
+  }
+  EXPECT_DOUBLE_EQ(j.at("support").at("ground_pga_g").get<double>(), g.pga_m_s2() / kStandardGravity);
+  // The 2 Hz support is near the record's predominant period: it amplifies the peak (measured 0.74 g against 0.28 g).
+  EXPECT_GT(j.at("support").at("support_pga_g").get<double>(), 2.0 * j.at("support").at("ground_pga_g").get<double>());
+  const auto r = run_cli(fmt::format("spectrum slide '{}' --mu 0.1 --support-damping 5%", path.string()));
+  EXPECT_EQ(r.exit_code, 2) << r.err;  // a damping without a support
+  EXPECT_NE(r.err.find("--support-damping"), std::string::npos) << r.err;
+  const auto rock = run_json(fmt::format("spectrum rock '{}' --alpha 0.2rad --heights 20cm,1m --pga 0.2g,0.4g "
+                                         "--support-freq 2Hz --json", path.string()));
+  EXPECT_DOUBLE_EQ(rock.at("support").at("freq_hz").get<double>(), 2.0);
 }
 
 TEST(CliSlideFlexible, UpperFloorExampleRuns) {
