@@ -32,7 +32,7 @@ void add_flexible_options(CLI::App& cmd, FlexibleOptions& options);
                                                      double mass_ratio = 0.0);
 
 /// Runs and prints (text or JSON) the flexible-support analysis; `mu` is the friction coefficient (shelf) or the
-/// yield coefficient k_y (sliding mass); `vertical` (decoupled only) as in the rigid run.
+/// yield coefficient k_y (sliding mass); `vertical` as in the rigid run (both analyses).
 /// `out` / `plot` (empty: none) receive the history CSV and the figure, as the rigid run's --out / --plot.
 void run_flexible_slide(const GroundMotion& horizontal, const SlidingBlock& block, const FlexibleOptions& o, bool json,
                         const std::string& motion_name, const GroundMotion* vertical = nullptr,

@@ -238,33 +238,58 @@ double equivalent_damping(double g_ratio, double strain, double ref_strain) {
 
 // ---- coupled analysis: the two-phase linear system --------------------------------------------------------------
 
-constexpr std::size_t kN = 7;  // Y, Y', s, s', a, a', 1
+// State w = (Y, Y', s, s', a_g, a_g', 1) and, with a vertical record, (a_v, a_v'): N = 7 or 9. Without a vertical
+// record the 7-state system runs (the same arithmetic as before vertical input existed).
+constexpr std::size_t kPlain = 7;
+constexpr std::size_t kWithVertical = 9;
 enum Phase : int { stick = 0, slip_down = 1, slip_up = 2 };
 
+template <std::size_t N>
 struct CoupledSystem {
-  std::array<Mat<kN>, 3> generator;  ///< d/dt state per phase
-  Vec<kN> demand{};                  ///< stick-phase demand D(w) (m/s^2): sliding force per unit sliding mass
-  double yield_m_s2 = 0.0;           ///< k_y g (column) or mu g (shelf)
+  std::array<Mat<N>, 3> generator;  ///< d/dt state per phase
+  Vec<N> demand{};                  ///< stick-phase demand D(w) (m/s^2): sliding force per unit sliding mass
+  /// The friction capacity per unit sliding mass, mu (g + a_v) (k_y for mu on the column), as a row on the state.
+  Vec<N> yield_row{};
+  double g_m_s2 = kStandardGravity;  ///< g of the normal force m (g + a_v)
   double omega_max = 0.0;            ///< fastest mode over the phases (sets the sub-step)
   double mass_fraction = 1.0;        ///< L1/m: the surface's absolute acceleration is a_g + (L1/m) Y''
   bool two_way = false;
 };
 
-void fill_input_rows(Mat<kN>& a) {
+template <std::size_t N>
+void fill_input_rows(Mat<N>& a) {
   a(0, 1) = 1.0;  // Y' = Y'
   a(2, 3) = 1.0;  // s' = s'
   a(4, 5) = 1.0;  // a_g' = slope, constant within a step
+  if constexpr (N == kWithVertical) a(7, 8) = 1.0;  // a_v' likewise
+}
+
+/// The friction terms of the slip phases: the coefficient c of the constant state (c = X mu g) goes with c / g on a_v,
+/// so that the term is X mu (g + a_v) (normal force m (g + a_v)).
+template <std::size_t N>
+void add_friction(Mat<N>& a, std::size_t row, double coefficient_of_one, double g_m_s2) {
+  a(row, 6) = coefficient_of_one;
+  if constexpr (N == kWithVertical) a(row, 7) = coefficient_of_one / g_m_s2;
+}
+
+template <std::size_t N>
+Vec<N> yield_row(double yield_m_s2, double g_m_s2) {
+  Vec<N> r{};
+  r[6] = yield_m_s2;
+  if constexpr (N == kWithVertical) r[7] = yield_m_s2 / g_m_s2;
+  return r;
 }
 
 /// Column (Chopra & Zhang 1991 as SLAMMER's Coupled): equations in flexible.hpp.
-CoupledSystem column_system(const ModalProperties& m, double yield_m_s2, bool two_way) {
-  CoupledSystem sys;
+template <std::size_t N>
+CoupledSystem<N> column_system(const ModalProperties& m, double yield_m_s2, double g_m_s2, bool two_way) {
+  CoupledSystem<N> sys;
   const double w2 = m.omega_rad_s * m.omega_rad_s;
   const double c = 2.0 * m.damping_ratio * m.omega_rad_s;
   const double p = m.participation;
   const double q = m.mass_fraction;
   const double d1 = 1.0 - p * q;  // 1 - L1^2 / (M1 m) = 1 - 8/pi^2
-  for (auto& g : sys.generator) fill_input_rows(g);
+  for (auto& g : sys.generator) fill_input_rows<N>(g);
   // stick: Y'' = -p a - c Y' - w2 Y
   sys.generator[stick](1, 0) = -w2;
   sys.generator[stick](1, 1) = -c;
@@ -279,14 +304,15 @@ CoupledSystem column_system(const ModalProperties& m, double yield_m_s2, bool tw
     // d1 Y'' = -p sigma ky g - c Y' - w2 Y
     g(1, 0) = -w2 / d1;
     g(1, 1) = -c / d1;
-    g(1, 6) = -p * sigma * yield_m_s2 / d1;
+    add_friction(g, 1, -p * sigma * yield_m_s2 / d1, g_m_s2);
     // s'' = a + q Y'' - sigma ky g
     g(3, 0) = q * g(1, 0);
     g(3, 1) = q * g(1, 1);
     g(3, 4) = 1.0;
-    g(3, 6) = q * g(1, 6) - sigma * yield_m_s2;
+    add_friction(g, 3, q * g(1, 6) - sigma * yield_m_s2, g_m_s2);
   }
-  sys.yield_m_s2 = yield_m_s2;
+  sys.yield_row = yield_row<N>(yield_m_s2, g_m_s2);
+  sys.g_m_s2 = g_m_s2;
   sys.omega_max = m.omega_rad_s / std::sqrt(d1);
   sys.mass_fraction = q;
   sys.two_way = two_way;
@@ -294,12 +320,14 @@ CoupledSystem column_system(const ModalProperties& m, double yield_m_s2, bool tw
 }
 
 /// Shelf or floor: object of mass r M_s on a one-mode support (flexible.hpp).
-CoupledSystem shelf_system(const ModalProperties& m, double mass_ratio, double yield_m_s2, bool two_way) {
-  CoupledSystem sys;
+template <std::size_t N>
+CoupledSystem<N> shelf_system(const ModalProperties& m, double mass_ratio, double yield_m_s2, double g_m_s2,
+                              bool two_way) {
+  CoupledSystem<N> sys;
   const double w2 = m.omega_rad_s * m.omega_rad_s;
   const double c = 2.0 * m.damping_ratio * m.omega_rad_s;
   const double r = mass_ratio;
-  for (auto& g : sys.generator) fill_input_rows(g);
+  for (auto& g : sys.generator) fill_input_rows<N>(g);
   // stick: Y'' = -a - (c Y' + w2 Y) / (1 + r), D = a + Y''
   sys.generator[stick](1, 0) = -w2 / (1.0 + r);
   sys.generator[stick](1, 1) = -c / (1.0 + r);
@@ -313,89 +341,103 @@ CoupledSystem shelf_system(const ModalProperties& m, double mass_ratio, double y
     g(1, 0) = -w2;
     g(1, 1) = -c;
     g(1, 4) = -1.0;
-    g(1, 6) = -r * sigma * yield_m_s2;
+    add_friction(g, 1, -r * sigma * yield_m_s2, g_m_s2);
     g(3, 0) = -w2;
     g(3, 1) = -c;
-    g(3, 6) = -r * sigma * yield_m_s2 - sigma * yield_m_s2;
+    add_friction(g, 3, -r * sigma * yield_m_s2 - sigma * yield_m_s2, g_m_s2);
   }
-  sys.yield_m_s2 = yield_m_s2;
+  sys.yield_row = yield_row<N>(yield_m_s2, g_m_s2);
+  sys.g_m_s2 = g_m_s2;
   sys.omega_max = m.omega_rad_s;
   sys.two_way = two_way;
   return sys;
 }
 
-double dot(const Vec<kN>& a, const Vec<kN>& b) {
+template <std::size_t N>
+double dot(const Vec<N>& a, const Vec<N>& b) {
   double s = 0.0;
-  for (std::size_t i = 0; i < kN; ++i) s += a[i] * b[i];
+  for (std::size_t i = 0; i < N; ++i) s += a[i] * b[i];
   return s;
 }
 
 /// The linear quantity an event watches: the demand in stick, the slip velocity s' while slipping.
-Vec<kN> watched(const CoupledSystem& sys, Phase phase) {
+template <std::size_t N>
+Vec<N> watched(const CoupledSystem<N>& sys, Phase phase) {
   if (phase == stick) return sys.demand;
-  Vec<kN> c{};
+  Vec<N> c{};
   c[3] = 1.0;
   return c;
 }
 
 /// Event function of a phase from its watched quantity x: an event happens where it rises through 0. Stick: the
 /// demand beyond the yield level (either direction in two-way mode); slip: the velocity back through zero.
-double event_from(const CoupledSystem& sys, Phase phase, double x) {
+/// `yield` (stick only) is the friction capacity mu (g + a_v) at the same instant.
+template <std::size_t N>
+double event_from(const CoupledSystem<N>& sys, Phase phase, double x, double yield) {
   switch (phase) {
-    case stick: return sys.two_way ? std::abs(x) - sys.yield_m_s2 : x - sys.yield_m_s2;
+    case stick: return sys.two_way ? std::abs(x) - yield : x - yield;
     case slip_down: return -x;
     case slip_up: return x;
   }
   return 0.0;
 }
 
-double event_value(const CoupledSystem& sys, Phase phase, const Vec<kN>& w) {
-  return event_from(sys, phase, dot(watched(sys, phase), w));
+template <std::size_t N>
+double event_value(const CoupledSystem<N>& sys, Phase phase, const Vec<N>& w) {
+  return event_from(sys, phase, dot(watched(sys, phase), w), dot(sys.yield_row, w));
 }
 
 /// c^T P: the watched quantity after the step P as one dot product with the state before it.
-Vec<kN> row_through(const Vec<kN>& c, const Mat<kN>& p) {
-  Vec<kN> r{};
-  for (std::size_t i = 0; i < kN; ++i)
-    for (std::size_t j = 0; j < kN; ++j) r[j] += c[i] * p(i, j);
+template <std::size_t N>
+Vec<N> row_through(const Vec<N>& c, const Mat<N>& p) {
+  Vec<N> r{};
+  for (std::size_t i = 0; i < N; ++i)
+    for (std::size_t j = 0; j < N; ++j) r[j] += c[i] * p(i, j);
   return r;
 }
 
 /// Phase entered from stick (demand above yield) or after a slip stops (checking that the stick demand holds).
-Phase stick_or_slip(const CoupledSystem& sys, const Vec<kN>& w) {
+template <std::size_t N>
+Phase stick_or_slip(const CoupledSystem<N>& sys, const Vec<N>& w) {
   const double d = dot(sys.demand, w);
-  if (d > sys.yield_m_s2) return slip_down;
-  if (sys.two_way && d < -sys.yield_m_s2) return slip_up;
+  const double yield = dot(sys.yield_row, w);
+  if (d > yield) return slip_down;
+  if (sys.two_way && d < -yield) return slip_up;
   return stick;
 }
 
 /// The coupled response; `history` (optional) receives every sub-step end and every event.
-SlidingSummary run_coupled(const GroundMotion& ground, const CoupledSystem& sys, FlexibleHistory* history = nullptr) {
+/// And `vertical` (N = 9 only) is read at the sub-step ends, linear between them.
+template <std::size_t N>
+SlidingSummary run_coupled(const GroundMotion& ground, const CoupledSystem<N>& sys, const GroundMotion* vertical,
+                           FlexibleHistory* history) {
   const auto acc = ground.accel_m_s2();
   const double dt = ground.dt_s();
   // omega h <= 0.5 for the event search; capped at 256 sub-steps (omega dt > 128: a support so stiff that its demand
   // follows the ground, linear within a record step, apart from transients that decay within the step).
   const int n_sub = std::min(256, substeps_for(sys.omega_max, dt));
   const double h = dt / n_sub;
-  std::array<Mat<kN>, 3> full;
-  std::array<Vec<kN>, 3> mid_row;  // the watched quantity at the sub-step's midpoint, as a row on the state
+  std::array<Mat<N>, 3> full;
+  std::array<Vec<N>, 3> mid_row;  // the watched quantity at the sub-step's midpoint, as a row on the state
+  std::array<Vec<N>, 3> mid_yield;  // the friction capacity there, likewise
   for (int ph = 0; ph < 3; ++ph) {
-    const Mat<kN> half = expm(sys.generator[ph], 0.5 * h);
+    const Mat<N> half = expm(sys.generator[ph], 0.5 * h);
     full[ph] = mul(half, half);
     mid_row[ph] = row_through(watched(sys, static_cast<Phase>(ph)), half);
+    mid_yield[ph] = row_through(sys.yield_row, half);
   }
 
   SlidingSummary out;
-  Vec<kN> w{};
+  Vec<N> w{};
   w[6] = 1.0;
   Phase phase = stick;
   double slip_start_time = 0.0;
   const auto note_state = [&](double t) {
     if (history != nullptr) {
       // The sliding surface's absolute acceleration a_g + (L1/m) Y'', Y'' from the current phase's equation.
-      const Mat<kN>& gen = sys.generator[phase];
+      const Mat<N>& gen = sys.generator[phase];
       double y_dd = 0.0;
-      for (std::size_t j = 0; j < kN; ++j) y_dd += gen(1, j) * w[j];
+      for (std::size_t j = 0; j < N; ++j) y_dd += gen(1, j) * w[j];
       history->sliding.time_s.push_back(t);
       history->sliding.displacement_m.push_back(w[2]);
       history->sliding.velocity_m_s.push_back(w[3]);
@@ -428,12 +470,12 @@ SlidingSummary run_coupled(const GroundMotion& ground, const CoupledSystem& sys,
         break;
       }
       double e_mid = 0.0;
-      Vec<kN> w_end;
+      Vec<N> w_end;
       if (whole) {
         w_end = mul(full[phase], w);
-        e_mid = event_from(sys, phase, dot(mid_row[phase], w));
+        e_mid = event_from(sys, phase, dot(mid_row[phase], w), dot(mid_yield[phase], w));
       } else {
-        const Mat<kN> p_mid = expm(sys.generator[phase], 0.5 * rest);
+        const Mat<N> p_mid = expm(sys.generator[phase], 0.5 * rest);
         w_end = mul(mul(p_mid, p_mid), w);
         e_mid = event_value(sys, phase, mul(p_mid, w));
       }
@@ -446,8 +488,8 @@ SlidingSummary run_coupled(const GroundMotion& ground, const CoupledSystem& sys,
       // Bracket [lo, hi]: hi is the first probe where the event function is positive; lo a point before it where it
       // is negative. At a phase's start the function may be exactly 0 (slip has just started: s' = 0): then probe
       // inward from hi by halving until it is negative.
-      const Mat<kN>& gen = sys.generator[phase];
-      const Vec<kN> w0 = w;
+      const Mat<N>& gen = sys.generator[phase];
+      const Vec<N> w0 = w;
       const auto f = [&](double t) { return event_value(sys, phase, mul(expm(gen, t), w0)); };
       const double hi = e_mid > 0.0 ? 0.5 * rest : rest;
       double lo = e_mid > 0.0 ? 0.0 : 0.5 * rest;
@@ -493,9 +535,29 @@ SlidingSummary run_coupled(const GroundMotion& ground, const CoupledSystem& sys,
     }
   };
 
+  // Vertical input (N = 9): a_v read at the sub-step's ends and linear between them (exact when the vertical record's
+  // samples lie on the sub-step grid, e.g. the horizontal's); the normal force m (g + a_v) vanishing is reported as
+  // the rigid solver does (contact_lost_time_s), located by the linear root within the sub-step.
+  const double g_m_s2 = sys.g_m_s2;
+  double av_end = 0.0;
+  const auto set_vertical = [&](double t0) {
+    if constexpr (N == kWithVertical) {
+      const double av0 = vertical->accel_at(t0);
+      av_end = vertical->accel_at(t0 + h);
+      w[7] = av0;
+      w[8] = (av_end - av0) / h;
+      if (!out.contact_lost_time_s && g_m_s2 + av_end <= 0.0) {
+        const double n0 = g_m_s2 + av0;
+        out.contact_lost_time_s = n0 <= 0.0 ? t0 : t0 + h * n0 / (n0 - (g_m_s2 + av_end));
+      }
+    } else {
+      static_cast<void>(t0);
+    }
+  };
   const double t_begin = ground.start_time_s();
   if (history != nullptr) {
     w[4] = acc[0];
+    if constexpr (N == kWithVertical) w[7] = vertical->accel_at(t_begin);
     note_state(t_begin);
   }
   for (std::size_t k = 0; k + 1 < acc.size(); ++k) {
@@ -504,6 +566,7 @@ SlidingSummary run_coupled(const GroundMotion& ground, const CoupledSystem& sys,
     for (int j = 0; j < n_sub; ++j) {
       w[4] = acc[k] + slope * (static_cast<double>(j) * h);
       w[5] = slope;
+      set_vertical(tk + static_cast<double>(j) * h);
       substep(tk + static_cast<double>(j) * h);
       note_state(tk + static_cast<double>(j + 1) * h);
     }
@@ -518,6 +581,7 @@ SlidingSummary run_coupled(const GroundMotion& ground, const CoupledSystem& sys,
     }
     w[4] = 0.0;
     w[5] = 0.0;
+    set_vertical(t);  // a vertical record that lasts beyond the horizontal one acts on the run-out
     substep(t);
     t += h;
     note_state(t);
@@ -665,20 +729,11 @@ GroundMotion support_motion(const GroundMotion& ground, const SupportOscillator&
 }
 
 namespace {
-void require_no_vertical(const GroundMotion* vertical) {
-  if (vertical) {
-    throw parameter_error("vertical", "the coupled analysis has no vertical input (the decoupled one has)");
-  }
-}
-}  // namespace
-
-namespace {
 FlexibleSummary shelf_analysis(const GroundMotion& ground, const SupportOscillator& support, const SlidingBlock& block,
                                FlexibleAnalysis analysis, const GroundMotion* vertical, FlexibleHistory* history) {
   require_uniform(ground);
   const ModalProperties mode = modal_properties(support);
   if (analysis == FlexibleAnalysis::decoupled) return decoupled(ground, mode, block, vertical, history);
-  require_no_vertical(vertical);
   if (block.slope_rad != 0.0 || block.mu_kinetic != block.mu_static) {
     throw parameter_error("mu_kinetic", "the coupled analysis models level ground with one friction coefficient "
                                         "(mu_kinetic = mu_static, slope 0)");
@@ -687,8 +742,14 @@ FlexibleSummary shelf_analysis(const GroundMotion& ground, const SupportOscillat
   out.mode = mode;
   out.kmax = linear_response(ground, mode, false, decoupled_substeps(mode.omega_rad_s, ground.dt_s())).max_abs_demand_m_s2 /
              block.g_m_s2;
-  out.sliding = run_coupled(ground, shelf_system(mode, support.mass_ratio, block.mu_static * block.g_m_s2,
-                                                 block.mode == SlidingMode::two_way), history);
+  const bool two_way = block.mode == SlidingMode::two_way;
+  const double yield = block.mu_static * block.g_m_s2;
+  out.sliding =
+      vertical != nullptr
+          ? run_coupled(ground, shelf_system<kWithVertical>(mode, support.mass_ratio, yield, block.g_m_s2, two_way),
+                        vertical, history)
+          : run_coupled(ground, shelf_system<kPlain>(mode, support.mass_ratio, yield, block.g_m_s2, two_way), nullptr,
+                        history);
   return out;
 }
 
@@ -700,12 +761,15 @@ FlexibleSummary column_analysis(const GroundMotion& ground, const SlidingMassCol
   const SlidingBlock block = SlidingBlock::make(ky_g, ky_g, 0.0, mode, g_m_s2);
   const ModalProperties props = modal_properties(column, ground);
   if (analysis == FlexibleAnalysis::decoupled) return decoupled(ground, props, block, vertical, history);
-  require_no_vertical(vertical);
   FlexibleSummary out;
   out.mode = props;
   out.kmax =
       linear_response(ground, props, false, decoupled_substeps(props.omega_rad_s, ground.dt_s())).max_abs_demand_m_s2 / g_m_s2;
-  out.sliding = run_coupled(ground, column_system(props, ky_g * g_m_s2, mode == SlidingMode::two_way), history);
+  const bool two_way = mode == SlidingMode::two_way;
+  out.sliding = vertical != nullptr
+                    ? run_coupled(ground, column_system<kWithVertical>(props, ky_g * g_m_s2, g_m_s2, two_way), vertical,
+                                  history)
+                    : run_coupled(ground, column_system<kPlain>(props, ky_g * g_m_s2, g_m_s2, two_way), nullptr, history);
   return out;
 }
 }  // namespace

@@ -35,6 +35,16 @@
 // omega h <= 0.5 (at most 256 sub-steps per record step), and each sub-step is also tested at its midpoint, so that an excursion of the demand above k_y g
 // lasting longer than h/2 is never missed. After the record the ground is still and a sliding body runs out to rest.
 //
+// Vertical input (coupled; the decoupled analysis passes it to sliding.hpp, where it does the same). The support is
+// flexible horizontally only, so a_v(t) (positive up) reaches the body unfiltered and its normal force is
+// m (g + a_v): the capacity sigma k_y g (sigma mu g for the shelf) above becomes sigma k_y (g + a_v) in the body's
+// equation and, for the shelf, in the friction force r sigma mu (g + a_v) on the support -- the effective gravity
+// g_e = g + a_v of the rigid block (sliding.hpp, after Newmark 1965), carried into Chopra & Zhang's equations; this
+// extension is topple's (SLAMMER has no vertical input). The column's own vertical dynamics are not modelled. a_v is read at the
+// sub-step ends and linear between them (exact when the vertical record's samples lie on that grid); a_v and a_v'
+// join the state, which the propagator advances exactly. g + a_v <= 0 (the body lifts off) is reported as
+// contact_lost_time_s, as sliding.hpp does; the model is not valid after it.
+//
 // Equivalent linear (SLAMMER; formulas from pySLAMMER 0.2.3 decoupled_analysis.py and its SoftwareX paper,
 // Arnold & Garcia-Rivas 2025): iterate the linear response of the column, with
 //   effective strain  gamma = 0.65 * (pi/2) * max|Y| / H,   G/Gmax = 1 / (1 + gamma/gamma_r)  (hyperbolic),
@@ -146,13 +156,13 @@ struct FlexibleResult {
 /// Object on a shelf or floor. `block` gives mu: the decoupled analysis takes any block of sliding.hpp (static and
 /// kinetic friction, slope); the coupled one models level ground and one friction level (slope 0, mu_kinetic =
 /// mu_static, else InputError). `vertical` (optional, positive up) reaches the body unfiltered (the support is
-/// flexible horizontally only) and changes its normal force as in sliding.hpp: decoupled analysis only.
+/// flexible horizontally only) and changes its normal force to m (g + a_v), in both analyses (header: "Vertical").
 [[nodiscard]] FlexibleSummary slide_flexible(const GroundMotion& ground, const SupportOscillator& support,
                                              const SlidingBlock& block, FlexibleAnalysis analysis,
                                              const GroundMotion* vertical = nullptr);
 
 /// SLAMMER's flexible sliding mass with yield coefficient k_y (> 0), one-way (SLAMMER) or two-way; `vertical` as
-/// above (decoupled only; SLAMMER has none).
+/// above (capacity k_y (g + a_v); SLAMMER has no vertical input).
 [[nodiscard]] FlexibleSummary slide_flexible(const GroundMotion& ground, const SlidingMassColumn& column,
                                              double ky_g, FlexibleAnalysis analysis,
                                              SlidingMode mode = SlidingMode::one_way,

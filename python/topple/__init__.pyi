@@ -133,7 +133,7 @@ def slide_flexible(motion: GroundMotion, *, mu: float, mode: Literal["two-way", 
     shelf or floor: support_freq_hz (Hz, the support alone), support_damping (ratio), mass_ratio (object / support
     mass); or SLAMMER's flexible sliding mass (mu is k_y): height_m, vs_slope_m_s, vs_base_m_s (m/s), damping
     (material damping ratio; the mode adds the base impedance damping), reference_strain (decimal: equivalent
-    linear when given). vertical: decoupled only. Returns the dict of `topple slide --support-freq|--height --json`:
+    linear when given). vertical: both analyses (coupled: normal force m (g + a_v)). Returns the dict of `topple slide --support-freq|--height --json`:
     the sliding summary fields and "support" (mode_freq_hz, mode_damping_ratio, kmax, vs_final_m_s ...)."""
 
 def slide_spectrum(motion: GroundMotion, mu: ArrayIn, *, slope_deg: float = 0.0,
