@@ -705,6 +705,17 @@ SlidingMassColumn SlidingMassColumn::make(double height_m, double vs_slope_m_s, 
 
 // ---- modal properties ------------------------------------------------------------------------------------------
 
+double max_peak_amplification(double zeta) noexcept {
+  if (!(zeta > 0.0)) return std::numeric_limits<double>::infinity();
+  // omega = 1: Y = -exp(-zeta t) sin(wd t) / wd for a unit impulse of ground acceleration, and the absolute
+  // acceleration h = -(2 zeta Y' + Y) = exp(-zeta t) (2 zeta cos(wd t) + (1 - 2 zeta^2) / wd sin(wd t)).
+  const double wd = std::sqrt(1.0 - zeta * zeta);
+  const double t1 = (kPi - std::atan2(2.0 * zeta * wd, 1.0 - 2.0 * zeta * zeta)) / wd;  // first zero of h
+  const double v1 = -std::exp(-zeta * t1) * (std::cos(wd * t1) - zeta / wd * std::sin(wd * t1));  // Y'(t1); Y'(0+) = -1
+  const double q = std::exp(-zeta * kPi / wd);
+  return std::abs(1.0 + v1) + std::abs(v1) * (1.0 + q) / (1.0 - q);
+}
+
 ModalProperties modal_properties(const SupportOscillator& support) {
   ModalProperties m;
   m.omega_rad_s = 2.0 * kPi * support.freq_hz;

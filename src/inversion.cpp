@@ -84,12 +84,39 @@ std::uint64_t mix(std::uint64_t a, std::uint64_t b) {
 
 }  // namespace
 
+namespace {
+/// An object on a flexible support: its support's peak is at most max_peak_amplification(zeta_low) times the ground's
+/// (any motion), so an object that slid, rocked or overturned still bounds the ground's PGA from below (weakly). The
+/// support may also attenuate the ground's peak without limit (well above its frequency): no upper bound.
+void flexible_support_bound(const ObservedObject& o, StaticBounds& b) {
+  const double amp_max = o.amplification.high * max_peak_amplification(o.support_filter->damping.low);
+  if (!std::isfinite(amp_max)) return;  // undamped support: no bound
+  const auto text = [&](double threshold_g) {
+    return fmt::format("PGA > {} / {:.3g}, the most its flexible support can amplify a peak", fmt_g(threshold_g),
+                       amp_max);
+  };
+  switch (o.outcome) {
+    case Outcome::slid:
+      b.lower.push_back({o.mu.low / amp_max, o.id, "slid: " + text(o.mu.low)});
+      break;
+    case Outcome::overturned:
+    case Outcome::rocked: {
+      const double tan_alpha = std::tan(o.body.alpha_rad());
+      b.lower.push_back({tan_alpha / amp_max, o.id, fmt::format("{}: {}", outcome_name(o.outcome), text(tan_alpha))});
+      break;
+    }
+    default: break;
+  }
+}
+}  // namespace
+
 StaticBounds static_bounds(const Site& site) {
   StaticBounds b;
   for (const ObservedObject& o : site.objects) {
-    // A flexible support amplifies or attenuates the ground's peak by the motion's frequency content (up to about
-    // 1 / (2 zeta) at resonance, towards 0 well above its frequency): no static bound follows from such an object.
-    if (o.support_filter) continue;
+    if (o.support_filter) {
+      flexible_support_bound(o, b);
+      continue;
+    }
     const double amp_hi = o.amplification.high;
     const double amp_lo = o.amplification.low;
     const double tan_alpha = std::tan(o.body.alpha_rad());

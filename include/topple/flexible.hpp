@@ -20,7 +20,7 @@
 // the average acceleration of the sliding mass (SLAMMER's HEA)  HEA = a_g + (L1/m) Y''  with
 //    Y'' + 2 zeta omega Y' + omega^2 Y = -(L1/M1) a_g                                         (modal equation)
 // (for the shelf L1/M1 = L1/m = 1). The response is exact for piecewise-linear a_g (closed-form step propagator, no
-// period error); HEA is sampled on the record's grid and read by the sliding solver as piecewise linear: that is the
+// period error; the demand by that propagator's second-order output recurrence, Cayley-Hamilton); HEA is sampled on the record's grid and read by the sliding solver as piecewise linear: that is the
 // decoupled analysis' one approximation, O(dt^2).
 //
 // Coupled analysis (Chopra & Zhang 1991; Rathje & Bray 2000 as SLAMMER implements it). The slip feeds back:
@@ -145,6 +145,14 @@ struct FlexibleResult {
 /// GroundMotion (rocking, sliding, spectra) can run on it: this is the support filter a survey or sweep applies to
 /// an object's motion. The record must be uniformly sampled; metadata is kept.
 [[nodiscard]] GroundMotion support_motion(const GroundMotion& ground, const SupportOscillator& support);
+
+/// The largest ratio of a support's peak absolute acceleration to the ground's peak, over every ground motion: the
+/// L1 norm of the support's absolute-acceleration impulse response h (a bound reached by a motion of unit amplitude
+/// with the sign of h reversed in time). It depends on the damping ratio alone (0 < zeta < 1); in closed form, with
+/// omega_d = sqrt(1 - zeta^2), the zeros t_k of h spaced pi / omega_d and int h between zeros the change of the
+/// relative velocity: |1 + Y'(t_1)| + |Y'(t_1)| (1 + q) / (1 - q), q = exp(-zeta pi / omega_d) (per unit impulse,
+/// omega = 1). zeta = 0.05: 12.80. Infinite for zeta = 0. Used for the static bounds of objects on flexible supports.
+[[nodiscard]] double max_peak_amplification(double damping_ratio) noexcept;
 
 /// Modal properties of a shelf (for `mode`-level calls and tests).
 [[nodiscard]] ModalProperties modal_properties(const SupportOscillator& support);

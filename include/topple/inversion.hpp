@@ -3,7 +3,8 @@
 //
 // Method (docs/method.md, "Inversion", has the equations):
 // 1. Static bounds (thesis section 1.1). An object that slid needs PGA > mu g / amplification; one that rocked or
-//    overturned needs PGA > g a/h / amplification (uplift). An object that did not slide gives PGA <= mu g /
+//    overturned needs PGA > g a/h / amplification (uplift); on a flexible support the amplification is also multiplied
+//    by max_peak_amplification(zeta_low) (flexible.hpp), the most such a support can raise any peak. An object that did not slide gives PGA <= mu g /
 //    amplification. The bounds are the largest lower and the smallest upper bound, with the objects that set them;
 //    a lower bound above an upper bound is a contradiction, reported with both objects.
 // 2. Dynamic inversion. On a grid of PGA (log-spaced) x predominant frequency (log-spaced), every object is

@@ -50,7 +50,7 @@ struct SlideObject {
   double slope_deg = 0.0;
   /// A flexible support under the object (shelf, floor): the object runs on the support's absolute acceleration
   /// (flexible.hpp: support_motion, the decoupled analysis; the mass ratio is not used). None: rigid, as before.
-  std::optional<SupportOscillator> support;
+  std::optional<SupportOscillator> support = std::nullopt;
 };
 
 /// A rocking body (rocking.hpp). The dimension columns hold what was given: width and height for a block, diameter
@@ -61,7 +61,7 @@ struct RockObject {
   std::optional<double> width_m;
   std::optional<double> height_m;
   std::optional<double> diameter_m;
-  std::optional<SupportOscillator> support;  ///< as SlideObject::support
+  std::optional<SupportOscillator> support = std::nullopt;  ///< as SlideObject::support
 };
 
 using ObjectSpec = std::variant<SlideObject, RockObject>;
