@@ -72,11 +72,8 @@ void run_slide(const SlideOptions& o) {
   }
   if (!o.azimuths.empty()) throw parameter_error("--azimuths", "needs --h2 (the second horizontal component)");
   if (o.flexible.active()) {
-    if (!o.out.empty() || !o.plot.empty()) {
-      throw parameter_error("--support-freq", "--out and --plot are not available on a flexible support yet");
-    }
     run_flexible_slide(horizontal, block, o.flexible, o.json,
-                       o.pulse.kind.empty() ? o.motion.file : horizontal.metadata().event, vertical_ptr);
+                       o.pulse.kind.empty() ? o.motion.file : horizontal.metadata().event, vertical_ptr, o.out, o.plot);
     return;
   }
 

@@ -15,6 +15,7 @@
 
 #include "topple/ensemble.hpp"
 #include "topple/error.hpp"
+#include "topple/flexible.hpp"
 #include "topple/rocking.hpp"
 #include "topple/sliding.hpp"
 #include "topple/spectra.hpp"
@@ -89,9 +90,40 @@ std::uint64_t mix(std::uint64_t a, std::uint64_t b) {
 
 }  // namespace
 
+namespace {
+/// An object on a flexible support: its support's peak is at most max_peak_amplification(zeta_low) times the ground's
+/// (any motion), so an object that slid, rocked or overturned still bounds the ground's PGA from below (weakly). The
+/// support may also attenuate the ground's peak without limit (well above its frequency): no upper bound.
+void flexible_support_bound(const ObservedObject& o, StaticBounds& b) {
+  const double amp_max = o.amplification.high * max_peak_amplification(o.support_filter->damping.low);
+  if (!std::isfinite(amp_max)) return;  // undamped support: no bound
+  const auto text = [&](double threshold_g) {
+    return fmt::format("PGA > {} / {:.3g}, the most its flexible support can amplify a peak", fmt_g(threshold_g),
+                       amp_max);
+  };
+  switch (o.outcome) {
+    case Outcome::slid:
+      b.lower.push_back({o.mu.low / amp_max, o.id, "slid: " + text(o.mu.low), true});  // hard, as on rigid ground
+      break;
+    case Outcome::overturned:
+    case Outcome::rocked: {
+      const double tan_alpha = std::tan(o.body.alpha_rad());
+      b.lower.push_back(
+          {tan_alpha / amp_max, o.id, fmt::format("{}: {}", outcome_name(o.outcome), text(tan_alpha)), true});
+      break;
+    }
+    default: break;
+  }
+}
+}  // namespace
+
 StaticBounds static_bounds(const Site& site) {
   StaticBounds b;
   for (const ObservedObject& o : site.objects) {
+    if (o.support_filter) {
+      flexible_support_bound(o, b);
+      continue;
+    }
     // A lower threshold divides by the largest amplification, an upper one by the smallest (the weakest claim); the
     // text shows the amplification actually used and the result.
     const auto divided = [&o](double amp, double value_g) {
@@ -177,6 +209,11 @@ DrawnParameters draw_parameters(const ObservedObject& object, std::uint64_t seed
   p.mu = draw(object.mu);
   p.e = object.e_housner ? housner_restitution(object.body) : draw(object.e);
   p.amplification = draw(object.amplification);
+  // Drawn last, and only for a flexible support: the draws above, and with them a survey without one, are unchanged.
+  if (object.support_filter) {
+    p.support_freq_hz = draw(object.support_filter->freq_hz);
+    p.support_damping = draw(object.support_filter->damping);
+  }
   return p;
 }
 
@@ -185,8 +222,25 @@ double sliding_sigma_m(const ObservedObject& object) {
   return std::max({object.slid_uncertainty_m, 0.25 * d, kVisibleSlipM});
 }
 
-double observation_match(const ObservedObject& object, const DrawnParameters& p, const GroundMotion& motion,
+namespace {
+/// The motion on the object's flexible support (its absolute acceleration, decoupled), or none for a rigid support.
+std::optional<GroundMotion> on_flexible_support(const ObservedObject& object, const DrawnParameters& p,
+                                                const GroundMotion& ground) {
+  if (!object.support_filter) return std::nullopt;
+  return support_motion(ground, SupportOscillator::make(p.support_freq_hz, p.support_damping));
+}
+}  // namespace
+
+GroundMotion nominal_object_motion(const ObservedObject& object, const GroundMotion& ground) {
+  if (!object.support_filter) return ground;
+  return support_motion(ground, SupportOscillator::make(object.support_filter->freq_hz.mid(),
+                                                        object.support_filter->damping.mid()));
+}
+
+double observation_match(const ObservedObject& object, const DrawnParameters& p, const GroundMotion& ground,
                          double g) {
+  const std::optional<GroundMotion> filtered = on_flexible_support(object, p, ground);
+  const GroundMotion& motion = filtered ? *filtered : ground;
   if (is_sliding_outcome(object.outcome)) {
     // Level ground, no vertical input: the response to amp * a with mu is amp times the response to a with
     // mu / amp (divide the equation of motion by amp), which spares a copy of the motion.

@@ -316,8 +316,9 @@ plot::Figure best_cell_figure(const InversionResult& r, const Site& site, const 
     const ObservedObject& obj = site.objects[o];
     const std::string color = object_color(o);
     const double amp = obj.amplification.mid();
+    const GroundMotion seen = nominal_object_motion(obj, motion);  // through a flexible support, if any
     if (obj.outcome == Outcome::slid || obj.outcome == Outcome::not_slid) {
-      const auto res = slide(motion.scaled(amp), SlidingBlock::make(obj.mu.mid(), obj.mu.mid(), 0.0, SlidingMode::two_way, settings.g_m_s2));
+      const auto res = slide(seen.scaled(amp), SlidingBlock::make(obj.mu.mid(), obj.mu.mid(), 0.0, SlidingMode::two_way, settings.g_m_s2));
       sliding.series.push_back({fmt::format("{} (mu {:.2g})", obj.id, obj.mu.mid()), res.history.time_s, res.history.displacement_m, "lines", color, 1.6});
     } else {
       RockingOptions opt;
@@ -328,7 +329,7 @@ plot::Figure best_cell_figure(const InversionResult& r, const Site& site, const 
       }
       double factor = amp;
       if (obj.orientation_deg) factor *= std::cos(*obj.orientation_deg * kPi / 180.0);
-      const auto res = rock(motion.scaled(factor), obj.body, opt);
+      const auto res = rock(seen.scaled(factor), obj.body, opt);
       std::vector<double> ratio(res.history.theta_rad.size());
       for (std::size_t i = 0; i < ratio.size(); ++i) ratio[i] = res.history.theta_rad[i] / obj.body.alpha_rad();
       // One motion with nominal parameters is not the likelihood (N motions, drawn parameters): an object observed

@@ -3,8 +3,9 @@
 //
 // Method (docs/method.md, "Inversion", has the equations):
 // 1. Static thresholds (thesis section 1.1). An object that slid needs PGA > mu g / amplification; one that rocked
-//    or overturned needs PGA > g a/h / amplification (uplift). An object that did not slide gives PGA <= mu g /
-//    amplification. The "bounds" are the largest lower and the smallest upper threshold, with the objects that set
+//    or overturned needs PGA > g a/h / amplification (uplift); on a flexible support the amplification is also
+//    multiplied by max_peak_amplification(zeta_low) (flexible.hpp), the most such a support can raise any peak (and
+//    it gives no upper threshold). An object that did not slide gives PGA <= mu g / amplification. The "bounds" are the largest lower and the smallest upper threshold, with the objects that set
 //    them; a lower threshold above an upper one is a contradiction, reported with both objects.
 //    Hard and soft: a lower threshold is hard (the physics forbids the observation below it: no slip while
 //    |a| <= mu g, no uplift while |a| <= g a/h); the upper threshold of an object that did not slide *visibly* is
@@ -14,8 +15,10 @@
 //    simulated under N motions of the family per cell. The motions of a frequency column are generated once (seeds
 //    1..N: common random numbers across cells), time-scaled so that each one's *measured* predominant frequency
 //    (spectra.hpp: peak of the Konno-Ohmachi smoothed Fourier amplitude spectrum) is the column's frequency, and
-//    scaled to each row's PGA. Uncertain parameters (mu, e, amplification) are drawn per (motion k, object), the same
-//    draw in every cell. Each run gives a match m in [0, 1] with the observed outcome (0/1 for categorical outcomes,
+//    scaled to each row's PGA. Uncertain parameters (mu, e, amplification, a flexible support's frequency and damping)
+//    are drawn per (motion k, object), the same draw in every cell. An object on a flexible support (survey.hpp:
+//    SupportFilter) is simulated on the support's absolute acceleration (flexible.hpp: support_motion) of the cell's
+//    motion: the filter is linear, so common random numbers hold across cells as for rigid supports. Each run gives a match m in [0, 1] with the observed outcome (0/1 for categorical outcomes,
 //    a Gaussian kernel of the residual displacement for a measured sliding distance).
 //    Likelihood: every object saw the same motion, so a cell's likelihood is the average over its motions of the
 //    product over objects of q = eps + (1 - 2 eps) m, eps the chance that the observation itself is wrong (0.02
@@ -216,14 +219,21 @@ void assess_objects(InversionResult& result, const MatchTable& matches, const st
 [[nodiscard]] bool in_credible_region(const InversionResult& result, double pga_g, double freq_hz, double level);
 
 /// Per-run match of an object's observation (exposed for tests): simulate `object` with the given parameters under
-/// `motion` (already scaled to the cell's PGA) and compare with the observation.
+/// `motion` (already scaled to the cell's PGA; filtered here through the object's flexible support, if it has one)
+/// and compare with the observation.
 struct DrawnParameters {
   double mu = 0.0;              ///< friction coefficient (dimensionless)
   double e = 0.0;               ///< restitution (dimensionless), used when !object.e_housner
   double amplification = 1.0;   ///< support motion / ground motion (dimensionless)
+  double support_freq_hz = 0.0;  ///< the flexible support's frequency (Hz), when the object has a support_filter
+  double support_damping = 0.0;  ///< its damping ratio (decimal), likewise
 };
 [[nodiscard]] double observation_match(const ObservedObject& object, const DrawnParameters& parameters,
                                        const GroundMotion& motion, double g_m_s2);
+
+/// The motion an object feels at its nominal parameters (for the report's replay): the ground's, or, on a flexible
+/// support, the support's absolute acceleration with the middle of its frequency and damping ranges.
+[[nodiscard]] GroundMotion nominal_object_motion(const ObservedObject& object, const GroundMotion& ground);
 
 /// The one-sigma width (m) of the Gaussian kernel that scores a measured sliding distance: the larger of the given
 /// slid_uncertainty, 25 % of slid (a distance read off marks is rarely better than that) and kVisibleSlipM (2 mm).

@@ -376,7 +376,7 @@ reference_strain : float, optional
 coupled : bool
     True: coupled analysis (the sliding feeds back on the support).
 vertical : GroundMotion, optional
-    Vertical ground acceleration, positive up (decoupled only).
+    Vertical ground acceleration, positive up (both analyses; coupled: normal force m (g + a_v)).
 g : float
     Gravity, m/s^2.
 
