@@ -70,6 +70,12 @@ void install_interrupt_cleanup() {
 }
 
 OutputFile::OutputFile(std::filesystem::path final_path) : final_(std::move(final_path)) {
+  // A directory (or a name ending in '/') can never be replaced by the rename in commit(): refuse it now, before any
+  // computation, rather than after (the temporary would otherwise be made beside it, e.g. in '/').
+  std::error_code dir_ec;
+  if (!final_.has_filename() || std::filesystem::is_directory(final_, dir_ec)) {
+    throw OutputError(fmt::format("cannot write '{}': it is a directory (give a file name)", final_.string()));
+  }
   const auto dir = final_.parent_path();
   tmp_ = dir / fmt::format(".tmp-{}-{}", static_cast<long>(::getpid()), final_.filename().string());
   slot_ = register_temporary(tmp_);

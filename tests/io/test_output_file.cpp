@@ -77,3 +77,20 @@ TEST(OutputFile, UnwritableDirectoryThrowsOutputErrorNamingThePath) {
     EXPECT_NE(std::string(e.what()).find("x.csv"), std::string::npos) << e.what();
   }
 }
+
+TEST(OutputFile, ADirectoryAsTheFinalNameIsRefusedAtOnceLeavingNothing) {
+  // `slide ... --out /tmp` used to run the whole analysis, make its temporary beside the directory (in '/') and only
+  // then fail on the rename: the target is checked when the output is opened, before any work.
+  const fs::path dir = fresh_dir("is_dir");
+  fs::create_directories(dir / "out");
+  for (const fs::path target : {dir / "out", fs::path((dir / "out").string() + "/")}) {
+    try {
+      OutputFile f(target);
+      FAIL() << "expected OutputError for " << target;
+    } catch (const topple::OutputError& e) {
+      EXPECT_NE(std::string(e.what()).find("is a directory"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_EQ(entries(dir), 1U);  // only out/, no temporary beside it
+  EXPECT_EQ(entries(dir / "out"), 0U);
+}
