@@ -15,9 +15,7 @@
 
 #include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <boost/math/tools/toms748_solve.hpp>
-#include <boost/numeric/odeint/stepper/controlled_runge_kutta.hpp>
 #include <boost/numeric/odeint/stepper/runge_kutta4.hpp>
-#include <boost/numeric/odeint/stepper/runge_kutta_dopri5.hpp>
 #include <fmt/format.h>
 
 #include "topple/error.hpp"
@@ -145,20 +143,21 @@ struct Rhs {
   }
 };
 
-/// odeint's default step-size law (dt *= 0.9 err^(-1/order), at most x5 up and /5 down), without the two calls to
-/// pow when the error is so small that the growth cap applies anyway, as for most steps cut to a sample interval.
-class StepAdjuster : public odeint::default_step_adjuster<double, double> {
- public:
-  [[nodiscard]] double increase_step(double dt, double error, int stepper_order) const {
+/// The step-size law of Hairer, Norsett & Wanner (1993, II.4, eq 4.13) as Boost.Odeint's default_step_adjuster
+/// applies it: after a rejected step dt *= max(0.9 err^(-1/3), 1/5) (err^(-1/(q-1)) with q = 4, the embedded order);
+/// after an accepted one with err < 0.5, dt *= 0.9 max(err, 5^-5)^(-1/5), at most x4.5; otherwise unchanged.
+struct StepLaw {
+  [[nodiscard]] static double decrease(double dt, double error) {
+    return dt * std::max(0.9 * std::pow(error, -1.0 / 3.0), 0.2);
+  }
+  [[nodiscard]] static double increase(double dt, double error) {
     if (!(error < 0.5)) return dt;
-    const double floor = std::pow(5.0, -static_cast<double>(stepper_order));  // constant after inlining
-    if (error <= floor) return dt * 4.5;
-    if (stepper_order == 5) return dt * 0.9 * inverse_fifth_root(error);
-    return dt * 0.9 * std::pow(error, -1.0 / static_cast<double>(stepper_order));
+    constexpr double kFloor = 1.0 / 3125.0;  // 5^-5: below it the growth cap 0.9 * 5 applies
+    if (error <= kFloor) return dt * 4.5;
+    return dt * 0.9 * inverse_fifth_root(error);
   }
 
- private:
-  /// x^(-1/5) for 5^-5 < x < 0.5 (the range increase_step uses it on), to round-off: a first guess from the
+  /// x^(-1/5) for 5^-5 < x < 0.5 (the range increase uses it on), to round-off: a first guess from the
   /// exponent bits, then Newton on y^-5 = x (y <- y (6 - x y^5) / 5, quadratic). IEEE operations only, so the same
   /// steps on every machine; a tenth of a libm pow (which was 4 % of the inversion's instructions).
   static double inverse_fifth_root(double x) {
@@ -182,31 +181,93 @@ class StepAdjuster : public odeint::default_step_adjuster<double, double> {
 };
 
 // ---------------------------------------------------------------------------------------------------------------
+// Dormand-Prince 5(4) (Dormand & Prince 1980, J. Comput. Appl. Math. 6(1), 19-26; the tableau, the embedded error
+// estimate and the 4th-order dense output of Hairer, Norsett & Wanner 1993, II.5 and II.6, as Boost.Odeint's
+// runge_kutta_dopri5 has them), written out for the rocking equation's two components: no generic algebra, the
+// right-hand side inlined, and the dense output expanded once per step into a polynomial in the step fraction
+// (evaluated by Horner in the event root finder instead of recomputing its weights at every call).
+
+namespace dp5 {
+constexpr double a2 = 1.0 / 5.0, a3 = 3.0 / 10.0, a4 = 4.0 / 5.0, a5 = 8.0 / 9.0;
+constexpr double b21 = 1.0 / 5.0;
+constexpr double b31 = 3.0 / 40.0, b32 = 9.0 / 40.0;
+constexpr double b41 = 44.0 / 45.0, b42 = -56.0 / 15.0, b43 = 32.0 / 9.0;
+constexpr double b51 = 19372.0 / 6561.0, b52 = -25360.0 / 2187.0, b53 = 64448.0 / 6561.0, b54 = -212.0 / 729.0;
+constexpr double b61 = 9017.0 / 3168.0, b62 = -355.0 / 33.0, b63 = 46732.0 / 5247.0, b64 = 49.0 / 176.0,
+                 b65 = -5103.0 / 18656.0;
+// 5th-order weights (the FSAL row: also stage 7's coefficients)
+constexpr double c1 = 35.0 / 384.0, c3 = 500.0 / 1113.0, c4 = 125.0 / 192.0, c5 = -2187.0 / 6784.0, c6 = 11.0 / 84.0;
+// 5th-order minus 4th-order weights: the error estimate
+constexpr double dc1 = c1 - 5179.0 / 57600.0, dc3 = c3 - 7571.0 / 16695.0, dc4 = c4 - 393.0 / 640.0,
+                 dc5 = c5 - -92097.0 / 339200.0, dc6 = c6 - 187.0 / 2100.0, dc7 = -1.0 / 40.0;
+
+/// Polynomial in the step fraction s, coefficients of s^0 .. s^5.
+struct Poly {
+  std::array<double, 6> c{};
+  constexpr Poly operator+(const Poly& o) const {
+    Poly r;
+    for (std::size_t i = 0; i < 6; ++i) r.c[i] = c[i] + o.c[i];
+    return r;
+  }
+  constexpr Poly operator*(double k) const {
+    Poly r;
+    for (std::size_t i = 0; i < 6; ++i) r.c[i] = c[i] * k;
+    return r;
+  }
+  constexpr Poly operator*(const Poly& o) const {  // the products used here stay within degree 5
+    Poly r;
+    for (std::size_t i = 0; i < 6; ++i) {
+      for (std::size_t j = 0; i + j < 6; ++j) r.c[i + j] += c[i] * o.c[j];
+    }
+    return r;
+  }
+};
+
+/// The dense-output weights b_j(s) of Hairer, Norsett & Wanner (II.6; odeint's calc_state), as polynomials:
+/// x(t0 + s h) = x0 + h sum_j b_j(s) k_j, j = 1, 3, 4, 5, 6, 7.
+constexpr std::array<Poly, 6> dense_weights() {
+  const Poly s{{0, 1, 0, 0, 0, 0}};
+  const Poly one{{1, 0, 0, 0, 0, 0}};
+  const Poly sm1 = s + one * -1.0;
+  const Poly A = s * s * (one * 3.0 + s * -2.0);
+  const Poly B = s * s * sm1;
+  const Poly C = s * s * sm1 * sm1;
+  const Poly D = s * sm1 * sm1;
+  const auto X = [&](double k, double a, double b, double d) { return (one * a + s * -b) * (k / d); };
+  const Poly X1 = X(5.0, 2558722523.0, 31403016.0, 11282082432.0);
+  const Poly X3 = X(100.0, 882725551.0, 15701508.0, 32700410799.0);
+  const Poly X4 = X(25.0, 443332067.0, 31403016.0, 1880347072.0);
+  const Poly X5 = X(32805.0, 23143187.0, 3489224.0, 199316789632.0);
+  const Poly X6 = X(55.0, 29972135.0, 7076736.0, 822651844.0);
+  const Poly X7 = X(10.0, 7414447.0, 829305.0, 29380423.0);
+  return {A * c1 + C * X1 * -1.0 + D, A * c3 + C * X3, A * c4 + C * X4 * -1.0,
+          A * c5 + C * X5,            A * c6 + C * X6 * -1.0, B + C * X7};
+}
+constexpr std::array<Poly, 6> kDense = dense_weights();
+}  // namespace dp5
+
+// ---------------------------------------------------------------------------------------------------------------
 // Steppers. Both take one step from the last state toward t_limit (never past it) and give the state anywhere in
 // that step (dense output) for the event root finder.
 
 class AdaptiveStepper {
  public:
-  using Dopri = odeint::runge_kutta_dopri5<State>;
-  using Checker = odeint::default_error_checker<double, Dopri::algebra_type, Dopri::operations_type>;
-  using Controlled = odeint::controlled_runge_kutta<Dopri, Checker, StepAdjuster>;
-
   AdaptiveStepper(Rhs& rhs, double abs_tol, double rel_tol, double dt0)
-      // a_dxdt = 0: the tolerance is abs + rel |x| (the classic form); the state is scaled to O(1) near alpha.
-      : rhs_(&rhs), controlled_(Checker(abs_tol, rel_tol, 1.0, 0.0)), dt_(dt0) {}
+      : rhs_(&rhs), abs_tol_(abs_tol), rel_tol_(rel_tol), dt_(dt0) {}
 
   void restart(double t, const State& x) {
     t1_ = t;
     x1_ = x;
     rhs_->set_reference(x1_[0]);
-    (*rhs_)(x1_, dx1_, t1_);
+    (*rhs_)(x1_, k7_, t1_);
   }
 
   /// False (and no step taken) when the step count would pass max_steps: the engine reports the limit.
   [[nodiscard]] bool step(double t_limit, std::size_t& steps, std::size_t max_steps) {
     t0_ = t1_;
     x0_ = x1_;
-    dx0_ = dx1_;
+    k1_ = k7_;
+    dense_ready_ = false;
     const double remaining = t_limit - t0_;
     rhs_->move_reference(x0_[0]);
     for (;;) {
@@ -216,21 +277,29 @@ class AdaptiveStepper {
         return false;
       }
       const bool clamped = dt_ >= remaining;
-      double dt = clamped ? remaining : dt_;
-      double t = t0_;
-      if (controlled_.try_step(std::cref(*rhs_), x0_, dx0_, t, x1_, dx1_, dt) == odeint::success) {
-        t1_ = clamped ? t_limit : t;
+      const double dt = clamped ? remaining : dt_;
+      const double error = try_step(dt);
+      if (error <= 1.0) {
+        h_ = dt;
+        t1_ = clamped ? t_limit : t0_ + dt;
         // A step shortened to reach the sample instant says little about the step the solution allows.
-        dt_ = clamped ? std::max(dt_, dt) : dt;
+        const double next = StepLaw::increase(dt, error);
+        dt_ = clamped ? std::max(dt_, next) : next;
         return true;
       }
-      dt_ = dt;  // rejected: the controller has reduced it
+      dt_ = StepLaw::decrease(dt, error);
     }
   }
 
+  /// The 4th-order dense output at t in [t0, t1].
   [[nodiscard]] State dense(double t) const {
+    if (!dense_ready_) expand_dense();
+    const double s = (t - t0_) / h_;
     State x{};
-    controlled_.stepper().calc_state(t, x, x0_, dx0_, t0_, x1_, dx1_, t1_);
+    for (std::size_t i = 0; i < 2; ++i) {
+      const auto& c = poly_[i];
+      x[i] = x0_[i] + s * (c[0] + s * (c[1] + s * (c[2] + s * (c[3] + s * c[4]))));
+    }
     return x;
   }
 
@@ -240,15 +309,71 @@ class AdaptiveStepper {
   [[nodiscard]] const State& x1() const { return x1_; }
 
  private:
+  /// One Dormand-Prince step of length h from (t0_, x0_, k1_) into x1_, k7_ (and the stages k3.._k6 kept for the dense
+  /// output). Returns the error norm: max over the components of |err_i| / (abs_tol + rel_tol |x0_i|) (odeint's
+  /// default_error_checker with a_x = 1, a_dxdt = 0); the step is accepted when it is <= 1.
+  [[gnu::always_inline]] double try_step(double h) {
+    using namespace dp5;
+    const Rhs& f = *rhs_;
+    State y{};
+    State k2{};
+    for (std::size_t i = 0; i < 2; ++i) y[i] = x0_[i] + h * b21 * k1_[i];
+    f(y, k2, t0_ + h * a2);
+    for (std::size_t i = 0; i < 2; ++i) y[i] = x0_[i] + h * b31 * k1_[i] + h * b32 * k2[i];
+    f(y, k3_, t0_ + h * a3);
+    for (std::size_t i = 0; i < 2; ++i) y[i] = x0_[i] + h * b41 * k1_[i] + h * b42 * k2[i] + h * b43 * k3_[i];
+    f(y, k4_, t0_ + h * a4);
+    for (std::size_t i = 0; i < 2; ++i) {
+      y[i] = x0_[i] + h * b51 * k1_[i] + h * b52 * k2[i] + h * b53 * k3_[i] + h * b54 * k4_[i];
+    }
+    f(y, k5_, t0_ + h * a5);
+    for (std::size_t i = 0; i < 2; ++i) {
+      y[i] = x0_[i] + h * b61 * k1_[i] + h * b62 * k2[i] + h * b63 * k3_[i] + h * b64 * k4_[i] + h * b65 * k5_[i];
+    }
+    f(y, k6_, t0_ + h);
+    for (std::size_t i = 0; i < 2; ++i) {
+      x1_[i] = x0_[i] + h * c1 * k1_[i] + h * c3 * k3_[i] + h * c4 * k4_[i] + h * c5 * k5_[i] + h * c6 * k6_[i];
+    }
+    f(x1_, k7_, t0_ + h);
+    double error = 0.0;
+    for (std::size_t i = 0; i < 2; ++i) {
+      const double e = h * dc1 * k1_[i] + h * dc3 * k3_[i] + h * dc4 * k4_[i] + h * dc5 * k5_[i] +
+                       h * dc6 * k6_[i] + h * dc7 * k7_[i];
+      error = std::max(error, std::abs(e) / (abs_tol_ + rel_tol_ * std::abs(x0_[i])));
+    }
+    return error;
+  }
+
+  /// poly_[i][m - 1] = h sum_j (coefficient of s^m in b_j(s)) k_j[i], m = 1 .. 5.
+  void expand_dense() const {
+    const std::array<const State*, 6> k{&k1_, &k3_, &k4_, &k5_, &k6_, &k7_};
+    for (std::size_t i = 0; i < 2; ++i) {
+      for (std::size_t m = 1; m < 6; ++m) {
+        double sum = 0.0;
+        for (std::size_t j = 0; j < 6; ++j) sum += dp5::kDense[j].c[m] * (*k[j])[i];
+        poly_[i][m - 1] = h_ * sum;
+      }
+    }
+    dense_ready_ = true;
+  }
+
   Rhs* rhs_;
-  Controlled controlled_;
+  double abs_tol_;
+  double rel_tol_;
   double dt_;
+  double h_ = 0.0;
   double t0_ = 0.0;
   double t1_ = 0.0;
   State x0_{};
-  State dx0_{};
   State x1_{};
-  State dx1_{};
+  State k1_{};
+  State k3_{};
+  State k4_{};
+  State k5_{};
+  State k6_{};
+  State k7_{};
+  mutable std::array<std::array<double, 5>, 2> poly_{};
+  mutable bool dense_ready_ = false;
 };
 
 class Rk4Stepper {
