@@ -111,6 +111,7 @@ struct Rhs {
   }
 
   static constexpr double kSeriesRange = 0.1;
+  static constexpr double kShortRange = 0.01;
 
   [[gnu::always_inline]] void sin_cos(double phi, double& sn, double& cs) const {
     const double d = phi - phi_ref;
@@ -121,6 +122,18 @@ struct Rhs {
     if (std::abs(d) > kSeriesRange) {
       sn = std::sin(phi);
       cs = std::cos(phi);
+      return;
+    }
+    if (std::abs(d) <= kShortRange) {
+      // |d| <= 0.01, as for nearly every stage (a step moves phi by p alpha dt theta'/(p alpha), about 1e-3 on a
+      // 0.005 s record): sin d to d^5 and cos d - 1 to d^6 leave out |d|^7/5040 < 2e-18, below the round-off of
+      // the result's O(1) terms; a shorter dependency chain than the terms to d^9 below.
+      constexpr double k6 = 1.0 / 6.0, k120 = 1.0 / 120.0, k24 = 1.0 / 24.0, k720 = 1.0 / 720.0;
+      const double d2 = d * d;
+      const double sd = d + (d * d2) * (k120 * d2 - k6);
+      const double cd_minus_1 = d2 * ((k24 * d2 - 0.5) - (k720 * d2) * d2);
+      sn = sin_ref + (sin_ref * cd_minus_1 + cos_ref * sd);
+      cs = cos_ref + (cos_ref * cd_minus_1 - sin_ref * sd);
       return;
     }
     constexpr double k6 = 1.0 / 6.0, k120 = 1.0 / 120.0, k5040 = 1.0 / 5040.0, k362880 = 1.0 / 362880.0;
@@ -246,6 +259,31 @@ constexpr std::array<Poly, 6> dense_weights() {
 constexpr std::array<Poly, 6> kDense = dense_weights();
 }  // namespace dp5
 
+/// Cap on root-finder iterations per event: TOMS 748 converges in about 10 on smooth dense output, Newton in 3 to 5;
+/// 200 means a broken bracket.
+constexpr std::uintmax_t kMaxRootIterations = 200;
+
+/// Root of f on [a, b] with f(a), f(b) of opposite signs (or zero), by TOMS 748, to a few ulps of the time. NaN when
+/// the iterations ran out (the engine reports it with the run's parameters).
+/// The time tolerance of event location: a few ulps of the time itself, with a floor of 1 s so that events near t = 0
+/// converge too.
+inline double time_tolerance(double t) {
+  return 4.0 * std::numeric_limits<double>::epsilon() * std::max(std::abs(t), 1.0);
+}
+
+template <class F>
+double find_root(F f, double a, double b, double fa, double fb) {
+  if (fa == 0.0) return a;
+  if (fb == 0.0) return b;
+  std::uintmax_t iterations = kMaxRootIterations;
+  const auto tol = [](double lo, double hi) {
+    return std::abs(hi - lo) <= time_tolerance(std::max(std::abs(lo), std::abs(hi)));
+  };
+  const auto r = boost::math::tools::toms748_solve(f, a, b, fa, fb, tol, iterations);
+  if (iterations >= kMaxRootIterations) return std::numeric_limits<double>::quiet_NaN();
+  return 0.5 * (r.first + r.second);
+}
+
 // ---------------------------------------------------------------------------------------------------------------
 // Steppers. Both take one step from the last state toward t_limit (never past it) and give the state anywhere in
 // that step (dense output) for the event root finder.
@@ -301,6 +339,39 @@ class AdaptiveStepper {
       x[i] = x0_[i] + s * (c[0] + s * (c[1] + s * (c[2] + s * (c[3] + s * c[4]))));
     }
     return x;
+  }
+
+  /// The time in [ta, tb] where sign * x_i = level on the dense output, given the values fa, fb of
+  /// sign * x_i - level at the ends (opposite signs, or one zero). Newton on the dense polynomial, whose derivative is
+  /// at hand, kept inside the bracket (a step that leaves it is replaced by bisection), from the regula falsi point;
+  /// it stops when the Newton correction is below time_tolerance. NaN after kMaxRootIterations.
+  [[nodiscard]] double locate(std::size_t i, double sign, double level, double ta, double tb, double fa,
+                              double fb) const {
+    if (fa == 0.0) return ta;
+    if (fb == 0.0) return tb;
+    if (!dense_ready_) expand_dense();
+    const auto& c = poly_[i];
+    const double base = x0_[i] - sign * level;  // sign * (x_i - sign * level) = sign * x_i - level
+    double lo = (ta - t0_) / h_;
+    double hi = (tb - t0_) / h_;
+    const bool rising = fa < 0.0;  // the function goes from fa to fb
+    double s = lo + (hi - lo) * fa / (fa - fb);
+    for (std::uintmax_t k = 0; k < kMaxRootIterations; ++k) {
+      const double g = sign * (base + s * (c[0] + s * (c[1] + s * (c[2] + s * (c[3] + s * c[4])))));
+      const double dg = sign * (c[0] + s * (2.0 * c[1] + s * (3.0 * c[2] + s * (4.0 * c[3] + s * 5.0 * c[4]))));
+      if (g == 0.0) return t0_ + s * h_;
+      if ((g < 0.0) == rising) {
+        lo = s;
+      } else {
+        hi = s;
+      }
+      double next = s - g / dg;
+      if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);  // also catches dg = 0
+      const double t = t0_ + next * h_;
+      if (std::abs(next - s) * h_ <= time_tolerance(t) || (hi - lo) * h_ <= time_tolerance(t)) return t;
+      s = next;
+    }
+    return std::numeric_limits<double>::quiet_NaN();
   }
 
   [[nodiscard]] double t0() const { return t0_; }
@@ -408,6 +479,12 @@ class Rk4Stepper {
     return x;
   }
 
+  /// The time in [ta, tb] where sign * x_i = level on the continuous extension (TOMS 748; NaN when it ran out).
+  [[nodiscard]] double locate(std::size_t i, double sign, double level, double ta, double tb, double fa,
+                              double fb) const {
+    return find_root([&](double t) { return sign * dense(t)[i] - level; }, ta, tb, fa, fb);
+  }
+
   [[nodiscard]] double t0() const { return t0_; }
   [[nodiscard]] double t1() const { return t1_; }
   [[nodiscard]] const State& x0() const { return x0_; }
@@ -422,25 +499,6 @@ class Rk4Stepper {
   State x0_{};
   State x1_{};
 };
-
-/// Cap on TOMS 748 iterations per event: it converges in about 10 on smooth dense output; 200 means a broken bracket.
-constexpr std::uintmax_t kMaxRootIterations = 200;
-
-/// Root of f on [a, b] with f(a), f(b) of opposite signs (or zero), by TOMS 748, to a few ulps of the time. NaN when
-/// the iterations ran out (the engine reports it with the run's parameters).
-template <class F>
-double find_root(F f, double a, double b, double fa, double fb) {
-  if (fa == 0.0) return a;
-  if (fb == 0.0) return b;
-  std::uintmax_t iterations = kMaxRootIterations;
-  // Relative to the time itself, with a floor of 1 s so that events near t = 0 converge too.
-  const auto tol = [](double lo, double hi) {
-    return std::abs(hi - lo) <= 4.0 * std::numeric_limits<double>::epsilon() * std::max({std::abs(lo), std::abs(hi), 1.0});
-  };
-  const auto r = boost::math::tools::toms748_solve(f, a, b, fa, fb, tol, iterations);
-  if (iterations >= kMaxRootIterations) return std::numeric_limits<double>::quiet_NaN();
-  return 0.5 * (r.first + r.second);
-}
 
 // ---------------------------------------------------------------------------------------------------------------
 // The engine.
@@ -658,7 +716,6 @@ class Engine {
     const State& x1 = stepper_.x1();
     const double s = s_;
     const auto f = [&](double t) { return s * stepper_.dense(t)[0]; };
-    const auto v = [&](double t) { return s * stepper_.dense(t)[1]; };
     const double f0 = s * x0[0];
     const double f1 = s * x1[0];
     const double v0 = s * x0[1];
@@ -669,7 +726,7 @@ class Engine {
     double tp = t1;
     bool split = false;
     if ((v0 > 0.0 && v1 <= 0.0) || (v0 < 0.0 && v1 > 0.0)) {
-      tp = v1 == 0.0 ? t1 : root(v, t0, t1, v0, v1);
+      tp = v1 == 0.0 ? t1 : root(1, 0.0, t0, t1, v0, v1);
       split = tp < t1;
     }
     const bool first_up = v0 > 0.0 || (v0 == 0.0 && (v1 > 0.0 || (v1 == 0.0 && f1 > f0)));
@@ -687,13 +744,10 @@ class Engine {
   /// (impact, fall, rest, or the end of the run).
   bool piece(double ta, double tb, double fa, double fb, bool up) {
     const double s = s_;
-    const auto level = [&](double lv) {
-      return [this, s, lv](double t) { return s * stepper_.dense(t)[0] - lv; };
-    };
     RockingSummary& sum = out_.summary;
     if (up) {
       if (!sum.exceeded_alpha_time_s && fa < 1.0 && fb >= 1.0) {
-        const double te = root(level(1.0), ta, tb, fa - 1.0, fb - 1.0);
+        const double te = root(0, 1.0, ta, tb, fa - 1.0, fb - 1.0);
         sum.exceeded_alpha_time_s = te;
         const State x = stepper_.dense(te);
         event(RockingEventKind::exceeded_alpha, te, s * par_.alpha, par_.w_scale * x[1], par_.w_scale * x[1]);
@@ -707,7 +761,7 @@ class Engine {
         }
       }
       if (fb >= par_.overturn_level) {
-        const double tf = root(level(par_.overturn_level), ta, tb, fa - par_.overturn_level,
+        const double tf = root(0, par_.overturn_level, ta, tb, fa - par_.overturn_level,
                                     fb - par_.overturn_level);
         const State x = stepper_.dense(tf);
         before_state_change(tf);
@@ -736,7 +790,7 @@ class Engine {
       row(tb, u_);
       return true;
     }
-    impact(root(level(0.0), ta, tb, fa, fb));
+    impact(root(0, 0.0, ta, tb, fa, fb));
     return true;
   }
 
@@ -776,12 +830,12 @@ class Engine {
     row(ti, u_);
   }
 
-  /// An event time by find_root, or RootFindingError with the run's parameters.
-  template <class F>
-  double root(F f, double ta, double tb, double fa, double fb) const {
-    const double r = find_root(f, ta, tb, fa, fb);
+  /// The time in [ta, tb] where s theta' (component 1) or s theta (component 0), scaled, equals the level, given
+  /// the differences fa, fb at the ends; RootFindingError with the run's parameters when the root finder ran out.
+  double root(std::size_t component, double level, double ta, double tb, double fa, double fb) const {
+    const double r = stepper_.locate(component, static_cast<double>(s_), level, ta, tb, fa, fb);
     if (std::isnan(r)) {
-      throw RootFindingError(fmt::format("rocking: event location (TOMS 748) did not converge in {} iterations on "
+      throw RootFindingError(fmt::format("rocking: event location did not converge in {} iterations on "
                                          "[{}, {}] s ({})", kMaxRootIterations, ta, tb, describe()));
     }
     return r;
