@@ -341,6 +341,15 @@ class AdaptiveStepper {
     return x;
   }
 
+  /// Bounds on x_i over the step from the dense polynomial x0 + c1 s + ... + c5 s^5, s in [0, 1]: the linear part
+  /// is extreme at an end, the rest is at most sum |c_m| (m >= 2) in magnitude. Loose, but rigorous (to round-off).
+  [[nodiscard]] std::pair<double, double> range(std::size_t i) const {
+    if (!dense_ready_) expand_dense();
+    const auto& c = poly_[i];
+    const double rest = std::abs(c[1]) + std::abs(c[2]) + std::abs(c[3]) + std::abs(c[4]);
+    return {x0_[i] + std::min(c[0], 0.0) - rest, x0_[i] + std::max(c[0], 0.0) + rest};
+  }
+
   /// The time in [ta, tb] where sign * x_i = level on the dense output, given the values fa, fb of
   /// sign * x_i - level at the ends (opposite signs, or one zero). Newton on the dense polynomial, whose derivative is
   /// at hand, kept inside the bracket (a step that leaves it is replaced by bisection), from the regula falsi point;
@@ -477,6 +486,11 @@ class Rk4Stepper {
     State x{};
     rk4_.do_step(std::cref(*rhs_), x0_, t0_, x, t - t0_);
     return x;
+  }
+
+  /// No bounds on x_i over the step (the engine then locates every turning point).
+  [[nodiscard]] std::pair<double, double> range(std::size_t /*i*/) const {
+    return {-std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
   }
 
   /// The time in [ta, tb] where sign * x_i = level on the continuous extension (TOMS 748; NaN when it ran out).
@@ -726,6 +740,14 @@ class Engine {
     double tp = t1;
     bool split = false;
     if ((v0 > 0.0 && v1 <= 0.0) || (v0 < 0.0 && v1 > 0.0)) {
+      if constexpr (!kRecord) {
+        if (turning_point_is_moot(v0, f1)) {
+          t_ = t1;
+          u_ = x1;
+          track(t1, x1);
+          return;
+        }
+      }
       tp = v1 == 0.0 ? t1 : root(1, 0.0, t0, t1, v0, v1);
       split = tp < t1;
     }
@@ -738,6 +760,24 @@ class Engine {
     t_ = t1;
     u_ = x1;
     track(t1, x1);
+  }
+
+  /// Summary runs only (no history, no events): true when the turning point inside the step changes nothing, so
+  /// that locating it can be skipped with the same summary. A peak (v0 > 0) is moot when the step's bound on s theta
+  /// stays below alpha (or alpha was passed before), below the fall level and below the largest |theta| so far, and
+  /// the step ends with s theta > 0 (no impact after it); a trough (v0 < 0) when the bound stays above 0 (no impact)
+  /// and the step ends below those levels (no level crossed on the way up).
+  [[nodiscard]] bool turning_point_is_moot(double v0, double f1) const {
+    const RockingSummary& sum = out_.summary;
+    const double top = std::min(par_.overturn_level, sum.exceeded_alpha_time_s ? par_.overturn_level : 1.0);
+    const auto [lo, hi] = stepper_.range(0);
+    const double upper = s_ > 0 ? hi : -lo;  // bounds on s theta / alpha
+    const double lower = s_ > 0 ? lo : -hi;
+    if (v0 > 0.0) {
+      // The margin keeps a peak within round-off of the maximum located, so that the maximum is the same.
+      return f1 > 0.0 && upper < top && upper * par_.alpha < sum.max_abs_rotation_rad * (1.0 - 1e-12);
+    }
+    return lower > 0.0 && f1 < top;
   }
 
   /// Events on a monotone piece [ta, tb] of s theta (scaled: fa, fb). Returns true when an event ended the step
