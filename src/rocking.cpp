@@ -85,10 +85,27 @@ struct Rhs {
   static constexpr int kMaxMoves = 256;
   int moves = 0;
 
+  // sin and cos of +alpha and -alpha (set once per run): the reference at theta = 0, where every restart after an
+  // uplift or an impact is, without a libm call (the same values the calls would return).
+  std::array<double, 2> sin_pm_alpha{};  // {sin(-alpha), sin(alpha)}
+  std::array<double, 2> cos_pm_alpha{1.0, 1.0};
+
+  void set_alpha(double a) {
+    alpha = a;
+    sin_pm_alpha = {std::sin(-a), std::sin(a)};
+    cos_pm_alpha = {std::cos(-a), std::cos(a)};
+  }
+
   void set_reference(double u0) {
     phi_ref = s_alpha - alpha * u0;
-    sin_ref = std::sin(phi_ref);
-    cos_ref = std::cos(phi_ref);
+    if (u0 == 0.0 && (s_alpha == alpha || s_alpha == -alpha)) {
+      const std::size_t i = s_alpha > 0.0 ? 1 : 0;
+      sin_ref = sin_pm_alpha[i];
+      cos_ref = cos_pm_alpha[i];
+    } else {
+      sin_ref = std::sin(phi_ref);
+      cos_ref = std::cos(phi_ref);
+    }
     moves = 0;
   }
 
@@ -1092,7 +1109,7 @@ RockingResult run(const GroundMotion& horizontal, const RockingBody& body, const
   const Params par = make_params(body, o);
   Rhs rhs;
   rhs.p = par.p;
-  rhs.alpha = par.alpha;
+  rhs.set_alpha(par.alpha);
   rhs.k = (par.R / par.D) / par.w_scale;
   rhs.ge0 = par.g;
   RockingResult result;
