@@ -15,9 +15,7 @@
 
 #include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <boost/math/tools/toms748_solve.hpp>
-#include <boost/numeric/odeint/stepper/controlled_runge_kutta.hpp>
 #include <boost/numeric/odeint/stepper/runge_kutta4.hpp>
-#include <boost/numeric/odeint/stepper/runge_kutta_dopri5.hpp>
 #include <fmt/format.h>
 
 #include "topple/error.hpp"
@@ -87,10 +85,27 @@ struct Rhs {
   static constexpr int kMaxMoves = 256;
   int moves = 0;
 
+  // sin and cos of +alpha and -alpha (set once per run): the reference at theta = 0, where every restart after an
+  // uplift or an impact is, without a libm call (the same values the calls would return).
+  std::array<double, 2> sin_pm_alpha{};  // {sin(-alpha), sin(alpha)}
+  std::array<double, 2> cos_pm_alpha{1.0, 1.0};
+
+  void set_alpha(double a) {
+    alpha = a;
+    sin_pm_alpha = {std::sin(-a), std::sin(a)};
+    cos_pm_alpha = {std::cos(-a), std::cos(a)};
+  }
+
   void set_reference(double u0) {
     phi_ref = s_alpha - alpha * u0;
-    sin_ref = std::sin(phi_ref);
-    cos_ref = std::cos(phi_ref);
+    if (u0 == 0.0 && (s_alpha == alpha || s_alpha == -alpha)) {
+      const std::size_t i = s_alpha > 0.0 ? 1 : 0;
+      sin_ref = sin_pm_alpha[i];
+      cos_ref = cos_pm_alpha[i];
+    } else {
+      sin_ref = std::sin(phi_ref);
+      cos_ref = std::cos(phi_ref);
+    }
     moves = 0;
   }
 
@@ -113,6 +128,7 @@ struct Rhs {
   }
 
   static constexpr double kSeriesRange = 0.1;
+  static constexpr double kShortRange = 0.01;
 
   [[gnu::always_inline]] void sin_cos(double phi, double& sn, double& cs) const {
     const double d = phi - phi_ref;
@@ -123,6 +139,18 @@ struct Rhs {
     if (std::abs(d) > kSeriesRange) {
       sn = std::sin(phi);
       cs = std::cos(phi);
+      return;
+    }
+    if (std::abs(d) <= kShortRange) {
+      // |d| <= 0.01, as for nearly every stage (a step moves phi by p alpha dt theta'/(p alpha), about 1e-3 on a
+      // 0.005 s record): sin d to d^5 and cos d - 1 to d^6 leave out |d|^7/5040 < 2e-18, below the round-off of
+      // the result's O(1) terms; a shorter dependency chain than the terms to d^9 below.
+      constexpr double k6 = 1.0 / 6.0, k120 = 1.0 / 120.0, k24 = 1.0 / 24.0, k720 = 1.0 / 720.0;
+      const double d2 = d * d;
+      const double sd = d + (d * d2) * (k120 * d2 - k6);
+      const double cd_minus_1 = d2 * ((k24 * d2 - 0.5) - (k720 * d2) * d2);
+      sn = sin_ref + (sin_ref * cd_minus_1 + cos_ref * sd);
+      cs = cos_ref + (cos_ref * cd_minus_1 - sin_ref * sd);
       return;
     }
     constexpr double k6 = 1.0 / 6.0, k120 = 1.0 / 120.0, k5040 = 1.0 / 5040.0, k362880 = 1.0 / 362880.0;
@@ -145,20 +173,21 @@ struct Rhs {
   }
 };
 
-/// odeint's default step-size law (dt *= 0.9 err^(-1/order), at most x5 up and /5 down), without the two calls to
-/// pow when the error is so small that the growth cap applies anyway, as for most steps cut to a sample interval.
-class StepAdjuster : public odeint::default_step_adjuster<double, double> {
- public:
-  [[nodiscard]] double increase_step(double dt, double error, int stepper_order) const {
+/// The step-size law of Hairer, Norsett & Wanner (1993, II.4, eq 4.13) as Boost.Odeint's default_step_adjuster
+/// applies it: after a rejected step dt *= max(0.9 err^(-1/3), 1/5) (err^(-1/(q-1)) with q = 4, the embedded order);
+/// after an accepted one with err < 0.5, dt *= 0.9 max(err, 5^-5)^(-1/5), at most x4.5; otherwise unchanged.
+struct StepLaw {
+  [[nodiscard]] static double decrease(double dt, double error) {
+    return dt * std::max(0.9 * std::pow(error, -1.0 / 3.0), 0.2);
+  }
+  [[nodiscard]] static double increase(double dt, double error) {
     if (!(error < 0.5)) return dt;
-    const double floor = std::pow(5.0, -static_cast<double>(stepper_order));  // constant after inlining
-    if (error <= floor) return dt * 4.5;
-    if (stepper_order == 5) return dt * 0.9 * inverse_fifth_root(error);
-    return dt * 0.9 * std::pow(error, -1.0 / static_cast<double>(stepper_order));
+    constexpr double kFloor = 1.0 / 3125.0;  // 5^-5: below it the growth cap 0.9 * 5 applies
+    if (error <= kFloor) return dt * 4.5;
+    return dt * 0.9 * inverse_fifth_root(error);
   }
 
- private:
-  /// x^(-1/5) for 5^-5 < x < 0.5 (the range increase_step uses it on), to round-off: a first guess from the
+  /// x^(-1/5) for 5^-5 < x < 0.5 (the range increase uses it on), to round-off: a first guess from the
   /// exponent bits, then Newton on y^-5 = x (y <- y (6 - x y^5) / 5, quadratic). IEEE operations only, so the same
   /// steps on every machine; a tenth of a libm pow (which was 4 % of the inversion's instructions).
   static double inverse_fifth_root(double x) {
@@ -182,31 +211,118 @@ class StepAdjuster : public odeint::default_step_adjuster<double, double> {
 };
 
 // ---------------------------------------------------------------------------------------------------------------
+// Dormand-Prince 5(4) (Dormand & Prince 1980, J. Comput. Appl. Math. 6(1), 19-26; the tableau, the embedded error
+// estimate and the 4th-order dense output of Hairer, Norsett & Wanner 1993, II.5 and II.6, as Boost.Odeint's
+// runge_kutta_dopri5 has them), written out for the rocking equation's two components: no generic algebra, the
+// right-hand side inlined, and the dense output expanded once per step into a polynomial in the step fraction
+// (evaluated by Horner in the event root finder instead of recomputing its weights at every call).
+
+namespace dp5 {
+constexpr double a2 = 1.0 / 5.0, a3 = 3.0 / 10.0, a4 = 4.0 / 5.0, a5 = 8.0 / 9.0;
+constexpr double b21 = 1.0 / 5.0;
+constexpr double b31 = 3.0 / 40.0, b32 = 9.0 / 40.0;
+constexpr double b41 = 44.0 / 45.0, b42 = -56.0 / 15.0, b43 = 32.0 / 9.0;
+constexpr double b51 = 19372.0 / 6561.0, b52 = -25360.0 / 2187.0, b53 = 64448.0 / 6561.0, b54 = -212.0 / 729.0;
+constexpr double b61 = 9017.0 / 3168.0, b62 = -355.0 / 33.0, b63 = 46732.0 / 5247.0, b64 = 49.0 / 176.0,
+                 b65 = -5103.0 / 18656.0;
+// 5th-order weights (the FSAL row: also stage 7's coefficients)
+constexpr double c1 = 35.0 / 384.0, c3 = 500.0 / 1113.0, c4 = 125.0 / 192.0, c5 = -2187.0 / 6784.0, c6 = 11.0 / 84.0;
+// 5th-order minus 4th-order weights: the error estimate
+constexpr double dc1 = c1 - 5179.0 / 57600.0, dc3 = c3 - 7571.0 / 16695.0, dc4 = c4 - 393.0 / 640.0,
+                 dc5 = c5 - -92097.0 / 339200.0, dc6 = c6 - 187.0 / 2100.0, dc7 = -1.0 / 40.0;
+
+/// Polynomial in the step fraction s, coefficients of s^0 .. s^5.
+struct Poly {
+  std::array<double, 6> c{};
+  constexpr Poly operator+(const Poly& o) const {
+    Poly r;
+    for (std::size_t i = 0; i < 6; ++i) r.c[i] = c[i] + o.c[i];
+    return r;
+  }
+  constexpr Poly operator*(double k) const {
+    Poly r;
+    for (std::size_t i = 0; i < 6; ++i) r.c[i] = c[i] * k;
+    return r;
+  }
+  constexpr Poly operator*(const Poly& o) const {  // the products used here stay within degree 5
+    Poly r;
+    for (std::size_t i = 0; i < 6; ++i) {
+      for (std::size_t j = 0; i + j < 6; ++j) r.c[i + j] += c[i] * o.c[j];
+    }
+    return r;
+  }
+};
+
+/// The dense-output weights b_j(s) of Hairer, Norsett & Wanner (II.6; odeint's calc_state), as polynomials:
+/// x(t0 + s h) = x0 + h sum_j b_j(s) k_j, j = 1, 3, 4, 5, 6, 7.
+constexpr std::array<Poly, 6> dense_weights() {
+  const Poly s{{0, 1, 0, 0, 0, 0}};
+  const Poly one{{1, 0, 0, 0, 0, 0}};
+  const Poly sm1 = s + one * -1.0;
+  const Poly A = s * s * (one * 3.0 + s * -2.0);
+  const Poly B = s * s * sm1;
+  const Poly C = s * s * sm1 * sm1;
+  const Poly D = s * sm1 * sm1;
+  const auto X = [&](double k, double a, double b, double d) { return (one * a + s * -b) * (k / d); };
+  const Poly X1 = X(5.0, 2558722523.0, 31403016.0, 11282082432.0);
+  const Poly X3 = X(100.0, 882725551.0, 15701508.0, 32700410799.0);
+  const Poly X4 = X(25.0, 443332067.0, 31403016.0, 1880347072.0);
+  const Poly X5 = X(32805.0, 23143187.0, 3489224.0, 199316789632.0);
+  const Poly X6 = X(55.0, 29972135.0, 7076736.0, 822651844.0);
+  const Poly X7 = X(10.0, 7414447.0, 829305.0, 29380423.0);
+  return {A * c1 + C * X1 * -1.0 + D, A * c3 + C * X3, A * c4 + C * X4 * -1.0,
+          A * c5 + C * X5,            A * c6 + C * X6 * -1.0, B + C * X7};
+}
+constexpr std::array<Poly, 6> kDense = dense_weights();
+}  // namespace dp5
+
+/// Cap on root-finder iterations per event: TOMS 748 converges in about 10 on smooth dense output, Newton in 3 to 5;
+/// 200 means a broken bracket.
+constexpr std::uintmax_t kMaxRootIterations = 200;
+
+/// Root of f on [a, b] with f(a), f(b) of opposite signs (or zero), by TOMS 748, to a few ulps of the time. NaN when
+/// the iterations ran out (the engine reports it with the run's parameters).
+/// The time tolerance of event location: a few ulps of the time itself, with a floor of 1 s so that events near t = 0
+/// converge too.
+inline double time_tolerance(double t) {
+  return 4.0 * std::numeric_limits<double>::epsilon() * std::max(std::abs(t), 1.0);
+}
+
+template <class F>
+double find_root(F f, double a, double b, double fa, double fb) {
+  if (fa == 0.0) return a;
+  if (fb == 0.0) return b;
+  std::uintmax_t iterations = kMaxRootIterations;
+  const auto tol = [](double lo, double hi) {
+    return std::abs(hi - lo) <= time_tolerance(std::max(std::abs(lo), std::abs(hi)));
+  };
+  const auto r = boost::math::tools::toms748_solve(f, a, b, fa, fb, tol, iterations);
+  if (iterations >= kMaxRootIterations) return std::numeric_limits<double>::quiet_NaN();
+  return 0.5 * (r.first + r.second);
+}
+
+// ---------------------------------------------------------------------------------------------------------------
 // Steppers. Both take one step from the last state toward t_limit (never past it) and give the state anywhere in
 // that step (dense output) for the event root finder.
 
 class AdaptiveStepper {
  public:
-  using Dopri = odeint::runge_kutta_dopri5<State>;
-  using Checker = odeint::default_error_checker<double, Dopri::algebra_type, Dopri::operations_type>;
-  using Controlled = odeint::controlled_runge_kutta<Dopri, Checker, StepAdjuster>;
-
   AdaptiveStepper(Rhs& rhs, double abs_tol, double rel_tol, double dt0)
-      // a_dxdt = 0: the tolerance is abs + rel |x| (the classic form); the state is scaled to O(1) near alpha.
-      : rhs_(&rhs), controlled_(Checker(abs_tol, rel_tol, 1.0, 0.0)), dt_(dt0) {}
+      : rhs_(&rhs), abs_tol_(abs_tol), rel_tol_(rel_tol), dt_(dt0) {}
 
   void restart(double t, const State& x) {
     t1_ = t;
     x1_ = x;
     rhs_->set_reference(x1_[0]);
-    (*rhs_)(x1_, dx1_, t1_);
+    (*rhs_)(x1_, k7_, t1_);
   }
 
   /// False (and no step taken) when the step count would pass max_steps: the engine reports the limit.
   [[nodiscard]] bool step(double t_limit, std::size_t& steps, std::size_t max_steps) {
     t0_ = t1_;
     x0_ = x1_;
-    dx0_ = dx1_;
+    k1_ = k7_;
+    dense_ready_ = false;
     const double remaining = t_limit - t0_;
     rhs_->move_reference(x0_[0]);
     for (;;) {
@@ -216,22 +332,72 @@ class AdaptiveStepper {
         return false;
       }
       const bool clamped = dt_ >= remaining;
-      double dt = clamped ? remaining : dt_;
-      double t = t0_;
-      if (controlled_.try_step(std::cref(*rhs_), x0_, dx0_, t, x1_, dx1_, dt) == odeint::success) {
-        t1_ = clamped ? t_limit : t;
+      const double dt = clamped ? remaining : dt_;
+      const double error = try_step(dt);
+      if (error <= 1.0) {
+        h_ = dt;
+        t1_ = clamped ? t_limit : t0_ + dt;
         // A step shortened to reach the sample instant says little about the step the solution allows.
-        dt_ = clamped ? std::max(dt_, dt) : dt;
+        const double next = StepLaw::increase(dt, error);
+        dt_ = clamped ? std::max(dt_, next) : next;
         return true;
       }
-      dt_ = dt;  // rejected: the controller has reduced it
+      dt_ = StepLaw::decrease(dt, error);
     }
   }
 
+  /// The 4th-order dense output at t in [t0, t1].
   [[nodiscard]] State dense(double t) const {
+    if (!dense_ready_) expand_dense();
+    const double s = (t - t0_) / h_;
     State x{};
-    controlled_.stepper().calc_state(t, x, x0_, dx0_, t0_, x1_, dx1_, t1_);
+    for (std::size_t i = 0; i < 2; ++i) {
+      const auto& c = poly_[i];
+      x[i] = x0_[i] + s * (c[0] + s * (c[1] + s * (c[2] + s * (c[3] + s * c[4]))));
+    }
     return x;
+  }
+
+  /// Bounds on x_i over the step from the dense polynomial x0 + c1 s + ... + c5 s^5, s in [0, 1]: the linear part
+  /// is extreme at an end, the rest is at most sum |c_m| (m >= 2) in magnitude. Loose, but rigorous (to round-off).
+  [[nodiscard]] std::pair<double, double> range(std::size_t i) const {
+    if (!dense_ready_) expand_dense();
+    const auto& c = poly_[i];
+    const double rest = std::abs(c[1]) + std::abs(c[2]) + std::abs(c[3]) + std::abs(c[4]);
+    return {x0_[i] + std::min(c[0], 0.0) - rest, x0_[i] + std::max(c[0], 0.0) + rest};
+  }
+
+  /// The time in [ta, tb] where sign * x_i = level on the dense output, given the values fa, fb of
+  /// sign * x_i - level at the ends (opposite signs, or one zero). Newton on the dense polynomial, whose derivative is
+  /// at hand, kept inside the bracket (a step that leaves it is replaced by bisection), from the regula falsi point;
+  /// it stops when the Newton correction is below time_tolerance. NaN after kMaxRootIterations.
+  [[nodiscard]] double locate(std::size_t i, double sign, double level, double ta, double tb, double fa,
+                              double fb) const {
+    if (fa == 0.0) return ta;
+    if (fb == 0.0) return tb;
+    if (!dense_ready_) expand_dense();
+    const auto& c = poly_[i];
+    const double base = x0_[i] - sign * level;  // sign * (x_i - sign * level) = sign * x_i - level
+    double lo = (ta - t0_) / h_;
+    double hi = (tb - t0_) / h_;
+    const bool rising = fa < 0.0;  // the function goes from fa to fb
+    double s = lo + (hi - lo) * fa / (fa - fb);
+    for (std::uintmax_t k = 0; k < kMaxRootIterations; ++k) {
+      const double g = sign * (base + s * (c[0] + s * (c[1] + s * (c[2] + s * (c[3] + s * c[4])))));
+      const double dg = sign * (c[0] + s * (2.0 * c[1] + s * (3.0 * c[2] + s * (4.0 * c[3] + s * 5.0 * c[4]))));
+      if (g == 0.0) return t0_ + s * h_;
+      if ((g < 0.0) == rising) {
+        lo = s;
+      } else {
+        hi = s;
+      }
+      double next = s - g / dg;
+      if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);  // also catches dg = 0
+      const double t = t0_ + next * h_;
+      if (std::abs(next - s) * h_ <= time_tolerance(t) || (hi - lo) * h_ <= time_tolerance(t)) return t;
+      s = next;
+    }
+    return std::numeric_limits<double>::quiet_NaN();
   }
 
   [[nodiscard]] double t0() const { return t0_; }
@@ -240,15 +406,71 @@ class AdaptiveStepper {
   [[nodiscard]] const State& x1() const { return x1_; }
 
  private:
+  /// One Dormand-Prince step of length h from (t0_, x0_, k1_) into x1_, k7_ (and the stages k3.._k6 kept for the dense
+  /// output). Returns the error norm: max over the components of |err_i| / (abs_tol + rel_tol |x0_i|) (odeint's
+  /// default_error_checker with a_x = 1, a_dxdt = 0); the step is accepted when it is <= 1.
+  [[gnu::always_inline]] double try_step(double h) {
+    using namespace dp5;
+    const Rhs& f = *rhs_;
+    State y{};
+    State k2{};
+    for (std::size_t i = 0; i < 2; ++i) y[i] = x0_[i] + h * b21 * k1_[i];
+    f(y, k2, t0_ + h * a2);
+    for (std::size_t i = 0; i < 2; ++i) y[i] = x0_[i] + h * b31 * k1_[i] + h * b32 * k2[i];
+    f(y, k3_, t0_ + h * a3);
+    for (std::size_t i = 0; i < 2; ++i) y[i] = x0_[i] + h * b41 * k1_[i] + h * b42 * k2[i] + h * b43 * k3_[i];
+    f(y, k4_, t0_ + h * a4);
+    for (std::size_t i = 0; i < 2; ++i) {
+      y[i] = x0_[i] + h * b51 * k1_[i] + h * b52 * k2[i] + h * b53 * k3_[i] + h * b54 * k4_[i];
+    }
+    f(y, k5_, t0_ + h * a5);
+    for (std::size_t i = 0; i < 2; ++i) {
+      y[i] = x0_[i] + h * b61 * k1_[i] + h * b62 * k2[i] + h * b63 * k3_[i] + h * b64 * k4_[i] + h * b65 * k5_[i];
+    }
+    f(y, k6_, t0_ + h);
+    for (std::size_t i = 0; i < 2; ++i) {
+      x1_[i] = x0_[i] + h * c1 * k1_[i] + h * c3 * k3_[i] + h * c4 * k4_[i] + h * c5 * k5_[i] + h * c6 * k6_[i];
+    }
+    f(x1_, k7_, t0_ + h);
+    double error = 0.0;
+    for (std::size_t i = 0; i < 2; ++i) {
+      const double e = h * dc1 * k1_[i] + h * dc3 * k3_[i] + h * dc4 * k4_[i] + h * dc5 * k5_[i] +
+                       h * dc6 * k6_[i] + h * dc7 * k7_[i];
+      error = std::max(error, std::abs(e) / (abs_tol_ + rel_tol_ * std::abs(x0_[i])));
+    }
+    return error;
+  }
+
+  /// poly_[i][m - 1] = h sum_j (coefficient of s^m in b_j(s)) k_j[i], m = 1 .. 5.
+  void expand_dense() const {
+    const std::array<const State*, 6> k{&k1_, &k3_, &k4_, &k5_, &k6_, &k7_};
+    for (std::size_t i = 0; i < 2; ++i) {
+      for (std::size_t m = 1; m < 6; ++m) {
+        double sum = 0.0;
+        for (std::size_t j = 0; j < 6; ++j) sum += dp5::kDense[j].c[m] * (*k[j])[i];
+        poly_[i][m - 1] = h_ * sum;
+      }
+    }
+    dense_ready_ = true;
+  }
+
   Rhs* rhs_;
-  Controlled controlled_;
+  double abs_tol_;
+  double rel_tol_;
   double dt_;
+  double h_ = 0.0;
   double t0_ = 0.0;
   double t1_ = 0.0;
   State x0_{};
-  State dx0_{};
   State x1_{};
-  State dx1_{};
+  State k1_{};
+  State k3_{};
+  State k4_{};
+  State k5_{};
+  State k6_{};
+  State k7_{};
+  mutable std::array<std::array<double, 5>, 2> poly_{};
+  mutable bool dense_ready_ = false;
 };
 
 class Rk4Stepper {
@@ -283,6 +505,17 @@ class Rk4Stepper {
     return x;
   }
 
+  /// No bounds on x_i over the step (the engine then locates every turning point).
+  [[nodiscard]] std::pair<double, double> range(std::size_t /*i*/) const {
+    return {-std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  }
+
+  /// The time in [ta, tb] where sign * x_i = level on the continuous extension (TOMS 748; NaN when it ran out).
+  [[nodiscard]] double locate(std::size_t i, double sign, double level, double ta, double tb, double fa,
+                              double fb) const {
+    return find_root([&](double t) { return sign * dense(t)[i] - level; }, ta, tb, fa, fb);
+  }
+
   [[nodiscard]] double t0() const { return t0_; }
   [[nodiscard]] double t1() const { return t1_; }
   [[nodiscard]] const State& x0() const { return x0_; }
@@ -297,25 +530,6 @@ class Rk4Stepper {
   State x0_{};
   State x1_{};
 };
-
-/// Cap on TOMS 748 iterations per event: it converges in about 10 on smooth dense output; 200 means a broken bracket.
-constexpr std::uintmax_t kMaxRootIterations = 200;
-
-/// Root of f on [a, b] with f(a), f(b) of opposite signs (or zero), by TOMS 748, to a few ulps of the time. NaN when
-/// the iterations ran out (the engine reports it with the run's parameters).
-template <class F>
-double find_root(F f, double a, double b, double fa, double fb) {
-  if (fa == 0.0) return a;
-  if (fb == 0.0) return b;
-  std::uintmax_t iterations = kMaxRootIterations;
-  // Relative to the time itself, with a floor of 1 s so that events near t = 0 converge too.
-  const auto tol = [](double lo, double hi) {
-    return std::abs(hi - lo) <= 4.0 * std::numeric_limits<double>::epsilon() * std::max({std::abs(lo), std::abs(hi), 1.0});
-  };
-  const auto r = boost::math::tools::toms748_solve(f, a, b, fa, fb, tol, iterations);
-  if (iterations >= kMaxRootIterations) return std::numeric_limits<double>::quiet_NaN();
-  return 0.5 * (r.first + r.second);
-}
 
 // ---------------------------------------------------------------------------------------------------------------
 // The engine.
@@ -533,7 +747,6 @@ class Engine {
     const State& x1 = stepper_.x1();
     const double s = s_;
     const auto f = [&](double t) { return s * stepper_.dense(t)[0]; };
-    const auto v = [&](double t) { return s * stepper_.dense(t)[1]; };
     const double f0 = s * x0[0];
     const double f1 = s * x1[0];
     const double v0 = s * x0[1];
@@ -544,7 +757,15 @@ class Engine {
     double tp = t1;
     bool split = false;
     if ((v0 > 0.0 && v1 <= 0.0) || (v0 < 0.0 && v1 > 0.0)) {
-      tp = v1 == 0.0 ? t1 : root(v, t0, t1, v0, v1);
+      if constexpr (!kRecord) {
+        if (turning_point_is_moot(v0, f1)) {
+          t_ = t1;
+          u_ = x1;
+          track(t1, x1);
+          return;
+        }
+      }
+      tp = v1 == 0.0 ? t1 : root(1, 0.0, t0, t1, v0, v1);
       split = tp < t1;
     }
     const bool first_up = v0 > 0.0 || (v0 == 0.0 && (v1 > 0.0 || (v1 == 0.0 && f1 > f0)));
@@ -558,17 +779,32 @@ class Engine {
     track(t1, x1);
   }
 
+  /// Summary runs only (no history, no events): true when the turning point inside the step changes nothing, so
+  /// that locating it can be skipped with the same summary. A peak (v0 > 0) is moot when the step's bound on s theta
+  /// stays below alpha (or alpha was passed before), below the fall level and below the largest |theta| so far, and
+  /// the step ends with s theta > 0 (no impact after it); a trough (v0 < 0) when the bound stays above 0 (no impact)
+  /// and the step ends below those levels (no level crossed on the way up).
+  [[nodiscard]] bool turning_point_is_moot(double v0, double f1) const {
+    const RockingSummary& sum = out_.summary;
+    const double top = std::min(par_.overturn_level, sum.exceeded_alpha_time_s ? par_.overturn_level : 1.0);
+    const auto [lo, hi] = stepper_.range(0);
+    const double upper = s_ > 0 ? hi : -lo;  // bounds on s theta / alpha
+    const double lower = s_ > 0 ? lo : -hi;
+    if (v0 > 0.0) {
+      // The margin keeps a peak within round-off of the maximum located, so that the maximum is the same.
+      return f1 > 0.0 && upper < top && upper * par_.alpha < sum.max_abs_rotation_rad * (1.0 - 1e-12);
+    }
+    return lower > 0.0 && f1 < top;
+  }
+
   /// Events on a monotone piece [ta, tb] of s theta (scaled: fa, fb). Returns true when an event ended the step
   /// (impact, fall, rest, or the end of the run).
   bool piece(double ta, double tb, double fa, double fb, bool up) {
     const double s = s_;
-    const auto level = [&](double lv) {
-      return [this, s, lv](double t) { return s * stepper_.dense(t)[0] - lv; };
-    };
     RockingSummary& sum = out_.summary;
     if (up) {
       if (!sum.exceeded_alpha_time_s && fa < 1.0 && fb >= 1.0) {
-        const double te = root(level(1.0), ta, tb, fa - 1.0, fb - 1.0);
+        const double te = root(0, 1.0, ta, tb, fa - 1.0, fb - 1.0);
         sum.exceeded_alpha_time_s = te;
         const State x = stepper_.dense(te);
         event(RockingEventKind::exceeded_alpha, te, s * par_.alpha, par_.w_scale * x[1], par_.w_scale * x[1]);
@@ -582,7 +818,7 @@ class Engine {
         }
       }
       if (fb >= par_.overturn_level) {
-        const double tf = root(level(par_.overturn_level), ta, tb, fa - par_.overturn_level,
+        const double tf = root(0, par_.overturn_level, ta, tb, fa - par_.overturn_level,
                                     fb - par_.overturn_level);
         const State x = stepper_.dense(tf);
         before_state_change(tf);
@@ -611,7 +847,7 @@ class Engine {
       row(tb, u_);
       return true;
     }
-    impact(root(level(0.0), ta, tb, fa, fb));
+    impact(root(0, 0.0, ta, tb, fa, fb));
     return true;
   }
 
@@ -651,12 +887,12 @@ class Engine {
     row(ti, u_);
   }
 
-  /// An event time by find_root, or RootFindingError with the run's parameters.
-  template <class F>
-  double root(F f, double ta, double tb, double fa, double fb) const {
-    const double r = find_root(f, ta, tb, fa, fb);
+  /// The time in [ta, tb] where s theta' (component 1) or s theta (component 0), scaled, equals the level, given
+  /// the differences fa, fb at the ends; RootFindingError with the run's parameters when the root finder ran out.
+  double root(std::size_t component, double level, double ta, double tb, double fa, double fb) const {
+    const double r = stepper_.locate(component, static_cast<double>(s_), level, ta, tb, fa, fb);
     if (std::isnan(r)) {
-      throw RootFindingError(fmt::format("rocking: event location (TOMS 748) did not converge in {} iterations on "
+      throw RootFindingError(fmt::format("rocking: event location did not converge in {} iterations on "
                                          "[{}, {}] s ({})", kMaxRootIterations, ta, tb, describe()));
     }
     return r;
@@ -873,7 +1109,7 @@ RockingResult run(const GroundMotion& horizontal, const RockingBody& body, const
   const Params par = make_params(body, o);
   Rhs rhs;
   rhs.p = par.p;
-  rhs.alpha = par.alpha;
+  rhs.set_alpha(par.alpha);
   rhs.k = (par.R / par.D) / par.w_scale;
   rhs.ge0 = par.g;
   RockingResult result;

@@ -70,7 +70,8 @@ class EventLimitError : public SolverError {
   using SolverError::SolverError;
 };
 
-/// A root finder (TOMS 748 for events) used up its iterations without bracketing the root to its tolerance.
+/// A root finder (TOMS 748, or bracketed Newton on a dense polynomial, for events) used up its iterations without
+/// bracketing the root to its tolerance.
 class RootFindingError : public SolverError {
  public:
   using SolverError::SolverError;

@@ -60,16 +60,21 @@
 // equation was not retrieved; this one is derived from the three equations above and reduces to mu_crit(beta) = beta).
 // If mu < a/h the body slides before it can rock: the rocking-only result is then not valid.
 //
-// Method. Adaptive: Dormand-Prince 5(4) with error control and its 4th-order dense output (Boost.Odeint
-// runge_kutta_dopri5), state scaled as (theta / alpha, theta' / (p alpha)) so that one tolerance fits both. Steps end
-// on every sample instant of the input (its derivative jumps there) and never straddle one. Events (uplift aside)
-// are roots on the dense output found by TOMS 748 (Alefeld, Potra & Shi 1995; Boost.Math toms748_solve): impact
-// (theta = 0), turning points (theta' = 0), |theta| = alpha, |theta| = pi/2. While the body is at rest nothing is
-// integrated: each sample interval costs a comparison of |a_h| with the uplift threshold. RK4: the thesis' fixed-step
-// classical Runge-Kutta with step dt/n inside each sample interval (dt the record's sample interval, n =
-// rk4_substeps), kept for comparison; its events are located by the same root finder on the RK4 step of variable
-// length from the start of the step (a 4th-order continuous extension), where the thesis cut the step to a fifth and
-// interpolated linearly.
+// Method. Adaptive: Dormand-Prince 5(4) (Dormand & Prince 1980) with error control and its 4th-order dense output
+// (Hairer, Norsett & Wanner 1993, II.5-II.6), written out for the two components (the tableau, error norm and step-size
+// law of Boost.Odeint's controlled runge_kutta_dopri5), state scaled as (theta / alpha, theta' / (p alpha)) so that
+// one tolerance fits both. Steps end on every sample instant of the input (its derivative jumps there) and never
+// straddle one. Events (uplift aside) are roots of the dense output, a degree-5 polynomial in the step fraction,
+// found by Newton's method kept inside the sign-change bracket (bisection when a Newton step leaves it): impact
+// (theta = 0), turning points (theta' = 0), |theta| = alpha, |theta| = pi/2. The summary-only path (rock_summary)
+// skips locating a turning point that cannot change the summary: a peak whose bound on the step (from the
+// polynomial's coefficients) stays below the largest |theta| so far, alpha and pi/2 with no impact after it, or a
+// trough that stays above theta = 0; rock() locates them all and gives the same summary. While the body is at rest
+// nothing is integrated: each sample interval costs a comparison of |a_h| with the uplift threshold. RK4: the
+// thesis' fixed-step classical Runge-Kutta with step dt/n inside each sample interval (dt the record's sample
+// interval, n = rk4_substeps), kept for comparison; its events are located by TOMS 748 (Alefeld, Potra & Shi 1995;
+// Boost.Math toms748_solve) on the RK4 step of variable length from the start of the step (a 4th-order continuous
+// extension), where the thesis cut the step to a fifth and interpolated linearly.
 #include <cstddef>
 #include <cstdint>
 #include <functional>
