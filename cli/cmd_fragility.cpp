@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "progress.hpp"
 #include "common.hpp"
 #include "grids.hpp"
 #include "topple/error.hpp"
@@ -45,6 +46,7 @@ struct FragilityOptions {
   std::string e = "housner";
   double band = 0.95;
   int threads = 0;
+  bool quiet = false;
   std::string out;
   std::string plot;
   bool json = false;
@@ -161,7 +163,10 @@ void run_fragility(const FragilityOptions& o) {
       names.push_back(f);
     }
   }
+  ProgressBar bar(progress_wanted(o.quiet));
+  spec.progress = bar.callback();
   const FragilityResult res = fragility_analysis(spec);
+  bar.finish();
   const double k = intensity_measure_display_factor(spec.im, g);
   const std::string unit(intensity_measure_unit(spec.im));
 
@@ -278,6 +283,7 @@ void add_fragility_command(CLI::App& app) {
   cmd->add_option("--out", o->out, "Write the counts, fitted probabilities and band per level to this CSV file");
   cmd->add_option("--plot", o->plot, "Draw the curves with their data points and band to this .svg or .png file");
   cmd->add_flag("--json", o->json, "Print the fits as one JSON object");
+  add_quiet_flag(*cmd, o->quiet);
   cmd->callback([o] { run_fragility(*o); });
 }
 

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "progress.hpp"
 #include "common.hpp"
 #include "topple/error.hpp"
 #include "topple/io/write.hpp"
@@ -22,6 +23,7 @@ namespace topple::cli {
 namespace {
 
 struct RockOptions {
+  bool quiet = false;
   MotionOptions motion;
   PulseOptions pulse;
   std::string shape;
@@ -193,6 +195,7 @@ void add_rock_command(CLI::App& app) {
   cmd->add_option("--plot", o->plot, "Draw record with the uplift levels, theta/alpha with the overturning limits, "
                                      "theta', impacts and the fall, to this .svg or .png file (gnuplot)");
   cmd->add_flag("--json", o->json, "Print the summary as one JSON object");
+  add_quiet_flag(*cmd, o->quiet);  // a single run is quick: no bar; warnings are still printed
   cmd->callback([o] { run_rock(*o); });
 }
 

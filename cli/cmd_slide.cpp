@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "progress.hpp"
 #include "common.hpp"
 #include "slide_flexible.hpp"
 #include "topple/error.hpp"
@@ -28,6 +29,7 @@ struct SlideOptions {
   std::string out;
   std::string plot;
   bool json = false;
+  bool quiet = false;
   FlexibleOptions flexible;
 };
 
@@ -130,6 +132,7 @@ void add_slide_command(CLI::App& app) {
   cmd->add_option("--plot", o->plot, "Draw record, thresholds and response to this .svg or .png file (gnuplot)");
   cmd->add_flag("--json", o->json, "Print the summary as one JSON object");
   add_flexible_options(*cmd, o->flexible);
+  add_quiet_flag(*cmd, o->quiet);  // a single run is quick: no bar; warnings are still printed
   cmd->callback([o] { run_slide(*o); });
 }
 

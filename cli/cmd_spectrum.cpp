@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "progress.hpp"
 #include "common.hpp"
 #include "grids.hpp"
 #include "topple/error.hpp"
@@ -51,6 +52,7 @@ auto naming(const std::map<std::string, std::string>& names, F f) {
 // ---- spectrum slide ----
 
 struct SlideSpectrumOptions {
+  bool quiet = false;
   MotionInput input;
   std::string mu;
   std::string mu_range;
@@ -151,6 +153,7 @@ void run_slide_spectrum(const SlideSpectrumOptions& o) {
 // ---- spectrum rock ----
 
 struct RockSpectrumOptions {
+  bool quiet = false;
   MotionInput input;
   std::string shape = "block";
   std::string alpha;
@@ -224,6 +227,8 @@ void run_rock_spectrum(const RockSpectrumOptions& o) {
   OverturningMapOptions mo;
   mo.rocking.g_m_s2 = g;
   mo.threads = o.threads;
+  ProgressBar bar(progress_wanted(o.quiet));
+  mo.progress = bar.callback();
   const RestitutionChoice e = parse_restitution(o.e, "--e");
   mo.rocking.restitution = e.mode;
   mo.rocking.e = e.e;
@@ -234,6 +239,7 @@ void run_rock_spectrum(const RockSpectrumOptions& o) {
       {{"alpha", o.slenderness ? "--slenderness" : "--alpha"}, {"height", height_option}, {"width", height_option},
        {"diameter", height_option}, {"pga", pga_option}, {"e", "--e"}, {"g", "--g"}},
       [&] { return overturning_map(lm.motion, family, pga, mo); });
+  bar.finish();
 
   const std::size_t na = map.pga_m_s2.size();
   if (!o.out.empty()) {
@@ -318,6 +324,7 @@ void add_spectrum_command(CLI::App& app) {
   slide->add_option("--out", s->out, "Write the spectrum to this CSV file");
   slide->add_option("--plot", s->plot, "Draw the spectrum to this .svg or .png file (gnuplot)");
   slide->add_flag("--json", s->json, "Print the spectrum as one JSON object");
+  add_quiet_flag(*slide, s->quiet);  // one pass over the motion per mu: quick, no bar
   slide->callback([s] { run_slide_spectrum(*s); });
 
   auto r = std::make_shared<RockSpectrumOptions>();
@@ -336,6 +343,7 @@ void add_spectrum_command(CLI::App& app) {
   rock->add_option("--out", r->out, "Write the map to this CSV file (one row per size and PGA)");
   rock->add_option("--plot", r->plot, "Draw the map with the first-overturn curve to this .svg or .png file");
   rock->add_flag("--json", r->json, "Print the first-overturn PGA of each size as one JSON object");
+  add_quiet_flag(*rock, r->quiet);
   rock->callback([r] { run_rock_spectrum(*r); });
 }
 

@@ -33,6 +33,7 @@
 #include <string>
 #include <vector>
 
+#include "topple/progress.hpp"
 #include "topple/ground_motion.hpp"
 #include "topple/survey.hpp"
 
@@ -94,6 +95,8 @@ struct InversionResult {
 
 struct InversionOptions {
   int threads = 0;  ///< worker threads, >= 0 (0: all cores)
+  /// Runs done / to do of the simulation step (progress.hpp), per site; empty: none.
+  ProgressCallback progress{};
 };
 
 /// Checks options before any work: InputError naming "--threads" for a negative thread count.
