@@ -56,6 +56,26 @@ struct FragilityOptions {
 constexpr int kMaxSynthMotions = 10'000;
 constexpr std::size_t kMaxLevels = 1'000;
 
+/// The analysis a fragility figure shows: the ensemble, and each failure with its parameters (the sliding threshold d,
+/// mu, slope, one-way; the body and e).
+std::string fragility_title(const FragilityOptions& o, std::size_t motions) {
+  std::string t = o.synth ? fmt::format("Fragility over {} synthetic motions (f_p {}, seeds from {})", motions, o.freq,
+                                        o.seed)
+                          : fmt::format("Fragility over {} records", motions);
+  if (o.files.size() == 1) t += " (" + plot::file_label(o.files.front()) + ")";
+  if (o.mu) {
+    t += fmt::format(", slide > d = {} at μ = {:g}", o.threshold, *o.mu);
+    if (o.slope_deg != 0.0) t += fmt::format(", slope {:g}°", o.slope_deg);
+    t += o.one_way ? ", one-way" : ", two-way";
+  }
+  if (!o.shape.empty()) {
+    t += o.shape == "cylinder" ? fmt::format(", overturn of a cylinder {} x {}", o.diameter, o.height)
+                               : fmt::format(", overturn of a {} {} x {}", o.shape, o.width, o.height);
+    t += ", e = " + o.e;
+  }
+  return t;
+}
+
 void run_fragility(const FragilityOptions& o) {
   check_plot_path(o.plot);
   check_output_path(o.out);
@@ -190,8 +210,7 @@ void run_fragility(const FragilityOptions& o) {
   }
   if (!o.plot.empty()) {
     plot::render(plot::fragility_figure(res, g, o.band,
-                                        fmt::format("Fragility over {} motions ({})", spec.motions.size(),
-                                                    o.synth ? "synthetic" : "records")),
+                                        fragility_title(o, spec.motions.size())),
                  o.plot);
   }
   if (o.json) {

@@ -64,7 +64,7 @@ void add_info_command(CLI::App& app) {
       std::vector<plot::Mark> marks;
       if (tp.value) marks.push_back({*tp.value, fmt::format("Tp = {:.3f} s", *tp.value), "#e67e22"});
       const std::string name = !meta.event.empty() ? meta.event + (meta.station.empty() ? "" : ", " + meta.station)
-                                                   : options->file;
+                                                   : plot::file_label(options->file);
       const std::string title = fmt::format("{}{}: PGA {:.3g} g, PGV {:.3g} m/s, PGD {:.3g} m", name,
                                             meta.component.empty() ? "" : " " + meta.component, im.pga_m_s2 / g,
                                             im.pgv_m_s, im.pgd_m);

@@ -117,9 +117,11 @@ void run_rock(const RockOptions& o) {
     const RockingResult result = naming_options([&] { return rock(horizontal, body, options, vertical_ptr); });
     if (!o.out.empty()) io::write_rocking_history_csv(o.out, result.history);
     if (!o.plot.empty()) {
-      const std::string title = fmt::format("Rocking {}, a = {:.3g} m, h = {:.3g} m, α = {:.3g} rad, e = {:.3g}: {}",
-                                            shape_name(body.shape), body.a_m, body.h_m, result.summary.alpha_rad,
-                                            result.summary.e, motion_name);
+      const std::string title =
+          fmt::format("Rocking {}, a = {:.3g} m, h = {:.3g} m, α = {:.3g} rad, e = {:.3g}{}{}: {}",
+                      shape_name(body.shape), body.a_m, body.h_m, result.summary.alpha_rad, result.summary.e,
+                      options.restitution == RestitutionMode::housner ? " (Housner)" : "",
+                      o.vertical.empty() ? "" : ", with vertical " + plot::file_label(o.vertical), run.title);
       plot::render(plot::rocking_figure(horizontal, result, body, title, vertical_ptr), o.plot);
     }
     s = result.summary;

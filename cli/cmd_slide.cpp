@@ -33,6 +33,16 @@ struct SlideOptions {
   FlexibleOptions flexible;
 };
 
+/// The analysis a sliding figure shows: friction (static and kinetic), slope, one-way, the vertical, the motion.
+std::string sliding_title(const SlidingBlock& block, const SlideOptions& o, const std::string& motion) {
+  std::string t = fmt::format("Sliding block, μ = {:g}", block.mu_static);
+  if (o.mu_kinetic) t += fmt::format(", μ_k = {:g}", *o.mu_kinetic);
+  if (o.slope_deg != 0.0) t += fmt::format(", slope {:g}°", o.slope_deg);
+  t += o.one_way ? ", one-way" : ", two-way";
+  if (!o.vertical.empty()) t += ", with vertical " + plot::file_label(o.vertical);
+  return t + ": " + motion;
+}
+
 void run_slide(const SlideOptions& o) {
   const double g = o.motion.g_m_s2;
   check_g(g);
@@ -69,7 +79,7 @@ void run_slide(const SlideOptions& o) {
     if (!o.out.empty()) io::write_sliding_history_csv(o.out, result.history, horizontal);
     if (!o.plot.empty()) {
       plot::render(plot::sliding_figure(horizontal, result, block,
-                                        fmt::format("Sliding block, mu = {}: {}", block.mu_static, run.input.motion)),
+                                        sliding_title(block, o, run.title)),
                    o.plot);
     }
     summary = result.summary;

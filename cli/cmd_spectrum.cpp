@@ -30,11 +30,12 @@ struct MotionInput {
 struct LoadedMotion {
   GroundMotion motion;
   std::string name;
+  std::string title;  ///< RunMotion::title
 };
 
 LoadedMotion load(const MotionInput& in) {
   RunMotion run = load_run_motion(in.motion, in.pulse);
-  return {std::move(run.horizontal), std::move(run.input.motion)};
+  return {std::move(run.horizontal), std::move(run.input.motion), std::move(run.title)};
 }
 
 /// Library fields -> the options that set them.
@@ -114,8 +115,8 @@ void run_slide_spectrum(const SlideSpectrumOptions& o) {
   }
   if (!o.plot.empty()) {
     plot::render(plot::sliding_spectrum_figure(sp, !o.ky_range.empty(),
-                                               fmt::format("Sliding displacement spectrum ({}, slope {} deg): {}",
-                                                           mode_name, o.slope_deg, lm.name)),
+                                               fmt::format("Sliding displacement spectrum, {}, slope {:g}°: {}",
+                                                           mode_name, o.slope_deg, lm.title)),
                  o.plot);
   }
   if (o.json) {
@@ -257,8 +258,8 @@ void run_rock_spectrum(const RockSpectrumOptions& o) {
     file.commit();
   }
   if (!o.plot.empty()) {
-    plot::render(plot::overturning_map_figure(map, fmt::format("Overturning map, {} α = {:.3g} rad: {}", o.shape,
-                                                               map.alpha_rad, lm.name)),
+    plot::render(plot::overturning_map_figure(map, fmt::format("Overturning map, {} α = {:.3g} rad, e = {}: {}", o.shape,
+                                                               map.alpha_rad, o.e, lm.title)),
                  o.plot);
   }
   if (o.json) {
