@@ -118,6 +118,15 @@ TEST(SurveyCsv, HeaderUnitsCellUnitsAndAliasesMatchToml) {
   EXPECT_FALSE(csv.sites[0].objects[1].e_housner);
 }
 
+// The aliases are the TOML reader's own (the CSV only passes the word on).
+TEST(SurveyCsv, TomlReaderTakesToppledAndFell) {
+  for (const char* word : {"toppled", "fell", "overturned"}) {
+    const Survey s = io::parse_survey(std::string("[[object]]\nid = \"b\"\nwidth = \"10cm\"\nheight = \"40cm\"\n"
+                                                  "mu = 0.5\noutcome = \"") + word + "\"\n", "s.toml");
+    EXPECT_EQ(s.sites[0].objects[0].outcome, Outcome::overturned) << word;
+  }
+}
+
 // Spreadsheet habits: CRLF line ends, a byte-order mark, ';' as separator, quoted cells with the separator, a doubled
 // quote and a line break, rows of empty cells, missing trailing cells, comments.
 TEST(SurveyCsv, SpreadsheetExportsRead) {
