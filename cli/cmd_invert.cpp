@@ -1,6 +1,8 @@
 // topple invert SURVEY: from observed objects to PGA and predominant-frequency bounds.
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <memory>
 
 #include <fmt/format.h>
@@ -11,6 +13,7 @@
 #include "topple/error.hpp"
 #include "topple/inversion.hpp"
 #include "topple/io/inversion_output.hpp"
+#include "topple/io/provenance.hpp"
 #include "topple/io/survey_file.hpp"
 #include "topple/report.hpp"
 
@@ -34,21 +37,57 @@ std::string interval_text(const std::optional<double>& lo, const std::optional<d
   return fmt::format("[{}, {}] {}", end(lo, "unconstrained"), end(hi, "unconstrained"), unit);
 }
 
+/// The exact command line of this process (Linux: /proc/self/cmdline), each argument quoted for a POSIX shell where
+/// it needs it; "unknown" where it cannot be read.
+std::string own_command_line() {
+  std::ifstream in("/proc/self/cmdline", std::ios::binary);
+  std::string raw((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (raw.empty()) return "unknown";
+  std::string out;
+  std::size_t start = 0;
+  while (start < raw.size()) {
+    std::size_t end = raw.find('\0', start);
+    if (end == std::string::npos) end = raw.size();
+    const std::string arg = raw.substr(start, end - start);
+    const bool plain = !arg.empty() && arg.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                                             "0123456789_-./=:,+@%") == std::string::npos;
+    std::string quoted = "'";
+    for (char c : arg) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    out += (out.empty() ? "" : " ") + (plain ? arg : quoted + "'");
+    start = end + 1;
+  }
+  return out;
+}
+
 void print_site(const Site& site, const InversionResult& r) {
   fmt::print("== {}\n", site.name);
+  fmt::print("{}\n", inversion_summary(r));
   fmt::print("objects: {}   grid: {} PGA x {} frequencies, {} runs in {:.1f} s\n", site.objects.size(),
              r.pga_g.size(), r.freq_hz.size(), r.runs, r.seconds);
-  fmt::print("static bounds on PGA: {}\n", interval_text(r.bounds.lower_g, r.bounds.upper_g, "g"));
-  for (const auto& b : r.bounds.lower) fmt::print("  lower {:.3g} g  {}: {}\n", b.pga_g, b.object_id, b.reason);
-  for (const auto& b : r.bounds.upper) fmt::print("  upper {:.3g} g  {}: {}\n", b.pga_g, b.object_id, b.reason);
+  fmt::print("static thresholds on PGA: {} (hard: lower {}; soft ones a dynamic estimate may pass)\n",
+             interval_text(r.bounds.lower_g, r.bounds.upper_g, "g"),
+             r.bounds.hard_lower_g ? fmt::format("{:.3g} g", *r.bounds.hard_lower_g) : std::string("none"));
+  for (const auto& b : r.bounds.lower) {
+    fmt::print("  lower {:.3g} g ({})  {}: {}\n", b.pga_g, b.hard ? "hard" : "soft", b.object_id, b.reason);
+  }
+  for (const auto& b : r.bounds.upper) {
+    fmt::print("  upper {:.3g} g ({})  {}: {}\n", b.pga_g, b.hard ? "hard" : "soft", b.object_id, b.reason);
+  }
   const Estimate& pga = r.pga_estimate_g;
   const Estimate& freq = r.freq_estimate_hz;
-  fmt::print("PGA:       best {:.3g} g, median {:.3g} g, 68 % {}, 95 % {}\n", pga.best, pga.median,
-             interval_text(pga.ci68_low, pga.ci68_high, "g"), interval_text(pga.ci95_low, pga.ci95_high, "g"));
-  fmt::print("frequency: best {:.3g} Hz, median {:.3g} Hz, 68 % {}, 95 % {}\n", freq.best, freq.median,
-             interval_text(freq.ci68_low, freq.ci68_high, "Hz"), interval_text(freq.ci95_low, freq.ci95_high, "Hz"));
-  fmt::print("objects (probability of the observation at the best cell):\n");
-  for (const auto& o : r.objects) fmt::print("  {:<16} {:<15} {:.2f}\n", o.id, outcome_name(o.outcome), o.probability_at_best);
+  const auto edge = [](int at) { return at < 0 ? " (grid edge: below the grid)" : at > 0 ? " (grid edge: above the grid)" : ""; };
+  fmt::print("PGA:       median {:.3g} g{}, 68 % {}, 95 % {}; maximum-likelihood cell {:.3g} g{}\n", pga.median,
+             edge(pga.median_edge), interval_text(pga.ci68_low, pga.ci68_high, "g"),
+             interval_text(pga.ci95_low, pga.ci95_high, "g"), pga.best, edge(pga.best_edge));
+  fmt::print("frequency: median {:.3g} Hz{}, 68 % {}, 95 % {}; maximum-likelihood cell {:.3g} Hz{}\n", freq.median,
+             edge(freq.median_edge), interval_text(freq.ci68_low, freq.ci68_high, "Hz"),
+             interval_text(freq.ci95_low, freq.ci95_high, "Hz"), freq.best, edge(freq.best_edge));
+  fmt::print("objects: P(observation) posterior-predictive / at the maximum-likelihood cell, information (bits), "
+             "misfit if P < {}:\n", kMisfitProbability);
+  for (const auto& o : r.objects) {
+    fmt::print("  {:<16} {:<15} {:.3f} / {:.2f}  {:.2f} bit{}\n", o.id, outcome_name(o.outcome), o.posterior_predictive,
+               o.probability_at_best, o.constraint_bits, o.misfit ? "  MISFIT" : "");
+  }
   for (const auto& note : r.notes) fmt::print("note: {}\n", note);
 }
 
@@ -76,6 +115,7 @@ void run_invert(const InvertOptions& o) {
   ProgressBar bar(progress_wanted(o.quiet));
   options.progress = bar.callback();
   const Survey survey = io::read_survey(o.survey);
+  const io::Provenance provenance = io::make_provenance(o.survey, own_command_line());
   if (!o.grid.empty()) prepare_output_folder(o.grid, "--grid");
   if (!o.map.empty()) prepare_output_folder(o.map, "--map");
   if (!o.report.empty()) prepare_output_folder(o.report, "--report", true);
@@ -111,17 +151,17 @@ void run_invert(const InvertOptions& o) {
     for (std::size_t i = 0; i < results.size(); ++i) {
       const std::filesystem::path dir = multi ? std::filesystem::path(o.report) / fmt::format("site{}", i + 1)
                                               : std::filesystem::path(o.report);
-      write_report(dir, survey, survey.sites[i], results[i]);
+      write_report(dir, survey, survey.sites[i], results[i], provenance);
       if (!o.quiet) fmt::print(stderr, "topple: report written to {}\n", (dir / "index.html").string());
     }
   }
   if (o.json) {
     if (!multi) {
-      fmt::print("{}\n", io::inversion_json(results[0], survey.sites[0]).dump(2));
+      fmt::print("{}\n", io::inversion_json(results[0], survey.sites[0], provenance).dump(2));
     } else {
       nlohmann::ordered_json all;
       all["sites"] = nlohmann::ordered_json::array();
-      for (std::size_t i = 0; i < results.size(); ++i) all["sites"].push_back(io::inversion_json(results[i], survey.sites[i]));
+      for (std::size_t i = 0; i < results.size(); ++i) all["sites"].push_back(io::inversion_json(results[i], survey.sites[i], provenance));
       fmt::print("{}\n", all.dump(2));
     }
     return;

@@ -8,6 +8,7 @@
 #include "commands.hpp"
 #include "progress.hpp"
 #include "common.hpp"
+#include "slide_2d.hpp"
 #include "slide_flexible.hpp"
 #include "topple/error.hpp"
 #include "topple/io/write.hpp"
@@ -26,6 +27,8 @@ struct SlideOptions {
   double slope_deg = 0.0;
   bool one_way = false;
   std::string vertical;
+  std::string h2;        // second horizontal component: bidirectional sliding (slide_2d.hpp)
+  std::string azimuths;  // "A1,A2", degrees clockwise from north
   std::string out;
   std::string plot;
   bool json = false;
@@ -64,12 +67,25 @@ void run_slide(const SlideOptions& o) {
   const RunMotion run = load_run_motion(o.motion, o.pulse, o.vertical);
   const GroundMotion& horizontal = run.horizontal;
   const GroundMotion* vertical_ptr = run.vertical_ptr();
-  if (o.flexible.active()) {
-    if (!o.out.empty() || !o.plot.empty()) {
-      throw parameter_error("--support-freq", "--out and --plot are not available on a flexible support yet");
+  if (!o.h2.empty()) {
+    if (o.flexible.active() || !o.out.empty() || !o.plot.empty()) {
+      throw parameter_error("--h2", "--out, --plot and flexible supports are not available with two components yet");
     }
+    if (o.azimuths.empty()) {
+      throw parameter_error("--azimuths", "required with --h2: the two components' azimuths, degrees clockwise from "
+                                          "north, as A1,A2 (e.g. 90,0 for east and north)");
+    }
+    const ComponentAzimuths azimuths = parse_azimuths(o.azimuths);
+    // The second component is scaled with the first (the shaking is scaled as a whole), as the vertical is.
+    const GroundMotion second = io::read_motion(o.h2, read_options(o.motion)).scaled(run.input.scale_factor);
+    run_bidirectional_slide(horizontal, second, azimuths, block, vertical_ptr, o.json, run.input.motion, o.h2,
+                            run.input.scale_factor);
+    return;
+  }
+  if (!o.azimuths.empty()) throw parameter_error("--azimuths", "needs --h2 (the second horizontal component)");
+  if (o.flexible.active()) {
     run_flexible_slide(horizontal, block, o.flexible, o.json,
-                       o.pulse.kind.empty() ? o.motion.file : horizontal.metadata().event, vertical_ptr);
+                       o.pulse.kind.empty() ? o.motion.file : horizontal.metadata().event, vertical_ptr, o.out, o.plot);
     return;
   }
 
@@ -138,6 +154,10 @@ void add_slide_command(CLI::App& app) {
                                                "down-slope)")->capture_default_str();
   cmd->add_flag("--one-way", o->one_way, "Down-slope sliding only (SLAMMER rigid-block convention)");
   cmd->add_option("--vertical", o->vertical, "Vertical acceleration record (positive up), scaled with the horizontal");
+  cmd->add_option("--h2", o->h2, "Second horizontal component (record file): bidirectional sliding on level ground, "
+                                 "friction against the 2-D relative velocity; needs --azimuths");
+  cmd->add_option("--azimuths", o->azimuths, "With --h2: the two components' azimuths A1,A2 in degrees clockwise "
+                                             "from north (perpendicular), e.g. 90,0");
   cmd->add_option("--out", o->out, "Write the time history to this CSV file");
   cmd->add_option("--plot", o->plot, "Draw record, thresholds and response to this .svg or .png file (gnuplot)");
   cmd->add_flag("--json", o->json, "Print the summary as one JSON object");

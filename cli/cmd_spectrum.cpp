@@ -13,7 +13,9 @@
 #include "progress.hpp"
 #include "common.hpp"
 #include "grids.hpp"
+#include "slide_flexible.hpp"
 #include "topple/error.hpp"
+#include "topple/flexible.hpp"
 #include "topple/io/output_file.hpp"
 #include "topple/object_spectra.hpp"
 #include "topple/plot.hpp"
@@ -25,17 +27,63 @@ namespace {
 struct MotionInput {
   MotionOptions motion;
   PulseOptions pulse;
+  std::string support_freq;     ///< objects on a shelf or floor: its frequency ("4Hz")
+  std::string support_damping;  ///< and damping ("5%", default 5 %)
 };
 
 struct LoadedMotion {
-  GroundMotion motion;
+  GroundMotion motion;  ///< what the objects stand on: the ground's motion, or their support's
   std::string name;
-  std::string title;  ///< RunMotion::title
+  std::optional<SupportOscillator> support;
+  double ground_pga_m_s2 = 0.0;  ///< of the ground's motion as read (the support's differs)
+  std::string title;  ///< RunMotion::title, and the support when there is one
 };
 
+/// The support is checked before the motion is read.
+std::optional<SupportOscillator> support_of(const MotionInput& in) {
+  if (in.support_freq.empty()) {
+    if (!in.support_damping.empty()) throw parameter_error("--support-damping", "goes with --support-freq");
+    return std::nullopt;
+  }
+  return support_from_options(in.support_freq, in.support_damping);
+}
+
 LoadedMotion load(const MotionInput& in) {
+  const std::optional<SupportOscillator> support = support_of(in);
   RunMotion run = load_run_motion(in.motion, in.pulse);
-  return {std::move(run.horizontal), std::move(run.input.motion), std::move(run.title)};
+  if (support) {
+    // Objects on a flexible support: the spectrum of what the support passes on (flexible.hpp, decoupled).
+    if (!run.horizontal.is_uniform()) {
+      throw parameter_error("--support-freq", "a flexible support needs a uniformly sampled motion (pulses are "
+                                              "sampled at their jumps)");
+    }
+    const double ground_pga = run.horizontal.pga_m_s2();
+    std::string title = run.title + fmt::format(", on a {:.3g} Hz support ({:.3g} % damping)", support->freq_hz,
+                                                100.0 * support->damping_ratio);
+    return {support_motion(run.horizontal, *support), std::move(run.input.motion), support, ground_pga,
+            std::move(title)};
+  }
+  const double ground_pga = run.horizontal.pga_m_s2();
+  return {std::move(run.horizontal), std::move(run.input.motion), std::nullopt, ground_pga, std::move(run.title)};
+}
+
+/// The support in the JSON: null on the ground.
+nlohmann::ordered_json support_json(const LoadedMotion& lm, double g) {
+  if (!lm.support) return nullptr;
+  nlohmann::ordered_json j;
+  j["freq_hz"] = lm.support->freq_hz;
+  j["damping_ratio"] = lm.support->damping_ratio;
+  j["ground_pga_g"] = lm.ground_pga_m_s2 / g;
+  j["support_pga_g"] = lm.motion.pga_m_s2() / g;
+  return j;
+}
+
+/// The text line that says the objects stand on a flexible support.
+void print_support(const LoadedMotion& lm, double g) {
+  if (!lm.support) return;
+  fmt::print("on a flexible support: {:.4g} Hz, damping {:.4g}; its peak acceleration {:.4f} g (ground {:.4f} g): the "
+             "PGA values here are the support's\n",
+             lm.support->freq_hz, lm.support->damping_ratio, lm.motion.pga_m_s2() / g, lm.ground_pga_m_s2 / g);
 }
 
 /// Library fields -> the options that set them.
@@ -128,6 +176,7 @@ void run_slide_spectrum(const SlideSpectrumOptions& o) {
     j["g_m_s2"] = g;
     j["mode"] = mode_name;
     j["slope_deg"] = o.slope_deg;
+    if (lm.support) j["support"] = support_json(lm, g);
     auto& pts = j["points"] = nlohmann::ordered_json::array();
     for (const auto& p : sp.points) {
       pts.push_back({{"mu", p.mu},
@@ -142,6 +191,7 @@ void run_slide_spectrum(const SlideSpectrumOptions& o) {
   }
   fmt::print("sliding displacement spectrum: {} (PGA {:.4f} g), {}, slope {} deg, g = {} m/s2\n", lm.name,
              sp.pga_m_s2 / g, mode_name, o.slope_deg, g);
+  print_support(lm, g);
   fmt::print("{:>10} {:>10} {:>14} {:>14} {:>8}\n", "mu", "ky/PGA", "max |d| (m)", "residual (m)", "slips");
   for (const auto& p : sp.points) {
     fmt::print("{:>10.5g} {:>10.5g} {:>14.6g} {:>14.6g} {:>8}\n", p.mu, p.yield_over_pga, p.max_abs_displacement_m,
@@ -269,6 +319,7 @@ void run_rock_spectrum(const RockSpectrumOptions& o) {
     j["g_m_s2"] = g;
     j["shape"] = o.shape;
     j["alpha_rad"] = map.alpha_rad;
+    if (lm.support) j["support"] = support_json(lm, g);
     j["uplift_pga_g"] = std::tan(map.alpha_rad);
     nlohmann::ordered_json grid = nlohmann::ordered_json::array();
     for (double a : map.pga_m_s2) grid.push_back(a / g);
@@ -290,6 +341,7 @@ void run_rock_spectrum(const RockSpectrumOptions& o) {
   }
   fmt::print("overturning map: {} ({} {} PGAs x {} sizes), {} alpha = {:.4g} rad, uplift at PGA > {:.4f} g\n", lm.name,
              na, "grid", map.sizes.size(), o.shape, map.alpha_rad, std::tan(map.alpha_rad));
+  print_support(lm, g);
   fmt::print("{:>12} {:>10} {:>20} {:>22}\n", "height (m)", "p (rad/s)", "first overturn (g)", "standing above first");
   for (const auto& z : map.sizes) {
     fmt::print("{:>12.5g} {:>10.4g} {:>20} {:>22}\n", z.height_m, z.p_rad_s,
@@ -304,6 +356,9 @@ void add_motion_input(CLI::App& cmd, MotionInput& in) {
   cmd.add_option("file", in.motion.file, "Record file (format detected from content)");
   add_motion_options(cmd, in.motion);
   add_pulse_options(cmd, in.pulse);
+  cmd.add_option("--support-freq", in.support_freq, "Objects on a shelf or floor: its natural frequency (e.g. 4Hz); "
+                                                    "they see its absolute acceleration (decoupled)");
+  cmd.add_option("--support-damping", in.support_damping, "Damping ratio of the support (5% or 0.05; default 5%)");
 }
 
 }  // namespace

@@ -3,6 +3,8 @@
 
 #include <charconv>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -10,6 +12,7 @@
 #include "topple/error.hpp"
 #include "topple/flexible.hpp"
 #include "topple/io/flexible_json.hpp"
+#include "topple/plot.hpp"
 #include "topple/units.hpp"
 
 namespace topple::cli {
@@ -33,6 +36,13 @@ double parse_ratio(const std::string& text, const std::string& field) {
 
 }  // namespace
 
+SupportOscillator support_from_options(const std::string& support_freq, const std::string& support_damping,
+                                       double mass_ratio) {
+  return SupportOscillator::make(parse_frequency_hz(support_freq, "--support-freq"),
+                                 support_damping.empty() ? 0.05 : parse_ratio(support_damping, "--support-damping"),
+                                 mass_ratio);
+}
+
 void add_flexible_options(CLI::App& cmd, FlexibleOptions& o) {
   cmd.add_option("--support-freq", o.support_freq, "Object on a shelf or floor: the support's natural frequency "
                                                    "(e.g. 4Hz or 0.25s)");
@@ -48,7 +58,10 @@ void add_flexible_options(CLI::App& cmd, FlexibleOptions& o) {
 }
 
 void run_flexible_slide(const GroundMotion& horizontal, const SlidingBlock& block, const FlexibleOptions& o, bool json,
-                        const std::string& motion_name, const GroundMotion* vertical) {
+                        const std::string& motion_name, const GroundMotion* vertical, const std::string& out,
+                        const std::string& plot) {
+  const bool with_history = !out.empty() || !plot.empty();
+  FlexibleHistory history;
   if (!o.support_freq.empty() && !o.height.empty()) {
     throw parameter_error("--height", "give either --support-freq (shelf, floor) or --height (sliding mass)");
   }
@@ -61,10 +74,14 @@ void run_flexible_slide(const GroundMotion& horizontal, const SlidingBlock& bloc
       throw parameter_error("--support-freq", "--height, --vs-slope, --vs-base, --damping and --ref-strain describe a "
                                               "sliding mass, not a shelf or floor");
     }
-    const SupportOscillator s = SupportOscillator::make(
-        parse_frequency_hz(o.support_freq, "--support-freq"),
-        o.support_damping.empty() ? 0.05 : parse_ratio(o.support_damping, "--support-damping"), o.mass_ratio);
-    r = slide_flexible(horizontal, s, block, analysis, vertical);
+    const SupportOscillator s = support_from_options(o.support_freq, o.support_damping, o.mass_ratio);
+    if (with_history) {
+      FlexibleResult full = slide_flexible_history(horizontal, s, block, analysis, vertical);
+      r = full.summary;
+      history = std::move(full.history);
+    } else {
+      r = slide_flexible(horizontal, s, block, analysis, vertical);
+    }
     j = io::flexible_summary_json(r, block, s, analysis);
   } else {
     if (!o.vs_slope_m_s || !o.vs_base_m_s || o.damping.empty()) {
@@ -80,8 +97,28 @@ void run_flexible_slide(const GroundMotion& horizontal, const SlidingBlock& bloc
     if (!o.reference_strain.empty()) ref = parse_ratio(o.reference_strain, "--ref-strain");
     const SlidingMassColumn col = SlidingMassColumn::make(parse_length_m(o.height, "--height"), *o.vs_slope_m_s,
                                                           *o.vs_base_m_s, parse_ratio(o.damping, "--damping"), ref);
-    r = slide_flexible(horizontal, col, block.mu_static, analysis, block.mode, g, vertical);
+    if (with_history) {
+      FlexibleResult full = slide_flexible_history(horizontal, col, block.mu_static, analysis, block.mode, g, vertical);
+      r = full.summary;
+      history = std::move(full.history);
+    } else {
+      r = slide_flexible(horizontal, col, block.mu_static, analysis, block.mode, g, vertical);
+    }
     j = io::flexible_summary_json(r, block, col, analysis);
+  }
+  if (!out.empty()) io::write_flexible_history_csv(out, history, horizontal);
+  if (!plot.empty()) {
+    // The rigid run's figure (record, yield levels, slip starts, relative velocity and displacement) with the
+    // sliding surface's own acceleration drawn over the ground's.
+    plot::Figure f = plot::sliding_figure(
+        horizontal, SlidingResult{r.sliding, history.sliding}, block,
+        fmt::format("{} sliding on a {}, yield {:.3g} g: {}", j["support"]["analysis"].get<std::string>(),
+                    o.support_freq.empty() ? "flexible sliding mass" : "flexible support", block.mu_static,
+                    motion_name));
+    std::vector<double> support_g(history.support_accel_m_s2.size());
+    for (std::size_t i = 0; i < support_g.size(); ++i) support_g[i] = history.support_accel_m_s2[i] / g;
+    f.panels.front().series.push_back({"support", history.sliding.time_s, std::move(support_g), "lines", "#27ae60", 1.2});
+    plot::render(f, plot);
   }
   if (json) {
     nlohmann::ordered_json input;
@@ -104,6 +141,8 @@ void run_flexible_slide(const GroundMotion& horizontal, const SlidingBlock& bloc
              r.sliding.max_displacement_time_s);
   fmt::print("residual displacement  {:.6g} m\n", r.sliding.residual_displacement_m);
   fmt::print("slip episodes          {}\n", r.sliding.slip_episodes);
+  if (!out.empty()) fmt::print("history written to {}\n", out);
+  if (!plot.empty()) fmt::print("figure written to {}\n", plot);
 }
 
 }  // namespace topple::cli

@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "topple/flexible.hpp"
 #include "topple/ground_motion.hpp"
 #include "topple/sliding.hpp"
 
@@ -26,9 +27,15 @@ struct FlexibleOptions {
 
 void add_flexible_options(CLI::App& cmd, FlexibleOptions& options);
 
+/// The shelf or floor of `--support-freq F [--support-damping Z]` (damping default 5 %, as `topple slide` documents).
+[[nodiscard]] SupportOscillator support_from_options(const std::string& support_freq, const std::string& support_damping,
+                                                     double mass_ratio = 0.0);
+
 /// Runs and prints (text or JSON) the flexible-support analysis; `mu` is the friction coefficient (shelf) or the
-/// yield coefficient k_y (sliding mass); `vertical` (decoupled only) as in the rigid run.
+/// yield coefficient k_y (sliding mass); `vertical` as in the rigid run (both analyses).
+/// `out` / `plot` (empty: none) receive the history CSV and the figure, as the rigid run's --out / --plot.
 void run_flexible_slide(const GroundMotion& horizontal, const SlidingBlock& block, const FlexibleOptions& o, bool json,
-                        const std::string& motion_name, const GroundMotion* vertical = nullptr);
+                        const std::string& motion_name, const GroundMotion* vertical = nullptr,
+                        const std::string& out = {}, const std::string& plot = {});
 
 }  // namespace topple::cli

@@ -4,7 +4,7 @@
 # and predominant-frequency bounds, with its HTML report.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/install-deps.sh
+scripts/install-deps.sh --run  # only what building and running need (no test libraries, clang, chromium)
 cmake --preset release -DTOPPLE_BUILD_TESTS=OFF -DTOPPLE_BUILD_BENCH=OFF >/dev/null
 cmake --build --preset release -j "$(nproc)" --target topple_cli
 topple=build/release/cli/topple

@@ -1,17 +1,39 @@
 #!/usr/bin/env bash
-# Installs what topple needs to build and test, from Debian's packages (idempotent; run as root or with sudo).
-# Python tools used only by tests and benchmarks live in a virtual environment: see scripts/python-venv.sh.
+# Installs what topple needs from Debian's packages (idempotent; run as root or with sudo).
+#
+#   scripts/install-deps.sh --run     build and run the `topple` command (the main job, scripts/demo.sh): compiler,
+#                                     CMake, the libraries it links, gnuplot for its figures and reports
+#   scripts/install-deps.sh --python  --run plus Python's headers and venv, for the Python package (python-venv.sh)
+#   scripts/install-deps.sh --test    everything: --python plus the test and benchmark libraries, MPI, clang (fuzzing)
+#                                     and chromium (the report is opened in a headless browser); scripts/test.sh
+#   scripts/install-deps.sh           the same as --test (what it did before the modes existed)
+#
+# MPI is optional for running (`topple sweep` splits its chunks across ranks only when built with it): --run leaves
+# it out, --test installs it. Python tools used only by tests and benchmarks live in virtual environments
+# (scripts/python-venv.sh, scripts/test-venv.sh).
 set -euo pipefail
 
-packages=(
-  build-essential cmake ninja-build pkg-config clang
+mode="${1:---test}"
+run_packages=(
+  build-essential cmake ninja-build pkg-config
   libcli11-dev libfmt-dev nlohmann-json3-dev libtomlplusplus-dev libboost-dev
-  libtbb-dev libopenmpi-dev openmpi-bin libfftw3-dev libxxhash-dev
-  libgtest-dev libgmock-dev googletest libbenchmark-dev
-  gnuplot-nox python3 python3-venv
-  chromium  # test only: the inversion report is opened in a real headless browser
-  python3-dev
+  libtbb-dev libfftw3-dev libxxhash-dev
+  gnuplot-nox  # figures: --plot, the inversion report
 )
+python_packages=(python3 python3-venv python3-dev)
+test_packages=(
+  libgtest-dev libgmock-dev googletest libbenchmark-dev
+  libopenmpi-dev openmpi-bin
+  clang     # the fuzz preset (libFuzzer)
+  chromium  # the inversion report is opened in a real headless browser
+)
+case "$mode" in
+  --run) packages=("${run_packages[@]}") ;;
+  --python) packages=("${run_packages[@]}" "${python_packages[@]}") ;;
+  --test) packages=("${run_packages[@]}" "${python_packages[@]}" "${test_packages[@]}") ;;
+  -h|--help) sed -n '2,13p' "$0"; exit 0 ;;
+  *) echo "install-deps: unknown mode '$mode' (use --run, --python or --test)" >&2; exit 2 ;;
+esac
 
 missing=()
 for p in "${packages[@]}"; do
@@ -21,9 +43,9 @@ done
 if ((${#missing[@]})); then
   sudo=""
   [[ $(id -u) -eq 0 ]] || sudo="sudo"
-  echo "install-deps: installing ${missing[*]}"
+  echo "install-deps ($mode): installing ${missing[*]}"
   $sudo apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
 else
-  echo "install-deps: all Debian packages present"
+  echo "install-deps ($mode): all Debian packages present"
 fi

@@ -16,6 +16,11 @@ pip=($venv/bin/python -m pip -q --disable-pip-version-check)
 if ! $venv/bin/python -c "import numpy, matplotlib, pytest, scikit_build_core, nanobind" 2>/dev/null; then
   "${pip[@]}" install "numpy>=2" matplotlib pytest "scikit-build-core>=0.10" "nanobind>=2.0"
 fi
+# The distribution was named "topple" before it became topple-quake (pyproject.toml; "topple" on PyPI is another
+# project): remove the old one first, or both would own the files of the package.
+if $venv/bin/python -m pip show topple >/dev/null 2>&1; then
+  "${pip[@]}" uninstall -y topple
+fi
 # CMAKE_BUILD_PARALLEL_LEVEL: the extension build uses every core (TOPPLE_JOBS when set).
 CMAKE_BUILD_PARALLEL_LEVEL="${TOPPLE_JOBS:-$(nproc)}" "${pip[@]}" install --no-build-isolation --no-deps ./
 $venv/bin/python -c "import topple; topple.GroundMotion([0.0, 0.1], 0.01)"

@@ -6,7 +6,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs="${TOPPLE_JOBS:-$(nproc)}"
 
-scripts/install-deps.sh
+scripts/install-deps.sh --test  # everything: the run packages plus test libraries, MPI, clang, chromium
 scripts/test-venv.sh || echo "test-venv: no .venv-test; the pyrotd/eqsig comparisons will be skipped"
 
 echo "== release build and tests"

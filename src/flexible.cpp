@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <span>
 #include <utility>
 
 #include <boost/math/tools/toms748_solve.hpp>
@@ -165,52 +166,113 @@ int substeps_for(double omega_rad_s, double dt_s, double limit = 0.5) {
 /// under a 0.02 s record) that its demand is the ground's, linear between samples, up to decaying transients.
 int decoupled_substeps(double omega_rad_s, double dt_s) { return std::min(64, substeps_for(omega_rad_s, dt_s, 0.1)); }
 
+/// The exact recurrence of one linear output z = cy Y + cv Y' of the mode on a grid of step h with piecewise-linear
+/// input a. The step propagator gives x_{k+1} = P x_k + G0 a_k + G1 a_{k+1} for x = (Y, Y') (P, G0, G1 from exp(A h):
+/// G1 = p(.,3) / h, G0 = p(.,2) - G1), and P^2 = tr(P) P - det(P) I (Cayley-Hamilton) turns it into a second-order
+/// recurrence on z alone (the ramp-invariant form of the oscillator, as Nigam & Jennings 1969 is the exact form for
+/// linear interpolation between samples):
+///   z_{k+1} = a1 z_k + a2 z_{k-1} + b0 a_{k+1} + b1 a_k + b2 a_{k-1},
+///   a1 = tr P, a2 = -det P, b0 = C G1, b1 = C G0 + C (P - a1 I) G1, b2 = C (P - a1 I) G0,
+/// with z_0 = 0 (rest) and z_1 = C (G0 a_0 + G1 a_1). It is the same exact solution; only one product and one sum
+/// lie on the chain from one sample to the next (the state-space form has two of each), which halves the time of the
+/// decoupled analysis' first half. Round-off: relative ~1e-16 / (omega h)^2 (poles near 1 when omega h is small).
+struct OutputRecurrence {
+  double a1 = 0.0, a2 = 0.0, b0 = 0.0, b1 = 0.0, b2 = 0.0;
+  double z1_from_a0 = 0.0, z1_from_a1 = 0.0;  ///< z_1 = z1_from_a0 a_0 + z1_from_a1 a_1
+};
+
+OutputRecurrence output_recurrence(const Mat<4>& p, double h, double cy, double cv) {
+  const double g1y = p(0, 3) / h;
+  const double g1v = p(1, 3) / h;
+  const double g0y = p(0, 2) - g1y;
+  const double g0v = p(1, 2) - g1v;
+  OutputRecurrence r;
+  r.a1 = p(0, 0) + p(1, 1);
+  r.a2 = -(p(0, 0) * p(1, 1) - p(0, 1) * p(1, 0));
+  // C (P - a1 I) as a row: (cy (p00 - a1) + cv p10, cy p01 + cv (p11 - a1)).
+  const double ry = cy * (p(0, 0) - r.a1) + cv * p(1, 0);
+  const double rv = cy * p(0, 1) + cv * (p(1, 1) - r.a1);
+  r.b0 = cy * g1y + cv * g1v;
+  r.b1 = cy * g0y + cv * g0v + ry * g1y + rv * g1v;
+  r.b2 = ry * g0y + rv * g0v;
+  r.z1_from_a0 = cy * g0y + cv * g0v;
+  r.z1_from_a1 = r.b0;
+  return r;
+}
+
+/// Runs the recurrence over the n input points a (n >= 2); writes d_k = z_k + da a_k to `out` when given (it may be
+/// `a` itself: each input is read before its slot is written) and returns max |d_k|.
+double run_output_recurrence(const OutputRecurrence& c, double da, const double* a, std::size_t n, double* out) {
+  double a_prev = a[0];
+  double a_cur = a[1];
+  double z_prev = 0.0;
+  double z = c.z1_from_a0 * a_prev + c.z1_from_a1 * a_cur;
+  double d0 = da * a_prev;
+  double d1 = z + da * a_cur;
+  double peak = std::max(std::abs(d0), std::abs(d1));
+  if (out != nullptr) {
+    out[0] = d0;
+    out[1] = d1;
+  }
+  for (std::size_t k = 1; k + 1 < n; ++k) {
+    const double a_next = a[k + 1];
+    // Off the chain first: everything but a1 z_k.
+    const double rest = c.a2 * z_prev + (c.b0 * a_next + c.b1 * a_cur + c.b2 * a_prev);
+    const double z_next = c.a1 * z + rest;
+    const double d = z_next + da * a_next;
+    peak = std::max(peak, std::abs(d));
+    if (out != nullptr) out[k + 1] = d;
+    z_prev = z;
+    z = z_next;
+    a_prev = a_cur;
+    a_cur = a_next;
+  }
+  return peak;
+}
+
+/// The record's input on its steps split in `substeps` (linear interpolation: the input as the solvers read it), into
+/// `grid` ((n - 1) substeps + 1 points).
+void substep_input(const std::span<const double> acc, int substeps, std::vector<double>& grid) {
+  const std::size_t points = (acc.size() - 1) * static_cast<std::size_t>(substeps) + 1;
+  grid.resize(points);
+  std::size_t at = 0;
+  for (std::size_t k = 0; k + 1 < acc.size(); ++k) {
+    const double step = (acc[k + 1] - acc[k]) / substeps;
+    for (int j = 0; j < substeps; ++j) grid[at++] = j == 0 ? acc[k] : acc[k] + step * static_cast<double>(j);
+  }
+  grid[at] = acc.back();
+}
+
 /// The decoupled response on the record's steps split in `substeps` (values at the record's samples do not depend on
-/// it: the propagator is exact). The demand history, when kept, has (n - 1) substeps + 1 points.
+/// it: the propagator is exact). The demand history, when kept, has (n - 1) substeps + 1 points; max |Y| is computed
+/// only when asked (the equivalent-linear iteration's strain).
 LinearResponse linear_response(const GroundMotion& ground, const ModalProperties& m, bool keep_history,
-                               int substeps = 1) {
+                               int substeps = 1, bool need_max_y = false) {
   const auto acc = ground.accel_m_s2();
-  const double dt = ground.dt_s();
-  const double h = dt / substeps;
+  const double h = ground.dt_s() / substeps;
   const Mat<4> p = expm(decoupled_generator(m), h);
   const double w2 = m.omega_rad_s * m.omega_rad_s;
   const double c = 2.0 * m.damping_ratio * m.omega_rad_s;
   LinearResponse out;
-  const std::size_t points = (acc.size() - 1) * static_cast<std::size_t>(substeps) + 1;
-  if (keep_history) out.demand_m_s2.resize(points);
-  double* hist = keep_history ? out.demand_m_s2.data() : nullptr;
+  // The input on the grid: the record itself, or its linear interpolation (written where the demand will go).
+  std::vector<double> scratch;
+  std::vector<double>& grid = keep_history ? out.demand_m_s2 : scratch;
+  const double* input = acc.data();
+  std::size_t n = acc.size();
+  if (substeps > 1 || keep_history) {
+    if (substeps > 1) {
+      substep_input(acc, substeps, grid);
+    } else {
+      grid.assign(acc.begin(), acc.end());
+    }
+    input = grid.data();
+    n = grid.size();
+  }
   // Demand a + q Y'' with Y'' = -p a - c Y' - w2 Y: (1 - q p) a - q c Y' - q w2 Y.
   const double da = 1.0 - m.mass_fraction * m.participation;
-  const double dv = -m.mass_fraction * c;
-  const double dy = -m.mass_fraction * w2;
-  const double inv_dt = 1.0 / dt;
-  double y = 0.0;
-  double v = 0.0;
-  double max_y = 0.0;
-  double max_d = std::abs(da * acc[0]);
-  if (hist) hist[0] = da * acc[0];
-  std::size_t at = 1;
-  for (std::size_t k = 0; k + 1 < acc.size(); ++k) {
-    const double slope = (acc[k + 1] - acc[k]) * inv_dt;
-    for (int j = 0; j < substeps; ++j) {
-      const double a0 = acc[k] + slope * (static_cast<double>(j) * h);
-      const double a1 = j + 1 == substeps ? acc[k + 1] : acc[k] + slope * (static_cast<double>(j + 1) * h);
-      // The input terms do not depend on the state: only two products per component lie on the recurrence's chain.
-      const double fy = p(0, 2) * a0 + p(0, 3) * slope;
-      const double fv = p(1, 2) * a0 + p(1, 3) * slope;
-      const double y1 = p(0, 0) * y + p(0, 1) * v + fy;
-      const double v1 = p(1, 0) * y + p(1, 1) * v + fv;
-      y = y1;
-      v = v1;
-      const double d = da * a1 + dv * v + dy * y;
-      max_y = std::max(max_y, std::abs(y));
-      max_d = std::max(max_d, std::abs(d));
-      if (hist) hist[at] = d;
-      ++at;
-    }
-  }
-  out.max_abs_y = max_y;
-  out.max_abs_demand_m_s2 = max_d;
+  const OutputRecurrence demand = output_recurrence(p, h, -m.mass_fraction * w2, -m.mass_fraction * c);
+  if (need_max_y) out.max_abs_y = run_output_recurrence(output_recurrence(p, h, 1.0, 0.0), 0.0, input, n, nullptr);
+  out.max_abs_demand_m_s2 = run_output_recurrence(demand, da, input, n, keep_history ? grid.data() : nullptr);
   return out;
 }
 
@@ -238,32 +300,58 @@ double equivalent_damping(double g_ratio, double strain, double ref_strain) {
 
 // ---- coupled analysis: the two-phase linear system --------------------------------------------------------------
 
-constexpr std::size_t kN = 7;  // Y, Y', s, s', a, a', 1
+// State w = (Y, Y', s, s', a_g, a_g', 1) and, with a vertical record, (a_v, a_v'): N = 7 or 9. Without a vertical
+// record the 7-state system runs (the same arithmetic as before vertical input existed).
+constexpr std::size_t kPlain = 7;
+constexpr std::size_t kWithVertical = 9;
 enum Phase : int { stick = 0, slip_down = 1, slip_up = 2 };
 
+template <std::size_t N>
 struct CoupledSystem {
-  std::array<Mat<kN>, 3> generator;  ///< d/dt state per phase
-  Vec<kN> demand{};                  ///< stick-phase demand D(w) (m/s^2): sliding force per unit sliding mass
-  double yield_m_s2 = 0.0;           ///< k_y g (column) or mu g (shelf)
+  std::array<Mat<N>, 3> generator;  ///< d/dt state per phase
+  Vec<N> demand{};                  ///< stick-phase demand D(w) (m/s^2): sliding force per unit sliding mass
+  /// The friction capacity per unit sliding mass, mu (g + a_v) (k_y for mu on the column), as a row on the state.
+  Vec<N> yield_row{};
+  double g_m_s2 = kStandardGravity;  ///< g of the normal force m (g + a_v)
   double omega_max = 0.0;            ///< fastest mode over the phases (sets the sub-step)
+  double mass_fraction = 1.0;        ///< L1/m: the surface's absolute acceleration is a_g + (L1/m) Y''
   bool two_way = false;
 };
 
-void fill_input_rows(Mat<kN>& a) {
+template <std::size_t N>
+void fill_input_rows(Mat<N>& a) {
   a(0, 1) = 1.0;  // Y' = Y'
   a(2, 3) = 1.0;  // s' = s'
   a(4, 5) = 1.0;  // a_g' = slope, constant within a step
+  if constexpr (N == kWithVertical) a(7, 8) = 1.0;  // a_v' likewise
+}
+
+/// The friction terms of the slip phases: the coefficient c of the constant state (c = X mu g) goes with c / g on a_v,
+/// so that the term is X mu (g + a_v) (normal force m (g + a_v)).
+template <std::size_t N>
+void add_friction(Mat<N>& a, std::size_t row, double coefficient_of_one, double g_m_s2) {
+  a(row, 6) = coefficient_of_one;
+  if constexpr (N == kWithVertical) a(row, 7) = coefficient_of_one / g_m_s2;
+}
+
+template <std::size_t N>
+Vec<N> yield_row(double yield_m_s2, double g_m_s2) {
+  Vec<N> r{};
+  r[6] = yield_m_s2;
+  if constexpr (N == kWithVertical) r[7] = yield_m_s2 / g_m_s2;
+  return r;
 }
 
 /// Column (Chopra & Zhang 1991 as SLAMMER's Coupled): equations in flexible.hpp.
-CoupledSystem column_system(const ModalProperties& m, double yield_m_s2, bool two_way) {
-  CoupledSystem sys;
+template <std::size_t N>
+CoupledSystem<N> column_system(const ModalProperties& m, double yield_m_s2, double g_m_s2, bool two_way) {
+  CoupledSystem<N> sys;
   const double w2 = m.omega_rad_s * m.omega_rad_s;
   const double c = 2.0 * m.damping_ratio * m.omega_rad_s;
   const double p = m.participation;
   const double q = m.mass_fraction;
   const double d1 = 1.0 - p * q;  // 1 - L1^2 / (M1 m) = 1 - 8/pi^2
-  for (auto& g : sys.generator) fill_input_rows(g);
+  for (auto& g : sys.generator) fill_input_rows<N>(g);
   // stick: Y'' = -p a - c Y' - w2 Y
   sys.generator[stick](1, 0) = -w2;
   sys.generator[stick](1, 1) = -c;
@@ -278,26 +366,30 @@ CoupledSystem column_system(const ModalProperties& m, double yield_m_s2, bool tw
     // d1 Y'' = -p sigma ky g - c Y' - w2 Y
     g(1, 0) = -w2 / d1;
     g(1, 1) = -c / d1;
-    g(1, 6) = -p * sigma * yield_m_s2 / d1;
+    add_friction(g, 1, -p * sigma * yield_m_s2 / d1, g_m_s2);
     // s'' = a + q Y'' - sigma ky g
     g(3, 0) = q * g(1, 0);
     g(3, 1) = q * g(1, 1);
     g(3, 4) = 1.0;
-    g(3, 6) = q * g(1, 6) - sigma * yield_m_s2;
+    add_friction(g, 3, q * g(1, 6) - sigma * yield_m_s2, g_m_s2);
   }
-  sys.yield_m_s2 = yield_m_s2;
+  sys.yield_row = yield_row<N>(yield_m_s2, g_m_s2);
+  sys.g_m_s2 = g_m_s2;
   sys.omega_max = m.omega_rad_s / std::sqrt(d1);
+  sys.mass_fraction = q;
   sys.two_way = two_way;
   return sys;
 }
 
 /// Shelf or floor: object of mass r M_s on a one-mode support (flexible.hpp).
-CoupledSystem shelf_system(const ModalProperties& m, double mass_ratio, double yield_m_s2, bool two_way) {
-  CoupledSystem sys;
+template <std::size_t N>
+CoupledSystem<N> shelf_system(const ModalProperties& m, double mass_ratio, double yield_m_s2, double g_m_s2,
+                              bool two_way) {
+  CoupledSystem<N> sys;
   const double w2 = m.omega_rad_s * m.omega_rad_s;
   const double c = 2.0 * m.damping_ratio * m.omega_rad_s;
   const double r = mass_ratio;
-  for (auto& g : sys.generator) fill_input_rows(g);
+  for (auto& g : sys.generator) fill_input_rows<N>(g);
   // stick: Y'' = -a - (c Y' + w2 Y) / (1 + r), D = a + Y''
   sys.generator[stick](1, 0) = -w2 / (1.0 + r);
   sys.generator[stick](1, 1) = -c / (1.0 + r);
@@ -311,83 +403,111 @@ CoupledSystem shelf_system(const ModalProperties& m, double mass_ratio, double y
     g(1, 0) = -w2;
     g(1, 1) = -c;
     g(1, 4) = -1.0;
-    g(1, 6) = -r * sigma * yield_m_s2;
+    add_friction(g, 1, -r * sigma * yield_m_s2, g_m_s2);
     g(3, 0) = -w2;
     g(3, 1) = -c;
-    g(3, 6) = -r * sigma * yield_m_s2 - sigma * yield_m_s2;
+    add_friction(g, 3, -r * sigma * yield_m_s2 - sigma * yield_m_s2, g_m_s2);
   }
-  sys.yield_m_s2 = yield_m_s2;
+  sys.yield_row = yield_row<N>(yield_m_s2, g_m_s2);
+  sys.g_m_s2 = g_m_s2;
   sys.omega_max = m.omega_rad_s;
   sys.two_way = two_way;
   return sys;
 }
 
-double dot(const Vec<kN>& a, const Vec<kN>& b) {
+template <std::size_t N>
+double dot(const Vec<N>& a, const Vec<N>& b) {
   double s = 0.0;
-  for (std::size_t i = 0; i < kN; ++i) s += a[i] * b[i];
+  for (std::size_t i = 0; i < N; ++i) s += a[i] * b[i];
   return s;
 }
 
 /// The linear quantity an event watches: the demand in stick, the slip velocity s' while slipping.
-Vec<kN> watched(const CoupledSystem& sys, Phase phase) {
+template <std::size_t N>
+Vec<N> watched(const CoupledSystem<N>& sys, Phase phase) {
   if (phase == stick) return sys.demand;
-  Vec<kN> c{};
+  Vec<N> c{};
   c[3] = 1.0;
   return c;
 }
 
 /// Event function of a phase from its watched quantity x: an event happens where it rises through 0. Stick: the
 /// demand beyond the yield level (either direction in two-way mode); slip: the velocity back through zero.
-double event_from(const CoupledSystem& sys, Phase phase, double x) {
+/// `yield` (stick only) is the friction capacity mu (g + a_v) at the same instant.
+template <std::size_t N>
+double event_from(const CoupledSystem<N>& sys, Phase phase, double x, double yield) {
   switch (phase) {
-    case stick: return sys.two_way ? std::abs(x) - sys.yield_m_s2 : x - sys.yield_m_s2;
+    case stick: return sys.two_way ? std::abs(x) - yield : x - yield;
     case slip_down: return -x;
     case slip_up: return x;
   }
   return 0.0;
 }
 
-double event_value(const CoupledSystem& sys, Phase phase, const Vec<kN>& w) {
-  return event_from(sys, phase, dot(watched(sys, phase), w));
+template <std::size_t N>
+double event_value(const CoupledSystem<N>& sys, Phase phase, const Vec<N>& w) {
+  return event_from(sys, phase, dot(watched(sys, phase), w), dot(sys.yield_row, w));
 }
 
 /// c^T P: the watched quantity after the step P as one dot product with the state before it.
-Vec<kN> row_through(const Vec<kN>& c, const Mat<kN>& p) {
-  Vec<kN> r{};
-  for (std::size_t i = 0; i < kN; ++i)
-    for (std::size_t j = 0; j < kN; ++j) r[j] += c[i] * p(i, j);
+template <std::size_t N>
+Vec<N> row_through(const Vec<N>& c, const Mat<N>& p) {
+  Vec<N> r{};
+  for (std::size_t i = 0; i < N; ++i)
+    for (std::size_t j = 0; j < N; ++j) r[j] += c[i] * p(i, j);
   return r;
 }
 
 /// Phase entered from stick (demand above yield) or after a slip stops (checking that the stick demand holds).
-Phase stick_or_slip(const CoupledSystem& sys, const Vec<kN>& w) {
+template <std::size_t N>
+Phase stick_or_slip(const CoupledSystem<N>& sys, const Vec<N>& w) {
   const double d = dot(sys.demand, w);
-  if (d > sys.yield_m_s2) return slip_down;
-  if (sys.two_way && d < -sys.yield_m_s2) return slip_up;
+  const double yield = dot(sys.yield_row, w);
+  if (d > yield) return slip_down;
+  if (sys.two_way && d < -yield) return slip_up;
   return stick;
 }
 
-SlidingSummary run_coupled(const GroundMotion& ground, const CoupledSystem& sys) {
+/// The coupled response; `history` (optional) receives every sub-step end and every event.
+/// And `vertical` (N = 9 only) is read at the sub-step ends, linear between them.
+template <std::size_t N>
+SlidingSummary run_coupled(const GroundMotion& ground, const CoupledSystem<N>& sys, const GroundMotion* vertical,
+                           FlexibleHistory* history) {
   const auto acc = ground.accel_m_s2();
   const double dt = ground.dt_s();
   // omega h <= 0.5 for the event search; capped at 256 sub-steps (omega dt > 128: a support so stiff that its demand
   // follows the ground, linear within a record step, apart from transients that decay within the step).
   const int n_sub = std::min(256, substeps_for(sys.omega_max, dt));
   const double h = dt / n_sub;
-  std::array<Mat<kN>, 3> full;
-  std::array<Vec<kN>, 3> mid_row;  // the watched quantity at the sub-step's midpoint, as a row on the state
+  std::array<Mat<N>, 3> full;
+  std::array<Vec<N>, 3> mid_row;  // the watched quantity at the sub-step's midpoint, as a row on the state
+  std::array<Vec<N>, 3> mid_yield;  // the friction capacity there, likewise
   for (int ph = 0; ph < 3; ++ph) {
-    const Mat<kN> half = expm(sys.generator[ph], 0.5 * h);
+    const Mat<N> half = expm(sys.generator[ph], 0.5 * h);
     full[ph] = mul(half, half);
     mid_row[ph] = row_through(watched(sys, static_cast<Phase>(ph)), half);
+    mid_yield[ph] = row_through(sys.yield_row, half);
   }
 
   SlidingSummary out;
-  Vec<kN> w{};
+  Vec<N> w{};
   w[6] = 1.0;
   Phase phase = stick;
   double slip_start_time = 0.0;
   const auto note_state = [&](double t) {
+    if (history != nullptr) {
+      // The sliding surface's absolute acceleration a_g + (L1/m) Y'', Y'' from the current phase's equation.
+      const Mat<N>& gen = sys.generator[phase];
+      double y_dd = 0.0;
+      for (std::size_t j = 0; j < N; ++j) y_dd += gen(1, j) * w[j];
+      history->sliding.time_s.push_back(t);
+      history->sliding.displacement_m.push_back(w[2]);
+      history->sliding.velocity_m_s.push_back(w[3]);
+      history->sliding.state.push_back(phase == stick       ? SlipState::stuck
+                                       : phase == slip_down ? SlipState::slipping_down
+                                                            : SlipState::slipping_up);
+      history->support_accel_m_s2.push_back(w[4] + sys.mass_fraction * y_dd);
+    }
     const double s = std::abs(w[2]);
     if (s > out.max_abs_displacement_m) {
       out.max_abs_displacement_m = s;
@@ -412,12 +532,12 @@ SlidingSummary run_coupled(const GroundMotion& ground, const CoupledSystem& sys)
         break;
       }
       double e_mid = 0.0;
-      Vec<kN> w_end;
+      Vec<N> w_end;
       if (whole) {
         w_end = mul(full[phase], w);
-        e_mid = event_from(sys, phase, dot(mid_row[phase], w));
+        e_mid = event_from(sys, phase, dot(mid_row[phase], w), dot(mid_yield[phase], w));
       } else {
-        const Mat<kN> p_mid = expm(sys.generator[phase], 0.5 * rest);
+        const Mat<N> p_mid = expm(sys.generator[phase], 0.5 * rest);
         w_end = mul(mul(p_mid, p_mid), w);
         e_mid = event_value(sys, phase, mul(p_mid, w));
       }
@@ -430,8 +550,8 @@ SlidingSummary run_coupled(const GroundMotion& ground, const CoupledSystem& sys)
       // Bracket [lo, hi]: hi is the first probe where the event function is positive; lo a point before it where it
       // is negative. At a phase's start the function may be exactly 0 (slip has just started: s' = 0): then probe
       // inward from hi by halving until it is negative.
-      const Mat<kN>& gen = sys.generator[phase];
-      const Vec<kN> w0 = w;
+      const Mat<N>& gen = sys.generator[phase];
+      const Vec<N> w0 = w;
       const auto f = [&](double t) { return event_value(sys, phase, mul(expm(gen, t), w0)); };
       const double hi = e_mid > 0.0 ? 0.5 * rest : rest;
       double lo = e_mid > 0.0 ? 0.0 : 0.5 * rest;
@@ -477,13 +597,38 @@ SlidingSummary run_coupled(const GroundMotion& ground, const CoupledSystem& sys)
     }
   };
 
+  // Vertical input (N = 9): a_v read at the sub-step's ends and linear between them (exact when the vertical record's
+  // samples lie on the sub-step grid, e.g. the horizontal's); the normal force m (g + a_v) vanishing is reported as
+  // the rigid solver does (contact_lost_time_s), located by the linear root within the sub-step.
+  const double g_m_s2 = sys.g_m_s2;
+  double av_end = 0.0;
+  const auto set_vertical = [&](double t0) {
+    if constexpr (N == kWithVertical) {
+      const double av0 = vertical->accel_at(t0);
+      av_end = vertical->accel_at(t0 + h);
+      w[7] = av0;
+      w[8] = (av_end - av0) / h;
+      if (!out.contact_lost_time_s && g_m_s2 + av_end <= 0.0) {
+        const double n0 = g_m_s2 + av0;
+        out.contact_lost_time_s = n0 <= 0.0 ? t0 : t0 + h * n0 / (n0 - (g_m_s2 + av_end));
+      }
+    } else {
+      static_cast<void>(t0);
+    }
+  };
   const double t_begin = ground.start_time_s();
+  if (history != nullptr) {
+    w[4] = acc[0];
+    if constexpr (N == kWithVertical) w[7] = vertical->accel_at(t_begin);
+    note_state(t_begin);
+  }
   for (std::size_t k = 0; k + 1 < acc.size(); ++k) {
     const double slope = (acc[k + 1] - acc[k]) / dt;
     const double tk = t_begin + static_cast<double>(k) * dt;
     for (int j = 0; j < n_sub; ++j) {
       w[4] = acc[k] + slope * (static_cast<double>(j) * h);
       w[5] = slope;
+      set_vertical(tk + static_cast<double>(j) * h);
       substep(tk + static_cast<double>(j) * h);
       note_state(tk + static_cast<double>(j + 1) * h);
     }
@@ -498,6 +643,7 @@ SlidingSummary run_coupled(const GroundMotion& ground, const CoupledSystem& sys)
     }
     w[4] = 0.0;
     w[5] = 0.0;
+    set_vertical(t);  // a vertical record that lasts beyond the horizontal one acts on the run-out
     substep(t);
     t += h;
     note_state(t);
@@ -559,6 +705,17 @@ SlidingMassColumn SlidingMassColumn::make(double height_m, double vs_slope_m_s, 
 
 // ---- modal properties ------------------------------------------------------------------------------------------
 
+double max_peak_amplification(double zeta) noexcept {
+  if (!(zeta > 0.0)) return std::numeric_limits<double>::infinity();
+  // omega = 1: Y = -exp(-zeta t) sin(wd t) / wd for a unit impulse of ground acceleration, and the absolute
+  // acceleration h = -(2 zeta Y' + Y) = exp(-zeta t) (2 zeta cos(wd t) + (1 - 2 zeta^2) / wd sin(wd t)).
+  const double wd = std::sqrt(1.0 - zeta * zeta);
+  const double t1 = (kPi - std::atan2(2.0 * zeta * wd, 1.0 - 2.0 * zeta * zeta)) / wd;  // first zero of h
+  const double v1 = -std::exp(-zeta * t1) * (std::cos(wd * t1) - zeta / wd * std::sin(wd * t1));  // Y'(t1); Y'(0+) = -1
+  const double q = std::exp(-zeta * kPi / wd);
+  return std::abs(1.0 + v1) + std::abs(v1) * (1.0 + q) / (1.0 - q);
+}
+
 ModalProperties modal_properties(const SupportOscillator& support) {
   ModalProperties m;
   m.omega_rad_s = 2.0 * kPi * support.freq_hz;
@@ -584,7 +741,7 @@ ModalProperties modal_properties(const SlidingMassColumn& column, const GroundMo
       throw EquivalentLinearError(fmt::format("equivalent-linear iteration did not converge in {} iterations (G/Gmax {}, "
                                     "damping {})", kMaxIterations, g_ratio_prev, damp_prev));
     }
-    const double y_max = linear_response(ground, m, false).max_abs_y;
+    const double y_max = linear_response(ground, m, false, 1, true).max_abs_y;
     // Effective strain: 0.65 of the peak strain at the base of the mode, phi'(0) = pi / 2H.
     const double strain = 0.65 * (kPi / 2.0) * y_max / column.height_m;
     const double g_ratio = 1.0 / (1.0 + strain / gamma_r);
@@ -620,12 +777,20 @@ std::pair<GroundMotion, double> demand_motion(const GroundMotion& ground, const 
 }
 
 FlexibleSummary decoupled(const GroundMotion& ground, const ModalProperties& mode, const SlidingBlock& block,
-                          const GroundMotion* vertical) {
+                          const GroundMotion* vertical, FlexibleHistory* history) {
   const auto [support, peak] = demand_motion(ground, mode);
   FlexibleSummary out;
   out.mode = mode;
   out.kmax = peak / block.g_m_s2;
-  out.sliding = slide_summary(support, block, vertical);
+  if (history == nullptr) {
+    out.sliding = slide_summary(support, block, vertical);
+    return out;
+  }
+  SlidingResult r = slide(support, block, vertical);
+  out.sliding = r.summary;
+  history->sliding = std::move(r.history);
+  history->support_accel_m_s2.clear();
+  for (const double t : history->sliding.time_s) history->support_accel_m_s2.push_back(support.accel_at(t));
   return out;
 }
 
@@ -637,19 +802,11 @@ GroundMotion support_motion(const GroundMotion& ground, const SupportOscillator&
 }
 
 namespace {
-void require_no_vertical(const GroundMotion* vertical) {
-  if (vertical) {
-    throw parameter_error("vertical", "the coupled analysis has no vertical input (the decoupled one has)");
-  }
-}
-}  // namespace
-
-FlexibleSummary slide_flexible(const GroundMotion& ground, const SupportOscillator& support, const SlidingBlock& block,
-                               FlexibleAnalysis analysis, const GroundMotion* vertical) {
+FlexibleSummary shelf_analysis(const GroundMotion& ground, const SupportOscillator& support, const SlidingBlock& block,
+                               FlexibleAnalysis analysis, const GroundMotion* vertical, FlexibleHistory* history) {
   require_uniform(ground);
   const ModalProperties mode = modal_properties(support);
-  if (analysis == FlexibleAnalysis::decoupled) return decoupled(ground, mode, block, vertical);
-  require_no_vertical(vertical);
+  if (analysis == FlexibleAnalysis::decoupled) return decoupled(ground, mode, block, vertical, history);
   if (block.slope_rad != 0.0 || block.mu_kinetic != block.mu_static) {
     throw parameter_error("mu_kinetic", "the coupled analysis models level ground with one friction coefficient "
                                         "(mu_kinetic = mu_static, slope 0)");
@@ -658,26 +815,63 @@ FlexibleSummary slide_flexible(const GroundMotion& ground, const SupportOscillat
   out.mode = mode;
   out.kmax = linear_response(ground, mode, false, decoupled_substeps(mode.omega_rad_s, ground.dt_s())).max_abs_demand_m_s2 /
              block.g_m_s2;
-  out.sliding = run_coupled(ground, shelf_system(mode, support.mass_ratio, block.mu_static * block.g_m_s2,
-                                                 block.mode == SlidingMode::two_way));
+  const bool two_way = block.mode == SlidingMode::two_way;
+  const double yield = block.mu_static * block.g_m_s2;
+  out.sliding =
+      vertical != nullptr
+          ? run_coupled(ground, shelf_system<kWithVertical>(mode, support.mass_ratio, yield, block.g_m_s2, two_way),
+                        vertical, history)
+          : run_coupled(ground, shelf_system<kPlain>(mode, support.mass_ratio, yield, block.g_m_s2, two_way), nullptr,
+                        history);
   return out;
+}
+
+FlexibleSummary column_analysis(const GroundMotion& ground, const SlidingMassColumn& column, double ky_g,
+                                FlexibleAnalysis analysis, SlidingMode mode, double g_m_s2,
+                                const GroundMotion* vertical, FlexibleHistory* history) {
+  require_uniform(ground);
+  check_ky(ky_g);
+  const SlidingBlock block = SlidingBlock::make(ky_g, ky_g, 0.0, mode, g_m_s2);
+  const ModalProperties props = modal_properties(column, ground);
+  if (analysis == FlexibleAnalysis::decoupled) return decoupled(ground, props, block, vertical, history);
+  FlexibleSummary out;
+  out.mode = props;
+  out.kmax =
+      linear_response(ground, props, false, decoupled_substeps(props.omega_rad_s, ground.dt_s())).max_abs_demand_m_s2 / g_m_s2;
+  const bool two_way = mode == SlidingMode::two_way;
+  out.sliding = vertical != nullptr
+                    ? run_coupled(ground, column_system<kWithVertical>(props, ky_g * g_m_s2, g_m_s2, two_way), vertical,
+                                  history)
+                    : run_coupled(ground, column_system<kPlain>(props, ky_g * g_m_s2, g_m_s2, two_way), nullptr, history);
+  return out;
+}
+}  // namespace
+
+FlexibleSummary slide_flexible(const GroundMotion& ground, const SupportOscillator& support, const SlidingBlock& block,
+                               FlexibleAnalysis analysis, const GroundMotion* vertical) {
+  return shelf_analysis(ground, support, block, analysis, vertical, nullptr);
 }
 
 FlexibleSummary slide_flexible(const GroundMotion& ground, const SlidingMassColumn& column, double ky_g,
                                FlexibleAnalysis analysis, SlidingMode mode, double g_m_s2,
                                const GroundMotion* vertical) {
-  require_uniform(ground);
-  check_ky(ky_g);
-  const SlidingBlock block = SlidingBlock::make(ky_g, ky_g, 0.0, mode, g_m_s2);
-  const ModalProperties props = modal_properties(column, ground);
-  if (analysis == FlexibleAnalysis::decoupled) return decoupled(ground, props, block, vertical);
-  require_no_vertical(vertical);
-  FlexibleSummary out;
-  out.mode = props;
-  out.kmax =
-      linear_response(ground, props, false, decoupled_substeps(props.omega_rad_s, ground.dt_s())).max_abs_demand_m_s2 / g_m_s2;
-  out.sliding = run_coupled(ground, column_system(props, ky_g * g_m_s2, mode == SlidingMode::two_way));
-  return out;
+  return column_analysis(ground, column, ky_g, analysis, mode, g_m_s2, vertical, nullptr);
+}
+
+FlexibleResult slide_flexible_history(const GroundMotion& ground, const SupportOscillator& support,
+                                      const SlidingBlock& block, FlexibleAnalysis analysis,
+                                      const GroundMotion* vertical) {
+  FlexibleResult r;
+  r.summary = shelf_analysis(ground, support, block, analysis, vertical, &r.history);
+  return r;
+}
+
+FlexibleResult slide_flexible_history(const GroundMotion& ground, const SlidingMassColumn& column, double ky_g,
+                                      FlexibleAnalysis analysis, SlidingMode mode, double g_m_s2,
+                                      const GroundMotion* vertical) {
+  FlexibleResult r;
+  r.summary = column_analysis(ground, column, ky_g, analysis, mode, g_m_s2, vertical, &r.history);
+  return r;
 }
 
 }  // namespace topple

@@ -15,6 +15,7 @@
 
 #include "topple/ensemble.hpp"
 #include "topple/error.hpp"
+#include "topple/flexible.hpp"
 #include "topple/rocking.hpp"
 #include "topple/sliding.hpp"
 #include "topple/spectra.hpp"
@@ -59,6 +60,12 @@ Estimate estimate(const std::vector<double>& values, const std::vector<double>& 
   std::size_t cell = 0;
   est.median = quantile(values, marginal, 0.5, cell);
   const std::size_t last = values.size() - 1;
+  const auto edge = [last](std::size_t at) { return at == 0 ? -1 : (at == last ? 1 : 0); };
+  est.median_edge = edge(cell);
+  est.best_edge = edge(static_cast<std::size_t>(
+      std::min_element(values.begin(), values.end(),
+                       [best](double a, double b) { return std::abs(a - best) < std::abs(b - best); }) -
+      values.begin()));
   const auto lower = [&](double q) -> std::optional<double> {
     std::size_t at = 0;
     const double v = quantile(values, marginal, q, at);
@@ -83,31 +90,76 @@ std::uint64_t mix(std::uint64_t a, std::uint64_t b) {
 
 }  // namespace
 
+namespace {
+/// An object on a flexible support: its support's peak is at most max_peak_amplification(zeta_low) times the ground's
+/// (any motion), so an object that slid, rocked or overturned still bounds the ground's PGA from below (weakly). The
+/// support may also attenuate the ground's peak without limit (well above its frequency): no upper bound.
+void flexible_support_bound(const ObservedObject& o, StaticBounds& b) {
+  const double amp_max = o.amplification.high * max_peak_amplification(o.support_filter->damping.low);
+  if (!std::isfinite(amp_max)) return;  // undamped support: no bound
+  const auto text = [&](double threshold_g) {
+    return fmt::format("PGA > {} / {:.3g}, the most its flexible support can amplify a peak", fmt_g(threshold_g),
+                       amp_max);
+  };
+  switch (o.outcome) {
+    case Outcome::slid:
+      b.lower.push_back({o.mu.low / amp_max, o.id, "slid: " + text(o.mu.low), true});  // hard, as on rigid ground
+      break;
+    case Outcome::overturned:
+    case Outcome::rocked: {
+      const double tan_alpha = std::tan(o.body.alpha_rad());
+      b.lower.push_back(
+          {tan_alpha / amp_max, o.id, fmt::format("{}: {}", outcome_name(o.outcome), text(tan_alpha)), true});
+      break;
+    }
+    default: break;
+  }
+}
+}  // namespace
+
 StaticBounds static_bounds(const Site& site) {
   StaticBounds b;
   for (const ObservedObject& o : site.objects) {
+    if (o.support_filter) {
+      flexible_support_bound(o, b);
+      continue;
+    }
+    // A lower threshold divides by the largest amplification, an upper one by the smallest (the weakest claim); the
+    // text shows the amplification actually used and the result.
+    const auto divided = [&o](double amp, double value_g) {
+      return amp == 1.0 ? std::string()
+                 : fmt::format(" / amplification {:.3g} = {}", amp, fmt_g(value_g / amp));
+    };
     const double amp_hi = o.amplification.high;
     const double amp_lo = o.amplification.low;
     const double tan_alpha = std::tan(o.body.alpha_rad());
-    const std::string amp_text = o.amplification.is_value() && o.amplification.low == 1.0
-                                     ? ""
-                                     : fmt::format(" / amplification {:.3g}", o.amplification.is_value() ? amp_hi : amp_hi);
     switch (o.outcome) {
-      case Outcome::slid:
-        b.lower.push_back({o.mu.low / amp_hi, o.id, fmt::format("slid: PGA > mu g = {}{}", fmt_g(o.mu.low), amp_text)});
+      case Outcome::slid:  // hard: no slip at all while |a| <= mu g (Coulomb, level ground)
+        b.lower.push_back({o.mu.low / amp_hi, o.id,
+                           fmt::format("slid: PGA > mu g = {}{}", fmt_g(o.mu.low), divided(amp_hi, o.mu.low)), true});
         break;
-      case Outcome::not_slid:
+      case Outcome::not_slid:  // soft: a brief excursion above mu g may slip it less than the visible 2 mm
         b.upper.push_back({o.mu.high / amp_lo, o.id,
-                           fmt::format("did not slide: PGA <= mu g = {}{}", fmt_g(o.mu.high), amp_text)});
+                           fmt::format("did not slide visibly: PGA <= mu g = {}{}", fmt_g(o.mu.high),
+                                       divided(amp_lo, o.mu.high)),
+                           false});
         break;
       case Outcome::overturned:
-      case Outcome::rocked:
+      case Outcome::rocked:  // hard: no uplift while |a| <= g a/h (Housner)
         b.lower.push_back({tan_alpha / amp_hi, o.id,
-                           fmt::format("{}: PGA > g a/h = {}{}", outcome_name(o.outcome), fmt_g(tan_alpha), amp_text)});
+                           fmt::format("{}: PGA > g a/h = {}{}", outcome_name(o.outcome), fmt_g(tan_alpha),
+                                       divided(amp_hi, tan_alpha)),
+                           true});
         break;
       case Outcome::not_overturned:
-        break;  // a body can rock without falling at any PGA above g a/h: no static bound
+        break;  // a body can rock without falling at any PGA above g a/h: no static threshold
     }
+  }
+  for (const auto& l : b.lower) {
+    if (l.hard && (!b.hard_lower_g || l.pga_g > *b.hard_lower_g)) b.hard_lower_g = l.pga_g;
+  }
+  for (const auto& u : b.upper) {
+    if (u.hard && (!b.hard_upper_g || u.pga_g < *b.hard_upper_g)) b.hard_upper_g = u.pga_g;
   }
   for (const auto& l : b.lower) {
     if (!b.lower_g || l.pga_g > *b.lower_g) b.lower_g = l.pga_g;
@@ -157,6 +209,11 @@ DrawnParameters draw_parameters(const ObservedObject& object, std::uint64_t seed
   p.mu = draw(object.mu);
   p.e = object.e_housner ? housner_restitution(object.body) : draw(object.e);
   p.amplification = draw(object.amplification);
+  // Drawn last, and only for a flexible support: the draws above, and with them a survey without one, are unchanged.
+  if (object.support_filter) {
+    p.support_freq_hz = draw(object.support_filter->freq_hz);
+    p.support_damping = draw(object.support_filter->damping);
+  }
   return p;
 }
 
@@ -165,8 +222,25 @@ double sliding_sigma_m(const ObservedObject& object) {
   return std::max({object.slid_uncertainty_m, 0.25 * d, kVisibleSlipM});
 }
 
-double observation_match(const ObservedObject& object, const DrawnParameters& p, const GroundMotion& motion,
+namespace {
+/// The motion on the object's flexible support (its absolute acceleration, decoupled), or none for a rigid support.
+std::optional<GroundMotion> on_flexible_support(const ObservedObject& object, const DrawnParameters& p,
+                                                const GroundMotion& ground) {
+  if (!object.support_filter) return std::nullopt;
+  return support_motion(ground, SupportOscillator::make(p.support_freq_hz, p.support_damping));
+}
+}  // namespace
+
+GroundMotion nominal_object_motion(const ObservedObject& object, const GroundMotion& ground) {
+  if (!object.support_filter) return ground;
+  return support_motion(ground, SupportOscillator::make(object.support_filter->freq_hz.mid(),
+                                                        object.support_filter->damping.mid()));
+}
+
+double observation_match(const ObservedObject& object, const DrawnParameters& p, const GroundMotion& ground,
                          double g) {
+  const std::optional<GroundMotion> filtered = on_flexible_support(object, p, ground);
+  const GroundMotion& motion = filtered ? *filtered : ground;
   if (is_sliding_outcome(object.outcome)) {
     // Level ground, no vertical input: the response to amp * a with mu is amp times the response to a with
     // mu / amp (divide the equation of motion by amp), which spares a copy of the motion.
@@ -405,6 +479,48 @@ std::vector<double> match_counts(const MatchTable& m) {
   return counts;
 }
 
+/// The joint log-likelihood of every cell (reduce_likelihood, header item 2) from the match table, one error rate per
+/// object and each cell's neighbourhood. An error rate of 1/2 makes an object's factor the constant 1/2: the
+/// likelihood without that object (assess_objects), up to a constant.
+std::vector<double> joint_log_likelihood(const MatchTable& m, const std::vector<double>& error_rates,
+                                         const std::vector<std::vector<std::pair<std::size_t, double>>>& hoods) {
+  const std::size_t n = m.motions;
+  const std::size_t no = m.objects;
+  const std::size_t cells = m.cells();
+  const double nn = static_cast<double>(n);
+  // Joint likelihood: all objects saw the same motion, so a cell's likelihood is the average over its motions k of
+  // the product over objects of q = eps + (1 - 2 eps) m, where eps is the chance that the observation is wrong
+  // (evidence_error_rate). Averaging products, not multiplying averages, keeps the correlation the shared motion
+  // induces between objects (a strong realisation topples them all). Log-sum-exp keeps it finite for any number of
+  // objects.
+  std::vector<double> run_log(cells * n, 0.0);
+  for (std::size_t c = 0; c < cells; ++c) {
+    for (std::size_t k = 0; k < n; ++k) {
+      double lq = 0.0;
+      for (std::size_t o = 0; o < no; ++o) {
+        const double eps = error_rates[o];
+        lq += std::log(eps + (1.0 - 2.0 * eps) * m.at(c, k, o));
+      }
+      run_log[c * n + k] = lq;
+    }
+  }
+  std::vector<double> log_likelihood(cells, 0.0);
+  for (std::size_t c = 0; c < cells; ++c) {
+    double top = -std::numeric_limits<double>::infinity();
+    for (const auto& [c2, w] : hoods[c]) {
+      for (std::size_t k = 0; k < n; ++k) top = std::max(top, run_log[c2 * n + k]);
+    }
+    double sum = 0.0;
+    double weight = 0.0;
+    for (const auto& [c2, w] : hoods[c]) {
+      for (std::size_t k = 0; k < n; ++k) sum += w * std::exp(run_log[c2 * n + k] - top);
+      weight += w * nn;
+    }
+    log_likelihood[c] = top + std::log(sum / weight);
+  }
+  return log_likelihood;
+}
+
 }  // namespace
 
 LikelihoodReduction reduce_likelihood(const MatchTable& m, const std::vector<double>& error_rates) {
@@ -441,36 +557,7 @@ LikelihoodReduction reduce_likelihood(const MatchTable& m, const std::vector<dou
     }
     out.reproduced_anywhere[o] = total > 0.0;
   }
-  // Joint likelihood: all objects saw the same motion, so a cell's likelihood is the average over its motions k of
-  // the product over objects of q = eps + (1 - 2 eps) m, where eps is the chance that the observation is wrong
-  // (evidence_error_rate). Averaging products, not multiplying averages, keeps the correlation the shared motion
-  // induces between objects (a strong realisation topples them all). Log-sum-exp keeps it finite for any number of
-  // objects.
-  std::vector<double> run_log(cells * n, 0.0);
-  for (std::size_t c = 0; c < cells; ++c) {
-    for (std::size_t k = 0; k < n; ++k) {
-      double lq = 0.0;
-      for (std::size_t o = 0; o < no; ++o) {
-        const double eps = error_rates[o];
-        lq += std::log(eps + (1.0 - 2.0 * eps) * m.at(c, k, o));
-      }
-      run_log[c * n + k] = lq;
-    }
-  }
-  out.log_likelihood.assign(cells, 0.0);
-  for (std::size_t c = 0; c < cells; ++c) {
-    double top = -std::numeric_limits<double>::infinity();
-    for (const auto& [c2, w] : hoods[c]) {
-      for (std::size_t k = 0; k < n; ++k) top = std::max(top, run_log[c2 * n + k]);
-    }
-    double sum = 0.0;
-    double weight = 0.0;
-    for (const auto& [c2, w] : hoods[c]) {
-      for (std::size_t k = 0; k < n; ++k) sum += w * std::exp(run_log[c2 * n + k] - top);
-      weight += w * nn;
-    }
-    out.log_likelihood[c] = top + std::log(sum / weight);
-  }
+  out.log_likelihood = joint_log_likelihood(m, error_rates, hoods);
   return out;
 }
 
@@ -499,14 +586,127 @@ void fill_posterior_and_estimates(InversionResult& r) {
   for (ObjectReport& rep : r.objects) rep.probability_at_best = rep.probability[r.best_cell];
 }
 
+void assess_objects(InversionResult& r, const MatchTable& m, const std::vector<double>& error_rates) {
+  const std::size_t cells = m.cells();
+  if (r.objects.size() != m.objects || error_rates.size() != m.objects || r.posterior.size() != cells) {
+    throw std::invalid_argument("assess_objects: the result, the match table and the error rates disagree");
+  }
+  std::vector<std::vector<std::pair<std::size_t, double>>> hoods(cells);
+  for (std::size_t c = 0; c < cells; ++c) hoods[c] = neighbourhood(c, m.pga_count, m.freq_count);
+  // log of the normaliser of a log-likelihood (log-sum-exp), so that log posterior = ll - log_z.
+  const auto log_z = [](const std::vector<double>& ll) {
+    const double top = *std::max_element(ll.begin(), ll.end());
+    double sum = 0.0;
+    for (double v : ll) sum += std::exp(v - top);
+    return top + std::log(sum);
+  };
+  const double z_all = log_z(r.log_likelihood);
+  const std::vector<double> counts = match_counts(m);
+  const double nn = static_cast<double>(m.motions);
+  for (std::size_t o = 0; o < r.objects.size(); ++o) {
+    ObjectReport& rep = r.objects[o];
+    // The plain share of each cell's runs (not the smoothed probability, whose +1/2 floors it at 1/(2N + 2): with
+    // few motions per cell that floor alone would pass the misfit level).
+    rep.posterior_predictive = 0.0;
+    for (std::size_t c = 0; c < cells; ++c) rep.posterior_predictive += r.posterior[c] * counts[o * cells + c] / nn;
+    rep.misfit = rep.posterior_predictive < kMisfitProbability;
+    // Without object o: eps = 1/2 turns its factor into the constant 1/2, which the normalisation removes.
+    std::vector<double> rates = error_rates;
+    rates[o] = 0.5;
+    const std::vector<double> ll_without = joint_log_likelihood(m, rates, hoods);
+    const double z_without = log_z(ll_without);
+    double kl_nats = 0.0;  // sum_c p(c) (log p(c) - log p_without(c)), in log space: no 0/0 where p underflows
+    for (std::size_t c = 0; c < cells; ++c) {
+      if (r.posterior[c] > 0.0) {
+        kl_nats += r.posterior[c] * ((r.log_likelihood[c] - z_all) - (ll_without[c] - z_without));
+      }
+    }
+    rep.constraint_bits = std::max(0.0, kl_nats / std::log(2.0));
+  }
+}
+
+std::vector<std::size_t> most_constraining_objects(const InversionResult& r) {
+  std::vector<std::size_t> order;
+  for (std::size_t o = 0; o < r.objects.size(); ++o) {
+    if (r.objects[o].constraint_bits >= 0.1) order.push_back(o);
+  }
+  std::stable_sort(order.begin(), order.end(), [&r](std::size_t a, std::size_t b) {
+    return r.objects[a].constraint_bits > r.objects[b].constraint_bits;
+  });
+  if (order.size() > 3) order.resize(3);
+  return order;
+}
+
+namespace {
+
+std::string two_digits(double v) { return fmt::format("{:.2g}", v); }
+
+std::string list_text(const std::vector<std::string>& items) {
+  std::string out;
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    out += (i == 0 ? "" : (i + 1 == items.size() ? " and " : ", ")) + items[i];
+  }
+  return out;
+}
+
+/// "68 %: 0.45-0.78 g", with an open end said as below/above the grid (never the grid's edge as a number).
+std::string interval_words(const char* level, const std::optional<double>& lo, const std::optional<double>& hi,
+                           const char* unit) {
+  if (lo && hi) return fmt::format("{}: {}\u2013{} {}", level, two_digits(*lo), two_digits(*hi), unit);
+  if (hi) return fmt::format("{}: from below the grid to {} {}", level, two_digits(*hi), unit);
+  if (lo) return fmt::format("{}: from {} {} to above the grid", level, two_digits(*lo), unit);
+  return fmt::format("{}: anywhere on the grid", level);
+}
+
+/// "about 0.55 g", or "below the grid (under 0.02 g)" when the median lies in the grid's first cell.
+std::string median_words(const Estimate& e, const std::vector<double>& axis, const char* unit) {
+  if (e.median_edge < 0) return fmt::format("below the grid (at most about {} {})", two_digits(axis.front()), unit);
+  if (e.median_edge > 0) return fmt::format("above the grid (at least about {} {})", two_digits(axis.back()), unit);
+  return fmt::format("of about {} {}", two_digits(e.median), unit);
+}
+
+}  // namespace
+
+std::string inversion_summary(const InversionResult& r) {
+  const Estimate& pga = r.pga_estimate_g;
+  const Estimate& f = r.freq_estimate_hz;
+  std::string s = fmt::format(
+      "The shaking at {} most likely had a PGA {} (median; {}, {}) and a predominant frequency {} (median; {}, "
+      "{})",
+      r.site.empty() ? std::string("the site") : r.site, median_words(pga, r.pga_g, "g"),
+      interval_words("68 %", pga.ci68_low, pga.ci68_high, "g"), interval_words("95 %", pga.ci95_low, pga.ci95_high, "g"),
+      median_words(f, r.freq_hz, "Hz"), interval_words("68 %", f.ci68_low, f.ci68_high, "Hz"),
+      interval_words("95 %", f.ci95_low, f.ci95_high, "Hz"));
+  const std::vector<std::size_t> top = most_constraining_objects(r);
+  std::vector<std::string> names;
+  for (std::size_t o : top) names.push_back(r.objects[o].id);
+  if (names.empty()) {
+    s += "; no single object constrains it much (each changes the posterior by less than 0.1 bit)";
+  } else {
+    s += fmt::format("; the {} that constrain{} it most {} {}", names.size() == 1 ? "object" : "objects",
+                     names.size() == 1 ? "s" : "", names.size() == 1 ? "is" : "are", list_text(names));
+  }
+  std::vector<std::string> misfits;
+  for (const ObjectReport& o : r.objects) {
+    if (o.misfit) {
+      misfits.push_back(fmt::format("{} ({}, P = {:.2f})", o.id, outcome_name(o.outcome), o.posterior_predictive));
+    }
+  }
+  if (!misfits.empty()) {
+    s += fmt::format("; not explained by this answer (posterior-predictive P below {}): {}", kMisfitProbability,
+                     list_text(misfits));
+  }
+  return s + ".";
+}
+
 std::vector<std::string> inversion_notes(const InversionResult& r, const MatchTable& m) {
   std::vector<std::string> notes;
   if (!r.bounds.lower_g) {
     notes.push_back("No object moved: the observations give no static lower bound on PGA.");
   }
   if (!r.bounds.upper_g) {
-    notes.push_back("No object stayed put on its friction surface: the observations give no static upper bound on "
-                    "PGA.");
+    notes.push_back("No object stayed put on its friction surface: the observations give no static upper threshold "
+                    "on PGA.");
   }
   for (const std::string& c : r.bounds.contradictions) notes.push_back("Static contradiction: " + c + ".");
   const Estimate& pga = r.pga_estimate_g;
@@ -520,6 +720,19 @@ std::vector<std::string> inversion_notes(const InversionResult& r, const MatchTa
   if (!r.freq_estimate_hz.ci95_low || !r.freq_estimate_hz.ci95_high) {
     notes.push_back("The predominant frequency is not constrained at one or both ends of the grid by these "
                     "observations.");
+  }
+  std::vector<std::string> misfits;
+  for (const ObjectReport& rep : r.objects) {
+    if (rep.misfit) {
+      misfits.push_back(fmt::format("{} ({}, P = {:.3f})", rep.id, outcome_name(rep.outcome), rep.posterior_predictive));
+    }
+  }
+  if (!misfits.empty()) {
+    std::string list;
+    for (const auto& s : misfits) list += (list.empty() ? "" : ", ") + s;
+    notes.push_back(fmt::format("Misfit: the answer gives these observations a posterior-predictive probability below "
+                                "{}: {}. Check them (object, outcome, friction, support) before trusting the estimate.",
+                                kMisfitProbability, list));
   }
   std::vector<std::string> never;
   for (const ObjectReport& rep : r.objects) {
@@ -580,6 +793,7 @@ InversionResult invert_on_family(const Site& site, const InversionSettings& st, 
     rep.reproduced_anywhere = reduced.reproduced_anywhere[o];
   }
   fill_posterior_and_estimates(r);
+  assess_objects(r, matches, error_rates);
   r.notes = inversion_notes(r, matches);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return r;

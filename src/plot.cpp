@@ -145,6 +145,22 @@ void render_figure(const F& figure, const std::filesystem::path& path) {
   run_gnuplot(gnuplot_script(figure, image.temporary_path()), image);
 }
 
+/// Explicit tics at 1, 2 and 5 x 10^k within [lo, hi] (a log axis), labelled as plain numbers ("0.2", "5"): gnuplot's
+/// default labels only the decades. Minor tics at the other integers x 10^k.
+std::string tics_125(double lo, double hi) {
+  std::string out = "(";
+  for (int k = static_cast<int>(std::floor(std::log10(lo))); k <= static_cast<int>(std::ceil(std::log10(hi))); ++k) {
+    for (int m = 1; m <= 9; ++m) {
+      const double v = m * std::pow(10.0, k);
+      if (v < lo * (1.0 - 1e-9) || v > hi * (1.0 + 1e-9)) continue;
+      const bool major = m == 1 || m == 2 || m == 5;
+      out += fmt::format("{}{} {:.10g}{}", out.size() > 1 ? ", " : "", major ? quote(fmt::format("{:g}", v)) : "\"\"",
+                         v, major ? "" : " 1");
+    }
+  }
+  return out + ")";
+}
+
 }  // namespace
 
 std::string gnuplot_script(const Figure& f, const std::filesystem::path& path) {
@@ -269,8 +285,13 @@ std::string gnuplot_script(const MapFigure& f, const std::filesystem::path& path
      << "\nset cblabel " << quote(f.zlabel) << "\n";
   if (f.log_x) os << "set logscale x\n";
   if (f.log_y) os << "set logscale y\n";
-  os << "set palette defined (0 '#ffffff', 0.25 '#c6dbef', 0.5 '#6baed6', 0.75 '#2171b5', 1 '#08306b')\n";
-  os << "set key outside bottom center horizontal font ',10'\nset tics out\n";
+  if (f.tics_125 && f.log_x && !ex.empty()) os << "set xtics " << tics_125(ex.front(), ex.back()) << "\n";
+  if (f.tics_125 && f.log_y && !ey.empty()) os << "set ytics " << tics_125(ey.front(), ey.back()) << "\n";
+  os << "set palette defined "
+     << (f.palette.empty() ? "(0 '#ffffff', 0.25 '#c6dbef', 0.5 '#6baed6', 0.75 '#2171b5', 1 '#08306b')" : f.palette)
+     << "\n";
+  os << "set key " << (f.key.empty() ? "outside bottom center horizontal font ',10'" : f.key) << "\nset tics out\n";
+  if (!f.colorbox.empty()) os << "set colorbox " << f.colorbox << "\n";
   if (!f.x.empty() && !f.y.empty()) {
     os << fmt::format("set xrange [{:.10g}:{:.10g}]\nset yrange [{:.10g}:{:.10g}]\n", ex.front(), ex.back(),
                       ey.front(), ey.back());

@@ -6,12 +6,14 @@
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <tuple>
 
 #include <fmt/format.h>
 
 #include "topple/error.hpp"
 #include "topple/io/output_file.hpp"
 #include "topple/io/inversion_output.hpp"
+#include "topple/io/provenance.hpp"
 #include "topple/rocking.hpp"
 #include "topple/sliding.hpp"
 
@@ -20,8 +22,16 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-const char* kPalette[] = {"#e6550d", "#31a354", "#756bb1", "#636363", "#d6616b", "#3182bd", "#8c6d31", "#bcbddc",
-                          "#e7ba52", "#ad494a"};
+// Object colours: the Okabe-Ito palette (distinguishable with the common colour-vision deficiencies) less its yellow,
+// which vanishes on white; with the dash patterns below, 6 x 5 = 30 objects get distinct lines.
+const char* kPalette[] = {"#E69F00", "#0072B2", "#D55E00", "#009E73", "#CC79A7", "#56B4E9"};
+const int kDashes[] = {1, 2, 4, 5, 3};  // gnuplot dash types: solid, dashed, dash-dot, dash-dot-dot, dotted
+
+std::string object_color(std::size_t o) { return kPalette[o % std::size(kPalette)]; }
+/// Colour and dash of object o's line: the colour cycles first, then the dash.
+std::string object_style(std::size_t o) {
+  return fmt::format("lines dt {}", kDashes[(o / std::size(kPalette)) % std::size(kDashes)]);
+}
 
 std::string html_escape(const std::string& s) {
   std::string out;
@@ -51,10 +61,6 @@ std::string inline_svg(const std::filesystem::path& p) {
   return at == std::string::npos ? svg : svg.substr(at);
 }
 
-std::string opt_text(const std::optional<double>& v, const char* unit) {
-  return v ? fmt::format("{:.3g} {}", *v, unit) : std::string("unconstrained");
-}
-
 std::string dims(const ObservedObject& o) {
   const auto cm = [](double m) { return fmt::format("{:.3g} cm", 100.0 * m); };
   switch (o.body.shape) {
@@ -70,9 +76,17 @@ std::string interval_text(const Interval& iv) {
   return iv.is_value() ? fmt::format("{:.3g}", iv.low) : fmt::format("{:.3g}&ndash;{:.3g}", iv.low, iv.high);
 }
 
+/// The observation as scored: a measured distance with the sigma the likelihood uses (sliding_sigma_m), and the given
+/// one when the floor raised it.
 std::string observed_text(const ObservedObject& o) {
   std::string s(outcome_name(o.outcome));
-  if (o.slid_m) s += fmt::format(" {:.3g} cm &plusmn; {:.3g} cm", 100.0 * *o.slid_m, 100.0 * o.slid_uncertainty_m);
+  if (o.slid_m) {
+    const double used = sliding_sigma_m(o);
+    s += fmt::format(" {:.3g} cm &plusmn; {:.3g} cm", 100.0 * *o.slid_m, 100.0 * used);
+    if (used != o.slid_uncertainty_m) {
+      s += fmt::format(" (&sigma; used = max(given {:.3g} cm, 25 % of slid, 2 mm))", 100.0 * o.slid_uncertainty_m);
+    }
+  }
   if (o.slid_at_least_m) s += fmt::format(" &ge; {:.3g} cm", 100.0 * *o.slid_at_least_m);
   return s;
 }
@@ -107,13 +121,105 @@ plot::Series contour_series(const std::vector<double>& x, const std::vector<doub
   return s;
 }
 
+namespace {
+
+/// An object's field P(observation | cell) in the map's layout (row-major over frequency x PGA).
+std::vector<double> object_field(const InversionResult& r, std::size_t o) {
+  const std::size_t np = r.pga_g.size(), nf = r.freq_hz.size();
+  std::vector<double> z(np * nf);
+  for (std::size_t j = 0; j < nf; ++j) {
+    for (std::size_t i = 0; i < np; ++i) z[j * np + i] = r.objects[o].probability[i * nf + j];
+  }
+  return z;
+}
+
+/// Which side of its P = 0.5 line fits object o's observation: the centroid (in log PGA, log frequency, each scaled
+/// by its axis' log span) of the cells where P >= 0.5 against that of the others, along the axis where they differ
+/// most. Empty when every cell lies on one side.
+std::string fitting_side(const InversionResult& r, std::size_t o) {
+  const std::size_t np = r.pga_g.size(), nf = r.freq_hz.size();
+  const double sx = std::log(r.pga_g.back() / r.pga_g.front());
+  const double sy = std::log(r.freq_hz.back() / r.freq_hz.front());
+  double fx = 0, fy = 0, ux = 0, uy = 0;
+  std::size_t nfit = 0, nun = 0;
+  for (std::size_t i = 0; i < np; ++i) {
+    for (std::size_t j = 0; j < nf; ++j) {
+      const double x = std::log(r.pga_g[i]) / sx, y = std::log(r.freq_hz[j]) / sy;
+      if (r.objects[o].probability[i * nf + j] >= 0.5) {
+        fx += x, fy += y, ++nfit;
+      } else {
+        ux += x, uy += y, ++nun;
+      }
+    }
+  }
+  if (nfit == 0 || nun == 0) return "";
+  const double a = static_cast<double>(nfit), b = static_cast<double>(nun);
+  const double dx = fx / a - ux / b, dy = fy / a - uy / b;
+  if (std::abs(dx) >= std::abs(dy)) return dx > 0 ? "fits at higher PGA" : "fits at lower PGA";
+  return dy > 0 ? "fits at higher frequency" : "fits at lower frequency";
+}
+
+/// Object o's line on the map (its P = 0.5 contour, coloured and dashed as the object, labelled with the side that
+/// fits), or, when it has none, the reason in words.
+struct ObjectLine {
+  std::optional<plot::Series> line;
+  std::string reason;  ///< why no line, when line is empty
+};
+
+ObjectLine object_line(const InversionResult& r, std::size_t o) {
+  const ObjectReport& rep = r.objects[o];
+  const auto [lo, hi] = std::minmax_element(rep.probability.begin(), rep.probability.end());
+  ObjectLine out;
+  if (*hi < 0.5) {
+    out.reason = fmt::format("P(observation) < 0.5 in every cell (at most {:.2f}): no P = 0.5 line", *hi);
+    return out;
+  }
+  if (*lo >= 0.5) {
+    out.reason = fmt::format("P(observation) >= 0.5 in every cell (at least {:.2f}): it fits everywhere, no line", *lo);
+    return out;
+  }
+  plot::Series c = contour_series(r.pga_g, r.freq_hz, object_field(r, o), 0.5,
+                                  fmt::format("{} ({}): {}", rep.id, outcome_name(rep.outcome), fitting_side(r, o)));
+  c.color = object_color(o);
+  c.style = object_style(o);
+  c.width = 2.0;
+  if (c.x.empty()) {
+    out.reason = "its P = 0.5 line has no segment on the grid";
+    return out;
+  }
+  out.line = std::move(c);
+  return out;
+}
+
+/// The posterior/max level whose highest-posterior-density region holds `mass` (between the last cell in and the
+/// first cell out, so the contour separates them).
+double hpd_level(const InversionResult& r, double mass) {
+  std::vector<double> p = r.posterior;
+  std::sort(p.begin(), p.end(), std::greater<>());
+  const double peak = p.front();
+  double sum = 0.0;
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    sum += p[k];
+    if (sum >= mass) return (k + 1 < p.size() ? 0.5 * (p[k] + p[k + 1]) : 0.5 * p[k]) / peak;
+  }
+  return 0.0;
+}
+
+}  // namespace
+
 plot::MapFigure likelihood_map_figure(const InversionResult& r, const Site& site) {
   plot::MapFigure m;
   m.title = fmt::format("{}: posterior over PGA x predominant frequency", site.name);
   m.xlabel = "PGA (g)";
   m.ylabel = "predominant frequency (Hz)";
-  m.zlabel = "posterior / max";
+  m.zlabel = "posterior / its maximum";
   m.log_x = m.log_y = true;
+  m.tics_125 = true;
+  // Grey field under coloured lines: no object colour is lost on it.
+  m.palette = "(0 '#ffffff', 0.5 '#bdbdbd', 1 '#525252')";
+  // The legend beside the plot (never over the x label), the colour bar below the legend.
+  m.key = "outside right top vertical Left reverse font ',10' samplen 4 spacing 1.15";
+  m.colorbox = "user vertical origin screen 0.745, screen 0.10 size screen 0.018, screen 0.36";
   m.x = r.pga_g;
   m.y = r.freq_hz;
   // Map is stored row-major over y (frequency) x x (PGA); the result is indexed [i_pga * nf + j_freq].
@@ -123,21 +229,42 @@ plot::MapFigure likelihood_map_figure(const InversionResult& r, const Site& site
   for (std::size_t j = 0; j < nf; ++j) {
     for (std::size_t i = 0; i < np; ++i) m.z[j * np + i] = r.posterior[i * nf + j] / peak;
   }
-  const double fy0 = r.freq_hz.front(), fy1 = r.freq_hz.back();
-  if (r.bounds.lower_g) m.overlay.push_back({fmt::format("static lower bound {:.3g} g", *r.bounds.lower_g), {*r.bounds.lower_g, *r.bounds.lower_g}, {fy0, fy1}, "lines", "#c0392b", 2.5});
-  if (r.bounds.upper_g) m.overlay.push_back({fmt::format("static upper bound {:.3g} g", *r.bounds.upper_g), {*r.bounds.upper_g, *r.bounds.upper_g}, {fy0, fy1}, "lines", "#8e44ad", 2.5});
-  for (std::size_t o = 0; o < r.objects.size(); ++o) {
-    std::vector<double> z(np * nf);
-    for (std::size_t j = 0; j < nf; ++j) {
-      for (std::size_t i = 0; i < np; ++i) z[j * np + i] = r.objects[o].probability[i * nf + j];
-    }
-    plot::Series c = contour_series(r.pga_g, r.freq_hz, z, 0.5, fmt::format("{} ({}) P=0.5", r.objects[o].id, outcome_name(r.objects[o].outcome)));
-    c.color = kPalette[o % std::size(kPalette)];
-    c.width = 1.5;
-    if (!c.x.empty()) m.overlay.push_back(std::move(c));
+  // Credible regions: highest posterior density (the smallest set of cells holding the mass), as in_credible_region.
+  // The field is padded with a ring of zeros at the grid's outer edges, so that a region reaching an edge is closed
+  // along it instead of left open.
+  const auto padded_axis = [](const std::vector<double>& v) {
+    std::vector<double> out{v.front() * std::sqrt(v.front() / v[1])};
+    out.insert(out.end(), v.begin(), v.end());
+    out.push_back(v.back() * std::sqrt(v.back() / v[v.size() - 2]));
+    return out;
+  };
+  const std::vector<double> px = padded_axis(r.pga_g), py = padded_axis(r.freq_hz);
+  std::vector<double> pz(px.size() * py.size(), 0.0);
+  for (std::size_t j = 0; j < nf; ++j) {
+    for (std::size_t i = 0; i < np; ++i) pz[(j + 1) * px.size() + i + 1] = m.z[j * np + i];
   }
-  m.overlay.push_back(
-      {"best", {r.pga_estimate_g.best}, {r.freq_estimate_hz.best}, "points pt 7 ps 1.8", "#000000", 1.0});
+  for (const auto& [mass, dash, label] : {std::tuple{0.68, 1, "68 % credible region"}, std::tuple{0.95, 2, "95 % credible region"}}) {
+    plot::Series region = contour_series(px, py, pz, hpd_level(r, mass), label);
+    region.color = "#000000";
+    region.style = fmt::format("lines dt {}", dash);
+    region.width = 3.0;
+    if (!region.x.empty()) m.overlay.push_back(std::move(region));
+  }
+  const double fy0 = r.freq_hz.front(), fy1 = r.freq_hz.back();
+  const auto threshold_label = [&r](const char* side, double v) {
+    bool hard = false;
+    for (const auto& b : std::string(side) == "lower" ? r.bounds.lower : r.bounds.upper) hard = hard || (b.hard && b.pga_g == v);
+    return fmt::format("static {} threshold {:.3g} g ({})", side, v, hard ? "hard" : "soft");
+  };
+  if (r.bounds.lower_g) m.overlay.push_back({threshold_label("lower", *r.bounds.lower_g), {*r.bounds.lower_g, *r.bounds.lower_g}, {fy0, fy1}, "lines dt 3", "#c0392b", 2.5});
+  if (r.bounds.upper_g) m.overlay.push_back({threshold_label("upper", *r.bounds.upper_g), {*r.bounds.upper_g, *r.bounds.upper_g}, {fy0, fy1}, "lines dt 3", "#8e44ad", 2.5});
+  for (std::size_t o = 0; o < r.objects.size(); ++o) {
+    ObjectLine line = object_line(r, o);
+    if (line.line) m.overlay.push_back(std::move(*line.line));
+  }
+  m.overlay.push_back({"median (PGA, frequency)", {r.pga_estimate_g.median}, {r.freq_estimate_hz.median}, "points pt 3 ps 2.2", "#000000", 2.0});
+  m.overlay.push_back({"maximum-likelihood cell", {r.pga_estimate_g.best}, {r.freq_estimate_hz.best}, "points pt 6 ps 1.6", "#000000", 1.5});
+  m.width_px = 1150;
   m.height_px = 760;
   return m;
 }
@@ -174,7 +301,7 @@ plot::Figure best_cell_figure(const InversionResult& r, const Site& site, const 
   one.motions_per_cell = 1;
   const GroundMotion motion = family_motions(one, freq).front().scaled(pga * settings.g_m_s2);
   plot::Figure f;
-  f.title = fmt::format("Best cell: PGA {:.3g} g, {:.3g} Hz: one motion of the family and each object's response", pga, freq);
+  f.title = fmt::format("Maximum-likelihood cell (PGA {:.3g} g, {:.3g} Hz): one motion of the family, each object's response", pga, freq);
   f.xlabel = "time (s)";
   plot::Panel ground{"ground acceleration (g)", {}, {}, {}, false, false};
   plot::Series gs{"ground", {}, {}, "lines", "#555555", 1.0};
@@ -187,10 +314,11 @@ plot::Figure best_cell_figure(const InversionResult& r, const Site& site, const 
   plot::Panel sliding{"sliding displacement (m)", {}, {}, {}, false, false};
   for (std::size_t o = 0; o < site.objects.size(); ++o) {
     const ObservedObject& obj = site.objects[o];
-    const std::string color = kPalette[o % std::size(kPalette)];
+    const std::string color = object_color(o);
     const double amp = obj.amplification.mid();
+    const GroundMotion seen = nominal_object_motion(obj, motion);  // through a flexible support, if any
     if (obj.outcome == Outcome::slid || obj.outcome == Outcome::not_slid) {
-      const auto res = slide(motion.scaled(amp), SlidingBlock::make(obj.mu.mid(), obj.mu.mid(), 0.0, SlidingMode::two_way, settings.g_m_s2));
+      const auto res = slide(seen.scaled(amp), SlidingBlock::make(obj.mu.mid(), obj.mu.mid(), 0.0, SlidingMode::two_way, settings.g_m_s2));
       sliding.series.push_back({fmt::format("{} (mu {:.2g})", obj.id, obj.mu.mid()), res.history.time_s, res.history.displacement_m, "lines", color, 1.6});
     } else {
       RockingOptions opt;
@@ -201,10 +329,16 @@ plot::Figure best_cell_figure(const InversionResult& r, const Site& site, const 
       }
       double factor = amp;
       if (obj.orientation_deg) factor *= std::cos(*obj.orientation_deg * kPi / 180.0);
-      const auto res = rock(motion.scaled(factor), obj.body, opt);
+      const auto res = rock(seen.scaled(factor), obj.body, opt);
       std::vector<double> ratio(res.history.theta_rad.size());
       for (std::size_t i = 0; i < ratio.size(); ++i) ratio[i] = res.history.theta_rad[i] / obj.body.alpha_rad();
-      rocking.series.push_back({fmt::format("{}{}", obj.id, res.summary.overturned ? " (falls)" : ""), res.history.time_s, ratio, "lines", color, 1.6});
+      // One motion with nominal parameters is not the likelihood (N motions, drawn parameters): an object observed
+      // standing may fall in it, or one observed fallen stand. The label says so rather than contradict the survey.
+      const bool observed_fallen = obj.outcome == Outcome::overturned;
+      std::string label = obj.id;
+      if (res.summary.overturned) label += observed_fallen ? " (falls, as observed)" : " (falls in this one motion; observed standing)";
+      if (!res.summary.overturned && observed_fallen) label += " (stands in this one motion; observed overturned)";
+      rocking.series.push_back({label, res.history.time_s, ratio, "lines", color, 1.6});
     }
   }
   f.panels.push_back(ground);
@@ -213,65 +347,174 @@ plot::Figure best_cell_figure(const InversionResult& r, const Site& site, const 
   return f;
 }
 
-void write_report(const std::filesystem::path& dir, const Survey& survey, const Site& site, const InversionResult& r) {
+namespace {
+
+/// A median for the page: the number, or "below/above the grid" when it lies in an edge cell (no estimate).
+std::string median_html(const Estimate& e, const std::vector<double>& axis, const char* unit) {
+  if (e.median_edge < 0) return fmt::format("below the grid (&le; {:.3g} {})", axis.front(), unit);
+  if (e.median_edge > 0) return fmt::format("above the grid (&ge; {:.3g} {})", axis.back(), unit);
+  return fmt::format("{:.3g} {}", e.median, unit);
+}
+
+std::string interval_html(const std::optional<double>& lo, const std::optional<double>& hi, const char* unit) {
+  const std::string a = lo ? fmt::format("{:.3g} {}", *lo, unit) : std::string("below the grid");
+  const std::string b = hi ? fmt::format("{:.3g} {}", *hi, unit) : std::string("above the grid");
+  return a + " &ndash; " + b;
+}
+
+std::string best_html(const Estimate& e, const char* unit) {
+  return fmt::format("{:.3g} {}{}", e.best, unit, e.best_edge != 0 ? " (a grid-edge cell: no estimate)" : "");
+}
+
+}  // namespace
+
+void write_report(const std::filesystem::path& dir, const Survey& survey, const Site& site, const InversionResult& r,
+                  const std::optional<io::Provenance>& given_provenance) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec) throw OutputError(fmt::format("cannot create the report directory '{}': {}", dir.string(), ec.message()));
+  // A library caller without provenance gets the survey file's (when there is one) and an unknown command line.
+  io::Provenance provenance;
+  if (given_provenance) {
+    provenance = *given_provenance;
+  } else if (!survey.source_file.empty() && std::filesystem::is_regular_file(survey.source_file, ec)) {
+    provenance = io::make_provenance(survey.source_file, "unknown (the report was written by a library call)");
+  } else {
+    provenance = io::make_provenance_without_file("unknown (the report was written by a library call)");
+  }
   plot::render(likelihood_map_figure(r, site), dir / "likelihood.svg");
   plot::render(marginal_figure(r, true), dir / "marginal_pga.svg");
   plot::render(marginal_figure(r, false), dir / "marginal_freq.svg");
   plot::render(best_cell_figure(r, site, survey.inversion), dir / "best_cell.svg");
   io::write_inversion_grid_csv(dir / "grid.csv", r);
-  io::write_file_atomically(dir / "result.json", io::inversion_json(r, site).dump(2) + "\n");
+  io::write_file_atomically(dir / "result.json", io::inversion_json(r, site, provenance).dump(2) + "\n");
   const InversionSettings& st = survey.inversion;
+  const Estimate& pga = r.pga_estimate_g;
+  const Estimate& freq = r.freq_estimate_hz;
   std::ostringstream h;
   h << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n<title>topple: " << html_escape(site.name)
-    << "</title>\n<style>\nbody{font-family:Helvetica,Arial,sans-serif;max-width:1100px;margin:2em auto;color:#222;line-height:1.45}\n"
+    << "</title>\n<style>\nbody{font-family:Helvetica,Arial,sans-serif;max-width:1150px;margin:2em auto;color:#222;line-height:1.45}\n"
        "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #ccc;padding:4px 8px;text-align:left}th{background:#f2f2f2}\n"
-       ".num{font-size:1.25em}.note{background:#fff7e6;border-left:4px solid #e6a100;padding:6px 10px;margin:6px 0}\n"
-       "figure{margin:1.5em 0}figure svg{max-width:100%;height:auto}figcaption{color:#555;font-size:.9em}\n</style></head><body>\n";
+       ".num{font-size:1.15em}.note{background:#fff7e6;border-left:4px solid #e6a100;padding:6px 10px;margin:6px 0}\n"
+       ".summary{font-size:1.2em;background:#eef5fb;border-left:5px solid #2171b5;padding:10px 14px}\n"
+       "tr.misfit td{background:#fde0dc}.flag{color:#b71c1c;font-weight:bold}.def{color:#444;font-size:.92em}\n"
+       "#observations{font-size:.85em}.wide{overflow-x:auto}\n"
+       "pre{background:#f7f7f7;border:1px solid #ddd;padding:8px;overflow-x:auto;font-size:.85em}\n"
+       "figure{margin:1.5em 0}figure svg{max-width:100%;height:auto}figcaption{color:#444;font-size:.92em}\n</style></head><body>\n";
   h << "<h1>Shaking estimated from objects: " << html_escape(site.name) << "</h1>\n";
+  h << "<p id=\"summary\" class=\"summary\">" << html_escape(inversion_summary(r)) << "</p>\n";
   if (site.lat_deg && site.lon_deg) h << fmt::format("<p>Location {:.4f}&deg;, {:.4f}&deg;.</p>\n", *site.lat_deg, *site.lon_deg);
   if (!site.notes.empty()) h << "<p>" << html_escape(site.notes) << "</p>\n";
-  h << "<h2 id=\"estimate\">Estimate</h2>\n<table id=\"numbers\"><tr><th></th><th>best</th><th>median</th><th>68 % interval</th><th>95 % interval</th></tr>\n";
-  h << fmt::format("<tr><td>PGA</td><td class=\"num\">{:.3g} g</td><td class=\"num\">{:.3g} g</td><td>{} &ndash; {}</td><td>{} &ndash; {}</td></tr>\n",
-                   r.pga_estimate_g.best, r.pga_estimate_g.median, opt_text(r.pga_estimate_g.ci68_low, "g"),
-                   opt_text(r.pga_estimate_g.ci68_high, "g"), opt_text(r.pga_estimate_g.ci95_low, "g"),
-                   opt_text(r.pga_estimate_g.ci95_high, "g"));
-  h << fmt::format("<tr><td>predominant frequency</td><td class=\"num\">{:.3g} Hz</td><td class=\"num\">{:.3g} Hz</td><td>{} &ndash; {}</td><td>{} &ndash; {}</td></tr>\n",
-                   r.freq_estimate_hz.best, r.freq_estimate_hz.median, opt_text(r.freq_estimate_hz.ci68_low, "Hz"),
-                   opt_text(r.freq_estimate_hz.ci68_high, "Hz"), opt_text(r.freq_estimate_hz.ci95_low, "Hz"),
-                   opt_text(r.freq_estimate_hz.ci95_high, "Hz"));
-  h << fmt::format("<tr><td>static bounds on PGA</td><td colspan=\"4\">{} &ndash; {}</td></tr>\n</table>\n",
-                   opt_text(r.bounds.lower_g, "g"), opt_text(r.bounds.upper_g, "g"));
+
+  // ---- The estimate, every number defined beside it ----
+  h << "<h2 id=\"estimate\">Estimate</h2>\n<table id=\"numbers\"><tr><th></th><th>median</th><th>68 % interval</th>"
+       "<th>95 % interval</th><th>maximum-likelihood cell</th></tr>\n";
+  h << fmt::format("<tr><td>PGA</td><td class=\"num\">{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
+                   median_html(pga, r.pga_g, "g"), interval_html(pga.ci68_low, pga.ci68_high, "g"),
+                   interval_html(pga.ci95_low, pga.ci95_high, "g"), best_html(pga, "g"));
+  h << fmt::format("<tr><td>predominant frequency</td><td class=\"num\">{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
+                   median_html(freq, r.freq_hz, "Hz"), interval_html(freq.ci68_low, freq.ci68_high, "Hz"),
+                   interval_html(freq.ci95_low, freq.ci95_high, "Hz"), best_html(freq, "Hz"));
+  h << "</table>\n<p class=\"def\" id=\"definitions\"><b>Median</b>: half of the posterior probability lies below it. "
+       "<b>68 % / 95 % interval</b>: equal-tailed credible intervals of the marginal posterior (16&ndash;84 % and "
+       "2.5&ndash;97.5 % of its probability); an end written &ldquo;below/above the grid&rdquo; falls in the grid's "
+       "first or last cell, where the observations do not bound it. <b>Maximum-likelihood cell</b>: the grid cell "
+       "whose likelihood is largest; among cells of nearly equal likelihood it moves with the seed, so it is a "
+       "diagnostic, not the estimate. <b>Predominant frequency</b>: the peak of the motion's Konno&ndash;Ohmachi-"
+       "smoothed Fourier amplitude spectrum. PGA in g = 9.80665 m/s&#178;.</p>\n";
+
+  // ---- Static thresholds, hard and soft, beside the estimate ----
+  h << "<h2 id=\"thresholds\">Static thresholds</h2>\n<table id=\"static\"><tr><th>object</th><th>threshold on PGA</th>"
+       "<th>kind</th><th>from</th></tr>\n";
+  const auto threshold_row = [&h](const StaticBound& b, const char* relation) {
+    h << fmt::format("<tr><td>{}</td><td>PGA {} {:.3g} g</td><td>{}</td><td>{}</td></tr>\n", html_escape(b.object_id),
+                     relation, b.pga_g, b.hard ? "hard" : "soft", html_escape(b.reason));
+  };
+  for (const auto& b : r.bounds.lower) threshold_row(b, "&gt;");
+  for (const auto& b : r.bounds.upper) threshold_row(b, "&le;");
+  if (r.bounds.lower.empty() && r.bounds.upper.empty()) h << "<tr><td colspan=\"4\">none: no object slid, rocked, overturned or was seen not to slide</td></tr>\n";
+  h << "</table>\n<p class=\"def\" id=\"hard-soft\">A <b>hard</b> threshold comes from an object that slid, rocked or "
+       "overturned: the physics forbids that below it (no slip while the support's acceleration stays under "
+       "&mu;g, no uplift while it stays under g&middot;b/h, b/h the half-width over the height of the centre of mass); "
+       "only a wrong observation crosses it. A <b>soft</b> threshold comes from an object that did <i>not</i> slide "
+       "visibly: the ground may pass &mu;g for an instant and slip it less than the visible 2 mm, so it is no bound, "
+       "and the dynamic estimate, which simulates how far each object would slide, may lie above it.";
+  for (const auto& b : r.bounds.upper) {
+    if (!b.hard && pga.median_edge == 0 && pga.median > b.pga_g) {
+      h << fmt::format(" Here the median {:.3g} g lies above the soft threshold {:.3g} g of {}: the runs find that "
+                       "shaking of that strength slips it less than 2 mm often enough.",
+                       pga.median, b.pga_g, html_escape(b.object_id));
+    }
+  }
+  h << "</p>\n";
   for (const auto& note : r.notes) h << "<p class=\"note\">" << html_escape(note) << "</p>\n";
+
+  // ---- Figures, each with its caption ----
+  std::string undrawn;
+  for (std::size_t o = 0; o < r.objects.size(); ++o) {
+    const ObjectLine line = object_line(r, o);
+    if (!line.line) undrawn += fmt::format(" {} ({}): {}.", html_escape(r.objects[o].id), outcome_name(r.objects[o].outcome), line.reason);
+  }
   h << "<figure id=\"map\">" << inline_svg(dir / "likelihood.svg")
-    << "<figcaption>Posterior over PGA and predominant frequency (log axes, normalised to its maximum), the static "
-       "bounds, and for each object the line where its observation has probability 0.5.</figcaption></figure>\n";
-  h << "<figure>" << inline_svg(dir / "marginal_pga.svg") << "</figure>\n";
-  h << "<figure>" << inline_svg(dir / "marginal_freq.svg") << "</figure>\n";
-  h << "<h2>Observations</h2>\n<table id=\"observations\"><tr><th>id</th><th>description</th><th>geometry</th><th>&mu;</th>"
-       "<th>e</th><th>support (amplification)</th><th>observed</th><th>evidence</th><th>static bound</th>"
-       "<th>P(observation) at best</th></tr>\n";
+    << "<figcaption>Figure 1. Posterior probability over PGA and predominant frequency (log axes; grey shade: the "
+       "posterior divided by its maximum). Black lines: the 68 % (solid) and 95 % (dashed) credible regions, the "
+       "smallest sets of cells holding that probability. Dotted vertical lines: the static lower and upper "
+       "thresholds (hard or soft, see above). Coloured lines: for each object the line where its observation has "
+       "probability 0.5; the legend says on which side it fits. Cross: the medians; circle: the maximum-likelihood "
+       "cell.";
+  if (!undrawn.empty()) h << " Not drawn:" << undrawn;
+  h << "</figcaption></figure>\n";
+  h << "<figure id=\"marginal-pga\">" << inline_svg(dir / "marginal_pga.svg")
+    << "<figcaption>Figure 2. Marginal posterior of PGA: the probability of each grid cell (the posterior summed over "
+       "frequency), with the median and the 68 % and 95 % intervals (drawn where both ends are on the "
+       "grid).</figcaption></figure>\n";
+  h << "<figure id=\"marginal-freq\">" << inline_svg(dir / "marginal_freq.svg")
+    << "<figcaption>Figure 3. Marginal posterior of the predominant frequency (the posterior summed over PGA), with "
+       "the median and the 68 % and 95 % intervals.</figcaption></figure>\n";
+
+  // ---- Observations and how well the answer explains each ----
+  h << "<h2 id=\"objects\">Observations</h2>\n<div class=\"wide\"><table id=\"observations\"><tr><th>id</th><th>description</th>"
+       "<th>geometry</th><th>&mu;</th><th>e</th><th>support (amplification)</th><th>observed</th><th>evidence</th>"
+       "<th>static threshold</th><th>P(observation), posterior-predictive</th><th>P at the maximum-likelihood cell</th>"
+       "<th>information (bits)</th></tr>\n";
   for (std::size_t o = 0; o < site.objects.size(); ++o) {
     const ObservedObject& obj = site.objects[o];
+    const ObjectReport& rep = r.objects[o];
     std::string bound = "&ndash;";
-    for (const auto& b : r.bounds.lower) if (b.object_id == obj.id) bound = html_escape(b.reason);
-    for (const auto& b : r.bounds.upper) if (b.object_id == obj.id) bound = html_escape(b.reason);
-    h << fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{} ({})</td><td>{}</td><td>{}</td><td>{}</td><td>{:.2f}</td></tr>\n",
-                     html_escape(obj.id), html_escape(obj.description), dims(obj), interval_text(obj.mu),
-                     obj.e_housner ? fmt::format("Housner {:.3f}", housner_restitution(obj.body)) : interval_text(obj.e),
-                     html_escape(obj.support), interval_text(obj.amplification), observed_text(obj),
-                     evidence_name(obj.evidence), bound, r.objects[o].probability_at_best);
+    for (const auto& b : r.bounds.lower) if (b.object_id == obj.id) bound = html_escape(b.reason) + (b.hard ? " (hard)" : " (soft)");
+    for (const auto& b : r.bounds.upper) if (b.object_id == obj.id) bound = html_escape(b.reason) + (b.hard ? " (hard)" : " (soft)");
+    const bool sliding = obj.outcome == Outcome::slid || obj.outcome == Outcome::not_slid;
+    const std::string e = sliding ? std::string("&ndash; (not used: sliding)")
+                          : obj.e_housner ? fmt::format("Housner {:.3f}", housner_restitution(obj.body))
+                                          : interval_text(obj.e);
+    h << fmt::format("<tr{}><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{} ({})</td><td>{}</td><td>{}</td>"
+                     "<td>{}</td><td>{:.3f}{}</td><td>{:.2f}</td><td>{:.2f}</td></tr>\n",
+                     rep.misfit ? " class=\"misfit\"" : "", html_escape(obj.id), html_escape(obj.description), dims(obj),
+                     interval_text(obj.mu), e, html_escape(obj.support), interval_text(obj.amplification),
+                     observed_text(obj), evidence_name(obj.evidence), bound, rep.posterior_predictive,
+                     rep.misfit ? " <span class=\"flag\">MISFIT</span>" : "", rep.probability_at_best,
+                     rep.constraint_bits);
   }
-  h << "</table>\n";
-  h << "<figure>" << inline_svg(dir / "best_cell.svg")
-    << "<figcaption>One motion of the family at the best cell and each object's response with nominal parameters "
-       "(rocking objects as &theta;/&alpha;, sliding ones as displacement).</figcaption></figure>\n";
+  h << "</table></div>\n<p class=\"def\"><b>P(observation), posterior-predictive</b>: the probability of the object's "
+       "observation averaged over the posterior (each cell's share of runs that reproduce it, weighted by the cell's "
+       "posterior probability); below "
+    << kMisfitProbability
+    << " the object is flagged <span class=\"flag\">MISFIT</span>: the answer does not explain it (check the "
+       "observation, its friction and its support). For a measured sliding distance a run scores exp(&minus;z&#178;/2), "
+       "z the residual over &sigma;, so P stays well below 1 even where it fits (the runs scatter around the observed distance). <b>P at the maximum-likelihood "
+       "cell</b>: the same at that one cell. <b>Information</b>: how much the object's observation changes the answer, "
+       "the Kullback&ndash;Leibler divergence (bits) of the posterior from the posterior computed without that object; "
+       "the summary names the largest (each &ge; 0.1 bit, at most three).</p>\n";
+  h << "<figure id=\"best-cell\">" << inline_svg(dir / "best_cell.svg")
+    << "<figcaption>Figure 4. One motion of the family at the maximum-likelihood cell and each object's response with "
+       "nominal parameters (rocking objects as &theta;/&alpha;, where &plusmn;1 is the centre of mass over the pivot; "
+       "sliding ones as displacement). One motion is one sample: an object observed standing may fall in it (its label "
+       "then says so) while most motions of the cell leave it standing; the likelihood counts every motion with drawn "
+       "parameters.</figcaption></figure>\n";
   h << "<h2>Method in short</h2>\n<ol>\n"
-       "<li>Static bounds (Mittal 1971, section 1.1): an object that slid needs PGA &gt; &mu;g, one that rocked or "
-       "overturned PGA &gt; g&middot;a/h (divided by the support's amplification); one that did not slide gives "
-       "PGA &le; &mu;g.</li>\n"
+       "<li>Static thresholds (Mittal 1971, section 1.1): an object that slid needs PGA &gt; &mu;g, one that rocked or "
+       "overturned PGA &gt; g&middot;b/h (divided by the support's amplification): hard; one that did not slide "
+       "visibly gives PGA &le; &mu;g: soft.</li>\n"
     << fmt::format("<li>Dynamic inversion: on a grid of {} PGA values ({:.3g}&ndash;{:.3g} g) &times; {} predominant "
                    "frequencies ({:.3g}&ndash;{:.3g} Hz), log-spaced, every object is simulated under {} {} motions per "
                    "cell (sliding: exact Coulomb block; rocking: Housner's equation with impacts and overturning), with "
@@ -284,19 +527,30 @@ void write_report(const std::filesystem::path& dir, const Survey& survey, const 
        "objects of 0.98 (certain), 0.90 (likely) or 0.75 (reported) when the run reproduces the observation and 0.02, "
        "0.10 or 0.25 when it does not (the chance that the observation itself is wrong); the runs of neighbouring "
        "cells are pooled. Prior uniform in log PGA and log frequency. Intervals are equal-tailed from the marginal "
-       "posteriors; an end that lies in the grid's first or last cell is reported as unconstrained.</li>\n</ol>\n";
-  h << "<h2>Inputs</h2>\n<p>" << fmt::format("Survey file <code>{}</code>; family {}, seed {}, g = {} m/s&#178;, {} runs in {:.1f} s.",
-                                           html_escape(survey.source_file),
-                                           st.family == MotionFamily::synthetic ? "synthetic" : "records", st.seed,
-                                           st.g_m_s2, r.runs, r.seconds)
-    << "</p>\n";
+       "posteriors; an end that lies in the grid's first or last cell is reported as below/above the grid.</li>\n</ol>\n";
+
+  // ---- Provenance: enough to trace and rerun the result ----
+  h << "<h2 id=\"provenance\">Provenance</h2>\n<table id=\"provenance-table\">\n";
+  const auto row = [&h](const char* key, const std::string& value) {
+    h << "<tr><th>" << key << "</th><td><code>" << html_escape(value) << "</code></td></tr>\n";
+  };
+  row("topple version", provenance.topple_version);
+  row("git commit", provenance.git_commit);
+  row("date (UTC)", provenance.date_utc);
+  row("command line", provenance.command_line);
+  row("survey file", provenance.survey_file);
+  row("survey checksum (XXH3-64)", provenance.survey_xxh3_64);
+  h << "</table>\n";
+  h << fmt::format("<p>Family {}, seed {}, g = {} m/s&#178;, {} runs in {:.1f} s.</p>\n",
+                   st.family == MotionFamily::synthetic ? "synthetic" : "records", st.seed, st.g_m_s2, r.runs, r.seconds);
   if (st.family == MotionFamily::records) {
     h << "<ul>";
     for (const auto& rec : st.records) h << "<li><code>" << html_escape(rec) << "</code></li>";
     h << "</ul>\n";
   }
+  h << "<p>The survey, verbatim:</p>\n<pre id=\"survey-text\">" << html_escape(provenance.survey_text) << "</pre>\n";
   h << "<p>Files beside this page: <a href=\"grid.csv\">grid.csv</a> (the likelihood grid), <a href=\"result.json\">result.json</a>.</p>\n";
-  h << "<p style=\"color:#888\">Made by topple 0.1.0.</p>\n</body></html>\n";
+  h << "</body></html>\n";
   io::write_file_atomically(dir / "index.html", h.str());
 }
 

@@ -16,6 +16,7 @@ FieldValue optional_value(const std::optional<double>& v) { return v ? FieldValu
 FieldValue count(std::size_t n) { return static_cast<std::int64_t>(n); }
 
 using S = SlidingOutcome;
+using S2 = Sliding2dOutcome;
 using R = RockingOutcome;
 
 }  // namespace
@@ -47,6 +48,29 @@ const std::array<Field<SlidingOutcome>, 17> kSlidingFields{{
        return std::string(sliding_mode_name(r.block.mode));
      }},
     {"g_m_s2", [](const S& r) -> FieldValue { return r.block.g_m_s2; }},
+}};
+
+const std::array<Field<Sliding2dOutcome>, 20> kSliding2dFields{{
+    {"residual_displacement_m", [](const S2& r) -> FieldValue { return r.summary.residual_displacement_m; }},
+    {"residual_azimuth_deg", [](const S2& r) { return optional_value(r.summary.residual_azimuth_deg); }},
+    {"residual_east_m", [](const S2& r) -> FieldValue { return r.summary.residual_east_m; }},
+    {"residual_north_m", [](const S2& r) -> FieldValue { return r.summary.residual_north_m; }},
+    {"max_abs_displacement_m", [](const S2& r) -> FieldValue { return r.summary.max_abs_displacement_m; }},
+    {"max_displacement_time_s", [](const S2& r) -> FieldValue { return r.summary.max_displacement_time_s; }},
+    {"path_length_m", [](const S2& r) -> FieldValue { return r.summary.path_length_m; }},
+    {"max_abs_velocity_m_s", [](const S2& r) -> FieldValue { return r.summary.max_abs_velocity_m_s; }},
+    {"slip_episodes", [](const S2& r) -> FieldValue { return std::int64_t{r.summary.slip_episodes}; }},
+    {"first_slip_time_s", [](const S2& r) { return optional_value(r.summary.first_slip_time_s); }},
+    {"total_slip_duration_s", [](const S2& r) -> FieldValue { return r.summary.total_slip_duration_s; }},
+    {"end_time_s", [](const S2& r) -> FieldValue { return r.summary.end_time_s; }},
+    {"at_rest_at_end", [](const S2& r) -> FieldValue { return r.summary.at_rest_at_end; }},
+    {"contact_lost_time_s", [](const S2& r) { return optional_value(r.summary.contact_lost_time_s); }},
+    {"input_work_J_kg", [](const S2& r) -> FieldValue { return r.summary.input_work_J_kg; }},
+    {"friction_work_J_kg", [](const S2& r) -> FieldValue { return r.summary.friction_work_J_kg; }},
+    {"integrator_steps", [](const S2& r) { return count(r.summary.integrator_steps); }},
+    {"mu_static", [](const S2& r) -> FieldValue { return r.block.mu_static; }},
+    {"mu_kinetic", [](const S2& r) -> FieldValue { return r.block.mu_kinetic; }},
+    {"g_m_s2", [](const S2& r) -> FieldValue { return r.block.g_m_s2; }},
 }};
 
 const std::array<Field<RockingOutcome>, 25> kRockingFields{{

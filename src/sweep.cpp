@@ -16,6 +16,7 @@
 #include "topple/summary_fields.hpp"
 #include "topple/sweep.hpp"
 #include "topple/error.hpp"
+#include "topple/flexible.hpp"
 
 namespace topple::ensemble {
 namespace {
@@ -70,6 +71,36 @@ struct FieldSlots {
   }
 };
 
+/// The object's flexible support, if any.
+const std::optional<SupportOscillator>& support_of(const ObjectSpec& o) {
+  return std::visit([](const auto& x) -> const std::optional<SupportOscillator>& { return x.support; }, o);
+}
+
+bool same_support(const std::optional<SupportOscillator>& a, const std::optional<SupportOscillator>& b) {
+  if (a.has_value() != b.has_value()) return false;
+  return !a || (a->freq_hz == b->freq_hz && a->damping_ratio == b->damping_ratio);
+}
+
+/// The motion an object runs on: the ground's, or its flexible support's (support_motion), the last one kept so that
+/// consecutive objects on the same support filter the motion once.
+class OnSupport {
+ public:
+  explicit OnSupport(const GroundMotion& ground) : ground_(ground) {}
+  const GroundMotion& operator()(const std::optional<SupportOscillator>& support) {
+    if (!support) return ground_;
+    if (!filtered_ || !same_support(support, last_)) {
+      filtered_ = support_motion(ground_, *support);
+      last_ = support;
+    }
+    return *filtered_;
+  }
+
+ private:
+  const GroundMotion& ground_;
+  std::optional<SupportOscillator> last_;
+  std::optional<GroundMotion> filtered_;
+};
+
 /// The run function of the standard sweep. Consecutive level-or-inclined blocks with mu_kinetic = mu_static and the
 /// same slope, mode and g go through slide_summaries, which shares the input scan across them and gives the same
 /// numbers as slide_summary block by block.
@@ -79,12 +110,14 @@ class Runner {
       : objects_(std::move(objects)), slide_(kSlidingFields, results), rock_(kRockingFields, results),
         stride_(results.names().size()) {}
 
-  void operator()(const GroundMotion& motion, std::size_t /*motion_index*/, std::size_t begin, std::size_t end,
+  void operator()(const GroundMotion& ground, std::size_t /*motion_index*/, std::size_t begin, std::size_t end,
                   std::span<Value> out) const {
     std::size_t o = begin;
     std::vector<double> mus;
+    OnSupport on_support(ground);
     while (o < end) {
       Value* row = out.data() + (o - begin) * stride_;
+      const GroundMotion& motion = on_support(support_of(objects_[o]));
       if (const auto* s = std::get_if<SlideObject>(&objects_[o])) {
         std::size_t last = o + 1;
         while (last < end && batchable(*s, objects_[last])) ++last;
@@ -111,7 +144,7 @@ class Runner {
  private:
   static bool batchable(const SlideObject& first, const ObjectSpec& next) {
     const auto* s = std::get_if<SlideObject>(&next);
-    return s != nullptr && first.block.mu_kinetic == first.block.mu_static &&
+    return s != nullptr && same_support(first.support, s->support) && first.block.mu_kinetic == first.block.mu_static &&
            s->block.mu_kinetic == s->block.mu_static && s->block.slope_rad == first.block.slope_rad &&
            s->block.mode == first.block.mode && s->block.g_m_s2 == first.block.g_m_s2;
   }
@@ -159,7 +192,9 @@ Plan make_plan(const SweepSpec& spec) {
   bool any_block = false;
   bool any_cylinder = false;
   bool any_general = false;
+  bool any_support = false;
   for (const auto& o : spec.objects) {
+    any_support = any_support || support_of(o).has_value();
     if (const auto* r = std::get_if<RockObject>(&o)) {
       any_rock = true;
       any_rock_mu = any_rock_mu || r->options.mu.has_value();
@@ -171,6 +206,20 @@ Plan make_plan(const SweepSpec& spec) {
     }
   }
 
+  if (any_support) {
+    // The support's response is exact for uniformly sampled input (flexible.hpp); analytic pulses keep their jumps
+    // on an irregular grid. Said before any run.
+    for (const auto& rec : spec.records) {
+      if (rec.motion && !rec.motion->is_uniform()) {
+        throw parameter_error("support_freq", fmt::format("record '{}' is irregularly sampled: objects on a flexible "
+                                                          "support need uniformly sampled records", rec.name));
+      }
+    }
+    if (!spec.pulses.empty()) {
+      throw parameter_error("support_freq", "objects on a flexible support run on records only (analytic pulses are "
+                                            "irregularly sampled, at their jumps)");
+    }
+  }
   ColumnSet motion_cols;
   motion_cols.add("motion");
   if (!spec.pulses.empty()) {
@@ -196,6 +245,10 @@ Plan make_plan(const SweepSpec& spec) {
       for (const char* c : {"a_m", "h_m", "D_m2"}) object_cols.add(c);
     }
     object_cols.add("restitution");
+  }
+  if (any_support) {
+    object_cols.add("support_freq_hz");
+    object_cols.add("support_damping");
   }
 
   ColumnSet result_cols;
@@ -285,6 +338,10 @@ Plan make_plan(const SweepSpec& spec) {
 
   for (const auto& o : spec.objects) {
     RowValues v(object_cols);
+    if (const auto& support = support_of(o)) {
+      v.set("support_freq_hz", support->freq_hz);
+      v.set("support_damping", support->damping_ratio);
+    }
     if (const auto* s = std::get_if<SlideObject>(&o)) {
       v.set("model", std::string("slide"));
       v.set("g_m_s2", s->block.g_m_s2);

@@ -20,7 +20,7 @@
 // the average acceleration of the sliding mass (SLAMMER's HEA)  HEA = a_g + (L1/m) Y''  with
 //    Y'' + 2 zeta omega Y' + omega^2 Y = -(L1/M1) a_g                                         (modal equation)
 // (for the shelf L1/M1 = L1/m = 1). The response is exact for piecewise-linear a_g (closed-form step propagator, no
-// period error); HEA is sampled on the record's grid and read by the sliding solver as piecewise linear: that is the
+// period error; the demand by that propagator's second-order output recurrence, Cayley-Hamilton); HEA is sampled on the record's grid and read by the sliding solver as piecewise linear: that is the
 // decoupled analysis' one approximation, O(dt^2).
 //
 // Coupled analysis (Chopra & Zhang 1991; Rathje & Bray 2000 as SLAMMER implements it). The slip feeds back:
@@ -34,6 +34,16 @@
 // start and stop are located inside the step by root finding on the exact state (TOMS 748). Steps are split so that
 // omega h <= 0.5 (at most 256 sub-steps per record step), and each sub-step is also tested at its midpoint, so that an excursion of the demand above k_y g
 // lasting longer than h/2 is never missed. After the record the ground is still and a sliding body runs out to rest.
+//
+// Vertical input (coupled; the decoupled analysis passes it to sliding.hpp, where it does the same). The support is
+// flexible horizontally only, so a_v(t) (positive up) reaches the body unfiltered and its normal force is
+// m (g + a_v): the capacity sigma k_y g (sigma mu g for the shelf) above becomes sigma k_y (g + a_v) in the body's
+// equation and, for the shelf, in the friction force r sigma mu (g + a_v) on the support -- the effective gravity
+// g_e = g + a_v of the rigid block (sliding.hpp, after Newmark 1965), carried into Chopra & Zhang's equations; this
+// extension is topple's (SLAMMER has no vertical input). The column's own vertical dynamics are not modelled. a_v is read at the
+// sub-step ends and linear between them (exact when the vertical record's samples lie on that grid); a_v and a_v'
+// join the state, which the propagator advances exactly. g + a_v <= 0 (the body lifts off) is reported as
+// contact_lost_time_s, as sliding.hpp does; the model is not valid after it.
 //
 // Equivalent linear (SLAMMER; formulas from pySLAMMER 0.2.3 decoupled_analysis.py and its SoftwareX paper,
 // Arnold & Garcia-Rivas 2025): iterate the linear response of the column, with
@@ -111,6 +121,21 @@ struct FlexibleSummary {
                                    ///< read at points omega h <= 0.1 apart (the record's samples when they are closer)
 };
 
+/// The response as a time history (`topple slide --out/--plot` on a flexible support).
+struct FlexibleHistory {
+  /// The body relative to the surface it slides on. Decoupled: the rigid solver's history on the support's motion
+  /// (its sub-stepped grid plus every slip event); coupled: the start, every sub-step end (omega h <= 0.5) and every
+  /// slip event, through the run-out.
+  SlidingHistory sliding;
+  /// Absolute acceleration of the sliding surface at those times (m/s^2): shelf a_g + Y'', column a_g + (L1/m) Y''.
+  std::vector<double> support_accel_m_s2;
+};
+
+struct FlexibleResult {
+  FlexibleSummary summary;   ///< the same numbers slide_flexible gives
+  FlexibleHistory history;
+};
+
 /// Support (or sliding-mass average) acceleration of the decoupled response on the record's samples (m/s^2):
 /// a_g + (L1/m) Y'' with Y exact for piecewise-linear a_g, starting at rest. The record must be uniformly sampled.
 [[nodiscard]] std::vector<double> support_acceleration_m_s2(const GroundMotion& ground, const ModalProperties& mode);
@@ -120,6 +145,14 @@ struct FlexibleSummary {
 /// GroundMotion (rocking, sliding, spectra) can run on it: this is the support filter a survey or sweep applies to
 /// an object's motion. The record must be uniformly sampled; metadata is kept.
 [[nodiscard]] GroundMotion support_motion(const GroundMotion& ground, const SupportOscillator& support);
+
+/// The largest ratio of a support's peak absolute acceleration to the ground's peak, over every ground motion: the
+/// L1 norm of the support's absolute-acceleration impulse response h (a bound reached by a motion of unit amplitude
+/// with the sign of h reversed in time). It depends on the damping ratio alone (0 < zeta < 1); in closed form, with
+/// omega_d = sqrt(1 - zeta^2), the zeros t_k of h spaced pi / omega_d and int h between zeros the change of the
+/// relative velocity: |1 + Y'(t_1)| + |Y'(t_1)| (1 + q) / (1 - q), q = exp(-zeta pi / omega_d) (per unit impulse,
+/// omega = 1). zeta = 0.05: 12.80. Infinite for zeta = 0. Used for the static bounds of objects on flexible supports.
+[[nodiscard]] double max_peak_amplification(double damping_ratio) noexcept;
 
 /// Modal properties of a shelf (for `mode`-level calls and tests).
 [[nodiscard]] ModalProperties modal_properties(const SupportOscillator& support);
@@ -131,16 +164,26 @@ struct FlexibleSummary {
 /// Object on a shelf or floor. `block` gives mu: the decoupled analysis takes any block of sliding.hpp (static and
 /// kinetic friction, slope); the coupled one models level ground and one friction level (slope 0, mu_kinetic =
 /// mu_static, else InputError). `vertical` (optional, positive up) reaches the body unfiltered (the support is
-/// flexible horizontally only) and changes its normal force as in sliding.hpp: decoupled analysis only.
+/// flexible horizontally only) and changes its normal force to m (g + a_v), in both analyses (header: "Vertical").
 [[nodiscard]] FlexibleSummary slide_flexible(const GroundMotion& ground, const SupportOscillator& support,
                                              const SlidingBlock& block, FlexibleAnalysis analysis,
                                              const GroundMotion* vertical = nullptr);
 
 /// SLAMMER's flexible sliding mass with yield coefficient k_y (> 0), one-way (SLAMMER) or two-way; `vertical` as
-/// above (decoupled only; SLAMMER has none).
+/// above (capacity k_y (g + a_v); SLAMMER has no vertical input).
 [[nodiscard]] FlexibleSummary slide_flexible(const GroundMotion& ground, const SlidingMassColumn& column,
                                              double ky_g, FlexibleAnalysis analysis,
                                              SlidingMode mode = SlidingMode::one_way,
                                              double g_m_s2 = kStandardGravity, const GroundMotion* vertical = nullptr);
+
+/// slide_flexible with the time history (same arguments, same summary).
+[[nodiscard]] FlexibleResult slide_flexible_history(const GroundMotion& ground, const SupportOscillator& support,
+                                                    const SlidingBlock& block, FlexibleAnalysis analysis,
+                                                    const GroundMotion* vertical = nullptr);
+[[nodiscard]] FlexibleResult slide_flexible_history(const GroundMotion& ground, const SlidingMassColumn& column,
+                                                    double ky_g, FlexibleAnalysis analysis,
+                                                    SlidingMode mode = SlidingMode::one_way,
+                                                    double g_m_s2 = kStandardGravity,
+                                                    const GroundMotion* vertical = nullptr);
 
 }  // namespace topple

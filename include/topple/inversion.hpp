@@ -2,16 +2,23 @@
 // The main job: from observed objects to bounds and a likelihood map of PGA x predominant frequency.
 //
 // Method (docs/method.md, "Inversion", has the equations):
-// 1. Static bounds (thesis section 1.1). An object that slid needs PGA > mu g / amplification; one that rocked or
-//    overturned needs PGA > g a/h / amplification (uplift). An object that did not slide gives PGA <= mu g /
-//    amplification. The bounds are the largest lower and the smallest upper bound, with the objects that set them;
-//    a lower bound above an upper bound is a contradiction, reported with both objects.
+// 1. Static thresholds (thesis section 1.1). An object that slid needs PGA > mu g / amplification; one that rocked
+//    or overturned needs PGA > g a/h / amplification (uplift); on a flexible support the amplification is also
+//    multiplied by max_peak_amplification(zeta_low) (flexible.hpp), the most such a support can raise any peak (and
+//    it gives no upper threshold). An object that did not slide gives PGA <= mu g / amplification. The "bounds" are the largest lower and the smallest upper threshold, with the objects that set
+//    them; a lower threshold above an upper one is a contradiction, reported with both objects.
+//    Hard and soft: a lower threshold is hard (the physics forbids the observation below it: no slip while
+//    |a| <= mu g, no uplift while |a| <= g a/h); the upper threshold of an object that did not slide *visibly* is
+//    soft: the ground may pass mu g for an instant and slip the object less than the visible 2 mm (kVisibleSlipM),
+//    so a dynamic estimate may lie above it. Only the observation being wrong (the evidence model) crosses a hard one.
 // 2. Dynamic inversion. On a grid of PGA (log-spaced) x predominant frequency (log-spaced), every object is
 //    simulated under N motions of the family per cell. The motions of a frequency column are generated once (seeds
 //    1..N: common random numbers across cells), time-scaled so that each one's *measured* predominant frequency
 //    (spectra.hpp: peak of the Konno-Ohmachi smoothed Fourier amplitude spectrum) is the column's frequency, and
-//    scaled to each row's PGA. Uncertain parameters (mu, e, amplification) are drawn per (motion k, object), the same
-//    draw in every cell. Each run gives a match m in [0, 1] with the observed outcome (0/1 for categorical outcomes,
+//    scaled to each row's PGA. Uncertain parameters (mu, e, amplification, a flexible support's frequency and damping)
+//    are drawn per (motion k, object), the same draw in every cell. An object on a flexible support (survey.hpp:
+//    SupportFilter) is simulated on the support's absolute acceleration (flexible.hpp: support_motion) of the cell's
+//    motion: the filter is linear, so common random numbers hold across cells as for rigid supports. Each run gives a match m in [0, 1] with the observed outcome (0/1 for categorical outcomes,
 //    a Gaussian kernel of the residual displacement for a measured sliding distance).
 //    Likelihood: every object saw the same motion, so a cell's likelihood is the average over its motions of the
 //    product over objects of q = eps + (1 - 2 eps) m, eps the chance that the observation itself is wrong (0.02
@@ -22,10 +29,15 @@
 //    the Monte Carlo noise. The prior is uniform in log PGA and log frequency, i.e. the same for every cell of the
 //    log grid. Posterior = likelihood x prior, normalised over the grid. Each object's own probability of its
 //    observation, P = (sum m + 1/2) / (N + 1) over the same neighbourhood, is reported and drawn as a contour.
-// 3. Estimates. Best: the maximum-likelihood cell. Median and equal-tailed 68 % and 95 % credible intervals from each
+// 3. Estimates. Best: the maximum-likelihood cell (it moves with the seed: a diagnostic, not the headline). Median and equal-tailed 68 % and 95 % credible intervals from each
 //    marginal posterior, with the mass of a cell spread uniformly in log over its extent (cell edges at the
 //    geometric midpoints of the grid values). An interval end that falls in the first or last cell is reported as
 //    unconstrained (null): the observations do not move it off the grid's edge.
+// 4. Objects (assess_objects). Each object's posterior-predictive probability of its observation,
+//    P_pp = sum over cells of posterior(c) x (the share of the cell's runs that match it, sum m / N); below kMisfitProbability the
+//    object is a misfit: the answer does not explain it, and the notes and the summary name it. Each object's
+//    constraint: the information its observation adds to the others', the Kullback-Leibler divergence (bits) of the
+//    posterior from the posterior without that object (its eps set to 1/2, which makes its factor a constant).
 // All runs go through the ensemble engine (ensemble.hpp), so a survey uses every core.
 #include <cstdint>
 #include <memory>
@@ -39,17 +51,21 @@
 
 namespace topple {
 
+/// One object's static threshold on PGA (g). The names say "bound" for the old readers; a soft one is not a bound.
 struct StaticBound {
   double pga_g = 0.0;
   std::string object_id;
-  std::string reason;  ///< e.g. "slid: PGA > mu g = 0.40 g"
+  std::string reason;  ///< e.g. "slid: PGA > mu g = 0.40 g", with the amplification used when not 1
+  bool hard = false;   ///< hard: physics forbids the observation on the other side; soft: see the header, item 1
 };
 
 struct StaticBounds {
-  std::optional<double> lower_g;        ///< largest lower bound (none: no object moved)
-  std::optional<double> upper_g;        ///< smallest upper bound (none: every object moved)
-  std::vector<StaticBound> lower;       ///< every object's lower bound
-  std::vector<StaticBound> upper;       ///< every object's upper bound
+  std::optional<double> lower_g;        ///< largest lower threshold, hard or soft (none: no object moved)
+  std::optional<double> upper_g;        ///< smallest upper threshold, hard or soft (none: every object moved)
+  std::optional<double> hard_lower_g;   ///< largest hard lower threshold (none: no hard evidence from below)
+  std::optional<double> hard_upper_g;   ///< smallest hard upper threshold (no outcome gives one today)
+  std::vector<StaticBound> lower;       ///< every object's lower threshold
+  std::vector<StaticBound> upper;       ///< every object's upper threshold
   std::vector<std::string> contradictions;  ///< "bowl-2 (slid: PGA > 0.45 g) vs box-1 (did not slide: PGA <= 0.30 g)"
 };
 
@@ -63,7 +79,16 @@ struct Estimate {
   double best = 0.0;    ///< the axis value of the maximum-likelihood cell (g or Hz, see above)
   double median = 0.0;  ///< the marginal posterior's median (g or Hz)
   std::optional<double> ci68_low, ci68_high, ci95_low, ci95_high;  ///< equal-tailed credible intervals (g or Hz)
+  /// -1 / +1 when the median (best) lies in the grid's first / last cell: then it is no estimate, only "below" or
+  /// "above the grid"; 0 inside.
+  int median_edge = 0;
+  int best_edge = 0;
 };
+
+/// The posterior-predictive probability below which an object's observation counts as a misfit (dimensionless): the
+/// answer gives it less than a 1-in-20 chance. A measured sliding distance scores the Gaussian kernel (1 at the
+/// observed distance, 0.61 one sigma off), so the level is low enough for it too.
+inline constexpr double kMisfitProbability = 0.05;
 
 struct ObjectReport {
   std::string id;
@@ -72,6 +97,9 @@ struct ObjectReport {
   double probability_at_best = 0.0;  ///< dimensionless
   double max_probability = 0.0;      ///< dimensionless
   bool reproduced_anywhere = true;  ///< some run in some cell matched the observation
+  double posterior_predictive = 0.0;  ///< sum_c posterior(c) (sum_k m / N in cell c), dimensionless (header, item 4)
+  bool misfit = false;                ///< posterior_predictive < kMisfitProbability
+  double constraint_bits = 0.0;       ///< KL divergence of the posterior from the one without this object, bits
 };
 
 struct InversionResult {
@@ -170,9 +198,22 @@ struct LikelihoodReduction {
 /// result.log_likelihood, result.pga_g and result.freq_hz.
 void fill_posterior_and_estimates(InversionResult& result);
 
+/// Step 4b (header, item 4): each object's posterior_predictive, misfit and constraint_bits, from the posterior, the
+/// objects' probabilities and the likelihood without each object (reduce_likelihood with its eps set to 1/2).
+void assess_objects(InversionResult& result, const MatchTable& matches, const std::vector<double>& error_rates);
+
+/// The objects that constrain the answer most: up to three, by decreasing constraint_bits, each at least 0.1 bit
+/// (a tenth of what one yes/no answer can carry); indices into result.objects.
+[[nodiscard]] std::vector<std::size_t> most_constraining_objects(const InversionResult& result);
+
+/// The plain sentence that opens every summary (CLI, JSON "summary", report): the median PGA and frequency with their
+/// 68 % and 95 % intervals (an open end or an edge cell said as "below/above the grid"), the objects that constrain
+/// it most, and the misfits by name. The maximum-likelihood cell is not in it.
+[[nodiscard]] std::string inversion_summary(const InversionResult& result);
+
 /// Step 5, the notes: what the observations cannot constrain (no static lower/upper bound, interval ends at the grid's
-/// edges), static contradictions, observations no run reproduced, and observations that contradict each other in every
-/// cell. Needs result.bounds, estimates, objects and best_cell.
+/// edges), static contradictions, observations no run reproduced, misfits (assess_objects) by name, and observations
+/// that contradict each other in every cell. Needs result.bounds, estimates, objects and best_cell.
 [[nodiscard]] std::vector<std::string> inversion_notes(const InversionResult& result, const MatchTable& matches);
 
 /// Whether (pga_g, freq_hz) lies in the highest-posterior-density region of the given probability (e.g. 0.95):
@@ -181,14 +222,21 @@ void fill_posterior_and_estimates(InversionResult& result);
 [[nodiscard]] bool in_credible_region(const InversionResult& result, double pga_g, double freq_hz, double level);
 
 /// Per-run match of an object's observation (exposed for tests): simulate `object` with the given parameters under
-/// `motion` (already scaled to the cell's PGA) and compare with the observation.
+/// `motion` (already scaled to the cell's PGA; filtered here through the object's flexible support, if it has one)
+/// and compare with the observation.
 struct DrawnParameters {
   double mu = 0.0;              ///< friction coefficient (dimensionless)
   double e = 0.0;               ///< restitution (dimensionless), used when !object.e_housner
   double amplification = 1.0;   ///< support motion / ground motion (dimensionless)
+  double support_freq_hz = 0.0;  ///< the flexible support's frequency (Hz), when the object has a support_filter
+  double support_damping = 0.0;  ///< its damping ratio (decimal), likewise
 };
 [[nodiscard]] double observation_match(const ObservedObject& object, const DrawnParameters& parameters,
                                        const GroundMotion& motion, double g_m_s2);
+
+/// The motion an object feels at its nominal parameters (for the report's replay): the ground's, or, on a flexible
+/// support, the support's absolute acceleration with the middle of its frequency and damping ranges.
+[[nodiscard]] GroundMotion nominal_object_motion(const ObservedObject& object, const GroundMotion& ground);
 
 /// The one-sigma width (m) of the Gaussian kernel that scores a measured sliding distance: the larger of the given
 /// slid_uncertainty, 25 % of slid (a distance read off marks is rarely better than that) and kVisibleSlipM (2 mm).

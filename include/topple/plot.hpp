@@ -68,6 +68,10 @@ struct MapFigure {
   std::vector<Series> overlay;  ///< lines or points drawn over the map (bounds, best estimate)
   int width_px = 900;
   int height_px = 700;
+  bool tics_125 = false;   ///< log axes ticked and labelled at 1, 2, 5 x 10^k (0.2, 0.5 g readable)
+  std::string palette;     ///< gnuplot "set palette defined (...)" body; empty: white to dark blue
+  std::string key;         ///< gnuplot "set key ..." arguments; empty: below the plot, horizontal
+  std::string colorbox;    ///< gnuplot "set colorbox ..." arguments; empty: gnuplot's default, right of the plot
 };
 
 /// A file as a figure title names it: its file name, without the directories (a title travels with the figure, to

@@ -3,15 +3,19 @@
 // posteriors, an example motion at the best cell with every object's response) and a self-contained HTML page that
 // a field engineer can hand on (figures embedded, observations table, method in short, the numbers, the inputs).
 #include <filesystem>
+#include <optional>
 
 #include "topple/inversion.hpp"
+#include "topple/io/provenance.hpp"
 #include "topple/plot.hpp"
 #include "topple/survey.hpp"
 
 namespace topple {
 
-/// The likelihood map (posterior over PGA x frequency, log axes), static bounds as vertical lines, each object's
-/// P(observation) = 0.5 contour, the best cell.
+/// The likelihood map (posterior over PGA x frequency, log axes ticked at 1-2-5), the 68 % and 95 % credible regions,
+/// the static thresholds as vertical lines, each object's P(observation) = 0.5 contour in its own colour and dash,
+/// labelled with the side that fits, the medians and the maximum-likelihood cell. An object without a line is named
+/// with the reason in the report's caption.
 [[nodiscard]] plot::MapFigure likelihood_map_figure(const InversionResult& result, const Site& site);
 
 /// Marginal posterior of PGA (or frequency) with the median and the 68 % / 95 % intervals.
@@ -27,8 +31,11 @@ namespace topple {
                                           const std::vector<double>& z, double level, const std::string& label);
 
 /// Writes DIR/index.html and the figures (DIR/likelihood.svg, DIR/marginal_pga.svg, DIR/marginal_freq.svg,
-/// DIR/best_cell.svg, DIR/grid.csv, DIR/result.json). The page embeds the SVGs inline: it is self-contained.
+/// DIR/best_cell.svg, DIR/grid.csv, DIR/result.json). The page embeds the SVGs inline: it is self-contained. It opens
+/// with inversion_summary, defines every number where it is shown, sets the hard and soft static thresholds beside
+/// the estimate, flags misfits, and ends with the provenance and the survey verbatim. Without `provenance` (a library
+/// caller), it is made from survey.source_file with an unknown command line.
 void write_report(const std::filesystem::path& dir, const Survey& survey, const Site& site,
-                  const InversionResult& result);
+                  const InversionResult& result, const std::optional<io::Provenance>& provenance = std::nullopt);
 
 }  // namespace topple

@@ -10,12 +10,19 @@
 #include "topple/field.hpp"
 #include "topple/rocking.hpp"
 #include "topple/sliding.hpp"
+#include "topple/sliding2d.hpp"
 
 namespace topple {
 
 /// A sliding run's summary with the block it was run for.
 struct SlidingOutcome {
   const SlidingSummary& summary;
+  const SlidingBlock& block;
+};
+
+/// A bidirectional sliding run's summary with its block.
+struct Sliding2dOutcome {
+  const Sliding2dSummary& summary;
   const SlidingBlock& block;
 };
 
@@ -30,6 +37,11 @@ struct RockingOutcome {
 /// the block as run (mu_static, mu_kinetic, slope_deg, mode, g_m_s2). Optional times are null when they never
 /// happened; yield_up_g is null for a one-way block (which never slips up-slope).
 extern const std::array<Field<SlidingOutcome>, 17> kSlidingFields;
+
+/// Bidirectional sliding (sliding2d.hpp): the results in the order of `topple slide --h2 --json`, then the block
+/// (mu_static, mu_kinetic, g_m_s2). Not a sweep's result (sweep_column -1). residual_azimuth_deg is null when the
+/// block never moved; optional times are null when they never happened.
+extern const std::array<Field<Sliding2dOutcome>, 20> kSliding2dFields;
 
 /// Rocking: in the order of `topple rock --json` (max_abs_rotation_rad ... g_m_s2); 19 of them are the sweep's
 /// result columns (in their sweep_column order), the others (alpha_deg, R_m, e_mode, onset_accel_ratio, mu, g_m_s2)

@@ -43,6 +43,14 @@ enum class Evidence { certain, likely, reported };
 /// The inversion scores a run that reproduces the observation 1 - eps, one that does not eps.
 [[nodiscard]] double evidence_error_rate(Evidence evidence) noexcept;
 
+/// A flexible support under an object (a shelf, an upper floor): a one-mode oscillator whose absolute acceleration
+/// the object feels (flexible.hpp: support_motion, the decoupled analysis). Frequency and damping are values or
+/// ranges, drawn per (motion k, object) as mu is, after mu, e and the amplification (docs/survey.md).
+struct SupportFilter {
+  Interval freq_hz;   ///< natural frequency of the support, Hz (> 0)
+  Interval damping;   ///< its viscous damping ratio, decimal, in [0, 1)
+};
+
 struct ObservedObject {
   std::string id;
   std::string description;
@@ -53,6 +61,9 @@ struct ObservedObject {
   Interval e;                  ///< given restitution, dimensionless (value or range) when !e_housner
   std::string support = "ground";  ///< "ground", "furniture", "upper floor" (free text)
   Interval amplification{1.0, 1.0};  ///< support motion / ground motion, dimensionless (>= 1 for furniture, floors)
+  /// The support's filter when it is flexible (`support = {freq_hz = ..., damping = ...}`, the object's own or its
+  /// site's default); the amplification, if any, multiplies the filtered motion. None: a rigid support.
+  std::optional<SupportFilter> support_filter;
   std::optional<double> orientation_deg;  ///< angle between the object's rocking plane and the shaking direction;
                                           ///< the rocking model sees cos(angle) of the motion (0 when unknown)
   Outcome outcome = Outcome::not_overturned;
@@ -66,6 +77,9 @@ struct Site {
   std::string name;
   std::optional<double> lat_deg, lon_deg;
   std::string notes;
+  /// The site's default flexible support (`support = {...}` in [site] / [[sites]]): objects without a `support` key
+  /// of their own stand on it (io::read_survey copies it into their support_filter).
+  std::optional<SupportFilter> support_filter;
   std::vector<ObservedObject> objects;
 };
 

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "topple/ensemble.hpp"
+#include "topple/flexible.hpp"
 #include "topple/ground_motion.hpp"
 #include "topple/pulses.hpp"
 #include "topple/rocking.hpp"
@@ -47,6 +48,9 @@ struct ScaleSpec {
 struct SlideObject {
   SlidingBlock block;
   double slope_deg = 0.0;
+  /// A flexible support under the object (shelf, floor): the object runs on the support's absolute acceleration
+  /// (flexible.hpp: support_motion, the decoupled analysis; the mass ratio is not used). None: rigid, as before.
+  std::optional<SupportOscillator> support = std::nullopt;
 };
 
 /// A rocking body (rocking.hpp). The dimension columns hold what was given: width and height for a block, diameter
@@ -57,6 +61,7 @@ struct RockObject {
   std::optional<double> width_m;
   std::optional<double> height_m;
   std::optional<double> diameter_m;
+  std::optional<SupportOscillator> support = std::nullopt;  ///< as SlideObject::support
 };
 
 using ObjectSpec = std::variant<SlideObject, RockObject>;
@@ -77,7 +82,9 @@ struct SweepSpec {
 ///
 /// Columns, present when some run uses them:
 ///   motion: motion, [pulse_kind, pulse_amp_g, pulse_duration_s], time_scale, scale_factor, pga_g, polarity
-///   object: model, g_m_s2, [mu, mu_kinetic, slope_deg, mode], [shape, width_m, height_m, diameter_m, restitution]
+///   object: model, g_m_s2, [mu, mu_kinetic, slope_deg, mode], [shape, width_m, height_m, diameter_m, restitution],
+///           [support_freq_hz, support_damping] (only when some object has a flexible support: a sweep without one
+///           has the columns it always had; a rigid object's cells there are empty)
 ///           (mu also holds the friction coefficient a rocking body's onset check uses)
 ///   results: sliding: max_abs_displacement_m, max_displacement_time_s, residual_displacement_m,
 ///            max_abs_velocity_m_s, slip_episodes, first_slip_time_s, total_slip_duration_s, end_time_s,

@@ -11,8 +11,10 @@
 //   kept alive by the object they come from.
 // - Computations release the GIL.
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -31,6 +33,8 @@
 #include <nanobind/stl/vector.h>
 #include <nlohmann/json.hpp>
 
+#include "docstrings.hpp"
+
 #include "topple/ensemble.hpp"
 #include "topple/flexible.hpp"
 #include "topple/error.hpp"
@@ -45,6 +49,7 @@
 #include "topple/io/survey_file.hpp"
 #include "topple/io/sweep_file.hpp"
 #include "topple/io/write.hpp"
+#include "topple/report.hpp"
 #include "topple/rocking.hpp"
 #include "topple/sliding.hpp"
 #include "topple/spectra.hpp"
@@ -370,14 +375,35 @@ nb::dict intensity_dict(const GroundMotion& motion, double g_m_s2) {
   return d;
 }
 
+/// A 2-D numpy array (row-major, rows x cols) owning `values`.
+template <class T>
+nb::ndarray<nb::numpy, T, nb::ndim<2>> to_numpy_2d(std::vector<T> values, std::size_t rows, std::size_t cols) {
+  auto owned = std::make_unique<std::vector<T>>(std::move(values));
+  T* data = owned->data();
+  nb::capsule owner(owned.get(), [](void* p) noexcept { delete static_cast<std::vector<T>*>(p); });
+  owned.release();
+  return nb::ndarray<nb::numpy, T, nb::ndim<2>>(data, {rows, cols}, owner);
+}
+
 // ---- inversion ----
 
-nb::object invert_survey(const std::string& path, int threads) {
-  const Survey survey = io::read_survey(path);
+/// The inversion of every site of a survey read by the library (io::read_survey or io::parse_survey: the same
+/// validation and messages as the CLI), optionally with the HTML report written as `topple invert --report` does
+/// (several sites: DIR/site1, DIR/site2 ...).
+nb::object invert_survey(const Survey& survey, int threads, const std::optional<std::string>& report_dir) {
   std::vector<InversionResult> results;
   {
     nb::gil_scoped_release release;
     for (const Site& site : survey.sites) results.push_back(invert_site(site, survey.inversion, InversionOptions{threads}));
+    if (report_dir) {
+      const bool multi = results.size() > 1;
+      for (std::size_t i = 0; i < results.size(); ++i) {
+        const std::filesystem::path dir = multi ? std::filesystem::path(*report_dir) / fmt::format("site{}", i + 1)
+                                                : std::filesystem::path(*report_dir);
+        std::filesystem::create_directories(dir);
+        write_report(dir, survey, survey.sites[i], results[i]);
+      }
+    }
   }
   const auto site_dict = [&](std::size_t i) {
     const InversionResult& r = results[i];
@@ -385,15 +411,13 @@ nb::object invert_survey(const std::string& path, int threads) {
     // Beyond the CLI's JSON: the grids, rows = PGA, columns = frequency (for topple.plot.inversion_map).
     const std::size_t rows = r.pga_g.size();
     const std::size_t cols = r.freq_hz.size();
-    const auto grid = [&](const std::vector<double>& v) {
-      auto owned = std::make_unique<std::vector<double>>(v);
-      double* data = owned->data();
-      nb::capsule owner(owned.get(), [](void* p) noexcept { delete static_cast<std::vector<double>*>(p); });
-      owned.release();
-      return nb::ndarray<nb::numpy, double, nb::ndim<2>>(data, {rows, cols}, owner);
-    };
-    d["posterior_grid"] = grid(r.posterior);
-    d["log_likelihood_grid"] = grid(r.log_likelihood);
+    d["posterior_grid"] = to_numpy_2d(r.posterior, rows, cols);
+    d["log_likelihood_grid"] = to_numpy_2d(r.log_likelihood, rows, cols);
+    // Each object's P(observation | cell), same layout: its 0.5 line is the map's per-object threshold line.
+    nb::list objects = nb::cast<nb::list>(d["objects"]);
+    for (std::size_t k = 0; k < r.objects.size() && k < objects.size(); ++k) {
+      objects[k]["probability_grid"] = to_numpy_2d(r.objects[k].probability, rows, cols);
+    }
     return d;
   };
   if (results.size() == 1) return site_dict(0);
@@ -404,17 +428,30 @@ nb::object invert_survey(const std::string& path, int threads) {
   return all;
 }
 
+nb::object invert_file(const std::string& path, int threads, const std::optional<std::string>& report_dir) {
+  validate_inversion_options(InversionOptions{threads});
+  Survey survey;
+  {
+    nb::gil_scoped_release release;
+    survey = io::read_survey(path);
+  }
+  return invert_survey(survey, threads, report_dir);
+}
+
+nb::object invert_text(const std::string& text, const std::string& name, const std::string& base_dir, int threads,
+                       const std::optional<std::string>& report_dir) {
+  validate_inversion_options(InversionOptions{threads});
+  Survey survey;
+  {
+    nb::gil_scoped_release release;
+    survey = io::parse_survey(text, name, base_dir);
+    io::load_survey_records(survey);
+  }
+  return invert_survey(survey, threads, report_dir);
+}
+
 // ---- spectra of a motion ----
 
-/// A 2-D numpy array (row-major, rows x cols) owning `values`.
-template <class T>
-nb::ndarray<nb::numpy, T, nb::ndim<2>> to_numpy_2d(std::vector<T> values, std::size_t rows, std::size_t cols) {
-  auto owned = std::make_unique<std::vector<T>>(std::move(values));
-  T* data = owned->data();
-  nb::capsule owner(owned.get(), [](void* p) noexcept { delete static_cast<std::vector<T>*>(p); });
-  owned.release();
-  return nb::ndarray<nb::numpy, T, nb::ndim<2>>(data, {rows, cols}, owner);
-}
 
 nb::dict response_spectrum_dict(const GroundMotion& motion, nb::handle periods, double damping, double g_m_s2) {
   const std::vector<double> p = periods.is_none() ? tp_periods_s() : to_vector(periods, "periods_s");
@@ -524,6 +561,7 @@ nb::dict sliding_spectrum_dict(const GroundMotion& motion, nb::handle mu, double
   d["slope_deg"] = slope_deg;
   d["mode"] = mode;
   d["g_m_s2"] = s.g_m_s2;
+  d["motion"] = motion_name(motion);  // for the figure's title (topple.plot.sliding_spectrum)
   return d;
 }
 
@@ -632,6 +670,18 @@ LognormalFragilityFit fit_in_unit(LognormalFragilityFit fit, double unit) {
   return fit;
 }
 
+/// A fit at its beta bound is not an estimate of the dispersion (fragility.hpp: separated data): say so with the
+/// numbers, as a RuntimeWarning (an error under `warnings.simplefilter("error")`).
+void warn_if_beta_at_bound(const LognormalFragilityFit& fit, const std::string& what, const std::string& unit) {
+  if (!fit.beta_at_bound) return;
+  const std::string message = fmt::format(
+      "{}: beta = {:g} is at its lower bound {:g} (theta = {:.4g}{}{}): the counts are separated (every level "
+      "all-fail or none-fail), so beta and the band are not estimated; add levels between the last none-fail and "
+      "the first all-fail level",
+      what, fit.beta, kMinimumBeta, fit.theta, unit.empty() ? "" : " ", unit);
+  if (PyErr_WarnEx(PyExc_RuntimeWarning, message.c_str(), 1) != 0) throw nb::python_error();
+}
+
 nb::dict fragility_dict(nb::handle motions, nb::handle levels, const std::string& im,
                         std::optional<double> mu, std::optional<double> threshold_m, std::optional<double> mu_kinetic,
                         const std::string& mode, double slope_deg, const std::optional<RockingBody>& body,
@@ -685,6 +735,8 @@ nb::dict fragility_dict(nb::handle motions, nb::handle levels, const std::string
     cd["trials"] = to_numpy(std::vector<std::int64_t>(c.data.trials.begin(), c.data.trials.end()));
     cd["failures"] = to_numpy(std::vector<std::int64_t>(c.data.failures.begin(), c.data.failures.end()));
     cd["fraction"] = to_numpy(std::move(fraction));
+    if (c.fit) warn_if_beta_at_bound(fit_in_unit(*c.fit, unit), "fragility curve '" + c.name + "'",
+                                     std::string(intensity_measure_unit(result.im)));
     cd["fit"] = c.fit ? nb::cast(fit_in_unit(*c.fit, unit)) : nb::none();
     cd["fit_note"] = c.fit_note;
     curves.append(cd);
@@ -695,6 +747,11 @@ nb::dict fragility_dict(nb::handle motions, nb::handle levels, const std::string
   d["curves"] = curves;
   d["runs"] = result.runs;
   d["g_m_s2"] = g_m_s2;
+  // What was analysed, for the figure's title (topple.plot.fragility).
+  d["motions"] = spec.motions.size();
+  d["mu"] = mu;
+  d["threshold_m"] = threshold_m;
+  d["body"] = body;
   return d;
 }
 
@@ -760,8 +817,18 @@ void translate_input_error(const std::exception_ptr& p, void* payload) {
   try {
     std::rethrow_exception(p);
   } catch (const InputError& e) {
-    nb::handle type(static_cast<PyObject*>(payload));
+    // A file that does not exist: topple.MissingFileError, both an InputError and a FileNotFoundError, so that
+    // `except FileNotFoundError` works as for open(); its str() stays the CLI's message.
+    auto* types = static_cast<std::pair<PyObject*, PyObject*>*>(payload);
+    std::error_code ec;
+    const bool missing = !e.where().file.empty() && !std::filesystem::exists(e.where().file, ec);
+    nb::handle type(missing ? types->second : types->first);
     nb::object err = type(e.what());
+    if (missing) {
+      err.attr("errno") = ENOENT;
+      err.attr("strerror") = e.problem();
+      err.attr("filename") = e.where().file;
+    }
     err.attr("file") = e.where().file.empty() ? nb::none() : nb::cast(e.where().file);
     err.attr("line") = e.where().line ? nb::cast(*e.where().line) : nb::none();
     err.attr("field") = e.where().field.empty() ? nb::none() : nb::cast(e.where().field);
@@ -781,15 +848,22 @@ NB_MODULE(_core, m) {
   const RockingOptions kRockingDefaults;  // the library's defaults are the Python defaults
 
   // The exception type lives as long as the module: it is an attribute of it.
-  nb::object input_error = nb::steal(PyErr_NewExceptionWithDoc(
-      "topple.InputError",
-      "Bad caller input (file, parameter, array): the message is the CLI's; attributes file, line, field, problem.",
-      PyExc_ValueError, nullptr));
+  nb::object input_error =
+      nb::steal(PyErr_NewExceptionWithDoc("topple.InputError", doc::input_error, PyExc_ValueError, nullptr));
   m.attr("InputError") = input_error;
-  nb::register_exception_translator(translate_input_error, input_error.ptr());
+  nb::object missing_file_bases = nb::make_tuple(input_error, nb::handle(PyExc_FileNotFoundError));
+  // str() stays the CLI's message: BaseException's __str__, not OSError's "[Errno 2] ...: 'path'".
+  nb::dict missing_file_dict;
+  missing_file_dict["__str__"] = nb::handle(PyExc_BaseException).attr("__str__");
+  nb::object missing_file_error = nb::steal(PyErr_NewExceptionWithDoc(
+      "topple.MissingFileError", doc::missing_file_error, missing_file_bases.ptr(), missing_file_dict.ptr()));
+  m.attr("MissingFileError") = missing_file_error;
+  // The translator's payload: both types, alive as long as the module (they are its attributes).
+  static std::pair<PyObject*, PyObject*> error_types{input_error.ptr(), missing_file_error.ptr()};
+  nb::register_exception_translator(translate_input_error, &error_types);
 
   // ---- GroundMotion ----
-  nb::class_<GroundMotion>(m, "GroundMotion", "One component of ground acceleration, piecewise linear in time (SI).")
+  nb::class_<GroundMotion>(m, "GroundMotion", doc::ground_motion)
       .def("__init__",
            [](GroundMotion* self, nb::handle accel, std::optional<double> dt, const std::string& units,
               nb::handle time, double start_time_s, double g) {
@@ -833,18 +907,18 @@ NB_MODULE(_core, m) {
                      return d;
                    })
       .def_prop_ro("name", [](const GroundMotion& g) { return motion_name(g); })
-      .def("accel_at", &GroundMotion::accel_at, "t_s"_a)
-      .def("scaled", &GroundMotion::scaled, "factor"_a)
+      .def("accel_at", &GroundMotion::accel_at, "t_s"_a, doc::accel_at)
+      .def("scaled", &GroundMotion::scaled, "factor"_a, doc::scaled)
       .def("scaled_to_pga",
            [](const GroundMotion& g, double pga_g, std::optional<double> gravity) {
              return g.scaled_to_pga(pga_g * gravity.value_or(g.metadata().g_m_s2));
            },
-           "pga_g"_a, "g"_a = nb::none())
-      .def("inverted", &GroundMotion::inverted)
-      .def("time_scaled", &GroundMotion::time_scaled, "factor"_a)
-      .def("trimmed", &GroundMotion::trimmed, "t_begin_s"_a, "t_end_s"_a)
-      .def("resampled", &GroundMotion::resampled, "dt_s"_a)
-      .def("baseline_corrected", &GroundMotion::baseline_corrected, "order"_a)
+           "pga_g"_a, "g"_a = nb::none(), doc::scaled_to_pga)
+      .def("inverted", &GroundMotion::inverted, doc::inverted)
+      .def("time_scaled", &GroundMotion::time_scaled, "factor"_a, doc::time_scaled)
+      .def("trimmed", &GroundMotion::trimmed, "t_begin_s"_a, "t_end_s"_a, doc::trimmed)
+      .def("resampled", &GroundMotion::resampled, "dt_s"_a, doc::resampled)
+      .def("baseline_corrected", &GroundMotion::baseline_corrected, "order"_a, doc::baseline_corrected)
       .def("__repr__", [](const GroundMotion& g) {
         return fmt::format("GroundMotion({} samples, dt_s={:.6g}, duration_s={:.6g}, pga_g={:.5g}{})", g.size(),
                            g.dt_s(), g.duration_s(), g.pga_m_s2() / g.metadata().g_m_s2,
@@ -868,12 +942,11 @@ NB_MODULE(_core, m) {
           return motion;
         },
         "path"_a, "format"_a = nb::none(), "units"_a = nb::none(), "dt"_a = nb::none(), "channel"_a = nb::none(),
-        "g"_a = kStandardGravity);
+        "g"_a = kStandardGravity, doc::read);
 
   // ---- sliding ----
   // The summary attributes come from the field table (topple/summary_fields.hpp), as the JSON keys do.
-  nb::class_<SlidingRun> sliding_result(m, "SlidingResult",
-                                        "Sliding response: summary attributes as in `topple slide --json`.");
+  nb::class_<SlidingRun> sliding_result(m, "SlidingResult", doc::sliding_result);
   for (const Field<SlidingOutcome>& field : kSlidingFields) {
     sliding_result.def_prop_ro(field.name, [get = field.get](const SlidingRun& r) {
       return field_to_python(get(SlidingOutcome{r.summary, r.block}));
@@ -887,7 +960,7 @@ NB_MODULE(_core, m) {
                    nb::rv_policy::reference_internal)
       .def_prop_ro("state", [](const SlidingRun& r) { return to_numpy(state_codes(r.history.state)); },
                    nb::rv_policy::move)
-      .def("json", [](const SlidingRun& r) { return to_python(r.json()); })
+      .def("json", [](const SlidingRun& r) { return to_python(r.json()); }, doc::sliding_json)
       .def("__repr__", [](const SlidingRun& r) {
         return fmt::format("SlidingResult(max_abs_displacement_m={:.6g}, residual_displacement_m={:.6g}, "
                            "slip_episodes={})",
@@ -900,24 +973,25 @@ NB_MODULE(_core, m) {
           return run_slide(motion, mu, mu_kinetic, mode, slope_deg, vertical, g, history);
         },
         "motion"_a, nb::kw_only(), "mu"_a, "mu_kinetic"_a = nb::none(), "mode"_a = "two-way", "slope_deg"_a = 0.0,
-        "vertical"_a = nb::none(), "g"_a = kStandardGravity, "history"_a = true);
+        "vertical"_a = nb::none(), "g"_a = kStandardGravity, "history"_a = true, doc::slide);
 
   m.def("slide_spectrum", &sliding_spectrum_dict, "motion"_a, "mu"_a, nb::kw_only(), "slope_deg"_a = 0.0,
-        "mode"_a = "two-way", "g"_a = kStandardGravity);
+        "mode"_a = "two-way", "g"_a = kStandardGravity, doc::slide_spectrum);
   m.def("slide_flexible", &run_slide_flexible, "motion"_a, nb::kw_only(), "mu"_a, "mode"_a = "two-way",
         "support_freq_hz"_a = nb::none(), "support_damping"_a = 0.05, "mass_ratio"_a = 0.0, "height_m"_a = nb::none(),
         "vs_slope_m_s"_a = nb::none(), "vs_base_m_s"_a = nb::none(), "damping"_a = nb::none(),
-        "reference_strain"_a = nb::none(), "coupled"_a = false, "vertical"_a = nb::none(), "g"_a = kStandardGravity);
+        "reference_strain"_a = nb::none(), "coupled"_a = false, "vertical"_a = nb::none(), "g"_a = kStandardGravity,
+        doc::slide_flexible);
 
   // ---- rocking ----
-  nb::class_<RockingBody>(m, "RockingBody", "A rigid body that rocks: made by Block, Cylinder or General (metres).")
+  nb::class_<RockingBody>(m, "RockingBody", doc::rocking_body)
       .def_prop_ro("shape", [](const RockingBody& b) { return std::string(shape_name(b.shape)); })
       .def_ro("a_m", &RockingBody::a_m)
       .def_ro("h_m", &RockingBody::h_m)
       .def_ro("D_m2", &RockingBody::D_m2)
       .def_prop_ro("alpha_rad", &RockingBody::alpha_rad)
       .def_prop_ro("R_m", &RockingBody::R_m)
-      .def("p_rad_s", &RockingBody::p_rad_s, "g"_a = kStandardGravity)
+      .def("p_rad_s", &RockingBody::p_rad_s, "g"_a = kStandardGravity, doc::p_rad_s)
       .def_prop_ro("housner_e", [](const RockingBody& b) { return housner_restitution(b); })
       .def("__repr__", [](const RockingBody& b) {
         switch (b.shape) {
@@ -929,12 +1003,11 @@ NB_MODULE(_core, m) {
         }
         return fmt::format("General(a={:.6g}, h={:.6g}, D={:.6g})", b.a_m, b.h_m, b.D_m2);
       });
-  m.def("Block", &RockingBody::block, "width"_a, "height"_a);
-  m.def("Cylinder", &RockingBody::cylinder, "diameter"_a, "height"_a);
-  m.def("General", &RockingBody::general, "a"_a, "h"_a, "D"_a);
+  m.def("Block", &RockingBody::block, "width"_a, "height"_a, doc::block);
+  m.def("Cylinder", &RockingBody::cylinder, "diameter"_a, "height"_a, doc::cylinder);
+  m.def("General", &RockingBody::general, "a"_a, "h"_a, "D"_a, doc::general);
 
-  nb::class_<RockingRun> rocking_result(m, "RockingResult",
-                                        "Rocking response: summary attributes as in `topple rock --json`.");
+  nb::class_<RockingRun> rocking_result(m, "RockingResult", doc::rocking_result);
   for (const Field<RockingOutcome>& field : kRockingFields) {
     rocking_result.def_prop_ro(field.name, [get = field.get](const RockingRun& r) {
       return field_to_python(get(RockingOutcome{r.result.summary, r.body, r.options}));
@@ -965,7 +1038,7 @@ NB_MODULE(_core, m) {
                      }
                      return out;
                    })
-      .def("json", [](const RockingRun& r) { return to_python(r.json()); })
+      .def("json", [](const RockingRun& r) { return to_python(r.json()); }, doc::rocking_json)
       .def("__repr__", [](const RockingRun& r) {
         return fmt::format("RockingResult(max_rotation_over_alpha={:.6g}, overturned={}, end_state='{}')",
                            r.result.summary.max_rotation_over_alpha, r.result.summary.overturned ? "True" : "False",
@@ -975,7 +1048,7 @@ NB_MODULE(_core, m) {
   m.def("rock", &run_rock, "motion"_a, "shape"_a, nb::kw_only(), "e"_a = "housner", "mu"_a = nb::none(),
         "g"_a = kStandardGravity, "method"_a = std::string(rocking_method_name(kRockingDefaults.method)),
         "rel_tol"_a = kRockingDefaults.rel_tol, "rk4_substeps"_a = kRockingDefaults.rk4_substeps,
-        "max_run_out_s"_a = kRockingDefaults.max_run_out_s, "vertical"_a = nb::none(), "history"_a = true);
+        "max_run_out_s"_a = kRockingDefaults.max_run_out_s, "vertical"_a = nb::none(), "history"_a = true, doc::rock);
 
   // ---- synthesis, intensity, inversion ----
   m.def("synth",
@@ -998,25 +1071,28 @@ NB_MODULE(_core, m) {
           return motion;
         },
         nb::kw_only(), "pga_g"_a, "freq_hz"_a, "duration_s"_a, "seed"_a = 0, "dt_s"_a = 0.01,
-        "model"_a = "clough-penzien", "envelope"_a = "saragoni-hart", "zeta_g"_a = 0.3, "g"_a = kStandardGravity);
+        "model"_a = "clough-penzien", "envelope"_a = "saragoni-hart", "zeta_g"_a = 0.3, "g"_a = kStandardGravity,
+        doc::synth);
 
-  m.def("intensity", &intensity_dict, "motion"_a, "g"_a = kStandardGravity);
-  m.def("invert", &invert_survey, "survey_path"_a, nb::kw_only(), "threads"_a = 0);
+  m.def("intensity", &intensity_dict, "motion"_a, "g"_a = kStandardGravity, doc::intensity);
+  // topple.invert (python/topple/__init__.py) takes a path or a dict and calls one of these.
+  m.def("_invert_file", &invert_file, "path"_a, nb::kw_only(), "threads"_a = 0, "report_dir"_a = nb::none(),
+        doc::invert_file);
+  m.def("_invert_text", &invert_text, "text"_a, nb::kw_only(), "name"_a, "base_dir"_a, "threads"_a = 0,
+        "report_dir"_a = nb::none(), doc::invert_text);
 
   // ---- spectra, object spectra, fragility, sweeps ----
   m.def("response_spectrum", &response_spectrum_dict, "motion"_a, "periods_s"_a = nb::none(), "damping"_a = 0.05,
-        nb::kw_only(), "g"_a = kStandardGravity);
+        nb::kw_only(), "g"_a = kStandardGravity, doc::response_spectrum);
   m.def("fourier_spectrum", &fourier_spectrum_dict, "motion"_a, "smoothing_b"_a = 40.0, nb::kw_only(),
-        "centre_hz"_a = nb::none(), "fft_length"_a = nb::none());
+        "centre_hz"_a = nb::none(), "fft_length"_a = nb::none(), doc::fourier_spectrum);
   m.def("overturning_map", &overturning_map_dict, "motion"_a, nb::kw_only(), "alpha_rad"_a, "heights_m"_a, "pga_g"_a,
         "shape"_a = "block", "e"_a = "housner", "mu"_a = nb::none(), "g"_a = kStandardGravity,
         "method"_a = std::string(rocking_method_name(kRockingDefaults.method)), "rel_tol"_a = kRockingDefaults.rel_tol,
         "rk4_substeps"_a = kRockingDefaults.rk4_substeps, "max_run_out_s"_a = kRockingDefaults.max_run_out_s,
-        "threads"_a = 0);
+        "threads"_a = 0, doc::overturning_map);
 
-  nb::class_<LognormalFragilityFit>(m, "FragilityFit",
-                                    "Lognormal fragility P(failure | IM = x) = Phi(ln(x / theta) / beta), fitted by "
-                                    "maximum likelihood (topple/fragility.hpp).")
+  nb::class_<LognormalFragilityFit>(m, "FragilityFit", doc::fragility_fit_class)
       .def_ro("theta", &LognormalFragilityFit::theta)
       .def_ro("beta", &LognormalFragilityFit::beta)
       .def_ro("log_likelihood", &LognormalFragilityFit::log_likelihood)
@@ -1029,13 +1105,13 @@ NB_MODULE(_core, m) {
            [](const LognormalFragilityFit& f, nb::handle im) {
              return map_im(im, [&](double x) { return f.probability(x); });
            },
-           "im"_a)
+           "im"_a, doc::fragility_probability)
       .def("band",
            [](const LognormalFragilityFit& f, nb::handle im, double level) {
              return nb::make_tuple(map_im(im, [&](double x) { return f.band(x, level).first; }),
                                    map_im(im, [&](double x) { return f.band(x, level).second; }));
            },
-           "im"_a, "level"_a = 0.95)
+           "im"_a, "level"_a = 0.95, doc::fragility_band)
       .def("__repr__", [](const LognormalFragilityFit& f) {
         return fmt::format("FragilityFit(theta={:.6g}, beta={:.6g}{})", f.theta, f.beta,
                            f.beta_at_bound ? ", beta_at_bound=True" : "");
@@ -1046,15 +1122,20 @@ NB_MODULE(_core, m) {
           data.im = to_vector(im, "im");
           data.trials = to_int_vector(trials, "trials");
           data.failures = to_int_vector(failures, "failures");
-          nb::gil_scoped_release release;
-          return fit_lognormal_fragility(data);
+          LognormalFragilityFit fit;
+          {
+            nb::gil_scoped_release release;
+            fit = fit_lognormal_fragility(data);
+          }
+          warn_if_beta_at_bound(fit, "fragility_fit", "");
+          return fit;
         },
-        "im"_a, "trials"_a, "failures"_a);
+        "im"_a, "trials"_a, "failures"_a, doc::fragility_fit);
   m.def("fragility", &fragility_dict, "motions"_a, "levels"_a, nb::kw_only(), "im"_a = "pga", "mu"_a = nb::none(),
         "threshold_m"_a = nb::none(), "mu_kinetic"_a = nb::none(), "mode"_a = "two-way", "slope_deg"_a = 0.0,
         "body"_a = nb::none(), "e"_a = "housner", "rock_mu"_a = nb::none(), "g"_a = kStandardGravity,
         "method"_a = std::string(rocking_method_name(kRockingDefaults.method)), "rel_tol"_a = kRockingDefaults.rel_tol,
         "rk4_substeps"_a = kRockingDefaults.rk4_substeps, "max_run_out_s"_a = kRockingDefaults.max_run_out_s,
-        "threads"_a = 0);
-  m.def("_sweep", &sweep_dict, "path"_a, nb::kw_only(), "threads"_a = 0);
+        "threads"_a = 0, doc::fragility);
+  m.def("_sweep", &sweep_dict, "path"_a, nb::kw_only(), "threads"_a = 0, doc::sweep);
 }

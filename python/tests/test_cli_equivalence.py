@@ -127,6 +127,10 @@ def test_invert_equals_cli(cli, tmp_path):
     got = topple.invert(str(survey), threads=2)
     post = got.pop("posterior_grid")
     got.pop("log_likelihood_grid")
+    for obj in got["objects"]:  # beyond the CLI's JSON: each object's P(observation | cell), for the map
+        grid = obj.pop("probability_grid")
+        assert grid.shape == (5, 4) and 0.0 <= grid.min() and grid.max() <= 1.0
+        assert obj["max_probability"] == grid.max()  # the JSON's number is the grid's maximum, bit for bit
     assert post.shape == (5, 4)
     assert math.isclose(float(post.sum()), 1.0, rel_tol=1e-12)  # normalised: round-off of 20 terms
     for j in (expected, got):

@@ -1,10 +1,12 @@
-"""Type stubs and documentation of the topple package (implemented by the C++ extension topple._core).
+"""Type stubs of the topple package (implemented by the C++ extension topple._core and topple/__init__.py).
 
 Units are SI; every name carries its unit. Lengths are plain floats in metres. Accelerations given "in g" use
-g = 9.80665 m/s^2 unless a ``g`` argument says otherwise.
+g = 9.80665 m/s^2 unless a ``g`` argument says otherwise. Each docstring here is the summary line of the runtime
+one; the full numpy-style docstrings (parameters with units, returns) are the runtime's: ``help(topple.slide)``.
+python/tests/test_docstrings.py keeps the two in step (the same parameters, the same summary).
 """
 import os
-from typing import Any, Literal, Optional, Sequence, Union, overload
+from typing import Any, Literal, Mapping, Optional, Sequence, Union, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -15,22 +17,18 @@ STANDARD_GRAVITY: float  # 9.80665 m/s^2
 ArrayIn = Union[npt.NDArray[np.float64], Sequence[float]]
 
 class InputError(ValueError):
-    """Bad caller input (file, parameter, array value). str() is the message the CLI prints after 'topple: error: '."""
+    """Bad caller input (file, parameter, array value)."""
     file: Optional[str]   # path as given, when the problem is in a file
     line: Optional[int]   # 1-based line in that file
     field: Optional[str]  # parameter, key or column name ("mu", "dt_s", "NPTS", "width")
     problem: str          # the message without its location
 
+class MissingFileError(InputError, FileNotFoundError):
+    """A file that does not exist (or cannot be opened)."""
+    filename: str
+
 class GroundMotion:
-    """One component of ground acceleration, piecewise linear between samples.
-
-    GroundMotion(accel, dt, units="g", *, time=None, start_time_s=0.0, g=9.80665)
-
-    accel: 1-D numpy float64 array (TypeError for another dtype: convert explicitly; a strided array is copied) or a
-    list of numbers, in `units` ("g", "m/s2", "cm/s2", "gal", "mm/s2"). dt: sample interval, s, for uniform samples;
-    or time: the sample times, s (non-decreasing) for irregular ones. NaN/Inf values, dt <= 0, decreasing times:
-    InputError.
-    """
+    """One component of ground acceleration, piecewise linear between samples (SI)."""
     def __init__(self, accel: ArrayIn, dt: Optional[float] = None, units: str = "g", *,
                  time: Optional[ArrayIn] = None, start_time_s: float = 0.0, g: float = 9.80665) -> None: ...
     def __len__(self) -> int: ...
@@ -73,26 +71,29 @@ class GroundMotion:
     @property
     def name(self) -> str:
         """The source file as given, else the event description (synthetic and pulse motions)."""
-    def accel_at(self, t_s: float) -> float: ...
-    def scaled(self, factor: float) -> GroundMotion: ...
+    def accel_at(self, t_s: float) -> float:
+        """Acceleration at a time, by linear interpolation."""
+    def scaled(self, factor: float) -> GroundMotion:
+        """The motion with every acceleration multiplied by a factor."""
     def scaled_to_pga(self, pga_g: float, g: float | None = None) -> GroundMotion:
-        """Scaled so that the PGA is pga_g, in g (default: the motion's own g_m_s2)."""
-    def inverted(self) -> GroundMotion: ...
-    def time_scaled(self, factor: float) -> GroundMotion: ...
-    def trimmed(self, t_begin_s: float, t_end_s: float) -> GroundMotion: ...
-    def resampled(self, dt_s: float) -> GroundMotion: ...
-    def baseline_corrected(self, order: int) -> GroundMotion: ...
+        """The motion scaled so that its PGA is `pga_g`."""
+    def inverted(self) -> GroundMotion:
+        """The motion with its sign reversed (the other polarity)."""
+    def time_scaled(self, factor: float) -> GroundMotion:
+        """The motion compressed or stretched in time (frequencies multiplied by 1 / factor)."""
+    def trimmed(self, t_begin_s: float, t_end_s: float) -> GroundMotion:
+        """The part of the motion between two times (interpolated at the ends)."""
+    def resampled(self, dt_s: float) -> GroundMotion:
+        """The motion resampled at a uniform interval (linear interpolation: exact for this motion)."""
+    def baseline_corrected(self, order: int) -> GroundMotion:
+        """The motion with a least-squares polynomial baseline removed."""
 
 def read(path: str, format: Optional[str] = None, units: Optional[str] = None, dt: Optional[float] = None,
          channel: Optional[int] = None, g: float = 9.80665) -> GroundMotion:
-    """Read a record (PEER .AT2, COSMOS V2, CSMIP V2, USGS SMC, K-NET, ESM, plain text; detected from content).
-    format: "auto" or one of "peer-at2", "cosmos-v2", "csmip-v2", "knet", "usgs-smc", "esm", "plain"; units: unit of a
-    plain file's values; dt: time step of a one-column plain file, s; channel: 1-based, multi-channel files."""
+    """Read a strong-motion record."""
 
 class SlidingResult:
-    """Sliding response. Summary attributes have the names and units of `topple slide --json`; json() is that
-    object (with its "input"). Histories (time_s, displacement_m, velocity_m_s: read-only views; state: -1 slipping
-    up-slope/negative, 0 stuck, 1 slipping down-slope/positive) are empty when run with history=False."""
+    """Sliding response of a rigid block (the result of topple.slide)."""
     max_abs_displacement_m: float
     max_displacement_time_s: float
     residual_displacement_m: float
@@ -114,14 +115,13 @@ class SlidingResult:
     displacement_m: npt.NDArray[np.float64]
     velocity_m_s: npt.NDArray[np.float64]
     state: npt.NDArray[np.int8]
-    def json(self) -> dict[str, Any]: ...
+    def json(self) -> dict[str, Any]:
+        """The summary as `topple slide --json` writes it."""
 
 def slide(motion: GroundMotion, *, mu: float, mu_kinetic: Optional[float] = None,
           mode: Literal["two-way", "one-way"] = "two-way", slope_deg: float = 0.0,
           vertical: Optional[GroundMotion] = None, g: float = 9.80665, history: bool = True) -> SlidingResult:
-    """Exact sliding of a rigid block with Coulomb friction (mu static, mu_kinetic <= mu, default = mu) on a plane
-    inclined at slope_deg; one-way: down-slope slip only (SLAMMER rigid block). vertical: vertical acceleration,
-    positive up. history=False takes the summary-only fast path."""
+    """Exact sliding of a rigid block with Coulomb friction on a level or inclined plane."""
 
 def slide_flexible(motion: GroundMotion, *, mu: float, mode: Literal["two-way", "one-way"] = "two-way",
                    support_freq_hz: Optional[float] = None, support_damping: float = 0.05, mass_ratio: float = 0.0,
@@ -129,24 +129,14 @@ def slide_flexible(motion: GroundMotion, *, mu: float, mode: Literal["two-way", 
                    vs_base_m_s: Optional[float] = None, damping: Optional[float] = None,
                    reference_strain: Optional[float] = None, coupled: bool = False,
                    vertical: Optional[GroundMotion] = None, g: float = 9.80665) -> dict[str, Any]:
-    """Sliding on a flexible support (topple/flexible.hpp), decoupled or coupled. Either an object (friction mu) on a
-    shelf or floor: support_freq_hz (Hz, the support alone), support_damping (ratio), mass_ratio (object / support
-    mass); or SLAMMER's flexible sliding mass (mu is k_y): height_m, vs_slope_m_s, vs_base_m_s (m/s), damping
-    (material damping ratio; the mode adds the base impedance damping), reference_strain (decimal: equivalent
-    linear when given). vertical: decoupled only. Returns the dict of `topple slide --support-freq|--height --json`:
-    the sliding summary fields and "support" (mode_freq_hz, mode_damping_ratio, kmax, vs_final_m_s ...)."""
+    """Sliding on a flexible support (topple/flexible.hpp), decoupled or coupled."""
 
 def slide_spectrum(motion: GroundMotion, mu: ArrayIn, *, slope_deg: float = 0.0,
                    mode: Literal["two-way", "one-way"] = "two-way", g: float = 9.80665) -> dict[str, Any]:
-    """Sliding displacement spectrum (topple/object_spectra.hpp) of blocks with mu static = kinetic on a plane at
-    slope_deg. Arrays, one value per mu in the given order: mu, max_abs_displacement_m (m),
-    residual_displacement_m (m, signed), yield_accel_g (downslope yield k_y = tan(atan(mu) - slope), g),
-    yield_over_pga (k_y g / PGA), slip_episodes (int64), total_slip_duration_s (s), at_rest_at_end (bool); scalars
-    pga_g, slope_deg, mode, g_m_s2. mu < 0, NaN, or atan(mu) + slope >= 90 deg: InputError."""
+    """Sliding displacement spectrum: one block per friction coefficient (topple/object_spectra.hpp)."""
 
 class RockingBody:
-    """A rigid body that rocks (made by Block, Cylinder or General). a_m: CM to pivot edge, m; h_m: CM height, m;
-    D_m2: pivot moment of inertia per unit mass, m^2."""
+    """A rigid body that rocks about its base edges (made by Block, Cylinder or General)."""
     shape: str
     a_m: float
     h_m: float
@@ -154,19 +144,18 @@ class RockingBody:
     alpha_rad: float
     R_m: float
     housner_e: float
-    def p_rad_s(self, g: float = 9.80665) -> float: ...
+    def p_rad_s(self, g: float = 9.80665) -> float:
+        """Frequency parameter p = sqrt(g R / D) of the body."""
 
 def Block(width: float, height: float) -> RockingBody:
-    """Rectangular block of full width and height, m."""
+    """A rectangular block standing on its base."""
 def Cylinder(diameter: float, height: float) -> RockingBody:
-    """Solid cylinder standing on its end, diameter and height in m."""
+    """A solid cylinder standing on its end."""
 def General(a: float, h: float, D: float) -> RockingBody:
-    """Any body: a, h in m, D = I_O/m in m^2 (D >= a^2 + h^2)."""
+    """Any rigid body, by its geometry about a pivot."""
 
 class RockingResult:
-    """Rocking response. Summary attributes have the names and units of `topple rock --json`; json() is that object.
-    Histories (time_s, theta_rad, theta_dot_rad_s: read-only views; state: -1 rocking-, 0 rest, 1 rocking+, 2 fallen)
-    and events are empty when run with history=False."""
+    """Rocking response of a rigid body (the result of topple.rock)."""
     max_abs_rotation_rad: float
     max_rotation_over_alpha: float
     max_rotation_time_s: float
@@ -199,54 +188,42 @@ class RockingResult:
     theta_dot_rad_s: npt.NDArray[np.float64]
     state: npt.NDArray[np.int8]
     events: list[dict[str, Any]]
-    def json(self) -> dict[str, Any]: ...
+    def json(self) -> dict[str, Any]:
+        """The summary as `topple rock --json` writes it."""
 
 def rock(motion: GroundMotion, shape: RockingBody, *, e: Union[Literal["housner"], float] = "housner",
          mu: Optional[float] = None, g: float = 9.80665, method: Literal["adaptive", "rk4"] = "adaptive",
          rel_tol: float = 1e-8, rk4_substeps: int = 10, max_run_out_s: float = 60.0,
          vertical: Optional[GroundMotion] = None, history: bool = True) -> RockingResult:
-    """Housner rocking and overturning on a level base that does not slide. e: restitution in [0, 1] or "housner";
-    mu: check Shenton's slide/rock onset criterion."""
+    """Housner rocking and overturning of a rigid body on a level base that does not slide."""
 
 def synth(*, pga_g: float, freq_hz: float, duration_s: float, seed: int = 0, dt_s: float = 0.01,
           model: Literal["clough-penzien", "kanai-tajimi"] = "clough-penzien",
           envelope: Literal["saragoni-hart", "jennings"] = "saragoni-hart", zeta_g: float = 0.3,
           g: float = 9.80665) -> GroundMotion:
-    """Synthetic motion (as `topple synth`): the same parameters and seed give the same bits everywhere."""
+    """A synthetic ground motion, as `topple synth`: the same parameters and seed give the same bits everywhere."""
 
 def intensity(motion: GroundMotion, g: float = 9.80665) -> dict[str, Any]:
-    """Intensity measures as `topple info --json` names them: npts, dt_s, duration_s, pga_g, pga_m_s2, pga_time_s,
-    pgv_m_s, pgd_m, arias_m_s, d5_95_s, d5_time_s, d95_time_s, cav_m_s, tp_s, tm_s, predominant_frequency_hz, g_m_s2
-    (None where undefined)."""
+    """Intensity measures of a motion, as `topple info --json` names them."""
 
-def invert(survey_path: str, *, threads: int = 0) -> dict[str, Any]:
-    """`topple invert --json` of a survey file: one site's dict, or {"sites": [...]}. Each site's dict also holds
-    posterior_grid and log_likelihood_grid (numpy, rows PGA, columns frequency) for topple.plot.inversion_map."""
+def invert(survey: Union[str, "os.PathLike[str]", Mapping[str, Any]], *, threads: int = 0,
+           report_dir: Optional[Union[str, "os.PathLike[str]"]] = None,
+           base_dir: Optional[Union[str, "os.PathLike[str]"]] = None) -> dict[str, Any]:
+    """Estimate the PGA (g) and predominant frequency (Hz) of the shaking from a survey, as ``topple invert --json``."""
+
+def survey_toml(survey: Mapping[str, Any]) -> str:
+    """The TOML text of a survey built in Python (the structure of a survey file, docs/survey.md)."""
 
 
 # ---- spectra of a motion ----
 
 def response_spectrum(motion: GroundMotion, periods_s: Optional[ArrayIn] = None, damping: float = 0.05, *,
                       g: float = 9.80665) -> dict[str, Any]:
-    """Elastic response spectrum of linear oscillators x'' + 2 zeta w x' + w^2 x = -a_g, from rest, by the exact
-    Nigam-Jennings recurrence (topple/spectra.hpp; maxima at the samples, over the record only).
-
-    periods_s: oscillator periods, s (> 0; default: the grid of the predominant period Tp, 100 per decade from
-    0.02 s to 5 s); damping: ratio zeta in [0, 1). Returns numpy arrays, one value per period: period_s (s), sd_m
-    (max |x|, m), psv_m_s (w SD, m/s), psa_m_s2 (w^2 SD, m/s^2), psa_g (PSA / g), sv_m_s (max |x'|, m/s), sa_m_s2
-    (max absolute acceleration, m/s^2); scalars damping, g_m_s2, motion (name). The GIL is released."""
+    """Elastic response spectrum of linear oscillators, by the exact Nigam-Jennings recurrence."""
 
 def fourier_spectrum(motion: GroundMotion, smoothing_b: Optional[float] = 40.0, *,
                      centre_hz: Optional[ArrayIn] = None, fft_length: Optional[int] = None) -> dict[str, Any]:
-    """Fourier amplitude spectrum |A(f)| = dt |DFT| (m/s) and its Konno-Ohmachi smoothing (topple/spectra.hpp).
-
-    fft_length: zero-padded FFT length (>= npts; default: the next power of two >= 2 npts, as for the predominant
-    frequency); smoothing_b: Konno-Ohmachi bandwidth b (> 0), None for no smoothing; centre_hz: centre frequencies
-    of the smoothing, Hz (default: 200 per decade from 0.1 Hz to min(25 Hz, 0.8 f_Nyquist)). Returns freq_hz (Hz,
-    k / (N dt), k = 0 .. N/2), amplitude_m_s (m/s), smoothed_freq_hz and smoothed_amplitude_m_s (None without
-    smoothing), dt_s, fft_length, smoothing_b, predominant_frequency_hz (Hz, the library's definition, as
-    topple.intensity()["predominant_frequency_hz"]; None when undefined), motion. Irregular records are resampled at
-    their smallest interval first. The GIL is released."""
+    """Fourier amplitude spectrum |A(f)| = dt |DFT| and its Konno-Ohmachi smoothing."""
 
 # ---- object spectra and fragility ----
 
@@ -255,17 +232,10 @@ def overturning_map(motion: GroundMotion, *, alpha_rad: float, heights_m: ArrayI
                     mu: Optional[float] = None, g: float = 9.80665, method: Literal["adaptive", "rk4"] = "adaptive",
                     rel_tol: float = 1e-8, rk4_substeps: int = 10, max_run_out_s: float = 60.0,
                     threads: int = 0) -> dict[str, Any]:
-    """Overturning map (topple/object_spectra.hpp): bodies of one shape and slenderness alpha_rad = atan(a/h), of
-    full heights heights_m (m), under the motion scaled to each PGA of pga_g (g); rocking options as topple.rock.
-    Runs on `threads` cores (0: all), GIL released. Returns pga_g (ascending) and pga_m_s2; per size (in the given
-    order): height_m, width_m (full width or diameter, m), R_m (m), p_rad_s (rad/s), first_overturn_pga_g (g, NaN
-    when no PGA of the grid overturns it), standing_above_first (bool), overturn_count (int64); overturned (bool) and
-    max_rotation_over_alpha, 2-D [size, pga]; alpha_rad, uplift_pga_g (= tan(alpha): no uplift below it), shape,
-    g_m_s2, motion."""
+    """Overturning map: which bodies of one slenderness overturn at which PGA (topple/object_spectra.hpp)."""
 
 class FragilityFit:
-    """Lognormal fragility P(failure | IM = x) = Phi(ln(x / theta) / beta), maximum-likelihood fit to binomial
-    counts (Baker 2015). theta: median, in the unit of the IM levels given; beta: log standard deviation."""
+    """Lognormal fragility P(failure | IM = x) = Phi(ln(x / theta) / beta)."""
     theta: float
     beta: float
     log_likelihood: float
@@ -275,15 +245,15 @@ class FragilityFit:
     iterations: int
     beta_at_bound: bool       # separated data: beta held at its lower bound 0.01
     @overload
-    def probability(self, im: float) -> float: ...
+    def probability(self, im: float) -> float:
+        """Probability of failure at an intensity."""
     @overload
     def probability(self, im: ArrayIn) -> npt.NDArray[np.float64]: ...
     def band(self, im: Union[float, ArrayIn], level: float = 0.95) -> tuple[Any, Any]:
-        """Delta-method confidence band (lower, upper) of the probability at im, at confidence `level`."""
+        """Delta-method confidence band of the probability."""
 
 def fragility_fit(im: ArrayIn, trials: Sequence[int], failures: Sequence[int]) -> FragilityFit:
-    """Fit a lognormal fragility to counts: at IM level im[j] (> 0, any unit: theta comes out in it), trials[j]
-    runs of which failures[j] failed. No failure, or failures only: InputError."""
+    """Fit a lognormal fragility to counts of failures."""
 
 def fragility(motions: Sequence[GroundMotion], levels: ArrayIn, *, im: Literal["pga", "pgv", "pgd", "cav"] = "pga",
               mu: Optional[float] = None, threshold_m: Optional[float] = None, mu_kinetic: Optional[float] = None,
@@ -292,25 +262,18 @@ def fragility(motions: Sequence[GroundMotion], levels: ArrayIn, *, im: Literal["
               rock_mu: Optional[float] = None, g: float = 9.80665, method: Literal["adaptive", "rk4"] = "adaptive",
               rel_tol: float = 1e-8, rk4_substeps: int = 10, max_run_out_s: float = 60.0,
               threads: int = 0) -> dict[str, Any]:
-    """Fragility analysis (topple/fragility.hpp): every motion scaled so that its IM equals each level, run on a
-    sliding block (mu, failure when max |d| > threshold_m, m) and/or a rocking body (body, failure = overturning;
-    e, rock_mu and solver options as topple.rock). levels are in g for pga, m/s for pgv and cav, m for pgd. Returns
-    im, im_unit, runs, g_m_s2 and curves: a list (slide first, then overturn) of dicts name, im (the levels), trials,
-    failures (int64), fraction, fit (FragilityFit with theta in im_unit; None when the counts cannot be fitted) and
-    fit_note. Runs on `threads` cores (0: all), GIL released."""
+    """Fragility analysis: failure counts over scaled motions and their lognormal fits (topple/fragility.hpp)."""
 
 # ---- sweeps ----
 
 class SweepTable(dict[str, Any]):
-    """The table of a sweep: column name -> float64 numpy array (numbers, booleans as 0/1, NaN where the CSV cell is
-    empty) or list of str (text columns, None where empty), in the CSV's column order."""
+    """The table of a sweep (the result of topple.sweep): column name -> values, in the CSV's column order."""
     @property
     def columns(self) -> list[str]: ...
     @property
     def n_rows(self) -> int: ...
     def to_pandas(self) -> Any:
-        """A pandas.DataFrame (needs pandas, not a dependency of topple)."""
+        """The table as a pandas DataFrame (pandas is not a dependency of topple)."""
 
 def sweep(path: Union[str, "os.PathLike[str]"], threads: int = 0) -> SweepTable:
-    """Run a sweep file (docs/sweeps.md) in memory as `topple sweep` does (the same rows as its CSV; [output] is
-    ignored) on `threads` cores (0: all), GIL released."""
+    """Run a sweep file (TOML, docs/sweeps.md) in memory, as ``topple sweep`` does, and return its table."""

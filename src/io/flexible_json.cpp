@@ -1,7 +1,11 @@
 #include "topple/io/flexible_json.hpp"
 
+#include <iterator>
 #include <utility>
 
+#include <fmt/format.h>
+
+#include "topple/io/output_file.hpp"
 #include "topple/io/write.hpp"
 
 namespace topple::io {
@@ -48,6 +52,23 @@ nlohmann::ordered_json flexible_summary_json(const FlexibleSummary& summary, con
   s["vs_final_m_s"] = summary.mode.vs_m_s;
   s["equivalent_linear_iterations"] = summary.mode.iterations;
   return with_support(std::move(s), summary, block);
+}
+
+void write_flexible_history_csv(const std::filesystem::path& path, const FlexibleHistory& h, const GroundMotion& ground) {
+  OutputFile file(path);
+  std::ostream& out = file.stream();
+  out << "time_s,ground_accel_m_s2,support_accel_m_s2,displacement_m,velocity_m_s,state\n";
+  fmt::memory_buffer row;
+  const SlidingHistory& s = h.sliding;
+  for (std::size_t i = 0; i < s.time_s.size(); ++i) {
+    row.clear();
+    // The digits of write_sliding_history_csv: times and accelerations to 9, displacement and velocity to 12.
+    fmt::format_to(std::back_inserter(row), "{:.9g},{:.9g},{:.9g},{:.12g},{:.12g},{}\n", s.time_s[i],
+                   ground.accel_at(s.time_s[i]), h.support_accel_m_s2[i], s.displacement_m[i], s.velocity_m_s[i],
+                   static_cast<int>(s.state[i]));
+    out.write(row.data(), static_cast<std::streamsize>(row.size()));
+  }
+  file.commit();
 }
 
 }  // namespace topple::io

@@ -6,6 +6,7 @@
 
 #include "topple/error.hpp"
 #include "topple/io/output_file.hpp"
+#include "topple/io/provenance.hpp"
 #include "topple/units.hpp"
 
 namespace topple::io {
@@ -21,21 +22,63 @@ nlohmann::ordered_json estimate_json(const Estimate& e) {
   j["median"] = e.median;
   j["ci68"] = {opt(e.ci68_low), opt(e.ci68_high)};
   j["ci95"] = {opt(e.ci95_low), opt(e.ci95_high)};
+  // Added: where the median or the best cell lies in the grid's first or last cell, it is no estimate.
+  const auto edge = [](int at) {
+    return at == 0 ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(at < 0 ? "below" : "above");
+  };
+  j["median_grid_edge"] = edge(e.median_edge);
+  j["best_grid_edge"] = edge(e.best_edge);
   return j;
 }
 
+nlohmann::ordered_json threshold_json(const StaticBound& b, const char* side) {
+  nlohmann::ordered_json t;
+  t["object"] = b.object_id;
+  t["side"] = side;
+  t["pga_g"] = b.pga_g;
+  t["kind"] = b.hard ? "hard" : "soft";
+  t["reason"] = b.reason;
+  return t;
+}
+
 }  // namespace
+
+nlohmann::ordered_json inversion_json(const InversionResult& r, const Site& site, const Provenance& provenance) {
+  nlohmann::ordered_json j = inversion_json(r, site);
+  nlohmann::ordered_json p;
+  p["topple_version"] = provenance.topple_version;
+  p["git_commit"] = provenance.git_commit;
+  p["date_utc"] = provenance.date_utc;
+  p["command_line"] = provenance.command_line;
+  p["survey_file"] = provenance.survey_file;
+  p["survey_xxh3_64"] = provenance.survey_xxh3_64;
+  p["survey_text"] = provenance.survey_text;
+  j["provenance"] = p;
+  return j;
+}
 
 nlohmann::ordered_json inversion_json(const InversionResult& r, const Site& site) {
   nlohmann::ordered_json j;
   j["site"] = site.name;
   j["lat"] = opt(site.lat_deg);
   j["lon"] = opt(site.lon_deg);
+  j["summary"] = inversion_summary(r);
   j["pga_g"] = estimate_json(r.pga_estimate_g);
   j["freq_hz"] = estimate_json(r.freq_estimate_hz);
   j["static_bounds_pga_g"] = {opt(r.bounds.lower_g), opt(r.bounds.upper_g)};
+  // Added (issue 18): the hard thresholds alone, and every threshold with its kind; static_bounds_pga_g keeps its
+  // meaning (hard and soft together) for the old readers.
+  j["static_bounds_hard_pga_g"] = {opt(r.bounds.hard_lower_g), opt(r.bounds.hard_upper_g)};
+  nlohmann::ordered_json thresholds = nlohmann::ordered_json::array();
+  for (const auto& b : r.bounds.lower) thresholds.push_back(threshold_json(b, "lower"));
+  for (const auto& b : r.bounds.upper) thresholds.push_back(threshold_json(b, "upper"));
+  j["static_thresholds"] = thresholds;
   j["contradictions"] = r.bounds.contradictions;
   j["notes"] = r.notes;
+  j["misfit_level"] = kMisfitProbability;
+  nlohmann::ordered_json constraining = nlohmann::ordered_json::array();
+  for (std::size_t o : most_constraining_objects(r)) constraining.push_back(r.objects[o].id);
+  j["constraining_objects"] = constraining;
   nlohmann::ordered_json objects = nlohmann::ordered_json::array();
   for (std::size_t o = 0; o < r.objects.size(); ++o) {
     const ObjectReport& rep = r.objects[o];
@@ -51,6 +94,9 @@ nlohmann::ordered_json inversion_json(const InversionResult& r, const Site& site
     for (const auto& b : r.bounds.upper) {
       if (b.object_id == rep.id) oj["static_upper_bound_pga_g"] = b.pga_g;
     }
+    oj["posterior_predictive"] = rep.posterior_predictive;
+    oj["misfit"] = rep.misfit;
+    oj["constraint_bits"] = rep.constraint_bits;
     objects.push_back(oj);
   }
   j["objects"] = objects;

@@ -153,8 +153,9 @@ std::string toml_value(std::string_view cell) {
 }
 
 // The keys whose values are text, lengths and areas (survey_file.cpp reads them; docs/survey.md lists them).
-const std::set<std::string, std::less<>> kStringKeys{"id",   "description", "shape",  "support",
-                                                     "outcome", "evidence", "name", "notes", "family"};
+// `support` is not among them: besides a text it may be a flexible support's inline table {freq_hz = ..., ...}.
+const std::set<std::string, std::less<>> kStringKeys{"id",      "description", "shape", "outcome",
+                                                     "evidence", "name",       "notes", "family"};
 const std::set<std::string, std::less<>> kLengthKeys{"width", "height",          "diameter",     "a",
                                                      "h",     "slid", "slid_uncertainty", "slid_at_least"};
 constexpr std::array<std::string_view, 5> kLengthUnits{"mm", "cm", "m", "in", "ft"};

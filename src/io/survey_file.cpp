@@ -71,6 +71,7 @@ class Reader {
     return table_.get(key);
   }
   bool has(std::string_view key) const { return table_.contains(key); }
+  [[nodiscard]] const std::string& file() const { return file_; }
 
   std::optional<std::string> string(std::string_view key) {
     const toml::node* n = get(key);
@@ -158,8 +159,50 @@ Outcome parse_outcome(Reader& r, std::string_view text) {
                                        "rocked, slid, not_slid)", text));
 }
 
+/// A flexible support `{freq_hz = value or [low, high], damping = value or [low, high], name = "..."}` (docs/survey.md):
+/// both numbers required (no default damping is guessed), frequency > 0 Hz, damping in [0, 1).
+SupportFilter parse_support_filter(const toml::table& t, const std::string& file, const std::string& path,
+                                   std::string* name = nullptr) {
+  Reader r(t, file, path);
+  SupportFilter f;
+  const auto freq = r.interval("freq_hz");
+  if (!freq) throw r.error("freq_hz", "a flexible support needs its natural frequency freq_hz (Hz, a value or a range)");
+  if (!(freq->low > 0.0)) throw r.error("freq_hz", fmt::format("must be positive, got {} Hz", freq->low));
+  const auto damping = r.interval("damping");
+  if (!damping) throw r.error("damping", "a flexible support needs its damping ratio (decimal: 0.05 is 5 %)");
+  if (damping->low < 0.0 || damping->high >= 1.0) {
+    throw r.error("damping", fmt::format("the damping ratio must lie in [0, 1), got [{}, {}]", damping->low, damping->high));
+  }
+  f.freq_hz = *freq;
+  f.damping = *damping;
+  if (const auto n = r.string("name"); n && name != nullptr) *name = *n;
+  r.refuse_unknown();
+  return f;
+}
+
+/// An object's or a site's `support`: free text (a rigid support, named for the report) or a flexible support table.
+/// Returns the filter when it is a table; `label` receives the text (a table's `name`, else "flexible support").
+std::optional<SupportFilter> parse_support(Reader& r, std::string& label) {
+  const toml::node* n = r.get("support");
+  if (n == nullptr) return std::nullopt;
+  if (const auto* t = n->as_table()) {
+    label = "flexible support";
+    const SupportFilter f = parse_support_filter(*t, r.file(), r.field("support"), &label);
+    const auto text = [](const Interval& iv) {
+      return iv.is_value() ? fmt::format("{:g}", iv.low) : fmt::format("{:g}-{:g}", iv.low, iv.high);
+    };
+    label += fmt::format(" ({} Hz, damping {})", text(f.freq_hz), text(f.damping));
+    return f;
+  }
+  if (!n->is_string()) {
+    throw r.error("support", "expected free text (\"furniture\") or a flexible support {freq_hz = ..., damping = ...}", n);
+  }
+  label = n->as_string()->get();
+  return std::nullopt;
+}
+
 ObservedObject parse_object(const toml::table& t, const std::string& file, const std::string& path,
-                            std::vector<std::string>& notes) {
+                            std::vector<std::string>& notes, const Site* site = nullptr) {
   Reader r(t, file, path);
   ObservedObject o;
   o.id = r.string("id").value_or("");
@@ -239,7 +282,13 @@ ObservedObject parse_object(const toml::table& t, const std::string& file, const
       o.e = *iv;
     }
   }
-  o.support = named.string("support").value_or("ground");
+  if (named.has("support")) {
+    o.support_filter = parse_support(named, o.support);
+  } else if (site != nullptr && site->support_filter) {
+    o.support_filter = site->support_filter;  // the site's default (docs/survey.md)
+    o.support = fmt::format("the site's flexible support ({:g}-{:g} Hz)", site->support_filter->freq_hz.low,
+                            site->support_filter->freq_hz.high);
+  }
   if (const auto amp = named.interval("amplification")) {
     if (!(amp->low > 0.0)) throw named.error("amplification", "must be positive");
     o.amplification = *amp;
@@ -290,7 +339,7 @@ ObservedObject parse_object(const toml::table& t, const std::string& file, const
 }
 
 std::vector<ObservedObject> parse_objects(const toml::node* node, const std::string& file, const std::string& key,
-                                          std::vector<std::string>& notes) {
+                                          std::vector<std::string>& notes, const Site* site = nullptr) {
   std::vector<ObservedObject> out;
   if (node == nullptr) return out;
   const auto* arr = node->as_array();
@@ -299,7 +348,7 @@ std::vector<ObservedObject> parse_objects(const toml::node* node, const std::str
   for (std::size_t i = 0; i < arr->size(); ++i) {
     const auto* t = arr->get(i)->as_table();
     if (t == nullptr) throw InputError(InputLocation{file, node->source().begin.line, key}, "expected a table");
-    out.push_back(parse_object(*t, file, fmt::format("{}[{}]", key, i + 1), notes));
+    out.push_back(parse_object(*t, file, fmt::format("{}[{}]", key, i + 1), notes, site));
     if (!ids.insert(out.back().id).second) {
       throw InputError(InputLocation{file, t->source().begin.line, fmt::format("{}[{}].id", key, i + 1)},
                        fmt::format("duplicate object id '{}'", out.back().id));
@@ -315,6 +364,12 @@ void parse_site_fields(Reader& r, Site& site) {
   site.notes = r.string("notes").value_or("");
   if (site.lat_deg && std::abs(*site.lat_deg) > 90.0) throw r.error("lat", "latitude must lie in [-90, 90]");
   if (site.lon_deg && std::abs(*site.lon_deg) > 180.0) throw r.error("lon", "longitude must lie in [-180, 180]");
+  // A site's support is a default for its objects: only a flexible support table makes sense there.
+  if (const toml::node* n = r.get("support"); n != nullptr && !n->is_table()) {
+    throw r.error("support", "a site's default support is a flexible support {freq_hz = ..., damping = ...}", n);
+  }
+  std::string label;
+  site.support_filter = parse_support(r, label);
 }
 
 Survey parse_toml_survey(std::string_view text, const std::string& name, const std::filesystem::path& base_dir) {
@@ -404,7 +459,7 @@ Survey parse_toml_survey(std::string_view text, const std::string& name, const s
       parse_site_fields(r, site);
       r.refuse_unknown();
     }
-    site.objects = parse_objects(top.get("object"), name, "object", s.notes);
+    site.objects = parse_objects(top.get("object"), name, "object", s.notes, &site);
     s.sites.push_back(std::move(site));
   } else if (const toml::node* sites = top.get("sites")) {
     const auto* arr = sites->as_array();
@@ -415,7 +470,7 @@ Survey parse_toml_survey(std::string_view text, const std::string& name, const s
       Reader r(*t, name, fmt::format("sites[{}]", i + 1));
       Site site;
       parse_site_fields(r, site);
-      site.objects = parse_objects(r.get("object"), name, fmt::format("sites[{}].object", i + 1), s.notes);
+      site.objects = parse_objects(r.get("object"), name, fmt::format("sites[{}].object", i + 1), s.notes, &site);
       r.refuse_unknown();
       s.sites.push_back(std::move(site));
     }

@@ -461,9 +461,40 @@ SlidingMode parse_mode(const Reader& r, const toml::node* n, const std::string& 
   r.fail(n, field, fmt::format("unknown mode '{}' (known: two-way, one-way)", s));
 }
 
+/// An object's flexible supports (docs/sweeps.md): `support_freq_hz` / `support_freq` and `support_damping` (decimal),
+/// each one value, a list or a range; every (frequency, damping) pair is a support. Neither key: one rigid support
+/// (the sweep's meaning before these keys existed). One without the other is refused (no damping is guessed).
+std::vector<std::optional<SupportOscillator>> read_supports(const Reader& r, const toml::table& o,
+                                                             const std::string& prefix) {
+  const auto freqs = r.quantities(o, "support_freq_hz", "support_freq", prefix, frequency_parser(), "4Hz");
+  const auto dampings = r.numbers(o, "support_damping", prefix + "support_damping");
+  if (!freqs && !dampings) return {std::nullopt};
+  if (!freqs) r.fail(o.get("support_damping"), prefix + "support_freq_hz", "a flexible support needs its frequency");
+  if (!dampings) {
+    const toml::node* n = o.get("support_freq") != nullptr ? o.get("support_freq") : o.get("support_freq_hz");
+    r.fail(n, prefix + "support_damping", "a flexible support needs its damping ratio (decimal: 0.05 is 5 %)");
+  }
+  std::vector<std::optional<SupportOscillator>> out;
+  for (const double f : *freqs) {
+    for (const double z : *dampings) {
+      try {
+        out.emplace_back(SupportOscillator::make(f, z));
+      } catch (const InputError& e) {
+        const bool freq = e.where().field == "support_freq";
+        const std::string key = freq ? (o.get("support_freq") != nullptr ? "support_freq" : "support_freq_hz")
+                                     : "support_damping";
+        r.fail(o.get(key), prefix + key, e.problem());
+      }
+    }
+  }
+  return out;
+}
+
 void read_slide(const Reader& r, const toml::table& o, const std::string& key, double g, SweepFile& out) {
   const std::string prefix = key + ".";
-  r.check_keys(o, key, {"model", "mu", "mu_kinetic", "slope_deg", "slope", "mode"});
+  r.check_keys(o, key, {"model", "mu", "mu_kinetic", "slope_deg", "slope", "mode", "support_freq_hz", "support_freq",
+                        "support_damping"});
+  const auto supports = read_supports(r, o, prefix);
   const auto mu = r.numbers(o, "mu", prefix + "mu");
   if (!mu) r.fail(&o, prefix + "mu", "a sliding object needs its friction coefficient mu");
   const auto mu_k = r.numbers(o, "mu_kinetic", prefix + "mu_kinetic");
@@ -487,7 +518,7 @@ void read_slide(const Reader& r, const toml::table& o, const std::string& key, d
           try {
             // slope_deg * pi / 180: the expression `topple slide --slope-deg` uses, so that rows match it exactly.
             const SlidingBlock b = SlidingBlock::make(m, k, slope_deg * kPi / 180.0, mode, g);
-            out.spec.objects.emplace_back(ensemble::SlideObject{b, slope_deg});
+            for (const auto& support : supports) out.spec.objects.emplace_back(ensemble::SlideObject{b, slope_deg, support});
           } catch (const InputError& e) {
             const std::string f = field_of(e.where().field);
             r.fail(o.get(f.substr(prefix.size())) != nullptr ? o.get(f.substr(prefix.size())) : &o, f, e.problem());
@@ -501,7 +532,8 @@ void read_slide(const Reader& r, const toml::table& o, const std::string& key, d
 void read_rock(const Reader& r, const toml::table& o, const std::string& key, double g, SweepFile& out) {
   const std::string prefix = key + ".";
   r.check_keys(o, key, {"model", "shape", "width", "width_m", "height", "height_m", "diameter", "diameter_m", "a",
-                        "a_m", "h", "h_m", "D_m2", "e", "mu"});
+                        "a_m", "h", "h_m", "D_m2", "e", "mu", "support_freq_hz", "support_freq", "support_damping"});
+  const auto supports = read_supports(r, o, prefix);
   const std::string shape = r.string(o, "shape", prefix + "shape").value_or("");
   const auto refuse = [&](std::initializer_list<std::string_view> keys) {
     for (const auto k : keys) {
@@ -611,7 +643,10 @@ void read_rock(const Reader& r, const toml::table& o, const std::string& key, do
             if (shape == "block") ro.width_m = x1;
             if (shape == "cylinder") ro.diameter_m = x1;
             if (shape != "general") ro.height_m = x2;
-            out.spec.objects.emplace_back(std::move(ro));
+            for (const auto& support : supports) {
+              ro.support = support;
+              out.spec.objects.emplace_back(ro);
+            }
           }
         }
       }

@@ -33,6 +33,13 @@ nlohmann::ordered_json sliding_summary_json(const SlidingSummary& s, const Slidi
   return j;
 }
 
+nlohmann::ordered_json sliding_2d_summary_json(const Sliding2dSummary& s, const SlidingBlock& block) {
+  nlohmann::ordered_json j = fields_json(kSliding2dFields, Sliding2dOutcome{s, block});
+  j["sign_convention"] = "displacement of the block relative to the ground; x east, y north; azimuth in degrees "
+                         "clockwise from north";
+  return j;
+}
+
 nlohmann::ordered_json rocking_summary_json(const RockingSummary& s, const RockingBody& body,
                                             const RockingOptions& options) {
   nlohmann::ordered_json j = fields_json(kRockingFields, RockingOutcome{s, body, options});

@@ -1,7 +1,10 @@
 // topple slide on a flexible support: the CLI prints what the library computes, and rejects bad input with exit 2.
 #include <algorithm>
 #include <cstdio>
+#include <fstream>
+#include <iterator>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -9,6 +12,7 @@
 #include "support/shared_data.hpp"
 #include "topple/flexible.hpp"
 #include "topple/io/read.hpp"
+#include "topple/object_spectra.hpp"
 
 namespace topple {
 namespace {
@@ -61,10 +65,81 @@ TEST(CliSlideFlexible, BadInputExitsTwo) {
   expect_2(run_cli(rec + "--support-freq 4Hz --support-damping 5x"), "5x");
   expect_2(run_cli(rec + "--support-freq 4Hz --height 10m"), "either --support-freq");
   expect_2(run_cli(rec + "--height 10m --vs-slope 300"), "needs --vs-slope, --vs-base and --damping");
-  expect_2(run_cli(rec + "--support-freq 4Hz --out /tmp/never.csv"), "not available");
-  expect_2(run_cli(rec + "--support-freq 4Hz --coupled --vertical '" + test::shared_record(kRecord).string() + "'"),
-           "no vertical input");
+  // --out and --plot are available on a flexible support (OutAndPlotWriteTheHistoryAndTheFigure); their paths are
+  // checked as the rigid run's, before any work.
+  expect_2(run_cli(rec + "--support-freq 4Hz --plot /tmp/never.txt"), "figures are written as .svg or .png");
+  // The coupled analysis takes a vertical record (FlexibleVertical tests): it runs.
+  const auto with_vertical =
+      run_cli(rec + "--support-freq 4Hz --coupled --vertical '" + test::shared_record(kRecord).string() + "'");
+  EXPECT_EQ(with_vertical.exit_code, 0) << with_vertical.err;
   expect_2(run_cli(rec + "--support-freq 4Hz --mu-kinetic 0.05 --coupled"), "mu_kinetic");
+}
+
+TEST(CliSlideFlexible, OutAndPlotWriteTheHistoryAndTheFigure) {
+  if (!test::have_shared()) GTEST_SKIP() << "../shared not present";
+  const auto path = test::shared_record(kRecord);
+  const GroundMotion g = io::read_motion(path);
+  test::TempDir tmp;
+  for (const bool coupled : {false, true}) {
+    SCOPED_TRACE(coupled ? "coupled" : "decoupled");
+    const auto csv = tmp.path() / (coupled ? "c.csv" : "d.csv");
+    const auto svg = tmp.path() / (coupled ? "c.svg" : "d.svg");
+    const auto r = run_cli(fmt::format("slide '{}' --mu 0.1 --support-freq 4Hz --support-damping 5% --mass-ratio 0.2 {} "
+                                       "--out '{}' --plot '{}'",
+                                       path.string(), coupled ? "--coupled" : "", csv.string(), svg.string()));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("history written to"), std::string::npos) << r.out;
+    std::ifstream in(csv);
+    std::string header;
+    std::getline(in, header);
+    EXPECT_EQ(header, "time_s,ground_accel_m_s2,support_accel_m_s2,displacement_m,velocity_m_s,state");
+    std::string line;
+    std::string last;
+    std::size_t rows = 0;
+    while (std::getline(in, line)) {
+      last = line;
+      ++rows;
+    }
+    EXPECT_GE(rows, g.size());  // every record sample at least (sub-steps and events add rows)
+    const auto lib = slide_flexible(g, SupportOscillator::make(4.0, 0.05, 0.2), SlidingBlock::make(0.1),
+                                    coupled ? FlexibleAnalysis::coupled : FlexibleAnalysis::decoupled);
+    // The last row's displacement (4th column, 12 significant digits) is the residual.
+    std::size_t at = 0;
+    for (int c = 0; c < 3; ++c) at = last.find(',', at) + 1;
+    const double d = std::stod(last.substr(at));
+    EXPECT_NEAR(d, lib.sliding.residual_displacement_m, 1e-11 * std::max(1.0, std::abs(d)));
+    std::ifstream fig(svg);
+    std::string text((std::istreambuf_iterator<char>(fig)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find("<svg"), std::string::npos);
+    EXPECT_NE(text.find("support"), std::string::npos);  // the support's acceleration is drawn and named
+  }
+}
+
+TEST(CliSlideFlexible, SpectraOnAFlexibleSupport) {
+  // `topple spectrum slide|rock --support-freq`: the spectrum of the support's motion (support_motion), against the
+  // library's functions directly; JSON's 17 significant digits are the only difference.
+  if (!test::have_shared()) GTEST_SKIP() << "../shared not present";
+  const auto path = test::shared_record(kRecord);
+  const GroundMotion g = io::read_motion(path);
+  const GroundMotion on_support = support_motion(g, SupportOscillator::make(2.0, 0.05));
+  const auto j = run_json(fmt::format("spectrum slide '{}' --mu 0.1,0.3 --support-freq 2Hz --support-damping 5% --json",
+                                      path.string()));
+  const std::vector<double> mu{0.1, 0.3};
+  const SlidingSpectrum lib = sliding_spectrum(on_support, mu);
+  ASSERT_EQ(j.at("points").size(), 2u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_NEAR(j.at("points")[i].at("max_abs_displacement_m").get<double>(), lib.points[i].max_abs_displacement_m,
+                1e-15);
+  }
+  EXPECT_DOUBLE_EQ(j.at("support").at("ground_pga_g").get<double>(), g.pga_m_s2() / kStandardGravity);
+  // The 2 Hz support is near the record's predominant period: it amplifies the peak (measured 0.74 g against 0.28 g).
+  EXPECT_GT(j.at("support").at("support_pga_g").get<double>(), 2.0 * j.at("support").at("ground_pga_g").get<double>());
+  const auto r = run_cli(fmt::format("spectrum slide '{}' --mu 0.1 --support-damping 5%", path.string()));
+  EXPECT_EQ(r.exit_code, 2) << r.err;  // a damping without a support
+  EXPECT_NE(r.err.find("--support-damping"), std::string::npos) << r.err;
+  const auto rock = run_json(fmt::format("spectrum rock '{}' --alpha 0.2rad --heights 20cm,1m --pga 0.2g,0.4g "
+                                         "--support-freq 2Hz --json", path.string()));
+  EXPECT_DOUBLE_EQ(rock.at("support").at("freq_hz").get<double>(), 2.0);
 }
 
 TEST(CliSlideFlexible, UpperFloorExampleRuns) {

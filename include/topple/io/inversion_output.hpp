@@ -6,14 +6,21 @@
 #include <nlohmann/json.hpp>
 
 #include "topple/inversion.hpp"
+#include "topple/io/provenance.hpp"
 #include "topple/survey.hpp"
 
 namespace topple::io {
 
-/// One site's result: keys pga_g and freq_hz ({best, median, ci68: [low, high], ci95: [low, high]}, null ends where
-/// unconstrained), static_bounds_pga_g ([low, high], null where unconstrained), contradictions, notes, objects,
-/// grid axes, runs, seconds.
+/// One site's result: keys summary (inversion_summary), pga_g and freq_hz ({best, median, ci68: [low, high], ci95:
+/// [low, high], median_grid_edge, best_grid_edge}, null ends where unconstrained), static_bounds_pga_g ([low, high],
+/// hard and soft thresholds together, null where none), static_bounds_hard_pga_g, static_thresholds (each with its
+/// kind), contradictions, notes, misfit_level, constraining_objects, objects (with posterior_predictive, misfit,
+/// constraint_bits), grid axes, runs, seconds. docs/survey.md lists every key. Keys are only ever added.
 [[nodiscard]] nlohmann::ordered_json inversion_json(const InversionResult& result, const Site& site);
+
+/// The same with a "provenance" object at the end (version, commit, date, command line, survey checksum and text).
+[[nodiscard]] nlohmann::ordered_json inversion_json(const InversionResult& result, const Site& site,
+                                                    const Provenance& provenance);
 
 /// The grid: one row per cell, pga_g,freq_hz,log_likelihood,posterior,p_<object id>...
 void write_inversion_grid_csv(const std::filesystem::path& path, const InversionResult& result);

@@ -13,6 +13,7 @@
 #include "topple/ground_motion.hpp"
 #include "topple/rocking.hpp"
 #include "topple/sliding.hpp"
+#include "topple/sliding2d.hpp"
 #include "topple/summary_fields.hpp"
 
 namespace topple::io {
@@ -33,6 +34,8 @@ template <class Result, std::size_t N>
 /// slip_episodes, first_slip_time_s (null when none), ..., the block), then sign_convention. Never emits NaN: absent
 /// values are null.
 [[nodiscard]] nlohmann::ordered_json sliding_summary_json(const SlidingSummary& summary, const SlidingBlock& block);
+/// The bidirectional sliding summary (kSliding2dFields) with the frame it is given in.
+[[nodiscard]] nlohmann::ordered_json sliding_2d_summary_json(const Sliding2dSummary& summary, const SlidingBlock& block);
 
 /// Summary of a rocking run as JSON, as `topple rock --json` prints it less its "input" object: the fields of
 /// kRockingFields (max_abs_rotation_rad, max_rotation_over_alpha, overturned, overturn_time_s (null when none), ...),

@@ -1,0 +1,19 @@
+#pragma once
+// topple slide FILE --h2 FILE2 --azimuths A1,A2: bidirectional sliding (sliding2d.hpp). Translation only.
+#include <string>
+
+#include "topple/ground_motion.hpp"
+#include "topple/sliding2d.hpp"
+
+namespace topple::cli {
+
+/// "A1,A2" in degrees (clockwise from north) -> azimuths; InputError naming --azimuths otherwise.
+[[nodiscard]] ComponentAzimuths parse_azimuths(const std::string& text);
+
+/// Runs the bidirectional solver on `first` and `second` (second already scaled with the first) and prints the text
+/// summary or, with `json`, the JSON object (kSliding2dFields, then "input").
+void run_bidirectional_slide(const GroundMotion& first, const GroundMotion& second, const ComponentAzimuths& azimuths,
+                             const SlidingBlock& block, const GroundMotion* vertical, bool json,
+                             const std::string& motion_name, const std::string& second_name, double scale_factor);
+
+}  // namespace topple::cli

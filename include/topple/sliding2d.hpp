@@ -1,0 +1,139 @@
+#pragma once
+// Bidirectional sliding: a rigid block on level ground with isotropic Coulomb friction, driven by both horizontal
+// components of the ground acceleration and, optionally, the vertical.
+//
+// Model. Frame: x east, y north, z up; azimuths in degrees clockwise from north (east = 90). The ground accelerates
+// with a(t) = (a_x, a_y) horizontally and a_v(t) vertically (positive up); the effective gravity is
+// g_e = g + a_v. u is the block's displacement relative to the ground (the physical direction it moved on its
+// support; an observer on the ground sees the block go to u) and w = u' its relative velocity. Per unit mass:
+//   stuck  (w = 0)   while |a(t)| <= mu_s g_e(t)                                             (static friction)
+//   slip   (w != 0)  w' = -a(t) - mu_k g_e^+(t) w / |w|,   g_e^+ = max(g_e, 0)                (kinetic friction)
+// Friction opposes the two-dimensional relative velocity with magnitude mu_k m g_e (isotropic Coulomb friction; the
+// coupled two-component Newmark block of Kramer & Lindwall 2004, J. Geotech. Geoenviron. Eng. 130(3)). A block that
+// leaves the ground (g_e < 0) carries no friction; contact_lost_time_s says when, as the 1-D solver does.
+// Slip starts from rest in the direction of the inertial load -a (the limit of w / |w| as w -> 0). On one axis this
+// is the 1-D two-way solver of sliding.hpp with d = -u . e, e the axis (sliding.hpp's d is positive where a positive
+// a_h pushes the block, i.e. opposite to the component's axis): tested to 1e-9.
+//
+// Method (docs/method.md, "Bidirectional sliding"). Each component is piecewise linear between its samples (the
+// components and the vertical are merged exactly on one grid, input_grid.hpp). Stuck: |a(t)| - mu_s g_e(t) is convex
+// on a step (a norm of a linear function minus a linear function), so a step whose two ends pass the stick test
+// passes it throughout: the stuck path is one comparison |a_i|^2 <= (mu_s g_e,i)^2 per sample. The onset inside a
+// step is the root of the quadratic |a(t)|^2 - (mu_s g_e(t))^2, in closed form (cancellation-free). Slip: the
+// direction turns continuously and there is no closed form; the 7-state ODE (u, w, path length, input work,
+// friction work) is integrated by Dormand-Prince 5(4) with error control and its 4th-order dense output (Boost.Odeint
+// runge_kutta_dopri5), steps ending on every sample (where the input's slope jumps). The stop |w| = 0 is a touch-down
+// of |w|^2, not a sign change: within a step the friction direction is continued through w = 0 as
+// sign(w . w_ref) w / |w| (w_ref the velocity at the step's start), which makes e(t) = w(t) . w_ref change sign at the
+// stop; TOMS 748 finds it on the dense output. At the stop the block sticks if |a| <= mu_s g_e, else slips on in the
+// new direction -a. Collinear motion is then integrated exactly (DP5 is exact for the quadratic velocity), so the
+// 1-D solver's exactness carries over. After the record the ground is still and a sliding block runs out in a
+// straight line to rest (closed form).
+//
+// Low speeds (method.md, "stiffness"). The direction of w relaxes toward -a at the rate |a| / |w|: stiff near every
+// onset and stop. Below the velocity tolerance the integration cannot resolve the direction, so (1) until the speed
+// first exceeds 1000 abs_tol after an onset, the velocity is slaved to the quasi-static direction -a / |a| (w = r n,
+// n = -a / |a|, r' = |a| - mu_k g_e; method.md eq S5'); (2) a sliding
+// block that slows to 100 abs_tol has stopped (the remaining run-in, extrapolated along its direction, is added).
+// The stiff phases cost a few hundred steps per slip episode: with 5-15 % of a record slipping the 2-D solver runs
+// at 3-5 M samples/s, ~250x slower than the 1-D one (docs/performance.md).
+//
+// Scope. Level ground only (the incline, where gravity's downslope pull breaks the isotropy, is not implemented:
+// make() refuses a slope) and two-way sliding only.
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "topple/ground_motion.hpp"
+#include "topple/sliding.hpp"
+
+namespace topple {
+
+/// The two horizontal components' azimuths, degrees clockwise from north (east = 90). They must be perpendicular
+/// (as an accelerograph's axes are); either handedness.
+struct ComponentAzimuths {
+  double first_deg = 90.0;   ///< typical: 90 (east-west channel, positive east)
+  double second_deg = 0.0;   ///< typical: 0 (north-south channel, positive north)
+};
+
+/// Integration tolerances of the slip phases (stick phases and onsets are exact).
+struct Sliding2dOptions {
+  /// Relative tolerance per step on each state (dimensionless, typical 1e-9); > 0.
+  double rel_tol = 1e-9;
+  /// Absolute tolerance per step (m for displacements, m/s for velocities, m^2/s^2 for work per mass; typical
+  /// 1e-10); > 0. It also sets the velocity noise floor: a slipping block that slows to 100 abs_tol has stopped.
+  double abs_tol = 1e-10;
+  /// Cap on integrator steps (accepted and rejected) over the run: a sign of an input outside the model.
+  std::size_t max_steps = 100'000'000;
+
+  /// Throws InputError naming the field for a non-finite or non-positive tolerance or a zero cap.
+  void validate() const;
+};
+
+struct Sliding2dSummary {
+  double residual_east_m = 0.0;            ///< u_x when the block has come to rest after the record
+  double residual_north_m = 0.0;           ///< u_y, same
+  double residual_displacement_m = 0.0;    ///< |u| at rest
+  std::optional<double> residual_azimuth_deg;  ///< direction of u at rest, degrees clockwise from north in [0, 360);
+                                               ///< none when the block never moved
+  double max_abs_displacement_m = 0.0;     ///< max |u| over the response (to the integration tolerance)
+  double max_displacement_time_s = 0.0;    ///< first time |u| reaches it (record start when never slipping)
+  double path_length_m = 0.0;              ///< integral of |w| dt: the length of the block's track on the ground
+  double max_abs_velocity_m_s = 0.0;       ///< peak relative speed max |w|
+  int slip_episodes = 0;                   ///< slip starts from relative rest
+  std::optional<double> first_slip_time_s;
+  double total_slip_duration_s = 0.0;
+  double end_time_s = 0.0;                 ///< when the block came to rest (>= record end when it slid past it)
+  bool at_rest_at_end = true;              ///< false only when mu_k = 0 and it still slides at the record's end
+  std::optional<double> contact_lost_time_s;  ///< first time g_e <= 0 (the block leaves the ground)
+  double input_work_J_kg = 0.0;            ///< integral of -a . w dt: work of the inertial load on the block, per mass
+  double friction_work_J_kg = 0.0;         ///< integral of mu_k g_e^+ |w| dt: energy dissipated by friction, per mass
+  std::size_t integrator_steps = 0;        ///< Dormand-Prince steps taken, rejected ones included
+};
+
+/// History on the merged grid's points plus every event (slip start and stop); at an event the row carries the
+/// state after it.
+struct Sliding2dHistory {
+  std::vector<double> time_s;
+  std::vector<double> east_m;        ///< u_x
+  std::vector<double> north_m;       ///< u_y
+  std::vector<double> east_m_s;      ///< w_x
+  std::vector<double> north_m_s;     ///< w_y
+  std::vector<std::uint8_t> slipping;  ///< 1 while slipping, 0 stuck
+};
+
+struct Sliding2dResult {
+  Sliding2dSummary summary;
+  Sliding2dHistory history;
+};
+
+/// Full response with history. `first` and `second` are the horizontal components (m/s^2, positive toward their
+/// azimuths), `vertical` (optional) the vertical, positive up; any grids (merged exactly). `block` must be level
+/// and two-way: InputError otherwise, as for azimuths that are not finite and perpendicular (to 1e-6 deg).
+[[nodiscard]] Sliding2dResult slide_2d(const GroundMotion& first, const GroundMotion& second,
+                                       const ComponentAzimuths& azimuths, const SlidingBlock& block,
+                                       const GroundMotion* vertical = nullptr, const Sliding2dOptions& options = {});
+
+/// Summary only (no history stored): the fast path.
+[[nodiscard]] Sliding2dSummary slide_2d_summary(const GroundMotion& first, const GroundMotion& second,
+                                                const ComponentAzimuths& azimuths, const SlidingBlock& block,
+                                                const GroundMotion* vertical = nullptr,
+                                                const Sliding2dOptions& options = {});
+
+/// Closed-form oracle (docs/method.md): the steady sliding state under a ground acceleration of constant magnitude
+/// A rotating at constant angular speed omega on level ground, with mu g < A. In the frame turning with the ground
+/// acceleration the relative velocity is constant: its magnitude is V = sqrt(A^2 - (mu g)^2) / omega and it lags the
+/// inertial load -a by delta = arccos(mu g / A) (behind it in the sense of rotation); u runs on a circle of radius
+/// V / omega, and input and friction power both equal mu g V.
+struct RotatingSteadySliding {
+  double speed_m_s = 0.0;      ///< V
+  double lag_rad = 0.0;        ///< delta
+  double radius_m = 0.0;       ///< V / omega
+  double power_W_kg = 0.0;     ///< mu g V
+};
+/// Throws InputError unless A > mu g >= 0 and omega > 0, all finite.
+[[nodiscard]] RotatingSteadySliding rotating_steady_sliding(double accel_m_s2, double omega_rad_s, double mu,
+                                                            double g_m_s2 = kStandardGravity);
+
+}  // namespace topple

@@ -1,0 +1,839 @@
+#pragma once
+// Numpy-style docstrings of topple._core (what `help(topple.X)` shows), kept apart from the bindings so that
+// module.cpp stays readable. Every parameter and returned value names its unit; python/tests/test_docstrings.py
+// checks that each public name has Parameters / Returns sections and that unit-suffixed names (_m, _s, _g, _hz ...)
+// are documented with their unit. The stubs (python/topple/__init__.pyi) carry each docstring's first line.
+// The rocking solver's options, shared by rock, overturning_map and fragility (adjacent literals concatenate).
+#define TOPPLE_DOC_ROCKING_SOLVER                                                  \
+  "g : float\n    Gravity, m/s^2.\n"                                              \
+  "method : {\"adaptive\", \"rk4\"}\n    Integrator of the rocking motion between events.\n" \
+  "rel_tol : float\n    Relative tolerance of the adaptive integrator (dimensionless).\n" \
+  "rk4_substeps : int\n    RK4 steps per record interval.\n"                       \
+  "max_run_out_s : float\n    Longest time the body is followed after the record ends, s.\n"
+
+namespace topple::python::doc {
+
+inline constexpr const char* input_error = R"(Bad caller input (file, parameter, array value).
+
+str() is the message the CLI prints after "topple: error: ". A missing file raises the subclass
+topple.MissingFileError, which is also a FileNotFoundError.
+
+Attributes
+----------
+file : str or None
+    Path as given, when the problem is in a file.
+line : int or None
+    1-based line in that file.
+field : str or None
+    Parameter, key or column name ("mu", "dt_s", "NPTS", "width").
+problem : str
+    The message without its location.
+)";
+
+inline constexpr const char* missing_file_error = R"(A file that does not exist (or cannot be opened).
+
+Both a topple.InputError (the CLI's message) and a FileNotFoundError.
+
+Attributes
+----------
+file : str
+    Path as given.
+line : int or None
+    1-based line, when known (usually None).
+field : str or None
+    The parameter or key that named the file, when known.
+problem : str
+    The message without its location.
+errno : int
+    errno.ENOENT.
+filename : str
+    Path as given (as FileNotFoundError has it).
+)";
+
+inline constexpr const char* ground_motion =
+    R"(One component of ground acceleration, piecewise linear between samples (SI).
+
+GroundMotion(accel, dt=None, units="g", *, time=None, start_time_s=0.0, g=9.80665)
+
+Parameters
+----------
+accel : numpy.ndarray of float64 or sequence of float
+    Acceleration samples, 1-D, in `units`. Another dtype raises TypeError (convert explicitly); a strided array is
+    copied. NaN or Inf raise topple.InputError.
+dt : float, optional
+    Sample interval, s, for uniform samples (> 0). Give either dt or time.
+units : str
+    Unit of `accel`: "g" (of `g` below), "m/s2", "cm/s2", "gal" or "mm/s2".
+time : numpy.ndarray of float64 or sequence of float, optional
+    Sample times, s, non-decreasing, for irregular samples (a repeated time is a jump).
+start_time_s : float
+    Time of the first sample, s, for uniform samples.
+g : float
+    Gravity, m/s^2, for units="g", and the g of accel_g / pga_g (default standard gravity 9.80665 m/s^2).
+
+Attributes
+----------
+npts : int
+    Number of samples.
+is_uniform : bool
+    True when the samples are equally spaced.
+dt_s : float
+    Sample interval, s (mean interval of an irregular record).
+start_time_s, end_time_s, duration_s : float
+    First and last sample times and their difference, s.
+accel_m_s2 : numpy.ndarray
+    Acceleration, m/s^2: a read-only view on the C++ data (no copy).
+accel_g : numpy.ndarray
+    Acceleration in the motion's own g (g_m_s2), a new array.
+time_s : numpy.ndarray
+    Sample times, s (a new array).
+pga_m_s2 : float
+    Peak ground acceleration max |a|, m/s^2.
+pga_g : float
+    Peak ground acceleration in the motion's own g (g_m_s2), g.
+g_m_s2 : float
+    The g the motion was built or read with, m/s^2; operations (scaled, inverted ...) keep it.
+pga_time_s : float
+    Time of the peak, s.
+metadata : dict of str
+    format, source_file, event, station, component, units_as_read.
+name : str
+    The source file as given, else the event description (synthetic and pulse motions).
+)";
+
+inline constexpr const char* accel_at = R"(Acceleration at a time, by linear interpolation.
+
+Parameters
+----------
+t_s : float
+    Time, s (0 outside the record).
+
+Returns
+-------
+float
+    Acceleration, m/s^2.
+)";
+
+inline constexpr const char* scaled = R"(The motion with every acceleration multiplied by a factor.
+
+Parameters
+----------
+factor : float
+    Dimensionless factor (finite).
+
+Returns
+-------
+GroundMotion
+    The scaled motion (same times and g).
+)";
+
+inline constexpr const char* scaled_to_pga = R"(The motion scaled so that its PGA is `pga_g`.
+
+Parameters
+----------
+pga_g : float
+    Target peak ground acceleration, g (> 0).
+g : float, optional
+    Gravity, m/s^2, that `pga_g` is in (default: the motion's own g_m_s2).
+
+Returns
+-------
+GroundMotion
+    The scaled motion.
+)";
+
+inline constexpr const char* inverted = R"(The motion with its sign reversed (the other polarity).
+
+Returns
+-------
+GroundMotion
+    -a(t), same times.
+)";
+
+inline constexpr const char* time_scaled =
+    R"(The motion compressed or stretched in time (frequencies multiplied by 1 / factor).
+
+Parameters
+----------
+factor : float
+    Dimensionless time factor (> 0): every time t becomes factor * t.
+
+Returns
+-------
+GroundMotion
+    The time-scaled motion (same accelerations).
+)";
+
+inline constexpr const char* trimmed = R"(The part of the motion between two times (interpolated at the ends).
+
+Parameters
+----------
+t_begin_s : float
+    Start time, s.
+t_end_s : float
+    End time, s (> t_begin_s).
+
+Returns
+-------
+GroundMotion
+    The trimmed motion.
+)";
+
+inline constexpr const char* resampled =
+    R"(The motion resampled at a uniform interval (linear interpolation: exact for this motion).
+
+Parameters
+----------
+dt_s : float
+    New sample interval, s (> 0).
+
+Returns
+-------
+GroundMotion
+    The resampled motion.
+)";
+
+inline constexpr const char* baseline_corrected = R"(The motion with a least-squares polynomial baseline removed.
+
+Parameters
+----------
+order : int
+    Polynomial order (0: mean, 1: linear trend, ...).
+
+Returns
+-------
+GroundMotion
+    The corrected motion.
+)";
+
+inline constexpr const char* read = R"(Read a strong-motion record.
+
+Formats: PEER .AT2, COSMOS V2, CSMIP V2, USGS SMC, K-NET, ESM and plain text, detected from content.
+
+Parameters
+----------
+path : str
+    The record file. A missing file raises topple.MissingFileError (a FileNotFoundError).
+format : str, optional
+    "auto" (default) or one of "peer-at2", "cosmos-v2", "csmip-v2", "knet", "usgs-smc", "esm", "plain".
+units : str, optional
+    Unit of a plain file's values ("g", "m/s2", "cm/s2", "gal", "mm/s2").
+dt : float, optional
+    Sample interval of a one-column plain file, s.
+channel : int, optional
+    1-based channel of a multi-channel file.
+g : float
+    Gravity, m/s^2, for values in g and for the motion's accel_g / pga_g (default 9.80665 m/s^2).
+
+Returns
+-------
+GroundMotion
+    The record, in m/s^2 inside.
+)";
+
+inline constexpr const char* sliding_result = R"(Sliding response of a rigid block (the result of topple.slide).
+
+Summary attributes have the names and units of `topple slide --json`; json() returns that object. Histories are
+empty when run with history=False.
+
+Attributes
+----------
+max_abs_displacement_m : float
+    Maximum |relative displacement|, m.
+max_displacement_time_s : float
+    Time of that maximum, s.
+residual_displacement_m : float
+    Relative displacement at the end, m (signed: + down-slope / positive direction).
+max_abs_velocity_m_s : float
+    Maximum |relative velocity|, m/s.
+slip_episodes : int
+    Number of slip episodes.
+first_slip_time_s : float or None
+    Time the block first slips, s (None: it never slips).
+total_slip_duration_s : float
+    Total time spent slipping, s.
+end_time_s : float
+    Time the run ended, s (the record end, or later when still sliding).
+at_rest_at_end : bool
+    True when the block is stuck at the end.
+contact_lost_time_s : float or None
+    Time the vertical acceleration lifts the block off the plane, s (None: never).
+yield_down_g : float
+    Down-slope (positive) yield acceleration, g.
+yield_up_g : float or None
+    Up-slope (negative) yield acceleration, g (None in one-way mode).
+mu_static, mu_kinetic : float
+    Friction coefficients (dimensionless).
+slope_deg : float
+    Plane inclination, deg.
+mode : str
+    "two-way" or "one-way".
+g_m_s2 : float
+    Gravity used, m/s^2.
+time_s : numpy.ndarray
+    History times, s (read-only view).
+displacement_m : numpy.ndarray
+    Relative displacement history, m (read-only view).
+velocity_m_s : numpy.ndarray
+    Relative velocity history, m/s (read-only view).
+state : numpy.ndarray of int8
+    -1 slipping up-slope / negative, 0 stuck, 1 slipping down-slope / positive.
+)";
+
+inline constexpr const char* sliding_json = R"(The summary as `topple slide --json` writes it.
+
+Returns
+-------
+dict
+    The JSON object (keys with units, e.g. residual_displacement_m in m) with its "input".
+)";
+
+inline constexpr const char* slide =
+    R"(Exact sliding of a rigid block with Coulomb friction on a level or inclined plane.
+
+Parameters
+----------
+motion : GroundMotion
+    Horizontal ground acceleration (along the slope's fall line when inclined).
+mu : float
+    Static friction coefficient (dimensionless, >= 0).
+mu_kinetic : float, optional
+    Kinetic friction coefficient, <= mu (default: mu).
+mode : {"two-way", "one-way"}
+    "one-way": down-slope slip only (SLAMMER's rigid block).
+slope_deg : float
+    Plane inclination, deg (0: level).
+vertical : GroundMotion, optional
+    Vertical ground acceleration, positive up, m/s^2 inside.
+g : float
+    Gravity, m/s^2 (default 9.80665 m/s^2).
+history : bool
+    False: summary only (faster; histories empty).
+
+Returns
+-------
+SlidingResult
+    Summary (displacements in m, times in s, yield accelerations in g) and histories.
+)";
+
+inline constexpr const char* slide_spectrum =
+    R"(Sliding displacement spectrum: one block per friction coefficient (topple/object_spectra.hpp).
+
+Blocks have mu static = kinetic, on a plane at slope_deg. Draw it with topple.plot.sliding_spectrum.
+
+Parameters
+----------
+motion : GroundMotion
+    Ground acceleration.
+mu : numpy.ndarray of float64 or sequence of float
+    Friction coefficients (dimensionless, >= 0, atan(mu) + slope < 90 deg).
+slope_deg : float
+    Plane inclination, deg.
+mode : {"two-way", "one-way"}
+    Sliding mode.
+g : float
+    Gravity, m/s^2.
+
+Returns
+-------
+dict
+    Arrays, one value per mu in the given order: mu, max_abs_displacement_m (m), residual_displacement_m (m,
+    signed), yield_accel_g (down-slope yield k_y = tan(atan(mu) - slope), g), yield_over_pga (k_y g / PGA),
+    slip_episodes (int64), total_slip_duration_s (s), at_rest_at_end (bool); scalars pga_g (g), slope_deg (deg),
+    mode, g_m_s2 (m/s^2), motion (the record's name).
+)";
+
+inline constexpr const char* slide_flexible =
+    R"(Sliding on a flexible support (topple/flexible.hpp), decoupled or coupled.
+
+Either an object (friction mu) on a shelf or floor, given by support_freq_hz, support_damping and mass_ratio; or
+SLAMMER's flexible sliding mass (mu is k_y), given by height_m, vs_slope_m_s, vs_base_m_s and damping.
+
+Parameters
+----------
+motion : GroundMotion
+    Ground acceleration at the base of the support.
+mu : float
+    Friction coefficient of the object (dimensionless), or the yield coefficient k_y of a sliding mass.
+mode : {"two-way", "one-way"}
+    Sliding mode.
+support_freq_hz : float, optional
+    Natural frequency of the support alone, Hz.
+support_damping : float
+    Damping ratio of the support (dimensionless).
+mass_ratio : float
+    Object mass / support modal mass (dimensionless; coupled analysis).
+height_m : float, optional
+    Height of the sliding mass, m (SLAMMER flexible analysis).
+vs_slope_m_s : float, optional
+    Shear-wave velocity of the sliding mass, m/s.
+vs_base_m_s : float, optional
+    Shear-wave velocity of the base, m/s.
+damping : float, optional
+    Material damping ratio of the sliding mass (dimensionless; the mode adds the base impedance damping).
+reference_strain : float, optional
+    Reference shear strain (decimal) for the equivalent-linear iteration.
+coupled : bool
+    True: coupled analysis (the sliding feeds back on the support).
+vertical : GroundMotion, optional
+    Vertical ground acceleration, positive up (both analyses; coupled: normal force m (g + a_v)).
+g : float
+    Gravity, m/s^2.
+
+Returns
+-------
+dict
+    The dict of `topple slide --support-freq|--height --json`: the sliding summary fields (displacements in m,
+    times in s) and "support" (mode_freq_hz in Hz, mode_damping_ratio, kmax in g, vs_final_m_s in m/s ...).
+)";
+
+inline constexpr const char* rocking_body =
+    R"(A rigid body that rocks about its base edges (made by Block, Cylinder or General).
+
+Attributes
+----------
+shape : str
+    "block", "cylinder" or "general".
+a_m : float
+    Horizontal distance from the centre of mass to a pivot edge, m.
+h_m : float
+    Height of the centre of mass, m.
+D_m2 : float
+    Moment of inertia about a pivot per unit mass, m^2.
+alpha_rad : float
+    Slenderness angle atan(a / h), rad.
+R_m : float
+    Distance from the centre of mass to a pivot, m.
+housner_e : float
+    Housner's coefficient of restitution 1 - (3/2) sin^2(alpha) for a block (dimensionless; negative for squat bodies).
+)";
+
+inline constexpr const char* p_rad_s = R"(Frequency parameter p = sqrt(g R / D) of the body.
+
+Parameters
+----------
+g : float
+    Gravity, m/s^2.
+
+Returns
+-------
+float
+    p, rad/s.
+)";
+
+inline constexpr const char* block = R"(A rectangular block standing on its base.
+
+Parameters
+----------
+width : float
+    Full base width across the rocking direction (the narrow side), m.
+height : float
+    Full height, m.
+
+Returns
+-------
+RockingBody
+    The block (a_m = width / 2, h_m = height / 2).
+)";
+
+inline constexpr const char* cylinder = R"(A solid cylinder standing on its end.
+
+Parameters
+----------
+diameter : float
+    Diameter, m.
+height : float
+    Height, m.
+
+Returns
+-------
+RockingBody
+    The cylinder.
+)";
+
+inline constexpr const char* general = R"(Any rigid body, by its geometry about a pivot.
+
+Parameters
+----------
+a : float
+    Horizontal distance from the centre of mass to the pivot edge, m.
+h : float
+    Height of the centre of mass, m.
+D : float
+    Moment of inertia about the pivot per unit mass, m^2 (>= a^2 + h^2).
+
+Returns
+-------
+RockingBody
+    The body.
+)";
+
+inline constexpr const char* rocking_result = R"(Rocking response of a rigid body (the result of topple.rock).
+
+Summary attributes have the names and units of `topple rock --json`; json() returns that object. Histories and
+events are empty when run with history=False.
+
+Attributes
+----------
+max_abs_rotation_rad : float
+    Maximum |theta|, rad.
+max_rotation_over_alpha : float
+    Maximum |theta| / alpha (1: the body passes its tipping angle).
+max_rotation_time_s : float
+    Time of that maximum, s.
+max_abs_theta_dot_rad_s : float
+    Maximum |theta'|, rad/s.
+impacts, uplifts : int
+    Number of impacts and of uplifts.
+uplift_time_s : float or None
+    First uplift, s.
+exceeded_alpha_time_s : float or None
+    First time |theta| > alpha, s.
+overturned : bool
+    True when the body fell.
+overturn_time_s : float or None
+    Time of overturning, s.
+end_state : str
+    "rest", "rocking+", "rocking-" or "fallen".
+end_time_s : float
+    Time the run ended, s.
+still_rocking_at_end : bool
+    True when the body still rocks at end_time_s.
+energy_lost_j_per_kg : float
+    Energy lost in impacts per unit mass, J/kg.
+alpha_rad, alpha_deg : float
+    Slenderness angle, rad and deg.
+R_m : float
+    Centre of mass to pivot, m.
+p_rad_s : float
+    Frequency parameter, rad/s.
+e : float
+    Coefficient of restitution used (dimensionless).
+e_mode : str
+    "housner" (Housner's value of the body) or "given".
+onset_mode : str
+    Shenton's onset criterion: "unchecked" (no mu given), "rest", "rock", "slide" or "slide-rock".
+onset_accel_ratio : float or None
+    Onset acceleration / g tan(alpha) (dimensionless).
+critical_mu : float or None
+    Friction coefficient below which the body would slide before it rocks (dimensionless).
+mu : float or None
+    Friction coefficient checked (dimensionless).
+g_m_s2 : float
+    Gravity used, m/s^2.
+warnings : list of str
+    What the solver had to say (e.g. a run-out limit reached).
+body : RockingBody
+    The body.
+time_s : numpy.ndarray
+    History times, s (read-only view).
+theta_rad : numpy.ndarray
+    Rotation history, rad (read-only view).
+theta_dot_rad_s : numpy.ndarray
+    Angular velocity history, rad/s (read-only view).
+state : numpy.ndarray of int8
+    -1 rocking negative, 0 at rest, 1 rocking positive, 2 fallen.
+events : list of dict
+    kind, time_s (s), theta_rad (rad), theta_dot_before_rad_s and theta_dot_after_rad_s (rad/s).
+)";
+
+inline constexpr const char* rocking_json = R"(The summary as `topple rock --json` writes it.
+
+Returns
+-------
+dict
+    The JSON object (keys with units, e.g. max_rotation_time_s in s).
+)";
+
+inline constexpr const char* rock =
+    R"(Housner rocking and overturning of a rigid body on a level base that does not slide.
+
+Parameters
+----------
+motion : GroundMotion
+    Horizontal ground acceleration.
+shape : RockingBody
+    The body (topple.Block, topple.Cylinder or topple.General; lengths in m).
+e : float or "housner"
+    Coefficient of restitution in [0, 1] (dimensionless), or "housner" for Housner's value of the body.
+mu : float, optional
+    Friction coefficient (dimensionless) for Shenton's slide/rock onset check.
+)" TOPPLE_DOC_ROCKING_SOLVER R"(vertical : GroundMotion, optional
+    Vertical ground acceleration, positive up.
+history : bool
+    False: summary only.
+
+Returns
+-------
+RockingResult
+    Summary (angles in rad, times in s) and histories.
+)";
+
+inline constexpr const char* synth =
+    R"(A synthetic ground motion, as `topple synth`: the same parameters and seed give the same bits everywhere.
+
+Filtered white noise (Clough-Penzien or Kanai-Tajimi) under an envelope, scaled to the PGA.
+
+Parameters
+----------
+pga_g : float
+    Peak ground acceleration, g.
+freq_hz : float
+    Predominant frequency of the ground filter, Hz (0.2 to 20 Hz).
+duration_s : float
+    Duration, s.
+seed : int
+    Random seed.
+dt_s : float
+    Sample interval, s.
+model : {"clough-penzien", "kanai-tajimi"}
+    Ground filter.
+envelope : {"saragoni-hart", "jennings"}
+    Amplitude envelope.
+zeta_g : float
+    Damping ratio of the ground filter (dimensionless).
+g : float
+    Gravity, m/s^2, that pga_g is in.
+
+Returns
+-------
+GroundMotion
+    The motion (PGA exactly pga_g).
+)";
+
+inline constexpr const char* intensity = R"(Intensity measures of a motion, as `topple info --json` names them.
+
+Parameters
+----------
+motion : GroundMotion
+    Ground acceleration.
+g : float
+    Gravity, m/s^2, for the values in g.
+
+Returns
+-------
+dict
+    npts, dt_s (s), duration_s (s), pga_g (g), pga_m_s2 (m/s^2), pga_time_s (s), pgv_m_s (m/s), pgd_m (m),
+    arias_m_s (Arias intensity, m/s), d5_95_s (significant duration, s), d5_time_s, d95_time_s (s), cav_m_s (m/s),
+    tp_s (predominant period, s), tm_s (mean period, s), predominant_frequency_hz (Hz), g_m_s2 (m/s^2); None where
+    undefined.
+)";
+
+// Private workers of topple.invert (python/topple/__init__.py documents the parameters).
+inline constexpr const char* invert_text =
+    "topple.invert's worker for a survey given as TOML text (text, name for messages, base_dir for records).";
+inline constexpr const char* invert_file = "topple.invert's worker for a survey file.";
+
+inline constexpr const char* response_spectrum =
+    R"(Elastic response spectrum of linear oscillators, by the exact Nigam-Jennings recurrence.
+
+x'' + 2 zeta w x' + w^2 x = -a_g from rest (topple/spectra.hpp; maxima at the samples, over the record only). Draw
+it with topple.plot.response_spectrum.
+
+Parameters
+----------
+motion : GroundMotion
+    Ground acceleration.
+periods_s : numpy.ndarray of float64 or sequence of float, optional
+    Oscillator periods, s (> 0; default: 100 per decade from 0.02 s to 5 s).
+damping : float
+    Damping ratio zeta in [0, 1) (dimensionless).
+g : float
+    Gravity, m/s^2, for psa_g.
+
+Returns
+-------
+dict
+    Arrays, one value per period: period_s (s), sd_m (max |x|, m), psv_m_s (w SD, m/s), psa_m_s2 (w^2 SD, m/s^2),
+    psa_g (PSA / g), sv_m_s (max |x'|, m/s), sa_m_s2 (max absolute acceleration, m/s^2); scalars damping, g_m_s2
+    (m/s^2), motion (name).
+)";
+
+inline constexpr const char* fourier_spectrum =
+    R"(Fourier amplitude spectrum |A(f)| = dt |DFT| and its Konno-Ohmachi smoothing.
+
+Irregular records are resampled at their smallest interval first. Draw it with topple.plot.fourier_spectrum.
+
+Parameters
+----------
+motion : GroundMotion
+    Ground acceleration.
+smoothing_b : float or None
+    Konno-Ohmachi bandwidth b (> 0, dimensionless); None: no smoothing.
+centre_hz : numpy.ndarray of float64 or sequence of float, optional
+    Centre frequencies of the smoothing, Hz (default: 200 per decade from 0.1 Hz to min(25 Hz, 0.8 f_Nyquist)).
+fft_length : int, optional
+    Zero-padded FFT length (>= npts; default: the next power of two >= 2 npts).
+
+Returns
+-------
+dict
+    freq_hz (Hz, k / (N dt)), amplitude_m_s (m/s), smoothed_freq_hz (Hz) and smoothed_amplitude_m_s (m/s; None
+    without smoothing), dt_s (s), fft_length, smoothing_b, predominant_frequency_hz (Hz, as topple.intensity; None
+    when undefined), motion (name).
+)";
+
+inline constexpr const char* overturning_map =
+    R"(Overturning map: which bodies of one slenderness overturn at which PGA (topple/object_spectra.hpp).
+
+Bodies of one shape and slenderness alpha_rad = atan(a / h), of the given full heights, under the motion scaled to
+each PGA. Runs on `threads` cores with the GIL released. Draw it with topple.plot.overturning_map.
+
+Parameters
+----------
+motion : GroundMotion
+    Ground acceleration (scaled to each PGA).
+alpha_rad : float
+    Slenderness angle atan(a / h), rad.
+heights_m : numpy.ndarray of float64 or sequence of float
+    Full body heights, m.
+pga_g : numpy.ndarray of float64 or sequence of float
+    Peak ground accelerations, g.
+shape : {"block", "cylinder"}
+    Body shape.
+e : float or "housner"
+    Coefficient of restitution (dimensionless).
+mu : float, optional
+    Friction coefficient (dimensionless) for the onset check.
+)" TOPPLE_DOC_ROCKING_SOLVER R"(threads : int
+    Worker threads (0: all cores).
+
+Returns
+-------
+dict
+    pga_g (g, ascending) and pga_m_s2 (m/s^2); per size in the given order: height_m (m), width_m (full width or
+    diameter, m), R_m (m), p_rad_s (rad/s), first_overturn_pga_g (g, NaN when none overturns), standing_above_first
+    (bool), overturn_count (int64); overturned (bool) and max_rotation_over_alpha, 2-D [size, pga]; alpha_rad (rad),
+    uplift_pga_g (tan(alpha), g), shape, g_m_s2 (m/s^2), motion (name).
+)";
+
+inline constexpr const char* fragility_fit_class =
+    R"(Lognormal fragility P(failure | IM = x) = Phi(ln(x / theta) / beta).
+
+Maximum-likelihood fit to binomial counts (Baker 2015; topple/fragility.hpp).
+
+Attributes
+----------
+theta : float
+    Median, in the unit of the IM levels it was fitted to (g for PGA).
+beta : float
+    Logarithmic standard deviation (dimensionless).
+log_likelihood : float
+    Log-likelihood at the maximum.
+se_ln_theta, se_beta : float
+    Standard errors of ln theta and beta (observed information).
+cov_ln_theta_beta : float
+    Their covariance.
+iterations : int
+    Newton iterations used.
+beta_at_bound : bool
+    True for separated data: beta is held at its lower bound 0.01 and the band is not meaningful.
+)";
+
+inline constexpr const char* fragility_probability = R"(Probability of failure at an intensity.
+
+Parameters
+----------
+im : float or numpy.ndarray of float64
+    Intensity measure, in the unit theta is in.
+
+Returns
+-------
+float or numpy.ndarray
+    Probability in [0, 1].
+)";
+
+inline constexpr const char* fragility_band = R"(Delta-method confidence band of the probability.
+
+Parameters
+----------
+im : float or numpy.ndarray of float64
+    Intensity measure, in the unit theta is in.
+level : float
+    Confidence level in (0, 1).
+
+Returns
+-------
+tuple
+    (lower, upper) probabilities, floats or arrays as `im`.
+)";
+
+inline constexpr const char* fragility_fit = R"(Fit a lognormal fragility to counts of failures.
+
+Warns (RuntimeWarning) when the data are separated and beta sits at its lower bound.
+
+Parameters
+----------
+im : numpy.ndarray of float64 or sequence of float
+    Intensity levels (> 0, any unit: theta comes out in it).
+trials : sequence of int
+    Runs at each level.
+failures : sequence of int
+    Failures at each level. No failure at all, or failures only: topple.InputError.
+
+Returns
+-------
+FragilityFit
+    The fit.
+)";
+
+inline constexpr const char* fragility =
+    R"(Fragility analysis: failure counts over scaled motions and their lognormal fits (topple/fragility.hpp).
+
+Every motion is scaled so that its IM equals each level and run on a sliding block (failure: max |d| >
+threshold_m) and/or a rocking body (failure: overturning). Warns (RuntimeWarning) for each curve whose fit has beta
+at its lower bound. Runs on `threads` cores with the GIL released. Draw it with topple.plot.fragility.
+
+Parameters
+----------
+motions : list of GroundMotion
+    The ensemble.
+levels : numpy.ndarray of float64 or sequence of float
+    IM levels: g for pga, m/s for pgv and cav, m for pgd.
+im : {"pga", "pgv", "pgd", "cav"}
+    Intensity measure.
+mu : float, optional
+    Friction coefficient of the sliding block (dimensionless; with threshold_m).
+threshold_m : float, optional
+    Sliding failure threshold on max |displacement|, m.
+mu_kinetic : float, optional
+    Kinetic friction coefficient (dimensionless).
+mode : {"two-way", "one-way"}
+    Sliding mode.
+slope_deg : float
+    Plane inclination, deg.
+body : RockingBody, optional
+    Rocking body (failure = overturning).
+e : float or "housner"
+    Coefficient of restitution (dimensionless).
+rock_mu : float, optional
+    Friction coefficient for the rocking onset check (dimensionless).
+)" TOPPLE_DOC_ROCKING_SOLVER R"(threads : int
+    Worker threads (0: all cores).
+
+Returns
+-------
+dict
+    im, im_unit, runs, g_m_s2 (m/s^2), motions (count), mu, threshold_m (m) and body as given, and curves: a
+    list (slide first, then overturn) of dicts name, im (levels, in im_unit), trials, failures (int64), fraction,
+    fit (FragilityFit, theta in im_unit; None when the counts cannot be fitted) and fit_note.
+)";
+
+inline constexpr const char* sweep = R"(Run a sweep file in memory (used by topple.sweep).
+
+Parameters
+----------
+path : str
+    The sweep file.
+threads : int
+    Worker threads (0: all cores).
+
+Returns
+-------
+dict
+    Column name -> values.
+)";
+
+}  // namespace topple::python::doc
+
+#undef TOPPLE_DOC_ROCKING_SOLVER
