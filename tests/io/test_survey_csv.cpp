@@ -118,6 +118,24 @@ TEST(SurveyCsv, HeaderUnitsCellUnitsAndAliasesMatchToml) {
   EXPECT_FALSE(csv.sites[0].objects[1].e_housner);
 }
 
+// A flexible support is its TOML inline table in the support cell (site default: a site.support setting row).
+TEST(SurveyCsv, FlexibleSupportCell) {
+  const Survey s = io::parse_survey("site.support,\"{freq_hz = [3, 6], damping = 0.05}\"\n"
+                                    "id,width_cm,height_cm,mu,outcome,support\n"
+                                    "a,10,40,0.5,toppled,\"{freq_hz = 4, damping = 0.02, name = \"\"shelf\"\"}\"\n"
+                                    "b,10,40,0.5,toppled,\n"
+                                    "c,10,40,0.5,toppled,upper floor\n",
+                                    "flex.csv");
+  const auto& o = s.sites[0].objects;
+  ASSERT_EQ(o.size(), 3u);
+  ASSERT_TRUE(o[0].support_filter.has_value());
+  EXPECT_EQ(o[0].support_filter->freq_hz.low, 4.0);
+  EXPECT_EQ(o[0].support_filter->damping.low, 0.02);
+  ASSERT_TRUE(o[1].support_filter.has_value());  // the site's default
+  EXPECT_EQ(o[1].support_filter->freq_hz.high, 6.0);
+  EXPECT_EQ(o[2].support, "upper floor");  // free text
+}
+
 // The aliases are the TOML reader's own (the CSV only passes the word on).
 TEST(SurveyCsv, TomlReaderTakesToppledAndFell) {
   for (const char* word : {"toppled", "fell", "overturned"}) {
