@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "progress.hpp"
 #include "common.hpp"
 #include "grids.hpp"
 #include "topple/error.hpp"
@@ -45,6 +46,7 @@ struct FragilityOptions {
   std::string e = "housner";
   double band = 0.95;
   int threads = 0;
+  bool quiet = false;
   std::string out;
   std::string plot;
   bool json = false;
@@ -53,6 +55,26 @@ struct FragilityOptions {
 /// The most synthetic motions (each is held in memory; 1e4 motions of 20 s at 0.01 s: 320 MB) and IM levels.
 constexpr int kMaxSynthMotions = 10'000;
 constexpr std::size_t kMaxLevels = 1'000;
+
+/// The analysis a fragility figure shows: the ensemble, and each failure with its parameters (the sliding threshold d,
+/// mu, slope, one-way; the body and e).
+std::string fragility_title(const FragilityOptions& o, std::size_t motions) {
+  std::string t = o.synth ? fmt::format("Fragility over {} synthetic motions (f_p {}, seeds from {})", motions, o.freq,
+                                        o.seed)
+                          : fmt::format("Fragility over {} records", motions);
+  if (o.files.size() == 1) t += " (" + plot::file_label(o.files.front()) + ")";
+  if (o.mu) {
+    t += fmt::format(", slide > d = {} at μ = {:g}", o.threshold, *o.mu);
+    if (o.slope_deg != 0.0) t += fmt::format(", slope {:g}°", o.slope_deg);
+    t += o.one_way ? ", one-way" : ", two-way";
+  }
+  if (!o.shape.empty()) {
+    t += o.shape == "cylinder" ? fmt::format(", overturn of a cylinder {} x {}", o.diameter, o.height)
+                               : fmt::format(", overturn of a {} {} x {}", o.shape, o.width, o.height);
+    t += ", e = " + o.e;
+  }
+  return t;
+}
 
 void run_fragility(const FragilityOptions& o) {
   check_plot_path(o.plot);
@@ -161,7 +183,10 @@ void run_fragility(const FragilityOptions& o) {
       names.push_back(f);
     }
   }
+  ProgressBar bar(progress_wanted(o.quiet));
+  spec.progress = bar.callback();
   const FragilityResult res = fragility_analysis(spec);
+  bar.finish();
   const double k = intensity_measure_display_factor(spec.im, g);
   const std::string unit(intensity_measure_unit(spec.im));
 
@@ -185,8 +210,7 @@ void run_fragility(const FragilityOptions& o) {
   }
   if (!o.plot.empty()) {
     plot::render(plot::fragility_figure(res, g, o.band,
-                                        fmt::format("Fragility over {} motions ({})", spec.motions.size(),
-                                                    o.synth ? "synthetic" : "records")),
+                                        fragility_title(o, spec.motions.size())),
                  o.plot);
   }
   if (o.json) {
@@ -278,6 +302,7 @@ void add_fragility_command(CLI::App& app) {
   cmd->add_option("--out", o->out, "Write the counts, fitted probabilities and band per level to this CSV file");
   cmd->add_option("--plot", o->plot, "Draw the curves with their data points and band to this .svg or .png file");
   cmd->add_flag("--json", o->json, "Print the fits as one JSON object");
+  add_quiet_flag(*cmd, o->quiet);
   cmd->callback([o] { run_fragility(*o); });
 }
 

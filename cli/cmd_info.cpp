@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "progress.hpp"
 #include "common.hpp"
 #include "topple/error.hpp"
 #include "topple/intensity.hpp"
@@ -31,11 +32,13 @@ void add_info_command(CLI::App& app) {
   auto options = std::make_shared<MotionOptions>();
   auto json = std::make_shared<bool>(false);
   auto plot_path = std::make_shared<std::string>();
+  auto quiet = std::make_shared<bool>(false);
   CLI::App* cmd = app.add_subcommand("info", "Describe a ground-motion record: format, station, npts, dt, PGA, PGV, "
                                              "PGD, Arias intensity, D5-95, CAV, Tp, Tm, predominant frequency");
   cmd->add_option("file", options->file, "Record file (format detected from content)")->required();
   add_motion_options(*cmd, *options);
   cmd->add_flag("--json", *json, "Print one JSON object instead of text");
+  add_quiet_flag(*cmd, *quiet);  // no bar: info is quick; accepted so that every command takes --quiet
   cmd->add_option("--plot", *plot_path, "Draw acceleration, velocity, displacement and the 5%-damped PSA spectrum "
                                         "with Tp marked to this .svg or .png file (gnuplot)");
   cmd->callback([options, json, plot_path] {
@@ -61,7 +64,7 @@ void add_info_command(CLI::App& app) {
       std::vector<plot::Mark> marks;
       if (tp.value) marks.push_back({*tp.value, fmt::format("Tp = {:.3f} s", *tp.value), "#e67e22"});
       const std::string name = !meta.event.empty() ? meta.event + (meta.station.empty() ? "" : ", " + meta.station)
-                                                   : options->file;
+                                                   : plot::file_label(options->file);
       const std::string title = fmt::format("{}{}: PGA {:.3g} g, PGV {:.3g} m/s, PGD {:.3g} m", name,
                                             meta.component.empty() ? "" : " " + meta.component, im.pga_m_s2 / g,
                                             im.pgv_m_s, im.pgd_m);

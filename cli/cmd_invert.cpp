@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "progress.hpp"
 #include "topple/error.hpp"
 #include "topple/inversion.hpp"
 #include "topple/io/inversion_output.hpp"
@@ -108,8 +109,11 @@ void prepare_output_folder(const std::string& path, const char* option, bool is_
 
 void run_invert(const InvertOptions& o) {
   // Every option is checked before any work (the survey is read in milliseconds; the runs take seconds).
-  const InversionOptions options{o.threads};
+  InversionOptions options;
+  options.threads = o.threads;
   validate_inversion_options(options);
+  ProgressBar bar(progress_wanted(o.quiet));
+  options.progress = bar.callback();
   const Survey survey = io::read_survey(o.survey);
   const io::Provenance provenance = io::make_provenance(o.survey, own_command_line());
   if (!o.grid.empty()) prepare_output_folder(o.grid, "--grid");
@@ -125,6 +129,7 @@ void run_invert(const InvertOptions& o) {
   }
   // One family for every site (invert_sites): the same results as site by site, without re-synthesising it.
   const std::vector<InversionResult> results = invert_sites(survey.sites, survey.inversion, options);
+  bar.finish();
   const bool multi = survey.sites.size() > 1;
   const auto site_path = [&](const std::string& base, std::size_t i) {
     if (!multi) return std::filesystem::path(base);
@@ -176,7 +181,7 @@ void add_invert_command(CLI::App& app) {
   cmd->add_option("--map", o->map, "Write one GeoJSON point per site (and, with an epicentre, PGA vs distance CSV)");
   cmd->add_option("--report", o->report, "Write a self-contained HTML report (and its figures) into this directory");
   cmd->add_option("--threads", o->threads, "Worker threads (default: all cores)");
-  cmd->add_flag("--quiet", o->quiet, "No progress messages on stderr");
+  add_quiet_flag(*cmd, o->quiet, "no notes and no progress messages");
   cmd->callback([o] { run_invert(*o); });
 }
 

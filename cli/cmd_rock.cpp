@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "progress.hpp"
 #include "common.hpp"
 #include "topple/error.hpp"
 #include "topple/io/write.hpp"
@@ -22,6 +23,7 @@ namespace topple::cli {
 namespace {
 
 struct RockOptions {
+  bool quiet = false;
   MotionOptions motion;
   PulseOptions pulse;
   std::string shape;
@@ -115,9 +117,11 @@ void run_rock(const RockOptions& o) {
     const RockingResult result = naming_options([&] { return rock(horizontal, body, options, vertical_ptr); });
     if (!o.out.empty()) io::write_rocking_history_csv(o.out, result.history);
     if (!o.plot.empty()) {
-      const std::string title = fmt::format("Rocking {}, a = {:.3g} m, h = {:.3g} m, α = {:.3g} rad, e = {:.3g}: {}",
-                                            shape_name(body.shape), body.a_m, body.h_m, result.summary.alpha_rad,
-                                            result.summary.e, motion_name);
+      const std::string title =
+          fmt::format("Rocking {}, a = {:.3g} m, h = {:.3g} m, α = {:.3g} rad, e = {:.3g}{}{}: {}",
+                      shape_name(body.shape), body.a_m, body.h_m, result.summary.alpha_rad, result.summary.e,
+                      options.restitution == RestitutionMode::housner ? " (Housner)" : "",
+                      o.vertical.empty() ? "" : ", with vertical " + plot::file_label(o.vertical), run.title);
       plot::render(plot::rocking_figure(horizontal, result, body, title, vertical_ptr), o.plot);
     }
     s = result.summary;
@@ -193,6 +197,7 @@ void add_rock_command(CLI::App& app) {
   cmd->add_option("--plot", o->plot, "Draw record with the uplift levels, theta/alpha with the overturning limits, "
                                      "theta', impacts and the fall, to this .svg or .png file (gnuplot)");
   cmd->add_flag("--json", o->json, "Print the summary as one JSON object");
+  add_quiet_flag(*cmd, o->quiet);  // a single run is quick: no bar; warnings are still printed
   cmd->callback([o] { run_rock(*o); });
 }
 

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "progress.hpp"
 #include "common.hpp"
 #include "slide_2d.hpp"
 #include "slide_flexible.hpp"
@@ -31,8 +32,19 @@ struct SlideOptions {
   std::string out;
   std::string plot;
   bool json = false;
+  bool quiet = false;
   FlexibleOptions flexible;
 };
+
+/// The analysis a sliding figure shows: friction (static and kinetic), slope, one-way, the vertical, the motion.
+std::string sliding_title(const SlidingBlock& block, const SlideOptions& o, const std::string& motion) {
+  std::string t = fmt::format("Sliding block, μ = {:g}", block.mu_static);
+  if (o.mu_kinetic) t += fmt::format(", μ_k = {:g}", *o.mu_kinetic);
+  if (o.slope_deg != 0.0) t += fmt::format(", slope {:g}°", o.slope_deg);
+  t += o.one_way ? ", one-way" : ", two-way";
+  if (!o.vertical.empty()) t += ", with vertical " + plot::file_label(o.vertical);
+  return t + ": " + motion;
+}
 
 void run_slide(const SlideOptions& o) {
   const double g = o.motion.g_m_s2;
@@ -83,7 +95,7 @@ void run_slide(const SlideOptions& o) {
     if (!o.out.empty()) io::write_sliding_history_csv(o.out, result.history, horizontal);
     if (!o.plot.empty()) {
       plot::render(plot::sliding_figure(horizontal, result, block,
-                                        fmt::format("Sliding block, mu = {}: {}", block.mu_static, run.input.motion)),
+                                        sliding_title(block, o, run.title)),
                    o.plot);
     }
     summary = result.summary;
@@ -150,6 +162,7 @@ void add_slide_command(CLI::App& app) {
   cmd->add_option("--plot", o->plot, "Draw record, thresholds and response to this .svg or .png file (gnuplot)");
   cmd->add_flag("--json", o->json, "Print the summary as one JSON object");
   add_flexible_options(*cmd, o->flexible);
+  add_quiet_flag(*cmd, o->quiet);  // a single run is quick: no bar; warnings are still printed
   cmd->callback([o] { run_slide(*o); });
 }
 

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "progress.hpp"
 #include "common.hpp"
 #include "grids.hpp"
 #include "slide_flexible.hpp"
@@ -35,6 +36,7 @@ struct LoadedMotion {
   std::string name;
   std::optional<SupportOscillator> support;
   double ground_pga_m_s2 = 0.0;  ///< of the ground's motion as read (the support's differs)
+  std::string title;  ///< RunMotion::title, and the support when there is one
 };
 
 /// The support is checked before the motion is read.
@@ -56,10 +58,13 @@ LoadedMotion load(const MotionInput& in) {
                                               "sampled at their jumps)");
     }
     const double ground_pga = run.horizontal.pga_m_s2();
-    return {support_motion(run.horizontal, *support), std::move(run.input.motion), support, ground_pga};
+    std::string title = run.title + fmt::format(", on a {:.3g} Hz support ({:.3g} % damping)", support->freq_hz,
+                                                100.0 * support->damping_ratio);
+    return {support_motion(run.horizontal, *support), std::move(run.input.motion), support, ground_pga,
+            std::move(title)};
   }
   const double ground_pga = run.horizontal.pga_m_s2();
-  return {std::move(run.horizontal), std::move(run.input.motion), std::nullopt, ground_pga};
+  return {std::move(run.horizontal), std::move(run.input.motion), std::nullopt, ground_pga, std::move(run.title)};
 }
 
 /// The support in the JSON: null on the ground.
@@ -96,6 +101,7 @@ auto naming(const std::map<std::string, std::string>& names, F f) {
 // ---- spectrum slide ----
 
 struct SlideSpectrumOptions {
+  bool quiet = false;
   MotionInput input;
   std::string mu;
   std::string mu_range;
@@ -157,8 +163,8 @@ void run_slide_spectrum(const SlideSpectrumOptions& o) {
   }
   if (!o.plot.empty()) {
     plot::render(plot::sliding_spectrum_figure(sp, !o.ky_range.empty(),
-                                               fmt::format("Sliding displacement spectrum ({}, slope {} deg): {}",
-                                                           mode_name, o.slope_deg, lm.name)),
+                                               fmt::format("Sliding displacement spectrum, {}, slope {:g}°: {}",
+                                                           mode_name, o.slope_deg, lm.title)),
                  o.plot);
   }
   if (o.json) {
@@ -198,6 +204,7 @@ void run_slide_spectrum(const SlideSpectrumOptions& o) {
 // ---- spectrum rock ----
 
 struct RockSpectrumOptions {
+  bool quiet = false;
   MotionInput input;
   std::string shape = "block";
   std::string alpha;
@@ -271,6 +278,8 @@ void run_rock_spectrum(const RockSpectrumOptions& o) {
   OverturningMapOptions mo;
   mo.rocking.g_m_s2 = g;
   mo.threads = o.threads;
+  ProgressBar bar(progress_wanted(o.quiet));
+  mo.progress = bar.callback();
   const RestitutionChoice e = parse_restitution(o.e, "--e");
   mo.rocking.restitution = e.mode;
   mo.rocking.e = e.e;
@@ -281,6 +290,7 @@ void run_rock_spectrum(const RockSpectrumOptions& o) {
       {{"alpha", o.slenderness ? "--slenderness" : "--alpha"}, {"height", height_option}, {"width", height_option},
        {"diameter", height_option}, {"pga", pga_option}, {"e", "--e"}, {"g", "--g"}},
       [&] { return overturning_map(lm.motion, family, pga, mo); });
+  bar.finish();
 
   const std::size_t na = map.pga_m_s2.size();
   if (!o.out.empty()) {
@@ -298,8 +308,8 @@ void run_rock_spectrum(const RockSpectrumOptions& o) {
     file.commit();
   }
   if (!o.plot.empty()) {
-    plot::render(plot::overturning_map_figure(map, fmt::format("Overturning map, {} α = {:.3g} rad: {}", o.shape,
-                                                               map.alpha_rad, lm.name)),
+    plot::render(plot::overturning_map_figure(map, fmt::format("Overturning map, {} α = {:.3g} rad, e = {}: {}", o.shape,
+                                                               map.alpha_rad, o.e, lm.title)),
                  o.plot);
   }
   if (o.json) {
@@ -370,6 +380,7 @@ void add_spectrum_command(CLI::App& app) {
   slide->add_option("--out", s->out, "Write the spectrum to this CSV file");
   slide->add_option("--plot", s->plot, "Draw the spectrum to this .svg or .png file (gnuplot)");
   slide->add_flag("--json", s->json, "Print the spectrum as one JSON object");
+  add_quiet_flag(*slide, s->quiet);  // one pass over the motion per mu: quick, no bar
   slide->callback([s] { run_slide_spectrum(*s); });
 
   auto r = std::make_shared<RockSpectrumOptions>();
@@ -388,6 +399,7 @@ void add_spectrum_command(CLI::App& app) {
   rock->add_option("--out", r->out, "Write the map to this CSV file (one row per size and PGA)");
   rock->add_option("--plot", r->plot, "Draw the map with the first-overturn curve to this .svg or .png file");
   rock->add_flag("--json", r->json, "Print the first-overturn PGA of each size as one JSON object");
+  add_quiet_flag(*rock, r->quiet);
   rock->callback([r] { run_rock_spectrum(*r); });
 }
 

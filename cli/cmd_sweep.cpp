@@ -1,18 +1,15 @@
 // topple sweep: an ensemble of runs (motions x objects x parameters) from a sweep file, on every core, across
 // machines under mpirun, resumable. Parsing and printing only: the work is topple::ensemble::run_to_files.
-#include <unistd.h>
-
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
-#include <mutex>
 #include <string>
 
 #include <fmt/format.h>
 
 #include "commands.hpp"
 #include "grids.hpp"
+#include "progress.hpp"
 #include "topple/ensemble.hpp"
 #include "topple/error.hpp"
 #include "topple/io/sweep_file.hpp"
@@ -29,55 +26,6 @@ struct SweepOptions {
   bool quiet = false;
   bool verbose = false;
   bool restart = false;
-};
-
-std::string format_duration(double seconds) {
-  const auto s = static_cast<long long>(seconds + 0.5);
-  if (s >= 3600) return fmt::format("{}:{:02}:{:02}", s / 3600, (s / 60) % 60, s % 60);
-  return fmt::format("{}:{:02}", s / 60, s % 60);
-}
-
-/// "  1234/10000 runs  12%  [####      ]  560 runs/s  ETA 0:15" on stderr, redrawn at most 10 times a second.
-class ProgressBar {
- public:
-  explicit ProgressBar(bool enabled) : enabled_(enabled), start_(std::chrono::steady_clock::now()) {}
-
-  void update(std::size_t done, std::size_t total) {
-    if (!enabled_) return;
-    const std::unique_lock lock(mutex_, std::try_to_lock);
-    if (!lock.owns_lock()) return;  // another thread is drawing
-    const auto now = std::chrono::steady_clock::now();
-    if (drawn_ && done < total && now - last_ < std::chrono::milliseconds(100)) return;
-    last_ = now;
-    draw(done, total, now);
-  }
-
-  void finish() {
-    if (!enabled_) return;
-    const std::lock_guard lock(mutex_);
-    if (drawn_) std::fputs("\n", stderr);
-  }
-
- private:
-  void draw(std::size_t done, std::size_t total, std::chrono::steady_clock::time_point now) {
-    constexpr int kWidth = 30;
-    const double elapsed = std::chrono::duration<double>(now - start_).count();
-    const double fraction = total > 0 ? static_cast<double>(done) / static_cast<double>(total) : 1.0;
-    const double rate = elapsed > 0.0 ? static_cast<double>(done) / elapsed : 0.0;
-    const auto filled = static_cast<int>(fraction * kWidth);
-    const std::string eta = rate > 0.0 ? format_duration(static_cast<double>(total - done) / rate) : "?";
-    fmt::print(stderr, "\r  {}/{} runs {:3.0f}% [{}{}] {:.0f} runs/s  ETA {}   ", done, total, 100.0 * fraction,
-               std::string(static_cast<std::size_t>(filled), '#'), std::string(static_cast<std::size_t>(kWidth - filled), ' '),
-               rate, eta);
-    std::fflush(stderr);
-    drawn_ = true;
-  }
-
-  bool enabled_;
-  std::chrono::steady_clock::time_point start_;
-  std::chrono::steady_clock::time_point last_{};
-  bool drawn_ = false;
-  std::mutex mutex_;
 };
 
 /// Ends a rank other than 0 without printing (rank 0 reports), after MPI is finalised.
@@ -121,10 +69,10 @@ void run_sweep(const SweepOptions& o) {
   if (o.jsonl || sweep->jsonl) store.jsonl_path = io::jsonl_path_for(store.csv_path);
   store.restart = o.restart;
 
-  ProgressBar bar(rank == 0 && !o.quiet && ::isatty(STDERR_FILENO) != 0);
+  ProgressBar bar(rank == 0 && progress_wanted(o.quiet));
   ensemble::ExecuteOptions execute;
   execute.threads = o.threads;
-  execute.progress = [&bar](std::size_t done, std::size_t total) { bar.update(done, total); };
+  execute.progress = bar.callback();
 
   if (rank == 0 && o.verbose) {
     fmt::print(stderr, "topple sweep: {} runs = {} motions x {} objects; {} chunks of {} runs; {} rank{}; output {}\n",
@@ -184,7 +132,7 @@ void add_sweep_command(CLI::App& app) {
   cmd->add_flag("--jsonl", o->jsonl, "Also write JSON lines (OUT with the extension .jsonl)");
   cmd->add_flag("--restart", o->restart, "Discard the chunks of an earlier (or different) sweep to this output and "
                                          "start over");
-  cmd->add_flag("--quiet", o->quiet, "No progress bar and no summary on stderr");
+  add_quiet_flag(*cmd, o->quiet, "no summary");
   cmd->add_flag("--verbose", o->verbose, "Plan and chunk counts (already done, computed) on stderr");
   cmd->callback([o] { run_sweep(*o); });
 }

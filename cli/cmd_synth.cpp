@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "progress.hpp"
 #include "common.hpp"
 #include "grids.hpp"
 #include "topple/error.hpp"
@@ -23,6 +24,7 @@ namespace topple::cli {
 namespace {
 
 struct SynthOptions {
+  bool quiet = false;
   std::string pga;
   std::string freq;
   std::string duration;
@@ -161,6 +163,7 @@ void add_synth_command(CLI::App& app) {
   cmd->add_option("--plot", o->plot, "Draw the motion and its smoothed Fourier spectrum with the requested and "
                                      "measured predominant frequency to this .svg or .png file (gnuplot)");
   cmd->add_flag("--json", o->json, "Print a JSON summary instead of text");
+  add_quiet_flag(*cmd, o->quiet);  // one motion is quick: no bar
   cmd->callback([o] { run_synth(*o); });
 }
 

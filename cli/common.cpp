@@ -6,6 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "topple/plot.hpp"
 #include "topple/error.hpp"
 #include "topple/io/output_file.hpp"
 #include "topple/pulses.hpp"
@@ -84,10 +85,14 @@ RunMotion load_run_motion(const MotionOptions& motion, const PulseOptions& pulse
   if (from_pulse == !motion.file.empty()) throw parameter_error("FILE", "give either a record file or --pulse");
   const GroundMotion raw =
       from_pulse ? make_pulse_motion(pulse, motion.g_m_s2) : io::read_motion(motion.file, read_options(motion));
-  RunMotion run{transform_motion(raw, motion), std::nullopt, {}};
+  RunMotion run{transform_motion(raw, motion), std::nullopt, {}, {}};
   run.input.motion = from_pulse ? run.horizontal.metadata().event : motion.file;
   run.input.scale_factor = amplitude_factor(raw, run.horizontal);
   run.input.inverted = motion.invert;
+  run.title = from_pulse ? run.input.motion : plot::file_label(motion.file);
+  if (!motion.scale_pga.empty()) run.title += " scaled to PGA " + motion.scale_pga;
+  if (motion.scale) run.title += fmt::format(" x {:g}", *motion.scale);
+  if (motion.invert) run.title += ", inverted";
   if (!vertical_path.empty()) {
     run.vertical = io::read_motion(vertical_path, read_options(motion)).scaled(run.input.scale_factor);
     run.input.vertical = vertical_path;

@@ -70,6 +70,9 @@ struct RunMotion {
   GroundMotion horizontal;
   std::optional<GroundMotion> vertical;
   io::RunInput input;
+  /// How figure titles name the motion: the record's file name (no directories) or the pulse, and its scaling
+  /// ("ELC180.AT2 scaled to PGA 0.4g", "x 2", "inverted").
+  std::string title;
   [[nodiscard]] const GroundMotion* vertical_ptr() const noexcept { return vertical ? &*vertical : nullptr; }
 };
 [[nodiscard]] RunMotion load_run_motion(const MotionOptions& motion, const PulseOptions& pulse,

@@ -1,5 +1,6 @@
-// libFuzzer target for the TOML inputs: the survey reader (io::parse_survey, TOPPLE_FUZZ_SURVEY) or the sweep-file
-// reader (io::parse_sweep_file, TOPPLE_FUZZ_SWEEP). Contract (docs/fuzzing.md): an InputError, or a value; any other
+// libFuzzer target for the TOML inputs: the survey reader (io::parse_survey, TOPPLE_FUZZ_SURVEY; TOML or CSV,
+// told apart by content since the name has no extension) or the sweep-file reader (io::parse_sweep_file,
+// TOPPLE_FUZZ_SWEEP). Contract (docs/fuzzing.md): an InputError, or a value; any other
 // exception, a crash or a sanitizer report ends the run. Record paths in the input resolve against a directory that
 // does not exist, so that the fuzzer does not wander the file system (absolute paths are still read, through the
 // same bounded io::read_input_file).
@@ -15,7 +16,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string_view text(reinterpret_cast<const char*>(data), size);
   try {
 #ifdef TOPPLE_FUZZ_SURVEY
-    (void)topple::io::parse_survey(text, "fuzz-survey.toml", "/nonexistent-topple-fuzz");
+    (void)topple::io::parse_survey(text, "fuzz-survey", "/nonexistent-topple-fuzz");
 #else
     (void)topple::io::parse_sweep_file(text, "/nonexistent-topple-fuzz/sweep.toml");
 #endif

@@ -108,7 +108,8 @@ for target in "${targets[@]}"; do
   fi
   dict=fuzz/readers.dict
   case "$target" in
-    fuzz_survey) cp examples/survey.toml "$corpus/seed-survey.toml"; dict=fuzz/toml.dict ;;
+    fuzz_survey) cp examples/survey.toml "$corpus/seed-survey.toml"; cp examples/survey.csv "$corpus/seed-survey.csv"
+                 dict=fuzz/toml.dict ;;
     fuzz_sweep) for f in examples/sweep/*.toml; do cp "$f" "$corpus/seed-$(basename "$f")"; done; dict=fuzz/toml.dict ;;
   esac
   echo "== $target: ${seconds} s$([[ "$runs" == -1 ]] || echo ", at most $runs runs")"

@@ -411,6 +411,7 @@ FragilityResult fragility_analysis(const FragilitySpec& spec) {
   };
   ensemble::ExecuteOptions exec;
   exec.threads = spec.threads;
+  exec.progress = spec.progress;
   const ensemble::ResultTable table = ensemble::run_in_memory(plan, exec);
 
   FragilityResult out;

@@ -435,6 +435,7 @@ MatchTable simulate_matches(const Site& site, const InversionSettings& st, const
   };
   ensemble::ExecuteOptions exec;
   exec.threads = options.threads;
+  exec.progress = options.progress;
   const ensemble::ResultTable rows = ensemble::run_in_memory(plan, exec);
   // Rows come in run order: row = (cell * N + k) * objects + o, the MatchTable's own indexing.
   const std::size_t match_col = rows.columns.size() - 1;

@@ -137,6 +137,7 @@ OverturningMap overturning_map(const GroundMotion& motion, const BodyFamily& fam
   };
   ensemble::ExecuteOptions exec;
   exec.threads = options.threads;
+  exec.progress = options.progress;
   const ensemble::ResultTable table = ensemble::run_in_memory(plan, exec);
 
   // Rows in run order: motion-major, row = k * ns + s.

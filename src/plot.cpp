@@ -33,6 +33,56 @@ std::string quote(const std::string& s) {
   return out + "\"";
 }
 
+/// Characters as drawn (UTF-8 code points: "θ" is one), for the layout estimates below.
+std::size_t display_length(std::string_view s) {
+  return static_cast<std::size_t>(std::count_if(s.begin(), s.end(), [](char c) { return (c & 0xC0) != 0x80; }));
+}
+
+// Layout estimates in pixels per character: Helvetica's mean advance is about 0.55 em, taken here as 0.75 em so that
+// a label of wide letters (digits, capitals, "W") still fits; a little too much room is harmless, a clipped legend
+// ("beta =" cut off) is not.
+constexpr double kKeyCharPx = 7.5;     // key font ',10'
+constexpr double kTitleCharPx = 9.75;  // title font ',13'
+
+/// The title broken into lines that fit `width_px` (at ", " and ": ", never inside a number), as one gnuplot string
+/// with "\n" between the lines; `lines` gets their count.
+std::string wrapped_title(const std::string& title, int width_px, int& lines) {
+  const auto fit = static_cast<std::size_t>(std::max(20.0, (width_px - 40) / kTitleCharPx));
+  std::vector<std::string> out{""};
+  std::size_t start = 0;
+  while (start < title.size()) {
+    // The next piece ends after a ", " or ": " separator (kept with the piece), or at the end.
+    std::size_t end = title.size();
+    for (std::size_t i = start; i + 1 < title.size(); ++i) {
+      if ((title[i] == ',' || title[i] == ':') && title[i + 1] == ' ') {
+        end = i + 2;
+        break;
+      }
+    }
+    const std::string piece = title.substr(start, end - start);
+    if (!out.back().empty() && display_length(out.back()) + display_length(piece) > fit) out.emplace_back();
+    out.back() += piece;
+    start = end;
+  }
+  lines = static_cast<int>(out.size());
+  std::string joined;
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    std::string line = out[i];
+    while (!line.empty() && line.back() == ' ') line.pop_back();
+    std::string q = quote(line);
+    joined += i == 0 ? q.substr(0, q.size() - 1) : "\\n" + q.substr(1, q.size() - 2);
+  }
+  return joined + "\"";
+}
+
+/// Pixels the legend of `panel` needs beside the plot: its longest label, the sample line (samplen 2) and the gap.
+double key_width_px(const Panel& panel) {
+  std::size_t longest = 0;
+  for (const Series& s : panel.series) longest = std::max(longest, display_length(s.label));
+  for (const Level& l : panel.levels) longest = std::max(longest, display_length(l.label));
+  return longest == 0 ? 0.0 : kKeyCharPx * static_cast<double>(longest) + 70.0;
+}
+
 /// Inline data block $name with x y rows; non-finite values become gaps.
 void datablock(std::ostringstream& os, const std::string& name, const std::vector<double>& x,
                const std::vector<double>& y) {
@@ -116,7 +166,15 @@ std::string tics_125(double lo, double hi) {
 std::string gnuplot_script(const Figure& f, const std::filesystem::path& path) {
   std::ostringstream os;
   const int n = static_cast<int>(f.panels.size());
-  os << terminal_for(path, f.width_px, std::max(1, n) * f.panel_height_px + 60) << "\n";
+  // Nothing clipped: the legends get the right margin their longest label needs (the figure widens when the plots
+  // would keep less than 55 % of it), and a long title wraps onto more lines, each given its height.
+  double key_px = 0.0;
+  for (const Panel& panel : f.panels) key_px = std::max(key_px, key_width_px(panel));
+  const int width_px = std::max(f.width_px, static_cast<int>(std::ceil(key_px / 0.36)));
+  const double rmargin = std::min(0.78, 1.0 - key_px / width_px);
+  int title_lines = 1;
+  const std::string title = wrapped_title(f.title, width_px, title_lines);
+  os << terminal_for(path, width_px, std::max(1, n) * f.panel_height_px + 40 + 20 * title_lines) << "\n";
   os << "set output " << quote(path.string()) << "\n";
   os << "set grid lc rgb '#dddddd'\nset border lc rgb '#444444'\n";
   for (int p = 0; p < n; ++p) {
@@ -149,10 +207,10 @@ std::string gnuplot_script(const Figure& f, const std::filesystem::path& path) {
     xmin = std::min(xmin, lo);
     xmax = std::max(xmax, hi);
   }
-  os << "set lmargin at screen 0.09\nset rmargin at screen 0.78\n";
+  os << fmt::format("set lmargin at screen 0.09\nset rmargin at screen {:.4f}\n", rmargin);
   os << "set key at graph 1.02, graph 1 left top vertical Left reverse noopaque nobox font ',10' samplen 2 "
         "spacing 1.1\n";
-  os << fmt::format("set multiplot layout {},1 title {} font ',13'\n", std::max(1, n), quote(f.title));
+  os << fmt::format("set multiplot layout {},1 title {} font ',13'\n", std::max(1, n), title);
   for (int p = 0; p < n; ++p) {
     const Panel& panel = f.panels[p];
     os << "unset arrow\nunset logscale\n";
@@ -222,7 +280,8 @@ std::string gnuplot_script(const MapFigure& f, const std::filesystem::path& path
   }
   os << "EOD\n";
   for (std::size_t s = 0; s < f.overlay.size(); ++s) datablock(os, fmt::format("ov{}", s), f.overlay[s].x, f.overlay[s].y);
-  os << "set title " << quote(f.title) << "\nset xlabel " << quote(f.xlabel) << "\nset ylabel " << quote(f.ylabel)
+  int title_lines = 1;  // a long title wraps rather than running off the figure
+  os << "set title " << wrapped_title(f.title, f.width_px, title_lines) << "\nset xlabel " << quote(f.xlabel) << "\nset ylabel " << quote(f.ylabel)
      << "\nset cblabel " << quote(f.zlabel) << "\n";
   if (f.log_x) os << "set logscale x\n";
   if (f.log_y) os << "set logscale y\n";
@@ -242,6 +301,11 @@ std::string gnuplot_script(const MapFigure& f, const std::filesystem::path& path
   for (std::size_t s = 0; s < f.overlay.size(); ++s) os << ", \\\n     " << series_clause(f.overlay[s], fmt::format("$ov{}", s));
   os << "\nset output\n";
   return os.str();
+}
+
+std::string file_label(const std::string& path_or_name) {
+  const std::filesystem::path p(path_or_name);
+  return p.has_filename() && p.has_parent_path() ? p.filename().string() : path_or_name;
 }
 
 void render(const Figure& figure, const std::filesystem::path& path) { render_figure(figure, path); }

@@ -1007,8 +1007,9 @@ void validate(const RockingBody& body, const RockingOptions& o) {
   }
   if (o.restitution == RestitutionMode::housner && housner_restitution(body) < 0.0) {
     throw parameter_error("e", fmt::format("Housner's e = 1 - 2a^2/D = {:.6g} is negative for this squat body "
-                                           "(alpha = {:.4g} deg): it cannot rock onto the other edge; give e",
-                                           housner_restitution(body), body.alpha_rad() * 180.0 / kPi));
+                                           "(alpha = {:.4g} deg): it cannot rock onto the other edge; {}",
+                                           housner_restitution(body), body.alpha_rad() * 180.0 / kPi,
+                                           kSquatBodyAdvice));
   }
   if (o.mu && (!std::isfinite(*o.mu) || *o.mu < 0.0)) {
     throw parameter_error("mu", fmt::format("friction coefficient must be finite and >= 0, got {}", *o.mu));

@@ -142,5 +142,55 @@ TEST(Plot, CliSlideWritesTheFigure) {
   EXPECT_NE(bad.err.find(".svg or .png"), std::string::npos);
 }
 
+// Titles name files by their file name: a title travels with the figure (reports, other machines).
+TEST(PlotTitles, FileLabelDropsTheDirectories) {
+  EXPECT_EQ(plot::file_label("/work/shared/records/RSN6_IMPVALL.I_I-ELC180.AT2"), "RSN6_IMPVALL.I_I-ELC180.AT2");
+  EXPECT_EQ(plot::file_label("../records/CPM000.AT2"), "CPM000.AT2");
+  EXPECT_EQ(plot::file_label("CPM000.AT2"), "CPM000.AT2");
+}
+
+// Nothing clipped: a long title wraps at its ", " separators into lines that fit the figure, and each panel's legend
+// gets the right margin its longest label needs (the fragility legend was cut at "β =").
+TEST(PlotTitles, LongTitleWrapsAndLegendHasRoom) {
+  plot::Figure f = sliding_example();
+  f.title = "Fragility over 200 synthetic motions (f_p 2Hz, seeds from 1), slide > d = 5cm at μ = 0.3, slope 10°, "
+            "one-way, overturn of a block 10cm x 40cm, e = housner";
+  const std::string label = "overturn: θ = 0.316 g, β = 0.41, a longer label";
+  f.panels[0].series[0].label = label;
+  const std::string script = plot::gnuplot_script(f, "x.png");
+  // The title: one gnuplot string with line breaks, broken between the analysis' parts, never inside "5cm".
+  const std::size_t at = script.find("set multiplot layout");
+  ASSERT_NE(at, std::string::npos);
+  const std::string title_line = script.substr(at, script.find('\n', at) - at);
+  EXPECT_NE(title_line.find("\\n"), std::string::npos) << title_line;
+  EXPECT_NE(title_line.find("5cm"), std::string::npos) << title_line;
+  EXPECT_EQ(title_line.find('/'), std::string::npos) << title_line;
+  // Each line at most (width - 40 px) / 9 px characters: Helvetica 13 averages about 7 px a character, 9 px is the
+  // widest mean (digits and capitals) the layout must allow for.
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(script, m, std::regex("set terminal pngcairo size (\\d+),(\\d+)")));
+  const int width = std::stoi(m[1]);
+  std::size_t start = title_line.find('"') + 1;
+  const std::size_t stop = title_line.rfind('"');
+  while (start < stop) {
+    const std::size_t end = std::min(stop, title_line.find("\\n", start));
+    const std::string line = title_line.substr(start, end - start);
+    const auto chars = std::count_if(line.begin(), line.end(), [](char c) { return (c & 0xC0) != 0x80; });
+    EXPECT_LE(chars * 9, width - 40) << line;
+    start = end + 2;
+  }
+  // The legend: the right margin leaves at least 7 px a character of the longest label (Helvetica 10 averages about
+  // 5.5 px) plus the sample line, and the plots keep at least half of the figure.
+  ASSERT_TRUE(std::regex_search(script, m, std::regex("set rmargin at screen ([0-9.]+)")));
+  const double rmargin = std::stod(m[1]);
+  const auto label_chars = std::count_if(label.begin(), label.end(), [](char c) { return (c & 0xC0) != 0x80; });
+  EXPECT_GE((1.0 - rmargin) * width, 7.0 * static_cast<double>(label_chars) + 40.0) << "rmargin " << rmargin;
+  EXPECT_GE(rmargin - 0.09, 0.5);
+  // A short title stays one line, and the default margin is kept when the legend is short.
+  const std::string short_script = plot::gnuplot_script(sliding_example(), "x.svg");
+  EXPECT_NE(short_script.find("title \"double triangular pulse\" font"), std::string::npos);
+  EXPECT_NE(short_script.find("set rmargin at screen 0.78"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace topple

@@ -58,6 +58,7 @@
 #include <vector>
 
 #include "topple/field.hpp"
+#include "topple/progress.hpp"
 #include "topple/ground_motion.hpp"
 
 namespace topple::ensemble {
@@ -138,7 +139,7 @@ struct ExecuteOptions {
   int threads = 0;  ///< worker threads; 0 = every core this process may use (its CPU affinity mask)
   /// Called from worker threads (concurrently; keep it cheap and thread-safe) after each batch of runs with the
   /// number of runs this process has finished and the number it has to do.
-  std::function<void(std::size_t done, std::size_t total)> progress;
+  ProgressCallback progress;
 };
 
 /// Every row, in run order (no files).

@@ -36,6 +36,7 @@
 #include <string_view>
 #include <vector>
 
+#include "topple/progress.hpp"
 #include "topple/ground_motion.hpp"
 #include "topple/rocking.hpp"
 #include "topple/sliding.hpp"
@@ -112,6 +113,7 @@ struct FragilitySpec {
   std::optional<SlidingFailure> sliding;
   std::optional<OverturnFailure> overturning;
   int threads = 0;  ///< 0: every core
+  ProgressCallback progress{};  ///< runs done / to do (progress.hpp); empty: none
 };
 
 struct FragilityCurve {

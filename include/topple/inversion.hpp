@@ -45,6 +45,7 @@
 #include <string>
 #include <vector>
 
+#include "topple/progress.hpp"
 #include "topple/ground_motion.hpp"
 #include "topple/survey.hpp"
 
@@ -122,6 +123,8 @@ struct InversionResult {
 
 struct InversionOptions {
   int threads = 0;  ///< worker threads, >= 0 (0: all cores)
+  /// Runs done / to do of the simulation step (progress.hpp), per site; empty: none.
+  ProgressCallback progress{};
 };
 
 /// Checks options before any work: InputError naming "--threads" for a negative thread count.

@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "topple/ground_motion.hpp"
+#include "topple/progress.hpp"
 #include "topple/rocking.hpp"
 #include "topple/sliding.hpp"
 #include "topple/units.hpp"
@@ -79,6 +80,7 @@ struct BodyFamily {
 struct OverturningMapOptions {
   RockingOptions rocking;  ///< solver options for every run (g is rocking.g_m_s2)
   int threads = 0;         ///< 0: every core (ensemble engine)
+  ProgressCallback progress{};  ///< runs done / to do (progress.hpp); empty: none
 };
 
 /// Per size of the family.

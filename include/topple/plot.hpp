@@ -74,6 +74,10 @@ struct MapFigure {
   std::string colorbox;    ///< gnuplot "set colorbox ..." arguments; empty: gnuplot's default, right of the plot
 };
 
+/// A file as a figure title names it: its file name, without the directories (a title travels with the figure, to
+/// other machines and reports; an absolute path there is noise and private). Text that is not a file path is kept.
+[[nodiscard]] std::string file_label(const std::string& path_or_name);
+
 /// Writes the figure to `path` (.svg or .png) through a temporary file renamed once gnuplot succeeded. Throws
 /// InputError for another extension, OutputError (naming the path) for an unwritable one, and
 /// std::runtime_error when gnuplot is missing or fails (its message is included).

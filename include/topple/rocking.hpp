@@ -140,6 +140,13 @@ struct BodyDimensions {
 /// squat body, see the header).
 [[nodiscard]] double housner_restitution(const RockingBody& body) noexcept;
 
+/// What to do when housner_restitution is negative (a block wider than about 1.41 times its height, alpha > 54.7
+/// deg): Housner's angular-momentum argument then says the body cannot rock onto its other edge at all, so e must be
+/// given. Said in every message that refuses such a body (docs/survey.md, "Squat objects").
+inline constexpr std::string_view kSquatBodyAdvice =
+    "give e explicitly: e = 0 (it stops at its first impact, the consistent limit of Housner's argument) or a "
+    "range such as [0, 0.3] when unsure; such a body is a weak rocking witness (docs/survey.md, \"Squat objects\")";
+
 enum class RestitutionMode : std::uint8_t { housner, given };
 enum class RockingMethod : std::uint8_t { adaptive, rk4 };
 [[nodiscard]] std::string_view restitution_mode_name(RestitutionMode mode);  ///< "housner", "given"

@@ -14,6 +14,7 @@
 #include "topple/inversion.hpp"
 #include "topple/io/read.hpp"
 #include "topple/units.hpp"
+#include "survey_csv.hpp"
 
 namespace topple {
 
@@ -152,8 +153,10 @@ Outcome parse_outcome(Reader& r, std::string_view text) {
   for (Outcome o : {Outcome::overturned, Outcome::not_overturned, Outcome::rocked, Outcome::slid, Outcome::not_slid}) {
     if (text == outcome_name(o)) return o;
   }
-  throw r.error("outcome", fmt::format("unknown outcome '{}' (known: overturned, not_overturned, rocked, slid, "
-                                       "not_slid)", text));
+  // The words a field team writes for a fall (docs/survey.md): aliases of overturned, nothing else.
+  if (text == "toppled" || text == "fell") return Outcome::overturned;
+  throw r.error("outcome", fmt::format("unknown outcome '{}' (known: overturned (or toppled, fell), not_overturned, "
+                                       "rocked, slid, not_slid)", text));
 }
 
 /// A flexible support `{freq_hz = value or [low, high], damping = value or [low, high], name = "..."}` (docs/survey.md):
@@ -299,7 +302,10 @@ ObservedObject parse_object(const toml::table& t, const std::string& file, const
   o.outcome = parse_outcome(named, *outcome);
   const bool rocks = o.outcome == Outcome::overturned || o.outcome == Outcome::not_overturned || o.outcome == Outcome::rocked;
   if (rocks && o.e_housner && housner_restitution(o.body) < 0.0) {
-    throw named.error("e", "Housner's restitution is negative for so squat a body: give e explicitly");
+    throw named.error("e", fmt::format("Housner's restitution 1 - 2a^2/D = {:.3g} is negative for so squat a body "
+                                       "(alpha = {:.3g} deg > 54.7 deg): {}",
+                                       housner_restitution(o.body), o.body.alpha_rad() * 180.0 / kPi,
+                                       kSquatBodyAdvice));
   }
   o.slid_m = named.length("slid");
   if (const auto u = named.length("slid_uncertainty")) o.slid_uncertainty_m = *u;
@@ -366,9 +372,7 @@ void parse_site_fields(Reader& r, Site& site) {
   site.support_filter = parse_support(r, label);
 }
 
-}  // namespace
-
-Survey parse_survey(std::string_view text, const std::string& name, const std::filesystem::path& base_dir) {
+Survey parse_toml_survey(std::string_view text, const std::string& name, const std::filesystem::path& base_dir) {
   toml::table root;
   try {
     root = toml::parse(text, name);
@@ -481,6 +485,23 @@ Survey parse_survey(std::string_view text, const std::string& name, const std::f
     // The documented default (docs/survey.md): a site without a name is "site N", N its position in the file.
     if (s.sites[i].name.empty()) s.sites[i].name = fmt::format("site {}", i + 1);
   }
+  return s;
+}
+
+}  // namespace
+
+Survey parse_survey(std::string_view text, const std::string& name, const std::filesystem::path& base_dir) {
+  if (!detail::is_csv_survey(text, name)) return parse_toml_survey(text, name, base_dir);
+  // A CSV survey is read as the TOML survey it stands for (one reader, one set of rules), its errors and notes
+  // placed back at the CSV's line and column.
+  const detail::CsvSurveyText csv = detail::csv_survey_to_toml(text, name);
+  Survey s;
+  try {
+    s = parse_toml_survey(csv.toml, name, base_dir);
+  } catch (const InputError& e) {
+    throw detail::relocate_csv_error(e, csv, name);
+  }
+  for (std::string& note : s.notes) note = detail::relocate_csv_note(note, csv, name);
   return s;
 }
 

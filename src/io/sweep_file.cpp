@@ -631,7 +631,7 @@ void read_rock(const Reader& r, const toml::table& o, const std::string& key, do
           if (!e && housner_restitution(body) < 0.0) {
             r.fail(o.get("e") != nullptr ? o.get("e") : &o, prefix + "e",
                    fmt::format("Housner's restitution 1 - 2a^2/D = {} is negative for this body (too squat to rock "
-                               "onto its other edge): give e explicitly", housner_restitution(body)));
+                               "onto its other edge): {}", housner_restitution(body), kSquatBodyAdvice));
           }
           for (const auto& m : mu_values) {
             ensemble::RockObject ro;

@@ -110,6 +110,35 @@ TEST(CliPlot, RockSvgHasThreePanelsThresholdsImpactsAndTheFall) {
   EXPECT_FALSE(std::filesystem::exists(path.string() + ".gp"));
 }
 
+// The title says the analysis and names the record by its file name only, with its scaling (issue 13).
+TEST(CliPlot, TitlesCarryTheAnalysisAndNoDirectory) {
+  if (!test::have_shared()) GTEST_SKIP() << "../shared/records is absent";
+  test::TempDir tmp;
+  const std::filesystem::path record = std::filesystem::absolute(test::shared_record("CPM000.AT2"));
+  const auto rock = tmp.path() / "rock.svg";
+  auto r = test::run_cli("rock " + q(record) + " --shape block --width 10cm --height 60cm --scale-pga 0.4g --plot " +
+                         q(rock));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string rock_svg = test::slurp(rock);
+  EXPECT_NE(rock_svg.find("CPM000.AT2 scaled to PGA 0.4g"), std::string::npos);
+  EXPECT_NE(rock_svg.find("(Housner)"), std::string::npos);
+  EXPECT_EQ(rock_svg.find(record.parent_path().string()), std::string::npos) << "a directory in the title";
+  const auto slide = tmp.path() / "slide.svg";
+  r = test::run_cli("slide " + q(record) + " --mu 0.2 --slope-deg 5 --one-way --scale 2 --plot " + q(slide));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string slide_svg = test::slurp(slide);
+  EXPECT_NE(slide_svg.find("Sliding block, μ = 0.2, slope 5°, one-way: CPM000.AT2 x 2"), std::string::npos);
+  EXPECT_EQ(slide_svg.find(record.parent_path().string()), std::string::npos);
+  const auto frag = tmp.path() / "frag.svg";
+  r = test::run_cli("fragility " + q(record) + " --im-range 0.1:1:4 --mu 0.3 --threshold 5cm --quiet --plot " +
+                    q(frag));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string frag_svg = test::slurp(frag);
+  EXPECT_NE(frag_svg.find("Fragility over 1 records (CPM000.AT2), slide > d = 5cm at μ = 0.3, two-way"),
+            std::string::npos);
+  EXPECT_EQ(frag_svg.find(record.parent_path().string()), std::string::npos);
+}
+
 TEST(CliPlot, RockWithVerticalRecordDrawsIt) {
   test::TempDir tmp;
   const auto vertical = tmp.path() / "v.csv";

@@ -1,5 +1,11 @@
 #pragma once
-// Survey files (TOML): documented, with a commented example, in examples/survey.toml and docs/survey.md.
+// Survey files (TOML, or CSV from a spreadsheet): documented, with examples, in examples/survey.toml,
+// examples/survey.csv and docs/survey.md.
+//
+// CSV (docs/survey.md, "CSV surveys"): `site.KEY,value` / `inversion.KEY,value` / `event.KEY,value` rows, then a
+// header row of object keys (a length column may carry its unit: width_cm), then one object per row. It is read as
+// the TOML survey it stands for, so every rule below applies; errors name the CSV's line and column. A name ending in
+// .csv is CSV, .toml is TOML, anything else is told by content.
 //
 // Shape (one site):
 //   [site]            name, lat, lon, notes
@@ -23,7 +29,8 @@ namespace topple::io {
 /// units, non-positive sizes, bad ranges, a frequency axis the motion family cannot make; and for a directory.
 [[nodiscard]] Survey read_survey(const std::filesystem::path& path);
 
-/// Same from text (name used in messages; relative record paths resolve against `base_dir`). Reads no file: the
+/// Same from text, TOML or CSV (told by `name`'s extension, else by content; name used in messages; relative record
+/// paths resolve against `base_dir`). Reads no file: the
 /// records of a records family are only checked to exist (load_survey_records loads them).
 [[nodiscard]] Survey parse_survey(std::string_view text, const std::string& name,
                                   const std::filesystem::path& base_dir = {});

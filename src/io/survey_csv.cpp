@@ -1,0 +1,362 @@
+// CSV surveys (docs/survey.md, "CSV surveys"): a spreadsheet's export rewritten as the equivalent TOML survey.
+//
+// The CSV is read as RFC 4180 (quoted cells may hold the separator, doubled quotes and line breaks) over the lines of
+// detail::split_lines (which drops a UTF-8 byte-order mark and CR before LF, as spreadsheets write them). Debian's one
+// C CSV library (libcsv, last released 2013) would save the 60 lines of the cell splitter below but not the line and
+// column bookkeeping the error messages need, so the splitter is written here.
+#include "survey_csv.hpp"
+
+#include <algorithm>
+#include <array>
+#include <map>
+#include <set>
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include "text_lines.hpp"
+
+namespace topple::io::detail {
+namespace {
+
+struct Cell {
+  std::string text;      // unquoted; trimmed when it was not quoted
+  std::size_t line = 0;  // where the cell starts
+};
+
+struct Row {
+  std::size_t line = 0;  // where the row starts
+  std::vector<Cell> cells;
+  [[nodiscard]] bool blank() const {
+    return std::all_of(cells.begin(), cells.end(), [](const Cell& c) { return is_blank(c.text); });
+  }
+};
+
+/// Spreadsheet column letters: 0 -> A, 25 -> Z, 26 -> AA.
+std::string column_letters(std::size_t column) {
+  std::string out;
+  for (std::size_t n = column + 1; n > 0; n = (n - 1) / 26) out.insert(out.begin(), static_cast<char>('A' + (n - 1) % 26));
+  return out;
+}
+
+std::string column_field(std::size_t column, std::string_view header) {
+  return header.empty() ? fmt::format("column {}", column_letters(column))
+                        : fmt::format("column {} ('{}')", column_letters(column), header);
+}
+
+bool is_comment_or_blank(std::string_view line) {
+  const std::string_view t = trim(line);
+  return t.empty() || t.front() == '#';
+}
+
+/// The separator: ',' unless the first line that holds data has ';' and no ',' (spreadsheets in locales whose
+/// decimal mark is a comma export with ';'; the numbers must still be written with a point).
+char separator_of(const std::vector<Line>& lines) {
+  for (const Line& l : lines) {
+    if (is_comment_or_blank(l.text)) continue;
+    return l.text.find(',') == std::string_view::npos && l.text.find(';') != std::string_view::npos ? ';' : ',';
+  }
+  return ',';
+}
+
+std::vector<Row> split_rows(const Text& text) {
+  const std::vector<Line>& lines = text.lines();
+  const char sep = separator_of(lines);
+  std::vector<Row> rows;
+  std::size_t i = 0;
+  while (i < lines.size()) {
+    if (is_comment_or_blank(lines[i].text)) {  // a comment, or an empty row, between rows (never inside a cell)
+      ++i;
+      continue;
+    }
+    Row row{lines[i].number, {}};
+    std::string cell;
+    std::size_t cell_line = lines[i].number;
+    bool quoted = false, in_quotes = false, closed = false;
+    std::size_t li = i, p = 0;
+    const auto push = [&] {
+      row.cells.push_back(Cell{quoted ? cell : std::string(trim(cell)), cell_line});
+      cell.clear();
+      quoted = closed = false;
+    };
+    while (true) {
+      const std::string_view t = lines[li].text;
+      if (p == t.size()) {
+        if (!in_quotes) {
+          push();
+          break;
+        }
+        if (li + 1 >= lines.size()) text.fail(cell_line, column_field(row.cells.size(), ""), "a quoted cell is never closed (a '\"' is missing)");
+        cell += '\n';
+        ++li;
+        p = 0;
+        continue;
+      }
+      const char c = t[p++];
+      if (in_quotes) {
+        if (c != '"') cell += c;
+        else if (p < t.size() && t[p] == '"') cell += '"', ++p;
+        else in_quotes = false, closed = true;
+      } else if (c == sep) {
+        push();
+        cell_line = lines[li].number;
+      } else if (c == '"' && !quoted && is_blank(cell)) {
+        in_quotes = quoted = true;
+        cell.clear();
+        cell_line = lines[li].number;
+      } else if (closed) {
+        if (c != ' ' && c != '\t') {
+          text.fail(lines[li].number, column_field(row.cells.size(), ""),
+                    fmt::format("text after the closing quote of a cell (write a '\"' inside a quoted cell as '\"\"')"));
+        }
+      } else {
+        cell += c;
+      }
+    }
+    if (!row.blank()) rows.push_back(std::move(row));
+    i = li + 1;
+  }
+  return rows;
+}
+
+bool is_bare_key(std::string_view key) {
+  return !key.empty() && std::all_of(key.begin(), key.end(), [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-';
+  });
+}
+
+std::string toml_string(std::string_view s) {
+  std::string out = "\"";
+  for (const char c : s) {
+    const auto u = static_cast<unsigned char>(c);
+    if (c == '"' || c == '\\') out += '\\', out += c;
+    else if (c == '\n') out += "\\n";
+    else if (c == '\t') out += "\\t";
+    else if (u < 0x20 || u == 0x7F) out += fmt::format("\\u{:04X}", u);
+    else out += c;
+  }
+  return out + '"';
+}
+
+/// The cell as a TOML value when it is one (a number, a range "[0.4, 0.6]", an axis "[0.02, 2.0, 30]"), else as a
+/// string: the TOML reader then says what it expected, as it would for the TOML file.
+std::string toml_value(std::string_view cell) {
+  if (cell.find_first_of("\r\n") == std::string_view::npos) {
+    try {
+      const toml::table t = toml::parse(fmt::format("v = {}\n", cell));
+      if (t.size() == 1 && t.contains("v")) return std::string(cell);
+    } catch (const toml::parse_error&) {
+      // not a TOML value: a string (below)
+    }
+  }
+  return toml_string(cell);
+}
+
+// The keys whose values are text, lengths and areas (survey_file.cpp reads them; docs/survey.md lists them).
+// `support` is not among them: besides a text it may be a flexible support's inline table {freq_hz = ..., ...}.
+const std::set<std::string, std::less<>> kStringKeys{"id",      "description", "shape", "outcome",
+                                                     "evidence", "name",       "notes", "family"};
+const std::set<std::string, std::less<>> kLengthKeys{"width", "height",          "diameter",     "a",
+                                                     "h",     "slid", "slid_uncertainty", "slid_at_least"};
+constexpr std::array<std::string_view, 5> kLengthUnits{"mm", "cm", "m", "in", "ft"};
+constexpr std::array<std::string_view, 3> kAreaUnits{"mm2", "cm2", "m2"};
+
+struct Column {
+  std::string key;     // survey key ("width")
+  std::string unit;    // from the header ("cm"), or empty
+  std::string header;  // as written ("width_cm")
+};
+
+/// "width_cm" -> {width, cm}; "D_cm2" -> {D, cm2}; anything else is its own key.
+Column column_of(const std::string& header) {
+  const std::size_t us = header.rfind('_');
+  if (us != std::string::npos) {
+    const std::string base = header.substr(0, us);
+    const std::string unit = header.substr(us + 1);
+    if (kLengthKeys.contains(base) && std::find(kLengthUnits.begin(), kLengthUnits.end(), unit) != kLengthUnits.end()) {
+      return {base, unit, header};
+    }
+    if (base == "D" && std::find(kAreaUnits.begin(), kAreaUnits.end(), unit) != kAreaUnits.end()) {
+      return {base, unit, header};
+    }
+  }
+  return {header, "", header};
+}
+
+class Writer {
+ public:
+  void line(std::string text, CsvOrigin origin) {
+    out_.toml += text;
+    out_.toml += '\n';
+    out_.origins.push_back(std::move(origin));
+  }
+  CsvSurveyText take() { return std::move(out_); }
+
+ private:
+  CsvSurveyText out_;
+};
+
+}  // namespace
+
+bool is_csv_survey(std::string_view text, std::string_view name) {
+  if (name.size() >= 4 && to_lower(name.substr(name.size() - 4)) == ".csv") return true;
+  if (name.size() >= 5 && to_lower(name.substr(name.size() - 5)) == ".toml") return false;
+  for (const Line& l : split_lines(text, 1000)) {
+    if (is_comment_or_blank(l.text)) continue;
+    const std::string_view t = trim(l.text);
+    if (t.front() == '[') return false;  // a TOML table
+    const std::size_t sep = t.find_first_of(",;");
+    return sep != std::string_view::npos && t.substr(0, sep).find('=') == std::string_view::npos;
+  }
+  return false;
+}
+
+CsvSurveyText csv_survey_to_toml(std::string_view content, const std::string& name) {
+  const Text text(content, name);
+  const std::vector<Row> rows = split_rows(text);
+  Writer w;
+
+  // Setting rows ("site.name", "inversion.pga_g", "event.epicentre" and a value) come before the header row.
+  std::size_t r = 0;
+  std::map<std::string, std::vector<std::pair<std::string, CsvOrigin>>> sections;
+  std::vector<std::string> order;
+  for (; r < rows.size(); ++r) {
+    const Row& row = rows[r];
+    const std::string& first = row.cells.front().text;
+    const std::size_t dot = first.find('.');
+    if (dot == std::string::npos) break;  // the header row
+    const std::string section = first.substr(0, dot);
+    const std::string key = first.substr(dot + 1);
+    if (section != "site" && section != "inversion" && section != "event") {
+      text.fail(row.line, column_field(0, ""),
+                fmt::format("unknown setting {} (a setting row is site.KEY, inversion.KEY or event.KEY, then its "
+                            "value; the header row with an id column comes after them)", detail::quoted(first)));
+    }
+    if (!is_bare_key(key)) text.fail(row.line, column_field(0, ""), fmt::format("{} is not a key", detail::quoted(first)));
+    if (row.cells.size() < 2 || row.cells[1].text.empty()) {
+      text.fail(row.line, column_field(1, ""), fmt::format("the setting {} has no value (in the next column)", first));
+    }
+    for (std::size_t c = 2; c < row.cells.size(); ++c) {
+      if (!row.cells[c].text.empty()) {
+        text.fail(row.cells[c].line, column_field(c, ""), fmt::format("a setting row holds a key and one value; "
+                                                                      "what follows {}'s value is not empty", first));
+      }
+    }
+    const std::string& cell = row.cells[1].text;
+    std::string value;
+    if (kStringKeys.contains(key)) {
+      value = toml_string(cell);
+    } else if (section == "inversion" && key == "records" && !cell.starts_with('[')) {
+      // A list of record files separated by ';' (a TOML array is accepted too).
+      value = "[";
+      std::string_view rest = cell;
+      while (true) {
+        const std::size_t semi = rest.find(';');
+        value += toml_string(trim(rest.substr(0, semi)));
+        if (semi == std::string_view::npos) break;
+        value += ", ";
+        rest.remove_prefix(semi + 1);
+      }
+      value += "]";
+    } else {
+      value = toml_value(cell);
+    }
+    if (!sections.contains(section)) order.push_back(section);
+    sections[section].emplace_back(key + " = " + value, CsvOrigin{row.cells[1].line, 1, first});
+  }
+  for (const std::string& section : order) {
+    w.line("[" + section + "]", CsvOrigin{sections[section].front().second.line, {}, {}});
+    for (auto& [toml_line, origin] : sections[section]) w.line(toml_line, origin);
+  }
+
+  if (r == rows.size()) {
+    text.fail(text.last_line_number(), "id",
+              "no header row: a CSV survey has one row of column names (id, shape, width_cm, ...) and then one "
+              "object per row (docs/survey.md, \"CSV surveys\")");
+  }
+  // The header row.
+  const Row& head = rows[r++];
+  std::vector<std::optional<Column>> columns;
+  std::map<std::string, std::size_t, std::less<>> seen;
+  for (std::size_t c = 0; c < head.cells.size(); ++c) {
+    const std::string& h = head.cells[c].text;
+    if (h.empty()) {
+      columns.emplace_back();  // a column without a header must stay empty (checked per row)
+      continue;
+    }
+    if (!is_bare_key(h)) {
+      text.fail(head.line, column_field(c, ""),
+                fmt::format("{} is not a column name: a column is named by a survey key (id, width, mu, ...), with "
+                            "an optional unit (width_cm)", detail::quoted(h)));
+    }
+    Column col = column_of(h);
+    if (const auto it = seen.find(col.key); it != seen.end()) {
+      text.fail(head.line, column_field(c, h),
+                fmt::format("{} is given twice: here and in {}", col.key, column_field(it->second, columns[it->second]->header)));
+    }
+    seen.emplace(col.key, c);
+    columns.emplace_back(std::move(col));
+  }
+  if (!seen.contains("id")) {
+    text.fail(head.line, "id", "the header row has no id column (every object needs an id; docs/survey.md)");
+  }
+
+  // One object per row.
+  for (; r < rows.size(); ++r) {
+    const Row& row = rows[r];
+    w.line("[[object]]", CsvOrigin{row.line, {}, {}});
+    for (std::size_t c = 0; c < row.cells.size(); ++c) {
+      const Cell& cell = row.cells[c];
+      if (cell.text.empty()) continue;  // an empty cell: the key is not given (its default applies)
+      if (c >= columns.size() || !columns[c]) {
+        text.fail(cell.line, column_field(c, ""),
+                  fmt::format("{} is in a column without a header (the header row has {} columns)", detail::quoted(cell.text),
+                              head.cells.size()));
+      }
+      const Column& col = *columns[c];
+      std::string value;
+      if (!col.unit.empty()) {
+        if (!try_number(cell.text)) {
+          text.fail(cell.line, column_field(c, col.header),
+                    fmt::format("the header gives the unit ({}): write a bare number, not {}", col.unit,
+                                detail::quoted(cell.text)));
+        }
+        value = toml_string(cell.text + col.unit);
+      } else if (kStringKeys.contains(col.key) || kLengthKeys.contains(col.key) || col.key == "D") {
+        value = toml_string(cell.text);  // a length without a header unit carries its own ("8cm"), as in TOML
+      } else {
+        value = toml_value(cell.text);
+      }
+      w.line(col.key + " = " + value, CsvOrigin{cell.line, c, col.header});
+    }
+  }
+  return w.take();
+}
+
+InputError relocate_csv_error(const InputError& e, const CsvSurveyText& csv, const std::string& name) {
+  InputLocation where = e.where();
+  where.file = name;
+  if (where.line && *where.line >= 1 && *where.line <= csv.origins.size()) {
+    const CsvOrigin& o = csv.origins[*where.line - 1];
+    where.line = o.line;
+    if (o.column) {
+      const std::string column = column_field(*o.column, o.header);
+      where.field = where.field.empty() ? column : where.field + " in " + column;
+    }
+  }
+  return InputError(where, e.problem());
+}
+
+std::string relocate_csv_note(const std::string& note, const CsvSurveyText& csv, const std::string& name) {
+  const std::string prefix = name + ":";
+  if (!note.starts_with(prefix)) return note;
+  std::size_t end = prefix.size();
+  std::size_t line = 0;
+  while (end < note.size() && note[end] >= '0' && note[end] <= '9' && line < csv.origins.size() + 1) {
+    line = line * 10 + static_cast<std::size_t>(note[end++] - '0');
+  }
+  if (line < 1 || line > csv.origins.size() || end >= note.size() || note[end] != ':') return note;
+  return fmt::format("{}{}{}", prefix, csv.origins[line - 1].line, note.substr(end));
+}
+
+}  // namespace topple::io::detail
