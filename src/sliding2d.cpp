@@ -48,12 +48,14 @@ constexpr double kStopSpeedFraction = 1e-3;
 /// see Rhs and docs/method.md (S5'), where the error of the slaved phase is bounded. The launch used to end at
 /// 1000 abs_tol; the launch steps are stability-limited (h <= 3.3 r/|a|) and their number grows as 1/sqrt(r at the
 /// end of the launch), so ending it at 1e-5 instead of 1e-7 m/s halves the steps of a slip episode on the benchmark.
-constexpr double kLaunchSpeedScale = 1.0;  // m/s
+constexpr double kLaunchSpeedScale = 0.1;  // m/s
 constexpr double kLaunchSpeedTolerances = 1000.0;
+/// The launch also ends where the quasi-static direction's lag behind -a, r psi' / |a|, would exceed this (rad).
+constexpr double kLaunchMaxLag = 1e-3;
 /// A slipping block back down to this fraction of the launch speed (1e-6 m/s at the default abs_tol) has stopped:
 /// the velocity noise floor (see integrate()). Below the launch speed, so that a launch does not end in a stop at
 /// once.
-constexpr double kFloorLaunchFraction = 0.1;
+constexpr double kFloorLaunchFraction = 0.03;
 /// Brent's minimiser to half the mantissa in time: at a smooth extreme the value is then exact to round-off.
 constexpr int kBrentBits = std::numeric_limits<double>::digits / 2;
 
@@ -291,8 +293,7 @@ void integrate(const Input& in, const SlidingBlock& b, const Sliding2dOptions& o
   rhs.mu = b.mu_kinetic;
   Stepper stepper(opt, in.grid.dt_s());
   // Below this speed, at a slip onset, the friction direction is the onset limit -a / |a| (see Rhs).
-  const double launch_speed =
-      std::max(std::sqrt(opt.abs_tol * kLaunchSpeedScale), kLaunchSpeedTolerances * opt.abs_tol);
+  const double launch_speed = std::max(std::sqrt(opt.abs_tol * kLaunchSpeedScale), kLaunchSpeedTolerances * opt.abs_tol);
   // A block slowing down to this speed has stopped (see below).
   const double floor_speed = kFloorLaunchFraction * launch_speed;
   rec.row(in.time(0), x, false);
@@ -543,9 +544,18 @@ void integrate(const Input& in, const SlidingBlock& b, const Sliding2dOptions& o
       }
       dx = stepper.dx1();
       dx_valid = true;
-      if (rhs.launch && x[kW1] * x[kW1] + x[kW2] * x[kW2] > launch_speed * launch_speed) {
-        rhs.launch = false;  // w / |w| from here on: the RHS changes, so no FSAL
-        dx_valid = false;
+      if (rhs.launch) {
+        // The launch ends at the launch speed, or earlier where the quasi-static direction stops being a good
+        // approximation: its lag behind -a, delta = r psi' / |a| = r |a x a'| / |a|^3 (psi' the turning rate of a),
+        // exceeds kLaunchMaxLag (near a zero of a, where -a / |a| turns fast, docs/method.md S5').
+        const double c1 = rhs.a01 + rhs.as1 * tau;
+        const double c2 = rhs.a02 + rhs.as2 * tau;
+        const double cm = std::sqrt(c1 * c1 + c2 * c2);
+        const double r = std::sqrt(x[kW1] * x[kW1] + x[kW2] * x[kW2]);
+        if (r > launch_speed || r * std::abs(c1 * rhs.as2 - c2 * rhs.as1) > kLaunchMaxLag * cm * cm * cm) {
+          rhs.launch = false;  // w / |w| from here on: the RHS changes, so no FSAL
+          dx_valid = false;
+        }
       }
       rec.track_speed(x[kW1], x[kW2]);
       rec.track_displacement(t_i + tau, x[kU1], x[kU2]);
