@@ -43,12 +43,19 @@ constexpr int kMaxTurnHalvings = 60;
 /// the velocity turned past 90 degrees within the step (no stop) and the step is halved. At a true stop |w| is the
 /// integration error (<= tolerance x scale); a turn leaves |w| of the order of the scale.
 constexpr double kStopSpeedFraction = 1e-3;
-/// A block that has just started slipping follows the direction of the inertial load -a until its speed exceeds this
-/// many absolute tolerances (see Rhs).
+/// A block that has just started slipping follows the direction of the inertial load -a until its speed exceeds
+/// sqrt(abs_tol x kLaunchSpeedScale) (3.2e-6 m/s at the default abs_tol; at least kLaunchSpeedTolerances x abs_tol):
+/// see Rhs and docs/method.md (S5'), where the error of the slaved phase is estimated. The launch used to end at
+/// 1000 abs_tol (1e-7 m/s); the steps after it are stability-limited (h <= 3.3 r/|a|) and their number falls as
+/// 1/sqrt(launch speed), so this takes 1.6-1.8x fewer DP5 steps on the benchmark (docs/performance.md).
+constexpr double kLaunchSpeedScale = 0.1;  // m/s
 constexpr double kLaunchSpeedTolerances = 1000.0;
-/// A slipping block back down to this many absolute tolerances has stopped: the velocity noise floor (see
-/// integrate()). Above the launch speed, so that a launch does not end in a stop at once.
-constexpr double kFloorSpeedTolerances = 100.0;
+/// The launch also ends where the quasi-static direction's lag behind -a, r psi' / |a|, would exceed this (rad).
+constexpr double kLaunchMaxLag = 1e-3;
+/// A slipping block back down to this fraction of the launch speed (1e-7 m/s at the default abs_tol) has stopped:
+/// the velocity noise floor (see integrate()). Below the launch speed, so that a launch does not end in a stop at
+/// once.
+constexpr double kFloorLaunchFraction = 0.03;
 /// Brent's minimiser to half the mantissa in time: at a smooth extreme the value is then exact to round-off.
 constexpr int kBrentBits = std::numeric_limits<double>::digits / 2;
 
@@ -73,10 +80,12 @@ struct Input {
 ///
 /// Launch. Slip starts from rest in the direction -a (eq S5); while the speed is below the velocity tolerance the
 /// direction of w is not resolved by the integration (the direction equation is stiff there, relaxing toward -a at
-/// the rate |a| / |w|, docs/method.md), so until the speed first exceeds kLaunchSpeedTolerances x abs_tol the
+/// the rate |a| / |w|, docs/method.md), so until the speed first exceeds the launch speed (above) the
 /// velocity is slaved to the quasi-static direction -a / |a|: w = r n, n = -a / |a|, r' = |a| - mu_k g_e+ (for
 /// collinear input this is (S2) itself; in two dimensions the true lag of w behind -a there is |w| psi' / |a|, psi'
-/// the turning rate of a: below 6e-6 rad at the default 1e-7 m/s for psi' = 60 rad/s and |a| = 1 m/s^2).
+/// the turning rate of a: below 2e-4 rad at the default 3.2e-6 m/s for psi' = 60 rad/s and |a| = 1 m/s^2; about
+/// 5e-13 m of displacement per episode, docs/method.md). The launch also ends where that lag would pass
+/// kLaunchMaxLag (near a zero of a, where -a / |a| turns fast).
 struct Rhs {
   double a01 = 0.0, a02 = 0.0, as1 = 0.0, as2 = 0.0, g0 = 0.0, gs = 0.0;
   double mu = 0.0;               // kinetic friction coefficient
@@ -95,7 +104,7 @@ struct Rhs {
     dx[kFrictionWork] = friction * speed;
     dx[kU1] = w1;
     dx[kU2] = w2;
-    const double amag = std::sqrt(ax * ax + ay * ay);
+    const double amag = launch ? std::sqrt(ax * ax + ay * ay) : 0.0;  // a sqrt saved outside the launch
     if (launch && amag > 0.0) {
       // Slaved to the load's direction n = -a/|a|: w = r n with r' = |a| - mu_k g_e+ and n' = -(a' - n (a'.n))/|a|
       // (eq S5'), so w' = r' n + r n'.
@@ -285,9 +294,10 @@ void integrate(const Input& in, const SlidingBlock& b, const Sliding2dOptions& o
   rhs.mu = b.mu_kinetic;
   Stepper stepper(opt, in.grid.dt_s());
   // Below this speed, at a slip onset, the friction direction is the onset limit -a / |a| (see Rhs).
-  const double launch_speed = kLaunchSpeedTolerances * opt.abs_tol;
+  const double launch_speed =
+      std::max(std::sqrt(opt.abs_tol * kLaunchSpeedScale), kLaunchSpeedTolerances * opt.abs_tol);
   // A block slowing down to this speed has stopped (see below).
-  const double floor_speed = kFloorSpeedTolerances * opt.abs_tol;
+  const double floor_speed = kFloorLaunchFraction * launch_speed;
   rec.row(in.time(0), x, false);
   rec.summary.max_displacement_time_s = in.time(0);
 
@@ -483,8 +493,11 @@ void integrate(const Input& in, const SlidingBlock& b, const Sliding2dOptions& o
         // direction equation is stiff there: its rate |a| / |w| exceeds the explicit method's stability limit at
         // any step the error test allows, so w would wander at the tolerance level). The block has come to rest:
         // the rest of the run-in, along the current direction, is |w| / (mu_k g_e + a . w/|w|) long and covers
-        // |w| times half that (< 1e-13 m at the default tolerance when decelerating at 0.01 m/s^2); when w is not
-        // decelerating along its own direction the stop is taken at once. The stick test then decides (eq S6).
+        // |w| times half that (5e-13 m from the default floor of 1e-7 m/s when decelerating at 0.01 m/s^2, of
+        // which the extrapolation's error, from the deceleration and direction changing over the run-in's 1e-5 s,
+        // is a small fraction, docs/method.md); when w is not decelerating along its own direction the stop is taken
+        // at once.
+        // The stick test then decides (eq S6).
         const double b1 = rhs.a01 + rhs.as1 * s1;
         const double b2 = rhs.a02 + rhs.as2 * s1;
         const double friction = rhs.mu * std::max(rhs.g0 + rhs.gs * s1, 0.0);
@@ -534,9 +547,18 @@ void integrate(const Input& in, const SlidingBlock& b, const Sliding2dOptions& o
       }
       dx = stepper.dx1();
       dx_valid = true;
-      if (rhs.launch && x[kW1] * x[kW1] + x[kW2] * x[kW2] > launch_speed * launch_speed) {
-        rhs.launch = false;  // w / |w| from here on: the RHS changes, so no FSAL
-        dx_valid = false;
+      if (rhs.launch) {
+        // The launch ends at the launch speed, or earlier where the quasi-static direction stops being a good
+        // approximation: its lag behind -a, delta = r psi' / |a| = r |a x a'| / |a|^3 (psi' the turning rate of a),
+        // exceeds kLaunchMaxLag (near a zero of a, where -a / |a| turns fast, docs/method.md S5').
+        const double c1 = rhs.a01 + rhs.as1 * tau;
+        const double c2 = rhs.a02 + rhs.as2 * tau;
+        const double cm = std::sqrt(c1 * c1 + c2 * c2);
+        const double r = std::sqrt(x[kW1] * x[kW1] + x[kW2] * x[kW2]);
+        if (r > launch_speed || r * std::abs(c1 * rhs.as2 - c2 * rhs.as1) > kLaunchMaxLag * cm * cm * cm) {
+          rhs.launch = false;  // w / |w| from here on: the RHS changes, so no FSAL
+          dx_valid = false;
+        }
       }
       rec.track_speed(x[kW1], x[kW2]);
       rec.track_displacement(t_i + tau, x[kU1], x[kU2]);

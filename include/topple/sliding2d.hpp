@@ -32,11 +32,12 @@
 //
 // Low speeds (method.md, "stiffness"). The direction of w relaxes toward -a at the rate |a| / |w|: stiff near every
 // onset and stop. Below the velocity tolerance the integration cannot resolve the direction, so (1) until the speed
-// first exceeds 1000 abs_tol after an onset, the velocity is slaved to the quasi-static direction -a / |a| (w = r n,
-// n = -a / |a|, r' = |a| - mu_k g_e; method.md eq S5'); (2) a sliding
-// block that slows to 100 abs_tol has stopped (the remaining run-in, extrapolated along its direction, is added).
-// The stiff phases cost a few hundred steps per slip episode: with 5-15 % of a record slipping the 2-D solver runs
-// at 3-5 M samples/s, ~250x slower than the 1-D one (docs/performance.md).
+// first exceeds the launch speed r_L = max(sqrt(abs_tol x 0.1 m/s), 1000 abs_tol) (3.2e-6 m/s by default) after an
+// onset, and while the quasi-static lag r psi'/|a| stays below 1e-3 rad, the velocity is slaved to the quasi-static
+// direction -a / |a| (w = r n, n = -a / |a|, r' = |a| - mu_k g_e; method.md eq S5', where its error is estimated);
+// (2) a sliding block that slows to 0.03 r_L has stopped (the remaining run-in, extrapolated along its direction, is
+// added). The stiff phases still cost ~240 DP5 steps per slip episode: with 5-15 % of a record slipping the 2-D solver
+// runs at 5-11 M samples/s, ~100-160x slower than the 1-D one (docs/performance.md).
 //
 // Scope. Level ground only (the incline, where gravity's downslope pull breaks the isotropy, is not implemented:
 // make() refuses a slope) and two-way sliding only.
@@ -62,7 +63,8 @@ struct Sliding2dOptions {
   /// Relative tolerance per step on each state (dimensionless, typical 1e-9); > 0.
   double rel_tol = 1e-9;
   /// Absolute tolerance per step (m for displacements, m/s for velocities, m^2/s^2 for work per mass; typical
-  /// 1e-10); > 0. It also sets the velocity noise floor: a slipping block that slows to 100 abs_tol has stopped.
+  /// 1e-10); > 0. It also sets the launch speed and the velocity noise floor (3.2e-6 and 1e-7 m/s by default; see
+  /// the header's "Low speeds").
   double abs_tol = 1e-10;
   /// Cap on integrator steps (accepted and rejected) over the run: a sign of an input outside the model.
   std::size_t max_steps = 100'000'000;
