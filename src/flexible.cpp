@@ -248,18 +248,18 @@ void particular_solutions(const OutputRecurrence& c, const double* a, std::size_
   }
 }
 
-/// Pass 2 of run_output_recurrence on one segment: d_j = p_j + A_j z_{s-1} + B_j z_{s-2} + da a_j (written to out
-/// when kWrite), returning max |d_j|. In pairs (GCC/Clang vector extension: SSE2 registers on x86-64), the running
-/// maximum too: a scalar one is a chain of its own, a max's latency per point.
+/// Pass 2 of run_output_recurrence on one segment: d_j = p_j + S_j z + B_j dz + da a_j (written to out when kWrite;
+/// z, dz: the entering state, run_output_recurrence), returning max |d_j|. In pairs (GCC/Clang vector extension: SSE2
+/// registers on x86-64), the running maximum too: a scalar one is a chain of its own, a max's latency per point.
 template <bool kWrite>
-double corrected(const double* p, const double* ha, const double* hb, double z_m1, double z_m2, double da,
+double corrected(const double* p, const double* ha, const double* hb, double z_m1, double dz, double da,
                  const double* a, double* out, std::size_t len) {
   using V2 = double __attribute__((vector_size(16)));
   using U2 = std::uint64_t __attribute__((vector_size(16)));
   constexpr std::uint64_t kMask = ~(std::uint64_t{1} << 63);
   const U2 kMagnitude = {kMask, kMask};
   const V2 z1 = {z_m1, z_m1};
-  const V2 z2 = {z_m2, z_m2};
+  const V2 z2 = {dz, dz};
   const V2 d2 = {da, da};
   V2 m0 = {0.0, 0.0};
   V2 m1 = {0.0, 0.0};
@@ -288,7 +288,7 @@ double corrected(const double* p, const double* ha, const double* hb, double z_m
   }
   double m = std::max(std::max(m0[0], m0[1]), std::max(m1[0], m1[1]));
   for (; j < len; ++j) {
-    const double d = p[j] + ha[j] * z_m1 + hb[j] * z_m2 + da * a[j];
+    const double d = p[j] + ha[j] * z_m1 + hb[j] * dz + da * a[j];
     if constexpr (kWrite) out[j] = d;
     m = std::max(m, std::abs(d));
   }
@@ -301,22 +301,24 @@ double corrected(const double* p, const double* ha, const double* hb, double z_m
 /// The chain z_{k+1} = a1 z_k + ... makes every sample wait on the previous one (a product and a sum of latency). To
 /// break it, the points are taken in chunks of kSegments segments of equal length L: each segment's particular
 /// solution p (the recurrence from zero state, z_{s-1} = z_{s-2} = 0 before its start s) is computed side by side with
-/// the others' (independent chains: instruction-level parallelism), then the exact solution is
-///   z_{s+j} = p_{s+j} + A_j z_{s-1} + B_j z_{s-2},
-/// A, B being the homogeneous solutions with (A_{-1}, A_{-2}) = (1, 0), (B_{-1}, B_{-2}) = (0, 1) (superposition: the
-/// recurrence is linear). The states entering each segment are carried serially from segment to segment (two values
-/// per segment), the correction added in a second, vectorisable pass. Algebraically the same solution; round-off:
-/// the correction adds one product of A_j or B_j (|A_j|, |B_j| <= ~1 / sin(omega_d h), as the companion matrix' powers)
-/// with a state, i.e. the same order as the plain recurrence's ~1e-16 / (omega h)^2 relative.
+/// the others' (independent chains: instruction-level parallelism), then the exact solution is (superposition: the
+/// recurrence is linear)
+///   z_{s+j} = p_{s+j} + S_j z_{s-1} + B_j (z_{s-2} - z_{s-1}),
+/// S and B being the homogeneous solutions from the states (z_{-1}, z_{-2}) = (1, 1) and (0, 1). The states entering
+/// each segment are carried serially from segment to segment (two values per segment), the correction added in a
+/// second, vectorisable pass. Algebraically the same solution. The basis (1, 1), (0, 1) keeps the correction free of
+/// cancellation: with poles near 1 (omega h small) the powers from (1, 0) and (0, 1) grow like +-j and nearly cancel
+/// on z_{s-1} ~ z_{s-2}, while S_j stays O(1) and B_j multiplies the small difference. Round-off: of the order of the
+/// plain recurrence's ~1e-16 / (omega h)^2 relative (measured against it: docs/method.md).
 double run_output_recurrence(const OutputRecurrence& c, double da, const double* a, std::size_t n, double* out) {
   constexpr std::size_t kSegments = 8;
   constexpr std::size_t kMaxSegment = 256;
   constexpr std::size_t kChunk = kSegments * kMaxSegment;
-  // Homogeneous solutions A_j, B_j, j < kMaxSegment (prefixes serve shorter segments).
+  // Homogeneous solutions S_j, B_j, j < kMaxSegment (prefixes serve shorter segments).
   std::array<double, kMaxSegment> ha;
   std::array<double, kMaxSegment> hb;
   {
-    double a_m1 = 1.0, a_m2 = 0.0, b_m1 = 0.0, b_m2 = 1.0;
+    double a_m1 = 1.0, a_m2 = 1.0, b_m1 = 0.0, b_m2 = 1.0;  // ha: from the state (1, 1); hb: from (0, 1)
     const std::size_t len = std::min(kMaxSegment, n);
     for (std::size_t j = 0; j < len; ++j) {
       const double an = c.a1 * a_m1 + c.a2 * a_m2;
@@ -357,13 +359,14 @@ double run_output_recurrence(const OutputRecurrence& c, double da, const double*
     for (std::size_t s = 0; s < segments; ++s) {
       const std::size_t start = k + s * len;
       const double* ps = p.data() + s * len;
-      const double seg_peak = out != nullptr ? corrected<true>(ps, ha.data(), hb.data(), z_m1, z_m2, da, a + start,
+      const double dz = z_m2 - z_m1;
+      const double seg_peak = out != nullptr ? corrected<true>(ps, ha.data(), hb.data(), z_m1, dz, da, a + start,
                                                                  out + start, len)
-                                             : corrected<false>(ps, ha.data(), hb.data(), z_m1, z_m2, da, a + start,
+                                             : corrected<false>(ps, ha.data(), hb.data(), z_m1, dz, da, a + start,
                                                                 nullptr, len);
       peak = std::max(peak, seg_peak);
-      const double e1 = ps[len - 1] + ha[len - 1] * z_m1 + hb[len - 1] * z_m2;
-      const double e2 = len >= 2 ? ps[len - 2] + ha[len - 2] * z_m1 + hb[len - 2] * z_m2 : z_m1;
+      const double e1 = ps[len - 1] + ha[len - 1] * z_m1 + hb[len - 1] * dz;
+      const double e2 = len >= 2 ? ps[len - 2] + ha[len - 2] * z_m1 + hb[len - 2] * dz : z_m1;
       z_m1 = e1;
       z_m2 = e2;
     }
