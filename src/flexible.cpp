@@ -248,34 +248,31 @@ void particular_solutions(const OutputRecurrence& c, const double* a, std::size_
   }
 }
 
-/// Pass 2 of run_output_recurrence on one segment: d_j = p_j + S_j z + B_j dz + da a_j (written to out when kWrite;
-/// z, dz: the entering state, run_output_recurrence), returning max |d_j|. In pairs (GCC/Clang vector extension: SSE2
-/// registers on x86-64), the running maximum too: a scalar one is a chain of its own, a max's latency per point.
+/// Pass 2 of run_output_recurrence on one segment: d_j = p_j + S_j z + B_j dz (written to out when kWrite; z, dz: the
+/// entering state, run_output_recurrence), returning max |d_j|. In pairs (GCC/Clang vector extension: SSE2 registers
+/// on x86-64), the running maximum too: a scalar one is a chain of its own, a max's latency per point.
 template <bool kWrite>
-double corrected(const double* p, const double* ha, const double* hb, double z_m1, double dz, double da,
-                 const double* a, double* out, std::size_t len) {
+double corrected(const double* p, const double* ha, const double* hb, double z_m1, double dz, double* out,
+                 std::size_t len) {
   using V2 = double __attribute__((vector_size(16)));
   using U2 = std::uint64_t __attribute__((vector_size(16)));
   constexpr std::uint64_t kMask = ~(std::uint64_t{1} << 63);
   const U2 kMagnitude = {kMask, kMask};
   const V2 z1 = {z_m1, z_m1};
   const V2 z2 = {dz, dz};
-  const V2 d2 = {da, da};
   V2 m0 = {0.0, 0.0};
   V2 m1 = {0.0, 0.0};
   std::size_t j = 0;
   for (; j + 4 <= len; j += 4) {
-    V2 pa, pb, aa, ab, ba, bb, xa, xb;
+    V2 pa, pb, aa, ab, ba, bb;
     std::memcpy(&pa, p + j, 16);
     std::memcpy(&pb, p + j + 2, 16);
     std::memcpy(&aa, ha + j, 16);
     std::memcpy(&ab, ha + j + 2, 16);
     std::memcpy(&ba, hb + j, 16);
     std::memcpy(&bb, hb + j + 2, 16);
-    std::memcpy(&xa, a + j, 16);
-    std::memcpy(&xb, a + j + 2, 16);
-    const V2 da_ = pa + aa * z1 + ba * z2 + d2 * xa;
-    const V2 db_ = pb + ab * z1 + bb * z2 + d2 * xb;
+    const V2 da_ = pa + aa * z1 + ba * z2;
+    const V2 db_ = pb + ab * z1 + bb * z2;
     if constexpr (kWrite) {
       std::memcpy(out + j, &da_, 16);
       std::memcpy(out + j + 2, &db_, 16);
@@ -288,7 +285,7 @@ double corrected(const double* p, const double* ha, const double* hb, double z_m
   }
   double m = std::max(std::max(m0[0], m0[1]), std::max(m1[0], m1[1]));
   for (; j < len; ++j) {
-    const double d = p[j] + ha[j] * z_m1 + hb[j] * dz + da * a[j];
+    const double d = p[j] + ha[j] * z_m1 + hb[j] * dz;
     if constexpr (kWrite) out[j] = d;
     m = std::max(m, std::abs(d));
   }
@@ -310,7 +307,13 @@ double corrected(const double* p, const double* ha, const double* hb, double z_m
 /// cancellation: with poles near 1 (omega h small) the powers from (1, 0) and (0, 1) grow like +-j and nearly cancel
 /// on z_{s-1} ~ z_{s-2}, while S_j stays O(1) and B_j multiplies the small difference. Round-off: of the order of the
 /// plain recurrence's ~1e-16 / (omega h)^2 relative (measured against it: docs/method.md).
-double run_output_recurrence(const OutputRecurrence& c, double da, const double* a, std::size_t n, double* out) {
+double run_output_recurrence(const OutputRecurrence& output, double da, const double* a, std::size_t n, double* out) {
+  // d itself obeys the recurrence, with da folded into the input terms: d_{k+1} - a1 d_k - a2 d_{k-1} = (z's input
+  // terms) + da (a_{k+1} - a1 a_k - a2 a_{k-1}), from d_0 = da a_0, d_1 = z_1 + da a_1 (z_0 = 0).
+  OutputRecurrence c = output;
+  c.b0 += da;
+  c.b1 -= c.a1 * da;
+  c.b2 -= c.a2 * da;
   constexpr std::size_t kSegments = 8;
   constexpr std::size_t kMaxSegment = 256;
   constexpr std::size_t kChunk = kSegments * kMaxSegment;
@@ -331,14 +334,14 @@ double run_output_recurrence(const OutputRecurrence& c, double da, const double*
       b_m1 = bn;
     }
   }
-  double z_m2 = 0.0;                                        // z_0
-  double z_m1 = c.z1_from_a0 * a[0] + c.z1_from_a1 * a[1];  // z_1
+  double z_m2 = da * a[0];                                                // d_0
+  double z_m1 = output.z1_from_a0 * a[0] + output.z1_from_a1 * a[1] + da * a[1];  // d_1
   double in_m2 = a[0];                                      // the inputs before the next point (out may be a)
   double in_m1 = a[1];
-  double peak = std::max(std::abs(da * a[0]), std::abs(z_m1 + da * a[1]));
+  double peak = std::max(std::abs(z_m2), std::abs(z_m1));
   if (out != nullptr) {
-    out[0] = da * a[0];
-    out[1] = z_m1 + da * a[1];
+    out[0] = z_m2;
+    out[1] = z_m1;
   }
   std::array<double, kChunk> p;  // particular solutions of the chunk's segments, segment-major
   std::size_t k = 2;             // next point
@@ -360,10 +363,8 @@ double run_output_recurrence(const OutputRecurrence& c, double da, const double*
       const std::size_t start = k + s * len;
       const double* ps = p.data() + s * len;
       const double dz = z_m2 - z_m1;
-      const double seg_peak = out != nullptr ? corrected<true>(ps, ha.data(), hb.data(), z_m1, dz, da, a + start,
-                                                                 out + start, len)
-                                             : corrected<false>(ps, ha.data(), hb.data(), z_m1, dz, da, a + start,
-                                                                nullptr, len);
+      const double seg_peak = out != nullptr ? corrected<true>(ps, ha.data(), hb.data(), z_m1, dz, out + start, len)
+                                             : corrected<false>(ps, ha.data(), hb.data(), z_m1, dz, nullptr, len);
       peak = std::max(peak, seg_peak);
       const double e1 = ps[len - 1] + ha[len - 1] * z_m1 + hb[len - 1] * dz;
       const double e2 = len >= 2 ? ps[len - 2] + ha[len - 2] * z_m1 + hb[len - 2] * dz : z_m1;
