@@ -46,12 +46,17 @@ void require_finite_accel_within_limit(const std::vector<double>& values, const 
   const V2 limit = {kLimit, kLimit};
   const M2 magnitude = {INT64_MAX, INT64_MAX};  // every bit but the sign
   M2 all = {-1, -1};  // lanes stay all-ones while every |a| <= limit (false for NaN and inf)
+  M2 all2 = all;       // a second accumulator: two independent chains
   std::size_t i = 0;
-  for (; i + 2 <= values.size(); i += 2) {
+  for (; i + 4 <= values.size(); i += 4) {
     V2 v;
+    V2 w;
     std::memcpy(&v, values.data() + i, sizeof v);
+    std::memcpy(&w, values.data() + i + 2, sizeof w);
     all &= reinterpret_cast<V2>(reinterpret_cast<M2>(v) & magnitude) <= limit;
+    all2 &= reinterpret_cast<V2>(reinterpret_cast<M2>(w) & magnitude) <= limit;
   }
+  all &= all2;
   bool ok = all[0] != 0 && all[1] != 0;
   for (; i < values.size(); ++i) ok &= std::abs(values[i]) <= kLimit;
   if (ok) return;
