@@ -356,7 +356,7 @@ double run_output_recurrence(const OutputRecurrence& output, double da, const do
     } else {
       particular_solutions<1>(c, a, k, len, in_m1, in_m2, p.data());
     }
-    in_m2 = len >= 2 ? a[k + segments * len - 2] : in_m1;
+    in_m2 = segments * len >= 2 ? a[k + segments * len - 2] : in_m1;
     in_m1 = a[k + segments * len - 1];
     // Pass 2: the states entering each segment (serial, two values per segment) and the correction.
     for (std::size_t s = 0; s < segments; ++s) {
