@@ -5,6 +5,8 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <span>
 #include <utility>
@@ -200,32 +202,176 @@ OutputRecurrence output_recurrence(const Mat<4>& p, double h, double cy, double 
   return r;
 }
 
-/// Runs the recurrence over the n input points a (n >= 2); writes d_k = z_k + da a_k to `out` when given (it may be
-/// `a` itself: each input is read before its slot is written) and returns max |d_k|.
-double run_output_recurrence(const OutputRecurrence& c, double da, const double* a, std::size_t n, double* out) {
-  double a_prev = a[0];
-  double a_cur = a[1];
-  double z_prev = 0.0;
-  double z = c.z1_from_a0 * a_prev + c.z1_from_a1 * a_cur;
-  double d0 = da * a_prev;
-  double d1 = z + da * a_cur;
-  double peak = std::max(std::abs(d0), std::abs(d1));
-  if (out != nullptr) {
-    out[0] = d0;
-    out[1] = d1;
+/// Pass 1 of run_output_recurrence: the particular solutions of S segments of `len` points from point k, written
+/// segment-major (that is, in point order) to p; in_m1, in_m2 are the inputs a_{k-1}, a_{k-2} (a may already be
+/// overwritten before k). The forcing f_i = b0 a_i + b1 a_{i-1} + b2 a_{i-2} first (independent per point,
+/// vectorised), then the S chains p_i = a1 p_{i-1} + a2 p_{i-2} + f_i side by side, their states in registers.
+template <std::size_t S>
+void particular_solutions(const OutputRecurrence& c, const double* a, std::size_t k, std::size_t len, double in_m1,
+                          double in_m2, double* p) {
+  const std::size_t points = S * len;
+  p[0] = c.b0 * a[k] + c.b1 * in_m1 + c.b2 * in_m2;
+  if (points > 1) p[1] = c.b0 * a[k + 1] + c.b1 * a[k] + c.b2 * in_m1;
+  const double* ak = a + k;
+  for (std::size_t i = 2; i < points; ++i) p[i] = c.b0 * ak[i] + c.b1 * ak[i - 1] + c.b2 * ak[i - 2];
+  const double a1 = c.a1;  // locals: a store to p could otherwise alias c and force reloads
+  const double a2 = c.a2;
+  if constexpr (S % 2 == 0) {
+    // Segments 2q and 2q + 1 in the two lanes of one register (GCC/Clang vector extension: SSE2 on x86-64).
+    using V2 = double __attribute__((vector_size(16)));
+    constexpr std::size_t kPairs = S / 2;
+    const V2 va1 = {a1, a1};
+    const V2 va2 = {a2, a2};
+    std::array<V2, kPairs> p1{}, p2{};
+    for (std::size_t j = 0; j < len; ++j) {
+      for (std::size_t q = 0; q < kPairs; ++q) {
+        double* lo = p + 2 * q * len + j;
+        double* hi = lo + len;
+        const V2 f = {*lo, *hi};
+        const V2 pn = va1 * p1[q] + (va2 * p2[q] + f);
+        *lo = pn[0];
+        *hi = pn[1];
+        p2[q] = p1[q];
+        p1[q] = pn;
+      }
+    }
+  } else {
+    std::array<double, S> p1{}, p2{};
+    for (std::size_t j = 0; j < len; ++j) {
+      for (std::size_t s = 0; s < S; ++s) {
+        const double pn = a1 * p1[s] + (a2 * p2[s] + p[s * len + j]);
+        p[s * len + j] = pn;
+        p2[s] = p1[s];
+        p1[s] = pn;
+      }
+    }
   }
-  for (std::size_t k = 1; k + 1 < n; ++k) {
-    const double a_next = a[k + 1];
-    // Off the chain first: everything but a1 z_k.
-    const double rest = c.a2 * z_prev + (c.b0 * a_next + c.b1 * a_cur + c.b2 * a_prev);
-    const double z_next = c.a1 * z + rest;
-    const double d = z_next + da * a_next;
-    peak = std::max(peak, std::abs(d));
-    if (out != nullptr) out[k + 1] = d;
-    z_prev = z;
-    z = z_next;
-    a_prev = a_cur;
-    a_cur = a_next;
+}
+
+/// Pass 2 of run_output_recurrence on one segment: d_j = p_j + S_j z + B_j dz (written to out when kWrite; z, dz: the
+/// entering state, run_output_recurrence), returning max |d_j|. In pairs (GCC/Clang vector extension: SSE2 registers
+/// on x86-64), the running maximum too: a scalar one is a chain of its own, a max's latency per point.
+template <bool kWrite>
+double corrected(const double* p, const double* ha, const double* hb, double z_m1, double dz, double* out,
+                 std::size_t len) {
+  using V2 = double __attribute__((vector_size(16)));
+  using U2 = std::uint64_t __attribute__((vector_size(16)));
+  constexpr std::uint64_t kMask = ~(std::uint64_t{1} << 63);
+  const U2 kMagnitude = {kMask, kMask};
+  const V2 z1 = {z_m1, z_m1};
+  const V2 z2 = {dz, dz};
+  V2 m0 = {0.0, 0.0};
+  V2 m1 = {0.0, 0.0};
+  std::size_t j = 0;
+  for (; j + 4 <= len; j += 4) {
+    V2 pa, pb, aa, ab, ba, bb;
+    std::memcpy(&pa, p + j, 16);
+    std::memcpy(&pb, p + j + 2, 16);
+    std::memcpy(&aa, ha + j, 16);
+    std::memcpy(&ab, ha + j + 2, 16);
+    std::memcpy(&ba, hb + j, 16);
+    std::memcpy(&bb, hb + j + 2, 16);
+    const V2 da_ = pa + aa * z1 + ba * z2;
+    const V2 db_ = pb + ab * z1 + bb * z2;
+    if constexpr (kWrite) {
+      std::memcpy(out + j, &da_, 16);
+      std::memcpy(out + j + 2, &db_, 16);
+    }
+    // |d| by clearing the sign bit; the demand is finite (no NaN to order).
+    const V2 ua = reinterpret_cast<V2>(reinterpret_cast<U2>(da_) & kMagnitude);
+    const V2 ub = reinterpret_cast<V2>(reinterpret_cast<U2>(db_) & kMagnitude);
+    m0 = m0 < ua ? ua : m0;
+    m1 = m1 < ub ? ub : m1;
+  }
+  double m = std::max(std::max(m0[0], m0[1]), std::max(m1[0], m1[1]));
+  for (; j < len; ++j) {
+    const double d = p[j] + ha[j] * z_m1 + hb[j] * dz;
+    if constexpr (kWrite) out[j] = d;
+    m = std::max(m, std::abs(d));
+  }
+  return m;
+}
+
+/// Runs the recurrence over the n input points a (n >= 2); writes d_k = z_k + da a_k to `out` when given (it may be
+/// `a` itself) and returns max |d_k|.
+///
+/// The chain z_{k+1} = a1 z_k + ... makes every sample wait on the previous one (a product and a sum of latency). To
+/// break it, the points are taken in chunks of kSegments segments of equal length L: each segment's particular
+/// solution p (the recurrence from zero state, z_{s-1} = z_{s-2} = 0 before its start s) is computed side by side with
+/// the others' (independent chains: instruction-level parallelism), then the exact solution is (superposition: the
+/// recurrence is linear)
+///   z_{s+j} = p_{s+j} + S_j z_{s-1} + B_j (z_{s-2} - z_{s-1}),
+/// S and B being the homogeneous solutions from the states (z_{-1}, z_{-2}) = (1, 1) and (0, 1). The states entering
+/// each segment are carried serially from segment to segment (two values per segment), the correction added in a
+/// second, vectorisable pass. Algebraically the same solution. The basis (1, 1), (0, 1) keeps the correction free of
+/// cancellation: with poles near 1 (omega h small) the powers from (1, 0) and (0, 1) grow like +-j and nearly cancel
+/// on z_{s-1} ~ z_{s-2}, while S_j stays O(1) and B_j multiplies the small difference. Round-off: of the order of the
+/// plain recurrence's ~1e-16 / (omega h)^2 relative (measured against it: docs/method.md).
+double run_output_recurrence(const OutputRecurrence& output, double da, const double* a, std::size_t n, double* out) {
+  // d itself obeys the recurrence, with da folded into the input terms: d_{k+1} - a1 d_k - a2 d_{k-1} = (z's input
+  // terms) + da (a_{k+1} - a1 a_k - a2 a_{k-1}), from d_0 = da a_0, d_1 = z_1 + da a_1 (z_0 = 0).
+  OutputRecurrence c = output;
+  c.b0 += da;
+  c.b1 -= c.a1 * da;
+  c.b2 -= c.a2 * da;
+  constexpr std::size_t kSegments = 8;
+  constexpr std::size_t kMaxSegment = 256;
+  constexpr std::size_t kChunk = kSegments * kMaxSegment;
+  // Homogeneous solutions S_j, B_j, j < kMaxSegment (prefixes serve shorter segments).
+  std::array<double, kMaxSegment> ha;
+  std::array<double, kMaxSegment> hb;
+  {
+    double a_m1 = 1.0, a_m2 = 1.0, b_m1 = 0.0, b_m2 = 1.0;  // ha: from the state (1, 1); hb: from (0, 1)
+    const std::size_t len = std::min(kMaxSegment, n);
+    for (std::size_t j = 0; j < len; ++j) {
+      const double an = c.a1 * a_m1 + c.a2 * a_m2;
+      const double bn = c.a1 * b_m1 + c.a2 * b_m2;
+      ha[j] = an;
+      hb[j] = bn;
+      a_m2 = a_m1;
+      a_m1 = an;
+      b_m2 = b_m1;
+      b_m1 = bn;
+    }
+  }
+  double z_m2 = da * a[0];                                                // d_0
+  double z_m1 = output.z1_from_a0 * a[0] + output.z1_from_a1 * a[1] + da * a[1];  // d_1
+  double in_m2 = a[0];                                      // the inputs before the next point (out may be a)
+  double in_m1 = a[1];
+  double peak = std::max(std::abs(z_m2), std::abs(z_m1));
+  if (out != nullptr) {
+    out[0] = z_m2;
+    out[1] = z_m1;
+  }
+  std::array<double, kChunk> p;  // particular solutions of the chunk's segments, segment-major
+  std::size_t k = 2;             // next point
+  while (k < n) {
+    const std::size_t left = n - k;
+    const std::size_t seg = left >= kChunk ? kMaxSegment : left / kSegments;
+    const std::size_t segments = seg == 0 ? 1 : kSegments;
+    const std::size_t len = seg == 0 ? left : seg;  // the last few points: one plain segment
+    // Pass 1: particular solutions, the segments' chains interleaved.
+    if (segments == kSegments) {
+      particular_solutions<kSegments>(c, a, k, len, in_m1, in_m2, p.data());
+    } else {
+      particular_solutions<1>(c, a, k, len, in_m1, in_m2, p.data());
+    }
+    in_m2 = segments * len >= 2 ? a[k + segments * len - 2] : in_m1;
+    in_m1 = a[k + segments * len - 1];
+    // Pass 2: the states entering each segment (serial, two values per segment) and the correction.
+    for (std::size_t s = 0; s < segments; ++s) {
+      const std::size_t start = k + s * len;
+      const double* ps = p.data() + s * len;
+      const double dz = z_m2 - z_m1;
+      const double seg_peak = out != nullptr ? corrected<true>(ps, ha.data(), hb.data(), z_m1, dz, out + start, len)
+                                             : corrected<false>(ps, ha.data(), hb.data(), z_m1, dz, nullptr, len);
+      peak = std::max(peak, seg_peak);
+      const double e1 = ps[len - 1] + ha[len - 1] * z_m1 + hb[len - 1] * dz;
+      const double e2 = len >= 2 ? ps[len - 2] + ha[len - 2] * z_m1 + hb[len - 2] * dz : z_m1;
+      z_m1 = e1;
+      z_m2 = e2;
+    }
+    k += segments * len;
   }
   return peak;
 }
@@ -235,12 +381,18 @@ double run_output_recurrence(const OutputRecurrence& c, double da, const double*
 void substep_input(const std::span<const double> acc, int substeps, std::vector<double>& grid) {
   const std::size_t points = (acc.size() - 1) * static_cast<std::size_t>(substeps) + 1;
   grid.resize(points);
-  std::size_t at = 0;
-  for (std::size_t k = 0; k + 1 < acc.size(); ++k) {
-    const double step = (acc[k + 1] - acc[k]) / substeps;
-    for (int j = 0; j < substeps; ++j) grid[at++] = j == 0 ? acc[k] : acc[k] + step * static_cast<double>(j);
+  // The fractions j / substeps once: no division per step (it cost as much as the response itself).
+  const auto s = static_cast<std::size_t>(substeps);
+  std::vector<double> fraction(s);
+  for (std::size_t j = 0; j < s; ++j) fraction[j] = static_cast<double>(j) / substeps;
+  double* g = grid.data();
+  for (std::size_t k = 0; k + 1 < acc.size(); ++k, g += s) {
+    const double a0 = acc[k];
+    const double rise = acc[k + 1] - a0;
+    g[0] = a0;
+    for (std::size_t j = 1; j < s; ++j) g[j] = a0 + rise * fraction[j];
   }
-  grid[at] = acc.back();
+  *g = acc.back();
 }
 
 /// The decoupled response on the record's steps split in `substeps` (values at the record's samples do not depend on
@@ -259,14 +411,12 @@ LinearResponse linear_response(const GroundMotion& ground, const ModalProperties
   std::vector<double>& grid = keep_history ? out.demand_m_s2 : scratch;
   const double* input = acc.data();
   std::size_t n = acc.size();
-  if (substeps > 1 || keep_history) {
-    if (substeps > 1) {
-      substep_input(acc, substeps, grid);
-    } else {
-      grid.assign(acc.begin(), acc.end());
-    }
+  if (substeps > 1) {
+    substep_input(acc, substeps, grid);
     input = grid.data();
     n = grid.size();
+  } else if (keep_history) {
+    grid.resize(n);  // the recurrence reads the record and writes here: no copy of the record
   }
   // Demand a + q Y'' with Y'' = -p a - c Y' - w2 Y: (1 - q p) a - q c Y' - q w2 Y.
   const double da = 1.0 - m.mass_fraction * m.participation;

@@ -281,6 +281,31 @@ TEST(Flexible, SupportMotionIsWhatTheDecoupledAnalysisSlidesOn) {
   for (std::size_t i = 0; i < g.size(); i += 97) EXPECT_NEAR(m.accel_m_s2()[4 * i], at_samples[i], 1e-12) << i;
 }
 
+TEST(Flexible, ResponseIsCausalWhateverTheRecordLength) {
+  // The response at sample k depends on a_0..a_k only, so a record cut after n samples must give the first n points
+  // of the full record's response. The recurrence runs in chunks of segments whose lengths depend on n (8 segments of
+  // up to 256 points, a short tail alone), so every n below splits the record differently: lengths around the
+  // segment counts and the chunk size (2048), and the short records that take the tail path only. Tolerance 1e-12
+  // of the peak: the segments' sums differ only in round-off (~1e-16 / (omega h)^2, omega h = 0.094 here).
+  const GroundMotion full = test_motion(0.005, 0.4, 12.0);  // 2401 samples
+  for (const auto& mode : {modal_properties(SupportOscillator::make(3.0, 0.02)),
+                           modal_properties(SlidingMassColumn::make(40.0, 480.0, 700.0, 0.1), full)}) {
+    const auto ref = support_acceleration_m_s2(full, mode);
+    double peak = 0.0;
+    for (const double v : ref) peak = std::max(peak, std::abs(v));
+    std::vector<std::size_t> lengths;
+    for (std::size_t n = 2; n <= 40; ++n) lengths.push_back(n);
+    for (std::size_t n = 2040; n <= 2070; ++n) lengths.push_back(n);
+    lengths.push_back(2400);
+    for (const std::size_t n : lengths) {
+      const std::vector<double> head(full.accel_m_s2().begin(), full.accel_m_s2().begin() + static_cast<long>(n));
+      const auto cut = support_acceleration_m_s2(GroundMotion::uniform(head, full.dt_s()), mode);
+      ASSERT_EQ(cut.size(), n);
+      for (std::size_t i = 0; i < n; ++i) ASSERT_NEAR(cut[i], ref[i], 1e-12 * peak) << "n " << n << " at " << i;
+    }
+  }
+}
+
 TEST(Flexible, CoupledIsExactUnderLinearUpSampling) {
   // The coupled solver integrates each phase exactly and locates slip events by root finding, so up-sampling the
   // piecewise-linear record (the same function) changes only round-off and the event search (50-bit tolerance):
