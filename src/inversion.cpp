@@ -151,6 +151,12 @@ StaticBounds static_bounds(const Site& site) {
                                        divided(amp_hi, tan_alpha)),
                            true});
         break;
+      case Outcome::not_rocked:  // soft: a brief excursion above g a/h may uplift it less than the visible tilt
+        b.upper.push_back({tan_alpha / amp_lo, o.id,
+                           fmt::format("did not rock visibly: PGA <= g a/h = {}{}", fmt_g(tan_alpha),
+                                       divided(amp_lo, tan_alpha)),
+                           false});
+        break;
       case Outcome::not_overturned:
         break;  // a body can rock without falling at any PGA above g a/h: no static threshold
     }
@@ -272,6 +278,7 @@ double observation_match(const ObservedObject& object, const DrawnParameters& p,
     case Outcome::overturned: return s.overturned ? 1.0 : 0.0;
     case Outcome::not_overturned: return s.overturned ? 0.0 : 1.0;
     case Outcome::rocked: return !s.overturned && s.max_abs_rotation_rad >= kVisibleRockingRad ? 1.0 : 0.0;
+    case Outcome::not_rocked: return !s.overturned && s.max_abs_rotation_rad < kVisibleRockingRad ? 1.0 : 0.0;
     default: return 0.0;
   }
 }
@@ -711,11 +718,13 @@ std::vector<std::string> inversion_notes(const InversionResult& r, const MatchTa
   for (const std::string& c : r.bounds.contradictions) notes.push_back("Static contradiction: " + c + ".");
   const Estimate& pga = r.pga_estimate_g;
   if (!pga.ci95_low || !pga.ci95_high) {
-    notes.push_back(fmt::format("The 95 % interval of PGA reaches the {} of the grid ({}): the observations do not "
-                                "constrain it there.",
-                                !pga.ci95_low && !pga.ci95_high ? "both ends"
-                                                                : (!pga.ci95_low ? "lower end" : "upper end"),
-                                !pga.ci95_low ? fmt_g(r.pga_g.front()) : fmt_g(r.pga_g.back())));
+    const std::string where =
+        !pga.ci95_low && !pga.ci95_high
+            ? fmt::format("both ends of the grid ({} and {})", fmt_g(r.pga_g.front()), fmt_g(r.pga_g.back()))
+            : fmt::format("the {} end of the grid ({})", !pga.ci95_low ? "lower" : "upper",
+                          !pga.ci95_low ? fmt_g(r.pga_g.front()) : fmt_g(r.pga_g.back()));
+    notes.push_back(fmt::format("The 95 % interval of PGA reaches {}: the observations do not constrain it there.",
+                                where));
   }
   if (!r.freq_estimate_hz.ci95_low || !r.freq_estimate_hz.ci95_high) {
     notes.push_back("The predominant frequency is not constrained at one or both ends of the grid by these "

@@ -29,6 +29,7 @@ enum class Outcome {
   rocked,          ///< visibly rocked (max |theta| >= kVisibleRockingRad) but stood
   slid,            ///< slid: a distance (value +- uncertainty), at least a distance, or just "slid" (>= kVisibleSlipM)
   not_slid,        ///< did not slide (max |d| < kVisibleSlipM)
+  not_rocked,      ///< stood and did not visibly rock (max |theta| < kVisibleRockingRad)
 };
 
 /// What "visibly" means (stated once, used for the outcomes above and in docs/method.md).

@@ -23,6 +23,7 @@ std::string_view outcome_name(Outcome o) {
     case Outcome::overturned: return "overturned";
     case Outcome::not_overturned: return "not_overturned";
     case Outcome::rocked: return "rocked";
+    case Outcome::not_rocked: return "not_rocked";
     case Outcome::slid: return "slid";
     case Outcome::not_slid: return "not_slid";
   }
@@ -150,13 +151,14 @@ class Reader {
 };
 
 Outcome parse_outcome(Reader& r, std::string_view text) {
-  for (Outcome o : {Outcome::overturned, Outcome::not_overturned, Outcome::rocked, Outcome::slid, Outcome::not_slid}) {
+  for (Outcome o : {Outcome::overturned, Outcome::not_overturned, Outcome::rocked, Outcome::not_rocked, Outcome::slid,
+                    Outcome::not_slid}) {
     if (text == outcome_name(o)) return o;
   }
   // The words a field team writes for a fall (docs/survey.md): aliases of overturned, nothing else.
   if (text == "toppled" || text == "fell") return Outcome::overturned;
   throw r.error("outcome", fmt::format("unknown outcome '{}' (known: overturned (or toppled, fell), not_overturned, "
-                                       "rocked, slid, not_slid)", text));
+                                       "rocked, not_rocked, slid, not_slid)", text));
 }
 
 /// A flexible support `{freq_hz = value or [low, high], damping = value or [low, high], name = "..."}` (docs/survey.md):
@@ -300,7 +302,8 @@ ObservedObject parse_object(const toml::table& t, const std::string& file, const
   const auto outcome = named.string("outcome");
   if (!outcome) throw named.error("outcome", "every object needs its observed outcome");
   o.outcome = parse_outcome(named, *outcome);
-  const bool rocks = o.outcome == Outcome::overturned || o.outcome == Outcome::not_overturned || o.outcome == Outcome::rocked;
+  const bool rocks = o.outcome == Outcome::overturned || o.outcome == Outcome::not_overturned ||
+                     o.outcome == Outcome::rocked || o.outcome == Outcome::not_rocked;
   if (rocks && o.e_housner && housner_restitution(o.body) < 0.0) {
     throw named.error("e", fmt::format("Housner's restitution 1 - 2a^2/D = {:.3g} is negative for so squat a body "
                                        "(alpha = {:.3g} deg > 54.7 deg): {}",
