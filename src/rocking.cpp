@@ -130,46 +130,68 @@ struct Rhs {
   static constexpr double kSeriesRange = 0.1;
   static constexpr double kShortRange = 0.01;
 
-  [[gnu::always_inline]] void sin_cos(double phi, double& sn, double& cs) const {
-    const double d = phi - phi_ref;
-    // |d| <= 0.1 (theta moves less than that within a step but for large steps on slow motions): sin d to d^9 and
-    // cos d - 1 to d^10 leave out less than 3e-19. Estrin's scheme keeps the dependency chain short (the stages of a
-    // step are sequential, so this function's latency is the step's). Reciprocals are constants: a division by a
-    // literal stays a division.
-    if (std::abs(d) > kSeriesRange) {
-      sn = std::sin(phi);
-      cs = std::cos(phi);
-      return;
-    }
+  /// sin d and cos d - 1 by their series when |d| <= kSeriesRange (false otherwise: the caller uses libm).
+  /// |d| <= 0.1 (theta moves less than that within a step but for large steps on slow motions): sin d to d^9 and
+  /// cos d - 1 to d^10 leave out less than 3e-19. Estrin's scheme keeps the dependency chain short (the stages of a
+  /// step are sequential, so this function's latency is the step's). Reciprocals are constants: a division by a
+  /// literal stays a division.
+  [[gnu::always_inline]] static bool series(double d, double& sd, double& cd_minus_1) {
     if (std::abs(d) <= kShortRange) {
       // |d| <= 0.01, as for nearly every stage (a step moves phi by p alpha dt theta'/(p alpha), about 1e-3 on a
       // 0.005 s record): sin d to d^5 and cos d - 1 to d^6 leave out |d|^7/5040 < 2e-18, below the round-off of
       // the result's O(1) terms; a shorter dependency chain than the terms to d^9 below.
       constexpr double k6 = 1.0 / 6.0, k120 = 1.0 / 120.0, k24 = 1.0 / 24.0, k720 = 1.0 / 720.0;
       const double d2 = d * d;
-      const double sd = d + (d * d2) * (k120 * d2 - k6);
-      const double cd_minus_1 = d2 * ((k24 * d2 - 0.5) - (k720 * d2) * d2);
-      sn = sin_ref + (sin_ref * cd_minus_1 + cos_ref * sd);
-      cs = cos_ref + (cos_ref * cd_minus_1 - sin_ref * sd);
-      return;
+      sd = d + (d * d2) * (k120 * d2 - k6);
+      cd_minus_1 = d2 * ((k24 * d2 - 0.5) - (k720 * d2) * d2);
+      return true;
     }
+    if (!(std::abs(d) <= kSeriesRange)) return false;
     constexpr double k6 = 1.0 / 6.0, k120 = 1.0 / 120.0, k5040 = 1.0 / 5040.0, k362880 = 1.0 / 362880.0;
     constexpr double k24 = 1.0 / 24.0, k720 = 1.0 / 720.0, k40320 = 1.0 / 40320.0, k3628800 = 1.0 / 3628800.0;
     const double d2 = d * d;
     const double d4 = d2 * d2;
-    const double sd = d + (d * d2) * ((k120 * d2 - k6) + d4 * (k362880 * d2 - k5040));
-    const double cd_minus_1 = d2 * ((k24 * d2 - 0.5) + d4 * (k40320 * d2 - k720 - k3628800 * d4));
+    sd = d + (d * d2) * ((k120 * d2 - k6) + d4 * (k362880 * d2 - k5040));
+    cd_minus_1 = d2 * ((k24 * d2 - 0.5) + d4 * (k40320 * d2 - k720 - k3628800 * d4));
+    return true;
+  }
+
+  /// sin and cos of phi = phi_ref + d: the angle-addition formulas with the series of d, or libm when d is large.
+  [[gnu::always_inline]] void sin_cos(double phi, double& sn, double& cs) const {
+    double sd = 0.0;
+    double cd_minus_1 = 0.0;
+    if (!series(phi - phi_ref, sd, cd_minus_1)) {
+      sn = std::sin(phi);
+      cs = std::cos(phi);
+      return;
+    }
     sn = sin_ref + (sin_ref * cd_minus_1 + cos_ref * sd);
     cs = cos_ref + (cos_ref * cd_minus_1 - sin_ref * sd);
   }
 
-  [[gnu::always_inline]] void operator()(const State& u, State& du, double t) const {
-    double sn = 0.0;
-    double cs = 0.0;
-    sin_cos(s_alpha - alpha * u[0], sn, cs);
+  /// The second component of the right-hand side, d(theta' / (p alpha))/dt, at phi = phi_ref + d and time t.
+  /// With G = g + a_v and A = a_h at t, G sin(phi) + A cos(phi) = P (1 + (cos d - 1)) + Q sin d, where
+  /// P = G sin_ref + A cos_ref and Q = G cos_ref - A sin_ref depend on the time only: they are formed while the
+  /// stage's state is still being computed, which leaves the series and two multiply-adds on the chain from one stage
+  /// to the next (the stages are sequential: that chain is the step's latency).
+  [[gnu::always_inline]] double accel(double d, double t) const {
     const double tau = t - t_ref;
+    const double G = ge0 + ges * tau;
+    const double A = ah0 + ahs * tau;
+    double sd = 0.0;
+    double cd_minus_1 = 0.0;
+    if (!series(d, sd, cd_minus_1)) {
+      const double phi = phi_ref + d;
+      return -k * (G * std::sin(phi) + A * std::cos(phi));
+    }
+    const double P = -k * (G * sin_ref + A * cos_ref);
+    const double Q = -k * (G * cos_ref - A * sin_ref);
+    return P + (P * cd_minus_1 + Q * sd);
+  }
+
+  [[gnu::always_inline]] void operator()(const State& u, State& du, double t) const {
     du[0] = p * u[1];
-    du[1] = -k * ((ge0 + ges * tau) * sn + (ah0 + ahs * tau) * cs);
+    du[1] = accel((s_alpha - alpha * u[0]) - phi_ref, t);
   }
 };
 
@@ -412,26 +434,34 @@ class AdaptiveStepper {
   [[gnu::always_inline]] double try_step(double h) {
     using namespace dp5;
     const Rhs& f = *rhs_;
-    State y{};
+    // Each stage: theta' (component 1, y_j below) from the stage's combination, and the rotation from the increment
+    // of component 0 (phi - phi_ref = -alpha (u0 - x0_0): the reference is at the step's start), which saves forming
+    // u0 and phi on the chain between stages. Component 0's derivative is p y_j, so its increments are formed from the
+    // y_j with p in the coefficient (hp = h p): the products k_j[0] = p y_j, needed by the solution and the dense
+    // output, stay off that chain.
+    const double nal = -f.alpha;
+    const double hp = h * f.p;
     State k2{};
-    for (std::size_t i = 0; i < 2; ++i) y[i] = x0_[i] + h * b21 * k1_[i];
-    f(y, k2, t0_ + h * a2);
-    for (std::size_t i = 0; i < 2; ++i) y[i] = x0_[i] + h * b31 * k1_[i] + h * b32 * k2[i];
-    f(y, k3_, t0_ + h * a3);
-    for (std::size_t i = 0; i < 2; ++i) y[i] = x0_[i] + h * b41 * k1_[i] + h * b42 * k2[i] + h * b43 * k3_[i];
-    f(y, k4_, t0_ + h * a4);
-    for (std::size_t i = 0; i < 2; ++i) {
-      y[i] = x0_[i] + h * b51 * k1_[i] + h * b52 * k2[i] + h * b53 * k3_[i] + h * b54 * k4_[i];
-    }
-    f(y, k5_, t0_ + h * a5);
-    for (std::size_t i = 0; i < 2; ++i) {
-      y[i] = x0_[i] + h * b61 * k1_[i] + h * b62 * k2[i] + h * b63 * k3_[i] + h * b64 * k4_[i] + h * b65 * k5_[i];
-    }
-    f(y, k6_, t0_ + h);
-    for (std::size_t i = 0; i < 2; ++i) {
-      x1_[i] = x0_[i] + h * c1 * k1_[i] + h * c3 * k3_[i] + h * c4 * k4_[i] + h * c5 * k5_[i] + h * c6 * k6_[i];
-    }
-    f(x1_, k7_, t0_ + h);
+    const double y2 = x0_[1] + h * b21 * k1_[1];
+    k2[1] = f.accel(nal * (h * b21 * k1_[0]), t0_ + h * a2);
+    const double y3 = x0_[1] + h * b31 * k1_[1] + h * b32 * k2[1];
+    k3_[1] = f.accel(nal * (h * b31 * k1_[0] + hp * b32 * y2), t0_ + h * a3);
+    const double y4 = x0_[1] + h * b41 * k1_[1] + h * b42 * k2[1] + h * b43 * k3_[1];
+    k4_[1] = f.accel(nal * (h * b41 * k1_[0] + hp * b42 * y2 + hp * b43 * y3), t0_ + h * a4);
+    const double y5 = x0_[1] + h * b51 * k1_[1] + h * b52 * k2[1] + h * b53 * k3_[1] + h * b54 * k4_[1];
+    k5_[1] = f.accel(nal * (h * b51 * k1_[0] + hp * b52 * y2 + hp * b53 * y3 + hp * b54 * y4), t0_ + h * a5);
+    const double y6 =
+        x0_[1] + h * b61 * k1_[1] + h * b62 * k2[1] + h * b63 * k3_[1] + h * b64 * k4_[1] + h * b65 * k5_[1];
+    k6_[1] = f.accel(nal * (h * b61 * k1_[0] + hp * b62 * y2 + hp * b63 * y3 + hp * b64 * y4 + hp * b65 * y5), t0_ + h);
+    const double inc0 = h * c1 * k1_[0] + hp * c3 * y3 + hp * c4 * y4 + hp * c5 * y5 + hp * c6 * y6;
+    x1_[0] = x0_[0] + inc0;
+    x1_[1] = x0_[1] + h * c1 * k1_[1] + h * c3 * k3_[1] + h * c4 * k4_[1] + h * c5 * k5_[1] + h * c6 * k6_[1];
+    k7_[1] = f.accel(nal * inc0, t0_ + h);
+    k3_[0] = f.p * y3;
+    k4_[0] = f.p * y4;
+    k5_[0] = f.p * y5;
+    k6_[0] = f.p * y6;
+    k7_[0] = f.p * x1_[1];
     double error = 0.0;
     for (std::size_t i = 0; i < 2; ++i) {
       const double e = h * dc1 * k1_[i] + h * dc3 * k3_[i] + h * dc4 * k4_[i] + h * dc5 * k5_[i] +
