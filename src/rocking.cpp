@@ -169,9 +169,10 @@ struct Rhs {
     cs = cos_ref + (cos_ref * cd_minus_1 - sin_ref * sd);
   }
 
-  /// The second component of the right-hand side, d(theta' / (p alpha))/dt, at phi = phi_ref + d and time t.
-  /// With G = g + a_v and A = a_h at t, G sin(phi) + A cos(phi) = P (1 + (cos d - 1)) + Q sin d, where
-  /// P = G sin_ref + A cos_ref and Q = G cos_ref - A sin_ref depend on the time only: they are formed while the
+  /// The second component of the right-hand side, d(theta' / (p alpha))/dt = -k (G sin(phi) + A cos(phi)), at
+  /// phi = phi_ref + d and time t, G = g + a_v and A = a_h at t. By the angle-addition formulas that is
+  /// P (1 + (cos d - 1)) + Q sin d with P = -k (G sin_ref + A cos_ref) and Q = -k (G cos_ref - A sin_ref), which
+  /// depend on the time only: they are formed while the
   /// stage's state is still being computed, which leaves the series and two multiply-adds on the chain from one stage
   /// to the next (the stages are sequential: that chain is the step's latency).
   [[gnu::always_inline]] double accel(double d, double t) const {
