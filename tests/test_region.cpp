@@ -1,1 +1,218 @@
+// The regional picture (issue 17): geodesic distances, the survey's regional keys, the joint fit against closed
+// forms, and the regional recovery test (sites simulated by the solvers).
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <limits>
+#include <numbers>
+#include <string>
+
+#include <fmt/format.h>
 #include <gtest/gtest.h>
+
+#include "support/regional_scenario.hpp"
+#include "topple/error.hpp"
+#include "topple/inversion.hpp"
+#include "topple/io/survey_file.hpp"
+#include "topple/region.hpp"
+
+namespace topple {
+namespace {
+
+// ---- Distances ----
+
+// GeographicLib's own worked example (example-Geodesic.cpp, Karney 2013): JFK (40.6, -73.8) to LHR (51.6, -0.5) on
+// WGS84 is 5551759.400319 m. Tolerance 1 mm: the printed digits go to the micrometre; the algorithm is accurate to
+// 15 nm.
+TEST(RegionDistance, KarneyJfkToLhr) {
+  EXPECT_NEAR(geodesic_distance_km(40.6, -73.8, 51.6, -0.5), 5551.759400319, 1e-6);
+}
+
+// One degree of latitude from the equator on WGS84: the meridian arc 110574.3 m (the standard table value, to 0.1 m).
+// A sphere of 6371 km gives 111195 m: the test tells the ellipsoid from the haversine.
+TEST(RegionDistance, OneDegreeOfLatitudeAtTheEquator) {
+  EXPECT_NEAR(geodesic_distance_km(0.0, 10.0, 1.0, 10.0), 110.5743, 1e-4);
+  EXPECT_DOUBLE_EQ(geodesic_distance_km(12.0, 34.0, 12.0, 34.0), 0.0);
+}
+
+TEST(RegionDistance, HypocentralIsTheHypotenuse) {
+  EXPECT_DOUBLE_EQ(hypocentral_distance_km(30.0, 40.0), 50.0);
+  EXPECT_DOUBLE_EQ(hypocentral_distance_km(7.0, 0.0), 7.0);
+}
+
+// ---- The survey's regional keys ----
+
+const std::string kObject = "[[sites.object]]\nid = \"b\"\nwidth = \"10cm\"\nheight = \"40cm\"\nmu = 0.5\n"
+                            "outcome = \"overturned\"\n";
+
+TEST(RegionSurvey, EpicentreDepthAndStations) {
+  const Survey s = io::parse_survey("[event]\nepicentre = [38.0, 23.0]\ndepth_km = 12.5\n"
+                                    "[[sites]]\nname = \"a\"\nlat = 38.1\nlon = 23.0\n" + kObject +
+                                    "[[sites]]\nname = \"station\"\nlat = 38.2\nlon = 23.1\npga_g = 0.31\n"
+                                    "[[sites]]\nname = \"station with objects\"\nlat = 38.0\nlon = 23.2\npga_g = 0.2\n" +
+                                    kObject,
+                                    "r.toml");
+  ASSERT_TRUE(s.epicentre_depth_km);
+  EXPECT_EQ(*s.epicentre_depth_km, 12.5);
+  ASSERT_EQ(s.sites.size(), 3u);
+  EXPECT_FALSE(s.sites[0].is_station());
+  EXPECT_TRUE(s.sites[1].objects.empty());
+  EXPECT_EQ(*s.sites[1].instrument_pga_g, 0.31);
+  EXPECT_EQ(s.sites[2].objects.size(), 1u);
+  EXPECT_EQ(*s.sites[2].instrument_pga_g, 0.2);
+}
+
+// Old surveys keep their meaning: no depth, no instrument, and a site without objects still refused.
+TEST(RegionSurvey, OldSurveysUnchanged) {
+  const Survey s = io::read_survey(std::filesystem::path(TOPPLE_SOURCE_DIR) / "examples/survey.toml");
+  EXPECT_FALSE(s.epicentre_depth_km);
+  ASSERT_EQ(s.sites.size(), 1u);
+  EXPECT_FALSE(s.sites[0].is_station());
+  EXPECT_EQ(s.sites[0].objects.size(), 8u);
+  EXPECT_THROW((void)io::parse_survey("[[sites]]\nname = \"a\"\n" + kObject + "[[sites]]\nname = \"empty\"\n", "s.toml"),
+               InputError);
+}
+
+TEST(RegionSurvey, BadRegionalKeysNameTheirField) {
+  const auto fails = [](const std::string& text, const std::string& field) {
+    try {
+      (void)io::parse_survey(text, "s.toml");
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.where().field, field) << e.what();
+      return;
+    }
+    ADD_FAILURE() << "no InputError for field " << field;
+  };
+  fails("[event]\nepicentre = [38.0, 23.0]\ndepth_km = -1\n[[sites]]\n" + kObject, "event.depth_km");
+  fails("[event]\ndepth_km = 10\n[[sites]]\n" + kObject, "event.depth_km");
+  fails("[event]\nepicentre = [98.0, 23.0]\n[[sites]]\n" + kObject, "event.epicentre");
+  fails("[[sites]]\npga_g = -0.1\n" + kObject, "sites[1].pga_g");
+  fails("[[sites]]\npga_g = 0.1\nrecord = \"x.AT2\"\n" + kObject, "sites[1].record");
+  fails("[[sites]]\nrecord = \"no-such-file.AT2\"\n" + kObject, "sites[1].record");
+  fails("[[sites]]\npga_g = 0.1\n[[sites]]\npga_g = 0.2\n", "sites[1].object");  // nothing to invert
+}
+
+// ---- The joint fit against closed forms ----
+
+SiteEvidence station(const std::string& name, double r_km, double pga_g) {
+  return site_evidence(name, r_km, nullptr, pga_g);
+}
+
+// With the parameters pinned (a prior box a millionth wide), a station's pooled PGA is the product of two normal
+// densities in ln a (docs/method.md eq. R4): mean (mu sigma^2 + y tau^2) / (tau^2 + sigma^2), sd tau sigma /
+// sqrt(tau^2 + sigma^2). Tolerance 0.3 % of the value: the pooled CDF is tabulated at steps of 0.01 in ln a and
+// interpolated linearly (error well under a step), the pinned box spans 1e-6.
+TEST(RegionFit, PinnedParametersGiveTheClosedFormPooledStation) {
+  const double c0 = 2.0, c1 = 1.1, tau = 0.4;
+  RegionalSettings st;
+  std::vector<SiteEvidence> sites{station("a", 10, 0.3), station("b", 30, 0.12), station("c", 60, 0.02)};
+  double mean_ln_rho = 0.0;
+  for (const auto& s : sites) mean_ln_rho += std::log(std::hypot(s.distance_km, st.c2_km)) / 3.0;
+  const double x = c0 - c1 * mean_ln_rho;
+  st.ln_a_ref_min = x;
+  st.ln_a_ref_max = x + 1e-6;
+  st.c1_min = c1;
+  st.c1_max = c1 + 1e-6;
+  st.tau_min = tau;
+  st.tau_max = tau + 1e-6;
+  const RegionalResult fit = fit_region(sites, st);
+  for (std::size_t s = 0; s < sites.size(); ++s) {
+    const double mu = c0 - c1 * std::log(std::hypot(sites[s].distance_km, st.c2_km));
+    const double y = std::log(*sites[s].instrument_pga_g);
+    const double sig = st.instrument_sigma_ln;
+    const double m = (mu * sig * sig + y * tau * tau) / (tau * tau + sig * sig);
+    const double sd = tau * sig / std::hypot(tau, sig);
+    EXPECT_NEAR(fit.sites[s].pga_g.median, std::exp(m), 3e-3 * std::exp(m)) << s;
+    EXPECT_NEAR(fit.sites[s].pga_g.ci95_low, std::exp(m - 1.959964 * sd), 3e-3 * std::exp(m)) << s;
+    EXPECT_NEAR(fit.sites[s].pga_g.ci95_high, std::exp(m + 1.959964 * sd), 3e-3 * std::exp(m)) << s;
+    EXPECT_NEAR(fit.sites[s].relation_pga_g.median, std::exp(mu), 1e-5 * std::exp(mu)) << s;
+  }
+  EXPECT_NEAR(fit.c0.median, c0, 1e-5);
+}
+
+// A site whose likelihood is flat (objects that say nothing) borrows everything: its pooled median is the relation's
+// at its distance. Stations exactly on a relation recover it: c1 within 0.05 of the truth (the stations' 5 % noise
+// over a lever arm of ln(80/8) = 2.3 gives a c1 sd of about 0.02) and tau's 95 % upper end below 0.15.
+TEST(RegionFit, StationsOnTheRelationRecoverItAndAFlatSiteBorrowsIt) {
+  const double c0 = 2.4, c1 = 1.3;
+  std::vector<SiteEvidence> sites;
+  for (double r : {8.0, 12.0, 20.0, 30.0, 45.0, 60.0, 80.0}) {
+    sites.push_back(station(fmt::format("s{}", r), r, relation_pga_g(c0, c1, 6.0, r)));
+  }
+  SiteEvidence flat;
+  flat.name = "flat";
+  flat.distance_km = 25.0;
+  flat.ln_edges = {-std::numeric_limits<double>::infinity(), std::log(0.1), std::numeric_limits<double>::infinity()};
+  flat.likelihood = {1.0, 1.0};
+  sites.push_back(flat);
+  const RegionalResult fit = fit_region(sites);
+  EXPECT_NEAR(fit.c1.median, c1, 0.05);
+  EXPECT_TRUE(fit.c1.holds95(c1));
+  EXPECT_TRUE(fit.c0.holds95(c0));
+  EXPECT_LT(fit.tau.ci95_high, 0.15);
+  // The flat site: median within 3 % of the relation (1000 draws of theta; tau ~ 0.05 here).
+  const double rel = relation_pga_g(c0, c1, 6.0, 25.0);
+  EXPECT_NEAR(fit.sites.back().pga_g.median, rel, 0.03 * rel);
+}
+
+TEST(RegionFit, NeedsThreeSites) {
+  EXPECT_THROW((void)fit_region({station("a", 10, 0.3), station("b", 20, 0.2)}), InputError);
+}
+
+// ---- The regional recovery test ----
+
+// Sites simulated by the solvers (tests/support/regional_scenario.hpp: a true relation with tau = 0.3 and residuals
+// correlated as Jayaram & Baker 2009), each site inverted alone (invert_sites), then jointly (fit_survey_region).
+// Over the trials: the relation's 95 % intervals (c0, c1, tau) hold the truth in >= 85 %, the pooled sites' in >= 85 %,
+// and the pooled intervals are narrower on average than the independent ones (an unconstrained independent end is
+// taken at the grid's edge, which flatters the independent interval). TOPPLE_REGION_TRIALS sets the number of trials
+// (default 3 here, the ctest variant; scripts/region-recovery.sh runs more).
+TEST(RegionRecovery, IntervalsCoverTheTruthAndPoolingNarrowsThem) {
+  const char* env = std::getenv("TOPPLE_REGION_TRIALS");
+  const int trials = env != nullptr ? std::atoi(env) : 3;
+  InversionSettings st;
+  st.pga_min_g = 0.01;
+  st.pga_max_g = 2.0;
+  st.pga_count = 20;
+  st.freq_min_hz = 2.0;
+  st.freq_max_hz = 4.5;
+  st.freq_count = 2;
+  st.motions_per_cell = 8;
+  int rel_hits = 0, rel_checks = 0, site_hits = 0, site_checks = 0;
+  double ln_width_pooled = 0.0, ln_width_own = 0.0;
+  for (int t = 0; t < trials; ++t) {
+    const testing::RegionalTruth truth;
+    const testing::RegionalScenario sc = testing::make_regional_scenario(static_cast<std::uint64_t>(100 + t), truth, st);
+    const std::vector<InversionResult> own = invert_sites(sc.survey.sites, st);
+    std::vector<const InversionResult*> per_site;
+    for (const auto& r : own) per_site.push_back(&r);
+    std::vector<std::string> notes;
+    const auto fit = fit_survey_region(sc.survey, per_site, notes);
+    ASSERT_TRUE(fit) << (notes.empty() ? "" : notes.front());
+    rel_hits += fit->c0.holds95(truth.c0) + fit->c1.holds95(truth.c1) + fit->tau.holds95(truth.tau);
+    rel_checks += 3;
+    for (std::size_t s = 0; s < fit->sites.size(); ++s) {
+      const std::size_t i = fit->sites[s].site_index;
+      const double truth_g = sc.true_pga_g[i];
+      if (sc.survey.sites[i].instrument_pga_g) continue;  // a station's pooled PGA is its measurement
+      site_hits += fit->sites[s].pga_g.holds95(truth_g);
+      ++site_checks;
+      ln_width_pooled += std::log(fit->sites[s].pga_g.ci95_high / fit->sites[s].pga_g.ci95_low);
+      const Estimate& e = own[i].pga_estimate_g;
+      ln_width_own += std::log(e.ci95_high.value_or(st.pga_max_g) / e.ci95_low.value_or(st.pga_min_g));
+    }
+    fmt::print("trial {}: c0 {:.2f} [{:.2f}, {:.2f}], c1 {:.2f} [{:.2f}, {:.2f}], tau {:.2f} [{:.2f}, {:.2f}]\n", t,
+               fit->c0.median, fit->c0.ci95_low, fit->c0.ci95_high, fit->c1.median, fit->c1.ci95_low,
+               fit->c1.ci95_high, fit->tau.median, fit->tau.ci95_low, fit->tau.ci95_high);
+  }
+  fmt::print("relation coverage {}/{}, pooled site coverage {}/{}, mean 95 % width (ln) pooled {:.3f} vs own {:.3f} "
+             "(ratio {:.2f})\n",
+             rel_hits, rel_checks, site_hits, site_checks, ln_width_pooled / site_checks, ln_width_own / site_checks,
+             ln_width_pooled / ln_width_own);
+  EXPECT_GE(rel_hits, 0.85 * rel_checks);
+  EXPECT_GE(site_hits, 0.85 * site_checks);
+  EXPECT_LT(ln_width_pooled, ln_width_own);
+}
+
+}  // namespace
+}  // namespace topple
