@@ -9,8 +9,10 @@
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "support/regional_scenario.hpp"
+#include "support/shared_data.hpp"
 #include "topple/error.hpp"
 #include "topple/inversion.hpp"
 #include "topple/io/survey_file.hpp"
@@ -157,6 +159,37 @@ TEST(RegionFit, StationsOnTheRelationRecoverItAndAFlatSiteBorrowsIt) {
 
 TEST(RegionFit, NeedsThreeSites) {
   EXPECT_THROW((void)fit_region({station("a", 10, 0.3), station("b", 20, 0.2)}), InputError);
+}
+
+// ---- The command on the example (the README's command) ----
+
+// examples/regional_survey.toml end to end: the JSON gains `region` with the relation, every site pooled beside its
+// own estimate, the station's calibration and the contour levels; --map writes the region CSV. The example's truth
+// (its header comment) is c1 = 1.2, c0 = 2.36: both must lie in their 95 % intervals, and the station's pooled PGA
+// within 10 % of its measured 0.573 g (sigma_i = 5 %, so the 95 % interval spans about +-10 %).
+TEST(RegionCli, ExampleRunsEndToEnd) {
+  test::TempDir tmp;
+  const auto map = tmp.path() / "sites.geojson";
+  const auto r = test::run_cli("invert '" + (std::filesystem::path(TOPPLE_SOURCE_DIR) / "examples/regional_survey.toml").string() +
+                               "' --json --quiet --map '" + map.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_TRUE(j.contains("region"));
+  const auto& region = j.at("region");
+  const auto holds = [](const nlohmann::json& v, double x) {
+    return v.at("ci95")[0].get<double>() <= x && x <= v.at("ci95")[1].get<double>();
+  };
+  EXPECT_TRUE(holds(region.at("relation").at("c1"), 1.2));
+  EXPECT_TRUE(holds(region.at("relation").at("c0_ln_g"), 2.36));
+  EXPECT_EQ(region.at("relation").at("c2_km").get<double>(), 6.0);
+  ASSERT_EQ(region.at("sites").size(), 12u);
+  const auto& station = region.at("sites")[0];
+  EXPECT_EQ(station.at("instrument_pga_g").get<double>(), 0.573);
+  EXPECT_NEAR(station.at("pooled_pga_g").at("median").get<double>(), 0.573, 0.1 * 0.573);
+  EXPECT_TRUE(station.at("calibration").at("objects_agree").is_boolean());
+  EXPECT_TRUE(region.at("sites")[5].at("independent_pga_g").at("median").is_number());
+  EXPECT_EQ(region.at("contour_levels_g").size(), 4u);
+  EXPECT_TRUE(std::filesystem::exists(tmp.path() / "sites.region.csv"));
 }
 
 // ---- The regional recovery test ----
