@@ -191,6 +191,10 @@ void run_invert(const InvertOptions& o) {
       std::filesystem::path csv(o.map);
       csv.replace_extension(".region.csv");
       io::write_region_csv(csv, *region, per_site);
+      const PooledField field = pooled_field(*region, survey);
+      std::filesystem::path contours(o.map);
+      contours.replace_extension(".contours.geojson");
+      io::write_contours_geojson(contours, contour_field(field, io::contour_levels_g()), field);
     }
     if (survey.epicentre_lat_deg) {
       std::filesystem::path csv(o.map);
@@ -233,7 +237,8 @@ void add_invert_command(CLI::App& app) {
   cmd->add_option("survey", o->survey, "Survey file (TOML; see examples/survey.toml)")->required();
   cmd->add_flag("--json", o->json, "Print the result as one JSON object");
   cmd->add_option("--grid", o->grid, "Write the likelihood grid to this CSV file");
-  cmd->add_option("--map", o->map, "Write one GeoJSON point per site (and, with an epicentre, PGA vs distance CSV)");
+  cmd->add_option("--map", o->map, "Write one GeoJSON point per site (and, with an epicentre, PGA vs distance CSV; with a "
+                                   "regional fit, the region CSV and iso-acceleration contours)");
   cmd->add_option("--report", o->report, "Write a self-contained HTML report (and its figures) into this directory");
   cmd->add_option("--threads", o->threads, "Worker threads (default: all cores)");
   add_quiet_flag(*cmd, o->quiet, "no notes and no progress messages");

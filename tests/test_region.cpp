@@ -161,6 +161,85 @@ TEST(RegionFit, NeedsThreeSites) {
   EXPECT_THROW((void)fit_region({station("a", 10, 0.3), station("b", 20, 0.2)}), InputError);
 }
 
+// ---- The pooled field and its contours ----
+
+// A radially symmetric field (the relation alone, no site): the contour at level L is the circle where the relation
+// gives L. Every vertex must lie within one grid step (the linear interpolation along a cell edge errs by far less)
+// of that radius, measured by the geodesic; the line must close.
+TEST(RegionContours, RelationAloneGivesCirclesOfTheRightRadius) {
+  PooledField f;
+  f.range_km = 8.5;
+  const double c0 = 2.0, c1 = 1.2, c2 = 6.0;
+  for (int i = 0; i < 101; ++i) {
+    f.lat_deg.push_back(37.5 + 0.01 * i);
+    f.lon_deg.push_back(22.5 + 0.0127 * i);  // about 1.1 km a step on both axes at 38 N
+  }
+  for (double la : f.lat_deg) {
+    for (double lo : f.lon_deg) f.pga_g.push_back(relation_pga_g(c0, c1, c2, geodesic_distance_km(38.0, 23.14, la, lo)));
+  }
+  for (double level : {0.2, 0.4}) {
+    // Radius where exp(c0 - c1 ln sqrt(R^2 + c2^2)) = level.
+    const double rho = std::exp((c0 - std::log(level)) / c1);
+    const double radius = std::sqrt(rho * rho - c2 * c2);
+    const auto contours = contour_field(f, {level});
+    ASSERT_EQ(contours.size(), 1u);
+    ASSERT_EQ(contours[0].lines.size(), 1u) << level;
+    const auto& line = contours[0].lines[0];
+    EXPECT_GT(line.size(), 20u);
+    EXPECT_EQ(line.front(), line.back());  // closed
+    for (const auto& p : line) EXPECT_NEAR(geodesic_distance_km(38.0, 23.14, p[1], p[0]), radius, 1.1) << level;
+  }
+}
+
+// Simple kriging with the site's own variance as nugget: near a site with a tiny pooled interval (nugget
+// (0.002/3.92)^2, negligible against tau^2 = 0.09) the field keeps the site's residual; 200 km from every site it is
+// the relation (the correlation exp(-3 * 200 / 8.5) is 2e-31).
+TEST(RegionContours, KrigedFieldHonoursSitesAndFallsBackToTheRelation) {
+  Survey survey;
+  survey.epicentre_lat_deg = 38.0;
+  survey.epicentre_lon_deg = 23.0;
+  RegionalResult fit;
+  fit.c1 = {1.2, 1.2, 1.2, 1.2, 1.2};
+  fit.tau = {0.3, 0.3, 0.3, 0.3, 0.3};
+  fit.c2_km = 6.0;
+  fit.reference_distance_km = 20.0;
+  const double c0 = 2.4;
+  fit.ln_a_ref.median = c0 - 1.2 * std::log(20.0);
+  for (int s = 0; s < 3; ++s) {
+    Site site;
+    site.lat_deg = 38.0 + 0.1 * (s + 1);
+    site.lon_deg = 23.0;
+    survey.sites.push_back(site);
+    PooledSite p;
+    p.site_index = static_cast<std::size_t>(s);
+    p.distance_km = geodesic_distance_km(38.0, 23.0, *site.lat_deg, 23.0);
+    const double value = relation_pga_g(c0, 1.2, 6.0, p.distance_km) * (s == 1 ? 1.5 : 0.8);
+    p.pga_g = {value, value, value, value * 0.999, value * 1.001};
+    fit.sites.push_back(p);
+  }
+  // At the site: the grid node nearest to it.
+  const PooledField g = pooled_field(fit, survey, 8.5, 41);
+  const auto nearest = [&](double la, double lo) {
+    std::size_t bi = 0, bj = 0;
+    for (std::size_t i = 0; i < g.lat_deg.size(); ++i) if (std::abs(g.lat_deg[i] - la) < std::abs(g.lat_deg[bi] - la)) bi = i;
+    for (std::size_t j = 0; j < g.lon_deg.size(); ++j) if (std::abs(g.lon_deg[j] - lo) < std::abs(g.lon_deg[bj] - lo)) bj = j;
+    return std::pair{bi, bj};
+  };
+  const auto [i, j] = nearest(*survey.sites[1].lat_deg, 23.0);
+  const double d = geodesic_distance_km(g.lat_deg[i], g.lon_deg[j], *survey.sites[1].lat_deg, 23.0);
+  ASSERT_LT(d, 0.6);  // the grid passes within 0.6 km of the site
+  // Within 0.6 km the correlation is exp(-3 * 0.6 / 8.5) = 0.81: the residual ln 1.5 is kept to within ~20 %.
+  const double rel = relation_pga_g(c0, 1.2, 6.0, geodesic_distance_km(38.0, 23.0, g.lat_deg[i], g.lon_deg[j]));
+  EXPECT_GT(std::log(g.pga_g[i * g.lon_deg.size() + j] / rel), 0.75 * std::log(1.5));
+  // Far away: a site 200 km from all: the relation exactly (to 1e-12 relative).
+  Survey far = survey;
+  far.epicentre_lat_deg = 36.0;
+  const PooledField h = pooled_field(fit, far, 8.5, 3);
+  const double r0 = geodesic_distance_km(36.0, 23.0, h.lat_deg[0], h.lon_deg[0]);
+  EXPECT_GT(geodesic_distance_km(h.lat_deg[0], h.lon_deg[0], 38.1, 23.0), 200.0);
+  EXPECT_NEAR(h.pga_g[0], relation_pga_g(c0, 1.2, 6.0, r0), 1e-12 * h.pga_g[0]);
+}
+
 // ---- The command on the example (the README's command) ----
 
 // examples/regional_survey.toml end to end: the JSON gains `region` with the relation, every site pooled beside its
@@ -190,6 +269,11 @@ TEST(RegionCli, ExampleRunsEndToEnd) {
   EXPECT_TRUE(region.at("sites")[5].at("independent_pga_g").at("median").is_number());
   EXPECT_EQ(region.at("contour_levels_g").size(), 4u);
   EXPECT_TRUE(std::filesystem::exists(tmp.path() / "sites.region.csv"));
+  const auto contours = nlohmann::json::parse(test::slurp(tmp.path() / "sites.contours.geojson"));
+  ASSERT_EQ(contours.at("features").size(), 4u);
+  EXPECT_EQ(contours["features"][1]["properties"]["pga_g"].get<double>(), 0.1);
+  EXPECT_EQ(contours["features"][1]["geometry"]["type"], "MultiLineString");
+  EXPECT_GE(contours["features"][1]["geometry"]["coordinates"].size(), 1u);  // the sites span 0.05-0.6 g
 }
 
 // ---- The regional recovery test ----

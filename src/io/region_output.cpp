@@ -105,4 +105,28 @@ void write_region_csv(const std::filesystem::path& path, const RegionalResult& f
   file.commit();
 }
 
+void write_contours_geojson(const std::filesystem::path& path, const std::vector<Contour>& contours,
+                            const PooledField& field) {
+  nlohmann::ordered_json fc;
+  fc["type"] = "FeatureCollection";
+  fc["features"] = nlohmann::ordered_json::array();
+  for (const Contour& c : contours) {
+    nlohmann::ordered_json lines = nlohmann::ordered_json::array();
+    for (const auto& line : c.lines) {
+      nlohmann::ordered_json l = nlohmann::ordered_json::array();
+      for (const auto& p : line) l.push_back({p[0], p[1]});
+      lines.push_back(l);
+    }
+    nlohmann::ordered_json f;
+    f["type"] = "Feature";
+    f["geometry"] = {{"type", "MultiLineString"}, {"coordinates", lines}};
+    f["properties"] = {{"pga_g", c.level_g},
+                       {"field", "relation at the posterior medians + simple-kriged site residuals"},
+                       {"correlation", "exp(-3 h / range_km), Jayaram & Baker (2009)"},
+                       {"range_km", field.range_km}};
+    fc["features"].push_back(f);
+  }
+  write_file_atomically(path, fc.dump() + "\n");
+}
+
 }  // namespace topple::io

@@ -28,4 +28,9 @@ namespace topple::io {
 void write_region_csv(const std::filesystem::path& path, const RegionalResult& fit,
                       const std::vector<const InversionResult*>& results);
 
+/// The iso-acceleration contours as GeoJSON: one Feature per level, a MultiLineString of [lon, lat] polylines, with
+/// properties pga_g (the level) and the field's correlation (model and range_km).
+void write_contours_geojson(const std::filesystem::path& path, const std::vector<Contour>& contours,
+                            const PooledField& field);
+
 }  // namespace topple::io
