@@ -209,6 +209,13 @@ void run_invert(const InvertOptions& o) {
       write_report(dir, survey, with_objects[i], results[i], provenance);
       if (!o.quiet) fmt::print(stderr, "topple: report written to {}\n", (dir / "index.html").string());
     }
+    if (region) {
+      // The regional page at the report's top, linking each site's page (a station without objects has none).
+      std::vector<std::string> pages(survey.sites.size());
+      for (std::size_t i = 0; i < results.size(); ++i) pages[survey_index[i]] = fmt::format("site{}/index.html", survey_index[i] + 1);
+      write_region_report(o.report, survey, *region, per_site, pages, region_settings);
+      if (!o.quiet) fmt::print(stderr, "topple: regional page written to {}\n", (std::filesystem::path(o.report) / "index.html").string());
+    }
   }
   if (o.json) {
     if (!multi) {

@@ -262,6 +262,32 @@ RegionalResult fit_region(const std::vector<SiteEvidence>& sites, const Regional
     }
   }
 
+  // The relation's band for the attenuation figure.
+  {
+    double r_lo = 1.0, r_hi = 0.0;
+    for (const SiteEvidence& e : sites) {
+      r_lo = std::min(r_lo, e.distance_km);
+      r_hi = std::max(r_hi, e.distance_km);
+    }
+    r_lo = std::max(r_lo, 0.1);
+    r_hi = std::max(1.5 * r_hi, 2.0 * r_lo);
+    std::vector<std::pair<double, double>> mass(static_cast<std::size_t>(fine.n) * fine.n);
+    for (int q = 0; q < 40; ++q) {
+      const double r = r_lo * std::pow(r_hi / r_lo, q / 39.0);
+      const double lr = std::log(std::hypot(r, st.c2_km)) - mean_ln_rho;
+      for (int i = 0; i < fine.n; ++i) {
+        for (int j = 0; j < fine.n; ++j) {
+          const double mu = fine.value(0, i) - fine.value(1, j) * lr;
+          double wij = 0.0;
+          for (int k = 0; k < fine.n; ++k) wij += w[(static_cast<std::size_t>(i) * fine.n + j) * fine.n + k];
+          mass[static_cast<std::size_t>(i) * fine.n + j] = {mu, wij};
+        }
+      }
+      out.curve_distance_km.push_back(r);
+      out.curve_pga_g.push_back(exp_of(quantiles(mass, 0.0)));
+    }
+  }
+
   // Draws of theta by systematic resampling of the fine grid (deterministic: u_m = (m + 1/2) / M).
   std::vector<std::size_t> draws(static_cast<std::size_t>(st.draws));
   {

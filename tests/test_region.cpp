@@ -250,7 +250,7 @@ TEST(RegionCli, ExampleRunsEndToEnd) {
   test::TempDir tmp;
   const auto map = tmp.path() / "sites.geojson";
   const auto r = test::run_cli("invert '" + (std::filesystem::path(TOPPLE_SOURCE_DIR) / "examples/regional_survey.toml").string() +
-                               "' --json --quiet --map '" + map.string() + "'");
+                               "' --json --quiet --map '" + map.string() + "' --report '" + (tmp.path() / "rep").string() + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   ASSERT_TRUE(j.contains("region"));
@@ -274,6 +274,15 @@ TEST(RegionCli, ExampleRunsEndToEnd) {
   EXPECT_EQ(contours["features"][1]["properties"]["pga_g"].get<double>(), 0.1);
   EXPECT_EQ(contours["features"][1]["geometry"]["type"], "MultiLineString");
   EXPECT_GE(contours["features"][1]["geometry"]["coordinates"].size(), 1u);  // the sites span 0.05-0.6 g
+  // The regional page: at the report's top, linking every site's page, with both figures inline.
+  const std::string page = test::slurp(tmp.path() / "rep" / "index.html");
+  for (int i = 1; i <= 12; ++i) {
+    EXPECT_NE(page.find(fmt::format("href=\"site{}/index.html\"", i)), std::string::npos) << i;
+    EXPECT_TRUE(std::filesystem::exists(tmp.path() / "rep" / fmt::format("site{}", i) / "index.html")) << i;
+  }
+  EXPECT_NE(page.find("<figure id=\"attenuation\"><svg"), std::string::npos);
+  EXPECT_NE(page.find("<figure id=\"map\"><svg"), std::string::npos);
+  EXPECT_NE(page.find("calibration: the objects"), std::string::npos);
 }
 
 // ---- The regional recovery test ----

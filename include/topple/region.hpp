@@ -27,6 +27,7 @@
 // the fine grid by systematic resampling (deterministic).
 #include <array>
 #include <cstddef>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
@@ -91,6 +92,18 @@ struct RegionalResult {
   double reference_distance_km = 0.0;  ///< rho_ref = geometric mean of sqrt(R^2 + c2^2), km
   std::vector<PooledSite> sites;       ///< in the order of the evidence
   std::vector<std::string> notes;      ///< what the data cannot constrain (a parameter against its prior's edge)
+  /// The regional report page: DIR/index.html (the relation, every site pooled beside its own estimate, linked to its
+/// page `site_pages[i]` (relative to DIR; empty: no link), the calibration sites, the attenuation figure and the map
+/// of the pooled field with its contours), and beside it attenuation.svg, pga_map.svg, contours.geojson, region.csv,
+/// region.json. `per_site` as in fit_survey_region. Figures need gnuplot (plot.hpp).
+void write_region_report(const std::filesystem::path& dir, const Survey& survey, const RegionalResult& fit,
+                         const std::vector<const InversionResult*>& per_site,
+                         const std::vector<std::string>& site_pages, const RegionalSettings& settings = {});
+
+/// The relation's median PGA exp(mu(R)) with its posterior intervals on 40 log-spaced distances from 1 km (or the
+  /// nearest site) to 1.5 x the farthest: the attenuation figure's band.
+  std::vector<double> curve_distance_km;
+  std::vector<Interval95> curve_pga_g;
   std::size_t grid_points = 0;         ///< fine-grid points evaluated
 };
 
@@ -136,6 +149,14 @@ struct Contour {
 /// Contours of the field at the given levels (g) by marching squares on ln PGA (linear interpolation along the cell
 /// edges; a saddle cell is resolved by its centre's mean), the segments joined into polylines.
 [[nodiscard]] std::vector<Contour> contour_field(const PooledField& field, const std::vector<double>& levels_g);
+
+/// The regional report page: DIR/index.html (the relation, every site pooled beside its own estimate, linked to its
+/// page `site_pages[i]` (relative to DIR; empty: no link), the calibration sites, the attenuation figure and the map
+/// of the pooled field with its contours), and beside it attenuation.svg, pga_map.svg, contours.geojson, region.csv,
+/// region.json. `per_site` as in fit_survey_region. Figures need gnuplot (plot.hpp).
+void write_region_report(const std::filesystem::path& dir, const Survey& survey, const RegionalResult& fit,
+                         const std::vector<const InversionResult*>& per_site,
+                         const std::vector<std::string>& site_pages, const RegionalSettings& settings = {});
 
 /// The relation's median PGA (g) at hypocentral distance R (km) for given parameters: exp(c0 - c1 ln sqrt(R^2+c2^2)).
 [[nodiscard]] double relation_pga_g(double c0, double c1, double c2_km, double distance_km) noexcept;
