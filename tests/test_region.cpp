@@ -296,14 +296,7 @@ TEST(RegionCli, ExampleRunsEndToEnd) {
 TEST(RegionRecovery, IntervalsCoverTheTruthAndPoolingNarrowsThem) {
   const char* env = std::getenv("TOPPLE_REGION_TRIALS");
   const int trials = env != nullptr ? std::atoi(env) : 3;
-  InversionSettings st;
-  st.pga_min_g = 0.01;
-  st.pga_max_g = 2.0;
-  st.pga_count = 20;
-  st.freq_min_hz = 2.0;
-  st.freq_max_hz = 4.5;
-  st.freq_count = 2;
-  st.motions_per_cell = 8;
+  const InversionSettings st = testing::small_grid(0.01, 20, 2.0, 4.5, 2, 8);
   int rel_hits = 0, rel_checks = 0, site_hits = 0, site_checks = 0;
   double ln_width_pooled = 0.0, ln_width_own = 0.0;
   for (int t = 0; t < trials; ++t) {

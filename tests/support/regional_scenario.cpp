@@ -64,6 +64,19 @@ void observe(ObservedObject& o, bool sliding, const GroundMotion& motion, double
 
 }  // namespace
 
+InversionSettings small_grid(double pga_min_g, int pga_count, double freq_min_hz, double freq_max_hz, int freq_count,
+                             int motions_per_cell) {
+  InversionSettings st;
+  st.pga_min_g = pga_min_g;
+  st.pga_max_g = 2.0;
+  st.pga_count = pga_count;
+  st.freq_min_hz = freq_min_hz;
+  st.freq_max_hz = freq_max_hz;
+  st.freq_count = freq_count;
+  st.motions_per_cell = motions_per_cell;
+  return st;
+}
+
 RegionalScenario make_regional_scenario(std::uint64_t seed, const RegionalTruth& truth, const InversionSettings& st) {
   RegionalScenario sc;
   sc.truth = truth;

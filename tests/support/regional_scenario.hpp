@@ -28,6 +28,11 @@ struct RegionalScenario {
   RegionalTruth truth;
 };
 
+/// Inversion settings on a small grid: PGA log-spaced over [pga_min_g, 2 g] with pga_count rows, frequency over
+/// [freq_min_hz, freq_max_hz] with freq_count columns, motions_per_cell motions (the rest the defaults).
+[[nodiscard]] InversionSettings small_grid(double pga_min_g, int pga_count, double freq_min_hz, double freq_max_hz,
+                                           int freq_count, int motions_per_cell);
+
 /// A dozen sites (5-80 km), site 0 an instrument station (its true PGA, 3 digits) with two objects, sites 9-11 with
 /// one or two objects only, the others five. `seed` draws the residuals and the objects' choice.
 [[nodiscard]] RegionalScenario make_regional_scenario(std::uint64_t seed, const RegionalTruth& truth,
