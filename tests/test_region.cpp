@@ -75,6 +75,30 @@ TEST(RegionSurvey, OldSurveysUnchanged) {
                InputError);
 }
 
+// A station given by its record: the measured PGA is the record's peak |a| (a plain file in g whose peak is -0.42 g:
+// the sign does not matter), read at the edge by io::read_survey, in g exactly (the file states its unit).
+TEST(RegionSurvey, StationRecordGivesItsPeak) {
+  test::TempDir tmp;
+  test::write_file(tmp.path() / "station.csv", "time_s,accel_g\n0,0\n0.01,0.2\n0.02,-0.42\n0.03,0.1\n0.04,0\n");
+  test::write_file(tmp.path() / "r.toml", "[[sites]]\nname = \"a\"\n" + kObject +
+                                              "[[sites]]\nname = \"station\"\nrecord = \"station.csv\"\n");
+  const Survey s = io::read_survey(tmp.path() / "r.toml");
+  ASSERT_TRUE(s.sites[1].instrument_pga_g);
+  EXPECT_NEAR(*s.sites[1].instrument_pga_g, 0.42, 1e-12);  // g -> m/s^2 -> g: a few ulps
+  EXPECT_EQ(s.sites[1].instrument_record, (tmp.path() / "station.csv").string());
+}
+
+// A spreadsheet's CSV survey carries the regional site keys as `site.KEY` rows, read as the TOML they stand for.
+TEST(RegionSurvey, CsvSurveyCarriesTheStationPga) {
+  const Survey s = io::parse_survey("site.name,station\nsite.lat,38.1\nsite.lon,23.0\nsite.pga_g,0.25\n"
+                                    "event.epicentre,\"[38.0, 23.0]\"\nevent.depth_km,8\n"
+                                    "id,width_cm,height_cm,mu,outcome\nb,10,40,0.5,overturned\n",
+                                    "s.csv");
+  ASSERT_TRUE(s.sites[0].instrument_pga_g);
+  EXPECT_EQ(*s.sites[0].instrument_pga_g, 0.25);
+  EXPECT_EQ(*s.epicentre_depth_km, 8.0);
+}
+
 TEST(RegionSurvey, BadRegionalKeysNameTheirField) {
   const auto fails = [](const std::string& text, const std::string& field) {
     try {
