@@ -10,6 +10,7 @@
 
 #include <GeographicLib/Geodesic.hpp>
 #include <fmt/format.h>
+#include <tbb/parallel_for.h>
 
 #include "topple/error.hpp"
 
@@ -176,13 +177,14 @@ RegionalResult fit_region(const std::vector<SiteEvidence>& sites, const Regional
   };
   const auto evaluate = [&](const Grid3& g) {
     std::vector<double> lp(static_cast<std::size_t>(g.n) * g.n * g.n);
-    for (int i = 0; i < g.n; ++i) {
+    // Rows in parallel (oneTBB): every point is computed alone, so the result does not depend on the threads.
+    tbb::parallel_for(0, g.n, [&](int i) {
       for (int j = 0; j < g.n; ++j) {
         for (int k = 0; k < g.n; ++k) {
           lp[(static_cast<std::size_t>(i) * g.n + j) * g.n + k] = log_post(g.value(0, i), g.value(1, j), g.value(2, k));
         }
       }
-    }
+    });
     return lp;
   };
   // Pass 1: the whole prior box, coarse (25 points a side), to find where the posterior lives.
@@ -308,7 +310,9 @@ RegionalResult fit_region(const std::vector<SiteEvidence>& sites, const Regional
   // The pooled CDF on ln a from ln 1e-4 g to ln 20 g, step 0.01 (a 1 % step in PGA).
   std::vector<double> xs;
   for (double x = std::log(1e-4); x <= std::log(20.0); x += 0.01) xs.push_back(x);
-  for (std::size_t s = 0; s < sites.size(); ++s) {
+  out.sites.resize(sites.size());
+  // Sites in parallel (oneTBB): each site's pooled posterior is computed alone (deterministic).
+  tbb::parallel_for(std::size_t{0}, sites.size(), [&](std::size_t s) {
     const SiteEvidence& e = sites[s];
     std::vector<double> cdf(xs.size(), 0.0);
     std::vector<std::pair<double, double>> mu_mass(w.size());
@@ -346,8 +350,8 @@ RegionalResult fit_region(const std::vector<SiteEvidence>& sites, const Regional
     p.instrument_pga_g = e.instrument_pga_g;
     p.pga_g = exp_of(cdf_quantiles(xs, cdf));
     p.relation_pga_g = exp_of(quantiles(std::move(mu_mass), 0.0));
-    out.sites.push_back(p);
-  }
+    out.sites[s] = p;
+  });
   return out;
 }
 

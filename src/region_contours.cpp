@@ -4,6 +4,8 @@
 #include <map>
 #include <utility>
 
+#include <tbb/parallel_for.h>
+
 #include <numbers>
 #include <optional>
 
@@ -87,7 +89,8 @@ PooledField pooled_field(const RegionalResult& fit, const Survey& survey, double
     f.lon_deg.push_back(lon_lo - pad_lon + (lon_hi - lon_lo + 2 * pad_lon) * i / (points - 1));
   }
   f.pga_g.resize(static_cast<std::size_t>(points) * points);
-  for (int i = 0; i < points; ++i) {
+  // Rows in parallel (oneTBB): every node is computed alone (deterministic).
+  tbb::parallel_for(0, points, [&](int i) {
     for (int j = 0; j < points; ++j) {
       const double la = f.lat_deg[static_cast<std::size_t>(i)], lo = f.lon_deg[static_cast<std::size_t>(j)];
       const double rr = hypocentral_distance_km(geodesic_distance_km(lat0, lon0, la, lo), depth);
@@ -98,7 +101,7 @@ PooledField pooled_field(const RegionalResult& fit, const Survey& survey, double
       }
       f.pga_g[static_cast<std::size_t>(i) * points + j] = relation_pga_g(c0, c1, fit.c2_km, rr) * std::exp(dz);
     }
-  }
+  });
   return f;
 }
 
