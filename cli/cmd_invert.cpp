@@ -14,6 +14,8 @@
 #include "topple/inversion.hpp"
 #include "topple/io/inversion_output.hpp"
 #include "topple/io/provenance.hpp"
+#include "topple/io/region_output.hpp"
+#include "topple/region.hpp"
 #include "topple/io/survey_file.hpp"
 #include "topple/report.hpp"
 
@@ -91,6 +93,37 @@ void print_site(const Site& site, const InversionResult& r) {
   for (const auto& note : r.notes) fmt::print("note: {}\n", note);
 }
 
+std::string interval_text(const Interval95& v, const char* unit) {
+  return fmt::format("{:.3g} {} (68 % [{:.3g}, {:.3g}], 95 % [{:.3g}, {:.3g}])", v.median, unit, v.ci68_low, v.ci68_high,
+                     v.ci95_low, v.ci95_high);
+}
+
+void print_region(const RegionalResult& fit, const std::vector<const InversionResult*>& per_site) {
+  fmt::print("== Region: ln PGA = c0 - c1 ln sqrt(R^2 + c2^2) + delta, delta ~ N(0, tau^2) (PGA in g, R hypocentral km)\n");
+  fmt::print("c0  = {}\nc1  = {}\nc2  = {:g} km (fixed)\ntau = {}\n", interval_text(fit.c0, ""), interval_text(fit.c1, ""),
+             fit.c2_km, interval_text(fit.tau, ""));
+  fmt::print("{:<28} {:>8} {:>10} {:>26} {:>26}\n", "site", "R km", "instrument", "independent median [95 %] g",
+             "pooled median [95 %] g");
+  for (const PooledSite& p : fit.sites) {
+    const InversionResult* r = per_site[p.site_index];
+    std::string own = "-";
+    if (r != nullptr) {
+      const Estimate& e = r->pga_estimate_g;
+      own = fmt::format("{:.3g} {}", e.median, interval_text(e.ci95_low, e.ci95_high, ""));
+    }
+    std::string instrument = p.instrument_pga_g ? fmt::format("{:.3g}", *p.instrument_pga_g) : std::string("-");
+    fmt::print("{:<28} {:>8.1f} {:>10} {:>26} {:>26}\n", p.name, p.distance_km, instrument, own,
+               fmt::format("{:.3g} [{:.3g}, {:.3g}]", p.pga_g.median, p.pga_g.ci95_low, p.pga_g.ci95_high));
+    if (r != nullptr && p.instrument_pga_g) {
+      fmt::print("  calibration site: the objects {} the instrument ({:.3g} g {} their own 95 % interval)\n",
+                 objects_agree_with_instrument(r->pga_estimate_g, *p.instrument_pga_g) ? "agree with" : "DISAGREE with",
+                 *p.instrument_pga_g,
+                 objects_agree_with_instrument(r->pga_estimate_g, *p.instrument_pga_g) ? "inside" : "outside");
+    }
+  }
+  for (const std::string& note : fit.notes) fmt::print("note: region: {}\n", note);
+}
+
 /// Output files may name folders that do not exist yet (as --report does): made before the runs, so that a path
 /// that cannot be written fails in a second instead of after the inversion.
 void prepare_output_folder(const std::string& path, const char* option, bool is_folder = false) {
@@ -127,32 +160,61 @@ void run_invert(const InvertOptions& o) {
       fmt::print(stderr, "topple: inverting {} ({} objects)...\n", site.name, site.objects.size());
     }
   }
-  // One family for every site (invert_sites): the same results as site by site, without re-synthesising it.
-  const std::vector<InversionResult> results = invert_sites(survey.sites, survey.inversion, options);
+  // One family for every site (invert_sites): the same results as site by site, without re-synthesising it. An
+  // instrument station without objects has nothing to invert: it enters the regional fit only.
+  std::vector<Site> with_objects;
+  std::vector<std::size_t> survey_index;
+  for (std::size_t i = 0; i < survey.sites.size(); ++i) {
+    if (survey.sites[i].objects.empty()) continue;
+    with_objects.push_back(survey.sites[i]);
+    survey_index.push_back(i);
+  }
+  const std::vector<InversionResult> results = invert_sites(with_objects, survey.inversion, options);
   bar.finish();
+  std::vector<const InversionResult*> per_site(survey.sites.size(), nullptr);
+  for (std::size_t k = 0; k < results.size(); ++k) per_site[survey_index[k]] = &results[k];
+  std::vector<std::string> region_notes;
+  const RegionalSettings region_settings;
+  const std::optional<RegionalResult> region = fit_survey_region(survey, per_site, region_notes, region_settings);
   const bool multi = survey.sites.size() > 1;
   const auto site_path = [&](const std::string& base, std::size_t i) {
     if (!multi) return std::filesystem::path(base);
     std::filesystem::path p(base);
-    return p.parent_path() / fmt::format("{}.site{}{}", p.stem().string(), i + 1, p.extension().string());
+    return p.parent_path() / fmt::format("{}.site{}{}", p.stem().string(), survey_index[i] + 1, p.extension().string());
   };
   if (!o.grid.empty()) {
     for (std::size_t i = 0; i < results.size(); ++i) io::write_inversion_grid_csv(site_path(o.grid, i), results[i]);
   }
   if (!o.map.empty()) {
-    io::write_sites_geojson(o.map, survey.sites, results);
+    io::write_sites_geojson(o.map, with_objects, results);
+    if (region) {
+      std::filesystem::path csv(o.map);
+      csv.replace_extension(".region.csv");
+      io::write_region_csv(csv, *region, per_site);
+      const PooledField field = pooled_field(*region, survey);
+      std::filesystem::path contours(o.map);
+      contours.replace_extension(".contours.geojson");
+      io::write_contours_geojson(contours, contour_field(field, io::contour_levels_g()), field);
+    }
     if (survey.epicentre_lat_deg) {
       std::filesystem::path csv(o.map);
       csv.replace_extension(".distance.csv");
-      io::write_distance_csv(csv, survey.sites, results, *survey.epicentre_lat_deg, *survey.epicentre_lon_deg);
+      io::write_distance_csv(csv, with_objects, results, *survey.epicentre_lat_deg, *survey.epicentre_lon_deg);
     }
   }
   if (!o.report.empty()) {
     for (std::size_t i = 0; i < results.size(); ++i) {
-      const std::filesystem::path dir = multi ? std::filesystem::path(o.report) / fmt::format("site{}", i + 1)
+      const std::filesystem::path dir = multi ? std::filesystem::path(o.report) / fmt::format("site{}", survey_index[i] + 1)
                                               : std::filesystem::path(o.report);
-      write_report(dir, survey, survey.sites[i], results[i], provenance);
+      write_report(dir, survey, with_objects[i], results[i], provenance);
       if (!o.quiet) fmt::print(stderr, "topple: report written to {}\n", (dir / "index.html").string());
+    }
+    if (region) {
+      // The regional page at the report's top, linking each site's page (a station without objects has none).
+      std::vector<std::string> pages(survey.sites.size());
+      for (std::size_t i = 0; i < results.size(); ++i) pages[survey_index[i]] = fmt::format("site{}/index.html", survey_index[i] + 1);
+      write_region_report(o.report, survey, *region, per_site, pages, region_settings);
+      if (!o.quiet) fmt::print(stderr, "topple: regional page written to {}\n", (std::filesystem::path(o.report) / "index.html").string());
     }
   }
   if (o.json) {
@@ -161,12 +223,16 @@ void run_invert(const InvertOptions& o) {
     } else {
       nlohmann::ordered_json all;
       all["sites"] = nlohmann::ordered_json::array();
-      for (std::size_t i = 0; i < results.size(); ++i) all["sites"].push_back(io::inversion_json(results[i], survey.sites[i], provenance));
+      for (std::size_t i = 0; i < results.size(); ++i) all["sites"].push_back(io::inversion_json(results[i], with_objects[i], provenance));
+      if (region) all["region"] = io::region_json(*region, survey, per_site, region_settings);
+      if (!region_notes.empty()) all["region_notes"] = region_notes;
       fmt::print("{}\n", all.dump(2));
     }
     return;
   }
-  for (std::size_t i = 0; i < results.size(); ++i) print_site(survey.sites[i], results[i]);
+  for (std::size_t i = 0; i < results.size(); ++i) print_site(with_objects[i], results[i]);
+  for (const std::string& note : region_notes) fmt::print("note: {}\n", note);
+  if (region) print_region(*region, per_site);
 }
 
 }  // namespace
@@ -178,7 +244,8 @@ void add_invert_command(CLI::App& app) {
   cmd->add_option("survey", o->survey, "Survey file (TOML; see examples/survey.toml)")->required();
   cmd->add_flag("--json", o->json, "Print the result as one JSON object");
   cmd->add_option("--grid", o->grid, "Write the likelihood grid to this CSV file");
-  cmd->add_option("--map", o->map, "Write one GeoJSON point per site (and, with an epicentre, PGA vs distance CSV)");
+  cmd->add_option("--map", o->map, "Write one GeoJSON point per site (and, with an epicentre, PGA vs distance CSV; with a "
+                                   "regional fit, the region CSV and iso-acceleration contours)");
   cmd->add_option("--report", o->report, "Write a self-contained HTML report (and its figures) into this directory");
   cmd->add_option("--threads", o->threads, "Worker threads (default: all cores)");
   add_quiet_flag(*cmd, o->quiet, "no notes and no progress messages");

@@ -18,6 +18,7 @@ run_packages=(
   build-essential cmake ninja-build pkg-config
   libcli11-dev libfmt-dev nlohmann-json3-dev libtomlplusplus-dev libboost-dev
   libtbb-dev libfftw3-dev libxxhash-dev
+  libgeographiclib-dev  # geodesic distances (WGS84, Karney 2013) for the regional fit
   gnuplot-nox  # figures: --plot, the inversion report
 )
 python_packages=(python3 python3-venv python3-dev)

@@ -33,6 +33,8 @@ std::string object_style(std::size_t o) {
   return fmt::format("lines dt {}", kDashes[(o / std::size(kPalette)) % std::size(kDashes)]);
 }
 
+}  // namespace
+
 std::string html_escape(const std::string& s) {
   std::string out;
   for (char c : s) {
@@ -47,6 +49,8 @@ std::string html_escape(const std::string& s) {
   return out;
 }
 
+namespace {
+
 std::string slurp(const std::filesystem::path& p) {
   std::ifstream in(p, std::ios::binary);
   std::ostringstream s;
@@ -54,12 +58,16 @@ std::string slurp(const std::filesystem::path& p) {
   return s.str();
 }
 
+}  // namespace
+
 /// The SVG without its XML prologue/doctype, for inline embedding.
 std::string inline_svg(const std::filesystem::path& p) {
   std::string svg = slurp(p);
   const auto at = svg.find("<svg");
   return at == std::string::npos ? svg : svg.substr(at);
 }
+
+namespace {
 
 std::string dims(const ObservedObject& o) {
   const auto cm = [](double m) { return fmt::format("{:.3g} cm", 100.0 * m); };

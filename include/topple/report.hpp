@@ -30,6 +30,11 @@ namespace topple {
 [[nodiscard]] plot::Series contour_series(const std::vector<double>& x, const std::vector<double>& y,
                                           const std::vector<double>& z, double level, const std::string& label);
 
+/// Text for HTML: & < > " escaped (the report pages; region_report.cpp too).
+[[nodiscard]] std::string html_escape(const std::string& text);
+/// An SVG file's text without its XML prologue or doctype, for inline embedding in a page.
+[[nodiscard]] std::string inline_svg(const std::filesystem::path& svg);
+
 /// Writes DIR/index.html and the figures (DIR/likelihood.svg, DIR/marginal_pga.svg, DIR/marginal_freq.svg,
 /// DIR/best_cell.svg, DIR/grid.csv, DIR/result.json). The page embeds the SVGs inline: it is self-contained. It opens
 /// with inversion_summary, defines every number where it is shown, sets the hard and soft static thresholds beside

@@ -82,6 +82,13 @@ struct Site {
   /// of their own stand on it (io::read_survey copies it into their support_filter).
   std::optional<SupportFilter> support_filter;
   std::vector<ObservedObject> objects;
+  /// An instrument station (docs/survey.md, "Regional surveys"): the PGA an accelerograph measured here, in g, given
+  /// as `pga_g = ...` or read from `record = "file"` (the record's peak |a| over g_m_s2, set by
+  /// io::load_survey_records). Such a site may have no objects; if it has some, they are inverted alone and checked
+  /// against it (a calibration site). None: no instrument.
+  std::optional<double> instrument_pga_g;
+  std::string instrument_record;  ///< the record's path (resolved against the survey file), empty when none
+  [[nodiscard]] bool is_station() const noexcept { return instrument_pga_g.has_value() || !instrument_record.empty(); }
 };
 
 enum class MotionFamily { synthetic, records };
@@ -108,6 +115,7 @@ struct Survey {
   std::vector<Site> sites;
   InversionSettings inversion;
   std::optional<double> epicentre_lat_deg, epicentre_lon_deg;
+  std::optional<double> epicentre_depth_km;  ///< [event] depth_km: the hypocentre's depth, km (>= 0); none: 0 is used
   /// What the reader applied by a documented rule that changes a given value (the sliding-uncertainty floor), one
   /// "file:line: field: text" line each, for the front ends to show.
   std::vector<std::string> notes;

@@ -7,6 +7,7 @@
 #include "topple/error.hpp"
 #include "topple/io/output_file.hpp"
 #include "topple/io/provenance.hpp"
+#include "topple/region.hpp"
 #include "topple/units.hpp"
 
 namespace topple::io {
@@ -123,12 +124,7 @@ void write_inversion_grid_csv(const std::filesystem::path& path, const Inversion
 }
 
 double epicentral_distance_km(double lat1, double lon1, double lat2, double lon2) {
-  const double d2r = kPi / 180.0;
-  const double dlat = (lat2 - lat1) * d2r;
-  const double dlon = (lon2 - lon1) * d2r;
-  const double a = std::sin(dlat / 2) * std::sin(dlat / 2) +
-                   std::cos(lat1 * d2r) * std::cos(lat2 * d2r) * std::sin(dlon / 2) * std::sin(dlon / 2);
-  return 2.0 * 6371.0 * std::asin(std::min(1.0, std::sqrt(a)));
+  return geodesic_distance_km(lat1, lon1, lat2, lon2);  // WGS84 geodesic (region.hpp), no longer haversine
 }
 
 void write_sites_geojson(const std::filesystem::path& path, const std::vector<Site>& sites,

@@ -360,6 +360,22 @@ std::vector<ObservedObject> parse_objects(const toml::node* node, const std::str
   return out;
 }
 
+/// A site's instrument (docs/survey.md, "Regional surveys"): `pga_g = value` (g, > 0) or `record = "file"` (checked
+/// to exist here, read by load_survey_records), not both.
+void parse_instrument(Reader& r, Site& site, const std::filesystem::path& base_dir) {
+  if (r.has("pga_g") && r.has("record")) throw r.error("record", "give either pga_g (measured) or record, not both");
+  if (const auto pga = r.number("pga_g")) {
+    if (!(*pga > 0.0)) throw r.error("pga_g", fmt::format("a measured PGA must be positive, got {} g", *pga));
+    site.instrument_pga_g = pga;
+  }
+  if (const auto rec = r.string("record")) {
+    std::filesystem::path p(*rec);
+    if (p.is_relative()) p = base_dir / p;
+    if (!std::filesystem::exists(p)) throw r.error("record", fmt::format("no such record file '{}'", p.string()));
+    site.instrument_record = p.string();
+  }
+}
+
 void parse_site_fields(Reader& r, Site& site) {
   site.name = r.string("name").value_or("");
   site.lat_deg = r.number("lat");
@@ -448,6 +464,13 @@ Survey parse_toml_survey(std::string_view text, const std::string& name, const s
       if (arr == nullptr || arr->size() != 2) throw r.error("epicentre", "expected [lat, lon]", epi);
       s.epicentre_lat_deg = r.as_number("epicentre", *arr->get(0));
       s.epicentre_lon_deg = r.as_number("epicentre", *arr->get(1));
+      if (std::abs(*s.epicentre_lat_deg) > 90.0) throw r.error("epicentre", "latitude must lie in [-90, 90]", epi);
+      if (std::abs(*s.epicentre_lon_deg) > 180.0) throw r.error("epicentre", "longitude must lie in [-180, 180]", epi);
+    }
+    if (const auto depth = r.number("depth_km")) {
+      if (!s.epicentre_lat_deg) throw r.error("depth_km", "a depth goes with epicentre = [lat, lon]");
+      if (*depth < 0.0 || *depth > 700.0) throw r.error("depth_km", fmt::format("must lie in [0, 700] km, got {}", *depth));
+      s.epicentre_depth_km = depth;
     }
     r.refuse_unknown();
   }
@@ -460,6 +483,7 @@ Survey parse_toml_survey(std::string_view text, const std::string& name, const s
       if (t == nullptr) throw top.error("site", "expected a table");
       Reader r(*t, name, "site");
       parse_site_fields(r, site);
+      parse_instrument(r, site, base_dir);
       r.refuse_unknown();
     }
     site.objects = parse_objects(top.get("object"), name, "object", s.notes, &site);
@@ -473,6 +497,7 @@ Survey parse_toml_survey(std::string_view text, const std::string& name, const s
       Reader r(*t, name, fmt::format("sites[{}]", i + 1));
       Site site;
       parse_site_fields(r, site);
+      parse_instrument(r, site, base_dir);
       site.objects = parse_objects(r.get("object"), name, fmt::format("sites[{}].object", i + 1), s.notes, &site);
       r.refuse_unknown();
       s.sites.push_back(std::move(site));
@@ -480,10 +505,15 @@ Survey parse_toml_survey(std::string_view text, const std::string& name, const s
   }
   top.refuse_unknown();
   if (s.sites.empty()) throw InputError(InputLocation{name, {}, "object"}, "the survey has no site and no object");
+  bool any_objects = false;
+  for (const Site& site : s.sites) any_objects = any_objects || !site.objects.empty();
   for (std::size_t i = 0; i < s.sites.size(); ++i) {
-    if (s.sites[i].objects.empty()) {
+    // An instrument station may have no objects (docs/survey.md), as long as some site has objects to invert.
+    if (s.sites[i].objects.empty() && !(s.sites[i].is_station() && any_objects)) {
       throw InputError(InputLocation{name, {}, s.sites.size() == 1 ? "object" : fmt::format("sites[{}].object", i + 1)},
-                       "a site needs at least one observed object");
+                       s.sites[i].is_station() ? "the survey has no site with observed objects to invert"
+                                               : "a site needs at least one observed object (or an instrument: "
+                                                 "pga_g or record)");
     }
     // The documented default (docs/survey.md): a site without a name is "site N", N its position in the file.
     if (s.sites[i].name.empty()) s.sites[i].name = fmt::format("site {}", i + 1);
@@ -514,6 +544,11 @@ void load_survey_records(Survey& survey) {
   for (const std::string& path : st.records) {
     // A record that does not read names itself (file, line, field) in read_motion's InputError.
     st.record_motions.push_back(std::make_shared<const GroundMotion>(read_motion(path)));
+  }
+  // An instrument station's record gives its measured PGA (the record's peak |a|, in g).
+  for (Site& site : survey.sites) {
+    if (site.instrument_record.empty()) continue;
+    site.instrument_pga_g = read_motion(site.instrument_record).pga_m_s2() / st.g_m_s2;
   }
 }
 

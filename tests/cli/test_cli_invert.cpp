@@ -261,7 +261,10 @@ TEST(CliInvert, SeveralSitesGiveAGeoJsonMapAndDistances) {
   ASSERT_EQ(geo.at("features").size(), 2u);
   EXPECT_DOUBLE_EQ(geo["features"][1]["geometry"]["coordinates"][1].get<double>(), 17.60);
   EXPECT_TRUE(geo["features"][0]["properties"]["pga_median_g"].is_number());
-  // distance CSV: 0.2 deg and 0.4 deg of latitude north (plus 0.05 deg east): haversine, R = 6371 km.
+  // distance CSV: 0.2 deg and 0.4 deg of latitude north (plus 0.05 deg east), the geodesic on WGS84 (issue 17; the
+  // haversine on a 6371 km sphere gave 22.9 and 44.8 km): the meridian at 17.4 N is 110.6 km/deg, not the sphere's
+  // 111.2. Expected values from GeographicLib's Inverse in a separate program, printed to 0.1 m; tolerance 1 cm (the
+  // CSV prints full precision).
   std::ifstream csv(tmp.path() / "out.distance.csv");
   std::string header, row1, row2;
   std::getline(csv, header);
@@ -270,8 +273,8 @@ TEST(CliInvert, SeveralSitesGiveAGeoJsonMapAndDistances) {
   EXPECT_EQ(header.substr(0, 30), "site,epicentral_distance_km,pg");
   const double d1 = std::stod(row1.substr(row1.find(',') + 1));
   const double d2 = std::stod(row2.substr(row2.find(',') + 1));
-  EXPECT_NEAR(d1, 22.9, 0.2);  // sqrt(22.24^2 + 5.31^2) km on the sphere
-  EXPECT_NEAR(d2, 44.8, 0.3);
+  EXPECT_NEAR(d1, 22.7639, 1e-4);
+  EXPECT_NEAR(d2, 44.5871, 1e-4);
 }
 
 /// Loads `page` in headless chromium and returns the DOM it built and the browser's log: chromium logs page errors to

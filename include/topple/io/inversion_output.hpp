@@ -29,12 +29,13 @@ void write_inversion_grid_csv(const std::filesystem::path& path, const Inversion
 void write_sites_geojson(const std::filesystem::path& path, const std::vector<Site>& sites,
                          const std::vector<InversionResult>& results);
 
-/// PGA vs epicentral distance (great-circle, R = 6371 km): site,distance_km,pga_median_g,ci68/ci95 ends.
+/// PGA vs epicentral distance (geodesic on WGS84, region.hpp): site,distance_km,pga_median_g,ci68/ci95 ends.
 void write_distance_csv(const std::filesystem::path& path, const std::vector<Site>& sites,
                         const std::vector<InversionResult>& results, double epicentre_lat_deg,
                         double epicentre_lon_deg);
 
-/// Great-circle distance by the haversine formula, km (Earth radius 6371 km).
+/// Epicentral distance, km: geodesic_distance_km (region.hpp; WGS84, Karney 2013). Until issue 17 it was the
+/// haversine on a 6371 km sphere, which differs by up to 0.5 %.
 [[nodiscard]] double epicentral_distance_km(double lat1_deg, double lon1_deg, double lat2_deg, double lon2_deg);
 
 }  // namespace topple::io
