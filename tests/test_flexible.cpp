@@ -283,10 +283,11 @@ TEST(Flexible, SupportMotionIsWhatTheDecoupledAnalysisSlidesOn) {
 
 TEST(Flexible, ResponseIsCausalWhateverTheRecordLength) {
   // The response at sample k depends on a_0..a_k only, so a record cut after n samples must give the first n points
-  // of the full record's response. The recurrence runs in chunks of segments whose lengths depend on n (8 segments of
-  // up to 256 points, a short tail alone), so every n below splits the record differently: lengths around the
-  // segment counts and the chunk size (2048), and the short records that take the tail path only. Tolerance 1e-12
-  // of the peak: the segments' sums differ only in round-off (~1e-16 / (omega h)^2, omega h = 0.094 here).
+  // of the full record's response. The recurrence runs in chunks of segments whose lengths depend on n (16 segments of
+  // up to 128 points, a short tail alone; the segments' chains advance 2 or 4 steps at a time with the rest one by
+  // one), so every n below splits the record differently: lengths around the segment counts and the chunk size
+  // (2048), segments of 3 to 8 points, and the short records that take the tail path only. Tolerance 1e-12 of the
+  // peak: the segments' sums differ only in round-off (~1e-16 / (omega h)^2, omega h = 0.094 here).
   const GroundMotion full = test_motion(0.005, 0.4, 12.0);  // 2401 samples
   for (const auto& mode : {modal_properties(SupportOscillator::make(3.0, 0.02)),
                            modal_properties(SlidingMassColumn::make(40.0, 480.0, 700.0, 0.1), full)}) {
@@ -295,6 +296,7 @@ TEST(Flexible, ResponseIsCausalWhateverTheRecordLength) {
     for (const double v : ref) peak = std::max(peak, std::abs(v));
     std::vector<std::size_t> lengths;
     for (std::size_t n = 2; n <= 40; ++n) lengths.push_back(n);
+    for (std::size_t n = 2 + 16 * 3; n <= 2 + 16 * 8 + 15; ++n) lengths.push_back(n);
     for (std::size_t n = 2040; n <= 2070; ++n) lengths.push_back(n);
     lengths.push_back(2400);
     for (const std::size_t n : lengths) {
