@@ -3,6 +3,7 @@
 // the exact coupled one with a massless object, and input validation.
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -427,6 +428,34 @@ TEST(Flexible, RejectsBadParameters) {
                                    FlexibleAnalysis::coupled);
             }).find("mu_kinetic"),
             std::string::npos);
+}
+
+TEST(Flexible, SupportMotionBeyondTheAccelerationLimitIsRefused) {
+  // The decoupled analysis builds the support's motion from the response's peak instead of checking every sample
+  // (GroundMotionFactory); a peak beyond GroundMotionLimits::max_abs_accel_m_s2 must still be refused, with the
+  // message GroundMotion::uniform gives. A 4 Hz, 2 % shelf at resonance under a 5e5 m/s^2 sine (an idealised motion,
+  // within the limit) amplifies it ~25x at steady state; 2 s (8 cycles) bring it past 2x the limit.
+  const double dt = 0.001;
+  std::vector<double> a(2001);
+  for (std::size_t i = 0; i < a.size(); ++i) a[i] = 5e5 * std::sin(2.0 * kPi * 4.0 * dt * static_cast<double>(i));
+  const GroundMotion g = GroundMotion::uniform(std::move(a), dt);
+  const auto support = SupportOscillator::make(4.0, 0.02);
+  const auto block = SlidingBlock::make(0.2, 0.2);
+  try {
+    (void)slide_flexible(g, support, block, FlexibleAnalysis::decoupled);
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("beyond the limit of 1e+06 m/s2 of a ground motion"), std::string::npos)
+        << e.what();
+  }
+  // Well within the limit (the same shelf, 5e3 m/s^2: peak ~1e5) the motion is built, its peak the analysis' k_max
+  // (k_max = peak / g: two roundings, hence EXPECT_DOUBLE_EQ's 4 ulp).
+  std::vector<double> b(2001);
+  for (std::size_t i = 0; i < b.size(); ++i) b[i] = 5e3 * std::sin(2.0 * kPi * 4.0 * dt * static_cast<double>(i));
+  const GroundMotion small = GroundMotion::uniform(std::move(b), dt);
+  const GroundMotion m = support_motion(small, support);
+  EXPECT_DOUBLE_EQ(m.pga_m_s2(),
+                   slide_flexible(small, support, block, FlexibleAnalysis::decoupled).kmax * kStandardGravity);
 }
 
 }  // namespace
