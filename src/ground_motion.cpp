@@ -159,6 +159,11 @@ GroundMotion GroundMotion::uniform(std::vector<double> accel_m_s2, double dt_s, 
                                    RecordMetadata metadata) {
   require_uniform_grid(accel_m_s2.size(), dt_s, start_time_s);
   require_finite_accel_within_limit(accel_m_s2, "accel", "sample");
+  return detail::GroundMotionFactory::assemble_uniform(std::move(accel_m_s2), dt_s, start_time_s, std::move(metadata));
+}
+
+GroundMotion detail::GroundMotionFactory::assemble_uniform(std::vector<double> accel_m_s2, double dt_s,
+                                                           double start_time_s, RecordMetadata metadata) {
   GroundMotion m;
   m.accel_ = std::move(accel_m_s2);
   m.dt_ = dt_s;
@@ -176,12 +181,7 @@ GroundMotion detail::GroundMotionFactory::uniform_with_peak(std::vector<double> 
   }
   require_uniform_grid(accel_m_s2.size(), dt_s, start_time_s);
   assert(std::all_of(accel_m_s2.begin(), accel_m_s2.end(), [&](double a) { return std::abs(a) <= peak_abs_m_s2; }));
-  GroundMotion m;
-  m.accel_ = std::move(accel_m_s2);
-  m.dt_ = dt_s;
-  m.t0_ = start_time_s;
-  m.meta_ = std::move(metadata);
-  return m;
+  return assemble_uniform(std::move(accel_m_s2), dt_s, start_time_s, std::move(metadata));
 }
 
 GroundMotion GroundMotion::irregular(std::vector<double> time_s, std::vector<double> accel_m_s2,

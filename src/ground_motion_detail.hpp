@@ -15,6 +15,12 @@ struct GroundMotionFactory {
   /// pass cost ~3 us of the ~48 us analysis of a 20,000-sample record (docs/performance.md).
   static GroundMotion uniform_with_peak(std::vector<double> accel_m_s2, double peak_abs_m_s2, double dt_s,
                                         double start_time_s, RecordMetadata metadata);
+
+ private:
+  friend class topple::GroundMotion;
+  /// The motion from samples and a grid already checked (GroundMotion::uniform, uniform_with_peak): no checks.
+  static GroundMotion assemble_uniform(std::vector<double> accel_m_s2, double dt_s, double start_time_s,
+                                       RecordMetadata metadata);
 };
 
 }  // namespace topple::detail
