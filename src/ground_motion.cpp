@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -10,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "topple/error.hpp"
+#include "ground_motion_detail.hpp"
 
 namespace topple {
 namespace {
@@ -137,23 +139,49 @@ void require_record_acceleration(double pga_m_s2, const std::string& field) {
   }
 }
 
-GroundMotion GroundMotion::uniform(std::vector<double> accel_m_s2, double dt_s, double start_time_s,
-                                   RecordMetadata metadata) {
-  if (accel_m_s2.empty()) throw parameter_error("accel", "a ground motion needs at least one sample");
+namespace {
+
+/// GroundMotion::uniform's checks that do not read the samples: their number, the step, the start and the duration.
+void require_uniform_grid(std::size_t samples, double dt_s, double start_time_s) {
+  if (samples == 0) throw parameter_error("accel", "a ground motion needs at least one sample");
   if (!(dt_s > 0.0) || !std::isfinite(dt_s)) {
     throw parameter_error("dt_s", fmt::format("time step must be positive and finite, got {}", dt_s));
   }
   if (!std::isfinite(start_time_s)) throw parameter_error("start_time_s", "start time must be finite");
   require_uniform_dt(dt_s, "dt_s");
-  require_sample_count(accel_m_s2.size(), "accel");
-  require_duration(dt_s * static_cast<double>(accel_m_s2.size() - 1), start_time_s, "dt_s");
+  require_sample_count(samples, "accel");
+  require_duration(dt_s * static_cast<double>(samples - 1), start_time_s, "dt_s");
+}
+
+}  // namespace
+
+GroundMotion GroundMotion::uniform(std::vector<double> accel_m_s2, double dt_s, double start_time_s,
+                                   RecordMetadata metadata) {
+  require_uniform_grid(accel_m_s2.size(), dt_s, start_time_s);
   require_finite_accel_within_limit(accel_m_s2, "accel", "sample");
+  return detail::GroundMotionFactory::assemble_uniform(std::move(accel_m_s2), dt_s, start_time_s, std::move(metadata));
+}
+
+GroundMotion detail::GroundMotionFactory::assemble_uniform(std::vector<double> accel_m_s2, double dt_s,
+                                                           double start_time_s, RecordMetadata metadata) {
   GroundMotion m;
   m.accel_ = std::move(accel_m_s2);
   m.dt_ = dt_s;
   m.t0_ = start_time_s;
   m.meta_ = std::move(metadata);
   return m;
+}
+
+GroundMotion detail::GroundMotionFactory::uniform_with_peak(std::vector<double> accel_m_s2, double peak_abs_m_s2,
+                                                           double dt_s, double start_time_s, RecordMetadata metadata) {
+  // max |a_i| = peak (the caller's precondition) and peak <= limit together say what the per-sample pass checks:
+  // every |a_i| <= limit, hence finite. Otherwise the full construction, which throws with the sample it refuses.
+  if (!(peak_abs_m_s2 <= Limits::max_abs_accel_m_s2)) {
+    return GroundMotion::uniform(std::move(accel_m_s2), dt_s, start_time_s, std::move(metadata));
+  }
+  require_uniform_grid(accel_m_s2.size(), dt_s, start_time_s);
+  assert(std::all_of(accel_m_s2.begin(), accel_m_s2.end(), [&](double a) { return std::abs(a) <= peak_abs_m_s2; }));
+  return assemble_uniform(std::move(accel_m_s2), dt_s, start_time_s, std::move(metadata));
 }
 
 GroundMotion GroundMotion::irregular(std::vector<double> time_s, std::vector<double> accel_m_s2,

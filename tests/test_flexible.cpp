@@ -3,6 +3,7 @@
 // the exact coupled one with a massless object, and input validation.
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -283,10 +284,11 @@ TEST(Flexible, SupportMotionIsWhatTheDecoupledAnalysisSlidesOn) {
 
 TEST(Flexible, ResponseIsCausalWhateverTheRecordLength) {
   // The response at sample k depends on a_0..a_k only, so a record cut after n samples must give the first n points
-  // of the full record's response. The recurrence runs in chunks of segments whose lengths depend on n (8 segments of
-  // up to 256 points, a short tail alone), so every n below splits the record differently: lengths around the
-  // segment counts and the chunk size (2048), and the short records that take the tail path only. Tolerance 1e-12
-  // of the peak: the segments' sums differ only in round-off (~1e-16 / (omega h)^2, omega h = 0.094 here).
+  // of the full record's response. The recurrence runs in chunks of segments whose lengths depend on n (16 segments of
+  // up to 128 points, a short tail alone; the segments' chains advance 2 or 4 steps at a time with the rest one by
+  // one), so every n below splits the record differently: lengths around the segment counts and the chunk size
+  // (2048), segments of 3 to 8 points, and the short records that take the tail path only. Tolerance 1e-12 of the
+  // peak: the segments' sums differ only in round-off (~1e-16 / (omega h)^2, omega h = 0.094 here).
   const GroundMotion full = test_motion(0.005, 0.4, 12.0);  // 2401 samples
   for (const auto& mode : {modal_properties(SupportOscillator::make(3.0, 0.02)),
                            modal_properties(SlidingMassColumn::make(40.0, 480.0, 700.0, 0.1), full)}) {
@@ -295,6 +297,7 @@ TEST(Flexible, ResponseIsCausalWhateverTheRecordLength) {
     for (const double v : ref) peak = std::max(peak, std::abs(v));
     std::vector<std::size_t> lengths;
     for (std::size_t n = 2; n <= 40; ++n) lengths.push_back(n);
+    for (std::size_t n = 2 + 16 * 3; n <= 2 + 16 * 8 + 15; ++n) lengths.push_back(n);
     for (std::size_t n = 2040; n <= 2070; ++n) lengths.push_back(n);
     lengths.push_back(2400);
     for (const std::size_t n : lengths) {
@@ -425,6 +428,34 @@ TEST(Flexible, RejectsBadParameters) {
                                    FlexibleAnalysis::coupled);
             }).find("mu_kinetic"),
             std::string::npos);
+}
+
+TEST(Flexible, SupportMotionBeyondTheAccelerationLimitIsRefused) {
+  // The decoupled analysis builds the support's motion from the response's peak instead of checking every sample
+  // (GroundMotionFactory); a peak beyond GroundMotionLimits::max_abs_accel_m_s2 must still be refused, with the
+  // message GroundMotion::uniform gives. A 4 Hz, 2 % shelf at resonance under a 5e5 m/s^2 sine (an idealised motion,
+  // within the limit) amplifies it ~25x at steady state; 2 s (8 cycles) bring it past 2x the limit.
+  const double dt = 0.001;
+  std::vector<double> a(2001);
+  for (std::size_t i = 0; i < a.size(); ++i) a[i] = 5e5 * std::sin(2.0 * kPi * 4.0 * dt * static_cast<double>(i));
+  const GroundMotion g = GroundMotion::uniform(std::move(a), dt);
+  const auto support = SupportOscillator::make(4.0, 0.02);
+  const auto block = SlidingBlock::make(0.2, 0.2);
+  try {
+    (void)slide_flexible(g, support, block, FlexibleAnalysis::decoupled);
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("beyond the limit of 1e+06 m/s2 of a ground motion"), std::string::npos)
+        << e.what();
+  }
+  // Well within the limit (the same shelf, 5e3 m/s^2: peak ~1e5) the motion is built, its peak the analysis' k_max
+  // (k_max = peak / g: two roundings, hence EXPECT_DOUBLE_EQ's 4 ulp).
+  std::vector<double> b(2001);
+  for (std::size_t i = 0; i < b.size(); ++i) b[i] = 5e3 * std::sin(2.0 * kPi * 4.0 * dt * static_cast<double>(i));
+  const GroundMotion small = GroundMotion::uniform(std::move(b), dt);
+  const GroundMotion m = support_motion(small, support);
+  EXPECT_DOUBLE_EQ(m.pga_m_s2(),
+                   slide_flexible(small, support, block, FlexibleAnalysis::decoupled).kmax * kStandardGravity);
 }
 
 }  // namespace

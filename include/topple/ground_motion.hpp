@@ -26,6 +26,10 @@
 
 namespace topple {
 
+namespace detail {
+struct GroundMotionFactory;  // library-internal construction paths (src/ground_motion_detail.hpp)
+}  // namespace detail
+
 /// The physically sensible range of a ground motion (see the header). Every GroundMotion satisfies them: the
 /// constructors, scaled(), time_scaled() and resampled() throw InputError naming the limit otherwise.
 struct GroundMotionLimits {
@@ -124,6 +128,7 @@ class GroundMotion {
   [[nodiscard]] GroundMotion to_uniform() const;
 
  private:
+  friend struct detail::GroundMotionFactory;
   GroundMotion() = default;
   std::vector<double> accel_;
   std::vector<double> time_;  // empty for uniform records
