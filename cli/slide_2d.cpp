@@ -98,8 +98,9 @@ void run_bidirectional_slide(const GroundMotion& first, const GroundMotion& seco
                block.slope_rad != 0.0 ? "slope steeper than kinetic friction" : "no kinetic friction");
   }
   if (s.contact_lost_time_s) {
-    fmt::print(stderr, "warning: g + a_v vanishes at t = {:.4f} s: the block leaves the ground and the sliding model "
-                       "is not valid after that\n", *s.contact_lost_time_s);
+    fmt::print(stderr, "warning: {} vanishes at t = {:.4f} s: the block leaves the ground and the sliding model "
+                       "is not valid after that\n", block.slope_rad != 0.0 ? "the normal force" : "g + a_v",
+               *s.contact_lost_time_s);
   }
 }
 

@@ -125,6 +125,7 @@ TEST(Sliding2d, BelowTheStaticThresholdOnASlopeTheBlockStays) {
   EXPECT_TRUE(r.summary.at_rest_at_end);
   EXPECT_EQ(r.summary.end_time_s, h1.end_time_s());
   EXPECT_EQ(r.history.time_s.back(), h1.end_time_s());
+  EXPECT_EQ(r.history.time_s.size(), h1.size() + 1);  // the record's end twice: the ground turns still there
   // Its mirror, a slope steeper than friction (tan 30 deg = 0.58 > mu_s = 0.5), slides from the start and never stops.
   const auto steep = slide_2d_summary(h1, h2, {90.0, 0.0, 30.0}, SlidingBlock::make(0.5, 0.4, 30.0 * kPi / 180.0));
   EXPECT_FALSE(steep.at_rest_at_end);

@@ -101,14 +101,17 @@ struct Sliding2dSummary {
   double total_slip_duration_s = 0.0;
   double end_time_s = 0.0;                 ///< when the block came to rest (>= record end when it slid past it)
   bool at_rest_at_end = true;              ///< false only when mu_k = 0 and it still slides at the record's end
-  std::optional<double> contact_lost_time_s;  ///< first time g_e <= 0 (the block leaves the ground)
+  std::optional<double> contact_lost_time_s;  ///< first time g_e <= 0 (on a slope: the normal force N <= 0): the
+                                              ///< block leaves the ground
   double input_work_J_kg = 0.0;            ///< integral of -a . w dt: work of the inertial load on the block, per mass
+                                           ///< (on a slope: of the in-plane load, gravity's included)
   double friction_work_J_kg = 0.0;         ///< integral of mu_k g_e^+ |w| dt: energy dissipated by friction, per mass
   std::size_t integrator_steps = 0;        ///< Dormand-Prince steps taken, rejected ones included
 };
 
 /// History on the merged grid's points plus every event (slip start and stop); at an event the row carries the
-/// state after it.
+/// state after it. On a slope the record's end appears twice (the ground turning still) and the run-out's events
+/// follow it.
 struct Sliding2dHistory {
   std::vector<double> time_s;
   std::vector<double> east_m;        ///< u_x
