@@ -29,6 +29,7 @@ struct SlideOptions {
   std::string vertical;
   std::string h2;        // second horizontal component: bidirectional sliding (slide_2d.hpp)
   std::string azimuths;  // "A1,A2", degrees clockwise from north
+  std::optional<double> slope_azimuth_deg;  // with --h2 on a slope: the downslope direction, clockwise from north
   std::string out;
   std::string plot;
   bool json = false;
@@ -75,7 +76,15 @@ void run_slide(const SlideOptions& o) {
       throw parameter_error("--azimuths", "required with --h2: the two components' azimuths, degrees clockwise from "
                                           "north, as A1,A2 (e.g. 90,0 for east and north)");
     }
-    const ComponentAzimuths azimuths = parse_azimuths(o.azimuths);
+    ComponentAzimuths azimuths = parse_azimuths(o.azimuths);
+    if (o.slope_deg != 0.0 && !o.slope_azimuth_deg) {
+      throw parameter_error("--slope-azimuth-deg", "required with --h2 and --slope-deg: the azimuth of the downslope "
+                                                   "direction, degrees clockwise from north");
+    }
+    if (o.slope_azimuth_deg) {
+      if (o.slope_deg == 0.0) throw parameter_error("--slope-azimuth-deg", "needs --slope-deg (a slope)");
+      azimuths.slope_azimuth_deg = *o.slope_azimuth_deg;
+    }
     // The second component is scaled with the first (the shaking is scaled as a whole), as the vertical is.
     const GroundMotion second = io::read_motion(o.h2, read_options(o.motion)).scaled(run.input.scale_factor);
     run_bidirectional_slide(horizontal, second, azimuths, block, vertical_ptr, o.json, run.input.motion, o.h2,
@@ -83,6 +92,9 @@ void run_slide(const SlideOptions& o) {
     return;
   }
   if (!o.azimuths.empty()) throw parameter_error("--azimuths", "needs --h2 (the second horizontal component)");
+  if (o.slope_azimuth_deg) {
+    throw parameter_error("--slope-azimuth-deg", "needs --h2 (with one component the motion is along the fall line)");
+  }
   if (o.flexible.active()) {
     run_flexible_slide(horizontal, block, o.flexible, o.json,
                        o.pulse.kind.empty() ? o.motion.file : horizontal.metadata().event, vertical_ptr, o.out, o.plot);
@@ -154,10 +166,12 @@ void add_slide_command(CLI::App& app) {
                                                "down-slope)")->capture_default_str();
   cmd->add_flag("--one-way", o->one_way, "Down-slope sliding only (SLAMMER rigid-block convention)");
   cmd->add_option("--vertical", o->vertical, "Vertical acceleration record (positive up), scaled with the horizontal");
-  cmd->add_option("--h2", o->h2, "Second horizontal component (record file): bidirectional sliding on level ground, "
-                                 "friction against the 2-D relative velocity; needs --azimuths");
+  cmd->add_option("--h2", o->h2, "Second horizontal component (record file): bidirectional sliding, friction "
+                                 "against the 2-D relative velocity in the plane; needs --azimuths");
   cmd->add_option("--azimuths", o->azimuths, "With --h2: the two components' azimuths A1,A2 in degrees clockwise "
                                              "from north (perpendicular), e.g. 90,0");
+  cmd->add_option("--slope-azimuth-deg", o->slope_azimuth_deg, "With --h2 and --slope-deg: azimuth of the downslope "
+                                                               "direction, degrees clockwise from north");
   cmd->add_option("--out", o->out, "Write the time history to this CSV file");
   cmd->add_option("--plot", o->plot, "Draw record, thresholds and response to this .svg or .png file (gnuplot)");
   cmd->add_flag("--json", o->json, "Print the summary as one JSON object");

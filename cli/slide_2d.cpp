@@ -43,7 +43,8 @@ void run_bidirectional_slide(const GroundMotion& first, const GroundMotion& seco
       // The library names its fields; the user typed options.
       if (!e.where().file.empty()) throw;
       const std::string& field = e.where().field;
-      throw parameter_error(field == "slope" ? "--slope-deg" : field == "mode" ? "--one-way" : "--azimuths",
+      throw parameter_error(field == "slope" ? "--slope-deg" : field == "slope_azimuth" ? "--slope-azimuth-deg"
+                            : field == "mode"  ? "--one-way" : "--azimuths",
                             e.problem());
     }
   }();
@@ -61,6 +62,10 @@ void run_bidirectional_slide(const GroundMotion& first, const GroundMotion& seco
     in["motion"] = motion_name;
     in["h2"] = second_name;
     in["azimuths_deg"] = {azimuths.first_deg, azimuths.second_deg};
+    if (block.slope_rad != 0.0) {
+      in["slope_deg"] = block.slope_rad * 180.0 / kPi;
+      in["slope_azimuth_deg"] = azimuths.slope_azimuth_deg;
+    }
     in["scale_factor"] = scale_factor;
     in["vertical"] = vertical != nullptr ? nlohmann::ordered_json(true) : nlohmann::ordered_json(nullptr);
     in["pga_g"] = {first.pga_m_s2() / g, second.pga_m_s2() / g};
@@ -68,8 +73,14 @@ void run_bidirectional_slide(const GroundMotion& first, const GroundMotion& seco
     fmt::print("{}\n", j.dump(2));
     return;
   }
-  fmt::print("bidirectional sliding block (level ground): mu_s = {}, mu_k = {}, g = {} m/s2\n", block.mu_static,
-             block.mu_kinetic, g);
+  if (block.slope_rad != 0.0) {
+    fmt::print("bidirectional sliding block on a slope of {} deg falling toward {} deg: mu_s = {}, mu_k = {}, g = {} "
+               "m/s2 (displacements in the plane)\n", block.slope_rad * 180.0 / kPi, azimuths.slope_azimuth_deg,
+               block.mu_static, block.mu_kinetic, g);
+  } else {
+    fmt::print("bidirectional sliding block (level ground): mu_s = {}, mu_k = {}, g = {} m/s2\n", block.mu_static,
+               block.mu_kinetic, g);
+  }
   fmt::print("motion: {} at {} deg and {} at {} deg (PGA {:.4f} g and {:.4f} g)\n", motion_name,
              azimuths.first_deg, second_name, azimuths.second_deg, first.pga_m_s2() / g, second.pga_m_s2() / g);
   fmt::print("residual displacement  {:.6g} m", s.residual_displacement_m);
@@ -82,10 +93,14 @@ void run_bidirectional_slide(const GroundMotion& first, const GroundMotion& seco
   fmt::print("slip episodes          {}\n", s.slip_episodes);
   fmt::print("first slip             {}\n", format_seconds_or_none(s.first_slip_time_s));
   fmt::print("total slip duration    {:.4f} s\n", s.total_slip_duration_s);
-  if (!s.at_rest_at_end) fmt::print("warning: the block never comes to rest (no kinetic friction)\n");
+  if (!s.at_rest_at_end) {
+    fmt::print("warning: the block never comes to rest ({})\n",
+               block.slope_rad != 0.0 ? "slope steeper than kinetic friction" : "no kinetic friction");
+  }
   if (s.contact_lost_time_s) {
-    fmt::print(stderr, "warning: g + a_v vanishes at t = {:.4f} s: the block leaves the ground and the sliding model "
-                       "is not valid after that\n", *s.contact_lost_time_s);
+    fmt::print(stderr, "warning: {} vanishes at t = {:.4f} s: the block leaves the ground and the sliding model "
+                       "is not valid after that\n", block.slope_rad != 0.0 ? "the normal force" : "g + a_v",
+               *s.contact_lost_time_s);
   }
 }
 

@@ -8,6 +8,7 @@
 #include <functional>
 #include <limits>
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -59,18 +60,91 @@ constexpr double kFloorLaunchFraction = 0.03;
 /// Brent's minimiser to half the mantissa in time: at a smooth extreme the value is then exact to round-off.
 constexpr int kBrentBits = std::numeric_limits<double>::digits / 2;
 
-/// The components and the effective gravity on one grid (input_grid.hpp: jumps of any component kept).
+/// Unit vector (east, north) of an azimuth in degrees clockwise from north.
+std::pair<double, double> axis(double azimuth_deg) {
+  const double r = azimuth_deg * kPi / 180.0;
+  return {std::sin(r), std::cos(r)};
+}
+
+/// The components and the effective gravity on one grid (input_grid.hpp: jumps of any component kept). On a slope
+/// (method.md eq S11) a1, a2 and gravity hold the in-plane load and the normal force of the inclined plane per point
+/// instead (slope_loads()), and a still tail follows the record for the run-out.
 struct Input {
-  Input(const GroundMotion& first, const GroundMotion& second, const GroundMotion* vertical, double g)
+  Input(const GroundMotion& first, const GroundMotion& second, const GroundMotion* vertical, const SlidingBlock& b,
+        const ComponentAzimuths& az)
       : grid(std::array<const GroundMotion*, 3>{&first, &second, vertical}),
         a1(grid.accel_m_s2(0)),
         a2(grid.accel_m_s2(1)),
-        gravity(effective_gravity(grid, 2, g)) {}
+        gravity(effective_gravity(grid, 2, b.g_m_s2)),
+        record_points(grid.size()) {
+    if (b.slope_rad != 0.0) slope_loads(b, az);
+  }
   InputGrid grid;
   std::span<const double> a1, a2;
-  std::vector<double> gravity;  // g_e per point; empty without a vertical record
-  [[nodiscard]] std::size_t size() const { return grid.size(); }
-  [[nodiscard]] double time(std::size_t i) const { return grid.time_s(i); }
+  std::vector<double> gravity;  // g_e per point (on a slope: the normal force); empty without a vertical record
+  std::vector<double> times;    // on a slope: the grid's times and the tail's
+  std::vector<double> load1, load2;  // on a slope: the in-plane load's components (a1, a2 point to them)
+  std::size_t record_points;         // the record's points (before the tail)
+  [[nodiscard]] std::size_t size() const { return times.empty() ? grid.size() : times.size(); }
+  [[nodiscard]] double time(std::size_t i) const { return times.empty() ? grid.time_s(i) : times[i]; }
+
+ private:
+  /// The inclined plane (eq S11): beta the slope, e_d the horizontal unit vector of the fall line (azimuth
+  /// slope_azimuth_deg), the ground acceleration a = a_d e_d + a_c (a_c across the slope, horizontal and in the plane).
+  /// Per unit mass, in the plane (the downslope in-plane axis carried on e_d) and normal to it:
+  ///   w' = -a_c + (g_e sin(beta) - a_d cos(beta)) e_d - mu_k N+ w/|w|,   N = g_e cos(beta) + a_d sin(beta)
+  /// (with a_d = -a_h this is sliding.hpp's f_t and n on the fall line): the level solver's equations with
+  /// a -> a_c + (a_d cos(beta) - g_e sin(beta)) e_d and g_e -> N, both linear in time on a step as a and g_e are.
+  /// After the record the ground is still (a = 0, g_e = g): a tail interval of constant load, long enough for any
+  /// run-out, lets the same integration carry the (curved) run-out to its stop.
+  void slope_loads(const SlidingBlock& b, const ComponentAzimuths& az) {
+    const std::size_t n = grid.size();
+    const double c = std::cos(b.slope_rad);
+    const double s = std::sin(b.slope_rad);
+    const auto [e1x, e1y] = axis(az.first_deg);
+    const auto [e2x, e2y] = axis(az.second_deg);
+    const auto [dx, dy] = axis(az.slope_azimuth_deg);
+    const double d1 = dx * e1x + dy * e1y;  // e_d in the components' frame
+    const double d2 = dx * e2x + dy * e2y;
+    times.resize(n + 2);
+    load1.resize(n + 2);
+    load2.resize(n + 2);
+    std::vector<double> normal(n + 2);
+    double speed_bound = 0.0;  // integral of |load|: bounds |w| at the record's end (|w|' <= |load| while slipping)
+    for (std::size_t i = 0; i < n; ++i) {
+      const double ge = gravity.empty() ? b.g_m_s2 : gravity[i];
+      const double ad = a1[i] * d1 + a2[i] * d2;
+      const double along = ad * c - ge * s;
+      load1[i] = a1[i] - ad * d1 + along * d1;
+      load2[i] = a2[i] - ad * d2 + along * d2;
+      normal[i] = ge * c + ad * s;
+      times[i] = grid.time_s(i);
+      if (i > 0) {
+        speed_bound += 0.5 * (times[i] - times[i - 1]) *
+                       (std::hypot(load1[i - 1], load2[i - 1]) + std::hypot(load1[i], load2[i]));
+      }
+    }
+    // The tail: a jump to still ground at the record's end, held for the longest run-out: |w| falls at least at
+    // g (mu_k cos(beta) - sin(beta)) on still ground. Where that is not positive the block can never stop: no tail.
+    const double decel = b.g_m_s2 * (b.mu_kinetic * c - s);
+    const double t_end = times[n - 1];
+    const double tail = decel > 0.0 ? 1.01 * speed_bound / decel + 1.0 : 0.0;
+    for (std::size_t i = n; i < n + 2; ++i) {
+      times[i] = i == n ? t_end : t_end + tail;
+      load1[i] = -b.g_m_s2 * s * d1;
+      load2[i] = -b.g_m_s2 * s * d2;
+      normal[i] = b.g_m_s2 * c;
+    }
+    if (!(tail > 0.0)) {
+      times.resize(n);
+      load1.resize(n);
+      load2.resize(n);
+      normal.resize(n);
+    }
+    gravity = std::move(normal);
+    a1 = load1;
+    a2 = load2;
+  }
 };
 
 /// Right-hand side on one sample interval, in local time sigma = t - t_i: a = a0 + as sigma, g_e = g0 + gs sigma.
@@ -164,7 +238,11 @@ struct Recorder {
     if (!summary.first_slip_time_s) summary.first_slip_time_s = t;
     slip_start = t;
   }
-  void stop(double t) { summary.total_slip_duration_s += t - slip_start; }
+  void stop(double t) {
+    summary.total_slip_duration_s += t - slip_start;
+    last_stop = t;
+  }
+  double last_stop = 0.0;
 };
 
 /// Dormand-Prince 5(4) with error control (Boost.Odeint) over one sample interval's local time, with dense output.
@@ -584,9 +662,27 @@ void integrate(const Input& in, const SlidingBlock& b, const Sliding2dOptions& o
     rec.row(in.time(i), x, true);
   }
 
-  const double t_end = in.time(n - 1);
+  const double t_end = in.time(in.record_points - 1);
   rec.summary.end_time_s = t_end;
-  if (slipping) {
+  if (in.size() > in.record_points) {
+    // On a slope the still tail carried the run-out (Input::slope_loads); the block is at rest at its end.
+    if (slipping) {
+      throw std::logic_error(fmt::format("bidirectional sliding: the block still slides at the end of the run-out "
+                                         "interval ({} s; {})", in.time(n - 1), describe(b)));
+    }
+    if (rec.summary.slip_episodes > 0) rec.summary.end_time_s = std::max(t_end, rec.last_stop);
+    if constexpr (kRecord) {  // the tail's end point is no sample of the record
+      rec.history.time_s.pop_back();
+      rec.history.east_m.pop_back();
+      rec.history.north_m.pop_back();
+      rec.history.east_m_s.pop_back();
+      rec.history.north_m_s.pop_back();
+      rec.history.slipping.pop_back();
+    }
+  } else if (slipping && b.slope_rad != 0.0) {
+    rec.summary.at_rest_at_end = false;  // tan(beta) >= mu_k: it slides on down the slope
+    rec.stop(t_end);
+  } else if (slipping) {
     // Run-out on still ground (a = 0, g_e = g): friction alone, along a straight line (eq S7).
     const double speed = std::hypot(x[kW1], x[kW2]);
     const double decel = b.mu_kinetic * g;
@@ -639,12 +735,6 @@ std::optional<double> contact_lost(const Input& in) {
   return std::nullopt;
 }
 
-/// Unit vector (east, north) of an azimuth in degrees clockwise from north.
-std::pair<double, double> axis(double azimuth_deg) {
-  const double r = azimuth_deg * kPi / 180.0;
-  return {std::sin(r), std::cos(r)};
-}
-
 void check_inputs(const ComponentAzimuths& az, const SlidingBlock& b, const Sliding2dOptions& opt) {
   opt.validate();
   for (const auto& [field, value] : {std::pair{"first_azimuth", az.first_deg}, std::pair{"second_azimuth",
@@ -659,12 +749,13 @@ void check_inputs(const ComponentAzimuths& az, const SlidingBlock& b, const Slid
                                                         "{} and {} deg differ by {} deg (mod 180), not 90",
                                                         az.first_deg, az.second_deg, std::abs(diff)));
   }
-  if (b.slope_rad != 0.0) {
-    throw parameter_error("slope", fmt::format("bidirectional sliding is on level ground only; slope {} deg given",
-                                               b.slope_rad * 180.0 / kPi));
+  if (!std::isfinite(az.slope_azimuth_deg) || std::abs(az.slope_azimuth_deg) > 3600.0) {
+    throw parameter_error("slope_azimuth", fmt::format("the slope's azimuth must be finite degrees (|azimuth| <= "
+                                                       "3600), got {}", az.slope_azimuth_deg));
   }
   if (b.mode != SlidingMode::two_way) {
-    throw parameter_error("mode", "bidirectional sliding is two-way (one-way sliding has a direction only on a slope)");
+    throw parameter_error("mode", "bidirectional sliding is two-way (one-way sliding, down the fall line only, has no "
+                                  "meaning for a block free to move across the slope)");
   }
 }
 
@@ -672,7 +763,7 @@ template <bool kRecord>
 Recorder<kRecord> run(const GroundMotion& first, const GroundMotion& second, const ComponentAzimuths& az,
                       const SlidingBlock& block, const GroundMotion* vertical, const Sliding2dOptions& opt) {
   check_inputs(az, block, opt);
-  const Input in(first, second, vertical, block.g_m_s2);
+  const Input in(first, second, vertical, block, az);
   Recorder<kRecord> rec;
   std::tie(rec.e1x, rec.e1y) = axis(az.first_deg);
   std::tie(rec.e2x, rec.e2y) = axis(az.second_deg);

@@ -58,15 +58,18 @@ TEST(Sliding2d, NoResponseBelowFriction) {
 
 /// Collinear input on an axis at azimuth alpha equals the exact 1-D two-way solver, with u = -d e_alpha (the 1-D d
 /// is positive where a positive a_h pushes the block: against the component's axis).
+/// On a slope (slope_deg > 0) the component's axis points uphill (the slope's azimuth is alpha + 180): the 1-D a_h is
+/// positive toward uphill and its d positive downslope, so u = -d e_alpha holds there too.
 void expect_collinear_equals_1d(const GroundMotion& rec, double alpha_deg, double mu_s, double mu_k,
-                                const GroundMotion* vertical) {
-  const auto block = SlidingBlock::make(mu_s, mu_k);
+                                const GroundMotion* vertical, double slope_deg = 0.0) {
+  const auto block = SlidingBlock::make(mu_s, mu_k, slope_deg * kPi / 180.0);
   const auto one = slide_summary(rec, block, vertical);
   ASSERT_GT(one.max_abs_displacement_m, 1e-3) << "the case must slide";
   // The second component is zero; put the record on the first (alpha) or the second (alpha + 90 on the first).
   const auto zero = zeros_like(rec);
-  const auto two = slide_2d_summary(rec, zero, {alpha_deg, alpha_deg - 90.0}, block, vertical);
-  const auto two_b = slide_2d_summary(zero, rec, {alpha_deg + 90.0, alpha_deg}, block, vertical);
+  const double downslope = alpha_deg + 180.0;
+  const auto two = slide_2d_summary(rec, zero, {alpha_deg, alpha_deg - 90.0, downslope}, block, vertical);
+  const auto two_b = slide_2d_summary(zero, rec, {alpha_deg + 90.0, alpha_deg, downslope}, block, vertical);
   // 1e-9 relative (the issue): DP5 integrates the collinear slip (velocity quadratic in time on a step) exactly and
   // its dense output reproduces it, so both solvers carry only round-off; the stops come from TOMS 748 to 4 ulp.
   const double tol = 1e-9 * one.max_abs_displacement_m;
@@ -94,6 +97,58 @@ TEST(Sliding2d, CollinearInputEqualsTheExact1dSolver) {
   for (double alpha : {0.0, 30.0, 90.0, 137.5, 270.0}) {
     expect_collinear_equals_1d(rec, alpha, 0.2, 0.2, nullptr);
     expect_collinear_equals_1d(rec, alpha, 0.3, 0.2, nullptr);
+  }
+}
+
+TEST(Sliding2d, CollinearInputOnTheFallLineEqualsThe1dIncline) {
+  // The incline (method.md S11) on the fall line is sliding.hpp's two-way incline: 1e-9 relative, as on level ground
+  // (the run-out after the record, integrated on the still tail, is a straight line there and DP5 is exact on it).
+  const auto rec = noisy_record(5);
+  const auto vertical = noisy_record(7, 4000, 0.01, 0.3);
+  for (double alpha : {0.0, 137.5, 250.0}) {
+    expect_collinear_equals_1d(rec, alpha, 0.3, 0.3, nullptr, 8.0);
+    expect_collinear_equals_1d(rec, alpha, 0.35, 0.25, nullptr, 12.0);
+    expect_collinear_equals_1d(rec, alpha, 0.3, 0.25, &vertical, 5.0);
+  }
+}
+
+TEST(Sliding2d, BelowTheStaticThresholdOnASlopeTheBlockStays) {
+  // Slope 10 deg, mu_s = 0.5, a record of PGA 0.1 g: the in-plane load is at most g (sin 10 + 0.1) = 0.27 g and the
+  // normal force at least g (cos 10 - 0.1 sin 10) = 0.97 g, below tan(26.6 deg) = 0.5 of it at every point: stuck.
+  const auto h1 = noisy_record(3, 2000, 0.01, 0.1);
+  const auto h2 = noisy_record(4, 2000, 0.01, 0.1);
+  const auto block = SlidingBlock::make(0.5, 0.4, 10.0 * kPi / 180.0);
+  const auto r = slide_2d(h1, h2, {90.0, 0.0, 30.0}, block);
+  EXPECT_EQ(r.summary.slip_episodes, 0);
+  EXPECT_EQ(r.summary.max_abs_displacement_m, 0.0);
+  EXPECT_EQ(r.summary.path_length_m, 0.0);
+  EXPECT_TRUE(r.summary.at_rest_at_end);
+  EXPECT_EQ(r.summary.end_time_s, h1.end_time_s());
+  EXPECT_EQ(r.history.time_s.back(), h1.end_time_s());
+  EXPECT_EQ(r.history.time_s.size(), h1.size() + 1);  // the record's end twice: the ground turns still there
+  // Its mirror, a slope steeper than friction (tan 30 deg = 0.58 > mu_s = 0.5), slides from the start and never stops.
+  const auto steep = slide_2d_summary(h1, h2, {90.0, 0.0, 30.0}, SlidingBlock::make(0.5, 0.4, 30.0 * kPi / 180.0));
+  EXPECT_FALSE(steep.at_rest_at_end);
+  ASSERT_TRUE(steep.first_slip_time_s.has_value());
+  EXPECT_EQ(*steep.first_slip_time_s, h1.start_time_s());
+}
+
+TEST(Sliding2d, WorkEnergyBalanceOnASlope) {
+  // Both components and a slope across them: the block slides across the fall line and its run-out after the record
+  // curves toward it. At rest at the end, input work (inertial load and gravity, in the plane) equals friction work
+  // to the integration error: 1e-7 relative, as on level ground (WorkEnergyBalance).
+  const auto h1 = noisy_record(11);
+  const auto h2 = noisy_record(12);
+  for (double slope_deg : {5.0, 15.0}) {
+    const auto block = SlidingBlock::make(0.45, 0.4, slope_deg * kPi / 180.0);
+    const auto s = slide_2d_summary(h1, h2, {90.0, 0.0, 60.0}, block);
+    ASSERT_GT(s.friction_work_J_kg, 1e-3) << slope_deg;
+    ASSERT_GT(s.slip_episodes, 3) << slope_deg;
+    EXPECT_TRUE(s.at_rest_at_end);
+    EXPECT_NEAR(s.input_work_J_kg, s.friction_work_J_kg, 1e-7 * s.friction_work_J_kg) << slope_deg;
+    // Gravity pulls it down the slope on balance: the residual's azimuth lies within 90 deg of the fall line.
+    ASSERT_TRUE(s.residual_azimuth_deg.has_value());
+    EXPECT_LT(std::abs(angle_diff_deg(*s.residual_azimuth_deg, 60.0)), 90.0) << slope_deg;
   }
 }
 
@@ -317,7 +372,7 @@ TEST(Sliding2d, RefusesWhatItCannotModel) {
     }
   };
   expect_error({90.0, 10.0}, SlidingBlock::make(0.2), {}, "must be perpendicular");
-  expect_error({90.0, 0.0}, SlidingBlock::make(0.2, 0.2, 0.1), {}, "level ground only");
+  expect_error({90.0, 0.0, std::nan("")}, SlidingBlock::make(0.2, 0.2, 0.1), {}, "slope's azimuth must be finite");
   expect_error({90.0, 0.0}, SlidingBlock::make(0.2, 0.2, 0.0, SlidingMode::one_way), {}, "two-way");
   expect_error({90.0, 0.0}, SlidingBlock::make(0.2), {.rel_tol = 0.0}, "relative tolerance");
   expect_error({std::nan(""), 0.0}, SlidingBlock::make(0.2), {}, "azimuth must be finite");

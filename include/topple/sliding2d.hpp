@@ -1,5 +1,5 @@
 #pragma once
-// Bidirectional sliding: a rigid block on level ground with isotropic Coulomb friction, driven by both horizontal
+// Bidirectional sliding: a rigid block on level or inclined ground with isotropic Coulomb friction, driven by both horizontal
 // components of the ground acceleration and, optionally, the vertical.
 //
 // Model. Frame: x east, y north, z up; azimuths in degrees clockwise from north (east = 90). The ground accelerates
@@ -39,8 +39,18 @@
 // added). The stiff phases still cost ~240 DP5 steps per slip episode: with 5-15 % of a record slipping the 2-D solver
 // runs at 5-11 M samples/s, ~100-160x slower than the 1-D one (docs/performance.md).
 //
-// Scope. Level ground only (the incline, where gravity's downslope pull breaks the isotropy, is not implemented:
-// make() refuses a slope) and two-way sliding only.
+// Incline (method.md eq S11). On a plane inclined at beta (SlidingBlock::slope_rad) whose fall line runs toward
+// slope_azimuth_deg, with e_d the horizontal unit vector of that azimuth and a = a_d e_d + a_c (a_c across the slope):
+// u and w are measured in the plane, the downslope in-plane axis carried on e_d (so a residual toward the slope's
+// azimuth is a distance down the plane, as sliding.hpp's d), friction is isotropic in the plane with the normal force
+//   N = g_e cos(beta) + a_d sin(beta),   w' = -a_c + (g_e sin(beta) - a_d cos(beta)) e_d - mu_k N+ w/|w|,
+// i.e. the level equations with a -> a_c + (a_d cos(beta) - g_e sin(beta)) e_d and g_e -> N (both still linear on a
+// step, so stick test, onset and method are unchanged; input_work_J_kg then includes gravity's work). On the fall line
+// this is sliding.hpp's two-way incline (a_h = -a_d): tested to 1e-9. After the record the run-out on the still slope
+// curves toward the fall line; it is integrated like the record (a still tail), to its stop. A slope steeper than the
+// kinetic friction angle (tan(beta) >= mu_k) lets a sliding block never stop: at_rest_at_end = false.
+//
+// Scope. Two-way sliding only (one-way, down the fall line only, has no meaning for a block free to move across it).
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -56,6 +66,9 @@ namespace topple {
 struct ComponentAzimuths {
   double first_deg = 90.0;   ///< typical: 90 (east-west channel, positive east)
   double second_deg = 0.0;   ///< typical: 0 (north-south channel, positive north)
+  /// On a slope (SlidingBlock::slope_rad > 0): the azimuth of the downslope direction (the fall line seen from above),
+  /// degrees clockwise from north; unused on level ground.
+  double slope_azimuth_deg = 0.0;
 };
 
 /// Integration tolerances of the slip phases (stick phases and onsets are exact).
@@ -88,14 +101,17 @@ struct Sliding2dSummary {
   double total_slip_duration_s = 0.0;
   double end_time_s = 0.0;                 ///< when the block came to rest (>= record end when it slid past it)
   bool at_rest_at_end = true;              ///< false only when mu_k = 0 and it still slides at the record's end
-  std::optional<double> contact_lost_time_s;  ///< first time g_e <= 0 (the block leaves the ground)
+  std::optional<double> contact_lost_time_s;  ///< first time g_e <= 0 (on a slope: the normal force N <= 0): the
+                                              ///< block leaves the ground
   double input_work_J_kg = 0.0;            ///< integral of -a . w dt: work of the inertial load on the block, per mass
+                                           ///< (on a slope: of the in-plane load, gravity's included)
   double friction_work_J_kg = 0.0;         ///< integral of mu_k g_e^+ |w| dt: energy dissipated by friction, per mass
   std::size_t integrator_steps = 0;        ///< Dormand-Prince steps taken, rejected ones included
 };
 
 /// History on the merged grid's points plus every event (slip start and stop); at an event the row carries the
-/// state after it.
+/// state after it. On a slope the record's end appears twice (the ground turning still) and the run-out's events
+/// follow it.
 struct Sliding2dHistory {
   std::vector<double> time_s;
   std::vector<double> east_m;        ///< u_x
@@ -111,8 +127,9 @@ struct Sliding2dResult {
 };
 
 /// Full response with history. `first` and `second` are the horizontal components (m/s^2, positive toward their
-/// azimuths), `vertical` (optional) the vertical, positive up; any grids (merged exactly). `block` must be level
-/// and two-way: InputError otherwise, as for azimuths that are not finite and perpendicular (to 1e-6 deg).
+/// azimuths), `vertical` (optional) the vertical, positive up; any grids (merged exactly). `block` must be two-way
+/// (level or inclined, the slope's azimuth in `azimuths`): InputError otherwise, as for azimuths that are not finite
+/// and perpendicular (to 1e-6 deg).
 [[nodiscard]] Sliding2dResult slide_2d(const GroundMotion& first, const GroundMotion& second,
                                        const ComponentAzimuths& azimuths, const SlidingBlock& block,
                                        const GroundMotion* vertical = nullptr, const Sliding2dOptions& options = {});
