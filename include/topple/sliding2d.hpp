@@ -47,16 +47,10 @@
 #include <vector>
 
 #include "topple/ground_motion.hpp"
+#include "topple/motion_set.hpp"  // ComponentAzimuths
 #include "topple/sliding.hpp"
 
 namespace topple {
-
-/// The two horizontal components' azimuths, degrees clockwise from north (east = 90). They must be perpendicular
-/// (as an accelerograph's axes are); either handedness.
-struct ComponentAzimuths {
-  double first_deg = 90.0;   ///< typical: 90 (east-west channel, positive east)
-  double second_deg = 0.0;   ///< typical: 0 (north-south channel, positive north)
-};
 
 /// Integration tolerances of the slip phases (stick phases and onsets are exact).
 struct Sliding2dOptions {
