@@ -107,9 +107,6 @@ ComponentAzimuths resolve_azimuths(const GroundMotion& first, const GroundMotion
 
 MotionSet MotionSet::make(const GroundMotion& first, const GroundMotion* second,
                           const std::optional<ComponentAzimuths>& azimuths, const GroundMotion* vertical) {
-  if (second != nullptr && !azimuths) {
-    throw parameter_error("azimuths", "two horizontal components need their azimuths");
-  }
   if (azimuths) azimuths->validate("azimuths");
   for (const GroundMotion* h : {&first, second}) {
     if (h != nullptr && h->metadata().vertical) {

@@ -109,7 +109,9 @@ TEST(MotionSet, RefusesWhatIsNotOneRecording) {
   EXPECT_NO_THROW((void)MotionSet::make(h1, &longer, ComponentAzimuths{90.0, 0.0}));
   expect_input_error([&] { return MotionSet::make(h1, &h1, ComponentAzimuths{90.0, 10.0}); }, "azimuths",
                      "must be perpendicular");
-  expect_input_error([&] { return MotionSet::make(h1, &h1, std::nullopt); }, "azimuths", "need their azimuths");
+  // Unknown azimuths: a set (RotD needs none), but no projection on an azimuth.
+  const MotionSet unknown = MotionSet::make(h1, &h1, std::nullopt);
+  expect_input_error([&] { return unknown.projected(0.0); }, "azimuth", "azimuths are unknown");
   // A channel the header calls vertical, given as a horizontal one, and the reverse.
   RecordMetadata up;
   up.source_file = "station.UD";
@@ -445,16 +447,18 @@ TEST(SynthesisSet, FirstComponentIsTheSingleMotionsShapeAndCoherenceHolds) {
 
 TEST(SynthesisSet, PortablePinnedNumbers) {
   // seed 2024, 0.3 g RotD50, 3 Hz, 20 s, dt 0.01 s, rho 0, V/H 2/3, f_v/f_h 1.5. Pinned from the first run, and
-  // checked outside topple: the CSV that `topple synth --components 3` writes for these parameters was read by numpy
-  // (tests' .venv-test), whose RotD50 of PGA (np.percentile of the peaks of a1 cos t + a2 sin t, t = 0..179 deg)
-  // is 0.3 g to 1e-9 and whose vertical peak is 0.2 g; the single-component generator gives H1's shape (test
-  // above). Exact equality: the generator is portable bit for bit (synthesis.hpp), rotd.cpp's angle table too.
+  // checked outside topple: `topple synth --components 3 --pga 0.3g --freq 3Hz --duration 20 --dt 0.01 --seed 2024`
+  // wrote three CSVs that numpy read (.venv-test): its RotD50 of PGA (np.percentile(.., 50) of the peaks of
+  // a1 cos t + a2 sin t, t = 0..179 deg, np.cos) is 0.29999999999999993 g and RotD100 0.34024781 g, the vertical's
+  // peak 0.19999999999999996 g, and sample 500 x g gives these three values (H2 to the CSV's last digit); the
+  // single-component generator gives H1's shape (test above). Exact equality: the generator is portable bit for bit
+  // (synthesis.hpp), and so is rotd.cpp's angle table.
   SynthesisSetSpec spec = pair_spec(2024);
   const SynthesizedSet set = synthesize_set(spec);
   ASSERT_EQ(set.first.size(), 2001u);
-  EXPECT_EQ(fmt::format("{:.17g}", set.first.accel_m_s2()[500]), "PIN_H1");
-  EXPECT_EQ(fmt::format("{:.17g}", set.second.accel_m_s2()[500]), "PIN_H2");
-  EXPECT_EQ(fmt::format("{:.17g}", set.vertical->accel_m_s2()[500]), "PIN_V");
+  EXPECT_EQ(fmt::format("{:.17g}", set.first.accel_m_s2()[500]), "0.16589594385238426");
+  EXPECT_EQ(fmt::format("{:.17g}", set.second.accel_m_s2()[500]), "-0.59577152828972557");
+  EXPECT_EQ(fmt::format("{:.17g}", set.vertical->accel_m_s2()[500]), "-0.12665730368867878");
 }
 
 TEST(SynthesisSet, BadSpecsAreRefusedNamingTheField) {

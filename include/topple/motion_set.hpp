@@ -55,9 +55,9 @@ struct ComponentAzimuths {
 
 class MotionSet {
  public:
-  /// `first` is the first horizontal component; `second` (optional) the second, perpendicular, with `azimuths`
-  /// (required with a second component, InputError naming "azimuths" otherwise; optional with one: the projection
-  /// needs it); `vertical` (optional), positive up. Merged exactly (header). Throws InputError for azimuths that
+  /// `first` is the first horizontal component; `second` (optional) the second, perpendicular to it; `azimuths`
+  /// their azimuths when known (the projection on an azimuth needs them; RotD does not: its angles are measured from
+  /// the first component); `vertical` (optional), positive up. Merged exactly (header). Throws InputError for azimuths that
   /// are not perpendicular, time spans that hardly overlap (header), a horizontal component whose header says it
   /// is vertical, or a vertical one whose header gives it an azimuth.
   static MotionSet make(const GroundMotion& first, const GroundMotion* second,
