@@ -129,7 +129,7 @@ void validate(const SynthesisSpec& spec);
 // components, the usual assumption for the two horizontal components of a stochastic simulation.
 // PGA of a pair: SynthesisSpec::pga_m_s2 is the pair's RotD50 PGA (Boore 2010; rotd.hpp), the measure modern
 // ground-motion models predict: both components are scaled by one factor so that RotD50 of their PGA equals it
-// (each component's own peak is then about 0.9-1.2 times it).
+// (each component's own peak is then typically 0.85-1.15 times it).
 // Vertical (optional). The same process with its own noise z_3 (PortableRandom(seed + 2 K)), independent of the
 // horizontals, at the predominant frequency f_v = frequency_ratio x f_h and scaled to PGA_v = pga_ratio x the pair's
 // RotD50 PGA. Defaults V/H = 2/3 (the traditional engineering ratio of peak vertical to horizontal acceleration,
