@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "support/noise_record.hpp"
 #include "support/shared_data.hpp"
 #include "topple/error.hpp"
 #include "topple/io/read.hpp"
@@ -172,7 +173,8 @@ TEST(RecordOrientation, FromComponentTexts) {
                         Case{"UP", std::nullopt, true}, Case{"360", 0.0, false}, Case{"HNE", 90.0, false},
                         Case{"HNN", 0.0, false}, Case{"BNZ", std::nullopt, true}, Case{"HN1", std::nullopt, false},
                         Case{"DOWN", std::nullopt, false}, Case{"FN", std::nullopt, false},
-                        Case{"400 DEG", std::nullopt, false}, Case{"", std::nullopt, false}}) {
+                        Case{"400 DEG", std::nullopt, false}, Case{"", std::nullopt, false},
+                        Case{"1: 90 deg", 90.0, false}, Case{"2: Up", std::nullopt, true}}) {
     const io::ComponentOrientation o = io::orientation_from_component(c.text);
     EXPECT_EQ(o.azimuth_deg, c.azimuth) << c.text;
     EXPECT_EQ(o.vertical, c.vertical) << c.text;
@@ -345,16 +347,7 @@ TEST(RotDPeer, PyrotdOnTheCsmipPair) {
   } catch (const nlohmann::json::exception&) {
     FAIL() << "peer script failed: " << text;
   }
-  const auto fine = [&](const GroundMotion& m) {
-    std::vector<double> f;
-    const auto a = m.accel_m_s2();
-    for (std::size_t i = 0; i + 1 < a.size(); ++i) {
-      for (int k = 0; k < kUp; ++k) f.push_back(a[i] + (a[i + 1] - a[i]) * k / static_cast<double>(kUp));
-    }
-    f.push_back(a.back());
-    f.resize(f.size() + static_cast<std::size_t>(std::lround(kPad / (dt / kUp))), 0.0);
-    return GroundMotion::uniform(std::move(f), dt / kUp);
-  };
+  const auto fine = [&](const GroundMotion& m) { return test::upsampled_padded(m, kUp, kPad); };
   const GroundMotion f1 = fine(h1);
   const GroundMotion f3 = fine(c3);
   const MotionSet set = MotionSet::make(f1, &f3, ComponentAzimuths{90.0, 0.0});

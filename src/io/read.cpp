@@ -48,6 +48,8 @@ ComponentOrientation orientation_from_component(std::string_view component) {
   for (char ch : component.substr(0, component.find('('))) {
     c += static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
   }
+  // COSMOS text line 9 names the channel "1: 90 deg": what follows the channel number.
+  if (const auto colon = c.find(':'); colon != std::string::npos) c = c.substr(colon + 1);
   const auto first = c.find_first_not_of(" \t");
   if (first == std::string::npos) return {};
   c = c.substr(first, c.find_last_not_of(" \t") - first + 1);

@@ -73,7 +73,8 @@ void check_input_text(std::string_view content, const std::string& name);
 /// (docs/formats.md, "Orientation"):
 ///   "N-S", "NS" -> azimuth 0; "E-W", "EW" -> 90 (K-NET/KiK-net, positive north and east; KiK-net's "N-S (surface,
 ///   Dir. 4)" too); "U-D", "UD", "UP", "VERT", "Z" -> vertical (positive up);
-///   "90 DEG", "360 deg", "90" (CSMIP V2, COSMOS V2 text line 9, USGS SMC) -> that azimuth mod 360;
+///   "90 DEG", "360 deg", "90" (CSMIP V2, COSMOS V2 text line 9 "1: 90 deg" after its channel number, USGS SMC)
+///   -> that azimuth mod 360;
 ///   a SEED channel code ending in N, E or Z ("HNE", "BNZ"; ESM STREAM, the COSMOS End-of-data line) -> 0, 90,
 ///   vertical (SEED: N and E within 5 deg of north and east; 1, 2 and 3 are unoriented and give nothing).
 /// Anything else ("DOWN", "FN", "-E", "HN1", "") gives nothing: no guess.
