@@ -226,6 +226,21 @@ TEST(RecordOrientation, HandWrittenKnetHeaders) {
   EXPECT_FALSE(odd.metadata().vertical);
 }
 
+TEST(RecordOrientation, HandWrittenEsmHeaders) {
+  // ESM: the STREAM's SEED code. Z up, N north; HN2 is unoriented (SEED 1/2/3): nothing guessed.
+  const auto esm = [](const char* stream) {
+    return fmt::format("EVENT_NAME: TEST\nSTATION_CODE: ABC\nSAMPLING_INTERVAL_S: 0.01\nNDATA: 3\nSTREAM: {}\n"
+                       "UNITS: cm/s^2\nDATA_TYPE: ACCELERATION\n0.0\n1.0\n0.5\n", stream);
+  };
+  const GroundMotion z = io::parse_motion(esm("HNZ"), "hand.HNZ.ASC");
+  EXPECT_TRUE(z.metadata().vertical);
+  EXPECT_FALSE(z.metadata().azimuth_deg.has_value());
+  EXPECT_EQ(io::parse_motion(esm("HNN"), "hand.HNN.ASC").metadata().azimuth_deg, 0.0);
+  const GroundMotion two = io::parse_motion(esm("HN2"), "hand.HN2.ASC");
+  EXPECT_FALSE(two.metadata().azimuth_deg.has_value());
+  EXPECT_FALSE(two.metadata().vertical);
+}
+
 // ---- RotD: closed forms and linearity ----
 
 TEST(RotD, SecondComponentZeroGivesCos45) {
