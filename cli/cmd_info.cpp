@@ -1,4 +1,6 @@
-// topple info FILE: what a record is and how strong it is.
+// topple info FILE [FILE2 [FILE3]]: what a record is and how strong it is; for a pair (and a vertical), each
+// component and the pair's RotD50 / RotD100 (rotd.hpp).
+#include <charconv>
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -10,8 +12,11 @@
 #include "commands.hpp"
 #include "progress.hpp"
 #include "common.hpp"
+#include "slide_2d.hpp"
 #include "topple/error.hpp"
 #include "topple/intensity.hpp"
+#include "topple/motion_set.hpp"
+#include "topple/rotd.hpp"
 #include "topple/plot.hpp"
 #include "topple/spectra.hpp"
 
@@ -26,38 +31,268 @@ std::string text_value(const OptionalMeasure& m, const char* format_unit) {
   return m.value ? fmt::format(fmt::runtime(format_unit), *m.value) : "undefined (" + m.undefined_reason + ")";
 }
 
+struct InfoOptions {
+  std::vector<std::string> files;
+  std::string channels;  // "1,3,2": one channel per file (multi-channel files)
+  std::string azimuths;  // "A1,A2"
+  bool json = false;
+  std::string plot;
+  bool quiet = false;
+};
+
+/// The channel of each file from --channels ("1,3,2"), or --channel for all.
+std::vector<std::optional<int>> channels_of(const InfoOptions& o, const MotionOptions& m) {
+  std::vector<std::optional<int>> out(o.files.size(), m.channel);
+  if (o.channels.empty()) return out;
+  if (m.channel) throw parameter_error("--channels", "give either --channel or --channels");
+  std::vector<std::optional<int>> list;
+  std::string_view rest(o.channels);
+  while (true) {
+    const auto comma = rest.find(',');
+    const std::string_view part = rest.substr(0, comma);
+    int c = 0;
+    const auto [ptr, ec] = std::from_chars(part.data(), part.data() + part.size(), c);
+    if (ec != std::errc{} || ptr != part.data() + part.size()) {
+      throw parameter_error("--channels", fmt::format("expected one channel number per file, e.g. 1,3,2; got '{}'",
+                                                      o.channels));
+    }
+    list.push_back(c);
+    if (comma == std::string_view::npos) break;
+    rest = rest.substr(comma + 1);
+  }
+  if (list.size() != o.files.size()) {
+    throw parameter_error("--channels", fmt::format("{} channels for {} files", list.size(), o.files.size()));
+  }
+  return list;
+}
+
+/// One component's measures as JSON (the object `topple info FILE --json` prints).
+nlohmann::ordered_json component_json(const GroundMotion& motion, const IntensityMeasures& all, const std::string& file,
+                                      double g) {
+  const BasicIntensity& im = all.basic;
+  const auto& meta = motion.metadata();
+  const std::optional<SignificantDuration>& duration = all.d5_95;
+  nlohmann::ordered_json out;
+  out["file"] = file;
+  out["format"] = meta.format;
+  out["event"] = meta.event;
+  out["station"] = meta.station;
+  out["component"] = meta.component;
+  out["azimuth_deg"] = meta.azimuth_deg ? nlohmann::ordered_json(*meta.azimuth_deg) : nlohmann::ordered_json(nullptr);
+  out["vertical"] = meta.vertical;
+  out["units_as_read"] = meta.units_as_read;
+  out["npts"] = motion.size();
+  out["uniform"] = motion.is_uniform();
+  out["dt_s"] = motion.dt_s();
+  out["start_time_s"] = motion.start_time_s();
+  out["duration_s"] = motion.duration_s();
+  out["pga_g"] = im.pga_m_s2 / g;
+  out["pga_m_s2"] = im.pga_m_s2;
+  out["pga_time_s"] = im.pga_time_s;
+  out["pgv_m_s"] = im.pgv_m_s;
+  out["pgd_m"] = im.pgd_m;
+  out["arias_m_s"] = im.arias_m_s;
+  out["d5_95_s"] = duration ? nlohmann::ordered_json(duration->duration_s) : nlohmann::ordered_json(nullptr);
+  out["d5_time_s"] = duration ? nlohmann::ordered_json(duration->start_s) : nlohmann::ordered_json(nullptr);
+  out["d95_time_s"] = duration ? nlohmann::ordered_json(duration->end_s) : nlohmann::ordered_json(nullptr);
+  out["cav_m_s"] = all.cav_m_s;
+  out["tp_s"] = json_value(all.tp_s);
+  out["tm_s"] = json_value(all.tm_s);
+  out["predominant_frequency_hz"] = json_value(all.predominant_frequency_hz);
+  out["g_m_s2"] = g;
+  return out;
+}
+
+void check_finite(const GroundMotion& motion, const IntensityMeasures& all) {
+  const BasicIntensity& im = all.basic;
+  require_finite({{"dt", motion.dt_s()}, {"start time", motion.start_time_s()}, {"duration", motion.duration_s()},
+                  {"PGA", im.pga_m_s2}, {"PGA time", im.pga_time_s}, {"PGV", im.pgv_m_s}, {"PGD", im.pgd_m},
+                  {"Arias intensity", im.arias_m_s}, {"CAV", all.cav_m_s}, {"Tp", all.tp_s.value.value_or(0.0)},
+                  {"Tm", all.tm_s.value.value_or(0.0)}, {"f_p", all.predominant_frequency_hz.value.value_or(0.0)}});
+  if (all.d5_95) {
+    require_finite({{"D5-95", all.d5_95->duration_s}, {"D5", all.d5_95->start_s}, {"D95", all.d5_95->end_s}});
+  }
+}
+
+void print_component(const GroundMotion& motion, const IntensityMeasures& all, const std::string& file, double g) {
+  const BasicIntensity& im = all.basic;
+  const auto& meta = motion.metadata();
+  const std::optional<SignificantDuration>& duration = all.d5_95;
+  fmt::print("file        {}\n", file);
+  fmt::print("format      {}\n", meta.format);
+  if (!meta.event.empty()) fmt::print("event       {}\n", meta.event);
+  if (!meta.station.empty()) fmt::print("station     {}\n", meta.station);
+  if (!meta.component.empty()) fmt::print("component   {}\n", meta.component);
+  if (meta.azimuth_deg) fmt::print("azimuth     {:g} deg (clockwise from north, from the header)\n", *meta.azimuth_deg);
+  if (meta.vertical) fmt::print("vertical    yes (from the header)\n");
+  if (!meta.units_as_read.empty()) fmt::print("units read  {}\n", meta.units_as_read);
+  fmt::print("npts        {}\n", motion.size());
+  fmt::print("dt          {:.6g} s{}\n", motion.dt_s(), motion.is_uniform() ? "" : " (mean; irregular sampling)");
+  fmt::print("duration    {:.4f} s\n", motion.duration_s());
+  fmt::print("PGA         {:.5f} g ({:.5g} m/s2) at {:.4f} s\n", im.pga_m_s2 / g, im.pga_m_s2, im.pga_time_s);
+  fmt::print("PGV         {:.5g} m/s\n", im.pgv_m_s);
+  fmt::print("PGD         {:.5g} m   (no baseline correction)\n", im.pgd_m);
+  fmt::print("Arias       {:.5g} m/s\n", im.arias_m_s);
+  if (duration) {
+    fmt::print("D5-95       {:.4f} s (from {:.4f} s to {:.4f} s)\n", duration->duration_s, duration->start_s,
+               duration->end_s);
+  } else {
+    fmt::print("D5-95       undefined (the record is identically zero)\n");
+  }
+  fmt::print("CAV         {:.5g} m/s\n", all.cav_m_s);
+  fmt::print("Tp          {}   (peak of the 5%-damped PSA)\n", text_value(all.tp_s, "{:.4f} s"));
+  fmt::print("Tm          {}   (Rathje et al. 1998)\n", text_value(all.tm_s, "{:.4f} s"));
+  fmt::print("f_p         {}   (peak of the Konno-Ohmachi b=40 smoothed FAS)\n",
+             text_value(all.predominant_frequency_hz, "{:.4f} Hz"));
+  fmt::print("g           {} m/s2\n", g);
+}
+
+nlohmann::ordered_json rotd_json(const RotDValue& v, double scale, const MotionSet& set, const char* unit) {
+  nlohmann::ordered_json j;
+  j[fmt::format("rotd50_{}", unit)] = v.rotd50 / scale;
+  j[fmt::format("rotd100_{}", unit)] = v.rotd100 / scale;
+  j["rotd100_angle_deg"] = v.rotd100_angle_deg;
+  const auto az = rotd_azimuth_deg(set, v.rotd100_angle_deg);
+  j["rotd100_azimuth_deg"] = az ? nlohmann::ordered_json(*az) : nlohmann::ordered_json(nullptr);
+  return j;
+}
+
+/// Several files: each component, then the pair's RotD.
+void run_info_set(const InfoOptions& o, const MotionOptions& base) {
+  if (!o.plot.empty()) throw parameter_error("--plot", "draws one record; give one file");
+  const double g = base.g_m_s2;
+  const auto channels = channels_of(o, base);
+  std::vector<GroundMotion> motions;
+  double factor = 1.0;
+  for (std::size_t k = 0; k < o.files.size(); ++k) {
+    MotionOptions m = base;
+    m.file = o.files[k];
+    m.channel = channels[k];
+    GroundMotion raw = io::read_motion(m.file, read_options(m));
+    // Scaling options apply to the first component; the others get the same factor (one shaking, scaled as one).
+    if (k == 0) {
+      motions.push_back(transform_motion(raw, m));
+      factor = amplitude_factor(raw, motions.front());
+    } else {
+      motions.push_back(raw.scaled(factor));
+    }
+  }
+  std::vector<std::string> warnings;
+  std::optional<ComponentAzimuths> azimuths;
+  const std::optional<ComponentAzimuths> user =
+      o.azimuths.empty() ? std::nullopt : std::optional(parse_azimuths(o.azimuths));
+  const GroundMotion& h1 = motions[0];
+  const GroundMotion& h2 = motions[1];
+  if (user || (h1.metadata().azimuth_deg && h2.metadata().azimuth_deg)) {
+    azimuths = resolve_azimuths(h1, h2, user, warnings, "--azimuths");
+  }
+  const MotionSet set = MotionSet::make(h1, &h2, azimuths, motions.size() == 3 ? &motions[2] : nullptr);
+  const std::vector<double> periods = rotd_periods_s();
+  const RotDMeasures rotd = rotd_measures(set, periods, 0.05);
+  std::vector<IntensityMeasures> measures;
+  for (const GroundMotion& m : motions) {
+    measures.push_back(intensity_measures(m, g));
+    check_finite(m, measures.back());
+  }
+  require_finite({{"RotD50 PGA", rotd.pga_m_s2.rotd50}, {"RotD100 PGA", rotd.pga_m_s2.rotd100}});
+  for (const RotDValue& v : rotd.psa_m_s2) require_finite({{"RotD50 PSA", v.rotd50}, {"RotD100 PSA", v.rotd100}});
+  for (const std::string& w : warnings) fmt::print(stderr, "warning: {}\n", w);
+  if (o.json) {
+    nlohmann::ordered_json out;
+    out["components"] = nlohmann::ordered_json::array();
+    for (std::size_t k = 0; k < motions.size(); ++k) {
+      out["components"].push_back(component_json(motions[k], measures[k], o.files[k], g));
+    }
+    out["azimuths_deg"] = azimuths ? nlohmann::ordered_json({azimuths->first_deg, azimuths->second_deg})
+                                   : nlohmann::ordered_json(nullptr);
+    nlohmann::ordered_json r;
+    r["definition"] = "Boore 2010: rotation angles 0..179 deg from the first component toward the second; RotD50 the "
+                      "median, RotD100 the largest";
+    r["merged_npts"] = set.size();
+    r["pga"] = rotd_json(rotd.pga_m_s2, g, set, "g");
+    r["damping"] = rotd.damping;
+    r["psa"] = nlohmann::ordered_json::array();
+    for (std::size_t p = 0; p < periods.size(); ++p) {
+      nlohmann::ordered_json row;
+      row["period_s"] = periods[p];
+      row.update(rotd_json(rotd.psa_m_s2[p], g, set, "g"));
+      r["psa"].push_back(row);
+    }
+    out["rotd"] = r;
+    out["warnings"] = warnings;
+    out["g_m_s2"] = g;
+    fmt::print("{}\n", out.dump(2));
+    return;
+  }
+  const char* names[] = {"first horizontal component (H1)", "second horizontal component (H2)", "vertical component"};
+  for (std::size_t k = 0; k < motions.size(); ++k) {
+    fmt::print("== {}\n", names[k]);
+    print_component(motions[k], measures[k], o.files[k], g);
+    fmt::print("\n");
+  }
+  fmt::print("== the horizontal pair: RotD50 / RotD100 (Boore 2010; angles 0..179 deg, {} merged samples)\n",
+             set.size());
+  if (azimuths) {
+    fmt::print("azimuths    H1 {:g} deg, H2 {:g} deg (clockwise from north)\n", azimuths->first_deg,
+               azimuths->second_deg);
+  } else {
+    fmt::print("azimuths    unknown (give --azimuths A1,A2): directions are angles from H1 toward H2\n");
+  }
+  const auto direction = [&](double angle) {
+    const auto az = rotd_azimuth_deg(set, angle);
+    return az ? fmt::format("azimuth {:.0f} deg", *az) : fmt::format("{:.0f} deg from H1", angle);
+  };
+  fmt::print("PGA         RotD50 {:.5f} g, RotD100 {:.5f} g ({})\n", rotd.pga_m_s2.rotd50 / g,
+             rotd.pga_m_s2.rotd100 / g, direction(rotd.pga_m_s2.rotd100_angle_deg));
+  fmt::print("PSA, 5 % damping:\n  period_s  RotD50_g   RotD100_g  RotD100 direction\n");
+  for (std::size_t p = 0; p < periods.size(); ++p) {
+    fmt::print("  {:<8g}  {:<9.5f}  {:<9.5f}  {}\n", periods[p], rotd.psa_m_s2[p].rotd50 / g,
+               rotd.psa_m_s2[p].rotd100 / g, direction(rotd.psa_m_s2[p].rotd100_angle_deg));
+  }
+}
+
 }  // namespace
 
 void add_info_command(CLI::App& app) {
   auto options = std::make_shared<MotionOptions>();
-  auto json = std::make_shared<bool>(false);
-  auto plot_path = std::make_shared<std::string>();
-  auto quiet = std::make_shared<bool>(false);
+  auto info = std::make_shared<InfoOptions>();
   CLI::App* cmd = app.add_subcommand("info", "Describe a ground-motion record: format, station, npts, dt, PGA, PGV, "
-                                             "PGD, Arias intensity, D5-95, CAV, Tp, Tm, predominant frequency");
-  cmd->add_option("file", options->file, "Record file (format detected from content)")->required();
+                                             "PGD, Arias intensity, D5-95, CAV, Tp, Tm, predominant frequency; for two horizontal "
+                                             "components (and a vertical), each of them and the pair's RotD50 and "
+                                             "RotD100 of PGA and 5%-damped PSA");
+  cmd->add_option("files", info->files, "Record file (format detected from content); or H1 H2 [V]: two horizontal "
+                                        "components and a vertical of one station")
+      ->required()
+      ->expected(1, 3);
   add_motion_options(*cmd, *options);
-  cmd->add_flag("--json", *json, "Print one JSON object instead of text");
-  add_quiet_flag(*cmd, *quiet);  // no bar: info is quick; accepted so that every command takes --quiet
-  cmd->add_option("--plot", *plot_path, "Draw acceleration, velocity, displacement and the 5%-damped PSA spectrum "
+  cmd->add_option("--channels", info->channels, "With several files: the channel of each (multi-channel files such as "
+                                                "CSMIP V2), e.g. 1,3,2");
+  cmd->add_option("--azimuths", info->azimuths, "With two horizontal components: their azimuths A1,A2 in degrees "
+                                                "clockwise from north (default: the files' headers; a value given "
+                                                "here wins over a header, with a warning)");
+  cmd->add_flag("--json", info->json, "Print one JSON object instead of text");
+  add_quiet_flag(*cmd, info->quiet);  // no bar: info is quick; accepted so that every command takes --quiet
+  cmd->add_option("--plot", info->plot, "Draw acceleration, velocity, displacement and the 5%-damped PSA spectrum "
                                         "with Tp marked to this .svg or .png file (gnuplot)");
-  cmd->callback([options, json, plot_path] {
-    check_plot_path(*plot_path);
+  cmd->callback([options, info] {
+    check_plot_path(info->plot);
+    check_g(options->g_m_s2);
+    if (info->files.size() > 1) {
+      run_info_set(*info, *options);
+      return;
+    }
+    if (!info->channels.empty()) throw parameter_error("--channels", "is for several files; use --channel");
+    if (!info->azimuths.empty()) throw parameter_error("--azimuths", "needs two horizontal components (H1 H2)");
+    const auto plot_path = &info->plot;
+    const auto json = &info->json;
+    options->file = info->files.front();
     const GroundMotion motion = load_motion(*options);
     const IntensityMeasures all = intensity_measures(motion, options->g_m_s2);
     const BasicIntensity& im = all.basic;
     const auto& meta = motion.metadata();
     const double g = options->g_m_s2;
-    const std::optional<SignificantDuration>& duration = all.d5_95;
-    const double cav = all.cav_m_s;
     const OptionalMeasure& tp = all.tp_s;
-    const OptionalMeasure& tm = all.tm_s;
-    const OptionalMeasure& fp = all.predominant_frequency_hz;
-    require_finite({{"dt", motion.dt_s()}, {"start time", motion.start_time_s()}, {"duration", motion.duration_s()},
-                    {"PGA", im.pga_m_s2}, {"PGA time", im.pga_time_s}, {"PGV", im.pgv_m_s}, {"PGD", im.pgd_m},
-                    {"Arias intensity", im.arias_m_s}, {"CAV", cav}, {"Tp", tp.value.value_or(0.0)},
-                    {"Tm", tm.value.value_or(0.0)}, {"f_p", fp.value.value_or(0.0)}});
-    if (duration) require_finite({{"D5-95", duration->duration_s}, {"D5", duration->start_s}, {"D95", duration->end_s}});
+    check_finite(motion, all);
     if (!plot_path->empty()) {
       // Tp's own spectrum (spectra.hpp): 5 % damping on Tp's periods.
       const auto periods = tp_periods_s();
@@ -73,59 +308,10 @@ void add_info_command(CLI::App& app) {
                    *plot_path);
     }
     if (*json) {
-      nlohmann::ordered_json out;
-      out["file"] = options->file;
-      out["format"] = meta.format;
-      out["event"] = meta.event;
-      out["station"] = meta.station;
-      out["component"] = meta.component;
-      out["units_as_read"] = meta.units_as_read;
-      out["npts"] = motion.size();
-      out["uniform"] = motion.is_uniform();
-      out["dt_s"] = motion.dt_s();
-      out["start_time_s"] = motion.start_time_s();
-      out["duration_s"] = motion.duration_s();
-      out["pga_g"] = im.pga_m_s2 / g;
-      out["pga_m_s2"] = im.pga_m_s2;
-      out["pga_time_s"] = im.pga_time_s;
-      out["pgv_m_s"] = im.pgv_m_s;
-      out["pgd_m"] = im.pgd_m;
-      out["arias_m_s"] = im.arias_m_s;
-      out["d5_95_s"] = duration ? nlohmann::ordered_json(duration->duration_s) : nlohmann::ordered_json(nullptr);
-      out["d5_time_s"] = duration ? nlohmann::ordered_json(duration->start_s) : nlohmann::ordered_json(nullptr);
-      out["d95_time_s"] = duration ? nlohmann::ordered_json(duration->end_s) : nlohmann::ordered_json(nullptr);
-      out["cav_m_s"] = cav;
-      out["tp_s"] = json_value(tp);
-      out["tm_s"] = json_value(tm);
-      out["predominant_frequency_hz"] = json_value(fp);
-      out["g_m_s2"] = g;
-      fmt::print("{}\n", out.dump(2));
+      fmt::print("{}\n", component_json(motion, all, options->file, g).dump(2));
       return;
     }
-    fmt::print("file        {}\n", options->file);
-    fmt::print("format      {}\n", meta.format);
-    if (!meta.event.empty()) fmt::print("event       {}\n", meta.event);
-    if (!meta.station.empty()) fmt::print("station     {}\n", meta.station);
-    if (!meta.component.empty()) fmt::print("component   {}\n", meta.component);
-    if (!meta.units_as_read.empty()) fmt::print("units read  {}\n", meta.units_as_read);
-    fmt::print("npts        {}\n", motion.size());
-    fmt::print("dt          {:.6g} s{}\n", motion.dt_s(), motion.is_uniform() ? "" : " (mean; irregular sampling)");
-    fmt::print("duration    {:.4f} s\n", motion.duration_s());
-    fmt::print("PGA         {:.5f} g ({:.5g} m/s2) at {:.4f} s\n", im.pga_m_s2 / g, im.pga_m_s2, im.pga_time_s);
-    fmt::print("PGV         {:.5g} m/s\n", im.pgv_m_s);
-    fmt::print("PGD         {:.5g} m   (no baseline correction)\n", im.pgd_m);
-    fmt::print("Arias       {:.5g} m/s\n", im.arias_m_s);
-    if (duration) {
-      fmt::print("D5-95       {:.4f} s (from {:.4f} s to {:.4f} s)\n", duration->duration_s, duration->start_s,
-                 duration->end_s);
-    } else {
-      fmt::print("D5-95       undefined (the record is identically zero)\n");
-    }
-    fmt::print("CAV         {:.5g} m/s\n", cav);
-    fmt::print("Tp          {}   (peak of the 5%-damped PSA)\n", text_value(tp, "{:.4f} s"));
-    fmt::print("Tm          {}   (Rathje et al. 1998)\n", text_value(tm, "{:.4f} s"));
-    fmt::print("f_p         {}   (peak of the Konno-Ohmachi b=40 smoothed FAS)\n", text_value(fp, "{:.4f} Hz"));
-    fmt::print("g           {} m/s2\n", g);
+    print_component(motion, all, options->file, g);
     if (!plot_path->empty()) fmt::print("figure      {}\n", *plot_path);
   });
 }

@@ -9,6 +9,7 @@
 #include "progress.hpp"
 #include "common.hpp"
 #include "slide_2d.hpp"
+#include "topple/motion_set.hpp"
 #include "slide_flexible.hpp"
 #include "topple/error.hpp"
 #include "topple/io/write.hpp"
@@ -72,11 +73,14 @@ void run_slide(const SlideOptions& o) {
     if (o.flexible.active() || !o.out.empty() || !o.plot.empty()) {
       throw parameter_error("--h2", "--out, --plot and flexible supports are not available with two components yet");
     }
-    if (o.azimuths.empty()) {
-      throw parameter_error("--azimuths", "required with --h2: the two components' azimuths, degrees clockwise from "
-                                          "north, as A1,A2 (e.g. 90,0 for east and north)");
-    }
-    ComponentAzimuths azimuths = parse_azimuths(o.azimuths);
+    // The second component is scaled with the first (the shaking is scaled as a whole), as the vertical is.
+    const GroundMotion second = io::read_motion(o.h2, read_options(o.motion)).scaled(run.input.scale_factor);
+    // Azimuths: --azimuths, else the files' headers (K-NET, CSMIP, COSMOS, ESM, SMC); --azimuths wins over a header
+    // with a warning (motion_set.hpp).
+    std::vector<std::string> warnings;
+    ComponentAzimuths azimuths = resolve_azimuths(
+        horizontal, second, o.azimuths.empty() ? std::nullopt : std::optional(parse_azimuths(o.azimuths)), warnings);
+    for (const std::string& w : warnings) fmt::print(stderr, "warning: {}\n", w);
     if (o.slope_deg != 0.0 && !o.slope_azimuth_deg) {
       throw parameter_error("--slope-azimuth-deg", "required with --h2 and --slope-deg: the azimuth of the downslope "
                                                    "direction, degrees clockwise from north");
@@ -85,10 +89,10 @@ void run_slide(const SlideOptions& o) {
       if (o.slope_deg == 0.0) throw parameter_error("--slope-azimuth-deg", "needs --slope-deg (a slope)");
       azimuths.slope_azimuth_deg = *o.slope_azimuth_deg;
     }
-    // The second component is scaled with the first (the shaking is scaled as a whole), as the vertical is.
-    const GroundMotion second = io::read_motion(o.h2, read_options(o.motion)).scaled(run.input.scale_factor);
-    run_bidirectional_slide(horizontal, second, azimuths, block, vertical_ptr, o.json, run.input.motion, o.h2,
-                            run.input.scale_factor);
+    // One grid for the three components (exact merge; refuses records that are not one recording).
+    const MotionSet set = MotionSet::make(horizontal, &second, azimuths, vertical_ptr);
+    run_bidirectional_slide(set.first(), set.second(), azimuths, block, set.vertical_ptr(), o.json, run.input.motion,
+                            o.h2, run.input.scale_factor);
     return;
   }
   if (!o.azimuths.empty()) throw parameter_error("--azimuths", "needs --h2 (the second horizontal component)");
@@ -167,9 +171,11 @@ void add_slide_command(CLI::App& app) {
   cmd->add_flag("--one-way", o->one_way, "Down-slope sliding only (SLAMMER rigid-block convention)");
   cmd->add_option("--vertical", o->vertical, "Vertical acceleration record (positive up), scaled with the horizontal");
   cmd->add_option("--h2", o->h2, "Second horizontal component (record file): bidirectional sliding, friction "
-                                 "against the 2-D relative velocity in the plane; needs --azimuths");
+                                 "against the 2-D relative velocity in the plane; --azimuths unless the headers "
+                                 "state them");
   cmd->add_option("--azimuths", o->azimuths, "With --h2: the two components' azimuths A1,A2 in degrees clockwise "
-                                             "from north (perpendicular), e.g. 90,0");
+                                             "from north (perpendicular), e.g. 90,0; default: the files' headers "
+                                             "where they state them (a value given here wins, with a warning)");
   cmd->add_option("--slope-azimuth-deg", o->slope_azimuth_deg, "With --h2 and --slope-deg: azimuth of the downslope "
                                                                "direction, degrees clockwise from north");
   cmd->add_option("--out", o->out, "Write the time history to this CSV file");

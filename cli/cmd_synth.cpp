@@ -2,6 +2,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
@@ -19,6 +20,9 @@
 #include "topple/spectra.hpp"
 #include "topple/synthesis.hpp"
 #include "topple/units.hpp"
+#include "topple/motion_set.hpp"
+#include "topple/rotd.hpp"
+#include "slide_2d.hpp"
 
 namespace topple::cli {
 namespace {
@@ -37,7 +41,20 @@ struct SynthOptions {
   std::string out;
   std::string plot;
   bool json = false;
+  int components = 1;        // 1; 2: a horizontal pair; 3: the pair and a vertical
+  double coherence = 0.0;    // rho of the pair's white noises
+  double vh_ratio = 2.0 / 3.0;
+  double vh_freq_ratio = 1.5;
+  std::string azimuths = "90,0";
 };
+
+/// "motion.csv" -> "motion.h1.csv" (the suffix before the extension; appended when there is none).
+std::string component_path(const std::string& path, const char* suffix) {
+  const std::filesystem::path p(path);
+  std::filesystem::path out = p;
+  out.replace_filename(p.stem().string() + "." + suffix + p.extension().string());
+  return out.string();
+}
 
 /// Decimals that print every multiple of dt exactly enough for the reader to see a uniform grid (dt = 0.01 -> 2);
 /// nullopt when dt has no short decimal form.
@@ -51,10 +68,11 @@ std::optional<int> decimals_of(double dt) {
 }
 
 void write_motion_csv(const std::string& path, const GroundMotion& motion, const SynthesisSpec& spec, double f_g,
-                      double g) {
+                      double g, const std::string& component_line = {}) {
   io::OutputFile file(path);
   std::ostream& out = file.stream();
   out << "# topple synth: Kanai-Tajimi / Clough-Penzien filtered white noise under a time envelope (docs/method.md)\n";
+  if (!component_line.empty()) out << "# " << component_line << "\n";
   out << fmt::format("# model={} envelope={} pga_g={} freq_hz={} duration_s={} dt_s={} seed={} zeta_g={} "
                      "f_g_hz={:.9g} g_m_s2={}\n",
                      filter_model_name(spec.model), envelope_kind_name(spec.envelope), spec.pga_m_s2 / g,
@@ -72,6 +90,95 @@ void write_motion_csv(const std::string& path, const GroundMotion& motion, const
   file.commit();
 }
 
+/// --components 2 or 3: a horizontal pair (RotD50 PGA = --pga) and optionally a vertical, one CSV per component.
+void run_synth_set(const SynthOptions& o, const SynthesisSpec& horizontal) {
+  if (o.components != 2 && o.components != 3) {
+    throw parameter_error("--components", fmt::format("1, 2 (a horizontal pair) or 3 (and a vertical), got {}",
+                                                      o.components));
+  }
+  if (!o.plot.empty()) throw parameter_error("--plot", "draws one motion; not with --components 2 or 3");
+  if (o.out.empty()) throw parameter_error("--out", "give the CSV file name; the components get .h1, .h2, .v");
+  SynthesisSetSpec spec;
+  spec.horizontal = horizontal;
+  spec.coherence = o.coherence;
+  spec.azimuths = parse_azimuths(o.azimuths);
+  spec.vertical = o.components == 3;
+  spec.vertical_pga_ratio = o.vh_ratio;
+  spec.vertical_frequency_ratio = o.vh_freq_ratio;
+  const SynthesizedSet set = [&] {
+    try {
+      return synthesize_set(spec);
+    } catch (const InputError& e) {
+      const std::string& field = e.where().field;
+      throw parameter_error(field == "coherence" ? "--coherence" : field == "azimuths" ? "--azimuths"
+                            : field == "vertical_pga_ratio" ? "--vh-ratio"
+                            : field == "vertical_frequency_ratio" || field.starts_with("vertical ") ? "--vh-freq-ratio"
+                                                                                                      : field,
+                            e.problem());
+    }
+  }();
+  const std::string p1 = component_path(o.out, "h1");
+  const std::string p2 = component_path(o.out, "h2");
+  const std::string pv = component_path(o.out, "v");
+  for (const std::string& p : {p1, p2}) check_output_path(p);
+  if (set.vertical) check_output_path(pv);
+  const double g = o.g_m_s2;
+  const double f_g = ground_frequency_for_request_hz(horizontal.predominant_frequency_hz, horizontal.ground_damping,
+                                                     horizontal.model);
+  const auto line = [&](const char* name, double az) {
+    return fmt::format("component={} azimuth_deg={:g} (clockwise from north) coherence={:g}; the pair's RotD50 PGA is "
+                       "pga_g", name, az, spec.coherence);
+  };
+  write_motion_csv(p1, set.first, horizontal, f_g, g, line("H1", spec.azimuths.first_deg));
+  write_motion_csv(p2, set.second, horizontal, f_g, g, line("H2", spec.azimuths.second_deg));
+  SynthesisSpec vspec = horizontal;
+  if (set.vertical) {
+    vspec.pga_m_s2 = spec.vertical_pga_ratio * horizontal.pga_m_s2;
+    vspec.predominant_frequency_hz = spec.vertical_frequency_ratio * horizontal.predominant_frequency_hz;
+    const double f_gv =
+        ground_frequency_for_request_hz(vspec.predominant_frequency_hz, vspec.ground_damping, vspec.model);
+    write_motion_csv(pv, *set.vertical, vspec, f_gv, g,
+                     fmt::format("component=V vertical (positive up): V/H PGA ratio {:g} of the pair's RotD50 PGA, "
+                                 "f_v/f_h {:g}, its own noise (seed stream 3)",
+                                 spec.vertical_pga_ratio, spec.vertical_frequency_ratio));
+  }
+  const MotionSet ms = MotionSet::make(set.first, &set.second, spec.azimuths);
+  const RotDMeasures r = rotd_measures(ms, {});
+  if (o.json) {
+    nlohmann::ordered_json j;
+    j["out"] = set.vertical ? nlohmann::ordered_json({p1, p2, pv}) : nlohmann::ordered_json({p1, p2});
+    j["model"] = filter_model_name(horizontal.model);
+    j["envelope"] = envelope_kind_name(horizontal.envelope);
+    j["seed"] = horizontal.seed;
+    j["npts"] = set.first.size();
+    j["dt_s"] = horizontal.dt_s;
+    j["azimuths_deg"] = {spec.azimuths.first_deg, spec.azimuths.second_deg};
+    j["coherence"] = spec.coherence;
+    j["rotd50_pga_g"] = r.pga_m_s2.rotd50 / g;
+    j["rotd100_pga_g"] = r.pga_m_s2.rotd100 / g;
+    j["pga_g"] = {set.first.pga_m_s2() / g, set.second.pga_m_s2() / g};
+    j["vertical_pga_g"] = set.vertical ? nlohmann::ordered_json(set.vertical->pga_m_s2() / g)
+                                       : nlohmann::ordered_json(nullptr);
+    j["vertical_frequency_hz"] = set.vertical ? nlohmann::ordered_json(vspec.predominant_frequency_hz)
+                                              : nlohmann::ordered_json(nullptr);
+    j["requested_frequency_hz"] = horizontal.predominant_frequency_hz;
+    j["g_m_s2"] = g;
+    fmt::print("{}\n", j.dump(2));
+    return;
+  }
+  fmt::print("wrote {} and {}{}: {} samples each, dt {} s, seed {}, coherence {:g}\n", p1, p2,
+             set.vertical ? " and " + pv : "", set.first.size(), horizontal.dt_s, horizontal.seed, spec.coherence);
+  fmt::print("pair: RotD50 PGA {:.5g} g (the --pga), RotD100 {:.5g} g; H1 ({:g} deg) PGA {:.5g} g, H2 ({:g} deg) "
+             "PGA {:.5g} g\n",
+             r.pga_m_s2.rotd50 / g, r.pga_m_s2.rotd100 / g, spec.azimuths.first_deg, set.first.pga_m_s2() / g,
+             spec.azimuths.second_deg, set.second.pga_m_s2() / g);
+  if (set.vertical) {
+    fmt::print("vertical: PGA {:.5g} g (V/H {:g}), requested predominant frequency {:.4g} Hz (f_v/f_h {:g})\n",
+               set.vertical->pga_m_s2() / g, spec.vertical_pga_ratio, vspec.predominant_frequency_hz,
+               spec.vertical_frequency_ratio);
+  }
+}
+
 void run_synth(const SynthOptions& o) {
   check_g(o.g_m_s2);
   if (o.out.empty() && o.plot.empty()) {
@@ -79,7 +186,7 @@ void run_synth(const SynthOptions& o) {
                           "give the CSV file to write (--out motion.csv), a figure (--plot motion.svg), or both");
   }
   check_plot_path(o.plot);
-  check_output_path(o.out);
+  if (o.components == 1) check_output_path(o.out);
   SynthesisSpec spec;
   spec.pga_m_s2 = parse_acceleration_m_s2(o.pga, "--pga", o.g_m_s2);
   spec.predominant_frequency_hz = parse_frequency_hz(o.freq, "--freq");
@@ -97,6 +204,10 @@ void run_synth(const SynthOptions& o) {
     const std::string option = field == "pga" ? "--pga" : field == "freq" ? "--freq" : field == "duration" ? "--duration"
                                : field == "dt" ? "--dt" : field == "ground_damping" ? "--zeta-g" : field;
     throw parameter_error(option, e.problem());
+  }
+  if (o.components != 1) {
+    run_synth_set(o, spec);
+    return;
   }
   const GroundMotion motion = synthesize(spec);
   const double f_g = ground_frequency_for_request_hz(spec.predominant_frequency_hz, spec.ground_damping, spec.model);
@@ -163,6 +274,21 @@ void add_synth_command(CLI::App& app) {
   cmd->add_option("--plot", o->plot, "Draw the motion and its smoothed Fourier spectrum with the requested and "
                                      "measured predominant frequency to this .svg or .png file (gnuplot)");
   cmd->add_flag("--json", o->json, "Print a JSON summary instead of text");
+  cmd->add_option("--components", o->components, "1 (one motion), 2 (two horizontal components; --pga is their "
+                                                 "RotD50 PGA) or 3 (and a vertical); one CSV per component: "
+                                                 "OUT.h1.csv, OUT.h2.csv, OUT.v.csv")
+      ->capture_default_str();
+  cmd->add_option("--coherence", o->coherence, "With --components 2 or 3: correlation coefficient of the two "
+                                               "horizontal components' white noises, -1..1 (0: independent)")
+      ->capture_default_str();
+  cmd->add_option("--azimuths", o->azimuths, "With --components 2 or 3: the components' azimuths A1,A2, degrees "
+                                             "clockwise from north (written in the files)")
+      ->capture_default_str();
+  cmd->add_option("--vh-ratio", o->vh_ratio, "With --components 3: the vertical's PGA over the pair's RotD50 PGA")
+      ->capture_default_str();
+  cmd->add_option("--vh-freq-ratio", o->vh_freq_ratio, "With --components 3: the vertical's predominant frequency "
+                                                       "over the horizontal's, 0.5-4")
+      ->capture_default_str();
   add_quiet_flag(*cmd, o->quiet);  // one motion is quick: no bar
   cmd->callback([o] { run_synth(*o); });
 }

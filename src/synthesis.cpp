@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 
 #include "topple/error.hpp"
+#include "topple/rotd.hpp"
 #include "topple/units.hpp"
 
 namespace topple {
@@ -422,19 +423,31 @@ std::array<double, 2> end_velocity_displacement(const std::vector<double>& a, do
 
 }  // namespace
 
-std::vector<double> filtered_noise(const SynthesisSpec& spec) {
-  validate(spec);
-  const double f_g = ground_frequency_for_request_hz(spec.predominant_frequency_hz, spec.ground_damping, spec.model);
-  const auto n = static_cast<std::size_t>(std::floor(spec.duration_s / spec.dt_s + 0.5)) + 1;
-  const Discrete d = discretise(spec, f_g);
+namespace {
 
-  PortableRandom rng(spec.seed);
+std::size_t sample_count(const SynthesisSpec& spec) {
+  return static_cast<std::size_t>(std::floor(spec.duration_s / spec.dt_s + 0.5)) + 1;
+}
+
+/// n unit normal deviates of PortableRandom(seed).
+std::vector<double> white_noise(std::uint64_t seed, std::size_t n) {
+  PortableRandom rng(seed);
+  std::vector<double> w(n);
+  for (double& x : w) x = rng.normal();
+  return w;
+}
+
+/// The filter output for the noise samples w (filtered_noise's recurrence).
+std::vector<double> filter(const SynthesisSpec& spec, const std::vector<double>& w) {
+  const double f_g = ground_frequency_for_request_hz(spec.predominant_frequency_hz, spec.ground_damping, spec.model);
+  const Discrete d = discretise(spec, f_g);
+  const std::size_t n = w.size();
   std::vector<double> a(n, 0.0);
   std::array<double, 4> s{};
-  double w_prev = rng.normal();
+  double w_prev = w[0];
   for (std::size_t i = 1; i < n; ++i) {
-    const double w = rng.normal();
-    const double dw = w - w_prev;
+    const double wi = w[i];
+    const double dw = wi - w_prev;
     std::array<double, 4> next{};
     for (std::size_t r = 0; r < d.states; ++r) {
       double sum = d.g0[r] * w_prev + d.g1[r] * dw;
@@ -445,24 +458,20 @@ std::vector<double> filtered_noise(const SynthesisSpec& spec) {
     double out = 0.0;
     for (std::size_t c = 0; c < d.states; ++c) out = out + d.c[c] * s[c];
     a[i] = out;
-    w_prev = w;
+    w_prev = wi;
   }
   return a;
 }
 
-GroundMotion synthesize(const SynthesisSpec& spec) {
-  std::vector<double> a = filtered_noise(spec);  // validates
-  const double f_g = ground_frequency_for_request_hz(spec.predominant_frequency_hz, spec.ground_damping, spec.model);
+/// Envelope and baseline correction (synthesis.hpp) of the stationary motion a, in place; returns max |a|.
+double envelope_and_baseline(const SynthesisSpec& spec, std::vector<double>& a) {
   const double h = spec.dt_s;
   const std::size_t n = a.size();
-
-  // Envelope.
   std::vector<double> e(n);
   for (std::size_t i = 0; i < n; ++i) {
     e[i] = envelope_at(spec, static_cast<double>(i) * h);
     a[i] = a[i] * e[i];
   }
-
   // Baseline: a -= e (c0 + c1 t/T) with v(T) = d(T) = 0.
   std::vector<double> e_t(n);
   const double t_end = static_cast<double>(n - 1) * h;
@@ -480,17 +489,118 @@ GroundMotion synthesize(const SynthesisSpec& spec) {
     peak = std::max(peak, std::abs(a[i]));
   }
   if (!(peak > 0.0)) throw std::runtime_error("synthesize: the filtered noise is identically zero");
-  const double factor = spec.pga_m_s2 / peak;
-  for (double& x : a) x = x * factor;
+  return peak;
+}
 
+std::string describe(const SynthesisSpec& spec, const char* what) {
+  const double f_g = ground_frequency_for_request_hz(spec.predominant_frequency_hz, spec.ground_damping, spec.model);
+  return fmt::format("synthetic {} motion, {} envelope: {} {:.6g} m/s2, requested predominant frequency "
+                     "{:.6g} Hz (f_g {:.6g} Hz, zeta_g {:.3g}), T {:.6g} s, dt {:.6g} s, seed {}",
+                     filter_model_name(spec.model), envelope_kind_name(spec.envelope), what, spec.pga_m_s2,
+                     spec.predominant_frequency_hz, f_g, spec.ground_damping, spec.duration_s, spec.dt_s, spec.seed);
+}
+
+}  // namespace
+
+std::vector<double> filtered_noise(const SynthesisSpec& spec) {
+  validate(spec);
+  return filter(spec, white_noise(spec.seed, sample_count(spec)));
+}
+
+GroundMotion synthesize(const SynthesisSpec& spec) {
+  std::vector<double> a = filtered_noise(spec);  // validates
+  const double factor = spec.pga_m_s2 / envelope_and_baseline(spec, a);
+  for (double& x : a) x = x * factor;
   RecordMetadata meta;
   meta.format = "synthetic";
   meta.units_as_read = "m/s2";
-  meta.event = fmt::format("synthetic {} motion, {} envelope: PGA {:.6g} m/s2, requested predominant frequency "
-                           "{:.6g} Hz (f_g {:.6g} Hz, zeta_g {:.3g}), T {:.6g} s, dt {:.6g} s, seed {}",
-                           filter_model_name(spec.model), envelope_kind_name(spec.envelope), spec.pga_m_s2,
-                           spec.predominant_frequency_hz, f_g, spec.ground_damping, spec.duration_s, h, spec.seed);
-  return GroundMotion::uniform(std::move(a), h, 0.0, std::move(meta));
+  meta.event = describe(spec, "PGA");
+  return GroundMotion::uniform(std::move(a), spec.dt_s, 0.0, std::move(meta));
+}
+
+namespace {
+constexpr std::uint64_t kStreamStep = 0x9E3779B97F4A7C15ULL;  // 2^64 / golden ratio (synthesis.hpp)
+
+SynthesisSpec vertical_spec(const SynthesisSetSpec& s) {
+  SynthesisSpec v = s.horizontal;
+  v.pga_m_s2 = s.vertical_pga_ratio * s.horizontal.pga_m_s2;
+  v.predominant_frequency_hz = s.vertical_frequency_ratio * s.horizontal.predominant_frequency_hz;
+  v.seed = s.horizontal.seed + 2 * kStreamStep;
+  return v;
+}
+}  // namespace
+
+void validate(const SynthesisSetSpec& s) {
+  validate(s.horizontal);
+  if (!(s.coherence >= -1.0 && s.coherence <= 1.0)) {
+    throw parameter_error("coherence", fmt::format("the coherence (correlation of the two components' white noises) "
+                                                   "must be in [-1, 1], got {}", s.coherence));
+  }
+  s.azimuths.validate("azimuths");
+  if (!s.vertical) return;
+  if (!(s.vertical_pga_ratio > 0.0 && s.vertical_pga_ratio <= 2.0)) {
+    throw parameter_error("vertical_pga_ratio", fmt::format("the V/H PGA ratio must be in (0, 2], got {}",
+                                                            s.vertical_pga_ratio));
+  }
+  if (!(s.vertical_frequency_ratio >= 0.5 && s.vertical_frequency_ratio <= 4.0)) {
+    throw parameter_error("vertical_frequency_ratio", fmt::format("the vertical's frequency ratio f_v / f_h must be "
+                                                                  "in [0.5, 4], got {}", s.vertical_frequency_ratio));
+  }
+  try {
+    validate(vertical_spec(s));
+  } catch (const InputError& e) {
+    throw parameter_error("vertical " + e.where().field, "the vertical component: " + e.problem());
+  }
+}
+
+SynthesizedSet synthesize_set(const SynthesisSetSpec& spec) {
+  validate(spec);
+  const SynthesisSpec& h = spec.horizontal;
+  const std::size_t n = sample_count(h);
+  const std::vector<double> w1 = white_noise(h.seed, n);
+  std::vector<double> w2 = white_noise(h.seed + kStreamStep, n);
+  const double rho = spec.coherence;
+  const double rest = std::sqrt(1.0 - rho * rho);
+  for (std::size_t i = 0; i < n; ++i) w2[i] = rho * w1[i] + rest * w2[i];
+  std::vector<double> a1 = filter(h, w1);
+  std::vector<double> a2 = filter(h, w2);
+  (void)envelope_and_baseline(h, a1);
+  (void)envelope_and_baseline(h, a2);
+  // One factor for both: the pair's RotD50 PGA equals the request (rotd.cpp is portable too).
+  const auto rotd50_pga = [&] {
+    std::vector<double> peaks = rotd_peaks_by_angle(a1, a2);
+    return rotd_of(peaks).rotd50;
+  };
+  const double factor = h.pga_m_s2 / rotd50_pga();
+  for (double& x : a1) x = x * factor;
+  for (double& x : a2) x = x * factor;
+  SynthesizedSet out{GroundMotion::uniform({0.0, 0.0}, h.dt_s), GroundMotion::uniform({0.0, 0.0}, h.dt_s),
+                     std::nullopt, rotd50_pga()};
+  RecordMetadata meta;
+  meta.format = "synthetic";
+  meta.units_as_read = "m/s2";
+  meta.event = describe(h, "RotD50 PGA") + fmt::format(", coherence {:g}", rho);
+  meta.component = "H1";
+  meta.azimuth_deg = spec.azimuths.first_deg;
+  out.first = GroundMotion::uniform(std::move(a1), h.dt_s, 0.0, meta);
+  meta.component = "H2";
+  meta.azimuth_deg = spec.azimuths.second_deg;
+  out.second = GroundMotion::uniform(std::move(a2), h.dt_s, 0.0, meta);
+  if (spec.vertical) {
+    const SynthesisSpec v = vertical_spec(spec);
+    std::vector<double> av = filter(v, white_noise(v.seed, n));
+    const double fv = v.pga_m_s2 / envelope_and_baseline(v, av);
+    for (double& x : av) x = x * fv;
+    RecordMetadata vm;
+    vm.format = "synthetic";
+    vm.units_as_read = "m/s2";
+    vm.event = describe(v, "PGA") + fmt::format(" (vertical: V/H {:g}, f_v/f_h {:g})", spec.vertical_pga_ratio,
+                                                spec.vertical_frequency_ratio);
+    vm.component = "V";
+    vm.vertical = true;
+    out.vertical = GroundMotion::uniform(std::move(av), h.dt_s, 0.0, std::move(vm));
+  }
+  return out;
 }
 
 }  // namespace topple

@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "support/noise_record.hpp"
 #include "support/shared_data.hpp"
 #include "topple/error.hpp"
 #include "topple/intensity.hpp"
@@ -234,14 +235,8 @@ TEST_P(SpectrumPeers, EqsigAndPyrotdOnARecord) {
   constexpr double kPad = 150.0;
   const nlohmann::json peer = run_peers(record, periods, kUp, kPad);
   ASSERT_FALSE(peer.is_null());
-  std::vector<double> fine;
   const auto a = record.accel_m_s2();
-  for (std::size_t i = 0; i + 1 < a.size(); ++i) {
-    for (int k = 0; k < kUp; ++k) fine.push_back(a[i] + (a[i + 1] - a[i]) * k / static_cast<double>(kUp));
-  }
-  fine.push_back(a.back());
-  fine.resize(fine.size() + static_cast<std::size_t>(std::lround(kPad / (dt / kUp))), 0.0);
-  const ResponseSpectrum ours_fine = response_spectrum(GroundMotion::uniform(fine, dt / kUp), periods);
+  const ResponseSpectrum ours_fine = response_spectrum(test::upsampled_padded(record, kUp, kPad), periods);
   const ResponseSpectrum ours = response_spectrum(record, periods);
   double worst_pyrotd = 0.0;
   for (std::size_t p = 0; p < periods.size(); ++p) {

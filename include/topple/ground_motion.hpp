@@ -18,6 +18,7 @@
 //   5e7 samples. Worst cases at 1e6 m/s^2 for 6 h: PGV <= a T = 2.2e10 m/s, PGD <= a T^2 / 2 = 2.3e14 m,
 //   integral a^2 dt <= 2.2e16; at 100 g: 2.1e7 m/s, 2.3e11 m, 2.1e10.
 #include <cstddef>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -65,6 +66,12 @@ struct RecordMetadata {
   std::string station;       ///< station name or code
   std::string component;     ///< e.g. "180", "N-S", "HNE", "UP"
   std::string units_as_read; ///< acceleration unit in the file ("g", "cm/s2", "counts*3920/6182761 gal", ...)
+  /// The sensor's azimuth as the file states it, degrees clockwise from north in [0, 360), positive acceleration
+  /// toward it (readers of COSMOS V2, CSMIP V2, K-NET/KiK-net, ESM and USGS SMC: io::orientation_from_component).
+  /// None when the file does not state it (PEER AT2, plain) or for a vertical channel.
+  std::optional<double> azimuth_deg;
+  /// True when the file states that this is the vertical channel, positive up.
+  bool vertical = false;
   /// The g (m/s^2) that values in g were converted with and that this motion's values in g are expressed in (the
   /// Python package's accel_g and pga_g): the caller's g where one built or read the motion with its own g.
   double g_m_s2 = kStandardGravity;

@@ -57,19 +57,10 @@
 #include <vector>
 
 #include "topple/ground_motion.hpp"
+#include "topple/motion_set.hpp"  // ComponentAzimuths
 #include "topple/sliding.hpp"
 
 namespace topple {
-
-/// The two horizontal components' azimuths, degrees clockwise from north (east = 90). They must be perpendicular
-/// (as an accelerograph's axes are); either handedness.
-struct ComponentAzimuths {
-  double first_deg = 90.0;   ///< typical: 90 (east-west channel, positive east)
-  double second_deg = 0.0;   ///< typical: 0 (north-south channel, positive north)
-  /// On a slope (SlidingBlock::slope_rad > 0): the azimuth of the downslope direction (the fall line seen from above),
-  /// degrees clockwise from north; unused on level ground.
-  double slope_azimuth_deg = 0.0;
-};
 
 /// Integration tolerances of the slip phases (stick phases and onsets are exact).
 struct Sliding2dOptions {

@@ -38,11 +38,13 @@
 // peak pulls the measured maximum lower still), f_g solves f_request = kappa(zeta_g, model, f_g) f_g, with kappa the
 // mean measured-to-f_g ratio from a calibration over seeds (docs/method.md, ground_frequency_for_request_hz).
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "topple/ground_motion.hpp"
+#include "topple/motion_set.hpp"
 
 namespace topple {
 
@@ -115,6 +117,50 @@ void validate(const SynthesisSpec& spec);
 /// displacement, max |a| = pga. Metadata: format "synthetic", event describing the parameters and the seed.
 /// Throws InputError for an invalid spec.
 [[nodiscard]] GroundMotion synthesize(const SynthesisSpec& spec);
+
+// ---- Three components: a pair of horizontal components and a vertical one (docs/method.md, "Synthetic motion
+// sets"). ----
+//
+// Horizontal pair. Both components are the same process (the spec's filter, envelope and baseline), driven by white
+// noises w_1 and w_2 with correlation coefficient rho (the coherence, the same at every frequency):
+//   w_1 = the normal deviates of PortableRandom(seed) (so the first component's noise is synthesize()'s),
+//   w_2 = rho w_1 + sqrt(1 - rho^2) z_2, z_2 the deviates of PortableRandom(seed + 1 * K),
+// K = 0x9E3779B97F4A7C15 (2^64 / golden ratio; unsigned arithmetic wraps portably). rho = 0: independent
+// components, the usual assumption for the two horizontal components of a stochastic simulation.
+// PGA of a pair: SynthesisSpec::pga_m_s2 is the pair's RotD50 PGA (Boore 2010; rotd.hpp), the measure modern
+// ground-motion models predict: both components are scaled by one factor so that RotD50 of their PGA equals it
+// (each component's own peak is then typically 0.85-1.15 times it).
+// Vertical (optional). The same process with its own noise z_3 (PortableRandom(seed + 2 K)), independent of the
+// horizontals, at the predominant frequency f_v = frequency_ratio x f_h and scaled to PGA_v = pga_ratio x the pair's
+// RotD50 PGA. Defaults V/H = 2/3 (the traditional engineering ratio of peak vertical to horizontal acceleration,
+// Newmark, Blume & Kapur 1973, J. Power Div. ASCE 99(2); the ratio Bozorgnia & Campbell 2004, J. Earthquake Eng.
+// 8(2), discuss as the conventional assumption, finding it conservative at long periods and unconservative near
+// the source at short ones) and f_v / f_h = 1.5 (vertical motion is richer in high frequencies: Bozorgnia &
+// Campbell's V/H spectral ratios peak at 0.05-0.1 s; 1.5 is topple's stated simple shift, not a fit).
+struct SynthesisSetSpec {
+  SynthesisSpec horizontal;        ///< pga_m_s2 is the pair's RotD50 PGA, m/s^2; the seed drives all components
+  double coherence = 0.0;          ///< rho, correlation coefficient of the two white noises, in [-1, 1]
+  ComponentAzimuths azimuths{90.0, 0.0};  ///< what the components are called (written to the files), perpendicular
+  bool vertical = true;            ///< synthesize the vertical component
+  double vertical_pga_ratio = 2.0 / 3.0;    ///< PGA_v / RotD50 PGA_h, in (0, 2]
+  double vertical_frequency_ratio = 1.5;    ///< f_v / f_h, in [0.5, 4]
+};
+
+/// Throws InputError naming the field ("coherence", "vertical_pga_ratio", "vertical_frequency_ratio", "azimuths",
+/// or the vertical spec's field prefixed "vertical " when the vertical's frequency or PGA leaves SynthesisSpec's
+/// ranges) and the value.
+void validate(const SynthesisSetSpec& spec);
+
+struct SynthesizedSet {
+  GroundMotion first;                    ///< azimuth spec.azimuths.first_deg (metadata azimuth_deg)
+  GroundMotion second;                   ///< azimuth spec.azimuths.second_deg
+  std::optional<GroundMotion> vertical;  ///< positive up (metadata vertical)
+  double rotd50_pga_m_s2 = 0.0;          ///< the pair's RotD50 PGA (= the request, to round-off)
+};
+
+/// The three-component synthetic motion (model above), bit for bit the same for the same spec on every IEEE 754
+/// machine.
+[[nodiscard]] SynthesizedSet synthesize_set(const SynthesisSetSpec& spec);
 
 // ---- The portable generator, public so that tests and other modules can reproduce it. ----
 

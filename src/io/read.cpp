@@ -4,6 +4,8 @@
 #include "topple/io/read.hpp"
 
 #include <algorithm>
+#include <cctype>
+#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -38,6 +40,43 @@ Format parse_format_name(std::string_view name, const std::string& field) {
   }
   throw parameter_error(field, "unknown format '" + std::string(name) +
                                    "' (known: auto, peer-at2, cosmos-v2, csmip-v2, knet, usgs-smc, esm, plain)");
+}
+
+ComponentOrientation orientation_from_component(std::string_view component) {
+  // Upper case, without what a parenthesis adds ("N-S (surface, Dir. 4)") and surrounding blanks.
+  std::string c;
+  for (char ch : component.substr(0, component.find('('))) {
+    c += static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+  }
+  // COSMOS text line 9 names the channel "1: 90 deg": what follows the channel number.
+  if (const auto colon = c.find(':'); colon != std::string::npos) c = c.substr(colon + 1);
+  const auto first = c.find_first_not_of(" \t");
+  if (first == std::string::npos) return {};
+  c = c.substr(first, c.find_last_not_of(" \t") - first + 1);
+  ComponentOrientation o;
+  if (c == "N-S" || c == "NS") {
+    o.azimuth_deg = 0.0;
+  } else if (c == "E-W" || c == "EW") {
+    o.azimuth_deg = 90.0;
+  } else if (c == "U-D" || c == "UD" || c == "UP" || c == "VERT" || c == "Z") {
+    o.vertical = true;
+  } else if (c.size() == 3 && std::isalpha(static_cast<unsigned char>(c[0])) &&
+             std::isalpha(static_cast<unsigned char>(c[1])) && std::string_view("NEZ").find(c[2]) != std::string::npos) {
+    // A SEED channel code: band, instrument, orientation (N, E within 5 deg of north and east; Z up).
+    if (c[2] == 'Z') o.vertical = true;
+    else o.azimuth_deg = c[2] == 'N' ? 0.0 : 90.0;
+  } else {
+    // "90 DEG", "360 deg", "90": a whole number of degrees, optionally followed by DEG.
+    std::string_view number(c);
+    if (number.ends_with("DEG")) number.remove_suffix(3);
+    while (!number.empty() && number.back() == ' ') number.remove_suffix(1);
+    int deg = 0;
+    const auto [ptr, ec] = std::from_chars(number.data(), number.data() + number.size(), deg);
+    if (!number.empty() && ec == std::errc{} && ptr == number.data() + number.size() && deg >= 0 && deg <= 360) {
+      o.azimuth_deg = static_cast<double>(deg % 360);
+    }
+  }
+  return o;
 }
 
 Format detect_format(std::string_view content) {
@@ -96,6 +135,14 @@ GroundMotion parse_motion(std::string_view content, const std::string& name, con
   RecordMetadata meta = motion.metadata();
   meta.format = std::string(format_name(format));
   meta.source_file = name;
+  // The formats whose headers state the channel's orientation (a PEER AT2 component such as "180" is a naming
+  // convention of the database, sometimes a rotated "FN"; a plain file states nothing).
+  if (format == Format::cosmos_v2 || format == Format::csmip_v2 || format == Format::knet ||
+      format == Format::usgs_smc || format == Format::esm) {
+    const ComponentOrientation o = orientation_from_component(meta.component);
+    meta.azimuth_deg = o.azimuth_deg;
+    meta.vertical = o.vertical;
+  }
   motion.set_metadata(std::move(meta));
   return motion;
 }

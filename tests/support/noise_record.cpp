@@ -28,4 +28,16 @@ GroundMotion noise_record(const NoiseRecordSpec& spec) {
   return GroundMotion::uniform(std::move(a), spec.dt_s).scaled_to_pga(spec.pga_m_s2);
 }
 
+GroundMotion upsampled_padded(const GroundMotion& record, int upsample, double pad_s) {
+  std::vector<double> f;
+  const auto a = record.accel_m_s2();
+  for (std::size_t i = 0; i + 1 < a.size(); ++i) {
+    for (int k = 0; k < upsample; ++k) f.push_back(a[i] + (a[i + 1] - a[i]) * k / static_cast<double>(upsample));
+  }
+  f.push_back(a.back());
+  const double dt = record.dt_s() / upsample;
+  f.resize(f.size() + static_cast<std::size_t>(std::lround(pad_s / dt)), 0.0);
+  return GroundMotion::uniform(std::move(f), dt);
+}
+
 }  // namespace topple::test

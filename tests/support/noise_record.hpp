@@ -26,4 +26,8 @@ struct NoiseRecordSpec {
 
 [[nodiscard]] GroundMotion noise_record(const NoiseRecordSpec& spec);
 
+/// A uniform record linearly interpolated at dt / `upsample` (the same piecewise-linear function) with `pad_s` seconds
+/// of zeros appended: what the peer tests give pyrotd (frequency domain, circular response) and topple alike.
+[[nodiscard]] GroundMotion upsampled_padded(const GroundMotion& record, int upsample, double pad_s);
+
 }  // namespace topple::test

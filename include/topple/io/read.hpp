@@ -69,6 +69,21 @@ void check_input_text(std::string_view content, const std::string& name);
 [[nodiscard]] GroundMotion parse_motion(std::string_view content, const std::string& name,
                                         const ReadOptions& options = {});
 
+/// A channel's orientation read from its component text (RecordMetadata::component) as the agency formats write it
+/// (docs/formats.md, "Orientation"):
+///   "N-S", "NS" -> azimuth 0; "E-W", "EW" -> 90 (K-NET/KiK-net, positive north and east; KiK-net's "N-S (surface,
+///   Dir. 4)" too); "U-D", "UD", "UP", "VERT", "Z" -> vertical (positive up);
+///   "90 DEG", "360 deg", "90" (CSMIP V2, COSMOS V2 text line 9 "1: 90 deg" after its channel number, USGS SMC)
+///   -> that azimuth mod 360;
+///   a SEED channel code ending in N, E or Z ("HNE", "BNZ"; ESM STREAM, the COSMOS End-of-data line) -> 0, 90,
+///   vertical (SEED: N and E within 5 deg of north and east; 1, 2 and 3 are unoriented and give nothing).
+/// Anything else ("DOWN", "FN", "-E", "HN1", "") gives nothing: no guess.
+struct ComponentOrientation {
+  std::optional<double> azimuth_deg;  ///< degrees clockwise from north in [0, 360)
+  bool vertical = false;              ///< the vertical channel, positive up
+};
+[[nodiscard]] ComponentOrientation orientation_from_component(std::string_view component);
+
 /// The format of `content`, judged from its text. Returns Format::plain when nothing more specific matches.
 [[nodiscard]] Format detect_format(std::string_view content);
 
