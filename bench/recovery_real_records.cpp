@@ -4,12 +4,15 @@
 // the targets. Figures: docs/verification.md, "Recovery on real records". Run: scripts/recovery-real-records.sh
 //
 //   recovery_real_records [--write DIR] [--threads N] [--misreport-rate R] [--inversion "TOML lines"]
-//                         [--pga 0.1,0.2,...] [--records N]
+//                         [--pga 0.1,0.2,...] [--records N] [--eps "c,l,r;c,l,r"]
+//   With --eps: the evidence model's calibration: the same surveys (runs simulated once) with each set of error
+//   rates for certain, likely, reported; one summary row per set.
 //   recovery_real_records --pgv [--inversion "TOML lines"]
 //     The hypothesis: PGV/PGA of each record against the mean over the family's motions (the [inversion]
 //     table's family) at the record's own predominant frequency.
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <sstream>
@@ -87,6 +90,7 @@ int main(int argc, char** argv) {
   std::filesystem::path write_dir;
   std::vector<double> pga{0.1, 0.2, 0.35, 0.6};
   std::size_t max_records = 1000;
+  std::vector<recovery::EvidenceRates> eps_sets;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string key = argv[i];
     const std::string value = argv[i + 1];
@@ -98,6 +102,18 @@ int main(int argc, char** argv) {
       options.misreport_rate = std::stod(value);
     } else if (key == "--inversion") {
       options.inversion_toml = value;
+    } else if (key == "--eps") {
+      // "c,l,r;c,l,r;...": error rates for certain, likely, reported, one set per variant
+      std::stringstream sets(value);
+      std::string set;
+      while (std::getline(sets, set, ';')) {
+        recovery::EvidenceRates r;
+        if (std::sscanf(set.c_str(), "%lf,%lf,%lf", &r.certain, &r.likely, &r.reported) != 3) {
+          fmt::print(stderr, "--eps: expected c,l,r;c,l,r..., got '{}'\n", set);
+          return 2;
+        }
+        eps_sets.push_back(r);
+      }
     } else if (key == "--records") {
       max_records = static_cast<std::size_t>(std::stoul(value));
     } else if (key == "--pga") {
@@ -109,6 +125,21 @@ int main(int argc, char** argv) {
       fmt::print(stderr, "unknown option {}\n", key);
       return 2;
     }
+  }
+  if (!eps_sets.empty()) {
+    std::vector<recovery::RecordCase> recs = recovery::real_records(TOPPLE_SHARED_DIR);
+    if (recs.size() > max_records) recs.resize(max_records);
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto scans = recovery::run_evidence_scan(recs, pga, options, inv, eps_sets);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    fmt::print("{} records x {} PGAs, misreport rate {}, [inversion] \"{}\": {:.0f} s\n\n{}", recs.size(), pga.size(),
+               options.misreport_rate, options.inversion_toml, seconds, recovery::summary_header());
+    for (std::size_t v = 0; v < scans.size(); ++v) {
+      fmt::print("{}", recovery::summary_row(fmt::format("eps certain {} / likely {} / reported {}", eps_sets[v].certain,
+                                                         eps_sets[v].likely, eps_sets[v].reported),
+                                             recovery::summarise(scans[v])));
+    }
+    return 0;
   }
   std::vector<recovery::RecordCase> records = recovery::real_records(TOPPLE_SHARED_DIR);
   if (records.size() > max_records) records.resize(max_records);

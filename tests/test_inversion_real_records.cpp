@@ -71,19 +71,29 @@ TEST(InversionRealRecords, SurveysHoldTheSolversOutcomesAndTheRecordsTruth) {
   EXPECT_TRUE(sc.moved);
 }
 
-// Six surveys (three records at 0.2 and 0.5 g) on a small grid, scored against the issue's targets. The figures
-// measured with the Clough-Penzien family (before any change of issue 18) are asserted with the margins stated at
-// each line; the issue's own targets are asserted only where they already hold.
-TEST(InversionRealRecords, RecoveryOnSixSurveysMeetsTheMeasuredFigures) {
-  if (!test::have_shared()) GTEST_SKIP() << "../shared/records is absent";
+recovery::Summary six_surveys(const std::string& family_line) {
   recovery::SurveyOptions options;
-  options.inversion_toml = kSmallGrid;
+  options.inversion_toml = family_line + kSmallGrid;
   const std::vector<recovery::CaseScore> scores =
       recovery::run(three_records(), {0.2, 0.5}, options, InversionOptions{});
   const recovery::Summary m = recovery::summarise(scores);
   fmt::print("{}", recovery::markdown(scores, m));
+  return m;
+}
+
+// Six surveys (three records at 0.2 and 0.5 g) on a small grid, scored against the issue's targets. The figures
+// measured are asserted with the margins stated at each line (one survey of six is 17 %); the issue's own targets
+// only where they already hold. Clough-Penzien family (the default), measured: PGA 95 % 6/6, 68 % 4/6, median/truth
+// median 0.71, frequency 95 % 6/6, closed 0/6.
+TEST(InversionRealRecords, SixSurveysWithTheCloughPenzienFamily) {
+  if (!test::have_shared()) GTEST_SKIP() << "../shared/records is absent";
+  const recovery::Summary m = six_surveys("");
   ASSERT_EQ(m.surveys, 6);
-  EXPECT_GE(m.pga_cov95, 5.0 / 6.0);
+  EXPECT_GE(m.pga_cov95, 5.0 / 6.0 - 1e-9);  // the issue's >= 90 % (one miss of six allowed: 83 %)
+  EXPECT_GE(m.pga_cov68, 3.0 / 6.0 - 1e-9);  // measured 4/6; one survey of margin
+  EXPECT_GE(m.freq_cov95, 5.0 / 6.0 - 1e-9);  // the issue's >= 85 %, one miss of six allowed
+  EXPECT_GT(m.median_ratio_median, 0.5);      // measured 0.71: the coarse grid (1.5x cells) snaps the medians
+  EXPECT_LT(m.median_ratio_median, 1.0);
 }
 
 }  // namespace

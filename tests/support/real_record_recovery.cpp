@@ -11,6 +11,7 @@
 #include "topple/io/survey_file.hpp"
 #include "topple/rocking.hpp"
 #include "topple/sliding.hpp"
+#include "topple/survey.hpp"
 #include "topple/spectra.hpp"
 #include "topple/synthesis.hpp"
 
@@ -248,12 +249,19 @@ std::string markdown(const std::vector<CaseScore>& scores, const Summary& m) {
   return t;
 }
 
-std::vector<CaseScore> run(const std::vector<RecordCase>& records, const std::vector<double>& pga_g,
-                           const SurveyOptions& options, const InversionOptions& inversion_options,
-                           const std::filesystem::path& write_dir) {
+namespace {
+
+struct Prepared {
   std::vector<SurveyCase> cases;
   std::vector<Site> sites;
-  std::optional<InversionSettings> settings;
+  InversionSettings settings;
+};
+
+/// The surveys of every (record, pga) pair, written (when write_dir is set) and parsed back.
+Prepared prepare(const std::vector<RecordCase>& records, const std::vector<double>& pga_g,
+                 const SurveyOptions& options, const std::filesystem::path& write_dir) {
+  Prepared p;
+  bool have_settings = false;
   for (const RecordCase& rc : records) {
     io::ReadOptions ro;
     ro.channel = rc.channel;
@@ -263,16 +271,78 @@ std::vector<CaseScore> run(const std::vector<RecordCase>& records, const std::ve
       const std::string file = fmt::format("{}_{:03.0f}.toml", rc.label, 100.0 * pga);
       if (!write_dir.empty()) io::write_file_atomically(write_dir / file, sc.toml);
       Survey survey = io::parse_survey(sc.toml, file);
-      if (!settings) settings = survey.inversion;
-      sites.push_back(survey.sites.at(0));
-      cases.push_back(std::move(sc));
+      if (!have_settings) p.settings = survey.inversion;
+      have_settings = true;
+      p.sites.push_back(survey.sites.at(0));
+      p.cases.push_back(std::move(sc));
     }
   }
-  if (!settings) return {};
-  const std::vector<InversionResult> results = invert_sites(sites, *settings, inversion_options);
+  return p;
+}
+
+double rate_of(const EvidenceRates& r, Evidence e) {
+  switch (e) {
+    case Evidence::certain: return r.certain;
+    case Evidence::likely: return r.likely;
+    case Evidence::reported: return r.reported;
+  }
+  return r.certain;
+}
+
+}  // namespace
+
+std::vector<CaseScore> run(const std::vector<RecordCase>& records, const std::vector<double>& pga_g,
+                           const SurveyOptions& options, const InversionOptions& inversion_options,
+                           const std::filesystem::path& write_dir) {
+  const Prepared p = prepare(records, pga_g, options, write_dir);
+  if (p.sites.empty()) return {};
+  const std::vector<InversionResult> results = invert_sites(p.sites, p.settings, inversion_options);
   std::vector<CaseScore> scores;
-  for (std::size_t i = 0; i < cases.size(); ++i) scores.push_back(score(cases[i], results[i]));
+  for (std::size_t i = 0; i < p.cases.size(); ++i) scores.push_back(score(p.cases[i], results[i]));
   return scores;
+}
+
+std::vector<std::vector<CaseScore>> run_evidence_scan(const std::vector<RecordCase>& records,
+                                                      const std::vector<double>& pga_g, const SurveyOptions& options,
+                                                      const InversionOptions& inversion_options,
+                                                      const std::vector<EvidenceRates>& rates) {
+  const Prepared p = prepare(records, pga_g, options, {});
+  std::vector<std::vector<CaseScore>> out(rates.size());
+  if (p.sites.empty()) return out;
+  const InversionSettings& st = p.settings;
+  const FamilyGrid family = build_family(
+      st, log_spaced(st.freq_min_hz, st.freq_max_hz, static_cast<std::size_t>(st.freq_count)), inversion_options);
+  const std::vector<double> pga_axis = log_spaced(st.pga_min_g, st.pga_max_g, static_cast<std::size_t>(st.pga_count));
+  for (std::size_t i = 0; i < p.sites.size(); ++i) {
+    const MatchTable matches = simulate_matches(p.sites[i], st, pga_axis, family, inversion_options);
+    for (std::size_t v = 0; v < rates.size(); ++v) {
+      std::vector<double> eps;
+      for (const ObservedObject& o : p.sites[i].objects) eps.push_back(rate_of(rates[v], o.evidence));
+      InversionResult r;
+      r.pga_g = pga_axis;
+      r.freq_hz = family.freq_hz;
+      r.log_likelihood = reduce_likelihood(matches, eps).log_likelihood;
+      fill_posterior_and_estimates(r);
+      out[v].push_back(score(p.cases[i], r));
+    }
+  }
+  return out;
+}
+
+std::string summary_header() {
+  return "| variant | PGA 95 % cov. | PGA 68 % cov. | median in 0.8-1.25x | median of median/truth | median 95 % width "
+         "(moved) | largest 95 % top (quiet) | f 95 % cov. | f 68 % cov. | f 95 % closed |\n"
+         "|---|---|---|---|---|---|---|---|---|---|\n";
+}
+
+std::string summary_row(const std::string& label, const Summary& m) {
+  return fmt::format("| {} | {:.0f} % | {:.0f} % | {:.0f} % | {:.2f} | {} | {} | {:.0f} % | {:.0f} % | {:.0f} % |\n", label,
+                     100 * m.pga_cov95, 100 * m.pga_cov68, 100 * m.median_within, m.median_ratio_median,
+                     fmt_width(m.median_width95_moved),
+                     m.quiet == 0 ? std::string("(none)")
+                                  : (std::isfinite(m.top95_quiet_max_g) ? fmt::format("{:.2f} g", m.top95_quiet_max_g)
+                                                                        : std::string("open")),
+                     100 * m.freq_cov95, 100 * m.freq_cov68, 100 * m.freq_closed95);
 }
 
 }  // namespace topple::recovery

@@ -93,4 +93,23 @@ struct Summary {
                                          const SurveyOptions& options, const InversionOptions& inversion_options,
                                          const std::filesystem::path& write_dir = {});
 
+/// The error rates eps (dimensionless) that the likelihood gives each evidence level (survey.hpp:
+/// evidence_error_rate gives the library's 0.02 / 0.10 / 0.25).
+struct EvidenceRates {
+  double certain = 0.02, likely = 0.10, reported = 0.25;
+};
+
+/// The same surveys inverted with each set of error rates: the runs are simulated once per survey (the matches do not
+/// depend on eps) and the likelihood is reduced once per set (inversion.hpp's steps: build_family, simulate_matches,
+/// reduce_likelihood, fill_posterior_and_estimates). Scores per set, in the order of `rates`.
+[[nodiscard]] std::vector<std::vector<CaseScore>> run_evidence_scan(const std::vector<RecordCase>& records,
+                                                                   const std::vector<double>& pga_g,
+                                                                   const SurveyOptions& options,
+                                                                   const InversionOptions& inversion_options,
+                                                                   const std::vector<EvidenceRates>& rates);
+
+/// One markdown row of a summary: label, then the figures of `markdown`'s summary table in its order.
+[[nodiscard]] std::string summary_row(const std::string& label, const Summary& summary);
+[[nodiscard]] std::string summary_header();
+
 }  // namespace topple::recovery
