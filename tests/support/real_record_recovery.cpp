@@ -165,7 +165,7 @@ SurveyCase make_survey(const GroundMotion& record, const std::string& label, dou
   return sc;
 }
 
-CaseScore score(const SurveyCase& survey, const InversionResult& r) {
+CaseScore score(const SurveyCase& survey, const InversionResult& r, const Site& site) {
   CaseScore s;
   s.name = survey.name;
   s.pga_g = survey.pga_g;
@@ -182,6 +182,11 @@ CaseScore score(const SurveyCase& survey, const InversionResult& r) {
   s.pga_width95 = width95(s.pga);
   s.freq_width95 = width95(s.freq);
   s.freq_closed95 = s.freq.ci95_low.has_value() && s.freq.ci95_high.has_value();
+  s.hard_lower_g = static_bounds(site).hard_lower_g;
+  // A leak: the 95 % interval reaches more than one grid cell below the hard threshold (within a cell is the grid's
+  // resolution: a cell's mass is spread over its whole extent), or has no lower end at all.
+  const double cell = r.pga_g.size() > 1 ? r.pga_g[1] / r.pga_g[0] : 1.0;
+  s.leaks = s.hard_lower_g && (!s.pga.ci95_low || *s.pga.ci95_low < *s.hard_lower_g / cell);
   return s;
 }
 
@@ -199,6 +204,10 @@ Summary summarise(const std::vector<CaseScore>& scores) {
     m.freq_closed95 += s.freq_closed95;
     m.median_within += (s.median_ratio >= 0.8 && s.median_ratio <= 1.25);
     ratios.push_back(s.median_ratio);
+    if (s.hard_lower_g) {
+      ++m.hard;
+      m.leak += s.leaks;
+    }
     if (s.moved) {
       ++m.moved;
       widths_moved.push_back(s.pga_width95);
@@ -216,6 +225,7 @@ Summary summarise(const std::vector<CaseScore>& scores) {
   m.median_within /= n;
   m.median_width95_moved = median_of(widths_moved);
   m.median_ratio_median = median_of(ratios);
+  if (m.hard > 0) m.leak /= m.hard;
   return m;
 }
 
@@ -240,12 +250,13 @@ std::string markdown(const std::vector<CaseScore>& scores, const Summary& m) {
       "| median PGA 95 % width, something moved | {} | <= 4x |\n"
       "| largest PGA 95 % top, nothing moved | {} | <= 1 g |\n"
       "| frequency 95 % coverage | {:.0f} % (68 %: {:.0f} %) | >= 85 % |\n"
-      "| frequency 95 % closed at both ends | {:.0f} % | >= 50 % |\n",
+      "| frequency 95 % closed at both ends | {:.0f} % | >= 50 % |\n"
+      "| PGA 95 % low end over a cell below the hard static threshold | {:.0f} % of {} surveys with one | |\n",
       m.surveys, m.moved, m.quiet, 100 * m.pga_cov95, 100 * m.pga_cov68, 100 * m.median_within, m.median_ratio_median,
       fmt_width(m.median_width95_moved),
       m.quiet == 0 ? std::string("(none)")
                    : (std::isfinite(m.top95_quiet_max_g) ? fmt::format("{:.2f} g", m.top95_quiet_max_g) : "open"),
-      100 * m.freq_cov95, 100 * m.freq_cov68, 100 * m.freq_closed95);
+      100 * m.freq_cov95, 100 * m.freq_cov68, 100 * m.freq_closed95, 100 * m.leak, m.hard);
   return t;
 }
 
@@ -298,7 +309,7 @@ std::vector<CaseScore> run(const std::vector<RecordCase>& records, const std::ve
   if (p.sites.empty()) return {};
   const std::vector<InversionResult> results = invert_sites(p.sites, p.settings, inversion_options);
   std::vector<CaseScore> scores;
-  for (std::size_t i = 0; i < p.cases.size(); ++i) scores.push_back(score(p.cases[i], results[i]));
+  for (std::size_t i = 0; i < p.cases.size(); ++i) scores.push_back(score(p.cases[i], results[i], p.sites[i]));
   return scores;
 }
 
@@ -323,7 +334,7 @@ std::vector<std::vector<CaseScore>> run_evidence_scan(const std::vector<RecordCa
       r.freq_hz = family.freq_hz;
       r.log_likelihood = reduce_likelihood(matches, eps).log_likelihood;
       fill_posterior_and_estimates(r);
-      out[v].push_back(score(p.cases[i], r));
+      out[v].push_back(score(p.cases[i], r, p.sites[i]));
     }
   }
   return out;
@@ -331,18 +342,18 @@ std::vector<std::vector<CaseScore>> run_evidence_scan(const std::vector<RecordCa
 
 std::string summary_header() {
   return "| variant | PGA 95 % cov. | PGA 68 % cov. | median in 0.8-1.25x | median of median/truth | median 95 % width "
-         "(moved) | largest 95 % top (quiet) | f 95 % cov. | f 68 % cov. | f 95 % closed |\n"
-         "|---|---|---|---|---|---|---|---|---|---|\n";
+         "(moved) | largest 95 % top (quiet) | f 95 % cov. | f 68 % cov. | f 95 % closed | 95 % low > 1 cell below hard threshold |\n"
+         "|---|---|---|---|---|---|---|---|---|---|---|\n";
 }
 
 std::string summary_row(const std::string& label, const Summary& m) {
-  return fmt::format("| {} | {:.0f} % | {:.0f} % | {:.0f} % | {:.2f} | {} | {} | {:.0f} % | {:.0f} % | {:.0f} % |\n", label,
+  return fmt::format("| {} | {:.0f} % | {:.0f} % | {:.0f} % | {:.2f} | {} | {} | {:.0f} % | {:.0f} % | {:.0f} % | {:.0f} % of {} |\n", label,
                      100 * m.pga_cov95, 100 * m.pga_cov68, 100 * m.median_within, m.median_ratio_median,
                      fmt_width(m.median_width95_moved),
                      m.quiet == 0 ? std::string("(none)")
                                   : (std::isfinite(m.top95_quiet_max_g) ? fmt::format("{:.2f} g", m.top95_quiet_max_g)
                                                                         : std::string("open")),
-                     100 * m.freq_cov95, 100 * m.freq_cov68, 100 * m.freq_closed95);
+                     100 * m.freq_cov95, 100 * m.freq_cov68, 100 * m.freq_closed95, 100 * m.leak, m.hard);
 }
 
 }  // namespace topple::recovery

@@ -50,6 +50,7 @@ struct SurveyCase {
   bool moved = false;       ///< some *reported* outcome says an object moved (slid, rocked, overturned)
 };
 
+/// Score of one survey against its truths; `site` gives the hard static threshold (static_bounds).
 /// One survey: `record` scaled to `pga_g`, the objects' outcomes from the solvers, misreports, the TOML text.
 [[nodiscard]] SurveyCase make_survey(const GroundMotion& record, const std::string& label, double pga_g,
                                      const SurveyOptions& options);
@@ -65,9 +66,11 @@ struct CaseScore {
   double pga_width95 = 0.0;            ///< ci95 high / low (infinity when an end is open)
   double freq_width95 = 0.0;           ///< likewise
   bool freq_closed95 = false;          ///< both ends of the frequency 95 % interval exist
+  std::optional<double> hard_lower_g;  ///< the survey's largest hard static lower threshold (g), if any
+  bool leaks = false;                  ///< the PGA 95 % interval reaches more than a grid cell below it, or is open
 };
 
-[[nodiscard]] CaseScore score(const SurveyCase& survey, const InversionResult& result);
+[[nodiscard]] CaseScore score(const SurveyCase& survey, const InversionResult& result, const Site& site);
 
 struct Summary {
   int surveys = 0;
@@ -80,6 +83,8 @@ struct Summary {
   double freq_cov68 = 0.0, freq_cov95 = 0.0;    ///< fractions
   double freq_closed95 = 0.0;                   ///< fraction closed at both ends
   double median_ratio_median = 0.0;             ///< median of median/truth
+  int hard = 0;                                 ///< surveys with a hard lower threshold
+  double leak = 0.0;                            ///< fraction of those whose 95 % interval leaks (CaseScore::leaks)
 };
 
 [[nodiscard]] Summary summarise(const std::vector<CaseScore>& scores);
