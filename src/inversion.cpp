@@ -323,6 +323,16 @@ void validate_inversion_settings(const InversionSettings& st) {
     }
     return;
   }
+  if (st.family == MotionFamily::rezaeian2010) {
+    // The record-like family makes any frequency whose step (1 / (20 f_max), synthesis.hpp) the readers accept; the
+    // frequency axis is kept to the band predominant_frequency_hz measures (0.1 Hz up), and 25 Hz at the top.
+    if (st.freq_min_hz < 0.1 || st.freq_max_hz > 25.0) {
+      throw parameter_error("inversion.freq_hz", fmt::format("the rezaeian2010 family makes predominant frequencies "
+                                                             "of 0.1 to 25 Hz; the grid is [{}, {}] Hz",
+                                                             st.freq_min_hz, st.freq_max_hz));
+    }
+    return;
+  }
   for (const double f : {st.freq_min_hz, st.freq_max_hz}) {
     try {
       validate(family_spec(st, f, 0));
@@ -344,6 +354,25 @@ std::vector<GroundMotion> family_motions(const InversionSettings& st, double fre
       // Put the motion's measured predominant frequency exactly on the column's: time scaling by c divides every
       // frequency by c.
       const double measured = predominant_frequency_hz(m);
+      out.push_back(m.time_scaled(measured / freq_hz).scaled_to_pga(1.0));
+    }
+    return out;
+  }
+  if (st.family == MotionFamily::rezaeian2010) {
+    out.reserve(static_cast<std::size_t>(st.motions_per_cell));
+    for (int k = 0; k < st.motions_per_cell; ++k) {
+      // Parameters of motion k drawn once (the same in every column: common random numbers), f_mid at the column.
+      const std::uint64_t seed = mix(st.seed, static_cast<std::uint64_t>(k) + 1);
+      RezaeianSpec spec = draw_rezaeian(seed, freq_hz);
+      GroundMotion m = synthesize_rezaeian(spec);
+      double measured = predominant_frequency_hz(m);
+      // The measured peak may sit well off f_mid (a broad filter, a strong drift): aim f_mid once more, so that the
+      // time scaling below stays within a factor 1.25 or so and keeps the drawn durations.
+      if (measured > 1.25 * freq_hz || measured < 0.8 * freq_hz) {
+        spec = draw_rezaeian(seed, freq_hz * freq_hz / measured);
+        m = synthesize_rezaeian(spec);
+        measured = predominant_frequency_hz(m);
+      }
       out.push_back(m.time_scaled(measured / freq_hz).scaled_to_pga(1.0));
     }
     return out;

@@ -530,7 +530,9 @@ void write_report(const std::filesystem::path& dir, const Survey& survey, const 
                    "predominant frequency (peak of the Konno&ndash;Ohmachi-smoothed Fourier amplitude spectrum).</li>\n",
                    st.pga_count, st.pga_min_g, st.pga_max_g, st.freq_count, st.freq_min_hz, st.freq_max_hz,
                    r.runs / std::max<std::size_t>(1, site.objects.size() * r.pga_g.size() * r.freq_hz.size()),
-                   st.family == MotionFamily::synthetic ? "synthetic (Clough&ndash;Penzien filtered noise)" : "recorded")
+                   st.family == MotionFamily::synthetic      ? "synthetic (Clough&ndash;Penzien filtered noise)"
+                   : st.family == MotionFamily::rezaeian2010 ? "synthetic record-like (Rezaeian &amp; Der Kiureghian 2010)"
+                                                             : "recorded")
     << "<li>All objects saw the same motion: a cell's likelihood is the average over its motions of the product over "
        "objects of 0.98 (certain), 0.90 (likely) or 0.75 (reported) when the run reproduces the observation and 0.02, "
        "0.10 or 0.25 when it does not (the chance that the observation itself is wrong); the runs of neighbouring "
@@ -550,7 +552,7 @@ void write_report(const std::filesystem::path& dir, const Survey& survey, const 
   row("survey checksum (XXH3-64)", provenance.survey_xxh3_64);
   h << "</table>\n";
   h << fmt::format("<p>Family {}, seed {}, g = {} m/s&#178;, {} runs in {:.1f} s.</p>\n",
-                   st.family == MotionFamily::synthetic ? "synthetic" : "records", st.seed, st.g_m_s2, r.runs, r.seconds);
+                   motion_family_name(st.family), st.seed, st.g_m_s2, r.runs, r.seconds);
   if (st.family == MotionFamily::records) {
     h << "<ul>";
     for (const auto& rec : st.records) h << "<li><code>" << html_escape(rec) << "</code></li>";

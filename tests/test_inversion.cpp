@@ -274,6 +274,45 @@ TEST(InversionSettingsCheck, FrequencyAxisMustBeWithinTheFamilysReach) {
   EXPECT_THROW(validate_inversion_options(bad), InputError);
 }
 
+// The record-like family (issue 18) is chosen by name; a survey without the key, or naming "synthetic", keeps the
+// Clough-Penzien family; an unknown name lists the three.
+TEST(InversionSettingsCheck, Rezaeian2010FamilyIsChosenByNameAndOldSurveysKeepTheirMeaning) {
+  const std::string objects = "[[object]]\nid = \"a\"\nwidth = \"5cm\"\nheight = \"20cm\"\nmu = 0.5\n"
+                              "outcome = \"overturned\"\n";
+  const auto family_of = [&](const std::string& inversion) {
+    return io::parse_survey("[site]\nname = \"x\"\n" + inversion + objects, "f.toml").inversion.family;
+  };
+  EXPECT_EQ(family_of(""), MotionFamily::synthetic);
+  EXPECT_EQ(family_of("[inversion]\nfamily = \"synthetic\"\n"), MotionFamily::synthetic);
+  EXPECT_EQ(family_of("[inversion]\nfamily = \"rezaeian2010\"\n"), MotionFamily::rezaeian2010);
+  EXPECT_EQ(motion_family_name(MotionFamily::rezaeian2010), "rezaeian2010");
+  try {
+    (void)family_of("[inversion]\nfamily = \"boore\"\n");
+    FAIL() << "unknown family accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().field, "inversion.family");
+    EXPECT_NE(e.problem().find("rezaeian2010"), std::string::npos) << e.what();
+  }
+  // Its frequency axis: 0.1 to 25 Hz.
+  InversionSettings st;
+  st.family = MotionFamily::rezaeian2010;
+  EXPECT_NO_THROW(validate_inversion_settings(st));
+  st.freq_max_hz = 30.0;
+  EXPECT_THROW(validate_inversion_settings(st), InputError);
+  // Every motion of a column has the column's measured predominant frequency (time-scaled onto it: the measurement
+  // moves by less than the spectrum's peak interpolation, 1e-3 relative, as for the other families) and unit PGA.
+  st.freq_max_hz = 20.0;
+  st.motions_per_cell = 4;
+  for (const double f : {0.5, 3.0}) {
+    const std::vector<GroundMotion> motions = family_motions(st, f);
+    ASSERT_EQ(motions.size(), 4u);
+    for (const GroundMotion& m : motions) {
+      EXPECT_NEAR(predominant_frequency_hz(m), f, 1e-3 * f);
+      EXPECT_NEAR(m.pga_m_s2(), 1.0, 1e-12);
+    }
+  }
+}
+
 InversionSettings small_grid(int motions = 10) {
   InversionSettings st;
   st.pga_min_g = 0.05;

@@ -91,7 +91,12 @@ struct Site {
   [[nodiscard]] bool is_station() const noexcept { return instrument_pga_g.has_value() || !instrument_record.empty(); }
 };
 
-enum class MotionFamily { synthetic, records };
+/// The motions the inversion explores. synthetic: Clough-Penzien filtered noise (synthesis.hpp), the default;
+/// rezaeian2010: the record-like family of Rezaeian & Der Kiureghian (2010) (synthesis.hpp, docs/method.md);
+/// records: the survey's own records.
+enum class MotionFamily { synthetic, records, rezaeian2010 };
+/// "synthetic", "records", "rezaeian2010": the names a survey's `family` key takes.
+[[nodiscard]] std::string_view motion_family_name(MotionFamily family);
 
 /// How the inversion explores the shaking (defaults as documented in docs/method.md).
 struct InversionSettings {

@@ -162,6 +162,60 @@ struct SynthesizedSet {
 /// machine.
 [[nodiscard]] SynthesizedSet synthesize_set(const SynthesisSetSpec& spec);
 
+// ---- A record-like family: Rezaeian & Der Kiureghian (2010) ----------------------------------------------------
+//
+// Model (Rezaeian & Der Kiureghian 2010, "Simulation of synthetic ground motions for specified earthquake and site
+// characteristics", EESD 39(10):1155-1180; docs/method.md "A record-like family"). A modulated, filtered white noise
+//   a(t) = q(t) xhat(t),   xhat = the output of a filter whose frequency drifts, normalised to unit variance,
+// then high-passed. Modulating function (their eq. 3, t0 = 0): q(t) = t^(alpha2 - 1) exp(-alpha3 t) up to a factor
+// (the factor, set by the Arias intensity, is scaled away: the motion is scaled to its PGA), alpha2 and alpha3 from
+// the significant duration D5-95 and t_mid (the time at which 45 % of the Arias intensity has arrived): the Husid
+// plot of q^2 is a gamma distribution of shape k = 2 alpha2 - 1 and rate 2 alpha3, so D5-95 / t_mid fixes k and
+// then t_mid fixes the rate. Filter frequency f(t) = f_mid + f' (t - t_mid), damping zeta_f; the high-pass is their
+// critically damped oscillator (corner f_c).
+// Approximations (stated in docs/method.md): the filter is a time-varying oscillator driven by unit pulses at the
+// samples, its frequency taken over each step (their eq. 6 takes it at the pulse's time: the same while
+// |f'| / f^2 << 1), normalised by its stationary variance at f(t) (theirs: the exact sum of squared responses; they
+// differ at the onset, where q is small); f(t) is kept >= f_mid / 4.
+// Discretisation: the oscillator's step is its exact homogeneous transition (exp, cos, sin of the step), the pulse
+// adds to its velocity; the high-pass is exact for the piecewise-linear signal (Van Loan, as synthesize()). Every
+// operation is portable (the header's random numbers; topple's exp, log and a Taylor sin/cos of arguments <= 1).
+struct RezaeianSpec {
+  double pga_m_s2 = 1.0;        ///< peak |a| of the result, m/s^2 (> 0)
+  double dt_s = 0.01;           ///< sample interval, s (> 0; <= 1 / (20 f_max) keeps the step's angle <= 0.32)
+  double d5_95_s = 17.3;        ///< significant duration, s (> 0)
+  double t_mid_s = 12.4;        ///< time at 45 % of the Arias intensity, s (> 0)
+  double f_mid_hz = 5.87;       ///< filter frequency at t_mid, Hz (> 0)
+  double f_slope_hz_s = -0.089; ///< its rate of change f', Hz/s
+  double zeta_f = 0.213;        ///< filter damping ratio, in [0.02, 0.95]
+  double f_c_hz = 0.1;          ///< high-pass corner, Hz (> 0)
+  double duration_s = 0.0;      ///< record length, s; 0: the time at which 99.9 % of the Arias intensity has arrived
+  std::uint64_t seed = 0;
+};
+
+/// Checks a spec; throws InputError naming the offending field and value.
+void validate(const RezaeianSpec& spec);
+
+/// The shape k (= 2 alpha2 - 1 >= 1) and rate (1/s) of the gamma distribution whose 5-95 % range is d5_95_s and whose
+/// 45 % quantile is t_mid_s; D5-95 / t_mid above the exponential's 4.93 gives k = 1 (the most spread gamma whose q
+/// stays finite at t = 0).
+struct GammaEnvelope {
+  double shape = 1.0;   ///< k, dimensionless
+  double rate_s = 1.0;  ///< 1/s
+  double t999_s = 0.0;  ///< time at which 99.9 % of the energy has arrived, s
+};
+[[nodiscard]] GammaEnvelope gamma_envelope(double d5_95_s, double t_mid_s);
+
+/// The motion of a spec: uniform from t = 0, zero final velocity and displacement (the baseline correction of
+/// synthesize()), max |a| = pga. Throws InputError for an invalid spec.
+[[nodiscard]] GroundMotion synthesize_rezaeian(const RezaeianSpec& spec);
+
+/// One draw of the model's parameters (seeded, portable): D5-95, t_mid / D5-95, the relative drift f' D5-95 / f_mid
+/// and zeta_f, from distributions matched to the sample statistics Rezaeian & Der Kiureghian (2010) report for
+/// their NGA records (docs/method.md states which, and what was chosen where the paper gives no number). The
+/// frequency f_mid (and f' with it) is set by the caller; f_c is f_mid / 10.
+[[nodiscard]] RezaeianSpec draw_rezaeian(std::uint64_t seed, double f_mid_hz);
+
 // ---- The portable generator, public so that tests and other modules can reproduce it. ----
 
 /// SplitMix64 (Steele, Lea & Flood 2014): the seeding generator.

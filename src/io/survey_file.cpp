@@ -30,6 +30,15 @@ std::string_view outcome_name(Outcome o) {
   return "unknown";
 }
 
+std::string_view motion_family_name(MotionFamily f) {
+  switch (f) {
+    case MotionFamily::synthetic: return "synthetic";
+    case MotionFamily::records: return "records";
+    case MotionFamily::rezaeian2010: return "rezaeian2010";
+  }
+  return "unknown";
+}
+
 std::string_view evidence_name(Evidence e) {
   switch (e) {
     case Evidence::certain: return "certain";
@@ -410,7 +419,8 @@ Survey parse_toml_survey(std::string_view text, const std::string& name, const s
     if (const auto fam = r.string("family")) {
       if (*fam == "synthetic") st.family = MotionFamily::synthetic;
       else if (*fam == "records") st.family = MotionFamily::records;
-      else throw r.error("family", fmt::format("unknown family '{}' (known: synthetic, records)", *fam));
+      else if (*fam == "rezaeian2010") st.family = MotionFamily::rezaeian2010;
+      else throw r.error("family", fmt::format("unknown family '{}' (known: synthetic, records, rezaeian2010)", *fam));
     }
     if (const toml::node* rec = r.get("records")) {
       const auto* arr = rec->as_array();
