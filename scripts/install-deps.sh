@@ -18,6 +18,7 @@ run_packages=(
   build-essential cmake ninja-build pkg-config
   libcli11-dev libfmt-dev nlohmann-json3-dev libtomlplusplus-dev libboost-dev
   libtbb-dev libfftw3-dev libxxhash-dev
+  libassimp-dev libcgal-dev  # meshes (topple body): reading OBJ/STL/PLY; convex hull and self-intersection
   gnuplot-nox  # figures: --plot, the inversion report
 )
 python_packages=(python3 python3-venv python3-dev)

@@ -1,0 +1,150 @@
+// OBJ, STL and PLY meshes through the Open Asset Import Library (assimp; Debian libassimp-dev). The only translation
+// unit of topple that includes assimp's headers.
+#include "topple/io/mesh.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include <assimp/BaseImporter.h>
+#include <assimp/Importer.hpp>
+#include <assimp/mesh.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <fmt/format.h>
+
+#include "topple/error.hpp"
+#include "topple/units.hpp"
+
+namespace topple::io {
+namespace {
+
+InputError mesh_error(const std::string& file, const std::string& problem) {
+  return InputError(InputLocation{.file = file, .line = {}, .field = {}}, problem);
+}
+
+std::string lower_extension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return std::tolower(ch); });
+  return ext;
+}
+
+/// An importer that knows only the one format `extension` names: every other loader of assimp is unregistered (and
+/// deleted here: assimp's destructor deletes only the loaders still registered), so that a file whose content does
+/// not match its extension is refused rather than tried as any of assimp's other formats.
+class SingleFormatImporter {
+ public:
+  explicit SingleFormatImporter(const std::string& extension) {
+    const std::size_t keep = importer_.GetImporterIndex(extension.c_str());
+    std::vector<Assimp::BaseImporter*> others;
+    for (std::size_t i = 0; i < importer_.GetImporterCount(); ++i) {
+      if (i != keep) others.push_back(importer_.GetImporter(i));
+    }
+    for (auto* other : others) {
+      if (importer_.UnregisterLoader(other) == aiReturn_SUCCESS) removed_.emplace_back(other);
+    }
+  }
+  Assimp::Importer& get() { return importer_; }
+
+ private:
+  std::vector<std::unique_ptr<Assimp::BaseImporter>> removed_;  // destroyed after importer_ (declared first)
+  Assimp::Importer importer_;
+};
+
+}  // namespace
+
+double mesh_unit_m(const std::string& unit, const std::string& field) {
+  const double factor = parse_length_m("1" + unit, field);
+  if (!(factor > 0.0)) throw parameter_error(field, fmt::format("'{}' is not a unit of length", unit));
+  return factor;
+}
+
+TriangleMesh read_mesh(const std::string& path, double unit_m) {
+  if (!(unit_m > 0.0 && std::isfinite(unit_m))) {
+    throw parameter_error("--unit", fmt::format("{} m is not a positive length", unit_m));
+  }
+  const std::string ext = lower_extension(path);
+  if (ext != ".obj" && ext != ".stl" && ext != ".ply") {
+    throw mesh_error(path, fmt::format("unknown mesh format '{}': topple reads .obj, .stl (ASCII or binary) and .ply",
+                                       ext));
+  }
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(status)) throw mesh_error(path, "no such file");
+  if (!std::filesystem::is_regular_file(status)) throw mesh_error(path, "not a regular file");
+  const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
+  if (ec) throw mesh_error(path, "cannot read its size: " + ec.message());
+  if (bytes == 0) throw mesh_error(path, "the file is empty");
+  if (bytes > kMaxMeshFileBytes) {
+    throw mesh_error(path, fmt::format("{} bytes: larger than the {} bytes topple reads (decimate the scan)", bytes,
+                                       kMaxMeshFileBytes));
+  }
+
+  SingleFormatImporter single(ext);
+  // Triangulate polygons; apply the nodes' transforms (so that every mesh of the scene is in the file's frame);
+  // validate assimp's output (indices in range and the like). No smoothing, welding or repair: check_mesh judges the
+  // surface as the file has it. Normals are not read (the winding order defines the outside).
+  const aiScene* scene = single.get().ReadFile(
+      path, aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_ValidateDataStructure);
+  if (scene == nullptr) {
+    throw mesh_error(path, fmt::format("cannot be read as {}: {}", ext.substr(1),
+                                       single.get().GetErrorString()));
+  }
+  if ((scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) != 0 || scene->mNumMeshes == 0) {
+    throw mesh_error(path, "the mesh has no triangles (an empty file, or one holding only points or lines)");
+  }
+
+  // Weld vertices with equal coordinates (as read, before scaling); -0 and +0 are one value.
+  TriangleMesh mesh;
+  std::map<std::array<float, 3>, std::uint32_t> index;
+  std::size_t faces = 0;
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m) faces += scene->mMeshes[m]->mNumFaces;
+  if (faces > MeshLimits::max_triangles) {
+    throw mesh_error(path, fmt::format("{} faces: more than the {} triangles topple reads (decimate the scan)", faces,
+                                       MeshLimits::max_triangles));
+  }
+  mesh.triangles.reserve(faces);
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
+    const aiMesh* am = scene->mMeshes[m];
+    std::vector<std::uint32_t> local(am->mNumVertices);
+    for (unsigned v = 0; v < am->mNumVertices; ++v) {
+      const aiVector3D& p = am->mVertices[v];
+      const std::array<float, 3> key{p.x + 0.0f, p.y + 0.0f, p.z + 0.0f};
+      for (float x : key) {
+        if (!std::isfinite(x)) {
+          throw mesh_error(path, fmt::format("a vertex has a coordinate that is not a finite number ({}, {}, {})", p.x,
+                                             p.y, p.z));
+        }
+      }
+      const auto [it, fresh] = index.emplace(key, static_cast<std::uint32_t>(mesh.vertices_m.size()));
+      if (fresh) {
+        mesh.vertices_m.push_back({static_cast<double>(key[0]) * unit_m, static_cast<double>(key[1]) * unit_m,
+                                   static_cast<double>(key[2]) * unit_m});
+      }
+      local[v] = it->second;
+    }
+    for (unsigned f = 0; f < am->mNumFaces; ++f) {
+      const aiFace& face = am->mFaces[f];
+      if (face.mNumIndices != 3) {
+        throw mesh_error(path, fmt::format("holds {} (a face of {} vertices): topple reads solids bounded by "
+                                           "triangles or polygons only",
+                                           face.mNumIndices < 3 ? "points or lines" : "a polygon it cannot split",
+                                           face.mNumIndices));
+      }
+      mesh.triangles.push_back({local[face.mIndices[0]], local[face.mIndices[1]], local[face.mIndices[2]]});
+    }
+  }
+  check_mesh(mesh, path);
+  return mesh;
+}
+
+}  // namespace topple::io
