@@ -94,5 +94,16 @@ TEST(CliBody, BadInputExitsTwoNamingTheFile) {
   EXPECT_NE(r.err.find("none.stl: no such file"), std::string::npos) << r.err;
 }
 
+// The README's example runs from a clean clone: the committed rock stands, on an asymmetric base (its generator,
+// examples/mesh/make_rock.py, flattens it to a base about 0.38 m long east-west under a CM 0.63 m high).
+TEST(CliBody, ExampleRockStands) {
+  const auto j = test::run_json(std::string("body ") + quote(std::string(TOPPLE_SOURCE_DIR) +
+                                                             "/examples/mesh/balanced_rock.obj") +
+                                " --azimuth 90 --json");
+  EXPECT_GT(j["b2_m"].get<double>() - j["b1_m"].get<double>(), 0.1);  // 0.27 m against 0.11 m as generated
+  EXPECT_GT(j["alpha1_deg"].get<double>(), 5.0);
+  EXPECT_LT(j["alpha1_deg"].get<double>(), 15.0);  // precarious: 9.4 deg as generated
+}
+
 }  // namespace
 }  // namespace topple
