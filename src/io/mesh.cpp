@@ -9,9 +9,11 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <system_error>
 #include <vector>
 
@@ -69,32 +71,53 @@ double mesh_unit_m(const std::string& unit, const std::string& field) {
 }
 
 TriangleMesh read_mesh(const std::string& path, double unit_m) {
-  if (!(unit_m > 0.0 && std::isfinite(unit_m))) {
-    throw parameter_error("--unit", fmt::format("{} m is not a positive length", unit_m));
-  }
   const std::string ext = lower_extension(path);
   if (ext != ".obj" && ext != ".stl" && ext != ".ply") {
     throw mesh_error(path, fmt::format("unknown mesh format '{}': topple reads .obj, .stl (ASCII or binary) and .ply",
                                        ext));
   }
   std::error_code ec;
-  const auto status = std::filesystem::status(path, ec);
+  const auto status = std::filesystem::status(path, ec);  // follows links: a link to /dev/zero is a device
   if (ec || !std::filesystem::exists(status)) throw mesh_error(path, "no such file");
   if (!std::filesystem::is_regular_file(status)) throw mesh_error(path, "not a regular file");
   const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
   if (ec) throw mesh_error(path, "cannot read its size: " + ec.message());
-  if (bytes == 0) throw mesh_error(path, "the file is empty");
   if (bytes > kMaxMeshFileBytes) {
     throw mesh_error(path, fmt::format("{} bytes: larger than the {} bytes topple reads (decimate the scan)", bytes,
                                        kMaxMeshFileBytes));
   }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw mesh_error(path, "cannot open the file");
+  std::string content(static_cast<std::size_t>(bytes), '\0');
+  in.read(content.data(), static_cast<std::streamsize>(content.size()));
+  content.resize(static_cast<std::size_t>(in.gcount()));  // a file that shrank while read: what is there
+  if (in.bad()) throw mesh_error(path, "cannot read the file");
+  return parse_mesh(content, ext.substr(1), path, unit_m);
+}
+
+TriangleMesh parse_mesh(std::string_view content, const std::string& format, const std::string& name,
+                        double unit_m) {
+  if (!(unit_m > 0.0 && std::isfinite(unit_m))) {
+    throw parameter_error("--unit", fmt::format("{} m is not a positive length", unit_m));
+  }
+  const std::string ext = "." + format;
+  if (ext != ".obj" && ext != ".stl" && ext != ".ply") {
+    throw mesh_error(name, fmt::format("unknown mesh format '{}': topple reads obj, stl and ply", format));
+  }
+  if (content.empty()) throw mesh_error(name, "the file is empty");
+  if (content.size() > kMaxMeshFileBytes) {
+    throw mesh_error(name, fmt::format("{} bytes: larger than the {} bytes topple reads (decimate the scan)",
+                                       content.size(), kMaxMeshFileBytes));
+  }
+  const std::string& path = name;
 
   SingleFormatImporter single(ext);
   // Triangulate polygons; apply the nodes' transforms (so that every mesh of the scene is in the file's frame);
   // validate assimp's output (indices in range and the like). No smoothing, welding or repair: check_mesh judges the
   // surface as the file has it. Normals are not read (the winding order defines the outside).
-  const aiScene* scene = single.get().ReadFile(
-      path, aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_ValidateDataStructure);
+  const aiScene* scene = single.get().ReadFileFromMemory(
+      content.data(), content.size(),
+      aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_ValidateDataStructure, format.c_str());
   if (scene == nullptr) {
     throw mesh_error(path, fmt::format("cannot be read as {}: {}", ext.substr(1),
                                        single.get().GetErrorString()));

@@ -14,6 +14,7 @@
 // file.
 #include <cstdint>
 #include <string>
+#include <string_view>
 
 #include "topple/body.hpp"
 
@@ -28,5 +29,10 @@ inline constexpr std::uintmax_t kMaxMeshFileBytes = std::uintmax_t{1} << 30;
 
 /// Reads `path` (OBJ, STL, PLY), scales it by `unit_m` and checks it (check_mesh). Throws InputError naming the file.
 [[nodiscard]] TriangleMesh read_mesh(const std::string& path, double unit_m = 1.0);
+
+/// Same as read_mesh on a file's content already in memory, of `format` "obj", "stl" or "ply" (what the extension
+/// says); `name` is used in messages (and is what the fuzz targets call).
+[[nodiscard]] TriangleMesh parse_mesh(std::string_view content, const std::string& format, const std::string& name,
+                                      double unit_m = 1.0);
 
 }  // namespace topple::io
