@@ -15,6 +15,7 @@
 #include <string>
 #include <string_view>
 #include <system_error>
+#include <initializer_list>
 #include <vector>
 
 #include <assimp/BaseImporter.h>
@@ -61,6 +62,102 @@ class SingleFormatImporter {
   std::vector<std::unique_ptr<Assimp::BaseImporter>> removed_;  // destroyed after importer_ (declared first)
   Assimp::Importer importer_;
 };
+
+/// Cuts an assimp message to a readable length, printable ASCII only (its parse errors quote the rest of the file).
+std::string short_message(const char* text) {
+  std::string out;
+  for (const char* c = text; *c != '\0' && out.size() < 200; ++c) {
+    out += (*c >= 0x20 && *c < 0x7f) ? *c : ' ';
+  }
+  if (std::strlen(text) > out.size()) out += " ...";
+  return out;
+}
+
+bool is_ply_type(std::string_view t) {
+  for (std::string_view known : {"char", "uchar", "short", "ushort", "int", "uint", "float", "double", "int8", "uint8",
+                                 "int16", "uint16", "int32", "uint32", "float32", "float64"}) {
+    if (t == known) return true;
+  }
+  return false;
+}
+
+bool is_identifier(std::string_view t) {
+  if (t.empty() || t.size() > 64) return false;
+  return std::all_of(t.begin(), t.end(), [](unsigned char c) { return std::isalnum(c) || c == '_' || c == '-'; });
+}
+
+/// The PLY header checked against the format's grammar (Turk 1994, "The PLY polygon file format": the lines "ply",
+/// "format ascii|binary_little_endian|binary_big_endian 1.0", "comment ...", "obj_info ...", "element NAME COUNT",
+/// "property TYPE NAME", "property list TYPE TYPE NAME", "end_header"), before assimp sees the file: assimp 5.2's
+/// header parser loops forever on some malformed headers (fuzz_mesh_ply found one: a property line running into
+/// "end_header" without a newline), and it allocates for the element counts as given, so these are bounded here.
+void check_ply_header(std::string_view content, const std::string& name) {
+  constexpr std::size_t kMaxHeaderBytes = 64 * 1024;
+  const auto fail = [&](std::size_t line, const std::string& problem) {
+    throw InputError(InputLocation{.file = name, .line = line, .field = {}}, "PLY header: " + problem);
+  };
+  std::size_t pos = 0, line_no = 0;
+  bool in_element = false;
+  while (true) {
+    ++line_no;
+    const std::size_t eol = content.find('\n', pos);
+    if (eol == std::string_view::npos || eol > kMaxHeaderBytes) {
+      fail(line_no, fmt::format("no end_header line within the first {} bytes", kMaxHeaderBytes));
+    }
+    std::string_view line = content.substr(pos, eol - pos);
+    pos = eol + 1;
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    if (std::any_of(line.begin(), line.end(), [](unsigned char c) { return c < 0x20 ? c != '\t' : c >= 0x7f; })) {
+      fail(line_no, "a header line holds a byte that is not printable ASCII");
+    }
+    std::vector<std::string_view> tokens;
+    for (std::size_t i = 0; i < line.size();) {
+      while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+      std::size_t j = i;
+      while (j < line.size() && line[j] != ' ' && line[j] != '\t') ++j;
+      if (j > i) tokens.push_back(line.substr(i, j - i));
+      i = j;
+    }
+    const std::string_view key = tokens.empty() ? std::string_view{} : tokens[0];
+    if (line_no == 1) {
+      if (tokens.size() != 1 || key != "ply") fail(line_no, "the file does not begin with the line 'ply'");
+      continue;
+    }
+    if (line_no == 2) {
+      if (tokens.size() != 3 || key != "format" ||
+          (tokens[1] != "ascii" && tokens[1] != "binary_little_endian" && tokens[1] != "binary_big_endian") ||
+          tokens[2] != "1.0") {
+        fail(line_no, "the second line is not 'format ascii|binary_little_endian|binary_big_endian 1.0'");
+      }
+      continue;
+    }
+    if (key == "comment" || key == "obj_info") continue;
+    if (key == "end_header" && tokens.size() == 1) return;
+    if (key == "element") {
+      const bool count_ok = tokens.size() == 3 && !tokens[2].empty() && tokens[2].size() <= 9 &&
+                            std::all_of(tokens[2].begin(), tokens[2].end(), [](unsigned char c) { return std::isdigit(c); });
+      if (!count_ok || !is_identifier(tokens[1])) fail(line_no, "an element line is not 'element NAME COUNT'");
+      const std::size_t count = std::stoul(std::string(tokens[2]));
+      const std::size_t limit = tokens[1] == "face" ? MeshLimits::max_triangles : 3 * MeshLimits::max_triangles;
+      if (count > limit) {
+        fail(line_no, fmt::format("{} {} elements: more than the {} topple reads", count, tokens[1], limit));
+      }
+      in_element = true;
+      continue;
+    }
+    if (key == "property") {
+      const bool scalar = tokens.size() == 3 && is_ply_type(tokens[1]) && is_identifier(tokens[2]);
+      const bool list = tokens.size() == 5 && tokens[1] == "list" && is_ply_type(tokens[2]) &&
+                        is_ply_type(tokens[3]) && is_identifier(tokens[4]);
+      if (!(scalar || list) || !in_element) {
+        fail(line_no, "a property line is not 'property TYPE NAME' or 'property list TYPE TYPE NAME' after an "
+                      "element line");
+      }
+      continue;
+    }
+    fail(line_no, fmt::format("'{}' is not a PLY header line", std::string(line.substr(0, 60))));
+  }
+}
 
 }  // namespace
 
@@ -110,6 +207,7 @@ TriangleMesh parse_mesh(std::string_view content, const std::string& format, con
                                        content.size(), kMaxMeshFileBytes));
   }
   const std::string& path = name;
+  if (format == "ply") check_ply_header(content, name);
 
   SingleFormatImporter single(ext);
   // Triangulate polygons; apply the nodes' transforms (so that every mesh of the scene is in the file's frame);
@@ -119,8 +217,8 @@ TriangleMesh parse_mesh(std::string_view content, const std::string& format, con
       content.data(), content.size(),
       aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_ValidateDataStructure, format.c_str());
   if (scene == nullptr) {
-    throw mesh_error(path, fmt::format("cannot be read as {}: {}", ext.substr(1),
-                                       single.get().GetErrorString()));
+    throw mesh_error(path, fmt::format("cannot be read as {}: {}", format,
+                                       short_message(single.get().GetErrorString())));
   }
   if ((scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) != 0 || scene->mNumMeshes == 0) {
     throw mesh_error(path, "the mesh has no triangles (an empty file, or one holding only points or lines)");
