@@ -159,6 +159,101 @@ void check_ply_header(std::string_view content, const std::string& name) {
   }
 }
 
+/// Collects the triangles of an assimp scene into one TriangleMesh.
+///
+/// Polygons are split here rather than by assimp's aiProcess_Triangulate, which aborts the program (an ai_assert in
+/// TriangulateProcess.cpp, enabled in Debian's build) on a scene whose primitive-type flags disagree with its faces,
+/// as fuzz_mesh_ply made a truncated PLY face list give. A polygon of n > 3 vertices is split into the fan
+/// (0, k, k + 1), which is right for a convex polygon (the quads of an OBJ box); a polygon that is not convex about its
+/// Newell normal is refused (triangulate it in the program that wrote the file). Faces of 1 or 2 vertices (points,
+/// lines) are refused.
+struct MeshBuilder {
+  const std::string& path;
+  double unit_m;
+  TriangleMesh mesh;
+  std::map<std::array<float, 3>, std::uint32_t> index;
+
+  static constexpr int kMaxNodeDepth = 64;
+
+  void add_node(const aiScene& scene, const aiNode* node, const aiMatrix4x4& parent, int depth) {
+    if (node == nullptr) return;
+    if (depth > kMaxNodeDepth) throw mesh_error(path, fmt::format("nodes nested deeper than {}", kMaxNodeDepth));
+    const aiMatrix4x4 transform = parent * node->mTransformation;
+    for (unsigned i = 0; i < node->mNumMeshes; ++i) {
+      if (node->mMeshes[i] < scene.mNumMeshes) add_mesh(*scene.mMeshes[node->mMeshes[i]], transform);
+    }
+    for (unsigned c = 0; c < node->mNumChildren; ++c) add_node(scene, node->mChildren[c], transform, depth + 1);
+  }
+
+  void add_mesh(const aiMesh& am, const aiMatrix4x4& transform) {
+    std::vector<std::uint32_t> local(am.mNumVertices);
+    for (unsigned v = 0; v < am.mNumVertices; ++v) {
+      const aiVector3D p = transform * am.mVertices[v];
+      const std::array<float, 3> key{p.x + 0.0f, p.y + 0.0f, p.z + 0.0f};
+      for (float x : key) {
+        if (!std::isfinite(x)) {
+          throw mesh_error(path, fmt::format("a vertex has a coordinate that is not a finite number ({}, {}, {})", p.x,
+                                             p.y, p.z));
+        }
+      }
+      const auto [it, fresh] = index.emplace(key, static_cast<std::uint32_t>(mesh.vertices_m.size()));
+      if (fresh) {
+        mesh.vertices_m.push_back({static_cast<double>(key[0]) * unit_m, static_cast<double>(key[1]) * unit_m,
+                                   static_cast<double>(key[2]) * unit_m});
+      }
+      local[v] = it->second;
+    }
+    for (unsigned f = 0; f < am.mNumFaces; ++f) {
+      const aiFace& face = am.mFaces[f];
+      const unsigned n = face.mNumIndices;
+      if (n < 3) {
+        throw mesh_error(path, fmt::format("holds points or lines (a face of {} vertices): topple reads solids bounded "
+                                           "by triangles or polygons only",
+                                           n));
+      }
+      if (mesh.triangles.size() + (n - 2) > MeshLimits::max_triangles) {
+        throw mesh_error(path, fmt::format("more than the {} triangles topple reads (decimate the scan)",
+                                           MeshLimits::max_triangles));
+      }
+      std::vector<std::uint32_t> poly(n);
+      for (unsigned k = 0; k < n; ++k) {
+        if (face.mIndices[k] >= am.mNumVertices) throw mesh_error(path, "a face refers to a vertex that is not there");
+        poly[k] = local[face.mIndices[k]];
+      }
+      if (n > 3 && !convex(poly)) {
+        throw mesh_error(path, fmt::format("a face of {} vertices is not a convex polygon: triangulate it in the program "
+                                           "that wrote the file",
+                                           n));
+      }
+      for (unsigned k = 1; k + 1 < n; ++k) mesh.triangles.push_back({poly[0], poly[k], poly[k + 1]});
+    }
+  }
+
+  /// Convex about its Newell normal (Newell's method: the normal of a polygon from its edges, exact for a planar one).
+  [[nodiscard]] bool convex(const std::vector<std::uint32_t>& poly) const {
+    const std::size_t n = poly.size();
+    std::array<double, 3> normal{};
+    for (std::size_t k = 0; k < n; ++k) {
+      const auto& a = mesh.vertices_m[poly[k]];
+      const auto& b = mesh.vertices_m[poly[(k + 1) % n]];
+      normal[0] += (a[1] - b[1]) * (a[2] + b[2]);
+      normal[1] += (a[2] - b[2]) * (a[0] + b[0]);
+      normal[2] += (a[0] - b[0]) * (a[1] + b[1]);
+    }
+    for (std::size_t k = 0; k < n; ++k) {
+      const auto& a = mesh.vertices_m[poly[k]];
+      const auto& b = mesh.vertices_m[poly[(k + 1) % n]];
+      const auto& c = mesh.vertices_m[poly[(k + 2) % n]];
+      const std::array<double, 3> u{b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+      const std::array<double, 3> w{c[0] - b[0], c[1] - b[1], c[2] - b[2]};
+      const double turn = (u[1] * w[2] - u[2] * w[1]) * normal[0] + (u[2] * w[0] - u[0] * w[2]) * normal[1] +
+                          (u[0] * w[1] - u[1] * w[0]) * normal[2];
+      if (turn < 0.0) return false;
+    }
+    return true;
+  }
+};
+
 }  // namespace
 
 double mesh_unit_m(const std::string& unit, const std::string& field) {
@@ -210,12 +305,12 @@ TriangleMesh parse_mesh(std::string_view content, const std::string& format, con
   if (format == "ply") check_ply_header(content, name);
 
   SingleFormatImporter single(ext);
-  // Triangulate polygons; apply the nodes' transforms (so that every mesh of the scene is in the file's frame);
-  // validate assimp's output (indices in range and the like). No smoothing, welding or repair: check_mesh judges the
-  // surface as the file has it. Normals are not read (the winding order defines the outside).
+  // Only assimp's validation of its own output (indices in range and the like): no post-processing step (see
+  // MeshBuilder), no smoothing or repair: check_mesh judges the surface as the file has it. Normals are not read (the
+  // winding order defines the outside).
   const aiScene* scene = single.get().ReadFileFromMemory(
       content.data(), content.size(),
-      aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_ValidateDataStructure, format.c_str());
+      aiProcess_ValidateDataStructure, format.c_str());
   if (scene == nullptr) {
     throw mesh_error(path, fmt::format("cannot be read as {}: {}", format,
                                        short_message(single.get().GetErrorString())));
@@ -224,46 +319,11 @@ TriangleMesh parse_mesh(std::string_view content, const std::string& format, con
     throw mesh_error(path, "the mesh has no triangles (an empty file, or one holding only points or lines)");
   }
 
-  // Weld vertices with equal coordinates (as read, before scaling); -0 and +0 are one value.
-  TriangleMesh mesh;
-  std::map<std::array<float, 3>, std::uint32_t> index;
-  std::size_t faces = 0;
-  for (unsigned m = 0; m < scene->mNumMeshes; ++m) faces += scene->mMeshes[m]->mNumFaces;
-  if (faces > MeshLimits::max_triangles) {
-    throw mesh_error(path, fmt::format("{} faces: more than the {} triangles topple reads (decimate the scan)", faces,
-                                       MeshLimits::max_triangles));
-  }
-  mesh.triangles.reserve(faces);
-  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
-    const aiMesh* am = scene->mMeshes[m];
-    std::vector<std::uint32_t> local(am->mNumVertices);
-    for (unsigned v = 0; v < am->mNumVertices; ++v) {
-      const aiVector3D& p = am->mVertices[v];
-      const std::array<float, 3> key{p.x + 0.0f, p.y + 0.0f, p.z + 0.0f};
-      for (float x : key) {
-        if (!std::isfinite(x)) {
-          throw mesh_error(path, fmt::format("a vertex has a coordinate that is not a finite number ({}, {}, {})", p.x,
-                                             p.y, p.z));
-        }
-      }
-      const auto [it, fresh] = index.emplace(key, static_cast<std::uint32_t>(mesh.vertices_m.size()));
-      if (fresh) {
-        mesh.vertices_m.push_back({static_cast<double>(key[0]) * unit_m, static_cast<double>(key[1]) * unit_m,
-                                   static_cast<double>(key[2]) * unit_m});
-      }
-      local[v] = it->second;
-    }
-    for (unsigned f = 0; f < am->mNumFaces; ++f) {
-      const aiFace& face = am->mFaces[f];
-      if (face.mNumIndices != 3) {
-        throw mesh_error(path, fmt::format("holds {} (a face of {} vertices): topple reads solids bounded by "
-                                           "triangles or polygons only",
-                                           face.mNumIndices < 3 ? "points or lines" : "a polygon it cannot split",
-                                           face.mNumIndices));
-      }
-      mesh.triangles.push_back({local[face.mIndices[0]], local[face.mIndices[1]], local[face.mIndices[2]]});
-    }
-  }
+  // Every mesh placed by a node, with the node's accumulated transform (identity in what these three loaders give);
+  // vertices with equal coordinates (as read, before scaling) welded, -0 and +0 being one value; polygons split.
+  MeshBuilder builder{path, unit_m, {}, {}};
+  builder.add_node(*scene, scene->mRootNode, aiMatrix4x4{}, 0);
+  TriangleMesh mesh = std::move(builder.mesh);
   check_mesh(mesh, path);
   return mesh;
 }

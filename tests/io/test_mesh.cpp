@@ -159,6 +159,17 @@ TEST(MeshRead, RefusesWithTheFileName) {
   } catch (const InputError& e) {
     EXPECT_LT(std::string(e.what()).size(), 400u) << e.what();
   }
+  // Found by fuzz_mesh_ply: a truncated face list made assimp's triangulation abort the program (an assert); topple
+  // splits polygons itself and refuses the empty face.
+  write_file(d / "abort.ply",
+             "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+             "element face 4\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n"
+             "3 0 2 1\n3 0 1 3\n float x\nproper\n");
+  expect_refused(d / "abort.ply", "");
+  // A non-convex polygon face (an L-shaped hexagon as one face): refused, not fanned into overlapping triangles.
+  write_file(d / "concave.obj", "v 1 1 0\nv 1 2 0\nv 0 2 0\nv 0 0 0\nv 2 0 0\nv 2 1 0\n"
+                                "f 2 1 6 5 4 3\n");  // starts at a corner from which the fan would leave the L
+  expect_refused(d / "concave.obj", "not a convex polygon");
   write_file(d / "nan.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 nan\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
   expect_refused(d / "nan.obj", "finite");
 }

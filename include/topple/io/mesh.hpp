@@ -3,9 +3,9 @@
 //
 // Formats: Wavefront OBJ, STL (ASCII and binary), PLY (ASCII and binary), chosen by the file's extension (.obj,
 // .stl, .ply, any case); any other extension is refused, so that the 40-odd other formats of the Open Asset Import
-// Library (assimp, which parses these three) are never reached from topple. Polygons are split into triangles
-// (aiProcess_Triangulate); the meshes of every object and group in the file are joined, with their node transforms
-// applied; lines and points are refused. Vertices with bitwise-equal coordinates are welded into one (an STL file
+// Library (assimp, which parses these three) are never reached from topple. Polygons are split into triangles by
+// topple (a fan; a polygon that is not convex is refused); the meshes of every object and group in the file are
+// joined, with their node transforms applied; lines and points are refused. Vertices with bitwise-equal coordinates are welded into one (an STL file
 // repeats each vertex in every triangle that uses it; OBJ and PLY index them): a scan whose neighbouring triangles
 // do not share exactly equal vertices reads as open and is refused, nothing is snapped within a tolerance.
 //
