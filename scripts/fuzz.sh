@@ -34,7 +34,7 @@ seeds_for() {
     fuzz_usgs_smc) echo '*.smc' ;;
     fuzz_esm) echo '*.ASC' ;;
     fuzz_plain) echo '*.csv slammer/*.csv' ;;
-    fuzz_survey|fuzz_sweep) echo '' ;;  # seeded from examples/ below
+    fuzz_survey|fuzz_sweep|fuzz_mesh_*) echo '' ;;  # seeded from examples/ below
     *) echo '*' ;;
   esac
 }
@@ -92,6 +92,36 @@ EOF
 }
 
 status=0
+# Mesh seeds: the example rock as OBJ, and a unit cube in the format (OBJ; ASCII and binary STL; ASCII PLY).
+mesh_seeds() {
+  [[ "$1" == obj ]] && cp examples/mesh/balanced_rock.obj "$2/seed-rock.obj"
+  python3 - "$1" "$2" <<'EOF' || true
+import struct, sys
+fmt, out = sys.argv[1], sys.argv[2]
+v = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]
+f = [(0, 2, 1), (0, 3, 2), (4, 5, 6), (4, 6, 7), (0, 1, 5), (0, 5, 4), (1, 2, 6), (1, 6, 5), (2, 3, 7), (2, 7, 6),
+     (3, 0, 4), (3, 4, 7)]
+if fmt == 'obj':
+    text = ''.join('v %g %g %g\n' % p for p in v) + ''.join('f %d %d %d\n' % (a + 1, b + 1, c + 1) for a, b, c in f)
+    open(out + '/seed-cube.obj', 'w').write(text)
+elif fmt == 'stl':
+    text = 'solid cube\n'
+    for tri in f:
+        text += ' facet normal 0 0 0\n  outer loop\n' + ''.join('   vertex %g %g %g\n' % v[i] for i in tri)
+        text += '  endloop\n endfacet\n'
+    open(out + '/seed-cube-ascii.stl', 'w').write(text + 'endsolid cube\n')
+    data = b'binary cube'.ljust(80, b' ') + struct.pack('<I', len(f))
+    for tri in f:
+        data += struct.pack('<3f', 0, 0, 0) + b''.join(struct.pack('<3f', *v[i]) for i in tri) + b'\0\0'
+    open(out + '/seed-cube-binary.stl', 'wb').write(data)
+else:
+    head = ('ply\nformat ascii 1.0\nelement vertex %d\nproperty float x\nproperty float y\nproperty float z\n'
+            'element face %d\nproperty list uchar int vertex_indices\nend_header\n' % (len(v), len(f)))
+    text = head + ''.join('%g %g %g\n' % p for p in v) + ''.join('3 %d %d %d\n' % t for t in f)
+    open(out + '/seed-cube.ply', 'w').write(text)
+EOF
+}
+
 for target in "${targets[@]}"; do
   corpus="$out/corpus/$target"
   mkdir -p "$corpus"
@@ -111,8 +141,11 @@ for target in "${targets[@]}"; do
     fuzz_survey) cp examples/survey.toml "$corpus/seed-survey.toml"; cp examples/survey.csv "$corpus/seed-survey.csv"
                  dict=fuzz/toml.dict ;;
     fuzz_sweep) for f in examples/sweep/*.toml; do cp "$f" "$corpus/seed-$(basename "$f")"; done; dict=fuzz/toml.dict ;;
+    fuzz_mesh_*) mesh_seeds "${target#fuzz_mesh_}" "$corpus"; dict=fuzz/mesh.dict ;;
   esac
   echo "== $target: ${seconds} s$([[ "$runs" == -1 ]] || echo ", at most $runs runs")"
+  # assimp's own leaks on malformed files are suppressed (fuzz/lsan_assimp.supp); everything else is reported.
+  [[ "$target" == fuzz_mesh_* ]] && export LSAN_OPTIONS="suppressions=$(pwd)/fuzz/lsan_assimp.supp" || unset LSAN_OPTIONS
   if ! "$out/fuzz/$target" "$corpus" -max_total_time="$seconds" -runs="$runs" -max_len=65536 -timeout=10 \
        -rss_limit_mb=2048 -dict="$dict" -print_final_stats=1 -artifact_prefix="$out/artifacts/$target-" \
        2>"$out/$target.log"; then

@@ -19,6 +19,7 @@ run_packages=(
   libcli11-dev libfmt-dev nlohmann-json3-dev libtomlplusplus-dev libboost-dev
   libtbb-dev libfftw3-dev libxxhash-dev
   libgeographiclib-dev  # geodesic distances (WGS84, Karney 2013) for the regional fit
+  libassimp-dev libcgal-dev  # meshes (topple body): reading OBJ/STL/PLY; convex hull and self-intersection
   gnuplot-nox  # figures: --plot, the inversion report
 )
 python_packages=(python3 python3-venv python3-dev)

@@ -1,0 +1,138 @@
+// topple body MESH --azimuth DEG: the planar rocking body of a closed triangle mesh (a 3-D scan) in a vertical plane.
+#include <cmath>
+#include <memory>
+#include <string>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "common.hpp"
+#include "progress.hpp"
+#include "topple/body.hpp"
+#include "topple/io/mesh.hpp"
+#include "topple/units.hpp"
+
+namespace topple::cli {
+namespace {
+
+struct BodyCommandOptions {
+  std::string mesh;
+  double azimuth_deg = 0.0;
+  BodyOptions body;
+  std::string unit = "m";
+  bool json = false;
+  bool quiet = false;
+};
+
+double deg(double rad) { return rad * 180.0 / kPi; }
+
+nlohmann::ordered_json vec(const Vec3& v) { return nlohmann::ordered_json::array({v[0], v[1], v[2]}); }
+
+void print_body(const BodyCommandOptions& o, const MeshBody& r, std::size_t vertices, std::size_t triangles) {
+  const auto& m = r.mass;
+  const auto& b = r.planar;
+  const auto& c = m.centre_of_mass_m;
+  const auto& I = m.inertia_cm_kg_m2;
+  require_finite({{"volume", m.volume_m3}, {"mass", m.mass_kg}, {"h", b.h_m}, {"b1", b.b1_m}, {"b2", b.b2_m},
+                  {"I_O1", b.inertia_o1_kg_m2}, {"I_O2", b.inertia_o2_kg_m2}, {"p1", b.p1_rad_s},
+                  {"p2", b.p2_rad_s}, {"p (symmetric)", b.p_sym_rad_s}});
+  if (o.json) {
+    nlohmann::ordered_json out;
+    out["file"] = o.mesh;
+    out["unit_m"] = io::mesh_unit_m(o.unit, "--unit");
+    out["vertices"] = vertices;
+    out["triangles"] = triangles;
+    out["density_kg_m3"] = m.density_kg_m3;
+    out["volume_m3"] = m.volume_m3;
+    out["mass_kg"] = m.mass_kg;
+    out["centre_of_mass_m"] = vec(c);
+    out["inertia_cm_kg_m2"] = nlohmann::ordered_json::array({vec(I[0]), vec(I[1]), vec(I[2])});
+    out["support_z_m"] = r.support.z_m;
+    out["support_tolerance_m"] = r.support.tolerance_m;
+    out["support_contact_vertices"] = r.support.contact_vertices;
+    nlohmann::ordered_json hull = nlohmann::ordered_json::array();
+    for (const auto& p : r.support.hull_xy_m) hull.push_back({p[0], p[1]});
+    out["support_polygon_xy_m"] = hull;
+    out["azimuth_deg"] = b.azimuth_deg;
+    out["g_m_s2"] = o.body.g_m_s2;
+    out["h_m"] = b.h_m;
+    out["b1_m"] = b.b1_m;
+    out["b2_m"] = b.b2_m;
+    out["r1_m"] = b.r1_m;
+    out["r2_m"] = b.r2_m;
+    out["alpha1_rad"] = b.alpha1_rad;
+    out["alpha2_rad"] = b.alpha2_rad;
+    out["alpha1_deg"] = deg(b.alpha1_rad);
+    out["alpha2_deg"] = deg(b.alpha2_rad);
+    out["inertia_cm_plane_kg_m2"] = b.inertia_cm_kg_m2;
+    out["inertia_o1_kg_m2"] = b.inertia_o1_kg_m2;
+    out["inertia_o2_kg_m2"] = b.inertia_o2_kg_m2;
+    out["d1_m2"] = b.d1_m2;
+    out["d2_m2"] = b.d2_m2;
+    out["p1_rad_s"] = b.p1_rad_s;
+    out["p2_rad_s"] = b.p2_rad_s;
+    out["pivot1_m"] = vec(b.pivot1_m);
+    out["pivot2_m"] = vec(b.pivot2_m);
+    out["symmetric"] = {{"b_m", b.b_sym_m},          {"r_m", b.r_sym_m}, {"alpha_rad", b.alpha_sym_rad},
+                        {"alpha_deg", deg(b.alpha_sym_rad)}, {"d_m2", b.d_sym_m2}, {"p_rad_s", b.p_sym_rad_s}};
+    fmt::print("{}\n", out.dump(2));
+    return;
+  }
+  fmt::print("file          {} ({} vertices, {} triangles; unit {})\n", o.mesh, vertices, triangles, o.unit);
+  fmt::print("volume        {:.9g} m^3\n", m.volume_m3);
+  fmt::print("mass          {:.9g} kg (density {:g} kg/m^3)\n", m.mass_kg, m.density_kg_m3);
+  fmt::print("CM            ({:.9g}, {:.9g}, {:.9g}) m (x east, y north, z up)\n", c[0], c[1], c[2]);
+  fmt::print("I about CM    [{:.6g} {:.6g} {:.6g}; {:.6g} {:.6g} {:.6g}; {:.6g} {:.6g} {:.6g}] kg m^2\n", I[0][0],
+             I[0][1], I[0][2], I[1][0], I[1][1], I[1][2], I[2][0], I[2][1], I[2][2]);
+  fmt::print("support       z = {:.9g} m, {} vertices within {:.3g} m, hull of {} points\n", r.support.z_m,
+             r.support.contact_vertices, r.support.tolerance_m, r.support.hull_xy_m.size());
+  fmt::print("plane         azimuth {:g} deg (clockwise from north; pivot 1 at the rear, pivot 2 toward the "
+             "azimuth)\n",
+             b.azimuth_deg);
+  fmt::print("h             {:.9g} m\n", b.h_m);
+  fmt::print("b1, b2        {:.9g} m, {:.9g} m\n", b.b1_m, b.b2_m);
+  fmt::print("R1, R2        {:.9g} m, {:.9g} m\n", b.r1_m, b.r2_m);
+  fmt::print("alpha1, 2     {:.6f} deg, {:.6f} deg ({:.9g}, {:.9g} rad)\n", deg(b.alpha1_rad), deg(b.alpha2_rad),
+             b.alpha1_rad, b.alpha2_rad);
+  fmt::print("I_cm (plane)  {:.9g} kg m^2\n", b.inertia_cm_kg_m2);
+  fmt::print("I_O1, I_O2    {:.9g} kg m^2, {:.9g} kg m^2\n", b.inertia_o1_kg_m2, b.inertia_o2_kg_m2);
+  fmt::print("p1, p2        {:.9g} rad/s, {:.9g} rad/s (g = {} m/s2)\n", b.p1_rad_s, b.p2_rad_s, o.body.g_m_s2);
+  fmt::print("symmetric     b = (b1 + b2)/2 = {:.9g} m, alpha = {:.6f} deg, p = {:.9g} rad/s (for information)\n",
+             b.b_sym_m, deg(b.alpha_sym_rad), b.p_sym_rad_s);
+  fmt::print("              as `topple rock --shape general --a {:.9g}m --h {:.9g}m --D {:.9g}m2`\n", b.b_sym_m,
+             b.h_m, b.d_sym_m2);
+}
+
+}  // namespace
+
+void add_body_command(CLI::App& app) {
+  auto o = std::make_shared<BodyCommandOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "body", "The planar rocking body of a closed triangle mesh (OBJ, STL, PLY; x east, y north, z up) in the "
+              "vertical plane at an azimuth: volume, mass, centre of mass, inertia, pivots b1/b2, h, alpha1/2, "
+              "I_O1/2, p1/p2");
+  cmd->add_option("mesh", o->mesh, "Mesh file: .obj, .stl (ASCII or binary) or .ply, a closed outward-facing solid")
+      ->required();
+  cmd->add_option("--azimuth", o->azimuth_deg, "Direction of the plane of shaking, degrees clockwise from north (+y)")
+      ->required();
+  cmd->add_option("--density", o->body.density_kg_m3, "Uniform density, kg/m^3 (granite)")->capture_default_str();
+  cmd->add_option("--unit", o->unit, "Unit of the mesh's coordinates: m, cm or mm")->capture_default_str();
+  cmd->add_option("--base-tolerance", o->body.base_tolerance_fraction,
+                  "Vertices within this fraction of the mesh's size above its lowest point are in contact")
+      ->capture_default_str();
+  cmd->add_option("--g", o->body.g_m_s2, "Gravitational acceleration, m/s2")->capture_default_str();
+  cmd->add_flag("--json", o->json, "Print one JSON object instead of text");
+  add_quiet_flag(*cmd, o->quiet);  // quick: no bar; accepted so that every command takes --quiet
+  cmd->callback([o] {
+    check_g(o->body.g_m_s2);
+    o->body.azimuth_deg = o->azimuth_deg;
+    check_body_options(o->body);
+    const double unit_m = io::mesh_unit_m(o->unit, "--unit");
+    const TriangleMesh mesh = io::read_mesh(o->mesh, unit_m);
+    const MeshBody result = mesh_body(mesh, o->body, o->mesh);
+    print_body(*o, result, mesh.vertices_m.size(), mesh.triangles.size());
+  });
+}
+
+}  // namespace topple::cli
