@@ -52,6 +52,13 @@
 // fallen, or RockingOptions::max_run_out_s has passed, so that a body past alpha at the end of the record falls.
 // Overturning is not monotone in the amplitude of the input: a larger motion may leave the body standing.
 //
+// Asymmetric bodies (general_asymmetric; docs/method.md, "Asymmetric bodies"). b1 = CM to O- (theta < 0), b2 = CM to
+// O+ (theta > 0), h, k2 = I_cm / m; about pivot s: D_s = k2 + b_s^2 + h^2, alpha_s = atan(b_s / h), R_s. The equation
+// above holds with (alpha_s, R_s, D_s) of the current pivot; uplift about O+ when -a_h > (g + a_v) b2 / h, about O-
+// when a_h > (g + a_v) b1 / h; exceeded alpha when |theta| passes alpha_s on its side. At impact onto O_new from
+// O_old, angular momentum about O_new: D_new theta'+ = (k2 + h^2 - b1 b2) theta'-, i.e.
+//   e_new = 1 - b_new (b_old + b_new) / D_new   (symmetric: 1 - 2 a^2 / D).
+//
 // Onset mode (Shenton 1996, J. Eng. Mech. 122(7), "Criteria for initiation of slide, rock, and slide-rock rigid-body
 // modes"). At the instant theta = theta' = 0 that rocking starts, with A = |a_h| / (g + a_v):
 //   theta'' = g (A h - a) / D,  friction needed H = m (A g - h theta''),  normal force N = m (g + a theta'').
