@@ -1360,7 +1360,8 @@ std::string_view shape_name(RockingBody::Shape shape) {
 }
 
 double housner_restitution(const RockingBody& body) noexcept {
-  // e = 1 - 2 m R^2 sin^2(alpha) / I_O with R sin(alpha) = a.
+  // e = 1 - 2 m R^2 sin^2(alpha) / I_O with R sin(alpha) = a. An asymmetric body: the landing on O+.
+  if (body.negative_pivot) return housner_restitution(body, 1);
   return 1.0 - 2.0 * body.a_m * body.a_m / body.D_m2;
 }
 

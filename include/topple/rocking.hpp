@@ -179,7 +179,7 @@ struct BodyDimensions {
 [[nodiscard]] RockingBody make_rocking_body(RockingBody::Shape shape, const BodyDimensions& dimensions);
 
 /// Housner's coefficient of restitution e = 1 - 2 a^2 / D (angular-velocity ratio at impact; may be negative for a
-/// squat body, see the header).
+/// squat body, see the header). An asymmetric body: the landing on O+ (housner_restitution(body, 1)).
 [[nodiscard]] double housner_restitution(const RockingBody& body) noexcept;
 /// Housner's law for an asymmetric body landing on the pivot of side `onto` (+1: O+, -1: O-) from the other one,
 /// by conservation of angular momentum about the new pivot (docs/method.md, "Asymmetric bodies"):

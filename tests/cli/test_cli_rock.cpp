@@ -187,15 +187,13 @@ TEST(CliRock, AsymmetricGeneralBodyReportsEachSide) {
   // to round trip: 1e-15).
   const auto j = run_json("rock --shape general --b1 7cm --b2 13cm --h 45cm --inertia 0.025m2 --pulse sine "
                           "--amp-g 0.3 --duration 0.6s --g 9.81 --json");
-  PulseSpec spec;
-  spec.kind = PulseKind::sine;
-  spec.amplitude_m_s2 = 0.3 * 9.81;
-  spec.duration_s = 0.6;
-  spec.tail_s = 3.0;  // the CLI's default tail: 5 durations
+  // The CLI's default tail: 5 durations.
+  const GroundMotion pulse =
+      make_pulse({.kind = PulseKind::sine, .amplitude_m_s2 = 0.3 * 9.81, .duration_s = 0.6, .tail_s = 3.0});
+  const RockingBody body = RockingBody::general_asymmetric(0.07, 0.13, 0.45, 0.025);
   RockingOptions o;
   o.g_m_s2 = 9.81;
-  const RockingBody body = RockingBody::general_asymmetric(0.07, 0.13, 0.45, 0.025);
-  const auto s = rock_summary(make_pulse(spec), body, o);
+  const auto s = rock_summary(pulse, body, o);
   ASSERT_TRUE(s.overturned);
   EXPECT_EQ(s.overturned_side, -1);
   EXPECT_EQ(j.at("overturned").get<bool>(), true);
