@@ -33,6 +33,9 @@ struct RockOptions {
   std::string a;
   std::string h;
   std::string D;
+  std::string b1;
+  std::string b2;
+  std::string inertia;
   std::string e = "housner";
   std::optional<double> mu;
   std::string vertical;
@@ -51,6 +54,7 @@ const std::map<std::string, std::string>& option_names() {
   static const std::map<std::string, std::string> names{
       {"width", "--width"},   {"height", "--height"}, {"diameter", "--diameter"},     {"a", "--a"},
       {"h", "--h"},           {"D", "--D"},           {"e", "--e"},                   {"mu", "--mu"},
+      {"b1", "--b1"},         {"b2", "--b2"},         {"inertia", "--inertia"},
       {"g", "--g"},           {"rel_tol", "--rtol"},  {"rk4_substeps", "--rk4-substeps"},
       {"max_steps", "--max-steps"},
       {"max_run_out_s", "--run-out"}, {"vertical", "--vertical"}};
@@ -82,6 +86,9 @@ RockingBody make_body(const RockOptions& o) {
   d.a_m = length(o.a, "--a");
   d.h_m = length(o.h, "--h");
   if (!o.D.empty()) d.D_m2 = parse_area_m2(o.D, "--D");
+  d.b1_m = length(o.b1, "--b1");
+  d.b2_m = length(o.b2, "--b2");
+  if (!o.inertia.empty()) d.inertia_m2 = parse_area_m2(o.inertia, "--inertia");
   return naming_options([&] { return make_rocking_body(shape, d); });
 }
 
@@ -143,20 +150,40 @@ void run_rock(const RockOptions& o) {
     fmt::print("{}\n", j.dump(2));
     return;
   }
-  fmt::print("rocking body: {} a = {:.6g} m, h = {:.6g} m, D = {:.6g} m2\n", shape_name(body.shape), body.a_m,
-             body.h_m, body.D_m2);
+  if (body.negative_pivot) {
+    fmt::print("rocking body: {} b1 = {:.6g} m (pivot O-, theta < 0), b2 = {:.6g} m (O+, theta > 0), h = {:.6g} m, "
+               "D1 = {:.6g} m2, D2 = {:.6g} m2\n",
+               shape_name(body.shape), body.negative_pivot->b_m, body.a_m, body.h_m, body.negative_pivot->D_m2,
+               body.D_m2);
+    fmt::print("  O-: alpha = {:.6g} rad ({:.4f} deg), e onto O- = {:.6g}, uplift threshold {:.5f} g (b1/h)\n",
+               s.alpha_negative_rad, s.alpha_negative_rad * 180.0 / kPi, s.e_onto_negative,
+               body.negative_pivot->b_m / body.h_m);
+    fmt::print("  O+ (below: alpha, R, p, e of O+)\n");
+  } else {
+    fmt::print("rocking body: {} a = {:.6g} m, h = {:.6g} m, D = {:.6g} m2\n", shape_name(body.shape), body.a_m,
+               body.h_m, body.D_m2);
+  }
   fmt::print("  alpha = {:.6g} rad ({:.4f} deg), R = {:.6g} m, p = {:.6g} rad/s, e = {:.6g} ({}), g = {} m/s2\n",
              s.alpha_rad, s.alpha_rad * 180.0 / kPi, s.R_m, s.p_rad_s, s.e,
              options.restitution == RestitutionMode::housner ? "Housner" : restitution_mode_name(options.restitution), g);
-  fmt::print("  uplift threshold {:.5f} g (a/h)\n", body.a_m / body.h_m);
+  fmt::print("  uplift threshold {:.5f} g ({})\n", body.a_m / body.h_m, body.negative_pivot ? "b2/h" : "a/h");
   fmt::print("motion: {} (PGA {:.4f} g, {} samples)\n", motion_name, horizontal.pga_m_s2() / g, horizontal.size());
   fmt::print("max |theta|            {:.6g} rad = {:.6g} alpha at {:.4f} s\n", s.max_abs_rotation_rad,
              s.max_rotation_over_alpha, s.max_rotation_time_s);
+  if (body.negative_pivot) {
+    fmt::print("max theta > 0 (O+)     {:.6g} rad = {:.6g} alpha+\n", s.max_rotation_positive_rad,
+               s.max_rotation_over_alpha_positive);
+    fmt::print("max -theta (O-)        {:.6g} rad = {:.6g} alpha-\n", s.max_rotation_negative_rad,
+               s.max_rotation_over_alpha_negative);
+  }
   fmt::print("first uplift           {}\n", format_seconds_or_none(s.uplift_time_s));
   fmt::print("uplifts, impacts       {}, {}\n", s.uplifts, s.impacts);
   fmt::print("|theta| > alpha first  {}\n", format_seconds_or_none(s.exceeded_alpha_time_s));
-  fmt::print("overturned             {}{}\n", s.overturned ? "yes, at " : "no",
-             s.overturned ? format_seconds_or_none(s.overturn_time_s) : std::string());
+  fmt::print("overturned             {}{}{}\n", s.overturned ? "yes, at " : "no",
+             s.overturned ? format_seconds_or_none(s.overturn_time_s) : std::string(),
+             s.overturned && body.negative_pivot ? (s.overturned_side > 0 ? " toward +x (about O+)"
+                                                                          : " toward -x (about O-)")
+                                                 : "");
   fmt::print("end                    {} at {:.4f} s\n", rocking_state_name(s.end_state), s.end_time_s);
   fmt::print("energy lost            {:.6g} J/kg\n", s.energy_lost_j_per_kg);
   fmt::print("onset mode             {}{}\n", onset_mode_name(s.onset_mode),
@@ -175,13 +202,19 @@ void add_rock_command(CLI::App& app) {
   add_motion_options(*cmd, o->motion);
   add_pulse_options(*cmd, o->pulse);
   cmd->add_option("--shape", o->shape, "block (--width, --height), cylinder (--diameter, --height) or general "
-                                       "(--a, --h, --D)");
+                                       "(--a, --h, --D; asymmetric: --b1, --b2, --h, --inertia)");
   cmd->add_option("--width", o->width, "Block width, with a unit (e.g. 4cm)");
   cmd->add_option("--height", o->height, "Block or cylinder height, with a unit (e.g. 0.20m)");
   cmd->add_option("--diameter", o->diameter, "Cylinder diameter, with a unit");
   cmd->add_option("--a", o->a, "General body: horizontal distance from the centre of mass to the pivot edge");
   cmd->add_option("--h", o->h, "General body: height of the centre of mass above the base");
   cmd->add_option("--D", o->D, "General body: pivot moment of inertia per unit mass, with a unit (e.g. 0.011m2)");
+  cmd->add_option("--b1", o->b1, "Asymmetric general body: horizontal distance from the centre of mass to the pivot "
+                                 "edge on the -x side (rocking with theta < 0), with a unit");
+  cmd->add_option("--b2", o->b2, "Asymmetric general body: the same to the +x edge (theta > 0; a ground "
+                                 "acceleration toward -x lifts the body about it), with a unit");
+  cmd->add_option("--inertia", o->inertia, "Asymmetric general body: moment of inertia about the centre of mass "
+                                           "per unit mass I_cm/m, with a unit (e.g. 0.004m2)");
   cmd->add_option("--e", o->e, "Coefficient of restitution (angular-velocity ratio at impact) in [0, 1], or "
                                "'housner' (1 - 2a^2/D, from angular momentum)")->capture_default_str();
   cmd->add_option("--mu", o->mu, "Friction coefficient: check Shenton's slide/rock/slide-rock onset criterion");

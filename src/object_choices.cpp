@@ -62,13 +62,19 @@ RockingBody make_rocking_body(RockingBody::Shape shape, const BodyDimensions& d)
   };
   const Dimension all[] = {{d.width_m, "width", false}, {d.height_m, "height", false},
                            {d.diameter_m, "diameter", false}, {d.a_m, "a", false},
-                           {d.h_m, "h", false},           {d.D_m2, "D", true}};
+                           {d.h_m, "h", false},           {d.D_m2, "D", true},
+                           {d.b1_m, "b1", false},         {d.b2_m, "b2", false},
+                           {d.inertia_m2, "inertia", true}};
   const std::string_view name = shape_name(shape);
+  // A general body is symmetric (a, h, D) unless one of the asymmetric fields is given (b1, b2, h, inertia).
+  const bool asymmetric = shape == RockingBody::Shape::general && (d.b1_m || d.b2_m || d.inertia_m2);
   const auto needs = [&](std::string_view field) {
     switch (shape) {
       case RockingBody::Shape::block: return field == "width" || field == "height";
       case RockingBody::Shape::cylinder: return field == "diameter" || field == "height";
-      case RockingBody::Shape::general: return field == "a" || field == "h" || field == "D";
+      case RockingBody::Shape::general:
+        if (asymmetric) return field == "b1" || field == "b2" || field == "h" || field == "inertia";
+        return field == "a" || field == "h" || field == "D";
     }
     return false;
   };
@@ -76,7 +82,12 @@ RockingBody make_rocking_body(RockingBody::Shape shape, const BodyDimensions& d)
     if (needs(field) && !value) throw parameter_error(field, fmt::format("shape {} needs {}", name, field));
   }
   for (const auto& [value, field, area] : all) {
-    if (!needs(field) && value) throw parameter_error(field, fmt::format("{} does not apply to shape {}", field, name));
+    if (!needs(field) && value) {
+      throw parameter_error(field, fmt::format("{} does not apply to shape {}{}", field, name,
+                                               shape == RockingBody::Shape::general
+                                                   ? " (it takes a, h, D, or b1, b2, h, inertia when asymmetric)"
+                                                   : ""));
+    }
   }
   for (const auto& [value, field, area] : all) {
     const double limit = area ? kMaxBodyDimension_m * kMaxBodyDimension_m : kMaxBodyDimension_m;
@@ -88,7 +99,9 @@ RockingBody make_rocking_body(RockingBody::Shape shape, const BodyDimensions& d)
   switch (shape) {
     case RockingBody::Shape::block: return RockingBody::block(*d.width_m, *d.height_m);
     case RockingBody::Shape::cylinder: return RockingBody::cylinder(*d.diameter_m, *d.height_m);
-    case RockingBody::Shape::general: return RockingBody::general(*d.a_m, *d.h_m, *d.D_m2);
+    case RockingBody::Shape::general:
+      if (asymmetric) return RockingBody::general_asymmetric(*d.b1_m, *d.b2_m, *d.h_m, *d.inertia_m2);
+      return RockingBody::general(*d.a_m, *d.h_m, *d.D_m2);
   }
   throw parameter_error("shape", "unknown shape");
 }

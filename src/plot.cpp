@@ -390,9 +390,19 @@ Figure rocking_figure(const GroundMotion& m, const RockingResult& r, const Rocki
     accel.series.push_back(std::move(v));
   }
   accel.levels = {{threshold, fmt::format("uplift ±a/h = ±{:.3g} g", threshold)}, {-threshold, ""}};
+  // An asymmetric body: a_h > g b1/h lifts it about O- (the -x edge), a_h < -g b2/h about O+; θ over the alpha of its
+  // side, so that ±1 are still the limits.
+  const double alpha_negative = body.side_body(-1).alpha_rad();
+  if (!body.symmetric()) {
+    const double up_neg = body.pivot_b_m(-1) / body.h_m;
+    accel.levels = {{up_neg, fmt::format("uplift about O- b1/h = {:.3g} g", up_neg)},
+                    {-threshold, fmt::format("uplift about O+ -b2/h = {:.3g} g", -threshold)}};
+  }
   std::vector<double> ratio(r.history.theta_rad.size());
-  for (std::size_t i = 0; i < ratio.size(); ++i) ratio[i] = r.history.theta_rad[i] / alpha;
-  Panel theta{"rotation θ/α (-)", {{"θ/α", r.history.time_s, ratio, "lines", "#c0392b", 1.8}},
+  for (std::size_t i = 0; i < ratio.size(); ++i) {
+    ratio[i] = r.history.theta_rad[i] / (r.history.theta_rad[i] < 0.0 ? alpha_negative : alpha);
+  }
+  Panel theta{body.symmetric() ? "rotation θ/α (-)" : "rotation θ/α of its side (-)", {{"θ/α", r.history.time_s, ratio, "lines", "#c0392b", 1.8}},
               {{1.0, "overturning limit ±1"}, {-1.0, ""}}, {}, false, false};
   Panel rate{"angular velocity (rad/s)",
              {{"dθ/dt", r.history.time_s, r.history.theta_dot_rad_s, "lines", "#2171b5", 1.5}}, {}, {}, false,

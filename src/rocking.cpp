@@ -66,8 +66,8 @@ struct Input {
 struct Rhs {
   double p = 0.0;
   double alpha = 0.0;
-  double k = 0.0;        // (R / D) / (p alpha)
-  double s_alpha = 0.0;  // s * alpha, s the pivot
+  double k = 0.0;        // (R_s / D_s) / (p alpha), s the pivot (alpha, p: the scale, Params)
+  double s_alpha = 0.0;  // s * alpha_s, s the pivot
   double t_ref = 0.0;    // forcing: a_h = ah0 + ahs (t - t_ref), g + a_v = ge0 + ges (t - t_ref)
   double ah0 = 0.0;
   double ahs = 0.0;
@@ -90,15 +90,20 @@ struct Rhs {
   std::array<double, 2> sin_pm_alpha{};  // {sin(-alpha), sin(alpha)}
   std::array<double, 2> cos_pm_alpha{1.0, 1.0};
 
-  void set_alpha(double a) {
-    alpha = a;
-    sin_pm_alpha = {std::sin(-a), std::sin(a)};
-    cos_pm_alpha = {std::cos(-a), std::cos(a)};
+  // The pivot angles of O- and O+, {-alpha-, alpha+} (symmetric body: {-alpha, alpha}).
+  std::array<double, 2> pm_alpha{};
+
+  /// scale: the alpha of the scaled state; the pivot angles of O- and O+ (all three alpha for a symmetric body).
+  void set_alpha(double scale, double alpha_negative, double alpha_positive) {
+    alpha = scale;
+    pm_alpha = {-alpha_negative, alpha_positive};
+    sin_pm_alpha = {std::sin(-alpha_negative), std::sin(alpha_positive)};
+    cos_pm_alpha = {std::cos(-alpha_negative), std::cos(alpha_positive)};
   }
 
   void set_reference(double u0) {
     phi_ref = s_alpha - alpha * u0;
-    if (u0 == 0.0 && (s_alpha == alpha || s_alpha == -alpha)) {
+    if (u0 == 0.0 && (s_alpha == pm_alpha[1] || s_alpha == pm_alpha[0])) {
       const std::size_t i = s_alpha > 0.0 ? 1 : 0;
       sin_ref = sin_pm_alpha[i];
       cos_ref = cos_pm_alpha[i];
@@ -570,7 +575,20 @@ struct Params {
   double w_scale = 0.0;        // p alpha: theta' = w_scale * u[1]
   double rest_w2 = 0.0;        // theta'^2 below which the rest rule applies after an impact
   double overturn_level = 0.0; // (pi / 2) / alpha in the scaled state
+  // Per side, index side(s) (0: O-, theta < 0; 1: O+). The state is scaled by alpha and p above (an asymmetric
+  // body: the smaller of the two pivots'); a symmetric body has both entries equal to those (alpha_level 1 exactly),
+  // so its run is the same as before.
+  bool symmetric = true;
+  std::array<double, 2> alpha_side{};   // alpha of each pivot, rad
+  std::array<double, 2> alpha_level{};  // alpha_side / alpha: |theta| = alpha_side in the scaled state
+  std::array<double, 2> tan_side{};     // b_s / h: uplift about pivot s when the throw exceeds (g + a_v) b_s / h
+  std::array<double, 2> D_side{};       // I_O / m about each pivot
+  std::array<double, 2> k_side{};       // (R_s / D_s) / (p alpha): Rhs::k while on pivot s
+  std::array<double, 2> e_onto{};       // restitution on landing on pivot s
+  std::array<double, 2> rest_w2_side{}; // rest_w2 on pivot s
 };
+
+constexpr std::size_t side(int s) { return s > 0 ? 1 : 0; }
 
 enum class Mode : std::uint8_t { rest, rocking };
 
@@ -601,22 +619,29 @@ class Engine {
       mode_ = Mode::rocking;
       need_restart_ = true;
       track(t_, u_);
-      if (std::abs(u_[0]) >= 1.0) sum.exceeded_alpha_time_s = t_;  // released beyond alpha
+      if (std::abs(u_[0]) >= par_.alpha_level[side(s_)]) {  // released beyond alpha
+        sum.exceeded_alpha_time_s = t_;
+        sum.exceeded_alpha_side = s_;
+      }
     }
     row(t_, u_);
 
     const bool fast_rest = in_.gravity.empty();
     const double* a = in_.accel.data();
-    const double threshold = par_.g * par_.tan_alpha;
+    // Uplift thresholds: about O+ when -a_h > g tan(alpha+), about O- when a_h > g tan(alpha-) (equal when symmetric:
+    // -x <= t && x <= t is |x| <= t).
+    const double threshold_pos = par_.g * par_.tan_side[1];
+    const double threshold_neg = par_.g * par_.tan_side[0];
+    const auto below = [&](double x) { return -x <= threshold_pos && x <= threshold_neg; };
     std::size_t i = 0;
     at_start_ = true;  // t_ is at the start of interval i
     while (!done_ && i + 1 < n) {
       // The scan checks the end of each interval; the first sample (a jump from still ground) is checked by the
       // general path.
-      if (fast_rest && mode_ == Mode::rest && at_start_ && (i > 0 || std::abs(a[0]) <= threshold)) {
+      if (fast_rest && mode_ == Mode::rest && at_start_ && (i > 0 || below(a[0]))) {
         // Full contact: each sample interval costs one comparison (|a| is convex on a linear piece, so both ends
         // below the threshold keep the whole interval below it).
-        while (i + 1 < n && std::abs(a[i + 1]) <= threshold) {
+        while (i + 1 < n && below(a[i + 1])) {
           ++i;
           if constexpr (kRecord) row(in_.time(i), u_);
         }
@@ -686,6 +711,8 @@ class Engine {
       sum.max_abs_rotation_rad = theta;
       sum.max_rotation_time_s = t;
     }
+    double& side_max = u[0] < 0.0 ? sum.max_rotation_negative_rad : sum.max_rotation_positive_rad;
+    side_max = std::max(side_max, theta);
     sum.max_abs_theta_dot_rad_s = std::max(sum.max_abs_theta_dot_rad_s, std::abs(par_.w_scale * u[1]));
   }
 
@@ -717,11 +744,12 @@ class Engine {
   void rest_phase(double ta, double tb, double ah0, double ahs, double ge0, double ges) {
     const auto ah = [&](double t) { return ah0 + ahs * (t - ta); };
     const auto ge = [&](double t) { return ge0 + ges * (t - ta); };
-    const double tan_a = par_.tan_alpha;
-    const double fp0 = -ah(t_) - ge(t_) * tan_a;
-    const double fm0 = ah(t_) - ge(t_) * tan_a;
-    const double fp1 = -ah(tb) - ge(tb) * tan_a;
-    const double fm1 = ah(tb) - ge(tb) * tan_a;
+    const double tan_p = par_.tan_side[1];
+    const double tan_m = par_.tan_side[0];
+    const double fp0 = -ah(t_) - ge(t_) * tan_p;
+    const double fm0 = ah(t_) - ge(t_) * tan_m;
+    const double fp1 = -ah(tb) - ge(tb) * tan_p;
+    const double fm1 = ah(tb) - ge(tb) * tan_m;
     int dir = 0;
     double tu = t_;
     if (fp0 > 0.0) {
@@ -750,7 +778,10 @@ class Engine {
     if (!sum.uplift_time_s) {
       sum.uplift_time_s = tu;
       // Value after a jump when the uplift sits on one; at least a/h, which round-off in the root may undercut.
-      if (!started_rocking_) first_uplift_ratio_ = std::max(std::abs(ah(tu)) / ge(tu), par_.a / par_.h);
+      if (!started_rocking_) {
+        first_uplift_ratio_ = std::max(std::abs(ah(tu)) / ge(tu), par_.tan_side[side(dir)]);
+        first_uplift_side_ = dir;
+      }
     }
     event(RockingEventKind::uplift, tu, 0.0, 0.0, 0.0);
     row(tu, u_);
@@ -758,7 +789,8 @@ class Engine {
 
   /// One integrator step toward tb while rocking, and the events inside it.
   void rocking_phase(double tb) {
-    rhs_.s_alpha = s_ * par_.alpha;
+    rhs_.s_alpha = s_ * par_.alpha_side[side(s_)];
+    rhs_.k = par_.k_side[side(s_)];
     if (need_restart_) {
       stepper_.restart(t_, u_);
       need_restart_ = false;
@@ -817,13 +849,16 @@ class Engine {
   /// and the step ends below those levels (no level crossed on the way up).
   [[nodiscard]] bool turning_point_is_moot(double v0, double f1) const {
     const RockingSummary& sum = out_.summary;
-    const double top = std::min(par_.overturn_level, sum.exceeded_alpha_time_s ? par_.overturn_level : 1.0);
+    const double level = par_.alpha_level[side(s_)];
+    const double top = std::min(par_.overturn_level, sum.exceeded_alpha_time_s ? par_.overturn_level : level);
     const auto [lo, hi] = stepper_.range(0);
     const double upper = s_ > 0 ? hi : -lo;  // bounds on s theta / alpha
     const double lower = s_ > 0 ? lo : -hi;
     if (v0 > 0.0) {
       // The margin keeps a peak within round-off of the maximum located, so that the maximum is the same.
-      return f1 > 0.0 && upper < top && upper * par_.alpha < sum.max_abs_rotation_rad * (1.0 - 1e-12);
+      // Against this side's maximum (at most max |theta|), so that the per-side maxima are located too.
+      const double side_max = s_ > 0 ? sum.max_rotation_positive_rad : sum.max_rotation_negative_rad;
+      return f1 > 0.0 && upper < top && upper * par_.alpha < side_max * (1.0 - 1e-12);
     }
     return lower > 0.0 && f1 < top;
   }
@@ -834,15 +869,18 @@ class Engine {
     const double s = s_;
     RockingSummary& sum = out_.summary;
     if (up) {
-      if (!sum.exceeded_alpha_time_s && fa < 1.0 && fb >= 1.0) {
-        const double te = root(0, 1.0, ta, tb, fa - 1.0, fb - 1.0);
+      const double level = par_.alpha_level[side(s_)];  // 1 for a symmetric body
+      if (!sum.exceeded_alpha_time_s && fa < level && fb >= level) {
+        const double te = root(0, level, ta, tb, fa - level, fb - level);
         sum.exceeded_alpha_time_s = te;
+        sum.exceeded_alpha_side = s_;
         const State x = stepper_.dense(te);
-        event(RockingEventKind::exceeded_alpha, te, s * par_.alpha, par_.w_scale * x[1], par_.w_scale * x[1]);
-        row(te, State{s, x[1]});
+        event(RockingEventKind::exceeded_alpha, te, s * par_.alpha_side[side(s_)], par_.w_scale * x[1],
+              par_.w_scale * x[1]);
+        row(te, State{s * level, x[1]});
         if (opt_.stop_when_alpha_exceeded) {
           t_ = te;
-          u_ = {s, x[1]};
+          u_ = {s * level, x[1]};
           track(te, u_);
           done_ = true;
           return true;
@@ -858,6 +896,7 @@ class Engine {
         track(tf, u_);
         sum.overturned = true;
         sum.overturn_time_s = tf;
+        sum.overturned_side = s_;
         fallen_ = true;
         event(RockingEventKind::overturned, tf, s * kPi / 2.0, par_.w_scale * x[1], 0.0);
         row(tf, u_);
@@ -892,21 +931,27 @@ class Engine {
     }
   }
 
-  /// theta = 0: land on the other edge with theta' multiplied by e (Housner), or come to rest (rest rule).
+  /// theta = 0: land on the other edge with theta' multiplied by e (Housner; for an asymmetric body the e of the
+  /// new pivot), or come to rest (rest rule).
   void impact(double ti) {
     RockingSummary& sum = out_.summary;
     const State x = stepper_.dense(ti);
     before_state_change(ti);
+    const std::size_t onto = side(-s_);
     const double w_before = par_.w_scale * x[1];
-    const double w_after = par_.e * w_before;
+    const double w_after = par_.e_onto[onto] * w_before;
     ++sum.impacts;
-    sum.energy_lost_j_per_kg += 0.5 * par_.D * (w_before * w_before - w_after * w_after);
+    if (par_.symmetric) {
+      sum.energy_lost_j_per_kg += 0.5 * par_.D * (w_before * w_before - w_after * w_after);
+    } else {  // the kinetic energy D_s theta'^2 / 2 about the old pivot, then about the new one
+      sum.energy_lost_j_per_kg += 0.5 * (par_.D_side[side(s_)] * w_before * w_before - par_.D_side[onto] * w_after * w_after);
+    }
     sum.max_abs_theta_dot_rad_s = std::max(sum.max_abs_theta_dot_rad_s, std::abs(w_before));
     event(RockingEventKind::impact, ti, 0.0, w_before, w_after);
     t_ = ti;
     need_restart_ = true;
-    if (w_after * w_after < par_.rest_w2) {
-      sum.energy_lost_j_per_kg += 0.5 * par_.D * w_after * w_after;
+    if (w_after * w_after < par_.rest_w2_side[onto]) {
+      sum.energy_lost_j_per_kg += 0.5 * par_.D_side[onto] * w_after * w_after;
       u_ = {0.0, 0.0};
       mode_ = Mode::rest;
       event(RockingEventKind::rest, ti, 0.0, w_after, 0.0);
@@ -931,7 +976,10 @@ class Engine {
 
   /// The run's parameters, for limit messages.
   [[nodiscard]] std::string describe() const {
-    return fmt::format("a = {:.6g} m, h = {:.6g} m, e = {:.6g}, method {}, rel_tol = {:.3g}, rk4_substeps = {}", par_.a,
+    return fmt::format("a = {:.6g} m, {}h = {:.6g} m, e = {:.6g}, method {}, rel_tol = {:.3g}, rk4_substeps = {}",
+                       par_.a,
+                       par_.symmetric ? std::string{}
+                                      : fmt::format("b1 = {:.6g} m, ", par_.tan_side[0] * par_.h),
                        par_.h, par_.e, opt_.method == RockingMethod::adaptive ? "adaptive" : "rk4", opt_.rel_tol,
                        opt_.rk4_substeps);
   }
@@ -1005,6 +1053,7 @@ class Engine {
 
  public:
   std::optional<double> first_uplift_ratio_;
+  int first_uplift_side_ = 0;
 
  private:
   static constexpr int kMaxEventsPerInterval = 1'000'000;
@@ -1032,11 +1081,40 @@ class Engine {
 void validate(const RockingBody& body, const RockingOptions& o) {
   // The factories validate; a body built field by field is checked again here.
   (void)RockingBody::general(body.a_m, body.h_m, body.D_m2);
+  if (body.negative_pivot) {
+    try {
+      (void)RockingBody::general(body.negative_pivot->b_m, body.h_m, body.negative_pivot->D_m2);
+    } catch (const InputError& err) {  // name the other pivot's fields
+      throw parameter_error(err.where().field == "a" ? "b1" : err.where().field == "D" ? "D-" : err.where().field,
+                            err.problem());
+    }
+    // Both pivots belong to one body: the same I_cm / m = D_s - b_s^2 - h^2 (to round-off of the sums).
+    const double k2p = body.D_m2 - body.a_m * body.a_m - body.h_m * body.h_m;
+    const double k2m = body.negative_pivot->D_m2 - body.negative_pivot->b_m * body.negative_pivot->b_m -
+                       body.h_m * body.h_m;
+    if (!(std::abs(k2p - k2m) <= 64.0 * std::numeric_limits<double>::epsilon() *
+                                      std::max(body.D_m2, body.negative_pivot->D_m2))) {
+      throw parameter_error("inertia", fmt::format("the pivots give different moments of inertia about the centre of "
+                                                   "mass per unit mass ({:.6g} and {:.6g} m2): not one body",
+                                                   k2p, k2m));
+    }
+  }
   require_positive(o.g_m_s2, "g", "g");
   if (o.restitution == RestitutionMode::given && (!std::isfinite(o.e) || o.e < 0.0 || o.e > 1.0)) {
     throw parameter_error("e", fmt::format("coefficient of restitution must be in [0, 1], got {}", o.e));
   }
-  if (o.restitution == RestitutionMode::housner && housner_restitution(body) < 0.0) {
+  if (o.restitution == RestitutionMode::housner && body.negative_pivot) {
+    for (const int onto : {1, -1}) {
+      const double e = housner_restitution(body, onto);
+      if (e < 0.0) {
+        throw parameter_error("e", fmt::format("Housner's e = 1 - b_new (b_old + b_new) / D_new = {:.6g} on landing "
+                                               "on the pivot O{} is negative for this squat body: it cannot rock "
+                                               "onto that edge; {}",
+                                               e, onto > 0 ? '+' : '-', kSquatBodyAdvice));
+      }
+    }
+  }
+  if (o.restitution == RestitutionMode::housner && !body.negative_pivot && housner_restitution(body) < 0.0) {
     throw parameter_error("e", fmt::format("Housner's e = 1 - 2a^2/D = {:.6g} is negative for this squat body "
                                            "(alpha = {:.4g} deg): it cannot rock onto the other edge; {}",
                                            housner_restitution(body), body.alpha_rad() * 180.0 / kPi,
@@ -1087,7 +1165,40 @@ Params make_params(const RockingBody& body, const RockingOptions& o) {
   // (D/2) theta'^2 < fraction * g R (1 - cos alpha), with 1 - cos alpha = 2 sin^2(alpha/2) (no cancellation).
   const double sh = std::sin(0.5 * par.alpha);
   par.rest_w2 = 2.0 * o.rest_energy_fraction * par.g * par.R * 2.0 * sh * sh / par.D;
+  par.symmetric = body.symmetric();
+  if (!par.symmetric) {
+    // The scale of the state: a symmetric function of the two pivots (the smaller alpha and p), so that the mirror
+    // body under the negated input takes the very same steps with the state negated (the mirror test is exact).
+    const RockingBody neg = body.side_body(-1);
+    par.alpha = std::min(par.alpha, neg.alpha_rad());
+    par.p = std::min(par.p, neg.p_rad_s(o.g_m_s2));
+    par.w_scale = par.p * par.alpha;
+  }
   par.overturn_level = (kPi / 2.0) / par.alpha;
+  for (const int s : {-1, 1}) {
+    const std::size_t i = side(s);
+    if (par.symmetric) {  // the very numbers above, so that a symmetric run is the same bit for bit
+      par.alpha_side[i] = par.alpha;
+      par.alpha_level[i] = 1.0;
+      par.tan_side[i] = par.tan_alpha;
+      par.D_side[i] = par.D;
+      par.e_onto[i] = par.e;
+      par.rest_w2_side[i] = par.rest_w2;
+      par.k_side[i] = (par.R / par.D) / par.w_scale;
+      continue;
+    }
+    const double b = body.pivot_b_m(s);
+    const double D = body.pivot_D_m2(s);
+    const double R = std::hypot(b, body.h_m);
+    par.alpha_side[i] = std::atan2(b, body.h_m);  // = side_body(s).alpha_rad()
+    par.alpha_level[i] = par.alpha_side[i] / par.alpha;
+    par.tan_side[i] = b / body.h_m;
+    par.D_side[i] = D;
+    par.e_onto[i] = o.restitution == RestitutionMode::housner ? housner_restitution(body, s) : o.e;
+    const double shs = std::sin(0.5 * par.alpha_side[i]);
+    par.rest_w2_side[i] = 2.0 * o.rest_energy_fraction * par.g * R * 2.0 * shs * shs / D;
+    par.k_side[i] = (R / D) / par.w_scale;
+  }
   return par;
 }
 
@@ -1101,9 +1212,14 @@ double peak_accel_ratio(const Input& in, double g) {
   return peak;
 }
 
-void onset(RockingSummary& sum, const RockingBody& body, const RockingOptions& o, const Input& in,
-           const std::optional<double>& uplift_ratio, bool started_rocking) {
+void onset(RockingSummary& sum, const RockingBody& whole, const RockingOptions& o, const Input& in,
+           const std::optional<double>& uplift_ratio, int uplift_side, bool started_rocking) {
   if (!o.mu) return;
+  // Shenton's criteria about one pivot involve that pivot only: an asymmetric body is judged on the pivot it lifted
+  // about, or, when it did not lift, on the pivot with the lower uplift threshold (it would slide before either).
+  const int s = uplift_side != 0 ? uplift_side
+                                 : (whole.pivot_b_m(-1) < whole.pivot_b_m(1) ? -1 : 1);
+  const RockingBody body = whole.side_body(s);
   const double mu = *o.mu;
   const double beta = body.a_m / body.h_m;
   if (mu < beta) {
@@ -1141,11 +1257,12 @@ RockingResult run(const GroundMotion& horizontal, const RockingBody& body, const
   const Params par = make_params(body, o);
   Rhs rhs;
   rhs.p = par.p;
-  rhs.set_alpha(par.alpha);
+  rhs.set_alpha(par.alpha, par.alpha_side[0], par.alpha_side[1]);
   rhs.k = (par.R / par.D) / par.w_scale;
   rhs.ge0 = par.g;
   RockingResult result;
   std::optional<double> uplift_ratio;
+  int uplift_side = 0;
   const bool started_rocking = o.initial_theta_rad != 0.0 || o.initial_theta_dot_rad_s != 0.0;
   if (o.method == RockingMethod::adaptive) {
     // First step guess: a tenth of the sample interval (the controller adapts it within a few steps).
@@ -1153,20 +1270,28 @@ RockingResult run(const GroundMotion& horizontal, const RockingBody& body, const
     Engine<AdaptiveStepper, kRecord> engine(in, par, o, stepper, rhs);
     result = engine.run();
     uplift_ratio = engine.first_uplift_ratio_;
+    uplift_side = engine.first_uplift_side_;
   } else {
     Rk4Stepper stepper(rhs, in.dt() / static_cast<double>(o.rk4_substeps));
     Engine<Rk4Stepper, kRecord> engine(in, par, o, stepper, rhs);
     result = engine.run();
     uplift_ratio = engine.first_uplift_ratio_;
+    uplift_side = engine.first_uplift_side_;
   }
   RockingSummary& sum = result.summary;
-  sum.alpha_rad = par.alpha;
+  sum.alpha_rad = par.alpha_side[1];  // the O+ side's (the scale's for a symmetric body)
   sum.R_m = par.R;
-  sum.p_rad_s = par.p;
-  sum.e = par.e;
+  sum.p_rad_s = body.p_rad_s(par.g);
+  sum.e = par.e_onto[1];
   sum.g_m_s2 = par.g;
-  sum.max_rotation_over_alpha = sum.max_abs_rotation_rad / par.alpha;
-  onset(sum, body, o, in, uplift_ratio, started_rocking);
+  sum.e_onto_negative = par.e_onto[0];
+  sum.alpha_negative_rad = par.alpha_side[0];
+  sum.max_rotation_over_alpha_positive = sum.max_rotation_positive_rad / par.alpha_side[1];
+  sum.max_rotation_over_alpha_negative = sum.max_rotation_negative_rad / par.alpha_side[0];
+  sum.max_rotation_over_alpha = par.symmetric ? sum.max_abs_rotation_rad / par.alpha
+                                              : std::max(sum.max_rotation_over_alpha_positive,
+                                                         sum.max_rotation_over_alpha_negative);
+  onset(sum, body, o, in, uplift_ratio, uplift_side, started_rocking);
   return result;
 }
 
@@ -1179,7 +1304,7 @@ RockingBody RockingBody::block(double width_m, double height_m) {
   require_positive(height_m, "height", "height");
   const double a = 0.5 * width_m;
   const double h = 0.5 * height_m;
-  return RockingBody{Shape::block, a, h, 4.0 / 3.0 * (a * a + h * h)};  // thesis eq 3.14
+  return RockingBody{Shape::block, a, h, 4.0 / 3.0 * (a * a + h * h), std::nullopt};  // thesis eq 3.14
 }
 
 RockingBody RockingBody::cylinder(double diameter_m, double height_m) {
@@ -1187,7 +1312,7 @@ RockingBody RockingBody::cylinder(double diameter_m, double height_m) {
   require_positive(height_m, "height", "height");
   const double a = 0.5 * diameter_m;
   const double h = 0.5 * height_m;
-  return RockingBody{Shape::cylinder, a, h, (15.0 * a * a + 16.0 * h * h) / 12.0};  // thesis eq 3.13
+  return RockingBody{Shape::cylinder, a, h, (15.0 * a * a + 16.0 * h * h) / 12.0, std::nullopt};  // thesis eq 3.13
 }
 
 RockingBody RockingBody::general(double a_m, double h_m, double D_m2) {
@@ -1201,7 +1326,24 @@ RockingBody RockingBody::general(double a_m, double h_m, double D_m2) {
                                            "negative moment of inertia about its centre of mass",
                                            D_m2, r2));
   }
-  return RockingBody{Shape::general, a_m, h_m, D_m2};
+  return RockingBody{Shape::general, a_m, h_m, D_m2, std::nullopt};
+}
+
+RockingBody RockingBody::general_asymmetric(double b1_m, double b2_m, double h_m, double k2_m2) {
+  require_positive(b1_m, "b1", "b1 (CM to the pivot O-, theta < 0)");
+  require_positive(b2_m, "b2", "b2 (CM to the pivot O+, theta > 0)");
+  require_positive(h_m, "h", "h (CM height)");
+  if (!std::isfinite(k2_m2) || k2_m2 < 0.0) {
+    throw parameter_error("inertia", fmt::format("I_cm / m must be >= 0 and finite (m2), got {}", k2_m2));
+  }
+  // Parallel axes about each pivot.
+  RockingBody body{Shape::general, b2_m, h_m, k2_m2 + b2_m * b2_m + h_m * h_m, std::nullopt};
+  body.negative_pivot = Pivot{b1_m, k2_m2 + b1_m * b1_m + h_m * h_m};
+  return body;
+}
+
+RockingBody RockingBody::side_body(int side) const {
+  return RockingBody{shape, pivot_b_m(side), h_m, pivot_D_m2(side), std::nullopt};
 }
 
 double RockingBody::alpha_rad() const noexcept { return std::atan2(a_m, h_m); }
@@ -1218,8 +1360,18 @@ std::string_view shape_name(RockingBody::Shape shape) {
 }
 
 double housner_restitution(const RockingBody& body) noexcept {
-  // e = 1 - 2 m R^2 sin^2(alpha) / I_O with R sin(alpha) = a.
+  // e = 1 - 2 m R^2 sin^2(alpha) / I_O with R sin(alpha) = a. An asymmetric body: the landing on O+.
+  if (body.negative_pivot) return housner_restitution(body, 1);
   return 1.0 - 2.0 * body.a_m * body.a_m / body.D_m2;
+}
+
+double housner_restitution(const RockingBody& body, int onto) noexcept {
+  // Angular momentum about the new pivot is conserved through the impact (docs/method.md, "Asymmetric bodies"):
+  // D_new theta'+ = (D_new - b_new (b_old + b_new)) theta'-. (b_old + b_new) = 2a when symmetric, and 2a * a / D is
+  // 2.0 * a * a / D bit for bit (doubling is exact).
+  const double b_new = body.pivot_b_m(onto);
+  const double b_old = body.pivot_b_m(-onto);
+  return 1.0 - b_new * (b_old + b_new) / body.pivot_D_m2(onto);
 }
 
 std::string_view rocking_state_name(RockingState state) {

@@ -52,6 +52,13 @@
 // fallen, or RockingOptions::max_run_out_s has passed, so that a body past alpha at the end of the record falls.
 // Overturning is not monotone in the amplitude of the input: a larger motion may leave the body standing.
 //
+// Asymmetric bodies (general_asymmetric; docs/method.md, "Asymmetric bodies"). b1 = CM to O- (theta < 0), b2 = CM to
+// O+ (theta > 0), h, k2 = I_cm / m; about pivot s: D_s = k2 + b_s^2 + h^2, alpha_s = atan(b_s / h), R_s. The equation
+// above holds with (alpha_s, R_s, D_s) of the current pivot; uplift about O+ when -a_h > (g + a_v) b2 / h, about O-
+// when a_h > (g + a_v) b1 / h; exceeded alpha when |theta| passes alpha_s on its side. At impact onto O_new from
+// O_old, angular momentum about O_new: D_new theta'+ = (k2 + h^2 - b1 b2) theta'-, i.e.
+//   e_new = 1 - b_new (b_old + b_new) / D_new   (symmetric: 1 - 2 a^2 / D).
+//
 // Onset mode (Shenton 1996, J. Eng. Mech. 122(7), "Criteria for initiation of slide, rock, and slide-rock rigid-body
 // modes"). At the instant theta = theta' = 0 that rocking starts, with A = |a_h| / (g + a_v):
 //   theta'' = g (A h - a) / D,  friction needed H = m (A g - h theta''),  normal force N = m (g + a theta'').
@@ -92,10 +99,21 @@ namespace topple {
 struct RockingBody {
   enum class Shape : std::uint8_t { block, cylinder, general };
 
+  /// The pivot O- (theta < 0, the -x edge) of an asymmetric body (b1 of a general body).
+  struct Pivot {
+    double b_m = 0.0;   ///< CM to O-, horizontal, m
+    double D_m2 = 0.0;  ///< I_O- / m, m^2
+  };
+
   Shape shape = Shape::block;
-  double a_m = 0.0;   ///< CM to pivot edge, horizontal, m (a 4 cm wide block: 0.02)
+  double a_m = 0.0;   ///< CM to pivot edge, horizontal, m (a 4 cm wide block: 0.02); an asymmetric body: CM to O+
+                      ///< (theta > 0, the +x edge; b2)
   double h_m = 0.0;   ///< CM height above the base, m (a 20 cm tall block: 0.10)
-  double D_m2 = 0.0;  ///< pivot moment of inertia per unit mass I_O / m, m^2
+  double D_m2 = 0.0;  ///< pivot moment of inertia per unit mass I_O / m, m^2 (asymmetric: about O+)
+  /// Unset: the body is symmetric (O- mirrors O+: a_m, D_m2). Set: the other pivot of an asymmetric body. The
+  /// symmetric members (alpha_rad, R_m, p_rad_s, the closed forms, Shenton) then describe the O+ side; the rocking
+  /// engine uses both (see "Asymmetric bodies" above).
+  std::optional<Pivot> negative_pivot;
 
   /// Rectangular block of full width and height (m, > 0, finite): a = w/2, h = H/2, D = (4/3)(a^2 + h^2).
   /// Throws InputError naming "width" or "height".
@@ -106,6 +124,25 @@ struct RockingBody {
   /// Any body given by a, h (> 0) and D >= a^2 + h^2 (equality: all the mass at the CM). Throws InputError naming
   /// "a", "h" or "D" (D below a^2 + h^2 is no real body: its moment of inertia about the CM would be negative).
   [[nodiscard]] static RockingBody general(double a_m, double h_m, double D_m2);
+  /// Asymmetric general body: b1 = CM to the pivot O- (the -x edge, theta < 0), b2 = CM to O+ (theta > 0), h the
+  /// CM height (all m, > 0) and k2 = I_cm / m, the moment of inertia about the CM per unit mass (m^2, >= 0): then
+  /// D- = k2 + b1^2 + h^2 and D+ = k2 + b2^2 + h^2 (parallel axes). negative_pivot is set even when b1 = b2 (the
+  /// asymmetric path then reproduces general(b, h, D) to round-off). Throws InputError naming "b1", "b2", "h" or
+  /// "inertia".
+  [[nodiscard]] static RockingBody general_asymmetric(double b1_m, double b2_m, double h_m, double k2_m2);
+
+  [[nodiscard]] bool symmetric() const noexcept { return !negative_pivot; }
+  /// CM to the pivot of side s (s > 0: O+, s < 0: O-), m.
+  [[nodiscard]] double pivot_b_m(int side) const noexcept {
+    return side < 0 && negative_pivot ? negative_pivot->b_m : a_m;
+  }
+  /// I_O / m about the pivot of side s, m^2.
+  [[nodiscard]] double pivot_D_m2(int side) const noexcept {
+    return side < 0 && negative_pivot ? negative_pivot->D_m2 : D_m2;
+  }
+  /// The symmetric body that rocks about the pivot of side s exactly as this one does while on that pivot (b_s, h,
+  /// D_s): the equation of motion, the uplift threshold and Shenton's onset about one pivot involve that pivot only.
+  [[nodiscard]] RockingBody side_body(int side) const;
 
   [[nodiscard]] double alpha_rad() const noexcept;        ///< atan(a / h)
   [[nodiscard]] double R_m() const noexcept;              ///< sqrt(a^2 + h^2)
@@ -121,7 +158,8 @@ struct RockingBody {
 inline constexpr double kMaxBodyDimension_m = 1000.0;
 
 /// A body's dimensions as a user gives them, by shape: block {width_m, height_m}, cylinder {diameter_m, height_m},
-/// general {a_m, h_m, D_m2} (m, m^2). Unset: not given.
+/// general {a_m, h_m, D_m2} or, asymmetric, {b1_m, b2_m, h_m, inertia_m2} (m, m^2; inertia = I_cm / m). Unset: not
+/// given.
 struct BodyDimensions {
   std::optional<double> width_m;
   std::optional<double> height_m;
@@ -129,16 +167,24 @@ struct BodyDimensions {
   std::optional<double> a_m;
   std::optional<double> h_m;
   std::optional<double> D_m2;
+  std::optional<double> b1_m;        ///< CM to the pivot O- (theta < 0, the -x edge)
+  std::optional<double> b2_m;        ///< CM to the pivot O+ (theta > 0, the +x edge)
+  std::optional<double> inertia_m2;  ///< I_cm / m, moment of inertia about the CM per unit mass
 };
 
 /// The body of `shape` from its dimensions. Throws InputError naming the field ("width", "height", "diameter", "a",
-/// "h", "D") that the shape needs and lacks, that does not apply to it, that exceeds kMaxBodyDimension_m (D: its
+/// "h", "D", "b1", "b2", "inertia"; a general body takes {a, h, D} or {b1, b2, h, inertia}) that the shape needs and
+/// lacks, that does not apply to it, that exceeds kMaxBodyDimension_m (D: its
 /// square), or that the factory refuses.
 [[nodiscard]] RockingBody make_rocking_body(RockingBody::Shape shape, const BodyDimensions& dimensions);
 
 /// Housner's coefficient of restitution e = 1 - 2 a^2 / D (angular-velocity ratio at impact; may be negative for a
-/// squat body, see the header).
+/// squat body, see the header). An asymmetric body: the landing on O+ (housner_restitution(body, 1)).
 [[nodiscard]] double housner_restitution(const RockingBody& body) noexcept;
+/// Housner's law for an asymmetric body landing on the pivot of side `onto` (+1: O+, -1: O-) from the other one,
+/// by conservation of angular momentum about the new pivot (docs/method.md, "Asymmetric bodies"):
+///   e = 1 - b_new (b_old + b_new) / D_new   (= 1 - 2 a^2 / D when symmetric, bit for bit).
+[[nodiscard]] double housner_restitution(const RockingBody& body, int onto) noexcept;
 
 /// What to do when housner_restitution is negative (a block wider than about 1.41 times its height, alpha > 54.7
 /// deg): Housner's angular-momentum argument then says the body cannot rock onto its other edge at all, so e must be
@@ -219,11 +265,22 @@ struct RockingSummary {
   double alpha_rad = 0.0;
   double R_m = 0.0;
   double p_rad_s = 0.0;
-  double e = 0.0;                           ///< restitution used
+  double e = 0.0;                           ///< restitution used (asymmetric body: on landing on O+)
+  double e_onto_negative = 0.0;             ///< restitution on landing on O- (symmetric body: e)
   double g_m_s2 = 0.0;
   double max_abs_rotation_rad = 0.0;        ///< max |theta| (turning points located on the dense output)
   double max_rotation_over_alpha = 0.0;     ///< max |theta| / alpha (>= 1: the CM passed over the pivot)
   double max_rotation_time_s = 0.0;
+  // Per side (theta > 0: about O+, the +x edge; theta < 0: about O-). For an asymmetric body
+  // max_rotation_over_alpha is the larger of the two ratios below (>= 1 still means the CM passed over a pivot);
+  // for a symmetric one it is max |theta| / alpha as before (the same number: division by alpha is monotone).
+  double max_rotation_positive_rad = 0.0;       ///< max theta over theta > 0 (>= 0)
+  double max_rotation_negative_rad = 0.0;       ///< max -theta over theta < 0 (>= 0)
+  double max_rotation_over_alpha_positive = 0.0;  ///< max_rotation_positive_rad / alpha+
+  double max_rotation_over_alpha_negative = 0.0;  ///< max_rotation_negative_rad / alpha-
+  double alpha_negative_rad = 0.0;          ///< alpha- = atan(b1 / h) (symmetric: alpha_rad)
+  int exceeded_alpha_side = 0;              ///< +1 / -1: the side on which |theta| first passed its alpha; 0: never
+  int overturned_side = 0;                  ///< +1: fell toward +x (about O+), -1: toward -x; 0: did not fall
   double max_abs_theta_dot_rad_s = 0.0;     ///< at step ends and events
   std::size_t impacts = 0;
   std::size_t uplifts = 0;                  ///< lift-offs from full contact

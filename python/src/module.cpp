@@ -989,6 +989,13 @@ NB_MODULE(_core, m) {
       .def_ro("a_m", &RockingBody::a_m)
       .def_ro("h_m", &RockingBody::h_m)
       .def_ro("D_m2", &RockingBody::D_m2)
+      .def_prop_ro("symmetric", &RockingBody::symmetric)
+      .def_prop_ro("b1_m", [](const RockingBody& b) { return b.pivot_b_m(-1); },
+                   "CM to the pivot O- (theta < 0), m (a symmetric body: a_m)")
+      .def_prop_ro("b2_m", [](const RockingBody& b) { return b.pivot_b_m(1); },
+                   "CM to the pivot O+ (theta > 0), m (a_m)")
+      .def_prop_ro("D1_m2", [](const RockingBody& b) { return b.pivot_D_m2(-1); }, "I_O / m about O-, m^2")
+      .def_prop_ro("D2_m2", [](const RockingBody& b) { return b.pivot_D_m2(1); }, "I_O / m about O+, m^2 (D_m2)")
       .def_prop_ro("alpha_rad", &RockingBody::alpha_rad)
       .def_prop_ro("R_m", &RockingBody::R_m)
       .def("p_rad_s", &RockingBody::p_rad_s, "g"_a = kStandardGravity, doc::p_rad_s)
@@ -1001,11 +1008,19 @@ NB_MODULE(_core, m) {
             return fmt::format("Cylinder(diameter={:.6g}, height={:.6g})", 2.0 * b.a_m, 2.0 * b.h_m);
           case RockingBody::Shape::general: break;
         }
+        if (b.negative_pivot) {
+          return fmt::format("GeneralAsymmetric(b1={:.6g}, b2={:.6g}, h={:.6g}, inertia={:.6g})",
+                             b.negative_pivot->b_m, b.a_m, b.h_m, b.D_m2 - b.a_m * b.a_m - b.h_m * b.h_m);
+        }
         return fmt::format("General(a={:.6g}, h={:.6g}, D={:.6g})", b.a_m, b.h_m, b.D_m2);
       });
   m.def("Block", &RockingBody::block, "width"_a, "height"_a, doc::block);
   m.def("Cylinder", &RockingBody::cylinder, "diameter"_a, "height"_a, doc::cylinder);
   m.def("General", &RockingBody::general, "a"_a, "h"_a, "D"_a, doc::general);
+  m.def("GeneralAsymmetric", &RockingBody::general_asymmetric, "b1"_a, "b2"_a, "h"_a, "inertia"_a,
+        "Asymmetric body: b1 = CM to the pivot O- (theta < 0, the -x edge), b2 = CM to O+ (theta > 0), h = CM height "
+        "(m), inertia = I_cm / m (m^2). Housner's e differs by the side landed on (docs/method.md, \"Asymmetric "
+        "bodies\").");
 
   nb::class_<RockingRun> rocking_result(m, "RockingResult", doc::rocking_result);
   for (const Field<RockingOutcome>& field : kRockingFields) {
@@ -1015,6 +1030,16 @@ NB_MODULE(_core, m) {
   }
   rocking_result
       .def_prop_ro("warnings", [](const RockingRun& r) { return r.result.summary.warnings; })
+      .def_prop_ro("max_rotation_positive_rad",
+                   [](const RockingRun& r) { return r.result.summary.max_rotation_positive_rad; })
+      .def_prop_ro("max_rotation_negative_rad",
+                   [](const RockingRun& r) { return r.result.summary.max_rotation_negative_rad; })
+      .def_prop_ro("max_rotation_over_alpha_positive",
+                   [](const RockingRun& r) { return r.result.summary.max_rotation_over_alpha_positive; })
+      .def_prop_ro("max_rotation_over_alpha_negative",
+                   [](const RockingRun& r) { return r.result.summary.max_rotation_over_alpha_negative; })
+      .def_prop_ro("overturned_side", [](const RockingRun& r) { return r.result.summary.overturned_side; },
+                   "+1: fell toward +x (about O+), -1: toward -x, 0: did not fall")
       .def_prop_ro("body", [](const RockingRun& r) { return r.body; })
       .def_prop_ro("time_s", [](const RockingRun& r) { return view(r.result.history.time_s); },
                    nb::rv_policy::reference_internal)

@@ -53,10 +53,42 @@ nlohmann::ordered_json rocking_summary_json(const RockingSummary& s, const Rocki
     b["diameter_m"] = 2.0 * body.a_m;
     b["height_m"] = 2.0 * body.h_m;
   }
-  b["a_m"] = body.a_m;
-  b["h_m"] = body.h_m;
-  b["D_m2"] = body.D_m2;
+  if (body.negative_pivot) {  // asymmetric: both pivots (b1: O-, theta < 0; b2: O+, theta > 0)
+    b["b1_m"] = body.negative_pivot->b_m;
+    b["b2_m"] = body.a_m;
+    b["h_m"] = body.h_m;
+    b["inertia_m2"] = body.D_m2 - body.a_m * body.a_m - body.h_m * body.h_m;
+    b["D1_m2"] = body.negative_pivot->D_m2;
+    b["D2_m2"] = body.D_m2;
+  } else {
+    b["a_m"] = body.a_m;
+    b["h_m"] = body.h_m;
+    b["D_m2"] = body.D_m2;
+  }
   j["body"] = b;
+  if (body.negative_pivot) {
+    // Per side (only for asymmetric bodies, so that symmetric summaries keep their keys): "negative" is theta < 0,
+    // about O- (b1), "positive" theta > 0, about O+ (b2).
+    const auto side = [](double alpha, double max_rad, double ratio, double e_onto) {
+      nlohmann::ordered_json x;
+      x["alpha_rad"] = alpha;
+      x["max_rotation_rad"] = max_rad;
+      x["max_rotation_over_alpha"] = ratio;
+      x["e_onto"] = e_onto;
+      return x;
+    };
+    nlohmann::ordered_json sides;
+    sides["negative"] = side(s.alpha_negative_rad, s.max_rotation_negative_rad, s.max_rotation_over_alpha_negative,
+                             s.e_onto_negative);
+    sides["positive"] =
+        side(s.alpha_rad, s.max_rotation_positive_rad, s.max_rotation_over_alpha_positive, s.e);
+    const auto side_name = [](int x) { return x > 0 ? "positive" : x < 0 ? "negative" : nullptr; };
+    sides["exceeded_alpha_side"] = s.exceeded_alpha_side != 0 ? nlohmann::ordered_json(side_name(s.exceeded_alpha_side))
+                                                              : nlohmann::ordered_json(nullptr);
+    sides["overturned_side"] = s.overturned_side != 0 ? nlohmann::ordered_json(side_name(s.overturned_side))
+                                                      : nlohmann::ordered_json(nullptr);
+    j["sides"] = sides;
+  }
   nlohmann::ordered_json m;
   m["method"] = rocking_method_name(options.method);
   m["rel_tol"] = options.rel_tol;

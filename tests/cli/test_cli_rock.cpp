@@ -181,6 +181,43 @@ TEST(CliRock, MethodsAgree) {
   EXPECT_EQ(r.at("solver").at("method").get<std::string>(), "rk4");
 }
 
+TEST(CliRock, AsymmetricGeneralBodyReportsEachSide) {
+  // --b1 7cm --b2 13cm --h 45cm --inertia 0.025m2 under a sine pulse that throws the body toward -x first (a_h > 0
+  // at the start): it falls about O- (the low side, b1). The JSON numbers are the library's (nlohmann prints them
+  // to round trip: 1e-15).
+  const auto j = run_json("rock --shape general --b1 7cm --b2 13cm --h 45cm --inertia 0.025m2 --pulse sine "
+                          "--amp-g 0.3 --duration 0.6s --g 9.81 --json");
+  // The CLI's default tail: 5 durations.
+  const GroundMotion pulse =
+      make_pulse({.kind = PulseKind::sine, .amplitude_m_s2 = 0.3 * 9.81, .duration_s = 0.6, .tail_s = 3.0});
+  const RockingBody body = RockingBody::general_asymmetric(0.07, 0.13, 0.45, 0.025);
+  RockingOptions o;
+  o.g_m_s2 = 9.81;
+  const auto s = rock_summary(pulse, body, o);
+  ASSERT_TRUE(s.overturned);
+  EXPECT_EQ(s.overturned_side, -1);
+  EXPECT_EQ(j.at("overturned").get<bool>(), true);
+  EXPECT_EQ(j.at("sides").at("overturned_side").get<std::string>(), "negative");
+  EXPECT_NEAR(j.at("sides").at("positive").at("max_rotation_rad").get<double>(), s.max_rotation_positive_rad, 1e-15);
+  EXPECT_NEAR(j.at("sides").at("negative").at("alpha_rad").get<double>(), std::atan(0.07 / 0.45), 1e-15);
+  EXPECT_NEAR(j.at("sides").at("negative").at("e_onto").get<double>(), housner_restitution(body, -1), 1e-15);
+  EXPECT_DOUBLE_EQ(j.at("body").at("b1_m").get<double>(), 0.07);
+  EXPECT_DOUBLE_EQ(j.at("body").at("b2_m").get<double>(), 0.13);
+  // Symmetric bodies keep their keys: no "sides".
+  const auto sym = run_json("rock --shape block --width 4cm --height 20cm --pulse sine --amp-g 0.3 --duration 0.6s "
+                            "--json");
+  EXPECT_FALSE(sym.contains("sides"));
+  // Half an asymmetric body, or a mixture with a/D, is refused naming the option.
+  expect_error("rock --shape general --b1 7cm --b2 13cm --h 45cm --pulse sine --amp-g 0.3 --duration 0.6s",
+               "--inertia");
+  expect_error("rock --shape general --b1 7cm --b2 13cm --h 45cm --inertia 0.02m2 --D 0.3m2 --pulse sine --amp-g "
+               "0.3 --duration 0.6s",
+               "--D");
+  expect_error("rock --shape general --b1 -7cm --b2 13cm --h 45cm --inertia 0.02m2 --pulse sine --amp-g 0.3 "
+               "--duration 0.6s",
+               "--b1");
+}
+
 TEST(CliRock, BadInputExitsWithStatus2NamingTheOption) {
   const std::string pulse = "rock --pulse sine --amp-g 0.3 --duration 0.5 ";
   expect_error(pulse + "--shape block --width 0.04 --height 20cm", "--width");          // bare number
