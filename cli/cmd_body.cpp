@@ -98,6 +98,11 @@ void print_body(const BodyCommandOptions& o, const MeshBody& r, std::size_t vert
   fmt::print("I_cm (plane)  {:.9g} kg m^2\n", b.inertia_cm_kg_m2);
   fmt::print("I_O1, I_O2    {:.9g} kg m^2, {:.9g} kg m^2\n", b.inertia_o1_kg_m2, b.inertia_o2_kg_m2);
   fmt::print("p1, p2        {:.9g} rad/s, {:.9g} rad/s (g = {} m/s2)\n", b.p1_rad_s, b.p2_rad_s, o.body.g_m_s2);
+  // The asymmetric planar body as `rock` takes it (rocking.hpp: b1 to the -x pivot, b2 to the +x pivot, x here
+  // toward the azimuth; inertia = I_cm / m about the rocking axis).
+  fmt::print("as rock       `topple rock --shape general --b1 {:.9g}m --b2 {:.9g}m --h {:.9g}m --inertia {:.9g}m2` "
+             "(+x toward the azimuth)\n",
+             b.b1_m, b.b2_m, b.h_m, b.inertia_cm_kg_m2 / m.mass_kg);
   fmt::print("symmetric     b = (b1 + b2)/2 = {:.9g} m, alpha = {:.6f} deg, p = {:.9g} rad/s (for information)\n",
              b.b_sym_m, deg(b.alpha_sym_rad), b.p_sym_rad_s);
   fmt::print("              as `topple rock --shape general --a {:.9g}m --h {:.9g}m --D {:.9g}m2`\n", b.b_sym_m,

@@ -55,7 +55,9 @@ TEST(CliBody, TextNamesUnitsAndTheSymmetricEquivalent) {
   const auto r = run_cli("body " + quote(path.string()) + " --azimuth 90");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const char* s : {"volume        0.25 m^3", "b1, b2        0.25 m, 0.25 m", "h             1 m",
-                        "rad/s", "kg m^2", "--shape general --a 0.25m --h 1m"}) {
+                        "rad/s", "kg m^2", "--shape general --a 0.25m --h 1m",
+                        // I_cm / m of the box about y: (0.5^2 + 2^2) / 12 = 0.354166667 m^2 (9 significant digits)
+                        "--shape general --b1 0.25m --b2 0.25m --h 1m --inertia 0.354166667m2"}) {
     EXPECT_NE(r.out.find(s), std::string::npos) << s << "\n" << r.out;
   }
 }
