@@ -89,8 +89,8 @@ def test_collinear_equals_1d_solver(station, azimuth_deg):
     # quadratic velocity; what remains is round-off and the stop's root finding).
     a = topple.read(station[0])
     phi = math.radians(azimuth_deg)
-    east = topple.GroundMotion(np.asarray(a.accel_m_s2) * math.sin(phi), a.dt_s)
-    north = topple.GroundMotion(np.asarray(a.accel_m_s2) * math.cos(phi), a.dt_s)
+    east = topple.GroundMotion(np.asarray(a.accel_m_s2) * math.sin(phi), a.dt_s, units="m/s2")
+    north = topple.GroundMotion(np.asarray(a.accel_m_s2) * math.cos(phi), a.dt_s, units="m/s2")
     one = topple.slide(a, mu=0.2, mu_kinetic=0.15, history=False)
     two = topple.slide_2d(east, north, mu=0.2, mu_kinetic=0.15)
     assert one.slip_episodes > 1 and two.slip_episodes == one.slip_episodes
