@@ -58,6 +58,14 @@ def test_slide_2d_equals_cli(cli, station, kwargs, args, with_vertical, history)
     assert result.json() == expected
     assert_attributes_match(result, expected)
     assert expected["slip_episodes"] > 0  # the case exercises the slip integration, not only the stick test
+    # The "input" object says what was run (both front ends build it with io::sliding_2d_input_json).
+    inp = result.json()["input"]
+    assert inp["motion"] == h1 and inp["h2"] == h2 and inp["scale_factor"] == 1.0
+    assert inp["azimuths_deg"] == list(kwargs.get("azimuths_deg", (90.0, 0.0)))
+    assert inp["vertical"] is (True if with_vertical else None)
+    assert inp.get("slope_azimuth_deg") == kwargs.get("slope_azimuth_deg")
+    # pga_g: the components' peaks in the run's g (the CSVs are in g; 17 digits printed, so to round-off).
+    assert inp["pga_g"] == pytest.approx([topple.read(h1, g=g).pga_g, topple.read(h2, g=g).pga_g], rel=1e-15)
 
 
 def test_history_is_consistent_with_summary(station):
