@@ -58,18 +58,11 @@ void run_bidirectional_slide(const GroundMotion& first, const GroundMotion& seco
   const double g = block.g_m_s2;
   if (json) {
     nlohmann::ordered_json j = io::sliding_2d_summary_json(s, block);
-    nlohmann::ordered_json in;
-    in["motion"] = motion_name;
-    in["h2"] = second_name;
-    in["azimuths_deg"] = {azimuths.first_deg, azimuths.second_deg};
-    if (block.slope_rad != 0.0) {
-      in["slope_deg"] = block.slope_rad * 180.0 / kPi;
-      in["slope_azimuth_deg"] = azimuths.slope_azimuth_deg;
-    }
-    in["scale_factor"] = scale_factor;
-    in["vertical"] = vertical != nullptr ? nlohmann::ordered_json(true) : nlohmann::ordered_json(nullptr);
-    in["pga_g"] = {first.pga_m_s2() / g, second.pga_m_s2() / g};
-    j["input"] = in;
+    io::RunInput in;
+    in.motion = motion_name;
+    in.scale_factor = scale_factor;
+    if (vertical != nullptr) in.vertical = "";  // the 2-D "input" says only whether there is one
+    j["input"] = io::sliding_2d_input_json(in, second_name, first, second, azimuths, block);
     fmt::print("{}\n", j.dump(2));
     return;
   }

@@ -316,6 +316,107 @@ SlidingResult
     Summary (displacements in m, times in s, yield accelerations in g) and histories.
 )";
 
+inline constexpr const char* sliding_2d_result =
+    R"(Bidirectional sliding response of a rigid block (the result of topple.slide_2d).
+
+Summary attributes have the names and units of `topple slide --h2 --json`; json() returns that object. Frame: x east,
+y north; displacements are of the block relative to the ground (on a slope: in the plane, the downslope axis carried
+on the slope's azimuth). Histories are empty unless run with history=True.
+
+Attributes
+----------
+residual_displacement_m : float
+    |u| when the block has come to rest after the record, m.
+residual_azimuth_deg : float or None
+    Direction of that residual displacement, deg clockwise from north in [0, 360) (None: the block never moved).
+residual_east_m, residual_north_m : float
+    East and north components of the residual displacement, m.
+max_abs_displacement_m : float
+    Maximum |u| over the response, m.
+max_displacement_time_s : float
+    First time |u| reaches that maximum, s.
+path_length_m : float
+    Length of the block's track on the ground (integral of the relative speed), m.
+max_abs_velocity_m_s : float
+    Peak relative speed, m/s.
+slip_episodes : int
+    Number of slip starts from relative rest.
+first_slip_time_s : float or None
+    Time the block first slips, s (None: it never slips).
+total_slip_duration_s : float
+    Total time spent slipping, s.
+end_time_s : float
+    Time the block came to rest, s (the record end, or later when it slid past it).
+at_rest_at_end : bool
+    False only when the block never comes to rest (mu_kinetic = 0, or a slope steeper than kinetic friction).
+contact_lost_time_s : float or None
+    First time the normal force vanishes (g + a_v <= 0 on level ground), s: the block leaves the ground and the model
+    is not valid after it (None: never).
+input_work_J_kg : float
+    Work of the inertial load on the block per unit mass, J/kg (on a slope gravity's included).
+friction_work_J_kg : float
+    Energy dissipated by friction per unit mass, J/kg.
+integrator_steps : int
+    Dormand-Prince steps taken in the slip phases, rejected ones included.
+mu_static, mu_kinetic : float
+    Friction coefficients (dimensionless).
+g_m_s2 : float
+    Gravity used, m/s^2.
+time_s : numpy.ndarray
+    History times, s (read-only view): the merged grid's points plus every slip start and stop.
+east_m, north_m : numpy.ndarray
+    Relative displacement history, east and north components, m (read-only views).
+east_m_s, north_m_s : numpy.ndarray
+    Relative velocity history, east and north components, m/s (read-only views).
+slipping : numpy.ndarray of uint8
+    1 while slipping, 0 stuck.
+)";
+
+inline constexpr const char* sliding_2d_json = R"(The summary as `topple slide --h2 --json` writes it.
+
+Returns
+-------
+dict
+    The JSON object (keys with units, e.g. residual_displacement_m in m, residual_azimuth_deg in deg) with its
+    "input".
+)";
+
+inline constexpr const char* slide_2d =
+    R"(Bidirectional sliding of a rigid block with isotropic Coulomb friction on level or inclined ground.
+
+Both horizontal components (and the vertical, when given) act together: friction opposes the two-dimensional
+relative velocity with magnitude mu_kinetic (g + a_v) (topple/sliding2d.hpp, docs/method.md "Bidirectional
+sliding"). On one axis this is topple.slide's two-way block.
+
+Parameters
+----------
+first, second : GroundMotion
+    The two horizontal components, positive toward their azimuths, m/s^2 inside; any sampling (merged exactly).
+mu : float
+    Static friction coefficient (dimensionless, >= 0).
+mu_kinetic : float, optional
+    Kinetic friction coefficient, <= mu (default: mu).
+azimuths_deg : sequence of two float
+    The components' azimuths, deg clockwise from north (default (90, 0): east, north); perpendicular.
+slope_deg : float
+    Plane inclination, deg (0: level).
+slope_azimuth_deg : float, optional
+    On a slope (required there, refused on level ground): the azimuth of the downslope direction, deg clockwise
+    from north.
+vertical : GroundMotion, optional
+    Vertical ground acceleration, positive up, m/s^2 inside.
+g : float
+    Gravity, m/s^2 (default 9.80665 m/s^2).
+history : bool
+    True: also store the history (time_s, east_m, north_m, east_m_s, north_m_s, slipping); False: summary only.
+
+Returns
+-------
+Sliding2dResult
+    Summary (residual displacement in m with its azimuth in deg, max |u| in m, path length in m, slip episodes, peak
+    relative speed in m/s) and, with history=True, the histories.
+)";
+
 inline constexpr const char* slide_spectrum =
     R"(Sliding displacement spectrum: one block per friction coefficient (topple/object_spectra.hpp).
 

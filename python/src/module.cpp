@@ -52,6 +52,7 @@
 #include "topple/report.hpp"
 #include "topple/rocking.hpp"
 #include "topple/sliding.hpp"
+#include "topple/sliding2d.hpp"
 #include "topple/spectra.hpp"
 #include "topple/summary_fields.hpp"
 #include "topple/synthesis.hpp"
@@ -243,6 +244,70 @@ SlidingRun run_slide(const GroundMotion& motion, double mu, std::optional<double
     }
   }
   run.inputs = RunInputs(motion, vertical);
+  return run;
+}
+
+/// slide_2d: bidirectional sliding (sliding2d.hpp). The motions are kept alive by their Python objects for the
+/// "input" object of json() (io::sliding_2d_input_json, the CLI's).
+struct Sliding2dRun {
+  Sliding2dSummary summary;
+  Sliding2dHistory history;  // empty when run with history=False
+  SlidingBlock block;
+  ComponentAzimuths azimuths;
+  nb::object first, second, vertical;  // vertical: None when absent
+
+  [[nodiscard]] nlohmann::ordered_json json() const {
+    nlohmann::ordered_json j = io::sliding_2d_summary_json(summary, block);
+    io::RunInput in;
+    in.motion = motion_name(nb::cast<const GroundMotion&>(first));
+    if (!vertical.is_none()) in.vertical = motion_name(nb::cast<const GroundMotion&>(vertical));
+    j["input"] = io::sliding_2d_input_json(in, motion_name(nb::cast<const GroundMotion&>(second)),
+                                           nb::cast<const GroundMotion&>(first), nb::cast<const GroundMotion&>(second),
+                                           azimuths, block);
+    return j;
+  }
+};
+
+Sliding2dRun run_slide_2d(const GroundMotion& first, const GroundMotion& second, double mu,
+                          std::optional<double> mu_kinetic, const std::vector<double>& azimuths_deg, double slope_deg,
+                          std::optional<double> slope_azimuth_deg, const GroundMotion* vertical, double g_m_s2,
+                          bool history) {
+  if (azimuths_deg.size() != 2) {
+    throw parameter_error("azimuths_deg", fmt::format("expected the two components' azimuths in degrees, e.g. (90, 0), "
+                                                      "got {} values", azimuths_deg.size()));
+  }
+  // As the CLI: the fall line's azimuth is required on a slope (no silent guess) and refused on level ground.
+  if (slope_deg != 0.0 && !slope_azimuth_deg) {
+    throw parameter_error("slope_azimuth_deg", "required with slope_deg: the azimuth of the downslope direction, "
+                                               "degrees clockwise from north");
+  }
+  if (slope_deg == 0.0 && slope_azimuth_deg) {
+    throw parameter_error("slope_azimuth_deg", "needs slope_deg (on level ground there is no fall line)");
+  }
+  Sliding2dRun run;
+  run.azimuths = ComponentAzimuths{azimuths_deg[0], azimuths_deg[1], slope_azimuth_deg.value_or(0.0)};
+  try {
+    run.block = SlidingBlock::make(mu, mu_kinetic, slope_deg * kPi / 180.0, SlidingMode::two_way, g_m_s2);
+    nb::gil_scoped_release release;
+    if (history) {
+      Sliding2dResult result = slide_2d(first, second, run.azimuths, run.block, vertical);
+      run.summary = result.summary;
+      run.history = std::move(result.history);
+    } else {
+      run.summary = slide_2d_summary(first, second, run.azimuths, run.block, vertical);
+    }
+  } catch (const InputError& e) {
+    // The library names its fields; the caller typed these parameters (as the CLI maps them to its options).
+    if (!e.where().file.empty()) throw;
+    const std::string& field = e.where().field;
+    if (field == "slope") throw parameter_error("slope_deg", e.problem());
+    if (field == "slope_azimuth") throw parameter_error("slope_azimuth_deg", e.problem());
+    if (field == "first_azimuth" || field == "second_azimuth") throw parameter_error("azimuths_deg", e.problem());
+    throw;
+  }
+  run.first = nb::find(first);
+  run.second = nb::find(second);
+  run.vertical = vertical != nullptr ? nb::find(*vertical) : nb::none();
   return run;
 }
 
@@ -974,6 +1039,39 @@ NB_MODULE(_core, m) {
         },
         "motion"_a, nb::kw_only(), "mu"_a, "mu_kinetic"_a = nb::none(), "mode"_a = "two-way", "slope_deg"_a = 0.0,
         "vertical"_a = nb::none(), "g"_a = kStandardGravity, "history"_a = true, doc::slide);
+
+  // Bidirectional sliding: the summary attributes from kSliding2dFields, as `topple slide --h2 --json` keys.
+  nb::class_<Sliding2dRun> sliding_2d_result(m, "Sliding2dResult", doc::sliding_2d_result);
+  for (const Field<Sliding2dOutcome>& field : kSliding2dFields) {
+    sliding_2d_result.def_prop_ro(field.name, [get = field.get](const Sliding2dRun& r) {
+      return field_to_python(get(Sliding2dOutcome{r.summary, r.block}));
+    });
+  }
+  sliding_2d_result
+      .def_prop_ro("time_s", [](const Sliding2dRun& r) { return view(r.history.time_s); },
+                   nb::rv_policy::reference_internal)
+      .def_prop_ro("east_m", [](const Sliding2dRun& r) { return view(r.history.east_m); },
+                   nb::rv_policy::reference_internal)
+      .def_prop_ro("north_m", [](const Sliding2dRun& r) { return view(r.history.north_m); },
+                   nb::rv_policy::reference_internal)
+      .def_prop_ro("east_m_s", [](const Sliding2dRun& r) { return view(r.history.east_m_s); },
+                   nb::rv_policy::reference_internal)
+      .def_prop_ro("north_m_s", [](const Sliding2dRun& r) { return view(r.history.north_m_s); },
+                   nb::rv_policy::reference_internal)
+      .def_prop_ro("slipping", [](const Sliding2dRun& r) { return to_numpy(r.history.slipping); }, nb::rv_policy::move)
+      .def("json", [](const Sliding2dRun& r) { return to_python(r.json()); }, doc::sliding_2d_json)
+      .def("__repr__", [](const Sliding2dRun& r) {
+        return fmt::format("Sliding2dResult(residual_displacement_m={:.6g}, residual_azimuth_deg={}, "
+                           "max_abs_displacement_m={:.6g}, slip_episodes={})",
+                           r.summary.residual_displacement_m,
+                           r.summary.residual_azimuth_deg ? fmt::format("{:.6g}", *r.summary.residual_azimuth_deg)
+                                                          : std::string("None"),
+                           r.summary.max_abs_displacement_m, r.summary.slip_episodes);
+      });
+  m.def("slide_2d", &run_slide_2d, "first"_a, "second"_a, nb::kw_only(),
+        "mu"_a, "mu_kinetic"_a = nb::none(), "azimuths_deg"_a = std::vector<double>{90.0, 0.0}, "slope_deg"_a = 0.0,
+        "slope_azimuth_deg"_a = nb::none(), "vertical"_a = nb::none(), "g"_a = kStandardGravity, "history"_a = false,
+        doc::slide_2d);
 
   m.def("slide_spectrum", &sliding_spectrum_dict, "motion"_a, "mu"_a, nb::kw_only(), "slope_deg"_a = 0.0,
         "mode"_a = "two-way", "g"_a = kStandardGravity, doc::slide_spectrum);

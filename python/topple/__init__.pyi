@@ -123,6 +123,43 @@ def slide(motion: GroundMotion, *, mu: float, mu_kinetic: Optional[float] = None
           vertical: Optional[GroundMotion] = None, g: float = 9.80665, history: bool = True) -> SlidingResult:
     """Exact sliding of a rigid block with Coulomb friction on a level or inclined plane."""
 
+class Sliding2dResult:
+    """Bidirectional sliding response of a rigid block (the result of topple.slide_2d)."""
+    residual_displacement_m: float
+    residual_azimuth_deg: Optional[float]  # None when the block never moved
+    residual_east_m: float
+    residual_north_m: float
+    max_abs_displacement_m: float
+    max_displacement_time_s: float
+    path_length_m: float
+    max_abs_velocity_m_s: float
+    slip_episodes: int
+    first_slip_time_s: Optional[float]
+    total_slip_duration_s: float
+    end_time_s: float
+    at_rest_at_end: bool
+    contact_lost_time_s: Optional[float]
+    input_work_J_kg: float
+    friction_work_J_kg: float
+    integrator_steps: int
+    mu_static: float
+    mu_kinetic: float
+    g_m_s2: float
+    time_s: npt.NDArray[np.float64]
+    east_m: npt.NDArray[np.float64]
+    north_m: npt.NDArray[np.float64]
+    east_m_s: npt.NDArray[np.float64]
+    north_m_s: npt.NDArray[np.float64]
+    slipping: npt.NDArray[np.uint8]
+    def json(self) -> dict[str, Any]:
+        """The summary as `topple slide --h2 --json` writes it."""
+
+def slide_2d(first: GroundMotion, second: GroundMotion, *, mu: float, mu_kinetic: Optional[float] = None,
+             azimuths_deg: Sequence[float] = (90.0, 0.0), slope_deg: float = 0.0,
+             slope_azimuth_deg: Optional[float] = None, vertical: Optional[GroundMotion] = None, g: float = 9.80665,
+             history: bool = False) -> Sliding2dResult:
+    """Bidirectional sliding of a rigid block with isotropic Coulomb friction on level or inclined ground."""
+
 def slide_flexible(motion: GroundMotion, *, mu: float, mode: Literal["two-way", "one-way"] = "two-way",
                    support_freq_hz: Optional[float] = None, support_damping: float = 0.05, mass_ratio: float = 0.0,
                    height_m: Optional[float] = None, vs_slope_m_s: Optional[float] = None,

@@ -113,6 +113,23 @@ nlohmann::ordered_json run_input_json(const RunInput& input, const GroundMotion&
   return in;
 }
 
+nlohmann::ordered_json sliding_2d_input_json(const RunInput& input, const std::string& second_name,
+                                             const GroundMotion& first, const GroundMotion& second,
+                                             const ComponentAzimuths& azimuths, const SlidingBlock& block) {
+  nlohmann::ordered_json in;
+  in["motion"] = input.motion;
+  in["h2"] = second_name;
+  in["azimuths_deg"] = {azimuths.first_deg, azimuths.second_deg};
+  if (block.slope_rad != 0.0) {
+    in["slope_deg"] = block.slope_rad * 180.0 / kPi;
+    in["slope_azimuth_deg"] = azimuths.slope_azimuth_deg;
+  }
+  in["scale_factor"] = input.scale_factor;
+  in["vertical"] = input.vertical ? nlohmann::ordered_json(true) : nlohmann::ordered_json(nullptr);
+  in["pga_g"] = {first.pga_m_s2() / block.g_m_s2, second.pga_m_s2() / block.g_m_s2};
+  return in;
+}
+
 void write_sliding_history_csv(const std::filesystem::path& path, const SlidingHistory& h,
                                const GroundMotion& horizontal) {
   OutputFile file(path);

@@ -57,6 +57,14 @@ struct RunInput {
 [[nodiscard]] nlohmann::ordered_json run_input_json(const RunInput& input, const GroundMotion& horizontal,
                                                     double g_m_s2);
 
+/// The "input" object of `topple slide --h2 --json` and of the Python Sliding2dResult.json(): motion and h2 (the two
+/// components' names), azimuths_deg, slope_deg and slope_azimuth_deg (on a slope only), scale_factor, vertical (true,
+/// or null when none), pga_g of both components (in the block's g).
+[[nodiscard]] nlohmann::ordered_json sliding_2d_input_json(const RunInput& input, const std::string& second_name,
+                                                           const GroundMotion& first, const GroundMotion& second,
+                                                           const ComponentAzimuths& azimuths,
+                                                           const SlidingBlock& block);
+
 /// History as CSV: time_s,ground_accel_m_s2,displacement_m,velocity_m_s,state (state: -1 slipping up-slope /
 /// negative, 0 stuck, 1 slipping down-slope / positive). Written through OutputFile (temporary name, then rename);
 /// throws OutputError naming the path when it cannot be written.
