@@ -107,7 +107,9 @@ TEST(InversionSteps, NotRockedMatchesRunsThatStayBelowTheVisibleTilt) {
     const bool stayed = !s.overturned && s.max_abs_rotation_rad < kVisibleRockingRad;
     EXPECT_EQ(observation_match(o, p, motion, kStandardGravity), stayed ? 1.0 : 0.0) << pga_g;
     (stayed ? below : visible) += 1;
-    if (pga_g < 0.25) EXPECT_TRUE(stayed) << "no uplift below g a/h (Housner), so no visible tilt: " << pga_g;
+    if (pga_g < 0.25) {
+      EXPECT_TRUE(stayed) << "no uplift below g a/h (Housner), so no visible tilt: " << pga_g;
+    }
   }
   EXPECT_GT(below, 0);
   EXPECT_GT(visible, 0);  // the grid exercises both verdicts
