@@ -507,6 +507,13 @@ R_m : float
     Distance from the centre of mass to a pivot, m.
 housner_e : float
     Housner's coefficient of restitution 1 - (3/2) sin^2(alpha) for a block (dimensionless; negative for squat bodies).
+symmetric : bool
+    True when both pivots are at the same distance b from the centre of mass (Block, Cylinder, General).
+b1_m, b2_m : float
+    Horizontal distance from the centre of mass to the pivot O- (rocking with theta < 0, the -x edge) and to O+
+    (theta > 0), m; both a_m for a symmetric body (GeneralAsymmetric gives them apart).
+D1_m2, D2_m2 : float
+    Moment of inertia about O- and about O+ per unit mass, m^2 (both D_m2 for a symmetric body).
 )";
 
 inline constexpr const char* p_rad_s = R"(Frequency parameter p = sqrt(g R / D) of the body.
@@ -569,6 +576,29 @@ RockingBody
     The body.
 )";
 
+inline constexpr const char* general_asymmetric =
+    R"(An asymmetric rigid body: CM to the pivot O- (b1) and O+ (b2), CM height h (m), inertia = I_cm / m (m^2).
+
+Rocking with theta < 0 turns about O- (the -x edge), with theta > 0 about O+; each side has its own slenderness
+angle atan(b/h), uplift level g b/h and Housner restitution on landing (docs/method.md, "Asymmetric bodies").
+
+Parameters
+----------
+b1 : float
+    Horizontal distance from the centre of mass to the pivot O-, m (> 0).
+b2 : float
+    Horizontal distance from the centre of mass to the pivot O+, m (> 0).
+h : float
+    Height of the centre of mass above the base, m (> 0).
+inertia : float
+    Moment of inertia about the centre of mass (the rocking axis) per unit mass, m^2 (>= 0).
+
+Returns
+-------
+RockingBody
+    The body (b1_m, b2_m, D1_m2, D2_m2 give its two pivots).
+)";
+
 inline constexpr const char* rocking_result = R"(Rocking response of a rigid body (the result of topple.rock).
 
 Summary attributes have the names and units of `topple rock --json`; json() returns that object. Histories and
@@ -582,6 +612,13 @@ max_rotation_over_alpha : float
     Maximum |theta| / alpha (1: the body passes its tipping angle).
 max_rotation_time_s : float
     Time of that maximum, s.
+max_rotation_positive_rad, max_rotation_negative_rad : float
+    Maximum rotation on each side (theta > 0 about O+, theta < 0 about O-), rad, both >= 0.
+max_rotation_over_alpha_positive, max_rotation_over_alpha_negative : float
+    Each side's maximum rotation over that side's slenderness angle (an asymmetric body tips at a different angle on
+    each side).
+overturned_side : int
+    +1: fell toward +x (about O+), -1: toward -x (about O-), 0: did not fall.
 max_abs_theta_dot_rad_s : float
     Maximum |theta'|, rad/s.
 impacts, uplifts : int

@@ -1116,9 +1116,7 @@ NB_MODULE(_core, m) {
   m.def("Cylinder", &RockingBody::cylinder, "diameter"_a, "height"_a, doc::cylinder);
   m.def("General", &RockingBody::general, "a"_a, "h"_a, "D"_a, doc::general);
   m.def("GeneralAsymmetric", &RockingBody::general_asymmetric, "b1"_a, "b2"_a, "h"_a, "inertia"_a,
-        "Asymmetric body: b1 = CM to the pivot O- (theta < 0, the -x edge), b2 = CM to O+ (theta > 0), h = CM height "
-        "(m), inertia = I_cm / m (m^2). Housner's e differs by the side landed on (docs/method.md, \"Asymmetric "
-        "bodies\").");
+        doc::general_asymmetric);
 
   nb::class_<RockingRun> rocking_result(m, "RockingResult", doc::rocking_result);
   for (const Field<RockingOutcome>& field : kRockingFields) {

@@ -181,6 +181,11 @@ class RockingBody:
     alpha_rad: float
     R_m: float
     housner_e: float
+    symmetric: bool
+    b1_m: float
+    b2_m: float
+    D1_m2: float
+    D2_m2: float
     def p_rad_s(self, g: float = 9.80665) -> float:
         """Frequency parameter p = sqrt(g R / D) of the body."""
 
@@ -190,11 +195,18 @@ def Cylinder(diameter: float, height: float) -> RockingBody:
     """A solid cylinder standing on its end."""
 def General(a: float, h: float, D: float) -> RockingBody:
     """Any rigid body, by its geometry about a pivot."""
+def GeneralAsymmetric(b1: float, b2: float, h: float, inertia: float) -> RockingBody:
+    """An asymmetric rigid body: CM to the pivot O- (b1) and O+ (b2), CM height h (m), inertia = I_cm / m (m^2)."""
 
 class RockingResult:
     """Rocking response of a rigid body (the result of topple.rock)."""
     max_abs_rotation_rad: float
     max_rotation_over_alpha: float
+    max_rotation_positive_rad: float
+    max_rotation_negative_rad: float
+    max_rotation_over_alpha_positive: float
+    max_rotation_over_alpha_negative: float
+    overturned_side: int
     max_rotation_time_s: float
     max_abs_theta_dot_rad_s: float
     impacts: int
