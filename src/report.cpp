@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -59,6 +60,21 @@ std::string slurp(const std::filesystem::path& p) {
 }
 
 }  // namespace
+
+/// Base64 (RFC 4648, with '=' padding) of the file's bytes behind the data: URI's prefix.
+std::string inline_png(const std::filesystem::path& p) {
+  static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  const std::string bytes = slurp(p);
+  std::string out = "data:image/png;base64,";
+  out.reserve(out.size() + 4 * (bytes.size() / 3 + 1));
+  for (std::size_t i = 0; i < bytes.size(); i += 3) {
+    const std::size_t n = std::min<std::size_t>(3, bytes.size() - i);
+    std::uint32_t v = 0;
+    for (std::size_t k = 0; k < 3; ++k) v = (v << 8) | (k < n ? static_cast<unsigned char>(bytes[i + k]) : 0u);
+    for (std::size_t k = 0; k < 4; ++k) out += k <= n ? kAlphabet[(v >> (18 - 6 * k)) & 0x3F] : '=';
+  }
+  return out;
+}
 
 /// The SVG without its XML prologue/doctype, for inline embedding.
 std::string inline_svg(const std::filesystem::path& p) {
