@@ -57,8 +57,8 @@ struct MapBounds {
 [[nodiscard]] std::pair<double, double> map_palette_range_g(const RegionMap& map);
 
 /// The GMT modern-mode bash script that draws `map` (header; every value inline). Run as
-/// `bash SCRIPT [OUTPUT.png]` (default region_map.png); GMT's command is `gmt`, or the one named by the TOPPLE_GMT
-/// environment variable.
+/// `bash SCRIPT [OUTPUT.png [GMT]]`: OUTPUT.png defaults to region_map.png in the current directory; GMT's command is
+/// the second argument, else the TOPPLE_GMT environment variable, else `gmt`.
 [[nodiscard]] std::string gmt_map_script(const RegionMap& map);
 
 /// File names in the report directory.
