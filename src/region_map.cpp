@@ -23,6 +23,9 @@ namespace {
 constexpr double kKmPerDegree = 111.195;
 constexpr double kMarginFraction = 0.15;
 constexpr double kMarginKm = 10.0;
+// Beyond this many sites their numbers would cover the map (a survey of hundreds of sites): the symbols stay, the
+// numbers go (the colours and the report's table carry the values).
+constexpr std::size_t kMaxNumberedSites = 60;
 
 /// The 1-2-5 x 10^k value at or below x (x > 0).
 double floor_125(double x) {
@@ -149,11 +152,15 @@ std::string gmt_map_script(const RegionMap& map) {
         "# instrument stations (inverted triangles): lon lat pooled PGA (g)\n"
         "gmt plot -Si0.48c -C -W1p,black << 'EOD'\n";
   site_rows(os, map, true);
-  os << "EOD\n"
-        "# site numbers (their position in the survey, as the report's siteN pages)\n"
-        "gmt text -F+f7p,Helvetica-Bold,black+jBL -D0.18c/0.12c << 'EOD'\n";
-  for (const MapSite& s : map.sites) os << fmt::format("{:.6f} {:.6f} {}\n", s.lon_deg, s.lat_deg, s.number);
   os << "EOD\n";
+  if (map.sites.size() <= kMaxNumberedSites) {
+    os << "# site numbers (their position in the survey, as the report's siteN pages)\n"
+          "gmt text -F+f7p,Helvetica-Bold,black+jBL -D0.18c/0.12c << 'EOD'\n";
+    for (const MapSite& s : map.sites) os << fmt::format("{:.6f} {:.6f} {}\n", s.lon_deg, s.lat_deg, s.number);
+    os << "EOD\n";
+  } else {
+    os << fmt::format("# site numbers left out: {} sites (more than {})\n", map.sites.size(), kMaxNumberedSites);
+  }
   os << fmt::format("# epicentre (star)\ngmt plot -Sa0.6c -Gred -W0.6p,black << 'EOD'\n{:.6f} {:.6f}\nEOD\n",
                     map.epicentre_lon_deg, map.epicentre_lat_deg);
   os << fmt::format("# scale bar, true at the map's middle latitude\n"

@@ -196,6 +196,19 @@ TEST(RegionMapScript, OneSymbolPerSiteWithItsPgaAsColourValue) {
   EXPECT_NE(script.find("# 3 east village\n"), std::string::npos);
 }
 
+// Up to 60 sites are numbered on the map; beyond, the numbers would cover it: the symbols stay, the numbers go.
+TEST(RegionMapScript, ManySitesKeepTheirSymbolsWithoutNumbers) {
+  RegionMap m = four_sites();
+  const MapSite first = m.sites[1];
+  while (m.sites.size() < 60) m.sites.push_back(first);
+  EXPECT_EQ(block_rows(gmt_map_script(m), "gmt text").size(), 60u);
+  m.sites.push_back(first);
+  const std::string script = gmt_map_script(m);
+  EXPECT_EQ(script.find("gmt text"), std::string::npos);
+  EXPECT_NE(script.find("# site numbers left out: 61 sites"), std::string::npos);
+  EXPECT_EQ(block_rows(script, "gmt plot -Sc").size() + block_rows(script, "gmt plot -Si").size(), 61u);
+}
+
 // Each level with lines is drawn and labelled with its value in g, one segment header per polyline; a level without
 // lines is named in a comment only.
 TEST(RegionMapScript, ContourLevelsDrawnAndLabelled) {

@@ -22,7 +22,7 @@ namespace topple {
 
 /// One site on the map.
 struct MapSite {
-  int number = 0;        ///< the label beside its symbol: its position in the survey, from 1 (the report's siteN)
+  int number = 0;  ///< the label beside its symbol (up to 60 sites): its position in the survey, from 1 (siteN)
   std::string name;      ///< written as a comment in the script
   double lat_deg = 0.0;  ///< WGS84 latitude, degrees
   double lon_deg = 0.0;  ///< WGS84 longitude, degrees
