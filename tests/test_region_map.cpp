@@ -16,6 +16,7 @@
 #include "support/shared_data.hpp"
 #include "topple/region.hpp"
 #include "topple/region_map.hpp"
+#include "topple/report.hpp"
 
 namespace topple {
 namespace {
@@ -268,6 +269,20 @@ std::pair<std::uint32_t, std::uint32_t> png_size(const std::string& bytes) {
     return v;
   };
   return {be32(16), be32(20)};
+}
+
+// The page embeds the PNG as base64: RFC 4648's own test vectors (section 10), padding included.
+TEST(RegionMapReport, InlinePngIsRfc4648Base64) {
+  test::TempDir tmp;
+  const std::pair<const char*, const char*> vectors[] = {{"", ""},         {"f", "Zg=="},         {"fo", "Zm8="},
+                                                         {"foo", "Zm9v"},  {"foob", "Zm9vYg=="},  {"fooba", "Zm9vYmE="},
+                                                         {"foobar", "Zm9vYmFy"}};
+  for (const auto& [in, out] : vectors) {
+    test::write_file(tmp.path() / "x.png", in);
+    EXPECT_EQ(inline_png(tmp.path() / "x.png"), std::string("data:image/png;base64,") + out) << in;
+  }
+  test::write_file(tmp.path() / "x.png", std::string("\xff\xfe\x00", 3));  // high bytes and a NUL
+  EXPECT_EQ(inline_png(tmp.path() / "x.png"), "data:image/png;base64,//4A");
 }
 
 // With GMT (and ghostscript) installed, the report holds region_map.png: a real PNG whose size follows from the
