@@ -71,18 +71,14 @@ SynthesisSetSpec detail::family_set_spec(const InversionSettings& st, double fre
   ss.horizontal.dt_s = std::min(0.01, 1.0 / (20.0 * freq_hz * std::max(1.0, ss.vertical_frequency_ratio)));
   ss.coherence = st.coherence;
   ss.azimuths = ComponentAzimuths{90.0, 0.0};  // first east, second north
+  // The vertical's frequency is capped at the synthesis' 20 Hz (a column above 13.3 Hz gets f_v = 20 Hz).
+  ss.vertical_frequency_ratio = std::min(ss.vertical_frequency_ratio, 20.0 / freq_hz);
   return ss;
 }
 
 Realisation3c family_realisation_3c(const InversionSettings& st, double freq_hz, int k) {
   const SynthesizedSet raw = synthesize_set(detail::family_set_spec(st, freq_hz, k));
-  // Time scaling puts the horizontals' (geometric) mean measured predominant frequency on the column's.
-  const double measured = std::sqrt(predominant_frequency_hz(raw.first) * predominant_frequency_hz(raw.second));
-  const double c = measured / freq_hz;
-  const GroundMotion east = raw.first.time_scaled(c);
-  const GroundMotion north = raw.second.time_scaled(c);
-  const GroundMotion up = raw.vertical->time_scaled(c);
-  const MotionSet set = MotionSet::make(east, &north, ComponentAzimuths{90.0, 0.0}, &up);
+  const MotionSet set = MotionSet::make(raw.first, &raw.second, ComponentAzimuths{90.0, 0.0}, &*raw.vertical);
   // Principal axis of the horizontal acceleration (Penzien & Watabe 1975): theta from east, counter-clockwise.
   double see = 0.0, snn = 0.0, sen = 0.0;
   const auto ae = set.first().accel_m_s2();
@@ -94,17 +90,22 @@ Realisation3c family_realisation_3c(const InversionSettings& st, double freq_hz,
   }
   const double theta_deg = 0.5 * std::atan2(2.0 * sen, see - snn) / kDeg;
   const double major_azimuth = wrap(90.0 - theta_deg, 180.0);
-  const auto [major, minor] = set.rotated(major_azimuth);
+  const auto [major_raw, minor_raw] = set.rotated(major_azimuth);
+  // Time scaling (it leaves the samples, hence the axes and every peak, unchanged) puts the major-axis component's
+  // measured predominant frequency on the column's.
+  const double c = predominant_frequency_hz(major_raw) / freq_hz;
+  const GroundMotion major = major_raw.time_scaled(c);
+  const GroundMotion minor = minor_raw.time_scaled(c);
   const RotDValue rotd = rotd_of(rotd_peaks_by_angle(major.accel_m_s2(), minor.accel_m_s2()));
   const double scale = 1.0 / rotd.rotd50;
   Realisation3c r;
   r.major = std::make_shared<const GroundMotion>(major.scaled(scale));
   r.minor = std::make_shared<const GroundMotion>(minor.scaled(scale));
-  r.vertical = std::make_shared<const GroundMotion>(set.vertical().scaled(scale));
+  r.vertical = std::make_shared<const GroundMotion>(set.vertical().time_scaled(c).scaled(scale));
   r.rotd100_angle_deg = rotd.rotd100_angle_deg;
   r.larger_component_ratio = std::max(set.first().pga_m_s2(), set.second().pga_m_s2()) / rotd.rotd50;
   r.rotd100_ratio = rotd.rotd100 / rotd.rotd50;
-  r.measured_freq_hz = std::sqrt(predominant_frequency_hz(*r.major) * predominant_frequency_hz(*r.minor));
+  r.measured_freq_hz = predominant_frequency_hz(*r.major);
   return r;
 }
 
@@ -168,9 +169,7 @@ void observation_match_3c(const ObservedObject& object, const DrawnParameters& p
     minor = support_motion(minor, support);
   }
   if (is_sliding(object.outcome)) {
-    Sliding2dOptions so;
-    so.rel_tol = 1e-6;   // distances to a micrometre: the kernel's width is >= 2 mm
-    so.abs_tol = 1e-9;
+    const Sliding2dOptions so;  // the solver's defaults (looser tolerances hit its low-speed step limit)
     const Sliding2dSummary s =
         slide_2d_summary(major, minor, ComponentAzimuths{0.0, 90.0},
                          SlidingBlock::make(p.mu, p.mu, 0.0, SlidingMode::two_way, g), &vertical, so);

@@ -5,13 +5,14 @@
 //
 // 1. Family. Motion k of column j is synthesize_set (synthesis.hpp) of the one-component family's spec (same seed
 //    mix(seed, k + 1), same envelope and filter), with the survey's coherence rho and the synthesis' V/H model
-//    (PGA_v = 2/3 RotD50, f_v = 1.5 f_h); its step is 1 / (20 f_v) (at most 0.01 s) so that the vertical too has 20
-//    samples a period. The three components are time-scaled together so that the geometric mean of the two
-//    horizontals' measured predominant frequencies (spectra.hpp) is the column's, then the pair is rotated onto its
-//    major axis: the principal axis of the horizontal acceleration, the direction psi maximising
-//    sum_i (a_E,i sin psi + a_N,i cos psi)^2, tan 2 theta = 2 S_EN / (S_EE - S_NN) (Penzien & Watabe 1975, EESD
-//    3(4)). The realisation is kept in that frame (major, minor = major + 90 deg clockwise, vertical) and scaled so
-//    that the pair's RotD50 PGA is 1 m/s^2: the PGA axis of the grid is RotD50 (Boore 2010).
+//    (PGA_v = 2/3 RotD50, f_v = 1.5 f_h, capped at the synthesis' 20 Hz); its step is 1 / (20 f_v) (at most 0.01 s)
+//    so that the vertical too has 20 samples a period. The pair is rotated onto its major axis: the principal axis of
+//    the horizontal acceleration, the direction psi maximising sum_i (a_E,i sin psi + a_N,i cos psi)^2,
+//    tan 2 theta = 2 S_EN / (S_EE - S_NN), theta from east (Penzien & Watabe 1975, EESD 3(4)). The three components
+//    are then time-scaled together so that the major-axis component's measured predominant frequency (spectra.hpp)
+//    is the column's: the frequency axis is that of the strongest direction. The realisation is kept in that frame
+//    (major, minor = major + 90 deg clockwise, vertical) and scaled so that the pair's RotD50 PGA is 1 m/s^2: the
+//    PGA axis of the grid is RotD50 (Boore 2010).
 // 2. Orientation. The direction of strongest shaking Psi (the azimuth of the actual motion's major axis, mod 180) is
 //    a parameter on a grid of `directions` bins of width w = 180 / directions, centres 0, w, 2w, ... In bin b,
 //    realisation k's major axis points at Psi_b + delta_k, delta_k uniform in [-w/2, w/2) (PortableRandom, seeded
@@ -70,7 +71,7 @@ struct Realisation3c {
   double rotd100_angle_deg = 0.0;     ///< direction of the largest peak, deg clockwise from the major axis, [0, 180)
   double larger_component_ratio = 1.0;  ///< max(PGA_E, PGA_N) of the synthesised pair / RotD50 (dimensionless)
   double rotd100_ratio = 1.0;           ///< RotD100 / RotD50 (dimensionless)
-  double measured_freq_hz = 0.0;        ///< geometric mean of the horizontals' predominant frequencies, Hz
+  double measured_freq_hz = 0.0;        ///< the major-axis component's measured predominant frequency, Hz
 };
 
 /// Realisation k of the column at freq_hz (header, item 1), the same bits for the same settings everywhere the
