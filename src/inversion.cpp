@@ -259,16 +259,29 @@ double observation_match(const ObservedObject& object, const DrawnParameters& p,
     const SlidingSummary s = slide_summary(motion, SlidingBlock::make(p.mu / amp, p.mu / amp, 0.0, SlidingMode::two_way, g));
     const double max_d = amp * s.max_abs_displacement_m;
     const double residual = amp * std::abs(s.residual_displacement_m);
-    if (object.outcome == Outcome::not_slid) return max_d < kVisibleSlipM ? 1.0 : 0.0;
-    if (object.slid_m) {
-      const double z = (residual - *object.slid_m) / sliding_sigma_m(object);
-      return std::exp(-0.5 * z * z);
-    }
-    if (object.slid_at_least_m) return residual >= *object.slid_at_least_m ? 1.0 : 0.0;
-    return max_d >= kVisibleSlipM ? 1.0 : 0.0;
+    return detail::sliding_match(object, max_d, residual);
   }
   double factor = p.amplification;
   if (object.orientation_deg) factor *= std::cos(*object.orientation_deg * kPi / 180.0);
+  const RockingOptions options = detail::inversion_rocking_options(object, p, g);
+  const RockingSummary s = factor == 1.0 ? rock_summary(motion, object.body, options)
+                                         : rock_summary(motion.scaled(factor), object.body, options);
+  return detail::rocking_match(object.outcome, s.overturned, s.max_abs_rotation_rad);
+}
+
+namespace detail {
+
+double sliding_match(const ObservedObject& object, double max_displacement_m, double residual_m) {
+  if (object.outcome == Outcome::not_slid) return max_displacement_m < kVisibleSlipM ? 1.0 : 0.0;
+  if (object.slid_m) {
+    const double z = (residual_m - *object.slid_m) / sliding_sigma_m(object);
+    return std::exp(-0.5 * z * z);
+  }
+  if (object.slid_at_least_m) return residual_m >= *object.slid_at_least_m ? 1.0 : 0.0;
+  return max_displacement_m >= kVisibleSlipM ? 1.0 : 0.0;
+}
+
+RockingOptions inversion_rocking_options(const ObservedObject& object, const DrawnParameters& p, double g) {
   RockingOptions options;
   options.g_m_s2 = g;
   if (!object.e_housner) {
@@ -277,16 +290,20 @@ double observation_match(const ObservedObject& object, const DrawnParameters& p,
   }
   options.max_run_out_s = 20.0;
   options.rel_tol = 1e-6;  // outcomes (fell or not, rocked visibly or not) do not need the 1e-8 default
-  const RockingSummary s = factor == 1.0 ? rock_summary(motion, object.body, options)
-                                         : rock_summary(motion.scaled(factor), object.body, options);
-  switch (object.outcome) {
-    case Outcome::overturned: return s.overturned ? 1.0 : 0.0;
-    case Outcome::not_overturned: return s.overturned ? 0.0 : 1.0;
-    case Outcome::rocked: return !s.overturned && s.max_abs_rotation_rad >= kVisibleRockingRad ? 1.0 : 0.0;
-    case Outcome::not_rocked: return !s.overturned && s.max_abs_rotation_rad < kVisibleRockingRad ? 1.0 : 0.0;
+  return options;
+}
+
+double rocking_match(Outcome outcome, bool overturned, double max_rotation_rad) {
+  switch (outcome) {
+    case Outcome::overturned: return overturned ? 1.0 : 0.0;
+    case Outcome::not_overturned: return overturned ? 0.0 : 1.0;
+    case Outcome::rocked: return !overturned && max_rotation_rad >= kVisibleRockingRad ? 1.0 : 0.0;
+    case Outcome::not_rocked: return !overturned && max_rotation_rad < kVisibleRockingRad ? 1.0 : 0.0;
     default: return 0.0;
   }
 }
+
+}  // namespace detail
 
 namespace detail {
 

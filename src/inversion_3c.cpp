@@ -141,17 +141,6 @@ double direction_kernel(double x_deg) {
   return 0.5 * (v(x_deg) + v(x_deg + 180.0));
 }
 
-/// The rocking outcome's match (0 or 1) for a run's summary.
-double rocking_match(Outcome outcome, bool overturned, double max_rotation_rad) {
-  switch (outcome) {
-    case Outcome::overturned: return overturned ? 1.0 : 0.0;
-    case Outcome::not_overturned: return overturned ? 0.0 : 1.0;
-    case Outcome::rocked: return !overturned && max_rotation_rad >= kVisibleRockingRad ? 1.0 : 0.0;
-    case Outcome::not_rocked: return !overturned && max_rotation_rad < kVisibleRockingRad ? 1.0 : 0.0;
-    default: return 0.0;
-  }
-}
-
 }  // namespace
 
 void observation_match_3c(const ObservedObject& object, const DrawnParameters& p, const GroundMotion& major_in,
@@ -173,13 +162,7 @@ void observation_match_3c(const ObservedObject& object, const DrawnParameters& p
     const Sliding2dSummary s =
         slide_2d_summary(major, minor, ComponentAzimuths{0.0, 90.0},
                          SlidingBlock::make(p.mu, p.mu, 0.0, SlidingMode::two_way, g), &vertical, so);
-    double m = 0.0;
-    if (object.outcome == Outcome::not_slid) m = s.max_abs_displacement_m < kVisibleSlipM ? 1.0 : 0.0;
-    else if (object.slid_m) {
-      const double z = (s.residual_displacement_m - *object.slid_m) / sliding_sigma_m(object);
-      m = std::exp(-0.5 * z * z);
-    } else if (object.slid_at_least_m) m = s.residual_displacement_m >= *object.slid_at_least_m ? 1.0 : 0.0;
-    else m = s.max_abs_displacement_m >= kVisibleSlipM ? 1.0 : 0.0;
+    const double m = detail::sliding_match(object, s.max_abs_displacement_m, s.residual_displacement_m);
     for (std::size_t b = 0; b < out.size(); ++b) {
       double dir = 1.0;
       if (object.slid_azimuth_deg) {
@@ -191,21 +174,14 @@ void observation_match_3c(const ObservedObject& object, const DrawnParameters& p
     }
     return;
   }
-  RockingOptions options;
-  options.g_m_s2 = g;
-  if (!object.e_housner) {
-    options.restitution = RestitutionMode::given;
-    options.e = p.e;
-  }
-  options.max_run_out_s = 20.0;
-  options.rel_tol = 1e-6;  // as the one-component inversion: outcomes do not need the 1e-8 default
+  const RockingOptions options = detail::inversion_rocking_options(object, p, g);
   const auto accel_v = vertical.accel_m_s2();
   const bool lifted = g + *std::min_element(accel_v.begin(), accel_v.end()) <= 0.0;
   const MotionSet frame = MotionSet::make(major, &minor, ComponentAzimuths{0.0, 90.0});
   const auto run = [&](double angle_deg) {
-    if (lifted) return rocking_match(object.outcome, true, 0.0);  // header, item 3: scored as overturned
+    if (lifted) return detail::rocking_match(object.outcome, true, 0.0);  // header, item 3: scored as overturned
     const RockingSummary s = rock_summary(frame.projected(angle_deg), object.body, options, &vertical);
-    return rocking_match(object.outcome, s.overturned, s.max_abs_rotation_rad);
+    return detail::rocking_match(object.outcome, s.overturned, s.max_abs_rotation_rad);
   };
   if (object.body.shape == RockingBody::Shape::cylinder || !object.azimuth_deg) {
     const double m = run(object.body.shape == RockingBody::Shape::cylinder ? rotd100_angle_deg : unknown_angle_deg);

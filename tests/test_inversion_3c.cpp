@@ -8,6 +8,8 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "support/observed_objects.hpp"
+#include "support/regional_scenario.hpp"
 #include "topple/error.hpp"
 #include "topple/inversion.hpp"
 #include "topple/inversion_3c.hpp"
@@ -111,32 +113,17 @@ TEST(DirectionEstimate, FlatIsUnconstrainedAndOneBinIsItsOwnArc) {
   EXPECT_NEAR(two.mean_deg, 165.0, 1e-9);
 }
 
+/// The one-component recovery test's grid (test_inversion.cpp, small_grid) in three components, coherence 0.6.
 InversionSettings small_3c(int motions, int directions) {
-  InversionSettings st;
+  InversionSettings st = testing::small_grid(0.05, 14, 0.5, 12.0, 8, motions);
+  st.duration_s = 10.0;
   st.components = 3;
   st.coherence = 0.6;
   st.directions = directions;
-  st.pga_min_g = 0.05;
-  st.pga_max_g = 2.0;
-  st.pga_count = 14;
-  st.freq_min_hz = 0.5;
-  st.freq_max_hz = 12.0;
-  st.freq_count = 8;
-  st.motions_per_cell = motions;
-  st.duration_s = 10.0;
   return st;
 }
 
-ObservedObject block(const std::string& id, double w, double h, Interval mu, Outcome outcome) {
-  ObservedObject o;
-  o.id = id;
-  o.body = RockingBody::block(w, h);
-  o.width_m = w;
-  o.height_m = h;
-  o.mu = mu;
-  o.outcome = outcome;
-  return o;
-}
+using testing::block;
 
 TEST(Family3c, RealisationIsRotD50OnePerSecondSquaredOnItsMajorAxis) {
   const InversionSettings st = small_3c(2, 6);
@@ -287,6 +274,30 @@ TEST(Recovery3c, TruthTurnedToItsDirectionHasItsMajorAxisThere) {
   EXPECT_NEAR(v.rotd50 / st.g_m_s2, 0.5, 1e-9);  // RotD50 does not depend on the axes (1e-9: round-off)
 }
 
+/// The largest k with P(X < k) <= 2 % for X ~ Binomial(n, p): a coverage count below it is a failure of
+/// calibration, not bad luck, with 98 % confidence. n = 6: 4 at p = 0.95, 2 at p = 0.68.
+int binomial_floor(int n, double p) {
+  double below = 0.0;  // P(X < k)
+  for (int k = 0; k <= n; ++k) {
+    const double pk = std::exp(std::lgamma(n + 1.0) - std::lgamma(k + 1.0) - std::lgamma(n - k + 1.0) +
+                               k * std::log(p) + (n - k) * std::log1p(-p));
+    if (below + pk > 0.02) return k;
+    below += pk;
+  }
+  return n;
+}
+
+TEST(Recovery3c, BinomialFloorOfTheFastVariant) {
+  // By hand: n = 6, p = 0.95: P(X <= 3) = 0.0022, P(X <= 4) = 0.033: the floor is 4; p = 0.68: P(X <= 1) = 0.0148,
+  // P(X <= 2) = 0.086: the floor is 2.
+  EXPECT_EQ(binomial_floor(6, 0.95), 4);
+  EXPECT_EQ(binomial_floor(6, 0.68), 2);
+  EXPECT_EQ(binomial_floor(0, 0.95), 0);
+}
+
+// TOPPLE_3C_TRIALS sets the number of trials (default 6 here, the ctest variant; scripts/recovery-3c.sh runs 30 with
+// the criteria). Measured with 30 (docs/verification.md): 95 % region 28/30, 68 % region 18/30, the direction
+// constrained in 6/30 and its 95 % arc holding the truth in 6/6.
 TEST(Recovery3c, RecoversPgaFrequencyAndDirection) {
   const char* env = std::getenv("TOPPLE_3C_TRIALS");
   const int trials = env != nullptr ? std::atoi(env) : 6;
@@ -357,9 +368,15 @@ TEST(Recovery3c, RecoversPgaFrequencyAndDirection) {
   fmt::print("coverage: 95 % region {}/{}, 68 % region {}/{}; direction constrained in {}/{}, its 95 % arc holds the "
              "truth in {}/{}\n",
              in95, trials, in68, trials, constrained, trials, dir_in95, constrained);
-  EXPECT_GE(in95, static_cast<int>(std::ceil(0.85 * trials)));
-  EXPECT_GE(in68, static_cast<int>(std::ceil(0.55 * trials)));
-  EXPECT_GE(dir_in95, static_cast<int>(std::ceil(0.85 * constrained)));
+  if (trials >= 30) {  // the criteria
+    EXPECT_GE(in95, static_cast<int>(std::ceil(0.85 * trials)));
+    EXPECT_GE(in68, static_cast<int>(std::ceil(0.55 * trials)));
+    EXPECT_GE(dir_in95, static_cast<int>(std::ceil(0.85 * constrained)));
+  } else {  // the fast variant: what a calibrated posterior passes with probability >= 98 % at so few trials
+    EXPECT_GE(in95, binomial_floor(trials, 0.95));
+    EXPECT_GE(in68, binomial_floor(trials, 0.68));
+    EXPECT_GE(dir_in95, binomial_floor(constrained, 0.95));
+  }
 }
 
 }  // namespace
