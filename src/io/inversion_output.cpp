@@ -179,6 +179,13 @@ void write_sites_geojson(const std::filesystem::path& path, const std::vector<Si
                        {"pga_ci95_g", {opt(r.pga_estimate_g.ci95_low), opt(r.pga_estimate_g.ci95_high)}},
                        {"static_bounds_pga_g", {opt(r.bounds.lower_g), opt(r.bounds.upper_g)}},
                        {"freq_median_hz", r.freq_estimate_hz.median}};
+    if (r.three_component) {  // added (components = 3): the PGA axis and the direction of strongest shaking
+      const DirectionEstimate& d = r.three_component->direction;
+      f["properties"]["pga_axis"] = "RotD50";
+      f["properties"]["direction_constrained"] = d.constrained;
+      f["properties"]["direction_mode_deg"] = d.constrained ? nlohmann::ordered_json(d.mode_deg) : nlohmann::ordered_json(nullptr);
+      f["properties"]["direction_ci95_deg"] = {d.ci95.low_deg, d.ci95.high_deg()};
+    }
     fc["features"].push_back(f);
   }
   write_file_atomically(path, fc.dump(2) + "\n");
