@@ -89,6 +89,18 @@ TEST(Survey3c, BadValuesAreRefusedWithFileLineAndField) {
                "object[1](c).azimuth_deg", "no narrow side");
 }
 
+TEST(Survey3c, ExampleParses) {
+  const Survey s = io::read_survey(std::filesystem::path(TOPPLE_SOURCE_DIR) / "examples" / "survey_3c.toml");
+  EXPECT_EQ(s.inversion.components, 3);
+  EXPECT_EQ(s.inversion.coherence, 0.6);
+  ASSERT_EQ(s.sites.size(), 1u);
+  ASSERT_EQ(s.sites[0].objects.size(), 8u);
+  EXPECT_EQ(s.sites[0].objects[0].azimuth_deg, 80.0);
+  EXPECT_FALSE(s.sites[0].objects[6].azimuth_deg.has_value());  // the speaker's bearing was not noted
+  EXPECT_EQ(s.sites[0].objects[7].slid_azimuth_deg, 264.0);
+  EXPECT_NEAR(*s.sites[0].objects[7].slid_m, 0.007, 1e-15);
+}
+
 TEST(DirectionEstimate, FlatIsUnconstrainedAndOneBinIsItsOwnArc) {
   const std::vector<double> bins{0, 30, 60, 90, 120, 150};
   const DirectionEstimate flat = direction_estimate(bins, std::vector<double>(6, 1.0 / 6.0));
