@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 #include <fmt/format.h>
@@ -16,6 +18,7 @@
 #include "topple/io/inversion_output.hpp"
 #include "topple/io/survey_file.hpp"
 #include "topple/motion_set.hpp"
+#include "topple/report.hpp"
 #include "topple/rocking.hpp"
 #include "topple/rotd.hpp"
 #include "topple/sliding2d.hpp"
@@ -222,6 +225,37 @@ TEST(Inversion3c, OneComponentSurveysKeepTheirMeaning) {
   jb.erase("seconds");
   EXPECT_EQ(ja.dump(), jb.dump());
   EXPECT_FALSE(ja.contains("three_component"));
+}
+
+TEST(Inversion3c, SummaryJsonAndReportSayRotD50AndTheDirection) {
+  Survey s = parse("[inversion]\ncomponents = 3\ncoherence = 0.6\ndirections = 6\npga_g = [0.05, 2.0, 6]\n"
+                   "freq_hz = [0.5, 8.0, 4]\nmotions_per_cell = 4\nduration_s = 8.0\n" +
+                   std::string(kObjectBlock) + "azimuth_deg = 80\noutcome = \"overturned\"\n[[object]]\nid = \"b\"\n"
+                   "width = \"6cm\"\nheight = \"40cm\"\nmu = 0.5\nazimuth_deg = 170\noutcome = \"not_overturned\"\n");
+  const InversionResult r = invert_site(s.sites[0], s.inversion);
+  ASSERT_TRUE(r.three_component.has_value());
+  const std::string summary = inversion_summary(r);
+  EXPECT_NE(summary.find("PGA is RotD50"), std::string::npos) << summary;
+  const DirectionEstimate& d = r.three_component->direction;
+  // The posterior over the 6 bins sums to 1 (1e-12: round-off of a sum of 6 terms).
+  double sum = 0.0;
+  for (double p : d.posterior) sum += p;
+  EXPECT_NEAR(sum, 1.0, 1e-12);
+  EXPECT_NE(summary.find(d.constrained ? "The strongest shaking ran along" : "unconstrained"), std::string::npos);
+  // Every run: 2 objects with bearings x 6 bins per (cell, motion).
+  EXPECT_EQ(r.runs, 6u * 4u * 4u * 2u * 6u);
+  const auto j = io::inversion_json(r, s.sites[0]);
+  EXPECT_EQ(j["three_component"]["pga_axis"], "RotD50");
+  EXPECT_EQ(j["three_component"]["direction_of_strongest_shaking"]["posterior"].size(), 6u);
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "topple_test_report_3c";
+  std::filesystem::remove_all(dir);
+  write_report(dir, s, s.sites[0], r);
+  std::ifstream in(dir / "index.html");
+  std::stringstream html;
+  html << in.rdbuf();
+  EXPECT_NE(html.str().find("<tr id=\"direction\">"), std::string::npos);
+  EXPECT_NE(html.str().find("PGA is RotD50"), std::string::npos);
+  std::filesystem::remove_all(dir);
 }
 
 // ---- Recovery -------------------------------------------------------------------------------------------------
