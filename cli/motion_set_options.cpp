@@ -13,7 +13,10 @@ namespace topple::cli {
 
 MotionSet load_motion_set(const RunMotion& run, const MotionOptions& motion, const std::string& h2_path,
                           const std::string& azimuths_text) {
-  const GroundMotion second = io::read_motion(h2_path, read_options(motion)).scaled(run.input.scale_factor);
+  // --invert flips the horizontal shaking as a whole (both components: the pair seen from the opposite bearing);
+  // the vertical keeps its sign, as with one component.
+  GroundMotion second = io::read_motion(h2_path, read_options(motion)).scaled(run.input.scale_factor);
+  if (motion.invert) second = second.inverted();
   std::vector<std::string> warnings;
   const ComponentAzimuths azimuths =
       resolve_azimuths(run.horizontal, second,

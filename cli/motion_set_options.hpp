@@ -11,7 +11,8 @@ namespace topple::cli {
 
 /// The motion set of `run` (its horizontal as the motion options made it, and its vertical) with the second
 /// horizontal component read from `h2_path` with the same reading options and scaled by the same amplitude factor
-/// (the shaking is scaled as a whole), the azimuths from `azimuths_text` ("A1,A2", parse_azimuths) or the headers.
+/// (the shaking is scaled as a whole) and inverted with it (--invert flips both horizontal components, not the
+/// vertical), the azimuths from `azimuths_text` ("A1,A2", parse_azimuths) or the headers.
 /// Warnings (a header overridden) go to stderr. Throws InputError naming --azimuths or the file.
 [[nodiscard]] MotionSet load_motion_set(const RunMotion& run, const MotionOptions& motion, const std::string& h2_path,
                                         const std::string& azimuths_text);

@@ -2,6 +2,9 @@
 // --depth; cylinder: worst direction), the sweep's bearing axis over motion sets, and their bad input.
 #include <algorithm>
 #include <filesystem>
+#include <map>
+#include <sstream>
+#include <vector>
 #include <string>
 
 #include <fmt/format.h>
@@ -105,6 +108,116 @@ TEST_F(CliOriented, BadInputExitsTwoNamingTheOption) {
     const auto r = test::run_cli("rock " + args);
     EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
     EXPECT_NE(r.err.find(option), std::string::npos) << args << ": " << r.err;
+  }
+}
+
+/// The CSV a sweep wrote, as rows of name -> cell (no quoted cells in these sweeps).
+std::vector<std::map<std::string, std::string>> read_rows(const std::filesystem::path& csv) {
+  std::istringstream in(test::slurp(csv));
+  std::string line;
+  std::vector<std::string> names;
+  std::vector<std::map<std::string, std::string>> rows;
+  while (std::getline(in, line)) {
+    std::vector<std::string> cells;
+    std::string cell;
+    std::istringstream l(line);
+    while (std::getline(l, cell, ',')) cells.push_back(cell);
+    if (!line.empty() && line.back() == ',') cells.emplace_back();
+    if (names.empty()) {
+      names = cells;
+      continue;
+    }
+    std::map<std::string, std::string> row;
+    for (std::size_t k = 0; k < names.size() && k < cells.size(); ++k) row[names[k]] = cells[k];
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+TEST_F(CliOriented, SweepOverBearingsEqualsSingleRuns) {
+  // Bearings x (box, planar block, cylinder) on the station, and its inverse polarity.
+  test::write_file(dir.path() / "s.toml", R"(
+[motions]
+bearing_deg = [0, 37, 90, 200]
+polarity = ["normal", "inverse"]
+[[motions.set]]
+h1 = "m.h1.csv"
+h2 = "m.h2.csv"
+vertical = "m.v.csv"
+azimuths_deg = [0, 90]
+[[object]]
+model = "rock"
+shape = "block"
+width = "20cm"
+height = "80cm"
+depth = ["40cm"]
+[[object]]
+model = "rock"
+shape = "block"
+width = "20cm"
+height = "80cm"
+[[object]]
+model = "rock"
+shape = "cylinder"
+diameter = "20cm"
+height = "80cm"
+)");
+  const auto r = test::run_cli("sweep " + quote(dir.path() / "s.toml") + " --quiet --threads 2");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto rows = read_rows(dir.path() / "s.csv");
+  ASSERT_EQ(rows.size(), 4U * 2U * 3U);
+  const char* objects[] = {" --shape block --width 20cm --height 80cm --depth 40cm",
+                           " --shape block --width 20cm --height 80cm",
+                           " --shape cylinder --diameter 20cm --height 80cm"};
+  const std::string set = "rock " + h1 + " --h2 " + h2 + " --vertical " + v + " --azimuths 0,90";
+  for (const auto& row : rows) {
+    const int run = std::stoi(row.at("run"));
+    const int object = run % 3;
+    SCOPED_TRACE(fmt::format("run {}", run));
+    EXPECT_EQ(row.at("motion"), "m.h1.csv+m.h2.csv+m.v.csv");
+    // Inverse polarity flips both horizontal components (the vertical keeps its sign), as `rock --invert` does
+    // with --h2.
+    const bool inverse = row.at("polarity") == "inverse";
+    const double bearing = std::stod(row.at("bearing_deg"));
+    const std::string args = set + (object == 2 ? std::string() : fmt::format(" --bearing-deg {}", bearing)) +
+                             (inverse ? " --invert" : "") + objects[object] + " --json";
+    const auto single = test::run_json(args);
+    // Sweep cells and JSON both print shortest round-trip doubles: equal text, equal numbers.
+    for (const char* key : {"max_abs_rotation_rad", "max_rotation_over_alpha", "max_rotation_time_s",
+                            "max_abs_theta_dot_rad_s", "energy_lost_j_per_kg", "end_time_s"}) {
+      EXPECT_EQ(std::stod(row.at(key)), single.at(key).get<double>()) << key;
+    }
+    EXPECT_EQ(std::stoi(row.at("impacts")), single.at("impacts").get<int>());
+    EXPECT_EQ(row.at("overturned"), single.at("overturned").get<bool>() ? "true" : "false");
+    EXPECT_EQ(std::stod(row.at("governing_azimuth_deg")),
+              single.at("orientation").at("governing_azimuth_deg").get<double>());
+    EXPECT_EQ(row.at("governing_axis"), single.at("orientation").at("governing_axis").get<std::string>());
+    EXPECT_EQ(row.at("depth_m"), object == 0 ? "0.4" : "");
+  }
+}
+
+TEST_F(CliOriented, BadSetSweepsExitTwoNamingTheKey) {
+  const std::string set = "[[motions.set]]\nh1 = \"m.h1.csv\"\nh2 = \"m.h2.csv\"\nazimuths_deg = [0, 90]\n";
+  const std::string block = "[[object]]\nmodel = \"rock\"\nshape = \"block\"\nwidth = \"20cm\"\nheight = \"80cm\"\n";
+  for (const auto& [text, key] : {
+           std::pair{"[motions]\n" + set + block, std::string("bearing")},
+           std::pair{"[motions]\nbearing_deg = 10\nfiles = \"m.h1.csv\"\n" + block, std::string("bearing_deg")},
+           std::pair{"[motions]\nbearing_deg = 10\n" + set + "[[object]]\nmodel = \"slide\"\nmu = 0.2\n",
+                     std::string("object[1]")},
+           std::pair{"[motions]\nfiles = \"m.h1.csv\"\n" + block + "depth = \"40cm\"\n",
+                     std::string("object[1].depth")},
+           std::pair{"[motions]\nbearing_deg = 10\n" + set + block + "depth = \"-4cm\"\n",
+                     std::string("object[1].depth")},
+           std::pair{"[motions]\nbearing_deg = 10\n[[motions.set]]\nh1 = \"m.h1.csv\"\nh2 = \"m.h2.csv\"\n" + block,
+                     std::string("azimuths_deg")},
+           std::pair{"[motions]\nbearing_deg = 10\n[[motions.set]]\nh1 = \"m.h1.csv\"\n" + block,
+                     std::string("motions.set[1].h2")},
+           std::pair{"[motions]\nbearing_deg = 10\ndirection_step_deg = 7\n" + set + block,
+                     std::string("direction_step_deg")}}) {
+    test::write_file(dir.path() / "bad.toml", text);
+    const auto r = test::run_cli("sweep " + quote(dir.path() / "bad.toml") + " --quiet");
+    EXPECT_EQ(r.exit_code, 2) << text << r.err;
+    EXPECT_NE(r.err.find(key), std::string::npos) << text << r.err;
   }
 }
 
