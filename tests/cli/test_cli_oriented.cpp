@@ -111,6 +111,28 @@ TEST_F(CliOriented, BadInputExitsTwoNamingTheOption) {
   }
 }
 
+TEST_F(CliOriented, SpectrumAlongABearingAndRefusals) {
+  // The overturning map of blocks at the bearing of H1 is H1's map (the projection is H1 bit for bit); at 90 deg it
+  // is H2's.
+  const std::string map = " --slenderness 0.25 --heights 0.8m,1.6m --pga 0.2g,0.4g,0.6g --threads 1 --json";
+  const auto along = test::run_json("spectrum rock " + h1 + " --h2 " + h2 + " --azimuths 0,90 --bearing-deg 0" + map);
+  const auto alone = test::run_json("spectrum rock " + h1 + map);
+  EXPECT_EQ(along.at("sizes"), alone.at("sizes"));
+  const auto across = test::run_json("spectrum rock " + h1 + " --h2 " + h2 + " --azimuths 0,90 --bearing-deg 90" + map);
+  EXPECT_EQ(across.at("sizes"), test::run_json("spectrum rock " + h2 + map).at("sizes"));
+  for (const auto& [args, option] :
+       {std::pair{"spectrum rock " + h1 + " --h2 " + h2 + " --azimuths 0,90" + map, "--bearing-deg"},
+        std::pair{"spectrum rock " + h1 + " --bearing-deg 10" + map, "--bearing-deg"},
+        std::pair{"spectrum rock " + h1 + " --shape cylinder --h2 " + h2 + " --azimuths 0,90 --bearing-deg 0" + map,
+                  "--h2"},
+        std::pair{"spectrum slide " + h1 + " --h2 " + h2 + " --azimuths 0,90 --mu 0.1", "--h2"},
+        std::pair{"fragility --synth 3 --h2 " + h2 + " --mu 0.1 --threshold 5cm --im-range 0.1:1:3", "--h2"}}) {
+    const auto r = test::run_cli(args);
+    EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
+    EXPECT_NE(r.err.find(option), std::string::npos) << args << ": " << r.err;
+  }
+}
+
 /// The CSV a sweep wrote, as rows of name -> cell (no quoted cells in these sweeps).
 std::vector<std::map<std::string, std::string>> read_rows(const std::filesystem::path& csv) {
   std::istringstream in(test::slurp(csv));
