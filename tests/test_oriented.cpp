@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "support/input_errors.hpp"
 #include "support/noise_record.hpp"
 #include "topple/error.hpp"
 #include "topple/motion_set.hpp"
@@ -18,16 +19,7 @@ namespace {
 
 constexpr double kG = kStandardGravity;
 
-template <class F>
-void expect_input_error(F&& f, const std::string& field, const std::string& text) {
-  try {
-    (void)f();
-    FAIL() << "no InputError";
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.where().field, field) << e.what();
-    EXPECT_NE(std::string(e.what()).find(text), std::string::npos) << e.what();
-  }
-}
+using test::expect_input_error;
 
 /// Two different broadband components and a vertical on one uniform grid (20 s at 100 Hz).
 GroundMotion component(std::uint64_t seed, double pga_g, double resonance_hz) {

@@ -2,8 +2,6 @@
 // --depth; cylinder: worst direction), the sweep's bearing axis over motion sets, and their bad input.
 #include <algorithm>
 #include <filesystem>
-#include <map>
-#include <sstream>
 #include <vector>
 #include <string>
 
@@ -11,6 +9,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "support/csv_table.hpp"
 #include "support/shared_data.hpp"
 
 namespace topple {
@@ -133,29 +132,6 @@ TEST_F(CliOriented, SpectrumAlongABearingAndRefusals) {
   }
 }
 
-/// The CSV a sweep wrote, as rows of name -> cell (no quoted cells in these sweeps).
-std::vector<std::map<std::string, std::string>> read_rows(const std::filesystem::path& csv) {
-  std::istringstream in(test::slurp(csv));
-  std::string line;
-  std::vector<std::string> names;
-  std::vector<std::map<std::string, std::string>> rows;
-  while (std::getline(in, line)) {
-    std::vector<std::string> cells;
-    std::string cell;
-    std::istringstream l(line);
-    while (std::getline(l, cell, ',')) cells.push_back(cell);
-    if (!line.empty() && line.back() == ',') cells.emplace_back();
-    if (names.empty()) {
-      names = cells;
-      continue;
-    }
-    std::map<std::string, std::string> row;
-    for (std::size_t k = 0; k < names.size() && k < cells.size(); ++k) row[names[k]] = cells[k];
-    rows.push_back(row);
-  }
-  return rows;
-}
-
 TEST_F(CliOriented, SweepOverBearingsEqualsSingleRuns) {
   // Bearings x (box, planar block, cylinder) on the station, and its inverse polarity.
   test::write_file(dir.path() / "s.toml", R"(
@@ -186,35 +162,32 @@ height = "80cm"
 )");
   const auto r = test::run_cli("sweep " + quote(dir.path() / "s.toml") + " --quiet --threads 2");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const auto rows = read_rows(dir.path() / "s.csv");
-  ASSERT_EQ(rows.size(), 4U * 2U * 3U);
+  const test::Table t = test::read_table(dir.path() / "s.csv");
+  ASSERT_EQ(t.rows.size(), 4U * 2U * 3U);
   const char* objects[] = {" --shape block --width 20cm --height 80cm --depth 40cm",
                            " --shape block --width 20cm --height 80cm",
                            " --shape cylinder --diameter 20cm --height 80cm"};
   const std::string set = "rock " + h1 + " --h2 " + h2 + " --vertical " + v + " --azimuths 0,90";
-  for (const auto& row : rows) {
-    const int run = std::stoi(row.at("run"));
-    const int object = run % 3;
-    SCOPED_TRACE(fmt::format("run {}", run));
-    EXPECT_EQ(row.at("motion"), "m.h1.csv+m.h2.csv+m.v.csv");
+  for (std::size_t row = 0; row < t.rows.size(); ++row) {
+    const std::size_t object = row % 3;
+    SCOPED_TRACE(fmt::format("run {}", row));
+    EXPECT_EQ(t.at(row, "motion"), "m.h1.csv+m.h2.csv+m.v.csv");
     // Inverse polarity flips both horizontal components (the vertical keeps its sign), as `rock --invert` does
     // with --h2.
-    const bool inverse = row.at("polarity") == "inverse";
-    const double bearing = std::stod(row.at("bearing_deg"));
-    const std::string args = set + (object == 2 ? std::string() : fmt::format(" --bearing-deg {}", bearing)) +
+    const bool inverse = t.at(row, "polarity") == "inverse";
+    const std::string args = set + (object == 2 ? std::string() : " --bearing-deg " + t.at(row, "bearing_deg")) +
                              (inverse ? " --invert" : "") + objects[object] + " --json";
     const auto single = test::run_json(args);
-    // Sweep cells and JSON both print shortest round-trip doubles: equal text, equal numbers.
+    // Sweep cells and JSON both print shortest round-trip doubles: the same numbers exactly.
     for (const char* key : {"max_abs_rotation_rad", "max_rotation_over_alpha", "max_rotation_time_s",
-                            "max_abs_theta_dot_rad_s", "energy_lost_j_per_kg", "end_time_s"}) {
-      EXPECT_EQ(std::stod(row.at(key)), single.at(key).get<double>()) << key;
+                            "max_abs_theta_dot_rad_s", "impacts", "uplifts", "uplift_time_s", "overturned",
+                            "overturn_time_s", "energy_lost_j_per_kg", "end_time_s", "alpha_rad"}) {
+      test::expect_same(t.at(row, key), single.at(key), key);
     }
-    EXPECT_EQ(std::stoi(row.at("impacts")), single.at("impacts").get<int>());
-    EXPECT_EQ(row.at("overturned"), single.at("overturned").get<bool>() ? "true" : "false");
-    EXPECT_EQ(std::stod(row.at("governing_azimuth_deg")),
-              single.at("orientation").at("governing_azimuth_deg").get<double>());
-    EXPECT_EQ(row.at("governing_axis"), single.at("orientation").at("governing_axis").get<std::string>());
-    EXPECT_EQ(row.at("depth_m"), object == 0 ? "0.4" : "");
+    test::expect_same(t.at(row, "governing_azimuth_deg"), single.at("orientation").at("governing_azimuth_deg"),
+                      "governing_azimuth_deg");
+    test::expect_same(t.at(row, "governing_axis"), single.at("orientation").at("governing_axis"), "governing_axis");
+    EXPECT_EQ(t.at(row, "depth_m"), object == 0 ? "0.4" : "");
   }
 }
 
