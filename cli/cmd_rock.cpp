@@ -132,8 +132,17 @@ void write_outputs(const RockOptions& o, const RunMotion& run, const GroundMotio
   }
 }
 
+/// What an oriented run adds to the report.
+struct OrientationReport {
+  const OrientedRockingSummary& summary;
+  const OrientedBody& body;
+  std::optional<double> bearing_deg;
+  ComponentAzimuths azimuths;
+  OrientationOptions orientation;
+};
+
 void report(const RockOptions& o, const RunMotion& run, const GroundMotion& horizontal, const RockingBody& body,
-            const RockingOptions& options, const RockingSummary& s, const nlohmann::ordered_json* orientation);
+            const RockingOptions& options, const RockingSummary& s, const OrientationReport* orientation);
 
 /// --h2: an oriented object under the motion set (oriented.hpp), reported by its governing direction.
 void run_oriented(const RockOptions& o, const RunMotion& run, const RockingBody& body, const RockingOptions& options) {
@@ -171,29 +180,11 @@ void run_oriented(const RockOptions& o, const RunMotion& run, const RockingBody&
     write_outputs(o, run, horizontal, set.vertical_ptr(), planar, options, *full,
                   fmt::format(", along {:g}°", gov.azimuth_deg));
   }
-  nlohmann::ordered_json j;
-  j["model"] = "planar rocking under the projection of the two horizontal components on each direction (eq. M1), "
-               "with the vertical";
-  j["bearing_deg"] = o.bearing_deg ? nlohmann::ordered_json(*o.bearing_deg) : nlohmann::ordered_json(nullptr);
-  j["azimuths_deg"] = {set.azimuths()->first_deg, set.azimuths()->second_deg};
-  j["h2"] = o.h2;
-  if (oriented.axisymmetric()) j["direction_step_deg"] = orientation.cylinder_step_deg;
-  if (oriented.across) j["depth_m"] = 2.0 * oriented.across->a_m;
-  j["governing_azimuth_deg"] = gov.azimuth_deg;
-  j["governing_axis"] = std::string(oriented_axis_name(gov.axis));
-  j["directions"] = nlohmann::ordered_json::array();
   for (const DirectionResponse& d : oriented_summary.directions) {
     require_finite({{"max |theta| / alpha", d.summary.max_rotation_over_alpha}});
-    nlohmann::ordered_json row;
-    row["azimuth_deg"] = d.azimuth_deg;
-    row["axis"] = std::string(oriented_axis_name(d.axis));
-    row["max_rotation_over_alpha"] = d.summary.max_rotation_over_alpha;
-    row["overturned"] = d.summary.overturned;
-    row["overturn_time_s"] = d.summary.overturn_time_s ? nlohmann::ordered_json(*d.summary.overturn_time_s)
-                                                      : nlohmann::ordered_json(nullptr);
-    j["directions"].push_back(row);
   }
-  report(o, run, horizontal, planar, options, gov.summary, &j);
+  const OrientationReport report_of{oriented_summary, oriented, o.bearing_deg, *set.azimuths(), orientation};
+  report(o, run, horizontal, planar, options, gov.summary, &report_of);
 }
 
 void run_rock(const RockOptions& o) {
@@ -226,7 +217,7 @@ void run_rock(const RockOptions& o) {
 }
 
 void report(const RockOptions& o, const RunMotion& run, const GroundMotion& horizontal, const RockingBody& body,
-            const RockingOptions& options, const RockingSummary& s, const nlohmann::ordered_json* orientation) {
+            const RockingOptions& options, const RockingSummary& s, const OrientationReport* orientation) {
   const double g = o.motion.g_m_s2;
   const std::string& motion_name = run.input.motion;
   for (const auto& w : s.warnings) fmt::print(stderr, "topple: warning: {}\n", w);
@@ -241,27 +232,31 @@ void report(const RockOptions& o, const RunMotion& run, const GroundMotion& hori
   if (o.json) {
     nlohmann::ordered_json j = io::rocking_summary_json(s, body, options);
     j["input"] = io::run_input_json(run.input, horizontal, g);
-    if (orientation != nullptr) j["orientation"] = *orientation;
+    if (orientation != nullptr) {
+      j["input"]["h2"] = o.h2;
+      j["orientation"] = io::oriented_rocking_json(orientation->summary, orientation->body, orientation->bearing_deg,
+                                                   orientation->azimuths, orientation->orientation);
+    }
     fmt::print("{}\n", j.dump(2));
     return;
   }
   if (orientation != nullptr) {
-    const auto& x = *orientation;
-    fmt::print("oriented object: {}\n", x["model"].get<std::string>());
-    fmt::print("  components at {:g} and {:g} deg (clockwise from north); {}\n", x["azimuths_deg"][0].get<double>(),
-               x["azimuths_deg"][1].get<double>(),
-               x["bearing_deg"].is_null() ? fmt::format("cylinder: worst of every {:g} deg over 180 (an approximation "
-                                                        "of three-dimensional rocking)",
-                                                        x["direction_step_deg"].get<double>())
-                                          : fmt::format("bearing {:g} deg", x["bearing_deg"].get<double>()));
-    for (const auto& d : x["directions"]) {
-      fmt::print("  along {:>6g} deg ({:<7}) max |theta| / alpha {:.6g}{}\n", d["azimuth_deg"].get<double>(),
-                 d["axis"].get<std::string>(), d["max_rotation_over_alpha"].get<double>(),
-                 d["overturned"].get<bool>() ? fmt::format(", overturned at {:.4f} s", d["overturn_time_s"].get<double>())
-                                             : std::string());
+    const OrientationReport& x = *orientation;
+    fmt::print("oriented object: planar rocking under the projection of the two horizontal components on each "
+               "direction (eq. M1), with the vertical when there is one\n");
+    fmt::print("  components at {:g} and {:g} deg (clockwise from north); {}\n", x.azimuths.first_deg,
+               x.azimuths.second_deg,
+               x.bearing_deg ? fmt::format("bearing {:g} deg", *x.bearing_deg)
+                             : fmt::format("cylinder: worst of every {:g} deg over 180 (an approximation of "
+                                           "three-dimensional rocking)", x.orientation.cylinder_step_deg));
+    for (const DirectionResponse& d : x.summary.directions) {
+      fmt::print("  along {:>6g} deg ({:<7}) max |theta| / alpha {:.6g}{}\n", d.azimuth_deg, oriented_axis_name(d.axis),
+                 d.summary.max_rotation_over_alpha,
+                 d.summary.overturned ? fmt::format(", overturned at {:.4f} s", *d.summary.overturn_time_s)
+                                      : std::string());
     }
-    fmt::print("governing direction: {:g} deg ({}); below, its planar run\n", x["governing_azimuth_deg"].get<double>(),
-               x["governing_axis"].get<std::string>());
+    fmt::print("governing direction: {:g} deg ({}); below, its planar run\n",
+               x.summary.governing_response().azimuth_deg, oriented_axis_name(x.summary.governing_response().axis));
   }
   if (body.negative_pivot) {
     fmt::print("rocking body: {} b1 = {:.6g} m (pivot O-, theta < 0), b2 = {:.6g} m (O+, theta > 0), h = {:.6g} m, "
@@ -282,7 +277,7 @@ void report(const RockOptions& o, const RunMotion& run, const GroundMotion& hori
   fmt::print("  uplift threshold {:.5f} g ({})\n", body.a_m / body.h_m, body.negative_pivot ? "b2/h" : "a/h");
   fmt::print("motion: {}{} (PGA {:.4f} g, {} samples)\n", motion_name,
              orientation != nullptr ? fmt::format(" and {}, projected on {:g} deg", o.h2,
-                                                  (*orientation)["governing_azimuth_deg"].get<double>())
+                                                  orientation->summary.governing_response().azimuth_deg)
                                     : std::string(),
              horizontal.pga_m_s2() / g, horizontal.size());
   fmt::print("max |theta|            {:.6g} rad = {:.6g} alpha at {:.4f} s\n", s.max_abs_rotation_rad,
