@@ -149,17 +149,7 @@ void run_oriented(const RockOptions& o, const RunMotion& run, const RockingBody&
   const std::optional<double> depth =
       o.depth.empty() ? std::nullopt : std::optional(parse_length_m(o.depth, "--depth"));
   const OrientedBody oriented = naming_options([&] { return OrientedBody::make(body, depth); });
-  if (oriented.axisymmetric() && o.bearing_deg) {
-    throw parameter_error("--bearing-deg", "a cylinder has no bearing: it is taken in its worst direction (every "
-                                           "--direction-step-deg, default 15 deg)");
-  }
-  if (!oriented.axisymmetric() && !o.bearing_deg) {
-    throw parameter_error("--bearing-deg", "required with --h2: the direction across the object's narrow side, "
-                                           "degrees clockwise from north (the +x side of its planar body)");
-  }
-  if (!oriented.axisymmetric() && o.direction_step_deg) {
-    throw parameter_error("--direction-step-deg", "applies to a cylinder only (the others rock along their bearing)");
-  }
+  naming_options([&] { check_orientation(oriented, o.bearing_deg, o.direction_step_deg.has_value()); });
   OrientationOptions orientation;
   if (o.direction_step_deg) orientation.cylinder_step_deg = *o.direction_step_deg;
   const MotionSet set = load_motion_set(run, o.motion, o.h2, o.azimuths);

@@ -56,6 +56,20 @@ OrientedBody OrientedBody::make(const RockingBody& body, std::optional<double> d
   return box(2.0 * body.a_m, *depth_m, 2.0 * body.h_m);
 }
 
+void check_orientation(const OrientedBody& body, std::optional<double> bearing_deg, bool step_given) {
+  if (body.axisymmetric() && bearing_deg) {
+    throw parameter_error("bearing", "a cylinder has no bearing: it is taken in its worst direction (every "
+                                     "direction step, default 15 deg)");
+  }
+  if (!body.axisymmetric() && !bearing_deg) {
+    throw parameter_error("bearing", "required under two components: the direction across the object's narrow side, "
+                                     "degrees clockwise from north (the +x side of its planar body)");
+  }
+  if (!body.axisymmetric() && step_given) {
+    throw parameter_error("cylinder_step", "applies to a cylinder only (the others rock along their bearing)");
+  }
+}
+
 const RockingBody& planar_body_of(const OrientedBody& body, OrientedAxis axis) {
   if (axis == OrientedAxis::across) {
     if (!body.across) throw parameter_error("depth", "the body has no other axis (not a box)");

@@ -226,6 +226,13 @@ TEST_F(Oriented, Refusals) {
                                      {.cylinder_step_deg = 7.0});
       },
       "cylinder_step", "divide 180");
+  // Bearings: required but for a cylinder, refused for one; a direction step for cylinders only.
+  const OrientedBody cyl = OrientedBody::planar(RockingBody::cylinder(0.2, 0.8));
+  expect_input_error([&] { check_orientation(body, std::nullopt, false); return 0; }, "bearing", "required");
+  expect_input_error([&] { check_orientation(cyl, 10.0, false); return 0; }, "bearing", "no bearing");
+  expect_input_error([&] { check_orientation(body, 10.0, true); return 0; }, "cylinder_step", "cylinder only");
+  check_orientation(cyl, std::nullopt, true);
+  check_orientation(body, 10.0, false);
   // A block with a depth is a box whose axes are the two blocks.
   const OrientedBody made = OrientedBody::make(block, 0.5);
   ASSERT_TRUE(made.across.has_value());

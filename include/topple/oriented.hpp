@@ -94,6 +94,11 @@ struct OrientedRockingResult {
   RockingResult governing;  ///< the governing direction's full response (history and events)
 };
 
+/// The orientation inputs an object takes: a bearing for every body but a cylinder (required), none for a cylinder
+/// (refused: it is taken in its worst direction), and a direction step for a cylinder only. Throws InputError naming
+/// "bearing" or "cylinder_step" (`step_given`: the caller chose a step rather than the default).
+void check_orientation(const OrientedBody& body, std::optional<double> bearing_deg, bool step_given);
+
 /// The planar body run along a direction of `body` (the body itself, or a box's other axis).
 [[nodiscard]] const RockingBody& planar_body_of(const OrientedBody& body, OrientedAxis axis);
 
