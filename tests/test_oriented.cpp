@@ -1,6 +1,8 @@
 // Oriented rocking objects (oriented.hpp): the planar projection model against single-component runs, the mirror
 // of the opposite bearing, a box's governing axis, a cylinder's worst direction, and the refusals.
+#include <algorithm>
 #include <cmath>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -11,6 +13,7 @@
 #include "topple/error.hpp"
 #include "topple/motion_set.hpp"
 #include "topple/oriented.hpp"
+#include "topple/sweep.hpp"
 #include "topple/rocking.hpp"
 #include "topple/units.hpp"
 
@@ -194,6 +197,35 @@ TEST_F(Oriented, FullResponseOfTheGoverningDirection) {
   EXPECT_EQ(r.governing.summary.impacts, s.impacts);
   ASSERT_FALSE(r.governing.history.time_s.empty());
   EXPECT_EQ(r.governing.history.time_s.back(), s.end_time_s);
+}
+
+TEST_F(Oriented, SweepPlanSeesEveryComponentOfASet) {
+  // The engine's fingerprint hashes base motions (a set's first component); the second and the vertical enter the
+  // plan's identity: a set that differs only there is another plan (its stored chunks are not reused).
+  const auto plan_of = [&](const GroundMotion& second, const GroundMotion* vertical) {
+    ensemble::SweepSpec spec;
+    spec.record_sets.push_back(
+        {"station", std::make_shared<const MotionSet>(MotionSet::make(h1, &second, ComponentAzimuths{90.0, 0.0},
+                                                                      vertical))});
+    spec.bearings_deg = {0.0, 45.0};
+    spec.objects.emplace_back(ensemble::RockObject{block, {}, 0.2, 0.8, std::nullopt});
+    return ensemble::make_plan(spec);
+  };
+  const ensemble::Plan base = plan_of(h2, &v);
+  EXPECT_EQ(base.motions.size(), 2U);
+  EXPECT_EQ(ensemble::plan_fingerprint(base), ensemble::plan_fingerprint(plan_of(h2, &v)));
+  EXPECT_NE(ensemble::plan_fingerprint(base), ensemble::plan_fingerprint(plan_of(h2.scaled(1.01), &v)));
+  EXPECT_NE(ensemble::plan_fingerprint(base), ensemble::plan_fingerprint(plan_of(h2, nullptr)));
+  // The rows are the oriented runs: run 1 is the block at bearing 45 deg.
+  const ensemble::ResultTable t = ensemble::run_in_memory(base, {.threads = 1});
+  const auto column = [&](const std::string& name) {
+    return static_cast<std::size_t>(std::find(t.columns.begin(), t.columns.end(), name) - t.columns.begin());
+  };
+  const MotionSet set = MotionSet::make(h1, &h2, ComponentAzimuths{90.0, 0.0}, &v);
+  const auto single = rock_oriented_summary(set, OrientedBody::planar(block), 45.0);
+  EXPECT_EQ(std::get<double>(t.rows[1][column("bearing_deg")]), 45.0);
+  EXPECT_EQ(std::get<double>(t.rows[1][column("max_abs_rotation_rad")]),
+            single.governing_response().summary.max_abs_rotation_rad);
 }
 
 TEST_F(Oriented, MoreSevereRanksFallsThenRotation) {
