@@ -217,7 +217,9 @@ TEST_F(Oriented, SweepPlanSeesEveryComponentOfASet) {
   EXPECT_NE(ensemble::plan_fingerprint(base), ensemble::plan_fingerprint(plan_of(h2.scaled(1.01), &v)));
   EXPECT_NE(ensemble::plan_fingerprint(base), ensemble::plan_fingerprint(plan_of(h2, nullptr)));
   // The rows are the oriented runs: run 1 is the block at bearing 45 deg.
-  const ensemble::ResultTable t = ensemble::run_in_memory(base, {.threads = 1});
+  ensemble::ExecuteOptions one_thread;
+  one_thread.threads = 1;
+  const ensemble::ResultTable t = ensemble::run_in_memory(base, one_thread);
   const auto column = [&](const std::string& name) {
     return static_cast<std::size_t>(std::find(t.columns.begin(), t.columns.end(), name) - t.columns.begin());
   };
