@@ -15,6 +15,12 @@ FieldValue optional_value(const std::optional<double>& v) { return v ? FieldValu
 
 FieldValue count(std::size_t n) { return static_cast<std::int64_t>(n); }
 
+/// +1 / -1 / 0 as "positive" / "negative" / null (the sides of rocking.hpp).
+FieldValue side_value(int side) {
+  if (side == 0) return {};
+  return std::string(side > 0 ? "positive" : "negative");
+}
+
 using S = SlidingOutcome;
 using S2 = Sliding2dOutcome;
 using R = RockingOutcome;
@@ -102,6 +108,19 @@ const std::array<Field<RockingOutcome>, 25> kRockingFields{{
     {"critical_mu", [](const R& r) { return optional_value(r.summary.critical_mu); }, 15},
     {"mu", [](const R& r) { return optional_value(r.options.mu); }},
     {"g_m_s2", [](const R& r) -> FieldValue { return r.options.g_m_s2; }},
+}};
+
+const std::array<Field<RockingOutcome>, 8> kRockingSideFields{{
+    {"alpha_negative_rad", [](const R& r) -> FieldValue { return r.summary.alpha_negative_rad; }, 0},
+    {"max_rotation_positive_rad", [](const R& r) -> FieldValue { return r.summary.max_rotation_positive_rad; }, 1},
+    {"max_rotation_negative_rad", [](const R& r) -> FieldValue { return r.summary.max_rotation_negative_rad; }, 2},
+    {"max_rotation_over_alpha_positive",
+     [](const R& r) -> FieldValue { return r.summary.max_rotation_over_alpha_positive; }, 3},
+    {"max_rotation_over_alpha_negative",
+     [](const R& r) -> FieldValue { return r.summary.max_rotation_over_alpha_negative; }, 4},
+    {"e_onto_negative", [](const R& r) -> FieldValue { return r.summary.e_onto_negative; }, 5},
+    {"exceeded_alpha_side", [](const R& r) { return side_value(r.summary.exceeded_alpha_side); }, 6},
+    {"overturned_side", [](const R& r) { return side_value(r.summary.overturned_side); }, 7},
 }};
 
 }  // namespace topple

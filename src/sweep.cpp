@@ -108,7 +108,7 @@ class Runner {
  public:
   Runner(std::vector<ObjectSpec> objects, const ColumnSet& results)
       : objects_(std::move(objects)), slide_(kSlidingFields, results), rock_(kRockingFields, results),
-        stride_(results.names().size()) {}
+        rock_sides_(kRockingSideFields, results), stride_(results.names().size()) {}
 
   void operator()(const GroundMotion& ground, std::size_t /*motion_index*/, std::size_t begin, std::size_t end,
                   std::span<Value> out) const {
@@ -135,7 +135,9 @@ class Runner {
         slide_.fill(SlidingOutcome{slide_summary(motion, s->block), s->block}, row);
       } else {
         const auto& r = std::get<RockObject>(objects_[o]);
-        rock_.fill(RockingOutcome{rock_summary(motion, r.body, r.options), r.body, r.options}, row);
+        const RockingSummary summary = rock_summary(motion, r.body, r.options);
+        rock_.fill(RockingOutcome{summary, r.body, r.options}, row);
+        rock_sides_.fill(RockingOutcome{summary, r.body, r.options}, row);  // no slots: no asymmetric body
       }
       ++o;
     }
@@ -152,6 +154,7 @@ class Runner {
   std::vector<ObjectSpec> objects_;
   FieldSlots<SlidingOutcome> slide_;
   FieldSlots<RockingOutcome> rock_;
+  FieldSlots<RockingOutcome> rock_sides_;
   std::size_t stride_ = 0;
 };
 
@@ -191,7 +194,9 @@ Plan make_plan(const SweepSpec& spec) {
   bool any_rock_mu = false;
   bool any_block = false;
   bool any_cylinder = false;
-  bool any_general = false;
+  bool any_general = false;     // symmetric general: a, h, D
+  bool any_asymmetric = false;  // asymmetric general: b1, b2, h, inertia
+  bool any_mesh = false;
   bool any_support = false;
   for (const auto& o : spec.objects) {
     any_support = any_support || support_of(o).has_value();
@@ -200,7 +205,9 @@ Plan make_plan(const SweepSpec& spec) {
       any_rock_mu = any_rock_mu || r->options.mu.has_value();
       any_block = any_block || r->body.shape == RockingBody::Shape::block;
       any_cylinder = any_cylinder || r->body.shape == RockingBody::Shape::cylinder;
-      any_general = any_general || r->body.shape == RockingBody::Shape::general;
+      any_general = any_general || (r->body.shape == RockingBody::Shape::general && r->body.symmetric());
+      any_asymmetric = any_asymmetric || !r->body.symmetric();
+      any_mesh = any_mesh || !r->mesh.empty();
     } else {
       any_slide = true;
     }
@@ -244,6 +251,12 @@ Plan make_plan(const SweepSpec& spec) {
     if (any_general) {
       for (const char* c : {"a_m", "h_m", "D_m2"}) object_cols.add(c);
     }
+    if (any_asymmetric) {
+      for (const char* c : {"b1_m", "b2_m", "h_m", "inertia_m2"}) object_cols.add(c);
+    }
+    if (any_mesh) {
+      for (const char* c : {"mesh", "mesh_azimuth_deg"}) object_cols.add(c);
+    }
     object_cols.add("restitution");
   }
   if (any_support) {
@@ -259,6 +272,9 @@ Plan make_plan(const SweepSpec& spec) {
   }
   if (any_rock) {
     for (const auto* f : sweep_fields(kRockingFields)) result_cols.add(f->name);
+  }
+  if (any_asymmetric) {
+    for (const auto* f : sweep_fields(kRockingSideFields)) result_cols.add(f->name);
   }
 
   Plan plan;
@@ -358,10 +374,20 @@ Plan make_plan(const SweepSpec& spec) {
       if (r.width_m) v.set("width_m", *r.width_m);
       if (r.diameter_m) v.set("diameter_m", *r.diameter_m);
       if (r.height_m) v.set("height_m", *r.height_m);
-      if (r.body.shape == RockingBody::Shape::general) {
+      if (r.body.shape == RockingBody::Shape::general && r.body.symmetric()) {
         v.set("a_m", r.body.a_m);
         v.set("h_m", r.body.h_m);
         v.set("D_m2", r.body.D_m2);
+      }
+      if (!r.body.symmetric()) {
+        v.set("b1_m", r.body.pivot_b_m(-1));
+        v.set("b2_m", r.body.pivot_b_m(1));
+        v.set("h_m", r.body.h_m);
+        if (r.inertia_m2) v.set("inertia_m2", *r.inertia_m2);
+      }
+      if (!r.mesh.empty()) {
+        v.set("mesh", r.mesh);
+        if (r.mesh_azimuth_deg) v.set("mesh_azimuth_deg", *r.mesh_azimuth_deg);
       }
       v.set("restitution", std::string(restitution_mode_name(r.options.restitution)));
       // Settings that are not columns still decide the results: they enter the fingerprint.
@@ -372,6 +398,10 @@ Plan make_plan(const SweepSpec& spec) {
                                    x.abs_tol, x.rk4_substeps, x.rest_energy_fraction, x.max_run_out_s,
                                    x.initial_theta_rad, x.initial_theta_dot_rad_s, x.stop_when_alpha_exceeded,
                                    x.max_steps);
+      // The other pivot of an asymmetric body (appended only for one, so that other sweeps keep their identity).
+      if (!r.body.symmetric()) {
+        plan.identity += fmt::format(" b1={} D1={}", r.body.pivot_b_m(-1), r.body.pivot_D_m2(-1));
+      }
     }
     plan.objects.push_back(ObjectCase{v.take()});
   }

@@ -48,4 +48,12 @@ extern const std::array<Field<Sliding2dOutcome>, 20> kSliding2dFields;
 /// only JSON and Python. Not fields: warnings (a list), body and solver (nested objects in the JSON).
 extern const std::array<Field<RockingOutcome>, 25> kRockingFields;
 
+/// Rocking, per side (theta > 0: about O+, the +x edge, b2; theta < 0: about O-, b1): alpha_negative_rad,
+/// max_rotation_positive_rad, max_rotation_negative_rad, max_rotation_over_alpha_positive,
+/// max_rotation_over_alpha_negative, e_onto_negative, exceeded_alpha_side and overturned_side ("positive",
+/// "negative", or null when it never happened; the words of `topple rock --json`'s "sides"). A sweep's result
+/// columns after kRockingFields' (sweep_column 0-7 among these), present only when the sweep has an asymmetric body,
+/// so that a sweep without one keeps its columns.
+extern const std::array<Field<RockingOutcome>, 8> kRockingSideFields;
+
 }  // namespace topple

@@ -54,13 +54,16 @@ struct SlideObject {
 };
 
 /// A rocking body (rocking.hpp). The dimension columns hold what was given: width and height for a block, diameter
-/// and height for a cylinder.
+/// and height for a cylinder; an asymmetric general body's b1, b2, h come from `body`, its inertia is kept as given.
 struct RockObject {
   RockingBody body;
   RockingOptions options;
   std::optional<double> width_m;
   std::optional<double> height_m;
   std::optional<double> diameter_m;
+  std::optional<double> inertia_m2;  ///< asymmetric general body: I_cm / m as given (or from the mesh), m^2
+  std::string mesh;                  ///< a body from a mesh: the file as the sweep file names it (empty: none)
+  std::optional<double> mesh_azimuth_deg;  ///< and the azimuth of its plane of shaking, degrees
   std::optional<SupportOscillator> support = std::nullopt;  ///< as SlideObject::support
 };
 
