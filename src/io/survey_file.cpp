@@ -401,12 +401,6 @@ ObservedObject parse_object(const toml::table& t, const std::string& file, const
                                        housner_restitution(o.body), o.body.alpha_rad() * 180.0 / kPi,
                                        kSquatBodyAdvice));
   }
-  if (rocks && o.e_housner && !o.body.symmetric() && housner_restitution(o.body, -1) < 0.0) {
-    throw named.error("e", fmt::format("Housner's restitution onto the pivot O- (b1) is {:.3g}, negative for so squat "
-                                       "a side (alpha- = {:.3g} deg): {}",
-                                       housner_restitution(o.body, -1),
-                                       o.body.side_body(-1).alpha_rad() * 180.0 / kPi, kSquatBodyAdvice));
-  }
   o.slid_m = named.length("slid");
   if (const auto u = named.length("slid_uncertainty")) o.slid_uncertainty_m = *u;
   o.slid_at_least_m = named.length("slid_at_least");

@@ -742,11 +742,6 @@ void read_rock(const Reader& r, const toml::table& o, const std::string& key, do
                fmt::format("Housner's restitution 1 - 2a^2/D = {} is negative for this body (too squat to rock "
                            "onto its other edge): {}", housner_restitution(body), kSquatBodyAdvice));
       }
-      if (!e && !body.symmetric() && housner_restitution(body, -1) < 0.0) {
-        r.fail(o.get("e") != nullptr ? o.get("e") : &o, prefix + "e",
-               fmt::format("Housner's restitution onto the pivot O- (b1) is {}, negative for so squat a side: {}",
-                           housner_restitution(body, -1), kSquatBodyAdvice));
-      }
       for (const auto& m : mu_values) {
         ensemble::RockObject ro;
         ro.body = body;
