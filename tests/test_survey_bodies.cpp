@@ -42,18 +42,17 @@ const char* kObjectTail = R"(mu = 0.6
 outcome = "overturned"
 )";
 
+/// The [[object]] table of the asymmetric body b1 = 10 cm, b2 = 20 cm, h = 40 cm, inertia 0.02 m^2.
+std::string ledge_object(const std::string& id, const std::string& outcome) {
+  return "[[object]]\nid = \"" + id + "\"\nshape = \"general\"\nb1 = \"10cm\"\nb2 = \"20cm\"\nh = \"40cm\"\n"
+         "inertia = \"0.02m2\"\nmu = 0.6\noutcome = \"" + outcome + "\"\n";
+}
+
 // b1 = 10 cm to O-, b2 = 20 cm to O+, h = 40 cm, inertia 0.02 m^2: D- = 0.02 + 0.01 + 0.16 = 0.19 m^2,
 // D+ = 0.02 + 0.04 + 0.16 = 0.22 m^2. The reader converts "10cm" as 10 * 0.01, so the body equals the factory's on
 // those converted numbers bit for bit; against the decimal closed forms 1e-15 relative is a few roundings.
 TEST(SurveyBodies, GeneralAsymmetricParsesToItsPivots) {
-  const Survey s = io::parse_survey(std::string(R"([[object]]
-id = "ledge"
-shape = "general"
-b1 = "10cm"
-b2 = "20cm"
-h = "40cm"
-inertia = "0.02m2"
-)") + kObjectTail, "s.toml");
+  const Survey s = io::parse_survey(ledge_object("ledge", "overturned"), "s.toml");
   const ObservedObject& o = s.sites.at(0).objects.at(0);
   const RockingBody expected = RockingBody::general_asymmetric(0.10, 0.20, 0.40, 0.02);
   expect_body(o.body, expected, 1e-15);
@@ -167,26 +166,7 @@ pga_g = [0.05, 1.0, 4]
 freq_hz = [0.5, 5.0, 3]
 motions_per_cell = 3
 
-[[object]]
-id = "fell"
-shape = "general"
-b1 = "10cm"
-b2 = "20cm"
-h = "40cm"
-inertia = "0.02m2"
-mu = 0.6
-outcome = "overturned"
-
-[[object]]
-id = "still"
-shape = "general"
-b1 = "10cm"
-b2 = "20cm"
-h = "40cm"
-inertia = "0.02m2"
-mu = 0.6
-outcome = "not_rocked"
-
+)" + ledge_object("fell", "overturned") + ledge_object("still", "not_rocked") + R"(
 [[object]]
 id = "scan"
 mesh = "wedge.obj"

@@ -305,24 +305,30 @@ std::vector<BadCase> bad_cases() {
   };
 }
 
+/// The sweep file `p` holding `text` is refused with an InputError naming `p`, `field`, `line` (when > 0) and a
+/// problem that contains `problem_part`.
+void expect_refused(const fs::path& p, const std::string& text, const std::string& field, std::size_t line,
+                    const std::string& problem_part) {
+  write_file(p, text);
+  try {
+    static_cast<void>(read_sweep_file(p));
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().file, p.string()) << e.what();
+    EXPECT_EQ(e.where().field, field) << e.what();
+    if (line > 0) {
+      EXPECT_EQ(e.where().line.value_or(0), line) << e.what();
+    }
+    EXPECT_NE(e.problem().find(problem_part), std::string::npos) << e.what();
+  }
+}
+
 TEST(SweepFile, BadFilesNameFileLineAndKey) {
   TempDir dir;
   write_file(dir.path() / "rec.AT2", plain_record(0.2));  // a plain file named like an AT2: content decides
   for (const auto& c : bad_cases()) {
     SCOPED_TRACE(c.what);
-    const fs::path p = dir.path() / "bad.toml";
-    write_file(p, c.text);
-    try {
-      static_cast<void>(read_sweep_file(p));
-      ADD_FAILURE() << "accepted";
-    } catch (const InputError& e) {
-      EXPECT_EQ(e.where().file, p.string()) << e.what();
-      EXPECT_EQ(e.where().field, c.field) << e.what();
-      if (c.line > 0) {
-        EXPECT_EQ(e.where().line.value_or(0), c.line) << e.what();
-      }
-      EXPECT_NE(e.problem().find(c.problem_part), std::string::npos) << e.what();
-    }
+    expect_refused(dir.path() / "bad.toml", c.text, c.field, c.line, c.problem_part);
   }
 }
 
@@ -552,19 +558,8 @@ TEST(SweepFile, GeneralAndMeshErrorsNameFileLineKeyAndMesh) {
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.keys);
-    const fs::path p = dir.path() / "bad.toml";
-    write_file(p, std::string(kPulseMotions) + "[[object]]\nmodel = \"rock\"\n" + c.keys);
-    try {
-      static_cast<void>(read_sweep_file(p));
-      ADD_FAILURE() << "accepted";
-    } catch (const InputError& e) {
-      EXPECT_EQ(e.where().file, p.string()) << e.what();
-      EXPECT_EQ(e.where().field, c.field) << e.what();
-      if (c.line > 0) {
-        EXPECT_EQ(e.where().line.value_or(0), c.line) << e.what();
-      }
-      EXPECT_NE(e.problem().find(c.problem_part), std::string::npos) << e.what();
-    }
+    expect_refused(dir.path() / "bad.toml", std::string(kPulseMotions) + "[[object]]\nmodel = \"rock\"\n" + c.keys,
+                   c.field, c.line, c.problem_part);
   }
 }
 
