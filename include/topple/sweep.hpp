@@ -85,7 +85,9 @@ struct SweepSpec {
 ///
 /// Columns, present when some run uses them:
 ///   motion: motion, [pulse_kind, pulse_amp_g, pulse_duration_s], time_scale, scale_factor, pga_g, polarity
-///   object: model, g_m_s2, [mu, mu_kinetic, slope_deg, mode], [shape, width_m, height_m, diameter_m, restitution],
+///   object: model, g_m_s2, [mu, mu_kinetic, slope_deg, mode], [shape, width_m, height_m, diameter_m, (a_m, h_m,
+///           D_m2), (b1_m, b2_m, h_m, inertia_m2: asymmetric bodies), (mesh, mesh_azimuth_deg: bodies from meshes),
+///           restitution],
 ///           [support_freq_hz, support_damping] (only when some object has a flexible support: a sweep without one
 ///           has the columns it always had; a rigid object's cells there are empty)
 ///           (mu also holds the friction coefficient a rocking body's onset check uses)
@@ -95,7 +97,8 @@ struct SweepSpec {
 ///            rocking: max_abs_rotation_rad, max_rotation_over_alpha, max_rotation_time_s, max_abs_theta_dot_rad_s,
 ///            impacts, uplifts, uplift_time_s, exceeded_alpha_time_s, overturned, overturn_time_s,
 ///            energy_lost_j_per_kg, end_time_s, end_state, still_rocking_at_end, onset_mode, critical_mu,
-///            alpha_rad, p_rad_s, e
+///            alpha_rad, p_rad_s, e; then, only when some body is asymmetric, the per-side results
+///            (kRockingSideFields: alpha_negative_rad ... overturned_side)
 /// Throws InputError for an empty spec (no motion or no object) or a motion that cannot be scaled (zero record).
 [[nodiscard]] Plan make_plan(const SweepSpec& spec);
 
