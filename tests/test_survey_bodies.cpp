@@ -13,6 +13,7 @@
 #include "support/shared_data.hpp"
 #include "topple/error.hpp"
 #include "topple/inversion.hpp"
+#include "topple/io/mesh.hpp"
 #include "topple/io/survey_file.hpp"
 #include "topple/pulses.hpp"
 #include "topple/rocking.hpp"
@@ -263,6 +264,25 @@ D = "200cm2"
   EXPECT_EQ(body.a_m, expected.a_m);
   EXPECT_EQ(body.h_m, expected.h_m);
   EXPECT_NEAR(body.D_m2, expected.D_m2, 1e-17);  // "200cm2" is 200 * 1e-4: one rounding from 0.02
+}
+
+// The example survey with a scan (examples/scanned_rock_survey.toml) reads the committed rock through the mesh
+// pipeline: the same body as rocking_body(read_mesh_body(...)) at azimuth 90, bit for bit (one pipeline), and the
+// ledge boulder's lower threshold g min(b1, b2)/h = 12/45 g (1e-15: tan(atan(x)) is x to a rounding or two).
+TEST(SurveyBodies, ExampleScannedRockSurvey) {
+  const std::filesystem::path examples = std::filesystem::path(TOPPLE_SOURCE_DIR) / "examples";
+  const Survey s = io::read_survey(examples / "scanned_rock_survey.toml");
+  const auto& objects = s.sites.at(0).objects;
+  ASSERT_EQ(objects.size(), 2u);
+  BodyOptions options;
+  options.azimuth_deg = 90.0;
+  const RockingBody rock = rocking_body(io::read_mesh_body((examples / "mesh" / "balanced_rock.obj").string(), 1.0,
+                                                           options));
+  expect_body(objects[0].body, rock, 0.0);
+  EXPECT_EQ(objects[0].mesh_file, (examples / "mesh" / "balanced_rock.obj").string());
+  const StaticBounds b = static_bounds(s.sites.at(0));
+  ASSERT_TRUE(b.hard_lower_g.has_value());
+  EXPECT_NEAR(*b.hard_lower_g, 12.0 / 45.0, 1e-15);
 }
 
 }  // namespace
