@@ -214,11 +214,11 @@ std::optional<SupportFilter> parse_support(Reader& r, std::string& label) {
   return std::nullopt;
 }
 
-/// The body of an object given as a mesh (docs/survey.md, "Bodies from 3-D scans"): `mesh` (a path relative to the
-/// survey file), `mesh_azimuth_deg` (the plane of shaking, as `topple body --azimuth`), optional `mesh_unit` ("m",
-/// "cm", "mm"; default "m") and `mesh_density_kg_m3` (checked; it does not change a rocking body). The planar body
-/// comes from the mesh pipeline (io::read_mesh_body, rocking_body); a refusal names the survey's line and field and
-/// the mesh file.
+/// The body of an object given as a mesh (docs/survey.md, "Asymmetric bodies and bodies from 3-D scans"): `mesh` (a
+/// path relative to the survey file), `mesh_azimuth_deg` (the plane of shaking, as `topple body --azimuth`),
+/// optional `mesh_unit` ("m", "cm", "mm"; default "m") and `mesh_density_kg_m3` (checked; it does not change a
+/// rocking body). The planar body comes from the mesh pipeline (io::read_mesh_body, rocking_body); a refusal names
+/// the survey's line and field and the mesh file.
 RockingBody mesh_object_body(Reader& named, const std::filesystem::path& base_dir, ObservedObject& o) {
   for (const char* key : {"width", "height", "diameter", "a", "h", "D", "b1", "b2", "inertia"}) {
     if (named.has(key)) {
