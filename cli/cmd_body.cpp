@@ -4,12 +4,12 @@
 #include <string>
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include "commands.hpp"
 #include "common.hpp"
 #include "progress.hpp"
 #include "topple/body.hpp"
+#include "topple/io/body_json.hpp"
 #include "topple/io/mesh.hpp"
 #include "topple/units.hpp"
 
@@ -27,8 +27,6 @@ struct BodyCommandOptions {
 
 double deg(double rad) { return rad * 180.0 / kPi; }
 
-nlohmann::ordered_json vec(const Vec3& v) { return nlohmann::ordered_json::array({v[0], v[1], v[2]}); }
-
 void print_body(const BodyCommandOptions& o, const MeshBody& r, std::size_t vertices, std::size_t triangles) {
   const auto& m = r.mass;
   const auto& b = r.planar;
@@ -38,45 +36,9 @@ void print_body(const BodyCommandOptions& o, const MeshBody& r, std::size_t vert
                   {"I_O1", b.inertia_o1_kg_m2}, {"I_O2", b.inertia_o2_kg_m2}, {"p1", b.p1_rad_s},
                   {"p2", b.p2_rad_s}, {"p (symmetric)", b.p_sym_rad_s}});
   if (o.json) {
-    nlohmann::ordered_json out;
-    out["file"] = o.mesh;
-    out["unit_m"] = io::mesh_unit_m(o.unit, "--unit");
-    out["vertices"] = vertices;
-    out["triangles"] = triangles;
-    out["density_kg_m3"] = m.density_kg_m3;
-    out["volume_m3"] = m.volume_m3;
-    out["mass_kg"] = m.mass_kg;
-    out["centre_of_mass_m"] = vec(c);
-    out["inertia_cm_kg_m2"] = nlohmann::ordered_json::array({vec(I[0]), vec(I[1]), vec(I[2])});
-    out["support_z_m"] = r.support.z_m;
-    out["support_tolerance_m"] = r.support.tolerance_m;
-    out["support_contact_vertices"] = r.support.contact_vertices;
-    nlohmann::ordered_json hull = nlohmann::ordered_json::array();
-    for (const auto& p : r.support.hull_xy_m) hull.push_back({p[0], p[1]});
-    out["support_polygon_xy_m"] = hull;
-    out["azimuth_deg"] = b.azimuth_deg;
-    out["g_m_s2"] = o.body.g_m_s2;
-    out["h_m"] = b.h_m;
-    out["b1_m"] = b.b1_m;
-    out["b2_m"] = b.b2_m;
-    out["r1_m"] = b.r1_m;
-    out["r2_m"] = b.r2_m;
-    out["alpha1_rad"] = b.alpha1_rad;
-    out["alpha2_rad"] = b.alpha2_rad;
-    out["alpha1_deg"] = deg(b.alpha1_rad);
-    out["alpha2_deg"] = deg(b.alpha2_rad);
-    out["inertia_cm_plane_kg_m2"] = b.inertia_cm_kg_m2;
-    out["inertia_o1_kg_m2"] = b.inertia_o1_kg_m2;
-    out["inertia_o2_kg_m2"] = b.inertia_o2_kg_m2;
-    out["d1_m2"] = b.d1_m2;
-    out["d2_m2"] = b.d2_m2;
-    out["p1_rad_s"] = b.p1_rad_s;
-    out["p2_rad_s"] = b.p2_rad_s;
-    out["pivot1_m"] = vec(b.pivot1_m);
-    out["pivot2_m"] = vec(b.pivot2_m);
-    out["symmetric"] = {{"b_m", b.b_sym_m},          {"r_m", b.r_sym_m}, {"alpha_rad", b.alpha_sym_rad},
-                        {"alpha_deg", deg(b.alpha_sym_rad)}, {"d_m2", b.d_sym_m2}, {"p_rad_s", b.p_sym_rad_s}};
-    fmt::print("{}\n", out.dump(2));
+    fmt::print("{}\n", io::mesh_body_json(io::MeshBodyOutcome{r, o.mesh, io::mesh_unit_m(o.unit, "--unit"), vertices,
+                                                             triangles, o.body.g_m_s2})
+                            .dump(2));
     return;
   }
   fmt::print("file          {} ({} vertices, {} triangles; unit {})\n", o.mesh, vertices, triangles, o.unit);

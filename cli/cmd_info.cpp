@@ -15,6 +15,7 @@
 #include "slide_2d.hpp"
 #include "topple/error.hpp"
 #include "topple/intensity.hpp"
+#include "topple/io/write.hpp"
 #include "topple/motion_set.hpp"
 #include "topple/rotd.hpp"
 #include "topple/plot.hpp"
@@ -22,10 +23,6 @@
 
 namespace topple::cli {
 namespace {
-
-nlohmann::ordered_json json_value(const OptionalMeasure& m) {
-  return m.value ? nlohmann::ordered_json(*m.value) : nlohmann::ordered_json(nullptr);
-}
 
 std::string text_value(const OptionalMeasure& m, const char* format_unit) {
   return m.value ? fmt::format(fmt::runtime(format_unit), *m.value) : "undefined (" + m.undefined_reason + ")";
@@ -66,12 +63,11 @@ std::vector<std::optional<int>> channels_of(const InfoOptions& o, const MotionOp
   return list;
 }
 
-/// One component's measures as JSON (the object `topple info FILE --json` prints).
+/// One component as JSON (the object `topple info FILE --json` prints): the record's metadata, then its measures
+/// from the library's field table (kIntensityFields, which topple.intensity returns too).
 nlohmann::ordered_json component_json(const GroundMotion& motion, const IntensityMeasures& all, const std::string& file,
                                       double g) {
-  const BasicIntensity& im = all.basic;
   const auto& meta = motion.metadata();
-  const std::optional<SignificantDuration>& duration = all.d5_95;
   nlohmann::ordered_json out;
   out["file"] = file;
   out["format"] = meta.format;
@@ -81,25 +77,7 @@ nlohmann::ordered_json component_json(const GroundMotion& motion, const Intensit
   out["azimuth_deg"] = meta.azimuth_deg ? nlohmann::ordered_json(*meta.azimuth_deg) : nlohmann::ordered_json(nullptr);
   out["vertical"] = meta.vertical;
   out["units_as_read"] = meta.units_as_read;
-  out["npts"] = motion.size();
-  out["uniform"] = motion.is_uniform();
-  out["dt_s"] = motion.dt_s();
-  out["start_time_s"] = motion.start_time_s();
-  out["duration_s"] = motion.duration_s();
-  out["pga_g"] = im.pga_m_s2 / g;
-  out["pga_m_s2"] = im.pga_m_s2;
-  out["pga_time_s"] = im.pga_time_s;
-  out["pgv_m_s"] = im.pgv_m_s;
-  out["pgd_m"] = im.pgd_m;
-  out["arias_m_s"] = im.arias_m_s;
-  out["d5_95_s"] = duration ? nlohmann::ordered_json(duration->duration_s) : nlohmann::ordered_json(nullptr);
-  out["d5_time_s"] = duration ? nlohmann::ordered_json(duration->start_s) : nlohmann::ordered_json(nullptr);
-  out["d95_time_s"] = duration ? nlohmann::ordered_json(duration->end_s) : nlohmann::ordered_json(nullptr);
-  out["cav_m_s"] = all.cav_m_s;
-  out["tp_s"] = json_value(all.tp_s);
-  out["tm_s"] = json_value(all.tm_s);
-  out["predominant_frequency_hz"] = json_value(all.predominant_frequency_hz);
-  out["g_m_s2"] = g;
+  out.update(io::fields_json(kIntensityFields, IntensityOutcome{motion, all, g}));
   return out;
 }
 

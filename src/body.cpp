@@ -381,4 +381,9 @@ MeshBody mesh_body(const TriangleMesh& mesh, const BodyOptions& options, const s
   return out;
 }
 
+RockingBody rocking_body(const MeshBody& body) {
+  const PlanarBody& b = body.planar;
+  return RockingBody::general_asymmetric(b.b1_m, b.b2_m, b.h_m, b.inertia_cm_kg_m2 / body.mass.mass_kg);
+}
+
 }  // namespace topple

@@ -96,6 +96,16 @@ std::uint64_t mix(std::uint64_t a, std::uint64_t b) {
 using detail::mix;
 
 namespace {
+/// tan(alpha) of the uplift threshold g tan(alpha) that a static bound uses. A symmetric body has one. An asymmetric
+/// one (b1 != b2) uplifts about either pivot, at g b1/h or g b2/h by the direction of the peak, which the survey does
+/// not know: a lower bound (it rocked) takes the smaller, an upper one (it did not) the larger, the weaker claim.
+double uplift_tan_alpha(const RockingBody& body, bool lower) {
+  const double plus = std::tan(body.alpha_rad());
+  if (body.symmetric()) return plus;
+  const double minus = std::tan(body.side_body(-1).alpha_rad());
+  return lower ? std::min(plus, minus) : std::max(plus, minus);
+}
+
 /// An object on a flexible support: its support's peak is at most max_peak_amplification(zeta_low) times the ground's
 /// (any motion), so an object that slid, rocked or overturned still bounds the ground's PGA from below (weakly). The
 /// support may also attenuate the ground's peak without limit (well above its frequency): no upper bound.
@@ -112,7 +122,7 @@ void flexible_support_bound(const ObservedObject& o, StaticBounds& b) {
       break;
     case Outcome::overturned:
     case Outcome::rocked: {
-      const double tan_alpha = std::tan(o.body.alpha_rad());
+      const double tan_alpha = uplift_tan_alpha(o.body, true);
       b.lower.push_back(
           {tan_alpha / amp_max, o.id, fmt::format("{}: {}", outcome_name(o.outcome), text(tan_alpha)), true});
       break;
@@ -137,7 +147,7 @@ StaticBounds static_bounds(const Site& site) {
     };
     const double amp_hi = o.amplification.high;
     const double amp_lo = o.amplification.low;
-    const double tan_alpha = std::tan(o.body.alpha_rad());
+    const double tan_alpha = uplift_tan_alpha(o.body, o.outcome != Outcome::not_rocked);
     switch (o.outcome) {
       case Outcome::slid:  // hard: no slip at all while |a| <= mu g (Coulomb, level ground)
         b.lower.push_back({o.mu.low / amp_hi, o.id,

@@ -92,6 +92,14 @@ std::string dims(const ObservedObject& o) {
     case RockingBody::Shape::block: return fmt::format("block {} x {}", cm(*o.width_m), cm(*o.height_m));
     case RockingBody::Shape::cylinder: return fmt::format("cylinder &#8960; {} x {}", cm(*o.diameter_m), cm(*o.height_m));
     case RockingBody::Shape::general:
+      if (!o.body.symmetric()) {  // asymmetric: both pivots; from a scan, the mesh and its plane
+        const std::string from_mesh =
+            o.mesh_file.empty() ? std::string()
+                                : fmt::format(" (mesh {}, azimuth {:g}&#176;)", html_escape(o.mesh_file),
+                                              o.mesh_azimuth_deg.value_or(0.0));
+        return fmt::format("b1 = {}, b2 = {}, h = {}{}", cm(o.body.pivot_b_m(-1)), cm(o.body.pivot_b_m(1)),
+                           cm(o.body.h_m), from_mesh);
+      }
       return fmt::format("a = {}, h = {}, D = {:.3g} m&#178;", cm(o.body.a_m), cm(o.body.h_m), o.body.D_m2);
   }
   return "";
@@ -363,12 +371,24 @@ plot::Figure best_cell_figure(const InversionResult& r, const Site& site, const 
       if (obj.orientation_deg) factor *= std::cos(*obj.orientation_deg * kPi / 180.0);
       const auto res = rock(seen.scaled(factor), obj.body, opt);
       std::vector<double> ratio(res.history.theta_rad.size());
-      for (std::size_t i = 0; i < ratio.size(); ++i) ratio[i] = res.history.theta_rad[i] / obj.body.alpha_rad();
+      // theta over its side's alpha (an asymmetric body: alpha- = atan(b1/h) for theta < 0).
+      const double alpha_minus = obj.body.side_body(-1).alpha_rad();
+      for (std::size_t i = 0; i < ratio.size(); ++i) {
+        const double theta = res.history.theta_rad[i];
+        ratio[i] = theta / (theta < 0.0 ? alpha_minus : obj.body.alpha_rad());
+      }
       // One motion with nominal parameters is not the likelihood (N motions, drawn parameters): an object observed
       // standing may fall in it, or one observed fallen stand. The label says so rather than contradict the survey.
       const bool observed_fallen = obj.outcome == Outcome::overturned;
       std::string label = obj.id;
-      if (res.summary.overturned) label += observed_fallen ? " (falls, as observed)" : " (falls in this one motion; observed standing)";
+      // Which side an asymmetric body falls to: toward +x (about O+, b2) or -x (O-, b1).
+      const std::string side = obj.body.symmetric() ? std::string()
+                               : res.summary.overturned_side > 0 ? std::string(" toward +x (about b2)")
+                                                                 : std::string(" toward -x (about b1)");
+      if (res.summary.overturned) {
+        label += observed_fallen ? " (falls" + side + ", as observed)"
+                                 : " (falls" + side + " in this one motion; observed standing)";
+      }
       if (!res.summary.overturned && observed_fallen) label += " (stands in this one motion; observed overturned)";
       rocking.series.push_back({label, res.history.time_s, ratio, "lines", color, 1.6});
     }

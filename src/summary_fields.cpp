@@ -15,7 +15,16 @@ FieldValue optional_value(const std::optional<double>& v) { return v ? FieldValu
 
 FieldValue count(std::size_t n) { return static_cast<std::int64_t>(n); }
 
+/// +1 / -1 / 0 as "positive" / "negative" / null (the sides of rocking.hpp).
+FieldValue side_value(int side) {
+  if (side == 0) return {};
+  return std::string(side > 0 ? "positive" : "negative");
+}
+
+FieldValue optional_measure(const OptionalMeasure& m) { return optional_value(m.value); }
+
 using S = SlidingOutcome;
+using I = IntensityOutcome;
 using S2 = Sliding2dOutcome;
 using R = RockingOutcome;
 
@@ -102,6 +111,42 @@ const std::array<Field<RockingOutcome>, 25> kRockingFields{{
     {"critical_mu", [](const R& r) { return optional_value(r.summary.critical_mu); }, 15},
     {"mu", [](const R& r) { return optional_value(r.options.mu); }},
     {"g_m_s2", [](const R& r) -> FieldValue { return r.options.g_m_s2; }},
+}};
+
+const std::array<Field<RockingOutcome>, 8> kRockingSideFields{{
+    {"alpha_negative_rad", [](const R& r) -> FieldValue { return r.summary.alpha_negative_rad; }, 0},
+    {"max_rotation_positive_rad", [](const R& r) -> FieldValue { return r.summary.max_rotation_positive_rad; }, 1},
+    {"max_rotation_negative_rad", [](const R& r) -> FieldValue { return r.summary.max_rotation_negative_rad; }, 2},
+    {"max_rotation_over_alpha_positive",
+     [](const R& r) -> FieldValue { return r.summary.max_rotation_over_alpha_positive; }, 3},
+    {"max_rotation_over_alpha_negative",
+     [](const R& r) -> FieldValue { return r.summary.max_rotation_over_alpha_negative; }, 4},
+    {"e_onto_negative", [](const R& r) -> FieldValue { return r.summary.e_onto_negative; }, 5},
+    {"exceeded_alpha_side", [](const R& r) { return side_value(r.summary.exceeded_alpha_side); }, 6},
+    {"overturned_side", [](const R& r) { return side_value(r.summary.overturned_side); }, 7},
+}};
+
+const std::array<Field<IntensityOutcome>, 19> kIntensityFields{{
+    {"npts", [](const I& r) { return count(r.motion.size()); }},
+    {"uniform", [](const I& r) -> FieldValue { return r.motion.is_uniform(); }},
+    {"dt_s", [](const I& r) -> FieldValue { return r.motion.dt_s(); }},
+    {"start_time_s", [](const I& r) -> FieldValue { return r.motion.start_time_s(); }},
+    {"duration_s", [](const I& r) -> FieldValue { return r.motion.duration_s(); }},
+    {"pga_g", [](const I& r) -> FieldValue { return r.measures.basic.pga_m_s2 / r.g_m_s2; }},
+    {"pga_m_s2", [](const I& r) -> FieldValue { return r.measures.basic.pga_m_s2; }},
+    {"pga_time_s", [](const I& r) -> FieldValue { return r.measures.basic.pga_time_s; }},
+    {"pgv_m_s", [](const I& r) -> FieldValue { return r.measures.basic.pgv_m_s; }},
+    {"pgd_m", [](const I& r) -> FieldValue { return r.measures.basic.pgd_m; }},
+    {"arias_m_s", [](const I& r) -> FieldValue { return r.measures.basic.arias_m_s; }},
+    {"d5_95_s",
+     [](const I& r) { return r.measures.d5_95 ? FieldValue{r.measures.d5_95->duration_s} : FieldValue{}; }},
+    {"d5_time_s", [](const I& r) { return r.measures.d5_95 ? FieldValue{r.measures.d5_95->start_s} : FieldValue{}; }},
+    {"d95_time_s", [](const I& r) { return r.measures.d5_95 ? FieldValue{r.measures.d5_95->end_s} : FieldValue{}; }},
+    {"cav_m_s", [](const I& r) -> FieldValue { return r.measures.cav_m_s; }},
+    {"tp_s", [](const I& r) { return optional_measure(r.measures.tp_s); }},
+    {"tm_s", [](const I& r) { return optional_measure(r.measures.tm_s); }},
+    {"predominant_frequency_hz", [](const I& r) { return optional_measure(r.measures.predominant_frequency_hz); }},
+    {"g_m_s2", [](const I& r) -> FieldValue { return r.g_m_s2; }},
 }};
 
 }  // namespace topple

@@ -117,8 +117,9 @@ class Runner {
   Runner(std::vector<ObjectSpec> objects, const ColumnSet& results, std::vector<std::optional<SetCase>> set_cases,
          OrientationOptions orientation)
       : objects_(std::move(objects)), slide_(kSlidingFields, results), rock_(kRockingFields, results),
-        stride_(results.names().size()), set_cases_(std::move(set_cases)), orientation_(orientation),
-        governing_azimuth_(results.at("governing_azimuth_deg")), governing_axis_(results.at("governing_axis")) {}
+        rock_sides_(kRockingSideFields, results), stride_(results.names().size()), set_cases_(std::move(set_cases)),
+        orientation_(orientation), governing_azimuth_(results.at("governing_azimuth_deg")),
+        governing_axis_(results.at("governing_axis")) {}
 
   void operator()(const GroundMotion& ground, std::size_t motion_index, std::size_t begin, std::size_t end,
                   std::span<Value> out) const {
@@ -149,7 +150,9 @@ class Runner {
         slide_.fill(SlidingOutcome{slide_summary(motion, s->block), s->block}, row);
       } else {
         const auto& r = std::get<RockObject>(objects_[o]);
-        rock_.fill(RockingOutcome{rock_summary(motion, r.body, r.options), r.body, r.options}, row);
+        const RockingSummary summary = rock_summary(motion, r.body, r.options);
+        rock_.fill(RockingOutcome{summary, r.body, r.options}, row);
+        rock_sides_.fill(RockingOutcome{summary, r.body, r.options}, row);  // no slots: no asymmetric body
       }
       ++o;
     }
@@ -178,7 +181,9 @@ class Runner {
       const OrientedBody body = OrientedBody::make(r.body, r.depth_m);
       const OrientedRockingSummary s = rock_oriented_summary(set, body, c.bearing_deg, r.options, orientation_);
       const DirectionResponse& g = s.governing_response();
-      rock_.fill(RockingOutcome{g.summary, planar_body_of(body, g.axis), r.options}, row);
+      const RockingOutcome outcome{g.summary, planar_body_of(body, g.axis), r.options};
+      rock_.fill(outcome, row);
+      rock_sides_.fill(outcome, row);  // no slots: no asymmetric body
       if (governing_azimuth_ != kAbsent) row[governing_azimuth_] = g.azimuth_deg;
       if (governing_axis_ != kAbsent) row[governing_axis_] = std::string(oriented_axis_name(g.axis));
     }
@@ -194,6 +199,7 @@ class Runner {
   std::vector<ObjectSpec> objects_;
   FieldSlots<SlidingOutcome> slide_;
   FieldSlots<RockingOutcome> rock_;
+  FieldSlots<RockingOutcome> rock_sides_;
   std::size_t stride_ = 0;
   std::vector<std::optional<SetCase>> set_cases_;  ///< by motion index; empty for records and pulses
   OrientationOptions orientation_;
@@ -239,7 +245,9 @@ Plan make_plan(const SweepSpec& spec) {
   bool any_rock_mu = false;
   bool any_block = false;
   bool any_cylinder = false;
-  bool any_general = false;
+  bool any_general = false;     // symmetric general: a, h, D
+  bool any_asymmetric = false;  // asymmetric general: b1, b2, h, inertia
+  bool any_mesh = false;
   bool any_support = false;
   for (const auto& o : spec.objects) {
     any_support = any_support || support_of(o).has_value();
@@ -248,7 +256,9 @@ Plan make_plan(const SweepSpec& spec) {
       any_rock_mu = any_rock_mu || r->options.mu.has_value();
       any_block = any_block || r->body.shape == RockingBody::Shape::block;
       any_cylinder = any_cylinder || r->body.shape == RockingBody::Shape::cylinder;
-      any_general = any_general || r->body.shape == RockingBody::Shape::general;
+      any_general = any_general || (r->body.shape == RockingBody::Shape::general && r->body.symmetric());
+      any_asymmetric = any_asymmetric || !r->body.symmetric();
+      any_mesh = any_mesh || !r->mesh.empty();
     } else {
       any_slide = true;
     }
@@ -340,6 +350,12 @@ Plan make_plan(const SweepSpec& spec) {
     if (any_general) {
       for (const char* c : {"a_m", "h_m", "D_m2"}) object_cols.add(c);
     }
+    if (any_asymmetric) {
+      for (const char* c : {"b1_m", "b2_m", "h_m", "inertia_m2"}) object_cols.add(c);
+    }
+    if (any_mesh) {
+      for (const char* c : {"mesh", "mesh_azimuth_deg"}) object_cols.add(c);
+    }
     object_cols.add("restitution");
     if (any_box) object_cols.add("depth_m");
   }
@@ -360,6 +376,9 @@ Plan make_plan(const SweepSpec& spec) {
   if (any_set) {
     result_cols.add("governing_azimuth_deg");
     result_cols.add("governing_axis");
+  }
+  if (any_asymmetric) {
+    for (const auto* f : sweep_fields(kRockingSideFields)) result_cols.add(f->name);
   }
 
   Plan plan;
@@ -493,10 +512,20 @@ Plan make_plan(const SweepSpec& spec) {
       if (r.width_m) v.set("width_m", *r.width_m);
       if (r.diameter_m) v.set("diameter_m", *r.diameter_m);
       if (r.height_m) v.set("height_m", *r.height_m);
-      if (r.body.shape == RockingBody::Shape::general) {
+      if (r.body.shape == RockingBody::Shape::general && r.body.symmetric()) {
         v.set("a_m", r.body.a_m);
         v.set("h_m", r.body.h_m);
         v.set("D_m2", r.body.D_m2);
+      }
+      if (!r.body.symmetric()) {
+        v.set("b1_m", r.body.pivot_b_m(-1));
+        v.set("b2_m", r.body.pivot_b_m(1));
+        v.set("h_m", r.body.h_m);
+        if (r.inertia_m2) v.set("inertia_m2", *r.inertia_m2);
+      }
+      if (!r.mesh.empty()) {
+        v.set("mesh", r.mesh);
+        if (r.mesh_azimuth_deg) v.set("mesh_azimuth_deg", *r.mesh_azimuth_deg);
       }
       v.set("restitution", std::string(restitution_mode_name(r.options.restitution)));
       if (r.depth_m) v.set("depth_m", *r.depth_m);
@@ -508,6 +537,10 @@ Plan make_plan(const SweepSpec& spec) {
                                    x.abs_tol, x.rk4_substeps, x.rest_energy_fraction, x.max_run_out_s,
                                    x.initial_theta_rad, x.initial_theta_dot_rad_s, x.stop_when_alpha_exceeded,
                                    x.max_steps);
+      // The other pivot of an asymmetric body (appended only for one, so that other sweeps keep their identity).
+      if (!r.body.symmetric()) {
+        plan.identity += fmt::format(" b1={} D1={}", r.body.pivot_b_m(-1), r.body.pivot_D_m2(-1));
+      }
     }
     plan.objects.push_back(ObjectCase{v.take()});
   }

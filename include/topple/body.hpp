@@ -41,6 +41,8 @@
 #include <string>
 #include <vector>
 
+#include "topple/rocking.hpp"
+
 namespace topple {
 
 using Vec3 = std::array<double, 3>;
@@ -139,5 +141,12 @@ struct MeshBody {
 /// check_mesh, mass_properties, support_polygon and planar_body in turn. Throws InputError naming `file` (the mesh)
 /// or the option (--density, --azimuth, --base-tolerance, --g) that is wrong.
 [[nodiscard]] MeshBody mesh_body(const TriangleMesh& mesh, const BodyOptions& options, const std::string& file);
+
+/// The asymmetric rocking body (rocking.hpp) of a mesh's planar body, +x toward the azimuth: pivot 1 (the rear) is
+/// O- (b1, theta < 0), pivot 2 is O+ (b2), inertia k2 = I_cm / m about the rocking axis through the CM, so that
+/// RockingBody::general_asymmetric(b1, b2, h, k2) gives D- = I_O1 / m and D+ = I_O2 / m (parallel axes). This is
+/// the body `topple body` prints as a `rock --shape general --b1 --b2 --h --inertia` command, and the body a survey
+/// or a sweep object with `mesh = "..."` rocks as. Independent of the density (every term is per unit mass).
+[[nodiscard]] RockingBody rocking_body(const MeshBody& body);
 
 }  // namespace topple

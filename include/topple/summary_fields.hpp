@@ -8,6 +8,8 @@
 #include <array>
 
 #include "topple/field.hpp"
+#include "topple/ground_motion.hpp"
+#include "topple/intensity.hpp"
 #include "topple/rocking.hpp"
 #include "topple/sliding.hpp"
 #include "topple/sliding2d.hpp"
@@ -33,6 +35,13 @@ struct RockingOutcome {
   const RockingOptions& options;
 };
 
+/// A motion's intensity measures (intensity_measures) with the motion and the gravity its values in g use.
+struct IntensityOutcome {
+  const GroundMotion& motion;
+  const IntensityMeasures& measures;
+  double g_m_s2;
+};
+
 /// Sliding: the 12 results (max_abs_displacement_m ... yield_up_g, the sweep's result columns in this order), then
 /// the block as run (mu_static, mu_kinetic, slope_deg, mode, g_m_s2). Optional times are null when they never
 /// happened; yield_up_g is null for a one-way block (which never slips up-slope).
@@ -47,5 +56,19 @@ extern const std::array<Field<Sliding2dOutcome>, 20> kSliding2dFields;
 /// result columns (in their sweep_column order), the others (alpha_deg, R_m, e_mode, onset_accel_ratio, mu, g_m_s2)
 /// only JSON and Python. Not fields: warnings (a list), body and solver (nested objects in the JSON).
 extern const std::array<Field<RockingOutcome>, 25> kRockingFields;
+
+/// Rocking, per side (theta > 0: about O+, the +x edge, b2; theta < 0: about O-, b1): alpha_negative_rad,
+/// max_rotation_positive_rad, max_rotation_negative_rad, max_rotation_over_alpha_positive,
+/// max_rotation_over_alpha_negative, e_onto_negative, exceeded_alpha_side and overturned_side ("positive",
+/// "negative", or null when it never happened; the words of `topple rock --json`'s "sides"). A sweep's result
+/// columns after kRockingFields' (sweep_column 0-7 among these), present only when the sweep has an asymmetric body,
+/// so that a sweep without one keeps its columns.
+extern const std::array<Field<RockingOutcome>, 8> kRockingSideFields;
+
+/// A motion's intensity measures, as `topple info --json` prints them for each component (after the record's
+/// metadata) and `topple.intensity` returns them: npts, uniform, dt_s, start_time_s, duration_s, pga_g, pga_m_s2,
+/// pga_time_s, pgv_m_s, pgd_m, arias_m_s, d5_95_s, d5_time_s, d95_time_s, cav_m_s, tp_s, tm_s,
+/// predominant_frequency_hz, g_m_s2; null where a measure is undefined (a zero record has no D5-95 or Tp).
+extern const std::array<Field<IntensityOutcome>, 19> kIntensityFields;
 
 }  // namespace topple

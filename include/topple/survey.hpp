@@ -55,8 +55,13 @@ struct SupportFilter {
 struct ObservedObject {
   std::string id;
   std::string description;
-  RockingBody body;            ///< nominal geometry (shape, a, h, D)
+  RockingBody body;            ///< nominal geometry (shape, a, h, D; asymmetric general: both pivots)
   std::optional<double> width_m, height_m, diameter_m;  ///< dimensions as given (for reports)
+  /// A body from a 3-D scan (`mesh = "..."`): the mesh file (resolved against the survey file) and the azimuth of
+  /// the plane of shaking in the mesh's frame (degrees clockwise from +y). Empty / none: the body was given by its
+  /// dimensions. The body itself (general, asymmetric: b1, b2, h, inertia) is in `body`.
+  std::string mesh_file;
+  std::optional<double> mesh_azimuth_deg;
   Interval mu;                 ///< friction coefficient, dimensionless (value or range)
   bool e_housner = true;       ///< restitution from Housner's formula for the shape
   Interval e;                  ///< given restitution, dimensionless (value or range) when !e_housner

@@ -66,13 +66,16 @@ struct SlideObject {
 };
 
 /// A rocking body (rocking.hpp). The dimension columns hold what was given: width and height for a block, diameter
-/// and height for a cylinder.
+/// and height for a cylinder; an asymmetric general body's b1, b2, h come from `body`, its inertia is kept as given.
 struct RockObject {
   RockingBody body;
   RockingOptions options;
   std::optional<double> width_m;
   std::optional<double> height_m;
   std::optional<double> diameter_m;
+  std::optional<double> inertia_m2;  ///< asymmetric general body: I_cm / m as given (or from the mesh), m^2
+  std::string mesh;                  ///< a body from a mesh: the file as the sweep file names it (empty: none)
+  std::optional<double> mesh_azimuth_deg;  ///< and the azimuth of its plane of shaking, degrees
   std::optional<SupportOscillator> support = std::nullopt;  ///< as SlideObject::support
   /// A block's other horizontal dimension, m: a box checked about both axes (oriented.hpp). Record sets only.
   std::optional<double> depth_m = std::nullopt;
@@ -104,7 +107,9 @@ struct SweepSpec {
 ///   motion: motion, [pulse_kind, pulse_amp_g, pulse_duration_s], time_scale, scale_factor, pga_g, polarity,
 ///           [bearing_deg] (only with record sets: a sweep without one has the columns it always had; pga_g of a
 ///           set is its first component's)
-///   object: model, g_m_s2, [mu, mu_kinetic, slope_deg, mode], [shape, width_m, height_m, diameter_m, restitution],
+///   object: model, g_m_s2, [mu, mu_kinetic, slope_deg, mode], [shape, width_m, height_m, diameter_m, (a_m, h_m,
+///           D_m2), (b1_m, b2_m, h_m, inertia_m2: asymmetric bodies), (mesh, mesh_azimuth_deg: bodies from meshes),
+///           restitution],
 ///           [support_freq_hz, support_damping] (only when some object has a flexible support: a sweep without one
 ///           has the columns it always had; a rigid object's cells there are empty), [depth_m] (only when some
 ///           object is a box)
@@ -116,7 +121,8 @@ struct SweepSpec {
 ///            impacts, uplifts, uplift_time_s, exceeded_alpha_time_s, overturned, overturn_time_s,
 ///            energy_lost_j_per_kg, end_time_s, end_state, still_rocking_at_end, onset_mode, critical_mu,
 ///            alpha_rad, p_rad_s, e; under a record set they are the governing direction's, and
-///            [governing_azimuth_deg, governing_axis] (only with record sets) say which it was
+///            [governing_azimuth_deg, governing_axis] (only with record sets) say which it was; then, only when some
+///            body is asymmetric, the per-side results (kRockingSideFields: alpha_negative_rad ... overturned_side)
 /// Throws InputError for an empty spec (no motion or no object), a motion that cannot be scaled (zero record), a
 /// sliding object or a flexible support under a record set (sliding under two components is `topple slide --h2`),
 /// a box (depth) under a single record or pulse, record sets without bearings (field "bearing"), or a bearing

@@ -787,7 +787,8 @@ g : float
 Returns
 -------
 dict
-    npts, dt_s (s), duration_s (s), pga_g (g), pga_m_s2 (m/s^2), pga_time_s (s), pgv_m_s (m/s), pgd_m (m),
+    npts, uniform (True for a constant step), dt_s (s), start_time_s (s), duration_s (s), pga_g (g), pga_m_s2
+    (m/s^2), pga_time_s (s), pgv_m_s (m/s), pgd_m (m),
     arias_m_s (Arias intensity, m/s), d5_95_s (significant duration, s), d5_time_s, d95_time_s (s), cav_m_s (m/s),
     tp_s (predominant period, s), tm_s (mean period, s), predominant_frequency_hz (Hz), g_m_s2 (m/s^2); None where
     undefined.

@@ -457,33 +457,17 @@ nb::dict run_rock_oriented(const GroundMotion& first, const GroundMotion& second
 
 // ---- intensity (the measures of `topple info`, undefined ones as None) ----
 
-nb::object optional_measure(const OptionalMeasure& m) { return m.value ? nb::cast(*m.value) : nb::none(); }
-
 nb::dict intensity_dict(const GroundMotion& motion, double g_m_s2) {
   IntensityMeasures im;
   {
     nb::gil_scoped_release release;
     im = intensity_measures(motion, g_m_s2);
   }
-  const auto& duration = im.d5_95;
+  // The keys and values of `topple info --json` (its measures after the record's metadata): one field table.
   nb::dict d;
-  d["npts"] = motion.size();
-  d["dt_s"] = motion.dt_s();
-  d["duration_s"] = motion.duration_s();
-  d["pga_g"] = im.basic.pga_m_s2 / g_m_s2;
-  d["pga_m_s2"] = im.basic.pga_m_s2;
-  d["pga_time_s"] = im.basic.pga_time_s;
-  d["pgv_m_s"] = im.basic.pgv_m_s;
-  d["pgd_m"] = im.basic.pgd_m;
-  d["arias_m_s"] = im.basic.arias_m_s;
-  d["d5_95_s"] = duration ? nb::cast(duration->duration_s) : nb::none();
-  d["d5_time_s"] = duration ? nb::cast(duration->start_s) : nb::none();
-  d["d95_time_s"] = duration ? nb::cast(duration->end_s) : nb::none();
-  d["cav_m_s"] = im.cav_m_s;
-  d["tp_s"] = optional_measure(im.tp_s);
-  d["tm_s"] = optional_measure(im.tm_s);
-  d["predominant_frequency_hz"] = optional_measure(im.predominant_frequency_hz);
-  d["g_m_s2"] = g_m_s2;
+  for (const Field<IntensityOutcome>& field : kIntensityFields) {
+    d[field.name] = field_to_python(field.get(IntensityOutcome{motion, im, g_m_s2}));
+  }
   return d;
 }
 

@@ -262,6 +262,11 @@ double mesh_unit_m(const std::string& unit, const std::string& field) {
   return factor;
 }
 
+MeshBody read_mesh_body(const std::string& path, double unit_m, const BodyOptions& options) {
+  check_body_options(options);  // before reading a file that may be large
+  return mesh_body(read_mesh(path, unit_m), options, path);
+}
+
 TriangleMesh read_mesh(const std::string& path, double unit_m) {
   const std::string ext = lower_extension(path);
   if (ext != ".obj" && ext != ".stl" && ext != ".ply") {

@@ -154,10 +154,12 @@ std::string toml_value(std::string_view cell) {
 
 // The keys whose values are text, lengths and areas (survey_file.cpp reads them; docs/survey.md lists them).
 // `support` is not among them: besides a text it may be a flexible support's inline table {freq_hz = ..., ...}.
-const std::set<std::string, std::less<>> kStringKeys{"id",      "description", "shape", "outcome",
-                                                     "evidence", "name",       "notes", "family"};
-const std::set<std::string, std::less<>> kLengthKeys{"width", "height",          "diameter",     "a",
-                                                     "h",     "slid", "slid_uncertainty", "slid_at_least"};
+const std::set<std::string, std::less<>> kStringKeys{"id",   "description", "shape",  "outcome",  "evidence",
+                                                     "name", "notes",       "family", "mesh", "mesh_unit"};
+const std::set<std::string, std::less<>> kLengthKeys{"width", "height", "diameter",         "a",            "h",
+                                                     "b1",    "b2",     "slid", "slid_uncertainty", "slid_at_least"};
+/// The keys whose values are areas (D = I_O / m, inertia = I_cm / m): "D_cm2", "inertia_cm2".
+const std::set<std::string, std::less<>> kAreaKeys{"D", "inertia"};
 constexpr std::array<std::string_view, 5> kLengthUnits{"mm", "cm", "m", "in", "ft"};
 constexpr std::array<std::string_view, 3> kAreaUnits{"mm2", "cm2", "m2"};
 
@@ -176,7 +178,7 @@ Column column_of(const std::string& header) {
     if (kLengthKeys.contains(base) && std::find(kLengthUnits.begin(), kLengthUnits.end(), unit) != kLengthUnits.end()) {
       return {base, unit, header};
     }
-    if (base == "D" && std::find(kAreaUnits.begin(), kAreaUnits.end(), unit) != kAreaUnits.end()) {
+    if (kAreaKeys.contains(base) && std::find(kAreaUnits.begin(), kAreaUnits.end(), unit) != kAreaUnits.end()) {
       return {base, unit, header};
     }
   }
@@ -322,7 +324,7 @@ CsvSurveyText csv_survey_to_toml(std::string_view content, const std::string& na
                                 detail::quoted(cell.text)));
         }
         value = toml_string(cell.text + col.unit);
-      } else if (kStringKeys.contains(col.key) || kLengthKeys.contains(col.key) || col.key == "D") {
+      } else if (kStringKeys.contains(col.key) || kLengthKeys.contains(col.key) || kAreaKeys.contains(col.key)) {
         value = toml_string(cell.text);  // a length without a header unit carries its own ("8cm"), as in TOML
       } else {
         value = toml_value(cell.text);

@@ -11,7 +11,9 @@
 #include <toml++/toml.h>
 
 #include "topple/error.hpp"
+#include "topple/body.hpp"
 #include "topple/inversion.hpp"
+#include "topple/io/mesh.hpp"
 #include "topple/io/read.hpp"
 #include "topple/units.hpp"
 #include "survey_csv.hpp"
@@ -220,8 +222,55 @@ double parse_bearing(Reader& r, std::string_view key, double value) {
   return value;
 }
 
+/// The body of an object given as a mesh (docs/survey.md, "Asymmetric bodies and bodies from 3-D scans"): `mesh` (a
+/// path relative to the survey file), `mesh_azimuth_deg` (the plane of shaking, as `topple body --azimuth`),
+/// optional `mesh_unit` ("m", "cm", "mm"; default "m") and `mesh_density_kg_m3` (checked; it does not change a
+/// rocking body). The planar body comes from the mesh pipeline (io::read_mesh_body, rocking_body); a refusal names
+/// the survey's line and field and the mesh file.
+RockingBody mesh_object_body(Reader& named, const std::filesystem::path& base_dir, ObservedObject& o) {
+  for (const char* key : {"width", "height", "diameter", "a", "h", "D", "b1", "b2", "inertia"}) {
+    if (named.has(key)) {
+      throw named.error(key, "does not apply to a body from a mesh (the mesh gives b1, b2, h and the inertia)");
+    }
+  }
+  const toml::node* mesh_node = named.get("mesh");
+  const auto file = named.string("mesh");
+  if (!file || file->empty()) throw named.error("mesh", "expected the mesh file's path (.obj, .stl or .ply)", mesh_node);
+  const auto azimuth = named.number("mesh_azimuth_deg");
+  if (!azimuth) {
+    throw named.error("mesh_azimuth_deg", "a body from a mesh needs the azimuth of its plane of shaking, degrees "
+                                          "clockwise from the mesh's north (+y)");
+  }
+  BodyOptions options;
+  options.azimuth_deg = *azimuth;
+  if (const auto density = named.number("mesh_density_kg_m3")) options.density_kg_m3 = *density;
+  double unit_m = 1.0;
+  if (const auto unit = named.string("mesh_unit")) {
+    try {
+      unit_m = mesh_unit_m(*unit, named.field("mesh_unit"));
+    } catch (const InputError& e) {
+      throw named.error("mesh_unit", e.problem());
+    }
+  }
+  try {
+    check_body_options(options);
+  } catch (const InputError& e) {
+    throw named.error(e.where().field == "--density" ? "mesh_density_kg_m3" : "mesh_azimuth_deg", e.problem());
+  }
+  std::filesystem::path path(*file);
+  if (path.is_relative()) path = base_dir / path;
+  o.mesh_file = path.string();
+  o.mesh_azimuth_deg = options.azimuth_deg;
+  try {
+    return rocking_body(read_mesh_body(path.string(), unit_m, options));
+  } catch (const InputError& e) {
+    throw named.error("mesh", fmt::format("mesh '{}' gives no body: {}", path.string(), e.what()), mesh_node);
+  }
+}
+
 ObservedObject parse_object(const toml::table& t, const std::string& file, const std::string& path,
-                            std::vector<std::string>& notes, const Site* site = nullptr, int components = 1) {
+                            std::vector<std::string>& notes, const std::filesystem::path& base_dir,
+                            const Site* site = nullptr, int components = 1) {
   Reader r(t, file, path);
   ObservedObject o;
   o.id = r.string("id").value_or("");
@@ -230,9 +279,11 @@ ObservedObject parse_object(const toml::table& t, const std::string& file, const
   named.get("id");
   o.description = named.string("description").value_or("");
   // A missing shape is a block (the documented default: old surveys rely on it), unless the keys say otherwise:
-  // a diameter, or a/h/D, without a shape would be measured as a block's width only by a dangerous guess.
+  // a diameter, or a/h/D, without a shape would be measured as a block's width only by a dangerous guess. A body
+  // from a mesh (`mesh = "..."`) is a general body: its shape may be left out.
   const std::optional<std::string> given_shape = named.string("shape");
-  if (!given_shape) {
+  const bool from_mesh = named.has("mesh");
+  if (!given_shape && !from_mesh) {
     if (named.has("diameter")) {
       throw named.error("shape", "no shape given, but a diameter is: write shape = \"cylinder\" (a missing shape "
                                  "means \"block\", which has a width)");
@@ -241,8 +292,17 @@ ObservedObject parse_object(const toml::table& t, const std::string& file, const
       throw named.error("shape", "no shape given, but a/h/D are: write shape = \"general\" (a missing shape means "
                                  "\"block\", which has a width and a height)");
     }
+    if (named.has("b1") || named.has("b2") || named.has("inertia")) {
+      throw named.error("shape", "no shape given, but b1/b2/inertia are: write shape = \"general\" (a missing shape "
+                                 "means \"block\", which has a width and a height)");
+    }
   }
-  const std::string shape = given_shape.value_or("block");
+  const std::string shape = given_shape.value_or(from_mesh ? "general" : "block");
+  if (!from_mesh) {
+    for (const char* key : {"mesh_azimuth_deg", "mesh_unit", "mesh_density_kg_m3"}) {
+      if (named.has(key)) throw named.error(key, "goes with mesh = \"file\" (a body from a 3-D scan)");
+    }
+  }
   const auto require = [&](std::string_view key) {
     auto v = named.length(key);
     if (!v) throw named.error(key, fmt::format("a {} needs its {} (a length with unit)", shape, key));
@@ -250,7 +310,29 @@ ObservedObject parse_object(const toml::table& t, const std::string& file, const
     return *v;
   };
   try {
-    if (shape == "block") {
+    if (from_mesh) {
+      if (shape != "general") {
+        throw named.error("shape", fmt::format("a body from a mesh is a general body: leave shape out or write "
+                                               "\"general\", not \"{}\"", shape));
+      }
+      o.body = mesh_object_body(named, base_dir, o);
+    } else if (shape == "general" && (named.has("b1") || named.has("b2") || named.has("inertia"))) {
+      // The asymmetric general body (rocking.hpp, general_asymmetric): b1 to the pivot O- (theta < 0), b2 to O+,
+      // h, and inertia = I_cm / m, as `topple rock --shape general --b1 --b2 --h --inertia` takes them.
+      BodyDimensions d;
+      d.b1_m = require("b1");
+      d.b2_m = require("b2");
+      d.h_m = require("h");
+      d.a_m = named.has("a") ? named.length("a") : std::nullopt;  // refused by make_rocking_body, by name
+      if (named.has("D")) d.D_m2 = 0.0;                          // likewise
+      const toml::node* in = named.get("inertia");
+      if (in == nullptr || !in->is_string()) {
+        throw named.error("inertia", "an asymmetric general body needs inertia = I_cm/m with its unit, e.g. "
+                                     "\"0.004m2\"", in);
+      }
+      d.inertia_m2 = parse_area_m2(in->as_string()->get(), "inertia");  // located by the catch below
+      o.body = make_rocking_body(RockingBody::Shape::general, d);
+    } else if (shape == "block") {
       o.width_m = require("width");
       o.height_m = require("height");
       o.body = RockingBody::block(*o.width_m, *o.height_m);
@@ -376,8 +458,8 @@ ObservedObject parse_object(const toml::table& t, const std::string& file, const
 }
 
 std::vector<ObservedObject> parse_objects(const toml::node* node, const std::string& file, const std::string& key,
-                                          std::vector<std::string>& notes, const Site* site = nullptr,
-                                          int components = 1) {
+                                          std::vector<std::string>& notes, const std::filesystem::path& base_dir,
+                                          const Site* site = nullptr, int components = 1) {
   std::vector<ObservedObject> out;
   if (node == nullptr) return out;
   const auto* arr = node->as_array();
@@ -386,7 +468,7 @@ std::vector<ObservedObject> parse_objects(const toml::node* node, const std::str
   for (std::size_t i = 0; i < arr->size(); ++i) {
     const auto* t = arr->get(i)->as_table();
     if (t == nullptr) throw InputError(InputLocation{file, node->source().begin.line, key}, "expected a table");
-    out.push_back(parse_object(*t, file, fmt::format("{}[{}]", key, i + 1), notes, site, components));
+    out.push_back(parse_object(*t, file, fmt::format("{}[{}]", key, i + 1), notes, base_dir, site, components));
     if (!ids.insert(out.back().id).second) {
       throw InputError(InputLocation{file, t->source().begin.line, fmt::format("{}[{}].id", key, i + 1)},
                        fmt::format("duplicate object id '{}'", out.back().id));
@@ -542,7 +624,8 @@ Survey parse_toml_survey(std::string_view text, const std::string& name, const s
       parse_instrument(r, site, base_dir);
       r.refuse_unknown();
     }
-    site.objects = parse_objects(top.get("object"), name, "object", s.notes, &site, s.inversion.components);
+    site.objects =
+        parse_objects(top.get("object"), name, "object", s.notes, base_dir, &site, s.inversion.components);
     s.sites.push_back(std::move(site));
   } else if (const toml::node* sites = top.get("sites")) {
     const auto* arr = sites->as_array();
@@ -554,8 +637,8 @@ Survey parse_toml_survey(std::string_view text, const std::string& name, const s
       Site site;
       parse_site_fields(r, site);
       parse_instrument(r, site, base_dir);
-      site.objects = parse_objects(r.get("object"), name, fmt::format("sites[{}].object", i + 1), s.notes, &site,
-                                   s.inversion.components);
+      site.objects = parse_objects(r.get("object"), name, fmt::format("sites[{}].object", i + 1), s.notes, base_dir,
+                                   &site, s.inversion.components);
       r.refuse_unknown();
       s.sites.push_back(std::move(site));
     }

@@ -20,7 +20,9 @@
 #include <oneapi/tbb/parallel_for.h>
 #include <toml++/toml.h>
 
+#include "topple/body.hpp"
 #include "topple/error.hpp"
+#include "topple/io/mesh.hpp"
 #include "topple/io/read.hpp"
 #include "topple/motion_set.hpp"
 #include "topple/oriented.hpp"
@@ -311,6 +313,7 @@ class Reader {
 Parser length_parser() { return [](std::string_view s, const std::string& f) { return parse_length_m(s, f); }; }
 Parser duration_parser() { return [](std::string_view s, const std::string& f) { return parse_duration_s(s, f); }; }
 Parser frequency_parser() { return [](std::string_view s, const std::string& f) { return parse_frequency_hz(s, f); }; }
+Parser area_parser() { return [](std::string_view s, const std::string& f) { return parse_area_m2(s, f); }; }
 Parser angle_deg_parser() {
   return [](std::string_view s, const std::string& f) { return parse_angle_rad(s, f) * 180.0 / kPi; };
 }
@@ -596,13 +599,72 @@ void read_slide(const Reader& r, const toml::table& o, const std::string& key, d
   }
 }
 
+/// One body of a rocking object's expansion, with the dimensions as given (the sweep's object columns).
+struct BodyCase {
+  RockingBody body;
+  std::optional<double> width_m, height_m, diameter_m;
+  std::optional<double> inertia_m2;  ///< asymmetric general body: I_cm / m
+  std::string mesh;                  ///< a body from a mesh: the file as given, and its plane's azimuth
+  std::optional<double> mesh_azimuth_deg;
+};
+
+/// The bodies of an object given as meshes (docs/sweeps.md): `mesh` (a path or a list, relative to the sweep file)
+/// x `mesh_azimuth_deg` (one value, a list or a range), through the mesh pipeline (io::read_mesh_body,
+/// rocking_body). A refusal names the sweep file, the line, the key and the mesh file.
+std::vector<BodyCase> mesh_bodies(const Reader& r, const toml::table& o, const std::string& prefix) {
+  const auto files = r.strings(o, "mesh", prefix + "mesh");
+  const auto azimuths = r.numbers(o, "mesh_azimuth_deg", prefix + "mesh_azimuth_deg");
+  if (!azimuths) {
+    r.fail(&o, prefix + "mesh_azimuth_deg", "a body from a mesh needs the azimuth of its plane of shaking, degrees "
+                                            "clockwise from the mesh's north (+y)");
+  }
+  BodyOptions options;
+  if (const auto density = r.numbers(o, "mesh_density_kg_m3", prefix + "mesh_density_kg_m3")) {
+    if (density->size() != 1) r.fail(o.get("mesh_density_kg_m3"), prefix + "mesh_density_kg_m3", "expected a single value");
+    options.density_kg_m3 = density->front();
+  }
+  double unit_m = 1.0;
+  if (const auto unit = r.string(o, "mesh_unit", prefix + "mesh_unit")) {
+    unit_m = r.located(o.get("mesh_unit"), prefix + "mesh_unit", [&] { return mesh_unit_m(*unit, "mesh_unit"); });
+  }
+  std::vector<BodyCase> out;
+  for (const std::string& file : *files) {
+    if (file.empty()) r.fail(o.get("mesh"), prefix + "mesh", "empty mesh path");
+    const fs::path path = fs::path(file).is_absolute() || r.dir().empty() ? fs::path(file) : r.dir() / file;
+    for (const double azimuth : *azimuths) {
+      options.azimuth_deg = azimuth;
+      try {
+        check_body_options(options);
+      } catch (const InputError& e) {
+        const std::string key = e.where().field == "--density" ? "mesh_density_kg_m3" : "mesh_azimuth_deg";
+        r.fail(o.get(key), prefix + key, e.problem());
+      }
+      BodyCase c;
+      try {
+        const MeshBody mb = read_mesh_body(path.string(), unit_m, options);
+        c.body = rocking_body(mb);
+        c.inertia_m2 = mb.planar.inertia_cm_kg_m2 / mb.mass.mass_kg;
+      } catch (const InputError& e) {
+        r.fail(o.get("mesh"), prefix + "mesh", fmt::format("mesh '{}' gives no body: {}", path.string(), e.what()));
+      }
+      c.mesh = file;
+      c.mesh_azimuth_deg = azimuth;
+      out.push_back(std::move(c));
+    }
+  }
+  return out;
+}
+
 void read_rock(const Reader& r, const toml::table& o, const std::string& key, double g, SweepFile& out) {
   const std::string prefix = key + ".";
   r.check_keys(o, key, {"model", "shape", "width", "width_m", "height", "height_m", "diameter", "diameter_m", "a",
-                        "a_m", "h", "h_m", "D_m2", "e", "mu", "support_freq_hz", "support_freq", "support_damping",
-                        "depth", "depth_m"});
+                        "a_m", "h", "h_m", "D_m2", "b1", "b1_m", "b2", "b2_m", "inertia", "inertia_m2", "mesh",
+                        "mesh_azimuth_deg", "mesh_unit", "mesh_density_kg_m3", "e", "mu", "support_freq_hz",
+                        "support_freq", "support_damping", "depth", "depth_m"});
   const auto supports = read_supports(r, o, prefix);
-  const std::string shape = r.string(o, "shape", prefix + "shape").value_or("");
+  const bool from_mesh = o.get("mesh") != nullptr;
+  // A body from a mesh is a general body: its shape may be left out.
+  const std::string shape = r.string(o, "shape", prefix + "shape").value_or(from_mesh ? "general" : "");
   // A block's depth (a box, oriented.hpp): under [[motions.set]] only (make_plan says so).
   std::vector<std::optional<double>> depths{std::nullopt};
   if (const auto d = r.quantities(o, "depth_m", "depth", prefix, length_parser(), "30cm")) {
@@ -623,19 +685,46 @@ void read_rock(const Reader& r, const toml::table& o, const std::string& key, do
     if (!v) r.fail(&o, prefix + std::string(name), fmt::format("shape = \"{}\" needs {}", shape, name));
     return *v;
   };
-  std::vector<double> first;   // width, diameter or a (m)
+  // An asymmetric general body (rocking.hpp, general_asymmetric) is told by b1, b2 or the inertia.
+  const bool asymmetric = shape == "general" && !from_mesh &&
+                          (o.get("b1") != nullptr || o.get("b1_m") != nullptr || o.get("b2") != nullptr ||
+                           o.get("b2_m") != nullptr || o.get("inertia") != nullptr || o.get("inertia_m2") != nullptr);
+  std::vector<double> first;   // width, diameter, a or b1 (m)
   std::vector<double> second;  // height or h (m)
-  std::vector<double> third{0.0};  // D (m^2), general only
+  std::vector<double> third{0.0};   // D (m^2), general only
+  std::vector<double> fourth{0.0};  // asymmetric general: b2 (m)
+  std::vector<double> fifth{0.0};   // asymmetric general: inertia (m^2)
   std::string first_key;
   std::string second_key;
-  if (shape == "block" || shape == "cylinder") {
+  if (!from_mesh) refuse({"mesh_azimuth_deg", "mesh_unit", "mesh_density_kg_m3"});
+  if (from_mesh) {
+    if (shape != "general") {
+      r.fail(o.get("shape"), prefix + "shape", fmt::format("a body from a mesh is a general body: leave shape out or "
+                                                           "write \"general\", not \"{}\"", shape));
+    }
+    for (const auto k : {"width", "width_m", "height", "height_m", "diameter", "diameter_m", "a", "a_m", "h", "h_m",
+                         "D_m2", "b1", "b1_m", "b2", "b2_m", "inertia", "inertia_m2"}) {
+      if (const toml::node* n = o.get(k)) {
+        r.fail(n, prefix + std::string(k), "does not apply to a body from a mesh (the mesh gives b1, b2, h and the "
+                                           "inertia)");
+      }
+    }
+  } else if (shape == "block" || shape == "cylinder") {
     first_key = shape == "block" ? "width" : "diameter";
     second_key = "height";
     first = need(r.quantities(o, first_key + "_m", first_key, prefix, length_parser(), "4cm"), first_key);
     second = need(r.quantities(o, "height_m", "height", prefix, length_parser(), "20cm"), "height");
     if (shape == "block") refuse({"diameter", "diameter_m"});
     if (shape == "cylinder") refuse({"width", "width_m"});
-    refuse({"a", "a_m", "h", "h_m", "D_m2"});
+    refuse({"a", "a_m", "h", "h_m", "D_m2", "b1", "b1_m", "b2", "b2_m", "inertia", "inertia_m2"});
+  } else if (asymmetric) {
+    first_key = "b1";
+    second_key = "h";
+    first = need(r.quantities(o, "b1_m", "b1", prefix, length_parser(), "5cm"), "b1");
+    second = need(r.quantities(o, "h_m", "h", prefix, length_parser(), "10cm"), "h");
+    fourth = need(r.quantities(o, "b2_m", "b2", prefix, length_parser(), "3cm"), "b2");
+    fifth = need(r.quantities(o, "inertia_m2", "inertia", prefix, area_parser(), "0.004m2"), "inertia_m2");
+    refuse({"width", "width_m", "height", "height_m", "diameter", "diameter_m", "a", "a_m", "D_m2"});
   } else if (shape == "general") {
     first_key = "a";
     second_key = "h";
@@ -687,48 +776,68 @@ void read_rock(const Reader& r, const toml::table& o, const std::string& key, do
     mu_values.emplace_back(std::nullopt);
   }
   const auto key_of = [&](const std::string& base) {
-    return o.get(base) != nullptr ? base : base + (base == "D" ? "_m2" : "_m");
+    return o.get(base) != nullptr ? base : base + (base == "D" || base == "inertia" ? "_m2" : "_m");
   };
+  std::vector<BodyCase> bodies;
+  if (from_mesh) bodies = mesh_bodies(r, o, prefix);
   for (const double x1 : first) {
     for (const double x2 : second) {
       for (const double x3 : third) {
-        RockingBody body;
-        try {
-          body = shape == "block"      ? RockingBody::block(x1, x2)
-                 : shape == "cylinder" ? RockingBody::cylinder(x1, x2)
-                                       : RockingBody::general(x1, x2, x3);
-        } catch (const InputError& e) {
-          std::string f = e.where().field;
-          if (f == "width" || f == "diameter" || f == "a") f = key_of(first_key);
-          if (f == "height" || f == "h") f = key_of(second_key);
-          if (f == "D") f = "D_m2";
-          r.fail(o.get(f) != nullptr ? o.get(f) : &o, prefix + f, e.problem());
-        }
-        for (const auto& e : es) {
-          if (!e && housner_restitution(body) < 0.0) {
-            r.fail(o.get("e") != nullptr ? o.get("e") : &o, prefix + "e",
-                   fmt::format("Housner's restitution 1 - 2a^2/D = {} is negative for this body (too squat to rock "
-                               "onto its other edge): {}", housner_restitution(body), kSquatBodyAdvice));
-          }
-          for (const auto& m : mu_values) {
-            ensemble::RockObject ro;
-            ro.body = body;
-            ro.options.g_m_s2 = g;
-            ro.options.restitution = e ? RestitutionMode::given : RestitutionMode::housner;
-            if (e) ro.options.e = *e;
-            ro.options.mu = m;
-            if (shape == "block") ro.width_m = x1;
-            if (shape == "cylinder") ro.diameter_m = x1;
-            if (shape != "general") ro.height_m = x2;
-            for (const auto& depth : depths) {
-              ro.depth_m = depth;
-              if (depth) r.located(o.get("depth") != nullptr ? o.get("depth") : o.get("depth_m"), prefix + "depth",
-                                   [&] { return OrientedBody::box(x1, *depth, x2); });
-              for (const auto& support : supports) {
-                ro.support = support;
-                out.spec.objects.emplace_back(ro);
-              }
+        for (const double x4 : fourth) {
+          for (const double x5 : fifth) {
+            BodyCase c;
+            try {
+              c.body = shape == "block"      ? RockingBody::block(x1, x2)
+                       : shape == "cylinder" ? RockingBody::cylinder(x1, x2)
+                       : asymmetric          ? RockingBody::general_asymmetric(x1, x4, x2, x5)
+                                             : RockingBody::general(x1, x2, x3);
+            } catch (const InputError& e) {
+              std::string f = e.where().field;
+              if (f == "width" || f == "diameter" || f == "a" || f == "b1") f = key_of(first_key);
+              if (f == "height" || f == "h") f = key_of(second_key);
+              if (f == "b2") f = key_of("b2");
+              if (f == "inertia") f = key_of("inertia");
+              if (f == "D") f = "D_m2";
+              r.fail(o.get(f) != nullptr ? o.get(f) : &o, prefix + f, e.problem());
             }
+            if (shape == "block") c.width_m = x1;
+            if (shape == "cylinder") c.diameter_m = x1;
+            if (shape != "general") c.height_m = x2;
+            if (asymmetric) c.inertia_m2 = x5;
+            bodies.push_back(std::move(c));
+          }
+        }
+      }
+    }
+  }
+  for (const BodyCase& c : bodies) {
+    const RockingBody& body = c.body;
+    for (const auto& e : es) {
+      if (!e && housner_restitution(body) < 0.0) {
+        r.fail(o.get("e") != nullptr ? o.get("e") : &o, prefix + "e",
+               fmt::format("Housner's restitution 1 - 2a^2/D = {} is negative for this body (too squat to rock "
+                           "onto its other edge): {}", housner_restitution(body), kSquatBodyAdvice));
+      }
+      for (const auto& m : mu_values) {
+        ensemble::RockObject ro;
+        ro.body = body;
+        ro.options.g_m_s2 = g;
+        ro.options.restitution = e ? RestitutionMode::given : RestitutionMode::housner;
+        if (e) ro.options.e = *e;
+        ro.options.mu = m;
+        ro.width_m = c.width_m;
+        ro.diameter_m = c.diameter_m;
+        ro.height_m = c.height_m;
+        ro.inertia_m2 = c.inertia_m2;
+        ro.mesh = c.mesh;
+        ro.mesh_azimuth_deg = c.mesh_azimuth_deg;
+        for (const auto& depth : depths) {
+          ro.depth_m = depth;
+          if (depth) r.located(o.get("depth") != nullptr ? o.get("depth") : o.get("depth_m"), prefix + "depth",
+                               [&] { return OrientedBody::box(*c.width_m, *depth, *c.height_m); });
+          for (const auto& support : supports) {
+            ro.support = support;
+            out.spec.objects.emplace_back(ro);
           }
         }
       }

@@ -27,6 +27,7 @@
 #include <nlohmann/json.hpp>
 
 #include "support/csv_table.hpp"
+#include "support/meshes.hpp"
 #include "support/shared_data.hpp"
 
 extern char** environ;
@@ -134,6 +135,70 @@ TEST(CliSweep, RowsEqualSingleRunsOfSlideAndRock) {
                               " --duration " + t.at(row, "pulse_duration_s");
     check_row_against_single_run(t, row, pulse);
   }
+}
+
+// Asymmetric general bodies, given by their numbers or by a mesh (the wedge of test_body, azimuths 90 and 270), give
+// per run the numbers `topple rock --shape general --b1 --b2 --h --inertia` gives for the body in the row's columns
+// (printed to 17 digits, so the same doubles): every result, and the side it fell to or first passed alpha on.
+TEST(CliSweep, AsymmetricAndMeshRowsEqualSingleRunsOfRock) {
+  TempDir dir;
+  write_file(dir.path() / "wedge.obj", test::obj_text(test::xz_prism_mesh({{0, 0}, {0.5, 0}, {0, 0.75}}, 0.25)));
+  write_file(dir.path() / "a.toml", R"(
+[motions]
+polarity = ["normal", "inverse"]
+[[motions.pulse]]
+kind = ["sine", "rect"]
+amp_g = [0.3, 0.6]
+freq_hz = 2
+[[object]]
+model = "rock"
+shape = "general"
+b1 = "5cm"
+b2_m = [0.03, 0.08]
+h = "20cm"
+inertia_m2 = 0.004
+e = ["housner", 0.8]
+[[object]]
+model = "rock"
+mesh = "wedge.obj"
+mesh_azimuth_deg = [90, 270]
+)");
+  const auto r = run_cli("sweep " + quote((dir.path() / "a.toml").string()) + " --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Table t = read_table(dir.path() / "a.csv");
+  ASSERT_EQ(t.rows.size(), 2u * 2u * 2u * (2u * 2u + 2u));
+  std::size_t fell[2] = {0, 0};  // rows that fell toward -x / +x: both sides must be exercised
+  for (std::size_t row = 0; row < t.rows.size(); row += 3) {
+    SCOPED_TRACE("row " + t.at(row, "run") + " (" + t.at(row, "motion") + ", mesh '" + t.at(row, "mesh") + "')");
+    const std::string e = t.at(row, "restitution") == "housner" ? "housner" : t.at(row, "e");
+    const std::string args = "rock --pulse " + t.at(row, "pulse_kind") + " --amp-g " + t.at(row, "pulse_amp_g") +
+                             " --duration " + t.at(row, "pulse_duration_s") +
+                             (t.at(row, "polarity") == "inverse" ? " --invert" : "") + " --shape general --b1 " +
+                             t.at(row, "b1_m") + "m --b2 " + t.at(row, "b2_m") + "m --h " + t.at(row, "h_m") +
+                             "m --inertia " + t.at(row, "inertia_m2") + "m2 --e " + e + " --json";
+    const auto out = run_cli(args);
+    ASSERT_EQ(out.exit_code, 0) << args << "\n" << out.err;
+    const auto j = nlohmann::json::parse(out.out);
+    for (const char* k : {"max_abs_rotation_rad", "max_rotation_over_alpha", "max_rotation_time_s",
+                          "max_abs_theta_dot_rad_s", "impacts", "uplifts", "uplift_time_s", "exceeded_alpha_time_s",
+                          "overturned", "overturn_time_s", "energy_lost_j_per_kg", "end_time_s", "end_state",
+                          "alpha_rad", "p_rad_s", "e"}) {
+      expect_same(t.at(row, k), j.at(k), k);
+    }
+    const auto& sides = j.at("sides");
+    expect_same(t.at(row, "overturned_side"), sides.at("overturned_side"), "overturned_side");
+    expect_same(t.at(row, "exceeded_alpha_side"), sides.at("exceeded_alpha_side"), "exceeded_alpha_side");
+    expect_same(t.at(row, "alpha_negative_rad"), sides.at("negative").at("alpha_rad"), "alpha_negative_rad");
+    expect_same(t.at(row, "max_rotation_negative_rad"), sides.at("negative").at("max_rotation_rad"),
+                "max_rotation_negative_rad");
+    expect_same(t.at(row, "max_rotation_over_alpha_positive"), sides.at("positive").at("max_rotation_over_alpha"),
+                "max_rotation_over_alpha_positive");
+    expect_same(t.at(row, "e_onto_negative"), sides.at("negative").at("e_onto"), "e_onto_negative");
+    if (t.at(row, "overturned_side") == "negative") ++fell[0];
+    if (t.at(row, "overturned_side") == "positive") ++fell[1];
+  }
+  EXPECT_GT(fell[0], 0u);
+  EXPECT_GT(fell[1], 0u);
 }
 
 TEST(CliSweep, RecordRowsEqualSingleRuns) {

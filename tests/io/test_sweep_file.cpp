@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "support/meshes.hpp"
 #include "support/shared_data.hpp"
 #include "topple/ensemble.hpp"
 #include "topple/error.hpp"
@@ -304,24 +305,30 @@ std::vector<BadCase> bad_cases() {
   };
 }
 
+/// The sweep file `p` holding `text` is refused with an InputError naming `p`, `field`, `line` (when > 0) and a
+/// problem that contains `problem_part`.
+void expect_refused(const fs::path& p, const std::string& text, const std::string& field, std::size_t line,
+                    const std::string& problem_part) {
+  write_file(p, text);
+  try {
+    static_cast<void>(read_sweep_file(p));
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().file, p.string()) << e.what();
+    EXPECT_EQ(e.where().field, field) << e.what();
+    if (line > 0) {
+      EXPECT_EQ(e.where().line.value_or(0), line) << e.what();
+    }
+    EXPECT_NE(e.problem().find(problem_part), std::string::npos) << e.what();
+  }
+}
+
 TEST(SweepFile, BadFilesNameFileLineAndKey) {
   TempDir dir;
   write_file(dir.path() / "rec.AT2", plain_record(0.2));  // a plain file named like an AT2: content decides
   for (const auto& c : bad_cases()) {
     SCOPED_TRACE(c.what);
-    const fs::path p = dir.path() / "bad.toml";
-    write_file(p, c.text);
-    try {
-      static_cast<void>(read_sweep_file(p));
-      ADD_FAILURE() << "accepted";
-    } catch (const InputError& e) {
-      EXPECT_EQ(e.where().file, p.string()) << e.what();
-      EXPECT_EQ(e.where().field, c.field) << e.what();
-      if (c.line > 0) {
-        EXPECT_EQ(e.where().line.value_or(0), c.line) << e.what();
-      }
-      EXPECT_NE(e.problem().find(c.problem_part), std::string::npos) << e.what();
-    }
+    expect_refused(dir.path() / "bad.toml", c.text, c.field, c.line, c.problem_part);
   }
 }
 
@@ -436,6 +443,138 @@ TEST(SweepFile, FlexibleSupportErrorsNameTheKey) {
   EXPECT_EQ(field_of("support_freq_hz = -1\nsupport_damping = 0.05\n"), "object[1].support_freq_hz");
   EXPECT_EQ(field_of("support_freq = \"4Hz\"\nsupport_damping = 1.5\n"), "object[1].support_damping");
   EXPECT_EQ(field_of("support_freq = 4\nsupport_damping = 0.05\n"), "object[1].support_freq");  // no unit
+}
+
+// Asymmetric general bodies (b1, b2, h, inertia) expand as b1 x h x b2 x inertia x e x mu, each the factory's body
+// on the converted numbers bit for bit; their columns are b1_m, b2_m, h_m, inertia_m2 and the per-side results.
+TEST(SweepFile, AsymmetricGeneralBodiesExpandToTheFactorysBodies) {
+  TempDir dir;
+  const SweepFile f = parse_in(dir, std::string(kPulseMotions) + R"([[object]]
+model = "rock"
+shape = "general"
+b1 = ["4cm", "5cm"]
+b2_m = 0.03
+h = "20cm"
+inertia = ["40cm2", "50cm2"]
+e = ["housner", 0.8]
+)");
+  ASSERT_EQ(f.spec.objects.size(), 2u * 2u * 2u);
+  std::size_t i = 0;
+  for (const double b1 : {4 * 0.01, 5 * 0.01}) {
+    for (const double k2 : {40 * 1e-4, 50 * 1e-4}) {
+      for (const bool housner : {true, false}) {
+        SCOPED_TRACE(i);
+        const auto& ro = std::get<RockObject>(f.spec.objects.at(i++));
+        const RockingBody expected = RockingBody::general_asymmetric(b1, 0.03, 20 * 0.01, k2);
+        EXPECT_FALSE(ro.body.symmetric());
+        EXPECT_EQ(ro.body.pivot_b_m(-1), expected.pivot_b_m(-1));
+        EXPECT_EQ(ro.body.pivot_b_m(1), expected.pivot_b_m(1));
+        EXPECT_EQ(ro.body.pivot_D_m2(-1), expected.pivot_D_m2(-1));
+        EXPECT_EQ(ro.body.pivot_D_m2(1), expected.pivot_D_m2(1));
+        EXPECT_EQ(ro.body.h_m, expected.h_m);
+        EXPECT_EQ(ro.inertia_m2.value_or(-1.0), k2);
+        EXPECT_EQ(ro.options.restitution, housner ? RestitutionMode::housner : RestitutionMode::given);
+      }
+    }
+  }
+  const auto cols = ensemble::make_plan(f.spec).columns();
+  for (const char* c : {"b1_m", "b2_m", "h_m", "inertia_m2", "overturned_side", "exceeded_alpha_side",
+                        "max_rotation_over_alpha_negative", "alpha_negative_rad"}) {
+    EXPECT_NE(std::find(cols.begin(), cols.end(), c), cols.end()) << c;
+  }
+  for (const char* c : {"a_m", "D_m2", "mesh", "mesh_azimuth_deg"}) {
+    EXPECT_EQ(std::find(cols.begin(), cols.end(), c), cols.end()) << c;
+  }
+}
+
+// A body from a mesh: the wedge of test_body along +x (azimuth 90) has b1 = L/3, b2 = 2L/3, h = H/3 and
+// I_cm / m = (L^2 + H^2) / 18 (1e-12 relative: the mass sums' rounding on float-exact coordinates); at 270 the pivots
+// swap. The path is relative to the sweep file; azimuths expand as a list.
+TEST(SweepFile, MeshBodiesAreTheMeshPipelinesBodies) {
+  TempDir dir;
+  constexpr double kL = 0.5, kH = 0.75, kW = 0.25;
+  fs::create_directories(dir.path() / "scans");
+  write_file(dir.path() / "scans" / "wedge.stl",
+             test::stl_binary_bytes(test::xz_prism_mesh({{0, 0}, {kL, 0}, {0, kH}}, kW)));
+  const SweepFile f = parse_in(dir, std::string(kPulseMotions) + R"([[object]]
+model = "rock"
+mesh = "scans/wedge.stl"
+mesh_azimuth_deg = [90, 270]
+mesh_density_kg_m3 = 2000
+)");
+  ASSERT_EQ(f.spec.objects.size(), 2u);
+  const double k2 = (kL * kL + kH * kH) / 18.0;
+  const auto near = [](double x, double y) { EXPECT_NEAR(x, y, 1e-12 * std::abs(y)); };
+  for (std::size_t i = 0; i < 2; ++i) {
+    const auto& ro = std::get<RockObject>(f.spec.objects[i]);
+    const double rear = i == 0 ? kL / 3 : 2 * kL / 3;
+    const double front = i == 0 ? 2 * kL / 3 : kL / 3;
+    near(ro.body.pivot_b_m(-1), rear);
+    near(ro.body.pivot_b_m(1), front);
+    near(ro.body.h_m, kH / 3);
+    near(ro.inertia_m2.value_or(0.0), k2);
+    near(ro.body.pivot_D_m2(-1), k2 + rear * rear + kH * kH / 9);
+    EXPECT_EQ(ro.mesh, "scans/wedge.stl");
+    EXPECT_EQ(ro.mesh_azimuth_deg.value_or(-1.0), i == 0 ? 90.0 : 270.0);
+  }
+  const auto plan = ensemble::make_plan(f.spec);
+  const auto cols = plan.columns();
+  for (const char* c : {"mesh", "mesh_azimuth_deg", "b1_m", "b2_m", "inertia_m2", "overturned_side"}) {
+    EXPECT_NE(std::find(cols.begin(), cols.end(), c), cols.end()) << c;
+  }
+}
+
+TEST(SweepFile, GeneralAndMeshErrorsNameFileLineKeyAndMesh) {
+  TempDir dir;
+  write_file(dir.path() / "open.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\n");
+  struct Case {
+    std::string keys;  // after model = "rock" (line 9 of the file on)
+    std::string field;
+    std::size_t line;
+    std::string problem_part;
+  };
+  const Case cases[] = {
+      {"mesh = \"missing.obj\"\nmesh_azimuth_deg = 0\n", "object[1].mesh", 9, "missing.obj"},
+      {"mesh = \"open.obj\"\nmesh_azimuth_deg = 0\n", "object[1].mesh", 9, "open.obj"},
+      {"mesh = \"open.obj\"\n", "object[1].mesh_azimuth_deg", 0, "azimuth"},
+      {"mesh = \"open.obj\"\nmesh_azimuth_deg = 0\nshape = \"cylinder\"\n", "object[1].shape", 11, "general"},
+      {"mesh = \"open.obj\"\nmesh_azimuth_deg = 0\nh_m = 0.1\n", "object[1].h_m", 11, "does not apply"},
+      {"mesh = \"open.obj\"\nmesh_azimuth_deg = 0\nmesh_unit = \"parsec\"\n", "object[1].mesh_unit", 11,
+       "parsec"},
+      {"mesh = \"open.obj\"\nmesh_azimuth_deg = 0\nmesh_density_kg_m3 = 0\n", "object[1].mesh_density_kg_m3", 11,
+       "density"},
+      {"shape = \"block\"\nwidth_m = 0.1\nheight_m = 0.3\nmesh_azimuth_deg = 3\n", "object[1].mesh_azimuth_deg",
+       12, "does not apply"},
+      {"shape = \"general\"\nb1_m = 0.03\nh_m = 0.2\ninertia_m2 = 0.004\n", "object[1].b2", 0, "needs b2"},
+      {"shape = \"general\"\nb1_m = 0.03\nb2_m = 0.03\nh_m = 0.2\n", "object[1].inertia_m2", 0, "inertia"},
+      {"shape = \"general\"\nb1_m = 0.03\nb2_m = -0.03\nh_m = 0.2\ninertia_m2 = 0.004\n", "object[1].b2_m", 11,
+       "b2"},
+      {"shape = \"general\"\nb1 = 0.03\nb2_m = 0.03\nh_m = 0.2\ninertia_m2 = 0.004\n", "object[1].b1", 10,
+       "no unit"},
+      {"shape = \"general\"\nb1_m = 0.03\nb2_m = 0.03\nh_m = 0.2\ninertia = \"0.004\"\n", "object[1].inertia", 13,
+       "unit"},
+      {"shape = \"general\"\nb1_m = 0.03\nb2_m = 0.03\na_m = 0.03\nh_m = 0.2\ninertia_m2 = 0.004\n",
+       "object[1].a_m", 12, "does not apply"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.keys);
+    expect_refused(dir.path() / "bad.toml", std::string(kPulseMotions) + "[[object]]\nmodel = \"rock\"\n" + c.keys,
+                   c.field, c.line, c.problem_part);
+  }
+}
+
+// Without an asymmetric body a sweep has the columns it always had: no per-side results, no b1/b2/inertia/mesh.
+TEST(SweepFile, SymmetricGeneralBodiesKeepTheOldColumns) {
+  TempDir dir;
+  const SweepFile f = parse_in(dir, std::string(kPulseMotions) +
+                                        "[[object]]\nmodel = \"rock\"\nshape = \"general\"\na_m = 0.03\nh_m = 0.2\n"
+                                        "D_m2 = 0.06\n");
+  const auto cols = ensemble::make_plan(f.spec).columns();
+  for (const char* c : {"b1_m", "b2_m", "inertia_m2", "mesh", "mesh_azimuth_deg", "overturned_side",
+                        "alpha_negative_rad"}) {
+    EXPECT_EQ(std::find(cols.begin(), cols.end(), c), cols.end()) << c;
+  }
+  for (const char* c : {"a_m", "h_m", "D_m2"}) EXPECT_NE(std::find(cols.begin(), cols.end(), c), cols.end()) << c;
 }
 
 }  // namespace

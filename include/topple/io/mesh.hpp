@@ -35,6 +35,11 @@ inline constexpr std::uintmax_t kMaxMeshFileBytes = std::uintmax_t{1} << 30;
 /// Reads `path` (OBJ, STL, PLY), scales it by `unit_m` and checks it (check_mesh). Throws InputError naming the file.
 [[nodiscard]] TriangleMesh read_mesh(const std::string& path, double unit_m = 1.0);
 
+/// A mesh file's planar body at options.azimuth_deg: check_body_options, then read_mesh (scaled by `unit_m`), then
+/// mesh_body. Throws InputError naming the mesh file, or the option that is wrong. What the survey and sweep readers
+/// call for an object given as `mesh = "..."` (the file's vertex and triangle counts: call read_mesh and mesh_body).
+[[nodiscard]] MeshBody read_mesh_body(const std::string& path, double unit_m, const BodyOptions& options);
+
 /// Same as read_mesh on a file's content already in memory, of `format` "obj", "stl" or "ply" (what the extension
 /// says); `name` is used in messages (and is what the fuzz targets call).
 [[nodiscard]] TriangleMesh parse_mesh(std::string_view content, const std::string& format, const std::string& name,

@@ -12,7 +12,8 @@
 //   [inversion]       family, records, pga_g = [min, max, count], freq_hz = [min, max, count], motions_per_cell,
 //                     seed, duration_s, g_m_s2
 //   [[object]]        id, description, shape (block | cylinder | general), width/height | diameter/height | a/h/D
-//                     (strings with units), mu (value or [low, high]), e ("housner", value or range), support,
+//                     | b1/b2/h/inertia (asymmetric general; strings with units) | mesh + mesh_azimuth_deg
+//                     [+ mesh_unit, mesh_density_kg_m3] (a body from a 3-D scan, the path relative to the file), mu (value or [low, high]), e ("housner", value or range), support,
 //                     amplification (value or range), orientation_deg, outcome, slid / slid_uncertainty /
 //                     slid_at_least (lengths with units), evidence (certain | likely | reported)
 // Several sites: [[sites]] tables, each with name/lat/lon and its own [[sites.object]] list; optional [event] with
@@ -30,8 +31,9 @@ namespace topple::io {
 [[nodiscard]] Survey read_survey(const std::filesystem::path& path);
 
 /// Same from text, TOML or CSV (told by `name`'s extension, else by content; name used in messages; relative record
-/// paths resolve against `base_dir`). Reads no file: the
-/// records of a records family are only checked to exist (load_survey_records loads them).
+/// and mesh paths resolve against `base_dir`). Reads no record: the records of a records family are only checked
+/// to exist (load_survey_records loads them). It does read the meshes objects name (`mesh = "..."`, through
+/// io::read_mesh_body, bounded by kMaxMeshFileBytes), since the body is needed to check the object.
 [[nodiscard]] Survey parse_survey(std::string_view text, const std::string& name,
                                   const std::filesystem::path& base_dir = {});
 
