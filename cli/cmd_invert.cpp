@@ -1,4 +1,5 @@
 // topple invert SURVEY: from observed objects to PGA and predominant-frequency bounds.
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -122,6 +123,29 @@ void print_region(const RegionalResult& fit, const std::vector<const InversionRe
     }
   }
   for (const std::string& note : fit.notes) fmt::print("note: region: {}\n", note);
+  if (!fit.frequency) return;
+  const FrequencyRelation& f = *fit.frequency;
+  fmt::print("== Frequency: ln f = d0 + d1 ln sqrt(R^2 + c2^2) + eps, eps ~ N(0, tau_f^2) (f in Hz), against a constant f\n");
+  fmt::print("d0    = {}\nd1    = {}\ntau_f = {}\n", interval_text(f.d0, ""), interval_text(f.d1, ""),
+             interval_text(f.tau, ""));
+  fmt::print("constant model: f = {}\n", interval_text(f.constant_f_hz, "Hz"));
+  fmt::print("Bayes factor relation/constant = {:.3g} (ln {:.2f}, {} sites with a frequency likelihood): {}\n",
+             std::exp(f.ln_bayes_factor), f.ln_bayes_factor, f.sites_with_frequency,
+             f.supported ? "the data support the relation; frequencies pooled through it"
+                         : "not supported (B < 3): no pooled frequencies");
+  if (f.supported) {
+    fmt::print("{:<28} {:>8} {:>26} {:>26}\n", "site", "R km", "independent median [95 %] Hz", "pooled median [95 %] Hz");
+    for (const PooledSite& p : fit.sites) {
+      const InversionResult* r = per_site[p.site_index];
+      const std::string own = r != nullptr ? fmt::format("{:.3g} {}", r->freq_estimate_hz.median,
+                                                         interval_text(r->freq_estimate_hz.ci95_low,
+                                                                       r->freq_estimate_hz.ci95_high, ""))
+                                           : std::string("-");
+      fmt::print("{:<28} {:>8.1f} {:>26} {:>26}\n", p.name, p.distance_km, own,
+                 fmt::format("{:.3g} [{:.3g}, {:.3g}]", p.freq_hz->median, p.freq_hz->ci95_low, p.freq_hz->ci95_high));
+    }
+  }
+  for (const std::string& note : f.notes) fmt::print("note: region frequency: {}\n", note);
 }
 
 /// Output files may name folders that do not exist yet (as --report does): made before the runs, so that a path
