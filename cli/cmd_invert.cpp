@@ -12,7 +12,9 @@
 #include "commands.hpp"
 #include "progress.hpp"
 #include "topple/error.hpp"
+#include "topple/ensemble.hpp"
 #include "topple/inversion.hpp"
+#include "topple/inversion_distributed.hpp"
 #include "topple/io/inversion_output.hpp"
 #include "topple/io/provenance.hpp"
 #include "topple/io/region_output.hpp"
@@ -169,17 +171,22 @@ void run_invert(const InvertOptions& o) {
   InversionOptions options;
   options.threads = o.threads;
   validate_inversion_options(options);
-  ProgressBar bar(progress_wanted(o.quiet));
+  // Under mpirun/srun the sites are split across the ranks (inversion_distributed.hpp); rank 0 alone prints and
+  // writes, the others return after the gather.
+  std::unique_ptr<ensemble::Cluster> cluster = ensemble::join_cluster();
+  const bool quiet = o.quiet || cluster->rank() != 0;
+  ProgressBar bar(progress_wanted(quiet));
   options.progress = bar.callback();
   const Survey survey = io::read_survey(o.survey);
   const io::Provenance provenance = io::make_provenance(o.survey, own_command_line());
   if (!o.grid.empty()) prepare_output_folder(o.grid, "--grid");
   if (!o.map.empty()) prepare_output_folder(o.map, "--map");
   if (!o.report.empty()) prepare_output_folder(o.report, "--report", true);
-  if (!o.quiet) {
+  if (!quiet) {
     for (const std::string& note : survey.notes) fmt::print(stderr, "topple: note: {}\n", note);
   }
-  if (!o.quiet) {
+  if (!quiet) {
+    if (cluster->size() > 1) fmt::print(stderr, "topple: {} sites over {} MPI ranks\n", survey.sites.size(), cluster->size());
     for (const Site& site : survey.sites) {
       fmt::print(stderr, "topple: inverting {} ({} objects)...\n", site.name, site.objects.size());
     }
@@ -193,8 +200,9 @@ void run_invert(const InvertOptions& o) {
     with_objects.push_back(survey.sites[i]);
     survey_index.push_back(i);
   }
-  const std::vector<InversionResult> results = invert_sites(with_objects, survey.inversion, options);
+  const std::vector<InversionResult> results = invert_sites_distributed(with_objects, survey.inversion, options, *cluster);
   bar.finish();
+  if (cluster->rank() != 0) return;  // rank 0 reports
   std::vector<const InversionResult*> per_site(survey.sites.size(), nullptr);
   for (std::size_t k = 0; k < results.size(); ++k) per_site[survey_index[k]] = &results[k];
   std::vector<std::string> region_notes;
