@@ -9,6 +9,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include <fmt/format.h>
 
@@ -20,44 +21,32 @@ namespace {
 /// Words out: every value as one or more uint64 (doubles by bit pattern, strings as length + bytes).
 class Packer {
  public:
-  void u(std::uint64_t v) { words_.push_back(v); }
-  void d(double v) { words_.push_back(std::bit_cast<std::uint64_t>(v)); }
-  void b(bool v) { u(v ? 1 : 0); }
-  void opt(const std::optional<double>& v) {
-    b(v.has_value());
-    if (v) d(*v);
-  }
-  void str(const std::string& s) {
-    u(s.size());
+  void operator()(const std::uint64_t& v) { words_.push_back(v); }
+  void operator()(const double& v) { words_.push_back(std::bit_cast<std::uint64_t>(v)); }
+  void operator()(const bool& v) { words_.push_back(v ? 1 : 0); }
+  void operator()(const int& v) { words_.push_back(static_cast<std::uint64_t>(static_cast<std::int64_t>(v))); }
+  void operator()(const Outcome& v) { words_.push_back(static_cast<std::uint64_t>(v)); }
+  void operator()(const std::string& s) {
+    words_.push_back(s.size());
     for (std::size_t i = 0; i < s.size(); i += 8) {
       std::uint64_t w = 0;
       std::memcpy(&w, s.data() + i, std::min<std::size_t>(8, s.size() - i));
-      u(w);
+      words_.push_back(w);
     }
   }
-  void vec(const std::vector<double>& v) {
-    u(v.size());
-    for (double x : v) d(x);
+  void operator()(const std::optional<double>& v) {
+    (*this)(v.has_value());
+    if (v) (*this)(*v);
   }
-  void strs(const std::vector<std::string>& v) {
-    u(v.size());
-    for (const std::string& s : v) str(s);
+  template <class T>
+  void operator()(const std::vector<T>& v) {
+    words_.push_back(v.size());
+    for (const T& x : v) (*this)(x);
   }
-  void estimate(const Estimate& e) {
-    d(e.best);
-    d(e.median);
-    opt(e.ci68_low);
-    opt(e.ci68_high);
-    opt(e.ci95_low);
-    opt(e.ci95_high);
-    u(static_cast<std::uint64_t>(static_cast<std::int64_t>(e.median_edge)));
-    u(static_cast<std::uint64_t>(static_cast<std::int64_t>(e.best_edge)));
-  }
-  void bound(const StaticBound& s) {
-    d(s.pga_g);
-    str(s.object_id);
-    str(s.reason);
-    b(s.hard);
+  template <class T>
+    requires std::is_class_v<T>
+  void operator()(const T& v) {
+    fields(*this, const_cast<T&>(v));  // fields() only reads through a Packer
   }
   std::vector<std::uint64_t>& words() { return words_; }
 
@@ -69,51 +58,41 @@ class Packer {
 class Unpacker {
  public:
   explicit Unpacker(const std::vector<std::uint64_t>& w) : w_(w) {}
-  std::uint64_t u() {
+  std::uint64_t next() {
     if (at_ >= w_.size()) throw std::runtime_error("unpack_inversion_results: the payload ends early");
     return w_[at_++];
   }
-  double d() { return std::bit_cast<double>(u()); }
-  bool b() { return u() != 0; }
-  std::optional<double> opt() { return b() ? std::optional<double>(d()) : std::nullopt; }
-  std::string str() {
-    const std::size_t n = u();
-    std::string s(n, '\0');
+  void operator()(std::uint64_t& v) { v = next(); }
+  void operator()(double& v) { v = std::bit_cast<double>(next()); }
+  void operator()(bool& v) { v = next() != 0; }
+  void operator()(int& v) { v = static_cast<int>(static_cast<std::int64_t>(next())); }
+  void operator()(Outcome& v) { v = static_cast<Outcome>(next()); }
+  void operator()(std::string& s) {
+    const std::size_t n = next();
+    if (n > 8 * (w_.size() - at_)) throw std::runtime_error("unpack_inversion_results: the payload ends early");
+    s.assign(n, '\0');
     for (std::size_t i = 0; i < n; i += 8) {
-      const std::uint64_t w = u();
+      const std::uint64_t w = next();
       std::memcpy(s.data() + i, &w, std::min<std::size_t>(8, n - i));
     }
-    return s;
   }
-  std::vector<double> vec() {
-    std::vector<double> v(u());
-    for (double& x : v) x = d();
-    return v;
+  void operator()(std::optional<double>& v) {
+    bool has = false;
+    (*this)(has);
+    v.reset();
+    if (has) (*this)(v.emplace());
   }
-  std::vector<std::string> strs() {
-    std::vector<std::string> v(u());
-    for (std::string& s : v) s = str();
-    return v;
+  template <class T>
+  void operator()(std::vector<T>& v) {
+    const std::size_t n = next();
+    if (n > w_.size() - at_) throw std::runtime_error("unpack_inversion_results: the payload ends early");
+    v.assign(n, T{});
+    for (T& x : v) (*this)(x);
   }
-  Estimate estimate() {
-    Estimate e;
-    e.best = d();
-    e.median = d();
-    e.ci68_low = opt();
-    e.ci68_high = opt();
-    e.ci95_low = opt();
-    e.ci95_high = opt();
-    e.median_edge = static_cast<int>(static_cast<std::int64_t>(u()));
-    e.best_edge = static_cast<int>(static_cast<std::int64_t>(u()));
-    return e;
-  }
-  StaticBound bound() {
-    StaticBound s;
-    s.pga_g = d();
-    s.object_id = str();
-    s.reason = str();
-    s.hard = b();
-    return s;
+  template <class T>
+    requires std::is_class_v<T>
+  void operator()(T& v) {
+    fields(*this, v);
   }
   [[nodiscard]] bool done() const { return at_ == w_.size(); }
 
@@ -122,72 +101,34 @@ class Unpacker {
   std::size_t at_ = 0;
 };
 
-void pack_one(Packer& p, const InversionResult& r) {
-  p.str(r.site);
-  for (const auto* v : {&r.pga_g, &r.freq_hz, &r.measured_freq_hz, &r.log_likelihood, &r.posterior, &r.marginal_pga,
-                        &r.marginal_freq}) {
-    p.vec(*v);
-  }
-  p.u(r.best_cell);
-  p.estimate(r.pga_estimate_g);
-  p.estimate(r.freq_estimate_hz);
-  const StaticBounds& sb = r.bounds;
-  for (const auto* o : {&sb.lower_g, &sb.upper_g, &sb.hard_lower_g, &sb.hard_upper_g}) p.opt(*o);
-  for (const auto* list : {&sb.lower, &sb.upper}) {
-    p.u(list->size());
-    for (const StaticBound& s : *list) p.bound(s);
-  }
-  p.strs(sb.contradictions);
-  p.u(r.objects.size());
-  for (const ObjectReport& o : r.objects) {
-    p.str(o.id);
-    p.u(static_cast<std::uint64_t>(o.outcome));
-    p.vec(o.probability);
-    p.d(o.probability_at_best);
-    p.d(o.max_probability);
-    p.b(o.reproduced_anywhere);
-    p.d(o.posterior_predictive);
-    p.b(o.misfit);
-    p.d(o.constraint_bits);
-  }
-  p.strs(r.notes);
-  p.u(r.runs);
-  p.d(r.seconds);
-}
+static_assert(std::is_same_v<std::size_t, std::uint64_t>, "counts travel as one 64-bit word");
 
-InversionResult unpack_one(Unpacker& u) {
-  InversionResult r;
-  r.site = u.str();
-  for (auto* v : {&r.pga_g, &r.freq_hz, &r.measured_freq_hz, &r.log_likelihood, &r.posterior, &r.marginal_pga,
-                  &r.marginal_freq}) {
-    *v = u.vec();
-  }
-  r.best_cell = u.u();
-  r.pga_estimate_g = u.estimate();
-  r.freq_estimate_hz = u.estimate();
-  StaticBounds& sb = r.bounds;
-  for (auto* o : {&sb.lower_g, &sb.upper_g, &sb.hard_lower_g, &sb.hard_upper_g}) *o = u.opt();
-  for (auto* list : {&sb.lower, &sb.upper}) {
-    list->resize(u.u());
-    for (StaticBound& s : *list) s = u.bound();
-  }
-  sb.contradictions = u.strs();
-  r.objects.resize(u.u());
-  for (ObjectReport& o : r.objects) {
-    o.id = u.str();
-    o.outcome = static_cast<Outcome>(u.u());
-    o.probability = u.vec();
-    o.probability_at_best = u.d();
-    o.max_probability = u.d();
-    o.reproduced_anywhere = u.b();
-    o.posterior_predictive = u.d();
-    o.misfit = u.b();
-    o.constraint_bits = u.d();
-  }
-  r.notes = u.strs();
-  r.runs = u.u();
-  r.seconds = u.d();
-  return r;
+// One list of fields per type, walked in the same order by the Packer and the Unpacker: every field of
+// InversionResult (inversion.hpp), so a field added there must be added here (PackedResultsUnpackExactly compares the
+// JSON of all of them).
+template <class IO>
+void fields(IO& io, Estimate& e) {
+  io(e.best), io(e.median), io(e.ci68_low), io(e.ci68_high), io(e.ci95_low), io(e.ci95_high), io(e.median_edge),
+      io(e.best_edge);
+}
+template <class IO>
+void fields(IO& io, StaticBound& b) {
+  io(b.pga_g), io(b.object_id), io(b.reason), io(b.hard);
+}
+template <class IO>
+void fields(IO& io, StaticBounds& b) {
+  io(b.lower_g), io(b.upper_g), io(b.hard_lower_g), io(b.hard_upper_g), io(b.lower), io(b.upper), io(b.contradictions);
+}
+template <class IO>
+void fields(IO& io, ObjectReport& o) {
+  io(o.id), io(o.outcome), io(o.probability), io(o.probability_at_best), io(o.max_probability),
+      io(o.reproduced_anywhere), io(o.posterior_predictive), io(o.misfit), io(o.constraint_bits);
+}
+template <class IO>
+void fields(IO& io, InversionResult& r) {
+  io(r.site), io(r.pga_g), io(r.freq_hz), io(r.measured_freq_hz), io(r.log_likelihood), io(r.posterior),
+      io(r.marginal_pga), io(r.marginal_freq);
+  io(r.best_cell), io(r.runs), io(r.pga_estimate_g), io(r.freq_estimate_hz), io(r.bounds), io(r.objects), io(r.notes), io(r.seconds);
 }
 
 // The first word of a rank's broadcast: ok, or how it failed (its exception's kind; the message follows).
@@ -197,15 +138,14 @@ enum class Status : std::uint64_t { ok = 0, solver_error = 1, other_error = 2 };
 
 std::vector<std::uint64_t> pack_inversion_results(const std::vector<InversionResult>& results) {
   Packer p;
-  p.u(results.size());
-  for (const InversionResult& r : results) pack_one(p, r);
+  p(results);
   return std::move(p.words());
 }
 
 std::vector<InversionResult> unpack_inversion_results(const std::vector<std::uint64_t>& words) {
   Unpacker u(words);
-  std::vector<InversionResult> out(u.u());
-  for (InversionResult& r : out) r = unpack_one(u);
+  std::vector<InversionResult> out;
+  u(out);
   if (!u.done()) throw std::runtime_error("unpack_inversion_results: words left over");
   return out;
 }
@@ -248,11 +188,11 @@ std::vector<InversionResult> invert_sites_distributed(const std::vector<Site>& s
       throw;
     } catch (const SolverError& e) {
       status = Status::solver_error;
-      p.str(e.what());
+      p(std::string(e.what()));
     } catch (const std::exception& e) {
-      p.str(e.what());
+      p(std::string(e.what()));
     } catch (...) {
-      p.str("unknown error");
+      p(std::string("unknown error"));
     }
     payload = std::move(p.words());
     payload.insert(payload.begin(), static_cast<std::uint64_t>(status));
@@ -269,7 +209,9 @@ std::vector<InversionResult> invert_sites_distributed(const std::vector<Site>& s
     if (status != Status::ok) {
       if (!first_failure) {
         Unpacker u(words);
-        first_failure = {r, u.str()};
+        std::string message;
+        u(message);
+        first_failure = {r, message};
         first_status = status;
       }
       continue;

@@ -82,20 +82,11 @@ TEST(InversionDistributed, OneProcessIsInvertSites) {
   }
 }
 
-bool have_mpirun() { return std::system("command -v mpirun >/dev/null 2>&1") == 0; }
-
 // examples/regional_survey.toml on 2 ranks (sites split, results gathered to rank 0) gives the 1-rank JSON exactly:
 // every site's inversion, the regional fit, the frequency relation and the pooled estimates (doubles compared as
 // printed to round-trip precision: equal bits).
 TEST(InversionDistributed, TwoRanksGiveTheOneRankResult) {
-#if defined(__SANITIZE_ADDRESS__)
-  const bool mpi = false;  // Open MPI's own allocations trip LeakSanitizer: not run in sanitizer builds
-#elif TOPPLE_TEST_MPI
-  const bool mpi = have_mpirun();
-#else
-  const bool mpi = false;
-#endif
-  if (!mpi) GTEST_SKIP() << "mpirun absent, topple built without MPI, or a sanitizer build";
+  if (!test::mpi_tests_enabled()) GTEST_SKIP() << "mpirun absent, topple built without MPI, or a sanitizer build";
   test::TempDir dir;
   const std::string survey = (std::filesystem::path(TOPPLE_SOURCE_DIR) / "examples/regional_survey.toml").string();
   const auto one = test::run_cli("invert '" + survey + "' --json --quiet --threads 1");
