@@ -14,7 +14,6 @@
 #include "topple/error.hpp"
 #include "topple/ensemble.hpp"
 #include "topple/inversion.hpp"
-#include "topple/inversion_distributed.hpp"
 #include "topple/io/inversion_output.hpp"
 #include "topple/io/provenance.hpp"
 #include "topple/io/region_output.hpp"
@@ -191,23 +190,18 @@ void run_invert(const InvertOptions& o) {
       fmt::print(stderr, "topple: inverting {} ({} objects)...\n", site.name, site.objects.size());
     }
   }
-  // One family for every site (invert_sites): the same results as site by site, without re-synthesising it. An
-  // instrument station without objects has nothing to invert: it enters the regional fit only.
-  std::vector<Site> with_objects;
-  std::vector<std::size_t> survey_index;
-  for (std::size_t i = 0; i < survey.sites.size(); ++i) {
-    if (survey.sites[i].objects.empty()) continue;
-    with_objects.push_back(survey.sites[i]);
-    survey_index.push_back(i);
-  }
-  const std::vector<InversionResult> results = invert_sites_distributed(with_objects, survey.inversion, options, *cluster);
+  // One family for every site, the sites split across MPI ranks under mpirun, then the regional fit (region.hpp).
+  const RegionalSettings region_settings;
+  const SurveyInversion inversion = invert_survey(survey, options, *cluster, region_settings);
   bar.finish();
   if (cluster->rank() != 0) return;  // rank 0 reports
-  std::vector<const InversionResult*> per_site(survey.sites.size(), nullptr);
-  for (std::size_t k = 0; k < results.size(); ++k) per_site[survey_index[k]] = &results[k];
-  std::vector<std::string> region_notes;
-  const RegionalSettings region_settings;
-  const std::optional<RegionalResult> region = fit_survey_region(survey, per_site, region_notes, region_settings);
+  const std::vector<InversionResult>& results = inversion.results;
+  const std::vector<std::size_t>& survey_index = inversion.survey_index;
+  std::vector<Site> with_objects;
+  for (const std::size_t i : survey_index) with_objects.push_back(survey.sites[i]);
+  const std::vector<const InversionResult*> per_site = inversion.per_site(survey.sites.size());
+  const std::vector<std::string>& region_notes = inversion.region_notes;
+  const std::optional<RegionalResult>& region = inversion.region;
   const bool multi = survey.sites.size() > 1;
   const auto site_path = [&](const std::string& base, std::size_t i) {
     if (!multi) return std::filesystem::path(base);

@@ -197,6 +197,9 @@ std::vector<InversionResult> invert_sites_distributed(const std::vector<Site>& s
     payload = std::move(p.words());
     payload.insert(payload.begin(), static_cast<std::uint64_t>(status));
   }
+  // Wait in the cluster's sleeping barrier (ensemble_mpi.cpp) rather than in a broadcast: a rank that has finished
+  // its sites must not spin (Open MPI polls in a blocking broadcast) on a core that another rank's runs are using.
+  cluster.barrier();
   // The gather: each rank in turn broadcasts its payload (rank order, so every rank sees the same sequence).
   std::vector<InversionResult> out(sites.size());
   std::optional<std::pair<int, std::string>> first_failure;

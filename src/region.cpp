@@ -14,6 +14,7 @@
 #include <tbb/parallel_for.h>
 
 #include "topple/error.hpp"
+#include "topple/inversion_distributed.hpp"
 
 namespace topple {
 namespace {
@@ -554,6 +555,28 @@ std::optional<RegionalResult> fit_survey_region(const Survey& survey,
   RegionalResult fit = fit_region(evidence, settings);
   for (std::size_t k = 0; k < fit.sites.size(); ++k) fit.sites[k].site_index = index[k];
   return fit;
+}
+
+std::vector<const InversionResult*> SurveyInversion::per_site(std::size_t site_count) const {
+  std::vector<const InversionResult*> out(site_count, nullptr);
+  for (std::size_t k = 0; k < results.size(); ++k) out.at(survey_index[k]) = &results[k];
+  return out;
+}
+
+SurveyInversion invert_survey(const Survey& survey, const InversionOptions& options, ensemble::Cluster& cluster,
+                              const RegionalSettings& settings) {
+  SurveyInversion out;
+  // An instrument station without objects has nothing to invert: it enters the regional fit only.
+  std::vector<Site> with_objects;
+  for (std::size_t i = 0; i < survey.sites.size(); ++i) {
+    if (survey.sites[i].objects.empty()) continue;
+    with_objects.push_back(survey.sites[i]);
+    out.survey_index.push_back(i);
+  }
+  out.results = invert_sites_distributed(with_objects, survey.inversion, options, cluster);
+  if (cluster.rank() != 0) return out;  // the joint fit is rank 0's (milliseconds to seconds, on its threads)
+  out.region = fit_survey_region(survey, out.per_site(survey.sites.size()), out.region_notes, settings);
+  return out;
 }
 
 }  // namespace topple

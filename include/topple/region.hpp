@@ -50,6 +50,10 @@
 
 namespace topple {
 
+namespace ensemble {
+class Cluster;
+}  // namespace ensemble
+
 /// Geodesic distance between two points on the WGS84 ellipsoid (Karney 2013, GeographicLib), km.
 [[nodiscard]] double geodesic_distance_km(double lat1_deg, double lon1_deg, double lat2_deg, double lon2_deg);
 
@@ -158,6 +162,21 @@ struct RegionalResult {
                                                               const std::vector<const InversionResult*>& results,
                                                               std::vector<std::string>& notes,
                                                               const RegionalSettings& settings = {});
+
+/// A survey's inversion as `topple invert` and Python's topple.invert_region run it: every site with objects
+/// inverted (invert_sites_distributed: one motion family; under MPI the sites split across the cluster's ranks), then,
+/// on rank 0, the regional fit (fit_survey_region).
+struct SurveyInversion {
+  std::vector<InversionResult> results;   ///< the sites with objects, in survey order
+  std::vector<std::size_t> survey_index;  ///< results[k] is survey.sites[survey_index[k]]
+  std::optional<RegionalResult> region;   ///< none: see region_notes (and always none on ranks other than 0)
+  std::vector<std::string> region_notes;  ///< fit_survey_region's notes
+  /// Per survey site: its result, or nullptr for a station without objects (pointers into `results`).
+  [[nodiscard]] std::vector<const InversionResult*> per_site(std::size_t site_count) const;
+};
+
+[[nodiscard]] SurveyInversion invert_survey(const Survey& survey, const InversionOptions& options,
+                                            ensemble::Cluster& cluster, const RegionalSettings& settings = {});
 
 /// The pooled PGA field on a lat/lon grid (docs/method.md, "Iso-acceleration contours"): the relation at the posterior
 /// medians of (ln a_ref, c1) plus the sites' residuals ln(pooled median) - mu_s interpolated by simple kriging with
