@@ -18,7 +18,7 @@ for r in $(seq "$repeats"); do
     if [ "$ranks" = 1 ]; then
       "$topple" invert "$dir/survey.toml" --json --quiet --threads 1 > "$dir/out$ranks.json"
     else
-      mpirun -n "$ranks" --oversubscribe --allow-run-as-root --mca btl self,vader \
+      mpirun -n "$ranks" --oversubscribe --bind-to none --allow-run-as-root --mca btl self,vader \
         "$topple" invert "$dir/survey.toml" --json --quiet --threads 1 > "$dir/out$ranks.json"
     fi
     end=$(date +%s.%N)
