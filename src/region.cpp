@@ -21,15 +21,26 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-/// Phi(b) - Phi(a) for a <= b, the standard normal's mass on [a, b], computed in the tail nearer to the interval so
-/// that two CDF values near 1 are not subtracted (erfc keeps the relative precision of a small tail).
-double normal_mass(double a, double b) noexcept {
-  if (a >= 0.0) return 0.5 * (std::erfc(a / std::numbers::sqrt2) - std::erfc(b / std::numbers::sqrt2));
-  if (b <= 0.0) return 0.5 * (std::erfc(-b / std::numbers::sqrt2) - std::erfc(-a / std::numbers::sqrt2));
-  return 1.0 - 0.5 * (std::erfc(-a / std::numbers::sqrt2) + std::erfc(b / std::numbers::sqrt2));
-}
-
 double normal_cdf(double z) noexcept { return 0.5 * std::erfc(-z / std::numbers::sqrt2); }
+
+/// f(i, mass_i) for each cell [edges_i, edges_i+1] with mass_i the N(m, s^2) mass on it, Phi(b) - Phi(a) of the
+/// standardised edges a <= b computed in the tail nearer to the cell, so that two CDF values near 1 are not
+/// subtracted (erfc keeps the relative precision of a small tail): both ends' upper tails when a >= 0, both lower
+/// tails when b <= 0, 1 minus both outer tails otherwise. Each edge's tail is then always its far one, so one erfc per
+/// edge serves both cells beside it (the grid fit's inner loop).
+template <class F>
+void for_each_cell_mass(const std::vector<double>& edges, double m, double s, F&& f) {
+  const auto tail = [](double z) { return 0.5 * std::erfc(std::abs(z) / std::numbers::sqrt2); };
+  double za = (edges[0] - m) / s;
+  double ta = tail(za);
+  for (std::size_t i = 0; i + 1 < edges.size(); ++i) {
+    const double zb = (edges[i + 1] - m) / s;
+    const double tb = tail(zb);
+    f(i, za >= 0.0 ? ta - tb : (zb <= 0.0 ? tb - ta : 1.0 - (ta + tb)));
+    za = zb;
+    ta = tb;
+  }
+}
 
 /// Quantiles of a distribution given as point masses (value, weight), each spread uniformly over value +- half
 /// (half = 0: points). Linear interpolation of the CDF between the cells' ends.
@@ -144,10 +155,9 @@ double site_log_marginal(const AxisSite& e, double mu, double tau, double sigma_
   const std::vector<double>& edges = *e.edges;
   const std::vector<double>& lik = *e.likelihood;
   double sum = 0.0;
-  for (std::size_t i = 0; i < lik.size(); ++i) {
-    if (lik[i] == 0.0) continue;
-    sum += lik[i] * normal_mass((edges[i] - g.m) / g.s, (edges[i + 1] - g.m) / g.s);
-  }
+  for_each_cell_mass(edges, g.m, g.s, [&](std::size_t i, double mass) {
+    if (lik[i] != 0.0) sum += lik[i] * mass;
+  });
   return g.log_scale + (sum > 0.0 ? std::log(sum) : -kInf);
 }
 
@@ -300,17 +310,21 @@ std::pair<Interval95, Interval95> pooled_site(const RelationProblem& pr, const R
     const auto t = post.fine.theta(c);
     const SiteGaussian g = site_gaussian(e, t[0] + pr.sign * t[1] * pr.dx[s], t[2], pr.direct_sigma);
     double z = 0.0;
-    for (std::size_t i = 0; i < lik.size(); ++i) {
-      cell_mass[i] = lik[i] * normal_mass((edges[i] - g.m) / g.s, (edges[i + 1] - g.m) / g.s);
+    for_each_cell_mass(edges, g.m, g.s, [&](std::size_t i, double mass) {
+      cell_mass[i] = lik[i] * mass;
       z += cell_mass[i];
-    }
+    });
     if (!(z > 0.0)) continue;
     // F(x | theta) = (sum of the cells wholly below x + the part of x's cell below x) / z.
     std::size_t cell = 0;
     double below = 0.0;
+    double cdf_at_edge = normal_cdf((edges[0] - g.m) / g.s);  // Phi at the current cell's lower edge
     for (std::size_t k = 0; k < xs.size(); ++k) {
-      while (cell + 1 < lik.size() && edges[cell + 1] <= xs[k]) below += cell_mass[cell++];
-      const double part = lik[cell] * (normal_cdf((xs[k] - g.m) / g.s) - normal_cdf((edges[cell] - g.m) / g.s));
+      while (cell + 1 < lik.size() && edges[cell + 1] <= xs[k]) {
+        below += cell_mass[cell++];
+        cdf_at_edge = normal_cdf((edges[cell] - g.m) / g.s);
+      }
+      const double part = lik[cell] * (normal_cdf((xs[k] - g.m) / g.s) - cdf_at_edge);
       cdf[k] += (below + std::max(0.0, part)) / z / static_cast<double>(draws.size());
     }
   }
