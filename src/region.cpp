@@ -514,7 +514,6 @@ RegionalResult fit_region(const std::vector<SiteEvidence>& sites, const Regional
   constant.fixed_slope = true;
   constant.prior_lo[1] = constant.prior_hi[1] = 0.0;
   const RelationPosterior post0 = fit_relation(constant);
-  out.grid_points += post1.grid_points + post0.grid_points;
   fr.ln_f_ref = post1.est[0];
   fr.d1 = post1.est[1];
   fr.tau = post1.est[2];
