@@ -239,7 +239,9 @@ void run_invert(const InvertOptions& o) {
       // The regional page at the report's top, linking each site's page (a station without objects has none).
       std::vector<std::string> pages(survey.sites.size());
       for (std::size_t i = 0; i < results.size(); ++i) pages[survey_index[i]] = fmt::format("site{}/index.html", survey_index[i] + 1);
-      write_region_report(o.report, survey, *region, per_site, pages, region_settings);
+      for (const std::string& w : write_region_report(o.report, survey, *region, per_site, pages, region_settings)) {
+        fmt::print(stderr, "topple: warning: {}\n", w);
+      }
       if (!o.quiet) fmt::print(stderr, "topple: regional page written to {}\n", (std::filesystem::path(o.report) / "index.html").string());
     }
   }

@@ -104,11 +104,11 @@ std::string series_clause(const Series& s, const std::string& block) {
   return clause;
 }
 
-/// Runs gnuplot on `script`, which writes the figure to `image`'s temporary file; the figure appears under its final
-/// name only when gnuplot succeeded (OutputFile's rename), and SIGINT/SIGTERM remove both temporaries. The
-/// OutputFile's own stream stays empty: gnuplot writes the temporary file itself.
-void run_gnuplot(const std::string& script, io::OutputFile& image) {
-  const std::filesystem::path script_path = image.temporary_path().string() + ".gp";
+}  // namespace
+
+void run_figure_program(const std::string& program, const std::string& script, const std::string& script_suffix,
+                        const std::vector<std::string>& arguments, io::OutputFile& image, const std::string& hint) {
+  const std::filesystem::path script_path = image.temporary_path().string() + script_suffix;
   const int slot = io::register_temporary(script_path);
   struct RemoveScript {
     const std::filesystem::path& path;
@@ -120,29 +120,38 @@ void run_gnuplot(const std::string& script, io::OutputFile& image) {
     }
   } remove_script{script_path, slot};
   io::write_file_atomically(script_path, script);
-  // The script path goes through /bin/sh in single quotes; a quote inside it is closed, escaped and reopened.
-  std::string shell_path;
-  for (char c : script_path.string()) shell_path += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  const std::string cmd = fmt::format("gnuplot '{}' 2>&1", shell_path);
+  // Every word goes through /bin/sh in single quotes; a quote inside one is closed, escaped and reopened.
+  const auto shell_word = [](const std::string& word) {
+    std::string quoted = "'";
+    for (char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return quoted + "'";
+  };
+  std::string cmd = program + " " + shell_word(script_path.string());
+  for (const std::string& a : arguments) cmd += " " + shell_word(a);
+  cmd += " 2>&1";
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> pipe(popen(cmd.c_str(), "r"), pclose);
-  if (!pipe) throw std::runtime_error("cannot start gnuplot");
+  if (!pipe) throw std::runtime_error("cannot start " + program);
   std::string messages;
   char buffer[4096];
   std::size_t got = 0;
   while ((got = std::fread(buffer, 1, sizeof buffer, pipe.get())) > 0) messages.append(buffer, got);
   const int status = pclose(pipe.release());
   if (status != 0) {
-    throw std::runtime_error(fmt::format("gnuplot failed (is gnuplot-nox installed?) writing {}: {}",
-                                         image.final_path().string(), messages));
+    throw std::runtime_error(fmt::format("{} failed ({}) writing {}: {}", program, hint, image.final_path().string(),
+                                         messages));
   }
   image.commit();
 }
+
+namespace {
 
 template <class F>
 void render_figure(const F& figure, const std::filesystem::path& path) {
   (void)terminal_for(path, 1, 1);  // a bad extension is bad input (exit 2), before any file is touched
   io::OutputFile image(path);
-  run_gnuplot(gnuplot_script(figure, image.temporary_path()), image);
+  // gnuplot writes the figure to the temporary file itself (the script's `set output`).
+  run_figure_program("gnuplot", gnuplot_script(figure, image.temporary_path()), ".gp", {}, image,
+                     "is gnuplot-nox installed?");
 }
 
 /// Explicit tics at 1, 2 and 5 x 10^k within [lo, hi] (a log axis), labelled as plain numbers ("0.2", "5"): gnuplot's

@@ -1,5 +1,7 @@
 // The regional report page (region.hpp: write_region_report): the relation, every site pooled beside its own
-// estimate with a link to its page, the calibration sites, the attenuation figure and the pooled PGA map.
+// estimate with a link to its page, the calibration sites, the attenuation figure, the pooled PGA field and the map
+// drawn by GMT (region_map.hpp).
+#include <array>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -10,6 +12,7 @@
 #include "topple/io/region_output.hpp"
 #include "topple/plot.hpp"
 #include "topple/region.hpp"
+#include "topple/region_map.hpp"
 #include "topple/report.hpp"
 
 namespace topple {
@@ -25,8 +28,9 @@ plot::Series points(const std::string& label, const std::string& color) {
   return s;
 }
 
-/// PGA against hypocentral distance: each site's pooled 95 % interval (a vertical bar) and median, its own median,
-/// the instruments, and the relation's median with its 95 % band.
+/// PGA against hypocentral distance: each site's pooled 95 % interval (a vertical bar) and median, its own 95 %
+/// interval (an open end drawn to its grid's edge) and median beside it, the instruments, and the relation's median
+/// with its 95 % band.
 plot::Figure attenuation_figure(const RegionalResult& fit, const std::vector<const InversionResult*>& per_site) {
   plot::Panel p;
   p.ylabel = "PGA (g)";
@@ -46,6 +50,7 @@ plot::Figure attenuation_figure(const RegionalResult& fit, const std::vector<con
   plot::Series bars{"site, pooled 95 % interval", {}, {}, "lines", "#222222", 1.5};
   plot::Series pooled = points("site, pooled median", "#222222");
   plot::Series own = points("site, own median (objects alone)", "#E69F00");
+  plot::Series own_bars{"site, own 95 % interval (objects alone)", {}, {}, "lines", "#E69F00", 1.0};
   plot::Series inst = points("instrument", "#D55E00");
   for (const PooledSite& s : fit.sites) {
     bars.x.insert(bars.x.end(), {s.distance_km, s.distance_km, kNaN});
@@ -53,8 +58,12 @@ plot::Figure attenuation_figure(const RegionalResult& fit, const std::vector<con
     pooled.x.push_back(s.distance_km);
     pooled.y.push_back(s.pga_g.median);
     if (const InversionResult* r = per_site.at(s.site_index)) {
-      own.x.push_back(s.distance_km * 1.03);  // beside the pooled one, not on it
-      own.y.push_back(r->pga_estimate_g.median);
+      const double x = s.distance_km * 1.03;  // beside the pooled one, not on it
+      const Estimate& e = r->pga_estimate_g;
+      own.x.push_back(x);
+      own.y.push_back(e.median);
+      own_bars.x.insert(own_bars.x.end(), {x, x, kNaN});
+      own_bars.y.insert(own_bars.y.end(), {e.ci95_low.value_or(r->pga_g.front()), e.ci95_high.value_or(r->pga_g.back()), kNaN});
     }
     if (s.instrument_pga_g) {
       inst.x.push_back(s.distance_km);
@@ -62,7 +71,7 @@ plot::Figure attenuation_figure(const RegionalResult& fit, const std::vector<con
     }
   }
   p.series = {median, lo, hi, bars, pooled};
-  if (!own.x.empty()) p.series.push_back(own);
+  if (!own.x.empty()) p.series.insert(p.series.end(), {own_bars, own});
   if (!inst.x.empty()) p.series.push_back(inst);
   plot::Figure f;
   f.title = "PGA against hypocentral distance";
@@ -72,8 +81,8 @@ plot::Figure attenuation_figure(const RegionalResult& fit, const std::vector<con
   return f;
 }
 
-/// The pooled PGA field as a map (lon x lat), its contours, the sites, the instruments and the epicentre. No
-/// coastlines or borders: GMT is not used (docs/method.md says why).
+/// The pooled PGA field as a map (lon x lat), its contours, the sites, the instruments and the epicentre, drawn by
+/// gnuplot: the field itself, which the GMT map (region_map.hpp, coastlines and borders) leaves out.
 plot::MapFigure field_figure(const PooledField& field, const std::vector<Contour>& contours, const RegionalResult& fit,
                              const Survey& survey) {
   plot::MapFigure m;
@@ -122,7 +131,7 @@ std::string interval(const Interval95& v, const char* fmt_spec = "{:.3g}") {
 
 }  // namespace
 
-void write_region_report(const std::filesystem::path& dir, const Survey& survey, const RegionalResult& fit,
+std::vector<std::string> write_region_report(const std::filesystem::path& dir, const Survey& survey, const RegionalResult& fit,
                          const std::vector<const InversionResult*>& per_site,
                          const std::vector<std::string>& site_pages, const RegionalSettings& settings) {
   std::filesystem::create_directories(dir);
@@ -130,6 +139,9 @@ void write_region_report(const std::filesystem::path& dir, const Survey& survey,
   const std::vector<Contour> contours = contour_field(field, io::contour_levels_g());
   plot::render(attenuation_figure(fit, per_site), dir / "attenuation.svg");
   plot::render(field_figure(field, contours, fit, survey), dir / "pga_map.svg");
+  const MapOutcome map = write_region_map(dir, region_map(fit, survey, contours), gmt_program_from_environment());
+  std::vector<std::string> warnings;
+  if (!map.drawn) warnings.push_back(map.note);
   io::write_contours_geojson(dir / "contours.geojson", contours, field);
   io::write_region_csv(dir / "region.csv", fit, per_site);
   io::write_file_atomically(dir / "region.json", io::region_json(fit, survey, per_site, settings).dump(2) + "\n");
@@ -155,9 +167,24 @@ void write_region_report(const std::filesystem::path& dir, const Survey& survey,
     << "</td></tr></table>\n";
   for (const std::string& n : fit.notes) h << "<p class=\"note\">" << html_escape(n) << "</p>\n";
   h << "<figure id=\"attenuation\">" << inline_svg(dir / "attenuation.svg")
-    << "<figcaption>Each site's pooled 95 % interval (bar) and median (black), its own median from its objects alone "
-       "(orange, shifted right by 3 % to stay visible), the instruments (red), and the relation's posterior median "
-       "with its 95 % band (blue).</figcaption></figure>\n";
+    << "<figcaption>Each site's pooled 95 % interval (bar) and median (black), its own 95 % interval and median from "
+       "its objects alone (orange, shifted right by 3 % to stay visible; an open end drawn to the edge of its grid), "
+       "the instruments (red), and the relation's posterior median with its 95 % band (blue).</figcaption></figure>\n";
+  h << "<h2>Map</h2>\n";
+  if (map.drawn) {
+    h << "<figure id=\"geomap\"><img style=\"max-width:100%;height:auto\" alt=\"map of the sites' pooled PGA\" src=\""
+      << inline_png(dir / kRegionMapPng) << "\">"
+      << "<figcaption>The sites at their places, coloured by their pooled PGA (posterior median, logarithmic scale "
+         "in g) and numbered in survey order (siteN below); triangles: instrument stations; star: the epicentre; "
+         "black lines: the iso-acceleration lines of the pooled field, labelled in g. Coastlines and lakes from "
+         "GSHHG (Wessel &amp; Smith 1996), national borders from WDBII, drawn by GMT (Wessel et al. 2019): "
+         "<a href=\"region_map.png\">region_map.png</a>, redrawn by <code>bash region_map.gmt.sh</code>."
+         "</figcaption></figure>\n";
+  } else {
+    h << "<p class=\"note\" id=\"geomap-missing\">No map: " << html_escape(map.note)
+      << ". The pooled field below shows the sites, the stations, the epicentre and the contours without "
+         "coastlines.</p>\n";
+  }
   h << "<h2>Sites</h2>\n<table><tr><th>site</th><th>R (km)</th><th>objects</th><th>instrument (g)</th>"
        "<th>own median [95 %] (g)</th><th>pooled median [95 %] (g)</th><th>relation median (g)</th></tr>\n";
   for (const PooledSite& p : fit.sites) {
@@ -186,12 +213,13 @@ void write_region_report(const std::filesystem::path& dir, const Survey& survey,
   h << "<figure id=\"map\">" << inline_svg(dir / "pga_map.svg")
     << fmt::format("<figcaption>The pooled PGA field: the relation at the posterior medians plus the sites' residuals "
                    "kriged with the exponential correlation exp(&minus;3h/{:g} km) (Jayaram &amp; Baker 2009), and the "
-                   "iso-acceleration lines at 0.05, 0.1, 0.2 and 0.4 g (also in contours.geojson). No coastlines or "
-                   "borders: drawn without GMT.</figcaption></figure>\n",
+                   "iso-acceleration lines at 0.05, 0.1, 0.2 and 0.4 g (also in contours.geojson).</figcaption>"
+                   "</figure>\n",
                    field.range_km);
   h << "<p>Files beside this page: <a href=\"region.json\">region.json</a>, <a href=\"region.csv\">region.csv</a>, "
        "<a href=\"contours.geojson\">contours.geojson</a>.</p>\n</body></html>\n";
   io::write_file_atomically(dir / "index.html", h.str());
+  return warnings;
 }
 
 }  // namespace topple

@@ -16,6 +16,10 @@
 #include "topple/sliding.hpp"
 #include "topple/spectra.hpp"
 
+namespace topple::io {
+class OutputFile;
+}
+
 namespace topple::plot {
 
 struct Series {
@@ -83,6 +87,15 @@ struct MapFigure {
 /// std::runtime_error when gnuplot is missing or fails (its message is included).
 void render(const Figure& figure, const std::filesystem::path& path);
 void render(const MapFigure& figure, const std::filesystem::path& path);
+
+/// Runs `program` (a command word for /bin/sh, e.g. "gnuplot" or "bash") on `script`, written beside `image`'s
+/// temporary file with `script_suffix` and removed afterwards, followed by `arguments` (each quoted for the shell).
+/// The program must write the figure to image.temporary_path(); the figure appears under its final name only when
+/// the program exits 0 (OutputFile's rename), and SIGINT/SIGTERM remove both temporaries. Throws std::runtime_error
+/// naming the program, the final path, `hint` and the program's output when it fails. render() and the regional map
+/// (region_map.hpp, GMT) both run through it.
+void run_figure_program(const std::string& program, const std::string& script, const std::string& script_suffix,
+                        const std::vector<std::string>& arguments, io::OutputFile& image, const std::string& hint);
 
 /// The gnuplot script render() runs (for tests and for users who want to restyle).
 [[nodiscard]] std::string gnuplot_script(const Figure& figure, const std::filesystem::path& path);

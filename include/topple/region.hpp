@@ -211,10 +211,14 @@ struct Contour {
 /// The regional report page: DIR/index.html (the relation, every site pooled beside its own estimate, linked to its
 /// page `site_pages[i]` (relative to DIR; empty: no link), the calibration sites, the attenuation figure and the map
 /// of the pooled field with its contours), and beside it attenuation.svg, pga_map.svg, contours.geojson, region.csv,
-/// region.json. `per_site` as in fit_survey_region. Figures need gnuplot (plot.hpp).
-void write_region_report(const std::filesystem::path& dir, const Survey& survey, const RegionalResult& fit,
-                         const std::vector<const InversionResult*>& per_site,
-                         const std::vector<std::string>& site_pages, const RegionalSettings& settings = {});
+/// region.json, and the GMT map region_map.png with its script region_map.gmt.sh (region_map.hpp). `per_site` as in
+/// fit_survey_region. Figures need gnuplot (plot.hpp). Returns warnings for the caller to show: a map that could not
+/// be drawn (GMT missing; the page says so too).
+std::vector<std::string> write_region_report(const std::filesystem::path& dir, const Survey& survey,
+                                             const RegionalResult& fit,
+                                             const std::vector<const InversionResult*>& per_site,
+                                             const std::vector<std::string>& site_pages,
+                                             const RegionalSettings& settings = {});
 
 /// The relation's median PGA (g) at hypocentral distance R (km) for given parameters: exp(c0 - c1 ln sqrt(R^2+c2^2)).
 [[nodiscard]] double relation_pga_g(double c0, double c1, double c2_km, double distance_km) noexcept;

@@ -34,6 +34,8 @@ namespace topple {
 [[nodiscard]] std::string html_escape(const std::string& text);
 /// An SVG file's text without its XML prologue or doctype, for inline embedding in a page.
 [[nodiscard]] std::string inline_svg(const std::filesystem::path& svg);
+/// A PNG file as a data: URI (base64), for an <img src> that keeps the page self-contained.
+[[nodiscard]] std::string inline_png(const std::filesystem::path& png);
 
 /// Writes DIR/index.html and the figures (DIR/likelihood.svg, DIR/marginal_pga.svg, DIR/marginal_freq.svg,
 /// DIR/best_cell.svg, DIR/grid.csv, DIR/result.json). The page embeds the SVGs inline: it is self-contained. It opens
