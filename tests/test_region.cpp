@@ -446,6 +446,8 @@ TEST(RegionCli, ExampleRunsEndToEnd) {
   EXPECT_NE(page.find("<figure id=\"attenuation\"><svg"), std::string::npos);
   EXPECT_NE(page.find("<figure id=\"map\"><svg"), std::string::npos);
   EXPECT_NE(page.find("calibration: the objects"), std::string::npos);
+  EXPECT_NE(page.find("<p id=\"frequency\">Frequency: ln f = d0"), std::string::npos);
+  EXPECT_NE(page.find("not supported (&lt; 3)"), std::string::npos);  // the example's truth: one frequency
 }
 
 // ---- The regional recovery test ----
