@@ -5,6 +5,7 @@
 //   build/release/bench/bench_region --benchmark_min_time=0.01
 #include <benchmark/benchmark.h>
 
+#include <cstdlib>
 #include <filesystem>
 
 #include "topple/inversion.hpp"
@@ -14,7 +15,11 @@
 
 namespace {
 
-const std::filesystem::path kExample = std::filesystem::path(TOPPLE_SOURCE_DIR) / "examples/regional_survey.toml";
+/// The example, or the survey named by TOPPLE_BENCH_REGION_SURVEY (e.g. a larger one from
+/// `build/release/tests/make_regional_example 48`: the MPI scale figures in docs/performance.md).
+const std::filesystem::path kExample = std::getenv("TOPPLE_BENCH_REGION_SURVEY") != nullptr
+                                           ? std::filesystem::path(std::getenv("TOPPLE_BENCH_REGION_SURVEY"))
+                                           : std::filesystem::path(TOPPLE_SOURCE_DIR) / "examples/regional_survey.toml";
 
 std::vector<const topple::InversionResult*> pointers(const std::vector<topple::InversionResult>& results) {
   std::vector<const topple::InversionResult*> out;
@@ -45,5 +50,12 @@ void BM_RegionalJointFitOnly(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_RegionalJointFitOnly)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+/// The sites' own inversions alone on one thread: the part `topple invert` splits across MPI ranks.
+void BM_RegionalSitesOneThread(benchmark::State& state) {
+  const topple::Survey survey = topple::io::read_survey(kExample);
+  for (auto _ : state) benchmark::DoNotOptimize(topple::invert_sites(survey.sites, survey.inversion, {1}));
+}
+BENCHMARK(BM_RegionalSitesOneThread)->Unit(benchmark::kSecond)->UseRealTime();
 
 }  // namespace

@@ -1,4 +1,5 @@
 // topple invert SURVEY: from observed objects to PGA and predominant-frequency bounds.
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -11,6 +12,7 @@
 #include "commands.hpp"
 #include "progress.hpp"
 #include "topple/error.hpp"
+#include "topple/ensemble.hpp"
 #include "topple/inversion.hpp"
 #include "topple/io/inversion_output.hpp"
 #include "topple/io/provenance.hpp"
@@ -122,6 +124,29 @@ void print_region(const RegionalResult& fit, const std::vector<const InversionRe
     }
   }
   for (const std::string& note : fit.notes) fmt::print("note: region: {}\n", note);
+  if (!fit.frequency) return;
+  const FrequencyRelation& f = *fit.frequency;
+  fmt::print("== Frequency: ln f = d0 + d1 ln sqrt(R^2 + c2^2) + eps, eps ~ N(0, tau_f^2) (f in Hz), against a constant f\n");
+  fmt::print("d0    = {}\nd1    = {}\ntau_f = {}\n", interval_text(f.d0, ""), interval_text(f.d1, ""),
+             interval_text(f.tau, ""));
+  fmt::print("constant model: f = {}\n", interval_text(f.constant_f_hz, "Hz"));
+  fmt::print("Bayes factor relation/constant = {:.3g} (ln {:.2f}, {} sites with a frequency likelihood): {}\n",
+             std::exp(f.ln_bayes_factor), f.ln_bayes_factor, f.sites_with_frequency,
+             f.supported ? "the data support the relation; frequencies pooled through it"
+                         : "not supported (B < 3): no pooled frequencies");
+  if (f.supported) {
+    fmt::print("{:<28} {:>8} {:>26} {:>26}\n", "site", "R km", "independent median [95 %] Hz", "pooled median [95 %] Hz");
+    for (const PooledSite& p : fit.sites) {
+      const InversionResult* r = per_site[p.site_index];
+      const std::string own = r != nullptr ? fmt::format("{:.3g} {}", r->freq_estimate_hz.median,
+                                                         interval_text(r->freq_estimate_hz.ci95_low,
+                                                                       r->freq_estimate_hz.ci95_high, ""))
+                                           : std::string("-");
+      fmt::print("{:<28} {:>8.1f} {:>26} {:>26}\n", p.name, p.distance_km, own,
+                 fmt::format("{:.3g} [{:.3g}, {:.3g}]", p.freq_hz->median, p.freq_hz->ci95_low, p.freq_hz->ci95_high));
+    }
+  }
+  for (const std::string& note : f.notes) fmt::print("note: region frequency: {}\n", note);
 }
 
 /// Output files may name folders that do not exist yet (as --report does): made before the runs, so that a path
@@ -145,37 +170,38 @@ void run_invert(const InvertOptions& o) {
   InversionOptions options;
   options.threads = o.threads;
   validate_inversion_options(options);
-  ProgressBar bar(progress_wanted(o.quiet));
+  // Under mpirun/srun the sites are split across the ranks (inversion_distributed.hpp); rank 0 alone prints and
+  // writes, the others return after the gather.
+  std::unique_ptr<ensemble::Cluster> cluster = ensemble::join_cluster();
+  const bool quiet = o.quiet || cluster->rank() != 0;
+  ProgressBar bar(progress_wanted(quiet));
   options.progress = bar.callback();
   const Survey survey = io::read_survey(o.survey);
   const io::Provenance provenance = io::make_provenance(o.survey, own_command_line());
   if (!o.grid.empty()) prepare_output_folder(o.grid, "--grid");
   if (!o.map.empty()) prepare_output_folder(o.map, "--map");
   if (!o.report.empty()) prepare_output_folder(o.report, "--report", true);
-  if (!o.quiet) {
+  if (!quiet) {
     for (const std::string& note : survey.notes) fmt::print(stderr, "topple: note: {}\n", note);
   }
-  if (!o.quiet) {
+  if (!quiet) {
+    if (cluster->size() > 1) fmt::print(stderr, "topple: {} sites over {} MPI ranks\n", survey.sites.size(), cluster->size());
     for (const Site& site : survey.sites) {
       fmt::print(stderr, "topple: inverting {} ({} objects)...\n", site.name, site.objects.size());
     }
   }
-  // One family for every site (invert_sites): the same results as site by site, without re-synthesising it. An
-  // instrument station without objects has nothing to invert: it enters the regional fit only.
-  std::vector<Site> with_objects;
-  std::vector<std::size_t> survey_index;
-  for (std::size_t i = 0; i < survey.sites.size(); ++i) {
-    if (survey.sites[i].objects.empty()) continue;
-    with_objects.push_back(survey.sites[i]);
-    survey_index.push_back(i);
-  }
-  const std::vector<InversionResult> results = invert_sites(with_objects, survey.inversion, options);
-  bar.finish();
-  std::vector<const InversionResult*> per_site(survey.sites.size(), nullptr);
-  for (std::size_t k = 0; k < results.size(); ++k) per_site[survey_index[k]] = &results[k];
-  std::vector<std::string> region_notes;
+  // One family for every site, the sites split across MPI ranks under mpirun, then the regional fit (region.hpp).
   const RegionalSettings region_settings;
-  const std::optional<RegionalResult> region = fit_survey_region(survey, per_site, region_notes, region_settings);
+  const SurveyInversion inversion = invert_survey(survey, options, *cluster, region_settings);
+  bar.finish();
+  if (cluster->rank() != 0) return;  // rank 0 reports
+  const std::vector<InversionResult>& results = inversion.results;
+  const std::vector<std::size_t>& survey_index = inversion.survey_index;
+  std::vector<Site> with_objects;
+  for (const std::size_t i : survey_index) with_objects.push_back(survey.sites[i]);
+  const std::vector<const InversionResult*> per_site = inversion.per_site(survey.sites.size());
+  const std::vector<std::string>& region_notes = inversion.region_notes;
+  const std::optional<RegionalResult>& region = inversion.region;
   const bool multi = survey.sites.size() > 1;
   const auto site_path = [&](const std::string& base, std::size_t i) {
     if (!multi) return std::filesystem::path(base);

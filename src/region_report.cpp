@@ -166,6 +166,14 @@ std::vector<std::string> write_region_report(const std::filesystem::path& dir, c
                            std::exp(fit.ln_a_ref.ci95_low), std::exp(fit.ln_a_ref.ci95_high)})
     << "</td></tr></table>\n";
   for (const std::string& n : fit.notes) h << "<p class=\"note\">" << html_escape(n) << "</p>\n";
+  if (fit.frequency) {  // the frequency relation (region.hpp, "Frequency"; docs/method.md eqs. F1-F3)
+    const FrequencyRelation& f = *fit.frequency;
+    h << "<p id=\"frequency\">Frequency: ln f = d0 + d1 ln &radic;(R&sup2; + c2&sup2;) + &epsilon;, d1 = " << interval(f.d1)
+      << fmt::format(", against one frequency for all sites: Bayes factor {:.3g}: ", std::exp(f.ln_bayes_factor))
+      << (f.supported ? "supported (&ge; 3); the sites' frequencies are pooled through it (region.json)"
+                      : "not supported (&lt; 3); each site's frequency stays its own estimate")
+      << ".</p>\n";
+  }
   h << "<figure id=\"attenuation\">" << inline_svg(dir / "attenuation.svg")
     << "<figcaption>Each site's pooled 95 % interval (bar) and median (black), its own 95 % interval and median from "
        "its objects alone (orange, shifted right by 3 % to stay visible; an open end drawn to the edge of its grid), "

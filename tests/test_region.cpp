@@ -185,6 +185,137 @@ TEST(RegionFit, NeedsThreeSites) {
   EXPECT_THROW((void)fit_region({station("a", 10, 0.3), station("b", 20, 0.2)}), InputError);
 }
 
+// ---- The frequency relation (F1-F3) ----
+
+// A site with a measured PGA (for the PGA relation) and a frequency known to within a narrow cell of width h around
+// f_hz (likelihood 1 there, 0 elsewhere): its frequency evidence is h times the normal density at ln f (eq. F2).
+SiteEvidence station_with_frequency(const std::string& name, double r_km, double pga_g, double f_hz, double h) {
+  SiteEvidence e = station(name, r_km, pga_g);
+  const double y = std::log(f_hz);
+  e.ln_freq_edges = {-std::numeric_limits<double>::infinity(), y - 0.5 * h, y + 0.5 * h,
+                     std::numeric_limits<double>::infinity()};
+  e.freq_likelihood = {0.0, 1.0, 0.0};
+  return e;
+}
+
+// The marginal likelihoods against closed forms (eq. F3) with tau_f pinned (a box 1e-6 wide) and the frequencies
+// known to cells h = 0.01 wide: Z0 = h^n (2 pi tau^2)^(-n/2) exp(-S0 / 2 tau^2) sqrt(2 pi tau^2 / n) / V_x with S0 the
+// sum of squares about the mean; the relation's ln B = (S0 - RSS) / 2 tau^2 + 1/2 ln(2 pi tau^2 / sum dx^2) - ln V_d1
+// (a linear regression's Gaussian integral over (x, d1), dx centred). Tolerance 2e-3 in ln Z: the cell's mass is
+// h phi to a relative (h / tau)^2 / 24 = 5e-5 per site, the trapezoid rule on a Gaussian at > 2 points per sd errs
+// far less, and the pinned tau moves ln Z by n x 1e-6 / tau.
+TEST(RegionFrequency, MarginalLikelihoodsAreTheClosedForms) {
+  const double tau = 0.3, h = 0.01;
+  RegionalSettings st;
+  st.tau_f_min = tau;
+  st.tau_f_max = tau + 1e-6;
+  const std::vector<double> r{8.0, 15.0, 25.0, 40.0, 60.0, 90.0};
+  const std::vector<double> wobble{0.1, -0.2, 0.15, 0.05, -0.1, 0.0};
+  std::vector<SiteEvidence> sites;
+  std::vector<double> dx, y;
+  double mean_ln_rho = 0.0;
+  for (double d : r) mean_ln_rho += std::log(std::hypot(d, st.c2_km)) / 6.0;
+  for (std::size_t s = 0; s < r.size(); ++s) {
+    dx.push_back(std::log(std::hypot(r[s], st.c2_km)) - mean_ln_rho);
+    y.push_back(std::log(5.0) - 0.5 * dx.back() + wobble[s]);
+    sites.push_back(station_with_frequency(fmt::format("s{}", s), r[s], relation_pga_g(2.0, 1.2, 6.0, r[s]),
+                                           std::exp(y.back()), h));
+  }
+  const RegionalResult fit = fit_region(sites, st);
+  ASSERT_TRUE(fit.frequency);
+  const double n = 6.0;
+  double ybar = 0.0, sxx = 0.0, sxy = 0.0;
+  for (std::size_t s = 0; s < 6; ++s) ybar += y[s] / n;
+  double s0 = 0.0;
+  for (std::size_t s = 0; s < 6; ++s) {
+    s0 += (y[s] - ybar) * (y[s] - ybar);
+    sxx += dx[s] * dx[s];
+    sxy += dx[s] * (y[s] - ybar);
+  }
+  const double rss = s0 - sxy * sxy / sxx;
+  const double two_pi_t2 = 2.0 * std::numbers::pi * tau * tau;
+  const double ln_z0 = n * std::log(h) - 0.5 * n * std::log(two_pi_t2) - s0 / (2.0 * tau * tau) +
+                       0.5 * std::log(two_pi_t2 / n) - std::log(st.ln_f_ref_max - st.ln_f_ref_min);
+  EXPECT_NEAR(fit.frequency->log_evidence_constant, ln_z0, 2e-3);
+  const double ln_b = (s0 - rss) / (2.0 * tau * tau) + 0.5 * std::log(two_pi_t2 / sxx) - std::log(st.d1_max - st.d1_min);
+  EXPECT_NEAR(fit.frequency->ln_bayes_factor, ln_b, 2e-3);
+  // The slope's posterior is the regression's: mean sxy / sxx, sd tau / sqrt(sxx) (the median within 1 % of the sd:
+  // the marginal is tabulated on 41 points).
+  EXPECT_NEAR(fit.frequency->d1.median, sxy / sxx, 0.01 * tau / std::sqrt(sxx));
+  EXPECT_NEAR(fit.frequency->d1.ci95_high - fit.frequency->d1.median, 1.959964 * tau / std::sqrt(sxx),
+              0.01 * tau / std::sqrt(sxx) + 0.02 * 1.959964 * tau / std::sqrt(sxx));
+}
+
+// A clear trend (d1 = -0.6, scatter 0.05 over a lever arm of 2.4 in ln rho) is supported and every site's frequency
+// is pooled through it, a site without frequency evidence (a bare station) at the relation's value; the same sites at
+// one frequency are not: B < 3 (the constant model explains them with one parameter fewer).
+TEST(RegionFrequency, ATrendIsSupportedAndAConstantIsNot) {
+  const std::vector<double> r{6.0, 10.0, 16.0, 25.0, 40.0, 60.0, 90.0};
+  const std::vector<double> wobble{0.05, -0.04, 0.02, -0.05, 0.04, -0.02, 0.0};
+  const double c2 = RegionalSettings{}.c2_km;
+  double mean_ln_rho = 0.0;
+  for (double d : r) mean_ln_rho += std::log(std::hypot(d, c2)) / static_cast<double>(r.size() + 1);
+  mean_ln_rho += std::log(std::hypot(30.0, c2)) / static_cast<double>(r.size() + 1);  // the bare station below
+  const auto sites_for = [&](double d1) {
+    std::vector<SiteEvidence> sites;
+    for (std::size_t s = 0; s < r.size(); ++s) {
+      const double f = std::exp(std::log(4.0) + d1 * (std::log(std::hypot(r[s], c2)) - mean_ln_rho) + wobble[s]);
+      sites.push_back(station_with_frequency(fmt::format("s{}", s), r[s], relation_pga_g(2.0, 1.2, c2, r[s]), f, 0.02));
+    }
+    sites.push_back(station("bare", 30.0, relation_pga_g(2.0, 1.2, c2, 30.0)));
+    return sites;
+  };
+  const RegionalResult trend = fit_region(sites_for(-0.6));
+  ASSERT_TRUE(trend.frequency);
+  EXPECT_TRUE(trend.frequency->supported);
+  EXPECT_GT(trend.frequency->ln_bayes_factor, std::log(100.0));  // a slope 0.6 / 0.05 x 2.4 lever: decisive
+  EXPECT_TRUE(trend.frequency->d1.holds95(-0.6));
+  EXPECT_EQ(trend.frequency->sites_with_frequency, 7u);
+  for (const PooledSite& p : trend.sites) ASSERT_TRUE(p.freq_hz) << p.name;
+  // The bare station: its pooled frequency is the relation's prediction at 30 km, 4 Hz x (rho / rho_ref)^-0.6, with
+  // the relation's and tau_f's spread (the 95 % interval within +-4 tau_f of the median, and the median within 5 %).
+  const double f_bare = 4.0 * std::exp(-0.6 * (std::log(std::hypot(30.0, c2)) - mean_ln_rho));
+  EXPECT_NEAR(trend.sites.back().freq_hz->median, f_bare, 0.05 * f_bare);
+  EXPECT_NEAR(trend.sites.back().relation_freq_hz->median, f_bare, 0.05 * f_bare);
+  // A site known to 0.02 in ln f keeps its own frequency (within 2 %).
+  const double f0 = std::exp(std::log(4.0) - 0.6 * (std::log(std::hypot(6.0, c2)) - mean_ln_rho) + 0.05);
+  EXPECT_NEAR(trend.sites[0].freq_hz->median, f0, 0.02 * f0);
+
+  const RegionalResult flat = fit_region(sites_for(0.0));
+  ASSERT_TRUE(flat.frequency);
+  EXPECT_FALSE(flat.frequency->supported);
+  EXPECT_LT(flat.frequency->ln_bayes_factor, std::log(3.0));
+  EXPECT_NEAR(flat.frequency->constant_f_hz.median, 4.0, 0.05 * 4.0);
+  for (const PooledSite& p : flat.sites) EXPECT_FALSE(p.freq_hz) << p.name;
+}
+
+// The frequency evidence of a site: its inversion's likelihood summed over the PGA rows (eq. F2), scaled to a maximum
+// of 1, on cells with edges at the geometric midpoints of the grid's frequencies (the ends open). Exact to rounding.
+TEST(RegionFrequency, SiteEvidenceMarginalisesThePga) {
+  InversionResult r;
+  r.pga_g = {0.1, 0.2};
+  r.freq_hz = {1.0, 4.0, 16.0};
+  r.log_likelihood = {std::log(0.1), std::log(0.4), std::log(0.2), std::log(0.3), std::log(0.4), std::log(0.0)};
+  const SiteEvidence e = site_evidence("a", 10.0, &r, std::nullopt);
+  ASSERT_EQ(e.freq_likelihood.size(), 3u);
+  EXPECT_NEAR(e.freq_likelihood[0], 0.4 / 0.8, 1e-12);
+  EXPECT_NEAR(e.freq_likelihood[1], 1.0, 1e-12);
+  EXPECT_NEAR(e.freq_likelihood[2], 0.2 / 0.8, 1e-12);
+  ASSERT_EQ(e.ln_freq_edges.size(), 4u);
+  EXPECT_NEAR(e.ln_freq_edges[1], std::log(2.0), 1e-12);
+  EXPECT_NEAR(e.ln_freq_edges[2], std::log(8.0), 1e-12);
+  EXPECT_TRUE(std::isinf(e.ln_freq_edges[0]) && e.ln_freq_edges[0] < 0);
+  EXPECT_TRUE(std::isinf(e.ln_freq_edges[3]) && e.ln_freq_edges[3] > 0);
+}
+
+// Fewer than 3 sites with frequency evidence: no frequency relation, a note saying so.
+TEST(RegionFrequency, NoneWithoutFrequencyEvidence) {
+  const RegionalResult fit = fit_region({station("a", 10, 0.3), station("b", 20, 0.2), station("c", 40, 0.1)});
+  EXPECT_FALSE(fit.frequency);
+  ASSERT_FALSE(fit.notes.empty());
+  EXPECT_NE(fit.notes.back().find("no frequency relation"), std::string::npos);
+}
+
 // ---- The pooled field and its contours ----
 
 // A radially symmetric field (the relation alone, no site): the contour at level L is the circle where the relation
@@ -292,6 +423,14 @@ TEST(RegionCli, ExampleRunsEndToEnd) {
   EXPECT_TRUE(station.at("calibration").at("objects_agree").is_boolean());
   EXPECT_TRUE(region.at("sites")[5].at("independent_pga_g").at("median").is_number());
   EXPECT_EQ(region.at("contour_levels_g").size(), 4u);
+  // The frequency relation: the example's truth is one frequency (3 Hz) everywhere, so a trend must not be supported
+  // (B < 3) and no site gets a pooled frequency; each site's own frequency estimate is given beside.
+  const auto& freq = region.at("frequency_relation");
+  EXPECT_FALSE(freq.at("supported").get<bool>());
+  EXPECT_LT(freq.at("ln_bayes_factor").get<double>(), std::log(3.0));
+  EXPECT_EQ(freq.at("sites_with_frequency").get<int>(), 12);
+  EXPECT_TRUE(region.at("sites")[5].at("pooled_freq_hz").is_null());
+  EXPECT_TRUE(region.at("sites")[5].at("independent_freq_hz").at("median").is_number());
   EXPECT_TRUE(std::filesystem::exists(tmp.path() / "sites.region.csv"));
   const auto contours = nlohmann::json::parse(test::slurp(tmp.path() / "sites.contours.geojson"));
   ASSERT_EQ(contours.at("features").size(), 4u);
@@ -307,6 +446,8 @@ TEST(RegionCli, ExampleRunsEndToEnd) {
   EXPECT_NE(page.find("<figure id=\"attenuation\"><svg"), std::string::npos);
   EXPECT_NE(page.find("<figure id=\"map\"><svg"), std::string::npos);
   EXPECT_NE(page.find("calibration: the objects"), std::string::npos);
+  EXPECT_NE(page.find("<p id=\"frequency\">Frequency: ln f = d0"), std::string::npos);
+  EXPECT_NE(page.find("not supported (&lt; 3)"), std::string::npos);  // the example's truth: one frequency
 }
 
 // ---- The regional recovery test ----

@@ -798,6 +798,9 @@ dict
 inline constexpr const char* invert_text =
     "topple.invert's worker for a survey given as TOML text (text, name for messages, base_dir for records).";
 inline constexpr const char* invert_file = "topple.invert's worker for a survey file.";
+inline constexpr const char* invert_region_text =
+    "topple.invert_region's worker for a survey given as TOML text (text, name for messages, base_dir for records).";
+inline constexpr const char* invert_region_file = "topple.invert_region's worker for a survey file.";
 
 inline constexpr const char* response_spectrum =
     R"(Elastic response spectrum of linear oscillators, by the exact Nigam-Jennings recurrence.

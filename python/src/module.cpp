@@ -44,9 +44,11 @@
 #include "topple/inversion.hpp"
 #include "topple/motion_set.hpp"
 #include "topple/object_spectra.hpp"
+#include "topple/region.hpp"
 #include "topple/oriented.hpp"
 #include "topple/io/flexible_json.hpp"
 #include "topple/io/inversion_output.hpp"
+#include "topple/io/region_output.hpp"
 #include "topple/io/read.hpp"
 #include "topple/io/survey_file.hpp"
 #include "topple/io/sweep_file.hpp"
@@ -524,26 +526,74 @@ nb::object invert_survey(const Survey& survey, int threads, const std::optional<
   return all;
 }
 
-nb::object invert_file(const std::string& path, int threads, const std::optional<std::string>& report_dir) {
+/// A survey file read by the library (the options checked first, as the CLI does), without the GIL.
+Survey survey_from_file(const std::string& path, int threads) {
   validate_inversion_options(InversionOptions{threads});
-  Survey survey;
-  {
-    nb::gil_scoped_release release;
-    survey = io::read_survey(path);
-  }
-  return invert_survey(survey, threads, report_dir);
+  nb::gil_scoped_release release;
+  return io::read_survey(path);
+}
+
+/// A survey given as TOML text (name for messages, base_dir for records), likewise.
+Survey survey_from_text(const std::string& text, const std::string& name, const std::string& base_dir, int threads) {
+  validate_inversion_options(InversionOptions{threads});
+  nb::gil_scoped_release release;
+  Survey survey = io::parse_survey(text, name, base_dir);
+  io::load_survey_records(survey);
+  return survey;
+}
+
+nb::object invert_file(const std::string& path, int threads, const std::optional<std::string>& report_dir) {
+  return invert_survey(survey_from_file(path, threads), threads, report_dir);
 }
 
 nb::object invert_text(const std::string& text, const std::string& name, const std::string& base_dir, int threads,
                        const std::optional<std::string>& report_dir) {
-  validate_inversion_options(InversionOptions{threads});
-  Survey survey;
+  return invert_survey(survey_from_text(text, name, base_dir, threads), threads, report_dir);
+}
+
+// ---- the regional inversion ----
+
+/// A multi-site survey's inversion and regional fit as `topple invert --json` makes them (region.hpp: invert_survey,
+/// one process): the `region` object (relation, frequency_relation, sites pooled beside their own estimates,
+/// contour_levels_g, notes), plus region_notes and each site's own inversion (site_results, None for a station
+/// without objects). A survey that gets no regional fit (no epicentre, fewer than 3 located sites) raises InputError
+/// with the reason.
+nb::object invert_region_survey(const Survey& survey, const std::string& where, int threads) {
+  const RegionalSettings settings;
+  SurveyInversion inv;
   {
     nb::gil_scoped_release release;
-    survey = io::parse_survey(text, name, base_dir);
-    io::load_survey_records(survey);
+    ensemble::SingleProcess one;
+    inv = invert_survey(survey, InversionOptions{threads}, one, settings);
   }
-  return invert_survey(survey, threads, report_dir);
+  if (!inv.region) {
+    std::string why = inv.region_notes.empty() ? std::string("a regional fit needs a multi-site survey") : inv.region_notes.front();
+    throw InputError(InputLocation{where, {}, "region"}, why);
+  }
+  const std::vector<const InversionResult*> per_site = inv.per_site(survey.sites.size());
+  nb::dict d = nb::cast<nb::dict>(to_python(io::region_json(*inv.region, survey, per_site, settings)));
+  nb::list notes;
+  for (const std::string& n : inv.region_notes) notes.append(n);
+  d["region_notes"] = notes;
+  nb::list sites;
+  for (std::size_t i = 0; i < survey.sites.size(); ++i) {
+    if (per_site[i] == nullptr) {
+      sites.append(nb::none());
+    } else {
+      sites.append(to_python(io::inversion_json(*per_site[i], survey.sites[i])));
+    }
+  }
+  d["site_results"] = sites;
+  return d;
+}
+
+nb::object invert_region_file(const std::string& path, int threads) {
+  return invert_region_survey(survey_from_file(path, threads), path, threads);
+}
+
+nb::object invert_region_text(const std::string& text, const std::string& name, const std::string& base_dir,
+                              int threads) {
+  return invert_region_survey(survey_from_text(text, name, base_dir, threads), name, threads);
 }
 
 // ---- spectra of a motion ----
@@ -1238,6 +1288,10 @@ NB_MODULE(_core, m) {
         doc::invert_file);
   m.def("_invert_text", &invert_text, "text"_a, nb::kw_only(), "name"_a, "base_dir"_a, "threads"_a = 0,
         "report_dir"_a = nb::none(), doc::invert_text);
+  // topple.invert_region (python/topple/__init__.py) likewise.
+  m.def("_invert_region_file", &invert_region_file, "path"_a, nb::kw_only(), "threads"_a = 0, doc::invert_region_file);
+  m.def("_invert_region_text", &invert_region_text, "text"_a, nb::kw_only(), "name"_a, "base_dir"_a, "threads"_a = 0,
+        doc::invert_region_text);
 
   // ---- spectra, object spectra, fragility, sweeps ----
   m.def("response_spectrum", &response_spectrum_dict, "motion"_a, "periods_s"_a = nb::none(), "damping"_a = 0.05,

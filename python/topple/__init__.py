@@ -73,6 +73,7 @@ __all__ = [
     "fragility_fit",
     "intensity",
     "invert",
+    "invert_region",
     "overturning_map",
     "read",
     "response_spectrum",
@@ -290,3 +291,47 @@ def invert(survey: _Union[str, "_os.PathLike[str]", _Mapping[str, _Any]], *, thr
     if base_dir is not None:
         raise TypeError("base_dir applies to a dict survey; a file's records resolve against its own folder")
     return _core._invert_file(_os.fspath(survey), threads=threads, report_dir=report)
+
+
+def invert_region(survey: _Union[str, "_os.PathLike[str]", _Mapping[str, _Any]], *, threads: int = 0,
+                  base_dir: _Optional[_Union[str, "_os.PathLike[str]"]] = None) -> dict:
+    """The regional joint inversion of a multi-site survey: the attenuation relation and every site pooled through it.
+
+    What ``topple invert --json`` gives as ``region`` (docs/method.md, "Regional joint inversion"): every site with
+    objects inverted on its own, then ln PGA = c0 - c1 ln sqrt(R^2 + c2^2) + delta fitted to all of them by grid
+    integration, with the predominant frequency's relation ln f = d0 + d1 ln sqrt(R^2 + c2^2) + eps when the data
+    support it (Bayes factor against a constant frequency of at least 3).
+
+    Parameters
+    ----------
+    survey : str, os.PathLike or dict
+        A regional survey file (TOML, docs/survey.md: ``[event] epicentre``, at least 3 sites with lat/lon; stations
+        with ``pga_g`` or ``record``), or the same as a dict (see topple.invert).
+    threads : int
+        Worker threads for the sites' inversions, 0 = every core.
+    base_dir : str or os.PathLike, optional
+        For a dict survey: the folder that relative record paths resolve against (default: the current folder).
+
+    Returns
+    -------
+    dict
+        ``relation`` (c0_ln_g, c1, tau_ln, pga_at_reference_g: each {median, ci68, ci95}; c2_km fixed,
+        reference_distance_km), ``frequency_relation`` (None, or d0_ln_hz, d1, tau_f_ln, ln_bayes_factor, supported,
+        ...), ``sites`` (per located site: hypocentral_distance_km, pooled_pga_g (g), relation_pga_g (g),
+        independent_pga_g (g), pooled_freq_hz (Hz, None unless the frequency relation is supported),
+        independent_freq_hz (Hz), calibration), ``priors``, ``contour_levels_g`` (g), ``notes``; and beyond the
+        CLI's ``region``: ``region_notes`` and ``site_results`` (each survey site's own inversion as topple.invert
+        gives it, None for a station without objects).
+
+    Raises
+    ------
+    topple.InputError
+        For a survey that gets no regional fit (no epicentre, fewer than 3 located sites), naming the reason; and for
+        a bad survey, as topple.invert.
+    """
+    if isinstance(survey, _Mapping):
+        base = _os.fspath(base_dir) if base_dir is not None else _os.getcwd()
+        return _core._invert_region_text(survey_toml(survey), name="<survey dict>", base_dir=base, threads=threads)
+    if base_dir is not None:
+        raise TypeError("base_dir applies to a dict survey; a file's records resolve against its own folder")
+    return _core._invert_region_file(_os.fspath(survey), threads=threads)

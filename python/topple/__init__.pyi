@@ -268,6 +268,10 @@ def invert(survey: Union[str, "os.PathLike[str]", Mapping[str, Any]], *, threads
            base_dir: Optional[Union[str, "os.PathLike[str]"]] = None) -> dict[str, Any]:
     """Estimate the PGA (g) and predominant frequency (Hz) of the shaking from a survey, as ``topple invert --json``."""
 
+def invert_region(survey: Union[str, "os.PathLike[str]", Mapping[str, Any]], *, threads: int = 0,
+                  base_dir: Optional[Union[str, "os.PathLike[str]"]] = None) -> dict[str, Any]:
+    """The regional joint inversion of a multi-site survey: the attenuation relation and every site pooled through it."""
+
 def survey_toml(survey: Mapping[str, Any]) -> str:
     """The TOML text of a survey built in Python (the structure of a survey file, docs/survey.md)."""
 

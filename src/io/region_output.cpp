@@ -16,9 +16,9 @@ nlohmann::ordered_json summary(const Interval95& v) {
 
 nlohmann::ordered_json opt(const std::optional<double>& v) { return v ? nlohmann::ordered_json(*v) : nullptr; }
 
-nlohmann::ordered_json independent(const InversionResult* r) {
+nlohmann::ordered_json independent(const InversionResult* r, bool frequency = false) {
   if (r == nullptr) return nullptr;
-  const Estimate& e = r->pga_estimate_g;
+  const Estimate& e = frequency ? r->freq_estimate_hz : r->pga_estimate_g;
   return {{"median", e.median}, {"ci68", {opt(e.ci68_low), opt(e.ci68_high)}}, {"ci95", {opt(e.ci95_low), opt(e.ci95_high)}}};
 }
 
@@ -57,6 +57,34 @@ nlohmann::ordered_json region_json(const RegionalResult& fit, const Survey& surv
   j["method"] = "grid integration over (ln PGA at the reference distance, c1, tau); each site's PGA integrated in "
                 "closed form against its own likelihood (docs/method.md, Regional joint inversion)";
   j["grid_points"] = fit.grid_points;
+  if (fit.frequency) {
+    const FrequencyRelation& f = *fit.frequency;
+    const Interval95 f_ref{std::exp(f.ln_f_ref.median), std::exp(f.ln_f_ref.ci68_low), std::exp(f.ln_f_ref.ci68_high),
+                           std::exp(f.ln_f_ref.ci95_low), std::exp(f.ln_f_ref.ci95_high)};
+    j["frequency_relation"] = {
+        {"model", "ln f_s = d0 + d1 ln sqrt(R_s^2 + c2^2) + eps_s, eps_s ~ N(0, tau_f^2); f in Hz, R hypocentral km, c2 as "
+                  "the PGA relation's; against the constant model ln f_s = ln f_c + eps_s"},
+        {"d0_ln_hz", summary(f.d0)},
+        {"d1", summary(f.d1)},
+        {"tau_f_ln", summary(f.tau)},
+        {"frequency_at_reference_hz", summary(f_ref)},
+        {"constant_model", {{"f_c_hz", summary(f.constant_f_hz)}, {"tau_f_ln", summary(f.constant_tau)}}},
+        {"ln_evidence_relation", f.log_evidence_relation},
+        {"ln_evidence_constant", f.log_evidence_constant},
+        {"ln_bayes_factor", f.ln_bayes_factor},
+        {"bayes_factor_threshold", st.frequency_bayes_factor},
+        {"supported", f.supported},
+        {"rule", "supported when Z(relation) / Z(constant) >= the threshold (Kass & Raftery 1995: 3 is the lower end of "
+                 "positive evidence); only then are the sites' frequencies pooled"},
+        {"sites_with_frequency", f.sites_with_frequency},
+        {"priors", {{"ln_frequency_at_reference_hz", {st.ln_f_ref_min, st.ln_f_ref_max}},
+                    {"d1", {st.d1_min, st.d1_max}},
+                    {"tau_f_ln", {st.tau_f_min, st.tau_f_max}},
+                    {"kind", "uniform on the box"}}},
+        {"notes", f.notes}};
+  } else {
+    j["frequency_relation"] = nullptr;
+  }
   nlohmann::ordered_json sites = nlohmann::ordered_json::array();
   for (const PooledSite& p : fit.sites) {
     const Site& site = survey.sites[p.site_index];
@@ -72,6 +100,9 @@ nlohmann::ordered_json region_json(const RegionalResult& fit, const Survey& surv
     sj["pooled_pga_g"] = summary(p.pga_g);
     sj["relation_pga_g"] = summary(p.relation_pga_g);
     sj["independent_pga_g"] = independent(r);
+    sj["independent_freq_hz"] = independent(r, true);
+    sj["pooled_freq_hz"] = p.freq_hz ? summary(*p.freq_hz) : nlohmann::ordered_json(nullptr);
+    sj["relation_freq_hz"] = p.relation_freq_hz ? summary(*p.relation_freq_hz) : nlohmann::ordered_json(nullptr);
     if (r != nullptr && p.instrument_pga_g) {
       sj["calibration"] = {{"objects_agree", objects_agree_with_instrument(r->pga_estimate_g, *p.instrument_pga_g)},
                            {"test", "the instrument's PGA inside the objects' own 95 % interval (open ends count as open)"}};

@@ -230,8 +230,6 @@ height_m = 0.5
   }
 }
 
-bool have_mpirun() { return std::system("command -v mpirun >/dev/null 2>&1") == 0; }
-
 TEST(CliSweep, SameBytesForOneThreadAllThreadsAndMpiRanks) {
   TempDir dir;
   write_file(dir.path() / "s.toml", kPulseSweep);
@@ -243,13 +241,7 @@ TEST(CliSweep, SameBytesForOneThreadAllThreadsAndMpiRanks) {
     ASSERT_EQ(r.exit_code, 0) << r.err;
     outputs.push_back(out);
   }
-#if defined(__SANITIZE_ADDRESS__)
-  const bool mpi = false;  // Open MPI's own allocations trip LeakSanitizer: not run in sanitizer builds
-#elif TOPPLE_TEST_MPI
-  const bool mpi = have_mpirun();
-#else
-  const bool mpi = false;
-#endif
+  const bool mpi = test::mpi_tests_enabled();
   if (mpi) {
     for (const int ranks : {2, 3}) {
       const std::string out = (dir.path() / fmt::format("mpi{}.csv", ranks)).string();

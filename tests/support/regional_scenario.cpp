@@ -77,7 +77,8 @@ InversionSettings small_grid(double pga_min_g, int pga_count, double freq_min_hz
   return st;
 }
 
-RegionalScenario make_regional_scenario(std::uint64_t seed, const RegionalTruth& truth, const InversionSettings& st) {
+RegionalScenario make_regional_scenario(std::uint64_t seed, const RegionalTruth& truth, const InversionSettings& st,
+                                        std::size_t sites) {
   RegionalScenario sc;
   sc.truth = truth;
   Survey& s = sc.survey;
@@ -89,15 +90,21 @@ RegionalScenario make_regional_scenario(std::uint64_t seed, const RegionalTruth&
   const double az_deg[12] = {20, 200, 110, 300, 45, 160, 250, 340, 80, 275, 10, 190};
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> normal(0.0, 1.0);
-  const std::size_t n = 12;
+  const std::size_t n = sites;
+  // Beyond the dozen: 5-80 km by the golden ratio's fractional parts, azimuths by the golden angle (deterministic,
+  // spread out).
+  const auto epi_of = [&](std::size_t i) {
+    return i < 12 ? epi_km[i] : 5.0 + 75.0 * std::fmod(static_cast<double>(i) * 0.6180339887498949, 1.0);
+  };
+  const auto az_of = [&](std::size_t i) { return i < 12 ? az_deg[i] : std::fmod(static_cast<double>(i) * 137.50776, 360.0); };
   // Site positions by a local flat-Earth offset (inputs only: distances are then measured by the geodesic).
   for (std::size_t i = 0; i < n; ++i) {
     Site site;
     site.name = fmt::format("site {:02d}", i + 1);
-    const double az = az_deg[i] * std::numbers::pi / 180.0;
-    site.lat_deg = std::round((*s.epicentre_lat_deg + epi_km[i] * std::cos(az) / 111.2) * 1e4) / 1e4;
+    const double az = az_of(i) * std::numbers::pi / 180.0;
+    site.lat_deg = std::round((*s.epicentre_lat_deg + epi_of(i) * std::cos(az) / 111.2) * 1e4) / 1e4;
     site.lon_deg = std::round((*s.epicentre_lon_deg +
-                               epi_km[i] * std::sin(az) / (111.2 * std::cos(*s.epicentre_lat_deg * std::numbers::pi / 180.0))) *
+                               epi_of(i) * std::sin(az) / (111.2 * std::cos(*s.epicentre_lat_deg * std::numbers::pi / 180.0))) *
                               1e4) /
                    1e4;
     s.sites.push_back(site);
@@ -136,7 +143,7 @@ RegionalScenario make_regional_scenario(std::uint64_t seed, const RegionalTruth&
     // The site's motion: the synthetic family at a seed the inversion does not use, scaled to the true PGA.
     truth_settings.seed = 1000003 * (seed + 1) + i;
     const GroundMotion motion = family_motions(truth_settings, truth.freq_hz).front().scaled(pga * st.g_m_s2);
-    const std::size_t count = i == 0 ? 2 : (i >= 9 ? (i == 10 ? 2 : 1) : 5);
+    const std::size_t count = i >= 12 ? 3 : (i == 0 ? 2 : (i >= 9 ? (i == 10 ? 2 : 1) : 5));
     std::vector<std::size_t> order(std::size(kTemplates));
     for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
     std::shuffle(order.begin(), order.end(), rng);
@@ -156,7 +163,8 @@ std::string regional_survey_toml(const RegionalScenario& sc, const std::string& 
   const Survey& s = sc.survey;
   const InversionSettings& st = s.inversion;
   std::string t;
-  t += "# A SYNTHETIC regional survey (issue 17): twelve sites around one epicentre, made by\n#   " + command + "\n";
+  const std::string count = s.sites.size() == 12 ? std::string("twelve") : fmt::format("{}", s.sites.size());
+  t += "# A SYNTHETIC regional survey (issue 17): " + count + " sites around one epicentre, made by\n#   " + command + "\n";
   t += fmt::format("# True relation: ln PGA = {} - {} ln sqrt(R^2 + {}^2) + delta, tau = {}, residuals correlated as\n"
                    "# exp(-3 h / {} km) (Jayaram & Baker 2009); each object's outcome computed by the solvers under a\n"
                    "# synthetic motion ({} Hz) scaled to its site's true PGA. True PGAs (g), site by site:\n#  ",

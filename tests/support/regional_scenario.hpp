@@ -34,9 +34,10 @@ struct RegionalScenario {
                                            int freq_count, int motions_per_cell);
 
 /// A dozen sites (5-80 km), site 0 an instrument station (its true PGA, 3 digits) with two objects, sites 9-11 with
-/// one or two objects only, the others five. `seed` draws the residuals and the objects' choice.
+/// one or two objects only, the others five; `sites` > 12 adds sites 5-80 km out with three objects each (the scale
+/// benchmark's survey). `seed` draws the residuals and the objects' choice.
 [[nodiscard]] RegionalScenario make_regional_scenario(std::uint64_t seed, const RegionalTruth& truth,
-                                                      const InversionSettings& settings);
+                                                      const InversionSettings& settings, std::size_t sites = 12);
 
 /// The scenario as a survey file (TOML), with a comment block saying how it was made.
 [[nodiscard]] std::string regional_survey_toml(const RegionalScenario& scenario, const std::string& command);

@@ -2,6 +2,7 @@
 // Test fixtures: where ../shared lives, and running the built CLI.
 #include <sys/types.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -35,6 +36,19 @@ struct CommandResult {
 
 /// Starts the built CLI in the background (argv as given, stdout to /dev/null, stderr to `err`); its pid, or -1.
 [[nodiscard]] pid_t spawn_cli(const std::vector<std::string>& args, const std::filesystem::path& err);
+
+/// Whether a test may run topple under mpirun: the test target defines TOPPLE_TEST_MPI=1 when topple is built with
+/// MPI (tests/CMakeLists.txt), mpirun is on the PATH, and the build is not a sanitizer build (Open MPI's own
+/// allocations trip LeakSanitizer). Inline: it reads the including target's definitions.
+inline bool mpi_tests_enabled() {
+#if defined(__SANITIZE_ADDRESS__)
+  return false;
+#elif defined(TOPPLE_TEST_MPI) && TOPPLE_TEST_MPI
+  return std::system("command -v mpirun >/dev/null 2>&1") == 0;
+#else
+  return false;
+#endif
+}
 
 /// How many times `what` occurs in `text` (overlapping occurrences counted).
 [[nodiscard]] std::size_t count(const std::string& text, const std::string& what);

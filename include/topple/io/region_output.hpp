@@ -18,7 +18,9 @@ namespace topple::io {
 /// Keys: model, relation {c0_ln_g, c1, c2_km (fixed), tau_ln, reference_distance_km, pga_at_reference_g: each
 /// {median, ci68, ci95}}, priors, sites [{site, survey_index, hypocentral_distance_km, instrument_pga_g, pooled_pga_g,
 /// relation_pga_g, independent_pga_g (the site's own inversion, null for a station without objects), calibration
-/// (stations with objects: objects_agree)}], contour_levels_g, notes. `results[i]` as in fit_survey_region.
+/// (stations with objects: objects_agree), independent_freq_hz, pooled_freq_hz, relation_freq_hz (null unless the
+/// frequency relation is supported)}], frequency_relation (null or {d0_ln_hz, d1, tau_f_ln, constant_model,
+/// ln_bayes_factor, supported, ...}), contour_levels_g, notes. `results[i]` as in fit_survey_region.
 [[nodiscard]] nlohmann::ordered_json region_json(const RegionalResult& fit, const Survey& survey,
                                                  const std::vector<const InversionResult*>& results,
                                                  const RegionalSettings& settings);
