@@ -20,6 +20,7 @@
 
 #include "topple/error.hpp"
 #include "topple/input_grid.hpp"
+#include "event_root.hpp"
 
 namespace topple {
 namespace {
@@ -304,30 +305,10 @@ constexpr std::array<Poly, 6> dense_weights() {
 constexpr std::array<Poly, 6> kDense = dense_weights();
 }  // namespace dp5
 
-/// Cap on root-finder iterations per event: TOMS 748 converges in about 10 on smooth dense output, Newton in 3 to 5;
-/// 200 means a broken bracket.
-constexpr std::uintmax_t kMaxRootIterations = 200;
-
-/// Root of f on [a, b] with f(a), f(b) of opposite signs (or zero), by TOMS 748, to a few ulps of the time. NaN when
-/// the iterations ran out (the engine reports it with the run's parameters).
-/// The time tolerance of event location: a few ulps of the time itself, with a floor of 1 s so that events near t = 0
-/// converge too.
-inline double time_tolerance(double t) {
-  return 4.0 * std::numeric_limits<double>::epsilon() * std::max(std::abs(t), 1.0);
-}
-
-template <class F>
-double find_root(F f, double a, double b, double fa, double fb) {
-  if (fa == 0.0) return a;
-  if (fb == 0.0) return b;
-  std::uintmax_t iterations = kMaxRootIterations;
-  const auto tol = [](double lo, double hi) {
-    return std::abs(hi - lo) <= time_tolerance(std::max(std::abs(lo), std::abs(hi)));
-  };
-  const auto r = boost::math::tools::toms748_solve(f, a, b, fa, fb, tol, iterations);
-  if (iterations >= kMaxRootIterations) return std::numeric_limits<double>::quiet_NaN();
-  return 0.5 * (r.first + r.second);
-}
+// Event location (event_root.hpp, shared with slide_rock.cpp).
+using detail::find_root;
+using detail::kMaxRootIterations;
+using detail::time_tolerance;
 
 // ---------------------------------------------------------------------------------------------------------------
 // Steppers. Both take one step from the last state toward t_limit (never past it) and give the state anywhere in
