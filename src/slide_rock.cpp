@@ -26,8 +26,9 @@ using detail::find_root;
 using detail::kMaxRootIterations;
 using detail::time_tolerance;
 
-/// Scaled state (u / Lu, u' / (p Lu), theta / alpha, theta' / (p alpha)), Lu = h alpha.
-using State = std::array<double, 4>;
+/// Scaled state (u / Lu, u' / (p Lu), theta / alpha, theta' / (p alpha), W / (g Lu)), Lu = h alpha, W the work of
+/// kinetic friction since the last restart.
+using State = std::array<double, 5>;
 using Dopri = odeint::runge_kutta_dopri5<State>;
 using Controlled = odeint::controlled_runge_kutta<Dopri>;
 
@@ -170,12 +171,14 @@ struct Rhs {
     dy[1] = c.udd / (ps * P->Lu);
     dy[2] = ps * y[3];
     dy[3] = c.thdd / (ps * P->alpha_sc);
+    dy[4] = sigma == 0 ? 0.0 : P->muk * c.N * std::abs(y[1]) * ps / P->g;  // mu_k N |u'| / (g Lu)
   }
 };
 
 /// Physical state in contact modes (u, u', theta, theta') and, in flight, the CM (X, X', Y, Y').
 struct Phys {
   double u = 0.0, v = 0.0, th = 0.0, w = 0.0;
+  double work = 0.0;  // friction work since the last restart (rock / slide-rock), J/kg
   double X = 0.0, Xd = 0.0, Y = 0.0, Yd = 0.0;
 };
 
@@ -476,7 +479,7 @@ class Engine {
 
   // ---- rock and slide-rock: Boost.Odeint's controlled Dormand-Prince with dense output ----
   [[nodiscard]] State scaled(const Phys& x) const {
-    return {x.u / P_.Lu, x.v / (P_.p_sc * P_.Lu), x.th / P_.alpha_sc, x.w / (P_.p_sc * P_.alpha_sc)};
+    return {x.u / P_.Lu, x.v / (P_.p_sc * P_.Lu), x.th / P_.alpha_sc, x.w / (P_.p_sc * P_.alpha_sc), 0.0};
   }
   [[nodiscard]] Phys physical(const State& y) const {
     Phys x;
@@ -484,6 +487,7 @@ class Engine {
     x.v = y[1] * P_.p_sc * P_.Lu;
     x.th = y[2] * P_.alpha_sc;
     x.w = y[3] * P_.p_sc * P_.alpha_sc;
+    x.work = y[4] * P_.g * P_.Lu;
     return x;
   }
   [[nodiscard]] Phys dense(double t) const {
@@ -505,6 +509,7 @@ class Engine {
     rhs_.s = s_;
     rhs_.sigma = sigma_;
     if (restart_) {
+      work_base_ = out_.summary.friction_energy_j_per_kg;
       y1_ = scaled(x_);
       t1_ = t_;
       rhs_(y1_, dy1_, t_);
@@ -537,24 +542,37 @@ class Engine {
     const Phys x1 = physical(y1_);
     const auto e0 = events(x0, t0_);
     const auto e1 = events(x1, t1_);
-    // A mode that did not take (an event function starting at 0 and going the wrong way: a lift-off or a slip that
-    // round-off decided) is decided again at the step's end.
-    // Peaks of s theta and |theta| = alpha are tracked; the earliest of the mode-ending events ends the step.
+    // The earliest of the mode-ending events ends the step.
+    // A turning point of s theta inside the step (theta' from s to -s): s theta rises before it, so an impact can
+    // only come after it (the step may hold a whole small half-cycle); it is a row (max rotation).
+    double tp = t0_;
+    if (s_ * x0.w > 0.0 && s_ * x1.w <= 0.0) {
+      tp = find_root([&](double t) { return s_ * dense(t).w; }, t0_, t1_, s_ * x0.w, s_ * x1.w);
+      if (std::isnan(tp)) tp = t0_;
+    }
     double te = t1_;
     int which = -1;
     for (std::size_t k = 0; k < 4; ++k) {
-      if (e1[k] < 0.0 || (k != 1 && e1[k] == 0.0 && e0[k] > 0.0)) {
-        if (e0[k] <= 0.0) {
+      double ta = t0_;
+      double fa = e0[k];
+      if (k == 0 && tp > t0_) {  // the impact function after the peak
+        ta = tp;
+        fa = events(dense(tp), tp)[0];
+      }
+      if (e1[k] < 0.0 || (k != 1 && e1[k] == 0.0 && fa > 0.0)) {
+        if (fa <= 0.0) {
+          // A mode that did not take (an event function starting at 0 and going the wrong way: a lift-off or a slip
+          // that round-off decided): decided again at the step's end.
           if (t0_ < te) {
             te = t0_;
-            which = static_cast<int>(k) + 10;  // did not take
+            which = static_cast<int>(k) + 10;
           }
           continue;
         }
-        const double r = find_root([&](double t) { return events(dense(t), t)[k]; }, t0_, t1_, e0[k], e1[k]);
+        const double r = find_root([&](double t) { return events(dense(t), t)[k]; }, ta, t1_, fa, e1[k]);
         if (std::isnan(r)) {
           throw RootFindingError(fmt::format("slide-rock: event location did not converge in {} iterations on [{}, {}] "
-                                             "s ({})", kMaxRootIterations, t0_, t1_, describe()));
+                                             "s ({})", kMaxRootIterations, ta, t1_, describe()));
         }
         if (r < te || which < 0) {
           te = r;
@@ -562,17 +580,11 @@ class Engine {
         }
       }
     }
-    // peak inside [t0, te]: theta' changes sign from s to -s
-    if (s_ * x0.w > 0.0) {
-      const Phys xe = which >= 0 ? dense(te) : x1;
-      if (s_ * xe.w <= 0.0) {
-        const double tp = find_root([&](double t) { return s_ * dense(t).w; }, t0_, te, s_ * x0.w, s_ * xe.w);
-        if (!std::isnan(tp)) row_at(tp, dense(tp));
-      }
-    }
+    if (tp > t0_ && tp <= te) row_at(tp, dense(tp));
     if (which < 0) {
       t_ = t1_;
       x_ = x1;
+      out_.summary.friction_energy_j_per_kg = work_base_ + x_.work;
       if (o_.record_history) row();
       else track(x_);
       return;
@@ -580,6 +592,7 @@ class Engine {
     if (which >= 10) {  // did not take: both corners down again (theta = 0) or re-decided on the corner
       t_ = t1_;
       x_ = x1;
+      out_.summary.friction_energy_j_per_kg = work_base_ + x_.work;
       if (which == 10) {
         x_.th = 0.0;
         x_.w = 0.0;
@@ -594,6 +607,7 @@ class Engine {
     }
     t_ = te;
     x_ = dense(te);
+    out_.summary.friction_energy_j_per_kg = work_base_ + x_.work;
     switch (which) {
       case 0:
         x_.th = 0.0;
@@ -825,6 +839,7 @@ class Engine {
   mutable Controlled stepper_;
   State y0_{}, y1_{}, dy0_{}, dy1_{};
   double t0_ = 0.0, t1_ = 0.0, dt_ = 0.0;
+  double work_base_ = 0.0;  // friction work before the current restart, J/kg
   double t_ = 0.0;
   Phys x_;
   SlideRockMode mode_ = SlideRockMode::rest;
@@ -844,7 +859,7 @@ void validate(const SlideRockBody& b, const SlideRockOptions& o) {
   if (o.restitution == RestitutionMode::given && (!std::isfinite(o.e) || o.e < 0.0 || o.e > 1.0)) {
     throw parameter_error("e", fmt::format("coefficient of restitution must be in [0, 1], got {}", o.e));
   }
-  if (o.restitution == RestitutionMode::housner) {
+  if (o.restitution == RestitutionMode::housner && !b.cannot_uplift()) {  // a body that cannot lift never strikes
     const RockingBody rb = b.rocking_body();
     for (const int onto : {1, -1}) {
       const double e = housner_restitution(rb, onto);
@@ -952,20 +967,22 @@ SlideRockResult via_sliding(const GroundMotion& horizontal, const SlideRockBody&
     if (!(t1 > t0)) continue;
     // the grid interval holding [t0, t1] (history rows include every grid point)
     while (gi + 2 < grid.size() && grid.time_s(gi + 1) <= t0) ++gi;
+    const bool after = t0 >= grid.time_s(grid.size() - 1);  // the run-out: still ground (a_h = 0, g_e = g)
     const double ta = grid.time_s(gi);
     const double tb = grid.time_s(gi + 1);
     const double span = tb > ta ? tb - ta : 1.0;
-    const double ahs = tb > ta ? (accel[gi + 1] - accel[gi]) / span : 0.0;
-    const double ges = tb > ta ? (ge_at(gi + 1) - ge_at(gi)) / span : 0.0;
-    const double geat = [&](double t) { return ge_at(gi) + ges * (t - ta); }(0.5 * (t0 + t1));
+    const double ahs = tb > ta && !after ? (accel[gi + 1] - accel[gi]) / span : 0.0;
+    const double ges = tb > ta && !after ? (ge_at(gi + 1) - ge_at(gi)) / span : 0.0;
+    const auto ge_t = [&](double t) { return after ? o.g_m_s2 : ge_at(gi) + ges * (t - ta); };
+    const double geat = ge_t(0.5 * (t0 + t1));
     const double dir = static_cast<double>(static_cast<int>(h.state[k]));
     const double c1 = ahs - dir * body.mu_kinetic * ges;  // d''' over the piece
     const double L = t1 - t0;
     const double v0 = std::abs(h.velocity_m_s[k]);
     const double v1 = std::abs(h.velocity_m_s[k + 1]);
     const double vm = std::abs(0.5 * (h.velocity_m_s[k] + h.velocity_m_s[k + 1]) - c1 * L * L / 8.0);
-    const double g0 = ge_at(gi) + ges * (t0 - ta);
-    const double g1 = ge_at(gi) + ges * (t1 - ta);
+    const double g0 = ge_t(t0);
+    const double g1 = ge_t(t1);
     sum.friction_energy_j_per_kg += body.mu_kinetic * L / 6.0 * (g0 * v0 + 4.0 * geat * vm + g1 * v1);
   }
   sum.end_mode = SlideRockMode::rest;
@@ -1037,11 +1054,13 @@ SlideRockResult slide_rock(const GroundMotion& horizontal, const SlideRockBody& 
   const bool at_rest = o.initial_theta_rad == 0.0 && o.initial_theta_dot_rad_s == 0.0 &&
                        o.initial_slide_velocity_m_s == 0.0;
   SlideRockResult r;
-  if (o.sliding_kernel && body.cannot_uplift() && at_rest) {
+  const InputGrid grid(horizontal, vertical);
+  const std::vector<double> gravity = effective_gravity(grid, 1, o.g_m_s2);
+  // g_e <= 0 somewhere: the body leaves the ground, which the sliding kernel does not follow
+  const bool grounded = std::all_of(gravity.begin(), gravity.end(), [](double x) { return x > 0.0; });
+  if (o.sliding_kernel && body.cannot_uplift() && at_rest && grounded) {
     r = via_sliding(horizontal, body, o, vertical);
   } else {
-    const InputGrid grid(horizontal, vertical);
-    const std::vector<double> gravity = effective_gravity(grid, 1, o.g_m_s2);
     const Params P = make_params(body, o);
     Engine engine(grid, gravity, P, o);
     r = engine.run();
