@@ -1037,6 +1037,12 @@ SlideRockBody SlideRockBody::block(double width_m, double height_m, double mu_st
   return make(rb.a_m, rb.a_m, rb.h_m, (width_m * width_m + height_m * height_m) / 12.0, mu_static, mu_kinetic);
 }
 
+SlideRockBody SlideRockBody::from_rocking(const RockingBody& body, double mu_static,
+                                          std::optional<double> mu_kinetic) {
+  const double k2 = body.D_m2 - body.a_m * body.a_m - body.h_m * body.h_m;
+  return make(body.pivot_b_m(-1), body.a_m, body.h_m, k2, mu_static, mu_kinetic);
+}
+
 RockingBody SlideRockBody::rocking_body() const { return RockingBody::general_asymmetric(b1_m, b2_m, h_m, inertia_m2); }
 
 bool SlideRockBody::cannot_uplift() const noexcept { return mu_static < std::min(b1_m, b2_m) / h_m; }

@@ -87,6 +87,10 @@ struct SlideRockBody {
   /// A rectangular block of full width and height (m), symmetric: b1 = b2 = w/2, h = H/2, k2 = (w^2 + H^2) / 12.
   [[nodiscard]] static SlideRockBody block(double width_m, double height_m, double mu_static,
                                            std::optional<double> mu_kinetic = std::nullopt);
+  /// The planar body of a rocking body (any shape: b1 = b2 = a for a symmetric one, k2 = D - a^2 - h^2), with
+  /// friction. Throws InputError as make().
+  [[nodiscard]] static SlideRockBody from_rocking(const RockingBody& body, double mu_static,
+                                                  std::optional<double> mu_kinetic = std::nullopt);
   /// The rocking engine's body for the same geometry (RockingBody::general_asymmetric(b1, b2, h, k2)).
   [[nodiscard]] RockingBody rocking_body() const;
   /// True when mu_s < min(b1, b2) / h: the body slides before it can lift and never lifts while sliding.

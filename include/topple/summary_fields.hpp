@@ -11,6 +11,7 @@
 #include "topple/rocking.hpp"
 #include "topple/sliding.hpp"
 #include "topple/sliding2d.hpp"
+#include "topple/slide_rock.hpp"
 
 namespace topple {
 
@@ -47,5 +48,17 @@ extern const std::array<Field<Sliding2dOutcome>, 20> kSliding2dFields;
 /// result columns (in their sweep_column order), the others (alpha_deg, R_m, e_mode, onset_accel_ratio, mu, g_m_s2)
 /// only JSON and Python. Not fields: warnings (a list), body and solver (nested objects in the JSON).
 extern const std::array<Field<RockingOutcome>, 25> kRockingFields;
+
+/// A coupled slide-rock run's summary with its body and options (slide_rock.hpp).
+struct SlideRockOutcome {
+  const SlideRockSummary& summary;
+  const SlideRockBody& body;
+  const SlideRockOptions& options;
+};
+
+/// Coupled slide-rock: in the order of `topple sliderock --json` (overturned ... g_m_s2). Not a sweep's result
+/// (sweep_column -1). Optional times are null when they never happened; overturned_side is 0 when it did not fall.
+/// Not fields: modes (per mode: entries and first time; a nested object in the JSON), warnings, body.
+extern const std::array<Field<SlideRockOutcome>, 27> kSlideRockFields;
 
 }  // namespace topple
