@@ -430,8 +430,18 @@ class Engine {
     const double A = 0.5 * sg * c1;
     double tau = L;
     bool stop = false;
+    // A slip that starts (C = 0) where the forcing is at the stick limit to round-off may have B <= 0: the speed's
+    // quadratic then dips below 0 only by round-off, to its root -B/A, which is not a stop; when it has no later rise
+    // (A <= 0) the slip does not start at all and the body stays in contact to the end of the interval.
+    const double spurious = C == 0.0 && B <= 0.0 && A > 0.0 ? -B / A : 0.0;
+    if (C == 0.0 && B <= 0.0 && A <= 0.0) {
+      t_ = tb;
+      apply({SlideRockMode::rest, 1, 0});
+      row();
+      return;
+    }
     const auto consider = [&](double r) {
-      if (r > 0.0 && r <= tau) {
+      if (r > spurious * (1.0 + 1e-9) && r <= tau) {
         tau = r;
         stop = true;
       }
@@ -919,23 +929,41 @@ Params make_params(const SlideRockBody& b, const SlideRockOptions& o) {
   return P;
 }
 
-/// A body that cannot lift: sliding.hpp's exact solver, its d = -u; friction work by Simpson's rule on each piece
-/// between history rows (the integrand mu_k g_e |d'| is a cubic there: exact).
+/// A body that cannot lift: sliding.hpp's exact solver, its d = -u. The friction work is mu_k g times the distance
+/// slid without vertical input; with it (or with a history asked for), mu_k g_e |d'| integrated by Simpson's rule on
+/// each piece between history rows (a cubic there: exact).
 SlideRockResult via_sliding(const GroundMotion& horizontal, const SlideRockBody& body, const SlideRockOptions& o,
                             const GroundMotion* vertical) {
   const SlidingBlock block = SlidingBlock::make(body.mu_static, body.mu_kinetic, 0.0, SlidingMode::two_way, o.g_m_s2);
-  const SlidingResult s = slide(horizontal, block, vertical);
-  const InputGrid grid(horizontal, vertical);
-  const std::vector<double> ge = effective_gravity(grid, 1, o.g_m_s2);
-  const auto accel = grid.accel_m_s2(0);
   SlideRockResult r;
   SlideRockSummary& sum = r.summary;
   sum.used_sliding_kernel = true;
-  sum.residual_slide_m = -s.summary.residual_displacement_m;
-  sum.max_abs_slide_m = s.summary.max_abs_displacement_m;
-  sum.slip_episodes = s.summary.slip_episodes;
-  sum.end_time_s = s.summary.end_time_s;
-  sum.onset_mode = s.summary.first_slip_time_s ? SlideRockMode::slide : SlideRockMode::rest;
+  const auto copy = [&](const SlidingSummary& ss) {
+    sum.residual_slide_m = -ss.residual_displacement_m;
+    sum.max_abs_slide_m = ss.max_abs_displacement_m;
+    sum.slip_episodes = ss.slip_episodes;
+    sum.end_time_s = ss.end_time_s;
+    sum.onset_mode = ss.first_slip_time_s ? SlideRockMode::slide : SlideRockMode::rest;
+    sum.end_mode = ss.at_rest_at_end ? SlideRockMode::rest : SlideRockMode::slide;
+    sum.moving_at_end = !ss.at_rest_at_end;
+  };
+  if (!vertical && !o.record_history) {
+    const SlidingSummary ss = slide_summary(horizontal, block);
+    copy(ss);
+    sum.friction_energy_j_per_kg = body.mu_kinetic * o.g_m_s2 * ss.slip_path_m;
+    // every episode starts from rest and (but a last one still sliding) ends at rest
+    const auto episodes = static_cast<std::size_t>(ss.slip_episodes);
+    sum.mode_entries[index(SlideRockMode::slide)] = episodes;
+    sum.mode_entries[index(SlideRockMode::rest)] = 1 + episodes - (ss.at_rest_at_end || episodes == 0 ? 0 : 1);
+    sum.mode_first_time_s[index(SlideRockMode::rest)] = horizontal.time_s(0);
+    sum.mode_first_time_s[index(SlideRockMode::slide)] = ss.first_slip_time_s;
+    return r;
+  }
+  const SlidingResult s = slide(horizontal, block, vertical);
+  copy(s.summary);
+  const InputGrid grid(horizontal, vertical);
+  const std::vector<double> ge = effective_gravity(grid, 1, o.g_m_s2);
+  const auto accel = grid.accel_m_s2(0);
   const auto& h = s.history;
   std::size_t gi = 0;
   SlipState prev = SlipState::stuck;
@@ -944,7 +972,7 @@ SlideRockResult via_sliding(const GroundMotion& horizontal, const SlideRockBody&
     const SlideRockMode m = h.state[k] == SlipState::stuck ? SlideRockMode::rest : SlideRockMode::slide;
     if (k == 0 || h.state[k] != prev) {
       const std::size_t mi = index(m);
-      if (k > 0 || m != SlideRockMode::rest) {
+      {
         ++sum.mode_entries[mi];
         if (!sum.mode_first_time_s[mi]) sum.mode_first_time_s[mi] = h.time_s[k];
         r.transitions.push_back({h.time_s[k], m});
@@ -984,11 +1012,6 @@ SlideRockResult via_sliding(const GroundMotion& horizontal, const SlideRockBody&
     const double g0 = ge_t(t0);
     const double g1 = ge_t(t1);
     sum.friction_energy_j_per_kg += body.mu_kinetic * L / 6.0 * (g0 * v0 + 4.0 * geat * vm + g1 * v1);
-  }
-  sum.end_mode = SlideRockMode::rest;
-  if (!s.summary.at_rest_at_end) {
-    sum.moving_at_end = true;
-    sum.end_mode = SlideRockMode::slide;
   }
   if (s.summary.contact_lost_time_s) {
     sum.warnings.push_back(fmt::format("the vertical input makes g + a_v <= 0 at {} s: the body leaves the ground "
