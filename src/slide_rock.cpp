@@ -13,6 +13,7 @@
 #include <boost/numeric/odeint/stepper/runge_kutta_dopri5.hpp>
 #include <fmt/format.h>
 
+#include "angle_series.hpp"
 #include "event_root.hpp"
 #include "topple/error.hpp"
 #include "topple/input_grid.hpp"
@@ -49,6 +50,8 @@ struct Params {
   double h = 0.0, k2 = 0.0, mus = 0.0, muk = 0.0, g = 0.0;
   std::optional<double> e_given;
   double alpha_sc = 0.0, p_sc = 0.0, Lu = 0.0;  // state scales
+  std::array<double, 2> inv_D{};  // 1 / D, for the right-hand side
+  double to_u = 0.0, to_th = 0.0, to_work = 0.0;  // 1 / (p Lu), 1 / (p alpha), 1 / (g Lu): accelerations to scaled
 };
 
 /// Accelerations and contact forces (per unit mass) on one corner: slide_rock.hpp's rock (sigma = 0) and slide-rock
@@ -58,16 +61,59 @@ struct Contact {
   bool painleve = false;  // k2 + c rho_x <= 0: Coulomb friction has no unique solution (Painleve 1895)
 };
 
+/// sin and cos of theta near the start of the current step (angle_series.hpp): one libm call per step, not one per
+/// stage.
+struct Angle {
+  double ref = 0.0, sin_ref = 0.0, cos_ref = 1.0;
+  int moves = 0;  // references moved by the series since the last libm call (each adds ~1e-17)
+  void set(double th) {
+    ref = th;
+    sin_ref = std::sin(th);
+    cos_ref = std::cos(th);
+    moves = 0;
+  }
+  /// The reference to theta at the next step's start by the series (the step moved it little); libm every 256
+  /// moves, which keeps the drift below 1e-14 (rocking.cpp's rule).
+  void move(double th) {
+    if (moves >= 256 || !(std::abs(th - ref) <= detail::kSeriesRange)) {
+      set(th);
+      return;
+    }
+    double sn = 0.0;
+    double cs = 1.0;
+    at(th, sn, cs);
+    ref = th;
+    sin_ref = sn;
+    cos_ref = cs;
+    ++moves;
+  }
+  void at(double th, double& sn, double& cs) const {
+    double sd = 0.0;
+    double cdm1 = 0.0;
+    if (!detail::angle_series(th - ref, sd, cdm1)) {
+      sn = std::sin(th);
+      cs = std::cos(th);
+      return;
+    }
+    sn = sin_ref + (sin_ref * cdm1 + cos_ref * sd);
+    cs = cos_ref + (cos_ref * cdm1 - sin_ref * sd);
+  }
+};
+
+Contact contact(const Params& P, int s, int sigma, double sn, double c, double w, double ah, double ge);
+
 Contact contact(const Params& P, int s, int sigma, double th, double w, double ah, double ge) {
+  return contact(P, s, sigma, std::sin(th), std::cos(th), w, ah, ge);
+}
+
+Contact contact(const Params& P, int s, int sigma, double sn, double c, double w, double ah, double ge) {
   const double b = P.b[side(s)];
-  const double c = std::cos(th);
-  const double sn = std::sin(th);
   const double rx = -s * b * c + P.h * sn;  // CM seen from the pivot
   const double ry = s * b * sn + P.h * c;
   const double w2 = w * w;
   Contact r;
   if (sigma == 0) {
-    r.thdd = (rx * ge - ry * ah) / P.D[side(s)];
+    r.thdd = (rx * ge - ry * ah) * P.inv_D[side(s)];
     r.F = ry * r.thdd - rx * w2 + ah;
     r.N = ge - rx * r.thdd - ry * w2;
     return r;
@@ -160,18 +206,32 @@ struct Forcing {
 struct Rhs {
   const Params* P = nullptr;
   const Forcing* f = nullptr;
+  const Angle* angle = nullptr;
   int s = 1;
   int sigma = 0;
   void operator()(const State& y, State& dy, double t) const {
-    const double ps = P->p_sc;
-    const double th = y[2] * P->alpha_sc;
-    const double w = y[3] * ps * P->alpha_sc;
-    const Contact c = contact(*P, s, sigma, th, w, f->ah(t), f->ge(t));
+    const Params& Q = *P;
+    const double ps = Q.p_sc;
+    const double th = y[2] * Q.alpha_sc;
+    const double w = y[3] * ps * Q.alpha_sc;
+    double sn = 0.0;
+    double cs = 1.0;
+    angle->at(th, sn, cs);
     dy[0] = ps * y[1];
-    dy[1] = c.udd / (ps * P->Lu);
     dy[2] = ps * y[3];
-    dy[3] = c.thdd / (ps * P->alpha_sc);
-    dy[4] = sigma == 0 ? 0.0 : P->muk * c.N * std::abs(y[1]) * ps / P->g;  // mu_k N |u'| / (g Lu)
+    if (sigma == 0) {  // rock: the pivot sticks, only theta'' (slide_rock.hpp)
+      const double b = Q.b[side(s)];
+      const double rx = -s * b * cs + Q.h * sn;
+      const double ry = s * b * sn + Q.h * cs;
+      dy[1] = 0.0;
+      dy[3] = (rx * f->ge(t) - ry * f->ah(t)) * Q.inv_D[side(s)] * Q.to_th;
+      dy[4] = 0.0;
+      return;
+    }
+    const Contact c = contact(Q, s, sigma, sn, cs, w, f->ah(t), f->ge(t));
+    dy[1] = c.udd * Q.to_u;
+    dy[3] = c.thdd * Q.to_th;
+    dy[4] = Q.muk * c.N * std::abs(y[1]) * ps * Q.Lu * Q.to_work;  // mu_k N |u'| / (g Lu)
   }
 };
 
@@ -190,6 +250,7 @@ class Engine {
                                                           Controlled::operations_type>(o.abs_tol, o.rel_tol, 1.0, 0.0))) {
     rhs_.P = &P_;
     rhs_.f = &f_;
+    rhs_.angle = &angle_;
   }
 
   SlideRockResult run() {
@@ -256,8 +317,9 @@ class Engine {
     const double g0 = gravity_.empty() ? P_.g : gravity_[i];
     const double g1 = gravity_.empty() ? P_.g : gravity_[std::min(i + 1, grid_.size() - 1)];
     const double a1 = accel_[std::min(i + 1, grid_.size() - 1)];
+    // No restart: the forcing is continuous at a sample instant (only its slope changes), so the derivative the
+    // last step ended with holds for the next interval too; jumps (two samples at one instant) restart.
     f_ = Forcing{ta, accel_[i], span > 0.0 ? (a1 - accel_[i]) / span : 0.0, g0, span > 0.0 ? (g1 - g0) / span : 0.0};
-    restart_ = true;
   }
 
   // ---- bookkeeping ----
@@ -510,7 +572,10 @@ class Engine {
   /// The event functions of rock / slide-rock on a physical state at t: {impact: s theta, fall: pi/2 - s theta,
   /// flight: N / g, slip (rock): (mu_s N - |F|) / g or stop (slide-rock): sigma u'}.
   [[nodiscard]] std::array<double, 4> events(const Phys& x, double t) const {
-    const Contact c = contact(P_, s_, sigma_, x.th, x.w, f_.ah(t), f_.ge(t));
+    double sn = 0.0;
+    double cs = 1.0;
+    angle_.at(x.th, sn, cs);
+    const Contact c = contact(P_, s_, sigma_, sn, cs, x.w, f_.ah(t), f_.ge(t));
     const double last = sigma_ == 0 ? (P_.mus * c.N - std::abs(c.F)) / P_.g : sigma_ * x.v;
     return {s_ * x.th, kPi / 2.0 - s_ * x.th, c.N / P_.g, last};
   }
@@ -522,14 +587,17 @@ class Engine {
       work_base_ = out_.summary.friction_energy_j_per_kg;
       y1_ = scaled(x_);
       t1_ = t_;
+      angle_.set(x_.th);
       rhs_(y1_, dy1_, t_);
       restart_ = false;
+      events_cached_ = false;
     }
     if (tb - t_ <= time_tolerance(tb)) {
       t_ = tb;
       return;
     }
     // one accepted step, never past tb
+    angle_.move(x_.th);
     y0_ = y1_;
     dy0_ = dy1_;
     t0_ = t_;
@@ -550,8 +618,10 @@ class Engine {
     }
     const Phys x0 = x_;
     const Phys x1 = physical(y1_);
-    const auto e0 = events(x0, t0_);
+    const auto e0 = events_cached_ ? events_last_ : events(x0, t0_);
     const auto e1 = events(x1, t1_);
+    events_last_ = e1;
+    events_cached_ = true;
     // The earliest of the mode-ending events ends the step.
     // A turning point of s theta inside the step (theta' from s to -s): s theta rises before it, so an impact can
     // only come after it (the step may hold a whole small half-cycle); it is a row (max rotation).
@@ -845,6 +915,7 @@ class Engine {
   const SlideRockOptions& o_;
   SlideRockResult out_;
   Forcing f_;
+  Angle angle_;
   Rhs rhs_;
   mutable Controlled stepper_;
   State y0_{}, y1_{}, dy0_{}, dy1_{};
@@ -856,6 +927,8 @@ class Engine {
   int s_ = 1;
   int sigma_ = 0;
   bool restart_ = true;
+  std::array<double, 4> events_last_{};  // the event functions at the end of the last step (its start now)
+  bool events_cached_ = false;
   bool started_ = false;
   bool moved_ = false;
   bool done_ = false;
@@ -926,6 +999,10 @@ Params make_params(const SlideRockBody& b, const SlideRockOptions& o) {
   P.alpha_sc = std::min(P.alpha[0], P.alpha[1]);
   P.p_sc = pmin;
   P.Lu = P.h * P.alpha_sc;
+  P.inv_D = {1.0 / P.D[0], 1.0 / P.D[1]};
+  P.to_u = 1.0 / (P.p_sc * P.Lu);
+  P.to_th = 1.0 / (P.p_sc * P.alpha_sc);
+  P.to_work = 1.0 / (P.g * P.Lu);
   return P;
 }
 
