@@ -37,4 +37,39 @@ inline constexpr double kShortRange = 0.01;
   return true;
 }
 
+/// sin and cos of phi near phi_ref (whose sin and cos are given): the angle-addition formulas with the series of
+/// phi - phi_ref, or libm when that is beyond kSeriesRange.
+[[gnu::always_inline]] inline void sin_cos_near(double phi, double phi_ref, double sin_ref, double cos_ref, double& sn,
+                                                double& cs) {
+  double sd = 0.0;
+  double cd_minus_1 = 0.0;
+  if (!angle_series(phi - phi_ref, sd, cd_minus_1)) {
+    sn = std::sin(phi);
+    cs = std::cos(phi);
+    return;
+  }
+  sn = sin_ref + (sin_ref * cd_minus_1 + cos_ref * sd);
+  cs = cos_ref + (cos_ref * cd_minus_1 - sin_ref * sd);
+}
+
+/// References moved by the series before an exact sin/cos: each move adds ~1e-17 to sin and cos, so the drift stays
+/// below 1e-14.
+inline constexpr int kMaxReferenceMoves = 256;
+
+/// Moves the reference (phi_ref, its sin and cos) to phi by the series, for the next step of an integrator (a step
+/// moves the angle little). False, and nothing changed, when phi is too far or the reference has moved
+/// kMaxReferenceMoves times: the caller then sets it exactly (libm), with moves = 0.
+[[gnu::always_inline]] inline bool move_reference(double phi, double& phi_ref, double& sin_ref, double& cos_ref,
+                                                  int& moves) {
+  if (moves >= kMaxReferenceMoves || !(std::abs(phi - phi_ref) <= kSeriesRange)) return false;
+  double sn = 0.0;
+  double cs = 0.0;
+  sin_cos_near(phi, phi_ref, sin_ref, cos_ref, sn, cs);
+  phi_ref = phi;
+  sin_ref = sn;
+  cos_ref = cs;
+  ++moves;
+  return true;
+}
+
 }  // namespace topple::detail

@@ -21,6 +21,7 @@
 #include "topple/error.hpp"
 #include "topple/input_grid.hpp"
 #include "angle_series.hpp"
+#include "step_law.hpp"
 #include "event_root.hpp"
 
 namespace topple {
@@ -82,9 +83,7 @@ struct Rhs {
   double sin_ref = 0.0;
   double cos_ref = 1.0;
 
-  // Reference moves since the last exact sin/cos: each move by the series below adds ~1e-17 to sin and cos, so
-  // after kMaxMoves moves the reference is recomputed exactly (drift stays below 1e-14).
-  static constexpr int kMaxMoves = 256;
+  // Reference moves since the last exact sin/cos (angle_series.hpp, move_reference).
   int moves = 0;
 
   // sin and cos of +alpha and -alpha (set once per run): the reference at theta = 0, where every restart after an
@@ -120,18 +119,7 @@ struct Rhs {
   /// same short series as the stages (the move is a step's change of phi, small), instead of a libm sincos per step
   /// (it was 13 % of the inversion's instructions).
   void move_reference(double u0) {
-    const double phi = s_alpha - alpha * u0;
-    if (moves >= kMaxMoves || !(std::abs(phi - phi_ref) <= kSeriesRange)) {
-      set_reference(u0);
-      return;
-    }
-    double sn = 0.0;
-    double cs = 0.0;
-    sin_cos(phi, sn, cs);
-    phi_ref = phi;
-    sin_ref = sn;
-    cos_ref = cs;
-    ++moves;
+    if (!detail::move_reference(s_alpha - alpha * u0, phi_ref, sin_ref, cos_ref, moves)) set_reference(u0);
   }
 
   static constexpr double kSeriesRange = detail::kSeriesRange;
@@ -143,15 +131,7 @@ struct Rhs {
 
   /// sin and cos of phi = phi_ref + d: the angle-addition formulas with the series of d, or libm when d is large.
   [[gnu::always_inline]] void sin_cos(double phi, double& sn, double& cs) const {
-    double sd = 0.0;
-    double cd_minus_1 = 0.0;
-    if (!series(phi - phi_ref, sd, cd_minus_1)) {
-      sn = std::sin(phi);
-      cs = std::cos(phi);
-      return;
-    }
-    sn = sin_ref + (sin_ref * cd_minus_1 + cos_ref * sd);
-    cs = cos_ref + (cos_ref * cd_minus_1 - sin_ref * sd);
+    detail::sin_cos_near(phi, phi_ref, sin_ref, cos_ref, sn, cs);
   }
 
   /// The second component of the right-hand side, d(theta' / (p alpha))/dt = -k (G sin(phi) + A cos(phi)), at
@@ -181,42 +161,7 @@ struct Rhs {
   }
 };
 
-/// The step-size law of Hairer, Norsett & Wanner (1993, II.4, eq 4.13) as Boost.Odeint's default_step_adjuster
-/// applies it: after a rejected step dt *= max(0.9 err^(-1/3), 1/5) (err^(-1/(q-1)) with q = 4, the embedded order);
-/// after an accepted one with err < 0.5, dt *= 0.9 max(err, 5^-5)^(-1/5), at most x4.5; otherwise unchanged.
-struct StepLaw {
-  [[nodiscard]] static double decrease(double dt, double error) {
-    return dt * std::max(0.9 * std::pow(error, -1.0 / 3.0), 0.2);
-  }
-  [[nodiscard]] static double increase(double dt, double error) {
-    if (!(error < 0.5)) return dt;
-    constexpr double kFloor = 1.0 / 3125.0;  // 5^-5: below it the growth cap 0.9 * 5 applies
-    if (error <= kFloor) return dt * 4.5;
-    return dt * 0.9 * inverse_fifth_root(error);
-  }
-
-  /// x^(-1/5) for 5^-5 < x < 0.5 (the range increase uses it on), to round-off: a first guess from the
-  /// exponent bits, then Newton on y^-5 = x (y <- y (6 - x y^5) / 5, quadratic). IEEE operations only, so the same
-  /// steps on every machine; a tenth of a libm pow (which was 4 % of the inversion's instructions).
-  static double inverse_fifth_root(double x) {
-    // x = m 2^e, m in [0.5, 1): y0 = 2^(-e/5) times the chord of m^(-1/5) on [0.5, 1] (within 1.5 % of the root).
-    // The exponent and mantissa from the bits (x is normal and positive here): std::frexp is a library call.
-    const auto bits = std::bit_cast<std::uint64_t>(x);
-    const int e = static_cast<int>((bits >> 52) & 0x7ff) - 1022;
-    const double m = std::bit_cast<double>((bits & 0x000f'ffff'ffff'ffffULL) | 0x3fe0'0000'0000'0000ULL);
-    double y = std::bit_cast<double>(static_cast<std::uint64_t>(1023 - e / 5) << 52);  // 2^(-e/5), e/5 truncated
-    const int r = -e % 5;  // remaining exponent fifths, -4 .. 4
-    constexpr double kFifth[9] = {0.5743491774985174, 0.6597539553864471, 0.7578582832551990,
-                                  0.8705505632961241, 1.0, 1.1486983549970351, 1.3195079107728942,
-                                  1.5157165665103980, 1.7411011265922482};  // 2^(k/5), k = -4 .. 4
-    y *= kFifth[r + 4] * (1.2973967099940701 - 0.2973967099940701 * m);
-    for (int k = 0; k < 4; ++k) {  // error 1.5e-2 -> 6e-4 -> 1e-6 -> 3e-12 -> round-off
-      const double y2 = y * y;
-      y = y * (6.0 - x * (y2 * y2 * y)) * 0.2;
-    }
-    return y;
-  }
-};
+using detail::StepLaw;  // step_law.hpp, shared with slide_rock.cpp
 
 // ---------------------------------------------------------------------------------------------------------------
 // Dormand-Prince 5(4) (Dormand & Prince 1980, J. Comput. Appl. Math. 6(1), 19-26; the tableau, the embedded error
