@@ -14,6 +14,7 @@
 #include "progress.hpp"
 #include "common.hpp"
 #include "motion_set_options.hpp"
+#include "rock_coupled.hpp"
 #include "topple/error.hpp"
 #include "topple/io/write.hpp"
 #include "topple/oriented.hpp"
@@ -40,6 +41,8 @@ struct RockOptions {
   std::string inertia;
   std::string e = "housner";
   std::optional<double> mu;
+  std::optional<double> mu_k;
+  std::string model = "rocking";
   std::string vertical;
   std::string h2;        // second horizontal component: an oriented object (oriented.hpp)
   std::string azimuths;  // "A1,A2", degrees clockwise from north
@@ -64,7 +67,7 @@ const std::map<std::string, std::string>& option_names() {
       {"b1", "--b1"},         {"b2", "--b2"},         {"inertia", "--inertia"},
       {"g", "--g"},           {"rel_tol", "--rtol"},  {"rk4_substeps", "--rk4-substeps"},
       {"max_steps", "--max-steps"},
-      {"max_run_out_s", "--run-out"}, {"vertical", "--vertical"},
+      {"max_run_out_s", "--run-out"}, {"vertical", "--vertical"}, {"mu_k", "--mu-k"},
       {"depth", "--depth"},   {"bearing", "--bearing-deg"}, {"cylinder_step", "--direction-step-deg"},
       {"azimuth", "--azimuths"}};
   return names;
@@ -186,6 +189,30 @@ void run_rock(const RockOptions& o) {
   const RockingOptions options = make_options(o);
   RunMotion run = load_run_motion(o.motion, o.pulse, o.vertical);
   run.input.with_duration = true;
+  if (o.model == "coupled") {  // the coupled slide-rock model (rock_coupled.hpp)
+    if (!o.mu) throw parameter_error("--mu", "the coupled model needs the friction coefficient (--mu)");
+    if (!o.plot.empty()) throw parameter_error("--plot", "not available with --model coupled yet");
+    if (!o.h2.empty()) throw parameter_error("--h2", "not available with --model coupled yet (planar model)");
+    if (options.method != RockingMethod::adaptive) {
+      throw parameter_error("--method", "the coupled model is adaptive only");
+    }
+    CoupledRequest request;
+    request.options.g_m_s2 = options.g_m_s2;
+    request.options.restitution = options.restitution;
+    request.options.e = options.e;
+    request.options.rel_tol = options.rel_tol;
+    request.options.max_run_out_s = options.max_run_out_s;
+    request.options.max_steps = options.max_steps;
+    request.out = o.out;
+    request.json = o.json;
+    const SlideRockBody coupled = naming_options([&] { return SlideRockBody::from_rocking(body, *o.mu, o.mu_k); });
+    naming_options([&] { run_coupled(run, coupled, request); });
+    return;
+  }
+  if (o.model != "rocking") {
+    throw parameter_error("--model", fmt::format("'rocking' or 'coupled', got '{}'", o.model));
+  }
+  if (o.mu_k) throw parameter_error("--mu-k", "needs --model coupled (the rocking model does not slide)");
   if (!o.h2.empty()) {
     run_oriented(o, run, body, options);
     return;
@@ -319,7 +346,11 @@ void add_rock_command(CLI::App& app) {
                                            "per unit mass I_cm/m, with a unit (e.g. 0.004m2)");
   cmd->add_option("--e", o->e, "Coefficient of restitution (angular-velocity ratio at impact) in [0, 1], or "
                                "'housner' (1 - 2a^2/D, from angular momentum)")->capture_default_str();
-  cmd->add_option("--mu", o->mu, "Friction coefficient: check Shenton's slide/rock/slide-rock onset criterion");
+  cmd->add_option("--mu", o->mu, "Friction coefficient: check Shenton's slide/rock/slide-rock onset criterion; with "
+                                 "--model coupled the static friction coefficient");
+  cmd->add_option("--model", o->model, "rocking (Housner; no sliding) or coupled (sliding and rocking at once, "
+                                       "Coulomb friction --mu/--mu-k: slide_rock.hpp)")->capture_default_str();
+  cmd->add_option("--mu-k", o->mu_k, "--model coupled: kinetic friction coefficient (default: --mu)");
   cmd->add_option("--vertical", o->vertical, "Vertical acceleration record (positive up), scaled with the horizontal");
   cmd->add_option("--h2", o->h2, "Second horizontal component (record file): an oriented object rocking under the "
                                  "projection of both components on its directions (planar model); --azimuths unless "

@@ -20,6 +20,9 @@
 
 #include "topple/error.hpp"
 #include "topple/input_grid.hpp"
+#include "angle_series.hpp"
+#include "step_law.hpp"
+#include "event_root.hpp"
 
 namespace topple {
 namespace {
@@ -80,9 +83,7 @@ struct Rhs {
   double sin_ref = 0.0;
   double cos_ref = 1.0;
 
-  // Reference moves since the last exact sin/cos: each move by the series below adds ~1e-17 to sin and cos, so
-  // after kMaxMoves moves the reference is recomputed exactly (drift stays below 1e-14).
-  static constexpr int kMaxMoves = 256;
+  // Reference moves since the last exact sin/cos (angle_series.hpp, move_reference).
   int moves = 0;
 
   // sin and cos of +alpha and -alpha (set once per run): the reference at theta = 0, where every restart after an
@@ -118,60 +119,19 @@ struct Rhs {
   /// same short series as the stages (the move is a step's change of phi, small), instead of a libm sincos per step
   /// (it was 13 % of the inversion's instructions).
   void move_reference(double u0) {
-    const double phi = s_alpha - alpha * u0;
-    if (moves >= kMaxMoves || !(std::abs(phi - phi_ref) <= kSeriesRange)) {
-      set_reference(u0);
-      return;
-    }
-    double sn = 0.0;
-    double cs = 0.0;
-    sin_cos(phi, sn, cs);
-    phi_ref = phi;
-    sin_ref = sn;
-    cos_ref = cs;
-    ++moves;
+    if (!detail::move_reference(s_alpha - alpha * u0, phi_ref, sin_ref, cos_ref, moves)) set_reference(u0);
   }
 
-  static constexpr double kSeriesRange = 0.1;
-  static constexpr double kShortRange = 0.01;
+  static constexpr double kSeriesRange = detail::kSeriesRange;
 
-  /// sin d and cos d - 1 by their series when |d| <= kSeriesRange (false otherwise: the caller uses libm).
-  /// |d| <= 0.1 (theta moves less than that within a step but for large steps on slow motions): sin d to d^9 and
-  /// cos d - 1 to d^10 leave out less than 3e-19. Estrin's scheme keeps the dependency chain short (the stages of a
-  /// step are sequential, so this function's latency is the step's). Reciprocals are constants: a division by a
-  /// literal stays a division.
+  /// sin d and cos d - 1 by their series (angle_series.hpp; false when |d| > kSeriesRange: the caller uses libm).
   [[gnu::always_inline]] static bool series(double d, double& sd, double& cd_minus_1) {
-    if (std::abs(d) <= kShortRange) {
-      // |d| <= 0.01, as for nearly every stage (a step moves phi by p alpha dt theta'/(p alpha), about 1e-3 on a
-      // 0.005 s record): sin d to d^5 and cos d - 1 to d^6 leave out |d|^7/5040 < 2e-18, below the round-off of
-      // the result's O(1) terms; a shorter dependency chain than the terms to d^9 below.
-      constexpr double k6 = 1.0 / 6.0, k120 = 1.0 / 120.0, k24 = 1.0 / 24.0, k720 = 1.0 / 720.0;
-      const double d2 = d * d;
-      sd = d + (d * d2) * (k120 * d2 - k6);
-      cd_minus_1 = d2 * ((k24 * d2 - 0.5) - (k720 * d2) * d2);
-      return true;
-    }
-    if (!(std::abs(d) <= kSeriesRange)) return false;
-    constexpr double k6 = 1.0 / 6.0, k120 = 1.0 / 120.0, k5040 = 1.0 / 5040.0, k362880 = 1.0 / 362880.0;
-    constexpr double k24 = 1.0 / 24.0, k720 = 1.0 / 720.0, k40320 = 1.0 / 40320.0, k3628800 = 1.0 / 3628800.0;
-    const double d2 = d * d;
-    const double d4 = d2 * d2;
-    sd = d + (d * d2) * ((k120 * d2 - k6) + d4 * (k362880 * d2 - k5040));
-    cd_minus_1 = d2 * ((k24 * d2 - 0.5) + d4 * (k40320 * d2 - k720 - k3628800 * d4));
-    return true;
+    return detail::angle_series(d, sd, cd_minus_1);
   }
 
   /// sin and cos of phi = phi_ref + d: the angle-addition formulas with the series of d, or libm when d is large.
   [[gnu::always_inline]] void sin_cos(double phi, double& sn, double& cs) const {
-    double sd = 0.0;
-    double cd_minus_1 = 0.0;
-    if (!series(phi - phi_ref, sd, cd_minus_1)) {
-      sn = std::sin(phi);
-      cs = std::cos(phi);
-      return;
-    }
-    sn = sin_ref + (sin_ref * cd_minus_1 + cos_ref * sd);
-    cs = cos_ref + (cos_ref * cd_minus_1 - sin_ref * sd);
+    detail::sin_cos_near(phi, phi_ref, sin_ref, cos_ref, sn, cs);
   }
 
   /// The second component of the right-hand side, d(theta' / (p alpha))/dt = -k (G sin(phi) + A cos(phi)), at
@@ -201,42 +161,7 @@ struct Rhs {
   }
 };
 
-/// The step-size law of Hairer, Norsett & Wanner (1993, II.4, eq 4.13) as Boost.Odeint's default_step_adjuster
-/// applies it: after a rejected step dt *= max(0.9 err^(-1/3), 1/5) (err^(-1/(q-1)) with q = 4, the embedded order);
-/// after an accepted one with err < 0.5, dt *= 0.9 max(err, 5^-5)^(-1/5), at most x4.5; otherwise unchanged.
-struct StepLaw {
-  [[nodiscard]] static double decrease(double dt, double error) {
-    return dt * std::max(0.9 * std::pow(error, -1.0 / 3.0), 0.2);
-  }
-  [[nodiscard]] static double increase(double dt, double error) {
-    if (!(error < 0.5)) return dt;
-    constexpr double kFloor = 1.0 / 3125.0;  // 5^-5: below it the growth cap 0.9 * 5 applies
-    if (error <= kFloor) return dt * 4.5;
-    return dt * 0.9 * inverse_fifth_root(error);
-  }
-
-  /// x^(-1/5) for 5^-5 < x < 0.5 (the range increase uses it on), to round-off: a first guess from the
-  /// exponent bits, then Newton on y^-5 = x (y <- y (6 - x y^5) / 5, quadratic). IEEE operations only, so the same
-  /// steps on every machine; a tenth of a libm pow (which was 4 % of the inversion's instructions).
-  static double inverse_fifth_root(double x) {
-    // x = m 2^e, m in [0.5, 1): y0 = 2^(-e/5) times the chord of m^(-1/5) on [0.5, 1] (within 1.5 % of the root).
-    // The exponent and mantissa from the bits (x is normal and positive here): std::frexp is a library call.
-    const auto bits = std::bit_cast<std::uint64_t>(x);
-    const int e = static_cast<int>((bits >> 52) & 0x7ff) - 1022;
-    const double m = std::bit_cast<double>((bits & 0x000f'ffff'ffff'ffffULL) | 0x3fe0'0000'0000'0000ULL);
-    double y = std::bit_cast<double>(static_cast<std::uint64_t>(1023 - e / 5) << 52);  // 2^(-e/5), e/5 truncated
-    const int r = -e % 5;  // remaining exponent fifths, -4 .. 4
-    constexpr double kFifth[9] = {0.5743491774985174, 0.6597539553864471, 0.7578582832551990,
-                                  0.8705505632961241, 1.0, 1.1486983549970351, 1.3195079107728942,
-                                  1.5157165665103980, 1.7411011265922482};  // 2^(k/5), k = -4 .. 4
-    y *= kFifth[r + 4] * (1.2973967099940701 - 0.2973967099940701 * m);
-    for (int k = 0; k < 4; ++k) {  // error 1.5e-2 -> 6e-4 -> 1e-6 -> 3e-12 -> round-off
-      const double y2 = y * y;
-      y = y * (6.0 - x * (y2 * y2 * y)) * 0.2;
-    }
-    return y;
-  }
-};
+using detail::StepLaw;  // step_law.hpp, shared with slide_rock.cpp
 
 // ---------------------------------------------------------------------------------------------------------------
 // Dormand-Prince 5(4) (Dormand & Prince 1980, J. Comput. Appl. Math. 6(1), 19-26; the tableau, the embedded error
@@ -304,30 +229,10 @@ constexpr std::array<Poly, 6> dense_weights() {
 constexpr std::array<Poly, 6> kDense = dense_weights();
 }  // namespace dp5
 
-/// Cap on root-finder iterations per event: TOMS 748 converges in about 10 on smooth dense output, Newton in 3 to 5;
-/// 200 means a broken bracket.
-constexpr std::uintmax_t kMaxRootIterations = 200;
-
-/// Root of f on [a, b] with f(a), f(b) of opposite signs (or zero), by TOMS 748, to a few ulps of the time. NaN when
-/// the iterations ran out (the engine reports it with the run's parameters).
-/// The time tolerance of event location: a few ulps of the time itself, with a floor of 1 s so that events near t = 0
-/// converge too.
-inline double time_tolerance(double t) {
-  return 4.0 * std::numeric_limits<double>::epsilon() * std::max(std::abs(t), 1.0);
-}
-
-template <class F>
-double find_root(F f, double a, double b, double fa, double fb) {
-  if (fa == 0.0) return a;
-  if (fb == 0.0) return b;
-  std::uintmax_t iterations = kMaxRootIterations;
-  const auto tol = [](double lo, double hi) {
-    return std::abs(hi - lo) <= time_tolerance(std::max(std::abs(lo), std::abs(hi)));
-  };
-  const auto r = boost::math::tools::toms748_solve(f, a, b, fa, fb, tol, iterations);
-  if (iterations >= kMaxRootIterations) return std::numeric_limits<double>::quiet_NaN();
-  return 0.5 * (r.first + r.second);
-}
+// Event location (event_root.hpp, shared with slide_rock.cpp).
+using detail::find_root;
+using detail::kMaxRootIterations;
+using detail::time_tolerance;
 
 // ---------------------------------------------------------------------------------------------------------------
 // Steppers. Both take one step from the last state toward t_limit (never past it) and give the state anywhere in

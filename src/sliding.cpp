@@ -130,6 +130,7 @@ struct Recorder {
   SlidingSummary summary;
   SlidingHistory history;
   double slip_start = 0.0;
+  double d_start = 0.0;
 
   void row(double t, double d, double v, int s) {
     if constexpr (kRecord) {
@@ -145,12 +146,17 @@ struct Recorder {
       summary.max_displacement_time_s = t;
     }
   }
-  void start(double t) {
+  void start(double t, double d) {
     ++summary.slip_episodes;
     if (!summary.first_slip_time_s) summary.first_slip_time_s = t;
     slip_start = t;
+    d_start = d;
   }
-  void stop(double t) { summary.total_slip_duration_s += t - slip_start; }
+  /// d is monotone within an episode (a reversal through d' = 0 starts a new one): its path is |d - d_start|.
+  void stop(double t, double d) {
+    summary.total_slip_duration_s += t - slip_start;
+    summary.slip_path_m += std::abs(d - d_start);
+  }
 };
 
 /// Extremes of the record over blocks of kBlock samples: lets many friction coefficients on one record skip stick
@@ -249,7 +255,7 @@ void integrate(const Input& in, const Coefficients& k, Recorder<kRecord>& rec, c
       tau = std::min(start, h);
       s = dir;
       v = 0.0;
-      rec.start(t_i + tau);
+      rec.start(t_i + tau, d);
       rec.row(t_i + tau, d, 0.0, s);
       if (++events_in_step > kMaxEventsPerStep) too_many_events(k, t_i);
       continue;
@@ -337,7 +343,7 @@ void integrate(const Input& in, const Coefficients& k, Recorder<kRecord>& rec, c
     tau += sigma;
     v = 0.0;
     s = 0;
-    rec.stop(t_i + tau);
+    rec.stop(t_i + tau, d);
     rec.track(t_i + tau, d);
     rec.row(t_i + tau, d, 0.0, 0);
     if (++events_in_step > kMaxEventsPerStep) too_many_events(k, t_i);
@@ -351,13 +357,13 @@ void integrate(const Input& in, const Coefficients& k, Recorder<kRecord>& rec, c
     if (static_cast<double>(s) * acc < 0.0) {
       const double sigma = -v / acc;         // Newmark's run-out (thesis eqs 2.5, 2.6): t = v / (N g) on level ground
       d += sigma * (v + 0.5 * acc * sigma);  // ... and v^2 / (2 N g) more displacement
-      rec.stop(t_end + sigma);
+      rec.stop(t_end + sigma, d);
       rec.track(t_end + sigma, d);
       rec.row(t_end + sigma, d, 0.0, 0);
       rec.summary.end_time_s = t_end + sigma;
     } else {
       rec.summary.at_rest_at_end = false;
-      rec.stop(t_end);
+      rec.stop(t_end, d);
       rec.track(t_end, d);
     }
   }

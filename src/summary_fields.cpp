@@ -27,6 +27,7 @@ using S = SlidingOutcome;
 using I = IntensityOutcome;
 using S2 = Sliding2dOutcome;
 using R = RockingOutcome;
+using C = SlideRockOutcome;
 
 }  // namespace
 
@@ -147,6 +148,38 @@ const std::array<Field<IntensityOutcome>, 19> kIntensityFields{{
     {"tm_s", [](const I& r) { return optional_measure(r.measures.tm_s); }},
     {"predominant_frequency_hz", [](const I& r) { return optional_measure(r.measures.predominant_frequency_hz); }},
     {"g_m_s2", [](const I& r) -> FieldValue { return r.g_m_s2; }},
+}};
+
+const std::array<Field<SlideRockOutcome>, 27> kSlideRockFields{{
+    {"overturned", [](const C& r) -> FieldValue { return r.summary.overturned; }},
+    {"overturned_side", [](const C& r) { return side_value(r.summary.overturned_side); }},
+    {"overturn_time_s", [](const C& r) { return optional_value(r.summary.overturn_time_s); }},
+    {"max_rotation_over_alpha", [](const C& r) -> FieldValue { return r.summary.max_rotation_over_alpha; }},
+    {"max_rotation_positive_rad", [](const C& r) -> FieldValue { return r.summary.max_rotation_positive_rad; }},
+    {"max_rotation_negative_rad", [](const C& r) -> FieldValue { return r.summary.max_rotation_negative_rad; }},
+    {"max_rotation_over_alpha_positive",
+     [](const C& r) -> FieldValue { return r.summary.max_rotation_over_alpha_positive; }},
+    {"max_rotation_over_alpha_negative",
+     [](const C& r) -> FieldValue { return r.summary.max_rotation_over_alpha_negative; }},
+    {"exceeded_alpha_time_s", [](const C& r) { return optional_value(r.summary.exceeded_alpha_time_s); }},
+    {"residual_slide_m", [](const C& r) -> FieldValue { return r.summary.residual_slide_m; }},
+    {"max_abs_slide_m", [](const C& r) -> FieldValue { return r.summary.max_abs_slide_m; }},
+    {"slip_episodes", [](const C& r) -> FieldValue { return std::int64_t{r.summary.slip_episodes}; }},
+    {"impacts", [](const C& r) { return count(r.summary.impacts); }},
+    {"uplifts", [](const C& r) { return count(r.summary.uplifts); }},
+    {"onset_mode", [](const C& r) -> FieldValue { return std::string(slide_rock_mode_name(r.summary.onset_mode)); }},
+    {"end_mode", [](const C& r) -> FieldValue { return std::string(slide_rock_mode_name(r.summary.end_mode)); }},
+    {"end_time_s", [](const C& r) -> FieldValue { return r.summary.end_time_s; }},
+    {"moving_at_end", [](const C& r) -> FieldValue { return r.summary.moving_at_end; }},
+    {"friction_energy_j_per_kg", [](const C& r) -> FieldValue { return r.summary.friction_energy_j_per_kg; }},
+    {"impact_energy_j_per_kg", [](const C& r) -> FieldValue { return r.summary.impact_energy_j_per_kg; }},
+    {"alpha_positive_deg", [](const C& r) -> FieldValue { return r.summary.alpha_positive_rad * 180.0 / kPi; }},
+    {"alpha_negative_deg", [](const C& r) -> FieldValue { return r.summary.alpha_negative_rad * 180.0 / kPi; }},
+    {"mu_static", [](const C& r) -> FieldValue { return r.body.mu_static; }},
+    {"mu_kinetic", [](const C& r) -> FieldValue { return r.body.mu_kinetic; }},
+    {"e_mode", [](const C& r) -> FieldValue { return std::string(restitution_mode_name(r.options.restitution)); }},
+    {"used_sliding_kernel", [](const C& r) -> FieldValue { return r.summary.used_sliding_kernel; }},
+    {"g_m_s2", [](const C& r) -> FieldValue { return r.options.g_m_s2; }},
 }};
 
 }  // namespace topple

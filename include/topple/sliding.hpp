@@ -87,6 +87,8 @@ struct SlidingSummary {
                                         ///< counts as a new episode)
   std::optional<double> first_slip_time_s;
   double total_slip_duration_s = 0.0;
+  double slip_path_m = 0.0;             ///< distance slid, sum over slip episodes of |change of d| (m); on a level
+                                        ///< base without vertical input, times mu_k g: the work of friction (J/kg)
   double end_time_s = 0.0;              ///< when the block came to rest (>= record end when it slid past it)
   bool at_rest_at_end = true;           ///< false only when the block can never stop (slope steeper than friction)
   std::optional<double> contact_lost_time_s; ///< first time the normal force n <= 0 (vertical or slope input made

@@ -13,6 +13,7 @@
 #include "topple/rocking.hpp"
 #include "topple/sliding.hpp"
 #include "topple/sliding2d.hpp"
+#include "topple/slide_rock.hpp"
 
 namespace topple {
 
@@ -70,5 +71,17 @@ extern const std::array<Field<RockingOutcome>, 8> kRockingSideFields;
 /// pga_time_s, pgv_m_s, pgd_m, arias_m_s, d5_95_s, d5_time_s, d95_time_s, cav_m_s, tp_s, tm_s,
 /// predominant_frequency_hz, g_m_s2; null where a measure is undefined (a zero record has no D5-95 or Tp).
 extern const std::array<Field<IntensityOutcome>, 19> kIntensityFields;
+
+/// A coupled slide-rock run's summary with its body and options (slide_rock.hpp).
+struct SlideRockOutcome {
+  const SlideRockSummary& summary;
+  const SlideRockBody& body;
+  const SlideRockOptions& options;
+};
+
+/// Coupled slide-rock: in the order of `topple rock --model coupled --json` (overturned ... g_m_s2). Not a sweep's result
+/// (sweep_column -1). Optional times are null when they never happened; overturned_side is "positive", "negative" or null (as kRockingSideFields).
+/// Not fields: modes (per mode: entries and first time; a nested object in the JSON), warnings, body.
+extern const std::array<Field<SlideRockOutcome>, 27> kSlideRockFields;
 
 }  // namespace topple

@@ -73,9 +73,9 @@ struct RockObject {
   std::optional<double> width_m;
   std::optional<double> height_m;
   std::optional<double> diameter_m;
-  std::optional<double> inertia_m2;  ///< asymmetric general body: I_cm / m as given (or from the mesh), m^2
-  std::string mesh;                  ///< a body from a mesh: the file as the sweep file names it (empty: none)
-  std::optional<double> mesh_azimuth_deg;  ///< and the azimuth of its plane of shaking, degrees
+  std::optional<double> inertia_m2 = std::nullopt;  ///< asymmetric general body: I_cm / m as given (or from the mesh), m^2
+  std::string mesh = {};             ///< a body from a mesh: the file as the sweep file names it (empty: none)
+  std::optional<double> mesh_azimuth_deg = std::nullopt;  ///< and the azimuth of its plane of shaking, degrees
   std::optional<SupportOscillator> support = std::nullopt;  ///< as SlideObject::support
   /// A block's other horizontal dimension, m: a box checked about both axes (oriented.hpp). Record sets only.
   std::optional<double> depth_m = std::nullopt;

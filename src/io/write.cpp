@@ -187,4 +187,41 @@ void write_rocking_history_csv(const std::filesystem::path& path, const RockingH
   file.commit();
 }
 
+nlohmann::ordered_json slide_rock_summary_json(const SlideRockSummary& s, const SlideRockBody& body,
+                                               const SlideRockOptions& options) {
+  nlohmann::ordered_json j = fields_json(kSlideRockFields, SlideRockOutcome{s, body, options});
+  nlohmann::ordered_json modes = nlohmann::ordered_json::object();
+  for (std::size_t m = 0; m < kSlideRockModes; ++m) {
+    nlohmann::ordered_json x;
+    x["entries"] = s.mode_entries[m];
+    x["first_time_s"] = s.mode_first_time_s[m] ? nlohmann::ordered_json(*s.mode_first_time_s[m]) : nullptr;
+    modes[std::string(slide_rock_mode_name(static_cast<SlideRockMode>(m)))] = x;
+  }
+  j["modes"] = modes;
+  j["warnings"] = s.warnings;
+  nlohmann::ordered_json b;
+  b["b1_m"] = body.b1_m;
+  b["b2_m"] = body.b2_m;
+  b["h_m"] = body.h_m;
+  b["inertia_m2"] = body.inertia_m2;
+  j["body"] = b;
+  j["sign_convention"] = "theta > 0 and slide > 0 toward +x; sliding.hpp's d is -slide";
+  return j;
+}
+
+void write_slide_rock_history_csv(const std::filesystem::path& path, const SlideRockHistory& h) {
+  OutputFile file(path);
+  std::ostream& out = file.stream();
+  out << "time_s,slide_m,slide_velocity_m_s,theta_rad,theta_dot_rad_s,cm_height_m,mode\n";
+  fmt::memory_buffer row;
+  for (std::size_t i = 0; i < h.time_s.size(); ++i) {
+    row.clear();
+    fmt::format_to(std::back_inserter(row), "{:.9g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{}\n", h.time_s[i],
+                   h.slide_m[i], h.slide_velocity_m_s[i], h.theta_rad[i], h.theta_dot_rad_s[i], h.cm_height_m[i],
+                   slide_rock_mode_name(h.mode[i]));
+    out.write(row.data(), static_cast<std::streamsize>(row.size()));
+  }
+  file.commit();
+}
+
 }  // namespace topple::io

@@ -54,6 +54,13 @@ template <class Result, std::size_t N>
                                                            const ComponentAzimuths& azimuths,
                                                            const OrientationOptions& orientation);
 
+/// Summary of a coupled slide-rock run as JSON, as `topple rock --model coupled --json` prints it less its "input" object: the
+/// fields of kSlideRockFields, then modes {rest|slide|rock|slide-rock|flight|fallen: {entries, first_time_s}},
+/// warnings and body {b1_m, b2_m, h_m, inertia_m2}. Never emits NaN: absent values are null.
+[[nodiscard]] nlohmann::ordered_json slide_rock_summary_json(const SlideRockSummary& summary,
+                                                             const SlideRockBody& body,
+                                                             const SlideRockOptions& options);
+
 /// What a single run saw, for the "input" object of `topple slide|rock --json` and of the Python results' json().
 struct RunInput {
   std::string motion;                   ///< the record's file name, or the pulse's description
@@ -84,5 +91,7 @@ void write_sliding_history_csv(const std::filesystem::path& path, const SlidingH
 /// Rocking history as CSV: time_s,theta_rad,theta_dot_rad_s,state (state: rocking-, rest, rocking+, fallen).
 /// Written through OutputFile; throws OutputError naming the path when it cannot be written.
 void write_rocking_history_csv(const std::filesystem::path& path, const RockingHistory& history);
+/// Coupled slide-rock history: time_s,slide_m,slide_velocity_m_s,theta_rad,theta_dot_rad_s,cm_height_m,mode.
+void write_slide_rock_history_csv(const std::filesystem::path& path, const SlideRockHistory& history);
 
 }  // namespace topple::io

@@ -1,0 +1,351 @@
+// The coupled slide-rock model (slide_rock.hpp) against its limits: the rocking engine (no slip), the exact sliding
+// solver (no uplift), Shenton's onset criteria, the free-flight parabola, the energy balance, and tolerance refinement.
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "support/shared_data.hpp"
+#include "topple/error.hpp"
+#include "topple/io/read.hpp"
+#include "topple/rocking.hpp"
+#include "topple/slide_rock.hpp"
+#include "topple/sliding.hpp"
+
+namespace topple {
+namespace {
+
+constexpr double kG = kStandardGravity;
+
+/// A half-sine acceleration pulse toward -x (it throws the body toward +x), amplitude A m/s^2, duration T s,
+/// sampled at dt, followed by `tail` s of still ground.
+GroundMotion half_sine(double A, double T, double dt, double tail = 0.0) {
+  const auto n = static_cast<std::size_t>(std::lround(T / dt));
+  const auto m = static_cast<std::size_t>(std::lround(tail / dt));
+  std::vector<double> a(n + 1 + m, 0.0);
+  for (std::size_t i = 0; i <= n; ++i) a[i] = -A * std::sin(kPi * static_cast<double>(i) / static_cast<double>(n));
+  return GroundMotion::uniform(std::move(a), dt);
+}
+
+/// A few cycles of a sine, amplitude A, period T, sampled at dt.
+GroundMotion sine(double A, double T, double cycles, double dt) {
+  const auto n = static_cast<std::size_t>(std::lround(cycles * T / dt));
+  std::vector<double> a(n + 1);
+  for (std::size_t i = 0; i <= n; ++i) a[i] = A * std::sin(2.0 * kPi * static_cast<double>(i) * dt / T);
+  return GroundMotion::uniform(std::move(a), dt);
+}
+
+std::optional<GroundMotion> shared_motion(const std::string& name) {
+  if (!test::have_shared()) return std::nullopt;
+  return io::read_motion(test::shared_record(name));
+}
+
+RockingOptions rocking_options(double rel_tol) {
+  RockingOptions o;
+  o.rel_tol = rel_tol;
+  return o;
+}
+
+SlideRockOptions coupled_options(double rel_tol) {
+  SlideRockOptions o;
+  o.rel_tol = rel_tol;
+  return o;
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// No slip: the rocking engine
+
+/// Both engines integrate the same equation (rocking.hpp) with Dormand-Prince 5(4) at rel_tol 1e-10 on states scaled
+/// the same way; their steps differ (hand-written vs Boost.Odeint's controller, a_dxdt = 0 in both), so maxima agree
+/// to the global error of either, ~1e-8 relative: 1e-6 leaves margin. Impacts and verdicts are integers: equal.
+void expect_same_as_rocking(const GroundMotion& motion, const SlideRockBody& body, const char* what) {
+  const auto r = rock_summary(motion, body.rocking_body(), rocking_options(1e-10));
+  const auto c = slide_rock(motion, body, coupled_options(1e-10)).summary;
+  EXPECT_EQ(c.overturned, r.overturned) << what;
+  EXPECT_EQ(c.overturned_side, r.overturned_side) << what;
+  EXPECT_EQ(c.impacts, r.impacts) << what;
+  EXPECT_NEAR(c.max_rotation_over_alpha_positive, r.max_rotation_over_alpha_positive,
+              1e-6 * std::max(1.0, r.max_rotation_over_alpha_positive)) << what;
+  EXPECT_NEAR(c.max_rotation_over_alpha_negative, r.max_rotation_over_alpha_negative,
+              1e-6 * std::max(1.0, r.max_rotation_over_alpha_negative)) << what;
+  const auto slip = c.mode_first_time_s[static_cast<std::size_t>(SlideRockMode::slide_rock)];
+  if (!r.exceeded_alpha_time_s) {
+    EXPECT_DOUBLE_EQ(c.max_abs_slide_m, 0.0) << what;  // the pivot never slips
+    EXPECT_EQ(c.slip_episodes, 0) << what;
+    EXPECT_FALSE(slip) << what;
+    EXPECT_NEAR(c.end_time_s, r.end_time_s, 1e-6) << what;  // s: the rest rule ends both at the same impact
+  } else if (slip) {
+    // A body past alpha falls; near the ground N -> 0 and even mu = 5 cannot hold the pivot (the rocking engine
+    // ignores this): any slip comes after |theta| = alpha, located at a step end (not before the engine's time).
+    EXPECT_GE(*slip, *r.exceeded_alpha_time_s) << what;
+  }
+}
+
+TEST(SlideRockRockingLimit, HighFrictionEqualsTheRockingEngineOnPulses) {
+  // A 20 x 100 cm block (alpha = 0.197 rad) with mu = 5 (> mu_crit for every throw here: no slip). Half-sine pulses
+  // of 1.5, 3 and 6 times the uplift threshold g tan(alpha): rocking with impacts, and (the largest) overturning.
+  const auto body = SlideRockBody::block(0.2, 1.0, 5.0);
+  const double thr = kG * 0.2 / 1.0;
+  expect_same_as_rocking(half_sine(1.5 * thr, 0.3, 0.005, 3.0), body, "1.5x");
+  expect_same_as_rocking(half_sine(3.0 * thr, 0.3, 0.005, 3.0), body, "3x");
+  expect_same_as_rocking(half_sine(6.0 * thr, 0.3, 0.005, 3.0), body, "6x");
+  const auto fell = slide_rock(half_sine(6.0 * thr, 0.3, 0.005, 3.0), body).summary;
+  EXPECT_TRUE(fell.overturned);  // the case above does test a fall
+  const auto rocked = slide_rock(half_sine(1.5 * thr, 0.3, 0.005, 3.0), body).summary;
+  EXPECT_GT(rocked.impacts, 100u);  // and one with many impacts (143: Zeno rocking down to the rest rule)
+}
+
+TEST(SlideRockRockingLimit, HighFrictionEqualsTheRockingEngineOnARecord) {
+  const auto full = shared_motion("RSN6_IMPVALL.I_I-ELC180.AT2");
+  if (!full) GTEST_SKIP() << "shared/records not found";
+  // El Centro 1940, 1.5-6 s, the thesis' object A (4 x 20 cm), mu = 5: many impacts, an asymmetric variant too.
+  const auto window = full->trimmed(1.5, 6.0);
+  expect_same_as_rocking(window, SlideRockBody::block(0.04, 0.20, 5.0), "block");
+  expect_same_as_rocking(window, SlideRockBody::make(0.015, 0.025, 0.1, (0.04 * 0.04 + 0.2 * 0.2) / 12.0, 5.0),
+                         "asymmetric");
+  const auto c = slide_rock(window, SlideRockBody::block(0.04, 0.20, 5.0)).summary;
+  EXPECT_GE(c.impacts, 3u);  // the window holds 3 impacts of object A
+}
+
+TEST(SlideRockRockingLimit, SymmetricBodyReproducesTheBlock) {
+  // b1 = b2 through make() against RockingBody::block (the symmetric path of the rocking engine), and the mirror:
+  // the negated input gives the same response on the other side (exact physics; the numbers agree to the global
+  // error, 1e-6 as above).
+  const auto body = SlideRockBody::make(0.1, 0.1, 0.5, (0.2 * 0.2 + 1.0) / 12.0, 5.0);
+  const auto motion = half_sine(3.0 * kG * 0.2, 0.3, 0.005, 3.0);
+  const auto r = rock_summary(motion, RockingBody::block(0.2, 1.0), rocking_options(1e-10));
+  const auto c = slide_rock(motion, body, coupled_options(1e-10)).summary;
+  EXPECT_EQ(c.impacts, r.impacts);
+  EXPECT_NEAR(c.max_rotation_over_alpha, r.max_rotation_over_alpha, 1e-6);
+  const auto negated = motion.inverted();
+  const auto m = slide_rock(negated, body, coupled_options(1e-10)).summary;
+  EXPECT_NEAR(m.max_rotation_negative_rad, c.max_rotation_positive_rad, 1e-9);  // rad; mirror, same steps
+  EXPECT_NEAR(m.max_rotation_positive_rad, c.max_rotation_negative_rad, 1e-9);
+  EXPECT_EQ(m.impacts, c.impacts);
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// No uplift: the sliding solver
+
+TEST(SlideRockSlidingLimit, WideBodyEqualsTheExactSlidingSolver) {
+  // A 100 x 40 cm block (b/h = 2.5) with mu_s = 0.2, mu_k = 0.15 can never lift (slide_rock.hpp). The default path
+  // runs sliding.hpp's kernel; sliding_kernel = false runs the coupled engine's own exact slide phase. Both equal the
+  // sliding solver to 1e-9 relative (the bound; both are exact piecewise polynomials, so they agree to
+  // round-off of the event times, ~1e-14).
+  const auto body = SlideRockBody::block(1.0, 0.4, 0.2, 0.15);
+  ASSERT_TRUE(body.cannot_uplift());
+  std::vector<GroundMotion> motions{sine(0.6 * kG, 0.5, 4.0, 0.01), half_sine(0.8 * kG, 0.4, 0.005, 1.0)};
+  if (const auto rec = shared_motion("RSN6_IMPVALL.I_I-ELC180.AT2")) motions.push_back(*rec);
+  const auto block = SlidingBlock::make(0.2, 0.15);
+  for (const auto& motion : motions) {
+    const auto s = slide_summary(motion, block);
+    ASSERT_GT(s.max_abs_displacement_m, 1e-3);  // it does slide
+    for (const bool kernel : {true, false}) {
+      SlideRockOptions o;
+      o.sliding_kernel = kernel;
+      const auto c = slide_rock(motion, body, o).summary;
+      EXPECT_EQ(c.used_sliding_kernel, kernel);
+      // d of sliding.hpp is -u (sign convention in slide_rock.hpp)
+      EXPECT_NEAR(c.residual_slide_m, -s.residual_displacement_m, 1e-9 * s.max_abs_displacement_m) << kernel;
+      EXPECT_NEAR(c.max_abs_slide_m, s.max_abs_displacement_m, 1e-9 * s.max_abs_displacement_m) << kernel;
+      EXPECT_EQ(c.slip_episodes, s.slip_episodes) << kernel;
+      EXPECT_DOUBLE_EQ(c.max_rotation_over_alpha, 0.0);
+      EXPECT_EQ(c.impacts, 0u);
+    }
+    // Friction work: the kernel path integrates mu_k g |d'| by Simpson on cubic pieces, the engine in closed form:
+    // both exact, so they agree to round-off (1e-9 relative).
+    SlideRockOptions o;
+    o.sliding_kernel = false;
+    const double exact = slide_rock(motion, body, o).summary.friction_energy_j_per_kg;
+    const double simpson = slide_rock(motion, body).summary.friction_energy_j_per_kg;
+    EXPECT_NEAR(simpson, exact, 1e-9 * exact);
+    EXPECT_GT(exact, 0.0);
+  }
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Onset from rest: Shenton (1996)
+
+TEST(SlideRockOnset, AgreesWithShentonsCriteriaOverAGrid) {
+  // Symmetric blocks b/h = 0.1 .. 1.0, mu = 0.05 .. 1.5, A = |a_h| / g = 0.02 .. 2: the enumeration of the
+  // two-contact problem (slide_rock_onset_mode) against rocking.hpp's shenton_onset_mode. Points within 1e-9 of a
+  // boundary (A = mu, A = b/h, mu = b/h, mu = mu_crit) are skipped: there both modes are consistent.
+  int compared = 0;
+  std::array<int, 4> seen{};
+  for (double beta = 0.1; beta <= 1.0001; beta += 0.1) {
+    const double h = 0.5;
+    const double b = beta * h;
+    for (double mu = 0.05; mu <= 1.5001; mu += 0.05) {
+      const auto body = SlideRockBody::make(b, b, h, (4.0 * b * b + 4.0 * h * h) / 12.0, mu);
+      const RockingBody rb = RockingBody::general(b, h, (4.0 / 3.0) * (b * b + h * h));
+      for (double A = 0.02; A <= 2.0001; A += 0.02) {
+        if (std::abs(A - mu) < 1e-9 || std::abs(A - beta) < 1e-9 || std::abs(mu - beta) < 1e-9) continue;
+        if (std::abs(mu - shenton_critical_mu(rb, A)) < 1e-9) continue;
+        const OnsetMode expected = shenton_onset_mode(rb, A, mu);
+        for (const double sgn : {-1.0, 1.0}) {
+          const SlideRockMode got = slide_rock_onset_mode(body, sgn * A * kG, kG);
+          SlideRockMode want = SlideRockMode::rest;
+          switch (expected) {
+            case OnsetMode::rest: want = SlideRockMode::rest; break;
+            case OnsetMode::slide: want = A > mu ? SlideRockMode::slide : SlideRockMode::rest; break;
+            case OnsetMode::rock: want = SlideRockMode::rock; break;
+            case OnsetMode::slide_rock: want = SlideRockMode::slide_rock; break;
+            case OnsetMode::unchecked: break;
+          }
+          ASSERT_EQ(got, want) << "b/h = " << beta << ", mu = " << mu << ", A = " << A;
+          ++compared;
+          ++seen[static_cast<std::size_t>(want == SlideRockMode::slide_rock ? 3 : static_cast<int>(want))];
+        }
+      }
+    }
+  }
+  EXPECT_GT(compared, 50000);
+  for (int k = 0; k < 4; ++k) EXPECT_GT(seen[static_cast<std::size_t>(k)], 100) << k;  // every mode is exercised
+}
+
+TEST(SlideRockOnset, ARunStartsInTheModeShentonPredicts) {
+  // A 20 x 60 cm block (b/h = 1/3), a throw of 1.2 g (A = 1.2 > b/h): mu = 0.2 slides, mu = 0.45 slide-rocks
+  // (b/h < 0.45 < mu_crit(1.2) = 0.515), mu = 2 rocks.
+  // a jump to -1.2 g (from still ground) for 0.2 s: the body leaves rest at A = 1.2
+  const auto motion = GroundMotion::uniform({-1.2 * kG, -1.2 * kG}, 0.2);
+  const RockingBody rb = RockingBody::block(0.2, 0.6);
+  EXPECT_EQ(slide_rock(motion, SlideRockBody::block(0.2, 0.6, 0.2)).summary.onset_mode, SlideRockMode::slide);
+  EXPECT_NEAR(shenton_critical_mu(rb, 1.2), 0.515, 0.001);  // the number the case below relies on
+  EXPECT_EQ(slide_rock(motion, SlideRockBody::block(0.2, 0.6, 0.45)).summary.onset_mode, SlideRockMode::slide_rock);
+  EXPECT_EQ(slide_rock(motion, SlideRockBody::block(0.2, 0.6, 2.0)).summary.onset_mode, SlideRockMode::rock);
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Free flight, energy, convergence
+
+TEST(SlideRockFlight, FreeFlightIsAParabolaAndLandsWhereItShould) {
+  // The ground drops at 2 g for 0.1 s (a_v = -2 g: g_e = -g) while accelerating toward +x at 0.5 g: the body
+  // leaves the ground at t = 0 and flies: relative to the ground Y - h = g t^2 / 2, X = -0.25 g t^2 up to 0.1 s, then
+  // Y - h = g 0.01 / 2 + 0.1 g tau - g tau^2 / 2, X' = -0.05 g. It lands flat at tau = 0.1 + sqrt(0.02) s with
+  // |Y'| = g sqrt(0.02) and stops there (mu = 0.5: mu P_n = 0.69 m/s > |X'| = 0.49 m/s).
+  const auto h_motion = GroundMotion::uniform({0.5 * kG, 0.5 * kG}, 0.1);
+  const auto v_motion = GroundMotion::uniform({-2.0 * kG, -2.0 * kG}, 0.1);
+  const auto body = SlideRockBody::block(0.4, 0.4, 0.5);
+  SlideRockOptions o;
+  o.record_history = true;
+  const auto r = slide_rock(h_motion, body, o, &v_motion);
+  const auto& H = r.history;
+  std::size_t checked = 0;
+  const double t_land = 0.2 + std::sqrt(0.02);
+  for (std::size_t k = 0; k < H.time_s.size(); ++k) {
+    if (H.mode[k] != SlideRockMode::flight) continue;
+    const double t = H.time_s[k];
+    const double tau = t - 0.1;
+    const double y = t <= 0.1 ? 0.5 * kG * t * t : 0.005 * kG + 0.1 * kG * tau - 0.5 * kG * tau * tau;
+    const double x = t <= 0.1 ? -0.25 * kG * t * t : -0.0025 * kG - 0.05 * kG * tau;
+    // closed forms evaluated by the engine's polynomials: round-off only (1e-12 m on 0.1 m)
+    EXPECT_NEAR(H.cm_height_m[k] - 0.2, y, 1e-12) << t;
+    EXPECT_NEAR(H.slide_m[k], x, 1e-12) << t;
+    EXPECT_DOUBLE_EQ(H.theta_rad[k], 0.0);
+    ++checked;
+  }
+  EXPECT_GT(checked, 10u);
+  const auto& s = r.summary;
+  ASSERT_TRUE(s.mode_first_time_s[static_cast<std::size_t>(SlideRockMode::flight)]);
+  EXPECT_EQ(s.onset_mode, SlideRockMode::flight);
+  EXPECT_EQ(s.impacts, 1u);
+  EXPECT_EQ(s.end_mode, SlideRockMode::rest);
+  // landing located by TOMS 748 to ulps of the time; the slide after it is X at landing
+  EXPECT_NEAR(s.residual_slide_m, -0.0025 * kG - 0.05 * kG * (t_land - 0.1), 1e-12);
+  // the plastic landing takes all the kinetic energy: (0.05 g)^2 / 2 + (g sqrt(0.02))^2 / 2
+  const double lost = 0.5 * std::pow(0.05 * kG, 2) + 0.5 * kG * kG * 0.02;
+  EXPECT_NEAR(s.impact_energy_j_per_kg, lost, 1e-9 * lost);
+}
+
+TEST(SlideRockEnergy, MechanicalEnergyNeverIncreasesAndBalances) {
+  // Still ground, a 20 x 60 cm block released rocking and sliding (theta' = 0.6 rad/s, u' = 0.3 m/s: 0.125 J/kg,
+  // below the 0.158 J/kg that tips it over) with
+  // mu_s = 0.45, mu_k = 0.35: slide-rock, stick, impacts. Without input the mechanical energy E = T + g (Y - h) can
+  // only fall (friction and impacts dissipate); between rows it may rise by the integration error only
+  // (rel_tol 1e-10: 1e-8 of E0 is a wide margin). At rest E = 0, so friction + impact losses = E0 (1e-6 relative:
+  // the friction integral is the ODE's, global error ~1e-8).
+  const auto still = GroundMotion::uniform(std::vector<double>(501, 0.0), 0.01);
+  const auto body = SlideRockBody::block(0.2, 0.6, 0.45, 0.35);
+  SlideRockOptions o;
+  o.rel_tol = 1e-10;
+  o.record_history = true;
+  o.initial_theta_dot_rad_s = 0.6;
+  o.initial_slide_velocity_m_s = 0.3;
+  const auto r = slide_rock(still, body, o);
+  const auto& E = r.history.energy_j_per_kg;
+  ASSERT_GT(E.size(), 20u);
+  const double e0 = E.front();
+  for (std::size_t k = 1; k < E.size(); ++k) EXPECT_LE(E[k], E[k - 1] + 1e-8 * e0) << r.history.time_s[k];
+  const auto& s = r.summary;
+  EXPECT_EQ(s.end_mode, SlideRockMode::rest);
+  EXPECT_GT(s.slip_episodes, 0);
+  EXPECT_GT(s.impacts, 0u);
+  EXPECT_GT(s.friction_energy_j_per_kg, 0.0);
+  EXPECT_NEAR(s.friction_energy_j_per_kg + s.impact_energy_j_per_kg, e0, 1e-6 * e0);
+}
+
+TEST(SlideRockConvergence, ErrorFallsWithTheTolerance) {
+  // The energy test's release (20 x 60 cm, mu_s = 0.45, mu_k = 0.35, theta' = 0.6 rad/s, u' = 0.3 m/s) on still
+  // ground sampled every 1 s, so that the steps are the controller's own, at rel_tol 1e-4 .. 1e-8 against 1e-12:
+  // the residual slide and the peak rotation. Dormand-Prince's global error follows the tolerance (error per step
+  // control), so each 100x tighter tolerance must cut the error at least 10x (a lax bound for that order; measured:
+  // 2.8e-7, 2.6e-9, 2.5e-11 m, 108x per step).
+  const auto still = GroundMotion::uniform(std::vector<double>(6, 0.0), 1.0);
+  const auto body = SlideRockBody::block(0.2, 0.6, 0.45, 0.35);
+  const auto run = [&](double tol) {
+    SlideRockOptions o;
+    o.rel_tol = tol;
+    o.abs_tol = tol * 1e-4;
+    o.initial_theta_dot_rad_s = 0.6;
+    o.initial_slide_velocity_m_s = 0.3;
+    return slide_rock(still, body, o).summary;
+  };
+  const auto ref = run(1e-12);
+  ASSERT_GT(ref.mode_entries[static_cast<std::size_t>(SlideRockMode::slide_rock)], 0u);
+  ASSERT_GT(std::abs(ref.residual_slide_m), 1e-3);
+  std::vector<double> err;
+  for (const double tol : {1e-4, 1e-6, 1e-8}) {
+    const auto s = run(tol);
+    err.push_back(std::abs(s.residual_slide_m - ref.residual_slide_m) +
+                  std::abs(s.max_rotation_positive_rad - ref.max_rotation_positive_rad) * body.h_m);
+  }
+  EXPECT_LT(err[1], err[0] / 10.0);
+  EXPECT_LT(err[2], err[1] / 10.0);
+  EXPECT_LT(err[2], 1e-7);  // m: the tight end is close
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Input checks
+
+TEST(SlideRockInput, RefusesBadBodiesAndOptionsNamingTheField) {
+  const auto field_of = [](auto f) -> std::string {
+    try {
+      f();
+    } catch (const InputError& e) {
+      return e.where().field;
+    }
+    ADD_FAILURE() << "no InputError";
+    return {};
+  };
+  EXPECT_EQ(field_of([] { (void)SlideRockBody::make(-0.1, 0.1, 0.5, 0.1, 0.5); }), "b1");
+  EXPECT_EQ(field_of([] { (void)SlideRockBody::make(0.1, 0.1, 0.5, 0.1, 0.5, 0.6); }), "mu_k");
+  EXPECT_EQ(field_of([] { (void)SlideRockBody::make(0.1, 0.1, 0.5, 0.1, -1.0); }), "mu");
+  EXPECT_EQ(field_of([] { (void)SlideRockBody::make(0.1, 0.1, 0.5, 0.0, 0.5); }), "inertia");
+  const auto body = SlideRockBody::block(0.2, 1.0, 0.5);
+  const auto motion = sine(1.0, 1.0, 1.0, 0.01);
+  SlideRockOptions o;
+  o.rel_tol = 0.0;
+  EXPECT_EQ(field_of([&] { (void)slide_rock(motion, body, o); }), "rel_tol");
+  o = {};
+  o.restitution = RestitutionMode::given;
+  o.e = 1.5;
+  EXPECT_EQ(field_of([&] { (void)slide_rock(motion, body, o); }), "e");
+  // a squat block (alpha > 54.7 deg) that can lift (mu > b/h) with Housner's e < 0 and no e given
+  EXPECT_EQ(field_of([&] { (void)slide_rock(motion, SlideRockBody::block(3.0, 1.0, 3.5), SlideRockOptions{}); }), "e");
+}
+
+}  // namespace
+}  // namespace topple
