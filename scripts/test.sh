@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
 # The project's test command (README quick start; CI runs exactly this): installs what is missing, builds the
 # optimised and the sanitizer (ASan + UBSan) configurations, runs every test in both, then fuzzes each reader briefly.
+# One statistical test runs in the optimised build only (the asan test preset excludes it): the three-component
+# recovery trials (Recovery3c.RecoversPgaFrequencyAndDirection), a minute of the same solvers and likelihood that the
+# other Inversion3c/Survey3c tests already run under the sanitizers.
 # Tests that read ../shared/ (records, verification data) skip when it is absent.
 set -euo pipefail
 cd "$(dirname "$0")/.."
