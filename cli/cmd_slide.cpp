@@ -70,8 +70,8 @@ void run_slide(const SlideOptions& o) {
   const GroundMotion& horizontal = run.horizontal;
   const GroundMotion* vertical_ptr = run.vertical_ptr();
   if (!o.h2.empty()) {
-    if (o.flexible.active() || !o.out.empty() || !o.plot.empty()) {
-      throw parameter_error("--h2", "--out, --plot and flexible supports are not available with two components yet");
+    if (o.flexible.active() || !o.out.empty()) {
+      throw parameter_error("--h2", "--out and flexible supports are not available with two components yet");
     }
     // The second component is scaled with the first (the shaking is scaled as a whole), as the vertical is.
     const GroundMotion second = io::read_motion(o.h2, read_options(o.motion)).scaled(run.input.scale_factor);
@@ -92,7 +92,7 @@ void run_slide(const SlideOptions& o) {
     // One grid for the three components (exact merge; refuses records that are not one recording).
     const MotionSet set = MotionSet::make(horizontal, &second, azimuths, vertical_ptr);
     run_bidirectional_slide(set.first(), set.second(), azimuths, block, set.vertical_ptr(), o.json, run.input.motion,
-                            o.h2, run.input.scale_factor);
+                            o.h2, run.input.scale_factor, o.plot);
     return;
   }
   if (!o.azimuths.empty()) throw parameter_error("--azimuths", "needs --h2 (the second horizontal component)");
