@@ -4,7 +4,6 @@ synthetic pair equal to `topple synth --components 2` bit for bit, pyrotd as a p
 input raising topple.InputError (a ValueError) that names the parameter."""
 import json
 import math
-import pathlib
 import subprocess
 
 import numpy as np
@@ -13,29 +12,9 @@ import pytest
 import topple
 from conftest import ROOT, shared_record
 
-N = 1500
-DT = 0.01
-
-
-def write_csv(path, accel_g):
-    with open(path, "w") as f:
-        f.write("time_s,accel_g\n")
-        for i, a in enumerate(accel_g):
-            f.write(f"{i * DT:.2f},{float(a)!r}\n")
-    return str(path)
-
-
-@pytest.fixture(scope="module")
-def station(tmp_path_factory):
-    """A pair made here (always available): two horizontals of different frequency content, and a vertical, CSV
-    time_s,accel_g at 0.01 s. Elliptical rather than collinear, so RotD50 and RotD100 differ."""
-    t = np.arange(N) * DT
-    env = np.exp(-((t - 5.0) / 3.0) ** 2)
-    h1 = 0.5 * np.sin(2 * np.pi * 1.7 * t) * env + 0.1 * np.sin(2 * np.pi * 5.3 * t)
-    h2 = 0.4 * np.cos(2 * np.pi * 1.1 * t + 0.4) * env + 0.08 * np.sin(2 * np.pi * 3.7 * t)
-    v = 0.2 * np.sin(2 * np.pi * 4.1 * t) * env
-    d = tmp_path_factory.mktemp("station")
-    return (write_csv(d / "h1.csv", h1), write_csv(d / "h2.csv", h2), write_csv(d / "v.csv", v))
+# The station made in test_slide2d (two elliptically polarised horizontals and a vertical, CSV at 0.01 s): RotD50 and
+# RotD100 differ on it. Imported, not copied: the fixture is registered here by its name.
+from test_slide2d import DT, N, station  # noqa: E402,F401
 
 
 def close(a, b, rel):
