@@ -179,7 +179,8 @@ void add_slide_command(CLI::App& app) {
   cmd->add_option("--slope-azimuth-deg", o->slope_azimuth_deg, "With --h2 and --slope-deg: azimuth of the downslope "
                                                                "direction, degrees clockwise from north");
   cmd->add_option("--out", o->out, "Write the time history to this CSV file");
-  cmd->add_option("--plot", o->plot, "Draw record, thresholds and response to this .svg or .png file (gnuplot)");
+  cmd->add_option("--plot", o->plot, "Draw record, thresholds and response to this .svg or .png file (gnuplot); with "
+                                     "--h2, both components (and the vertical) and the east and north response");
   cmd->add_flag("--json", o->json, "Print the summary as one JSON object");
   add_flexible_options(*cmd, o->flexible);
   add_quiet_flag(*cmd, o->quiet);  // a single run is quick: no bar; warnings are still printed
