@@ -48,4 +48,29 @@ void BM_InvertExampleSurveyTenMotions(benchmark::State& state) {
 }
 BENCHMARK(BM_InvertExampleSurveyTenMotions)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(3);
 
+/// The three-component example (examples/survey_3c.toml: 16 x 10 cells, 16 motions, 12 direction bins, 8 objects),
+/// one thread, as given (Arg 3) and as the one-component survey of the same objects and grid (Arg 1: bearings and
+/// the sliding direction dropped): the cost of the third dimension side by side.
+void BM_InvertThreeComponentExample(benchmark::State& state) {
+  static const topple::Survey survey =
+      topple::io::read_survey(std::filesystem::path(TOPPLE_SOURCE_DIR) / "examples" / "survey_3c.toml");
+  topple::Site site = survey.sites.front();
+  topple::InversionSettings settings = survey.inversion;
+  if (state.range(0) == 1) {
+    settings.components = 1;
+    for (topple::ObservedObject& o : site.objects) {
+      o.azimuth_deg.reset();
+      o.slid_azimuth_deg.reset();
+    }
+  }
+  std::size_t runs = 0;
+  for (auto _ : state) {
+    const topple::InversionResult r = topple::invert_site(site, settings, topple::InversionOptions{1});
+    runs += r.runs;
+    benchmark::DoNotOptimize(r.pga_estimate_g.median);
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(runs));
+}
+BENCHMARK(BM_InvertThreeComponentExample)->Arg(1)->Arg(3)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(1);
+
 }  // namespace

@@ -36,9 +36,16 @@ int pgv_table(const std::string& inversion_toml) {
       "[site]\nname = \"x\"\n[inversion]\n" + inversion_toml +
           "\n[[object]]\nid = \"a\"\nwidth = \"1cm\"\nheight = \"1cm\"\nmu = 0.5\noutcome = \"slid\"\n",
       "pgv.toml");
-  fmt::print("| record | f_p (Hz) | PGV/PGA record (s) | family mean (s) | family / record | rank in family |\n"
-             "|---|---|---|---|---|---|\n");
+  // Two measures of the motion's shape, both dimensionless at a given predominant frequency f_p: PGV/PGA (the
+  // velocity it carries per unit PGA, which sets how far a block slides) and f_p Tm (Tm: Rathje et al. 1998's mean
+  // period, spectra.hpp), the predominant period over the mean one inverted: 1 for a motion whose energy sits at its
+  // peak, below 1 for a broadband one whose mean frequency 1/Tm lies above its FAS peak.
+  fmt::print("| record | f_p (Hz) | PGV/PGA record (s) | family mean (s) | family / record | rank in family | "
+             "f_p Tm record | family mean | rank in family |\n"
+             "|---|---|---|---|---|---|---|---|---|\n");
   std::vector<double> ratios;
+  std::vector<double> tm_ratios;  // family mean f_p Tm / the record's
+  std::vector<double> tm_ranks;
   std::vector<double> ranks;  // the share of the family's motions with a smaller PGV/PGA than the record's
   for (const recovery::RecordCase& rc : recovery::real_records(TOPPLE_SHARED_DIR)) {
     io::ReadOptions ro;
@@ -47,20 +54,29 @@ int pgv_table(const std::string& inversion_toml) {
     const double fp = predominant_frequency_hz(record);
     const BasicIntensity bi = basic_intensity(record);
     const double rec_ratio = bi.pgv_m_s / bi.pga_m_s2;
+    const double rec_tm = fp * mean_period_s(record);
     double sum = 0.0;
     double below = 0.0;
+    double tm_sum = 0.0;
+    double tm_below = 0.0;
     const std::vector<GroundMotion> family = family_motions(survey.inversion, fp);
     for (const GroundMotion& m : family) {
       const BasicIntensity fb = basic_intensity(m);
       sum += fb.pgv_m_s / fb.pga_m_s2;
       below += (fb.pgv_m_s / fb.pga_m_s2 < rec_ratio) ? 1.0 : 0.0;
+      const double tm = fp * mean_period_s(m);
+      tm_sum += tm;
+      tm_below += (tm < rec_tm) ? 1.0 : 0.0;
     }
-    const double rank = below / static_cast<double>(family.size());
+    const double nfam = static_cast<double>(family.size());
+    const double rank = below / nfam;
     ranks.push_back(rank);
-    const double fam_ratio = sum / static_cast<double>(family.size());
+    tm_ranks.push_back(tm_below / nfam);
+    const double fam_ratio = sum / nfam;
     ratios.push_back(fam_ratio / rec_ratio);
-    fmt::print("| {} | {:.2f} | {:.3f} | {:.3f} | {:.2f} | {:.2f} |\n", rc.label, fp, rec_ratio, fam_ratio,
-               fam_ratio / rec_ratio, rank);
+    tm_ratios.push_back(tm_sum / nfam / rec_tm);
+    fmt::print("| {} | {:.2f} | {:.3f} | {:.3f} | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {:.2f} |\n", rc.label, fp,
+               rec_ratio, fam_ratio, fam_ratio / rec_ratio, rank, rec_tm, tm_sum / nfam, tm_below / nfam);
   }
   std::sort(ratios.begin(), ratios.end());
   std::sort(ranks.begin(), ranks.end());
@@ -75,6 +91,14 @@ int pgv_table(const std::string& inversion_toml) {
              ranks[ranks.size() / 2], share(0.0, 0.05 - 1e-12), share(0.95 + 1e-12, 1.0), share(0.25, 0.75));
   fmt::print("\nfamily / record PGV/PGA: median {:.2f}, range {:.2f}-{:.2f} over {} records\n",
              ratios[ratios.size() / 2], ratios.front(), ratios.back(), ratios.size());
+  std::sort(tm_ratios.begin(), tm_ratios.end());
+  std::sort(tm_ranks.begin(), tm_ranks.end());
+  double tm_low = 0.0;
+  for (const double r : tm_ranks) tm_low += (r < 0.05) ? 1.0 : 0.0;
+  fmt::print("family / record f_p Tm: median {:.2f}, range {:.2f}-{:.2f}; rank of the record's f_p Tm among the "
+             "family's: median {:.2f}, below the family's 5 %: {:.0f} % of records\n",
+             tm_ratios[tm_ratios.size() / 2], tm_ratios.front(), tm_ratios.back(), tm_ranks[tm_ranks.size() / 2],
+             100.0 * tm_low / static_cast<double>(tm_ranks.size()));
   return 0;
 }
 
@@ -138,6 +162,13 @@ int main(int argc, char** argv) {
       fmt::print("{}", recovery::summary_row(fmt::format("eps certain {} / likely {} / reported {}", eps_sets[v].certain,
                                                          eps_sets[v].likely, eps_sets[v].reported),
                                              recovery::summarise(scans[v])));
+      for (const double pv : pga) {
+        std::vector<recovery::CaseScore> sub;
+        for (const auto& sc : scans[v]) {
+          if (sc.pga_g == pv) sub.push_back(sc);
+        }
+        fmt::print("{}", recovery::summary_row(fmt::format("  at {} g", pv), recovery::summarise(sub)));
+      }
     }
     return 0;
   }

@@ -50,6 +50,9 @@ struct FragilityOptions {
   std::string out;
   std::string plot;
   bool json = false;
+  std::string h2;        // refused (below): accepted as options only to say why
+  std::string azimuths;
+  std::optional<double> bearing_deg;
 };
 
 /// The most synthetic motions (each is held in memory; 1e4 motions of 20 s at 0.01 s: 320 MB) and IM levels.
@@ -82,6 +85,15 @@ void run_fragility(const FragilityOptions& o) {
   check_threads(o.threads);
   const double g = o.motion.g_m_s2;
   check_g(g);
+  for (const auto& [option, given] : {std::pair{"--h2", !o.h2.empty()}, std::pair{"--azimuths", !o.azimuths.empty()},
+                                      std::pair{"--bearing-deg", o.bearing_deg.has_value()}}) {
+    if (given) {
+      throw parameter_error(option, "fragility takes single-component motions: an ensemble of pairs needs a pair's "
+                                    "intensity measure (RotD50) and each object's bearing, which this command does not "
+                                    "define yet; run `topple sweep` with [[motions.set]] and bearing_deg and fit its "
+                                    "table instead");
+    }
+  }
   if (!o.motion.scale_pga.empty() || o.motion.scale || o.motion.invert) {
     throw parameter_error("--scale-pga", "fragility scales every motion to each IM level itself: --scale-pga, --scale "
                                          "and --invert do not apply");
@@ -302,6 +314,9 @@ void add_fragility_command(CLI::App& app) {
   cmd->add_option("--out", o->out, "Write the counts, fitted probabilities and band per level to this CSV file");
   cmd->add_option("--plot", o->plot, "Draw the curves with their data points and band to this .svg or .png file");
   cmd->add_flag("--json", o->json, "Print the fits as one JSON object");
+  cmd->add_option("--h2", o->h2, "Not available: fragility over motion sets (refused with the reason)");
+  cmd->add_option("--azimuths", o->azimuths, "Not available (see --h2)");
+  cmd->add_option("--bearing-deg", o->bearing_deg, "Not available (see --h2)");
   add_quiet_flag(*cmd, o->quiet);
   cmd->callback([o] { run_fragility(*o); });
 }

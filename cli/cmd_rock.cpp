@@ -13,8 +13,10 @@
 #include "commands.hpp"
 #include "progress.hpp"
 #include "common.hpp"
+#include "motion_set_options.hpp"
 #include "topple/error.hpp"
 #include "topple/io/write.hpp"
+#include "topple/oriented.hpp"
 #include "topple/plot.hpp"
 #include "topple/rocking.hpp"
 #include "topple/units.hpp"
@@ -39,6 +41,11 @@ struct RockOptions {
   std::string e = "housner";
   std::optional<double> mu;
   std::string vertical;
+  std::string h2;        // second horizontal component: an oriented object (oriented.hpp)
+  std::string azimuths;  // "A1,A2", degrees clockwise from north
+  std::optional<double> bearing_deg;
+  std::string depth;     // a block's other horizontal dimension: a box
+  std::optional<double> direction_step_deg;  // cylinder: spacing of the directions tried
   std::string method = "adaptive";
   std::optional<double> rtol;
   std::optional<int> rk4_substeps;
@@ -57,7 +64,9 @@ const std::map<std::string, std::string>& option_names() {
       {"b1", "--b1"},         {"b2", "--b2"},         {"inertia", "--inertia"},
       {"g", "--g"},           {"rel_tol", "--rtol"},  {"rk4_substeps", "--rk4-substeps"},
       {"max_steps", "--max-steps"},
-      {"max_run_out_s", "--run-out"}, {"vertical", "--vertical"}};
+      {"max_run_out_s", "--run-out"}, {"vertical", "--vertical"},
+      {"depth", "--depth"},   {"bearing", "--bearing-deg"}, {"cylinder_step", "--direction-step-deg"},
+      {"azimuth", "--azimuths"}};
   return names;
 }
 
@@ -107,6 +116,67 @@ RockingOptions make_options(const RockOptions& o) {
   return r;
 }
 
+/// The --out history and --plot figure of a full run on `horizontal` (the record, or an oriented object's governing
+/// direction).
+void write_outputs(const RockOptions& o, const RunMotion& run, const GroundMotion& horizontal,
+                   const GroundMotion* vertical_ptr, const RockingBody& body, const RockingOptions& options,
+                   const RockingResult& result, const std::string& direction) {
+  if (!o.out.empty()) io::write_rocking_history_csv(o.out, result.history);
+  if (!o.plot.empty()) {
+    const std::string title =
+        fmt::format("Rocking {}, a = {:.3g} m, h = {:.3g} m, α = {:.3g} rad, e = {:.3g}{}{}{}: {}",
+                    shape_name(body.shape), body.a_m, body.h_m, result.summary.alpha_rad, result.summary.e,
+                    options.restitution == RestitutionMode::housner ? " (Housner)" : "",
+                    o.vertical.empty() ? "" : ", with vertical " + plot::file_label(o.vertical), direction, run.title);
+    plot::render(plot::rocking_figure(horizontal, result, body, title, vertical_ptr), o.plot);
+  }
+}
+
+/// What an oriented run adds to the report.
+struct OrientationReport {
+  const OrientedRockingSummary& summary;
+  const OrientedBody& body;
+  std::optional<double> bearing_deg;
+  ComponentAzimuths azimuths;
+  OrientationOptions orientation;
+};
+
+void report(const RockOptions& o, const RunMotion& run, const GroundMotion& horizontal, const RockingBody& body,
+            const RockingOptions& options, const RockingSummary& s, const OrientationReport* orientation);
+
+/// --h2: an oriented object under the motion set (oriented.hpp), reported by its governing direction.
+void run_oriented(const RockOptions& o, const RunMotion& run, const RockingBody& body, const RockingOptions& options) {
+  const std::optional<double> depth =
+      o.depth.empty() ? std::nullopt : std::optional(parse_length_m(o.depth, "--depth"));
+  const OrientedBody oriented = naming_options([&] { return OrientedBody::make(body, depth); });
+  naming_options([&] { check_orientation(oriented, o.bearing_deg, o.direction_step_deg.has_value()); });
+  OrientationOptions orientation;
+  if (o.direction_step_deg) orientation.cylinder_step_deg = *o.direction_step_deg;
+  const MotionSet set = load_motion_set(run, o.motion, o.h2, o.azimuths);
+  const double bearing = o.bearing_deg.value_or(0.0);
+  OrientedRockingSummary oriented_summary;
+  std::optional<RockingResult> full;
+  if (!o.out.empty() || !o.plot.empty()) {
+    OrientedRockingResult r = naming_options([&] { return rock_oriented(set, oriented, bearing, options, orientation); });
+    oriented_summary = std::move(r.orientation);
+    full = std::move(r.governing);
+  } else {
+    oriented_summary = naming_options([&] { return rock_oriented_summary(set, oriented, bearing, options, orientation); });
+  }
+  const DirectionResponse& gov = oriented_summary.governing_response();
+  const RockingBody& planar = planar_body_of(oriented, gov.axis);
+  const GroundMotion horizontal = set.projected(gov.azimuth_deg);
+  if (full) {
+    write_outputs(o, run, horizontal, set.vertical_ptr(), planar, options, *full,
+                  fmt::format(", along {:g}°", gov.azimuth_deg));
+  }
+  for (const DirectionResponse& d : oriented_summary.directions) {
+    require_finite({{"max |theta| / alpha", d.summary.max_rotation_over_alpha}});
+  }
+  const OrientationReport report_of{oriented_summary, oriented, o.bearing_deg, *set.azimuths(), orientation};
+  report(o, run, horizontal, planar, options, gov.summary, &report_of);
+}
+
 void run_rock(const RockOptions& o) {
   const double g = o.motion.g_m_s2;
   check_g(g);
@@ -116,25 +186,30 @@ void run_rock(const RockOptions& o) {
   const RockingOptions options = make_options(o);
   RunMotion run = load_run_motion(o.motion, o.pulse, o.vertical);
   run.input.with_duration = true;
+  if (!o.h2.empty()) {
+    run_oriented(o, run, body, options);
+    return;
+  }
+  refuse_without_h2(o.azimuths, {{"--bearing-deg", o.bearing_deg.has_value()},
+                                 {"--depth", !o.depth.empty()},
+                                 {"--direction-step-deg", o.direction_step_deg.has_value()}});
   const GroundMotion& horizontal = run.horizontal;
   const GroundMotion* vertical_ptr = run.vertical_ptr();
-  const std::string& motion_name = run.input.motion;
   RockingSummary s;
   if (!o.out.empty() || !o.plot.empty()) {
     const RockingResult result = naming_options([&] { return rock(horizontal, body, options, vertical_ptr); });
-    if (!o.out.empty()) io::write_rocking_history_csv(o.out, result.history);
-    if (!o.plot.empty()) {
-      const std::string title =
-          fmt::format("Rocking {}, a = {:.3g} m, h = {:.3g} m, α = {:.3g} rad, e = {:.3g}{}{}: {}",
-                      shape_name(body.shape), body.a_m, body.h_m, result.summary.alpha_rad, result.summary.e,
-                      options.restitution == RestitutionMode::housner ? " (Housner)" : "",
-                      o.vertical.empty() ? "" : ", with vertical " + plot::file_label(o.vertical), run.title);
-      plot::render(plot::rocking_figure(horizontal, result, body, title, vertical_ptr), o.plot);
-    }
+    write_outputs(o, run, horizontal, vertical_ptr, body, options, result, "");
     s = result.summary;
   } else {
     s = naming_options([&] { return rock_summary(horizontal, body, options, vertical_ptr); });
   }
+  report(o, run, horizontal, body, options, s, nullptr);
+}
+
+void report(const RockOptions& o, const RunMotion& run, const GroundMotion& horizontal, const RockingBody& body,
+            const RockingOptions& options, const RockingSummary& s, const OrientationReport* orientation) {
+  const double g = o.motion.g_m_s2;
+  const std::string& motion_name = run.input.motion;
   for (const auto& w : s.warnings) fmt::print(stderr, "topple: warning: {}\n", w);
   require_finite({{"PGA", horizontal.pga_m_s2()}, {"max |theta|", s.max_abs_rotation_rad},
                   {"max |theta| / alpha", s.max_rotation_over_alpha}, {"time of max |theta|", s.max_rotation_time_s},
@@ -147,8 +222,31 @@ void run_rock(const RockOptions& o) {
   if (o.json) {
     nlohmann::ordered_json j = io::rocking_summary_json(s, body, options);
     j["input"] = io::run_input_json(run.input, horizontal, g);
+    if (orientation != nullptr) {
+      j["input"]["h2"] = o.h2;
+      j["orientation"] = io::oriented_rocking_json(orientation->summary, orientation->body, orientation->bearing_deg,
+                                                   orientation->azimuths, orientation->orientation);
+    }
     fmt::print("{}\n", j.dump(2));
     return;
+  }
+  if (orientation != nullptr) {
+    const OrientationReport& x = *orientation;
+    fmt::print("oriented object: planar rocking under the projection of the two horizontal components on each "
+               "direction (eq. M1), with the vertical when there is one\n");
+    fmt::print("  components at {:g} and {:g} deg (clockwise from north); {}\n", x.azimuths.first_deg,
+               x.azimuths.second_deg,
+               x.bearing_deg ? fmt::format("bearing {:g} deg", *x.bearing_deg)
+                             : fmt::format("cylinder: worst of every {:g} deg over 180 (an approximation of "
+                                           "three-dimensional rocking)", x.orientation.cylinder_step_deg));
+    for (const DirectionResponse& d : x.summary.directions) {
+      fmt::print("  along {:>6g} deg ({:<7}) max |theta| / alpha {:.6g}{}\n", d.azimuth_deg, oriented_axis_name(d.axis),
+                 d.summary.max_rotation_over_alpha,
+                 d.summary.overturned ? fmt::format(", overturned at {:.4f} s", *d.summary.overturn_time_s)
+                                      : std::string());
+    }
+    fmt::print("governing direction: {:g} deg ({}); below, its planar run\n",
+               x.summary.governing_response().azimuth_deg, oriented_axis_name(x.summary.governing_response().axis));
   }
   if (body.negative_pivot) {
     fmt::print("rocking body: {} b1 = {:.6g} m (pivot O-, theta < 0), b2 = {:.6g} m (O+, theta > 0), h = {:.6g} m, "
@@ -167,7 +265,11 @@ void run_rock(const RockOptions& o) {
              s.alpha_rad, s.alpha_rad * 180.0 / kPi, s.R_m, s.p_rad_s, s.e,
              options.restitution == RestitutionMode::housner ? "Housner" : restitution_mode_name(options.restitution), g);
   fmt::print("  uplift threshold {:.5f} g ({})\n", body.a_m / body.h_m, body.negative_pivot ? "b2/h" : "a/h");
-  fmt::print("motion: {} (PGA {:.4f} g, {} samples)\n", motion_name, horizontal.pga_m_s2() / g, horizontal.size());
+  fmt::print("motion: {}{} (PGA {:.4f} g, {} samples)\n", motion_name,
+             orientation != nullptr ? fmt::format(" and {}, projected on {:g} deg", o.h2,
+                                                  orientation->summary.governing_response().azimuth_deg)
+                                    : std::string(),
+             horizontal.pga_m_s2() / g, horizontal.size());
   fmt::print("max |theta|            {:.6g} rad = {:.6g} alpha at {:.4f} s\n", s.max_abs_rotation_rad,
              s.max_rotation_over_alpha, s.max_rotation_time_s);
   if (body.negative_pivot) {
@@ -219,6 +321,17 @@ void add_rock_command(CLI::App& app) {
                                "'housner' (1 - 2a^2/D, from angular momentum)")->capture_default_str();
   cmd->add_option("--mu", o->mu, "Friction coefficient: check Shenton's slide/rock/slide-rock onset criterion");
   cmd->add_option("--vertical", o->vertical, "Vertical acceleration record (positive up), scaled with the horizontal");
+  cmd->add_option("--h2", o->h2, "Second horizontal component (record file): an oriented object rocking under the "
+                                 "projection of both components on its directions (planar model); --azimuths unless "
+                                 "the headers state them");
+  cmd->add_option("--azimuths", o->azimuths, "With --h2: the two components' azimuths A1,A2 in degrees clockwise "
+                                             "from north (perpendicular), e.g. 90,0; default: the files' headers");
+  cmd->add_option("--bearing-deg", o->bearing_deg, "With --h2: the direction across the object's narrow side "
+                                                   "(its +x side), degrees clockwise from north; not for a cylinder");
+  cmd->add_option("--depth", o->depth, "With --h2, a block: its other horizontal dimension (along bearing + 90), "
+                                       "with a unit: a box, checked about both axes");
+  cmd->add_option("--direction-step-deg", o->direction_step_deg, "With --h2, a cylinder: spacing of the directions "
+                                                                 "tried over 180 deg (default 15; must divide 180)");
   cmd->add_option("--method", o->method, "adaptive (Dormand-Prince with event location) or rk4 (fixed step dt/n, "
                                          "as in the thesis)")->capture_default_str();
   cmd->add_option("--rtol", o->rtol, "Relative tolerance of the adaptive method (default 1e-8)");

@@ -8,6 +8,7 @@
 #include "commands.hpp"
 #include "progress.hpp"
 #include "common.hpp"
+#include "motion_set_options.hpp"
 #include "slide_2d.hpp"
 #include "topple/motion_set.hpp"
 #include "slide_flexible.hpp"
@@ -73,14 +74,10 @@ void run_slide(const SlideOptions& o) {
     if (o.flexible.active() || !o.out.empty()) {
       throw parameter_error("--h2", "--out and flexible supports are not available with two components yet");
     }
-    // The second component is scaled with the first (the shaking is scaled as a whole), as the vertical is.
-    const GroundMotion second = io::read_motion(o.h2, read_options(o.motion)).scaled(run.input.scale_factor);
-    // Azimuths: --azimuths, else the files' headers (K-NET, CSMIP, COSMOS, ESM, SMC); --azimuths wins over a header
-    // with a warning (motion_set.hpp).
-    std::vector<std::string> warnings;
-    ComponentAzimuths azimuths = resolve_azimuths(
-        horizontal, second, o.azimuths.empty() ? std::nullopt : std::optional(parse_azimuths(o.azimuths)), warnings);
-    for (const std::string& w : warnings) fmt::print(stderr, "warning: {}\n", w);
+    // The second component is scaled with the first (the shaking is scaled as a whole), as the vertical is; the
+    // azimuths from --azimuths or the files' headers (motion_set_options.hpp).
+    const MotionSet set = load_motion_set(run, o.motion, o.h2, o.azimuths);
+    ComponentAzimuths azimuths = *set.azimuths();
     if (o.slope_deg != 0.0 && !o.slope_azimuth_deg) {
       throw parameter_error("--slope-azimuth-deg", "required with --h2 and --slope-deg: the azimuth of the downslope "
                                                    "direction, degrees clockwise from north");
@@ -89,13 +86,11 @@ void run_slide(const SlideOptions& o) {
       if (o.slope_deg == 0.0) throw parameter_error("--slope-azimuth-deg", "needs --slope-deg (a slope)");
       azimuths.slope_azimuth_deg = *o.slope_azimuth_deg;
     }
-    // One grid for the three components (exact merge; refuses records that are not one recording).
-    const MotionSet set = MotionSet::make(horizontal, &second, azimuths, vertical_ptr);
     run_bidirectional_slide(set.first(), set.second(), azimuths, block, set.vertical_ptr(), o.json, run.input.motion,
                             o.h2, run.input.scale_factor, o.plot);
     return;
   }
-  if (!o.azimuths.empty()) throw parameter_error("--azimuths", "needs --h2 (the second horizontal component)");
+  refuse_without_h2(o.azimuths);
   if (o.slope_azimuth_deg) {
     throw parameter_error("--slope-azimuth-deg", "needs --h2 (with one component the motion is along the fall line)");
   }

@@ -13,6 +13,7 @@
 #include "progress.hpp"
 #include "common.hpp"
 #include "grids.hpp"
+#include "motion_set_options.hpp"
 #include "slide_flexible.hpp"
 #include "topple/error.hpp"
 #include "topple/flexible.hpp"
@@ -29,6 +30,9 @@ struct MotionInput {
   PulseOptions pulse;
   std::string support_freq;     ///< objects on a shelf or floor: its frequency ("4Hz")
   std::string support_damping;  ///< and damping ("5%", default 5 %)
+  std::string h2;                ///< spectrum rock: the second horizontal component (motion_set_options.hpp)
+  std::string azimuths;          ///< "A1,A2"
+  std::optional<double> bearing_deg;  ///< the family's bearing: it rocks under the projection on it
 };
 
 struct LoadedMotion {
@@ -48,9 +52,23 @@ std::optional<SupportOscillator> support_of(const MotionInput& in) {
   return support_from_options(in.support_freq, in.support_damping);
 }
 
+/// The motion the objects rock under: the record, or with --h2 the projection of the pair on --bearing-deg (the
+/// planar model of oriented.hpp, eq. M1; the PGA axis is then the projected motion's PGA).
 LoadedMotion load(const MotionInput& in) {
   const std::optional<SupportOscillator> support = support_of(in);
   RunMotion run = load_run_motion(in.motion, in.pulse);
+  if (!in.h2.empty()) {
+    if (!in.bearing_deg) {
+      throw parameter_error("--bearing-deg", "required with --h2: the family's bearing (the direction across its "
+                                             "narrow side, degrees clockwise from north)");
+    }
+    const MotionSet set = load_motion_set(run, in.motion, in.h2, in.azimuths);
+    run.horizontal = set.projected(*in.bearing_deg);  // azimuths are known (load_motion_set)
+    run.input.motion += fmt::format(" and {} along {:g} deg", in.h2, *in.bearing_deg);
+    run.title += fmt::format(" and {} along {:g}°", plot::file_label(in.h2), *in.bearing_deg);
+  } else {
+    refuse_without_h2(in.azimuths, {{"--bearing-deg", in.bearing_deg.has_value()}});
+  }
   if (support) {
     // Objects on a flexible support: the spectrum of what the support passes on (flexible.hpp, decoupled).
     if (!run.horizontal.is_uniform()) {
@@ -138,6 +156,10 @@ void run_slide_spectrum(const SlideSpectrumOptions& o) {
     (void)naming({{"mu", o.mu.empty() ? "--mu-range" : "--mu"}, {"mu_kinetic", "--mu"}, {"slope", "--slope-deg"},
                   {"g", "--g"}},
                  [&] { return SlidingBlock::make(m, std::nullopt, slope, mode, g); });
+  }
+  if (!o.input.h2.empty()) {
+    throw parameter_error("--h2", "the sliding spectrum is one-dimensional: a block under two horizontal components "
+                                  "slides in two dimensions (topple slide FILE --h2 H2), not along one direction");
   }
   const LoadedMotion lm = load(o.input);
   if (!ky_ratios.empty()) {
@@ -283,6 +305,11 @@ void run_rock_spectrum(const RockSpectrumOptions& o) {
   const RestitutionChoice e = parse_restitution(o.e, "--e");
   mo.rocking.restitution = e.mode;
   mo.rocking.e = e.e;
+  if (!o.input.h2.empty() && family.shape == RockingBody::Shape::cylinder) {
+    throw parameter_error("--h2", "a cylinder under two components is taken in its worst direction, which the map "
+                                  "does not search: run blocks at a --bearing-deg, or `topple rock --h2` / a sweep "
+                                  "with [[motions.set]] for cylinders");
+  }
   const LoadedMotion lm = load(o.input);
   const std::string pga_option = o.pga.empty() ? "--pga-range" : "--pga";
   const std::string height_option = o.heights.empty() ? "--height-range" : "--heights";
@@ -359,6 +386,12 @@ void add_motion_input(CLI::App& cmd, MotionInput& in) {
   cmd.add_option("--support-freq", in.support_freq, "Objects on a shelf or floor: its natural frequency (e.g. 4Hz); "
                                                     "they see its absolute acceleration (decoupled)");
   cmd.add_option("--support-damping", in.support_damping, "Damping ratio of the support (5% or 0.05; default 5%)");
+  cmd.add_option("--h2", in.h2, "spectrum rock: second horizontal component (record file); the blocks rock under the "
+                                "projection of the pair on --bearing-deg (planar model); PGA is then the projection's");
+  cmd.add_option("--azimuths", in.azimuths, "With --h2: the components' azimuths A1,A2, degrees clockwise from north "
+                                            "(default: the files' headers)");
+  cmd.add_option("--bearing-deg", in.bearing_deg, "With --h2: the family's bearing (across the narrow side), degrees "
+                                                  "clockwise from north");
 }
 
 }  // namespace

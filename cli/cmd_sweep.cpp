@@ -69,6 +69,9 @@ void run_sweep(const SweepOptions& o) {
   if (o.jsonl || sweep->jsonl) store.jsonl_path = io::jsonl_path_for(store.csv_path);
   store.restart = o.restart;
 
+  if (rank == 0) {
+    for (const std::string& w : sweep->warnings) fmt::print(stderr, "warning: {}\n", w);
+  }
   ProgressBar bar(rank == 0 && progress_wanted(o.quiet));
   ensemble::ExecuteOptions execute;
   execute.threads = o.threads;

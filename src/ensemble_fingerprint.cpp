@@ -64,6 +64,12 @@ void hash_motion(Fingerprint& f, const GroundMotion& g) {
 
 }  // namespace
 
+std::string motion_fingerprint(const GroundMotion& motion) {
+  Fingerprint f;
+  hash_motion(f, motion);
+  return f.hex();
+}
+
 std::string plan_fingerprint(const Plan& plan) {
   Fingerprint f;
   f.text("topple-ensemble/1");

@@ -16,11 +16,13 @@
 #include "topple/ensemble.hpp"
 #include "topple/error.hpp"
 #include "topple/flexible.hpp"
+#include "topple/inversion_3c.hpp"
 #include "topple/rocking.hpp"
 #include "topple/sliding.hpp"
 #include "topple/spectra.hpp"
 #include "topple/synthesis.hpp"
 #include "topple/units.hpp"
+#include "inversion_detail.hpp"
 
 namespace topple {
 namespace {
@@ -83,12 +85,15 @@ Estimate estimate(const std::vector<double>& values, const std::vector<double>& 
   return est;
 }
 
+}  // namespace
+
+namespace detail {
 std::uint64_t mix(std::uint64_t a, std::uint64_t b) {
   SplitMix64 s(a * 0x9E3779B97F4A7C15ULL + b);
   return s.next();
 }
-
-}  // namespace
+}  // namespace detail
+using detail::mix;
 
 namespace {
 /// An object on a flexible support: its support's peak is at most max_peak_amplification(zeta_low) times the ground's
@@ -254,16 +259,29 @@ double observation_match(const ObservedObject& object, const DrawnParameters& p,
     const SlidingSummary s = slide_summary(motion, SlidingBlock::make(p.mu / amp, p.mu / amp, 0.0, SlidingMode::two_way, g));
     const double max_d = amp * s.max_abs_displacement_m;
     const double residual = amp * std::abs(s.residual_displacement_m);
-    if (object.outcome == Outcome::not_slid) return max_d < kVisibleSlipM ? 1.0 : 0.0;
-    if (object.slid_m) {
-      const double z = (residual - *object.slid_m) / sliding_sigma_m(object);
-      return std::exp(-0.5 * z * z);
-    }
-    if (object.slid_at_least_m) return residual >= *object.slid_at_least_m ? 1.0 : 0.0;
-    return max_d >= kVisibleSlipM ? 1.0 : 0.0;
+    return detail::sliding_match(object, max_d, residual);
   }
   double factor = p.amplification;
   if (object.orientation_deg) factor *= std::cos(*object.orientation_deg * kPi / 180.0);
+  const RockingOptions options = detail::inversion_rocking_options(object, p, g);
+  const RockingSummary s = factor == 1.0 ? rock_summary(motion, object.body, options)
+                                         : rock_summary(motion.scaled(factor), object.body, options);
+  return detail::rocking_match(object.outcome, s.overturned, s.max_abs_rotation_rad);
+}
+
+namespace detail {
+
+double sliding_match(const ObservedObject& object, double max_displacement_m, double residual_m) {
+  if (object.outcome == Outcome::not_slid) return max_displacement_m < kVisibleSlipM ? 1.0 : 0.0;
+  if (object.slid_m) {
+    const double z = (residual_m - *object.slid_m) / sliding_sigma_m(object);
+    return std::exp(-0.5 * z * z);
+  }
+  if (object.slid_at_least_m) return residual_m >= *object.slid_at_least_m ? 1.0 : 0.0;
+  return max_displacement_m >= kVisibleSlipM ? 1.0 : 0.0;
+}
+
+RockingOptions inversion_rocking_options(const ObservedObject& object, const DrawnParameters& p, double g) {
   RockingOptions options;
   options.g_m_s2 = g;
   if (!object.e_housner) {
@@ -272,18 +290,22 @@ double observation_match(const ObservedObject& object, const DrawnParameters& p,
   }
   options.max_run_out_s = 20.0;
   options.rel_tol = 1e-6;  // outcomes (fell or not, rocked visibly or not) do not need the 1e-8 default
-  const RockingSummary s = factor == 1.0 ? rock_summary(motion, object.body, options)
-                                         : rock_summary(motion.scaled(factor), object.body, options);
-  switch (object.outcome) {
-    case Outcome::overturned: return s.overturned ? 1.0 : 0.0;
-    case Outcome::not_overturned: return s.overturned ? 0.0 : 1.0;
-    case Outcome::rocked: return !s.overturned && s.max_abs_rotation_rad >= kVisibleRockingRad ? 1.0 : 0.0;
-    case Outcome::not_rocked: return !s.overturned && s.max_abs_rotation_rad < kVisibleRockingRad ? 1.0 : 0.0;
+  return options;
+}
+
+double rocking_match(Outcome outcome, bool overturned, double max_rotation_rad) {
+  switch (outcome) {
+    case Outcome::overturned: return overturned ? 1.0 : 0.0;
+    case Outcome::not_overturned: return overturned ? 0.0 : 1.0;
+    case Outcome::rocked: return !overturned && max_rotation_rad >= kVisibleRockingRad ? 1.0 : 0.0;
+    case Outcome::not_rocked: return !overturned && max_rotation_rad < kVisibleRockingRad ? 1.0 : 0.0;
     default: return 0.0;
   }
 }
 
-namespace {
+}  // namespace detail
+
+namespace detail {
 
 /// The synthesis of motion k of a synthetic family's column: 20 samples per period of the column's frequency (at most
 /// 0.01 s) and at least 8 periods.
@@ -297,7 +319,8 @@ SynthesisSpec family_spec(const InversionSettings& st, double freq_hz, int k) {
   return spec;
 }
 
-}  // namespace
+}  // namespace detail
+using detail::family_spec;
 
 void validate_inversion_settings(const InversionSettings& st) {
   const auto axis = [](const char* field, double lo, double hi, int count, const char* unit) {
@@ -316,6 +339,30 @@ void validate_inversion_settings(const InversionSettings& st) {
   }
   if (!(st.g_m_s2 > 0.0) || !std::isfinite(st.g_m_s2)) {
     throw parameter_error("inversion.g_m_s2", fmt::format("must be positive, got {} m/s2", st.g_m_s2));
+  }
+  if (st.components != 1 && st.components != 3) {
+    throw parameter_error("inversion.components", fmt::format("must be 1 or 3, got {}", st.components));
+  }
+  if (st.components == 3) {
+    if (st.family != MotionFamily::synthetic) {
+      throw parameter_error("inversion.components", "components = 3 needs family = \"synthetic\"");
+    }
+    if (!(st.coherence >= 0.0 && st.coherence <= 0.95)) {
+      throw parameter_error("inversion.coherence", fmt::format("must lie in [0, 0.95], got {}", st.coherence));
+    }
+    if (st.directions < 4 || st.directions > 72) {
+      throw parameter_error("inversion.directions", fmt::format("must be 4 to 72, got {}", st.directions));
+    }
+    for (const double f : {st.freq_min_hz, st.freq_max_hz}) {
+      try {
+        validate(detail::family_set_spec(st, f, 0));
+      } catch (const InputError& e) {
+        throw parameter_error("inversion.freq_hz",
+                              fmt::format("the three-component family cannot make motions with a predominant "
+                                          "frequency of {} Hz (the grid is [{}, {}] Hz): {}: {}",
+                                          f, st.freq_min_hz, st.freq_max_hz, e.where().field, e.problem()));
+      }
+    }
   }
   if (st.family == MotionFamily::records) {
     if (st.records.empty() && st.record_motions.empty()) {
@@ -482,7 +529,7 @@ MatchTable simulate_matches(const Site& site, const InversionSettings& st, const
   return table;
 }
 
-namespace {
+namespace detail {
 
 /// The 3 x 3 neighbourhood of a cell in the log grid, weighted 4 (the cell), 2 (edge neighbours), 1 (corners): the
 /// response varies smoothly over a cell's width, so pooling the neighbours' runs cuts the Monte Carlo noise of N runs
@@ -502,6 +549,11 @@ std::vector<std::pair<std::size_t, double>> neighbourhood(std::size_t c, std::si
   }
   return out;
 }
+
+}  // namespace detail
+using detail::neighbourhood;
+
+namespace {
 
 /// Matches summed over the motions of each (object, cell): index o * cells + c.
 std::vector<double> match_counts(const MatchTable& m) {
@@ -732,7 +784,7 @@ std::string inversion_summary(const InversionResult& r) {
     s += fmt::format("; not explained by this answer (posterior-predictive P below {}): {}", kMisfitProbability,
                      list_text(misfits));
   }
-  return s + ".";
+  return s + "." + three_component_summary(r);  // empty for the one-component model
 }
 
 std::vector<std::string> inversion_notes(const InversionResult& r, const MatchTable& m) {
@@ -842,6 +894,7 @@ InversionResult invert_on_family(const Site& site, const InversionSettings& st, 
 InversionResult invert_site(const Site& site, const InversionSettings& st, const InversionOptions& options) {
   validate_inversion_options(options);
   validate_inversion_settings(st);
+  if (st.components == 3) return invert_sites({site}, st, options).front();  // inversion_3c.hpp
   const auto start = std::chrono::steady_clock::now();
   const FamilyGrid family =
       build_family(st, log_spaced(st.freq_min_hz, st.freq_max_hz, static_cast<std::size_t>(st.freq_count)), options);
@@ -855,6 +908,16 @@ std::vector<InversionResult> invert_sites(const std::vector<Site>& sites, const 
   std::vector<InversionResult> out;
   if (sites.empty()) return out;
   auto start = std::chrono::steady_clock::now();
+  if (st.components == 3) {  // inversion_3c.hpp: the family is built once for every site
+    const FamilyGrid3c family = build_family_3c(
+        st, log_spaced(st.freq_min_hz, st.freq_max_hz, static_cast<std::size_t>(st.freq_count)), options);
+    const double family_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    for (const Site& site : sites) {
+      out.push_back(invert_site_3c(site, st, family, options));
+      if (out.size() == 1) out.back().seconds += family_s;  // the family's time is counted in the first site's
+    }
+    return out;
+  }
   const FamilyGrid family =
       build_family(st, log_spaced(st.freq_min_hz, st.freq_max_hz, static_cast<std::size_t>(st.freq_count)), options);
   for (const Site& site : sites) {

@@ -15,6 +15,7 @@
 #include "topple/io/output_file.hpp"
 #include "topple/io/inversion_output.hpp"
 #include "topple/io/provenance.hpp"
+#include "topple/inversion_3c.hpp"
 #include "topple/rocking.hpp"
 #include "topple/sliding.hpp"
 
@@ -323,9 +324,16 @@ plot::Figure best_cell_figure(const InversionResult& r, const Site& site, const 
   const double freq = r.freq_hz[r.best_cell % r.freq_hz.size()];
   InversionSettings one = settings;
   one.motions_per_cell = 1;
-  const GroundMotion motion = family_motions(one, freq).front().scaled(pga * settings.g_m_s2);
+  // Three components: the major-axis component of the family's first realisation, each object as if across it (an
+  // illustration; the runs use the projection on each object's bearing and the vertical, inversion_3c.hpp).
+  const bool three = settings.components == 3;
+  const GroundMotion motion = three ? family_realisation_3c(one, freq, 0).major->scaled(pga * settings.g_m_s2)
+                                    : family_motions(one, freq).front().scaled(pga * settings.g_m_s2);
   plot::Figure f;
-  f.title = fmt::format("Maximum-likelihood cell (PGA {:.3g} g, {:.3g} Hz): one motion of the family, each object's response", pga, freq);
+  f.title = fmt::format("Maximum-likelihood cell (PGA {:.3g} g{}, {:.3g} Hz): {}, each object's response", pga,
+                        three ? " RotD50" : "", freq,
+                        three ? "the major-axis component of one motion of the family, each object across it"
+                              : "one motion of the family");
   f.xlabel = "time (s)";
   plot::Panel ground{"ground acceleration (g)", {}, {}, {}, false, false};
   plot::Series gs{"ground", {}, {}, "lines", "#555555", 1.0};
@@ -439,6 +447,16 @@ void write_report(const std::filesystem::path& dir, const Survey& survey, const 
   h << fmt::format("<tr><td>predominant frequency</td><td class=\"num\">{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
                    median_html(freq, r.freq_hz, "Hz"), interval_html(freq.ci68_low, freq.ci68_high, "Hz"),
                    interval_html(freq.ci95_low, freq.ci95_high, "Hz"), best_html(freq, "Hz"));
+  if (r.three_component) {  // components = 3 (inversion_3c.hpp): the direction of strongest shaking, an axis
+    const DirectionEstimate& d = r.three_component->direction;
+    const auto arc = [](const DirectionArc& a) {
+      return fmt::format("{:.0f}&ndash;{:.0f}&deg;", a.low_deg, a.high_deg());
+    };
+    h << fmt::format("<tr id=\"direction\"><td>direction of strongest shaking (azimuth of the major axis, mod 180&deg;)"
+                     "</td><td class=\"num\">{}</td><td>{}</td><td>{}</td><td>bin {:.0f}&deg;</td></tr>\n",
+                     d.constrained ? fmt::format("{:.0f}&deg;", d.mode_deg) : std::string("unconstrained"),
+                     arc(d.ci68), arc(d.ci95), d.mode_deg);
+  }
   h << "</table>\n<p class=\"def\" id=\"definitions\"><b>Median</b>: half of the posterior probability lies below it. "
        "<b>68 % / 95 % interval</b>: equal-tailed credible intervals of the marginal posterior (16&ndash;84 % and "
        "2.5&ndash;97.5 % of its probability); an end written &ldquo;below/above the grid&rdquo; falls in the grid's "

@@ -101,17 +101,31 @@ class OnSupport {
   std::optional<GroundMotion> filtered_;
 };
 
+/// A motion case made from a record set: the set (its first component is the case's base motion, which the engine
+/// transforms), the transform to apply to its other components, and the objects' bearing.
+struct SetCase {
+  std::shared_ptr<const MotionSet> set;
+  MotionTransform transform;
+  double bearing_deg = 0.0;
+};
+
 /// The run function of the standard sweep. Consecutive level-or-inclined blocks with mu_kinetic = mu_static and the
 /// same slope, mode and g go through slide_summaries, which shares the input scan across them and gives the same
 /// numbers as slide_summary block by block.
 class Runner {
  public:
-  Runner(std::vector<ObjectSpec> objects, const ColumnSet& results)
+  Runner(std::vector<ObjectSpec> objects, const ColumnSet& results, std::vector<std::optional<SetCase>> set_cases,
+         OrientationOptions orientation)
       : objects_(std::move(objects)), slide_(kSlidingFields, results), rock_(kRockingFields, results),
-        stride_(results.names().size()) {}
+        stride_(results.names().size()), set_cases_(std::move(set_cases)), orientation_(orientation),
+        governing_azimuth_(results.at("governing_azimuth_deg")), governing_axis_(results.at("governing_axis")) {}
 
-  void operator()(const GroundMotion& ground, std::size_t /*motion_index*/, std::size_t begin, std::size_t end,
+  void operator()(const GroundMotion& ground, std::size_t motion_index, std::size_t begin, std::size_t end,
                   std::span<Value> out) const {
+    if (motion_index < set_cases_.size() && set_cases_[motion_index]) {
+      run_set(ground, *set_cases_[motion_index], begin, end, out);
+      return;
+    }
     std::size_t o = begin;
     std::vector<double> mus;
     OnSupport on_support(ground);
@@ -142,6 +156,34 @@ class Runner {
   }
 
  private:
+  /// Rocking objects (make_plan admits no other under a set) as oriented objects: the governing direction's
+  /// results, and which direction it was.
+  void run_set(const GroundMotion& first, const SetCase& c, std::size_t begin, std::size_t end,
+               std::span<Value> out) const {
+    // `first` is the engine's transform of the set's first component; the others get the same transform (the
+    // vertical keeps its sign). The components share one grid, so the merge reproduces it.
+    std::optional<MotionSet> transformed;
+    if (!c.transform.is_identity()) {
+      const GroundMotion second = c.transform.apply(c.set->second());
+      MotionTransform up = c.transform;
+      up.invert = false;
+      const std::optional<GroundMotion> vertical =
+          c.set->has_vertical() ? std::optional(up.apply(c.set->vertical())) : std::nullopt;
+      transformed = MotionSet::make(first, &second, c.set->azimuths(), vertical ? &*vertical : nullptr);
+    }
+    const MotionSet& set = transformed ? *transformed : *c.set;
+    for (std::size_t o = begin; o < end; ++o) {
+      Value* row = out.data() + (o - begin) * stride_;
+      const auto& r = std::get<RockObject>(objects_[o]);
+      const OrientedBody body = OrientedBody::make(r.body, r.depth_m);
+      const OrientedRockingSummary s = rock_oriented_summary(set, body, c.bearing_deg, r.options, orientation_);
+      const DirectionResponse& g = s.governing_response();
+      rock_.fill(RockingOutcome{g.summary, planar_body_of(body, g.axis), r.options}, row);
+      if (governing_azimuth_ != kAbsent) row[governing_azimuth_] = g.azimuth_deg;
+      if (governing_axis_ != kAbsent) row[governing_axis_] = std::string(oriented_axis_name(g.axis));
+    }
+  }
+
   static bool batchable(const SlideObject& first, const ObjectSpec& next) {
     const auto* s = std::get_if<SlideObject>(&next);
     return s != nullptr && same_support(first.support, s->support) && first.block.mu_kinetic == first.block.mu_static &&
@@ -153,6 +195,10 @@ class Runner {
   FieldSlots<SlidingOutcome> slide_;
   FieldSlots<RockingOutcome> rock_;
   std::size_t stride_ = 0;
+  std::vector<std::optional<SetCase>> set_cases_;  ///< by motion index; empty for records and pulses
+  OrientationOptions orientation_;
+  std::size_t governing_azimuth_ = kAbsent;
+  std::size_t governing_axis_ = kAbsent;
 };
 
 std::string_view polarity_name(bool inverse) { return inverse ? "inverse" : "normal"; }
@@ -175,10 +221,12 @@ class RowValues {
 }  // namespace
 
 Plan make_plan(const SweepSpec& spec) {
-  if (spec.records.empty() && spec.pulses.empty()) throw parameter_error("motions", "the sweep has no motion");
+  if (spec.records.empty() && spec.pulses.empty() && spec.record_sets.empty()) {
+    throw parameter_error("motions", "the sweep has no motion");
+  }
   if (spec.objects.empty()) throw parameter_error("object", "the sweep has no object");
   if (spec.inverse.empty()) throw parameter_error("polarity", "no polarity given");
-  if (!spec.records.empty() && (spec.time_scales.empty() || spec.scales.empty())) {
+  if ((!spec.records.empty() || !spec.record_sets.empty()) && (spec.time_scales.empty() || spec.scales.empty())) {
     throw parameter_error("scale", "no scale or time scale given");
   }
   if (!(spec.g_m_s2 > 0.0) || !std::isfinite(spec.g_m_s2)) {
@@ -206,6 +254,53 @@ Plan make_plan(const SweepSpec& spec) {
     }
   }
 
+  const bool any_set = !spec.record_sets.empty();
+  bool any_box = false;
+  bool all_cylinders = true;
+  for (std::size_t k = 0; k < spec.objects.size(); ++k) {
+    const auto* r = std::get_if<RockObject>(&spec.objects[k]);
+    const std::string name = fmt::format("object[{}]", k + 1);
+    if (r != nullptr && r->depth_m) {
+      any_box = true;
+      if (!spec.records.empty() || !spec.pulses.empty()) {
+        throw parameter_error(name + ".depth", "a box (a block with a depth) needs two horizontal components: run it "
+                                               "under [[motions.set]] only, not under single records or pulses");
+      }
+      (void)OrientedBody::make(r->body, r->depth_m);  // a depth on another shape, or an invalid one: before any run
+    }
+    all_cylinders = all_cylinders && r != nullptr && r->body.shape == RockingBody::Shape::cylinder;
+    if (any_set && r == nullptr) {
+      throw parameter_error(name, "sliding under two horizontal components is bidirectional (topple slide H1 --h2 "
+                                  "H2); the sweep runs sliding objects under single records and pulses only, and "
+                                  "rocking objects under [[motions.set]]");
+    }
+    if (any_set && support_of(spec.objects[k])) {
+      throw parameter_error(name + ".support_freq", "flexible supports are not run under [[motions.set]] (the support "
+                                                    "of an oriented object would filter each direction)");
+    }
+  }
+  if (!any_set && !spec.bearings_deg.empty()) {
+    throw parameter_error("bearing", "bearings apply to objects under [[motions.set]] (two horizontal components), "
+                                     "and the sweep has none");
+  }
+  if (any_set && spec.bearings_deg.empty() && !all_cylinders) {
+    throw parameter_error("bearing", "objects under [[motions.set]] need their bearings (bearing_deg: the direction "
+                                     "across the narrow side, degrees clockwise from north); only cylinders have none");
+  }
+  for (const double b : spec.bearings_deg) {
+    if (!std::isfinite(b)) throw parameter_error("bearing", fmt::format("bearings must be finite, got {}", b));
+  }
+  if (any_set) {
+    // The cylinder's direction grid, checked before any run.
+    (void)oriented_directions(OrientedBody::planar(RockingBody::cylinder(1.0, 1.0)), 0.0, spec.orientation);
+  }
+  for (const auto& rs : spec.record_sets) {
+    if (!rs.set || !rs.set->has_second() || !rs.set->azimuths()) {
+      throw parameter_error("motions.set", fmt::format("record set '{}' needs two horizontal components with known "
+                                                       "azimuths", rs.name));
+    }
+  }
+
   if (any_support) {
     // The support's response is exact for uniformly sampled input (flexible.hpp); analytic pulses keep their jumps
     // on an irregular grid. Said before any run.
@@ -228,6 +323,7 @@ Plan make_plan(const SweepSpec& spec) {
     motion_cols.add("pulse_duration_s");
   }
   for (const char* c : {"time_scale", "scale_factor", "pga_g", "polarity"}) motion_cols.add(c);
+  if (any_set) motion_cols.add("bearing_deg");
 
   ColumnSet object_cols;
   object_cols.add("model");
@@ -245,6 +341,7 @@ Plan make_plan(const SweepSpec& spec) {
       for (const char* c : {"a_m", "h_m", "D_m2"}) object_cols.add(c);
     }
     object_cols.add("restitution");
+    if (any_box) object_cols.add("depth_m");
   }
   if (any_support) {
     object_cols.add("support_freq_hz");
@@ -260,6 +357,10 @@ Plan make_plan(const SweepSpec& spec) {
   if (any_rock) {
     for (const auto* f : sweep_fields(kRockingFields)) result_cols.add(f->name);
   }
+  if (any_set) {
+    result_cols.add("governing_azimuth_deg");
+    result_cols.add("governing_axis");
+  }
 
   Plan plan;
   plan.motion_columns = motion_cols.names();
@@ -268,9 +369,14 @@ Plan make_plan(const SweepSpec& spec) {
   plan.chunk_runs = spec.chunk_runs;
   plan.identity = "topple-sweep/1";
 
-  for (const auto& rec : spec.records) {
-    if (!rec.motion) throw parameter_error("motions", fmt::format("record '{}' has no motion", rec.name));
-    const double peak = rec.motion->pga_m_s2();
+  // Motion cases of record sets, by motion index (absent for records and pulses).
+  std::vector<std::optional<SetCase>> set_cases;
+  // A record's (or a record set's, at one bearing) cases: time scales x scales x polarities of its base motion. A
+  // set is scaled by a factor (its first component's to a target PGA), which the run function applies to its other
+  // components too.
+  const auto add_scaled = [&](const std::string& name, const std::shared_ptr<const GroundMotion>& base,
+                              const SetCase* set_case) {
+    const double peak = base->pga_m_s2();
     for (const double ts : spec.time_scales) {
       if (!(ts > 0.0) || !std::isfinite(ts)) {
         throw parameter_error("time_scale", fmt::format("time scale factors must be positive and finite, got {}", ts));
@@ -286,10 +392,14 @@ Plan make_plan(const SweepSpec& spec) {
           }
           if (peak == 0.0) {
             throw parameter_error("scale_pga", fmt::format("record '{}' is zero everywhere: it cannot be scaled to "
-                                                           "a PGA", rec.name));
+                                                           "a PGA", name));
           }
-          t.target_pga_m_s2 = sc.value;
           factor = sc.value / peak;  // what GroundMotion::scaled_to_pga multiplies by
+          if (set_case != nullptr) {
+            t.factor = factor;
+          } else {
+            t.target_pga_m_s2 = sc.value;
+          }
         } else if (sc.kind == ScaleSpec::Kind::factor) {
           if (!std::isfinite(sc.value)) {
             throw parameter_error("scale", fmt::format("scale factors must be finite, got {}", sc.value));
@@ -301,20 +411,29 @@ Plan make_plan(const SweepSpec& spec) {
         const double pga = peak * std::abs(factor);
         for (const bool inv : spec.inverse) {
           MotionCase mc;
-          mc.base = rec.motion;
+          mc.base = base;
           mc.transform = t;
           mc.transform.invert = inv;
           RowValues v(motion_cols);
-          v.set("motion", rec.name);
+          v.set("motion", name);
           v.set("time_scale", ts);
           v.set("scale_factor", factor);
           v.set("pga_g", pga / g);
           v.set("polarity", std::string(polarity_name(inv)));
+          if (set_case != nullptr) {
+            if (!spec.bearings_deg.empty()) v.set("bearing_deg", set_case->bearing_deg);  // cylinders: none
+            set_cases.resize(plan.motions.size());
+            set_cases.emplace_back(SetCase{set_case->set, mc.transform, set_case->bearing_deg});
+          }
           mc.values = v.take();
           plan.motions.push_back(std::move(mc));
         }
       }
     }
+  };
+  for (const auto& rec : spec.records) {
+    if (!rec.motion) throw parameter_error("motions", fmt::format("record '{}' has no motion", rec.name));
+    add_scaled(rec.name, rec.motion, nullptr);
   }
   for (const auto& p : spec.pulses) {
     const auto base = std::make_shared<const GroundMotion>(make_pulse(p.spec));
@@ -335,6 +454,22 @@ Plan make_plan(const SweepSpec& spec) {
       plan.motions.push_back(std::move(mc));
     }
   }
+
+  // Record sets at each bearing (cylinders only: the bearing is not used, one case per set).
+  const std::vector<double> bearings = spec.bearings_deg.empty() ? std::vector<double>{0.0} : spec.bearings_deg;
+  for (const auto& rs : spec.record_sets) {
+    // The first component is the case's base motion (aliasing the set, which owns it).
+    const std::shared_ptr<const GroundMotion> first(rs.set, &rs.set->first());
+    for (const double bearing : bearings) {
+      const SetCase c{rs.set, {}, bearing};
+      add_scaled(rs.name, first, &c);
+    }
+    // The fingerprint hashes the base motions; the other components and the azimuths enter through the identity.
+    plan.identity += fmt::format(";set {} az={},{} h2={} v={}", rs.name, rs.set->azimuths()->first_deg,
+                                 rs.set->azimuths()->second_deg, motion_fingerprint(rs.set->second()),
+                                 rs.set->has_vertical() ? motion_fingerprint(rs.set->vertical()) : "none");
+  }
+  if (any_set) plan.identity += fmt::format(";cylinder_step={}", spec.orientation.cylinder_step_deg);
 
   for (const auto& o : spec.objects) {
     RowValues v(object_cols);
@@ -364,6 +499,7 @@ Plan make_plan(const SweepSpec& spec) {
         v.set("D_m2", r.body.D_m2);
       }
       v.set("restitution", std::string(restitution_mode_name(r.options.restitution)));
+      if (r.depth_m) v.set("depth_m", *r.depth_m);
       // Settings that are not columns still decide the results: they enter the fingerprint.
       const RockingOptions& x = r.options;
       plan.identity += fmt::format(";rock a={} h={} D={} e={} method={} rtol={} atol={} n={} rest={} runout={} "
@@ -376,7 +512,9 @@ Plan make_plan(const SweepSpec& spec) {
     plan.objects.push_back(ObjectCase{v.take()});
   }
 
-  plan.run = [runner = std::make_shared<const Runner>(spec.objects, result_cols)](
+  set_cases.resize(plan.motions.size());
+  plan.run = [runner = std::make_shared<const Runner>(spec.objects, result_cols, std::move(set_cases),
+                                                      spec.orientation)](
                  const GroundMotion& motion, std::size_t m, std::size_t begin, std::size_t end, std::span<Value> out) {
     (*runner)(motion, m, begin, end, out);
   };

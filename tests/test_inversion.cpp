@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "support/observed_objects.hpp"
 #include "support/shared_data.hpp"
 
 #include "topple/error.hpp"
@@ -25,16 +26,7 @@
 namespace topple {
 namespace {
 
-ObservedObject block(const std::string& id, double w, double h, Interval mu, Outcome outcome) {
-  ObservedObject o;
-  o.id = id;
-  o.body = RockingBody::block(w, h);
-  o.width_m = w;
-  o.height_m = h;
-  o.mu = mu;
-  o.outcome = outcome;
-  return o;
-}
+using testing::block;
 
 TEST(StaticBounds, HandComputedValues) {
   Site site;

@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "support/input_errors.hpp"
 #include "support/noise_record.hpp"
 #include "support/shared_data.hpp"
 #include "topple/error.hpp"
@@ -36,16 +37,7 @@ GroundMotion sampled(double dt, std::size_t n, const auto& f) {
   return GroundMotion::uniform(std::move(a), dt);
 }
 
-template <class F>
-void expect_input_error(F&& f, const std::string& field, const std::string& text) {
-  try {
-    (void)f();
-    FAIL() << "no InputError";
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.where().field, field) << e.what();
-    EXPECT_NE(std::string(e.what()).find(text), std::string::npos) << e.what();
-  }
-}
+using test::expect_input_error;
 
 // ---- Merging and projection ----
 

@@ -135,6 +135,11 @@ void check_plan(const Plan& plan);
 /// base motion, the transforms, the chunk size and Plan::identity (two 64-bit FNV-1a-style hashes).
 [[nodiscard]] std::string plan_fingerprint(const Plan& plan);
 
+/// 32 hex digits identifying one motion's samples (grid and values), hashed as plan_fingerprint hashes a base
+/// motion: for a run function's inputs that are not base motions (a record set's other components), which a plan
+/// mixes into Plan::identity.
+[[nodiscard]] std::string motion_fingerprint(const GroundMotion& motion);
+
 struct ExecuteOptions {
   int threads = 0;  ///< worker threads; 0 = every core this process may use (its CPU affinity mask)
   /// Called from worker threads (concurrently; keep it cheap and thread-safe) after each batch of runs with the

@@ -45,6 +45,7 @@
 #include <string>
 #include <vector>
 
+#include "topple/direction.hpp"
 #include "topple/progress.hpp"
 #include "topple/ground_motion.hpp"
 #include "topple/survey.hpp"
@@ -119,6 +120,9 @@ struct InversionResult {
   std::vector<std::string> notes;  ///< honesty: what the observations cannot constrain, contradictions
   std::size_t runs = 0;
   double seconds = 0.0;         ///< wall-clock time of the inversion, s
+  /// [inversion] components = 3 (inversion_3c.hpp): the PGA axis is RotD50, and the direction of strongest shaking;
+  /// none for the one-component model.
+  std::optional<ThreeComponentResult> three_component;
 };
 
 struct InversionOptions {

@@ -67,6 +67,13 @@ struct ObservedObject {
   std::optional<SupportFilter> support_filter;
   std::optional<double> orientation_deg;  ///< angle between the object's rocking plane and the shaking direction;
                                           ///< the rocking model sees cos(angle) of the motion (0 when unknown)
+  /// Three-component surveys ([inversion] components = 3; docs/survey.md): the bearing across the object's narrow
+  /// side, degrees clockwise from north, in [0, 360) (its rocking plane; a direction, so 10 and 190 are one bearing
+  /// for a symmetric body). None: unknown, uniformly random (inversion_3c.hpp).
+  std::optional<double> azimuth_deg;
+  /// Outcome slid, three-component surveys: the direction the object moved (marks on the floor), degrees clockwise
+  /// from north, in [0, 360). None: not seen.
+  std::optional<double> slid_azimuth_deg;
   Outcome outcome = Outcome::not_overturned;
   std::optional<double> slid_m;              ///< observed sliding distance (outcome slid)
   double slid_uncertainty_m = 0.0;           ///< its one-sigma uncertainty
@@ -113,6 +120,17 @@ struct InversionSettings {
   std::uint64_t seed = 1;
   double duration_s = 20.0;              ///< synthetic motions' length
   double g_m_s2 = kStandardGravity;
+  /// 1: today's one-component model (the default; old surveys keep their meaning bit for bit). 3: two horizontal
+  /// components and a vertical, oriented objects, bidirectional sliding and the direction of strongest shaking
+  /// (inversion_3c.hpp, docs/method.md "Inversion in three components"). Only the synthetic family.
+  int components = 1;
+  /// components = 3: the correlation coefficient of the two horizontal white noises (synthesis.hpp,
+  /// SynthesisSetSpec::coherence), in [0, 0.95]: 0 independent components, larger values a motion polarised along
+  /// its major axis (major/minor r.m.s. ratio sqrt((1 + rho) / (1 - rho))).
+  double coherence = 0.0;
+  /// components = 3: the number of bins of the direction of strongest shaking over [0, 180) deg (4 to 72; 12 is
+  /// 15 deg bins).
+  int directions = 12;
 };
 
 struct Survey {

@@ -16,6 +16,8 @@
 #include "topple/ensemble.hpp"
 #include "topple/flexible.hpp"
 #include "topple/ground_motion.hpp"
+#include "topple/motion_set.hpp"
+#include "topple/oriented.hpp"
 #include "topple/pulses.hpp"
 #include "topple/rocking.hpp"
 #include "topple/sliding.hpp"
@@ -27,6 +29,16 @@ namespace topple::ensemble {
 struct RecordInput {
   std::string name;                          ///< the "motion" column, e.g. the path as the sweep file matched it
   std::shared_ptr<const GroundMotion> motion;
+};
+
+/// One station's components read together (motion_set.hpp): two horizontal components with known azimuths and an
+/// optional vertical, merged on one grid. Rocking objects run on it as oriented objects (oriented.hpp) at each of
+/// SweepSpec::bearings_deg. Scaling applies to the set as a whole: the factor that scales the first component
+/// (to a target PGA, or a plain factor) scales every component, as `topple rock H1 --h2 H2 --scale-pga` does;
+/// time scaling applies to all; polarity "inverse" flips the horizontal components (the vertical keeps its sign).
+struct RecordSetInput {
+  std::string name;                       ///< the "motion" column: "H1+H2" or "H1+H2+V", the paths as given
+  std::shared_ptr<const MotionSet> set;   ///< with its second component and azimuths
 };
 
 /// An analytic pulse (pulses.hpp). Its amplitude and duration are its own, so sweep scaling (scales, time_scales)
@@ -62,6 +74,8 @@ struct RockObject {
   std::optional<double> height_m;
   std::optional<double> diameter_m;
   std::optional<SupportOscillator> support = std::nullopt;  ///< as SlideObject::support
+  /// A block's other horizontal dimension, m: a box checked about both axes (oriented.hpp). Record sets only.
+  std::optional<double> depth_m = std::nullopt;
 };
 
 using ObjectSpec = std::variant<SlideObject, RockObject>;
@@ -73,18 +87,27 @@ struct SweepSpec {
   std::vector<ScaleSpec> scales{ScaleSpec{}};  ///< records only
   std::vector<bool> inverse{false};     ///< polarities, records and pulses: false = "normal", true = "inverse"
   std::vector<ObjectSpec> objects;
+  std::vector<RecordSetInput> record_sets;  ///< stations of two or three components (rocking objects only)
+  /// The objects' bearings (degrees clockwise from north) under the record sets: each set is run at each bearing.
+  /// Required with record sets unless every object is a cylinder (taken in its worst direction, oriented.hpp).
+  std::vector<double> bearings_deg;
+  OrientationOptions orientation;       ///< the cylinder's direction grid under record sets
   double g_m_s2 = kStandardGravity;     ///< for the *_g columns and amplitudes in g
   std::size_t chunk_runs = 0;           ///< 0 = default
 };
 
-/// Expands the spec (motions: records x time scales x scales x polarities, then pulses x polarities; objects in the
-/// given order) into a plan whose run function calls slide_summary / slide_summaries and rock_summary.
+/// Expands the spec (motions: records x time scales x scales x polarities, then pulses x polarities, then record
+/// sets x bearings x time scales x scales x polarities; objects in the given order) into a plan whose run function
+/// calls slide_summary / slide_summaries and rock_summary, and rock_oriented_summary under a record set.
 ///
 /// Columns, present when some run uses them:
-///   motion: motion, [pulse_kind, pulse_amp_g, pulse_duration_s], time_scale, scale_factor, pga_g, polarity
+///   motion: motion, [pulse_kind, pulse_amp_g, pulse_duration_s], time_scale, scale_factor, pga_g, polarity,
+///           [bearing_deg] (only with record sets: a sweep without one has the columns it always had; pga_g of a
+///           set is its first component's)
 ///   object: model, g_m_s2, [mu, mu_kinetic, slope_deg, mode], [shape, width_m, height_m, diameter_m, restitution],
 ///           [support_freq_hz, support_damping] (only when some object has a flexible support: a sweep without one
-///           has the columns it always had; a rigid object's cells there are empty)
+///           has the columns it always had; a rigid object's cells there are empty), [depth_m] (only when some
+///           object is a box)
 ///           (mu also holds the friction coefficient a rocking body's onset check uses)
 ///   results: sliding: max_abs_displacement_m, max_displacement_time_s, residual_displacement_m,
 ///            max_abs_velocity_m_s, slip_episodes, first_slip_time_s, total_slip_duration_s, end_time_s,
@@ -92,8 +115,12 @@ struct SweepSpec {
 ///            rocking: max_abs_rotation_rad, max_rotation_over_alpha, max_rotation_time_s, max_abs_theta_dot_rad_s,
 ///            impacts, uplifts, uplift_time_s, exceeded_alpha_time_s, overturned, overturn_time_s,
 ///            energy_lost_j_per_kg, end_time_s, end_state, still_rocking_at_end, onset_mode, critical_mu,
-///            alpha_rad, p_rad_s, e
-/// Throws InputError for an empty spec (no motion or no object) or a motion that cannot be scaled (zero record).
+///            alpha_rad, p_rad_s, e; under a record set they are the governing direction's, and
+///            [governing_azimuth_deg, governing_axis] (only with record sets) say which it was
+/// Throws InputError for an empty spec (no motion or no object), a motion that cannot be scaled (zero record), a
+/// sliding object or a flexible support under a record set (sliding under two components is `topple slide --h2`),
+/// a box (depth) under a single record or pulse, record sets without bearings (field "bearing"), or a bearing
+/// without record sets.
 [[nodiscard]] Plan make_plan(const SweepSpec& spec);
 
 }  // namespace topple::ensemble

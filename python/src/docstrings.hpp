@@ -806,6 +806,42 @@ inline constexpr const char* rotd =
     "damping : float\n    Damping ratio of the oscillators (dimensionless fraction of critical), 0 <= damping < 1.\n"
     "g : float\n    Gravity, m/s^2, for the values in g.\n\n" TOPPLE_DOC_ROTD_RETURNS;
 
+inline constexpr const char* rock_oriented =
+    R"(Rocking of an oriented object under two horizontal components (and the vertical), as `topple rock --h2`.
+
+The object rocks in the vertical plane of its bearing under the projection of both components on it (the planar
+model, topple/oriented.hpp, docs/method.md "Oriented objects"). A block with depth_m is a box, also run along
+bearing + 90 deg; a cylinder has no bearing and is taken in its worst direction over a grid of directions (an
+approximation of three-dimensional rocking).
+
+Parameters
+----------
+first, second : GroundMotion
+    The two horizontal components, positive toward their azimuths; any sampling (merged exactly).
+shape : RockingBody
+    The body (topple.Block, topple.Cylinder or topple.General; lengths in m). Its +x side faces the bearing.
+azimuths_deg : sequence of two float
+    The components' azimuths, deg clockwise from north (default (90, 0): east, north); perpendicular.
+bearing_deg : float, optional
+    The direction across the object's narrow side, deg clockwise from north: required, but refused for a cylinder.
+depth_m : float, optional
+    A block's other horizontal dimension, m (along bearing + 90 deg): a box.
+direction_step_deg : float, optional
+    A cylinder's direction grid, deg (default 15; must divide 180).
+vertical : GroundMotion, optional
+    Vertical ground acceleration, positive up.
+e : float or "housner"
+    Coefficient of restitution in [0, 1] (dimensionless), or "housner".
+mu : float, optional
+    Friction coefficient (dimensionless) for Shenton's slide/rock onset check.
+)" TOPPLE_DOC_ROCKING_SOLVER R"(
+Returns
+-------
+dict
+    The JSON of `topple rock --h2 --json` less "input": the governing direction's summary (angles in rad, times in
+    s) and "orientation" (every direction's azimuth in deg, max rotation over alpha, fall; the governing one).
+)";
+
 inline constexpr const char* synth =
     R"(A synthetic ground motion, as `topple synth`: the same parameters and seed give the same bits everywhere.
 

@@ -45,6 +45,7 @@
 #include "topple/inversion.hpp"
 #include "topple/motion_set.hpp"
 #include "topple/object_spectra.hpp"
+#include "topple/oriented.hpp"
 #include "topple/io/flexible_json.hpp"
 #include "topple/io/inversion_output.hpp"
 #include "topple/io/read.hpp"
@@ -271,14 +272,19 @@ struct Sliding2dRun {
   }
 };
 
-Sliding2dRun run_slide_2d(const GroundMotion& first, const GroundMotion& second, double mu,
-                          std::optional<double> mu_kinetic, const std::vector<double>& azimuths_deg, double slope_deg,
-                          std::optional<double> slope_azimuth_deg, const GroundMotion* vertical, double g_m_s2,
-                          bool history) {
+/// azimuths_deg holds the two components' azimuths (InputError naming it otherwise).
+void check_two_azimuths(const std::vector<double>& azimuths_deg) {
   if (azimuths_deg.size() != 2) {
     throw parameter_error("azimuths_deg", fmt::format("expected the two components' azimuths in degrees, e.g. (90, 0), "
                                                       "got {} values", azimuths_deg.size()));
   }
+}
+
+Sliding2dRun run_slide_2d(const GroundMotion& first, const GroundMotion& second, double mu,
+                          std::optional<double> mu_kinetic, const std::vector<double>& azimuths_deg, double slope_deg,
+                          std::optional<double> slope_azimuth_deg, const GroundMotion* vertical, double g_m_s2,
+                          bool history) {
+  check_two_azimuths(azimuths_deg);
   // As the CLI: the fall line's azimuth is required on a slope (no silent guess) and refused on level ground.
   if (slope_deg != 0.0 && !slope_azimuth_deg) {
     throw parameter_error("slope_azimuth_deg", "required with slope_deg: the azimuth of the downslope direction, "
@@ -409,6 +415,46 @@ RockingOptions make_rocking_options(const std::variant<double, std::string>& e, 
   o.rk4_substeps = rk4_substeps;
   o.max_run_out_s = max_run_out_s;
   return o;
+}
+
+/// rock_oriented: an oriented object under two components (oriented.hpp), as `topple rock H1 --h2 H2 --json` less
+/// its "input": the governing direction's summary and the "orientation" object.
+nb::dict run_rock_oriented(const GroundMotion& first, const GroundMotion& second, const RockingBody& body,
+                           const std::vector<double>& azimuths_deg, std::optional<double> bearing_deg,
+                           std::optional<double> depth_m, std::optional<double> direction_step_deg,
+                           const GroundMotion* vertical, const std::variant<double, std::string>& e,
+                           std::optional<double> mu, double g_m_s2, const std::string& method, double rel_tol,
+                           int rk4_substeps, double max_run_out_s) {
+  check_two_azimuths(azimuths_deg);
+  const ComponentAzimuths azimuths{azimuths_deg[0], azimuths_deg[1]};
+  // The library names its fields; the caller typed these parameters.
+  const auto naming = [](auto f) {
+    try {
+      return f();
+    } catch (const InputError& err) {
+      const std::string& field = err.where().field;
+      if (!err.where().file.empty()) throw;
+      if (field == "bearing") throw parameter_error("bearing_deg", err.problem());
+      if (field == "depth") throw parameter_error("depth_m", err.problem());
+      if (field == "cylinder_step") throw parameter_error("direction_step_deg", err.problem());
+      if (field == "azimuths" || field == "azimuth") throw parameter_error("azimuths_deg", err.problem());
+      throw;
+    }
+  };
+  const OrientedBody oriented = naming([&] { return OrientedBody::make(body, depth_m); });
+  naming([&] { check_orientation(oriented, bearing_deg, direction_step_deg.has_value()); });
+  OrientationOptions orientation;
+  if (direction_step_deg) orientation.cylinder_step_deg = *direction_step_deg;
+  const RockingOptions options = make_rocking_options(e, mu, g_m_s2, method, rel_tol, rk4_substeps, max_run_out_s);
+  const MotionSet set = naming([&] { return MotionSet::make(first, &second, azimuths, vertical); });
+  const OrientedRockingSummary summary = naming([&] {
+    nb::gil_scoped_release release;
+    return rock_oriented_summary(set, oriented, bearing_deg.value_or(0.0), options, orientation);
+  });
+  const DirectionResponse& governing = summary.governing_response();
+  nlohmann::ordered_json j = io::rocking_summary_json(governing.summary, planar_body_of(oriented, governing.axis), options);
+  j["orientation"] = io::oriented_rocking_json(summary, oriented, bearing_deg, azimuths, orientation);
+  return nb::cast<nb::dict>(to_python(j));
 }
 
 // ---- intensity (the measures of `topple info`, undefined ones as None) ----
@@ -1374,6 +1420,12 @@ NB_MODULE(_core, m) {
         "g"_a = kStandardGravity, "method"_a = std::string(rocking_method_name(kRockingDefaults.method)),
         "rel_tol"_a = kRockingDefaults.rel_tol, "rk4_substeps"_a = kRockingDefaults.rk4_substeps,
         "max_run_out_s"_a = kRockingDefaults.max_run_out_s, "vertical"_a = nb::none(), "history"_a = true, doc::rock);
+  m.def("rock_oriented", &run_rock_oriented, "first"_a, "second"_a, "shape"_a, nb::kw_only(),
+        "azimuths_deg"_a = std::vector<double>{90.0, 0.0}, "bearing_deg"_a = nb::none(), "depth_m"_a = nb::none(),
+        "direction_step_deg"_a = nb::none(), "vertical"_a = nb::none(), "e"_a = "housner", "mu"_a = nb::none(),
+        "g"_a = kStandardGravity, "method"_a = std::string(rocking_method_name(kRockingDefaults.method)),
+        "rel_tol"_a = kRockingDefaults.rel_tol, "rk4_substeps"_a = kRockingDefaults.rk4_substeps,
+        "max_run_out_s"_a = kRockingDefaults.max_run_out_s, doc::rock_oriented);
 
   // ---- synthesis, intensity, inversion ----
   m.def("synth", &run_synth, nb::kw_only(), "pga_g"_a, "freq_hz"_a, "duration_s"_a, "seed"_a = 0, "dt_s"_a = 0.01,

@@ -246,6 +246,14 @@ def rock(motion: GroundMotion, shape: RockingBody, *, e: Union[Literal["housner"
          vertical: Optional[GroundMotion] = None, history: bool = True) -> RockingResult:
     """Housner rocking and overturning of a rigid body on a level base that does not slide."""
 
+def rock_oriented(first: GroundMotion, second: GroundMotion, shape: RockingBody, *,
+                  azimuths_deg: Sequence[float] = (90.0, 0.0), bearing_deg: Optional[float] = None,
+                  depth_m: Optional[float] = None, direction_step_deg: Optional[float] = None,
+                  vertical: Optional[GroundMotion] = None, e: Union[Literal["housner"], float] = "housner",
+                  mu: Optional[float] = None, g: float = 9.80665, method: Literal["adaptive", "rk4"] = "adaptive",
+                  rel_tol: float = 1e-8, rk4_substeps: int = 10, max_run_out_s: float = 60.0) -> dict[str, Any]:
+    """Rocking of an oriented object under two horizontal components (and the vertical), as `topple rock --h2`."""
+
 def synth(*, pga_g: float, freq_hz: float, duration_s: float, seed: int = 0, dt_s: float = 0.01,
           model: Literal["clough-penzien", "kanai-tajimi"] = "clough-penzien",
           envelope: Literal["saragoni-hart", "jennings"] = "saragoni-hart", zeta_g: float = 0.3,

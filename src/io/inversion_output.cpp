@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "topple/error.hpp"
+#include "topple/inversion_3c.hpp"
 #include "topple/io/output_file.hpp"
 #include "topple/io/provenance.hpp"
 #include "topple/region.hpp"
@@ -40,6 +41,38 @@ nlohmann::ordered_json threshold_json(const StaticBound& b, const char* side) {
   t["kind"] = b.hard ? "hard" : "soft";
   t["reason"] = b.reason;
   return t;
+}
+
+nlohmann::ordered_json arc_json(const DirectionArc& a) {
+  return {{"low_deg", a.low_deg}, {"high_deg", a.high_deg()}, {"width_deg", a.width_deg}};
+}
+
+/// Added (components = 3, inversion_3c.hpp): the PGA axis is RotD50; the larger component's; the direction.
+nlohmann::ordered_json three_component_json(const ThreeComponentResult& tc) {
+  nlohmann::ordered_json j;
+  j["pga_axis"] = "RotD50";
+  j["larger_component_ratio"] = tc.larger_component_ratio;
+  j["rotd100_ratio"] = tc.rotd100_ratio;
+  j["pga_larger_component_g"] = {{"median", tc.larger_component_median_g},
+                                 {"ci95", {opt(tc.larger_component_ci95_low_g), opt(tc.larger_component_ci95_high_g)}}};
+  const DirectionEstimate& d = tc.direction;
+  nlohmann::ordered_json dj;
+  dj["constrained"] = d.constrained;
+  dj["unconstrained_rule"] = fmt::format("95 % arc wider than {:g} deg", kUnconstrainedArcDeg);
+  dj["mode_deg"] = d.mode_deg;
+  dj["mean_deg"] = d.mean_deg;
+  dj["resultant_length"] = d.resultant_length;
+  dj["ci68"] = arc_json(d.ci68);
+  dj["ci95"] = arc_json(d.ci95);
+  dj["bin_width_deg"] = d.bin_width_deg;
+  dj["bins_deg"] = d.azimuth_deg;
+  dj["posterior"] = d.posterior;
+  j["direction_of_strongest_shaking"] = dj;
+  j["family"] = {{"coherence", tc.coherence},
+                 {"vertical_pga_ratio", tc.vertical_pga_ratio},
+                 {"vertical_frequency_ratio", tc.vertical_frequency_ratio}};
+  j["slid_direction_error"] = {{"model", "von Mises"}, {"kappa", tc.slid_direction_kappa}};
+  return j;
 }
 
 }  // namespace
@@ -105,6 +138,7 @@ nlohmann::ordered_json inversion_json(const InversionResult& r, const Site& site
   j["best_cell"] = {{"pga_g", r.pga_g[r.best_cell / r.freq_hz.size()]}, {"freq_hz", r.freq_hz[r.best_cell % r.freq_hz.size()]}};
   j["runs"] = r.runs;
   j["seconds"] = r.seconds;
+  if (r.three_component) j["three_component"] = three_component_json(*r.three_component);
   return j;
 }
 
@@ -145,6 +179,13 @@ void write_sites_geojson(const std::filesystem::path& path, const std::vector<Si
                        {"pga_ci95_g", {opt(r.pga_estimate_g.ci95_low), opt(r.pga_estimate_g.ci95_high)}},
                        {"static_bounds_pga_g", {opt(r.bounds.lower_g), opt(r.bounds.upper_g)}},
                        {"freq_median_hz", r.freq_estimate_hz.median}};
+    if (r.three_component) {  // added (components = 3): the PGA axis and the direction of strongest shaking
+      const DirectionEstimate& d = r.three_component->direction;
+      f["properties"]["pga_axis"] = "RotD50";
+      f["properties"]["direction_constrained"] = d.constrained;
+      f["properties"]["direction_mode_deg"] = d.constrained ? nlohmann::ordered_json(d.mode_deg) : nlohmann::ordered_json(nullptr);
+      f["properties"]["direction_ci95_deg"] = {d.ci95.low_deg, d.ci95.high_deg()};
+    }
     fc["features"].push_back(f);
   }
   write_file_atomically(path, fc.dump(2) + "\n");

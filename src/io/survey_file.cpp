@@ -212,8 +212,16 @@ std::optional<SupportFilter> parse_support(Reader& r, std::string& label) {
   return std::nullopt;
 }
 
+/// A bearing (deg clockwise from north) in [0, 360).
+double parse_bearing(Reader& r, std::string_view key, double value) {
+  if (!(value >= 0.0 && value < 360.0)) {
+    throw r.error(key, fmt::format("a bearing must lie in [0, 360) degrees clockwise from north, got {}", value));
+  }
+  return value;
+}
+
 ObservedObject parse_object(const toml::table& t, const std::string& file, const std::string& path,
-                            std::vector<std::string>& notes, const Site* site = nullptr) {
+                            std::vector<std::string>& notes, const Site* site = nullptr, int components = 1) {
   Reader r(t, file, path);
   ObservedObject o;
   o.id = r.string("id").value_or("");
@@ -308,6 +316,18 @@ ObservedObject parse_object(const toml::table& t, const std::string& file, const
     if (*orient < 0.0 || *orient > 90.0) throw named.error("orientation_deg", "must lie in [0, 90] degrees");
     o.orientation_deg = orient;
   }
+  if (components == 3 && o.orientation_deg) {
+    throw named.error("orientation_deg", "a three-component survey gives the object's bearing, azimuth_deg, instead "
+                                         "(the angle to the shaking is then the inversion's to find)");
+  }
+  if (const auto az = named.number("azimuth_deg")) {
+    if (components != 3) throw named.error("azimuth_deg", "an object's bearing needs [inversion] components = 3");
+    if (o.body.shape == RockingBody::Shape::cylinder) {
+      throw named.error("azimuth_deg", "a cylinder has no narrow side: it rocks toward its worst direction "
+                                       "(docs/method.md), so it takes no bearing");
+    }
+    o.azimuth_deg = parse_bearing(named, "azimuth_deg", *az);
+  }
   const auto outcome = named.string("outcome");
   if (!outcome) throw named.error("outcome", "every object needs its observed outcome");
   o.outcome = parse_outcome(named, *outcome);
@@ -326,6 +346,11 @@ ObservedObject parse_object(const toml::table& t, const std::string& file, const
     throw named.error("slid", "a sliding distance goes with outcome = \"slid\"");
   }
   if (o.slid_m && o.slid_at_least_m) throw named.error("slid_at_least", "give either slid or slid_at_least");
+  if (const auto az = named.number("slid_azimuth_deg")) {
+    if (components != 3) throw named.error("slid_azimuth_deg", "a sliding direction needs [inversion] components = 3");
+    if (o.outcome != Outcome::slid) throw named.error("slid_azimuth_deg", "a sliding direction goes with outcome = \"slid\"");
+    o.slid_azimuth_deg = parse_bearing(named, "slid_azimuth_deg", *az);
+  }
   if (o.slid_m && !(*o.slid_m > 0.0)) throw named.error("slid", "must be positive");
   if (o.slid_uncertainty_m < 0.0) throw named.error("slid_uncertainty", "must be >= 0");
   if (o.slid_m && named.has("slid_uncertainty") && sliding_sigma_m(o) > o.slid_uncertainty_m) {
@@ -351,7 +376,8 @@ ObservedObject parse_object(const toml::table& t, const std::string& file, const
 }
 
 std::vector<ObservedObject> parse_objects(const toml::node* node, const std::string& file, const std::string& key,
-                                          std::vector<std::string>& notes, const Site* site = nullptr) {
+                                          std::vector<std::string>& notes, const Site* site = nullptr,
+                                          int components = 1) {
   std::vector<ObservedObject> out;
   if (node == nullptr) return out;
   const auto* arr = node->as_array();
@@ -360,7 +386,7 @@ std::vector<ObservedObject> parse_objects(const toml::node* node, const std::str
   for (std::size_t i = 0; i < arr->size(); ++i) {
     const auto* t = arr->get(i)->as_table();
     if (t == nullptr) throw InputError(InputLocation{file, node->source().begin.line, key}, "expected a table");
-    out.push_back(parse_object(*t, file, fmt::format("{}[{}]", key, i + 1), notes, site));
+    out.push_back(parse_object(*t, file, fmt::format("{}[{}]", key, i + 1), notes, site, components));
     if (!ids.insert(out.back().id).second) {
       throw InputError(InputLocation{file, t->source().begin.line, fmt::format("{}[{}].id", key, i + 1)},
                        fmt::format("duplicate object id '{}'", out.back().id));
@@ -454,6 +480,26 @@ Survey parse_toml_survey(std::string_view text, const std::string& name, const s
       if (!(*g > 0.0)) throw r.error("g_m_s2", "must be positive");
       st.g_m_s2 = *g;
     }
+    if (const auto c = r.number("components")) {
+      if (*c != 1.0 && *c != 3.0) throw r.error("components", fmt::format("must be 1 or 3, got {}", *c));
+      st.components = static_cast<int>(*c);
+    }
+    if (st.components == 3 && st.family != MotionFamily::synthetic) {
+      throw r.error("components", fmt::format("components = 3 needs family = \"synthetic\" (got \"{}\")",
+                                              motion_family_name(st.family)));
+    }
+    if (const auto rho = r.number("coherence")) {
+      if (st.components != 3) throw r.error("coherence", "coherence needs components = 3");
+      if (!(*rho >= 0.0 && *rho <= 0.95)) throw r.error("coherence", fmt::format("must lie in [0, 0.95], got {}", *rho));
+      st.coherence = *rho;
+    }
+    if (const auto nd = r.number("directions")) {
+      if (st.components != 3) throw r.error("directions", "directions needs components = 3");
+      if (*nd < 4 || *nd > 72 || *nd != std::floor(*nd)) {
+        throw r.error("directions", fmt::format("must be a whole number from 4 to 72, got {}", *nd));
+      }
+      st.directions = static_cast<int>(*nd);
+    }
     // The family must be able to make motions at both ends of the grid: said here, with the file and the line,
     // rather than by the synthesis after the survey is read.
     try {
@@ -496,7 +542,7 @@ Survey parse_toml_survey(std::string_view text, const std::string& name, const s
       parse_instrument(r, site, base_dir);
       r.refuse_unknown();
     }
-    site.objects = parse_objects(top.get("object"), name, "object", s.notes, &site);
+    site.objects = parse_objects(top.get("object"), name, "object", s.notes, &site, s.inversion.components);
     s.sites.push_back(std::move(site));
   } else if (const toml::node* sites = top.get("sites")) {
     const auto* arr = sites->as_array();
@@ -508,7 +554,8 @@ Survey parse_toml_survey(std::string_view text, const std::string& name, const s
       Site site;
       parse_site_fields(r, site);
       parse_instrument(r, site, base_dir);
-      site.objects = parse_objects(r.get("object"), name, fmt::format("sites[{}].object", i + 1), s.notes, &site);
+      site.objects = parse_objects(r.get("object"), name, fmt::format("sites[{}].object", i + 1), s.notes, &site,
+                                   s.inversion.components);
       r.refuse_unknown();
       s.sites.push_back(std::move(site));
     }

@@ -22,6 +22,8 @@
 
 #include "topple/error.hpp"
 #include "topple/io/read.hpp"
+#include "topple/motion_set.hpp"
+#include "topple/oriented.hpp"
 #include "topple/pulses.hpp"
 #include "topple/units.hpp"
 
@@ -316,6 +318,68 @@ Parser acceleration_parser(double g, double divide_by) {
   return [g, divide_by](std::string_view s, const std::string& f) { return parse_acceleration_m_s2(s, f, g) / divide_by; };
 }
 
+/// [[motions.set]] tables (a station's components, read together) and the objects' bearings under them.
+void read_record_sets(const Reader& r, const toml::table& m, const ReadOptions& ro, SweepFile& out) {
+  if (const auto b = r.quantities(m, "bearing_deg", "bearing", "motions.", angle_deg_parser(), "45deg")) {
+    if (m.get("set") == nullptr) {
+      r.fail(m.get("bearing") != nullptr ? m.get("bearing") : m.get("bearing_deg"), "motions.bearing_deg",
+             "bearings apply to objects under [[motions.set]] (two horizontal components), and there is none");
+    }
+    out.spec.bearings_deg = *b;
+  }
+  if (const auto step = r.numbers(m, "direction_step_deg", "motions.direction_step_deg")) {
+    if (step->size() != 1) r.fail(m.get("direction_step_deg"), "motions.direction_step_deg", "expected one value");
+    out.spec.orientation.cylinder_step_deg = step->front();
+    r.located(m.get("direction_step_deg"), "motions.direction_step_deg", [&] {
+      return oriented_directions(OrientedBody::planar(RockingBody::cylinder(1.0, 1.0)), 0.0, out.spec.orientation);
+    });
+  }
+  const toml::node* sn = m.get("set");
+  if (sn == nullptr) return;
+  const auto* arr = sn->as_array();
+  if (arr == nullptr || !arr->is_array_of_tables()) r.fail(sn, "motions.set", "expected [[motions.set]] tables");
+  for (std::size_t i = 0; i < arr->size(); ++i) {
+    const toml::table& t = *arr->get(i)->as_table();
+    const std::string key = fmt::format("motions.set[{}]", i + 1);
+    r.check_keys(t, key, {"h1", "h2", "vertical", "azimuths_deg"});
+    const auto path_of = [&](std::string_view k, bool required) -> std::optional<std::string> {
+      const auto p = r.string(t, k, key + "." + std::string(k));
+      if (!p && required) r.fail(&t, key + "." + std::string(k), fmt::format("a record set needs {}", k));
+      if (p && p->empty()) r.fail(t.get(k), key + "." + std::string(k), "empty path");
+      return p;
+    };
+    const std::string h1 = *path_of("h1", true);
+    const std::string h2 = *path_of("h2", true);
+    const std::optional<std::string> vertical = path_of("vertical", false);
+    const auto read = [&](const std::string& name) {
+      const fs::path p(name);
+      return read_motion(p.is_absolute() || r.dir().empty() ? p : r.dir() / p, ro);
+    };
+    const GroundMotion first = read(h1);
+    const GroundMotion second = read(h2);
+    const std::optional<GroundMotion> up = vertical ? std::optional(read(*vertical)) : std::nullopt;
+    std::optional<ComponentAzimuths> user;
+    if (const auto az = r.numbers(t, "azimuths_deg", key + ".azimuths_deg")) {
+      if (az->size() != 2) {
+        r.fail(t.get("azimuths_deg"), key + ".azimuths_deg", "expected the two azimuths [A1, A2], degrees clockwise "
+                                                             "from north");
+      }
+      user = ComponentAzimuths{(*az)[0], (*az)[1]};
+    }
+    const toml::node* where = t.get("azimuths_deg") != nullptr ? t.get("azimuths_deg") : &t;
+    const ComponentAzimuths azimuths = r.located(where, key + ".azimuths_deg", [&] {
+      return resolve_azimuths(first, second, user, out.warnings, key + ".azimuths_deg");
+    });
+    const auto set = r.located(&t, key, [&] {
+      return std::make_shared<const MotionSet>(
+          MotionSet::make(first, &second, azimuths, up ? &*up : nullptr));
+    });
+    std::string name = h1 + "+" + h2 + (vertical ? "+" + *vertical : std::string());
+    if (name.find_first_of("\r\n") != std::string::npos) r.fail(&t, key, "a file name holds a line break");
+    out.spec.record_sets.push_back({std::move(name), set});
+  }
+}
+
 /// [motions]: records and pulses, scaling, polarity.
 void read_motions(const Reader& r, const toml::table& t, SweepFile& out) {
   const toml::table* m = nullptr;
@@ -327,7 +391,8 @@ void read_motions(const Reader& r, const toml::table& t, SweepFile& out) {
   }
   const double g = out.spec.g_m_s2;
   r.check_keys(*m, "motions", {"files", "format", "units", "dt", "dt_s", "channel", "scale", "scale_pga",
-                               "scale_pga_g", "time_scale", "polarity", "pulse"});
+                               "scale_pga_g", "time_scale", "polarity", "pulse", "set", "bearing", "bearing_deg",
+                               "direction_step_deg"});
 
   // Reading options for the record files.
   ReadOptions ro;
@@ -361,6 +426,7 @@ void read_motions(const Reader& r, const toml::table& t, SweepFile& out) {
     if (e) std::rethrow_exception(e);
   }
   for (std::size_t i = 0; i < files.size(); ++i) out.spec.records.push_back({files[i].first, loaded[i]});
+  read_record_sets(r, *m, ro, out);
 
   // Scaling (records only).
   const toml::node* scale_n = m->get("scale");
@@ -388,7 +454,8 @@ void read_motions(const Reader& r, const toml::table& t, SweepFile& out) {
     }
     out.spec.time_scales = *ts;
   }
-  if ((scale_n != nullptr || pga_n != nullptr || m->get("time_scale") != nullptr) && files.empty()) {
+  if ((scale_n != nullptr || pga_n != nullptr || m->get("time_scale") != nullptr) && files.empty() &&
+      out.spec.record_sets.empty()) {
     r.fail(scale_n != nullptr ? scale_n : pga_n != nullptr ? pga_n : m->get("time_scale"), "motions",
            "scale, scale_pga and time_scale apply to record files, and there are none (pulses take their own "
            "amplitudes and frequencies)");
@@ -450,8 +517,8 @@ void read_motions(const Reader& r, const toml::table& t, SweepFile& out) {
       }
     }
   }
-  if (out.spec.records.empty() && out.spec.pulses.empty()) {
-    r.fail(m, "motions", "no motion: give files = [...] and/or [[motions.pulse]] tables");
+  if (out.spec.records.empty() && out.spec.pulses.empty() && out.spec.record_sets.empty()) {
+    r.fail(m, "motions", "no motion: give files = [...], [[motions.pulse]] and/or [[motions.set]] tables");
   }
 }
 
@@ -532,9 +599,19 @@ void read_slide(const Reader& r, const toml::table& o, const std::string& key, d
 void read_rock(const Reader& r, const toml::table& o, const std::string& key, double g, SweepFile& out) {
   const std::string prefix = key + ".";
   r.check_keys(o, key, {"model", "shape", "width", "width_m", "height", "height_m", "diameter", "diameter_m", "a",
-                        "a_m", "h", "h_m", "D_m2", "e", "mu", "support_freq_hz", "support_freq", "support_damping"});
+                        "a_m", "h", "h_m", "D_m2", "e", "mu", "support_freq_hz", "support_freq", "support_damping",
+                        "depth", "depth_m"});
   const auto supports = read_supports(r, o, prefix);
   const std::string shape = r.string(o, "shape", prefix + "shape").value_or("");
+  // A block's depth (a box, oriented.hpp): under [[motions.set]] only (make_plan says so).
+  std::vector<std::optional<double>> depths{std::nullopt};
+  if (const auto d = r.quantities(o, "depth_m", "depth", prefix, length_parser(), "30cm")) {
+    if (shape != "block") {
+      r.fail(o.get("depth") != nullptr ? o.get("depth") : o.get("depth_m"), prefix + "depth",
+             "a depth applies to shape = \"block\" (a box) only");
+    }
+    depths.assign(d->begin(), d->end());
+  }
   const auto refuse = [&](std::initializer_list<std::string_view> keys) {
     for (const auto k : keys) {
       if (const toml::node* n = o.get(k)) {
@@ -643,9 +720,14 @@ void read_rock(const Reader& r, const toml::table& o, const std::string& key, do
             if (shape == "block") ro.width_m = x1;
             if (shape == "cylinder") ro.diameter_m = x1;
             if (shape != "general") ro.height_m = x2;
-            for (const auto& support : supports) {
-              ro.support = support;
-              out.spec.objects.emplace_back(ro);
+            for (const auto& depth : depths) {
+              ro.depth_m = depth;
+              if (depth) r.located(o.get("depth") != nullptr ? o.get("depth") : o.get("depth_m"), prefix + "depth",
+                                   [&] { return OrientedBody::box(x1, *depth, x2); });
+              for (const auto& support : supports) {
+                ro.support = support;
+                out.spec.objects.emplace_back(ro);
+              }
             }
           }
         }

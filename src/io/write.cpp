@@ -40,6 +40,33 @@ nlohmann::ordered_json sliding_2d_summary_json(const Sliding2dSummary& s, const 
   return j;
 }
 
+nlohmann::ordered_json oriented_rocking_json(const OrientedRockingSummary& summary, const OrientedBody& body,
+                                             std::optional<double> bearing_deg, const ComponentAzimuths& azimuths,
+                                             const OrientationOptions& orientation) {
+  nlohmann::ordered_json j;
+  j["model"] = "planar rocking under the projection of the two horizontal components on each direction (eq. M1), "
+               "with the vertical when there is one";
+  j["bearing_deg"] = bearing_deg ? nlohmann::ordered_json(*bearing_deg) : nlohmann::ordered_json(nullptr);
+  j["azimuths_deg"] = {azimuths.first_deg, azimuths.second_deg};
+  if (body.axisymmetric()) j["direction_step_deg"] = orientation.cylinder_step_deg;
+  if (body.across) j["depth_m"] = 2.0 * body.across->a_m;
+  const DirectionResponse& g = summary.governing_response();
+  j["governing_azimuth_deg"] = g.azimuth_deg;
+  j["governing_axis"] = std::string(oriented_axis_name(g.axis));
+  j["directions"] = nlohmann::ordered_json::array();
+  for (const DirectionResponse& d : summary.directions) {
+    nlohmann::ordered_json row;
+    row["azimuth_deg"] = d.azimuth_deg;
+    row["axis"] = std::string(oriented_axis_name(d.axis));
+    row["max_rotation_over_alpha"] = d.summary.max_rotation_over_alpha;
+    row["overturned"] = d.summary.overturned;
+    row["overturn_time_s"] =
+        d.summary.overturn_time_s ? nlohmann::ordered_json(*d.summary.overturn_time_s) : nlohmann::ordered_json(nullptr);
+    j["directions"].push_back(row);
+  }
+  return j;
+}
+
 nlohmann::ordered_json rocking_summary_json(const RockingSummary& s, const RockingBody& body,
                                             const RockingOptions& options) {
   nlohmann::ordered_json j = fields_json(kRockingFields, RockingOutcome{s, body, options});

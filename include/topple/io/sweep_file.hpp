@@ -15,7 +15,9 @@
 // slope_deg = 10, amp_g = 0.3, freq_hz = 2), without it takes strings with a unit (width = "4cm", slope = "10deg",
 // amp = "3m/s2", freq = "2Hz"); a bare number there is refused.
 #include <filesystem>
+#include <string>
 #include <string_view>
+#include <vector>
 
 #include "topple/sweep.hpp"
 
@@ -27,6 +29,9 @@ struct SweepFile {
   std::filesystem::path output_csv; ///< [output] path, relative to the sweep file's directory (default: the sweep
                                     ///< file's name with .csv)
   bool jsonl = false;               ///< [output] jsonl
+  /// What the reader accepted but the user should see: an azimuth given in a [[motions.set]] that overrides a
+  /// record header's (resolve_azimuths).
+  std::vector<std::string> warnings;
 };
 
 /// Reads, validates and expands a sweep file, reading every record it names. Throws InputError.

@@ -11,6 +11,7 @@
 
 #include "topple/field.hpp"
 #include "topple/ground_motion.hpp"
+#include "topple/oriented.hpp"
 #include "topple/rocking.hpp"
 #include "topple/sliding.hpp"
 #include "topple/sliding2d.hpp"
@@ -43,6 +44,15 @@ template <class Result, std::size_t N>
 /// absent values are null.
 [[nodiscard]] nlohmann::ordered_json rocking_summary_json(const RockingSummary& summary, const RockingBody& body,
                                                           const RockingOptions& options);
+
+/// The "orientation" object of `topple rock --h2 --json` (oriented.hpp): model (the planar projection, in words),
+/// bearing_deg (null for a cylinder), azimuths_deg [A1, A2], direction_step_deg (a cylinder), depth_m (a box),
+/// governing_azimuth_deg, governing_axis, and directions [{azimuth_deg, axis, max_rotation_over_alpha, overturned,
+/// overturn_time_s}] in the order they were run. The governing direction's own summary is rocking_summary_json's.
+[[nodiscard]] nlohmann::ordered_json oriented_rocking_json(const OrientedRockingSummary& summary,
+                                                           const OrientedBody& body, std::optional<double> bearing_deg,
+                                                           const ComponentAzimuths& azimuths,
+                                                           const OrientationOptions& orientation);
 
 /// What a single run saw, for the "input" object of `topple slide|rock --json` and of the Python results' json().
 struct RunInput {

@@ -1,0 +1,36 @@
+#pragma once
+// Internals of the inversion shared by inversion.cpp (one component) and inversion_3c.cpp (three components).
+#include <cstdint>
+#include <vector>
+
+#include "topple/inversion.hpp"
+#include "topple/rocking.hpp"
+#include "topple/synthesis.hpp"
+
+namespace topple::detail {
+
+/// A 64-bit hash of two numbers (SplitMix64 of a * golden + b): the seeds of motion k and object o.
+[[nodiscard]] std::uint64_t mix(std::uint64_t a, std::uint64_t b);
+
+/// The synthesis of motion k of a synthetic family's column (inversion.hpp): 20 samples per period of the column's
+/// frequency (at most 0.01 s), at least 8 periods, seed mix(settings.seed, k + 1) in every column.
+[[nodiscard]] SynthesisSpec family_spec(const InversionSettings& settings, double freq_hz, int k);
+
+/// The three-component synthesis of motion k (inversion_3c.hpp, item 1): family_spec with a step of 1 / (20 f_v)
+/// (at most 0.01 s), the survey's coherence, components called east (first) and north (second), a vertical.
+[[nodiscard]] SynthesisSetSpec family_set_spec(const InversionSettings& settings, double freq_hz, int k);
+
+/// The match of a sliding observation (inversion.hpp, item 2) from a run's max |displacement| and residual distance
+/// (m): not_slid: max < 2 mm; a measured distance: its Gaussian kernel; slid_at_least: residual >= it; slid: max >= 2 mm.
+[[nodiscard]] double sliding_match(const ObservedObject& object, double max_displacement_m, double residual_m);
+/// The rocking options of the inversion's runs: restitution as the object gives it, 20 s run-out, rel_tol 1e-6.
+[[nodiscard]] RockingOptions inversion_rocking_options(const ObservedObject& object, const DrawnParameters& parameters,
+                                                      double g_m_s2);
+/// The match (0 or 1) of a rocking observation for a run that overturned or not, with its max |theta| (rad).
+[[nodiscard]] double rocking_match(Outcome outcome, bool overturned, double max_rotation_rad);
+
+/// The 3 x 3 neighbourhood of a cell with weights 4/2/1 (inversion.hpp, item 2).
+[[nodiscard]] std::vector<std::pair<std::size_t, double>> neighbourhood(std::size_t c, std::size_t np,
+                                                                        std::size_t nf);
+
+}  // namespace topple::detail

@@ -1,0 +1,220 @@
+// Oriented objects through the CLI: `topple rock H1 --h2 H2 [--vertical V] --azimuths A1,A2 --bearing-deg B` (box:
+// --depth; cylinder: worst direction), the sweep's bearing axis over motion sets, and their bad input.
+#include <algorithm>
+#include <filesystem>
+#include <vector>
+#include <string>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "support/csv_table.hpp"
+#include "support/shared_data.hpp"
+
+namespace topple {
+namespace {
+
+std::string quote(const std::filesystem::path& p) { return fmt::format("'{}'", p.string()); }
+
+/// A synthetic station (H1 north, H2 east, V) written by `topple synth --components 3`: portable, so every machine
+/// gets the same samples.
+class CliOriented : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    (void)test::run_json("synth --components 3 --pga 0.3g --freq 2.5Hz --duration 20 --seed 4 --azimuths 0,90 "
+                         "--json --out " + quote(dir.path() / "m.csv"));
+    h1 = quote(dir.path() / "m.h1.csv");
+    h2 = quote(dir.path() / "m.h2.csv");
+    v = quote(dir.path() / "m.v.csv");
+  }
+  test::TempDir dir;
+  std::string h1, h2, v;
+};
+
+/// The rocking results a single run prints, compared exactly: the projection on a component's own azimuth is that
+/// component bit for bit (MotionSet::projected), so the two runs are the same computation; JSON prints 17 digits.
+void expect_same_results(const nlohmann::json& x, const nlohmann::json& y) {
+  for (const char* key : {"max_abs_rotation_rad", "max_rotation_over_alpha", "max_rotation_time_s",
+                          "max_abs_theta_dot_rad_s", "impacts", "uplifts", "uplift_time_s", "overturned",
+                          "energy_lost_j_per_kg", "end_time_s"}) {
+    EXPECT_EQ(x.at(key), y.at(key)) << key;
+  }
+}
+
+TEST_F(CliOriented, BearingAlongEitherComponentIsThatComponentAlone) {
+  const std::string block = " --shape block --width 20cm --height 80cm --json";
+  const auto along_h1 = test::run_json("rock " + h1 + " --h2 " + h2 + " --vertical " + v + " --azimuths 0,90 "
+                                       "--bearing-deg 0" + block);
+  const auto alone_h1 = test::run_json("rock " + h1 + " --vertical " + v + block);
+  ASSERT_GT(alone_h1.at("uplifts").get<int>(), 0) << "the station must rock the block";
+  expect_same_results(along_h1, alone_h1);
+  EXPECT_EQ(along_h1.at("orientation").at("governing_azimuth_deg"), 0.0);
+  EXPECT_EQ(along_h1.at("orientation").at("governing_axis"), "bearing");
+  // The second component's file is read alone as the first: same vertical, same scaling (none).
+  const auto along_h2 = test::run_json("rock " + h1 + " --h2 " + h2 + " --vertical " + v + " --azimuths 0,90 "
+                                       "--bearing-deg 450" + block);
+  const auto alone_h2 = test::run_json("rock " + h2 + " --vertical " + v + block);
+  expect_same_results(along_h2, alone_h2);
+  EXPECT_EQ(along_h2.at("orientation").at("governing_azimuth_deg"), 90.0);
+}
+
+TEST_F(CliOriented, BoxAndCylinder) {
+  // Box 20 x 40 x 80 cm at bearing 0: the 40 cm axis (uplift at 0.5 g) does not lift under a 0.3 g station, the
+  // narrow one does: the bearing governs.
+  const auto box = test::run_json("rock " + h1 + " --h2 " + h2 + " --azimuths 0,90 --bearing-deg 0 --shape block "
+                                  "--width 20cm --height 80cm --depth 40cm --json");
+  const auto& o = box.at("orientation");
+  ASSERT_EQ(o.at("directions").size(), 2U);
+  EXPECT_EQ(o.at("directions")[1].at("axis"), "across");
+  EXPECT_EQ(o.at("directions")[1].at("azimuth_deg"), 90.0);
+  EXPECT_EQ(o.at("directions")[1].at("max_rotation_over_alpha"), 0.0);
+  EXPECT_EQ(o.at("governing_axis"), "bearing");
+  EXPECT_DOUBLE_EQ(o.at("depth_m").get<double>(), 0.4);
+  // Cylinder: twelve directions, the governing one the largest max |theta| / alpha (none falls at 0.3 g), and the
+  // summary printed is that direction's.
+  const auto cyl = test::run_json("rock " + h1 + " --h2 " + h2 + " --vertical " + v + " --azimuths 0,90 --shape "
+                                  "cylinder --diameter 20cm --height 80cm --json");
+  const auto& d = cyl.at("orientation").at("directions");
+  ASSERT_EQ(d.size(), 12U);
+  double largest = 0.0;
+  for (const auto& row : d) {
+    ASSERT_FALSE(row.at("overturned").get<bool>());
+    largest = std::max(largest, row.at("max_rotation_over_alpha").get<double>());
+  }
+  EXPECT_GT(largest, 0.0);
+  EXPECT_EQ(cyl.at("max_rotation_over_alpha").get<double>(), largest);
+  EXPECT_TRUE(cyl.at("orientation").at("bearing_deg").is_null());
+  EXPECT_EQ(cyl.at("orientation").at("direction_step_deg"), 15.0);
+}
+
+TEST_F(CliOriented, BadInputExitsTwoNamingTheOption) {
+  const std::string block = " --shape block --width 20cm --height 80cm";
+  const std::string set = " --h2 " + h2 + " --azimuths 0,90";
+  for (const auto& [args, option] :
+       {std::pair{h1 + block + " --bearing-deg 10", "--bearing-deg"},
+        std::pair{h1 + block + " --depth 30cm", "--depth"},
+        std::pair{h1 + block + " --azimuths 0,90", "--azimuths"},
+        std::pair{h1 + set + block, "--bearing-deg"},
+        std::pair{h1 + set + " --shape cylinder --diameter 20cm --height 80cm --bearing-deg 10", "--bearing-deg"},
+        std::pair{h1 + set + " --shape cylinder --diameter 20cm --height 80cm --depth 30cm", "--depth"},
+        std::pair{h1 + set + " --shape cylinder --diameter 20cm --height 80cm --direction-step-deg 7",
+                  "--direction-step-deg"},
+        std::pair{h1 + set + block + " --bearing-deg 0 --direction-step-deg 5", "--direction-step-deg"},
+        std::pair{h1 + set + block + " --bearing-deg 0 --depth -3cm", "--depth"},
+        std::pair{h1 + " --h2 " + h2 + block + " --bearing-deg 0", "--azimuths"},
+        std::pair{h1 + " --h2 " + h2 + " --azimuths 0,45" + block + " --bearing-deg 0", "--azimuths"}}) {
+    const auto r = test::run_cli("rock " + args);
+    EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
+    EXPECT_NE(r.err.find(option), std::string::npos) << args << ": " << r.err;
+  }
+}
+
+TEST_F(CliOriented, SpectrumAlongABearingAndRefusals) {
+  // The overturning map of blocks at the bearing of H1 is H1's map (the projection is H1 bit for bit); at 90 deg it
+  // is H2's.
+  const std::string map = " --slenderness 0.25 --heights 0.8m,1.6m --pga 0.2g,0.4g,0.6g --threads 1 --json";
+  const auto along = test::run_json("spectrum rock " + h1 + " --h2 " + h2 + " --azimuths 0,90 --bearing-deg 0" + map);
+  const auto alone = test::run_json("spectrum rock " + h1 + map);
+  EXPECT_EQ(along.at("sizes"), alone.at("sizes"));
+  const auto across = test::run_json("spectrum rock " + h1 + " --h2 " + h2 + " --azimuths 0,90 --bearing-deg 90" + map);
+  EXPECT_EQ(across.at("sizes"), test::run_json("spectrum rock " + h2 + map).at("sizes"));
+  for (const auto& [args, option] :
+       {std::pair{"spectrum rock " + h1 + " --h2 " + h2 + " --azimuths 0,90" + map, "--bearing-deg"},
+        std::pair{"spectrum rock " + h1 + " --bearing-deg 10" + map, "--bearing-deg"},
+        std::pair{"spectrum rock " + h1 + " --shape cylinder --h2 " + h2 + " --azimuths 0,90 --bearing-deg 0" + map,
+                  "--h2"},
+        std::pair{"spectrum slide " + h1 + " --h2 " + h2 + " --azimuths 0,90 --mu 0.1", "--h2"},
+        std::pair{"fragility --synth 3 --h2 " + h2 + " --mu 0.1 --threshold 5cm --im-range 0.1:1:3", "--h2"}}) {
+    const auto r = test::run_cli(args);
+    EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
+    EXPECT_NE(r.err.find(option), std::string::npos) << args << ": " << r.err;
+  }
+}
+
+TEST_F(CliOriented, SweepOverBearingsEqualsSingleRuns) {
+  // Bearings x (box, planar block, cylinder) on the station, and its inverse polarity.
+  test::write_file(dir.path() / "s.toml", R"(
+[motions]
+bearing_deg = [0, 37, 90, 200]
+polarity = ["normal", "inverse"]
+[[motions.set]]
+h1 = "m.h1.csv"
+h2 = "m.h2.csv"
+vertical = "m.v.csv"
+azimuths_deg = [0, 90]
+[[object]]
+model = "rock"
+shape = "block"
+width = "20cm"
+height = "80cm"
+depth = ["40cm"]
+[[object]]
+model = "rock"
+shape = "block"
+width = "20cm"
+height = "80cm"
+[[object]]
+model = "rock"
+shape = "cylinder"
+diameter = "20cm"
+height = "80cm"
+)");
+  const auto r = test::run_cli("sweep " + quote(dir.path() / "s.toml") + " --quiet --threads 2");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const test::Table t = test::read_table(dir.path() / "s.csv");
+  ASSERT_EQ(t.rows.size(), 4U * 2U * 3U);
+  const char* objects[] = {" --shape block --width 20cm --height 80cm --depth 40cm",
+                           " --shape block --width 20cm --height 80cm",
+                           " --shape cylinder --diameter 20cm --height 80cm"};
+  const std::string set = "rock " + h1 + " --h2 " + h2 + " --vertical " + v + " --azimuths 0,90";
+  for (std::size_t row = 0; row < t.rows.size(); ++row) {
+    const std::size_t object = row % 3;
+    SCOPED_TRACE(fmt::format("run {}", row));
+    EXPECT_EQ(t.at(row, "motion"), "m.h1.csv+m.h2.csv+m.v.csv");
+    // Inverse polarity flips both horizontal components (the vertical keeps its sign), as `rock --invert` does
+    // with --h2.
+    const bool inverse = t.at(row, "polarity") == "inverse";
+    const std::string args = set + (object == 2 ? std::string() : " --bearing-deg " + t.at(row, "bearing_deg")) +
+                             (inverse ? " --invert" : "") + objects[object] + " --json";
+    const auto single = test::run_json(args);
+    // Sweep cells and JSON both print shortest round-trip doubles: the same numbers exactly.
+    for (const char* key : {"max_abs_rotation_rad", "max_rotation_over_alpha", "max_rotation_time_s",
+                            "max_abs_theta_dot_rad_s", "impacts", "uplifts", "uplift_time_s", "overturned",
+                            "overturn_time_s", "energy_lost_j_per_kg", "end_time_s", "alpha_rad"}) {
+      test::expect_same(t.at(row, key), single.at(key), key);
+    }
+    test::expect_same(t.at(row, "governing_azimuth_deg"), single.at("orientation").at("governing_azimuth_deg"),
+                      "governing_azimuth_deg");
+    test::expect_same(t.at(row, "governing_axis"), single.at("orientation").at("governing_axis"), "governing_axis");
+    EXPECT_EQ(t.at(row, "depth_m"), object == 0 ? "0.4" : "");
+  }
+}
+
+TEST_F(CliOriented, BadSetSweepsExitTwoNamingTheKey) {
+  const std::string set = "[[motions.set]]\nh1 = \"m.h1.csv\"\nh2 = \"m.h2.csv\"\nazimuths_deg = [0, 90]\n";
+  const std::string block = "[[object]]\nmodel = \"rock\"\nshape = \"block\"\nwidth = \"20cm\"\nheight = \"80cm\"\n";
+  for (const auto& [text, key] : {
+           std::pair{"[motions]\n" + set + block, std::string("bearing")},
+           std::pair{"[motions]\nbearing_deg = 10\nfiles = \"m.h1.csv\"\n" + block, std::string("bearing_deg")},
+           std::pair{"[motions]\nbearing_deg = 10\n" + set + "[[object]]\nmodel = \"slide\"\nmu = 0.2\n",
+                     std::string("object[1]")},
+           std::pair{"[motions]\nfiles = \"m.h1.csv\"\n" + block + "depth = \"40cm\"\n",
+                     std::string("object[1].depth")},
+           std::pair{"[motions]\nbearing_deg = 10\n" + set + block + "depth = \"-4cm\"\n",
+                     std::string("object[1].depth")},
+           std::pair{"[motions]\nbearing_deg = 10\n[[motions.set]]\nh1 = \"m.h1.csv\"\nh2 = \"m.h2.csv\"\n" + block,
+                     std::string("azimuths_deg")},
+           std::pair{"[motions]\nbearing_deg = 10\n[[motions.set]]\nh1 = \"m.h1.csv\"\n" + block,
+                     std::string("motions.set[1].h2")},
+           std::pair{"[motions]\nbearing_deg = 10\ndirection_step_deg = 7\n" + set + block,
+                     std::string("direction_step_deg")}}) {
+    test::write_file(dir.path() / "bad.toml", text);
+    const auto r = test::run_cli("sweep " + quote(dir.path() / "bad.toml") + " --quiet");
+    EXPECT_EQ(r.exit_code, 2) << text << r.err;
+    EXPECT_NE(r.err.find(key), std::string::npos) << text << r.err;
+  }
+}
+
+}  // namespace
+}  // namespace topple
