@@ -137,7 +137,6 @@ nlohmann::ordered_json rotd_json(const RotDValue& v, double scale, const MotionS
 
 /// Several files: each component, then the pair's RotD.
 void run_info_set(const InfoOptions& o, const MotionOptions& base) {
-  if (!o.plot.empty()) throw parameter_error("--plot", "draws one record; give one file");
   const double g = base.g_m_s2;
   const auto channels = channels_of(o, base);
   std::vector<GroundMotion> motions;
@@ -175,6 +174,25 @@ void run_info_set(const InfoOptions& o, const MotionOptions& base) {
   require_finite({{"RotD50 PGA", rotd.pga_m_s2.rotd50}, {"RotD100 PGA", rotd.pga_m_s2.rotd100}});
   for (const RotDValue& v : rotd.psa_m_s2) require_finite({{"RotD50 PSA", v.rotd50}, {"RotD100 PSA", v.rotd100}});
   for (const std::string& w : warnings) fmt::print(stderr, "warning: {}\n", w);
+  if (!o.plot.empty()) {
+    // Every component on the set's grid, each with its ground velocity, displacement and PSA on Tp's periods
+    // (spectra.hpp), and the pair's RotD50 / RotD100 PSA on the same periods.
+    const std::vector<double> plot_periods = tp_periods_s();
+    const RotDMeasures plot_rotd = rotd_measures(set, plot_periods, 0.05);
+    std::vector<plot::ComponentRecord> components;
+    const auto add = [&](std::string label, const GroundMotion& m) {
+      components.push_back({std::move(label), &m, integrate_ground(m), response_spectrum(m, plot_periods, 0.05)});
+    };
+    add(azimuths ? fmt::format("H1 ({:g} deg)", azimuths->first_deg) : "H1", set.first());
+    add(azimuths ? fmt::format("H2 ({:g} deg)", azimuths->second_deg) : "H2", set.second());
+    if (set.has_vertical()) add("V (up)", set.vertical());
+    const auto& meta = h1.metadata();
+    const std::string name = !meta.event.empty() ? meta.event + (meta.station.empty() ? "" : ", " + meta.station)
+                                                 : plot::file_label(o.files[0]);
+    const std::string title = fmt::format("{}: RotD50 PGA {:.3g} g, RotD100 {:.3g} g", name,
+                                          rotd.pga_m_s2.rotd50 / g, rotd.pga_m_s2.rotd100 / g);
+    plot::render(plot::record_set_figure(components, &plot_rotd, g, title), o.plot);
+  }
   if (o.json) {
     nlohmann::ordered_json out;
     out["components"] = nlohmann::ordered_json::array();
@@ -227,6 +245,7 @@ void run_info_set(const InfoOptions& o, const MotionOptions& base) {
     fmt::print("  {:<8g}  {:<9.5f}  {:<9.5f}  {}\n", periods[p], rotd.psa_m_s2[p].rotd50 / g,
                rotd.psa_m_s2[p].rotd100 / g, direction(rotd.psa_m_s2[p].rotd100_angle_deg));
   }
+  if (!o.plot.empty()) fmt::print("figure      {}\n", o.plot);
 }
 
 }  // namespace
@@ -251,7 +270,8 @@ void add_info_command(CLI::App& app) {
   cmd->add_flag("--json", info->json, "Print one JSON object instead of text");
   add_quiet_flag(*cmd, info->quiet);  // no bar: info is quick; accepted so that every command takes --quiet
   cmd->add_option("--plot", info->plot, "Draw acceleration, velocity, displacement and the 5%-damped PSA spectrum "
-                                        "with Tp marked to this .svg or .png file (gnuplot)");
+                                        "with Tp marked to this .svg or .png file (gnuplot); with H1 H2 [V], every "
+                                        "component and the pair's RotD50 / RotD100 PSA");
   cmd->callback([options, info] {
     check_plot_path(info->plot);
     check_g(options->g_m_s2);

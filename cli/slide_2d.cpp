@@ -11,6 +11,7 @@
 #include "common.hpp"
 #include "topple/error.hpp"
 #include "topple/io/write.hpp"
+#include "topple/plot.hpp"
 
 namespace topple::cli {
 
@@ -35,10 +36,13 @@ ComponentAzimuths parse_azimuths(const std::string& text) {
 
 void run_bidirectional_slide(const GroundMotion& first, const GroundMotion& second, const ComponentAzimuths& azimuths,
                              const SlidingBlock& block, const GroundMotion* vertical, bool json,
-                             const std::string& motion_name, const std::string& second_name, double scale_factor) {
-  const Sliding2dSummary s = [&] {
+                             const std::string& motion_name, const std::string& second_name, double scale_factor,
+                             const std::string& plot_path) {
+  // With --plot the run keeps its history (slide_2d); its summary is the summary-only path's (sliding2d.hpp).
+  const Sliding2dResult r = [&] {
     try {
-      return slide_2d_summary(first, second, azimuths, block, vertical);
+      if (!plot_path.empty()) return slide_2d(first, second, azimuths, block, vertical);
+      return Sliding2dResult{slide_2d_summary(first, second, azimuths, block, vertical), {}};
     } catch (const InputError& e) {
       // The library names its fields; the user typed options.
       if (!e.where().file.empty()) throw;
@@ -48,6 +52,7 @@ void run_bidirectional_slide(const GroundMotion& first, const GroundMotion& seco
                             e.problem());
     }
   }();
+  const Sliding2dSummary& s = r.summary;
   require_finite({{"residual displacement", s.residual_displacement_m},
                   {"max |displacement|", s.max_abs_displacement_m},
                   {"path length", s.path_length_m},
@@ -56,6 +61,13 @@ void run_bidirectional_slide(const GroundMotion& first, const GroundMotion& seco
                   {"input work", s.input_work_J_kg},
                   {"friction work", s.friction_work_J_kg}});
   const double g = block.g_m_s2;
+  if (!plot_path.empty()) {
+    const std::string title =
+        fmt::format("Bidirectional sliding, mu_s = {:g}: {} and {}{}; residual {:.3g} m", block.mu_static,
+                    plot::file_label(motion_name), plot::file_label(second_name),
+                    vertical != nullptr ? " with vertical" : "", s.residual_displacement_m);
+    plot::render(plot::sliding_2d_figure(first, second, azimuths, vertical, r, block, title), plot_path);
+  }
   if (json) {
     nlohmann::ordered_json j = io::sliding_2d_summary_json(s, block);
     io::RunInput in;
@@ -95,6 +107,7 @@ void run_bidirectional_slide(const GroundMotion& first, const GroundMotion& seco
                        "is not valid after that\n", block.slope_rad != 0.0 ? "the normal force" : "g + a_v",
                *s.contact_lost_time_s);
   }
+  if (!plot_path.empty()) fmt::print("figure written to {}\n", plot_path);
 }
 
 }  // namespace topple::cli

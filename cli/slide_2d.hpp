@@ -11,9 +11,11 @@ namespace topple::cli {
 [[nodiscard]] ComponentAzimuths parse_azimuths(const std::string& text);
 
 /// Runs the bidirectional solver on `first` and `second` (second already scaled with the first) and prints the text
-/// summary or, with `json`, the JSON object (kSliding2dFields, then "input").
+/// summary or, with `json`, the JSON object (kSliding2dFields, then "input"); with `plot_path`, the figure of both
+/// components and the block's east and north response (plot::sliding_2d_figure).
 void run_bidirectional_slide(const GroundMotion& first, const GroundMotion& second, const ComponentAzimuths& azimuths,
                              const SlidingBlock& block, const GroundMotion* vertical, bool json,
-                             const std::string& motion_name, const std::string& second_name, double scale_factor);
+                             const std::string& motion_name, const std::string& second_name, double scale_factor,
+                             const std::string& plot_path = "");
 
 }  // namespace topple::cli

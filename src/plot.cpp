@@ -511,4 +511,92 @@ Figure record_figure(const GroundMotion& m, const GroundVelocityDisplacement& gr
   return f;
 }
 
+
+namespace {
+
+/// The palette of a station's components: H1, H2, V (distinct in colour and in print).
+constexpr const char* kComponentColors[] = {"#2171b5", "#c0392b", "#2e8b57"};
+
+const char* component_color(std::size_t k) { return kComponentColors[k % 3]; }
+
+}  // namespace
+
+Figure record_set_figure(const std::vector<ComponentRecord>& components, const RotDMeasures* rotd, double g,
+                         const std::string& title) {
+  Figure f;
+  f.title = title;
+  f.xlabel = "time (s)";
+  f.panel_height_px = 220;
+  Panel accel{"acceleration (g)", {}, {}, {}, false, false};
+  Panel vel{"velocity (m/s)", {}, {}, {}, false, false};
+  Panel disp{"displacement (m)", {}, {}, {}, false, false};
+  Panel spectrum{"pseudo-acceleration (g)", {}, {}, {}, true, false};
+  for (std::size_t k = 0; k < components.size(); ++k) {
+    const ComponentRecord& c = components[k];
+    const GroundMotion& m = *c.motion;
+    Series a = ground_series(m, g, m.end_time_s());
+    a.label = c.label;
+    a.color = component_color(k);
+    accel.series.push_back(std::move(a));
+    std::vector<double> t(m.size());
+    for (std::size_t i = 0; i < m.size(); ++i) t[i] = m.time_s(i);
+    vel.series.push_back({c.label, t, c.ground.velocity_m_s, "lines", component_color(k), 1.2});
+    disp.series.push_back({c.label, t, c.ground.displacement_m, "lines", component_color(k), 1.2});
+    std::vector<double> psa(c.spectrum.psa_m_s2.size());
+    for (std::size_t i = 0; i < psa.size(); ++i) psa[i] = c.spectrum.psa_m_s2[i] / g;
+    spectrum.series.push_back({fmt::format("{} PSA, {:.3g} % damping", c.label, 100.0 * c.spectrum.damping),
+                               c.spectrum.period_s, std::move(psa), "lines", component_color(k), 1.2});
+  }
+  if (rotd != nullptr) {
+    std::vector<double> d50(rotd->psa_m_s2.size()), d100(rotd->psa_m_s2.size());
+    for (std::size_t i = 0; i < d50.size(); ++i) {
+      d50[i] = rotd->psa_m_s2[i].rotd50 / g;
+      d100[i] = rotd->psa_m_s2[i].rotd100 / g;
+    }
+    spectrum.series.push_back({"RotD50 (pair)", rotd->period_s, std::move(d50), "lines", "#333333", 2.2});
+    spectrum.series.push_back({"RotD100 (pair)", rotd->period_s, std::move(d100), "lines dt 2", "#333333", 1.6});
+  }
+  f.panels = {accel, vel, disp, spectrum};
+  f.own_xlabels = {"", "", "", "period (s)"};
+  return f;
+}
+
+Figure sliding_2d_figure(const GroundMotion& first, const GroundMotion& second, const ComponentAzimuths& azimuths,
+                         const GroundMotion* vertical, const Sliding2dResult& r, const SlidingBlock& block,
+                         const std::string& title) {
+  const double g = block.g_m_s2;
+  const auto& h = r.history;
+  const double t_end = h.time_s.empty() ? first.end_time_s() : h.time_s.back();
+  Figure f;
+  f.title = title;
+  f.xlabel = "time (s)";
+  Panel accel{"acceleration (g)", {}, {}, {}, false, false};
+  const std::pair<const GroundMotion*, std::string> inputs[] = {
+      {&first, fmt::format("H1 ({:g} deg)", azimuths.first_deg)},
+      {&second, fmt::format("H2 ({:g} deg)", azimuths.second_deg)},
+      {vertical, "V (up)"}};
+  for (std::size_t k = 0; k < 3; ++k) {
+    if (inputs[k].first == nullptr) continue;
+    Series s = ground_series(*inputs[k].first, g, t_end);
+    s.label = inputs[k].second;
+    s.color = component_color(k);
+    accel.series.push_back(std::move(s));
+  }
+  // The onset on level ground without a vertical: |a_h| = mu_s g (sliding2d.hpp); a reference, not the run's own
+  // threshold when there is a slope or a vertical.
+  accel.levels.push_back({block.mu_static, "onset +mu_s g (level, no vertical)"});
+  accel.levels.push_back({-block.mu_static, "onset -mu_s g"});
+  Panel vel{"relative velocity (m/s)",
+            {{"east", h.time_s, h.east_m_s, "lines", "#2171b5", 1.5}, {"north", h.time_s, h.north_m_s, "lines", "#c0392b", 1.5}},
+            {}, {}, false, false};
+  Panel disp{"relative displacement (m)",
+             {{"east", h.time_s, h.east_m, "lines", "#2171b5", 1.8}, {"north", h.time_s, h.north_m, "lines", "#c0392b", 1.8}},
+             {}, {}, false, false};
+  for (std::size_t i = 1; i < h.slipping.size(); ++i) {
+    if (h.slipping[i] != 0 && h.slipping[i - 1] == 0) accel.marks_x.push_back(h.time_s[i]);
+  }
+  f.panels = {accel, vel, disp};
+  return f;
+}
+
 }  // namespace topple::plot

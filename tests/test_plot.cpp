@@ -13,8 +13,10 @@
 #include "topple/plot.hpp"
 #include "topple/pulses.hpp"
 #include "topple/rocking.hpp"
+#include "topple/rotd.hpp"
 #include "topple/sliding.hpp"
 #include "topple/spectra.hpp"
+#include "topple/synthesis.hpp"
 
 namespace topple {
 namespace {
@@ -140,6 +142,107 @@ TEST(Plot, CliSlideWritesTheFigure) {
                                  (tmp.path() / "x.gif").string() + "'");
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.err.find(".svg or .png"), std::string::npos);
+}
+
+// ---- Pairs: every component drawn, not only the first ----
+
+SynthesizedSet small_station() {
+  SynthesisSetSpec spec;
+  spec.horizontal.pga_m_s2 = 0.4 * kStandardGravity;
+  spec.horizontal.predominant_frequency_hz = 3.0;
+  spec.horizontal.duration_s = 8.0;
+  spec.horizontal.seed = 5;
+  return synthesize_set(spec);  // H1 at 90 deg, H2 at 0 deg, a vertical
+}
+
+TEST(PlotPairs, RecordSetFigureDrawsEveryComponentAndTheRotDSpectrum) {
+  const SynthesizedSet s = small_station();
+  const MotionSet set = MotionSet::make(s.first, &s.second, ComponentAzimuths{90.0, 0.0}, &*s.vertical);
+  const std::vector<double> periods{0.1, 0.3, 1.0, 3.0};
+  const RotDMeasures rotd = rotd_measures(set, periods);
+  std::vector<plot::ComponentRecord> c;
+  for (const auto& [label, m] : {std::pair{"H1 (90 deg)", &set.first()}, std::pair{"H2 (0 deg)", &set.second()},
+                                 std::pair{"V (up)", &set.vertical()}}) {
+    c.push_back({label, m, integrate_ground(*m), response_spectrum(*m, periods)});
+  }
+  const plot::Figure f = plot::record_set_figure(c, &rotd, kStandardGravity, "pair");
+  ASSERT_EQ(f.panels.size(), 4u);
+  for (std::size_t p = 0; p < 3; ++p) ASSERT_EQ(f.panels[p].series.size(), 3u) << "panel " << p;
+  // The second component's acceleration is drawn, in g, sample for sample (a division: exact to 1 ulp).
+  const auto& h2 = f.panels[0].series[1];
+  ASSERT_EQ(h2.y.size(), set.size());
+  EXPECT_EQ(h2.label, "H2 (0 deg)");
+  for (std::size_t i = 0; i < set.size(); i += 97) EXPECT_EQ(h2.y[i], set.second().accel_m_s2()[i] / kStandardGravity);
+  // Spectrum panel: three components' PSA, then the pair's RotD50 and RotD100 at their periods, in g.
+  ASSERT_EQ(f.panels[3].series.size(), 5u);
+  const auto& d50 = f.panels[3].series[3];
+  EXPECT_EQ(d50.label, "RotD50 (pair)");
+  EXPECT_EQ(d50.x, periods);
+  for (std::size_t k = 0; k < periods.size(); ++k) EXPECT_EQ(d50.y[k], rotd.psa_m_s2[k].rotd50 / kStandardGravity);
+  EXPECT_EQ(f.panels[3].series[4].label, "RotD100 (pair)");
+  // The script names every component in every panel's legend and the RotD curves once.
+  const std::string script = plot::gnuplot_script(f, "pair.svg");
+  EXPECT_EQ(count(script, "title \"H1 (90 deg)\""), 3u);
+  EXPECT_EQ(count(script, "title \"H2 (0 deg)\""), 3u);
+  EXPECT_EQ(count(script, "title \"V (up)\""), 3u);
+  EXPECT_EQ(count(script, "title \"RotD50 (pair)\""), 1u);
+  EXPECT_EQ(count(script, "title \"RotD100 (pair)\""), 1u);
+  EXPECT_EQ(count(script, "set xlabel \"period (s)\""), 1u);
+}
+
+TEST(PlotPairs, Sliding2dFigureDrawsBothComponentsAndBothDirections) {
+  const SynthesizedSet s = small_station();
+  const ComponentAzimuths az{90.0, 0.0};
+  const SlidingBlock block = SlidingBlock::make(0.2);
+  const Sliding2dResult r = slide_2d(s.first, s.second, az, block, &*s.vertical);
+  ASSERT_GT(r.summary.slip_episodes, 0);  // the figure shows a response, not a block at rest
+  const plot::Figure f = plot::sliding_2d_figure(s.first, s.second, az, &*s.vertical, r, block, "2d");
+  ASSERT_EQ(f.panels.size(), 3u);
+  ASSERT_EQ(f.panels[0].series.size(), 3u);
+  EXPECT_EQ(f.panels[0].series[0].label, "H1 (90 deg)");
+  EXPECT_EQ(f.panels[0].series[1].label, "H2 (0 deg)");
+  EXPECT_EQ(f.panels[0].series[2].label, "V (up)");
+  ASSERT_EQ(f.panels[0].levels.size(), 2u);
+  EXPECT_EQ(f.panels[0].levels[0].y, 0.2);  // mu_s g in g
+  EXPECT_EQ(f.panels[0].levels[1].y, -0.2);
+  // Slip starts marked: one per transition from stuck to slipping, at most one per episode.
+  EXPECT_GT(f.panels[0].marks_x.size(), 0u);
+  EXPECT_LE(f.panels[0].marks_x.size(), static_cast<std::size_t>(r.summary.slip_episodes));
+  for (std::size_t p = 1; p < 3; ++p) {
+    ASSERT_EQ(f.panels[p].series.size(), 2u);
+    EXPECT_EQ(f.panels[p].series[0].label, "east");
+    EXPECT_EQ(f.panels[p].series[1].label, "north");
+  }
+  EXPECT_EQ(f.panels[2].series[0].y, r.history.east_m);
+  EXPECT_EQ(f.panels[2].series[1].y, r.history.north_m);
+  const std::string script = plot::gnuplot_script(f, "2d.svg");
+  EXPECT_EQ(count(script, "title \"H2 (0 deg)\""), 1u);
+  EXPECT_EQ(count(script, "title \"north\""), 2u);
+}
+
+TEST(PlotPairs, CliInfoAndSlideDrawPairs) {
+  test::TempDir tmp;
+  const std::string base = (tmp.path() / "s.csv").string();
+  const auto made = test::run_cli("synth --pga 0.4g --freq 3Hz --duration 8s --seed 5 --components 3 --out '" + base + "'");
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  const std::string h1 = (tmp.path() / "s.h1.csv").string(), h2 = (tmp.path() / "s.h2.csv").string(),
+                    v = (tmp.path() / "s.v.csv").string();
+  const auto info_svg = tmp.path() / "info.svg";
+  const auto info = test::run_cli("info '" + h1 + "' '" + h2 + "' '" + v + "' --azimuths 90,0 --plot '" +
+                                  info_svg.string() + "'");
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  const std::string svg = slurp(info_svg);
+  for (const char* text : {"H1 (90 deg)", "H2 (0 deg)", "V (up)", "RotD50 (pair)"}) {
+    EXPECT_NE(svg.find(text), std::string::npos) << text;
+  }
+  const auto slide_svg = tmp.path() / "slide.svg";
+  const auto slide = test::run_cli("slide '" + h1 + "' --h2 '" + h2 + "' --vertical '" + v +
+                                   "' --azimuths 90,0 --mu 0.2 --plot '" + slide_svg.string() + "'");
+  ASSERT_EQ(slide.exit_code, 0) << slide.err;
+  const std::string svg2 = slurp(slide_svg);
+  for (const char* text : {"H2 (0 deg)", "north", "relative displacement (m)"}) {
+    EXPECT_NE(svg2.find(text), std::string::npos) << text;
+  }
 }
 
 // Titles name files by their file name: a title travels with the figure (reports, other machines).

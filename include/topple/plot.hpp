@@ -13,7 +13,9 @@
 #include "topple/intensity.hpp"
 #include "topple/object_spectra.hpp"
 #include "topple/rocking.hpp"
+#include "topple/rotd.hpp"
 #include "topple/sliding.hpp"
+#include "topple/sliding2d.hpp"
 #include "topple/spectra.hpp"
 
 namespace topple::io {
@@ -131,6 +133,30 @@ struct Mark {
 [[nodiscard]] Figure record_figure(const GroundMotion& motion, const GroundVelocityDisplacement& ground,
                                    const ResponseSpectrum& spectrum, const std::vector<Mark>& period_marks,
                                    double g_m_s2, const std::string& title);
+
+/// One component of a station for record_set_figure: its name in the legend (e.g. "H1 (90 deg)", "V"), the motion
+/// on the set's grid, its ground velocity and displacement and its response spectrum (the caller computes them).
+struct ComponentRecord {
+  std::string label;
+  const GroundMotion* motion = nullptr;
+  GroundVelocityDisplacement ground;
+  ResponseSpectrum spectrum;
+};
+
+/// record_figure for the components of one station (`topple info H1 H2 [V] --plot`): acceleration (g), velocity
+/// (m/s) and displacement (m) of every component in one panel each, and below them every component's PSA (g) with
+/// the pair's RotD50 and RotD100 PSA (`rotd`, its periods; none drawn when null).
+[[nodiscard]] Figure record_set_figure(const std::vector<ComponentRecord>& components, const RotDMeasures* rotd,
+                                       double g_m_s2, const std::string& title);
+
+/// Bidirectional sliding (`topple slide H1 --h2 H2 [--vertical V] --plot`): both horizontal components (and the
+/// vertical) in g with the level-ground onset levels +-mu_s g, the relative velocity and displacement of the block,
+/// east and north (m/s, m), slip starts marked. `first`, `second`, `vertical` with their azimuths as given to
+/// slide_2d.
+[[nodiscard]] Figure sliding_2d_figure(const GroundMotion& first, const GroundMotion& second,
+                                       const ComponentAzimuths& azimuths, const GroundMotion* vertical,
+                                       const Sliding2dResult& result, const SlidingBlock& block,
+                                       const std::string& title);
 
 // ---- Object spectra and fragility (src/plot_object_spectra.cpp) ----
 

@@ -707,6 +707,105 @@ RockingResult
     Summary (angles in rad, times in s) and histories.
 )";
 
+inline constexpr const char* motion_set =
+    R"(One station's ground motion in up to three components on one time grid (motion_set.hpp).
+
+MotionSet(first, second=None, *, vertical=None, azimuths_deg=None)
+
+The components are merged exactly onto the union of their sample times (each piecewise linear between its own
+samples, zero outside its record, jumps kept): different dt or lengths are not an error. Components whose time
+spans overlap over less than half the longest span are refused (InputError, field "time span").
+
+Parameters
+----------
+first : GroundMotion
+    First horizontal component, positive toward its azimuth.
+second : GroundMotion or None
+    Second horizontal component, perpendicular to the first.
+vertical : GroundMotion or None
+    Vertical component, positive up.
+azimuths_deg : (float, float) or None
+    Azimuths of the first and second components, deg clockwise from north (east = 90), perpendicular
+    (second = first +- 90); None when unknown (projection on an azimuth needs them; RotD does not).
+    InputError (field "azimuths_deg") when not perpendicular to 1e-6 deg.
+
+Attributes
+----------
+npts : int
+    Number of samples of the merged grid.
+first : GroundMotion
+    The first horizontal component on the merged grid, acceleration in m/s^2.
+second : GroundMotion or None
+    The second horizontal component on the merged grid (None when absent).
+vertical : GroundMotion or None
+    The vertical component on the merged grid, positive up (None when absent).
+azimuths_deg : (float, float) or None
+    The horizontal components' azimuths, deg clockwise from north, or None when unknown.
+)";
+
+inline constexpr const char* projected =
+    R"(The horizontal acceleration projected on a direction: a1 cos(az - az1) + a2 cos(az - az2).
+
+Parameters
+----------
+azimuth_deg : float
+    Direction, deg clockwise from north. With one horizontal component only its own azimuth or the opposite one.
+
+Returns
+-------
+GroundMotion
+    The projected acceleration on the set's grid, m/s^2 (equal to the first component at its own azimuth).
+    InputError (field "azimuth_deg") when the azimuths are unknown.
+)";
+
+inline constexpr const char* rotated =
+    R"(The horizontal pair rotated to azimuth_deg and azimuth_deg + 90 (clockwise).
+
+Parameters
+----------
+azimuth_deg : float
+    Azimuth of the first rotated component, deg clockwise from north.
+
+Returns
+-------
+(GroundMotion, GroundMotion)
+    The components toward azimuth_deg and azimuth_deg + 90, m/s^2. InputError when the azimuths are unknown.
+)";
+
+#define TOPPLE_DOC_ROTD_RETURNS                                                                                     \
+  "Returns\n-------\ndict\n"                                                                                        \
+  "    The numbers `topple info H1 H2 --json` prints under \"rotd\" (Boore 2010; angles 0..179 deg from the first\n" \
+  "    component toward the second; RotD50 the median over the angles, RotD100 the largest):\n"                      \
+  "    angles_deg (numpy array, deg), pga_rotd50_m_s2, pga_rotd100_m_s2 (float, m/s^2), pga_rotd50_g,\n"            \
+  "    pga_rotd100_g (float, g), pga_rotd100_angle_deg (deg from the first component), pga_rotd100_azimuth_deg\n"    \
+  "    (deg clockwise from north in [0, 180), None when the azimuths are unknown), pga_by_angle_m_s2 (180 values,\n" \
+  "    m/s^2), period_s (s), damping, psa_rotd50_m_s2, psa_rotd100_m_s2 (m/s^2), psa_rotd50_g, psa_rotd100_g (g),\n" \
+  "    psa_rotd100_angle_deg (deg), psa_rotd100_azimuth_deg (list of float or None), psa_by_angle_m_s2 (array\n"     \
+  "    periods x 180, m/s^2), merged_npts, azimuths_deg, g_m_s2 (m/s^2).\n"
+
+inline constexpr const char* motion_set_rotd =
+    "RotD50 and RotD100 of the PGA and of the PSA of the horizontal pair (Boore 2010).\n\n"
+    "Parameters\n----------\n"
+    "periods_s : numpy.ndarray of float64, sequence of float or None\n"
+    "    Oscillator periods, s (> 0); None: topple info's periods 0.1, 0.2, 0.3, 0.5, 0.75, 1, 1.5, 2, 3, 4 s.\n"
+    "damping : float\n    Damping ratio of the oscillators (dimensionless fraction of critical), 0 <= damping < 1.\n"
+    "g : float\n    Gravity, m/s^2, for the values in g.\n\n" TOPPLE_DOC_ROTD_RETURNS
+    "    InputError (field \"second\") when the set has no second horizontal component.\n";
+
+inline constexpr const char* rotd =
+    "RotD50 and RotD100 of the PGA and of the 5 %-damped PSA of two horizontal components (Boore 2010).\n\n"
+    "The same numbers as `topple info H1 H2 --json` (rotd.hpp; PGA exact on the merged grid, PSA by the exact\n"
+    "Nigam-Jennings oscillator of each component combined at every angle).\n\n"
+    "Parameters\n----------\n"
+    "first : GroundMotion\n    First horizontal component (acceleration, m/s^2 inside).\n"
+    "second : GroundMotion\n    Second horizontal component, perpendicular to the first; merged exactly with it.\n"
+    "azimuths_deg : (float, float) or None\n"
+    "    The components' azimuths, deg clockwise from north (perpendicular); only the RotD100 azimuths need them.\n"
+    "periods_s : numpy.ndarray of float64, sequence of float or None\n"
+    "    Oscillator periods, s (> 0); None: topple info's periods 0.1, 0.2, 0.3, 0.5, 0.75, 1, 1.5, 2, 3, 4 s.\n"
+    "damping : float\n    Damping ratio of the oscillators (dimensionless fraction of critical), 0 <= damping < 1.\n"
+    "g : float\n    Gravity, m/s^2, for the values in g.\n\n" TOPPLE_DOC_ROTD_RETURNS;
+
 inline constexpr const char* rock_oriented =
     R"(Rocking of an oriented object under two horizontal components (and the vertical), as `topple rock --h2`.
 
@@ -768,11 +867,29 @@ zeta_g : float
     Damping ratio of the ground filter (dimensionless).
 g : float
     Gravity, m/s^2, that pga_g is in.
+components : {1, 2, 3}
+    1: one motion (as before). 2: two horizontal components, the same process driven by white noises with
+    correlation `coherence`; pga_g is then the pair's RotD50 PGA (Boore 2010), both components scaled by one
+    factor. 3: and a vertical component, its own independent noise, PGA vh_ratio x the RotD50 PGA, predominant
+    frequency vh_freq_ratio x freq_hz (synthesis.hpp, docs/method.md "Synthetic motion sets"). As
+    `topple synth --components`.
+coherence : float or None
+    components 2 or 3: correlation coefficient of the two horizontal noises, -1..1 (dimensionless); None: 0
+    (independent).
+azimuths_deg : (float, float) or None
+    components 2 or 3: the components' azimuths, deg clockwise from north, perpendicular; None: (90, 0).
+vh_ratio : float or None
+    components 3: vertical PGA over the pair's RotD50 PGA (dimensionless, (0, 2]); None: 2/3.
+vh_freq_ratio : float or None
+    components 3: vertical over horizontal predominant frequency (dimensionless, 0.5-4); None: 1.5.
 
 Returns
 -------
-GroundMotion
-    The motion (PGA exactly pga_g).
+GroundMotion or MotionSet
+    components=1: the motion (PGA exactly pga_g). 2 or 3: a MotionSet with the azimuths (and the vertical),
+    the same bits as the CSV files `topple synth --components 2|3` writes.
+    The set-only parameters are refused (InputError naming them) with components=1, vh_ratio and
+    vh_freq_ratio with components=2.
 )";
 
 inline constexpr const char* intensity = R"(Intensity measures of a motion, as `topple info --json` names them.

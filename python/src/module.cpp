@@ -28,6 +28,7 @@
 #include <nanobind/nanobind.h>
 #include <nanobind/ndarray.h>
 #include <nanobind/stl/optional.h>
+#include <nanobind/stl/pair.h>
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/variant.h>
 #include <nanobind/stl/vector.h>
@@ -55,6 +56,7 @@
 #include "topple/io/write.hpp"
 #include "topple/report.hpp"
 #include "topple/rocking.hpp"
+#include "topple/rotd.hpp"
 #include "topple/sliding.hpp"
 #include "topple/sliding2d.hpp"
 #include "topple/spectra.hpp"
@@ -481,6 +483,165 @@ nb::ndarray<nb::numpy, T, nb::ndim<2>> to_numpy_2d(std::vector<T> values, std::s
   nb::capsule owner(owned.get(), [](void* p) noexcept { delete static_cast<std::vector<T>*>(p); });
   owned.release();
   return nb::ndarray<nb::numpy, T, nb::ndim<2>>(data, {rows, cols}, owner);
+}
+
+// ---- motion sets and RotD ----
+
+/// azimuths_deg = (first, second), degrees clockwise from north, or None (unknown).
+std::optional<ComponentAzimuths> azimuths_arg(const std::optional<std::vector<double>>& azimuths_deg) {
+  if (!azimuths_deg) return std::nullopt;
+  if (azimuths_deg->size() != 2) {
+    throw parameter_error("azimuths_deg", fmt::format("expected the two horizontal components' azimuths in degrees, "
+                                                      "e.g. (90, 0), got {} values", azimuths_deg->size()));
+  }
+  return ComponentAzimuths{(*azimuths_deg)[0], (*azimuths_deg)[1]};
+}
+
+/// Runs `f`, renaming the fields the library names for a motion set to the Python parameters (as the CLI maps them
+/// to its options): "azimuths" -> azimuths_deg, "azimuth" -> azimuth_deg. Errors located in a file are kept.
+template <class F>
+auto with_set_fields(F&& f) -> decltype(f()) {
+  try {
+    return f();
+  } catch (const InputError& e) {
+    if (!e.where().file.empty()) throw;
+    const std::string& field = e.where().field;
+    if (field == "azimuths") throw parameter_error("azimuths_deg", e.problem());
+    if (field == "azimuth") throw parameter_error("azimuth_deg", e.problem());
+    throw;
+  }
+}
+
+MotionSet make_motion_set(const GroundMotion& first, const GroundMotion* second, const GroundMotion* vertical,
+                          const std::optional<std::vector<double>>& azimuths_deg) {
+  const std::optional<ComponentAzimuths> azimuths = azimuths_arg(azimuths_deg);
+  return with_set_fields([&] { return MotionSet::make(first, second, azimuths, vertical); });
+}
+
+nb::object azimuths_to_python(const MotionSet& set) {
+  const auto& az = set.azimuths();
+  return az ? nb::object(nb::make_tuple(az->first_deg, az->second_deg)) : nb::none();
+}
+
+/// RotD50 / RotD100 of a set's pair (rotd.hpp, rotd_measures): the numbers `topple info H1 H2 --json` prints under
+/// "rotd", in m/s^2 and in g, and the values at every angle.
+nb::dict rotd_dict(const MotionSet& set, nb::handle periods, double damping, double g_m_s2) {
+  if (!(g_m_s2 > 0.0) || !std::isfinite(g_m_s2)) throw parameter_error("g", "g must be a finite number > 0 (m/s^2)");
+  const std::vector<double> p = periods.is_none() ? rotd_periods_s() : to_vector(periods, "periods_s");
+  RotDMeasures r;
+  {
+    nb::gil_scoped_release release;
+    r = with_set_fields([&] { return rotd_measures(set, p, damping); });
+  }
+  const std::size_t n_angles = r.pga_by_angle_m_s2.size();
+  const std::size_t n_periods = r.psa_m_s2.size();
+  std::vector<double> psa50(n_periods), psa100(n_periods), psa50_g(n_periods), psa100_g(n_periods),
+      psa_angle(n_periods), psa_by_angle;
+  nb::list psa_azimuth;
+  psa_by_angle.reserve(n_periods * n_angles);
+  for (std::size_t k = 0; k < n_periods; ++k) {
+    const RotDValue& v = r.psa_m_s2[k];
+    psa50[k] = v.rotd50;
+    psa100[k] = v.rotd100;
+    psa50_g[k] = v.rotd50 / g_m_s2;
+    psa100_g[k] = v.rotd100 / g_m_s2;
+    psa_angle[k] = v.rotd100_angle_deg;
+    psa_azimuth.append(optional_float(rotd_azimuth_deg(set, v.rotd100_angle_deg)));
+    psa_by_angle.insert(psa_by_angle.end(), r.psa_by_angle_m_s2[k].begin(), r.psa_by_angle_m_s2[k].end());
+  }
+  nb::dict d;
+  d["angles_deg"] = to_numpy(rotd_angles_deg());
+  d["pga_rotd50_m_s2"] = r.pga_m_s2.rotd50;
+  d["pga_rotd100_m_s2"] = r.pga_m_s2.rotd100;
+  d["pga_rotd50_g"] = r.pga_m_s2.rotd50 / g_m_s2;
+  d["pga_rotd100_g"] = r.pga_m_s2.rotd100 / g_m_s2;
+  d["pga_rotd100_angle_deg"] = r.pga_m_s2.rotd100_angle_deg;
+  d["pga_rotd100_azimuth_deg"] = optional_float(rotd_azimuth_deg(set, r.pga_m_s2.rotd100_angle_deg));
+  d["pga_by_angle_m_s2"] = to_numpy(std::move(r.pga_by_angle_m_s2));
+  d["period_s"] = to_numpy(std::move(r.period_s));
+  d["damping"] = r.damping;
+  d["psa_rotd50_m_s2"] = to_numpy(std::move(psa50));
+  d["psa_rotd100_m_s2"] = to_numpy(std::move(psa100));
+  d["psa_rotd50_g"] = to_numpy(std::move(psa50_g));
+  d["psa_rotd100_g"] = to_numpy(std::move(psa100_g));
+  d["psa_rotd100_angle_deg"] = to_numpy(std::move(psa_angle));
+  d["psa_rotd100_azimuth_deg"] = psa_azimuth;
+  d["psa_by_angle_m_s2"] = to_numpy_2d(std::move(psa_by_angle), n_periods, n_angles);
+  d["merged_npts"] = set.size();
+  d["azimuths_deg"] = azimuths_to_python(set);
+  d["g_m_s2"] = g_m_s2;
+  return d;
+}
+
+/// synth: one motion (components=1, synthesize) or a horizontal pair and optionally a vertical (synthesize_set) as
+/// a MotionSet. The set-only parameters are refused with components=1, the vertical's with components=2: a value
+/// that would be ignored is a silent guess.
+nb::object run_synth(double pga_g, double freq_hz, double duration_s, std::uint64_t seed, double dt_s,
+                     const std::string& model, const std::string& envelope, double zeta_g, double g, int components,
+                     std::optional<double> coherence, std::optional<std::vector<double>> azimuths_deg,
+                     std::optional<double> vh_ratio, std::optional<double> vh_freq_ratio) {
+  SynthesisSpec spec;
+  spec.pga_m_s2 = pga_g * g;
+  spec.predominant_frequency_hz = freq_hz;
+  spec.duration_s = duration_s;
+  spec.dt_s = dt_s;
+  spec.seed = seed;
+  spec.model = parse_filter_model(model, "model");
+  spec.envelope = parse_envelope_kind(envelope, "envelope");
+  spec.ground_damping = zeta_g;
+  const auto in_g = [g](GroundMotion motion) {
+    RecordMetadata meta = motion.metadata();
+    meta.g_m_s2 = g;  // pga_g and accel_g are in the g it was asked in
+    motion.set_metadata(std::move(meta));
+    return motion;
+  };
+  if (components == 1) {
+    for (const auto& [name, given] : {std::pair{"coherence", coherence.has_value()},
+                                      std::pair{"azimuths_deg", azimuths_deg.has_value()},
+                                      std::pair{"vh_ratio", vh_ratio.has_value()},
+                                      std::pair{"vh_freq_ratio", vh_freq_ratio.has_value()}}) {
+      if (given) throw parameter_error(name, "is for components=2 or 3 (a horizontal pair)");
+    }
+    GroundMotion motion = [&] {
+      nb::gil_scoped_release release;
+      return synthesize(spec);
+    }();
+    return nb::cast(in_g(std::move(motion)));
+  }
+  if (components != 2 && components != 3) {
+    throw parameter_error("components", fmt::format("1, 2 (a horizontal pair) or 3 (and a vertical), got {}",
+                                                    components));
+  }
+  if (components == 2) {
+    if (vh_ratio) throw parameter_error("vh_ratio", "is for components=3 (with a vertical)");
+    if (vh_freq_ratio) throw parameter_error("vh_freq_ratio", "is for components=3 (with a vertical)");
+  }
+  SynthesisSetSpec set_spec;  // its defaults are the library's (synthesis.hpp)
+  set_spec.horizontal = spec;
+  if (coherence) set_spec.coherence = *coherence;
+  if (const auto az = azimuths_arg(azimuths_deg)) set_spec.azimuths = *az;
+  set_spec.vertical = components == 3;
+  if (vh_ratio) set_spec.vertical_pga_ratio = *vh_ratio;
+  if (vh_freq_ratio) set_spec.vertical_frequency_ratio = *vh_freq_ratio;
+  std::optional<SynthesizedSet> made;
+  try {
+    nb::gil_scoped_release release;
+    made.emplace(synthesize_set(set_spec));
+  } catch (const InputError& e) {
+    // The library names its fields; the caller typed these parameters.
+    const std::string& field = e.where().field;
+    if (field == "azimuths") throw parameter_error("azimuths_deg", e.problem());
+    if (field == "vertical_pga_ratio") throw parameter_error("vh_ratio", e.problem());
+    if (field == "vertical_frequency_ratio" || field.starts_with("vertical ")) {
+      throw parameter_error("vh_freq_ratio", e.problem());
+    }
+    throw;
+  }
+  const GroundMotion first = in_g(std::move(made->first));
+  const GroundMotion second = in_g(std::move(made->second));
+  const std::optional<GroundMotion> vertical =
+      made->vertical ? std::optional(in_g(std::move(*made->vertical))) : std::nullopt;
+  return nb::cast(MotionSet::make(first, &second, set_spec.azimuths, vertical ? &*vertical : nullptr));
 }
 
 // ---- inversion ----
@@ -1090,6 +1251,48 @@ NB_MODULE(_core, m) {
         "path"_a, "format"_a = nb::none(), "units"_a = nb::none(), "dt"_a = nb::none(), "channel"_a = nb::none(),
         "g"_a = kStandardGravity, doc::read);
 
+  // ---- motion sets (motion_set.hpp) and RotD (rotd.hpp) ----
+  nb::class_<MotionSet>(m, "MotionSet", doc::motion_set)
+      .def("__init__",
+           [](MotionSet* self, const GroundMotion& first, const GroundMotion* second, const GroundMotion* vertical,
+              std::optional<std::vector<double>> azimuths_deg) {
+             new (self) MotionSet(make_motion_set(first, second, vertical, azimuths_deg));
+           },
+           "first"_a, "second"_a = nb::none(), nb::kw_only(), "vertical"_a = nb::none(),
+           "azimuths_deg"_a = nb::none())
+      .def("__len__", &MotionSet::size)
+      .def_prop_ro("npts", &MotionSet::size)
+      .def_prop_ro("first", &MotionSet::first, nb::rv_policy::reference_internal)
+      .def_prop_ro("second", &MotionSet::second_ptr, nb::rv_policy::reference_internal)
+      .def_prop_ro("vertical", &MotionSet::vertical_ptr, nb::rv_policy::reference_internal)
+      .def_prop_ro("azimuths_deg", &azimuths_to_python)
+      .def("projected",
+           [](const MotionSet& s, double azimuth_deg) {
+             return with_set_fields([&] { return s.projected(azimuth_deg); });
+           },
+           "azimuth_deg"_a, doc::projected)
+      .def("rotated",
+           [](const MotionSet& s, double azimuth_deg) {
+             return with_set_fields([&] { return s.rotated(azimuth_deg); });
+           },
+           "azimuth_deg"_a, doc::rotated)
+      .def("rotd", &rotd_dict, "periods_s"_a = nb::none(), "damping"_a = 0.05, nb::kw_only(),
+           "g"_a = kStandardGravity, doc::motion_set_rotd)
+      .def("__repr__", [](const MotionSet& s) {
+        const auto& az = s.azimuths();
+        return fmt::format("MotionSet({} samples, components={}{}{})", s.size(),
+                           1 + (s.has_second() ? 1 : 0) + (s.has_vertical() ? 1 : 0),
+                           s.has_vertical() ? " (with vertical)" : "",
+                           az ? fmt::format(", azimuths_deg=({:g}, {:g})", az->first_deg, az->second_deg) : "");
+      });
+  m.def("rotd",
+        [](const GroundMotion& first, const GroundMotion& second, std::optional<std::vector<double>> azimuths_deg,
+           nb::handle periods_s, double damping, double g) {
+          return rotd_dict(make_motion_set(first, &second, nullptr, azimuths_deg), periods_s, damping, g);
+        },
+        "first"_a, "second"_a, nb::kw_only(), "azimuths_deg"_a = nb::none(), "periods_s"_a = nb::none(),
+        "damping"_a = 0.05, "g"_a = kStandardGravity, doc::rotd);
+
   // ---- sliding ----
   // The summary attributes come from the field table (topple/summary_fields.hpp), as the JSON keys do.
   nb::class_<SlidingRun> sliding_result(m, "SlidingResult", doc::sliding_result);
@@ -1259,28 +1462,10 @@ NB_MODULE(_core, m) {
         "max_run_out_s"_a = kRockingDefaults.max_run_out_s, doc::rock_oriented);
 
   // ---- synthesis, intensity, inversion ----
-  m.def("synth",
-        [](double pga_g, double freq_hz, double duration_s, std::uint64_t seed, double dt_s, const std::string& model,
-           const std::string& envelope, double zeta_g, double g) {
-          SynthesisSpec spec;
-          spec.pga_m_s2 = pga_g * g;
-          spec.predominant_frequency_hz = freq_hz;
-          spec.duration_s = duration_s;
-          spec.dt_s = dt_s;
-          spec.seed = seed;
-          spec.model = parse_filter_model(model, "model");
-          spec.envelope = parse_envelope_kind(envelope, "envelope");
-          spec.ground_damping = zeta_g;
-          nb::gil_scoped_release release;
-          GroundMotion motion = synthesize(spec);
-          RecordMetadata meta = motion.metadata();
-          meta.g_m_s2 = g;  // pga_g is in the g it was asked in
-          motion.set_metadata(std::move(meta));
-          return motion;
-        },
-        nb::kw_only(), "pga_g"_a, "freq_hz"_a, "duration_s"_a, "seed"_a = 0, "dt_s"_a = 0.01,
+  m.def("synth", &run_synth, nb::kw_only(), "pga_g"_a, "freq_hz"_a, "duration_s"_a, "seed"_a = 0, "dt_s"_a = 0.01,
         "model"_a = "clough-penzien", "envelope"_a = "saragoni-hart", "zeta_g"_a = 0.3, "g"_a = kStandardGravity,
-        doc::synth);
+        "components"_a = 1, "coherence"_a = nb::none(), "azimuths_deg"_a = nb::none(), "vh_ratio"_a = nb::none(),
+        "vh_freq_ratio"_a = nb::none(), doc::synth);
 
   m.def("intensity", &intensity_dict, "motion"_a, "g"_a = kStandardGravity, doc::intensity);
   // topple.invert (python/topple/__init__.py) takes a path or a dict and calls one of these.

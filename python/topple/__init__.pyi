@@ -257,8 +257,34 @@ def rock_oriented(first: GroundMotion, second: GroundMotion, shape: RockingBody,
 def synth(*, pga_g: float, freq_hz: float, duration_s: float, seed: int = 0, dt_s: float = 0.01,
           model: Literal["clough-penzien", "kanai-tajimi"] = "clough-penzien",
           envelope: Literal["saragoni-hart", "jennings"] = "saragoni-hart", zeta_g: float = 0.3,
-          g: float = 9.80665) -> GroundMotion:
-    """A synthetic ground motion, as `topple synth`: the same parameters and seed give the same bits everywhere."""
+          g: float = 9.80665, components: Literal[1, 2, 3] = 1, coherence: Optional[float] = None,
+          azimuths_deg: Optional[Sequence[float]] = None, vh_ratio: Optional[float] = None,
+          vh_freq_ratio: Optional[float] = None) -> Union[GroundMotion, MotionSet]:
+    """A synthetic ground motion, as `topple synth`: the same parameters and seed give the same bits everywhere.
+
+    components=1 (default) returns a GroundMotion; components=2 or 3 a MotionSet (pga_g is its RotD50 PGA)."""
+
+class MotionSet:
+    """One station's ground motion in up to three components on one time grid (motion_set.hpp)."""
+    def __init__(self, first: GroundMotion, second: Optional[GroundMotion] = None, *,
+                 vertical: Optional[GroundMotion] = None, azimuths_deg: Optional[Sequence[float]] = None) -> None: ...
+    def __len__(self) -> int: ...
+    npts: int
+    first: GroundMotion
+    second: Optional[GroundMotion]
+    vertical: Optional[GroundMotion]
+    azimuths_deg: Optional[tuple[float, float]]
+    def projected(self, azimuth_deg: float) -> GroundMotion:
+        """The horizontal acceleration projected on a direction: a1 cos(az - az1) + a2 cos(az - az2)."""
+    def rotated(self, azimuth_deg: float) -> tuple[GroundMotion, GroundMotion]:
+        """The horizontal pair rotated to azimuth_deg and azimuth_deg + 90 (clockwise)."""
+    def rotd(self, periods_s: Optional[ArrayIn] = None, damping: float = 0.05, *,
+             g: float = 9.80665) -> dict[str, Any]:
+        """RotD50 and RotD100 of the PGA and of the PSA of the horizontal pair (Boore 2010)."""
+
+def rotd(first: GroundMotion, second: GroundMotion, *, azimuths_deg: Optional[Sequence[float]] = None,
+         periods_s: Optional[ArrayIn] = None, damping: float = 0.05, g: float = 9.80665) -> dict[str, Any]:
+    """RotD50 and RotD100 of the PGA and of the 5 %-damped PSA of two horizontal components (Boore 2010)."""
 
 def intensity(motion: GroundMotion, g: float = 9.80665) -> dict[str, Any]:
     """Intensity measures of a motion, as `topple info --json` names them."""
