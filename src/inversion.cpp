@@ -141,7 +141,7 @@ StaticBounds static_bounds(const Site& site) {
     }
     // A lower threshold divides by the largest amplification, an upper one by the smallest (the weakest claim); the
     // text shows the amplification actually used and the result.
-    const auto divided = [&o](double amp, double value_g) {
+    const auto divided = [](double amp, double value_g) {
       return amp == 1.0 ? std::string()
                  : fmt::format(" / amplification {:.3g} = {}", amp, fmt_g(value_g / amp));
     };
