@@ -28,7 +28,7 @@ def pulse(pulse_record):
 
 
 def test_result_equals_cli_coupled_json(cli, pulse_record, pulse):
-    expected = cli.json("rock", pulse_record, "--width", "0.2", "--height", "0.6", "--model", "coupled",
+    expected = cli.json("rock", pulse_record, "--shape", "block", "--width", "0.2m", "--height", "0.6m", "--model", "coupled",
                         "--mu", "0.6", "--mu-k", "0.5")
     r = topple.slide_rock(pulse, topple.Block(width=0.2, height=0.6), 0.6, 0.5)
     # The pulse (0.5 g > g b/h = 0.333 g) moves the block: the comparison is not of two bodies at rest.
@@ -49,17 +49,22 @@ def test_result_equals_cli_coupled_json(cli, pulse_record, pulse):
 @pytest.mark.parametrize("body", [topple.Block(width=0.2, height=0.6),
                                   topple.GeneralAsymmetric(b1=0.08, b2=0.12, h=0.3, inertia=0.04)],
                          ids=["block", "asymmetric"])
-@pytest.mark.parametrize("amp", [1.0, 2.0], ids=["survives", "falls"])
+@pytest.mark.parametrize("amp", [0.8, 1.0], ids=["survives", "falls"])
 def test_high_friction_is_housner_rocking(pulse, body, amp):
-    motion = pulse.scaled(amp)
+    motion = pulse.scaled(amp)  # 0.4 g: rocks (55-61 impacts) and survives; 0.5 g: falls (measured, both bodies)
     coupled = topple.slide_rock(motion, body, 5.0, history=False)
     housner = topple.rock(motion, body, history=False)
-    # mu = 5 is far above b/h and above the impulse ratio of a Housner impact: the pivot never slips, so the coupled
-    # model is Housner's (verdict and impact count are discrete: exact).
-    assert coupled.slip_episodes == 0
-    assert coupled.overturned == housner.overturned
+    # mu = 5 is far above b/h and above the impulse ratio of a Housner impact: the pivot sticks while the body
+    # rocks, so the coupled model is Housner's (verdict and impact count are discrete: exact).
+    assert coupled.overturned == housner.overturned == (amp == 1.0)
     assert coupled.impacts == housner.impacts
     assert coupled.onset_mode == "rock"
+    if not coupled.overturned:
+        # (A falling body slips at the end, where its normal force goes to 0: physics, not a difference.)
+        assert coupled.slip_episodes == 0 and housner.impacts > 10
+        # Both integrate Housner's equation with Dormand-Prince at rel_tol 1e-8 per step: 1e-6 leaves room for the
+        # two engines' different step sequences over ~60 impacts (they agree to 1e-14 here).
+        assert coupled.max_rotation_over_alpha == pytest.approx(housner.max_rotation_over_alpha, rel=1e-6)
 
 
 def test_wide_body_slides_as_the_sliding_solver(pulse):
