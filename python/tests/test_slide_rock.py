@@ -8,18 +8,15 @@ import pytest
 
 import topple
 
+from conftest import write_record
+
 
 @pytest.fixture(scope="module")
 def pulse_record(tmp_path_factory):
     """One full sine cycle of 0.5 g and period 0.5 s, then 3 s of still ground (time_s,accel_g at 1 ms)."""
     t = np.arange(3501) * 0.001
     a = np.where(t <= 0.5, 0.5 * np.sin(2 * np.pi * t / 0.5), 0.0)
-    path = tmp_path_factory.mktemp("records") / "sine_pulse.csv"
-    with open(path, "w") as f:
-        f.write("time_s,accel_g\n")
-        for ti, ai in zip(t, a):
-            f.write(f"{ti:.3f},{float(ai)!r}\n")
-    return str(path)
+    return write_record(tmp_path_factory.mktemp("records") / "sine_pulse.csv", t, a, time_decimals=3)
 
 
 @pytest.fixture(scope="module")
