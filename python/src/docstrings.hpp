@@ -707,6 +707,138 @@ RockingResult
     Summary (angles in rad, times in s) and histories.
 )";
 
+inline constexpr const char* slide_rock_result =
+    R"(Coupled sliding and rocking of a rigid body with friction (the result of topple.slide_rock).
+
+Summary attributes have the names and units of `topple rock --model coupled --json`; json() returns that object
+(its "input" object included, as topple.rock's). theta > 0 is a rotation about O+ (the top moves toward +x); the slide is positive toward +x (sliding.hpp's
+displacement, positive the way a positive acceleration pushes the block, is minus it). Histories and transitions are
+empty when run with history=False.
+
+Attributes
+----------
+overturned : bool
+    The body fell.
+overturned_side : str or None
+    "positive" (toward +x, about O+), "negative", or None when it did not fall.
+overturn_time_s : float or None
+    Time of overturning, s.
+max_rotation_over_alpha : float
+    Maximum |theta| / alpha of its side (1: the body passes its tipping angle).
+max_rotation_positive_rad : float
+    Maximum theta over theta > 0, rad.
+max_rotation_negative_rad : float
+    Maximum -theta over theta < 0, rad.
+max_rotation_over_alpha_positive : float
+    max_rotation_positive_rad / alpha+ (dimensionless).
+max_rotation_over_alpha_negative : float
+    max_rotation_negative_rad / alpha- (dimensionless).
+exceeded_alpha_time_s : float or None
+    First time |theta| exceeded the tipping angle of its side, s.
+residual_slide_m : float
+    Slide at the end of the run, m, positive toward +x.
+max_abs_slide_m : float
+    Maximum |slide|, m.
+slip_episodes : int
+    Entries into sliding or slide-rock from a sticking state.
+impacts : int
+    Corner strikes (rocking impacts and landings from flight).
+uplifts : int
+    Lift-offs from full contact.
+onset_mode : str
+    The first mode left rest for: "rest" (never moved), "slide", "rock", "slide-rock" or "flight".
+end_mode : str
+    The mode at the end: "rest", "slide", "rock", "slide-rock", "flight" or "fallen".
+end_time_s : float
+    End of the run, s.
+moving_at_end : bool
+    The run-out cap (max_run_out_s) ended a run still in motion.
+friction_energy_j_per_kg : float
+    Energy dissipated by kinetic friction, J/kg.
+impact_energy_j_per_kg : float
+    Energy lost in impacts and to the rest rule, J/kg.
+alpha_positive_deg : float
+    Tipping angle about O+, atan(b2 / h), deg.
+alpha_negative_deg : float
+    Tipping angle about O-, atan(b1 / h), deg.
+mu_static : float
+    Static friction coefficient (dimensionless).
+mu_kinetic : float
+    Kinetic friction coefficient (dimensionless).
+e_mode : str
+    "housner" or "given".
+used_sliding_kernel : bool
+    The body cannot lift (mu_static < b / h): the run was the exact sliding solver.
+g_m_s2 : float
+    Gravity, m/s^2.
+warnings : list of str
+    Solver warnings.
+modes : dict
+    Per mode name: {"entries": int, "first_time_s": float or None (s)}.
+body : RockingBody
+    The body as given.
+time_s : numpy.ndarray
+    History times, s (record samples, integrator step ends and events).
+slide_m : numpy.ndarray
+    Slide u of the pivot corner, m, positive toward +x.
+slide_velocity_m_s : numpy.ndarray
+    Slip velocity u', m/s.
+theta_rad : numpy.ndarray
+    Rotation, rad.
+theta_dot_rad_s : numpy.ndarray
+    Angular velocity, rad/s.
+cm_height_m : numpy.ndarray
+    Height of the centre of mass above the ground, m.
+mode : numpy.ndarray
+    Mode codes (int8): 0 rest, 1 slide, 2 rock, 3 slide-rock, 4 flight, 5 fallen.
+transitions : list of dict
+    Every change of mode: {"time_s": s, "mode": name}.
+)";
+
+inline constexpr const char* slide_rock_json = R"(The summary as `topple rock --model coupled --json` writes it.
+
+Returns
+-------
+dict
+    The JSON object (keys with units, e.g. residual_slide_m in m), with its "input" object.
+)";
+
+inline constexpr const char* slide_rock =
+    R"(Coupled sliding and rocking of a rigid body with Coulomb friction on a level base (slide_rock.hpp).
+
+As `topple rock --model coupled --mu MU [--mu-k MU_K]`: the body may rest, slide, rock, slide and rock, or fly,
+whichever its contact forces allow. A body with mu < min(b1, b2) / h cannot lift and is run by the exact sliding
+solver.
+
+Parameters
+----------
+motion : GroundMotion
+    Horizontal ground acceleration, positive toward +x.
+body : RockingBody
+    The body (topple.Block, topple.Cylinder, topple.General or topple.GeneralAsymmetric; lengths in m).
+mu : float
+    Static friction coefficient (dimensionless, >= 0). InputError (field "mu") when invalid.
+mu_k : float, optional
+    Kinetic friction coefficient (dimensionless, 0 <= mu_k <= mu); default mu. InputError (field "mu_k").
+vertical : GroundMotion, optional
+    Vertical ground acceleration, positive up.
+e : float or "housner"
+    Coefficient of restitution in [0, 1] (dimensionless) on a sticking impact after pure rocking, or "housner".
+g : float
+    Gravity, m/s^2.
+rel_tol : float
+    Relative tolerance of the adaptive integrator (dimensionless).
+max_run_out_s : float
+    Longest time the body is followed after the record ends, s.
+history : bool
+    False: summary only.
+
+Returns
+-------
+SlideRockResult
+    Summary (angles in rad or deg as named, slides in m, times in s, energies in J/kg) and histories.
+)";
+
 inline constexpr const char* motion_set =
     R"(One station's ground motion in up to three components on one time grid (motion_set.hpp).
 

@@ -57,6 +57,7 @@
 #include "topple/report.hpp"
 #include "topple/rocking.hpp"
 #include "topple/rotd.hpp"
+#include "topple/slide_rock.hpp"
 #include "topple/sliding.hpp"
 #include "topple/sliding2d.hpp"
 #include "topple/spectra.hpp"
@@ -417,6 +418,49 @@ RockingOptions make_rocking_options(const std::variant<double, std::string>& e, 
   o.rk4_substeps = rk4_substeps;
   o.max_run_out_s = max_run_out_s;
   return o;
+}
+
+// ---- coupled slide-rock ----
+
+/// slide_rock: the coupled model (slide_rock.hpp) of a rocking body with friction, as `topple rock --model coupled`.
+struct SlideRockRun {
+  SlideRockResult result;  // history and transitions empty when run with history=False
+  RockingBody shape;       // the body as given (Python's RockingBody)
+  SlideRockBody body;
+  SlideRockOptions options;
+  RunInputs inputs;
+
+  [[nodiscard]] nlohmann::ordered_json json() const {
+    nlohmann::ordered_json j = io::slide_rock_summary_json(result.summary, body, options);
+    j["input"] = inputs.json(options.g_m_s2);
+    return j;
+  }
+};
+
+SlideRockRun run_slide_rock(const GroundMotion& motion, const RockingBody& shape, double mu,
+                            std::optional<double> mu_k, const GroundMotion* vertical,
+                            const std::variant<double, std::string>& e, double g_m_s2, double rel_tol,
+                            double max_run_out_s, bool history) {
+  SlideRockRun run;
+  run.shape = shape;
+  run.body = SlideRockBody::from_rocking(shape, mu, mu_k);
+  // The restitution, gravity and tolerances as `topple rock` reads them (make_rocking_options), then handed to the
+  // coupled model as the CLI does (cli/cmd_rock.cpp).
+  const RockingOptions rocking = make_rocking_options(e, std::nullopt, g_m_s2, "adaptive", rel_tol,
+                                                      RockingOptions{}.rk4_substeps, max_run_out_s);
+  run.options.g_m_s2 = rocking.g_m_s2;
+  run.options.restitution = rocking.restitution;
+  run.options.e = rocking.e;
+  run.options.rel_tol = rocking.rel_tol;
+  run.options.max_run_out_s = rocking.max_run_out_s;
+  run.options.record_history = history;
+  {
+    nb::gil_scoped_release release;
+    run.result = slide_rock(motion, run.body, run.options, vertical);
+  }
+  run.inputs = RunInputs(motion, vertical);
+  run.inputs.with_duration = true;
+  return run;
 }
 
 /// rock_oriented: an oriented object under two components (oriented.hpp), as `topple rock H1 --h2 H2 --json` less
@@ -1454,6 +1498,64 @@ NB_MODULE(_core, m) {
         "g"_a = kStandardGravity, "method"_a = std::string(rocking_method_name(kRockingDefaults.method)),
         "rel_tol"_a = kRockingDefaults.rel_tol, "rk4_substeps"_a = kRockingDefaults.rk4_substeps,
         "max_run_out_s"_a = kRockingDefaults.max_run_out_s, "vertical"_a = nb::none(), "history"_a = true, doc::rock);
+  nb::class_<SlideRockRun> slide_rock_result(m, "SlideRockResult", doc::slide_rock_result);
+  for (const Field<SlideRockOutcome>& field : kSlideRockFields) {
+    slide_rock_result.def_prop_ro(field.name, [get = field.get](const SlideRockRun& r) {
+      return field_to_python(get(SlideRockOutcome{r.result.summary, r.body, r.options}));
+    });
+  }
+  slide_rock_result
+      .def_prop_ro("warnings", [](const SlideRockRun& r) { return r.result.summary.warnings; })
+      .def_prop_ro("modes",
+                   [](const SlideRockRun& r) {
+                     nb::dict out;
+                     for (std::size_t m = 0; m < kSlideRockModes; ++m) {
+                       nb::dict d;
+                       d["entries"] = r.result.summary.mode_entries[m];
+                       d["first_time_s"] = r.result.summary.mode_first_time_s[m];
+                       out[nb::str(std::string(slide_rock_mode_name(static_cast<SlideRockMode>(m))).c_str())] = d;
+                     }
+                     return out;
+                   })
+      .def_prop_ro("body", [](const SlideRockRun& r) { return r.shape; })
+      .def_prop_ro("time_s", [](const SlideRockRun& r) { return view(r.result.history.time_s); },
+                   nb::rv_policy::reference_internal)
+      .def_prop_ro("slide_m", [](const SlideRockRun& r) { return view(r.result.history.slide_m); },
+                   nb::rv_policy::reference_internal)
+      .def_prop_ro("slide_velocity_m_s", [](const SlideRockRun& r) { return view(r.result.history.slide_velocity_m_s); },
+                   nb::rv_policy::reference_internal)
+      .def_prop_ro("theta_rad", [](const SlideRockRun& r) { return view(r.result.history.theta_rad); },
+                   nb::rv_policy::reference_internal)
+      .def_prop_ro("theta_dot_rad_s", [](const SlideRockRun& r) { return view(r.result.history.theta_dot_rad_s); },
+                   nb::rv_policy::reference_internal)
+      .def_prop_ro("cm_height_m", [](const SlideRockRun& r) { return view(r.result.history.cm_height_m); },
+                   nb::rv_policy::reference_internal)
+      .def_prop_ro("mode", [](const SlideRockRun& r) { return to_numpy(state_codes(r.result.history.mode)); },
+                   nb::rv_policy::move)
+      .def_prop_ro("transitions",
+                   [](const SlideRockRun& r) {
+                     nb::list out;
+                     for (const SlideRockTransition& t : r.result.transitions) {
+                       nb::dict d;
+                       d["time_s"] = t.time_s;
+                       d["mode"] = std::string(slide_rock_mode_name(t.mode));
+                       out.append(d);
+                     }
+                     return out;
+                   })
+      .def("json", [](const SlideRockRun& r) { return to_python(r.json()); }, doc::slide_rock_json)
+      .def("__repr__", [](const SlideRockRun& r) {
+        return fmt::format("SlideRockResult(max_rotation_over_alpha={:.6g}, residual_slide_m={:.6g}, overturned={}, "
+                           "end_mode='{}')",
+                           r.result.summary.max_rotation_over_alpha, r.result.summary.residual_slide_m,
+                           r.result.summary.overturned ? "True" : "False",
+                           slide_rock_mode_name(r.result.summary.end_mode));
+      });
+  const SlideRockOptions kSlideRockDefaults;  // the library's defaults are the Python defaults
+  m.def("slide_rock", &run_slide_rock, "motion"_a, "body"_a, "mu"_a, "mu_k"_a = nb::none(), nb::kw_only(),
+        "vertical"_a = nb::none(), "e"_a = "housner", "g"_a = kStandardGravity,
+        "rel_tol"_a = kSlideRockDefaults.rel_tol, "max_run_out_s"_a = kSlideRockDefaults.max_run_out_s,
+        "history"_a = true, doc::slide_rock);
   m.def("rock_oriented", &run_rock_oriented, "first"_a, "second"_a, "shape"_a, nb::kw_only(),
         "azimuths_deg"_a = std::vector<double>{90.0, 0.0}, "bearing_deg"_a = nb::none(), "depth_m"_a = nb::none(),
         "direction_step_deg"_a = nb::none(), "vertical"_a = nb::none(), "e"_a = "housner", "mu"_a = nb::none(),

@@ -35,11 +35,15 @@ def made_record(tmp_path_factory):
     """A plain CSV record made here (always available): time_s,accel_g, 1500 samples at 0.01 s."""
     t = np.arange(1500) * 0.01
     a = 0.5 * np.sin(2 * np.pi * 1.7 * t) * np.exp(-((t - 5.0) / 3.0) ** 2) + 0.1 * np.sin(2 * np.pi * 5.3 * t)
-    path = tmp_path_factory.mktemp("records") / "made.csv"
+    return write_record(tmp_path_factory.mktemp("records") / "made.csv", t, a, time_decimals=2)
+
+
+def write_record(path, t, a_g, time_decimals):
+    """A plain CSV record time_s,accel_g (times rounded to time_decimals, accelerations exact); returns its path."""
     with open(path, "w") as f:
         f.write("time_s,accel_g\n")
-        for ti, ai in zip(t, a):
-            f.write(f"{ti:.2f},{float(ai)!r}\n")
+        for ti, ai in zip(t, a_g):
+            f.write(f"{ti:.{time_decimals}f},{float(ai)!r}\n")
     return str(path)
 
 

@@ -246,6 +246,55 @@ def rock(motion: GroundMotion, shape: RockingBody, *, e: Union[Literal["housner"
          vertical: Optional[GroundMotion] = None, history: bool = True) -> RockingResult:
     """Housner rocking and overturning of a rigid body on a level base that does not slide."""
 
+class SlideRockResult:
+    """Coupled sliding and rocking of a rigid body with friction (the result of topple.slide_rock)."""
+    overturned: bool
+    overturned_side: Optional[Literal["positive", "negative"]]
+    overturn_time_s: Optional[float]
+    max_rotation_over_alpha: float
+    max_rotation_positive_rad: float
+    max_rotation_negative_rad: float
+    max_rotation_over_alpha_positive: float
+    max_rotation_over_alpha_negative: float
+    exceeded_alpha_time_s: Optional[float]
+    residual_slide_m: float
+    max_abs_slide_m: float
+    slip_episodes: int
+    impacts: int
+    uplifts: int
+    onset_mode: str
+    end_mode: str
+    end_time_s: float
+    moving_at_end: bool
+    friction_energy_j_per_kg: float
+    impact_energy_j_per_kg: float
+    alpha_positive_deg: float
+    alpha_negative_deg: float
+    mu_static: float
+    mu_kinetic: float
+    e_mode: str
+    used_sliding_kernel: bool
+    g_m_s2: float
+    warnings: list[str]
+    modes: dict[str, dict[str, Any]]
+    body: RockingBody
+    time_s: npt.NDArray[np.float64]
+    slide_m: npt.NDArray[np.float64]
+    slide_velocity_m_s: npt.NDArray[np.float64]
+    theta_rad: npt.NDArray[np.float64]
+    theta_dot_rad_s: npt.NDArray[np.float64]
+    cm_height_m: npt.NDArray[np.float64]
+    mode: npt.NDArray[np.int8]
+    transitions: list[dict[str, Any]]
+    def json(self) -> dict[str, Any]:
+        """The summary as `topple rock --model coupled --json` writes it."""
+
+def slide_rock(motion: GroundMotion, body: RockingBody, mu: float, mu_k: Optional[float] = None, *,
+               vertical: Optional[GroundMotion] = None, e: Union[Literal["housner"], float] = "housner",
+               g: float = 9.80665, rel_tol: float = 1e-8, max_run_out_s: float = 60.0,
+               history: bool = True) -> SlideRockResult:
+    """Coupled sliding and rocking of a rigid body with Coulomb friction on a level base (slide_rock.hpp)."""
+
 def rock_oriented(first: GroundMotion, second: GroundMotion, shape: RockingBody, *,
                   azimuths_deg: Sequence[float] = (90.0, 0.0), bearing_deg: Optional[float] = None,
                   depth_m: Optional[float] = None, direction_step_deg: Optional[float] = None,
