@@ -312,7 +312,8 @@ TEST(Recovery3c, TruthTurnedToItsDirectionHasItsMajorAxisThere) {
   const MotionSet set = MotionSet::make(t.east, &t.north, ComponentAzimuths{90.0, 0.0}, &t.up);
   const auto ms = [&](double az) {
     double s = 0.0;
-    for (double a : set.projected(az).accel_m_s2()) s += a * a;
+    const GroundMotion along = set.projected(az);  // kept: a range-for over a temporary's member would dangle
+    for (double a : along.accel_m_s2()) s += a * a;
     return s;
   };
   for (double az = 0.0; az < 180.0; az += 5.0) EXPECT_LE(ms(az), ms(130.0) * (1.0 + 1e-9)) << az;
