@@ -191,8 +191,15 @@ void run_rock(const RockOptions& o) {
   run.input.with_duration = true;
   if (o.model == "coupled") {  // the coupled slide-rock model (rock_coupled.hpp)
     if (!o.mu) throw parameter_error("--mu", "the coupled model needs the friction coefficient (--mu)");
-    if (!o.plot.empty()) throw parameter_error("--plot", "not available with --model coupled yet");
-    if (!o.h2.empty()) throw parameter_error("--h2", "not available with --model coupled yet (planar model)");
+    if (!o.depth.empty()) {
+      throw parameter_error("--depth", "the coupled model runs in one vertical plane: give the axis to check with "
+                                       "--bearing-deg (a box: run each axis)");
+    }
+    if (o.direction_step_deg) {
+      throw parameter_error("--direction-step-deg", "the coupled model runs in one vertical plane, the one "
+                                                    "--bearing-deg gives; the worst direction is searched by the "
+                                                    "rocking model only");
+    }
     if (options.method != RockingMethod::adaptive) {
       throw parameter_error("--method", "the coupled model is adaptive only");
     }
@@ -204,7 +211,30 @@ void run_rock(const RockOptions& o) {
     request.options.max_run_out_s = options.max_run_out_s;
     request.options.max_steps = options.max_steps;
     request.out = o.out;
+    request.plot = o.plot;
     request.json = o.json;
+    if (!o.h2.empty()) {
+      // Oriented (oriented.hpp): the planar model in the vertical plane of the bearing, under the pair's projection
+      // on it (eq. M1) with the vertical; out-of-plane motion neglected, as for the rocking model.
+      if (!o.bearing_deg) {
+        throw parameter_error("--bearing-deg", "required with --model coupled and --h2: the bearing of the body's +x "
+                                               "side (the b2 edge), degrees clockwise from north, whose vertical "
+                                               "plane the coupled model runs in");
+      }
+      if (!std::isfinite(*o.bearing_deg)) {
+        throw parameter_error("--bearing-deg", fmt::format("must be finite, got {}", *o.bearing_deg));
+      }
+      const MotionSet set = load_motion_set(run, o.motion, o.h2, o.azimuths);
+      run.horizontal = set.projected(*o.bearing_deg);  // azimuths are known (load_motion_set)
+      if (set.vertical_ptr() != nullptr) run.vertical = *set.vertical_ptr();
+      run.input.motion += fmt::format(" and {} along {:g} deg", o.h2, *o.bearing_deg);
+      run.title += fmt::format(" and {} along {:g}°", plot::file_label(o.h2), *o.bearing_deg);
+      request.bearing_deg = o.bearing_deg;
+      request.h2 = o.h2;
+      request.azimuths = set.azimuths();
+    } else {
+      refuse_without_h2(o.azimuths, {{"--bearing-deg", o.bearing_deg.has_value()}});
+    }
     const SlideRockBody coupled = naming_options([&] { return SlideRockBody::from_rocking(body, *o.mu, o.mu_k); });
     naming_options([&] { run_coupled(run, coupled, request); });
     return;

@@ -7,16 +7,24 @@
 #include <nlohmann/json.hpp>
 
 #include "topple/io/write.hpp"
+#include "topple/plot.hpp"
 #include "topple/units.hpp"
 
 namespace topple::cli {
 
 void run_coupled(const RunMotion& run, const SlideRockBody& body, const CoupledRequest& request) {
   SlideRockOptions options = request.options;
-  options.record_history = !request.out.empty();
+  options.record_history = !request.out.empty() || !request.plot.empty();
   const SlideRockResult result = slide_rock(run.horizontal, body, options, run.vertical_ptr());
   const SlideRockSummary& s = result.summary;
   if (!request.out.empty()) io::write_slide_rock_history_csv(request.out, result.history);
+  if (!request.plot.empty()) {
+    const std::string title = fmt::format(
+        "Coupled slide-rock, b1 = {:.3g} m, b2 = {:.3g} m, h = {:.3g} m, mu_s = {:.3g}, mu_k = {:.3g}: {}", body.b1_m,
+        body.b2_m, body.h_m, body.mu_static, body.mu_kinetic, run.title);
+    plot::render(plot::slide_rock_figure(run.horizontal, result, body, title, run.vertical_ptr(), options.g_m_s2),
+                 request.plot);
+  }
   for (const auto& w : s.warnings) fmt::print(stderr, "topple: warning: {}\n", w);
   require_finite({{"residual slide", s.residual_slide_m}, {"max |slide|", s.max_abs_slide_m},
                   {"max theta / alpha", s.max_rotation_over_alpha}, {"end time", s.end_time_s},
@@ -26,6 +34,12 @@ void run_coupled(const RunMotion& run, const SlideRockBody& body, const CoupledR
   if (request.json) {
     nlohmann::ordered_json j = io::slide_rock_summary_json(s, body, options);
     j["input"] = io::run_input_json(run.input, run.horizontal, g);
+    if (request.bearing_deg && request.azimuths) {
+      j["input"]["h2"] = request.h2;
+      j["orientation"] = {{"bearing_deg", *request.bearing_deg},
+                          {"azimuths_deg", {request.azimuths->first_deg, request.azimuths->second_deg}},
+                          {"model", "planar: the projection of the pair on the bearing, with the vertical"}};
+    }
     fmt::print("{}\n", j.dump(2));
     return;
   }
@@ -35,6 +49,10 @@ void run_coupled(const RunMotion& run, const SlideRockBody& body, const CoupledR
   fmt::print("  alpha+ = {:.4f} deg, alpha- = {:.4f} deg{}\n", s.alpha_positive_rad * 180.0 / kPi,
              s.alpha_negative_rad * 180.0 / kPi,
              s.used_sliding_kernel ? " (cannot lift: mu_s < b/h; exact sliding solver)" : "");
+  if (request.bearing_deg) {
+    fmt::print("plane of shaking: bearing {:g} deg (+x side), the pair's projection on it (planar model)\n",
+               *request.bearing_deg);
+  }
   fmt::print("motion: {} (PGA {:.4f} g, {} samples)\n", run.input.motion, run.horizontal.pga_m_s2() / g,
              run.horizontal.size());
   fmt::print("onset mode             {}\n", slide_rock_mode_name(s.onset_mode));
@@ -58,6 +76,7 @@ void run_coupled(const RunMotion& run, const SlideRockBody& body, const CoupledR
              s.impact_energy_j_per_kg);
   fmt::print("end                    {} at {:.4f} s\n", slide_rock_mode_name(s.end_mode), s.end_time_s);
   if (!request.out.empty()) fmt::print("history written to {}\n", request.out);
+  if (!request.plot.empty()) fmt::print("figure written to {}\n", request.plot);
 }
 
 }  // namespace topple::cli

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <initializer_list>
 #include <memory>
 #include <sstream>
 #include <stdexcept>
@@ -379,6 +380,27 @@ std::pair<double, double> y_span(const std::vector<double>& y, bool positive_onl
   return r;
 }
 
+/// The fall at `t` as a dashed vertical line on each panel, spanning the panel's data and levels; only `labelled`
+/// keeps the legend entry.
+void mark_fall(std::initializer_list<Panel*> panels, const Panel* labelled, double t) {
+  const Mark fall{t, fmt::format("overturned, t = {:.3f} s", t), "#8e44ad"};
+  for (Panel* panel : panels) {
+    double lo = INFINITY;
+    double hi = -INFINITY;
+    for (const Series& s : panel->series) {
+      const auto [a, b] = y_span(s.y, false);
+      lo = std::min(lo, a);
+      hi = std::max(hi, b);
+    }
+    for (const Level& level : panel->levels) {
+      lo = std::min(lo, level.y);
+      hi = std::max(hi, level.y);
+    }
+    panel->series.push_back(mark_series(fall, lo, hi));
+    if (panel != labelled) panel->series.back().label.clear();
+  }
+}
+
 }  // namespace
 
 Figure rocking_figure(const GroundMotion& m, const RockingResult& r, const RockingBody& body, const std::string& title,
@@ -428,25 +450,7 @@ Figure rocking_figure(const GroundMotion& m, const RockingResult& r, const Rocki
     impacts.label = fmt::format("impacts ({})", impacts.x.size());
     theta.series.push_back(std::move(impacts));
   }
-  if (r.summary.overturned && r.summary.overturn_time_s) {
-    const double t = *r.summary.overturn_time_s;
-    const Mark fall{t, fmt::format("overturned, t = {:.3f} s", t), "#8e44ad"};
-    for (Panel* panel : {&accel, &theta, &rate}) {
-      double lo = INFINITY;
-      double hi = -INFINITY;
-      for (const Series& s : panel->series) {
-        const auto [a, b] = y_span(s.y, false);
-        lo = std::min(lo, a);
-        hi = std::max(hi, b);
-      }
-      for (const Level& level : panel->levels) {
-        lo = std::min(lo, level.y);
-        hi = std::max(hi, level.y);
-      }
-      panel->series.push_back(mark_series(fall, lo, hi));
-      if (panel != &theta) panel->series.back().label.clear();
-    }
-  }
+  if (r.summary.overturned && r.summary.overturn_time_s) mark_fall({&accel, &theta, &rate}, &theta, *r.summary.overturn_time_s);
   f.panels = {accel, theta, rate};
   return f;
 }
@@ -596,6 +600,52 @@ Figure sliding_2d_figure(const GroundMotion& first, const GroundMotion& second, 
     if (h.slipping[i] != 0 && h.slipping[i - 1] == 0) accel.marks_x.push_back(h.time_s[i]);
   }
   f.panels = {accel, vel, disp};
+  return f;
+}
+
+Figure slide_rock_figure(const GroundMotion& m, const SlideRockResult& r, const SlideRockBody& body,
+                         const std::string& title, const GroundMotion* vertical, double g) {
+  const auto& h = r.history;
+  const double t_end = h.time_s.empty() ? m.end_time_s() : h.time_s.back();
+  Figure f;
+  f.title = title;
+  f.xlabel = "time (s)";
+  Panel accel{"ground acceleration (g)", {ground_series(m, g, t_end)}, {}, {}, false, false};
+  accel.series.front().label = "horizontal";
+  if (vertical != nullptr) {
+    Series v = ground_series(*vertical, g, t_end);
+    v.label = "vertical";
+    v.color = "#27ae60";
+    accel.series.push_back(std::move(v));
+  }
+  // From rest without a vertical (slide_rock.hpp, "rest"): a_h > g b1/h lifts the body about O-, a_h < -g b2/h about
+  // O+, |a_h| > mu_s g starts a slip (Shenton 1996); the vertical moves all three, so they are references.
+  accel.levels = {{body.b1_m / body.h_m, fmt::format("uplift about O- b1/h = {:.3g} g", body.b1_m / body.h_m)},
+                  {-body.b2_m / body.h_m, fmt::format("uplift about O+ -b2/h = {:.3g} g", -body.b2_m / body.h_m)},
+                  {body.mu_static, fmt::format("slip ±mu_s = ±{:.3g} g", body.mu_static)},
+                  {-body.mu_static, ""}};
+  const double alpha_positive = std::atan2(body.b2_m, body.h_m);
+  const double alpha_negative = std::atan2(body.b1_m, body.h_m);
+  std::vector<double> ratio(h.theta_rad.size());
+  for (std::size_t i = 0; i < ratio.size(); ++i) {
+    ratio[i] = h.theta_rad[i] / (h.theta_rad[i] < 0.0 ? alpha_negative : alpha_positive);
+  }
+  Panel theta{"rotation θ/α of its side (-)", {{"θ/α", h.time_s, ratio, "lines", "#c0392b", 1.8}},
+              {{1.0, "overturning limit ±1"}, {-1.0, ""}}, {}, false, false};
+  Panel slide{"slide u of the pivot (m, +x)", {{"u", h.time_s, h.slide_m, "lines", "#2171b5", 1.8}}, {}, {}, false,
+              false};
+  // The mode as a step line on its index (SlideRockMode), named on the axis.
+  std::vector<double> mode(h.mode.size());
+  for (std::size_t i = 0; i < mode.size(); ++i) mode[i] = static_cast<double>(h.mode[i]);
+  Panel modes{"mode (index)", {{"0 rest, 1 slide, 2 rock, 3 slide-rock, 4 flight, 5 fallen", h.time_s, mode, "steps",
+                                "#555555", 1.5}}, {}, {}, false, false};
+  for (const SlideRockTransition& t : r.transitions) {
+    if (t.mode == SlideRockMode::slide || t.mode == SlideRockMode::slide_rock) slide.marks_x.push_back(t.time_s);
+  }
+  if (r.summary.overturned && r.summary.overturn_time_s) {
+    mark_fall({&accel, &theta, &slide}, &theta, *r.summary.overturn_time_s);
+  }
+  f.panels = {accel, theta, slide, modes};
   return f;
 }
 
