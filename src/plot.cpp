@@ -380,6 +380,19 @@ std::pair<double, double> y_span(const std::vector<double>& y, bool positive_onl
   return r;
 }
 
+/// The ground acceleration panel of a planar run (in g): the horizontal and, when given, the vertical.
+Panel ground_panel(const GroundMotion& m, const GroundMotion* vertical, double g, double t_end) {
+  Panel accel{"ground acceleration (g)", {ground_series(m, g, t_end)}, {}, {}, false, false};
+  accel.series.front().label = "horizontal";
+  if (vertical != nullptr) {
+    Series v = ground_series(*vertical, g, t_end);
+    v.label = "vertical";
+    v.color = "#27ae60";
+    accel.series.push_back(std::move(v));
+  }
+  return accel;
+}
+
 /// The fall at `t` as a dashed vertical line on each panel, spanning the panel's data and levels; only `labelled`
 /// keeps the legend entry.
 void mark_fall(std::initializer_list<Panel*> panels, const Panel* labelled, double t) {
@@ -412,14 +425,7 @@ Figure rocking_figure(const GroundMotion& m, const RockingResult& r, const Rocki
   Figure f;
   f.title = title;
   f.xlabel = "time (s)";
-  Panel accel{"ground acceleration (g)", {ground_series(m, g, t_end)}, {}, {}, false, false};
-  accel.series.front().label = "horizontal";
-  if (vertical != nullptr) {
-    Series v = ground_series(*vertical, g, t_end);
-    v.label = "vertical";
-    v.color = "#27ae60";
-    accel.series.push_back(std::move(v));
-  }
+  Panel accel = ground_panel(m, vertical, g, t_end);
   accel.levels = {{threshold, fmt::format("uplift ±a/h = ±{:.3g} g", threshold)}, {-threshold, ""}};
   // An asymmetric body: a_h > g b1/h lifts it about O- (the -x edge), a_h < -g b2/h about O+; θ over the alpha of its
   // side, so that ±1 are still the limits.
@@ -610,14 +616,7 @@ Figure slide_rock_figure(const GroundMotion& m, const SlideRockResult& r, const 
   Figure f;
   f.title = title;
   f.xlabel = "time (s)";
-  Panel accel{"ground acceleration (g)", {ground_series(m, g, t_end)}, {}, {}, false, false};
-  accel.series.front().label = "horizontal";
-  if (vertical != nullptr) {
-    Series v = ground_series(*vertical, g, t_end);
-    v.label = "vertical";
-    v.color = "#27ae60";
-    accel.series.push_back(std::move(v));
-  }
+  Panel accel = ground_panel(m, vertical, g, t_end);
   // From rest without a vertical (slide_rock.hpp, "rest"): a_h > g b1/h lifts the body about O-, a_h < -g b2/h about
   // O+, |a_h| > mu_s g starts a slip (Shenton 1996); the vertical moves all three, so they are references.
   accel.levels = {{body.b1_m / body.h_m, fmt::format("uplift about O- b1/h = {:.3g} g", body.b1_m / body.h_m)},

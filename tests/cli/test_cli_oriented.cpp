@@ -17,19 +17,14 @@ namespace {
 
 std::string quote(const std::filesystem::path& p) { return fmt::format("'{}'", p.string()); }
 
-/// A synthetic station (H1 north, H2 east, V) written by `topple synth --components 3`: portable, so every machine
-/// gets the same samples.
+/// Every test runs on the synthetic station of test::SyntheticStation (H1 north, H2 east, V).
 class CliOriented : public ::testing::Test {
  protected:
-  void SetUp() override {
-    (void)test::run_json("synth --components 3 --pga 0.3g --freq 2.5Hz --duration 20 --seed 4 --azimuths 0,90 "
-                         "--json --out " + quote(dir.path() / "m.csv"));
-    h1 = quote(dir.path() / "m.h1.csv");
-    h2 = quote(dir.path() / "m.h2.csv");
-    v = quote(dir.path() / "m.v.csv");
-  }
   test::TempDir dir;
-  std::string h1, h2, v;
+  test::SyntheticStation station{dir.path()};
+  const std::string& h1 = station.h1;
+  const std::string& h2 = station.h2;
+  const std::string& v = station.v;
 };
 
 /// The rocking results a single run prints, compared exactly: the projection on a component's own azimuth is that

@@ -80,20 +80,16 @@ TEST(CliRockCoupled, BadInputNamesTheOption) {
   expect_error(base + "--model coupled --mu 0.4 --plot fig.pdf", "--plot");
 }
 
-/// A synthetic station (H1 north, H2 east, V up) written by `topple synth --components 3`: portable, so every machine
-/// gets the same samples. At 0.3 g a 20 x 80 cm block (b/h = 0.25) with mu_s = 0.26 rocks and slips.
+/// The synthetic station of test::SyntheticStation: at its 0.3 g a 20 x 80 cm block (b/h = 0.25) with mu_s = 0.26
+/// rocks and slips.
 class CliRockCoupledPair : public ::testing::Test {
  protected:
-  void SetUp() override {
-    (void)test::run_json("synth --components 3 --pga 0.3g --freq 2.5Hz --duration 20 --seed 4 --azimuths 0,90 "
-                         "--json --out " + quote(dir.path() / "m.csv"));
-    h1 = quote(dir.path() / "m.h1.csv");
-    h2 = quote(dir.path() / "m.h2.csv");
-    v = quote(dir.path() / "m.v.csv");
-  }
   static std::string quote(const std::filesystem::path& p) { return fmt::format("'{}'", p.string()); }
   test::TempDir dir;
-  std::string h1, h2, v;
+  test::SyntheticStation station{dir.path()};
+  const std::string& h1 = station.h1;
+  const std::string& h2 = station.h2;
+  const std::string& v = station.v;
   const std::string body = " --shape block --width 20cm --height 80cm --model coupled --mu 0.26 --json";
 };
 

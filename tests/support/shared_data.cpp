@@ -13,6 +13,7 @@ extern char** environ;
 #include <random>
 #include <sstream>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <stdexcept>
 
@@ -101,6 +102,15 @@ pid_t spawn_cli(const std::vector<std::string>& args, const std::filesystem::pat
   const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
   return rc == 0 ? pid : -1;
+}
+
+SyntheticStation::SyntheticStation(const std::filesystem::path& dir) {
+  const auto quote = [](const std::filesystem::path& p) { return fmt::format("'{}'", p.string()); };
+  (void)run_json("synth --components 3 --pga 0.3g --freq 2.5Hz --duration 20 --seed 4 --azimuths 0,90 --json --out " +
+                 quote(dir / "m.csv"));
+  h1 = quote(dir / "m.h1.csv");
+  h2 = quote(dir / "m.h2.csv");
+  v = quote(dir / "m.v.csv");
 }
 
 }  // namespace topple::test

@@ -66,6 +66,14 @@ class TempDir {
   std::filesystem::path path_;
 };
 
+/// A synthetic station in `dir`, written by `topple synth --components 3 --pga 0.3g --freq 2.5Hz --duration 20
+/// --seed 4 --azimuths 0,90`: H1 north, H2 east, V up; portable, so every machine gets the same samples. The paths
+/// are single-quoted for a command line.
+struct SyntheticStation {
+  explicit SyntheticStation(const std::filesystem::path& dir);
+  std::string h1, h2, v;
+};
+
 /// Writes text to a file (binary, exactly as given).
 void write_file(const std::filesystem::path& path, const std::string& text);
 
