@@ -15,6 +15,7 @@
 #include "topple/error.hpp"
 #include "topple/flexible.hpp"
 #include "topple/motion_set.hpp"
+#include "topple/oriented.hpp"
 #include "topple/rocking.hpp"
 #include "topple/rotd.hpp"
 #include "topple/sliding2d.hpp"
@@ -180,6 +181,13 @@ void observation_match_3c(const ObservedObject& object, const DrawnParameters& p
   const MotionSet frame = MotionSet::make(major, &minor, ComponentAzimuths{0.0, 90.0});
   const auto run = [&](double angle_deg) {
     if (lifted) return detail::rocking_match(object.outcome, true, 0.0);  // header, item 3: scored as overturned
+    if (object.depth_m) {  // a box: both axes, the governing one's response (oriented.hpp, "Box")
+      const MotionSet with_vertical = MotionSet::make(major, &minor, ComponentAzimuths{0.0, 90.0}, &vertical);
+      const OrientedRockingSummary both =
+          rock_oriented_summary(with_vertical, OrientedBody::make(object.body, object.depth_m), angle_deg, options);
+      const RockingSummary& s = both.governing_response().summary;
+      return detail::rocking_match(object.outcome, s.overturned, s.max_abs_rotation_rad);
+    }
     const RockingSummary s = rock_summary(frame.projected(angle_deg), object.body, options, &vertical);
     return detail::rocking_match(object.outcome, s.overturned, s.max_abs_rotation_rad);
   };
@@ -342,7 +350,8 @@ MatchTable3c simulate_matches_3c(const Site& site, const InversionSettings& st, 
   // Solver runs: one per bin for a rocking object with a bearing, else one.
   for (const ObservedObject& o : site.objects) {
     const bool per_bin = !is_sliding(o.outcome) && o.azimuth_deg && o.body.shape != RockingBody::Shape::cylinder;
-    table.runs += plan.motions.size() * (per_bin ? nb : 1);
+    const std::size_t axes = !is_sliding(o.outcome) && o.depth_m ? 2 : 1;  // a box rocks about both axes
+    table.runs += plan.motions.size() * (per_bin ? nb : 1) * axes;
   }
   return table;
 }

@@ -23,7 +23,9 @@
 // 3. Objects. A rocking object of bearing beta feels the projection of the horizontal pair on beta (motion_set.hpp
 //    eq. M1) at the angle gamma = beta - Psi_b - delta_k from the major axis, with the vertical (the planar rocking
 //    model, rocking.hpp, g -> g + a_v): one run per bin. Unknown bearing: gamma uniform in [0, 180) per (motion k,
-//    object), the same in every cell and bin (a Monte Carlo marginal, as mu's range): one run. A cylinder rocks in
+//    object), the same in every cell and bin (a Monte Carlo marginal, as mu's range): one run. A block with a `depth`
+//    is a box (oriented.hpp, "Box"): it rocks along gamma and gamma + 90 (half-width depth / 2), and the governing
+//    axis' response is scored (two runs where a block has one). A cylinder rocks in
 //    the realisation's RotD100 direction (its worst: the largest peak), an approximation of three-dimensional
 //    rocking. A sliding object runs the bidirectional solver (sliding2d.hpp) on the pair and the vertical once; its
 //    residual distance does not depend on the orientation (isotropic friction) and its direction is the solver's

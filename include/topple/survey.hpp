@@ -79,6 +79,10 @@ struct ObservedObject {
   /// Outcome slid, three-component surveys: the direction the object moved (marks on the floor), degrees clockwise
   /// from north, in [0, 360). None: not seen.
   std::optional<double> slid_azimuth_deg;
+  /// Three-component surveys, shape = "block": the block's other horizontal dimension (along bearing + 90), m. Given,
+  /// the object is a box rocked about both pairs of base edges (oriented.hpp, OrientedBody::make). None: the block
+  /// rocks along its bearing only, as before.
+  std::optional<double> depth_m;
   Outcome outcome = Outcome::not_overturned;
   std::optional<double> slid_m;              ///< observed sliding distance (outcome slid)
   double slid_uncertainty_m = 0.0;           ///< its one-sigma uncertainty
