@@ -199,6 +199,70 @@ void observation_match_3c(const ObservedObject& object, const DrawnParameters& p
   for (std::size_t b = 0; b < out.size(); ++b) out[b] = run(wrap(*object.azimuth_deg - major_azimuth_deg[b], 360.0));
 }
 
+ThreeComponentBounds static_bounds_3c(const Site& site, double rho) {
+  ThreeComponentBounds out;
+  constexpr double c = kRotD50FloorOfRotD100;
+  const auto g3 = [](double v) { return fmt::format("{:.3g} g", v); };
+  for (const ObservedObject& o : site.objects) {
+    const std::string_view name = outcome_name(o.outcome);
+    // s: the static coefficient (mu or tan alpha); h, v: the horizontal and vertical gains of the support.
+    const auto lower = [&](double s, const char* symbol, double h, double v, const std::string& gain) {
+      const double a100 = s / (h + v * rho * s);            // (S3a)
+      const double a50 = c * s / (h + c * v * rho * s);     // (S3b)
+      const std::string why = fmt::format("{} = {:.3g}{}, vertical V/H <= {:.3g}", symbol, s, gain, rho);
+      out.rotd100.lower.push_back({a100, o.id, fmt::format("{}: RotD100 PGA > {} ({})", name, g3(a100), why), true});
+      out.rotd50.lower.push_back({a50, o.id,
+                                  fmt::format("{}: RotD50 PGA > {} (RotD100 > {} and RotD50 >= {:.4f} RotD100; {})",
+                                              name, g3(a50), g3(a100), c, why),
+                                  true});
+    };
+    const auto upper = [&](double s, const char* symbol, double amp, const std::string& gain) {
+      if (!(amp > rho * s)) return;  // the vertical could lift it off: no threshold
+      const double a = s / (amp * (1.0 - rho * s));
+      const std::string why = fmt::format("{} = {:.3g}{}, vertical V/H <= {:.3g}", symbol, s, gain, rho);
+      out.rotd100.upper.push_back({a, o.id, fmt::format("{}: RotD100 PGA <= {} ({})", name, g3(a), why), false});
+      out.rotd50.upper.push_back(
+          {a, o.id, fmt::format("{}: RotD50 PGA <= {} (RotD50 <= RotD100 <= {}; {})", name, g3(a), g3(a), why), false});
+    };
+    const auto amp_text = [](double amp) { return amp == 1.0 ? std::string() : fmt::format(", amplification {:.3g}", amp); };
+    const OrientedBody oriented = OrientedBody::make(o.body, o.depth_m);
+    // Uplift: the planar body's tan alpha (detail::uplift_tan_alpha: an asymmetric body's weaker one); a box rocks
+    // first about its smaller one when it rocked, and is bounded by both when it did not.
+    const double tan_lower = oriented.across ? std::min(std::tan(o.body.alpha_rad()), std::tan(oriented.across->alpha_rad()))
+                                             : detail::uplift_tan_alpha(o.body, true);
+    if (o.support_filter) {  // lower thresholds only (inversion.hpp, item 1); the vertical passes unfiltered
+      const double peak = max_peak_amplification(o.support_filter->damping.low);
+      const double h = o.amplification.high * peak;
+      if (!std::isfinite(h)) continue;
+      const std::string gain = fmt::format(", support peak gain <= {:.3g}", h);
+      if (o.outcome == Outcome::slid) lower(o.mu.low, "mu", h, o.amplification.high, gain);
+      if (o.outcome == Outcome::rocked || o.outcome == Outcome::overturned) {
+        lower(tan_lower, "b/h", h, o.amplification.high, gain);
+      }
+      continue;
+    }
+    const double hi = o.amplification.high, lo = o.amplification.low;
+    switch (o.outcome) {
+      case Outcome::slid: lower(o.mu.low, "mu", hi, hi, amp_text(hi)); break;
+      case Outcome::not_slid: upper(o.mu.high, "mu", lo, amp_text(lo)); break;
+      case Outcome::rocked:
+      case Outcome::overturned: lower(tan_lower, "b/h", hi, hi, amp_text(hi)); break;
+      case Outcome::not_rocked:
+        if (oriented.across) {
+          upper(std::hypot(std::tan(o.body.alpha_rad()), std::tan(oriented.across->alpha_rad())),
+                "hypot of the box's two b/h", lo, amp_text(lo));
+        } else if (oriented.axisymmetric()) {
+          upper(std::tan(o.body.alpha_rad()), "b/h", lo, amp_text(lo));
+        }  // a planar body bounds the projection on its bearing only: no threshold (header, item 6)
+        break;
+      default: break;  // not_overturned: no static threshold, as in one component
+    }
+  }
+  detail::settle_static_bounds(out.rotd100);
+  detail::settle_static_bounds(out.rotd50);
+  return out;
+}
+
 DirectionEstimate direction_estimate(const std::vector<double>& bins_deg, const std::vector<double>& posterior) {
   DirectionEstimate d;
   const std::size_t n = bins_deg.size();
@@ -366,7 +430,14 @@ InversionResult invert_site_3c(const Site& site, const InversionSettings& st, co
   r.pga_g = log_spaced(st.pga_min_g, st.pga_max_g, static_cast<std::size_t>(st.pga_count));
   r.freq_hz = family.freq_hz;
   r.measured_freq_hz = family.measured_freq_hz;
-  r.bounds = static_bounds(site);
+  // Static thresholds (header, item 6) with the family's largest vertical ratio rho (RotD50 of the stored pair is 1).
+  double rho = 0.0;
+  for (const auto& column : family.motions) {
+    for (const Realisation3c& real : column) rho = std::max(rho, real.vertical->pga_m_s2());
+  }
+  ThreeComponentBounds thresholds = static_bounds_3c(site, rho);
+  r.bounds = std::move(thresholds.rotd50);
+  r.rotd100_bounds = std::move(thresholds.rotd100);
   const MatchTable3c table = simulate_matches_3c(site, st, r.pga_g, family, options);
   r.runs = table.runs;
   const std::size_t cells = table.cells(), nb = table.bins, no = table.objects, n = table.motions;
@@ -462,11 +533,22 @@ InversionResult invert_site_3c(const Site& site, const InversionSettings& st, co
   tc.vertical_pga_ratio = defaults.vertical_pga_ratio;
   tc.vertical_frequency_ratio = defaults.vertical_frequency_ratio;
   tc.slid_direction_kappa = kSlidDirectionKappa;
+  tc.threshold_vertical_ratio = rho;
   r.three_component = tc;
 
   r.notes = inversion_notes(r, table.mean_over_bins());
-  r.notes.push_back("Three components: the static thresholds bound the peak of the horizontal acceleration along an "
-                    "object's bearing (of its vector for sliding), not RotD50, the PGA axis of the estimates.");
+  r.notes.push_back(fmt::format(
+      "Three components: the static thresholds hold on RotD100 PGA, the peak of the horizontal acceleration vector, "
+      "which bounds its projection on every bearing (with the family's vertical, V/H <= {:.3g}); on RotD50, the PGA "
+      "axis of the estimates, they hold as the weaker RotD50 >= {:.4f} RotD100 makes them.",
+      rho, kRotD50FloorOfRotD100));
+  for (const ObservedObject& o : site.objects) {
+    if (o.outcome == Outcome::not_rocked && !o.depth_m && o.body.shape != RockingBody::Shape::cylinder) {
+      r.notes.push_back(fmt::format("{} did not rock: that bounds the motion along its bearing only, no direction-free "
+                                    "measure, so it gives no static threshold here (a box, with depth, does).",
+                                    o.id));
+    }
+  }
   if (!tc.direction.constrained) {
     r.notes.push_back(fmt::format("The direction of strongest shaking is unconstrained: its 95 % arc spans {:.0f} deg "
                                   "(more than {:.0f} deg). Bearings of objects that rocked, overturned or stood, and "
@@ -484,6 +566,14 @@ std::string three_component_summary(const InversionResult& r) {
       " PGA is RotD50 of the two horizontal components (the median of the peak over all directions; the larger "
       "component's PGA is about {:.2f} times it here, a median of {:.2g} g).",
       tc.larger_component_ratio, tc.larger_component_median_g);
+  if (r.rotd100_bounds && (r.rotd100_bounds->lower_g || r.rotd100_bounds->upper_g)) {
+    // Item 6: the thresholds are stated on the axis where they hold.
+    const StaticBounds& b = *r.rotd100_bounds;
+    std::string range;
+    if (b.lower_g) range = fmt::format("above {:.3g} g{}", *b.lower_g, b.hard_lower_g == b.lower_g ? " (hard)" : "");
+    if (b.upper_g) range += fmt::format("{}at most {:.3g} g (soft)", range.empty() ? "" : ", ", *b.upper_g);
+    s += fmt::format(" The static thresholds hold on RotD100 PGA (the peak over all directions): {}.", range);
+  }
   const DirectionEstimate& d = tc.direction;
   if (!d.constrained) {
     s += fmt::format(" The direction of strongest shaking is unconstrained (its 95 % arc spans {:.0f} deg).",

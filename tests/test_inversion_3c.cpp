@@ -287,6 +287,124 @@ TEST(Match3c, AVeryDeepBoxIsThePlanarBlock) {
   }
 }
 
+// ---- Static thresholds in three components (inversion_3c.hpp, item 6) ----
+
+TEST(StaticBounds3c, RotD50IsAtLeastTheFloorTimesRotD100) {
+  // The floor is (cos 45 + cos 45.5 deg) / 2 (printed to 16 digits; 1e-15 for the cosines' round-off).
+  EXPECT_NEAR(kRotD50FloorOfRotD100, 0.5 * (std::cos(45.0 * kDegRad) + std::cos(45.5 * kDegRad)), 1e-15);
+  // A single impulse along any direction phi is the most polarised pair (Y(theta) = A |cos(theta - phi)|): its
+  // ratio is the smallest, and never below the floor; the family's realisations lie well above it.
+  for (double phi = 0.0; phi < 180.0; phi += 0.05) {
+    const std::vector<double> e{0.0, std::sin(phi * kDegRad), 0.0}, n{0.0, std::cos(phi * kDegRad), 0.0};
+    const RotDValue v = rotd_of(rotd_peaks_by_angle(e, n));
+    EXPECT_GE(v.rotd50 / v.rotd100, kRotD50FloorOfRotD100) << phi;
+    EXPECT_LT(v.rotd50 / v.rotd100, 0.7072) << phi;  // cos 45 deg + round-off: the bound is nearly attained
+  }
+  const InversionSettings st = small_3c(8, 6);
+  for (int k = 0; k < 8; ++k) {
+    const Realisation3c r = family_realisation_3c(st, 3.0, k);
+    EXPECT_GE(1.0 / r.rotd100_ratio, kRotD50FloorOfRotD100) << k;
+  }
+}
+
+TEST(StaticBounds3c, HandComputedOnRotD100AndRotD50) {
+  Site site;
+  site.objects.push_back(block("tall", 0.06, 0.40, {0.5, 0.5}, Outcome::rocked));   // b/h = 0.15
+  auto crate = block("crate", 0.3, 0.3, {0.4, 0.6}, Outcome::slid);                  // mu_low 0.4, amplification 1.5
+  crate.amplification = {1.0, 1.5};
+  site.objects.push_back(crate);
+  site.objects.push_back(block("pan", 0.3, 0.04, {0.3, 0.3}, Outcome::not_slid));    // mu_high 0.3
+  site.objects.push_back(block("vase", 0.08, 0.40, {0.5, 0.5}, Outcome::not_rocked));  // planar: no threshold
+  auto box = block("box", 0.06, 0.40, {0.5, 0.5}, Outcome::not_rocked);              // b/h 0.15 and 0.25
+  box.depth_m = 0.10;
+  site.objects.push_back(box);
+  ObservedObject can = block("can", 0.1, 0.4, {0.5, 0.5}, Outcome::not_rocked);      // cylinder, b/h = 0.25
+  can.body = RockingBody::cylinder(0.1, 0.4);
+  site.objects.push_back(can);
+  auto low = block("low-box", 0.06, 0.40, {0.5, 0.5}, Outcome::overturned);         // depth 4 cm: b/h 0.10 governs
+  low.depth_m = 0.04;
+  site.objects.push_back(low);
+
+  const double rho = 2.0 / 3.0, c = kRotD50FloorOfRotD100;
+  const ThreeComponentBounds b = static_bounds_3c(site, rho);
+  // By hand, (S3a) s / (H + V rho s) and (S3b) c s / (H + c V rho s); uppers s / (A (1 - rho s)). 1e-12: the
+  // round-off of three operations on numbers of order 1.
+  ASSERT_EQ(b.rotd100.lower.size(), 3u);
+  ASSERT_EQ(b.rotd50.lower.size(), 3u);
+  EXPECT_NEAR(b.rotd100.lower[0].pga_g, 0.15 / 1.1, 1e-12);                 // 0.1364 g: tall
+  EXPECT_NEAR(b.rotd50.lower[0].pga_g, c * 0.15 / (1.0 + c * 0.1), 1e-12);  // 0.0987 g
+  EXPECT_NEAR(b.rotd100.lower[1].pga_g, 0.4 / (1.5 + 1.5 * 0.4 * rho), 1e-12);  // 0.2105 g: crate
+  EXPECT_NEAR(b.rotd100.lower[2].pga_g, 0.10 / (1.0 + 0.10 * rho), 1e-12);      // 0.09375 g: the box's thin axis
+  ASSERT_EQ(b.rotd100.upper.size(), 3u);  // pan, box, can; the planar vase gives none
+  EXPECT_NEAR(b.rotd100.upper[0].pga_g, 0.3 / (1.0 - 0.2), 1e-12);  // 0.375 g
+  const double s_box = std::hypot(0.15, 0.25);
+  EXPECT_NEAR(b.rotd100.upper[1].pga_g, s_box / (1.0 - rho * s_box), 1e-12);  // 0.3619 g
+  EXPECT_NEAR(b.rotd100.upper[2].pga_g, 0.25 / (1.0 - 0.25 * rho), 1e-12);    // 0.3 g
+  for (std::size_t i = 0; i < 3; ++i) EXPECT_EQ(b.rotd50.upper[i].pga_g, b.rotd100.upper[i].pga_g);  // RotD50 <= RotD100
+  EXPECT_NEAR(*b.rotd100.lower_g, 0.4 / 1.9, 1e-12);
+  EXPECT_NEAR(*b.rotd100.hard_lower_g, 0.4 / 1.9, 1e-12);
+  EXPECT_NEAR(*b.rotd100.upper_g, 0.3, 1e-12);
+  EXPECT_FALSE(b.rotd100.hard_upper_g.has_value());
+  EXPECT_NE(b.rotd100.lower[0].reason.find("RotD100 PGA > 0.136 g"), std::string::npos) << b.rotd100.lower[0].reason;
+  EXPECT_NE(b.rotd50.lower[0].reason.find("RotD50 PGA > 0.0987 g"), std::string::npos) << b.rotd50.lower[0].reason;
+
+  // Without a vertical (rho = 0) the RotD100 thresholds of rigid supports are the one-component numbers.
+  Site rigid;
+  for (const ObservedObject& o : site.objects) {
+    if (o.body.shape != RockingBody::Shape::cylinder && !o.depth_m && o.outcome != Outcome::not_rocked) rigid.objects.push_back(o);
+  }
+  const StaticBounds one = static_bounds(rigid);
+  const ThreeComponentBounds zero = static_bounds_3c(rigid, 0.0);
+  ASSERT_EQ(one.lower.size(), zero.rotd100.lower.size());
+  for (std::size_t i = 0; i < one.lower.size(); ++i) EXPECT_NEAR(zero.rotd100.lower[i].pga_g, one.lower[i].pga_g, 1e-15);
+}
+
+TEST(StaticBounds3c, NoRunUpliftsOrSlipsBelowTheThresholds) {
+  // The thresholds are hard: scaled so that the peak of the horizontal vector is 0.999 of an object's RotD100
+  // threshold (rho: this realisation's own vertical ratio), no bearing uplifts a block and a crate does not slip;
+  // scaled to 0.999 of the RotD50 threshold, the same.
+  const InversionSettings st = small_3c(4, 6);
+  const double g = kStandardGravity;
+  for (int k = 0; k < 4; ++k) {
+    const Realisation3c r = family_realisation_3c(st, 3.0, k);
+    const double rho = r.vertical->pga_m_s2();  // RotD50 of the stored pair is 1 m/s^2
+    double peak = 0.0;
+    for (std::size_t i = 0; i < r.major->size(); ++i) {
+      peak = std::max(peak, std::hypot(r.major->accel_m_s2()[i], r.minor->accel_m_s2()[i]));
+    }
+    Site site;
+    site.objects.push_back(block("tall", 0.06, 0.40, {0.5, 0.5}, Outcome::rocked));
+    site.objects.push_back(block("crate", 0.3, 0.3, {0.3, 0.3}, Outcome::slid));
+    const ThreeComponentBounds b = static_bounds_3c(site, rho);
+    RockingOptions ro;
+    ro.g_m_s2 = g;
+    const auto uplifts = [&](double factor) {  // factor: m/s^2 per unit of the stored realisation
+      const GroundMotion ma = r.major->scaled(factor), mi = r.minor->scaled(factor), v = r.vertical->scaled(factor);
+      const MotionSet set = MotionSet::make(ma, &mi, ComponentAzimuths{0.0, 90.0});
+      bool any = false;
+      for (double az = 0.0; az < 180.0; az += 2.0) {
+        any = any || rock_summary(set.projected(az), site.objects[0].body, ro, &v).max_abs_rotation_rad > 0.0;
+      }
+      return any;
+    };
+    const auto slips = [&](double factor) {
+      const GroundMotion ma = r.major->scaled(factor), mi = r.minor->scaled(factor), v = r.vertical->scaled(factor);
+      return slide_2d_summary(ma, mi, ComponentAzimuths{0.0, 90.0},
+                              SlidingBlock::make(0.3, 0.3, 0.0, SlidingMode::two_way, g), &v)
+                 .max_abs_displacement_m > 0.0;
+    };
+    const double up100 = b.rotd100.lower[0].pga_g * g / peak, slip100 = b.rotd100.lower[1].pga_g * g / peak;
+    EXPECT_FALSE(uplifts(0.999 * up100)) << k;
+    EXPECT_FALSE(slips(0.999 * slip100)) << k;
+    EXPECT_FALSE(uplifts(0.999 * b.rotd50.lower[0].pga_g * g)) << k;  // RotD50 of the stored pair is 1
+    EXPECT_FALSE(slips(0.999 * b.rotd50.lower[1].pga_g * g)) << k;
+    // The vector peak above s (g + PGA_v) >= s (g + a_v) at its instant must uplift / slip: the gap between the two
+    // is the vertical's range only (1.01: the 2-degree bearing step sees at least cos 1 deg of the peak).
+    EXPECT_TRUE(uplifts(1.01 * 0.15 / (1.0 - rho * 0.15) * g / peak)) << k;
+    EXPECT_TRUE(slips(1.01 * 0.3 / (1.0 - rho * 0.3) * g / peak)) << k;
+  }
+}
+
 TEST(Inversion3c, OneComponentSurveysKeepTheirMeaning) {
   // components = 1 said explicitly is today's model: the same JSON as without the key (the example itself, before
   // and after this change, gave identical JSON: docs/verification.md).
@@ -327,6 +445,18 @@ TEST(Inversion3c, SummaryJsonAndReportSayRotD50AndTheDirection) {
   const auto j = io::inversion_json(r, s.sites[0]);
   EXPECT_EQ(j["three_component"]["pga_axis"], "RotD50");
   EXPECT_EQ(j["three_component"]["direction_of_strongest_shaking"]["posterior"].size(), 6u);
+  // Static thresholds (item 6): object a (b/h = 0.2, overturned) on RotD100 and, at the top level, on RotD50. rho is
+  // the family's largest V/H, 2/3 up to the 1-degree grid (2e-3, as the family test); 1e-12: round-off.
+  const double rho = j["three_component"]["static_thresholds_vertical_ratio"].get<double>();
+  EXPECT_NEAR(rho, 2.0 / 3.0, 2e-3);
+  EXPECT_EQ(j["three_component"]["static_bounds_pga_axis"], "RotD50");
+  EXPECT_NEAR(j["three_component"]["static_bounds_rotd100_pga_g"][0].get<double>(), 0.2 / (1.0 + 0.2 * rho), 1e-12);
+  EXPECT_TRUE(j["three_component"]["static_bounds_rotd100_pga_g"][1].is_null());
+  EXPECT_NEAR(j["static_bounds_pga_g"][0].get<double>(),
+              kRotD50FloorOfRotD100 * 0.2 / (1.0 + kRotD50FloorOfRotD100 * 0.2 * rho), 1e-12);
+  EXPECT_NEAR(j["objects"][0]["static_lower_bound_rotd100_pga_g"].get<double>(), 0.2 / (1.0 + 0.2 * rho), 1e-12);
+  EXPECT_EQ(j["three_component"]["static_thresholds_rotd100"].size(), 1u);
+  EXPECT_NE(summary.find("The static thresholds hold on RotD100 PGA"), std::string::npos) << summary;
   const std::filesystem::path dir = std::filesystem::temp_directory_path() / "topple_test_report_3c";
   std::filesystem::remove_all(dir);
   write_report(dir, s, s.sites[0], r);
@@ -335,6 +465,8 @@ TEST(Inversion3c, SummaryJsonAndReportSayRotD50AndTheDirection) {
   html << in.rdbuf();
   EXPECT_NE(html.str().find("<tr id=\"direction\">"), std::string::npos);
   EXPECT_NE(html.str().find("PGA is RotD50"), std::string::npos);
+  EXPECT_NE(html.str().find("<td>RotD100 PGA &gt; "), std::string::npos);
+  EXPECT_NE(html.str().find("<td>RotD50 PGA &gt; "), std::string::npos);
   std::filesystem::remove_all(dir);
 }
 

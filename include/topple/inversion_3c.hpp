@@ -45,6 +45,23 @@
 //    bins (InversionResult's log_likelihood is log of the bins' mean), the direction's over the cells.
 //    Direction: mode, axial circular mean, and the shortest arcs holding the 68 % and 95 % highest-posterior bins.
 //    Unconstrained: the 95 % arc spans more than kUnconstrainedArcDeg.
+// 6. Static thresholds (docs/method.md, "Static thresholds in three components"). Uplift and slip depend on the
+//    horizontal acceleration vector a(t) and the vertical: uplift about the edges of bearing beta needs
+//    |a(t) . e_beta| > (g + a_v(t)) tan alpha, slip needs |a(t)| > mu (g + a_v(t)). Every projection's peak is at most
+//    A = max_t |a(t)|, which is RotD100 PGA (the peak over all directions), and the family's vertical peak is at most
+//    rho RotD50 <= rho A (rho: the family's largest PGA_v / RotD50, 2/3 nominally). So an object that rocked or
+//    overturned (s = tan alpha; a box: its smaller one) or slid (s = mu) on a support of gain H (amplification, and a
+//    flexible support's peak gain) with vertical gain V gives the hard threshold
+//      RotD100 > s / (H + V rho s)                                                                     (S3a)
+//    whatever its bearing; and, as RotD50 >= kRotD50FloorOfRotD100 RotD100 for every pair (the 1-degree grid's
+//    median of |cos|), the hard but weaker
+//      RotD50 > c s / (H + c V rho s),   c = kRotD50FloorOfRotD100.                                      (S3b)
+//    An object that did not slide visibly gives RotD100 <= mu / (A_lo (1 - rho mu)) (soft, as in one component; it
+//    bounds RotD50 <= RotD100 by the same number), and so does a box that did not rock (s = hypot of its two
+//    tan alpha: both projections bounded bound the vector) and a cylinder (every direction: s = tan alpha). A planar
+//    block that did not rock bounds only the projection on its bearing, which bounds no direction-free measure: no
+//    threshold. InversionResult::rotd100_bounds holds (S3a), InversionResult::bounds (S3b), the PGA axis of the
+//    estimates.
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -64,6 +81,21 @@ inline constexpr double kSlidDirectionKappa = 8.0;
 /// The direction of strongest shaking is reported as unconstrained when its 95 % arc spans more than this, deg (two
 /// thirds of the half circle: the bearings rule out less than a third of the directions).
 inline constexpr double kUnconstrainedArcDeg = 120.0;
+
+/// The smallest RotD50 / RotD100 of any horizontal pair on rotd.hpp's angles 0, 1, ..., 179 deg (dimensionless):
+/// (cos 45 deg + cos 45.5 deg) / 2. At the sample of the vector peak A, Y(theta) >= A |cos(theta - phi)|; at least 90
+/// of the 180 angles lie within 45 deg of phi and 91 within 45.5 deg, so the 90th and 91st largest Y, whose mean is
+/// RotD50, are at least A cos 45 and A cos 45.5 deg; and RotD100 <= A. (1 / sqrt 2 on continuous angles.)
+inline constexpr double kRotD50FloorOfRotD100 = 0.7040080227431993;
+
+/// The static thresholds of a three-component site (header, item 6): on RotD100 PGA (S3a), where they hold, and their
+/// consequence on RotD50 PGA (S3b), per object in the same order in both. `vertical_ratio` is rho (>= 0; 0: no
+/// vertical). Reasons name the axis.
+struct ThreeComponentBounds {
+  StaticBounds rotd100;
+  StaticBounds rotd50;
+};
+[[nodiscard]] ThreeComponentBounds static_bounds_3c(const Site& site, double vertical_ratio);
 
 /// One realisation of the three-component family in its major-axis frame (header, item 1). RotD50 PGA 1 m/s^2.
 struct Realisation3c {
