@@ -327,6 +327,49 @@ plot::Figure marginal_figure(const InversionResult& r, bool pga) {
   return f;
 }
 
+/// Three components: the posterior of the direction of strongest shaking over [0, 180) deg, its mode and arcs, and the
+/// directions the objects give (bearings and sliding directions, mod 180).
+plot::Figure direction_figure(const InversionResult& r, const Site& site) {
+  const DirectionEstimate& d = r.three_component->direction;
+  plot::Figure f;
+  f.title = fmt::format("Direction of strongest shaking (azimuth of the major axis of horizontal motion, mod 180 deg): "
+                        "{}",
+                        d.constrained ? fmt::format("mode {:.0f} deg", d.mode_deg)
+                                      : fmt::format("unconstrained (95 % arc {:.0f} deg wide, more than {:.0f})",
+                                                    d.ci95.width_deg, kUnconstrainedArcDeg));
+  f.xlabel = "azimuth (deg clockwise from north, mod 180)";
+  plot::Panel panel;
+  panel.ylabel = "posterior probability per bin";
+  plot::Series post{"posterior", d.azimuth_deg, d.posterior, "linespoints pt 7 ps 0.6", "#2171b5", 2.0};
+  post.x.push_back(180.0);  // the axis at 180 deg is the one at 0
+  post.y.push_back(d.posterior.front());
+  panel.series.push_back(std::move(post));
+  const double top = *std::max_element(d.posterior.begin(), d.posterior.end());
+  panel.series.push_back({fmt::format("mode {:.0f} deg", d.mode_deg), {d.mode_deg, d.mode_deg}, {0.0, top}, "lines",
+                          "#000000", 2.0});
+  // An arc may pass 180 deg: drawn in two pieces, the second unlabelled.
+  const auto arc = [&](const DirectionArc& a, const char* label, double y, const char* color) {
+    const double end = std::min(a.high_deg(), 180.0);
+    panel.series.push_back({label, {a.low_deg, end}, {y, y}, "linespoints pt 2", color, 3.0});
+    if (a.high_deg() > 180.0) panel.series.push_back({"", {0.0, a.high_deg() - 180.0}, {y, y}, "linespoints pt 2", color, 3.0});
+  };
+  arc(d.ci68, "68 % arc", 0.5 * top, "#e6550d");
+  arc(d.ci95, "95 % arc", 0.25 * top, "#31a354");
+  plot::Series bearings{"objects' bearings", {}, {}, "points pt 13 ps 1.4", "#7f3b08", 1.0};
+  plot::Series slid{"sliding directions", {}, {}, "points pt 9 ps 1.4", "#542788", 1.0};
+  for (const ObservedObject& o : site.objects) {
+    if (o.azimuth_deg) bearings.x.push_back(std::fmod(*o.azimuth_deg, 180.0));
+    if (o.slid_azimuth_deg) slid.x.push_back(std::fmod(*o.slid_azimuth_deg, 180.0));
+  }
+  bearings.y.assign(bearings.x.size(), 0.0);
+  slid.y.assign(slid.x.size(), 0.0);
+  if (!bearings.x.empty()) panel.series.push_back(std::move(bearings));
+  if (!slid.x.empty()) panel.series.push_back(std::move(slid));
+  f.panels.push_back(panel);
+  f.panel_height_px = 380;
+  return f;
+}
+
 plot::Figure best_cell_figure(const InversionResult& r, const Site& site, const InversionSettings& settings) {
   const double pga = r.pga_g[r.best_cell / r.freq_hz.size()];
   const double freq = r.freq_hz[r.best_cell % r.freq_hz.size()];
@@ -438,6 +481,7 @@ void write_report(const std::filesystem::path& dir, const Survey& survey, const 
   plot::render(marginal_figure(r, true), dir / "marginal_pga.svg");
   plot::render(marginal_figure(r, false), dir / "marginal_freq.svg");
   plot::render(best_cell_figure(r, site, survey.inversion), dir / "best_cell.svg");
+  if (r.three_component) plot::render(direction_figure(r, site), dir / "direction.svg");
   io::write_inversion_grid_csv(dir / "grid.csv", r);
   io::write_file_atomically(dir / "result.json", io::inversion_json(r, site, provenance).dump(2) + "\n");
   const InversionSettings& st = survey.inversion;
@@ -549,6 +593,15 @@ void write_report(const std::filesystem::path& dir, const Survey& survey, const 
   h << "<figure id=\"marginal-freq\">" << inline_svg(dir / "marginal_freq.svg")
     << "<figcaption>Figure 3. Marginal posterior of the predominant frequency (the posterior summed over PGA), with "
        "the median and the 68 % and 95 % intervals.</figcaption></figure>\n";
+  if (r.three_component) {
+    h << "<figure id=\"direction-figure\">" << inline_svg(dir / "direction.svg")
+      << "<figcaption>Figure 3b. Posterior of the direction of strongest shaking, the azimuth of the major axis of "
+         "horizontal motion (an axis: 10&deg; and 190&deg; are one direction), per bin, with its mode and its 68 % and "
+         "95 % arcs (the shortest arcs holding those shares of the highest bins; an arc passing 180&deg; goes on "
+         "from 0&deg;). Diamonds on the axis: the objects' bearings (across their narrow side, mod 180&deg;); "
+         "triangles: observed sliding directions. The direction is unconstrained when the 95 % arc spans more "
+         "than 120&deg;.</figcaption></figure>\n";
+  }
 
   // ---- Observations and how well the answer explains each ----
   h << "<h2 id=\"objects\">Observations</h2>\n<div class=\"wide\"><table id=\"observations\"><tr><th>id</th><th>description</th>"

@@ -466,6 +466,10 @@ TEST(Inversion3c, SummaryJsonAndReportSayRotD50AndTheDirection) {
   EXPECT_NE(html.str().find("<tr id=\"direction\">"), std::string::npos);
   EXPECT_NE(html.str().find("PGA is RotD50"), std::string::npos);
   EXPECT_NE(html.str().find("<td>RotD100 PGA &gt; "), std::string::npos);
+  // The direction's figure: its posterior over the bins, with the objects' bearings (80 and 170 deg).
+  EXPECT_NE(html.str().find("<figure id=\"direction-figure\">"), std::string::npos);
+  EXPECT_TRUE(std::filesystem::exists(dir / "direction.svg"));
+  EXPECT_NE(html.str().find("objects' bearings"), std::string::npos);
   EXPECT_NE(html.str().find("<td>RotD50 PGA &gt; "), std::string::npos);
   std::filesystem::remove_all(dir);
 }
