@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
@@ -179,24 +180,43 @@ void observation_match_3c(const ObservedObject& object, const DrawnParameters& p
   const auto accel_v = vertical.accel_m_s2();
   const bool lifted = g + *std::min_element(accel_v.begin(), accel_v.end()) <= 0.0;
   const MotionSet frame = MotionSet::make(major, &minor, ComponentAzimuths{0.0, 90.0});
-  const auto run = [&](double angle_deg) {
-    if (lifted) return detail::rocking_match(object.outcome, true, 0.0);  // header, item 3: scored as overturned
+  // One run: its match, and the axis it fell along, deg from the major axis (none: it did not fall, or was lifted
+  // off, which has no direction).
+  struct Run {
+    double match = 0.0;
+    std::optional<double> fall_from_major_deg;
+  };
+  const auto run = [&](double angle_deg) -> Run {
+    if (lifted) return {detail::rocking_match(object.outcome, true, 0.0), std::nullopt};  // item 3: as overturned
     if (object.depth_m) {  // a box: both axes, the governing one's response (oriented.hpp, "Box")
       const MotionSet with_vertical = MotionSet::make(major, &minor, ComponentAzimuths{0.0, 90.0}, &vertical);
       const OrientedRockingSummary both =
           rock_oriented_summary(with_vertical, OrientedBody::make(object.body, object.depth_m), angle_deg, options);
-      const RockingSummary& s = both.governing_response().summary;
-      return detail::rocking_match(object.outcome, s.overturned, s.max_abs_rotation_rad);
+      const DirectionResponse& d = both.governing_response();  // azimuth_deg: from the major axis (frame azimuth 0)
+      return {detail::rocking_match(object.outcome, d.summary.overturned, d.summary.max_abs_rotation_rad),
+              d.summary.overturned ? std::optional<double>(d.azimuth_deg) : std::nullopt};
     }
     const RockingSummary s = rock_summary(frame.projected(angle_deg), object.body, options, &vertical);
-    return detail::rocking_match(object.outcome, s.overturned, s.max_abs_rotation_rad);
+    return {detail::rocking_match(object.outcome, s.overturned, s.max_abs_rotation_rad),
+            s.overturned ? std::optional<double>(angle_deg) : std::nullopt};
+  };
+  // The fall direction's kernel (item 4) in a bin whose major axis points at major_az: 1 without an observed one;
+  // the kernel's mean over a uniform direction for a run with no fall direction (as a block that never slid).
+  const auto fall = [&](const Run& r, double major_az) {
+    if (!object.toppled_azimuth_deg || r.match == 0.0) return 1.0;
+    return r.fall_from_major_deg
+               ? direction_kernel(*r.fall_from_major_deg + major_az - *object.toppled_azimuth_deg)
+               : std::exp(-kSlidDirectionKappa) * std::cyl_bessel_i(0.0, kSlidDirectionKappa);
   };
   if (object.body.shape == RockingBody::Shape::cylinder || !object.azimuth_deg) {
-    const double m = run(object.body.shape == RockingBody::Shape::cylinder ? rotd100_angle_deg : unknown_angle_deg);
-    std::fill(out.begin(), out.end(), m);
+    const Run r = run(object.body.shape == RockingBody::Shape::cylinder ? rotd100_angle_deg : unknown_angle_deg);
+    for (std::size_t b = 0; b < out.size(); ++b) out[b] = r.match * fall(r, major_azimuth_deg[b]);
     return;
   }
-  for (std::size_t b = 0; b < out.size(); ++b) out[b] = run(wrap(*object.azimuth_deg - major_azimuth_deg[b], 360.0));
+  for (std::size_t b = 0; b < out.size(); ++b) {
+    const Run r = run(wrap(*object.azimuth_deg - major_azimuth_deg[b], 360.0));
+    out[b] = r.match * fall(r, major_azimuth_deg[b]);
+  }
 }
 
 ThreeComponentBounds static_bounds_3c(const Site& site, double rho) {

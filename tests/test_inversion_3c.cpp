@@ -287,6 +287,70 @@ TEST(Match3c, AVeryDeepBoxIsThePlanarBlock) {
   }
 }
 
+TEST(Survey3c, FallDirectionIsReadForCylindersAndBoxesOnly) {
+  const std::string three = "[inversion]\ncomponents = 3\n";
+  const std::string cylinder = "[[object]]\nid = \"c\"\nshape = \"cylinder\"\ndiameter = \"8cm\"\nheight = \"40cm\"\n"
+                               "mu = 0.5\n";
+  EXPECT_EQ(parse(three + cylinder + "toppled_azimuth_deg = 200\noutcome = \"overturned\"\n")
+                .sites[0].objects[0].toppled_azimuth_deg,
+            200.0);
+  EXPECT_EQ(parse(three + kObjectBlock + "depth = \"8cm\"\ntoppled_azimuth_deg = 15\noutcome = \"overturned\"\n")
+                .sites[0].objects[0].toppled_azimuth_deg,
+            15.0);
+  expect_error(cylinder + "toppled_azimuth_deg = 200\noutcome = \"overturned\"\n", "object[1](c).toppled_azimuth_deg",
+               "needs [inversion] components = 3");
+  expect_error(three + cylinder + "toppled_azimuth_deg = 200\noutcome = \"rocked\"\n",
+               "object[1](c).toppled_azimuth_deg", "goes with outcome = \"overturned\"");
+  expect_error(three + kObjectBlock + "toppled_azimuth_deg = 15\noutcome = \"overturned\"\n",
+               "object[1](a).toppled_azimuth_deg", "falls along its bearing");
+  expect_error(three + cylinder + "toppled_azimuth_deg = 360\noutcome = \"overturned\"\n",
+               "object[1](c).toppled_azimuth_deg", "[0, 360)");
+}
+
+TEST(Match3c, AFallDirectionScoresTheModelsFallAxis) {
+  // A cylinder falls, in the model, along the realisation's RotD100 direction: observed falling along that direction
+  // turned by 60 deg, the bin at 60 deg matches best, at (v(0) + v(180)) / 2 = (1 + exp(-2 kappa)) / 2 (1e-12:
+  // round-off of the kernel), and the bin across it (150 deg) at most exp(-kappa (1 - cos 60 deg)) of it.
+  const InversionSettings st = small_3c(2, 6);
+  const Realisation3c r = family_realisation_3c(st, 2.0, 1);
+  ObservedObject can = block("column", 0.06, 0.40, {0.5, 0.5}, Outcome::overturned);
+  can.body = RockingBody::cylinder(0.06, 0.40);
+  const std::vector<double> plain = matches_at(can, 0.7);
+  ASSERT_EQ(plain, std::vector<double>(6, 1.0));  // it falls at 0.7 g (else the test could not see the direction)
+  can.toppled_azimuth_deg = std::fmod(r.rotd100_angle_deg + 60.0 + 180.0, 360.0);  // either sense of the axis
+  const std::vector<double> m = matches_at(can, 0.7);
+  EXPECT_EQ(std::max_element(m.begin(), m.end()) - m.begin(), 2);
+  EXPECT_NEAR(m[2], 0.5 * (1.0 + std::exp(-2.0 * kSlidDirectionKappa)), 1e-12);
+  EXPECT_LT(m[5], std::exp(-kSlidDirectionKappa * 0.5) * m[2]);
+
+  // A square box falls along the bearing or across it, whichever governs: where only the bearing (40 deg) falls its
+  // axis is 40 deg and an observation across it (130 deg) scores v(90) = exp(-kappa); where only the other axis
+  // falls, (1 + exp(-2 kappa)) / 2.
+  int checked = 0;
+  for (double pga_g : {0.25, 0.35, 0.5, 0.7}) {
+    ObservedObject along = block("slender", 0.06, 0.40, {0.5, 0.5}, Outcome::overturned);
+    along.azimuth_deg = 40.0;
+    ObservedObject across = along;
+    across.azimuth_deg = 130.0;
+    ObservedObject box = along;
+    box.depth_m = 0.06;
+    box.toppled_azimuth_deg = 310.0;  // the axis 130 deg
+    const std::vector<double> a = matches_at(along, pga_g), c = matches_at(across, pga_g), x = matches_at(box, pga_g);
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      if (a[i] == 1.0 && c[i] == 0.0) {
+        EXPECT_NEAR(x[i], std::exp(-kSlidDirectionKappa), 1e-12) << pga_g << " " << i;
+        ++checked;
+      } else if (a[i] == 0.0 && c[i] == 1.0) {
+        EXPECT_NEAR(x[i], 0.5 * (1.0 + std::exp(-2.0 * kSlidDirectionKappa)), 1e-12) << pga_g << " " << i;
+        ++checked;
+      } else if (a[i] == 0.0 && c[i] == 0.0) {
+        EXPECT_EQ(x[i], 0.0);
+      }
+    }
+  }
+  EXPECT_GT(checked, 0);
+}
+
 // ---- Static thresholds in three components (inversion_3c.hpp, item 6) ----
 
 TEST(StaticBounds3c, RotD50IsAtLeastTheFloorTimesRotD100) {

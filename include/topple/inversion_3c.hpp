@@ -40,7 +40,14 @@
 //    kappa = kSlidDirectionKappa (a von Mises error of the direction read from marks, circular standard deviation
 //    about 21 deg), the two terms the two senses of the axis; the distance's and the direction's kernels multiply.
 //    A block that never moved has no direction: m_dir is then the kernel's mean over a uniform direction,
-//    exp(-kappa) I_0(kappa).
+//    exp(-kappa) I_0(kappa). An observed fall direction (toppled_azimuth_deg: a cylinder or a box that overturned)
+//    multiplies the match of a run that overturned by the same kernel of the model's fall axis: a cylinder's is the
+//    realisation's RotD100 direction (the one it rocks in), a box's its governing axis (bearing or bearing + 90),
+//    turned by Psi_b + delta_k; a run lifted off by the vertical has none (the kernel's mean). The realisation's
+//    RotD100 direction lies within about 15 deg of its major axis, its residual sliding direction within about 40:
+//    a toppled column tells the direction more sharply than a slid block (docs/method.md).
+//    A block without depth falls along its bearing by the planar model: its fall direction adds nothing (the survey
+//    refuses it).
 // 5. Posterior. Uniform over log PGA x log frequency x direction bins; the PGA and frequency marginals sum over the
 //    bins (InversionResult's log_likelihood is log of the bins' mean), the direction's over the cells.
 //    Direction: mode, axial circular mean, and the shortest arcs holding the 68 % and 95 % highest-posterior bins.

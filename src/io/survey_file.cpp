@@ -457,6 +457,21 @@ ObservedObject parse_object(const toml::table& t, const std::string& file, const
     if (o.outcome != Outcome::slid) throw named.error("slid_azimuth_deg", "a sliding direction goes with outcome = \"slid\"");
     o.slid_azimuth_deg = parse_bearing(named, "slid_azimuth_deg", *az);
   }
+  if (const auto az = named.number("toppled_azimuth_deg")) {
+    if (components != 3) {
+      throw named.error("toppled_azimuth_deg", "a fall direction needs [inversion] components = 3");
+    }
+    if (o.outcome != Outcome::overturned) {
+      throw named.error("toppled_azimuth_deg", "a fall direction goes with outcome = \"overturned\"");
+    }
+    if (o.body.shape != RockingBody::Shape::cylinder && !o.depth_m) {
+      throw named.error("toppled_azimuth_deg",
+                        "only a cylinder or a box (a block with depth) tells the direction of the shaking by the way it "
+                        "fell: the planar model of a block without depth falls along its bearing (give that as "
+                        "azimuth_deg, or give the block's depth)");
+    }
+    o.toppled_azimuth_deg = parse_bearing(named, "toppled_azimuth_deg", *az);
+  }
   if (o.slid_m && !(*o.slid_m > 0.0)) throw named.error("slid", "must be positive");
   if (o.slid_uncertainty_m < 0.0) throw named.error("slid_uncertainty", "must be >= 0");
   if (o.slid_m && named.has("slid_uncertainty") && sliding_sigma_m(o) > o.slid_uncertainty_m) {
