@@ -188,7 +188,10 @@ void observation_match_3c(const ObservedObject& object, const DrawnParameters& p
   };
   const auto run = [&](double angle_deg) -> Run {
     if (lifted) return {detail::rocking_match(object.outcome, true, 0.0), std::nullopt};  // item 3: as overturned
-    if (object.depth_m) {  // a box: both axes, the governing one's response (oriented.hpp, "Box")
+    // A box: both axes, the governing one's response (oriented.hpp, "Box"). A cylinder with an observed fall
+    // direction: oriented.hpp's grid of directions, the governing one its fall axis (header, item 4).
+    const bool cylinder_grid = object.body.shape == RockingBody::Shape::cylinder && object.toppled_azimuth_deg;
+    if (object.depth_m || cylinder_grid) {
       const MotionSet with_vertical = MotionSet::make(major, &minor, ComponentAzimuths{0.0, 90.0}, &vertical);
       const OrientedRockingSummary both =
           rock_oriented_summary(with_vertical, OrientedBody::make(object.body, object.depth_m), angle_deg, options);
@@ -434,7 +437,11 @@ MatchTable3c simulate_matches_3c(const Site& site, const InversionSettings& st, 
   // Solver runs: one per bin for a rocking object with a bearing, else one.
   for (const ObservedObject& o : site.objects) {
     const bool per_bin = !is_sliding(o.outcome) && o.azimuth_deg && o.body.shape != RockingBody::Shape::cylinder;
-    const std::size_t axes = !is_sliding(o.outcome) && o.depth_m ? 2 : 1;  // a box rocks about both axes
+    // A box rocks about both axes; a cylinder with a fall direction on oriented.hpp's 12 directions.
+    const std::size_t axes = is_sliding(o.outcome)                                                     ? 1
+                             : o.depth_m                                                                ? 2
+                             : o.body.shape == RockingBody::Shape::cylinder && o.toppled_azimuth_deg ? 12
+                                                                                                       : 1;
     table.runs += plan.motions.size() * (per_bin ? nb : 1) * axes;
   }
   return table;

@@ -18,6 +18,7 @@
 #include "topple/io/inversion_output.hpp"
 #include "topple/io/survey_file.hpp"
 #include "topple/motion_set.hpp"
+#include "topple/oriented.hpp"
 #include "topple/report.hpp"
 #include "topple/rocking.hpp"
 #include "topple/rotd.hpp"
@@ -307,17 +308,31 @@ TEST(Survey3c, FallDirectionIsReadForCylindersAndBoxesOnly) {
                "object[1](c).toppled_azimuth_deg", "[0, 360)");
 }
 
+/// The inversion's rocking options (inversion.cpp: 20 s run-out, rel_tol 1e-6, Housner's e) for the direct runs.
+RockingOptions detail_free_rocking_options() {
+  RockingOptions o;
+  o.g_m_s2 = kStandardGravity;
+  o.max_run_out_s = 20.0;
+  o.rel_tol = 1e-6;
+  return o;
+}
+
 TEST(Match3c, AFallDirectionScoresTheModelsFallAxis) {
-  // A cylinder falls, in the model, along the realisation's RotD100 direction: observed falling along that direction
-  // turned by 60 deg, the bin at 60 deg matches best, at (v(0) + v(180)) / 2 = (1 + exp(-2 kappa)) / 2 (1e-12:
-  // round-off of the kernel), and the bin across it (150 deg) at most exp(-kappa (1 - cos 60 deg)) of it.
+  // A cylinder with a fall direction falls, in the model, along the governing direction of oriented.hpp's grid
+  // (rock_oriented_summary, tested in test_oriented): observed falling along that direction turned by 60 deg, the bin
+  // at 60 deg matches best, at (v(0) + v(180)) / 2 = (1 + exp(-2 kappa)) / 2 (1e-12: round-off of the kernel), and
+  // the bin across it (150 deg) at most exp(-kappa (1 - cos 60 deg)) of it.
   const InversionSettings st = small_3c(2, 6);
   const Realisation3c r = family_realisation_3c(st, 2.0, 1);
   ObservedObject can = block("column", 0.06, 0.40, {0.5, 0.5}, Outcome::overturned);
   can.body = RockingBody::cylinder(0.06, 0.40);
-  const std::vector<double> plain = matches_at(can, 0.7);
-  ASSERT_EQ(plain, std::vector<double>(6, 1.0));  // it falls at 0.7 g (else the test could not see the direction)
-  can.toppled_azimuth_deg = std::fmod(r.rotd100_angle_deg + 60.0 + 180.0, 360.0);  // either sense of the axis
+  const double f = 0.7 * kStandardGravity;
+  const GroundMotion ma = r.major->scaled(f), mi = r.minor->scaled(f), v = r.vertical->scaled(f);
+  const OrientedRockingSummary world =
+      rock_oriented_summary(MotionSet::make(ma, &mi, ComponentAzimuths{0.0, 90.0}, &v), OrientedBody::planar(can.body),
+                            0.0, detail_free_rocking_options());
+  ASSERT_TRUE(world.governing_response().summary.overturned);  // else the test could not see the direction
+  can.toppled_azimuth_deg = std::fmod(world.governing_response().azimuth_deg + 60.0 + 180.0, 360.0);  // either sense
   const std::vector<double> m = matches_at(can, 0.7);
   EXPECT_EQ(std::max_element(m.begin(), m.end()) - m.begin(), 2);
   EXPECT_NEAR(m[2], 0.5 * (1.0 + std::exp(-2.0 * kSlidDirectionKappa)), 1e-12);
@@ -640,6 +655,17 @@ TEST(Recovery3c, RecoversPgaFrequencyAndDirection) {
   objects.push_back(block("tall-box", 0.25, 1.00, {0.5, 0.7}, Outcome::overturned));
   objects.push_back(block("pan", 0.2, 0.1, {0.15, 0.25}, Outcome::slid));
   objects.push_back(block("crate", 0.3, 0.3, {0.4, 0.6}, Outcome::slid));
+  // Fall directions (toppled_azimuth_deg): a square pillar (a box) and a round column, as cemeteries' surveys read
+  // them. TOPPLE_3C_NO_FALL_DIRECTIONS=1 withholds their directions (the same objects, outcomes only): the
+  // measurement of what the directions add.
+  ObservedObject pillar = block("pillar", 0.12, 0.60, {0.5, 0.7}, Outcome::overturned);
+  pillar.depth_m = 0.12;
+  objects.push_back(pillar);
+  ObservedObject column = block("column", 0.12, 0.60, {0.5, 0.7}, Outcome::overturned);
+  column.body = RockingBody::cylinder(0.12, 0.60);
+  objects.push_back(column);
+  const char* no_fall = std::getenv("TOPPLE_3C_NO_FALL_DIRECTIONS");
+  const bool fall_directions = no_fall == nullptr || std::string(no_fall) != "1";
   PortableRandom rng(2026);    // the truths, as the one-component test
   PortableRandom params(777);  // the objects' friction, bearings and reading errors
   int in95 = 0, in68 = 0, constrained = 0, dir_in95 = 0;
@@ -655,12 +681,29 @@ TEST(Recovery3c, RecoversPgaFrequencyAndDirection) {
       ObservedObject obj = proto;
       const double mu = obj.mu.low + (obj.mu.high - obj.mu.low) * params.uniform();
       if (obj.outcome == Outcome::overturned) {
-        obj.azimuth_deg = 360.0 * params.uniform();
         RockingOptions ro;
         ro.g_m_s2 = st.g_m_s2;
         const bool lifted = st.g_m_s2 + *std::min_element(truth.up.accel_m_s2().begin(), truth.up.accel_m_s2().end()) <= 0.0;
-        const bool fell = lifted || rock_summary(world.projected(*obj.azimuth_deg), obj.body, ro, &truth.up).overturned;
-        obj.outcome = fell ? Outcome::overturned : Outcome::not_overturned;
+        if (obj.body.shape == RockingBody::Shape::cylinder || obj.depth_m) {
+          // The world's own oriented analysis (oriented.hpp): a box on both axes at its bearing, a cylinder on the
+          // 15-degree grid of directions (not the RotD100 direction the inversion's model uses); the governing
+          // direction is the axis it fell along, read with a normal error of 10 deg.
+          const bool cylinder = obj.body.shape == RockingBody::Shape::cylinder;
+          const double bearing = cylinder ? 0.0 : 360.0 * params.uniform();
+          if (!cylinder) obj.azimuth_deg = bearing;
+          const OrientedRockingSummary o =
+              rock_oriented_summary(world, OrientedBody::make(obj.body, obj.depth_m), bearing, ro);
+          const bool fell = lifted || o.governing_response().summary.overturned;
+          const double reading_error = 10.0 * params.normal();
+          obj.outcome = fell ? Outcome::overturned : Outcome::not_overturned;
+          if (fell && !lifted && fall_directions) {
+            obj.toppled_azimuth_deg = std::fmod(o.governing_response().azimuth_deg + reading_error + 360.0, 360.0);
+          }
+        } else {
+          obj.azimuth_deg = 360.0 * params.uniform();
+          const bool fell = lifted || rock_summary(world.projected(*obj.azimuth_deg), obj.body, ro, &truth.up).overturned;
+          obj.outcome = fell ? Outcome::overturned : Outcome::not_overturned;
+        }
       } else {
         const Sliding2dSummary s =
             slide_2d_summary(truth.east, truth.north, ComponentAzimuths{90.0, 0.0},

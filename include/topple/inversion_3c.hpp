@@ -41,11 +41,13 @@
 //    about 21 deg), the two terms the two senses of the axis; the distance's and the direction's kernels multiply.
 //    A block that never moved has no direction: m_dir is then the kernel's mean over a uniform direction,
 //    exp(-kappa) I_0(kappa). An observed fall direction (toppled_azimuth_deg: a cylinder or a box that overturned)
-//    multiplies the match of a run that overturned by the same kernel of the model's fall axis: a cylinder's is the
-//    realisation's RotD100 direction (the one it rocks in), a box's its governing axis (bearing or bearing + 90),
-//    turned by Psi_b + delta_k; a run lifted off by the vertical has none (the kernel's mean). The realisation's
-//    RotD100 direction lies within about 15 deg of its major axis, its residual sliding direction within about 40:
-//    a toppled column tells the direction more sharply than a slid block (docs/method.md).
+//    multiplies the match of a run that overturned by the same kernel of the model's fall axis, turned by
+//    Psi_b + delta_k: a box's governing axis (bearing or bearing + 90); a cylinder's governing direction on
+//    oriented.hpp's 15-degree grid (such a cylinder is run there, 12 runs, rather than in the RotD100 direction: the
+//    direction it falls first, not the one of the largest peak); a run lifted off by the vertical has none (the
+//    kernel's mean). The realisation's RotD100 direction lies within about 15 deg of its major axis, its residual
+//    sliding direction within about 40: a toppled column tells the direction more sharply than a slid block
+//    (docs/method.md).
 //    A block without depth falls along its bearing by the planar model: its fall direction adds nothing (the survey
 //    refuses it).
 // 5. Posterior. Uniform over log PGA x log frequency x direction bins; the PGA and frequency marginals sum over the
