@@ -638,8 +638,9 @@ TEST(Recovery3c, BinomialFloorOfTheFastVariant) {
 }
 
 // TOPPLE_3C_TRIALS sets the number of trials (default 6 here, the ctest variant; scripts/recovery-3c.sh runs 30 with
-// the criteria). Measured with 30 (docs/verification.md): 95 % region 28/30, 68 % region 18/30, the direction
-// constrained in 6/30 and its 95 % arc holding the truth in 6/6.
+// the criteria). Measured with 30 (docs/verification.md): 95 % region 26/30, 68 % region 22/30, the direction
+// constrained in 12/30 and its 95 % arc holding the truth in 12/12 (fall directions withheld: 27/30, 20/30, 6/6 of
+// 6/30).
 TEST(Recovery3c, RecoversPgaFrequencyAndDirection) {
   const char* env = std::getenv("TOPPLE_3C_TRIALS");
   const int trials = env != nullptr ? std::atoi(env) : 6;
