@@ -95,16 +95,18 @@ std::uint64_t mix(std::uint64_t a, std::uint64_t b) {
 }  // namespace detail
 using detail::mix;
 
-namespace {
 /// tan(alpha) of the uplift threshold g tan(alpha) that a static bound uses. A symmetric body has one. An asymmetric
 /// one (b1 != b2) uplifts about either pivot, at g b1/h or g b2/h by the direction of the peak, which the survey does
 /// not know: a lower bound (it rocked) takes the smaller, an upper one (it did not) the larger, the weaker claim.
-double uplift_tan_alpha(const RockingBody& body, bool lower) {
+double detail::uplift_tan_alpha(const RockingBody& body, bool lower) {
   const double plus = std::tan(body.alpha_rad());
   if (body.symmetric()) return plus;
   const double minus = std::tan(body.side_body(-1).alpha_rad());
   return lower ? std::min(plus, minus) : std::max(plus, minus);
 }
+
+namespace {
+using detail::uplift_tan_alpha;
 
 /// An object on a flexible support: its support's peak is at most max_peak_amplification(zeta_low) times the ground's
 /// (any motion), so an object that slid, rocked or overturned still bounds the ground's PGA from below (weakly). The
@@ -176,6 +178,11 @@ StaticBounds static_bounds(const Site& site) {
         break;  // a body can rock without falling at any PGA above g a/h: no static threshold
     }
   }
+  detail::settle_static_bounds(b);
+  return b;
+}
+
+void detail::settle_static_bounds(StaticBounds& b) {
   for (const auto& l : b.lower) {
     if (l.hard && (!b.hard_lower_g || l.pga_g > *b.hard_lower_g)) b.hard_lower_g = l.pga_g;
   }
@@ -195,7 +202,6 @@ StaticBounds static_bounds(const Site& site) {
       }
     }
   }
-  return b;
 }
 
 bool in_credible_region(const InversionResult& r, double pga_g, double freq_hz, double level) {

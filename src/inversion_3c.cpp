@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
@@ -15,6 +16,7 @@
 #include "topple/error.hpp"
 #include "topple/flexible.hpp"
 #include "topple/motion_set.hpp"
+#include "topple/oriented.hpp"
 #include "topple/rocking.hpp"
 #include "topple/rotd.hpp"
 #include "topple/sliding2d.hpp"
@@ -178,17 +180,110 @@ void observation_match_3c(const ObservedObject& object, const DrawnParameters& p
   const auto accel_v = vertical.accel_m_s2();
   const bool lifted = g + *std::min_element(accel_v.begin(), accel_v.end()) <= 0.0;
   const MotionSet frame = MotionSet::make(major, &minor, ComponentAzimuths{0.0, 90.0});
-  const auto run = [&](double angle_deg) {
-    if (lifted) return detail::rocking_match(object.outcome, true, 0.0);  // header, item 3: scored as overturned
+  // One run: its match, and the axis it fell along, deg from the major axis (none: it did not fall, or was lifted
+  // off, which has no direction).
+  struct Run {
+    double match = 0.0;
+    std::optional<double> fall_from_major_deg;
+  };
+  const auto run = [&](double angle_deg) -> Run {
+    if (lifted) return {detail::rocking_match(object.outcome, true, 0.0), std::nullopt};  // item 3: as overturned
+    // A box: both axes, the governing one's response (oriented.hpp, "Box"). A cylinder with an observed fall
+    // direction: oriented.hpp's grid of directions, the governing one its fall axis (header, item 4).
+    const bool cylinder_grid = object.body.shape == RockingBody::Shape::cylinder && object.toppled_azimuth_deg;
+    if (object.depth_m || cylinder_grid) {
+      const MotionSet with_vertical = MotionSet::make(major, &minor, ComponentAzimuths{0.0, 90.0}, &vertical);
+      const OrientedRockingSummary both =
+          rock_oriented_summary(with_vertical, OrientedBody::make(object.body, object.depth_m), angle_deg, options);
+      const DirectionResponse& d = both.governing_response();  // azimuth_deg: from the major axis (frame azimuth 0)
+      return {detail::rocking_match(object.outcome, d.summary.overturned, d.summary.max_abs_rotation_rad),
+              d.summary.overturned ? std::optional<double>(d.azimuth_deg) : std::nullopt};
+    }
     const RockingSummary s = rock_summary(frame.projected(angle_deg), object.body, options, &vertical);
-    return detail::rocking_match(object.outcome, s.overturned, s.max_abs_rotation_rad);
+    return {detail::rocking_match(object.outcome, s.overturned, s.max_abs_rotation_rad),
+            s.overturned ? std::optional<double>(angle_deg) : std::nullopt};
+  };
+  // The fall direction's kernel (item 4) in a bin whose major axis points at major_az: 1 without an observed one;
+  // the kernel's mean over a uniform direction for a run with no fall direction (as a block that never slid).
+  const auto fall = [&](const Run& r, double major_az) {
+    if (!object.toppled_azimuth_deg || r.match == 0.0) return 1.0;
+    return r.fall_from_major_deg
+               ? direction_kernel(*r.fall_from_major_deg + major_az - *object.toppled_azimuth_deg)
+               : std::exp(-kSlidDirectionKappa) * std::cyl_bessel_i(0.0, kSlidDirectionKappa);
   };
   if (object.body.shape == RockingBody::Shape::cylinder || !object.azimuth_deg) {
-    const double m = run(object.body.shape == RockingBody::Shape::cylinder ? rotd100_angle_deg : unknown_angle_deg);
-    std::fill(out.begin(), out.end(), m);
+    const Run r = run(object.body.shape == RockingBody::Shape::cylinder ? rotd100_angle_deg : unknown_angle_deg);
+    for (std::size_t b = 0; b < out.size(); ++b) out[b] = r.match * fall(r, major_azimuth_deg[b]);
     return;
   }
-  for (std::size_t b = 0; b < out.size(); ++b) out[b] = run(wrap(*object.azimuth_deg - major_azimuth_deg[b], 360.0));
+  for (std::size_t b = 0; b < out.size(); ++b) {
+    const Run r = run(wrap(*object.azimuth_deg - major_azimuth_deg[b], 360.0));
+    out[b] = r.match * fall(r, major_azimuth_deg[b]);
+  }
+}
+
+ThreeComponentBounds static_bounds_3c(const Site& site, double rho) {
+  ThreeComponentBounds out;
+  constexpr double c = kRotD50FloorOfRotD100;
+  const auto g3 = [](double v) { return fmt::format("{:.3g} g", v); };
+  for (const ObservedObject& o : site.objects) {
+    const std::string_view name = outcome_name(o.outcome);
+    // s: the static coefficient (mu or tan alpha); h, v: the horizontal and vertical gains of the support.
+    const auto lower = [&](double s, const char* symbol, double h, double v, const std::string& gain) {
+      const double a100 = s / (h + v * rho * s);            // (S3a)
+      const double a50 = c * s / (h + c * v * rho * s);     // (S3b)
+      const std::string why = fmt::format("{} = {:.3g}{}, vertical V/H <= {:.3g}", symbol, s, gain, rho);
+      out.rotd100.lower.push_back({a100, o.id, fmt::format("{}: RotD100 PGA > {} ({})", name, g3(a100), why), true});
+      out.rotd50.lower.push_back({a50, o.id,
+                                  fmt::format("{}: RotD50 PGA > {} (RotD100 > {} and RotD50 >= {:.4f} RotD100; {})",
+                                              name, g3(a50), g3(a100), c, why),
+                                  true});
+    };
+    const auto upper = [&](double s, const char* symbol, double amp, const std::string& gain) {
+      if (!(amp > rho * s)) return;  // the vertical could lift it off: no threshold
+      const double a = s / (amp * (1.0 - rho * s));
+      const std::string why = fmt::format("{} = {:.3g}{}, vertical V/H <= {:.3g}", symbol, s, gain, rho);
+      out.rotd100.upper.push_back({a, o.id, fmt::format("{}: RotD100 PGA <= {} ({})", name, g3(a), why), false});
+      out.rotd50.upper.push_back(
+          {a, o.id, fmt::format("{}: RotD50 PGA <= {} (RotD50 <= RotD100 <= {}; {})", name, g3(a), g3(a), why), false});
+    };
+    const auto amp_text = [](double amp) { return amp == 1.0 ? std::string() : fmt::format(", amplification {:.3g}", amp); };
+    const OrientedBody oriented = OrientedBody::make(o.body, o.depth_m);
+    // Uplift: the planar body's tan alpha (detail::uplift_tan_alpha: an asymmetric body's weaker one); a box rocks
+    // first about its smaller one when it rocked, and is bounded by both when it did not.
+    const double tan_lower = oriented.across ? std::min(std::tan(o.body.alpha_rad()), std::tan(oriented.across->alpha_rad()))
+                                             : detail::uplift_tan_alpha(o.body, true);
+    if (o.support_filter) {  // lower thresholds only (inversion.hpp, item 1); the vertical passes unfiltered
+      const double peak = max_peak_amplification(o.support_filter->damping.low);
+      const double h = o.amplification.high * peak;
+      if (!std::isfinite(h)) continue;
+      const std::string gain = fmt::format(", support peak gain <= {:.3g}", h);
+      if (o.outcome == Outcome::slid) lower(o.mu.low, "mu", h, o.amplification.high, gain);
+      if (o.outcome == Outcome::rocked || o.outcome == Outcome::overturned) {
+        lower(tan_lower, "b/h", h, o.amplification.high, gain);
+      }
+      continue;
+    }
+    const double hi = o.amplification.high, lo = o.amplification.low;
+    switch (o.outcome) {
+      case Outcome::slid: lower(o.mu.low, "mu", hi, hi, amp_text(hi)); break;
+      case Outcome::not_slid: upper(o.mu.high, "mu", lo, amp_text(lo)); break;
+      case Outcome::rocked:
+      case Outcome::overturned: lower(tan_lower, "b/h", hi, hi, amp_text(hi)); break;
+      case Outcome::not_rocked:
+        if (oriented.across) {
+          upper(std::hypot(std::tan(o.body.alpha_rad()), std::tan(oriented.across->alpha_rad())),
+                "hypot of the box's two b/h", lo, amp_text(lo));
+        } else if (oriented.axisymmetric()) {
+          upper(std::tan(o.body.alpha_rad()), "b/h", lo, amp_text(lo));
+        }  // a planar body bounds the projection on its bearing only: no threshold (header, item 6)
+        break;
+      default: break;  // not_overturned: no static threshold, as in one component
+    }
+  }
+  detail::settle_static_bounds(out.rotd100);
+  detail::settle_static_bounds(out.rotd50);
+  return out;
 }
 
 DirectionEstimate direction_estimate(const std::vector<double>& bins_deg, const std::vector<double>& posterior) {
@@ -342,7 +437,12 @@ MatchTable3c simulate_matches_3c(const Site& site, const InversionSettings& st, 
   // Solver runs: one per bin for a rocking object with a bearing, else one.
   for (const ObservedObject& o : site.objects) {
     const bool per_bin = !is_sliding(o.outcome) && o.azimuth_deg && o.body.shape != RockingBody::Shape::cylinder;
-    table.runs += plan.motions.size() * (per_bin ? nb : 1);
+    // A box rocks about both axes; a cylinder with a fall direction on oriented.hpp's 12 directions.
+    const std::size_t axes = is_sliding(o.outcome)                                                     ? 1
+                             : o.depth_m                                                                ? 2
+                             : o.body.shape == RockingBody::Shape::cylinder && o.toppled_azimuth_deg ? 12
+                                                                                                       : 1;
+    table.runs += plan.motions.size() * (per_bin ? nb : 1) * axes;
   }
   return table;
 }
@@ -357,7 +457,14 @@ InversionResult invert_site_3c(const Site& site, const InversionSettings& st, co
   r.pga_g = log_spaced(st.pga_min_g, st.pga_max_g, static_cast<std::size_t>(st.pga_count));
   r.freq_hz = family.freq_hz;
   r.measured_freq_hz = family.measured_freq_hz;
-  r.bounds = static_bounds(site);
+  // Static thresholds (header, item 6) with the family's largest vertical ratio rho (RotD50 of the stored pair is 1).
+  double rho = 0.0;
+  for (const auto& column : family.motions) {
+    for (const Realisation3c& real : column) rho = std::max(rho, real.vertical->pga_m_s2());
+  }
+  ThreeComponentBounds thresholds = static_bounds_3c(site, rho);
+  r.bounds = std::move(thresholds.rotd50);
+  r.rotd100_bounds = std::move(thresholds.rotd100);
   const MatchTable3c table = simulate_matches_3c(site, st, r.pga_g, family, options);
   r.runs = table.runs;
   const std::size_t cells = table.cells(), nb = table.bins, no = table.objects, n = table.motions;
@@ -453,11 +560,22 @@ InversionResult invert_site_3c(const Site& site, const InversionSettings& st, co
   tc.vertical_pga_ratio = defaults.vertical_pga_ratio;
   tc.vertical_frequency_ratio = defaults.vertical_frequency_ratio;
   tc.slid_direction_kappa = kSlidDirectionKappa;
+  tc.threshold_vertical_ratio = rho;
   r.three_component = tc;
 
   r.notes = inversion_notes(r, table.mean_over_bins());
-  r.notes.push_back("Three components: the static thresholds bound the peak of the horizontal acceleration along an "
-                    "object's bearing (of its vector for sliding), not RotD50, the PGA axis of the estimates.");
+  r.notes.push_back(fmt::format(
+      "Three components: the static thresholds hold on RotD100 PGA, the peak of the horizontal acceleration vector, "
+      "which bounds its projection on every bearing (with the family's vertical, V/H <= {:.3g}); on RotD50, the PGA "
+      "axis of the estimates, they hold as the weaker RotD50 >= {:.4f} RotD100 makes them.",
+      rho, kRotD50FloorOfRotD100));
+  for (const ObservedObject& o : site.objects) {
+    if (o.outcome == Outcome::not_rocked && !o.depth_m && o.body.shape != RockingBody::Shape::cylinder) {
+      r.notes.push_back(fmt::format("{} did not rock: that bounds the motion along its bearing only, no direction-free "
+                                    "measure, so it gives no static threshold here (a box, with depth, does).",
+                                    o.id));
+    }
+  }
   if (!tc.direction.constrained) {
     r.notes.push_back(fmt::format("The direction of strongest shaking is unconstrained: its 95 % arc spans {:.0f} deg "
                                   "(more than {:.0f} deg). Bearings of objects that rocked, overturned or stood, and "
@@ -475,6 +593,14 @@ std::string three_component_summary(const InversionResult& r) {
       " PGA is RotD50 of the two horizontal components (the median of the peak over all directions; the larger "
       "component's PGA is about {:.2f} times it here, a median of {:.2g} g).",
       tc.larger_component_ratio, tc.larger_component_median_g);
+  if (r.rotd100_bounds && (r.rotd100_bounds->lower_g || r.rotd100_bounds->upper_g)) {
+    // Item 6: the thresholds are stated on the axis where they hold.
+    const StaticBounds& b = *r.rotd100_bounds;
+    std::string range;
+    if (b.lower_g) range = fmt::format("above {:.3g} g{}", *b.lower_g, b.hard_lower_g == b.lower_g ? " (hard)" : "");
+    if (b.upper_g) range += fmt::format("{}at most {:.3g} g (soft)", range.empty() ? "" : ", ", *b.upper_g);
+    s += fmt::format(" The static thresholds hold on RotD100 PGA (the peak over all directions): {}.", range);
+  }
   const DirectionEstimate& d = tc.direction;
   if (!d.constrained) {
     s += fmt::format(" The direction of strongest shaking is unconstrained (its 95 % arc spans {:.0f} deg).",

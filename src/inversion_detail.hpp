@@ -29,6 +29,13 @@ namespace topple::detail {
 /// The match (0 or 1) of a rocking observation for a run that overturned or not, with its max |theta| (rad).
 [[nodiscard]] double rocking_match(Outcome outcome, bool overturned, double max_rotation_rad);
 
+/// tan(alpha) of a body's uplift threshold g tan(alpha) in a static threshold: an asymmetric body's smaller one for a
+/// lower threshold (it rocked), its larger one for an upper threshold (it did not), the weaker claim.
+[[nodiscard]] double uplift_tan_alpha(const RockingBody& body, bool lower);
+/// Fills the aggregates of the per-object thresholds b.lower and b.upper: lower_g, upper_g, their hard ones, and the
+/// contradictions (a lower threshold above an upper one).
+void settle_static_bounds(StaticBounds& b);
+
 /// The 3 x 3 neighbourhood of a cell with weights 4/2/1 (inversion.hpp, item 2).
 [[nodiscard]] std::vector<std::pair<std::size_t, double>> neighbourhood(std::size_t c, std::size_t np,
                                                                         std::size_t nf);

@@ -34,7 +34,8 @@ class Packer {
       words_.push_back(w);
     }
   }
-  void operator()(const std::optional<double>& v) {
+  template <class T>
+  void operator()(const std::optional<T>& v) {
     (*this)(v.has_value());
     if (v) (*this)(*v);
   }
@@ -76,7 +77,8 @@ class Unpacker {
       std::memcpy(s.data() + i, &w, std::min<std::size_t>(8, n - i));
     }
   }
-  void operator()(std::optional<double>& v) {
+  template <class T>
+  void operator()(std::optional<T>& v) {
     bool has = false;
     (*this)(has);
     v.reset();
@@ -125,10 +127,26 @@ void fields(IO& io, ObjectReport& o) {
       io(o.reproduced_anywhere), io(o.posterior_predictive), io(o.misfit), io(o.constraint_bits);
 }
 template <class IO>
+void fields(IO& io, DirectionArc& a) {
+  io(a.low_deg), io(a.width_deg);
+}
+template <class IO>
+void fields(IO& io, DirectionEstimate& d) {
+  io(d.azimuth_deg), io(d.bin_width_deg), io(d.posterior), io(d.mode_deg), io(d.mean_deg), io(d.resultant_length),
+      io(d.ci68), io(d.ci95), io(d.constrained);
+}
+template <class IO>
+void fields(IO& io, ThreeComponentResult& t) {
+  io(t.direction), io(t.larger_component_ratio), io(t.rotd100_ratio), io(t.larger_component_median_g),
+      io(t.larger_component_ci95_low_g), io(t.larger_component_ci95_high_g), io(t.coherence), io(t.vertical_pga_ratio),
+      io(t.vertical_frequency_ratio), io(t.slid_direction_kappa), io(t.threshold_vertical_ratio);
+}
+template <class IO>
 void fields(IO& io, InversionResult& r) {
   io(r.site), io(r.pga_g), io(r.freq_hz), io(r.measured_freq_hz), io(r.log_likelihood), io(r.posterior),
       io(r.marginal_pga), io(r.marginal_freq);
   io(r.best_cell), io(r.runs), io(r.pga_estimate_g), io(r.freq_estimate_hz), io(r.bounds), io(r.objects), io(r.notes), io(r.seconds);
+  io(r.three_component), io(r.rotd100_bounds);  // components = 3 (inversion_3c.hpp)
 }
 
 // The first word of a rank's broadcast: ok, or how it failed (its exception's kind; the message follows).

@@ -61,14 +61,19 @@ void site_rows(std::ostringstream& os, const RegionMap& map, bool instrument) {
 
 }  // namespace
 
-RegionMap region_map(const RegionalResult& fit, const Survey& survey, const std::vector<Contour>& contours) {
+RegionMap region_map(const RegionalResult& fit, const Survey& survey, const std::vector<Contour>& contours,
+                     const std::vector<const InversionResult*>& per_site) {
   RegionMap m;
   m.epicentre_lat_deg = survey.epicentre_lat_deg.value();
   m.epicentre_lon_deg = survey.epicentre_lon_deg.value();
   for (const PooledSite& p : fit.sites) {
     const Site& site = survey.sites.at(p.site_index);
     m.sites.push_back(MapSite{static_cast<int>(p.site_index) + 1, p.name, site.lat_deg.value(), site.lon_deg.value(),
-                              p.pga_g.median, p.instrument_pga_g.has_value()});
+                              p.pga_g.median, p.instrument_pga_g.has_value(), std::nullopt});
+    const InversionResult* r = p.site_index < per_site.size() ? per_site[p.site_index] : nullptr;
+    if (r != nullptr && r->three_component && r->three_component->direction.constrained) {
+      m.sites.back().direction = r->three_component->direction;
+    }
   }
   m.contours = contours;
   return m;
@@ -145,6 +150,28 @@ std::string gmt_map_script(const RegionMap& map) {
     }
     os << "EOD\n";
   }
+  // Three components: each constrained direction of strongest shaking, under the site's symbol. Mercator is
+  // conformal, so an azimuth az is the paper angle 90 - az (counter-clockwise from east) at every point.
+  bool any_direction = false;
+  for (const MapSite& s : map.sites) any_direction = any_direction || s.direction.has_value();
+  if (any_direction) {
+    os << "# directions of strongest shaking (three components, where constrained): the 95 % arc as a wedge pair\n"
+          "# (lon lat diameter start end, paper angles), then the mode as a bar through the site (lon lat angle length)\n"
+          "gmt plot -Sw -Ggray60@40 -W0.4p,gray30 << 'EOD'\n";
+    for (const MapSite& s : map.sites) {
+      if (!s.direction) continue;
+      const DirectionArc& a = s.direction->ci95;
+      for (double turn : {0.0, 180.0}) {
+        os << fmt::format("{:.6f} {:.6f} 1.6c {:.4g} {:.4g}\n", s.lon_deg, s.lat_deg, 90.0 - a.high_deg() - turn,
+                          90.0 - a.low_deg - turn);
+      }
+    }
+    os << "EOD\ngmt plot -Sv0c+jc -W2p,black << 'EOD'\n";
+    for (const MapSite& s : map.sites) {
+      if (s.direction) os << fmt::format("{:.6f} {:.6f} {:.4g} 1.6c\n", s.lon_deg, s.lat_deg, 90.0 - s.direction->mode_deg);
+    }
+    os << "EOD\n";
+  }
   os << "# sites with objects (circles): lon lat pooled PGA (g), coloured by the palette; the comment is # number name\n"
         "gmt plot -Sc0.32c -C -W0.6p,black << 'EOD'\n";
   site_rows(os, map, false);
@@ -170,8 +197,11 @@ std::string gmt_map_script(const RegionMap& map) {
         "S 0.25c c 0.3c gray70 0.6p,black 0.6c site with objects (colour: pooled PGA)\n"
         "S 0.25c i 0.4c gray70 1p,black 0.6c instrument station\n"
         "S 0.25c a 0.45c red 0.6p,black 0.6c epicentre\n"
-        "S 0.25c - 0.5c - 1.1p,gray10 0.6c iso-acceleration line (g)\n"
-        "EOD\n"
+        "S 0.25c - 0.5c - 1.1p,gray10 0.6c iso-acceleration line (g)\n";
+  if (any_direction) {
+    os << "S 0.25c - 0.5c - 2p,black 0.6c direction of strongest shaking (grey: its 95 % arc)\n";
+  }
+  os << "EOD\n"
         "gmt colorbar -DJBC+w10c+o0/1c+h -Bxa2f3+l\"pooled PGA, posterior median (g)\" -Q\n"
         "gmt end\n";
   return os.str();

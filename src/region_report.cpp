@@ -139,7 +139,7 @@ std::vector<std::string> write_region_report(const std::filesystem::path& dir, c
   const std::vector<Contour> contours = contour_field(field, io::contour_levels_g());
   plot::render(attenuation_figure(fit, per_site), dir / "attenuation.svg");
   plot::render(field_figure(field, contours, fit, survey), dir / "pga_map.svg");
-  const MapOutcome map = write_region_map(dir, region_map(fit, survey, contours), gmt_program_from_environment());
+  const MapOutcome map = write_region_map(dir, region_map(fit, survey, contours, per_site), gmt_program_from_environment());
   std::vector<std::string> warnings;
   if (!map.drawn) warnings.push_back(map.note);
   io::write_contours_geojson(dir / "contours.geojson", contours, field);

@@ -327,6 +327,49 @@ plot::Figure marginal_figure(const InversionResult& r, bool pga) {
   return f;
 }
 
+/// Three components: the posterior of the direction of strongest shaking over [0, 180) deg, its mode and arcs, and the
+/// directions the objects give (bearings and sliding directions, mod 180).
+plot::Figure direction_figure(const InversionResult& r, const Site& site) {
+  const DirectionEstimate& d = r.three_component->direction;
+  plot::Figure f;
+  f.title = fmt::format("Direction of strongest shaking (azimuth of the major axis of horizontal motion, mod 180 deg): "
+                        "{}",
+                        d.constrained ? fmt::format("mode {:.0f} deg", d.mode_deg)
+                                      : fmt::format("unconstrained (95 % arc {:.0f} deg wide, more than {:.0f})",
+                                                    d.ci95.width_deg, kUnconstrainedArcDeg));
+  f.xlabel = "azimuth (deg clockwise from north, mod 180)";
+  plot::Panel panel;
+  panel.ylabel = "posterior probability per bin";
+  plot::Series post{"posterior", d.azimuth_deg, d.posterior, "linespoints pt 7 ps 0.6", "#2171b5", 2.0};
+  post.x.push_back(180.0);  // the axis at 180 deg is the one at 0
+  post.y.push_back(d.posterior.front());
+  panel.series.push_back(std::move(post));
+  const double top = *std::max_element(d.posterior.begin(), d.posterior.end());
+  panel.series.push_back({fmt::format("mode {:.0f} deg", d.mode_deg), {d.mode_deg, d.mode_deg}, {0.0, top}, "lines",
+                          "#000000", 2.0});
+  // An arc may pass 180 deg: drawn in two pieces, the second unlabelled.
+  const auto arc = [&](const DirectionArc& a, const char* label, double y, const char* color) {
+    const double end = std::min(a.high_deg(), 180.0);
+    panel.series.push_back({label, {a.low_deg, end}, {y, y}, "linespoints pt 2", color, 3.0});
+    if (a.high_deg() > 180.0) panel.series.push_back({"", {0.0, a.high_deg() - 180.0}, {y, y}, "linespoints pt 2", color, 3.0});
+  };
+  arc(d.ci68, "68 % arc", 0.5 * top, "#e6550d");
+  arc(d.ci95, "95 % arc", 0.25 * top, "#31a354");
+  plot::Series bearings{"objects' bearings", {}, {}, "points pt 13 ps 1.4", "#7f3b08", 1.0};
+  plot::Series slid{"sliding directions", {}, {}, "points pt 9 ps 1.4", "#542788", 1.0};
+  for (const ObservedObject& o : site.objects) {
+    if (o.azimuth_deg) bearings.x.push_back(std::fmod(*o.azimuth_deg, 180.0));
+    if (o.slid_azimuth_deg) slid.x.push_back(std::fmod(*o.slid_azimuth_deg, 180.0));
+  }
+  bearings.y.assign(bearings.x.size(), 0.0);
+  slid.y.assign(slid.x.size(), 0.0);
+  if (!bearings.x.empty()) panel.series.push_back(std::move(bearings));
+  if (!slid.x.empty()) panel.series.push_back(std::move(slid));
+  f.panels.push_back(panel);
+  f.panel_height_px = 380;
+  return f;
+}
+
 plot::Figure best_cell_figure(const InversionResult& r, const Site& site, const InversionSettings& settings) {
   const double pga = r.pga_g[r.best_cell / r.freq_hz.size()];
   const double freq = r.freq_hz[r.best_cell % r.freq_hz.size()];
@@ -438,6 +481,7 @@ void write_report(const std::filesystem::path& dir, const Survey& survey, const 
   plot::render(marginal_figure(r, true), dir / "marginal_pga.svg");
   plot::render(marginal_figure(r, false), dir / "marginal_freq.svg");
   plot::render(best_cell_figure(r, site, survey.inversion), dir / "best_cell.svg");
+  if (r.three_component) plot::render(direction_figure(r, site), dir / "direction.svg");
   io::write_inversion_grid_csv(dir / "grid.csv", r);
   io::write_file_atomically(dir / "result.json", io::inversion_json(r, site, provenance).dump(2) + "\n");
   const InversionSettings& st = survey.inversion;
@@ -488,12 +532,21 @@ void write_report(const std::filesystem::path& dir, const Survey& survey, const 
   // ---- Static thresholds, hard and soft, beside the estimate ----
   h << "<h2 id=\"thresholds\">Static thresholds</h2>\n<table id=\"static\"><tr><th>object</th><th>threshold on PGA</th>"
        "<th>kind</th><th>from</th></tr>\n";
-  const auto threshold_row = [&h](const StaticBound& b, const char* relation) {
-    h << fmt::format("<tr><td>{}</td><td>PGA {} {:.3g} g</td><td>{}</td><td>{}</td></tr>\n", html_escape(b.object_id),
-                     relation, b.pga_g, b.hard ? "hard" : "soft", html_escape(b.reason));
+  const auto threshold_row = [&h](const StaticBound& b, const char* relation, const char* axis) {
+    h << fmt::format("<tr><td>{}</td><td>{}PGA {} {:.3g} g</td><td>{}</td><td>{}</td></tr>\n", html_escape(b.object_id),
+                     axis, relation, b.pga_g, b.hard ? "hard" : "soft", html_escape(b.reason));
   };
-  for (const auto& b : r.bounds.lower) threshold_row(b, "&gt;");
-  for (const auto& b : r.bounds.upper) threshold_row(b, "&le;");
+  // Three components (inversion_3c.hpp, item 6): the thresholds on RotD100, where they hold, each followed by its
+  // consequence on RotD50, the axis of the estimate and of Figure 1 (the lists are in the same order).
+  const StaticBounds* r100 = r.rotd100_bounds ? &*r.rotd100_bounds : nullptr;
+  for (std::size_t i = 0; i < r.bounds.lower.size(); ++i) {
+    if (r100 != nullptr) threshold_row(r100->lower.at(i), "&gt;", "RotD100 ");
+    threshold_row(r.bounds.lower[i], "&gt;", r100 != nullptr ? "RotD50 " : "");
+  }
+  for (std::size_t i = 0; i < r.bounds.upper.size(); ++i) {
+    if (r100 != nullptr) threshold_row(r100->upper.at(i), "&le;", "RotD100 ");
+    threshold_row(r.bounds.upper[i], "&le;", r100 != nullptr ? "RotD50 " : "");
+  }
   if (r.bounds.lower.empty() && r.bounds.upper.empty()) h << "<tr><td colspan=\"4\">none: no object slid, rocked, overturned or was seen not to slide</td></tr>\n";
   h << "</table>\n<p class=\"def\" id=\"hard-soft\">A <b>hard</b> threshold comes from an object that slid, rocked or "
        "overturned: the physics forbids that below it (no slip while the support's acceleration stays under "
@@ -501,6 +554,13 @@ void write_report(const std::filesystem::path& dir, const Survey& survey, const 
        "only a wrong observation crosses it. A <b>soft</b> threshold comes from an object that did <i>not</i> slide "
        "visibly: the ground may pass &mu;g for an instant and slip it less than the visible 2 mm, so it is no bound, "
        "and the dynamic estimate, which simulates how far each object would slide, may lie above it.";
+  if (r100 != nullptr) {
+    h << " <b>Three components</b>: uplift and slip answer to the horizontal acceleration <i>vector</i> and the "
+         "vertical, and every bearing's projection peaks at most at RotD100 PGA (the peak over all directions), so "
+         "the thresholds hold on RotD100, with the family's vertical lowering an object's uplift and slip levels; "
+         "RotD50, the axis of the estimate and of Figure 1, is at least 0.704 RotD100 for any pair, which carries "
+         "each threshold over, weaker (docs/method.md, &ldquo;Static thresholds in three components&rdquo;).";
+  }
   for (const auto& b : r.bounds.upper) {
     if (!b.hard && pga.median_edge == 0 && pga.median > b.pga_g) {
       h << fmt::format(" Here the median {:.3g} g lies above the soft threshold {:.3g} g of {}: the runs find that "
@@ -533,6 +593,15 @@ void write_report(const std::filesystem::path& dir, const Survey& survey, const 
   h << "<figure id=\"marginal-freq\">" << inline_svg(dir / "marginal_freq.svg")
     << "<figcaption>Figure 3. Marginal posterior of the predominant frequency (the posterior summed over PGA), with "
        "the median and the 68 % and 95 % intervals.</figcaption></figure>\n";
+  if (r.three_component) {
+    h << "<figure id=\"direction-figure\">" << inline_svg(dir / "direction.svg")
+      << "<figcaption>Figure 3b. Posterior of the direction of strongest shaking, the azimuth of the major axis of "
+         "horizontal motion (an axis: 10&deg; and 190&deg; are one direction), per bin, with its mode and its 68 % and "
+         "95 % arcs (the shortest arcs holding those shares of the highest bins; an arc passing 180&deg; goes on "
+         "from 0&deg;). Diamonds on the axis: the objects' bearings (across their narrow side, mod 180&deg;); "
+         "triangles: observed sliding directions. The direction is unconstrained when the 95 % arc spans more "
+         "than 120&deg;.</figcaption></figure>\n";
+  }
 
   // ---- Observations and how well the answer explains each ----
   h << "<h2 id=\"objects\">Observations</h2>\n<div class=\"wide\"><table id=\"observations\"><tr><th>id</th><th>description</th>"

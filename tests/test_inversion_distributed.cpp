@@ -50,6 +50,21 @@ TEST(InversionDistributed, PackedResultsUnpackExactly) {
     EXPECT_EQ(back[s].seconds, results[s].seconds);
     EXPECT_EQ(back[s].bounds.lower.size(), results[s].bounds.lower.size());
   }
+  // Three components: the direction of strongest shaking and the RotD100 thresholds travel too (the map and the
+  // JSON of a site inverted on another rank need them).
+  InversionSettings st3 = testing::small_grid(0.05, 6, 0.5, 8.0, 3, 2);
+  st3.components = 3;
+  st3.directions = 4;
+  st3.duration_s = 6.0;
+  Site site3 = sites.front();
+  site3.objects.resize(2);
+  site3.objects[0].azimuth_deg = 30.0;
+  const std::vector<InversionResult> three = invert_sites({site3}, st3);
+  ASSERT_TRUE(three.front().three_component && three.front().rotd100_bounds);
+  const std::vector<InversionResult> three_back = unpack_inversion_results(pack_inversion_results(three));
+  ASSERT_TRUE(three_back.front().three_component && three_back.front().rotd100_bounds);
+  EXPECT_EQ(io::inversion_json(three_back.front(), site3).dump(), io::inversion_json(three.front(), site3).dump());
+  EXPECT_EQ(three_back.front().three_component->direction.posterior, three.front().three_component->direction.posterior);
   // A payload cut short is refused, not read past its end.
   std::vector<std::uint64_t> words = pack_inversion_results(results);
   words.resize(words.size() / 2);

@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "support/shared_data.hpp"
+#include "topple/io/output_file.hpp"
 #include "topple/region.hpp"
 #include "topple/region_map.hpp"
 #include "topple/report.hpp"
@@ -28,10 +29,10 @@ RegionMap four_sites() {
   RegionMap m;
   m.epicentre_lat_deg = 38.0;
   m.epicentre_lon_deg = 23.0;
-  m.sites = {MapSite{1, "station \"north\"", 38.44, 22.8, 0.571234, true},
-             MapSite{2, "south", 37.3, 22.84, 0.0312, false},
-             MapSite{3, "east\nvillage", 38.1, 23.7, 0.0801, false},
-             MapSite{4, "west station", 37.87, 22.5, 0.123, true}};
+  m.sites = {MapSite{1, "station \"north\"", 38.44, 22.8, 0.571234, true, std::nullopt},
+             MapSite{2, "south", 37.3, 22.84, 0.0312, false, std::nullopt},
+             MapSite{3, "east\nvillage", 38.1, 23.7, 0.0801, false, std::nullopt},
+             MapSite{4, "west station", 37.87, 22.5, 0.123, true, std::nullopt}};
   Contour c01;
   c01.level_g = 0.1;
   c01.lines = {{{22.9, 37.8}, {23.1, 37.8}, {23.1, 38.2}, {22.9, 37.8}}, {{23.5, 38.3}, {23.6, 38.35}}};
@@ -158,7 +159,7 @@ TEST(RegionMapScript, ALoneSiteGetsTenKilometresEachSide) {
   RegionMap m;
   m.epicentre_lat_deg = 38.0;
   m.epicentre_lon_deg = 23.0;
-  m.sites = {MapSite{1, "only", 38.0, 23.0, 0.2, false}};
+  m.sites = {MapSite{1, "only", 38.0, 23.0, 0.2, false, std::nullopt}};
   const MapBounds b = map_bounds(m);
   EXPECT_GT(geodesic_distance_km(38.0, 23.0, 38.0, b.lon_min_deg), 9.95);
   EXPECT_GT(geodesic_distance_km(38.0, 23.0, 38.0, b.lon_max_deg), 9.95);
@@ -247,6 +248,35 @@ TEST(RegionMapScript, PaletteEndsAreOneTwoFiveValuesAroundTheSites) {
 TEST(RegionMapScript, ScaleBarIsAOneTwoFiveLengthNearAFifthOfTheWidth) {
   const std::string script = gmt_map_script(four_sites());
   EXPECT_NE(script.find("gmt basemap -LjBL+c37.8700+w20k"), std::string::npos) << script.substr(script.find("-LjBL"), 40);
+}
+
+// Three components: a site's constrained direction of strongest shaking is drawn as a bar along its mode (paper
+// angle 90 - azimuth on the conformal Mercator) over a wedge pair of its 95 % arc; a site without one draws nothing,
+// and a map without any has neither the layers nor the legend line. With GMT installed the script draws.
+TEST(RegionMapScript, DirectionsOfStrongestShakingAreBarsOverTheirArcs) {
+  RegionMap m = four_sites();
+  EXPECT_EQ(gmt_map_script(m).find("direction of strongest shaking"), std::string::npos);
+  DirectionEstimate d;
+  d.mode_deg = 30.0;
+  d.ci95 = DirectionArc{15.0, 45.0};  // 15-60 deg
+  d.constrained = true;
+  m.sites[1].direction = d;
+  const std::string script = gmt_map_script(m);
+  EXPECT_NE(script.find("gmt plot -Sw -Ggray60@40"), std::string::npos) << script;
+  // The arc 15-60 deg clockwise from north is the paper angles 30 to 75, and 180 deg on, -150 to -105.
+  EXPECT_NE(script.find("22.840000 37.300000 1.6c 30 75\n"), std::string::npos) << script;
+  EXPECT_NE(script.find("22.840000 37.300000 1.6c -150 -105\n"), std::string::npos) << script;
+  EXPECT_NE(script.find("gmt plot -Sv0c+jc -W2p,black << 'EOD'\n22.840000 37.300000 60 1.6c\nEOD"), std::string::npos)
+      << script;
+  EXPECT_NE(script.find("direction of strongest shaking (grey: its 95 % arc)"), std::string::npos);
+  if (!find_program(gmt_program_from_environment()) || !find_program("gs")) {
+    GTEST_SKIP() << "gmt or gs not installed (scripts/install-deps.sh --run installs them)";
+  }
+  test::TempDir tmp;
+  io::write_file_atomically(tmp.path() / "map.gmt.sh", script);
+  const std::string draw = "cd '" + tmp.path().string() + "' && bash map.gmt.sh map.png >gmt.log 2>&1";
+  ASSERT_EQ(std::system(draw.c_str()), 0) << test::slurp(tmp.path() / "gmt.log");
+  EXPECT_GT(test::slurp(tmp.path() / "map.png").size(), 10000u);  // as the report's map: tens of kB
 }
 
 TEST(RegionMapProgram, FindsTheShellAndRefusesAMissingPath) {

@@ -44,6 +44,9 @@ struct ThreeComponentResult {
   double coherence = 0.0;                ///< the family's horizontal coherence rho (survey.hpp)
   double vertical_pga_ratio = 0.0;       ///< PGA_v / RotD50 PGA_h of the family (synthesis.hpp default 2/3)
   double vertical_frequency_ratio = 0.0; ///< f_v / f_h of the family (synthesis.hpp default 1.5)
+  /// rho of the static thresholds (inversion_3c.hpp, item 6): the largest PGA_v / RotD50 PGA_h over the family's
+  /// realisations (dimensionless; vertical_pga_ratio up to the 1-degree grid of RotD50 after the rotation).
+  double threshold_vertical_ratio = 0.0;
   double slid_direction_kappa = 0.0;     ///< von Mises concentration of the sliding-direction error model
 };
 

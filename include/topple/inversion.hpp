@@ -123,6 +123,9 @@ struct InversionResult {
   /// [inversion] components = 3 (inversion_3c.hpp): the PGA axis is RotD50, and the direction of strongest shaking;
   /// none for the one-component model.
   std::optional<ThreeComponentResult> three_component;
+  /// components = 3: the static thresholds on RotD100 PGA, the axis on which they hold (inversion_3c.hpp, item 6);
+  /// `bounds` then holds their exact, weaker consequence on RotD50, the PGA axis of the estimates. None: one component.
+  std::optional<StaticBounds> rotd100_bounds;
 };
 
 struct InversionOptions {

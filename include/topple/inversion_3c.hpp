@@ -23,7 +23,9 @@
 // 3. Objects. A rocking object of bearing beta feels the projection of the horizontal pair on beta (motion_set.hpp
 //    eq. M1) at the angle gamma = beta - Psi_b - delta_k from the major axis, with the vertical (the planar rocking
 //    model, rocking.hpp, g -> g + a_v): one run per bin. Unknown bearing: gamma uniform in [0, 180) per (motion k,
-//    object), the same in every cell and bin (a Monte Carlo marginal, as mu's range): one run. A cylinder rocks in
+//    object), the same in every cell and bin (a Monte Carlo marginal, as mu's range): one run. A block with a `depth`
+//    is a box (oriented.hpp, "Box"): it rocks along gamma and gamma + 90 (half-width depth / 2), and the governing
+//    axis' response is scored (two runs where a block has one). A cylinder rocks in
 //    the realisation's RotD100 direction (its worst: the largest peak), an approximation of three-dimensional
 //    rocking. A sliding object runs the bidirectional solver (sliding2d.hpp) on the pair and the vertical once; its
 //    residual distance does not depend on the orientation (isotropic friction) and its direction is the solver's
@@ -38,11 +40,37 @@
 //    kappa = kSlidDirectionKappa (a von Mises error of the direction read from marks, circular standard deviation
 //    about 21 deg), the two terms the two senses of the axis; the distance's and the direction's kernels multiply.
 //    A block that never moved has no direction: m_dir is then the kernel's mean over a uniform direction,
-//    exp(-kappa) I_0(kappa).
+//    exp(-kappa) I_0(kappa). An observed fall direction (toppled_azimuth_deg: a cylinder or a box that overturned)
+//    multiplies the match of a run that overturned by the same kernel of the model's fall axis, turned by
+//    Psi_b + delta_k: a box's governing axis (bearing or bearing + 90); a cylinder's governing direction on
+//    oriented.hpp's 15-degree grid (such a cylinder is run there, 12 runs, rather than in the RotD100 direction: the
+//    direction it falls first, not the one of the largest peak); a run lifted off by the vertical has none (the
+//    kernel's mean). The realisation's RotD100 direction lies within about 15 deg of its major axis, its residual
+//    sliding direction within about 40: a toppled column tells the direction more sharply than a slid block
+//    (docs/method.md).
+//    A block without depth falls along its bearing by the planar model: its fall direction adds nothing (the survey
+//    refuses it).
 // 5. Posterior. Uniform over log PGA x log frequency x direction bins; the PGA and frequency marginals sum over the
 //    bins (InversionResult's log_likelihood is log of the bins' mean), the direction's over the cells.
 //    Direction: mode, axial circular mean, and the shortest arcs holding the 68 % and 95 % highest-posterior bins.
 //    Unconstrained: the 95 % arc spans more than kUnconstrainedArcDeg.
+// 6. Static thresholds (docs/method.md, "Static thresholds in three components"). Uplift and slip depend on the
+//    horizontal acceleration vector a(t) and the vertical: uplift about the edges of bearing beta needs
+//    |a(t) . e_beta| > (g + a_v(t)) tan alpha, slip needs |a(t)| > mu (g + a_v(t)). Every projection's peak is at most
+//    A = max_t |a(t)|, which is RotD100 PGA (the peak over all directions), and the family's vertical peak is at most
+//    rho RotD50 <= rho A (rho: the family's largest PGA_v / RotD50, 2/3 nominally). So an object that rocked or
+//    overturned (s = tan alpha; a box: its smaller one) or slid (s = mu) on a support of gain H (amplification, and a
+//    flexible support's peak gain) with vertical gain V gives the hard threshold
+//      RotD100 > s / (H + V rho s)                                                                     (S3a)
+//    whatever its bearing; and, as RotD50 >= kRotD50FloorOfRotD100 RotD100 for every pair (the 1-degree grid's
+//    median of |cos|), the hard but weaker
+//      RotD50 > c s / (H + c V rho s),   c = kRotD50FloorOfRotD100.                                      (S3b)
+//    An object that did not slide visibly gives RotD100 <= mu / (A_lo (1 - rho mu)) (soft, as in one component; it
+//    bounds RotD50 <= RotD100 by the same number), and so does a box that did not rock (s = hypot of its two
+//    tan alpha: both projections bounded bound the vector) and a cylinder (every direction: s = tan alpha). A planar
+//    block that did not rock bounds only the projection on its bearing, which bounds no direction-free measure: no
+//    threshold. InversionResult::rotd100_bounds holds (S3a), InversionResult::bounds (S3b), the PGA axis of the
+//    estimates.
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -62,6 +90,21 @@ inline constexpr double kSlidDirectionKappa = 8.0;
 /// The direction of strongest shaking is reported as unconstrained when its 95 % arc spans more than this, deg (two
 /// thirds of the half circle: the bearings rule out less than a third of the directions).
 inline constexpr double kUnconstrainedArcDeg = 120.0;
+
+/// The smallest RotD50 / RotD100 of any horizontal pair on rotd.hpp's angles 0, 1, ..., 179 deg (dimensionless):
+/// (cos 45 deg + cos 45.5 deg) / 2. At the sample of the vector peak A, Y(theta) >= A |cos(theta - phi)|; at least 90
+/// of the 180 angles lie within 45 deg of phi and 91 within 45.5 deg, so the 90th and 91st largest Y, whose mean is
+/// RotD50, are at least A cos 45 and A cos 45.5 deg; and RotD100 <= A. (1 / sqrt 2 on continuous angles.)
+inline constexpr double kRotD50FloorOfRotD100 = 0.7040080227431993;
+
+/// The static thresholds of a three-component site (header, item 6): on RotD100 PGA (S3a), where they hold, and their
+/// consequence on RotD50 PGA (S3b), per object in the same order in both. `vertical_ratio` is rho (>= 0; 0: no
+/// vertical). Reasons name the axis.
+struct ThreeComponentBounds {
+  StaticBounds rotd100;
+  StaticBounds rotd50;
+};
+[[nodiscard]] ThreeComponentBounds static_bounds_3c(const Site& site, double vertical_ratio);
 
 /// One realisation of the three-component family in its major-axis frame (header, item 1). RotD50 PGA 1 m/s^2.
 struct Realisation3c {

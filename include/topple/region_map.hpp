@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include "topple/direction.hpp"
+#include "topple/inversion.hpp"
 #include "topple/region.hpp"
 #include "topple/survey.hpp"
 
@@ -28,6 +30,10 @@ struct MapSite {
   double lon_deg = 0.0;  ///< WGS84 longitude, degrees
   double pga_g = 0.0;    ///< its colour: the pooled PGA's posterior median, g
   bool instrument = false;  ///< an instrument station (drawn as a triangle)
+  /// Three-component surveys: the site's direction of strongest shaking (inversion_3c.hpp) when it is constrained,
+  /// drawn as a bar through the site along its mode, over a wedge pair of its 95 % arc. None: one component, or
+  /// unconstrained (nothing drawn).
+  std::optional<DirectionEstimate> direction;
 };
 
 /// What the map shows, as plain values.
@@ -45,8 +51,11 @@ struct MapBounds {
 
 /// The map of a fit: every fitted site at its survey coordinates with its pooled median, and the given contours.
 /// Needs survey.epicentre and the fitted sites' coordinates (what fit_survey_region guarantees).
+/// `per_site` (by survey index, may be empty or hold nulls): the sites' own results, whose constrained directions of
+/// strongest shaking the map draws (three components).
 [[nodiscard]] RegionMap region_map(const RegionalResult& fit, const Survey& survey,
-                                   const std::vector<Contour>& contours);
+                                   const std::vector<Contour>& contours,
+                                   const std::vector<const InversionResult*>& per_site = {});
 
 /// The box around the sites and the epicentre, widened on each side by 15 % of its extent or 10 km, whichever is
 /// more (so that no symbol touches the frame and a lone site still gets a map); contours outside it are clipped.

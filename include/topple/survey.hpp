@@ -79,6 +79,14 @@ struct ObservedObject {
   /// Outcome slid, three-component surveys: the direction the object moved (marks on the floor), degrees clockwise
   /// from north, in [0, 360). None: not seen.
   std::optional<double> slid_azimuth_deg;
+  /// Three-component surveys, shape = "block": the block's other horizontal dimension (along bearing + 90), m. Given,
+  /// the object is a box rocked about both pairs of base edges (oriented.hpp, OrientedBody::make). None: the block
+  /// rocks along its bearing only, as before.
+  std::optional<double> depth_m;
+  /// Outcome overturned, three-component surveys, a cylinder or a box: the direction the object fell (a tombstone's,
+  /// a column's), degrees clockwise from north, in [0, 360). None: not seen. (A block without depth falls along its
+  /// bearing by the planar model: its fall direction says nothing more.)
+  std::optional<double> toppled_azimuth_deg;
   Outcome outcome = Outcome::not_overturned;
   std::optional<double> slid_m;              ///< observed sliding distance (outcome slid)
   double slid_uncertainty_m = 0.0;           ///< its one-sigma uncertainty

@@ -48,9 +48,22 @@ nlohmann::ordered_json arc_json(const DirectionArc& a) {
 }
 
 /// Added (components = 3, inversion_3c.hpp): the PGA axis is RotD50; the larger component's; the direction.
-nlohmann::ordered_json three_component_json(const ThreeComponentResult& tc) {
+nlohmann::ordered_json three_component_json(const ThreeComponentResult& tc, const InversionResult& r) {
   nlohmann::ordered_json j;
   j["pga_axis"] = "RotD50";
+  // Added (inversion_3c.hpp, item 6): the static thresholds on RotD100, where they hold; the top-level
+  // static_bounds_pga_g, static_bounds_hard_pga_g and static_thresholds are then their consequence on RotD50.
+  j["static_bounds_pga_axis"] = "RotD50";
+  if (r.rotd100_bounds) {
+    const StaticBounds& b = *r.rotd100_bounds;
+    j["static_bounds_rotd100_pga_g"] = {opt(b.lower_g), opt(b.upper_g)};
+    j["static_bounds_hard_rotd100_pga_g"] = {opt(b.hard_lower_g), opt(b.hard_upper_g)};
+    nlohmann::ordered_json thresholds = nlohmann::ordered_json::array();
+    for (const auto& t : b.lower) thresholds.push_back(threshold_json(t, "lower"));
+    for (const auto& t : b.upper) thresholds.push_back(threshold_json(t, "upper"));
+    j["static_thresholds_rotd100"] = thresholds;
+    j["static_thresholds_vertical_ratio"] = tc.threshold_vertical_ratio;
+  }
   j["larger_component_ratio"] = tc.larger_component_ratio;
   j["rotd100_ratio"] = tc.rotd100_ratio;
   j["pga_larger_component_g"] = {{"median", tc.larger_component_median_g},
@@ -128,6 +141,14 @@ nlohmann::ordered_json inversion_json(const InversionResult& r, const Site& site
     for (const auto& b : r.bounds.upper) {
       if (b.object_id == rep.id) oj["static_upper_bound_pga_g"] = b.pga_g;
     }
+    if (r.rotd100_bounds) {  // added (components = 3): the same thresholds on RotD100, where they hold
+      for (const auto& b : r.rotd100_bounds->lower) {
+        if (b.object_id == rep.id) oj["static_lower_bound_rotd100_pga_g"] = b.pga_g;
+      }
+      for (const auto& b : r.rotd100_bounds->upper) {
+        if (b.object_id == rep.id) oj["static_upper_bound_rotd100_pga_g"] = b.pga_g;
+      }
+    }
     oj["posterior_predictive"] = rep.posterior_predictive;
     oj["misfit"] = rep.misfit;
     oj["constraint_bits"] = rep.constraint_bits;
@@ -138,7 +159,7 @@ nlohmann::ordered_json inversion_json(const InversionResult& r, const Site& site
   j["best_cell"] = {{"pga_g", r.pga_g[r.best_cell / r.freq_hz.size()]}, {"freq_hz", r.freq_hz[r.best_cell % r.freq_hz.size()]}};
   j["runs"] = r.runs;
   j["seconds"] = r.seconds;
-  if (r.three_component) j["three_component"] = three_component_json(*r.three_component);
+  if (r.three_component) j["three_component"] = three_component_json(*r.three_component, r);
   return j;
 }
 
@@ -185,6 +206,9 @@ void write_sites_geojson(const std::filesystem::path& path, const std::vector<Si
       f["properties"]["direction_constrained"] = d.constrained;
       f["properties"]["direction_mode_deg"] = d.constrained ? nlohmann::ordered_json(d.mode_deg) : nlohmann::ordered_json(nullptr);
       f["properties"]["direction_ci95_deg"] = {d.ci95.low_deg, d.ci95.high_deg()};
+      if (r.rotd100_bounds) {
+        f["properties"]["static_bounds_rotd100_pga_g"] = {opt(r.rotd100_bounds->lower_g), opt(r.rotd100_bounds->upper_g)};
+      }
     }
     fc["features"].push_back(f);
   }

@@ -157,7 +157,8 @@ std::string toml_value(std::string_view cell) {
 const std::set<std::string, std::less<>> kStringKeys{"id",   "description", "shape",  "outcome",  "evidence",
                                                      "name", "notes",       "family", "mesh", "mesh_unit"};
 const std::set<std::string, std::less<>> kLengthKeys{"width", "height", "diameter",         "a",            "h",
-                                                     "b1",    "b2",     "slid", "slid_uncertainty", "slid_at_least"};
+                                                     "b1",    "b2",     "slid", "slid_uncertainty", "slid_at_least",
+                                                     "depth"};
 /// The keys whose values are areas (D = I_O / m, inertia = I_cm / m): "D_cm2", "inertia_cm2".
 const std::set<std::string, std::less<>> kAreaKeys{"D", "inertia"};
 constexpr std::array<std::string_view, 5> kLengthUnits{"mm", "cm", "m", "in", "ft"};

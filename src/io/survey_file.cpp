@@ -15,6 +15,7 @@
 #include "topple/inversion.hpp"
 #include "topple/io/mesh.hpp"
 #include "topple/io/read.hpp"
+#include "topple/oriented.hpp"
 #include "topple/units.hpp"
 #include "survey_csv.hpp"
 
@@ -410,6 +411,18 @@ ObservedObject parse_object(const toml::table& t, const std::string& file, const
     }
     o.azimuth_deg = parse_bearing(named, "azimuth_deg", *az);
   }
+  if (named.has("depth")) {  // a box (oriented.hpp): both horizontal axes rock
+    if (components != 3) {
+      throw named.error("depth", "a box's depth needs [inversion] components = 3 (one component has one plane of "
+                                 "rocking)");
+    }
+    o.depth_m = named.length("depth");
+    try {
+      (void)OrientedBody::make(o.body, o.depth_m);  // a block only; positive and finite
+    } catch (const InputError& e) {
+      throw named.error("depth", e.problem());
+    }
+  }
   const auto outcome = named.string("outcome");
   if (!outcome) throw named.error("outcome", "every object needs its observed outcome");
   o.outcome = parse_outcome(named, *outcome);
@@ -420,6 +433,17 @@ ObservedObject parse_object(const toml::table& t, const std::string& file, const
                                        "(alpha = {:.3g} deg > 54.7 deg): {}",
                                        housner_restitution(o.body), o.body.alpha_rad() * 180.0 / kPi,
                                        kSquatBodyAdvice));
+  }
+  if (rocks && o.depth_m && o.e_housner) {  // the other axis is a block of width `depth` (oriented.hpp)
+    const RockingBody across = *OrientedBody::make(o.body, o.depth_m).across;
+    if (housner_restitution(across) < 0.0) {
+      throw named.error("depth", fmt::format("Housner's restitution 1 - 2a^2/D = {:.3g} is negative across this box "
+                                             "(depth {:.3g} m, height {:.3g} m: alpha = {:.3g} deg > 54.7 deg): give "
+                                             "e = a value or a range, or leave depth out (the box then rocks along "
+                                             "its bearing only)",
+                                             housner_restitution(across), *o.depth_m, 2.0 * across.h_m,
+                                             across.alpha_rad() * 180.0 / kPi));
+    }
   }
   o.slid_m = named.length("slid");
   if (const auto u = named.length("slid_uncertainty")) o.slid_uncertainty_m = *u;
@@ -432,6 +456,21 @@ ObservedObject parse_object(const toml::table& t, const std::string& file, const
     if (components != 3) throw named.error("slid_azimuth_deg", "a sliding direction needs [inversion] components = 3");
     if (o.outcome != Outcome::slid) throw named.error("slid_azimuth_deg", "a sliding direction goes with outcome = \"slid\"");
     o.slid_azimuth_deg = parse_bearing(named, "slid_azimuth_deg", *az);
+  }
+  if (const auto az = named.number("toppled_azimuth_deg")) {
+    if (components != 3) {
+      throw named.error("toppled_azimuth_deg", "a fall direction needs [inversion] components = 3");
+    }
+    if (o.outcome != Outcome::overturned) {
+      throw named.error("toppled_azimuth_deg", "a fall direction goes with outcome = \"overturned\"");
+    }
+    if (o.body.shape != RockingBody::Shape::cylinder && !o.depth_m) {
+      throw named.error("toppled_azimuth_deg",
+                        "only a cylinder or a box (a block with depth) tells the direction of the shaking by the way it "
+                        "fell: the planar model of a block without depth falls along its bearing (give that as "
+                        "azimuth_deg, or give the block's depth)");
+    }
+    o.toppled_azimuth_deg = parse_bearing(named, "toppled_azimuth_deg", *az);
   }
   if (o.slid_m && !(*o.slid_m > 0.0)) throw named.error("slid", "must be positive");
   if (o.slid_uncertainty_m < 0.0) throw named.error("slid_uncertainty", "must be >= 0");
