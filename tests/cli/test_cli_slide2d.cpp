@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "support/csv_table.hpp"
 #include "support/shared_data.hpp"
 
 namespace topple {
@@ -44,6 +45,78 @@ TEST(CliSlide2d, OneRecordOnBothAxesOnTheFallLineIsThe1dIncline) {
                                                     "--mu 0.15 --slope-deg 6");
   EXPECT_NEAR(two.at("input").at("slope_deg").get<double>(), 6.0, 1e-12);
   EXPECT_EQ(two.at("input").at("slope_azimuth_deg").get<double>(), 225.0);
+}
+
+TEST(CliSlide2d, HistoryOfTheRecordOnBothAxesIsThe1dHistoryAlong225Degrees) {
+  // The same record at 0 and 90 deg is the 1-D motion sqrt(2) x record along 45 deg; the block moves against it
+  // where the 1-D d is positive, so each history row's east and north displacement and velocity are -d / sqrt(2),
+  // -v / sqrt(2), the ground's east and north components a / sqrt(2) of the scaled 1-D record, and the rows (grid
+  // points and events) are the same. Tolerances: the 2-D solver matches the exact 1-D one to 1e-9 relative
+  // (test_sliding2d); the CSVs print 9 (ground, time) and 12 (response) digits.
+  if (!test::have_shared()) GTEST_SKIP() << "../shared not present";
+  const std::string rec = "'" + test::shared_record("slammer/Kocaeli_1999_ATS-090.csv").string() + "'";
+  test::TempDir tmp;
+  const auto two_path = tmp.path() / "two.csv";
+  const auto one_path = tmp.path() / "one.csv";
+  auto r = test::run_cli("slide " + rec + " --h2 " + rec + " --azimuths 0,90 --mu 0.05 --out '" + two_path.string() +
+                         "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("history written to"), std::string::npos) << r.out;
+  r = test::run_cli("slide " + rec + " --scale 1.4142135623730951 --mu 0.05 --out '" + one_path.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const test::Table two = test::read_table(two_path);
+  const test::Table one = test::read_table(one_path);
+  EXPECT_EQ(two.header, (std::vector<std::string>{"time_s", "ground_east_m_s2", "ground_north_m_s2", "ground_up_m_s2",
+                                                  "displacement_east_m", "displacement_north_m", "velocity_east_m_s",
+                                                  "velocity_north_m_s", "slipping"}));
+  ASSERT_EQ(two.rows.size(), one.rows.size());
+  ASSERT_GT(two.rows.size(), 26000U);  // 26780 samples and the events
+  const double root2 = std::sqrt(2.0);
+  const double u_scale = 0.238159;  // the run's max |u| (m), printed by `slide`
+  const double v_scale = 0.420487;  // its peak relative speed (m/s)
+  int slipping_rows = 0;
+  for (std::size_t i = 0; i < two.rows.size(); ++i) {
+    const auto cell = [](const test::Table& t, std::size_t row, const char* col) { return std::stod(t.at(row, col)); };
+    ASSERT_NEAR(cell(two, i, "time_s"), cell(one, i, "time_s"), 1e-8) << i;
+    const double a = cell(one, i, "ground_accel_m_s2") / root2;
+    EXPECT_NEAR(cell(two, i, "ground_east_m_s2"), a, 1e-8 * (std::abs(a) + 1e-3)) << i;
+    EXPECT_NEAR(cell(two, i, "ground_north_m_s2"), a, 1e-8 * (std::abs(a) + 1e-3)) << i;
+    EXPECT_EQ(cell(two, i, "ground_up_m_s2"), 0.0) << i;
+    const double d = -cell(one, i, "displacement_m") / root2;
+    const double v = -cell(one, i, "velocity_m_s") / root2;
+    EXPECT_NEAR(cell(two, i, "displacement_east_m"), d, 1e-9 * u_scale) << i;
+    EXPECT_NEAR(cell(two, i, "displacement_north_m"), d, 1e-9 * u_scale) << i;
+    EXPECT_NEAR(cell(two, i, "velocity_east_m_s"), v, 1e-9 * v_scale) << i;
+    EXPECT_NEAR(cell(two, i, "velocity_north_m_s"), v, 1e-9 * v_scale) << i;
+    const bool slipping = one.at(i, "state") != "0";
+    EXPECT_EQ(two.at(i, "slipping"), slipping ? "1" : "0") << i;
+    slipping_rows += slipping ? 1 : 0;
+  }
+  EXPECT_GT(slipping_rows, 1000);  // 15.6 s of slip at 0.005 s
+}
+
+TEST(CliSlide2d, HistoryCarriesTheVerticalAndIsRefusedWithFlexibleSupports) {
+  // The vertical column is the vertical record as given (scaled with the horizontal; --scale 1 here), to its
+  // 9 printed digits.
+  if (!test::have_shared()) GTEST_SKIP() << "../shared not present";
+  const std::string rec = "'" + test::shared_record("slammer/Kocaeli_1999_ATS-090.csv").string() + "'";
+  test::TempDir tmp;
+  const auto path = tmp.path() / "h.csv";
+  auto r = test::run_cli("slide " + rec + " --h2 " + rec + " --vertical " + rec + " --azimuths 90,0 --mu 0.2 --out '" +
+                         path.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const test::Table t = test::read_table(path);
+  ASSERT_GT(t.rows.size(), 1000U);
+  // east = the first component, north = the second, up = the vertical: the same record in all three columns
+  for (std::size_t i = 0; i < t.rows.size(); i += 97) {
+    const double east = std::stod(t.at(i, "ground_east_m_s2"));
+    EXPECT_NEAR(std::stod(t.at(i, "ground_north_m_s2")), east, 1e-8 * (std::abs(east) + 1e-3)) << i;
+    EXPECT_NEAR(std::stod(t.at(i, "ground_up_m_s2")), east, 1e-8 * (std::abs(east) + 1e-3)) << i;
+  }
+  r = test::run_cli("slide " + rec + " --h2 " + rec + " --azimuths 90,0 --mu 0.2 --support-freq 5 --out '" +
+                    path.string() + "'");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--h2"), std::string::npos) << r.err;
 }
 
 TEST(CliSlide2d, BadInputExitsTwoNamingTheOption) {
