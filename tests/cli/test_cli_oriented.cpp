@@ -124,7 +124,7 @@ TEST_F(CliOriented, SpectrumAlongABearingAndRefusals) {
         std::pair{"spectrum rock " + h1 + " --bearing-deg 10" + map, "--bearing-deg"},
         std::pair{"spectrum rock " + h1 + " --shape cylinder --h2 " + h2 + " --azimuths 0,90 --bearing-deg 0" + map,
                   "--h2"},
-        std::pair{"spectrum slide " + h1 + " --h2 " + h2 + " --azimuths 0,90 --mu 0.1", "--h2"},
+        std::pair{"spectrum slide " + h1 + " --h2 " + h2 + " --azimuths 0,90 --mu 0.1 --bearing-deg 0", "--bearing-deg"},
         std::pair{"fragility --synth 3 --h2 " + h2 + " --mu 0.1 --threshold 5cm --im-range 0.1:1:3", "--h2"}}) {
     const auto r = test::run_cli(args);
     EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
