@@ -165,17 +165,8 @@ class Runner {
   /// objects as bidirectional sliders (sliding2d.hpp: friction is isotropic, the bearing does not enter).
   void run_set(const GroundMotion& first, const SetCase& c, std::size_t begin, std::size_t end,
                std::span<Value> out) const {
-    // `first` is the engine's transform of the set's first component; the others get the same transform (the
-    // vertical keeps its sign). The components share one grid, so the merge reproduces it.
     std::optional<MotionSet> transformed;
-    if (!c.transform.is_identity()) {
-      const GroundMotion second = c.transform.apply(c.set->second());
-      MotionTransform up = c.transform;
-      up.invert = false;
-      const std::optional<GroundMotion> vertical =
-          c.set->has_vertical() ? std::optional(up.apply(c.set->vertical())) : std::nullopt;
-      transformed = MotionSet::make(first, &second, c.set->azimuths(), vertical ? &*vertical : nullptr);
-    }
+    if (!c.transform.is_identity()) transformed = transformed_set(*c.set, c.transform, first);
     const MotionSet& set = transformed ? *transformed : *c.set;
     for (std::size_t o = begin; o < end; ++o) {
       Value* row = out.data() + (o - begin) * stride_;
@@ -234,6 +225,15 @@ class RowValues {
 };
 
 }  // namespace
+
+MotionSet transformed_set(const MotionSet& set, const MotionTransform& transform, const GroundMotion& first) {
+  // The components share one grid, so the merge reproduces it.
+  const GroundMotion second = transform.apply(set.second());
+  MotionTransform up = transform;
+  up.invert = false;
+  const std::optional<GroundMotion> vertical = set.has_vertical() ? std::optional(up.apply(set.vertical())) : std::nullopt;
+  return MotionSet::make(first, &second, set.azimuths(), vertical ? &*vertical : nullptr);
+}
 
 Plan make_plan(const SweepSpec& spec) {
   if (spec.records.empty() && spec.pulses.empty() && spec.record_sets.empty()) {

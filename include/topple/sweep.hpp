@@ -139,4 +139,10 @@ struct SweepSpec {
 /// than cylinders and without bearings (field "bearing"), or a bearing without record sets.
 [[nodiscard]] Plan make_plan(const SweepSpec& spec);
 
+/// A record set under a motion case's transform: `first` is the engine's transform of set.first() (the case's base
+/// motion); the second component gets the same transform, the vertical the same without the inversion (it keeps its
+/// sign: polarity flips the horizontal shaking). The sweep's set cases and the fragility of pairs use it.
+[[nodiscard]] MotionSet transformed_set(const MotionSet& set, const MotionTransform& transform,
+                                        const GroundMotion& first);
+
 }  // namespace topple::ensemble
