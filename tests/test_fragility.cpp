@@ -147,15 +147,20 @@ TEST(FragilityFit, DegenerateData) {
   EXPECT_LT(sep.theta, 0.4);
 }
 
+/// The ensembles' synthetic motion: PGA 0.3 g (of a pair: RotD50) at 2 Hz.
+SynthesisSpec ensemble_spec(std::uint64_t seed, double duration_s) {
+  SynthesisSpec s;
+  s.pga_m_s2 = 0.3 * kStandardGravity;
+  s.predominant_frequency_hz = 2.0;
+  s.duration_s = duration_s;
+  s.seed = seed;
+  return s;
+}
+
 TEST(FragilityAnalysis, CountsEqualSingleRuns) {
   std::vector<std::shared_ptr<const GroundMotion>> motions;
   for (std::uint64_t seed = 1; seed <= 4; ++seed) {
-    SynthesisSpec s;
-    s.pga_m_s2 = 0.3 * kStandardGravity;
-    s.predominant_frequency_hz = 2.0;
-    s.duration_s = 8.0;
-    s.seed = seed;
-    motions.push_back(std::make_shared<const GroundMotion>(synthesize(s)));
+    motions.push_back(std::make_shared<const GroundMotion>(synthesize(ensemble_spec(seed, 8.0))));
   }
   FragilitySpec spec;
   spec.motions = motions;
@@ -204,12 +209,7 @@ TEST(FragilityAnalysis, PairsWithAZeroSecondComponentAtTheRecordsAzimuthAreThe1d
   std::vector<std::shared_ptr<const MotionSet>> sets;
   std::vector<double> ratio;
   for (std::uint64_t seed = 1; seed <= 6; ++seed) {
-    SynthesisSpec s;
-    s.pga_m_s2 = 0.3 * kStandardGravity;
-    s.predominant_frequency_hz = 2.0;
-    s.duration_s = 8.0;
-    s.seed = seed;
-    const auto m = std::make_shared<const GroundMotion>(synthesize(s));
+    const auto m = std::make_shared<const GroundMotion>(synthesize(ensemble_spec(seed, 8.0)));
     motions.push_back(m);
     const GroundMotion quiet = GroundMotion::uniform(std::vector<double>(m->size(), 0.0), m->dt_s());
     sets.push_back(std::make_shared<const MotionSet>(MotionSet::make(*m, &quiet, ComponentAzimuths{90.0, 0.0})));
@@ -256,10 +256,7 @@ TEST(FragilityAnalysis, PairsWithoutABearingDrawOnePerMotionAndBadInputIsNamed) 
   std::vector<std::shared_ptr<const MotionSet>> sets;
   for (std::uint64_t seed = 1; seed <= 5; ++seed) {
     SynthesisSetSpec ss;
-    ss.horizontal.pga_m_s2 = 0.3 * kStandardGravity;
-    ss.horizontal.predominant_frequency_hz = 2.0;
-    ss.horizontal.duration_s = 6.0;
-    ss.horizontal.seed = seed;
+    ss.horizontal = ensemble_spec(seed, 6.0);
     ss.vertical = false;
     const SynthesizedSet syn = synthesize_set(ss);
     sets.push_back(std::make_shared<const MotionSet>(MotionSet::make(syn.first, &syn.second, ss.azimuths)));

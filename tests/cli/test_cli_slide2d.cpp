@@ -196,10 +196,7 @@ TEST(CliSlide2d, SpectrumOfACollinearPairIsThe1dSpectrum) {
   const std::string h1 = "'" + test::shared_record("slammer/Kocaeli_1999_ATS-090.csv").string() + "'";
   test::TempDir tmp;
   const auto zero = tmp.path() / "zero.csv";
-  // Zero on the record's grid (SLAMMER's two-column format, as the record: 26780 samples at 0.005 s).
-  std::string text = "# Time Series: zero\n# Time (s),Acceleration (g's)\n";
-  for (int i = 0; i < 26780; ++i) text += fmt::format("{:.3f},0\n", 0.005 * i);
-  test::write_file(zero, text);
+  test::write_zero_record(zero, 26780, 0.005);  // on the record's grid: 26780 samples at 0.005 s
   const auto two = test::run_json("spectrum slide " + h1 + " --h2 '" + zero.string() + "' --azimuths 90,0 "
                                   "--mu 0.05,0.1,0.2 --json");
   const auto one = test::run_json("spectrum slide " + h1 + " --mu 0.05,0.1,0.2 --json");

@@ -153,9 +153,7 @@ TEST(CliFragility, RecordPairWithAZeroSecondComponentIsThe1dFragility) {
   const std::string rec = "'" + test::shared_record("slammer/Kocaeli_1999_ATS-090.csv").string() + "'";
   test::TempDir tmp;
   const auto zero = tmp.path() / "zero.csv";
-  std::string text = "# Time Series: zero\n# Time (s),Acceleration (g's)\n";
-  for (int i = 0; i < 26780; ++i) text += fmt::format("{:.3f},0\n", 0.005 * i);
-  test::write_file(zero, text);
+  test::write_zero_record(zero, 26780, 0.005);  // on the record's grid: 26780 samples at 0.005 s
   const double c = std::cos(std::acos(-1.0) / 4.0);
   const std::string objects = " --mu 0.2 --threshold 5cm --shape block --width 20cm --height 80cm --json --quiet";
   const auto one = run_json("fragility " + rec + " --im-range 0.1:1.5:10" + objects);
