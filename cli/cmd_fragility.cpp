@@ -14,6 +14,7 @@
 #include "progress.hpp"
 #include "common.hpp"
 #include "grids.hpp"
+#include "motion_set_options.hpp"
 #include "topple/error.hpp"
 #include "topple/io/output_file.hpp"
 #include "topple/fragility.hpp"
@@ -50,9 +51,12 @@ struct FragilityOptions {
   std::string out;
   std::string plot;
   bool json = false;
-  std::string h2;        // refused (below): accepted as options only to say why
-  std::string azimuths;
-  std::optional<double> bearing_deg;
+  int components = 1;                 // --synth: 2 = horizontal pairs, 3 = pairs with a vertical
+  std::vector<std::string> h2;        // record pairs: each file's second horizontal component, in order
+  std::vector<std::string> vertical;  // and (optional) vertical
+  std::string azimuths;               // "A1,A2" for every pair (default: the files' headers)
+  std::optional<double> bearing_deg;  // rocking body's bearing under pairs (none: uniformly random per motion)
+  std::string bearing_seed = "1";
 };
 
 /// The most synthetic motions (each is held in memory; 1e4 motions of 20 s at 0.01 s: 320 MB) and IM levels.
@@ -85,14 +89,32 @@ void run_fragility(const FragilityOptions& o) {
   check_threads(o.threads);
   const double g = o.motion.g_m_s2;
   check_g(g);
-  for (const auto& [option, given] : {std::pair{"--h2", !o.h2.empty()}, std::pair{"--azimuths", !o.azimuths.empty()},
-                                      std::pair{"--bearing-deg", o.bearing_deg.has_value()}}) {
-    if (given) {
-      throw parameter_error(option, "fragility takes single-component motions: an ensemble of pairs needs a pair's "
-                                    "intensity measure (RotD50) and each object's bearing, which this command does not "
-                                    "define yet; run `topple sweep` with [[motions.set]] and bearing_deg and fit its "
-                                    "table instead");
+  // Pairs: synthetic (--synth N --components 2|3) or records (FILES --h2 FILES2 [--vertical FILES3]).
+  if (o.components < 1 || o.components > 3) {
+    throw parameter_error("--components", fmt::format("1, 2 (horizontal pairs) or 3 (pairs and a vertical), got {}",
+                                                      o.components));
+  }
+  if (o.components != 1 && !o.synth) throw parameter_error("--components", "applies to --synth (records: --h2)");
+  if (!o.h2.empty() && o.synth) throw parameter_error("--h2", "record pairs are files; with --synth use --components 2");
+  if (!o.h2.empty() && o.h2.size() != o.files.size()) {
+    throw parameter_error("--h2", fmt::format("one second component per record file: {} files, {} given", o.files.size(),
+                                              o.h2.size()));
+  }
+  if (!o.vertical.empty() && o.vertical.size() != o.h2.size()) {
+    throw parameter_error("--vertical", o.h2.empty() ? std::string("needs --h2 (pairs)")
+                                                     : fmt::format("one vertical per pair: {} pairs, {} given",
+                                                                   o.h2.size(), o.vertical.size()));
+  }
+  const bool pairs = o.components > 1 || !o.h2.empty();
+  if (!pairs) {
+    for (const auto& [option, given] : {std::pair{"--azimuths", !o.azimuths.empty()},
+                                        std::pair{"--bearing-deg", o.bearing_deg.has_value()},
+                                        std::pair{"--bearing-seed", o.bearing_seed != "1"}}) {
+      if (given) throw parameter_error(option, "applies to pairs: --h2 with record files, or --synth N --components 2");
     }
+  }
+  if (!o.azimuths.empty() && o.synth) {
+    throw parameter_error("--azimuths", "synthetic pairs are at 90,0 (east, north); --azimuths names record pairs");
   }
   if (!o.motion.scale_pga.empty() || o.motion.scale || o.motion.invert) {
     throw parameter_error("--scale-pga", "fragility scales every motion to each IM level itself: --scale-pga, --scale "
@@ -101,6 +123,12 @@ void run_fragility(const FragilityOptions& o) {
   if (!(o.band > 0.0 && o.band < 1.0)) throw parameter_error("--band", fmt::format("must be in (0, 1), got {}", o.band));
   FragilitySpec spec;
   spec.im = parse_intensity_measure(o.im, "--im");
+  if (pairs && spec.im != IntensityMeasure::pga) {
+    throw parameter_error("--im", fmt::format("an ensemble of pairs is scaled by its RotD50 PGA: --im must be pga, got "
+                                              "'{}'", o.im));
+  }
+  spec.bearing_deg = o.bearing_deg;
+  spec.bearing_seed = parse_seed(o.bearing_seed, "--bearing-seed");
   spec.threads = o.threads;
   if (o.im_range.empty()) throw parameter_error("--im-range", "the IM levels are required, e.g. --im-range 0.05:2:12 "
                                                               "(in g for PGA, SI for the others)");
@@ -183,11 +211,31 @@ void run_fragility(const FragilityOptions& o) {
     for (std::uint64_t i = 0; i < count; ++i) {
       s.seed = first_seed + i;
       try {
-        spec.motions.push_back(std::make_shared<const GroundMotion>(synthesize(s)));
+        if (pairs) {
+          // synthesis.hpp's pair: pga_m_s2 is its RotD50 PGA; independent components at 90,0; the vertical (V/H 2/3).
+          SynthesisSetSpec ss;
+          ss.horizontal = s;
+          ss.vertical = o.components == 3;
+          const SynthesizedSet syn = synthesize_set(ss);
+          spec.motion_sets.push_back(std::make_shared<const MotionSet>(
+              MotionSet::make(syn.first, &syn.second, ss.azimuths, syn.vertical ? &*syn.vertical : nullptr)));
+        } else {
+          spec.motions.push_back(std::make_shared<const GroundMotion>(synthesize(s)));
+        }
       } catch (const InputError& e) {
         throw parameter_error(synth_option(e), e.problem());
       }
-      names.push_back(fmt::format("synthetic seed {}", s.seed));
+      names.push_back(fmt::format("synthetic {}seed {}", pairs ? "pair " : "", s.seed));
+    }
+  } else if (pairs) {
+    // Each pair read as `slide FILE --h2 H2 [--vertical V]` reads it (motion_set_options.hpp).
+    for (std::size_t k = 0; k < o.files.size(); ++k) {
+      MotionOptions mo = o.motion;
+      mo.file = o.files[k];
+      const std::string v = o.vertical.empty() ? std::string() : o.vertical[k];
+      const RunMotion run = load_run_motion(mo, PulseOptions{}, v);
+      spec.motion_sets.push_back(std::make_shared<const MotionSet>(load_motion_set(run, mo, o.h2[k], o.azimuths)));
+      names.push_back(o.files[k] + "+" + o.h2[k] + (v.empty() ? "" : "+" + v));
     }
   } else {
     for (const std::string& f : o.files) {
@@ -197,15 +245,32 @@ void run_fragility(const FragilityOptions& o) {
   }
   ProgressBar bar(progress_wanted(o.quiet));
   spec.progress = bar.callback();
-  const FragilityResult res = fragility_analysis(spec);
+  const FragilityResult res = [&] {
+    try {
+      return fragility_analysis(spec);
+    } catch (const InputError& e) {
+      // The library names its fields; the user typed options.
+      const std::string& field = e.where().field;
+      if (!e.where().file.empty()) throw;
+      if (field == "mode") throw parameter_error("--one-way", e.problem());
+      if (field == "slope") throw parameter_error("--slope-deg", e.problem());
+      if (field == "bearing") throw parameter_error("--bearing-deg", e.problem());
+      throw;
+    }
+  }();
   bar.finish();
+  const std::string im_column = res.rotd50 ? "im_rotd50_pga_g" : std::string(intensity_measure_column(spec.im));
+  const std::string bearing_rule =
+      o.bearing_deg ? fmt::format("{:g} deg for every motion", *o.bearing_deg)
+                    : fmt::format("uniformly random on [0, 360) deg per motion (PortableRandom seed {})",
+                                  spec.bearing_seed);
   const double k = intensity_measure_display_factor(spec.im, g);
   const std::string unit(intensity_measure_unit(spec.im));
 
   if (!o.out.empty()) {
     io::OutputFile file(o.out);
     std::ostream& out = file.stream();
-    out << "curve," << intensity_measure_column(spec.im) << ",trials,failures,fraction,fitted_probability,band_lower,band_upper\n";
+    out << "curve," << im_column << ",trials,failures,fraction,fitted_probability,band_lower,band_upper\n";
     for (const auto& c : res.curves) {
       for (std::size_t j = 0; j < c.data.im.size(); ++j) {
         out << fmt::format("{},{},{},{},{}", c.name, c.data.im[j] * k, c.data.trials[j], c.data.failures[j],
@@ -222,13 +287,18 @@ void run_fragility(const FragilityOptions& o) {
   }
   if (!o.plot.empty()) {
     plot::render(plot::fragility_figure(res, g, o.band,
-                                        fragility_title(o, spec.motions.size())),
+                                        fragility_title(o, names.size()) + (res.rotd50 ? " (RotD50 PGA of pairs)" : "")),
                  o.plot);
   }
   if (o.json) {
     nlohmann::ordered_json j;
     j["im"] = o.im;
     j["im_unit"] = unit;
+    if (res.rotd50) {
+      j["im_definition"] = "RotD50 PGA of each pair (Boore 2010): every pair scaled as a whole to each level";
+      j["bearing"] = bearing_rule;
+      j["bearings_deg"] = res.bearings_deg;
+    }
     j["g_m_s2"] = g;
     j["motions"] = names;
     j["runs"] = res.runs;
@@ -240,7 +310,7 @@ void run_fragility(const FragilityOptions& o) {
       cj["curve"] = c.name;
       nlohmann::ordered_json lv = nlohmann::ordered_json::array();
       for (std::size_t i = 0; i < c.data.im.size(); ++i) {
-        lv.push_back({{std::string(intensity_measure_column(spec.im)), c.data.im[i] * k}, {"trials", c.data.trials[i]},
+        lv.push_back({{im_column, c.data.im[i] * k}, {"trials", c.data.trials[i]},
                       {"failures", c.data.failures[i]}});
       }
       cj["levels"] = lv;
@@ -263,8 +333,12 @@ void run_fragility(const FragilityOptions& o) {
     fmt::print("{}\n", j.dump(2));
     return;
   }
-  fmt::print("fragility over {} motions x {} {} levels ({} runs), g = {} m/s2\n", spec.motions.size(),
-             spec.levels_si.size(), o.im, res.runs, g);
+  fmt::print("fragility over {} motions x {} {} levels ({} runs), g = {} m/s2\n", names.size(),
+             spec.levels_si.size(), res.rotd50 ? "RotD50 PGA" : o.im, res.runs, g);
+  if (res.rotd50) {
+    fmt::print("pairs: IM = each pair's RotD50 PGA (Boore 2010), both components scaled together; sliding in two "
+               "dimensions; rocking bodies at a bearing of {}\n", bearing_rule);
+  }
   for (const auto& c : res.curves) {
     fmt::print("{}:", c.name == "overturn" ? "P(overturn)" : "P(slide > threshold)");
     if (c.fit) {
@@ -275,7 +349,8 @@ void run_fragility(const FragilityOptions& o) {
       fmt::print(" no fit: {}\n", c.fit_note);
     }
     for (std::size_t i = 0; i < c.data.im.size(); ++i) {
-      fmt::print("  {} = {:<10.4g} {:>4}/{:<4}\n", o.im, c.data.im[i] * k, c.data.failures[i], c.data.trials[i]);
+      fmt::print("  {} = {:<10.4g} {:>4}/{:<4}\n", res.rotd50 ? "RotD50 PGA" : o.im, c.data.im[i] * k,
+                 c.data.failures[i], c.data.trials[i]);
     }
   }
   if (!o.out.empty()) fmt::print("table written to {}\n", o.out);
@@ -314,9 +389,17 @@ void add_fragility_command(CLI::App& app) {
   cmd->add_option("--out", o->out, "Write the counts, fitted probabilities and band per level to this CSV file");
   cmd->add_option("--plot", o->plot, "Draw the curves with their data points and band to this .svg or .png file");
   cmd->add_flag("--json", o->json, "Print the fits as one JSON object");
-  cmd->add_option("--h2", o->h2, "Not available: fragility over motion sets (refused with the reason)");
-  cmd->add_option("--azimuths", o->azimuths, "Not available (see --h2)");
-  cmd->add_option("--bearing-deg", o->bearing_deg, "Not available (see --h2)");
+  cmd->add_option("--components", o->components, "Synthetic: 1, or 2 for horizontal pairs (IM: their RotD50 PGA), 3 "
+                                                 "for pairs with a vertical")->capture_default_str();
+  cmd->add_option("--h2", o->h2, "Record pairs: the second horizontal component of each record file, in order (IM: "
+                                 "the pair's RotD50 PGA; 2-D sliding, oriented rocking)");
+  cmd->add_option("--vertical", o->vertical, "Record pairs: the vertical of each pair, in order (optional)");
+  cmd->add_option("--azimuths", o->azimuths, "Record pairs: the components' azimuths A1,A2, degrees clockwise from "
+                                             "north (default: the files' headers)");
+  cmd->add_option("--bearing-deg", o->bearing_deg, "Pairs: the rocking body's bearing (across its narrow side), "
+                                                   "degrees clockwise from north; default: uniformly random per motion");
+  cmd->add_option("--bearing-seed", o->bearing_seed, "Pairs without --bearing-deg: seed of the random bearings")
+      ->capture_default_str();
   add_quiet_flag(*cmd, o->quiet);
   cmd->callback([o] { run_fragility(*o); });
 }

@@ -71,8 +71,8 @@ void run_slide(const SlideOptions& o) {
   const GroundMotion& horizontal = run.horizontal;
   const GroundMotion* vertical_ptr = run.vertical_ptr();
   if (!o.h2.empty()) {
-    if (o.flexible.active() || !o.out.empty()) {
-      throw parameter_error("--h2", "--out and flexible supports are not available with two components yet");
+    if (o.flexible.active()) {
+      throw parameter_error("--h2", "flexible supports are not available with two components");
     }
     // The second component is scaled with the first (the shaking is scaled as a whole), as the vertical is; the
     // azimuths from --azimuths or the files' headers (motion_set_options.hpp).
@@ -87,7 +87,7 @@ void run_slide(const SlideOptions& o) {
       azimuths.slope_azimuth_deg = *o.slope_azimuth_deg;
     }
     run_bidirectional_slide(set.first(), set.second(), azimuths, block, set.vertical_ptr(), o.json, run.input.motion,
-                            o.h2, run.input.scale_factor, o.plot);
+                            o.h2, run.input.scale_factor, o.plot, o.out);
     return;
   }
   refuse_without_h2(o.azimuths);
@@ -173,7 +173,8 @@ void add_slide_command(CLI::App& app) {
                                              "where they state them (a value given here wins, with a warning)");
   cmd->add_option("--slope-azimuth-deg", o->slope_azimuth_deg, "With --h2 and --slope-deg: azimuth of the downslope "
                                                                "direction, degrees clockwise from north");
-  cmd->add_option("--out", o->out, "Write the time history to this CSV file");
+  cmd->add_option("--out", o->out, "Write the time history to this CSV file (with --h2: east and north "
+                                    "components of the ground, displacement and velocity)");
   cmd->add_option("--plot", o->plot, "Draw record, thresholds and response to this .svg or .png file (gnuplot); with "
                                      "--h2, both components (and the vertical) and the east and north response");
   cmd->add_flag("--json", o->json, "Print the summary as one JSON object");

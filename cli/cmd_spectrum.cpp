@@ -19,7 +19,9 @@
 #include "topple/flexible.hpp"
 #include "topple/io/output_file.hpp"
 #include "topple/object_spectra.hpp"
+#include "topple/io/write.hpp"
 #include "topple/plot.hpp"
+#include "topple/rotd.hpp"
 #include "topple/units.hpp"
 
 namespace topple::cli {
@@ -126,10 +128,115 @@ struct SlideSpectrumOptions {
   std::string ky_range;
   double slope_deg = 0.0;
   bool one_way = false;
+  std::string vertical;  ///< with --h2: the vertical component
   std::string out;
   std::string plot;
   bool json = false;
 };
+
+/// A number or null (the JSON of an optional).
+nlohmann::ordered_json or_null(const std::optional<double>& v) {
+  return v ? nlohmann::ordered_json(*v) : nlohmann::ordered_json(nullptr);
+}
+
+/// spectrum slide FILE --h2 H2 [--vertical V]: the bidirectional spectrum (object_spectra.hpp, sliding_spectrum_2d)
+/// over `mu` or, with `ky_ratios`, over k_y / RotD50 PGA. The set is read as `slide --h2` reads it, so that each
+/// point is that command's run.
+void run_slide_spectrum_2d(const SlideSpectrumOptions& o, std::vector<double> mu, const std::vector<double>& ky_ratios) {
+  const double g = o.input.motion.g_m_s2;
+  for (const auto& [given, option] : {std::pair{o.slope_deg != 0.0, "--slope-deg"}, std::pair{o.one_way, "--one-way"},
+                                      std::pair{!o.input.support_freq.empty(), "--support-freq"},
+                                      std::pair{o.input.bearing_deg.has_value(), "--bearing-deg"},
+                                      std::pair{!o.plot.empty(), "--plot"}}) {
+    if (given) {
+      throw parameter_error(option, "not with --h2: the bidirectional spectrum is of a two-way block on level ground "
+                                    "(friction is isotropic: no bearing), without a support, and has no figure yet");
+    }
+  }
+  const RunMotion run = load_run_motion(o.input.motion, o.input.pulse, o.vertical);
+  const MotionSet set = load_motion_set(run, o.input.motion, o.input.h2, o.input.azimuths);
+  if (!ky_ratios.empty()) {
+    const double rotd50 = rotd_measures(set, {}).pga_m_s2.rotd50;
+    for (double ratio : ky_ratios) {
+      mu.push_back(naming({{"ky_over_pga", "--ky-ratio-range"}}, [&] { return mu_for_yield_ratio(ratio, rotd50, 0.0, g); }));
+    }
+  }
+  const SlidingSpectrum2d sp = naming({{"mu", o.mu.empty() ? "--mu-range" : "--mu"}, {"g", "--g"}},
+                                      [&] { return sliding_spectrum_2d(set, mu, g); });
+  for (const auto& p : sp.points) {
+    require_finite({{"residual displacement", p.bidirectional.residual_displacement_m},
+                    {"max |displacement|", p.bidirectional.max_abs_displacement_m},
+                    {"path length", p.bidirectional.path_length_m}});
+  }
+  const std::string& h1 = run.input.motion;
+  if (!o.out.empty()) {
+    io::OutputFile file(o.out);
+    std::ostream& out = file.stream();
+    out << "mu,yield_accel_g,ky_over_rotd50_pga,max_abs_displacement_m,residual_displacement_m,residual_azimuth_deg,"
+           "path_length_m,max_abs_velocity_m_s,slip_episodes,total_slip_duration_s,h1_max_abs_displacement_m,"
+           "h1_residual_displacement_m,h2_max_abs_displacement_m,h2_residual_displacement_m\n";
+    for (const auto& p : sp.points) {
+      const Sliding2dSummary& b = p.bidirectional;
+      out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", p.mu, p.yield_accel_g, p.yield_over_rotd50_pga,
+                         b.max_abs_displacement_m, b.residual_displacement_m,
+                         b.residual_azimuth_deg ? fmt::format("{}", *b.residual_azimuth_deg) : std::string(),
+                         b.path_length_m, b.max_abs_velocity_m_s, b.slip_episodes, b.total_slip_duration_s,
+                         p.first_alone.max_abs_displacement_m, p.first_alone.residual_displacement_m,
+                         p.second_alone.max_abs_displacement_m, p.second_alone.residual_displacement_m);
+    }
+    file.commit();
+  }
+  if (o.json) {
+    nlohmann::ordered_json j;
+    j["motion"] = h1;
+    j["second"] = o.input.h2;
+    j["vertical"] = sp.with_vertical;
+    j["azimuths_deg"] = {sp.azimuths.first_deg, sp.azimuths.second_deg};
+    j["pga_axis"] = "RotD50 of the pair (Boore 2010)";
+    j["rotd50_pga_g"] = sp.rotd50_pga_m_s2 / g;
+    j["h1_pga_g"] = sp.first_pga_m_s2 / g;
+    j["h2_pga_g"] = sp.second_pga_m_s2 / g;
+    j["g_m_s2"] = g;
+    j["mode"] = sliding_mode_name(SlidingMode::two_way);
+    j["slope_deg"] = 0.0;
+    auto& pts = j["points"] = nlohmann::ordered_json::array();
+    const auto alone = [](const SlidingSummary& s) {
+      return nlohmann::ordered_json{{"max_abs_displacement_m", s.max_abs_displacement_m},
+                                    {"residual_displacement_m", s.residual_displacement_m},
+                                    {"slip_episodes", s.slip_episodes}};
+    };
+    for (const auto& p : sp.points) {
+      nlohmann::ordered_json x;
+      x["mu"] = p.mu;
+      x["yield_accel_g"] = p.yield_accel_g;
+      x["ky_over_rotd50_pga"] = p.yield_over_rotd50_pga;
+      // The 2-D run's fields, as `slide --h2 --json` prints them.
+      const SlidingBlock block = SlidingBlock::make(p.mu, std::nullopt, 0.0, SlidingMode::two_way, g);
+      x.update(io::sliding_2d_summary_json(p.bidirectional, block));
+      x["h1_alone"] = alone(p.first_alone);
+      x["h2_alone"] = alone(p.second_alone);
+      pts.push_back(std::move(x));
+    }
+    fmt::print("{}\n", j.dump(2));
+    return;
+  }
+  fmt::print("bidirectional sliding spectrum: {} at {:g} deg and {} at {:g} deg{} (RotD50 PGA {:.4f} g; components "
+             "{:.4f} g, {:.4f} g), two-way, level ground, g = {} m/s2\n", h1, sp.azimuths.first_deg, o.input.h2,
+             sp.azimuths.second_deg, sp.with_vertical ? " with the vertical" : "", sp.rotd50_pga_m_s2 / g,
+             sp.first_pga_m_s2 / g, sp.second_pga_m_s2 / g, g);
+  fmt::print("{:>10} {:>10} {:>14} {:>14} {:>9} {:>8} {:>14} {:>14}\n", "mu", "ky/RotD50", "max |u| (m)",
+             "residual (m)", "toward", "slips", "H1 alone (m)", "H2 alone (m)");
+  for (const auto& p : sp.points) {
+    const Sliding2dSummary& b = p.bidirectional;
+    fmt::print("{:>10.5g} {:>10.5g} {:>14.6g} {:>14.6g} {:>9} {:>8} {:>14.6g} {:>14.6g}\n", p.mu,
+               p.yield_over_rotd50_pga, b.max_abs_displacement_m, b.residual_displacement_m,
+               b.residual_azimuth_deg ? fmt::format("{:.1f}", *b.residual_azimuth_deg) : std::string("-"),
+               b.slip_episodes, p.first_alone.max_abs_displacement_m, p.second_alone.max_abs_displacement_m);
+  }
+  fmt::print("(toward: the residual's azimuth, deg clockwise from north; H1/H2 alone: max |d| of each component run "
+             "alone by the 1-D solver)\n");
+  if (!o.out.empty()) fmt::print("table written to {}\n", o.out);
+}
 
 void run_slide_spectrum(const SlideSpectrumOptions& o) {
   check_plot_path(o.plot);
@@ -158,8 +265,15 @@ void run_slide_spectrum(const SlideSpectrumOptions& o) {
                  [&] { return SlidingBlock::make(m, std::nullopt, slope, mode, g); });
   }
   if (!o.input.h2.empty()) {
-    throw parameter_error("--h2", "the sliding spectrum is one-dimensional: a block under two horizontal components "
-                                  "slides in two dimensions (topple slide FILE --h2 H2), not along one direction");
+    run_slide_spectrum_2d(o, std::move(mu), ky_ratios);
+    return;
+  }
+  if (!o.vertical.empty()) {
+    throw parameter_error("--vertical", "needs --h2 (the one-component spectrum has no vertical input: "
+                                        "topple slide FILE --vertical V runs one block with it)");
+  }
+  if (o.input.bearing_deg) {
+    throw parameter_error("--bearing-deg", "a sliding block has no bearing (friction is isotropic)");
   }
   const LoadedMotion lm = load(o.input);
   if (!ky_ratios.empty()) {
@@ -386,8 +500,9 @@ void add_motion_input(CLI::App& cmd, MotionInput& in) {
   cmd.add_option("--support-freq", in.support_freq, "Objects on a shelf or floor: its natural frequency (e.g. 4Hz); "
                                                     "they see its absolute acceleration (decoupled)");
   cmd.add_option("--support-damping", in.support_damping, "Damping ratio of the support (5% or 0.05; default 5%)");
-  cmd.add_option("--h2", in.h2, "spectrum rock: second horizontal component (record file); the blocks rock under the "
-                                "projection of the pair on --bearing-deg (planar model); PGA is then the projection's");
+  cmd.add_option("--h2", in.h2, "Second horizontal component (record file). spectrum rock: the blocks rock under the "
+                                "projection of the pair on --bearing-deg (planar model; PGA is the projection's); "
+                                "spectrum slide: bidirectional sliding (PGA axis: the pair's RotD50)");
   cmd.add_option("--azimuths", in.azimuths, "With --h2: the components' azimuths A1,A2, degrees clockwise from north "
                                             "(default: the files' headers)");
   cmd.add_option("--bearing-deg", in.bearing_deg, "With --h2: the family's bearing (across the narrow side), degrees "
@@ -410,6 +525,8 @@ void add_spectrum_command(CLI::App& app) {
                                                      "(mu = tan(slope + atan(ratio PGA/g)))");
   slide->add_option("--slope-deg", s->slope_deg, "Inclination of the plane, degrees")->capture_default_str();
   slide->add_flag("--one-way", s->one_way, "Down-slope sliding only (SLAMMER rigid-block convention)");
+  slide->add_option("--vertical", s->vertical, "With --h2: the vertical component (positive up), scaled with the "
+                                               "horizontal ones");
   slide->add_option("--out", s->out, "Write the spectrum to this CSV file");
   slide->add_option("--plot", s->plot, "Draw the spectrum to this .svg or .png file (gnuplot)");
   slide->add_flag("--json", s->json, "Print the spectrum as one JSON object");

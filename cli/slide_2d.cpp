@@ -37,11 +37,13 @@ ComponentAzimuths parse_azimuths(const std::string& text) {
 void run_bidirectional_slide(const GroundMotion& first, const GroundMotion& second, const ComponentAzimuths& azimuths,
                              const SlidingBlock& block, const GroundMotion* vertical, bool json,
                              const std::string& motion_name, const std::string& second_name, double scale_factor,
-                             const std::string& plot_path) {
-  // With --plot the run keeps its history (slide_2d); its summary is the summary-only path's (sliding2d.hpp).
+                             const std::string& plot_path, const std::string& out_path) {
+  // With --plot or --out the run keeps its history (slide_2d); its summary is the summary-only path's
+  // (sliding2d.hpp).
+  const bool keep_history = !plot_path.empty() || !out_path.empty();
   const Sliding2dResult r = [&] {
     try {
-      if (!plot_path.empty()) return slide_2d(first, second, azimuths, block, vertical);
+      if (keep_history) return slide_2d(first, second, azimuths, block, vertical);
       return Sliding2dResult{slide_2d_summary(first, second, azimuths, block, vertical), {}};
     } catch (const InputError& e) {
       // The library names its fields; the user typed options.
@@ -61,6 +63,7 @@ void run_bidirectional_slide(const GroundMotion& first, const GroundMotion& seco
                   {"input work", s.input_work_J_kg},
                   {"friction work", s.friction_work_J_kg}});
   const double g = block.g_m_s2;
+  if (!out_path.empty()) io::write_sliding_2d_history_csv(out_path, r.history, first, second, azimuths, vertical);
   if (!plot_path.empty()) {
     const std::string title =
         fmt::format("Bidirectional sliding, mu_s = {:g}: {} and {}{}; residual {:.3g} m", block.mu_static,
@@ -107,6 +110,7 @@ void run_bidirectional_slide(const GroundMotion& first, const GroundMotion& seco
                        "is not valid after that\n", block.slope_rad != 0.0 ? "the normal force" : "g + a_v",
                *s.contact_lost_time_s);
   }
+  if (!out_path.empty()) fmt::print("history written to {}\n", out_path);
   if (!plot_path.empty()) fmt::print("figure written to {}\n", plot_path);
 }
 

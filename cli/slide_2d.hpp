@@ -12,10 +12,11 @@ namespace topple::cli {
 
 /// Runs the bidirectional solver on `first` and `second` (second already scaled with the first) and prints the text
 /// summary or, with `json`, the JSON object (kSliding2dFields, then "input"); with `plot_path`, the figure of both
-/// components and the block's east and north response (plot::sliding_2d_figure).
+/// components and the block's east and north response (plot::sliding_2d_figure); with `out_path`, the history CSV
+/// (io::write_sliding_2d_history_csv).
 void run_bidirectional_slide(const GroundMotion& first, const GroundMotion& second, const ComponentAzimuths& azimuths,
                              const SlidingBlock& block, const GroundMotion* vertical, bool json,
                              const std::string& motion_name, const std::string& second_name, double scale_factor,
-                             const std::string& plot_path = "");
+                             const std::string& plot_path = "", const std::string& out_path = "");
 
 }  // namespace topple::cli

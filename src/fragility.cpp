@@ -13,6 +13,11 @@
 #include "topple/ensemble.hpp"
 #include "topple/error.hpp"
 #include "topple/intensity.hpp"
+#include "topple/oriented.hpp"
+#include "topple/rotd.hpp"
+#include "topple/sliding2d.hpp"
+#include "topple/sweep.hpp"
+#include "topple/synthesis.hpp"
 
 namespace topple {
 
@@ -352,8 +357,48 @@ LognormalFragilityFit fit_lognormal_fragility(const FragilityData& data) {
   return fit;
 }
 
+namespace {
+
+/// Under pairs: checks the sets and the objects, and gives each motion's bearing (header, "Pairs").
+std::vector<double> check_pairs(const FragilitySpec& spec) {
+  if (!spec.motions.empty()) {
+    throw parameter_error("motions", "give single-component motions or pairs (motion sets), not both");
+  }
+  if (spec.im != IntensityMeasure::pga) {
+    throw parameter_error("im", fmt::format("an ensemble of pairs is scaled by its RotD50 PGA: the IM must be pga, got "
+                                            "{}", intensity_measure_name(spec.im)));
+  }
+  for (std::size_t i = 0; i < spec.motion_sets.size(); ++i) {
+    const auto& set = spec.motion_sets[i];
+    if (!set || !set->has_second() || !set->azimuths()) {
+      throw parameter_error("motions", fmt::format("pair {} needs two horizontal components with known azimuths",
+                                                   i + 1));
+    }
+  }
+  if (spec.sliding && (spec.sliding->block.mode != SlidingMode::two_way || spec.sliding->block.slope_rad != 0.0)) {
+    throw parameter_error(spec.sliding->block.mode != SlidingMode::two_way ? "mode" : "slope",
+                          "under pairs the block slides in two dimensions: two-way, on level ground");
+  }
+  if (spec.bearing_deg && spec.overturning) {
+    check_orientation(OrientedBody::planar(spec.overturning->body), spec.bearing_deg, false);
+  }
+  if (spec.bearing_deg && !std::isfinite(*spec.bearing_deg)) {
+    throw parameter_error("bearing", fmt::format("must be finite, got {}", *spec.bearing_deg));
+  }
+  std::vector<double> bearings(spec.motion_sets.size(), spec.bearing_deg.value_or(0.0));
+  if (!spec.bearing_deg) {
+    PortableRandom random(spec.bearing_seed);
+    for (double& b : bearings) b = 360.0 * random.uniform();
+  }
+  return bearings;
+}
+
+}  // namespace
+
 FragilityResult fragility_analysis(const FragilitySpec& spec) {
-  if (spec.motions.empty()) throw parameter_error("motions", "the ensemble has no motion");
+  const bool pairs = !spec.motion_sets.empty();
+  if (spec.motions.empty() && !pairs) throw parameter_error("motions", "the ensemble has no motion");
+  const std::vector<double> bearings = pairs ? check_pairs(spec) : std::vector<double>{};
   if (spec.levels_si.empty()) throw parameter_error("levels", "no IM level");
   for (double x : spec.levels_si) {
     if (!std::isfinite(x) || !(x > 0.0)) throw parameter_error("levels", fmt::format("must be positive, got {}", x));
@@ -367,9 +412,13 @@ FragilityResult fragility_analysis(const FragilitySpec& spec) {
   if (spec.overturning) {  // validate options in the caller's thread
     (void)rock_summary(GroundMotion::uniform({0.0, 0.0}, 1.0), spec.overturning->body, spec.overturning->options);
   }
+  // Each motion's base: the record, or a pair's first component (aliasing the set, which owns it).
+  std::vector<std::shared_ptr<const GroundMotion>> bases = spec.motions;
+  for (const auto& set : spec.motion_sets) bases.emplace_back(set, &set->first());
   std::vector<double> base_im;
-  for (std::size_t i = 0; i < spec.motions.size(); ++i) {
-    const double v = intensity_measure_si(*spec.motions[i], spec.im);
+  for (std::size_t i = 0; i < bases.size(); ++i) {
+    const double v = pairs ? rotd_measures(*spec.motion_sets[i], {}).pga_m_s2.rotd50
+                           : intensity_measure_si(*bases[i], spec.im);
     if (!(v > 0.0) || !std::isfinite(v)) {
       throw parameter_error("motions", fmt::format("motion {} has {} = {}: it cannot be scaled", i + 1,
                                                    intensity_measure_name(spec.im), v));
@@ -383,9 +432,9 @@ FragilityResult fragility_analysis(const FragilitySpec& spec) {
   plan.result_columns = {"failed"};
   plan.identity = "topple fragility v1";
   for (std::size_t j = 0; j < spec.levels_si.size(); ++j) {
-    for (std::size_t i = 0; i < spec.motions.size(); ++i) {
+    for (std::size_t i = 0; i < bases.size(); ++i) {
       ensemble::MotionCase mc;
-      mc.base = spec.motions[i];
+      mc.base = bases[i];
       mc.transform.factor = spec.levels_si[j] / base_im[i];
       mc.values = {ensemble::Value(static_cast<std::int64_t>(j)), ensemble::Value(static_cast<std::int64_t>(i))};
       plan.motions.push_back(std::move(mc));
@@ -397,8 +446,27 @@ FragilityResult fragility_analysis(const FragilitySpec& spec) {
   for (const auto& n : names) plan.objects.push_back({{ensemble::Value(n)}});
   plan.chunk_runs = std::max<std::size_t>(1, plan.runs() / 64);
   const bool has_slide = spec.sliding.has_value();
-  plan.run = [&spec, has_slide](const GroundMotion& m, std::size_t, std::size_t o0, std::size_t o1,
-                                std::span<ensemble::Value> results) {
+  const std::size_t n_bases = bases.size();
+  plan.run = [&spec, &plan, &bearings, has_slide, pairs, n_bases](const GroundMotion& m, std::size_t motion_index,
+                                                                  std::size_t o0, std::size_t o1,
+                                                                  std::span<ensemble::Value> results) {
+    if (pairs) {
+      // The pair scaled as a whole (the case's transform on every component), its objects oriented.
+      const std::size_t i = motion_index % n_bases;
+      const MotionSet set = ensemble::transformed_set(*spec.motion_sets[i], plan.motions[motion_index].transform, m);
+      for (std::size_t o = o0; o < o1; ++o) {
+        bool failed = false;
+        if (has_slide && o == 0) {
+          failed = slide_2d_summary(set.first(), set.second(), *set.azimuths(), spec.sliding->block,
+                                    set.vertical_ptr()).max_abs_displacement_m > spec.sliding->threshold_m;
+        } else {
+          failed = rock_oriented_summary(set, OrientedBody::planar(spec.overturning->body), bearings[i],
+                                         spec.overturning->options).governing_response().summary.overturned;
+        }
+        results[o - o0] = ensemble::Value(failed);
+      }
+      return;
+    }
     for (std::size_t o = o0; o < o1; ++o) {
       bool failed = false;
       if (has_slide && o == 0) {
@@ -416,8 +484,10 @@ FragilityResult fragility_analysis(const FragilitySpec& spec) {
 
   FragilityResult out;
   out.im = spec.im;
+  out.rotd50 = pairs;
+  out.bearings_deg = bearings;
   out.runs = table.rows.size();
-  const std::size_t nm = spec.motions.size();
+  const std::size_t nm = bases.size();
   const std::size_t no = names.size();
   const std::size_t col = table.columns.size() - 1;
   for (std::size_t o = 0; o < no; ++o) {

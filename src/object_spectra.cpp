@@ -9,6 +9,7 @@
 
 #include "topple/ensemble.hpp"
 #include "topple/error.hpp"
+#include "topple/rotd.hpp"
 
 namespace topple {
 
@@ -37,6 +38,35 @@ SlidingSpectrum sliding_spectrum(const GroundMotion& motion, std::span<const dou
     p.total_slip_duration_s = summaries[i].total_slip_duration_s;
     p.at_rest_at_end = summaries[i].at_rest_at_end;
     out.points.push_back(p);
+  }
+  return out;
+}
+
+SlidingSpectrum2d sliding_spectrum_2d(const MotionSet& set, std::span<const double> mu, double g_m_s2) {
+  if (mu.empty()) throw parameter_error("mu", "the spectrum needs at least one friction coefficient");
+  if (!set.has_second()) throw parameter_error("second", "the bidirectional spectrum needs two horizontal components");
+  if (!set.azimuths()) throw parameter_error("azimuths", "the bidirectional spectrum needs the components' azimuths");
+  std::vector<SlidingBlock> blocks;  // every mu checked before any run (SlidingBlock::make names "mu" or "g")
+  blocks.reserve(mu.size());
+  for (const double m : mu) blocks.push_back(SlidingBlock::make(m, std::nullopt, 0.0, SlidingMode::two_way, g_m_s2));
+  SlidingSpectrum2d out;
+  out.rotd50_pga_m_s2 = rotd_measures(set, {}).pga_m_s2.rotd50;
+  out.first_pga_m_s2 = set.first().pga_m_s2();
+  out.second_pga_m_s2 = set.second().pga_m_s2();
+  out.azimuths = *set.azimuths();
+  out.with_vertical = set.has_vertical();
+  out.g_m_s2 = g_m_s2;
+  out.points.reserve(mu.size());
+  for (std::size_t i = 0; i < mu.size(); ++i) {
+    SlidingSpectrum2dPoint p;
+    p.mu = mu[i];
+    p.yield_accel_g = blocks[i].yield_down_m_s2() / g_m_s2;
+    // A zero pair has RotD50 PGA 0: the ratio is reported as 0 (as sliding_spectrum does), the block does not move.
+    p.yield_over_rotd50_pga = out.rotd50_pga_m_s2 > 0.0 ? blocks[i].yield_down_m_s2() / out.rotd50_pga_m_s2 : 0.0;
+    p.bidirectional = slide_2d_summary(set.first(), set.second(), out.azimuths, blocks[i], set.vertical_ptr());
+    p.first_alone = slide_summary(set.first(), blocks[i], set.vertical_ptr());
+    p.second_alone = slide_summary(set.second(), blocks[i], set.vertical_ptr());
+    out.points.push_back(std::move(p));
   }
   return out;
 }

@@ -17,6 +17,7 @@
 #include "topple/sweep.hpp"
 #include "topple/error.hpp"
 #include "topple/flexible.hpp"
+#include "topple/sliding2d.hpp"
 
 namespace topple::ensemble {
 namespace {
@@ -116,7 +117,8 @@ class Runner {
  public:
   Runner(std::vector<ObjectSpec> objects, const ColumnSet& results, std::vector<std::optional<SetCase>> set_cases,
          OrientationOptions orientation)
-      : objects_(std::move(objects)), slide_(kSlidingFields, results), rock_(kRockingFields, results),
+      : objects_(std::move(objects)), slide_(kSlidingFields, results), slide_2d_(kSliding2dFields, results),
+        rock_(kRockingFields, results),
         rock_sides_(kRockingSideFields, results), stride_(results.names().size()), set_cases_(std::move(set_cases)),
         orientation_(orientation), governing_azimuth_(results.at("governing_azimuth_deg")),
         governing_axis_(results.at("governing_axis")) {}
@@ -159,24 +161,21 @@ class Runner {
   }
 
  private:
-  /// Rocking objects (make_plan admits no other under a set) as oriented objects: the governing direction's
-  /// results, and which direction it was.
+  /// Rocking objects as oriented objects: the governing direction's results, and which direction it was; sliding
+  /// objects as bidirectional sliders (sliding2d.hpp: friction is isotropic, the bearing does not enter).
   void run_set(const GroundMotion& first, const SetCase& c, std::size_t begin, std::size_t end,
                std::span<Value> out) const {
-    // `first` is the engine's transform of the set's first component; the others get the same transform (the
-    // vertical keeps its sign). The components share one grid, so the merge reproduces it.
     std::optional<MotionSet> transformed;
-    if (!c.transform.is_identity()) {
-      const GroundMotion second = c.transform.apply(c.set->second());
-      MotionTransform up = c.transform;
-      up.invert = false;
-      const std::optional<GroundMotion> vertical =
-          c.set->has_vertical() ? std::optional(up.apply(c.set->vertical())) : std::nullopt;
-      transformed = MotionSet::make(first, &second, c.set->azimuths(), vertical ? &*vertical : nullptr);
-    }
+    if (!c.transform.is_identity()) transformed = transformed_set(*c.set, c.transform, first);
     const MotionSet& set = transformed ? *transformed : *c.set;
     for (std::size_t o = begin; o < end; ++o) {
       Value* row = out.data() + (o - begin) * stride_;
+      if (const auto* s = std::get_if<SlideObject>(&objects_[o])) {
+        const Sliding2dSummary summary =
+            slide_2d_summary(set.first(), set.second(), *set.azimuths(), s->block, set.vertical_ptr());
+        slide_2d_.fill(Sliding2dOutcome{summary, s->block}, row);
+        continue;
+      }
       const auto& r = std::get<RockObject>(objects_[o]);
       const OrientedBody body = OrientedBody::make(r.body, r.depth_m);
       const OrientedRockingSummary s = rock_oriented_summary(set, body, c.bearing_deg, r.options, orientation_);
@@ -198,6 +197,7 @@ class Runner {
 
   std::vector<ObjectSpec> objects_;
   FieldSlots<SlidingOutcome> slide_;
+  FieldSlots<Sliding2dOutcome> slide_2d_;
   FieldSlots<RockingOutcome> rock_;
   FieldSlots<RockingOutcome> rock_sides_;
   std::size_t stride_ = 0;
@@ -225,6 +225,15 @@ class RowValues {
 };
 
 }  // namespace
+
+MotionSet transformed_set(const MotionSet& set, const MotionTransform& transform, const GroundMotion& first) {
+  // The components share one grid, so the merge reproduces it.
+  const GroundMotion second = transform.apply(set.second());
+  MotionTransform up = transform;
+  up.invert = false;
+  const std::optional<GroundMotion> vertical = set.has_vertical() ? std::optional(up.apply(set.vertical())) : std::nullopt;
+  return MotionSet::make(first, &second, set.azimuths(), vertical ? &*vertical : nullptr);
+}
 
 Plan make_plan(const SweepSpec& spec) {
   if (spec.records.empty() && spec.pulses.empty() && spec.record_sets.empty()) {
@@ -266,7 +275,7 @@ Plan make_plan(const SweepSpec& spec) {
 
   const bool any_set = !spec.record_sets.empty();
   bool any_box = false;
-  bool all_cylinders = true;
+  bool all_cylinders_or_sliders = true;  // objects that need no bearing under a set
   for (std::size_t k = 0; k < spec.objects.size(); ++k) {
     const auto* r = std::get_if<RockObject>(&spec.objects[k]);
     const std::string name = fmt::format("object[{}]", k + 1);
@@ -278,11 +287,21 @@ Plan make_plan(const SweepSpec& spec) {
       }
       (void)OrientedBody::make(r->body, r->depth_m);  // a depth on another shape, or an invalid one: before any run
     }
-    all_cylinders = all_cylinders && r != nullptr && r->body.shape == RockingBody::Shape::cylinder;
-    if (any_set && r == nullptr) {
-      throw parameter_error(name, "sliding under two horizontal components is bidirectional (topple slide H1 --h2 "
-                                  "H2); the sweep runs sliding objects under single records and pulses only, and "
-                                  "rocking objects under [[motions.set]]");
+    all_cylinders_or_sliders =
+        all_cylinders_or_sliders && (r == nullptr || r->body.shape == RockingBody::Shape::cylinder);
+    if (const auto* s = std::get_if<SlideObject>(&spec.objects[k]); any_set && s != nullptr) {
+      // Under a set a sliding object is a bidirectional slider (sliding2d.hpp): two-way, on level ground (a slope
+      // would need its fall line's azimuth, which a sweep object does not give).
+      if (s->block.mode != SlidingMode::two_way) {
+        throw parameter_error(name + ".mode", "under [[motions.set]] a sliding object slides in two dimensions and "
+                                              "must be two-way (one-way sliding down the fall line has no meaning "
+                                              "for a block free to move across it)");
+      }
+      if (s->block.slope_rad != 0.0) {
+        throw parameter_error(name + ".slope_deg", "under [[motions.set]] sliding objects run on level ground (a "
+                                                   "slope's fall-line azimuth is not a sweep field: use topple slide "
+                                                   "H1 --h2 H2 --slope-deg B --slope-azimuth-deg Z)");
+      }
     }
     if (any_set && support_of(spec.objects[k])) {
       throw parameter_error(name + ".support_freq", "flexible supports are not run under [[motions.set]] (the support "
@@ -293,9 +312,10 @@ Plan make_plan(const SweepSpec& spec) {
     throw parameter_error("bearing", "bearings apply to objects under [[motions.set]] (two horizontal components), "
                                      "and the sweep has none");
   }
-  if (any_set && spec.bearings_deg.empty() && !all_cylinders) {
-    throw parameter_error("bearing", "objects under [[motions.set]] need their bearings (bearing_deg: the direction "
-                                     "across the narrow side, degrees clockwise from north); only cylinders have none");
+  if (any_set && spec.bearings_deg.empty() && !all_cylinders_or_sliders) {
+    throw parameter_error("bearing", "rocking objects under [[motions.set]] need their bearings (bearing_deg: the "
+                                     "direction across the narrow side, degrees clockwise from north); only cylinders "
+                                     "and sliding objects have none");
   }
   for (const double b : spec.bearings_deg) {
     if (!std::isfinite(b)) throw parameter_error("bearing", fmt::format("bearings must be finite, got {}", b));
@@ -367,13 +387,20 @@ Plan make_plan(const SweepSpec& spec) {
   ColumnSet result_cols;
   // The result columns come from the field tables (summary_fields.hpp); a name both have (end_time_s) is one
   // column.
-  if (any_slide) {
+  // Sliding objects under single records and pulses (1-D); under sets (2-D) the bidirectional columns, those
+  // that 1-D rows also have (max_abs_displacement_m ...) shared, the others (residual_azimuth_deg, residual_east_m,
+  // residual_north_m, path_length_m) added: a sweep without sets keeps its columns.
+  const bool any_single = !spec.records.empty() || !spec.pulses.empty();
+  if (any_slide && any_single) {
     for (const auto* f : sweep_fields(kSlidingFields)) result_cols.add(f->name);
+  }
+  if (any_slide && any_set) {
+    for (const auto* f : sweep_fields(kSliding2dFields)) result_cols.add(f->name);
   }
   if (any_rock) {
     for (const auto* f : sweep_fields(kRockingFields)) result_cols.add(f->name);
   }
-  if (any_set) {
+  if (any_set && any_rock) {
     result_cols.add("governing_azimuth_deg");
     result_cols.add("governing_axis");
   }

@@ -26,6 +26,7 @@
 #include "support/shared_data.hpp"
 #include "topple/sweep.hpp"
 #include "topple/error.hpp"
+#include "topple/motion_set.hpp"
 #include "topple/pulses.hpp"
 #include "topple/rocking.hpp"
 #include "topple/sliding.hpp"
@@ -170,6 +171,75 @@ TEST(EnsemblePlan, ResultColumnsComeFromTheFieldTables) {
   };
   check(kSlidingFields, 12);
   check(kRockingFields, 19);
+  check(kSliding2dFields, 14);
+}
+
+// Sliding objects under a record set are bidirectional sliders. The columns: a sweep of single records keeps its
+// columns (above); a set adds residual_azimuth_deg, residual_east_m, residual_north_m and path_length_m after the
+// 1-D sliding columns, sharing the others. A record on the first component (east) with a zero second component is
+// collinear input: the 2-D row is the 1-D row of that record, the block moving west where the 1-D d is positive
+// (sliding2d.hpp); the 2-D solver matches the exact 1-D one to 1e-9 relative (test_sliding2d).
+TEST(EnsembleRun, SlidersUnderASetAreBidirectionalAndCollinearInputIsThe1dRow) {
+  SweepSpec spec;
+  const auto rec = noise_record(3);
+  spec.records.push_back({"rec", rec});
+  const std::vector<double> zero(rec->size(), 0.0);
+  const GroundMotion quiet = GroundMotion::uniform(zero, rec->dt_s(), rec->start_time_s());
+  spec.record_sets.push_back(
+      {"rec+zero", std::make_shared<const MotionSet>(MotionSet::make(*rec, &quiet, ComponentAzimuths{90.0, 0.0}))});
+  spec.scales = {{ScaleSpec::Kind::factor, 1.0}, {ScaleSpec::Kind::factor, 0.7}};
+  spec.inverse = {false, true};
+  for (const double mu : {0.05, 0.1}) spec.objects.emplace_back(SlideObject{SlidingBlock::make(mu), 0.0});
+  spec.objects.emplace_back(SlideObject{SlidingBlock::make(0.2, 0.15), 0.0});
+  const Plan plan = make_plan(spec);
+  const std::vector<std::string> expected{
+      "max_abs_displacement_m", "max_displacement_time_s", "residual_displacement_m", "max_abs_velocity_m_s",
+      "slip_episodes",          "first_slip_time_s",       "total_slip_duration_s",   "end_time_s",
+      "at_rest_at_end",         "contact_lost_time_s",     "yield_down_g",            "yield_up_g",
+      "residual_azimuth_deg",   "residual_east_m",         "residual_north_m",        "path_length_m"};
+  EXPECT_EQ(plan.result_columns, expected);
+  EXPECT_EQ(plan.motion_columns.back(), "bearing_deg");  // no bearing given: its cells are empty
+  const ResultTable t = run_in_memory(plan);
+  const std::size_t n_obj = spec.objects.size();
+  const std::size_t n_cases = spec.scales.size() * spec.inverse.size();
+  ASSERT_EQ(t.rows.size(), 2 * n_cases * n_obj);
+  const auto cell = [&](std::size_t run, const std::string& name) { return t.rows[run][column(t, name)]; };
+  int moved = 0;
+  for (std::size_t run = 0; run < n_cases * n_obj; ++run) {
+    SCOPED_TRACE("run " + std::to_string(run));
+    const std::size_t two = run + n_cases * n_obj;  // the set's runs follow the record's, in the same order
+    const double d = number(cell(run, "residual_displacement_m"));
+    const double scale = number(cell(run, "max_abs_displacement_m"));
+    const double tol = 1e-9 * std::max(scale, 1e-6);
+    EXPECT_NEAR(number(cell(two, "residual_displacement_m")), std::abs(d), tol);
+    EXPECT_NEAR(number(cell(two, "residual_east_m")), -d, tol);
+    EXPECT_NEAR(number(cell(two, "residual_north_m")), 0.0, tol);
+    EXPECT_NEAR(number(cell(two, "max_abs_displacement_m")), scale, tol);
+    EXPECT_EQ(number(cell(two, "slip_episodes")), number(cell(run, "slip_episodes")));
+    if (std::abs(d) > 1e-6) {
+      ++moved;
+      EXPECT_NEAR(number(cell(two, "residual_azimuth_deg")), d > 0.0 ? 270.0 : 90.0, 1e-6);
+    }
+    EXPECT_TRUE(std::holds_alternative<std::monostate>(cell(run, "path_length_m")));  // a 1-D row
+    EXPECT_TRUE(std::holds_alternative<std::monostate>(cell(two, "yield_down_g")));   // a 2-D row
+    EXPECT_GE(number(cell(two, "path_length_m")), scale);  // the track is at least as long as the farthest point
+  }
+  EXPECT_GT(moved, 4);
+  // One-way and inclined sliders have no 2-D meaning under a set (sliding2d.hpp): refused naming the object's field.
+  spec.objects.emplace_back(SlideObject{SlidingBlock::make(0.3, 0.3, 0.1, SlidingMode::one_way), 0.1 * 180.0 / kPi});
+  try {
+    (void)make_plan(spec);
+    FAIL() << "a one-way slider under a set was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().field, "object[4].mode");
+  }
+  spec.objects.back() = SlideObject{SlidingBlock::make(0.3, 0.3, 0.1), 0.1 * 180.0 / kPi};
+  try {
+    (void)make_plan(spec);
+    FAIL() << "an inclined slider under a set was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().field, "object[4].slope_deg");
+  }
 }
 
 TEST(EnsemblePlan, DefaultChunkSizeDependsOnRunsOnly) {

@@ -10,6 +10,9 @@
 #include "topple/error.hpp"
 #include "topple/fragility.hpp"
 #include "topple/object_spectra.hpp"
+#include "topple/motion_set.hpp"
+#include "topple/oriented.hpp"
+#include "topple/rotd.hpp"
 #include "topple/synthesis.hpp"
 
 namespace topple {
@@ -144,15 +147,20 @@ TEST(FragilityFit, DegenerateData) {
   EXPECT_LT(sep.theta, 0.4);
 }
 
+/// The ensembles' synthetic motion: PGA 0.3 g (of a pair: RotD50) at 2 Hz.
+SynthesisSpec ensemble_spec(std::uint64_t seed, double duration_s) {
+  SynthesisSpec s;
+  s.pga_m_s2 = 0.3 * kStandardGravity;
+  s.predominant_frequency_hz = 2.0;
+  s.duration_s = duration_s;
+  s.seed = seed;
+  return s;
+}
+
 TEST(FragilityAnalysis, CountsEqualSingleRuns) {
   std::vector<std::shared_ptr<const GroundMotion>> motions;
   for (std::uint64_t seed = 1; seed <= 4; ++seed) {
-    SynthesisSpec s;
-    s.pga_m_s2 = 0.3 * kStandardGravity;
-    s.predominant_frequency_hz = 2.0;
-    s.duration_s = 8.0;
-    s.seed = seed;
-    motions.push_back(std::make_shared<const GroundMotion>(synthesize(s)));
+    motions.push_back(std::make_shared<const GroundMotion>(synthesize(ensemble_spec(seed, 8.0))));
   }
   FragilitySpec spec;
   spec.motions = motions;
@@ -188,6 +196,130 @@ TEST(FragilityAnalysis, CountsEqualSingleRuns) {
   EXPECT_EQ(v.curves.size(), 1u);
   spec.sliding.reset();
   EXPECT_THROW((void)fragility_analysis(spec), InputError);
+}
+
+// Pairs (fragility.hpp, "Pairs"). Each record with a zero second component at 90 deg is collinear input: a block at
+// bearing 90 (the record's azimuth) rocks under the record itself (the projection on a component's azimuth is that
+// component bit for bit, MotionSet::projected), a sliding block slides as the 1-D block to 1e-9 relative
+// (sliding2d.hpp). The pair's RotD50 PGA is the record's PGA x r, r = cos 45 deg to rounding (rotd.hpp, closed
+// forms), so the pair's counts at levels x_j r are the 1-D counts at x_j (the scale factors x_j r / RotD50 and
+// x_j / PGA agree to rounding; no run sits within 1e-9 of the threshold here), and the fitted median is theta r.
+TEST(FragilityAnalysis, PairsWithAZeroSecondComponentAtTheRecordsAzimuthAreThe1dFragility) {
+  std::vector<std::shared_ptr<const GroundMotion>> motions;
+  std::vector<std::shared_ptr<const MotionSet>> sets;
+  std::vector<double> ratio;
+  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+    const auto m = std::make_shared<const GroundMotion>(synthesize(ensemble_spec(seed, 8.0)));
+    motions.push_back(m);
+    const GroundMotion quiet = GroundMotion::uniform(std::vector<double>(m->size(), 0.0), m->dt_s());
+    sets.push_back(std::make_shared<const MotionSet>(MotionSet::make(*m, &quiet, ComponentAzimuths{90.0, 0.0})));
+    ratio.push_back(rotd_measures(*sets.back(), {}).pga_m_s2.rotd50 / m->pga_m_s2());
+    EXPECT_NEAR(ratio.back(), std::cos(kPi / 4.0), 1e-15);
+  }
+  FragilitySpec one;
+  one.motions = motions;
+  one.levels_si = log_grid(0.1 * kStandardGravity, 1.2 * kStandardGravity, 8);
+  one.sliding = SlidingFailure{SlidingBlock::make(0.2), 0.02};
+  one.overturning = OverturnFailure{RockingBody::block(0.15, 0.6), RockingOptions{}};
+  const FragilityResult r1 = fragility_analysis(one);
+  FragilitySpec two = one;
+  two.motions.clear();
+  two.motion_sets = sets;
+  two.bearing_deg = 90.0;
+  for (double& x : two.levels_si) x *= ratio.front();
+  const FragilityResult r2 = fragility_analysis(two);
+  EXPECT_TRUE(r2.rotd50);
+  EXPECT_EQ(r2.bearings_deg, std::vector<double>(6, 90.0));
+  ASSERT_EQ(r2.curves.size(), 2u);
+  for (std::size_t c = 0; c < 2; ++c) {
+    SCOPED_TRACE(r1.curves[c].name);
+    EXPECT_EQ(r2.curves[c].data.failures, r1.curves[c].data.failures);
+    ASSERT_TRUE(r1.curves[c].fit.has_value());
+    ASSERT_TRUE(r2.curves[c].fit.has_value());
+    // The same counts on levels scaled by r: ln L is the same function shifted by ln r; the optimiser stops at 1e-12
+    // relative steps (Newton polish), far inside 1e-8.
+    EXPECT_NEAR(r2.curves[c].fit->theta, r1.curves[c].fit->theta * ratio.front(), 1e-8 * r1.curves[c].fit->theta);
+    EXPECT_NEAR(r2.curves[c].fit->beta, r1.curves[c].fit->beta, 1e-8);
+  }
+  // The failures vary over the levels (the test is not vacuous).
+  EXPECT_EQ(r1.curves[0].data.failures.front(), 0);
+  EXPECT_EQ(r1.curves[0].data.failures.back(), 6);
+  EXPECT_GT(r1.curves[1].data.failures.back(), 0);
+
+  // Across the record (bearing 0, along the zero component) the block never rocks.
+  two.bearing_deg = 0.0;
+  two.sliding.reset();
+  EXPECT_EQ(fragility_analysis(two).curves[0].data.failures, std::vector<int>(8, 0));
+}
+
+TEST(FragilityAnalysis, PairsWithoutABearingDrawOnePerMotionAndBadInputIsNamed) {
+  std::vector<std::shared_ptr<const MotionSet>> sets;
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    SynthesisSetSpec ss;
+    ss.horizontal = ensemble_spec(seed, 6.0);
+    ss.vertical = false;
+    const SynthesizedSet syn = synthesize_set(ss);
+    sets.push_back(std::make_shared<const MotionSet>(MotionSet::make(syn.first, &syn.second, ss.azimuths)));
+  }
+  FragilitySpec spec;
+  spec.motion_sets = sets;
+  spec.levels_si = {0.2 * kStandardGravity, 0.8 * kStandardGravity};
+  spec.overturning = OverturnFailure{RockingBody::block(0.15, 0.6), RockingOptions{}};
+  const FragilityResult a = fragility_analysis(spec);
+  // PortableRandom(1)'s first five uniforms x 360 deg: the same bearings on every machine and every call.
+  PortableRandom random(1);
+  ASSERT_EQ(a.bearings_deg.size(), 5u);
+  for (const double b : a.bearings_deg) {
+    EXPECT_EQ(b, 360.0 * random.uniform());
+    EXPECT_GE(b, 0.0);
+    EXPECT_LT(b, 360.0);
+  }
+  EXPECT_EQ(fragility_analysis(spec).bearings_deg, a.bearings_deg);
+  spec.bearing_seed = 2;
+  EXPECT_NE(fragility_analysis(spec).bearings_deg, a.bearings_deg);
+  // Each count is the oriented run at the motion's bearing, the pair scaled by its RotD50 PGA.
+  for (std::size_t j = 0; j < 2; ++j) {
+    int fell = 0;
+    for (std::size_t i = 0; i < sets.size(); ++i) {
+      const double f = spec.levels_si[j] / rotd_measures(*sets[i], {}).pga_m_s2.rotd50;
+      const GroundMotion h1 = sets[i]->first().scaled(f);
+      const GroundMotion h2 = sets[i]->second().scaled(f);
+      const MotionSet scaled = MotionSet::make(h1, &h2, sets[i]->azimuths());
+      fell += rock_oriented_summary(scaled, OrientedBody::planar(spec.overturning->body), a.bearings_deg[i])
+                      .governing_response().summary.overturned ? 1 : 0;
+    }
+    EXPECT_EQ(a.curves[0].data.failures[j], fell) << j;
+  }
+
+  const auto field_of = [](const FragilitySpec& s) -> std::string {
+    try {
+      (void)fragility_analysis(s);
+    } catch (const InputError& e) {
+      return e.where().field;
+    }
+    return "(none)";
+  };
+  FragilitySpec bad = spec;
+  bad.im = IntensityMeasure::pgv;
+  EXPECT_EQ(field_of(bad), "im");
+  bad = spec;
+  bad.motions.push_back(std::make_shared<const GroundMotion>(sets[0]->first()));
+  EXPECT_EQ(field_of(bad), "motions");
+  bad = spec;
+  bad.motion_sets.push_back(std::make_shared<const MotionSet>(MotionSet::make(sets[0]->first(), nullptr, std::nullopt)));
+  EXPECT_EQ(field_of(bad), "motions");
+  bad = spec;
+  bad.sliding = SlidingFailure{SlidingBlock::make(0.3, 0.3, 0.1, SlidingMode::one_way), 0.02};
+  EXPECT_EQ(field_of(bad), "mode");
+  bad.sliding = SlidingFailure{SlidingBlock::make(0.3, 0.3, 0.1), 0.02};
+  EXPECT_EQ(field_of(bad), "slope");
+  bad = spec;
+  bad.overturning->body = RockingBody::cylinder(0.15, 0.6);
+  bad.bearing_deg = 10.0;
+  EXPECT_EQ(field_of(bad), "bearing");
+  bad = spec;
+  bad.bearing_deg = std::nan("");
+  EXPECT_EQ(field_of(bad), "bearing");
 }
 
 }  // namespace

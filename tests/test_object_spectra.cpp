@@ -9,6 +9,7 @@
 #include "topple/object_spectra.hpp"
 #include "topple/pulses.hpp"
 #include "topple/synthesis.hpp"
+#include "topple/motion_set.hpp"
 
 namespace topple {
 namespace {
@@ -47,6 +48,56 @@ TEST(SlidingSpectrum, EntriesEqualSingleSlideRuns) {
       EXPECT_LE(sp.points[i].max_abs_displacement_m, sp.points[i - 1].max_abs_displacement_m + 1e-15);
     }
   }
+}
+
+// The bidirectional spectrum: each point is slide_2d_summary and slide_summary of each component (the same calls:
+// equal exactly); a collinear pair (the second component zero) is the 1-D spectrum of the first, to 1e-9 relative
+// (the 2-D solver's agreement with the exact 1-D one, test_sliding2d); the k_y axis is mu g / RotD50 PGA, and the
+// RotD50 PGA of a synthetic pair is the one it was scaled to (synthesis.hpp, to round-off).
+TEST(SlidingSpectrum2d, PointsAreTheSingleRunsAndACollinearPairIsThe1dSpectrum) {
+  SynthesisSetSpec spec;
+  spec.horizontal.pga_m_s2 = 0.35 * kStandardGravity;
+  spec.horizontal.predominant_frequency_hz = 2.0;
+  spec.horizontal.duration_s = 10.0;
+  spec.horizontal.dt_s = 0.01;
+  spec.horizontal.seed = 5;
+  const SynthesizedSet syn = synthesize_set(spec);
+  const MotionSet set = MotionSet::make(syn.first, &syn.second, spec.azimuths, &*syn.vertical);
+  const std::vector<double> mu{0.05, 0.1, 0.2};
+  const SlidingSpectrum2d sp = sliding_spectrum_2d(set, mu);
+  EXPECT_NEAR(sp.rotd50_pga_m_s2, spec.horizontal.pga_m_s2, 1e-12 * spec.horizontal.pga_m_s2);
+  EXPECT_TRUE(sp.with_vertical);
+  ASSERT_EQ(sp.points.size(), mu.size());
+  for (std::size_t i = 0; i < mu.size(); ++i) {
+    const SlidingBlock block = SlidingBlock::make(mu[i]);
+    const Sliding2dSummary two = slide_2d_summary(set.first(), set.second(), spec.azimuths, block, set.vertical_ptr());
+    EXPECT_EQ(sp.points[i].bidirectional.residual_displacement_m, two.residual_displacement_m);
+    EXPECT_EQ(sp.points[i].bidirectional.max_abs_displacement_m, two.max_abs_displacement_m);
+    EXPECT_EQ(sp.points[i].bidirectional.path_length_m, two.path_length_m);
+    EXPECT_EQ(sp.points[i].first_alone.residual_displacement_m,
+              slide_summary(set.first(), block, set.vertical_ptr()).residual_displacement_m);
+    EXPECT_EQ(sp.points[i].second_alone.max_abs_displacement_m,
+              slide_summary(set.second(), block, set.vertical_ptr()).max_abs_displacement_m);
+    EXPECT_NEAR(sp.points[i].yield_over_rotd50_pga * sp.rotd50_pga_m_s2, mu[i] * kStandardGravity, 1e-12);
+  }
+  EXPECT_GT(sp.points[0].bidirectional.residual_displacement_m, 1e-3);  // the pair slides the block
+
+  const GroundMotion quiet = GroundMotion::uniform(std::vector<double>(syn.first.size(), 0.0), syn.first.dt_s());
+  const MotionSet collinear = MotionSet::make(syn.first, &quiet, ComponentAzimuths{90.0, 0.0});
+  const SlidingSpectrum2d c = sliding_spectrum_2d(collinear, mu);
+  const SlidingSpectrum one = sliding_spectrum(syn.first, mu);
+  // RotD50 of (a, 0) is PGA cos 45 deg (rotd.hpp, closed forms).
+  EXPECT_NEAR(c.rotd50_pga_m_s2, syn.first.pga_m_s2() * std::cos(kPi / 4.0), 1e-12 * syn.first.pga_m_s2());
+  for (std::size_t i = 0; i < mu.size(); ++i) {
+    const double scale = one.points[i].max_abs_displacement_m;
+    const double d = one.points[i].residual_displacement_m;
+    EXPECT_NEAR(c.points[i].bidirectional.max_abs_displacement_m, scale, 1e-9 * scale) << mu[i];
+    EXPECT_NEAR(c.points[i].bidirectional.residual_east_m, -d, 1e-9 * scale) << mu[i];
+    EXPECT_NEAR(c.points[i].bidirectional.residual_north_m, 0.0, 1e-9 * scale) << mu[i];
+    EXPECT_EQ(c.points[i].second_alone.max_abs_displacement_m, 0.0);
+  }
+  EXPECT_THROW((void)sliding_spectrum_2d(set, std::vector<double>{}), InputError);
+  EXPECT_THROW((void)sliding_spectrum_2d(MotionSet::make(syn.first, nullptr, std::nullopt), mu), InputError);
 }
 
 TEST(SlidingSpectrum, RectangularPulseMatchesTheClosedForm) {

@@ -27,6 +27,17 @@
 // Ensemble. fragility_analysis scales every motion so that its IM equals each level (the IMs offered are all
 // proportional to the amplitude: factor = level / IM(motion)), runs the objects on the ensemble engine (all cores),
 // and counts the failures per level.
+//
+// Pairs (two horizontal components with their azimuths, and optionally a vertical). The ensemble may instead be of
+// motion sets (FragilitySpec::motion_sets). The IM is then the pair's RotD50 PGA (Boore 2010, rotd.hpp: the
+// orientation-independent PGA that ground-motion models predict and `synth --components 2 --pga` scales to); each
+// set is scaled as a whole (both horizontals and the vertical by one factor) so that its RotD50 PGA equals each level.
+// A sliding block slides in two dimensions (sliding2d.hpp: slide_2d_summary, two-way on level ground; failure when
+// max |u| > threshold). A rocking body stands at a bearing (oriented.hpp: rock_oriented_summary, the planar model
+// under the projection of the pair on the bearing, with the vertical; a cylinder in its worst direction): the given
+// bearing for every motion or, when none is given, a bearing drawn uniformly on [0, 360) deg for each motion
+// (PortableRandom(bearing_seed), the i-th draw for the i-th motion, the same at every level: common random numbers
+// across levels), i.e. objects standing at unknown, uniformly distributed orientations.
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -38,6 +49,7 @@
 
 #include "topple/progress.hpp"
 #include "topple/ground_motion.hpp"
+#include "topple/motion_set.hpp"
 #include "topple/rocking.hpp"
 #include "topple/sliding.hpp"
 #include "topple/units.hpp"
@@ -112,6 +124,13 @@ struct FragilitySpec {
   std::vector<double> levels_si;  ///< IM levels, SI (> 0)
   std::optional<SlidingFailure> sliding;
   std::optional<OverturnFailure> overturning;
+  /// An ensemble of pairs instead of `motions` (header, "Pairs"): each with two horizontal components and known
+  /// azimuths; `im` must be pga (the RotD50 PGA).
+  std::vector<std::shared_ptr<const MotionSet>> motion_sets;
+  /// Under pairs: the rocking body's bearing, degrees clockwise from north (not for a cylinder); none: uniformly
+  /// random per motion, from bearing_seed.
+  std::optional<double> bearing_deg;
+  std::uint64_t bearing_seed = 1;
   int threads = 0;  ///< 0: every core
   ProgressCallback progress{};  ///< runs done / to do (progress.hpp); empty: none
 };
@@ -125,13 +144,17 @@ struct FragilityCurve {
 
 struct FragilityResult {
   IntensityMeasure im = IntensityMeasure::pga;
+  bool rotd50 = false;               ///< an ensemble of pairs: the IM is the RotD50 PGA
+  std::vector<double> bearings_deg;  ///< under pairs: each motion's bearing (given or drawn), degrees
   std::vector<FragilityCurve> curves;  ///< slide first, then overturn, as asked
   std::size_t runs = 0;
 };
 
 /// Runs every motion scaled to every level on each object and fits each curve (a curve with no failure or only
 /// failures on the grid keeps its counts and gets no fit). Throws InputError naming "motions", "levels", "object"
-/// (neither failure mode given) or "threshold".
+/// (neither failure mode given) or "threshold"; under pairs also "motions" (both kinds given, a set without a second
+/// component or azimuths, a zero pair), "im" (not pga), "mode" / "slope" (a one-way or inclined block) and "bearing"
+/// (not finite, or given for a cylinder).
 [[nodiscard]] FragilityResult fragility_analysis(const FragilitySpec& spec);
 
 }  // namespace topple

@@ -9,6 +9,14 @@
 // inverts that relation: mu = tan(beta + atan(r PGA / g)). The spectrum runs slide_summaries (the many-mu kernel of
 // sliding.hpp), which equals one slide_summary per mu.
 //
+// Bidirectional sliding spectrum. Under a pair of horizontal components (and an optional vertical) the block slides
+// in two dimensions (sliding2d.hpp): for each mu (level ground, two-way, mu_s = mu_k = mu) the spectrum is
+// slide_2d_summary on the set, the same call `topple slide H1 --h2 H2 --mu mu` makes, so each point equals that run
+// exactly. The yield acceleration is mu g in every direction; its abscissa k_y g / PGA uses the pair's RotD50 PGA
+// (Boore 2010, rotd.hpp; the orientation-independent PGA `topple info H1 H2` reports and `synth --components 2`
+// scales to). Beside each point, each horizontal component run alone by the 1-D solver with the same block and the
+// vertical (slide_summary): how much a one-component analysis of either record misses or overstates.
+//
 // Overturning map (Housner 1963; Makris & Roussos 2000; Mittal 1971, section 3.5). A family of bodies of one shape
 // and fixed slenderness alpha = atan(a / h), of varying size: full height H = 2h, so that h = H / 2, a = h tan(alpha),
 // R = h / cos(alpha) and p = sqrt(g R / D) falls as the body grows (a larger body of the same alpha is more stable,
@@ -26,9 +34,11 @@
 #include <vector>
 
 #include "topple/ground_motion.hpp"
+#include "topple/motion_set.hpp"
 #include "topple/progress.hpp"
 #include "topple/rocking.hpp"
 #include "topple/sliding.hpp"
+#include "topple/sliding2d.hpp"
 #include "topple/units.hpp"
 
 namespace topple {
@@ -64,6 +74,32 @@ struct SlidingSpectrum {
 /// Throws InputError naming "ky_over_pga" when ratio < 0 or not finite, or the angle reaches 90 deg.
 [[nodiscard]] double mu_for_yield_ratio(double ratio, double pga_m_s2, double slope_rad = 0.0,
                                         double g_m_s2 = kStandardGravity);
+
+/// One friction coefficient of the bidirectional sliding spectrum.
+struct SlidingSpectrum2dPoint {
+  double mu = 0.0;                   ///< friction coefficient (static = kinetic)
+  double yield_accel_g = 0.0;        ///< k_y = mu (level ground), in g
+  double yield_over_rotd50_pga = 0.0;  ///< mu g / RotD50 PGA (dimensionless; 0 for a zero pair)
+  Sliding2dSummary bidirectional;    ///< the 2-D run (slide_2d_summary)
+  SlidingSummary first_alone;        ///< the first component alone, 1-D (slide_summary, with the vertical)
+  SlidingSummary second_alone;       ///< the second component alone, same
+};
+
+struct SlidingSpectrum2d {
+  double rotd50_pga_m_s2 = 0.0;      ///< the pair's RotD50 PGA (rotd.hpp), the spectrum's PGA axis
+  double first_pga_m_s2 = 0.0;       ///< each component's own PGA
+  double second_pga_m_s2 = 0.0;
+  ComponentAzimuths azimuths;        ///< the components' azimuths, degrees clockwise from north
+  bool with_vertical = false;
+  double g_m_s2 = kStandardGravity;
+  std::vector<SlidingSpectrum2dPoint> points;  ///< in the order of the mu given
+};
+
+/// The bidirectional spectrum over `mu` (each finite, >= 0) of a set with two horizontal components and known
+/// azimuths. Throws InputError naming "mu" (with the value; also for an empty list), "g", or "second" / "azimuths"
+/// for a set without them.
+[[nodiscard]] SlidingSpectrum2d sliding_spectrum_2d(const MotionSet& set, std::span<const double> mu,
+                                                    double g_m_s2 = kStandardGravity);
 
 // ---- Overturning map ----
 

@@ -49,8 +49,10 @@ struct IntensityOutcome {
 extern const std::array<Field<SlidingOutcome>, 17> kSlidingFields;
 
 /// Bidirectional sliding (sliding2d.hpp): the results in the order of `topple slide --h2 --json`, then the block
-/// (mu_static, mu_kinetic, g_m_s2). Not a sweep's result (sweep_column -1). residual_azimuth_deg is null when the
-/// block never moved; optional times are null when they never happened.
+/// (mu_static, mu_kinetic, g_m_s2). The first 14 (residual_displacement_m ... contact_lost_time_s, sweep_column 0-13)
+/// are a sweep's result columns for sliding objects under [[motions.set]]; the works and integrator_steps are not
+/// (the step count is the integrator's, not the physics'). residual_azimuth_deg is null when the block never moved;
+/// optional times are null when they never happened.
 extern const std::array<Field<Sliding2dOutcome>, 20> kSliding2dFields;
 
 /// Rocking: in the order of `topple rock --json` (max_abs_rotation_rad ... g_m_s2); 19 of them are the sweep's

@@ -33,7 +33,8 @@ struct RecordInput {
 
 /// One station's components read together (motion_set.hpp): two horizontal components with known azimuths and an
 /// optional vertical, merged on one grid. Rocking objects run on it as oriented objects (oriented.hpp) at each of
-/// SweepSpec::bearings_deg. Scaling applies to the set as a whole: the factor that scales the first component
+/// SweepSpec::bearings_deg; sliding objects as bidirectional sliders (sliding2d.hpp; two-way, level ground), the
+/// same run at every bearing (friction is isotropic). Scaling applies to the set as a whole: the factor that scales the first component
 /// (to a target PGA, or a plain factor) scales every component, as `topple rock H1 --h2 H2 --scale-pga` does;
 /// time scaling applies to all; polarity "inverse" flips the horizontal components (the vertical keeps its sign).
 struct RecordSetInput {
@@ -90,9 +91,10 @@ struct SweepSpec {
   std::vector<ScaleSpec> scales{ScaleSpec{}};  ///< records only
   std::vector<bool> inverse{false};     ///< polarities, records and pulses: false = "normal", true = "inverse"
   std::vector<ObjectSpec> objects;
-  std::vector<RecordSetInput> record_sets;  ///< stations of two or three components (rocking objects only)
+  std::vector<RecordSetInput> record_sets;  ///< stations of two or three components
   /// The objects' bearings (degrees clockwise from north) under the record sets: each set is run at each bearing.
-  /// Required with record sets unless every object is a cylinder (taken in its worst direction, oriented.hpp).
+  /// Required with record sets unless every object is a cylinder (taken in its worst direction, oriented.hpp) or a
+  /// sliding object.
   std::vector<double> bearings_deg;
   OrientationOptions orientation;       ///< the cylinder's direction grid under record sets
   double g_m_s2 = kStandardGravity;     ///< for the *_g columns and amplitudes in g
@@ -101,7 +103,8 @@ struct SweepSpec {
 
 /// Expands the spec (motions: records x time scales x scales x polarities, then pulses x polarities, then record
 /// sets x bearings x time scales x scales x polarities; objects in the given order) into a plan whose run function
-/// calls slide_summary / slide_summaries and rock_summary, and rock_oriented_summary under a record set.
+/// calls slide_summary / slide_summaries and rock_summary, and under a record set rock_oriented_summary and
+/// slide_2d_summary.
 ///
 /// Columns, present when some run uses them:
 ///   motion: motion, [pulse_kind, pulse_amp_g, pulse_duration_s], time_scale, scale_factor, pga_g, polarity,
@@ -116,7 +119,14 @@ struct SweepSpec {
 ///           (mu also holds the friction coefficient a rocking body's onset check uses)
 ///   results: sliding: max_abs_displacement_m, max_displacement_time_s, residual_displacement_m,
 ///            max_abs_velocity_m_s, slip_episodes, first_slip_time_s, total_slip_duration_s, end_time_s,
-///            at_rest_at_end, contact_lost_time_s, yield_down_g, yield_up_g;
+///            at_rest_at_end, contact_lost_time_s, yield_down_g, yield_up_g (present when sliding objects run under
+///            single records or pulses);
+///            bidirectional sliding under a record set (kSliding2dFields' sweep fields, as `topple slide --h2 --json`
+///            names them): residual_displacement_m (|u|), residual_azimuth_deg, residual_east_m, residual_north_m,
+///            max_abs_displacement_m (max |u|), max_displacement_time_s, path_length_m, max_abs_velocity_m_s (peak
+///            |w|), slip_episodes ... contact_lost_time_s; the names 1-D rows have are the same columns, the others
+///            are added only when sliding objects run under a set (a 2-D row leaves yield_down_g, yield_up_g empty,
+///            a 1-D row the 2-D-only cells);
 ///            rocking: max_abs_rotation_rad, max_rotation_over_alpha, max_rotation_time_s, max_abs_theta_dot_rad_s,
 ///            impacts, uplifts, uplift_time_s, exceeded_alpha_time_s, overturned, overturn_time_s,
 ///            energy_lost_j_per_kg, end_time_s, end_state, still_rocking_at_end, onset_mode, critical_mu,
@@ -124,9 +134,15 @@ struct SweepSpec {
 ///            [governing_azimuth_deg, governing_axis] (only with record sets) say which it was; then, only when some
 ///            body is asymmetric, the per-side results (kRockingSideFields: alpha_negative_rad ... overturned_side)
 /// Throws InputError for an empty spec (no motion or no object), a motion that cannot be scaled (zero record), a
-/// sliding object or a flexible support under a record set (sliding under two components is `topple slide --h2`),
-/// a box (depth) under a single record or pulse, record sets without bearings (field "bearing"), or a bearing
-/// without record sets.
+/// one-way or inclined sliding object under a record set (fields "object[k].mode", "object[k].slope_deg"), a flexible
+/// support under a record set, a box (depth) under a single record or pulse, record sets with rocking objects other
+/// than cylinders and without bearings (field "bearing"), or a bearing without record sets.
 [[nodiscard]] Plan make_plan(const SweepSpec& spec);
+
+/// A record set under a motion case's transform: `first` is the engine's transform of set.first() (the case's base
+/// motion); the second component gets the same transform, the vertical the same without the inversion (it keeps its
+/// sign: polarity flips the horizontal shaking). The sweep's set cases and the fragility of pairs use it.
+[[nodiscard]] MotionSet transformed_set(const MotionSet& set, const MotionTransform& transform,
+                                        const GroundMotion& first);
 
 }  // namespace topple::ensemble

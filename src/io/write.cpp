@@ -173,6 +173,31 @@ void write_sliding_history_csv(const std::filesystem::path& path, const SlidingH
   file.commit();
 }
 
+void write_sliding_2d_history_csv(const std::filesystem::path& path, const Sliding2dHistory& h,
+                                  const GroundMotion& first, const GroundMotion& second,
+                                  const ComponentAzimuths& azimuths, const GroundMotion* vertical) {
+  // Unit vectors (east, north) of the components' azimuths, clockwise from north (sliding2d.hpp's frame).
+  const double r1 = azimuths.first_deg * kPi / 180.0;
+  const double r2 = azimuths.second_deg * kPi / 180.0;
+  OutputFile file(path);
+  std::ostream& out = file.stream();
+  out << "time_s,ground_east_m_s2,ground_north_m_s2,ground_up_m_s2,displacement_east_m,displacement_north_m,"
+         "velocity_east_m_s,velocity_north_m_s,slipping\n";
+  fmt::memory_buffer row;
+  for (std::size_t i = 0; i < h.time_s.size(); ++i) {
+    const double t = h.time_s[i];
+    const double a1 = first.accel_at(t);
+    const double a2 = second.accel_at(t);
+    row.clear();
+    fmt::format_to(std::back_inserter(row), "{:.9g},{:.9g},{:.9g},{:.9g},{:.12g},{:.12g},{:.12g},{:.12g},{}\n", t,
+                   a1 * std::sin(r1) + a2 * std::sin(r2), a1 * std::cos(r1) + a2 * std::cos(r2),
+                   vertical != nullptr ? vertical->accel_at(t) : 0.0, h.east_m[i], h.north_m[i], h.east_m_s[i],
+                   h.north_m_s[i], static_cast<int>(h.slipping[i]));
+    out.write(row.data(), static_cast<std::streamsize>(row.size()));
+  }
+  file.commit();
+}
+
 void write_rocking_history_csv(const std::filesystem::path& path, const RockingHistory& h) {
   OutputFile file(path);
   std::ostream& out = file.stream();

@@ -119,7 +119,7 @@ TEST_F(CliOriented, SpectrumAlongABearingAndRefusals) {
         std::pair{"spectrum rock " + h1 + " --bearing-deg 10" + map, "--bearing-deg"},
         std::pair{"spectrum rock " + h1 + " --shape cylinder --h2 " + h2 + " --azimuths 0,90 --bearing-deg 0" + map,
                   "--h2"},
-        std::pair{"spectrum slide " + h1 + " --h2 " + h2 + " --azimuths 0,90 --mu 0.1", "--h2"},
+        std::pair{"spectrum slide " + h1 + " --h2 " + h2 + " --azimuths 0,90 --mu 0.1 --bearing-deg 0", "--bearing-deg"},
         std::pair{"fragility --synth 3 --h2 " + h2 + " --mu 0.1 --threshold 5cm --im-range 0.1:1:3", "--h2"}}) {
     const auto r = test::run_cli(args);
     EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
@@ -186,14 +186,89 @@ height = "80cm"
   }
 }
 
+TEST_F(CliOriented, SweepOfSlidersAndRockersUnderASetEqualsSingleRuns) {
+  // Sliding objects under a set are bidirectional sliders (friction is isotropic: the bearing does not enter, the
+  // row at every bearing is the same run); rocking objects beside them are oriented. A single record with the same
+  // sliders gives 1-D rows, whose columns the 2-D rows share where the names are the same.
+  test::write_file(dir.path() / "s.toml", R"(
+[motions]
+files = "m.h1.csv"
+bearing_deg = [0, 37]
+polarity = ["normal", "inverse"]
+[[motions.set]]
+h1 = "m.h1.csv"
+h2 = "m.h2.csv"
+vertical = "m.v.csv"
+azimuths_deg = [0, 90]
+[[object]]
+model = "slide"
+mu = [0.1, 0.2]
+mu_kinetic = 0.09
+[[object]]
+model = "rock"
+shape = "block"
+width = "20cm"
+height = "80cm"
+)");
+  const auto r = test::run_cli("sweep " + quote(dir.path() / "s.toml") + " --quiet --threads 2");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const test::Table t = test::read_table(dir.path() / "s.csv");
+  // (1 record + 1 set x 2 bearings) x 2 polarities x 3 objects
+  ASSERT_EQ(t.rows.size(), 3U * 2U * 3U);
+  for (const char* column : {"residual_azimuth_deg", "residual_east_m", "residual_north_m", "path_length_m",
+                             "yield_down_g", "governing_azimuth_deg"}) {
+    EXPECT_NE(std::find(t.header.begin(), t.header.end(), column), t.header.end()) << column;
+  }
+  EXPECT_EQ(std::find(t.header.begin(), t.header.end(), "integrator_steps"), t.header.end());
+  int set_slider_rows = 0;
+  int moved = 0;
+  for (std::size_t row = 0; row < t.rows.size(); ++row) {
+    SCOPED_TRACE(fmt::format("run {}", row));
+    const bool inverse = t.at(row, "polarity") == "inverse";
+    if (t.at(row, "model") != "slide") continue;
+    const std::string friction = " --mu " + t.at(row, "mu") + " --mu-kinetic 0.09" + (inverse ? " --invert" : "");
+    if (t.at(row, "motion") == "m.h1.csv") {
+      // A single record: the 1-D solver, its 2-D-only cells empty.
+      const auto single = test::run_json("slide " + h1 + friction + " --json");
+      test::expect_same(t.at(row, "residual_displacement_m"), single.at("residual_displacement_m"), "residual");
+      test::expect_same(t.at(row, "yield_down_g"), single.at("yield_down_g"), "yield_down_g");
+      EXPECT_EQ(t.at(row, "path_length_m"), "");
+      EXPECT_EQ(t.at(row, "bearing_deg"), "");
+      continue;
+    }
+    ++set_slider_rows;
+    EXPECT_EQ(t.at(row, "motion"), "m.h1.csv+m.h2.csv+m.v.csv");
+    EXPECT_EQ(t.at(row, "mode"), "two-way");
+    EXPECT_EQ(t.at(row, "yield_down_g"), "");  // a 1-D quantity
+    EXPECT_EQ(t.at(row, "governing_azimuth_deg"), "");
+    // Inverse polarity flips both horizontal components and keeps the vertical, as `slide --invert` with --h2.
+    const auto single = test::run_json("slide " + h1 + " --h2 " + h2 + " --vertical " + v + " --azimuths 0,90" +
+                                       friction + " --json");
+    // Sweep cells and JSON both print shortest round-trip doubles of the same computation: equal exactly.
+    for (const char* key : {"residual_displacement_m", "residual_azimuth_deg", "residual_east_m", "residual_north_m",
+                            "max_abs_displacement_m", "max_displacement_time_s", "path_length_m",
+                            "max_abs_velocity_m_s", "slip_episodes", "first_slip_time_s", "total_slip_duration_s",
+                            "end_time_s", "at_rest_at_end", "contact_lost_time_s"}) {
+      test::expect_same(t.at(row, key), single.at(key), key);
+    }
+    moved += single.at("residual_displacement_m").get<double>() > 1e-4 ? 1 : 0;
+  }
+  EXPECT_EQ(set_slider_rows, 2 * 2 * 2);
+  EXPECT_GT(moved, 0) << "the station must slide some block";
+}
+
 TEST_F(CliOriented, BadSetSweepsExitTwoNamingTheKey) {
   const std::string set = "[[motions.set]]\nh1 = \"m.h1.csv\"\nh2 = \"m.h2.csv\"\nazimuths_deg = [0, 90]\n";
   const std::string block = "[[object]]\nmodel = \"rock\"\nshape = \"block\"\nwidth = \"20cm\"\nheight = \"80cm\"\n";
   for (const auto& [text, key] : {
            std::pair{"[motions]\n" + set + block, std::string("bearing")},
            std::pair{"[motions]\nbearing_deg = 10\nfiles = \"m.h1.csv\"\n" + block, std::string("bearing_deg")},
-           std::pair{"[motions]\nbearing_deg = 10\n" + set + "[[object]]\nmodel = \"slide\"\nmu = 0.2\n",
-                     std::string("object[1]")},
+           std::pair{"[motions]\n" + set + "[[object]]\nmodel = \"slide\"\nmu = 0.2\nmode = \"one-way\"\n",
+                     std::string("object[1].mode")},
+           std::pair{"[motions]\n" + set + "[[object]]\nmodel = \"slide\"\nmu = 0.2\nslope_deg = 5\n",
+                     std::string("object[1].slope_deg")},
+           std::pair{"[motions]\n" + set + "[[object]]\nmodel = \"slide\"\nmu = 0.2\n" + block,
+                     std::string("bearing")},
            std::pair{"[motions]\nfiles = \"m.h1.csv\"\n" + block + "depth = \"40cm\"\n",
                      std::string("object[1].depth")},
            std::pair{"[motions]\nbearing_deg = 10\n" + set + block + "depth = \"-4cm\"\n",

@@ -117,6 +117,90 @@ TEST(CliFragility, SyntheticEnsembleJsonCsvAndFigure) {
   EXPECT_NE(s.find("probability of failure (-)"), std::string::npos);
 }
 
+TEST(CliFragility, SyntheticPairsOnTheRotD50AxisWithRandomBearings) {
+  // --synth N --components 2: pairs of independent components at 90,0 (synthesis.hpp), the IM each pair's RotD50 PGA,
+  // a bearing drawn per motion (none given).
+  test::TempDir tmp;
+  const auto csv = tmp.path() / "f.csv";
+  const auto j = run_json("fragility --synth 6 --components 2 --freq 2Hz --duration 8s --im-range 0.05:1.5:8 --mu 0.2 "
+                          "--threshold 2cm --shape block --width 10cm --height 40cm --json --quiet --out '" +
+                          csv.string() + "'");
+  EXPECT_NE(j.at("im_definition").get<std::string>().find("RotD50"), std::string::npos);
+  EXPECT_NE(j.at("bearing").get<std::string>().find("uniformly random"), std::string::npos);
+  ASSERT_EQ(j.at("bearings_deg").size(), 6u);
+  for (const auto& b : j.at("bearings_deg")) {
+    EXPECT_GE(b.get<double>(), 0.0);
+    EXPECT_LT(b.get<double>(), 360.0);
+  }
+  EXPECT_EQ(j.at("runs").get<int>(), 6 * 8 * 2);
+  for (const auto& c : j.at("curves")) {
+    EXPECT_EQ(c.at("levels")[0].at("failures").get<int>(), 0) << c;  // 0.05 g: below mu and g tan(alpha)
+    EXPECT_EQ(c.at("levels")[7].at("failures").get<int>(), 6) << c;  // 1.5 g: every block slides and falls
+  }
+  EXPECT_EQ(first_line(csv), "curve,im_rotd50_pga_g,trials,failures,fraction,fitted_probability,band_lower,band_upper");
+  // A given bearing: the same for every motion.
+  const auto at = run_json("fragility --synth 3 --components 3 --duration 8s --im-range 0.05:0.6:4 --shape block "
+                           "--width 10cm --height 40cm --bearing-deg 30 --json --quiet");
+  EXPECT_EQ(at.at("bearings_deg"), nlohmann::json::array({30.0, 30.0, 30.0}));
+}
+
+TEST(CliFragility, RecordPairWithAZeroSecondComponentIsThe1dFragility) {
+  // The record at 90 deg with a zero second component (collinear input) and the block at bearing 90: the record's
+  // own 1-D runs (fragility.hpp, "Pairs"; test_fragility). The pair's RotD50 PGA is the record's PGA x cos 45 deg,
+  // so its levels are the 1-D levels x cos 45 deg (log grids agree to rounding) and theta comes out x cos 45 deg
+  // (1e-8 relative: the fit's stopping rule, far above the grids' rounding).
+  if (!test::have_shared()) GTEST_SKIP() << "../shared not present";
+  const std::string rec = "'" + test::shared_record("slammer/Kocaeli_1999_ATS-090.csv").string() + "'";
+  test::TempDir tmp;
+  const auto zero = tmp.path() / "zero.csv";
+  test::write_zero_record(zero, 26780, 0.005);  // on the record's grid: 26780 samples at 0.005 s
+  const double c = std::cos(std::acos(-1.0) / 4.0);
+  const std::string objects = " --mu 0.2 --threshold 5cm --shape block --width 20cm --height 80cm --json --quiet";
+  const auto one = run_json("fragility " + rec + " --im-range 0.1:1.5:10" + objects);
+  const auto two = run_json("fragility " + rec + " --h2 '" + zero.string() + "' --azimuths 90,0 --bearing-deg 90 " +
+                            fmt::format("--im-range {:.17g}:{:.17g}:10", 0.1 * c, 1.5 * c) + objects);
+  ASSERT_EQ(two.at("curves").size(), 2u);
+  int failures = 0;
+  for (std::size_t k = 0; k < 2; ++k) {
+    const auto& c1 = one.at("curves")[k];
+    const auto& c2 = two.at("curves")[k];
+    for (std::size_t i = 0; i < 10; ++i) {
+      EXPECT_EQ(c2.at("levels")[i].at("failures"), c1.at("levels")[i].at("failures")) << k << " " << i;
+      EXPECT_NEAR(c2.at("levels")[i].at("im_rotd50_pga_g").get<double>(),
+                  c1.at("levels")[i].at("im_pga_g").get<double>() * c, 1e-12);
+      failures += c1.at("levels")[i].at("failures").get<int>();
+    }
+    ASSERT_FALSE(c1.at("fit").is_null());
+    const double theta = c1.at("fit").at("theta").get<double>();
+    EXPECT_NEAR(c2.at("fit").at("theta").get<double>(), theta * c, 1e-8 * theta);
+  }
+  EXPECT_GT(failures, 4);
+}
+
+TEST(CliFragility, PairBadInputExitsTwoNamingTheOption) {
+  const std::string objects = " --im-range 0.1:1:3 --mu 0.2 --threshold 5cm --quiet";
+  for (const auto& [args, option] :
+       {std::pair{"fragility --synth 3 --components 4" + objects, "--components"},
+        std::pair{"fragility a.csv --components 2" + objects, "--components"},
+        std::pair{"fragility --synth 3 --h2 b.csv" + objects, "--h2"},
+        std::pair{"fragility a.csv c.csv --h2 b.csv" + objects, "--h2"},
+        std::pair{"fragility a.csv --h2 b.csv --vertical v.csv w.csv" + objects, "--vertical"},
+        std::pair{"fragility a.csv --vertical v.csv" + objects, "--vertical"},
+        std::pair{"fragility --synth 3" + objects + " --bearing-deg 10", "--bearing-deg"},
+        std::pair{"fragility --synth 3" + objects + " --azimuths 90,0", "--azimuths"},
+        std::pair{"fragility --synth 3 --components 2" + objects + " --azimuths 90,0", "--azimuths"},
+        std::pair{"fragility --synth 3 --components 2 --im pgv" + objects, "--im"},
+        std::pair{"fragility --synth 3 --components 2 --one-way --slope-deg 5" + objects, "--one-way"},
+        std::pair{"fragility --synth 3 --components 2 --slope-deg 5" + objects, "--slope-deg"},
+        std::pair{std::string("fragility --synth 3 --components 2 --im-range 0.1:1:3 --shape cylinder --diameter 10cm "
+                              "--height 40cm --bearing-deg 10 --quiet"), "--bearing-deg"},
+        std::pair{"fragility --synth 3 --components 2 --bearing-seed x" + objects, "--bearing-seed"}}) {
+    const auto r = test::run_cli(args);
+    EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
+    EXPECT_NE(r.err.find(option), std::string::npos) << args << ": " << r.err;
+  }
+}
+
 TEST(CliSpectrum, BadInputExitsTwoNamingTheOption) {
   const std::string pulse = " --pulse rect --amp-g 2 --duration 0.1";
   const auto expect2 = [](const std::string& args, const std::string& option) {

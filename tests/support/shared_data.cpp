@@ -82,6 +82,17 @@ void write_file(const std::filesystem::path& path, const std::string& text) {
   out << text;
 }
 
+void write_zero_record(const std::filesystem::path& path, int samples, double dt_s) {
+  std::ostringstream text;
+  text << "# Time Series: zero\n# Time (s),Acceleration (g's)\n";
+  char line[64];
+  for (int i = 0; i < samples; ++i) {
+    std::snprintf(line, sizeof line, "%.6f,0\n", dt_s * i);
+    text << line;
+  }
+  write_file(path, text.str());
+}
+
 std::size_t count(const std::string& text, const std::string& what) {
   std::size_t n = 0;
   for (auto pos = text.find(what); pos != std::string::npos; pos = text.find(what, pos + 1)) ++n;

@@ -77,4 +77,8 @@ struct SyntheticStation {
 /// Writes text to a file (binary, exactly as given).
 void write_file(const std::filesystem::path& path, const std::string& text);
 
+/// A record of zeros in SLAMMER's two-column format (time in s, acceleration in g), `samples` samples at `dt_s` from
+/// t = 0 (times printed to 1e-6 s): the second component of a collinear pair, on the grid of a shared SLAMMER record.
+void write_zero_record(const std::filesystem::path& path, int samples, double dt_s);
+
 }  // namespace topple::test

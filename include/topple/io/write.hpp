@@ -88,6 +88,16 @@ struct RunInput {
 void write_sliding_history_csv(const std::filesystem::path& path, const SlidingHistory& history,
                                const GroundMotion& horizontal);
 
+/// Bidirectional sliding history as CSV: time_s, the ground acceleration's east, north and up components
+/// (ground_east_m_s2, ground_north_m_s2: the two horizontal components rotated from their azimuths; ground_up_m_s2:
+/// the vertical, 0 without one), the block's displacement and velocity relative to the ground (displacement_east_m,
+/// displacement_north_m, velocity_east_m_s, velocity_north_m_s) and slipping (1 slipping, 0 stuck). One row per
+/// Sliding2dHistory row (merged grid points and events; at an event the state after it; on a slope the run-out
+/// after the record, where the ground is still). Written through OutputFile; OutputError naming the path otherwise.
+void write_sliding_2d_history_csv(const std::filesystem::path& path, const Sliding2dHistory& history,
+                                  const GroundMotion& first, const GroundMotion& second,
+                                  const ComponentAzimuths& azimuths, const GroundMotion* vertical);
+
 /// Rocking history as CSV: time_s,theta_rad,theta_dot_rad_s,state (state: rocking-, rest, rocking+, fallen).
 /// Written through OutputFile; throws OutputError naming the path when it cannot be written.
 void write_rocking_history_csv(const std::filesystem::path& path, const RockingHistory& history);
