@@ -698,6 +698,7 @@ class Engine {
         }
       }
     }
+    locate_alpha(x0, x1, tp, which >= 0 && which < 10 ? te : t1_);
     if (tp > t0_ && tp <= te) row_at(tp, dense(tp));
     if (which < 0) {
       t_ = t1_;
@@ -766,6 +767,34 @@ class Engine {
         row();
         break;
     }
+  }
+
+  /// The first |theta| = alpha of its side inside the step [t0_, te] (te: the step's end or its first event), by
+  /// TOMS 748 on the dense output (the rocking engine's exceeded-alpha event): on [t0_, tp] when the step holds a
+  /// peak tp of s theta above alpha, else on [t0_, te]. x0, x1: the states at t0_ and t1_.
+  void locate_alpha(const Phys& x0, const Phys& x1, double tp, double te) {
+    SlideRockSummary& sum = out_.summary;
+    if (sum.exceeded_alpha_time_s) return;
+    const double a = P_.alpha[side(s_)];
+    const double ga = s_ * x0.th - a;
+    if (!(ga < 0.0)) return;  // at or past alpha at the step's start: noted there (track)
+    const auto g = [&](double t) { return s_ * dense(t).th - a; };
+    double tb = te;
+    double gb = te == t1_ ? s_ * x1.th - a : g(te);
+    if (tp > t0_ && tp < te) {
+      const double gp = g(tp);
+      if (gp >= 0.0) {
+        tb = tp;
+        gb = gp;
+      }
+    }
+    if (!(gb >= 0.0)) return;
+    const double r = find_root(g, t0_, tb, ga, gb);
+    if (std::isnan(r)) {
+      throw RootFindingError(fmt::format("slide-rock: |theta| = alpha not located in {} iterations on [{}, {}] s ({})",
+                                         kMaxRootIterations, t0_, tb, describe()));
+    }
+    sum.exceeded_alpha_time_s = r;
   }
 
   /// Contact state on pivot s_ -> flight state (CM position and velocity).
@@ -914,6 +943,7 @@ class Engine {
       const double fb = lowest(bb);
       if (fall(bb) <= 0.0) {
         const double r = find_root(fall, a, bb, fall(a), fall(bb));
+        alpha_in_flight(std::isnan(r) ? bb : r);
         x_ = fly(std::isnan(r) ? bb : r);
         t_ += std::isnan(r) ? bb : r;
         SlideRockSummary& sum = out_.summary;
@@ -932,6 +962,7 @@ class Engine {
                                              kMaxRootIterations, t_, describe()));
         }
         const Phys x = fly(r);
+        alpha_in_flight(r);
         t_ += r;
         land(x);
         return;
@@ -940,9 +971,22 @@ class Engine {
       a = bb;
       fa = fb;
     }
+    alpha_in_flight(L);
     x_ = fly(L);
     t_ = tb;
     track(x_);
+  }
+
+  /// |theta| = alpha of its side within the first tau s of the flight from (t_, x_): theta is linear in flight, so
+  /// the crossing is exact.
+  void alpha_in_flight(double tau) {
+    SlideRockSummary& sum = out_.summary;
+    if (sum.exceeded_alpha_time_s || x_.w == 0.0) return;
+    const int s = sign(x_.w);
+    const double a = P_.alpha[side(s)];
+    if (!(s * x_.th < a)) return;
+    const double tc = (s * a - x_.th) / x_.w;
+    if (tc <= tau) sum.exceeded_alpha_time_s = t_ + tc;
   }
 
   void land(const Phys& x) {

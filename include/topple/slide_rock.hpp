@@ -31,7 +31,7 @@
 // the mode assumes). From rest this is Shenton (1996)'s onset criteria (rocking.hpp, shenton_onset_mode). Events are
 // located by root finding on the dense output: contact force N -> 0 (flight), stick limit |F| = mu_s N (slip
 // starts), slip velocity u' -> 0 (stick or reverse), theta -> 0 (impact), |theta| -> pi/2 (overturned), and, for the
-// summary, theta' -> 0 (peaks). |theta| > alpha_s is noted at step ends and events (not located inside a step).
+// summary, theta' -> 0 (peaks) and the first |theta| = alpha_s (exact in flight, theta being linear there).
 //
 // Painleve's paradox (docs/method.md): where slide-rock's k2 + c rho_x <= 0, Coulomb friction has no or two
 // solutions for the slipping pivot. A slipping pivot is then stopped by a tangential impact (the "impact without
@@ -154,7 +154,7 @@ struct SlideRockSummary {
   double max_rotation_over_alpha_positive = 0.0; ///< / alpha+
   double max_rotation_over_alpha_negative = 0.0; ///< / alpha-
   double max_rotation_over_alpha = 0.0;          ///< the larger of the two
-  std::optional<double> exceeded_alpha_time_s;   ///< first step end or event with |theta| > alpha of its side
+  std::optional<double> exceeded_alpha_time_s;   ///< first |theta| = alpha of its side (located by root finding)
   double residual_slide_m = 0.0;         ///< u at the end of the run (toward +x)
   double max_abs_slide_m = 0.0;          ///< max |u| at step ends, events and stops
   int slip_episodes = 0;                 ///< entries into slide or slide-rock from a sticking state
