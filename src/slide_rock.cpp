@@ -675,7 +675,7 @@ class Engine {
       double fa = e0[k];
       if (k == 0 && tp > t0_) {  // the impact function after the peak
         ta = tp;
-        fa = events(dense(tp), tp)[0];
+        fa = s_ * dense(tp).th;
       }
       if (e1[k] < 0.0 || (k != 1 && e1[k] == 0.0 && fa > 0.0)) {
         if (fa <= 0.0) {
@@ -687,7 +687,15 @@ class Engine {
           }
           continue;
         }
-        const double r = find_root([&](double t) { return events(dense(t), t)[k]; }, ta, t1_, fa, e1[k]);
+        // impact and fall need theta only (events()'s values, without the contact forces: the impact's root is the
+        // most frequent one)
+        const auto fk = [&](double t) {
+          const Phys x = dense(t);
+          if (k == 0) return s_ * x.th;
+          if (k == 1) return kPi / 2.0 - s_ * x.th;
+          return events(x, t)[k];
+        };
+        const double r = find_root(fk, ta, t1_, fa, e1[k]);
         if (std::isnan(r)) {
           throw RootFindingError(fmt::format("slide-rock: event location did not converge in {} iterations on [{}, {}] "
                                              "s ({})", kMaxRootIterations, ta, t1_, describe()));
