@@ -187,8 +187,8 @@ struct SlideRockResult {
 
 /// The coupled response. `vertical` (optional, positive up) is merged with the horizontal record on one grid
 /// (input_grid.hpp). Throws InputError for invalid options (named as in SlideRockOptions) or a body with a negative
-/// Housner e and no e given ("e"); SolverError subclasses at the limits (steps, events, root finding, and the
-/// Painleve case k2 + c rho_x <= 0 of slide-rock is resolved, not thrown: docs/method.md).
+/// Housner e and no e given ("e"); SolverError subclasses at the limits (steps, events, root finding). The Painleve
+/// case k2 + c rho_x <= 0 of slide-rock is resolved, not thrown (see above; docs/method.md).
 [[nodiscard]] SlideRockResult slide_rock(const GroundMotion& horizontal, const SlideRockBody& body,
                                          const SlideRockOptions& options = {},
                                          const GroundMotion* vertical = nullptr);
