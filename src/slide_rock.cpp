@@ -57,6 +57,8 @@ constexpr int sign(double x) { return x > 0.0 ? 1 : (x < 0.0 ? -1 : 0); }
 
 /// Cap on events inside one sample interval (a valid input gives a handful).
 constexpr int kMaxEventsPerInterval = 100'000;
+/// Event functions of rock and slide-rock (Engine::events).
+constexpr std::size_t kEvents = 5;
 /// Sub-intervals of a sample interval on which a strike from flight is looked for (slide_rock.hpp).
 constexpr int kFlightPieces = 16;
 
@@ -76,7 +78,8 @@ struct Params {
 /// (sigma = +-1) equations.
 struct Contact {
   double udd = 0.0, thdd = 0.0, N = 0.0, F = 0.0;
-  bool painleve = false;  // k2 + c rho_x <= 0: Coulomb friction has no unique solution (Painleve 1895)
+  double den = 0.0;       // slide-rock: k2 + c rho_x (m^2)
+  bool painleve = false;  // den <= 0: Coulomb friction has no unique solution (Painleve 1895)
 };
 
 /// sin and cos of theta near the start of the current step (angle_series.hpp): one libm call per step, not one per
@@ -117,6 +120,7 @@ Contact contact(const Params& P, int s, int sigma, double sn, double c, double w
   }
   const double cc = rx + sigma * P.muk * ry;
   const double den = P.k2 + cc * rx;
+  r.den = den;
   if (!(den > 0.0)) {
     r.painleve = true;
     return r;
@@ -130,10 +134,15 @@ Contact contact(const Params& P, int s, int sigma, double sn, double c, double w
 
 /// The mode decided on one corner s (theta on side s, or 0 with theta' toward it): slip continues while the pivot
 /// slips (v != 0); else stick when N >= 0 and |F| <= mu_s N; else slip against the friction needed; flight when N < 0.
+/// Painleve's paradox (slide-rock's den <= 0; docs/method.md): a slipping pivot is stopped by a tangential impact
+/// first (`tangential_impact`, then decided again at v = 0); a sticking one whose every slip has den <= 0 is held
+/// (rock, `painleve_hold`).
 struct Decision {
   SlideRockMode mode = SlideRockMode::rest;
   int s = 1;
   int sigma = 0;
+  bool tangential_impact = false;
+  bool painleve_hold = false;
 };
 
 Decision decide_corner(const Params& P, int s, double v, double th, double w, double ah, double ge) {
@@ -146,9 +155,10 @@ Decision decide_corner(const Params& P, int s, double v, double th, double w, do
   }
   const Contact sl = contact(P, s, sigma, th, w, ah, ge);
   if (sl.painleve) {
-    throw SolverError(fmt::format("slide-rock: Painleve's paradox at theta = {} rad on corner O{} (k2 + c rho_x <= 0 "
-                                  "with mu_k = {}): Coulomb friction has no unique solution for this rigid body",
-                                  th, s > 0 ? '+' : '-', P.muk));
+    // Slipping: the impact without collision (Lecornu's jump) stops the pivot. At zero slip: the corner sticks (a slip
+    // that started would be stopped at once by that impact, with zero impulse).
+    if (v != 0.0) return {SlideRockMode::slide_rock, s, sigma, true, false};
+    return {SlideRockMode::rock, s, 0, false, true};
   }
   if (sl.N < 0.0) return {SlideRockMode::flight, s, 0};
   return {SlideRockMode::slide_rock, s, sigma};
@@ -342,6 +352,14 @@ class Engine {
   }
 
   void apply(const Decision& d) {
+    if (d.tangential_impact) {  // Painleve: stop the slipping pivot, then decide at zero slip (never a second impact)
+      s_ = d.s;
+      tangential_impact();
+      apply(decide_corner(P_, s_, 0.0, x_.th, x_.w, f_.ah(t_), f_.ge(t_)));
+      return;
+    }
+    if (d.painleve_hold && !holding_) ++out_.summary.painleve_holds;
+    holding_ = d.painleve_hold;
     const bool from_stick = x_.v == 0.0;
     s_ = d.s;
     sigma_ = d.sigma;
@@ -566,14 +584,33 @@ class Engine {
   }
 
   /// The event functions of rock / slide-rock on a physical state at t: {impact: s theta, fall: pi/2 - s theta,
-  /// flight: N / g, slip (rock): (mu_s N - |F|) / g or stop (slide-rock): sigma u'}.
-  [[nodiscard]] std::array<double, 4> events(const Phys& x, double t) const {
+  /// flight: N / g, slip (rock): (mu_s N - |F|) / g or stop (slide-rock): sigma u', Painleve (slide-rock):
+  /// den / D_s}. Rock's slip function is max((mu_s N - |F|) / g, -den / D_s) outside the cone, den that of the slip
+  /// that would start: a slip with den <= 0 does not start (the Painleve hold), so the slip event is where the stick
+  /// limit is passed with den > 0.
+  /// A sixth entry (not an event) is rock's stick margin (mu_s N - |F|) / g, 0 in slide-rock: negative with a positive
+  /// slip function means the Painleve hold.
+  [[nodiscard]] std::array<double, kEvents + 1> events(const Phys& x, double t) const {
     double sn = 0.0;
     double cs = 1.0;
     angle_.at(x.th, sn, cs);
-    const Contact c = contact(P_, s_, sigma_, sn, cs, x.w, f_.ah(t), f_.ge(t));
-    const double last = sigma_ == 0 ? (P_.mus * c.N - std::abs(c.F)) / P_.g : sigma_ * x.v;
-    return {s_ * x.th, kPi / 2.0 - s_ * x.th, c.N / P_.g, last};
+    const double ah = f_.ah(t);
+    const double ge = f_.ge(t);
+    const Contact c = contact(P_, s_, sigma_, sn, cs, x.w, ah, ge);
+    double last = sigma_ * x.v;
+    double painleve = 1.0;
+    double margin = 0.0;
+    if (sigma_ == 0) {
+      last = (P_.mus * c.N - std::abs(c.F)) / P_.g;
+      margin = last;
+      if (last < 0.0) {
+        const Contact sl = contact(P_, s_, c.F > 0.0 ? -1 : 1, sn, cs, x.w, ah, ge);
+        last = std::max(last, -sl.den * P_.inv_D[side(s_)]);
+      }
+    } else {
+      painleve = c.den * P_.inv_D[side(s_)];
+    }
+    return {s_ * x.th, kPi / 2.0 - s_ * x.th, c.N / P_.g, last, painleve, margin};
   }
 
   void rock_phase(double tb) {
@@ -618,6 +655,11 @@ class Engine {
     const auto e1 = events(x1, t1_);
     events_last_ = e1;
     events_cached_ = true;
+    if (sigma_ == 0) {  // count the holds (nothing changes in the motion where one starts: not located)
+      const bool hold = e1[5] < 0.0 && e1[3] > 0.0;
+      if (hold && !holding_) ++out_.summary.painleve_holds;
+      holding_ = hold;
+    }
     // The earliest of the mode-ending events ends the step.
     // A turning point of s theta inside the step (theta' from s to -s): s theta rises before it, so an impact can
     // only come after it (the step may hold a whole small half-cycle); it is a row (max rotation).
@@ -628,12 +670,12 @@ class Engine {
     }
     double te = t1_;
     int which = -1;
-    for (std::size_t k = 0; k < 4; ++k) {
+    for (std::size_t k = 0; k < kEvents; ++k) {
       double ta = t0_;
       double fa = e0[k];
       if (k == 0 && tp > t0_) {  // the impact function after the peak
         ta = tp;
-        fa = events(dense(tp), tp)[0];
+        fa = s_ * dense(tp).th;
       }
       if (e1[k] < 0.0 || (k != 1 && e1[k] == 0.0 && fa > 0.0)) {
         if (fa <= 0.0) {
@@ -645,7 +687,15 @@ class Engine {
           }
           continue;
         }
-        const double r = find_root([&](double t) { return events(dense(t), t)[k]; }, ta, t1_, fa, e1[k]);
+        // impact and fall need theta only (events()'s values, without the contact forces: the impact's root is the
+        // most frequent one)
+        const auto fk = [&](double t) {
+          const Phys x = dense(t);
+          if (k == 0) return s_ * x.th;
+          if (k == 1) return kPi / 2.0 - s_ * x.th;
+          return events(x, t)[k];
+        };
+        const double r = find_root(fk, ta, t1_, fa, e1[k]);
         if (std::isnan(r)) {
           throw RootFindingError(fmt::format("slide-rock: event location did not converge in {} iterations on [{}, {}] "
                                              "s ({})", kMaxRootIterations, ta, t1_, describe()));
@@ -656,6 +706,7 @@ class Engine {
         }
       }
     }
+    locate_alpha(x0, x1, tp, which >= 0 && which < 10 ? te : t1_);
     if (tp > t0_ && tp <= te) row_at(tp, dense(tp));
     if (which < 0) {
       t_ = t1_;
@@ -706,6 +757,10 @@ class Engine {
         enter(SlideRockMode::flight);
         row();
         break;
+      case 4:  // slide-rock reached den = 0: the impact without collision, then a decision at zero slip
+        apply({SlideRockMode::slide_rock, s_, sigma_, true, false});
+        row();
+        break;
       default:
         if (sigma_ == 0) {  // the stick limit: slip against the friction needed
           const Contact c = contact(P_, s_, 0, x_.th, x_.w, f_.ah(te), f_.ge(te));
@@ -720,6 +775,34 @@ class Engine {
         row();
         break;
     }
+  }
+
+  /// The first |theta| = alpha of its side inside the step [t0_, te] (te: the step's end or its first event), by
+  /// TOMS 748 on the dense output (the rocking engine's exceeded-alpha event): on [t0_, tp] when the step holds a
+  /// peak tp of s theta above alpha, else on [t0_, te]. x0, x1: the states at t0_ and t1_.
+  void locate_alpha(const Phys& x0, const Phys& x1, double tp, double te) {
+    SlideRockSummary& sum = out_.summary;
+    if (sum.exceeded_alpha_time_s) return;
+    const double a = P_.alpha[side(s_)];
+    const double ga = s_ * x0.th - a;
+    if (!(ga < 0.0)) return;  // at or past alpha at the step's start: noted there (track)
+    const auto g = [&](double t) { return s_ * dense(t).th - a; };
+    double tb = te;
+    double gb = te == t1_ ? s_ * x1.th - a : g(te);
+    if (tp > t0_ && tp < te) {
+      const double gp = g(tp);
+      if (gp >= 0.0) {
+        tb = tp;
+        gb = gp;
+      }
+    }
+    if (!(gb >= 0.0)) return;
+    const double r = find_root(g, t0_, tb, ga, gb);
+    if (std::isnan(r)) {
+      throw RootFindingError(fmt::format("slide-rock: |theta| = alpha not located in {} iterations on [{}, {}] s ({})",
+                                         kMaxRootIterations, t0_, tb, describe()));
+    }
+    sum.exceeded_alpha_time_s = r;
   }
 
   /// Contact state on pivot s_ -> flight state (CM position and velocity).
@@ -744,6 +827,42 @@ class Engine {
     return 0.5 * (vx * vx + vy * vy + P_.k2 * w * w);
   }
 
+  /// The impulse (per unit mass) at corner c that brings the corner to rest (both velocity components 0 after), and
+  /// theta' after: the angular momentum about the corner is conserved (slide_rock.hpp's stick impact).
+  struct Impulse {
+    double w = 0.0, pt = 0.0, pn = 0.0;
+  };
+  [[nodiscard]] Impulse stick_impulse(int c, double th, double Xd, double Yd, double w) const {
+    const auto r = corner_r(c, th);
+    const double Dc = P_.k2 + r[0] * r[0] + r[1] * r[1];
+    const double wp = (P_.k2 * w - r[1] * Xd + r[0] * Yd) / Dc;
+    return {wp, -Xd - r[1] * wp, -Yd + r[0] * wp};
+  }
+
+  /// Painleve's paradox on the slipping pivot s_ (docs/method.md, "Painleve's paradox"): the impact without collision.
+  /// The pivot is in contact (normal velocity 0) and slips at u'; the Darboux-Keller impulse process with the plastic
+  /// normal law ends with the pivot at rest, which is the stick impulse: P_t = -u' (k2 + rho_x^2) / D,
+  /// P_n = -rho_x rho_y u' / D, inside the cone exactly when den <= 0 (|P_t| / P_n = (k2 + rho_x^2) / |rho_x rho_y|
+  /// <= mu_k). The kinetic energy lost, u'^2 (k2 + rho_x^2) / (2 D), is counted with the impacts.
+  void tangential_impact() {
+    SlideRockSummary& sum = out_.summary;
+    const double b = P_.b[side(s_)];
+    const double rx = -s_ * b * std::cos(x_.th) + P_.h * std::sin(x_.th);
+    const double ry = s_ * b * std::sin(x_.th) + P_.h * std::cos(x_.th);
+    const double ke0 = kinetic(s_, x_.v, x_.th, x_.w);
+    const Impulse st = stick_impulse(s_, x_.th, x_.v + ry * x_.w, -rx * x_.w, x_.w);
+    if (!(st.pn > 0.0)) {  // den <= 0 implies P_n > 0 (the proof above): anything else is a defect here
+      throw SolverError(fmt::format("slide-rock: tangential impact with P_n = {} <= 0 at t = {} s ({})", st.pn, t_,
+                                    describe()));
+    }
+    ++sum.tangential_impacts;
+    sum.max_tangential_impulse_ratio = std::max(sum.max_tangential_impulse_ratio, std::abs(st.pt) / st.pn);
+    x_.w = st.w;
+    x_.v = 0.0;
+    sum.impact_energy_j_per_kg += ke0 - kinetic(s_, 0.0, x_.th, x_.w);
+    restart_ = true;
+  }
+
   /// Corner c strikes with the CM velocity (Xd, Yd), theta' = w at rotation th: the impact law of slide_rock.hpp.
   /// Returns the state on pivot c after (u' = the corner's slip velocity) and counts the energy lost.
   void strike(int c, double th, double X, double Xd, double Yd, double w, bool pure_rocking) {
@@ -752,11 +871,10 @@ class Engine {
     const double rx = r[0];
     const double ry = r[1];
     const double ke0 = 0.5 * (Xd * Xd + Yd * Yd + P_.k2 * w * w);
-    const double Dc = P_.k2 + rx * rx + ry * ry;
-    // stick: the corner's velocity is 0 after; angular momentum about the corner is conserved
-    double wp = (P_.k2 * w - ry * Xd + rx * Yd) / Dc;
-    double pt = -Xd - ry * wp;
-    double pn = -Yd + rx * wp;
+    const Impulse st = stick_impulse(c, th, Xd, Yd, w);
+    double wp = st.w;
+    const double pt = st.pt;
+    double pn = st.pn;
     double vp = 0.0;
     if (std::abs(pt) <= P_.mus * pn) {
       if (pure_rocking && P_.e_given) wp = *P_.e_given * w;
@@ -833,6 +951,7 @@ class Engine {
       const double fb = lowest(bb);
       if (fall(bb) <= 0.0) {
         const double r = find_root(fall, a, bb, fall(a), fall(bb));
+        alpha_in_flight(std::isnan(r) ? bb : r);
         x_ = fly(std::isnan(r) ? bb : r);
         t_ += std::isnan(r) ? bb : r;
         SlideRockSummary& sum = out_.summary;
@@ -851,6 +970,7 @@ class Engine {
                                              kMaxRootIterations, t_, describe()));
         }
         const Phys x = fly(r);
+        alpha_in_flight(r);
         t_ += r;
         land(x);
         return;
@@ -859,9 +979,22 @@ class Engine {
       a = bb;
       fa = fb;
     }
+    alpha_in_flight(L);
     x_ = fly(L);
     t_ = tb;
     track(x_);
+  }
+
+  /// |theta| = alpha of its side within the first tau s of the flight from (t_, x_): theta is linear in flight, so
+  /// the crossing is exact.
+  void alpha_in_flight(double tau) {
+    SlideRockSummary& sum = out_.summary;
+    if (sum.exceeded_alpha_time_s || x_.w == 0.0) return;
+    const int s = sign(x_.w);
+    const double a = P_.alpha[side(s)];
+    if (!(s * x_.th < a)) return;
+    const double tc = (s * a - x_.th) / x_.w;
+    if (tc <= tau) sum.exceeded_alpha_time_s = t_ + tc;
   }
 
   void land(const Phys& x) {
@@ -901,6 +1034,11 @@ class Engine {
                                          "(max_run_out_s); the summary covers the response up to then",
                                          slide_rock_mode_name(mode_), o_.max_run_out_s));
     }
+    if (sum.tangential_impacts > 0 || sum.painleve_holds > 0) {
+      sum.warnings.push_back(fmt::format("Painleve's paradox (slide-rock without a solution) met: {} tangential "
+                                         "impacts, {} holds (docs/method.md)",
+                                         sum.tangential_impacts, sum.painleve_holds));
+    }
     if (o_.record_history && (out_.history.time_s.empty() || out_.history.time_s.back() < t_)) row();
   }
 
@@ -923,7 +1061,8 @@ class Engine {
   int s_ = 1;
   int sigma_ = 0;
   bool restart_ = true;
-  std::array<double, 4> events_last_{};  // the event functions at the end of the last step (its start now)
+  std::array<double, kEvents + 1> events_last_{};  // the event functions at the end of the last step (its start now)
+  bool holding_ = false;  // the Painleve hold is on (rock, stick margin < 0, every slip with den <= 0)
   bool events_cached_ = false;
   bool started_ = false;
   bool moved_ = false;

@@ -150,7 +150,7 @@ const std::array<Field<IntensityOutcome>, 19> kIntensityFields{{
     {"g_m_s2", [](const I& r) -> FieldValue { return r.g_m_s2; }},
 }};
 
-const std::array<Field<SlideRockOutcome>, 27> kSlideRockFields{{
+const std::array<Field<SlideRockOutcome>, 30> kSlideRockFields{{
     {"overturned", [](const C& r) -> FieldValue { return r.summary.overturned; }},
     {"overturned_side", [](const C& r) { return side_value(r.summary.overturned_side); }},
     {"overturn_time_s", [](const C& r) { return optional_value(r.summary.overturn_time_s); }},
@@ -167,6 +167,10 @@ const std::array<Field<SlideRockOutcome>, 27> kSlideRockFields{{
     {"slip_episodes", [](const C& r) -> FieldValue { return std::int64_t{r.summary.slip_episodes}; }},
     {"impacts", [](const C& r) { return count(r.summary.impacts); }},
     {"uplifts", [](const C& r) { return count(r.summary.uplifts); }},
+    {"tangential_impacts", [](const C& r) { return count(r.summary.tangential_impacts); }},
+    {"painleve_holds", [](const C& r) { return count(r.summary.painleve_holds); }},
+    {"max_tangential_impulse_ratio",
+     [](const C& r) -> FieldValue { return r.summary.max_tangential_impulse_ratio; }},
     {"onset_mode", [](const C& r) -> FieldValue { return std::string(slide_rock_mode_name(r.summary.onset_mode)); }},
     {"end_mode", [](const C& r) -> FieldValue { return std::string(slide_rock_mode_name(r.summary.end_mode)); }},
     {"end_time_s", [](const C& r) -> FieldValue { return r.summary.end_time_s; }},

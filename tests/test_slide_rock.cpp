@@ -79,7 +79,7 @@ void expect_same_as_rocking(const GroundMotion& motion, const SlideRockBody& bod
     EXPECT_NEAR(c.end_time_s, r.end_time_s, 1e-6) << what;  // s: the rest rule ends both at the same impact
   } else if (slip) {
     // A body past alpha falls; near the ground N -> 0 and even mu = 5 cannot hold the pivot (the rocking engine
-    // ignores this): any slip comes after |theta| = alpha, located at a step end (not before the engine's time).
+    // ignores this): any slip comes after |theta| = alpha (located by root finding in both engines).
     EXPECT_GE(*slip, *r.exceeded_alpha_time_s) << what;
   }
 }
@@ -108,6 +108,34 @@ TEST(SlideRockRockingLimit, HighFrictionEqualsTheRockingEngineOnARecord) {
                          "asymmetric");
   const auto c = slide_rock(window, SlideRockBody::block(0.04, 0.20, 5.0)).summary;
   EXPECT_GE(c.impacts, 3u);  // the window holds 3 impacts of object A
+}
+
+TEST(SlideRockRockingLimit, AlphaAndOverturnTimesEqualTheRockingEngines) {
+  // mu = 10: the pivot holds up to past alpha. |theta| = alpha is an event located by TOMS 748 on the dense output in
+  // both engines (slide_rock.cpp, locate_alpha), so the times agree to the global error of the integration
+  // (rel_tol 1e-10: measured 1e-9 s), not to a step: 1e-6 s. The fall at |theta| = pi/2 is located in both too, but
+  // it is not the same motion: near the ground N -> 0 and the coupled pivot slips (the rocking engine lets the ground
+  // pull it, N < 0), so the coupled body lands later; measured on the block: 3.1 ms at mu = 10, 2.4 ms as mu -> oo
+  // (1000), of 0.37 s from alpha to the fall (1 %); the asymmetric body toward -x: 4.0 ms of 0.37 s. Stated bound:
+  // later, by at most 2 % of that time.
+  const auto check = [](const GroundMotion& motion, const SlideRockBody& body, const char* what) {
+    const auto r = rock_summary(motion, body.rocking_body(), rocking_options(1e-10));
+    const auto c = slide_rock(motion, body, coupled_options(1e-10)).summary;
+    ASSERT_TRUE(r.exceeded_alpha_time_s) << what;
+    ASSERT_TRUE(c.exceeded_alpha_time_s) << what;
+    EXPECT_NEAR(*c.exceeded_alpha_time_s, *r.exceeded_alpha_time_s, 1e-6) << what;
+    ASSERT_TRUE(r.overturned) << what;
+    ASSERT_TRUE(c.overturned) << what;
+    EXPECT_EQ(c.overturned_side, r.overturned_side) << what;
+    const double fall = *r.overturn_time_s - *r.exceeded_alpha_time_s;
+    EXPECT_GE(*c.overturn_time_s, *r.overturn_time_s - 1e-6) << what;
+    EXPECT_LE(*c.overturn_time_s, *r.overturn_time_s + 0.02 * fall) << what;
+  };
+  const double thr = kG * 0.2 / 1.0;
+  check(half_sine(6.0 * thr, 0.3, 0.005, 3.0), SlideRockBody::block(0.2, 1.0, 10.0), "block");
+  const auto asym = SlideRockBody::make(0.08, 0.12, 0.5, (0.2 * 0.2 + 1.0) / 12.0, 10.0);
+  check(half_sine(-6.0 * thr, 0.3, 0.005, 3.0), asym, "asymmetric, toward -x");
+  check(half_sine(-2.0 * thr, 0.3, 0.005, 3.0), asym, "asymmetric, slowly over");
 }
 
 TEST(SlideRockRockingLimit, SymmetricBodyReproducesTheBlock) {
@@ -315,6 +343,81 @@ TEST(SlideRockConvergence, ErrorFallsWithTheTolerance) {
   EXPECT_LT(err[1], err[0] / 10.0);
   EXPECT_LT(err[2], err[1] / 10.0);
   EXPECT_LT(err[2], 1e-7);  // m: the tight end is close
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Painleve's paradox (docs/method.md): the impact without collision and the hold
+
+TEST(SlideRockPainleve, AsymmetricBodyGoingOverCompletes) {
+  // b1 = 5 cm, b2 = 20 cm, h = 30 cm, k2 = 0.00925 m2, mu = 5, a half-sine of 20 m/s^2 for 0.3 s: the body rocks onto
+  // O+ and the stick limit is passed where the slip it would start has den = k2 + c rho_x <= 0. This threw SolverError
+  // (exit 3) before the resolution; now the pivot is held (rock) and the body goes over toward +x.
+  const auto motion = half_sine(20.0, 0.3, 0.001, 2.0);
+  const auto body = SlideRockBody::make(0.05, 0.2, 0.3, 0.00925, 5.0);
+  SlideRockOptions o;
+  o.record_history = true;
+  const auto r = slide_rock(motion, body, o);
+  const auto& s = r.summary;
+  EXPECT_GE(s.painleve_holds, 1u);
+  EXPECT_TRUE(s.overturned);
+  EXPECT_EQ(s.overturned_side, 1);
+  // after the pulse the ground is still: the mechanical energy can only fall, up to the integration error
+  // (rel_tol 1e-8 on a state of order 1: 1e-6 J/kg of ~2 J/kg is a wide margin)
+  const auto& H = r.history;
+  ASSERT_GT(H.time_s.size(), 10u);
+  int after = 0;
+  for (std::size_t k = 1; k < H.time_s.size(); ++k) {
+    if (H.time_s[k - 1] < 0.3) continue;
+    ++after;
+    EXPECT_LE(H.energy_j_per_kg[k], H.energy_j_per_kg[k - 1] + 1e-6) << H.time_s[k];
+  }
+  EXPECT_GT(after, 5);
+}
+
+TEST(SlideRockPainleve, TangentialImpactStopsASlippingPivotInsideTheCone) {
+  // A 20 x 60 cm block (b = 0.1, h = 0.3, k2 = 1/30 m2), mu = 2, released on O+ at theta = 0.05 rad, theta' = 0.5
+  // rad/s, its pivot slipping toward +x at 0.3 m/s: den = k2 + rho_x^2 + mu rho_x rho_y = -0.011 m2 < 0, so slide-rock
+  // has no solution and the pivot is stopped by the tangential impact at t = 0. Closed forms (slide_rock.cpp,
+  // tangential_impact): theta'+ = theta' + rho_y u' / D, |P_t| / P_n = (k2 + rho_x^2) / |rho_x rho_y| <= mu_k, energy
+  // lost u'^2 (k2 + rho_x^2) / (2 D). Tolerances 1e-12: a few roundings of terms of order 1.
+  const double b = 0.1;
+  const double hh = 0.3;
+  const double k2 = (0.2 * 0.2 + 0.6 * 0.6) / 12.0;
+  const double th = 0.05;
+  const double w = 0.5;
+  const double v = 0.3;
+  const auto still = GroundMotion::uniform(std::vector<double>(301, 0.0), 0.01);
+  const auto body = SlideRockBody::block(0.2, 0.6, 2.0);
+  SlideRockOptions o;
+  o.rel_tol = 1e-10;
+  o.record_history = true;
+  o.initial_theta_rad = th;
+  o.initial_theta_dot_rad_s = w;
+  o.initial_slide_velocity_m_s = v;
+  const auto r = slide_rock(still, body, o);
+  const double rx = -b * std::cos(th) + hh * std::sin(th);
+  const double ry = b * std::sin(th) + hh * std::cos(th);
+  const double D = k2 + b * b + hh * hh;
+  ASSERT_LT(k2 + rx * rx + 2.0 * rx * ry, 0.0);  // the Painleve case
+  const auto& s = r.summary;
+  EXPECT_EQ(s.tangential_impacts, 1u);
+  const double ratio = (k2 + rx * rx) / std::abs(rx * ry);
+  EXPECT_NEAR(s.max_tangential_impulse_ratio, ratio, 1e-12);
+  EXPECT_LE(s.max_tangential_impulse_ratio, body.mu_kinetic);
+  const auto& H = r.history;
+  ASSERT_GT(H.time_s.size(), 2u);
+  EXPECT_DOUBLE_EQ(H.slide_velocity_m_s[0], 0.0);  // the pivot sticks after the impulse
+  EXPECT_NEAR(H.theta_dot_rad_s[0], w + ry * v / D, 1e-12);
+  const double vx = v + ry * w;
+  const double vy = -rx * w;
+  const double e0 = 0.5 * (vx * vx + vy * vy + k2 * w * w) + kG * (ry - hh);
+  EXPECT_NEAR(e0 - H.energy_j_per_kg[0], v * v * (k2 + rx * rx) / (2.0 * D), 1e-12);
+  // then still ground: the energy never rises (integration error only, 1e-8 of e0 as the energy test) and balances
+  for (std::size_t k = 1; k < H.time_s.size(); ++k) {
+    EXPECT_LE(H.energy_j_per_kg[k], H.energy_j_per_kg[k - 1] + 1e-8 * e0) << H.time_s[k];
+  }
+  EXPECT_EQ(s.end_mode, SlideRockMode::rest);
+  EXPECT_NEAR(s.friction_energy_j_per_kg + s.impact_energy_j_per_kg, e0, 1e-6 * e0);
 }
 
 // ---------------------------------------------------------------------------------------------------------------

@@ -31,7 +31,13 @@
 // the mode assumes). From rest this is Shenton (1996)'s onset criteria (rocking.hpp, shenton_onset_mode). Events are
 // located by root finding on the dense output: contact force N -> 0 (flight), stick limit |F| = mu_s N (slip
 // starts), slip velocity u' -> 0 (stick or reverse), theta -> 0 (impact), |theta| -> pi/2 (overturned), and, for the
-// summary, theta' -> 0 (peaks). |theta| > alpha_s is noted at step ends and events (not located inside a step).
+// summary, theta' -> 0 (peaks) and the first |theta| = alpha_s (exact in flight, theta being linear there).
+//
+// Painleve's paradox (docs/method.md): where slide-rock's k2 + c rho_x <= 0, Coulomb friction has no or two
+// solutions for the slipping pivot. A slipping pivot is then stopped by a tangential impact (the "impact without
+// collision": the stick impulse, inside the friction cone exactly there) and decided again at zero slip; a sticking
+// pivot past the stick limit whose slip has k2 + c rho_x <= 0 is held (rock) until the slip has a solution or the stick
+// limit holds again (the solution continuous with sticking). Counted in tangential_impacts and painleve_holds.
 //
 // A body with mu_s < min(b1, b2) / h can never lift off (sliding starts before rocking, Shenton 1996, and the normal
 // forces while sliding stay positive whatever a_h): the run is then the exact sliding solver (sliding.hpp) itself,
@@ -148,12 +154,17 @@ struct SlideRockSummary {
   double max_rotation_over_alpha_positive = 0.0; ///< / alpha+
   double max_rotation_over_alpha_negative = 0.0; ///< / alpha-
   double max_rotation_over_alpha = 0.0;          ///< the larger of the two
-  std::optional<double> exceeded_alpha_time_s;   ///< first step end or event with |theta| > alpha of its side
+  std::optional<double> exceeded_alpha_time_s;   ///< first |theta| = alpha of its side (located by root finding)
   double residual_slide_m = 0.0;         ///< u at the end of the run (toward +x)
   double max_abs_slide_m = 0.0;          ///< max |u| at step ends, events and stops
   int slip_episodes = 0;                 ///< entries into slide or slide-rock from a sticking state
   std::size_t impacts = 0;               ///< corner strikes (rocking and landings from flight)
   std::size_t uplifts = 0;               ///< lift-offs from full contact
+  /// Painleve's paradox (docs/method.md): tangential impacts ("impacts without collision") that stopped a slipping
+  /// pivot where slide-rock had no solution, and holds of a sticking pivot where every slip had none.
+  std::size_t tangential_impacts = 0;
+  std::size_t painleve_holds = 0;
+  double max_tangential_impulse_ratio = 0.0;  ///< max |P_t| / P_n over the tangential impacts (<= mu_k: Coulomb)
   SlideRockMode onset_mode = SlideRockMode::rest;  ///< the first mode left rest for (rest: never moved)
   /// Per mode (index: SlideRockMode): how many times it was entered, and the first time (unset: never).
   std::array<std::size_t, kSlideRockModes> mode_entries{};
@@ -176,8 +187,8 @@ struct SlideRockResult {
 
 /// The coupled response. `vertical` (optional, positive up) is merged with the horizontal record on one grid
 /// (input_grid.hpp). Throws InputError for invalid options (named as in SlideRockOptions) or a body with a negative
-/// Housner e and no e given ("e"); SolverError subclasses at the limits (steps, events, root finding, and the
-/// Painleve case k2 + c rho_x <= 0 of slide-rock, where Coulomb friction has no or several solutions).
+/// Housner e and no e given ("e"); SolverError subclasses at the limits (steps, events, root finding). The Painleve
+/// case k2 + c rho_x <= 0 of slide-rock is resolved, not thrown (see above; docs/method.md).
 [[nodiscard]] SlideRockResult slide_rock(const GroundMotion& horizontal, const SlideRockBody& body,
                                          const SlideRockOptions& options = {},
                                          const GroundMotion* vertical = nullptr);

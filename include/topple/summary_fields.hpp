@@ -84,6 +84,6 @@ struct SlideRockOutcome {
 /// Coupled slide-rock: in the order of `topple rock --model coupled --json` (overturned ... g_m_s2). Not a sweep's result
 /// (sweep_column -1). Optional times are null when they never happened; overturned_side is "positive", "negative" or null (as kRockingSideFields).
 /// Not fields: modes (per mode: entries and first time; a nested object in the JSON), warnings, body.
-extern const std::array<Field<SlideRockOutcome>, 27> kSlideRockFields;
+extern const std::array<Field<SlideRockOutcome>, 30> kSlideRockFields;
 
 }  // namespace topple

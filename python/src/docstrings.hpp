@@ -745,6 +745,12 @@ impacts : int
     Corner strikes (rocking impacts and landings from flight).
 uplifts : int
     Lift-offs from full contact.
+tangential_impacts : int
+    Painleve's paradox: impacts without collision that stopped a slipping pivot (docs/method.md).
+painleve_holds : int
+    Painleve's paradox: holds of a sticking pivot whose every slip had no solution (docs/method.md).
+max_tangential_impulse_ratio : float
+    Largest |P_t| / P_n over the tangential impacts (<= mu_kinetic, Coulomb's cone).
 onset_mode : str
     The first mode left rest for: "rest" (never moved), "slide", "rock", "slide-rock" or "flight".
 end_mode : str

@@ -262,6 +262,9 @@ class SlideRockResult:
     slip_episodes: int
     impacts: int
     uplifts: int
+    tangential_impacts: int
+    painleve_holds: int
+    max_tangential_impulse_ratio: float
     onset_mode: str
     end_mode: str
     end_time_s: float

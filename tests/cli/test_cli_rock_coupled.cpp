@@ -55,6 +55,27 @@ TEST(CliRockCoupled, JsonIsTheLibrarySummary) {
   EXPECT_DOUBLE_EQ(j.at("body").at("b1_m").get<double>(), 0.1);
 }
 
+TEST(CliRockCoupled, PainleveCaseCompletes) {
+  // An asymmetric body (b1 = 20 cm, b2 = 5 cm, h = 30 cm, I/m = 0.00925 m2) with mu = 5 under a one-cycle sine of 3 g,
+  // 0.5 s: its pivot passes the stick limit where the slip has no solution (Painleve). This exited 3 (SolverError);
+  // now exit 0, the hold counted as the library counts it, and a warning.
+  const auto r = test::run_cli("rock --pulse sine --amp-g 3 --duration 0.5 --shape general --b1 20cm --b2 5cm "
+                               "--h 30cm --inertia 0.00925m2 --model coupled --mu 5 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  PulseSpec spec;
+  spec.kind = PulseKind::sine;
+  spec.amplitude_m_s2 = 3.0 * kStandardGravity;
+  spec.duration_s = 0.5;
+  spec.tail_s = 2.5;  // the CLI's default tail: 5 durations
+  const auto s = slide_rock(make_pulse(spec), SlideRockBody::make(0.2, 0.05, 0.3, 0.00925, 5.0)).summary;
+  ASSERT_GE(s.painleve_holds, 1u);
+  EXPECT_EQ(j.at("painleve_holds").get<std::size_t>(), s.painleve_holds);
+  EXPECT_EQ(j.at("tangential_impacts").get<std::size_t>(), s.tangential_impacts);
+  EXPECT_EQ(j.at("overturned").get<bool>(), s.overturned);
+  EXPECT_NE(j.at("warnings").dump().find("Painleve"), std::string::npos) << j.at("warnings").dump();
+}
+
 TEST(CliRockCoupled, HistoryCsvHasItsColumns) {
   const std::string out = ::testing::TempDir() + "coupled_history.csv";
   const auto r = test::run_cli("rock --pulse sine --amp-g 0.6 --duration 0.3 --shape block --width 20cm "
