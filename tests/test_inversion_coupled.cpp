@@ -135,6 +135,29 @@ TEST(CoupledSurvey, OutcomesAndTheModelAreReadAndTheRuleChoosesTheModel) {
   EXPECT_EQ(object_model_name(ObjectModel::coupled), "coupled");
 }
 
+TEST(CoupledSurvey, ASpreadsheetGivesTheSameObjects) {
+  const Survey s = io::parse_survey(
+      "id,width_cm,height_cm,mu,outcome,slid_cm,model\n"
+      "bottle,10,30,\"[0.2, 0.3]\",slid_stood,3,\n"
+      "clock,12,30,0.45,rocked,,coupled\n"
+      "stool,20,45,0.5,walked,,\n",
+      "s.csv", ".");
+  const auto& obj = s.sites.front().objects;
+  ASSERT_EQ(obj.size(), 3u);
+  EXPECT_EQ(obj[0].outcome, Outcome::slid_stood);
+  ASSERT_TRUE(obj[0].slid_m.has_value());
+  EXPECT_DOUBLE_EQ(*obj[0].slid_m, 0.03);
+  EXPECT_EQ(obj[1].model, ObjectModel::coupled);
+  EXPECT_EQ(obj[2].outcome, Outcome::walked);
+  try {  // a refusal names the CSV's line and column
+    (void)io::parse_survey("id,width_cm,height_cm,mu,outcome,model\nx,10,30,0.3,walked,rock\n", "s.csv", ".");
+    ADD_FAILURE() << "walked on the rocking model was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().line, std::optional<std::size_t>(2));
+    EXPECT_NE(std::string(e.what()).find("model"), std::string::npos) << e.what();
+  }
+}
+
 TEST(CoupledSurvey, InvalidCombinationsAreRefusedWithFileLineAndField) {
   struct Case {
     std::string extra;
