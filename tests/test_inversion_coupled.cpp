@@ -271,19 +271,6 @@ TEST(CoupledSurvey, TheSolversResultsBecomeOutcomesByTheDocumentedDefinitions) {
   EXPECT_EQ(match(Outcome::not_slid, walked), 0.0);
 }
 
-GroundMotion truth_motion(double pga_g, double freq_hz, std::uint64_t seed, double duration_s, double* true_freq) {
-  SynthesisSpec spec;
-  spec.pga_m_s2 = pga_g * kStandardGravity;
-  spec.predominant_frequency_hz = freq_hz;
-  spec.duration_s = std::max(duration_s, 8.0 / freq_hz);
-  spec.dt_s = std::min(0.01, 1.0 / (20.0 * freq_hz));
-  spec.seed = seed;
-  const GroundMotion raw = synthesize(spec);
-  GroundMotion truth = raw.time_scaled(predominant_frequency_hz(raw) / freq_hz);
-  if (true_freq != nullptr) *true_freq = predominant_frequency_hz(truth);
-  return truth;
-}
-
 TEST(CoupledSurvey, ABodyThatCannotLiftMatchesTheSlidingBlock) {
   // mu = 0.3 < b/h = 0.5: the coupled model is the exact sliding solver (slide_rock.hpp), so a slid / slid_stood
   // observation scores as the sliding block's, up to the solvers' rounding (1e-9 relative on the distance: the
@@ -295,7 +282,7 @@ TEST(CoupledSurvey, ABodyThatCannotLiftMatchesTheSlidingBlock) {
   DrawnParameters p;
   p.mu = 0.3;
   for (std::uint64_t seed = 1; seed <= 4; ++seed) {
-    const GroundMotion m = truth_motion(0.5, 2.0, seed, 10.0, nullptr);
+    const GroundMotion m = testing::true_motion(testing::small_grid(), 0.5, 2.0, seed);
     const double a = observation_match(plain, p, m, kStandardGravity);
     const double b = observation_match(coupled, p, m, kStandardGravity);
     EXPECT_NEAR(a, b, 1e-6) << "seed " << seed;
@@ -331,15 +318,7 @@ ObservedObject observe_coupled(ObservedObject obj, const SlideRockSummary& s) {
 // loaded 2-core machine; scripts/recovery-coupled.sh
 // runs more.
 TEST(CoupledSurvey, RecoversKnownShakingWithCoupledObjectsAndCalibratedIntervals) {
-  InversionSettings st;
-  st.pga_min_g = 0.05;
-  st.pga_max_g = 2.0;
-  st.pga_count = 14;
-  st.freq_min_hz = 0.5;
-  st.freq_max_hz = 12.0;
-  st.freq_count = 8;
-  st.motions_per_cell = 10;
-  st.duration_s = 10.0;
+  const InversionSettings st = testing::small_grid(10);
   const char* env_trials = std::getenv("TOPPLE_RECOVERY_TRIALS");
   const int trials = env_trials != nullptr ? std::max(1, std::atoi(env_trials)) : 16;
   std::vector<ObservedObject> objects;
@@ -351,46 +330,18 @@ TEST(CoupledSurvey, RecoversKnownShakingWithCoupledObjectsAndCalibratedIntervals
   objects.push_back(testing::block("bottle", 0.10, 0.50, {0.18, 0.26}, Outcome::slid_stood));   // b/h 0.20
   objects.push_back(testing::block("speaker", 0.12, 0.40, {0.25, 0.40}, Outcome::slid_stood));  // b/h 0.30
   objects.push_back(testing::block("box", 0.20, 0.50, {0.35, 0.50}, Outcome::slid_stood));      // b/h 0.40
-  PortableRandom rng(2027);    // the truths
-  PortableRandom params(778);  // the objects' true friction coefficients
-  int in95 = 0;
-  int in68 = 0;
   std::array<int, 9> seen{};
-  for (int t = 0; t < trials; ++t) {
-    const double pga = std::exp(std::log(0.12) + (std::log(1.2) - std::log(0.12)) * rng.uniform());
-    const double freq = std::exp(std::log(0.8) + (std::log(8.0) - std::log(0.8)) * rng.uniform());
-    double true_freq = 0.0;
-    const GroundMotion truth = truth_motion(pga, freq, 0xC0FFEE00ULL + static_cast<std::uint64_t>(t), st.duration_s,
-                                            &true_freq);
-    Site site;
-    site.name = fmt::format("trial {}", t);
-    for (const ObservedObject& proto : objects) {
-      ObservedObject obj = proto;
-      const double mu = obj.mu.low + (obj.mu.high - obj.mu.low) * params.uniform();
-      if (obj.outcome == Outcome::slid_stood) {
-        obj = observe_coupled(obj, slide_rock(truth, SlideRockBody::from_rocking(obj.body, mu)).summary);
-      } else if (obj.outcome == Outcome::overturned) {
-        obj.outcome = rock_summary(truth, obj.body).overturned ? Outcome::overturned : Outcome::not_overturned;
-      } else {
-        const SlidingSummary s = slide_summary(truth, SlidingBlock::make(mu, mu, 0.0, SlidingMode::two_way));
-        obj.outcome = s.max_abs_displacement_m >= kVisibleSlipM ? Outcome::slid : Outcome::not_slid;
-      }
-      ++seen[static_cast<std::size_t>(obj.outcome)];
-      site.objects.push_back(obj);
-    }
-    const InversionResult r = invert_site(site, st);
-    const bool c95 = in_credible_region(r, pga, true_freq, 0.95);
-    const bool c68 = in_credible_region(r, pga, true_freq, 0.68);
-    in95 += c95;
-    in68 += c68;
-    std::string coupled;
-    for (const ObservedObject& o : site.objects) {
-      if (o.model) coupled += fmt::format(" {}={}", o.id, outcome_name(o.outcome));
-    }
-    fmt::print("trial {:2}: truth {:.3f} g {:.2f} Hz; median {:.3f} g {:.2f} Hz; in95 {} in68 {};{}\n", t, pga,
-               true_freq, r.pga_estimate_g.median, r.freq_estimate_hz.median, c95, c68, coupled);
-  }
-  fmt::print("coverage: 95 % region {}/{}, 68 % region {}/{}\n", in95, trials, in68, trials);
+  const testing::RecoveryCoverage c = testing::recovery_coverage(
+      st, objects, trials, 2027, 778, [&st, &seen](const ObservedObject& proto, double mu, const GroundMotion& truth) {
+        const ObservedObject obj =
+            proto.outcome == Outcome::slid_stood
+                ? observe_coupled(proto, slide_rock(truth, SlideRockBody::from_rocking(proto.body, mu)).summary)
+                : testing::observe_uncoupled(proto, mu, truth, st);
+        ++seen[static_cast<std::size_t>(obj.outcome)];
+        return obj;
+      });
+  const int in95 = c.in95;
+  const int in68 = c.in68;
   EXPECT_GE(in95, static_cast<int>(std::ceil(0.85 * trials)));
   EXPECT_GE(in68, static_cast<int>(std::ceil(0.55 * trials)));
   // The coupled outcomes must actually occur among the observations (else the test says nothing about them).
