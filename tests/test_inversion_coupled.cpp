@@ -5,14 +5,17 @@
 #include <array>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "support/observed_objects.hpp"
+#include "support/shared_data.hpp"
 
 #include "topple/error.hpp"
 #include "topple/inversion.hpp"
@@ -289,6 +292,43 @@ TEST(CoupledSurvey, ABodyThatCannotLiftMatchesTheSlidingBlock) {
   }
 }
 
+
+TEST(CoupledSurvey, TheExampleSurveyReadsWithItsCoupledObjects) {
+  const Survey s = io::read_survey(std::filesystem::path(TOPPLE_SOURCE_DIR) / "examples" / "coupled_survey.toml");
+  std::string models;
+  for (const ObservedObject& o : s.sites.front().objects) {
+    models += fmt::format("{}:{}:{} ", o.id, outcome_name(o.outcome), object_model_name(object_model(o)));
+  }
+  EXPECT_EQ(models, "bottle:slid_stood:coupled speaker:slid_toppled:coupled stool:walked:coupled clock:rocked:coupled "
+                    "tv:not_slid:slide pan:slid:slide ");
+}
+
+TEST(CoupledSurvey, CliWritesTheModelAndRefusesBadCombinationsWithExitTwo) {
+  test::TempDir tmp;
+  const std::string grid = "[inversion]\npga_g = [0.1, 1.5, 4]\nfreq_hz = [1.0, 4.0, 2]\nmotions_per_cell = 3\n"
+                           "duration_s = 6.0\n";
+  const auto good = tmp.path() / "good.toml";
+  test::write_file(good, grid + kHead + "mu = 0.3\noutcome = \"slid_stood\"\nslid = \"2cm\"\n"
+                                        "[[object]]\nid = \"b\"\nwidth = \"20cm\"\nheight = \"10cm\"\nmu = 0.3\n"
+                                        "outcome = \"slid\"\n");
+  const auto r = test::run_cli("invert '" + good.string() + "' --json --quiet --report '" + (tmp.path() / "rep").string() +
+                               "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j.at("objects").size(), 2u);
+  EXPECT_EQ(j.at("objects")[0].at("outcome"), "slid_stood");
+  EXPECT_EQ(j.at("objects")[0].at("model"), "coupled");
+  EXPECT_FALSE(j.at("objects")[1].contains("model"));  // the sliding block: the key is left out (old bytes)
+  const std::string page = test::slurp(tmp.path() / "rep" / "index.html");
+  EXPECT_NE(page.find("slid_stood 2 cm"), std::string::npos);
+  EXPECT_NE(page.find("(coupled slide-rock model)"), std::string::npos);
+  const auto bad = tmp.path() / "bad.toml";
+  test::write_file(bad, grid + kHead + "mu = 0.3\noutcome = \"walked\"\nmodel = \"rock\"\n");
+  const auto b = test::run_cli("invert '" + bad.string() + "' --quiet");
+  EXPECT_EQ(b.exit_code, 2);
+  EXPECT_NE(b.err.find("bad.toml:12"), std::string::npos) << b.err;  // the line of `model`
+  EXPECT_NE(b.err.find("object[1](a).model"), std::string::npos) << b.err;
+}
 
 /// What a field engineer would write for a coupled object after the truth: from the coupled solver's own summary by
 /// the definitions of docs/survey.md, written out here again (not through coupled_match, which is under test).
