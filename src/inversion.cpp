@@ -18,6 +18,7 @@
 #include "topple/flexible.hpp"
 #include "topple/inversion_3c.hpp"
 #include "topple/rocking.hpp"
+#include "topple/slide_rock.hpp"
 #include "topple/sliding.hpp"
 #include "topple/spectra.hpp"
 #include "topple/synthesis.hpp"
@@ -26,8 +27,6 @@
 
 namespace topple {
 namespace {
-
-bool is_sliding_outcome(Outcome o) { return o == Outcome::slid || o == Outcome::not_slid; }
 
 std::string fmt_g(double v) { return fmt::format("{:.3g} g", v); }
 
@@ -107,6 +106,27 @@ double detail::uplift_tan_alpha(const RockingBody& body, bool lower) {
 
 namespace {
 using detail::uplift_tan_alpha;
+/// The hard lower threshold tan (g) of an object simulated with the coupled model whose base moved (slid, slid_stood,
+/// slid_toppled, walked) and the words for it; none for the other objects. The body leaves rest only when |a| passes
+/// g min(mu_s, b/h) (slide_rock.hpp: the rest region, Shenton 1996): so a slip needs PGA > g min(mu, b/h) (a body
+/// with mu > b/h may slip while it rocks, below mu g), and an outcome that needs rocking (slid_toppled, walked)
+/// needs uplift, PGA > g b/h.
+std::optional<std::pair<double, std::string>> coupled_moved_threshold(const ObservedObject& o) {
+  if (object_model(o) != ObjectModel::coupled) return std::nullopt;
+  const double tan_alpha = uplift_tan_alpha(o.body, true);
+  switch (o.outcome) {
+    case Outcome::slid:
+    case Outcome::slid_stood: {
+      const double t = std::min(o.mu.low, tan_alpha);
+      return std::pair{t, fmt::format("{} (coupled): PGA > g min(mu, a/h) = {}", outcome_name(o.outcome), fmt_g(t))};
+    }
+    case Outcome::slid_toppled:
+    case Outcome::walked:
+      return std::pair{tan_alpha, fmt::format("{} (coupled): PGA > g a/h = {}", outcome_name(o.outcome),
+                                              fmt_g(tan_alpha))};
+    default: return std::nullopt;
+  }
+}
 
 /// An object on a flexible support: its support's peak is at most max_peak_amplification(zeta_low) times the ground's
 /// (any motion), so an object that slid, rocked or overturned still bounds the ground's PGA from below (weakly). The
@@ -118,6 +138,10 @@ void flexible_support_bound(const ObservedObject& o, StaticBounds& b) {
     return fmt::format("PGA > {} / {:.3g}, the most its flexible support can amplify a peak", fmt_g(threshold_g),
                        amp_max);
   };
+  if (const auto moved = coupled_moved_threshold(o)) {
+    b.lower.push_back({moved->first / amp_max, o.id, moved->second + ": " + text(moved->first), true});
+    return;
+  }
   switch (o.outcome) {
     case Outcome::slid:
       b.lower.push_back({o.mu.low / amp_max, o.id, "slid: " + text(o.mu.low), true});  // hard, as on rigid ground
@@ -150,6 +174,10 @@ StaticBounds static_bounds(const Site& site) {
     const double amp_hi = o.amplification.high;
     const double amp_lo = o.amplification.low;
     const double tan_alpha = uplift_tan_alpha(o.body, o.outcome != Outcome::not_rocked);
+    if (const auto moved = coupled_moved_threshold(o)) {  // hard, like every threshold of a body leaving rest
+      b.lower.push_back({moved->first / amp_hi, o.id, moved->second + divided(amp_hi, moved->first), true});
+      continue;
+    }
     switch (o.outcome) {
       case Outcome::slid:  // hard: no slip at all while |a| <= mu g (Coulomb, level ground)
         b.lower.push_back({o.mu.low / amp_hi, o.id,
@@ -176,6 +204,10 @@ StaticBounds static_bounds(const Site& site) {
         break;
       case Outcome::not_overturned:
         break;  // a body can rock without falling at any PGA above g a/h: no static threshold
+      case Outcome::slid_stood:
+      case Outcome::slid_toppled:
+      case Outcome::walked:
+        break;  // coupled outcomes: coupled_moved_threshold above
     }
   }
   detail::settle_static_bounds(b);
@@ -268,7 +300,8 @@ double observation_match(const ObservedObject& object, const DrawnParameters& p,
                          double g) {
   const std::optional<GroundMotion> filtered = on_flexible_support(object, p, ground);
   const GroundMotion& motion = filtered ? *filtered : ground;
-  if (is_sliding_outcome(object.outcome)) {
+  const ObjectModel model = object_model(object);  // survey.hpp: the rule
+  if (model == ObjectModel::slide) {
     // Level ground, no vertical input: the response to amp * a with mu is amp times the response to a with
     // mu / amp (divide the equation of motion by amp), which spares a copy of the motion.
     const double amp = p.amplification;
@@ -279,6 +312,14 @@ double observation_match(const ObservedObject& object, const DrawnParameters& p,
   }
   double factor = p.amplification;
   if (object.orientation_deg) factor *= std::cos(*object.orientation_deg * kPi / 180.0);
+  if (model == ObjectModel::coupled) {
+    // The coupled body in the object's rocking plane (the plane the orientation refers to), mu_s = mu_k = mu.
+    const SlideRockOptions options = detail::inversion_slide_rock_options(object, p, g);
+    const SlideRockBody body = SlideRockBody::from_rocking(object.body, p.mu);
+    const SlideRockSummary s = factor == 1.0 ? slide_rock(motion, body, options).summary
+                                             : slide_rock(motion.scaled(factor), body, options).summary;
+    return detail::coupled_match(object, s);
+  }
   const RockingOptions options = detail::inversion_rocking_options(object, p, g);
   const RockingSummary s = factor == 1.0 ? rock_summary(motion, object.body, options)
                                          : rock_summary(motion.scaled(factor), object.body, options);
@@ -307,6 +348,49 @@ RockingOptions inversion_rocking_options(const ObservedObject& object, const Dra
   options.max_run_out_s = 20.0;
   options.rel_tol = 1e-6;  // outcomes (fell or not, rocked visibly or not) do not need the 1e-8 default
   return options;
+}
+
+SlideRockOptions inversion_slide_rock_options(const ObservedObject& object, const DrawnParameters& p, double g) {
+  // The rocking runs' choices (inversion_rocking_options): restitution as the object gives it, 20 s run-out,
+  // rel_tol 1e-6 (outcomes, not histories).
+  const RockingOptions rocking = inversion_rocking_options(object, p, g);
+  SlideRockOptions options;
+  options.g_m_s2 = g;
+  options.restitution = rocking.restitution;
+  options.e = rocking.e;
+  options.max_run_out_s = rocking.max_run_out_s;
+  options.rel_tol = rocking.rel_tol;
+  return options;
+}
+
+double coupled_match(const ObservedObject& object, const SlideRockSummary& s) {
+  // The one mapping from the coupled solver's results to the outcomes (docs/survey.md, "Objects that slide and
+  // rock"). The offset a surveyor measures is the net one, u at the end (at rest theta = 0, so the base's offset).
+  const double max_rotation = std::max(s.max_rotation_positive_rad, s.max_rotation_negative_rad);
+  const double residual = std::abs(s.residual_slide_m);
+  const bool visibly_slid = s.max_abs_slide_m >= kVisibleSlipM;
+  switch (object.outcome) {
+    case Outcome::slid:
+    case Outcome::not_slid:
+      return sliding_match(object, s.max_abs_slide_m, residual);
+    case Outcome::overturned:
+    case Outcome::not_overturned:
+    case Outcome::rocked:
+    case Outcome::not_rocked:
+      return rocking_match(object.outcome, s.overturned, max_rotation);
+    case Outcome::slid_stood:  // stood, and slid as observed (a distance, at least a distance, or visibly)
+      return s.overturned ? 0.0 : sliding_match(object, s.max_abs_slide_m, residual);
+    case Outcome::slid_toppled:  // fell, and its base had slid visibly
+      return s.overturned && visibly_slid ? 1.0 : 0.0;
+    case Outcome::walked: {  // stood, rocked visibly with impacts, offset, never slid flat on its base
+      const bool never_slid_flat = s.mode_entries[static_cast<std::size_t>(SlideRockMode::slide)] == 0;
+      return !s.overturned && max_rotation >= kVisibleRockingRad && s.impacts > 0 && residual >= kVisibleSlipM &&
+                     never_slid_flat
+                 ? 1.0
+                 : 0.0;
+    }
+  }
+  return 0.0;
 }
 
 double rocking_match(Outcome outcome, bool overturned, double max_rotation_rad) {
@@ -894,6 +978,7 @@ InversionResult invert_on_family(const Site& site, const InversionSettings& st, 
     ObjectReport& rep = r.objects[o];
     rep.id = site.objects[o].id;
     rep.outcome = site.objects[o].outcome;
+    rep.model = object_model(site.objects[o]);
     rep.probability = std::move(reduced.probability[o]);
     rep.max_probability = reduced.max_probability[o];
     rep.reproduced_anywhere = reduced.reproduced_anywhere[o];

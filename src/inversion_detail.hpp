@@ -5,6 +5,7 @@
 
 #include "topple/inversion.hpp"
 #include "topple/rocking.hpp"
+#include "topple/slide_rock.hpp"
 #include "topple/synthesis.hpp"
 
 namespace topple::detail {
@@ -26,6 +27,12 @@ namespace topple::detail {
 /// The rocking options of the inversion's runs: restitution as the object gives it, 20 s run-out, rel_tol 1e-6.
 [[nodiscard]] RockingOptions inversion_rocking_options(const ObservedObject& object, const DrawnParameters& parameters,
                                                       double g_m_s2);
+/// The coupled runs' options: those of inversion_rocking_options (restitution, 20 s run-out, rel_tol 1e-6).
+[[nodiscard]] SlideRockOptions inversion_slide_rock_options(const ObservedObject& object,
+                                                           const DrawnParameters& parameters, double g_m_s2);
+/// The match of any observation of an object simulated with the coupled model, from the run's summary: the one place
+/// the coupled solver's results become outcomes (docs/survey.md, "Objects that slide and rock").
+[[nodiscard]] double coupled_match(const ObservedObject& object, const SlideRockSummary& summary);
 /// The match (0 or 1) of a rocking observation for a run that overturned or not, with its max |theta| (rad).
 [[nodiscard]] double rocking_match(Outcome outcome, bool overturned, double max_rotation_rad);
 

@@ -17,6 +17,7 @@
 #include "topple/io/provenance.hpp"
 #include "topple/inversion_3c.hpp"
 #include "topple/rocking.hpp"
+#include "topple/slide_rock.hpp"
 #include "topple/sliding.hpp"
 
 namespace topple {
@@ -121,6 +122,7 @@ std::string observed_text(const ObservedObject& o) {
     }
   }
   if (o.slid_at_least_m) s += fmt::format(" &ge; {:.3g} cm", 100.0 * *o.slid_at_least_m);
+  if (object_model(o) == ObjectModel::coupled) s += " (coupled slide-rock model)";
   return s;
 }
 
@@ -400,7 +402,28 @@ plot::Figure best_cell_figure(const InversionResult& r, const Site& site, const 
     const std::string color = object_color(o);
     const double amp = obj.amplification.mid();
     const GroundMotion seen = nominal_object_motion(obj, motion);  // through a flexible support, if any
-    if (obj.outcome == Outcome::slid || obj.outcome == Outcome::not_slid) {
+    if (object_model(obj) == ObjectModel::coupled) {
+      // The coupled body (survey.hpp, object_model): its tilt over its side's alpha and its base's slide.
+      SlideRockOptions opt;
+      opt.g_m_s2 = settings.g_m_s2;
+      opt.record_history = true;
+      if (!obj.e_housner) {
+        opt.restitution = RestitutionMode::given;
+        opt.e = obj.e.mid();
+      }
+      double factor = amp;
+      if (obj.orientation_deg) factor *= std::cos(*obj.orientation_deg * kPi / 180.0);
+      const auto res = slide_rock(seen.scaled(factor), SlideRockBody::from_rocking(obj.body, obj.mu.mid()), opt);
+      std::vector<double> ratio(res.history.theta_rad.size());
+      for (std::size_t i = 0; i < ratio.size(); ++i) {
+        const double theta = res.history.theta_rad[i];
+        ratio[i] = theta / (theta < 0.0 ? res.summary.alpha_negative_rad : res.summary.alpha_positive_rad);
+      }
+      const std::string fell = res.summary.overturned ? " (falls in this one motion)" : "";
+      rocking.series.push_back({obj.id + " (coupled)" + fell, res.history.time_s, ratio, "lines", color, 1.6});
+      sliding.series.push_back({fmt::format("{} (coupled, mu {:.2g})", obj.id, obj.mu.mid()), res.history.time_s,
+                                res.history.slide_m, "lines", color, 1.6});
+    } else if (obj.outcome == Outcome::slid || obj.outcome == Outcome::not_slid) {
       const auto res = slide(seen.scaled(amp), SlidingBlock::make(obj.mu.mid(), obj.mu.mid(), 0.0, SlidingMode::two_way, settings.g_m_s2));
       sliding.series.push_back({fmt::format("{} (mu {:.2g})", obj.id, obj.mu.mid()), res.history.time_s, res.history.displacement_m, "lines", color, 1.6});
     } else {
@@ -614,7 +637,7 @@ void write_report(const std::filesystem::path& dir, const Survey& survey, const 
     std::string bound = "&ndash;";
     for (const auto& b : r.bounds.lower) if (b.object_id == obj.id) bound = html_escape(b.reason) + (b.hard ? " (hard)" : " (soft)");
     for (const auto& b : r.bounds.upper) if (b.object_id == obj.id) bound = html_escape(b.reason) + (b.hard ? " (hard)" : " (soft)");
-    const bool sliding = obj.outcome == Outcome::slid || obj.outcome == Outcome::not_slid;
+    const bool sliding = object_model(obj) == ObjectModel::slide;
     const std::string e = sliding ? std::string("&ndash; (not used: sliding)")
                           : obj.e_housner ? fmt::format("Housner {:.3f}", housner_restitution(obj.body))
                                           : interval_text(obj.e);

@@ -307,18 +307,7 @@ TEST(InversionSettingsCheck, Rezaeian2010FamilyIsChosenByNameAndOldSurveysKeepTh
   }
 }
 
-InversionSettings small_grid(int motions = 10) {
-  InversionSettings st;
-  st.pga_min_g = 0.05;
-  st.pga_max_g = 2.0;
-  st.pga_count = 14;
-  st.freq_min_hz = 0.5;
-  st.freq_max_hz = 12.0;
-  st.freq_count = 8;
-  st.motions_per_cell = motions;
-  st.duration_s = 10.0;
-  return st;
-}
+using testing::small_grid;
 
 TEST(Inversion, OnlyUnmovedObjectsLeaveTheLowerEndUnconstrained) {
   Site site;
@@ -477,53 +466,16 @@ TEST(Inversion, RecoversKnownShakingWithCalibratedIntervals) {
   objects.push_back(block("pan", 0.2, 0.1, {0.15, 0.25}, Outcome::slid));
   objects.push_back(block("crate", 0.3, 0.3, {0.4, 0.6}, Outcome::slid));
   objects.push_back(block("bin", 0.3, 0.3, {0.7, 0.9}, Outcome::slid));
-  PortableRandom rng(2026);     // the truths
-  PortableRandom params(777);   // the objects' true friction coefficients
-  int in95 = 0;
-  int in68 = 0;
   const int trials = 30;
-  for (int t = 0; t < trials; ++t) {
-    const double pga = std::exp(std::log(0.12) + (std::log(1.2) - std::log(0.12)) * rng.uniform());
-    const double freq = std::exp(std::log(0.8) + (std::log(8.0) - std::log(0.8)) * rng.uniform());
-    SynthesisSpec spec;
-    spec.pga_m_s2 = pga * st.g_m_s2;
-    spec.predominant_frequency_hz = freq;
-    spec.duration_s = std::max(st.duration_s, 8.0 / freq);
-    spec.dt_s = std::min(0.01, 1.0 / (20.0 * freq));
-    spec.seed = 0xC0FFEE00ULL + static_cast<std::uint64_t>(t);
-    // Built as the family's members are (inversion.hpp): time-scaled so that its measured predominant frequency is
-    // the drawn one.
-    const GroundMotion raw = synthesize(spec);
-    const GroundMotion truth = raw.time_scaled(predominant_frequency_hz(raw) / freq);
-    const double true_freq = predominant_frequency_hz(truth);
-    Site site;
-    site.name = fmt::format("trial {}", t);
-    // What happened, from the solvers themselves (not from observation_match, which is under test): each object's
-    // friction drawn uniformly in its range with the test's own generator, Housner's restitution, the solvers'
-    // default tolerances and run-out (tighter than the inversion's rel_tol 1e-6 and 20 s run-out).
-    for (const ObservedObject& proto : objects) {
-      ObservedObject obj = proto;
-      const double mu = obj.mu.low + (obj.mu.high - obj.mu.low) * params.uniform();
-      if (obj.outcome == Outcome::overturned || obj.outcome == Outcome::not_overturned) {
-        RockingOptions ro;
-        ro.g_m_s2 = st.g_m_s2;
-        const RockingSummary s = rock_summary(truth, obj.body, ro);
-        obj.outcome = s.overturned ? Outcome::overturned : Outcome::not_overturned;
-      } else {
-        const SlidingSummary s = slide_summary(truth, SlidingBlock::make(mu, mu, 0.0, SlidingMode::two_way, st.g_m_s2));
-        obj.outcome = s.max_abs_displacement_m >= kVisibleSlipM ? Outcome::slid : Outcome::not_slid;
-      }
-      site.objects.push_back(obj);
-    }
-    const InversionResult r = invert_site(site, st);
-    const bool c95 = in_credible_region(r, pga, true_freq, 0.95);
-    const bool c68 = in_credible_region(r, pga, true_freq, 0.68);
-    in95 += c95;
-    in68 += c68;
-    fmt::print("trial {:2}: truth {:.3f} g {:.2f} Hz; median {:.3f} g {:.2f} Hz; in95 {} in68 {}\n", t, pga, true_freq,
-               r.pga_estimate_g.median, r.freq_estimate_hz.median, c95, c68);
-  }
-  fmt::print("coverage: 95 % region {}/{}, 68 % region {}/{}\n", in95, trials, in68, trials);
+  // What happened, from the solvers themselves (not from observation_match, which is under test): each object's
+  // friction drawn uniformly in its range with the test's own generator (777), the truths with 2026.
+  const testing::RecoveryCoverage c = testing::recovery_coverage(
+      st, objects, trials, 2026, 777,
+      [&st](const ObservedObject& o, double mu, const GroundMotion& truth) {
+        return testing::observe_uncoupled(o, mu, truth, st);
+      });
+  const int in95 = c.in95;
+  const int in68 = c.in68;
   EXPECT_GE(in95, static_cast<int>(std::ceil(0.85 * trials)));
   EXPECT_GE(in68, static_cast<int>(std::ceil(0.55 * trials)));
 }

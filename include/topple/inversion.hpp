@@ -94,6 +94,7 @@ inline constexpr double kMisfitProbability = 0.05;
 struct ObjectReport {
   std::string id;
   Outcome outcome = Outcome::not_overturned;
+  ObjectModel model = ObjectModel::rock;  ///< the model it was simulated with (survey.hpp, object_model)
   std::vector<double> probability;  ///< P(observation | cell), dimensionless; index i_pga * freq_count + j_freq
   double probability_at_best = 0.0;  ///< dimensionless
   double max_probability = 0.0;      ///< dimensionless

@@ -30,6 +30,12 @@ enum class Outcome {
   slid,            ///< slid: a distance (value +- uncertainty), at least a distance, or just "slid" (>= kVisibleSlipM)
   not_slid,        ///< did not slide (max |d| < kVisibleSlipM)
   not_rocked,      ///< stood and did not visibly rock (max |theta| < kVisibleRockingRad)
+  // Outcomes of an object that can both slide and rock, simulated with the coupled model (slide_rock.hpp; the rule:
+  // object_model below; the definitions from the solver's results: docs/survey.md and inversion.hpp, coupled_match).
+  slid_stood,      ///< stood, and its base moved (max |u| >= kVisibleSlipM): "slid 3 cm and stood" (distance as slid)
+  slid_toppled,    ///< toppled, and its base had slid visibly before it fell
+  walked,          ///< stood, rocked visibly with impacts, and is offset (|residual u| >= kVisibleSlipM) without ever
+                   ///< sliding flat on its base: the offset came from slips while rocking (slide-rock, impacts)
 };
 
 /// What "visibly" means (stated once, used for the outcomes above and in docs/method.md).
@@ -37,6 +43,15 @@ inline constexpr double kVisibleRockingRad = 0.01;  ///< 0.57 degrees of tilt at
 inline constexpr double kVisibleSlipM = 0.002;      ///< 2 mm
 
 [[nodiscard]] std::string_view outcome_name(Outcome outcome);  ///< "overturned", "not_overturned", ...
+/// True for slid_stood, slid_toppled, walked: observations of both motions, which only the coupled model makes.
+[[nodiscard]] bool is_coupled_outcome(Outcome outcome) noexcept;
+
+/// The model an object is simulated with in the inversion (docs/survey.md, "Objects that slide and rock").
+///   slide:   the exact sliding block (sliding.hpp), two-way, level ground
+///   rock:    Housner's rocking body on a base that does not slide (rocking.hpp)
+///   coupled: the coupled slide-rock body (slide_rock.hpp) with mu_s = mu_k = the object's mu
+enum class ObjectModel { slide, rock, coupled };
+[[nodiscard]] std::string_view object_model_name(ObjectModel model);  ///< "slide", "rock", "coupled"
 
 enum class Evidence { certain, likely, reported };
 [[nodiscard]] std::string_view evidence_name(Evidence evidence);
@@ -88,11 +103,22 @@ struct ObservedObject {
   /// bearing by the planar model: its fall direction says nothing more.)
   std::optional<double> toppled_azimuth_deg;
   Outcome outcome = Outcome::not_overturned;
-  std::optional<double> slid_m;              ///< observed sliding distance (outcome slid)
+  /// `model = "slide" | "rock" | "coupled"` as the survey forces it; none: the rule (object_model).
+  std::optional<ObjectModel> model;
+  std::optional<double> slid_m;              ///< observed sliding distance (outcome slid or slid_stood)
   double slid_uncertainty_m = 0.0;           ///< its one-sigma uncertainty
   std::optional<double> slid_at_least_m;     ///< or: it slid at least this far
   Evidence evidence = Evidence::certain;
 };
+
+/// The model the inversion simulates `object` with. The rule (docs/survey.md, "Objects that slide and rock"):
+/// the survey's `model` when given; otherwise the coupled model for an observation of both motions (slid_stood,
+/// slid_toppled, walked), and for an observation of one motion the model that motion is about (slid, not_slid: the
+/// sliding block; the others: the rocking body), as before the coupled model existed, so that a survey keeps its
+/// meaning. io::read_survey refuses the combinations that make no sense (a coupled outcome with model = "slide" or
+/// "rock", a rocking outcome with "slide", a sliding one with "rock"; slid_toppled or walked on a body that can never
+/// lift: mu_s < min(b1, b2) / h over its whole range, Shenton 1996).
+[[nodiscard]] ObjectModel object_model(const ObservedObject& object) noexcept;
 
 struct Site {
   std::string name;

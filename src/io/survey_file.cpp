@@ -16,6 +16,7 @@
 #include "topple/io/mesh.hpp"
 #include "topple/io/read.hpp"
 #include "topple/oriented.hpp"
+#include "topple/slide_rock.hpp"
 #include "topple/units.hpp"
 #include "survey_csv.hpp"
 
@@ -29,8 +30,30 @@ std::string_view outcome_name(Outcome o) {
     case Outcome::not_rocked: return "not_rocked";
     case Outcome::slid: return "slid";
     case Outcome::not_slid: return "not_slid";
+    case Outcome::slid_stood: return "slid_stood";
+    case Outcome::slid_toppled: return "slid_toppled";
+    case Outcome::walked: return "walked";
   }
   return "unknown";
+}
+
+bool is_coupled_outcome(Outcome o) noexcept {
+  return o == Outcome::slid_stood || o == Outcome::slid_toppled || o == Outcome::walked;
+}
+
+std::string_view object_model_name(ObjectModel m) {
+  switch (m) {
+    case ObjectModel::slide: return "slide";
+    case ObjectModel::rock: return "rock";
+    case ObjectModel::coupled: return "coupled";
+  }
+  return "unknown";
+}
+
+ObjectModel object_model(const ObservedObject& o) noexcept {
+  if (o.model) return *o.model;
+  if (is_coupled_outcome(o.outcome)) return ObjectModel::coupled;
+  return o.outcome == Outcome::slid || o.outcome == Outcome::not_slid ? ObjectModel::slide : ObjectModel::rock;
 }
 
 std::string_view motion_family_name(MotionFamily f) {
@@ -164,13 +187,13 @@ class Reader {
 
 Outcome parse_outcome(Reader& r, std::string_view text) {
   for (Outcome o : {Outcome::overturned, Outcome::not_overturned, Outcome::rocked, Outcome::not_rocked, Outcome::slid,
-                    Outcome::not_slid}) {
+                    Outcome::not_slid, Outcome::slid_stood, Outcome::slid_toppled, Outcome::walked}) {
     if (text == outcome_name(o)) return o;
   }
   // The words a field team writes for a fall (docs/survey.md): aliases of overturned, nothing else.
   if (text == "toppled" || text == "fell") return Outcome::overturned;
   throw r.error("outcome", fmt::format("unknown outcome '{}' (known: overturned (or toppled, fell), not_overturned, "
-                                       "rocked, not_rocked, slid, not_slid)", text));
+                                       "rocked, not_rocked, slid, not_slid, slid_stood, slid_toppled, walked)", text));
 }
 
 /// A flexible support `{freq_hz = value or [low, high], damping = value or [low, high], name = "..."}` (docs/survey.md):
@@ -266,6 +289,48 @@ RockingBody mesh_object_body(Reader& named, const std::filesystem::path& base_di
     return rocking_body(read_mesh_body(path.string(), unit_m, options));
   } catch (const InputError& e) {
     throw named.error("mesh", fmt::format("mesh '{}' gives no body: {}", path.string(), e.what()), mesh_node);
+  }
+}
+
+/// `model = "slide" | "rock" | "coupled"` and the rule's refusals (survey.hpp, object_model; docs/survey.md,
+/// "Objects that slide and rock"). Needs the body, mu and the outcome.
+void parse_object_model(Reader& named, ObservedObject& o, int components) {
+  if (const auto m = named.string("model")) {
+    if (*m == "slide") o.model = ObjectModel::slide;
+    else if (*m == "rock") o.model = ObjectModel::rock;
+    else if (*m == "coupled") o.model = ObjectModel::coupled;
+    else throw named.error("model", fmt::format("unknown model '{}' (known: slide, rock, coupled)", *m));
+  }
+  const bool sliding = o.outcome == Outcome::slid || o.outcome == Outcome::not_slid;
+  if (o.model && *o.model != ObjectModel::coupled && is_coupled_outcome(o.outcome)) {
+    throw named.error("model", fmt::format("outcome \"{}\" is an observation of sliding and rocking together: only "
+                                           "the coupled model makes it (leave model out or write \"coupled\")",
+                                           outcome_name(o.outcome)));
+  }
+  if (o.model == ObjectModel::slide && !sliding) {
+    throw named.error("model", fmt::format("the sliding block cannot rock or topple: outcome \"{}\" needs model "
+                                           "\"rock\" or \"coupled\"", outcome_name(o.outcome)));
+  }
+  if (o.model == ObjectModel::rock && sliding) {
+    throw named.error("model", fmt::format("the rocking body's base does not slide: outcome \"{}\" needs model "
+                                           "\"slide\" or \"coupled\"", outcome_name(o.outcome)));
+  }
+  if (object_model(o) != ObjectModel::coupled) return;
+  if (components != 1) {
+    throw named.error(o.model ? "model" : "outcome", "the coupled slide-rock model is planar: it needs a "
+                                                     "one-component survey ([inversion] components = 1)");
+  }
+  // Shenton (1996): a body with mu_s < min(b1, b2) / h slides before it can lift and never lifts while sliding
+  // (slide_rock.hpp, cannot_uplift), so it can neither topple nor rock; refused when that holds over the whole range.
+  if ((o.outcome == Outcome::slid_toppled || o.outcome == Outcome::walked) &&
+      SlideRockBody::from_rocking(o.body, o.mu.high).cannot_uplift()) {
+    const RockingBody& b = o.body;
+    const double b_over_h = std::min(std::tan(b.alpha_rad()), std::tan(b.side_body(-1).alpha_rad()));
+    throw named.error("outcome", fmt::format("a body with mu <= {:.3g} < b/h = {:.3g} slides before it can lift and "
+                                             "never lifts while sliding (Shenton 1996): it cannot have {}; "
+                                             "write \"slid\" or \"slid_stood\", or check mu and the dimensions",
+                                             o.mu.high, b_over_h,
+                                             o.outcome == Outcome::walked ? "walked (rocked)" : "toppled"));
   }
 }
 
@@ -426,8 +491,11 @@ ObservedObject parse_object(const toml::table& t, const std::string& file, const
   const auto outcome = named.string("outcome");
   if (!outcome) throw named.error("outcome", "every object needs its observed outcome");
   o.outcome = parse_outcome(named, *outcome);
-  const bool rocks = o.outcome == Outcome::overturned || o.outcome == Outcome::not_overturned ||
-                     o.outcome == Outcome::rocked || o.outcome == Outcome::not_rocked;
+  parse_object_model(named, o, components);
+  // A body that strikes needs Housner's e >= 0: the rocking model always, the coupled one when it can lift.
+  const bool rocks = object_model(o) == ObjectModel::rock ||
+                     (object_model(o) == ObjectModel::coupled &&
+                      !SlideRockBody::from_rocking(o.body, o.mu.high).cannot_uplift());
   if (rocks && o.e_housner && housner_restitution(o.body) < 0.0) {
     throw named.error("e", fmt::format("Housner's restitution 1 - 2a^2/D = {:.3g} is negative for so squat a body "
                                        "(alpha = {:.3g} deg > 54.7 deg): {}",
@@ -448,8 +516,12 @@ ObservedObject parse_object(const toml::table& t, const std::string& file, const
   o.slid_m = named.length("slid");
   if (const auto u = named.length("slid_uncertainty")) o.slid_uncertainty_m = *u;
   o.slid_at_least_m = named.length("slid_at_least");
-  if ((o.slid_m || o.slid_at_least_m) && o.outcome != Outcome::slid) {
-    throw named.error("slid", "a sliding distance goes with outcome = \"slid\"");
+  if ((o.slid_m || o.slid_at_least_m) && o.outcome != Outcome::slid && o.outcome != Outcome::slid_stood) {
+    throw named.error(o.slid_m ? "slid" : "slid_at_least",
+                      fmt::format("a sliding distance goes with outcome = \"slid\" or \"slid_stood\"{}",
+                                  o.outcome == Outcome::walked || o.outcome == Outcome::slid_toppled
+                                      ? fmt::format(" (\"{}\" takes none: docs/survey.md)", outcome_name(o.outcome))
+                                      : std::string()));
   }
   if (o.slid_m && o.slid_at_least_m) throw named.error("slid_at_least", "give either slid or slid_at_least");
   if (const auto az = named.number("slid_azimuth_deg")) {

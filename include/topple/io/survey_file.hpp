@@ -14,7 +14,8 @@
 //   [[object]]        id, description, shape (block | cylinder | general), width/height | diameter/height | a/h/D
 //                     | b1/b2/h/inertia (asymmetric general; strings with units) | mesh + mesh_azimuth_deg
 //                     [+ mesh_unit, mesh_density_kg_m3] (a body from a 3-D scan, the path relative to the file), mu (value or [low, high]), e ("housner", value or range), support,
-//                     amplification (value or range), orientation_deg, outcome, slid / slid_uncertainty /
+//                     amplification (value or range), orientation_deg, outcome, model (slide | rock | coupled;
+//                     docs/survey.md "Objects that slide and rock"), slid / slid_uncertainty /
 //                     slid_at_least (lengths with units), evidence (certain | likely | reported)
 // Several sites: [[sites]] tables, each with name/lat/lon and its own [[sites.object]] list; optional [event] with
 // epicentre = [lat, lon].
