@@ -45,7 +45,7 @@ constexpr int kMaxTurnHalvings = 60;
 /// integration error (<= tolerance x scale); a turn leaves |w| of the order of the scale.
 constexpr double kStopSpeedFraction = 1e-3;
 /// A block that has just started slipping follows the direction of the inertial load -a until its speed exceeds
-/// sqrt(abs_tol x kLaunchSpeedScale) (3.2e-6 m/s at the default abs_tol; at least kLaunchSpeedTolerances x abs_tol):
+/// sqrt(abs_tol x kLaunchSpeedScale) (3.2e-5 m/s at the default abs_tol 1e-8; at least kLaunchSpeedTolerances x abs_tol):
 /// see Rhs and docs/method.md (S5'), where the error of the slaved phase is estimated. The launch used to end at
 /// 1000 abs_tol (1e-7 m/s); the steps after it are stability-limited (h <= 3.3 r/|a|) and their number falls as
 /// 1/sqrt(launch speed), so this takes 1.6-1.8x fewer DP5 steps on the benchmark (docs/performance.md).
@@ -53,7 +53,7 @@ constexpr double kLaunchSpeedScale = 0.1;  // m/s
 constexpr double kLaunchSpeedTolerances = 1000.0;
 /// The launch also ends where the quasi-static direction's lag behind -a, r psi' / |a|, would exceed this (rad).
 constexpr double kLaunchMaxLag = 1e-3;
-/// A slipping block back down to this fraction of the launch speed (1e-7 m/s at the default abs_tol) has stopped:
+/// A slipping block back down to this fraction of the launch speed (9.5e-7 m/s at the default abs_tol) has stopped:
 /// the velocity noise floor (see integrate()). Below the launch speed, so that a launch does not end in a stop at
 /// once.
 constexpr double kFloorLaunchFraction = 0.03;
@@ -157,7 +157,7 @@ struct Input {
 /// the rate |a| / |w|, docs/method.md), so until the speed first exceeds the launch speed (above) the
 /// velocity is slaved to the quasi-static direction -a / |a|: w = r n, n = -a / |a|, r' = |a| - mu_k g_e+ (for
 /// collinear input this is (S2) itself; in two dimensions the true lag of w behind -a there is |w| psi' / |a|, psi'
-/// the turning rate of a: below 2e-4 rad at the default 3.2e-6 m/s for psi' = 60 rad/s and |a| = 1 m/s^2; about
+/// the turning rate of a: below 2e-4 rad at 3.2e-6 m/s (abs_tol 1e-10) for psi' = 60 rad/s and |a| = 1 m/s^2; about
 /// 5e-13 m of displacement per episode, docs/method.md). The launch also ends where that lag would pass
 /// kLaunchMaxLag (near a zero of a, where -a / |a| turns fast).
 struct Rhs {
@@ -571,10 +571,10 @@ void integrate(const Input& in, const SlidingBlock& b, const Sliding2dOptions& o
         // direction equation is stiff there: its rate |a| / |w| exceeds the explicit method's stability limit at
         // any step the error test allows, so w would wander at the tolerance level). The block has come to rest:
         // the rest of the run-in, along the current direction, is |w| / (mu_k g_e + a . w/|w|) long and covers
-        // |w| times half that (5e-13 m from the default floor of 1e-7 m/s when decelerating at 0.01 m/s^2, of
-        // which the extrapolation's error, from the deceleration and direction changing over the run-in's 1e-5 s,
-        // is a small fraction, docs/method.md); when w is not decelerating along its own direction the stop is taken
-        // at once.
+        // |w| times half that (when decelerating at 0.01 m/s^2: 4.5e-11 m from the default floor of 9.5e-7 m/s,
+        // 5e-13 m from 1e-7 m/s at abs_tol 1e-10), of which the extrapolation's error, from the deceleration and
+        // direction changing over the run-in, is a small fraction (docs/method.md); when w is not decelerating along
+        // its own direction the stop is taken at once.
         // The stick test then decides (eq S6).
         const double b1 = rhs.a01 + rhs.as1 * s1;
         const double b2 = rhs.a02 + rhs.as2 * s1;
