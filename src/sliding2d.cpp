@@ -266,17 +266,23 @@ class Stepper {
     x0_ = x0;
     dx0_ = dx0;
     const double remaining = s_limit - s0;
+    bool rejected = false;
     for (;;) {
       if (++steps > max_steps) return false;
       const bool clamped = dt_ >= remaining;
       double dt = clamped ? remaining : dt_;
+      const double tried = dt;
       double s = s0;
       if (controlled_.try_step(std::cref(rhs), x0_, dx0_, s, x1_, dx1_, dt) == odeint::success) {
         s1_ = clamped ? s_limit : s;
         // A step cut short to end on a sample says little about the step the solution allows.
         dt_ = clamped ? std::max(dt_, dt) : dt;
+        // No growth right after a rejection (Hairer, Norsett & Wanner I, II.4, after (4.13)): where stability, not
+        // accuracy, limits the step (the stiff low speeds), growing again at once is rejected again.
+        if (rejected) dt_ = std::min(dt_, tried);
         return true;
       }
+      rejected = true;
       dt_ = dt;  // rejected: the controller reduced it
     }
   }
