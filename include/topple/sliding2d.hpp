@@ -36,8 +36,9 @@
 // onset, and while the quasi-static lag r psi'/|a| stays below 1e-3 rad, the velocity is slaved to the quasi-static
 // direction -a / |a| (w = r n, n = -a / |a|, r' = |a| - mu_k g_e; method.md eq S5', where its error is estimated);
 // (2) a sliding block that slows to 0.03 r_L has stopped (the remaining run-in, extrapolated along its direction, is
-// added). The stiff phases still cost ~100 DP5 steps per slip episode at the default tolerances: with 5-15 % of a
-// record slipping the 2-D solver runs at 11-25 M samples/s, ~45-75x slower than the 1-D one (docs/performance.md).
+// added); (3) a block decelerating below the launch speed along -a is slaved to it again to its stop (the landing).
+// The stiff phases still cost ~85 DP5 tries per slip episode at the default tolerances: with 5-15 % of a record
+// slipping the 2-D solver runs at 13-27 M samples/s, ~45-70x slower than the 1-D one (docs/performance.md).
 //
 // Incline (method.md eq S11). On a plane inclined at beta (SlidingBlock::slope_rad) whose fall line runs toward
 // slope_azimuth_deg, with e_d the horizontal unit vector of that azimuth and a = a_d e_d + a_c (a_c across the slope):
