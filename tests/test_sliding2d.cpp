@@ -106,9 +106,9 @@ TEST(Sliding2d, CollinearInputEqualsTheExact1dSolver) {
 TEST(Sliding2d, CollinearInputOnTheFallLineEqualsThe1dIncline) {
   // The incline (method.md S11) on the fall line is sliding.hpp's two-way incline: 1e-9 relative, as on level ground
   // (the run-out after the record, integrated on the still tail, is a straight line there and DP5 is exact on it).
-  // At the tight tolerances: at the defaults one of the 54 residual comparisons differs by 1.04e-9 of max |u| (the
-  // velocity noise floor, 0.03 of the launch speed, is 10x higher there, and a stop taken at the floor extrapolates
-  // the run-in at constant deceleration), inside the defaults' stated accuracy but above the 1e-9.
+  // At the tight tolerances: at the defaults (as introduced) one of the 54 residual comparisons differed by 1.04e-9 of
+  // max |u| (the velocity noise floor, 0.03 of the launch speed, is 10x higher there, and a stop taken at the floor
+  // extrapolates the run-in at constant deceleration), inside the defaults' stated accuracy but above the 1e-9.
   const auto rec = noisy_record(5);
   const auto vertical = noisy_record(7, 4000, 0.01, 0.3);
   for (double alpha : {0.0, 137.5, 250.0}) {
@@ -185,7 +185,7 @@ TEST(Sliding2d, RectangularPulseAtAnAzimuthMatchesNewmarksClosedForm) {
 TEST(Sliding2d, LinearUpsamplingChangesNothingButTheSteps) {
   // The same piecewise-linear input on a grid twice as fine: the same solution; the steps end on other points, so
   // agreement to the integration error (1e-7 relative, as for rotations, at the tight tolerances rel_tol 1e-9, abs_tol
-  // 1e-10; measured 1e-9; at the defaults 2.5e-7, inside their stated 1e-6). mu_s = mu_k: with
+  // 1e-10; measured 1e-9; at the defaults, as introduced, 2.5e-7: inside their stated 1e-6). mu_s = mu_k: with
   // mu_s > mu_k a velocity that passes close to zero without stopping (a near miss, common in two dimensions) sticks
   // or slides on depending on whether it reached the noise floor, a discontinuous outcome of the model itself.
   const auto h1 = noisy_record(51, 2000);
@@ -365,9 +365,9 @@ void expect_within_the_stated_accuracy(const Sliding2dSummary& s, const Sliding2
 
 TEST(Sliding2d, DefaultsMeetTheStatedAccuracy) {
   // Records: three pairs of the tests' noise records at mu from 0.05 (slipping most of the record, max |u| 0.9 m) to
-  // 0.3 (27 short episodes); reference: rel_tol 1e-12, abs_tol 1e-15 (the convergence test's). Measured worst: 2.6e-7
-  // of max |u| here, 7.5e-7 on the benchmark's Kocaeli pair (docs/performance.md): the bound is the stated accuracy,
-  // not a fit to these numbers.
+  // 0.3 (27 short episodes); reference: rel_tol 1e-12, abs_tol 1e-15 (the convergence test's). Measured worst: 5.9e-7
+  // of max |u| here, 7.8e-7 on the benchmark's Kocaeli pair (docs/method.md): the bound is the stated accuracy, not a
+  // fit to these numbers.
   struct Case { unsigned seed; double mu; };
   for (const auto& [seed, mu] : {Case{31, 0.2}, Case{31, 0.05}, Case{41, 0.15}, Case{45, 0.3}}) {
     const auto h1 = noisy_record(seed);

@@ -37,8 +37,8 @@
 // direction -a / |a| (w = r n, n = -a / |a|, r' = |a| - mu_k g_e; method.md eq S5', where its error is estimated);
 // (2) a sliding block that slows to 0.03 r_L has stopped (the remaining run-in, extrapolated along its direction, is
 // added); (3) a block decelerating below the launch speed along -a is slaved to it again to its stop (the landing).
-// The stiff phases still cost ~85 DP5 tries per slip episode at the default tolerances: with 5-15 % of a record
-// slipping the 2-D solver runs at 13-27 M samples/s, ~45-70x slower than the 1-D one (docs/performance.md).
+// The stiff phases still cost ~80 DP5 tries per slip episode at the default tolerances: with 5-15 % of a record
+// slipping the 2-D solver runs at 14-28 M samples/s, ~40-60x slower than the 1-D one (docs/performance.md).
 //
 // Incline (method.md eq S11). On a plane inclined at beta (SlidingBlock::slope_rad) whose fall line runs toward
 // slope_azimuth_deg, with e_d the horizontal unit vector of that azimuth and a = a_d e_d + a_c (a_c across the slope):
@@ -73,7 +73,7 @@ struct Sliding2dOptions {
   ///
   /// The defaults are set by a stated accuracy (docs/method.md, "Accuracy of the defaults"): residual displacement
   /// and max |u| within 1e-6 of max |u| (plus 1e-9 m), path length within 1e-6 of itself, of a tight-tolerance run;
-  /// measured <= 5.6e-7 on four record pairs at seven mu (tests: Sliding2d.DefaultsMeetTheStatedAccuracy*). kSliding2dTight gives the old, ~100x tighter
+  /// measured <= 7.8e-7 on four record pairs at seven mu (tests: Sliding2d.DefaultsMeetTheStatedAccuracy*). kSliding2dTight gives the old, ~100x tighter
   /// run (rel_tol 1e-9, abs_tol 1e-10) at about twice the cost.
   double abs_tol = 1e-8;
   /// Cap on integrator steps (accepted and rejected) over the run: a sign of an input outside the model.
