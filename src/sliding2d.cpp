@@ -584,7 +584,11 @@ void integrate(const Input& in, const SlidingBlock& b, const Sliding2dOptions& o
           x_end = stepper.dense(s_end);
           const double scale = std::max(std::sqrt(w0sq), std::hypot(x1[kW1], x1[kW2]));
           const double rest = std::hypot(x_end[kW1], x_end[kW2]);
-          is_stop = rest <= kStopSpeedFraction * scale + 10.0 * opt.abs_tol;
+          // Or at the velocity noise floor (below): a zero of w . ref where |w| is that small is a stop whatever the
+          // step's scale, as a block slowing to the floor is (the direction is not resolved there, and halving the
+          // step would not resolve it either: EventLimitError at the default tolerances otherwise, seen in
+          // Recovery3c).
+          is_stop = rest <= kStopSpeedFraction * scale + 10.0 * opt.abs_tol || rest <= floor_speed;
         }
         if (!is_stop) {
           if (++halvings > kMaxTurnHalvings) {

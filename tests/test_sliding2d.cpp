@@ -107,8 +107,8 @@ TEST(Sliding2d, CollinearInputOnTheFallLineEqualsThe1dIncline) {
   // The incline (method.md S11) on the fall line is sliding.hpp's two-way incline: 1e-9 relative, as on level ground
   // (the run-out after the record, integrated on the still tail, is a straight line there and DP5 is exact on it).
   // At the tight tolerances: at the defaults (as introduced) one of the 54 residual comparisons differed by 1.04e-9 of
-  // max |u| (the velocity noise floor, 0.03 of the launch speed, is 10x higher there, and a stop taken at the floor
-  // extrapolates the run-in at constant deceleration), inside the defaults' stated accuracy but above the 1e-9.
+  // max |u| (cause not isolated: the velocity noise floor, 0.03 of the launch speed, is 10x higher at the defaults,
+  // and a stop taken at the floor extrapolates the run-in), inside the defaults' stated accuracy, above the 1e-9.
   const auto rec = noisy_record(5);
   const auto vertical = noisy_record(7, 4000, 0.01, 0.3);
   for (double alpha : {0.0, 137.5, 250.0}) {
