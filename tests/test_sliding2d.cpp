@@ -1,6 +1,8 @@
 // Bidirectional sliding (sliding2d.hpp): the 1-D solver on one axis, rotation invariance, the steady rotating state in
 // closed form, the work-energy balance, convergence with the tolerance, the vertical, the input checks.
+#include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -61,15 +63,16 @@ TEST(Sliding2d, NoResponseBelowFriction) {
 /// On a slope (slope_deg > 0) the component's axis points uphill (the slope's azimuth is alpha + 180): the 1-D a_h is
 /// positive toward uphill and its d positive downslope, so u = -d e_alpha holds there too.
 void expect_collinear_equals_1d(const GroundMotion& rec, double alpha_deg, double mu_s, double mu_k,
-                                const GroundMotion* vertical, double slope_deg = 0.0) {
+                                const GroundMotion* vertical, double slope_deg = 0.0,
+                                const Sliding2dOptions& options = {}) {
   const auto block = SlidingBlock::make(mu_s, mu_k, slope_deg * kPi / 180.0);
   const auto one = slide_summary(rec, block, vertical);
   ASSERT_GT(one.max_abs_displacement_m, 1e-3) << "the case must slide";
   // The second component is zero; put the record on the first (alpha) or the second (alpha + 90 on the first).
   const auto zero = zeros_like(rec);
   const double downslope = alpha_deg + 180.0;
-  const auto two = slide_2d_summary(rec, zero, {alpha_deg, alpha_deg - 90.0, downslope}, block, vertical);
-  const auto two_b = slide_2d_summary(zero, rec, {alpha_deg + 90.0, alpha_deg, downslope}, block, vertical);
+  const auto two = slide_2d_summary(rec, zero, {alpha_deg, alpha_deg - 90.0, downslope}, block, vertical, options);
+  const auto two_b = slide_2d_summary(zero, rec, {alpha_deg + 90.0, alpha_deg, downslope}, block, vertical, options);
   // 1e-9 relative (the issue): DP5 integrates the collinear slip (velocity quadratic in time on a step) exactly and
   // its dense output reproduces it, so both solvers carry only round-off; the stops come from TOMS 748 to 4 ulp.
   const double tol = 1e-9 * one.max_abs_displacement_m;
@@ -103,12 +106,15 @@ TEST(Sliding2d, CollinearInputEqualsTheExact1dSolver) {
 TEST(Sliding2d, CollinearInputOnTheFallLineEqualsThe1dIncline) {
   // The incline (method.md S11) on the fall line is sliding.hpp's two-way incline: 1e-9 relative, as on level ground
   // (the run-out after the record, integrated on the still tail, is a straight line there and DP5 is exact on it).
+  // At the tight tolerances: at the defaults (as introduced) one of the 54 residual comparisons differed by 1.04e-9 of
+  // max |u| (cause not isolated: the velocity noise floor, 0.03 of the launch speed, is 10x higher at the defaults,
+  // and a stop taken at the floor extrapolates the run-in), inside the defaults' stated accuracy, above the issue's 1e-9.
   const auto rec = noisy_record(5);
   const auto vertical = noisy_record(7, 4000, 0.01, 0.3);
   for (double alpha : {0.0, 137.5, 250.0}) {
-    expect_collinear_equals_1d(rec, alpha, 0.3, 0.3, nullptr, 8.0);
-    expect_collinear_equals_1d(rec, alpha, 0.35, 0.25, nullptr, 12.0);
-    expect_collinear_equals_1d(rec, alpha, 0.3, 0.25, &vertical, 5.0);
+    expect_collinear_equals_1d(rec, alpha, 0.3, 0.3, nullptr, 8.0, kSliding2dTight);
+    expect_collinear_equals_1d(rec, alpha, 0.35, 0.25, nullptr, 12.0, kSliding2dTight);
+    expect_collinear_equals_1d(rec, alpha, 0.3, 0.25, &vertical, 5.0, kSliding2dTight);
   }
 }
 
@@ -178,14 +184,16 @@ TEST(Sliding2d, RectangularPulseAtAnAzimuthMatchesNewmarksClosedForm) {
 
 TEST(Sliding2d, LinearUpsamplingChangesNothingButTheSteps) {
   // The same piecewise-linear input on a grid twice as fine: the same solution; the steps end on other points, so
-  // agreement to the integration error (1e-7 relative, as for rotations; measured 1e-9). mu_s = mu_k: with
+  // agreement to the integration error (1e-7 relative, as for rotations, at the tight tolerances rel_tol 1e-9, abs_tol
+  // 1e-10; measured 1e-9; at the defaults, as introduced, 2.5e-7: inside their stated 1e-6). mu_s = mu_k: with
   // mu_s > mu_k a velocity that passes close to zero without stopping (a near miss, common in two dimensions) sticks
   // or slides on depending on whether it reached the noise floor, a discontinuous outcome of the model itself.
   const auto h1 = noisy_record(51, 2000);
   const auto h2 = noisy_record(52, 2000);
   const auto block = SlidingBlock::make(0.2);
-  const auto a = slide_2d_summary(h1, h2, {}, block);
-  const auto b = slide_2d_summary(h1.resampled(h1.dt_s() / 2.0), h2.resampled(h2.dt_s() / 2.0), {}, block);
+  const auto a = slide_2d_summary(h1, h2, {}, block, nullptr, kSliding2dTight);
+  const auto b = slide_2d_summary(h1.resampled(h1.dt_s() / 2.0), h2.resampled(h2.dt_s() / 2.0), {}, block, nullptr,
+                                  kSliding2dTight);
   ASSERT_GT(a.max_abs_displacement_m, 1e-3);
   const double tol = 1e-7 * a.max_abs_displacement_m;
   EXPECT_NEAR(a.residual_east_m, b.residual_east_m, tol);
@@ -214,16 +222,16 @@ TEST(Sliding2d, TurningTheAzimuthsTurnsTheResult) {
 TEST(Sliding2d, RotatingTheInputRotatesTheResultAndChangesNothingElse) {
   // The records themselves mixed (east, north) -> turned by theta: the solver sees other component values and takes
   // other steps (the error norm is per component), so agreement is to the integration error. Tolerance 1e-7
-  // relative: 100 x rel_tol (1e-9), the global error of a run measured by the convergence test below being below
-  // 10 x rel_tol x the displacement scale. mu_s = mu_k, as in the up-sampling test (near misses).
+  // relative: 100 x rel_tol (1e-9, the tight tolerances), the global error of a run measured by the convergence test
+  // below being below 10 x rel_tol x the displacement scale. mu_s = mu_k, as in the up-sampling test (near misses).
   const auto h1 = noisy_record(11);
   const auto h2 = noisy_record(12);
   const auto block = SlidingBlock::make(0.2);
-  const auto base = slide_2d_summary(h1, h2, {90.0, 0.0}, block);
+  const auto base = slide_2d_summary(h1, h2, {90.0, 0.0}, block, nullptr, kSliding2dTight);
   const double tol = 1e-7 * base.max_abs_displacement_m;
   for (double theta : {17.0, 90.0, 123.4, -60.0}) {
     const auto [e, n] = turned(h1, h2, theta);
-    const auto s = slide_2d_summary(e, n, {90.0, 0.0}, block);
+    const auto s = slide_2d_summary(e, n, {90.0, 0.0}, block, nullptr, kSliding2dTight);
     EXPECT_NEAR(s.residual_displacement_m, base.residual_displacement_m, tol) << theta;
     EXPECT_NEAR(angle_diff_deg(*s.residual_azimuth_deg, *base.residual_azimuth_deg + theta), 0.0,
                 tol / base.residual_displacement_m * 180.0 / kPi)
@@ -278,11 +286,12 @@ TEST(Sliding2d, SteadyStateUnderARotatingAccelerationMatchesTheClosedForm) {
 
 TEST(Sliding2d, WorkEnergyBalance) {
   // Input work = friction work + kinetic energy (here 0: the block ends at rest). The three are integrated as
-  // separate quadratures, so their balance measures the integration error: 1e-7 relative (100 x rel_tol).
+  // separate quadratures, so their balance measures the integration error: 1e-7 relative (100 x rel_tol at the tight
+  // tolerances, rel_tol 1e-9).
   const auto h1 = noisy_record(21);
   const auto h2 = noisy_record(22);
   for (double mu : {0.1, 0.25, 0.4}) {
-    const auto s = slide_2d_summary(h1, h2, {}, SlidingBlock::make(mu, 0.8 * mu));
+    const auto s = slide_2d_summary(h1, h2, {}, SlidingBlock::make(mu, 0.8 * mu), nullptr, kSliding2dTight);
     ASSERT_GT(s.friction_work_J_kg, 1e-3);
     EXPECT_NEAR(s.input_work_J_kg, s.friction_work_J_kg, 1e-7 * s.friction_work_J_kg) << mu;
     // Friction work is mu_k g path length on level ground without a vertical: a second, exact check.
@@ -341,6 +350,68 @@ TEST(Sliding2d, LooseTolerancesLaunchThroughTurningLoadsWithinTheirBound) {
       EXPECT_LT(err, 100.0 * tol * ref.max_abs_displacement_m) << seed << " " << tol;
     }
   }
+}
+
+/// The defaults' accuracy statement (sliding2d.hpp, docs/method.md "Accuracy of the defaults"): residual
+/// displacement and max |u| within 1e-6 x max |u| + 1e-9 m of a tight run, path length within 1e-6 of itself + 1e-9 m.
+void expect_within_the_stated_accuracy(const Sliding2dSummary& s, const Sliding2dSummary& ref, const std::string& what) {
+  const double bound = 1e-6 * ref.max_abs_displacement_m + 1e-9;
+  EXPECT_LT(std::hypot(s.residual_east_m - ref.residual_east_m, s.residual_north_m - ref.residual_north_m), bound)
+      << what;
+  EXPECT_LT(std::abs(s.max_abs_displacement_m - ref.max_abs_displacement_m), bound) << what;
+  EXPECT_LT(std::abs(s.path_length_m - ref.path_length_m), 1e-6 * ref.path_length_m + 1e-9) << what;
+  EXPECT_EQ(s.slip_episodes, ref.slip_episodes) << what;
+}
+
+TEST(Sliding2d, DefaultsMeetTheStatedAccuracy) {
+  // Records: three pairs of the tests' noise records at mu from 0.05 (slipping most of the record, max |u| 0.9 m) to
+  // 0.3 (27 short episodes); reference: rel_tol 1e-12, abs_tol 1e-15 (the convergence test's). Measured worst: 5.9e-7
+  // of max |u| here, 7.8e-7 on the benchmark's Kocaeli pair (docs/method.md): the bound is the stated accuracy, not a
+  // fit to these numbers.
+  struct Case { unsigned seed; double mu; };
+  for (const auto& [seed, mu] : {Case{31, 0.2}, Case{31, 0.05}, Case{41, 0.15}, Case{45, 0.3}}) {
+    const auto h1 = noisy_record(seed);
+    const auto h2 = noisy_record(seed + 100);
+    const auto block = SlidingBlock::make(mu);
+    const auto ref = slide_2d_summary(h1, h2, {}, block, nullptr, {.rel_tol = 1e-12, .abs_tol = 1e-15});
+    ASSERT_GT(ref.max_abs_displacement_m, 1e-2);
+    const auto s = slide_2d_summary(h1, h2, {}, block);
+    expect_within_the_stated_accuracy(s, ref, "seed " + std::to_string(seed) + ", mu " + std::to_string(mu));
+  }
+}
+
+TEST(Sliding2d, DefaultsMeetTheStatedAccuracyOnTheRotatingSteadyState) {
+  // The closed-form case (eqs S8-S9, as in SteadyStateUnderARotatingAcceleration...): at the defaults the displacement
+  // history stays within the stated accuracy (1e-6 x max |u| + 1e-9 m) of a tight run at every sample, and the
+  // steady speed within the closed form's own 1e-4 (the chord's dip, see that test).
+  const double A = 0.5 * kG;
+  const double omega = 4.0 * kPi;
+  const double dt = 1e-3;
+  const std::size_t n = 8001;
+  std::vector<double> e(n), nn(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    e[i] = A * std::cos(omega * static_cast<double>(i) * dt);
+    nn[i] = A * std::sin(omega * static_cast<double>(i) * dt);
+  }
+  const auto east = GroundMotion::uniform(e, dt);
+  const auto north = GroundMotion::uniform(nn, dt);
+  const auto block = SlidingBlock::make(0.3);
+  const auto r = slide_2d(east, north, {90.0, 0.0}, block);
+  const auto ref = slide_2d(east, north, {90.0, 0.0}, block, nullptr, {.rel_tol = 1e-12, .abs_tol = 1e-15});
+  expect_within_the_stated_accuracy(r.summary, ref.summary, "rotating");
+  ASSERT_EQ(r.history.time_s.size(), ref.history.time_s.size());
+  const double bound = 1e-6 * ref.summary.max_abs_displacement_m + 1e-9;
+  double worst = 0.0;
+  for (std::size_t k = 0; k < r.history.time_s.size(); ++k) {
+    ASSERT_EQ(r.history.time_s[k], ref.history.time_s[k]);
+    worst = std::max(worst, std::hypot(r.history.east_m[k] - ref.history.east_m[k],
+                                       r.history.north_m[k] - ref.history.north_m[k]));
+  }
+  EXPECT_LT(worst, bound);
+  const auto steady = rotating_steady_sliding(A, omega, 0.3);
+  const std::size_t last = r.history.time_s.size() - 2;  // t = 7.999 s, deep in the steady state
+  EXPECT_NEAR(std::hypot(r.history.east_m_s[last], r.history.north_m_s[last]), steady.speed_m_s,
+              1e-4 * steady.speed_m_s);
 }
 
 TEST(Sliding2d, ZeroVerticalEqualsNone) {
