@@ -12,23 +12,23 @@ jobs="${TOPPLE_JOBS:-$(nproc)}"
 scripts/install-deps.sh --test  # everything: the run packages plus test libraries, MPI, clang, chromium
 scripts/test-venv.sh || echo "test-venv: no .venv-test; the pyrotd/eqsig comparisons will be skipped"
 
-echo "== release build and tests"
+echo "== [${SECONDS} s] release build and tests"
 cmake --preset release -DTOPPLE_BUILD_TESTS=ON -DTOPPLE_BUILD_BENCH=ON >/dev/null  # on after a demo.sh build
 cmake --build --preset release -j "$jobs"
 ctest --preset release -j "$jobs"
 
-echo "== sanitizer build (ASan + UBSan) and tests"
+echo "== [${SECONDS} s] sanitizer build (ASan + UBSan) and the tests labelled memory"
 cmake --preset asan -DTOPPLE_BUILD_TESTS=ON >/dev/null
-cmake --build --preset asan -j "$jobs"
-ctest --preset asan -j "$jobs"
+cmake --build --preset asan -j "$jobs" --target topple_memory_tests
+ctest --preset asan -j "$jobs" -L memory
 
 if [[ -x scripts/fuzz.sh ]] && command -v clang++ >/dev/null; then
-  echo "== fuzzing each reader for ${TOPPLE_FUZZ_SECONDS:-10} s"
+  echo "== [${SECONDS} s] fuzzing each reader for ${TOPPLE_FUZZ_SECONDS:-10} s"
   scripts/fuzz.sh "${TOPPLE_FUZZ_SECONDS:-10}"
 fi
-echo "== Python package: build topple._core into .venv-py (scripts/python-venv.sh), pytest against the release CLI"
+echo "== [${SECONDS} s] Python package: build topple._core into .venv-py (scripts/python-venv.sh), pytest against the release CLI"
 scripts/python-venv.sh
 # The suite holds tests that need neither ../shared nor the CLI, so pytest never ends with "no tests ran" (exit 5);
 # any non-zero status fails this script.
 TOPPLE_CLI="$PWD/build/release/cli/topple" .venv-py/bin/python -m pytest -q -p no:cacheprovider python/tests
-echo "== all tests passed"
+echo "== [${SECONDS} s] all tests passed"
