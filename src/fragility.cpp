@@ -393,6 +393,41 @@ std::vector<double> check_pairs(const FragilitySpec& spec) {
   return bearings;
 }
 
+// The rocking model excludes lift-off (g + a_v <= 0, rocking.hpp). A pair's vertical scales with the pair, so pair i
+// leaves the ground at every level from L_i = RotD50_i * g / max(-a_v,i) up (the scaled vertical's lowest value
+// reaches -g there; the input is piecewise linear, so its lowest value is a sample's). Checked here, before any run,
+// so that the error names the pair and the highest level the whole ensemble allows instead of stopping a worker
+// part-way with the rocking engine's bare "vertical" message.
+void check_rocking_contact(const FragilitySpec& spec, const std::vector<double>& base_im) {
+  const double g = spec.overturning->options.g_m_s2;
+  const double top = *std::max_element(spec.levels_si.begin(), spec.levels_si.end());
+  double allowed = std::numeric_limits<double>::infinity();
+  std::size_t first_bad = 0;
+  bool any_bad = false;
+  for (std::size_t i = 0; i < spec.motion_sets.size(); ++i) {
+    if (!spec.motion_sets[i]->has_vertical()) continue;
+    const auto a_v = spec.motion_sets[i]->vertical().accel_m_s2();
+    const double lowest = *std::min_element(a_v.begin(), a_v.end());
+    if (!(lowest < 0.0)) continue;
+    const double lift_off = base_im[i] * g / -lowest;
+    allowed = std::min(allowed, lift_off);
+    if (!any_bad && lift_off <= top) {
+      any_bad = true;
+      first_bad = i;
+    }
+  }
+  if (any_bad) {
+    const auto a_v = spec.motion_sets[first_bad]->vertical().accel_m_s2();
+    const double scaled_lowest = *std::min_element(a_v.begin(), a_v.end()) * top / base_im[first_bad];
+    throw parameter_error(
+        "levels", fmt::format("at RotD50 PGA {:.4g} g, pair {} of the ensemble has a vertical of {:.4g} g, so g + a_v "
+                              "<= 0: the body would leave the ground, which the rocking model excludes; every pair "
+                              "keeps contact below {:.4g} g: lower the top of the IM range below that, or leave out "
+                              "the vertical",
+                              top / g, first_bad + 1, scaled_lowest / g, allowed / g));
+  }
+}
+
 }  // namespace
 
 FragilityResult fragility_analysis(const FragilitySpec& spec) {
@@ -425,6 +460,7 @@ FragilityResult fragility_analysis(const FragilitySpec& spec) {
     }
     base_im.push_back(v);
   }
+  if (pairs && spec.overturning) check_rocking_contact(spec, base_im);
 
   ensemble::Plan plan;
   plan.motion_columns = {"level", "motion"};

@@ -1,10 +1,12 @@
 // Fragility: the maximum-likelihood lognormal fit recovers known parameters from binomial data drawn from them, its
 // band contains the truth, degenerate data are handled, and the ensemble analysis counts what single runs give.
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <vector>
 
 #include <boost/math/distributions/normal.hpp>
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "topple/error.hpp"
@@ -320,6 +322,53 @@ TEST(FragilityAnalysis, PairsWithoutABearingDrawOnePerMotionAndBadInputIsNamed) 
   bad = spec;
   bad.bearing_deg = std::nan("");
   EXPECT_EQ(field_of(bad), "bearing");
+}
+
+// Pairs with a vertical under the rocking model (fragility.cpp, check_rocking_contact): pair i leaves the ground from
+// L_i = RotD50_i g / max(-a_v,i) up (the vertical scales with the pair). L_i is computed here from each synthetic
+// triple's own samples; the levels are put 1e-9 relative either side of the lowest L_i.
+TEST(FragilityAnalysis, PairsWithAVerticalRefuseLevelsWhereTheRockingBodyWouldLeaveTheGround) {
+  std::vector<std::shared_ptr<const MotionSet>> sets;
+  std::vector<double> lift_off;  // L_i, m/s2 (RotD50 PGA)
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    SynthesisSetSpec ss;
+    ss.horizontal = ensemble_spec(seed, 6.0);
+    const SynthesizedSet syn = synthesize_set(ss);
+    ASSERT_TRUE(syn.vertical.has_value());
+    sets.push_back(std::make_shared<const MotionSet>(MotionSet::make(syn.first, &syn.second, ss.azimuths,
+                                                                     &*syn.vertical)));
+    const auto a_v = syn.vertical->accel_m_s2();
+    const double lowest = *std::min_element(a_v.begin(), a_v.end());
+    ASSERT_LT(lowest, 0.0);
+    lift_off.push_back(rotd_measures(*sets.back(), {}).pga_m_s2.rotd50 * kStandardGravity / -lowest);
+  }
+  const double allowed = *std::min_element(lift_off.begin(), lift_off.end());
+  const auto first = static_cast<std::size_t>(std::min_element(lift_off.begin(), lift_off.end()) - lift_off.begin());
+  FragilitySpec spec;
+  spec.motion_sets = sets;
+  spec.bearing_deg = 30.0;
+  spec.overturning = OverturnFailure{RockingBody::block(0.15, 0.6), RockingOptions{}};
+  // Just below the lowest lift-off level every run keeps contact and the analysis runs (each count 0..3).
+  spec.levels_si = {0.2 * kStandardGravity, allowed * (1.0 - 1e-9)};
+  const FragilityResult ok = fragility_analysis(spec);
+  ASSERT_EQ(ok.curves.size(), 1u);
+  EXPECT_EQ(ok.curves[0].data.trials, std::vector<int>(2, 3));
+  // At it the pair that sets it is named, with the highest allowed level (4 significant digits, in g), before any run.
+  spec.levels_si.back() = allowed * (1.0 + 1e-9);
+  try {
+    (void)fragility_analysis(spec);
+    FAIL() << "no error at the lift-off level";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().field, "levels");
+    EXPECT_NE(e.problem().find(fmt::format("pair {} of the ensemble", first + 1)), std::string::npos) << e.problem();
+    EXPECT_NE(e.problem().find(fmt::format("every pair keeps contact below {:.4g} g", allowed / kStandardGravity)),
+              std::string::npos)
+        << e.problem();
+  }
+  // Sliding alone keeps running there: the 2-D block's friction uses g_e^+ and reports the loss (sliding2d.hpp).
+  spec.overturning.reset();
+  spec.sliding = SlidingFailure{SlidingBlock::make(0.3), 0.02};
+  EXPECT_EQ(fragility_analysis(spec).curves[0].data.trials, std::vector<int>(2, 3));
 }
 
 }  // namespace
