@@ -255,6 +255,7 @@ void run_fragility(const FragilityOptions& o) {
       if (field == "mode") throw parameter_error("--one-way", e.problem());
       if (field == "slope") throw parameter_error("--slope-deg", e.problem());
       if (field == "bearing") throw parameter_error("--bearing-deg", e.problem());
+      if (field == "levels") throw parameter_error("--im-range", e.problem());
       throw;
     }
   }();

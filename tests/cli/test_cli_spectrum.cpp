@@ -142,6 +142,14 @@ TEST(CliFragility, SyntheticPairsOnTheRotD50AxisWithRandomBearings) {
   const auto at = run_json("fragility --synth 3 --components 3 --duration 8s --im-range 0.05:0.6:4 --shape block "
                            "--width 10cm --height 40cm --bearing-deg 30 --json --quiet");
   EXPECT_EQ(at.at("bearings_deg"), nlohmann::json::array({30.0, 30.0, 30.0}));
+  // With the vertical, levels where a pair's scaled vertical reaches -1 g are outside the rocking model: refused
+  // before any run, naming --im-range, the pair and the highest level every pair allows (fragility.cpp).
+  const auto high = test::run_cli("fragility --synth 3 --components 3 --duration 8s --im-range 0.05:3:4 --shape block "
+                                  "--width 10cm --height 40cm --bearing-deg 30 --quiet");
+  EXPECT_EQ(high.exit_code, 2) << high.err;
+  EXPECT_NE(high.err.find("--im-range"), std::string::npos) << high.err;
+  EXPECT_NE(high.err.find("every pair keeps contact below"), std::string::npos) << high.err;
+  EXPECT_TRUE(high.out.empty()) << high.out;
 }
 
 TEST(CliFragility, RecordPairWithAZeroSecondComponentIsThe1dFragility) {
