@@ -15,10 +15,12 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <initializer_list>
 #include <limits>
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <type_traits>
 #include <utility>
 #include <variant>
@@ -541,19 +543,25 @@ std::optional<ComponentAzimuths> azimuths_arg(const std::optional<std::vector<do
   return ComponentAzimuths{(*azimuths_deg)[0], (*azimuths_deg)[1]};
 }
 
-/// Runs `f`, renaming the fields the library names for a motion set to the Python parameters (as the CLI maps them
-/// to its options): "azimuths" -> azimuths_deg, "azimuth" -> azimuth_deg. Errors located in a file are kept.
+/// Runs `f`, renaming the fields the library names (first of each pair) to the Python parameters the caller typed
+/// (second), as the CLI maps them to its options. Errors located in a file are kept.
 template <class F>
-auto with_set_fields(F&& f) -> decltype(f()) {
+auto with_fields(std::initializer_list<std::pair<std::string_view, const char*>> names, F&& f) -> decltype(f()) {
   try {
     return f();
   } catch (const InputError& e) {
     if (!e.where().file.empty()) throw;
-    const std::string& field = e.where().field;
-    if (field == "azimuths") throw parameter_error("azimuths_deg", e.problem());
-    if (field == "azimuth") throw parameter_error("azimuth_deg", e.problem());
+    for (const auto& [field, parameter] : names) {
+      if (e.where().field == field) throw parameter_error(parameter, e.problem());
+    }
     throw;
   }
+}
+
+/// A motion set's fields: "azimuths" -> azimuths_deg, "azimuth" -> azimuth_deg.
+template <class F>
+auto with_set_fields(F&& f) -> decltype(f()) {
+  return with_fields({{"azimuths", "azimuths_deg"}, {"azimuth", "azimuth_deg"}}, std::forward<F>(f));
 }
 
 MotionSet make_motion_set(const GroundMotion& first, const GroundMotion* second, const GroundMotion* vertical,
@@ -930,23 +938,19 @@ nb::dict sliding_spectrum_2d_dict(const GroundMotion& first, const GroundMotion&
   }
   nb::dict d = nb::cast<nb::dict>(to_python(io::sliding_spectrum_2d_json(s, motion_name(first), motion_name(second))));
   // Columns for plotting, one value per mu in the given order (the same numbers as "points").
-  const std::size_t n = s.points.size();
-  std::vector<double> mu_out(n), ky(n), max_abs(n), residual(n), h1(n), h2(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const SlidingSpectrum2dPoint& p = s.points[i];
-    mu_out[i] = p.mu;
-    ky[i] = p.yield_over_rotd50_pga;
-    max_abs[i] = p.bidirectional.max_abs_displacement_m;
-    residual[i] = p.bidirectional.residual_displacement_m;
-    h1[i] = p.first_alone.max_abs_displacement_m;
-    h2[i] = p.second_alone.max_abs_displacement_m;
-  }
-  d["mu"] = to_numpy(std::move(mu_out));
-  d["ky_over_rotd50_pga"] = to_numpy(std::move(ky));
-  d["max_abs_displacement_m"] = to_numpy(std::move(max_abs));
-  d["residual_displacement_m"] = to_numpy(std::move(residual));
-  d["h1_max_abs_displacement_m"] = to_numpy(std::move(h1));
-  d["h2_max_abs_displacement_m"] = to_numpy(std::move(h2));
+  const auto column = [&s](auto get) {
+    std::vector<double> v;
+    v.reserve(s.points.size());
+    for (const SlidingSpectrum2dPoint& p : s.points) v.push_back(get(p));
+    return to_numpy(std::move(v));
+  };
+  using P = SlidingSpectrum2dPoint;
+  d["mu"] = column([](const P& p) { return p.mu; });
+  d["ky_over_rotd50_pga"] = column([](const P& p) { return p.yield_over_rotd50_pga; });
+  d["max_abs_displacement_m"] = column([](const P& p) { return p.bidirectional.max_abs_displacement_m; });
+  d["residual_displacement_m"] = column([](const P& p) { return p.bidirectional.residual_displacement_m; });
+  d["h1_max_abs_displacement_m"] = column([](const P& p) { return p.first_alone.max_abs_displacement_m; });
+  d["h2_max_abs_displacement_m"] = column([](const P& p) { return p.second_alone.max_abs_displacement_m; });
   return d;
 }
 
@@ -1117,18 +1121,10 @@ nb::dict fragility_dict(nb::handle motions, nb::handle levels, const std::string
         OverturnFailure{*body, make_rocking_options(e, rock_mu, g_m_s2, method, rel_tol, rk4_substeps, max_run_out_s)};
   }
   spec.threads = threads;
-  FragilityResult result;
-  try {
+  const FragilityResult result = with_fields({{"bearing", "bearing_deg"}, {"slope", "slope_deg"}}, [&] {
     nb::gil_scoped_release release;
-    result = fragility_analysis(spec);
-  } catch (const InputError& e) {
-    // The library names its fields; the caller typed these parameters.
-    if (!e.where().file.empty()) throw;
-    const std::string& field = e.where().field;
-    if (field == "bearing") throw parameter_error("bearing_deg", e.problem());
-    if (field == "slope") throw parameter_error("slope_deg", e.problem());
-    throw;
-  }
+    return fragility_analysis(spec);
+  });
   nb::list curves;
   for (const FragilityCurve& c : result.curves) {
     nb::dict cd;
