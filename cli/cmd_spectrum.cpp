@@ -187,37 +187,7 @@ void run_slide_spectrum_2d(const SlideSpectrumOptions& o, std::vector<double> mu
     file.commit();
   }
   if (o.json) {
-    nlohmann::ordered_json j;
-    j["motion"] = h1;
-    j["second"] = o.input.h2;
-    j["vertical"] = sp.with_vertical;
-    j["azimuths_deg"] = {sp.azimuths.first_deg, sp.azimuths.second_deg};
-    j["pga_axis"] = "RotD50 of the pair (Boore 2010)";
-    j["rotd50_pga_g"] = sp.rotd50_pga_m_s2 / g;
-    j["h1_pga_g"] = sp.first_pga_m_s2 / g;
-    j["h2_pga_g"] = sp.second_pga_m_s2 / g;
-    j["g_m_s2"] = g;
-    j["mode"] = sliding_mode_name(SlidingMode::two_way);
-    j["slope_deg"] = 0.0;
-    auto& pts = j["points"] = nlohmann::ordered_json::array();
-    const auto alone = [](const SlidingSummary& s) {
-      return nlohmann::ordered_json{{"max_abs_displacement_m", s.max_abs_displacement_m},
-                                    {"residual_displacement_m", s.residual_displacement_m},
-                                    {"slip_episodes", s.slip_episodes}};
-    };
-    for (const auto& p : sp.points) {
-      nlohmann::ordered_json x;
-      x["mu"] = p.mu;
-      x["yield_accel_g"] = p.yield_accel_g;
-      x["ky_over_rotd50_pga"] = p.yield_over_rotd50_pga;
-      // The 2-D run's fields, as `slide --h2 --json` prints them.
-      const SlidingBlock block = SlidingBlock::make(p.mu, std::nullopt, 0.0, SlidingMode::two_way, g);
-      x.update(io::sliding_2d_summary_json(p.bidirectional, block));
-      x["h1_alone"] = alone(p.first_alone);
-      x["h2_alone"] = alone(p.second_alone);
-      pts.push_back(std::move(x));
-    }
-    fmt::print("{}\n", j.dump(2));
+    fmt::print("{}\n", io::sliding_spectrum_2d_json(sp, h1, o.input.h2).dump(2));
     return;
   }
   fmt::print("bidirectional sliding spectrum: {} at {:g} deg and {} at {:g} deg{} (RotD50 PGA {:.4f} g; components "

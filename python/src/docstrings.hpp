@@ -444,6 +444,40 @@ dict
     mode, g_m_s2 (m/s^2), motion (the record's name).
 )";
 
+inline constexpr const char* slide_spectrum_2d =
+    R"(Bidirectional sliding spectrum: one 2-D block per friction coefficient under a pair (topple/object_spectra.hpp).
+
+For each mu (static = kinetic, level ground, two-way) the block slides under both horizontal components together,
+with the vertical when given: topple.slide_2d with that mu, bit for bit. The abscissa k_y g / PGA uses the pair's
+RotD50 PGA (Boore 2010; topple.rotd). Beside each point, each horizontal component run alone by the 1-D solver with
+the same block and vertical (topple.slide). The dict is `topple spectrum slide H1 --h2 H2 --json`'s.
+
+Parameters
+----------
+first, second : GroundMotion
+    The two horizontal components, positive toward their azimuths, m/s^2 inside; any sampling (merged exactly).
+mu : numpy.ndarray of float64 or sequence of float
+    Friction coefficients (dimensionless, finite, >= 0).
+azimuths_deg : sequence of two float
+    The components' azimuths, deg clockwise from north (default (90, 0): east, north); perpendicular.
+vertical : GroundMotion, optional
+    Vertical ground acceleration, positive up, m/s^2 inside.
+g : float
+    Gravity, m/s^2 (default 9.80665 m/s^2).
+
+Returns
+-------
+dict
+    The CLI's keys: motion and second (the components' names), vertical (bool), azimuths_deg (deg), pga_axis,
+    rotd50_pga_g (g), h1_pga_g and h2_pga_g (each component's PGA, g), g_m_s2 (m/s^2), mode ("two-way"), slope_deg
+    (0 deg), and points: per mu a dict of mu, yield_accel_g (g), ky_over_rotd50_pga, the 2-D run's summary
+    (topple.Sliding2dResult.json()'s keys: residual_displacement_m in m, residual_azimuth_deg in deg or None,
+    max_abs_displacement_m in m, path_length_m in m, ...) and h1_alone / h2_alone (max_abs_displacement_m in m,
+    residual_displacement_m in m signed, slip_episodes). Also, as float64 arrays in the order of mu: mu,
+    ky_over_rotd50_pga, max_abs_displacement_m (m), residual_displacement_m (m), h1_max_abs_displacement_m (m),
+    h2_max_abs_displacement_m (m).
+)";
+
 inline constexpr const char* slide_flexible =
     R"(Sliding on a flexible support (topple/flexible.hpp), decoupled or coupled.
 
@@ -1217,12 +1251,19 @@ Every motion is scaled so that its IM equals each level and run on a sliding blo
 threshold_m) and/or a rocking body (failure: overturning). Warns (RuntimeWarning) for each curve whose fit has beta
 at its lower bound. Runs on `threads` cores with the GIL released. Draw it with topple.plot.fragility.
 
+An ensemble of pairs (a list of topple.MotionSet with two horizontal components and their azimuths, and optionally
+a vertical; e.g. from topple.synth(components=2)) is `topple fragility --h2` / `--components 2|3`: the IM is each
+pair's RotD50 PGA (im must be "pga"), every set is scaled as a whole, the block slides in two dimensions (level
+ground, two-way) and the body rocks under the projection of the pair on its bearing (planar model; a cylinder in
+its worst direction): bearing_deg for every motion or, when None, a bearing drawn uniformly in [0, 360) deg per
+motion from bearing_seed (the same at every level).
+
 Parameters
 ----------
-motions : list of GroundMotion
-    The ensemble.
+motions : list of GroundMotion, or list of MotionSet
+    The ensemble: records (one component each), or pairs (one kind per list).
 levels : numpy.ndarray of float64 or sequence of float
-    IM levels: g for pga, m/s for pgv and cav, m for pgd.
+    IM levels: g for pga (pairs: RotD50 PGA, g), m/s for pgv and cav, m for pgd.
 im : {"pga", "pgv", "pgd", "cav"}
     Intensity measure.
 mu : float, optional
@@ -1243,13 +1284,19 @@ rock_mu : float, optional
     Friction coefficient for the rocking onset check (dimensionless).
 )" TOPPLE_DOC_ROCKING_SOLVER R"(threads : int
     Worker threads (0: all cores).
+bearing_deg : float, optional
+    Pairs only: the rocking body's bearing (across its narrow side), deg clockwise from north, for every motion (not
+    for a cylinder); None: uniformly random per motion.
+bearing_seed : int, optional
+    Pairs only, without bearing_deg: seed of the random bearings (default 1, as `topple fragility`).
 
 Returns
 -------
 dict
-    im, im_unit, runs, g_m_s2 (m/s^2), motions (count), mu, threshold_m (m) and body as given, and curves: a
-    list (slide first, then overturn) of dicts name, im (levels, in im_unit), trials, failures (int64), fraction,
-    fit (FragilityFit, theta in im_unit; None when the counts cannot be fitted) and fit_note.
+    im, im_unit, rotd50 (True for pairs: the IM is the RotD50 PGA), bearings_deg (pairs: each motion's bearing in
+    deg, float64 array; None otherwise), runs, g_m_s2 (m/s^2), motions (count), mu, threshold_m (m) and body as
+    given, and curves: a list (slide first, then overturn) of dicts name, im (levels, in im_unit), trials, failures
+    (int64), fraction, fit (FragilityFit, theta in im_unit; None when the counts cannot be fitted) and fit_note.
 )";
 
 inline constexpr const char* sweep = R"(Run a sweep file in memory (used by topple.sweep).

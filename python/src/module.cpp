@@ -15,10 +15,12 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <initializer_list>
 #include <limits>
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <type_traits>
 #include <utility>
 #include <variant>
@@ -541,19 +543,25 @@ std::optional<ComponentAzimuths> azimuths_arg(const std::optional<std::vector<do
   return ComponentAzimuths{(*azimuths_deg)[0], (*azimuths_deg)[1]};
 }
 
-/// Runs `f`, renaming the fields the library names for a motion set to the Python parameters (as the CLI maps them
-/// to its options): "azimuths" -> azimuths_deg, "azimuth" -> azimuth_deg. Errors located in a file are kept.
+/// Runs `f`, renaming the fields the library names (first of each pair) to the Python parameters the caller typed
+/// (second), as the CLI maps them to its options. Errors located in a file are kept.
 template <class F>
-auto with_set_fields(F&& f) -> decltype(f()) {
+auto with_fields(std::initializer_list<std::pair<std::string_view, const char*>> names, F&& f) -> decltype(f()) {
   try {
     return f();
   } catch (const InputError& e) {
     if (!e.where().file.empty()) throw;
-    const std::string& field = e.where().field;
-    if (field == "azimuths") throw parameter_error("azimuths_deg", e.problem());
-    if (field == "azimuth") throw parameter_error("azimuth_deg", e.problem());
+    for (const auto& [field, parameter] : names) {
+      if (e.where().field == field) throw parameter_error(parameter, e.problem());
+    }
     throw;
   }
+}
+
+/// A motion set's fields: "azimuths" -> azimuths_deg, "azimuth" -> azimuth_deg.
+template <class F>
+auto with_set_fields(F&& f) -> decltype(f()) {
+  return with_fields({{"azimuths", "azimuths_deg"}, {"azimuth", "azimuth_deg"}}, std::forward<F>(f));
 }
 
 MotionSet make_motion_set(const GroundMotion& first, const GroundMotion* second, const GroundMotion* vertical,
@@ -916,6 +924,36 @@ nb::dict sliding_spectrum_dict(const GroundMotion& motion, nb::handle mu, double
   return d;
 }
 
+/// slide_spectrum_2d: the bidirectional spectrum (object_spectra.hpp, sliding_spectrum_2d) of a pair, as the dict of
+/// `topple spectrum slide H1 --h2 H2 --json` (io::sliding_spectrum_2d_json) with the main columns also as arrays.
+nb::dict sliding_spectrum_2d_dict(const GroundMotion& first, const GroundMotion& second, nb::handle mu,
+                                  const std::vector<double>& azimuths_deg, const GroundMotion* vertical, double g_m_s2) {
+  const std::vector<double> mus = to_vector(mu, "mu");
+  check_two_azimuths(azimuths_deg);
+  const MotionSet set = make_motion_set(first, &second, vertical, azimuths_deg);
+  SlidingSpectrum2d s;
+  {
+    nb::gil_scoped_release release;
+    s = with_set_fields([&] { return sliding_spectrum_2d(set, mus, g_m_s2); });
+  }
+  nb::dict d = nb::cast<nb::dict>(to_python(io::sliding_spectrum_2d_json(s, motion_name(first), motion_name(second))));
+  // Columns for plotting, one value per mu in the given order (the same numbers as "points").
+  const auto column = [&s](auto get) {
+    std::vector<double> v;
+    v.reserve(s.points.size());
+    for (const SlidingSpectrum2dPoint& p : s.points) v.push_back(get(p));
+    return to_numpy(std::move(v));
+  };
+  using P = SlidingSpectrum2dPoint;
+  d["mu"] = column([](const P& p) { return p.mu; });
+  d["ky_over_rotd50_pga"] = column([](const P& p) { return p.yield_over_rotd50_pga; });
+  d["max_abs_displacement_m"] = column([](const P& p) { return p.bidirectional.max_abs_displacement_m; });
+  d["residual_displacement_m"] = column([](const P& p) { return p.bidirectional.residual_displacement_m; });
+  d["h1_max_abs_displacement_m"] = column([](const P& p) { return p.first_alone.max_abs_displacement_m; });
+  d["h2_max_abs_displacement_m"] = column([](const P& p) { return p.second_alone.max_abs_displacement_m; });
+  return d;
+}
+
 RockingBody::Shape parse_family_shape(const std::string& shape) {
   if (shape != "general") return parse_shape(shape, "shape");
   throw parameter_error("shape", fmt::format("unknown shape '{}' for a body family (known: block, cylinder)", shape));
@@ -1038,22 +1076,38 @@ nb::dict fragility_dict(nb::handle motions, nb::handle levels, const std::string
                         const std::string& mode, double slope_deg, const std::optional<RockingBody>& body,
                         const std::variant<double, std::string>& e, std::optional<double> rock_mu, double g_m_s2,
                         const std::string& method, double rel_tol, int rk4_substeps, double max_run_out_s,
-                        int threads) {
+                        int threads, std::optional<double> bearing_deg, std::optional<std::uint64_t> bearing_seed) {
   FragilitySpec spec;
   spec.im = parse_intensity_measure(im, "im");
   const double unit = im_unit(spec.im, g_m_s2);
   spec.levels_si = to_vector(levels, "levels");
   for (double& v : spec.levels_si) v *= unit;
-  if (nb::isinstance<GroundMotion>(motions) || !(nb::isinstance<nb::list>(motions) || nb::isinstance<nb::tuple>(motions))) {
-    throw nb::type_error("motions must be a list of topple.GroundMotion (the ensemble)");
+  if (nb::isinstance<GroundMotion>(motions) || nb::isinstance<MotionSet>(motions) ||
+      !(nb::isinstance<nb::list>(motions) || nb::isinstance<nb::tuple>(motions))) {
+    throw nb::type_error("motions must be a list of topple.GroundMotion, or of topple.MotionSet (pairs), the ensemble");
   }
+  // One kind per ensemble: records (one component) or pairs (fragility.hpp, "Pairs"); the first element decides.
+  const bool pairs = nb::len(motions) > 0 && nb::isinstance<MotionSet>(motions[0]);
   for (nb::handle item : motions) {
-    if (!nb::isinstance<GroundMotion>(item)) {
-      throw nb::type_error(fmt::format("motions: every element must be a topple.GroundMotion, got {}",
+    if (pairs && nb::isinstance<MotionSet>(item)) {
+      spec.motion_sets.push_back(std::make_shared<const MotionSet>(nb::cast<const MotionSet&>(item)));
+    } else if (!pairs && nb::isinstance<GroundMotion>(item)) {
+      spec.motions.push_back(std::make_shared<const GroundMotion>(nb::cast<const GroundMotion&>(item)));
+    } else {
+      throw nb::type_error(fmt::format("motions: every element must be a topple.{} (one kind per ensemble: the first "
+                                       "is one), got {}", pairs ? "MotionSet" : "GroundMotion",
                                        nb::type_name(item.type()).c_str()).c_str());
     }
-    spec.motions.push_back(std::make_shared<const GroundMotion>(nb::cast<const GroundMotion&>(item)));
   }
+  if (!pairs) {
+    // A value that would be ignored is a silent guess (as `topple fragility` refuses --bearing-deg without pairs).
+    for (const auto& [name, given] : {std::pair{"bearing_deg", bearing_deg.has_value()},
+                                      std::pair{"bearing_seed", bearing_seed.has_value()}}) {
+      if (given) throw parameter_error(name, "applies to an ensemble of pairs: motions as a list of topple.MotionSet");
+    }
+  }
+  spec.bearing_deg = bearing_deg;
+  if (bearing_seed) spec.bearing_seed = *bearing_seed;
   if (mu) {
     if (!threshold_m) throw parameter_error("threshold_m", "a sliding curve (mu given) needs threshold_m, m");
     spec.sliding = SlidingFailure{SlidingBlock::make(*mu, mu_kinetic, slope_deg * kPi / 180.0,
@@ -1067,11 +1121,10 @@ nb::dict fragility_dict(nb::handle motions, nb::handle levels, const std::string
         OverturnFailure{*body, make_rocking_options(e, rock_mu, g_m_s2, method, rel_tol, rk4_substeps, max_run_out_s)};
   }
   spec.threads = threads;
-  FragilityResult result;
-  {
+  const FragilityResult result = with_fields({{"bearing", "bearing_deg"}, {"slope", "slope_deg"}}, [&] {
     nb::gil_scoped_release release;
-    result = fragility_analysis(spec);
-  }
+    return fragility_analysis(spec);
+  });
   nb::list curves;
   for (const FragilityCurve& c : result.curves) {
     nb::dict cd;
@@ -1095,11 +1148,14 @@ nb::dict fragility_dict(nb::handle motions, nb::handle levels, const std::string
   nb::dict d;
   d["im"] = std::string(intensity_measure_name(result.im));
   d["im_unit"] = std::string(intensity_measure_unit(result.im));
+  // Pairs: the IM is each pair's RotD50 PGA, and each motion's rocking bearing (given or drawn) is reported.
+  d["rotd50"] = result.rotd50;
+  d["bearings_deg"] = result.rotd50 ? nb::cast(to_numpy(std::vector<double>(result.bearings_deg))) : nb::none();
   d["curves"] = curves;
   d["runs"] = result.runs;
   d["g_m_s2"] = g_m_s2;
   // What was analysed, for the figure's title (topple.plot.fragility).
-  d["motions"] = spec.motions.size();
+  d["motions"] = pairs ? spec.motion_sets.size() : spec.motions.size();
   d["mu"] = mu;
   d["threshold_m"] = threshold_m;
   d["body"] = body;
@@ -1403,6 +1459,9 @@ NB_MODULE(_core, m) {
 
   m.def("slide_spectrum", &sliding_spectrum_dict, "motion"_a, "mu"_a, nb::kw_only(), "slope_deg"_a = 0.0,
         "mode"_a = "two-way", "g"_a = kStandardGravity, doc::slide_spectrum);
+  m.def("slide_spectrum_2d", &sliding_spectrum_2d_dict, "first"_a, "second"_a, "mu"_a, nb::kw_only(),
+        "azimuths_deg"_a = std::vector<double>{90.0, 0.0}, "vertical"_a = nb::none(), "g"_a = kStandardGravity,
+        doc::slide_spectrum_2d);
   m.def("slide_flexible", &run_slide_flexible, "motion"_a, nb::kw_only(), "mu"_a, "mode"_a = "two-way",
         "support_freq_hz"_a = nb::none(), "support_damping"_a = 0.05, "mass_ratio"_a = 0.0, "height_m"_a = nb::none(),
         "vs_slope_m_s"_a = nb::none(), "vs_base_m_s"_a = nb::none(), "damping"_a = nb::none(),
@@ -1635,6 +1694,6 @@ NB_MODULE(_core, m) {
         "body"_a = nb::none(), "e"_a = "housner", "rock_mu"_a = nb::none(), "g"_a = kStandardGravity,
         "method"_a = std::string(rocking_method_name(kRockingDefaults.method)), "rel_tol"_a = kRockingDefaults.rel_tol,
         "rk4_substeps"_a = kRockingDefaults.rk4_substeps, "max_run_out_s"_a = kRockingDefaults.max_run_out_s,
-        "threads"_a = 0, doc::fragility);
+        "threads"_a = 0, "bearing_deg"_a = nb::none(), "bearing_seed"_a = nb::none(), doc::fragility);
   m.def("_sweep", &sweep_dict, "path"_a, nb::kw_only(), "threads"_a = 0, doc::sweep);
 }

@@ -52,6 +52,7 @@ from ._core import (
     slide_flexible,
     slide_rock,
     slide_spectrum,
+    slide_spectrum_2d,
     synth,
 )
 
@@ -91,6 +92,7 @@ __all__ = [
     "slide_flexible",
     "slide_rock",
     "slide_spectrum",
+    "slide_spectrum_2d",
     "survey_toml",
     "sweep",
     "synth",

@@ -172,6 +172,11 @@ def slide_spectrum(motion: GroundMotion, mu: ArrayIn, *, slope_deg: float = 0.0,
                    mode: Literal["two-way", "one-way"] = "two-way", g: float = 9.80665) -> dict[str, Any]:
     """Sliding displacement spectrum: one block per friction coefficient (topple/object_spectra.hpp)."""
 
+def slide_spectrum_2d(first: GroundMotion, second: GroundMotion, mu: ArrayIn, *,
+                      azimuths_deg: Sequence[float] = (90.0, 0.0), vertical: Optional[GroundMotion] = None,
+                      g: float = 9.80665) -> dict[str, Any]:
+    """Bidirectional sliding spectrum: one 2-D block per friction coefficient under a pair (topple/object_spectra.hpp)."""
+
 class RockingBody:
     """A rigid body that rocks about its base edges (made by Block, Cylinder or General)."""
     shape: str
@@ -394,13 +399,14 @@ class FragilityFit:
 def fragility_fit(im: ArrayIn, trials: Sequence[int], failures: Sequence[int]) -> FragilityFit:
     """Fit a lognormal fragility to counts of failures."""
 
-def fragility(motions: Sequence[GroundMotion], levels: ArrayIn, *, im: Literal["pga", "pgv", "pgd", "cav"] = "pga",
+def fragility(motions: Union[Sequence[GroundMotion], Sequence[MotionSet]], levels: ArrayIn, *, im: Literal["pga", "pgv", "pgd", "cav"] = "pga",
               mu: Optional[float] = None, threshold_m: Optional[float] = None, mu_kinetic: Optional[float] = None,
               mode: Literal["two-way", "one-way"] = "two-way", slope_deg: float = 0.0,
               body: Optional[RockingBody] = None, e: Union[Literal["housner"], float] = "housner",
               rock_mu: Optional[float] = None, g: float = 9.80665, method: Literal["adaptive", "rk4"] = "adaptive",
               rel_tol: float = 1e-8, rk4_substeps: int = 10, max_run_out_s: float = 60.0,
-              threads: int = 0) -> dict[str, Any]:
+              threads: int = 0, bearing_deg: Optional[float] = None,
+              bearing_seed: Optional[int] = None) -> dict[str, Any]:
     """Fragility analysis: failure counts over scaled motions and their lognormal fits (topple/fragility.hpp)."""
 
 # ---- sweeps ----

@@ -40,6 +40,42 @@ nlohmann::ordered_json sliding_2d_summary_json(const Sliding2dSummary& s, const 
   return j;
 }
 
+nlohmann::ordered_json sliding_spectrum_2d_json(const SlidingSpectrum2d& sp, const std::string& first_name,
+                                                const std::string& second_name) {
+  const double g = sp.g_m_s2;
+  nlohmann::ordered_json j;
+  j["motion"] = first_name;
+  j["second"] = second_name;
+  j["vertical"] = sp.with_vertical;
+  j["azimuths_deg"] = {sp.azimuths.first_deg, sp.azimuths.second_deg};
+  j["pga_axis"] = "RotD50 of the pair (Boore 2010)";
+  j["rotd50_pga_g"] = sp.rotd50_pga_m_s2 / g;
+  j["h1_pga_g"] = sp.first_pga_m_s2 / g;
+  j["h2_pga_g"] = sp.second_pga_m_s2 / g;
+  j["g_m_s2"] = g;
+  j["mode"] = sliding_mode_name(SlidingMode::two_way);
+  j["slope_deg"] = 0.0;
+  auto& pts = j["points"] = nlohmann::ordered_json::array();
+  const auto alone = [](const SlidingSummary& s) {
+    return nlohmann::ordered_json{{"max_abs_displacement_m", s.max_abs_displacement_m},
+                                  {"residual_displacement_m", s.residual_displacement_m},
+                                  {"slip_episodes", s.slip_episodes}};
+  };
+  for (const SlidingSpectrum2dPoint& p : sp.points) {
+    nlohmann::ordered_json x;
+    x["mu"] = p.mu;
+    x["yield_accel_g"] = p.yield_accel_g;
+    x["ky_over_rotd50_pga"] = p.yield_over_rotd50_pga;
+    // The 2-D run's fields, as `slide --h2 --json` prints them (the spectrum's block: level, two-way, mu_s = mu_k).
+    const SlidingBlock block = SlidingBlock::make(p.mu, std::nullopt, 0.0, SlidingMode::two_way, g);
+    x.update(sliding_2d_summary_json(p.bidirectional, block));
+    x["h1_alone"] = alone(p.first_alone);
+    x["h2_alone"] = alone(p.second_alone);
+    pts.push_back(std::move(x));
+  }
+  return j;
+}
+
 nlohmann::ordered_json oriented_rocking_json(const OrientedRockingSummary& summary, const OrientedBody& body,
                                              std::optional<double> bearing_deg, const ComponentAzimuths& azimuths,
                                              const OrientationOptions& orientation) {

@@ -11,6 +11,7 @@
 
 #include "topple/field.hpp"
 #include "topple/ground_motion.hpp"
+#include "topple/object_spectra.hpp"
 #include "topple/oriented.hpp"
 #include "topple/rocking.hpp"
 #include "topple/sliding.hpp"
@@ -37,6 +38,14 @@ template <class Result, std::size_t N>
 [[nodiscard]] nlohmann::ordered_json sliding_summary_json(const SlidingSummary& summary, const SlidingBlock& block);
 /// The bidirectional sliding summary (kSliding2dFields) with the frame it is given in.
 [[nodiscard]] nlohmann::ordered_json sliding_2d_summary_json(const Sliding2dSummary& summary, const SlidingBlock& block);
+/// The bidirectional sliding spectrum (object_spectra.hpp) as `topple spectrum slide H1 --h2 H2 --json` prints it and
+/// topple.slide_spectrum_2d returns it: motion and second (the components' names), vertical, azimuths_deg,
+/// pga_axis, rotd50_pga_g, h1_pga_g, h2_pga_g, g_m_s2, mode, slope_deg, and points: per mu, mu, yield_accel_g,
+/// ky_over_rotd50_pga, the 2-D run's sliding_2d_summary_json, and h1_alone / h2_alone (max_abs_displacement_m,
+/// residual_displacement_m, slip_episodes of each component run alone by the 1-D solver).
+[[nodiscard]] nlohmann::ordered_json sliding_spectrum_2d_json(const SlidingSpectrum2d& spectrum,
+                                                              const std::string& first_name,
+                                                              const std::string& second_name);
 
 /// Summary of a rocking run as JSON, as `topple rock --json` prints it less its "input" object: the fields of
 /// kRockingFields (max_abs_rotation_rad, max_rotation_over_alpha, overturned, overturn_time_s (null when none), ...),
