@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
+#include <cstdint>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -249,20 +251,54 @@ struct Recorder {
   double last_stop = 0.0;
 };
 
+/// Tables of inverse_fifth_root (below), filled once at start-up.
+struct FifthRootTables {
+  std::array<double, 5> exponent{};    // 2^(-r/5)
+  std::array<double, 256> mantissa{};  // (1 + (j + 1/2) / 256)^(-1/5)
+};
+const FifthRootTables kFifthRoots = [] {
+  FifthRootTables t;
+  for (std::size_t r = 0; r < t.exponent.size(); ++r) t.exponent[r] = std::exp2(-static_cast<double>(r) / 5.0);
+  for (std::size_t j = 0; j < t.mantissa.size(); ++j) {
+    t.mantissa[j] = std::pow(1.0 + (static_cast<double>(j) + 0.5) / 256.0, -0.2);
+  }
+  return t;
+}();
+
+/// x^(-1/5) to 4e-4 relative (half the largest change of m^(-1/5) over a table cell, 0.2 / 512) for x in
+/// [1e-7, 1e4], the argument clamped to that range: the factors above saturate outside it (0.9 x^(-1/5) >= 10 for
+/// x <= 5.9e-6, <= 0.2 for x >= 1845), so the clamp changes no factor. A step-size factor needs no more digits (it
+/// carries the safety factor 0.9): the step's acceptance (err <= 1) is decided exactly by the error checker. With
+/// x = m 2^e (m in [1, 2)) and e = 5k + r (r in 0..4): x^(-1/5) = 2^(-k) 2^(-r/5) m^(-1/5), the last two from
+/// tables (m^(-1/5) at the midpoints of 256 cells on the top 8 bits of m's fraction).
+[[nodiscard]] double inverse_fifth_root(double x) {
+  x = std::clamp(x, 1e-7, 1e4);
+  if (!(x == x)) return x;  // NaN passes through, as from std::pow
+  const auto bits = std::bit_cast<std::uint64_t>(x);
+  const int e = static_cast<int>(bits >> 52) - 1023;  // x is positive and normal here
+  const int k = (e + 1000) / 5 - 200;                  // floor(e / 5) for e >= -1000
+  const int r = e - 5 * k;
+  const double two_k = std::bit_cast<double>(static_cast<std::uint64_t>(1023 - k) << 52);  // 2^(-k)
+  return two_k * kFifthRoots.exponent[static_cast<std::size_t>(r)] *
+         kFifthRoots.mantissa[static_cast<std::size_t>((bits >> 44) & 255U)];
+}
+
 /// Boost.Odeint's step adjuster interface with the step law of Hairer, Norsett & Wanner's DOPRI5 (I, II.4, eq 4.13
 /// and the code's fac = 0.9, facl = 0.2, facr = 10, with the PI term's beta 0, where the code has 0.04, which took 3 %
 /// more tries here): dt *= min(0.9 err^(-1/5), 10) after an
 /// accepted step, dt *= max(0.9 err^(-1/5), 0.2) after a rejected one. Odeint's default keeps dt for 0.5 <= err <= 1,
 /// grows it at most 4.5x and shrinks it with err^(-1/3); where stability and the direction's relaxation hold the step
 /// near its limit (the low speeds) that took 7 % more tries on the benchmark (docs/performance.md).
+/// err^(-1/5) is computed by inverse_fifth_root, not std::pow: libm's pow was 15 % of the run time of the 95 %-stuck
+/// benchmark (perf, docs/performance.md), one call per try.
 struct StepAdjuster {
   using time_type = double;
   using value_type = double;
   [[nodiscard]] double decrease_step(double dt, double error, int /*error_order*/) const {
-    return dt * std::max(0.9 * std::pow(error, -0.2), 0.2);
+    return dt * std::max(0.9 * inverse_fifth_root(error), 0.2);
   }
   [[nodiscard]] double increase_step(double dt, double error, int /*stepper_order*/) const {
-    return dt * std::min(0.9 * std::pow(std::max(error, 1e-300), -0.2), 10.0);
+    return dt * std::min(0.9 * inverse_fifth_root(error), 10.0);
   }
   [[nodiscard]] bool check_step_size_limit(double /*dt*/) const { return true; }
   [[nodiscard]] double get_max_dt() const { return 0.0; }

@@ -37,8 +37,9 @@
 // direction -a / |a| (w = r n, n = -a / |a|, r' = |a| - mu_k g_e; method.md eq S5', where its error is estimated);
 // (2) a sliding block that slows to 0.03 r_L has stopped (the remaining run-in, extrapolated along its direction, is
 // added); (3) a block decelerating below the launch speed along -a is slaved to it again to its stop (the landing).
-// The stiff phases still cost ~80 DP5 tries per slip episode at the default tolerances: with 5-15 % of a record
-// slipping the 2-D solver runs at 14-28 M samples/s, ~40-60x slower than the 1-D one (docs/performance.md).
+// The stiff phases still cost ~80 DP5 tries per slip episode at the default tolerances (below 1e-3 m/s: 54 % of the
+// tries for 19 % of the slip time): with 5-15 % of a record slipping the 2-D solver runs at 15-32 M samples/s,
+// ~35-55x slower than the 1-D one (docs/performance.md, with what bounds it).
 //
 // Incline (method.md eq S11). On a plane inclined at beta (SlidingBlock::slope_rad) whose fall line runs toward
 // slope_azimuth_deg, with e_d the horizontal unit vector of that azimuth and a = a_d e_d + a_c (a_c across the slope):
