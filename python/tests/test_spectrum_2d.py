@@ -108,15 +108,15 @@ def test_collinear_pair_is_the_1d_spectrum(accel_m_s2, direction_deg, on_second)
 
 @pytest.mark.parametrize("direction_deg", [30.0, 237.0])
 def test_collinear_shaking_between_the_axes(accel_m_s2, direction_deg):
-    # The same line of shaking split over both components (east = a sin psi, north = a cos psi): the slip direction
-    # is now integrated in two dimensions by DP5 at the spectrum's default accuracy (Sliding2dOptions rel_tol 1e-7,
-    # sliding2d.hpp), which bounds the difference; measured: 2.6e-8 of max |d| on the residual at mu = 0.35.
+    # The same line of shaking split over both components (east = a sin psi, north = a cos psi): collinear input at
+    # an azimuth between the axes, to the 1e-9 of max |d| as in the C++ collinear test (tests/test_sliding2d.cpp
+    # runs the split too). The direction is fixed only to rounding here; measured worst 8.0e-10 (residual, mu = 0.35).
     psi = math.radians(direction_deg)
     east = topple.GroundMotion(accel_m_s2 * math.sin(psi), DT, units="m/s2")
     north = topple.GroundMotion(accel_m_s2 * math.cos(psi), DT, units="m/s2")
     one = topple.slide_spectrum(topple.GroundMotion(accel_m_s2, DT, units="m/s2"), MU)
     two = topple.slide_spectrum_2d(east, north, MU, azimuths_deg=(90.0, 0.0))
-    assert_equals_1d(two, one, direction_deg, 1e-7)
+    assert_equals_1d(two, one, direction_deg, 1e-9)
 
 
 def test_a_zero_second_component_alone_is_the_1d_run(accel_m_s2):
