@@ -49,6 +49,10 @@ void run_coupled(const RunMotion& run, const SlideRockBody& body, const CoupledR
   fmt::print("  alpha+ = {:.4f} deg, alpha- = {:.4f} deg{}\n", s.alpha_positive_rad * 180.0 / kPi,
              s.alpha_negative_rad * 180.0 / kPi,
              s.used_sliding_kernel ? " (cannot lift: mu_s < b/h; exact sliding solver)" : "");
+  if (options.slope_rad != 0.0) {
+    fmt::print("base: inclined at {:g} deg, down-slope toward -x (slide > 0 is up-slope)\n",
+               options.slope_rad * 180.0 / kPi);
+  }
   if (request.bearing_deg) {
     fmt::print("plane of shaking: bearing {:g} deg (+x side), the pair's projection on it (planar model)\n",
                *request.bearing_deg);
