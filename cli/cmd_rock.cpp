@@ -42,6 +42,7 @@ struct RockOptions {
   std::string e = "housner";
   std::optional<double> mu;
   std::optional<double> mu_k;
+  std::optional<double> slope_deg;  // --model coupled: inclined base
   std::string model = "rocking";
   std::string vertical;
   std::string h2;        // second horizontal component: an oriented object (oriented.hpp)
@@ -67,7 +68,7 @@ const std::map<std::string, std::string>& option_names() {
       {"b1", "--b1"},         {"b2", "--b2"},         {"inertia", "--inertia"},
       {"g", "--g"},           {"rel_tol", "--rtol"},  {"rk4_substeps", "--rk4-substeps"},
       {"max_steps", "--max-steps"},
-      {"max_run_out_s", "--run-out"}, {"vertical", "--vertical"}, {"mu_k", "--mu-k"},
+      {"max_run_out_s", "--run-out"}, {"vertical", "--vertical"}, {"mu_k", "--mu-k"}, {"slope", "--slope-deg"},
       {"depth", "--depth"},   {"bearing", "--bearing-deg"}, {"cylinder_step", "--direction-step-deg"},
       {"azimuth", "--azimuths"}};
   return names;
@@ -210,6 +211,7 @@ void run_rock(const RockOptions& o) {
     request.options.rel_tol = options.rel_tol;
     request.options.max_run_out_s = options.max_run_out_s;
     request.options.max_steps = options.max_steps;
+    if (o.slope_deg) request.options.slope_rad = *o.slope_deg * kPi / 180.0;  // validated by slide_rock ("slope")
     request.out = o.out;
     request.plot = o.plot;
     request.json = o.json;
@@ -243,6 +245,7 @@ void run_rock(const RockOptions& o) {
     throw parameter_error("--model", fmt::format("'rocking' or 'coupled', got '{}'", o.model));
   }
   if (o.mu_k) throw parameter_error("--mu-k", "needs --model coupled (the rocking model does not slide)");
+  if (o.slope_deg) throw parameter_error("--slope-deg", "needs --model coupled (the rocking model has a level base)");
   if (!o.h2.empty()) {
     run_oriented(o, run, body, options);
     return;
@@ -381,6 +384,8 @@ void add_rock_command(CLI::App& app) {
   cmd->add_option("--model", o->model, "rocking (Housner; no sliding) or coupled (sliding and rocking at once, "
                                        "Coulomb friction --mu/--mu-k: slide_rock.hpp)")->capture_default_str();
   cmd->add_option("--mu-k", o->mu_k, "--model coupled: kinetic friction coefficient (default: --mu)");
+  cmd->add_option("--slope-deg", o->slope_deg, "--model coupled: inclination of the base, degrees, down-slope toward "
+                                               "-x (the b1 corner); needs tan(slope) <= --mu and slope <= alpha-");
   cmd->add_option("--vertical", o->vertical, "Vertical acceleration record (positive up), scaled with the horizontal");
   cmd->add_option("--h2", o->h2, "Second horizontal component (record file): an oriented object rocking under the "
                                  "projection of both components on its directions (planar model); --azimuths unless "

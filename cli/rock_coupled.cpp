@@ -20,9 +20,12 @@ void run_coupled(const RunMotion& run, const SlideRockBody& body, const CoupledR
   if (!request.out.empty()) io::write_slide_rock_history_csv(request.out, result.history);
   if (!request.plot.empty()) {
     const std::string title = fmt::format(
-        "Coupled slide-rock, b1 = {:.3g} m, b2 = {:.3g} m, h = {:.3g} m, mu_s = {:.3g}, mu_k = {:.3g}: {}", body.b1_m,
-        body.b2_m, body.h_m, body.mu_static, body.mu_kinetic, run.title);
-    plot::render(plot::slide_rock_figure(run.horizontal, result, body, title, run.vertical_ptr(), options.g_m_s2),
+        "Coupled slide-rock, b1 = {:.3g} m, b2 = {:.3g} m, h = {:.3g} m, mu_s = {:.3g}, mu_k = {:.3g}{}: {}", body.b1_m,
+        body.b2_m, body.h_m, body.mu_static, body.mu_kinetic,
+        options.slope_rad != 0.0 ? fmt::format(", slope {:g}°", options.slope_rad * 180.0 / kPi) : std::string(),
+        run.title);
+    plot::render(plot::slide_rock_figure(run.horizontal, result, body, title, run.vertical_ptr(), options.g_m_s2,
+                                         options.slope_rad),
                  request.plot);
   }
   for (const auto& w : s.warnings) fmt::print(stderr, "topple: warning: {}\n", w);
@@ -49,6 +52,10 @@ void run_coupled(const RunMotion& run, const SlideRockBody& body, const CoupledR
   fmt::print("  alpha+ = {:.4f} deg, alpha- = {:.4f} deg{}\n", s.alpha_positive_rad * 180.0 / kPi,
              s.alpha_negative_rad * 180.0 / kPi,
              s.used_sliding_kernel ? " (cannot lift: mu_s < b/h; exact sliding solver)" : "");
+  if (options.slope_rad != 0.0) {
+    fmt::print("base: inclined at {:g} deg, down-slope toward -x (slide > 0 is up-slope)\n",
+               options.slope_rad * 180.0 / kPi);
+  }
   if (request.bearing_deg) {
     fmt::print("plane of shaking: bearing {:g} deg (+x side), the pair's projection on it (planar model)\n",
                *request.bearing_deg);

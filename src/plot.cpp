@@ -610,7 +610,7 @@ Figure sliding_2d_figure(const GroundMotion& first, const GroundMotion& second, 
 }
 
 Figure slide_rock_figure(const GroundMotion& m, const SlideRockResult& r, const SlideRockBody& body,
-                         const std::string& title, const GroundMotion* vertical, double g) {
+                         const std::string& title, const GroundMotion* vertical, double g, double slope_rad) {
   const auto& h = r.history;
   const double t_end = h.time_s.empty() ? m.end_time_s() : h.time_s.back();
   Figure f;
@@ -623,6 +623,23 @@ Figure slide_rock_figure(const GroundMotion& m, const SlideRockResult& r, const 
                   {-body.b2_m / body.h_m, fmt::format("uplift about O+ -b2/h = {:.3g} g", -body.b2_m / body.h_m)},
                   {body.mu_static, fmt::format("slip ±mu_s = ±{:.3g} g", body.mu_static)},
                   {-body.mu_static, ""}};
+  if (slope_rad != 0.0) {  // an inclined base: the thresholds tilted by beta (slide_rock.hpp, "Inclined base")
+    // an angle + beta at or past 90 deg: no horizontal acceleration reaches that threshold (no level drawn)
+    const double ap = std::atan2(body.b2_m, body.h_m) + slope_rad;
+    const double phi = std::atan(body.mu_static);
+    const double up = std::tan(std::atan2(body.b1_m, body.h_m) - slope_rad);
+    const double sd = std::tan(phi - slope_rad);
+    accel.levels = {{up, fmt::format("uplift about O- tan(alpha- - beta) = {:.3g} g", up)},
+                    {sd, fmt::format("slip down-slope tan(phi - beta) = {:.3g} g", sd)}};
+    if (ap < kPi / 2.0) {
+      accel.levels.push_back({-std::tan(ap), fmt::format("uplift about O+ -tan(alpha+ + beta) = {:.3g} g",
+                                                         -std::tan(ap))});
+    }
+    if (phi + slope_rad < kPi / 2.0) {
+      accel.levels.push_back({-std::tan(phi + slope_rad), fmt::format("slip up-slope -tan(phi + beta) = {:.3g} g",
+                                                                      -std::tan(phi + slope_rad))});
+    }
+  }
   const double alpha_positive = std::atan2(body.b2_m, body.h_m);
   const double alpha_negative = std::atan2(body.b1_m, body.h_m);
   std::vector<double> ratio(h.theta_rad.size());

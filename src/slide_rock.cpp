@@ -55,6 +55,14 @@ constexpr std::size_t side(int s) { return s > 0 ? 1 : 0; }
 constexpr std::size_t index(SlideRockMode m) { return static_cast<std::size_t>(m); }
 constexpr int sign(double x) { return x > 0.0 ? 1 : (x < 0.0 ? -1 : 0); }
 
+/// The loads per unit mass on a base inclined at beta (cos cb, sin sb) under a_h and g_e (slide_rock.hpp, sliding.hpp;
+/// Goodman & Seed 1966): tangential f_t = a_h cos(beta) + g_e sin(beta) toward -x (down-slope), normal
+/// n = g_e cos(beta) - a_h sin(beta).
+struct BaseLoad {
+  double t = 0.0, n = 0.0;
+};
+constexpr BaseLoad on_base(double ah, double ge, double cb, double sb) { return {ah * cb + ge * sb, ge * cb - ah * sb}; }
+
 /// Cap on events inside one sample interval (a valid input gives a handful).
 constexpr int kMaxEventsPerInterval = 100'000;
 /// Event functions of rock and slide-rock (Engine::events).
@@ -68,6 +76,7 @@ struct Params {
   std::array<double, 2> alpha{};  // atan(b / h)
   std::array<double, 2> rest_w2{};  // theta'^2 below which the rest rule applies after landing on the pivot
   double h = 0.0, k2 = 0.0, mus = 0.0, muk = 0.0, g = 0.0;
+  double g_t = 0.0, g_n = 0.0;  // still ground's loads on the base: g sin(beta) (toward -x), g cos(beta)
   std::optional<double> e_given;
   double alpha_sc = 0.0, p_sc = 0.0, Lu = 0.0;  // state scales
   std::array<double, 2> inv_D{};  // 1 / D, for the right-hand side
@@ -251,8 +260,11 @@ struct Phys {
 
 class Engine {
  public:
-  Engine(const InputGrid& grid, std::span<const double> gravity, const Params& P, const SlideRockOptions& o)
-      : grid_(grid), accel_(grid.accel_m_s2(0)), gravity_(gravity), P_(P), o_(o),
+  /// `accel`, `gravity`: the loads a_h and g_e on the grid, or on an inclined base f_t and n (slide_rock.hpp);
+  /// `gravity` empty: g everywhere (level base only).
+  Engine(const InputGrid& grid, std::span<const double> accel, std::span<const double> gravity, const Params& P,
+         const SlideRockOptions& o)
+      : grid_(grid), accel_(accel), gravity_(gravity), P_(P), o_(o),
         stepper_(Controlled(Checker(o.abs_tol, o.rel_tol, 1.0, 0.0), StepAdjuster{})) {
     rhs_.P = &P_;
     rhs_.f = &f_;
@@ -306,8 +318,8 @@ class Engine {
       }
     }
     if (!done_ && o_.max_run_out_s > 0.0 && mode_ != SlideRockMode::rest) {
-      // After the record: still ground until rest, fall or the cap.
-      f_ = Forcing{t_, 0.0, 0.0, P_.g, 0.0};
+      // After the record: still ground until rest, fall or the cap (on a slope: its loads g sin(beta), g cos(beta)).
+      f_ = Forcing{t_, P_.g_t, 0.0, P_.g_n, 0.0};
       restart_ = true;
       interval(t_ + o_.max_run_out_s, true);
     }
@@ -383,10 +395,17 @@ class Engine {
     if (mode_ == SlideRockMode::flight) return x.Y;
     return s_ * P_.b[side(s_)] * std::sin(x.th) + P_.h * std::cos(x.th);
   }
-  /// Mechanical energy in the ground's frame, J/kg, with the potential g (Y - h).
+  /// Mechanical energy in the ground's frame, J/kg, with the potential g cos(beta) (Y - h) + g sin(beta) X (X the
+  /// CM's displacement along the base: up-slope is +x).
   [[nodiscard]] double energy(const Phys& x) const {
     double vx = x.Xd;
     double vy = x.Yd;
+    double X = x.X;
+    if (mode_ != SlideRockMode::flight) {
+      const double b = P_.b[side(s_)];
+      X = x.u + s_ * b * (1.0 - std::cos(x.th)) + P_.h * std::sin(x.th);
+    }
+    const double along = P_.g_t == 0.0 ? 0.0 : P_.g_t * X;  // level: exactly the potential g (Y - h)
     if (mode_ != SlideRockMode::flight) {
       const double b = P_.b[side(s_)];
       const double ry = s_ * b * std::sin(x.th) + P_.h * std::cos(x.th);
@@ -394,7 +413,7 @@ class Engine {
       vx = x.v + ry * x.w;
       vy = -rx * x.w;
     }
-    return 0.5 * (vx * vx + vy * vy + P_.k2 * x.w * x.w) + P_.g * (cm_height(x) - P_.h);
+    return 0.5 * (vx * vx + vy * vy + P_.k2 * x.w * x.w) + P_.g_n * (cm_height(x) - P_.h) + along;
   }
 
   void track(const Phys& x) {
@@ -1069,6 +1088,28 @@ class Engine {
   bool done_ = false;
 };
 
+/// The body must stand at rest on the slope (slide_rock.hpp): still ground loads it with f_t = g sin(beta) toward
+/// -x and n = g cos(beta), so rest needs tan(beta) <= mu_s (Coulomb) and N+ = (b1 n - h f_t) / (b1 + b2) >= 0, i.e.
+/// tan(beta) <= b1 / h (the CM over the down-slope corner O-).
+void validate_slope(const SlideRockBody& b, double slope_rad) {
+  if (!std::isfinite(slope_rad) || slope_rad < 0.0 || slope_rad >= kPi / 2.0) {
+    throw parameter_error("slope", fmt::format("slope must be in [0, 90) deg, got {} deg", slope_rad * 180.0 / kPi));
+  }
+  const double t = std::tan(slope_rad);
+  if (t > b.mu_static) {
+    throw parameter_error("slope", fmt::format("a slope of {:.6g} deg is steeper than the friction angle atan(mu_s = "
+                                               "{:.6g}) = {:.6g} deg: the body cannot stand on it (it slides away)",
+                                               slope_rad * 180.0 / kPi, b.mu_static,
+                                               std::atan(b.mu_static) * 180.0 / kPi));
+  }
+  if (t * b.h_m > b.b1_m) {
+    throw parameter_error("slope", fmt::format("a slope of {:.6g} deg is steeper than alpha- = atan(b1 / h) = {:.6g} "
+                                               "deg: the centre of mass is outside the down-slope corner O- and the "
+                                               "body topples",
+                                               slope_rad * 180.0 / kPi, std::atan2(b.b1_m, b.h_m) * 180.0 / kPi));
+  }
+}
+
 void validate(const SlideRockBody& b, const SlideRockOptions& o) {
   (void)SlideRockBody::make(b.b1_m, b.b2_m, b.h_m, b.inertia_m2, b.mu_static, b.mu_kinetic);
   if (!std::isfinite(o.g_m_s2) || !(o.g_m_s2 > 0.0)) {
@@ -1110,6 +1151,7 @@ void validate(const SlideRockBody& b, const SlideRockOptions& o) {
     throw parameter_error("initial_slide_velocity_m_s", "initial slide velocity must be finite");
   }
   if (o.max_steps < 1) throw parameter_error("max_steps", "the integrator needs at least 1 step, got 0");
+  validate_slope(b, o.slope_rad);
 }
 
 Params make_params(const SlideRockBody& b, const SlideRockOptions& o) {
@@ -1120,6 +1162,8 @@ Params make_params(const SlideRockBody& b, const SlideRockOptions& o) {
   P.mus = b.mu_static;
   P.muk = b.mu_kinetic;
   P.g = o.g_m_s2;
+  P.g_t = o.slope_rad == 0.0 ? 0.0 : P.g * std::sin(o.slope_rad);
+  P.g_n = o.slope_rad == 0.0 ? P.g : P.g * std::cos(o.slope_rad);
   if (o.restitution == RestitutionMode::given) P.e_given = o.e;
   double pmin = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < 2; ++i) {
@@ -1146,7 +1190,11 @@ Params make_params(const SlideRockBody& b, const SlideRockOptions& o) {
 /// each piece between history rows (a cubic there: exact).
 SlideRockResult via_sliding(const GroundMotion& horizontal, const SlideRockBody& body, const SlideRockOptions& o,
                             const GroundMotion* vertical) {
-  const SlidingBlock block = SlidingBlock::make(body.mu_static, body.mu_kinetic, 0.0, SlidingMode::two_way, o.g_m_s2);
+  const SlidingBlock block =
+      SlidingBlock::make(body.mu_static, body.mu_kinetic, o.slope_rad, SlidingMode::two_way, o.g_m_s2);
+  // 1 and 0 on level ground, where the formulas below are the level ones exactly
+  const double cb = std::cos(o.slope_rad);
+  const double sb = std::sin(o.slope_rad);
   SlideRockResult r;
   SlideRockSummary& sum = r.summary;
   sum.used_sliding_kernel = true;
@@ -1159,7 +1207,7 @@ SlideRockResult via_sliding(const GroundMotion& horizontal, const SlideRockBody&
     sum.end_mode = ss.at_rest_at_end ? SlideRockMode::rest : SlideRockMode::slide;
     sum.moving_at_end = !ss.at_rest_at_end;
   };
-  if (!vertical && !o.record_history) {
+  if (!vertical && !o.record_history && o.slope_rad == 0.0) {  // level: the normal load is g throughout
     const SlidingSummary ss = slide_summary(horizontal, block);
     copy(ss);
     sum.friction_energy_j_per_kg = body.mu_kinetic * o.g_m_s2 * ss.slip_path_m;
@@ -1198,7 +1246,9 @@ SlideRockResult via_sliding(const GroundMotion& horizontal, const SlideRockBody&
       r.history.theta_rad.push_back(0.0);
       r.history.theta_dot_rad_s.push_back(0.0);
       r.history.cm_height_m.push_back(body.h_m);
-      r.history.energy_j_per_kg.push_back(0.5 * h.velocity_m_s[k] * h.velocity_m_s[k]);
+      // the potential along the slope: g sin(beta) X with X = u = -d (slide_rock.hpp)
+      const double along = o.slope_rad == 0.0 ? 0.0 : -o.g_m_s2 * sb * h.displacement_m[k];
+      r.history.energy_j_per_kg.push_back(0.5 * h.velocity_m_s[k] * h.velocity_m_s[k] + along);
       r.history.mode.push_back(m);
     }
     if (k + 1 == h.time_s.size() || h.state[k] == SlipState::stuck) continue;
@@ -1213,10 +1263,15 @@ SlideRockResult via_sliding(const GroundMotion& horizontal, const SlideRockBody&
     const double span = tb > ta ? tb - ta : 1.0;
     const double ahs = tb > ta && !after ? (accel[gi + 1] - accel[gi]) / span : 0.0;
     const double ges = tb > ta && !after ? (ge_at(gi + 1) - ge_at(gi)) / span : 0.0;
-    const auto ge_t = [&](double t) { return after ? o.g_m_s2 : ge_at(gi) + ges * (t - ta); };
+    // the normal load n = g_e cos(beta) - a_h sin(beta) (g_e on level ground), linear over the piece
+    const auto ge_t = [&](double t) {
+      if (after) return on_base(0.0, o.g_m_s2, cb, sb).n;
+      return on_base(accel[gi] + ahs * (t - ta), ge_at(gi) + ges * (t - ta), cb, sb).n;
+    };
     const double geat = ge_t(0.5 * (t0 + t1));
     const double dir = static_cast<double>(static_cast<int>(h.state[k]));
-    const double c1 = ahs - dir * body.mu_kinetic * ges;  // d''' over the piece
+    // d''' over the piece: d'' = P a_h + Q g_e (sliding.hpp), P = cos + dir mu_k sin, Q = sin - dir mu_k cos
+    const double c1 = (cb + dir * body.mu_kinetic * sb) * ahs + (sb - dir * body.mu_kinetic * cb) * ges;
     const double L = t1 - t0;
     const double v0 = std::abs(h.velocity_m_s[k]);
     const double v1 = std::abs(h.velocity_m_s[k + 1]);
@@ -1282,11 +1337,14 @@ RockingBody SlideRockBody::rocking_body() const { return RockingBody::general_as
 
 bool SlideRockBody::cannot_uplift() const noexcept { return mu_static < std::min(b1_m, b2_m) / h_m; }
 
-SlideRockMode slide_rock_onset_mode(const SlideRockBody& body, double a_h_m_s2, double g_e_m_s2) {
-  validate(body, SlideRockOptions{});
+SlideRockMode slide_rock_onset_mode(const SlideRockBody& body, double a_h_m_s2, double g_e_m_s2, double slope_rad) {
   SlideRockOptions o;
+  o.slope_rad = slope_rad;
+  validate(body, o);
   const Params P = make_params(body, o);
-  return decide_both(P, 0.0, a_h_m_s2, g_e_m_s2).mode;
+  if (slope_rad == 0.0) return decide_both(P, 0.0, a_h_m_s2, g_e_m_s2).mode;
+  const BaseLoad l = on_base(a_h_m_s2, g_e_m_s2, std::cos(slope_rad), std::sin(slope_rad));
+  return decide_both(P, 0.0, l.t, l.n).mode;
 }
 
 SlideRockResult slide_rock(const GroundMotion& horizontal, const SlideRockBody& body, const SlideRockOptions& o,
@@ -1296,14 +1354,30 @@ SlideRockResult slide_rock(const GroundMotion& horizontal, const SlideRockBody& 
                        o.initial_slide_velocity_m_s == 0.0;
   SlideRockResult r;
   const InputGrid grid(horizontal, vertical);
-  const std::vector<double> gravity = effective_gravity(grid, 1, o.g_m_s2);
-  // g_e <= 0 somewhere: the body leaves the ground, which the sliding kernel does not follow
+  std::vector<double> gravity = effective_gravity(grid, 1, o.g_m_s2);
+  std::span<const double> accel = grid.accel_m_s2(0);
+  std::vector<double> tangential;
+  if (o.slope_rad != 0.0) {  // an inclined base: the engine runs on the loads f_t, n (slide_rock.hpp)
+    const double cb = std::cos(o.slope_rad);
+    const double sb = std::sin(o.slope_rad);
+    tangential.resize(grid.size());
+    gravity.resize(grid.size(), o.g_m_s2);  // no vertical input: g_e = g
+    for (std::size_t i = 0; i < grid.size(); ++i) {
+      const BaseLoad l = on_base(accel[i], gravity[i], cb, sb);
+      tangential[i] = l.t;
+      gravity[i] = l.n;
+    }
+    accel = tangential;
+  }
+  // the normal load <= 0 somewhere: the body leaves the ground, which the sliding kernel does not follow; neither
+  // does sliding.hpp take a slope and friction angle that reach 90 deg (the engine does: up-slope slip never starts)
   const bool grounded = std::all_of(gravity.begin(), gravity.end(), [](double x) { return x > 0.0; });
-  if (o.sliding_kernel && body.cannot_uplift() && at_rest && grounded) {
+  const bool kernel_slope = std::atan(body.mu_static) + o.slope_rad < kPi / 2.0;
+  if (o.sliding_kernel && body.cannot_uplift() && at_rest && grounded && kernel_slope) {
     r = via_sliding(horizontal, body, o, vertical);
   } else {
     const Params P = make_params(body, o);
-    Engine engine(grid, gravity, P, o);
+    Engine engine(grid, accel, gravity, P, o);
     r = engine.run();
   }
   SlideRockSummary& sum = r.summary;

@@ -1,9 +1,11 @@
 // The coupled slide-rock model (slide_rock.hpp) against its limits: the rocking engine (no slip), the exact sliding
-// solver (no uplift), Shenton's onset criteria, the free-flight parabola, the energy balance, and tolerance refinement.
+// solver (no uplift), Shenton's onset criteria, the free-flight parabola, the energy balance, and tolerance refinement;
+// the same on an inclined base.
 #include <algorithm>
 #include <cmath>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -61,9 +63,7 @@ SlideRockOptions coupled_options(double rel_tol) {
 /// Both engines integrate the same equation (rocking.hpp) with Dormand-Prince 5(4) at rel_tol 1e-10 on states scaled
 /// the same way; their steps differ (hand-written vs Boost.Odeint's controller, a_dxdt = 0 in both), so maxima agree
 /// to the global error of either, ~1e-8 relative: 1e-6 leaves margin. Impacts and verdicts are integers: equal.
-void expect_same_as_rocking(const GroundMotion& motion, const SlideRockBody& body, const char* what) {
-  const auto r = rock_summary(motion, body.rocking_body(), rocking_options(1e-10));
-  const auto c = slide_rock(motion, body, coupled_options(1e-10)).summary;
+void expect_same_rocking(const SlideRockSummary& c, const RockingSummary& r, const std::string& what) {
   EXPECT_EQ(c.overturned, r.overturned) << what;
   EXPECT_EQ(c.overturned_side, r.overturned_side) << what;
   EXPECT_EQ(c.impacts, r.impacts) << what;
@@ -71,6 +71,12 @@ void expect_same_as_rocking(const GroundMotion& motion, const SlideRockBody& bod
               1e-6 * std::max(1.0, r.max_rotation_over_alpha_positive)) << what;
   EXPECT_NEAR(c.max_rotation_over_alpha_negative, r.max_rotation_over_alpha_negative,
               1e-6 * std::max(1.0, r.max_rotation_over_alpha_negative)) << what;
+}
+
+void expect_same_as_rocking(const GroundMotion& motion, const SlideRockBody& body, const char* what) {
+  const auto r = rock_summary(motion, body.rocking_body(), rocking_options(1e-10));
+  const auto c = slide_rock(motion, body, coupled_options(1e-10)).summary;
+  expect_same_rocking(c, r, what);
   const auto slip = c.mode_first_time_s[static_cast<std::size_t>(SlideRockMode::slide_rock)];
   if (!r.exceeded_alpha_time_s) {
     EXPECT_DOUBLE_EQ(c.max_abs_slide_m, 0.0) << what;  // the pivot never slips
@@ -158,6 +164,34 @@ TEST(SlideRockRockingLimit, SymmetricBodyReproducesTheBlock) {
 // ---------------------------------------------------------------------------------------------------------------
 // No uplift: the sliding solver
 
+/// A body that cannot lift against sliding.hpp's `block` on the same slope (block.slope_rad). The default path runs
+/// sliding.hpp's kernel; sliding_kernel = false runs the coupled engine's own exact slide phase. Both equal the
+/// sliding solver to 1e-9 relative (the bound; both are exact piecewise polynomials, so they agree to
+/// round-off of the event times, ~1e-14). Friction work: the kernel path integrates mu_k n |d'| by Simpson on cubic
+/// pieces (n = g_e cos(beta) - a_h sin(beta), linear), the engine in closed form: both exact, so they agree to
+/// round-off (1e-9 relative).
+void expect_same_as_sliding(const GroundMotion& motion, const SlideRockBody& body, const SlidingBlock& block) {
+  const auto s = slide_summary(motion, block);
+  ASSERT_GT(s.max_abs_displacement_m, 1e-3);  // it does slide
+  std::vector<double> work;
+  for (const bool kernel : {true, false}) {
+    SlideRockOptions o;
+    o.slope_rad = block.slope_rad;
+    o.sliding_kernel = kernel;
+    const auto c = slide_rock(motion, body, o).summary;
+    EXPECT_EQ(c.used_sliding_kernel, kernel);
+    // d of sliding.hpp is -u (sign convention in slide_rock.hpp; on a slope, down-slope is -x)
+    EXPECT_NEAR(c.residual_slide_m, -s.residual_displacement_m, 1e-9 * s.max_abs_displacement_m) << kernel;
+    EXPECT_NEAR(c.max_abs_slide_m, s.max_abs_displacement_m, 1e-9 * s.max_abs_displacement_m) << kernel;
+    EXPECT_EQ(c.slip_episodes, s.slip_episodes) << kernel;
+    EXPECT_DOUBLE_EQ(c.max_rotation_over_alpha, 0.0);
+    EXPECT_EQ(c.impacts, 0u);
+    work.push_back(c.friction_energy_j_per_kg);
+  }
+  EXPECT_NEAR(work[0], work[1], 1e-9 * work[1]);
+  EXPECT_GT(work[1], 0.0);
+}
+
 TEST(SlideRockSlidingLimit, WideBodyEqualsTheExactSlidingSolver) {
   // A 100 x 40 cm block (b/h = 2.5) with mu_s = 0.2, mu_k = 0.15 can never lift (slide_rock.hpp). The default path
   // runs sliding.hpp's kernel; sliding_kernel = false runs the coupled engine's own exact slide phase. Both equal the
@@ -168,30 +202,7 @@ TEST(SlideRockSlidingLimit, WideBodyEqualsTheExactSlidingSolver) {
   std::vector<GroundMotion> motions{sine(0.6 * kG, 0.5, 4.0, 0.01), half_sine(0.8 * kG, 0.4, 0.005, 1.0)};
   if (const auto rec = shared_motion("RSN6_IMPVALL.I_I-ELC180.AT2")) motions.push_back(*rec);
   const auto block = SlidingBlock::make(0.2, 0.15);
-  for (const auto& motion : motions) {
-    const auto s = slide_summary(motion, block);
-    ASSERT_GT(s.max_abs_displacement_m, 1e-3);  // it does slide
-    for (const bool kernel : {true, false}) {
-      SlideRockOptions o;
-      o.sliding_kernel = kernel;
-      const auto c = slide_rock(motion, body, o).summary;
-      EXPECT_EQ(c.used_sliding_kernel, kernel);
-      // d of sliding.hpp is -u (sign convention in slide_rock.hpp)
-      EXPECT_NEAR(c.residual_slide_m, -s.residual_displacement_m, 1e-9 * s.max_abs_displacement_m) << kernel;
-      EXPECT_NEAR(c.max_abs_slide_m, s.max_abs_displacement_m, 1e-9 * s.max_abs_displacement_m) << kernel;
-      EXPECT_EQ(c.slip_episodes, s.slip_episodes) << kernel;
-      EXPECT_DOUBLE_EQ(c.max_rotation_over_alpha, 0.0);
-      EXPECT_EQ(c.impacts, 0u);
-    }
-    // Friction work: the kernel path integrates mu_k g |d'| by Simpson on cubic pieces, the engine in closed form:
-    // both exact, so they agree to round-off (1e-9 relative).
-    SlideRockOptions o;
-    o.sliding_kernel = false;
-    const double exact = slide_rock(motion, body, o).summary.friction_energy_j_per_kg;
-    const double simpson = slide_rock(motion, body).summary.friction_energy_j_per_kg;
-    EXPECT_NEAR(simpson, exact, 1e-9 * exact);
-    EXPECT_GT(exact, 0.0);
-  }
+  for (const auto& motion : motions) expect_same_as_sliding(motion, body, block);
 }
 
 // ---------------------------------------------------------------------------------------------------------------
@@ -288,16 +299,17 @@ TEST(SlideRockFlight, FreeFlightIsAParabolaAndLandsWhereItShould) {
   EXPECT_NEAR(s.impact_energy_j_per_kg, lost, 1e-9 * lost);
 }
 
-TEST(SlideRockEnergy, MechanicalEnergyNeverIncreasesAndBalances) {
-  // Still ground, a 20 x 60 cm block released rocking and sliding (theta' = 0.6 rad/s, u' = 0.3 m/s: 0.125 J/kg,
-  // below the 0.158 J/kg that tips it over) with
-  // mu_s = 0.45, mu_k = 0.35: slide-rock, stick, impacts. Without input the mechanical energy E = T + g (Y - h) can
-  // only fall (friction and impacts dissipate); between rows it may rise by the integration error only
-  // (rel_tol 1e-10: 1e-8 of E0 is a wide margin). At rest E = 0, so friction + impact losses = E0 (1e-6 relative:
-  // the friction integral is the ODE's, global error ~1e-8).
+/// Still ground, a 20 x 60 cm block released rocking and sliding (theta' = 0.6 rad/s, u' = 0.3 m/s: 0.125 J/kg,
+/// below the 0.158 J/kg that tips it over) with mu_s = 0.45, mu_k = 0.35, on a base inclined at beta (0: level):
+/// slide-rock, stick, impacts. Without input the mechanical energy E = T + g cos(beta) (Y - h) + g sin(beta) X can
+/// only fall (friction and impacts dissipate); between rows it may rise by the integration error only (rel_tol 1e-10:
+/// 1e-8 of E0 is a wide margin). At rest E = g sin(beta) u_end (0 on level ground), so friction + impact losses =
+/// E0 - E_end (1e-6 relative: the friction integral is the ODE's, global error ~1e-8).
+void expect_release_energy_balance(double beta) {
   const auto still = GroundMotion::uniform(std::vector<double>(501, 0.0), 0.01);
   const auto body = SlideRockBody::block(0.2, 0.6, 0.45, 0.35);
   SlideRockOptions o;
+  o.slope_rad = beta;
   o.rel_tol = 1e-10;
   o.record_history = true;
   o.initial_theta_dot_rad_s = 0.6;
@@ -312,8 +324,12 @@ TEST(SlideRockEnergy, MechanicalEnergyNeverIncreasesAndBalances) {
   EXPECT_GT(s.slip_episodes, 0);
   EXPECT_GT(s.impacts, 0u);
   EXPECT_GT(s.friction_energy_j_per_kg, 0.0);
-  EXPECT_NEAR(s.friction_energy_j_per_kg + s.impact_energy_j_per_kg, e0, 1e-6 * e0);
+  const double e_end = kG * std::sin(beta) * s.residual_slide_m;
+  EXPECT_NEAR(E.back(), e_end, 1e-12);  // at rest only the potential along the slope is left (round-off)
+  EXPECT_NEAR(s.friction_energy_j_per_kg + s.impact_energy_j_per_kg, e0 - e_end, 1e-6 * e0);
 }
+
+TEST(SlideRockEnergy, MechanicalEnergyNeverIncreasesAndBalances) { expect_release_energy_balance(0.0); }
 
 TEST(SlideRockConvergence, ErrorFallsWithTheTolerance) {
   // The energy test's release (20 x 60 cm, mu_s = 0.45, mu_k = 0.35, theta' = 0.6 rad/s, u' = 0.3 m/s) on still
@@ -448,6 +464,177 @@ TEST(SlideRockInput, RefusesBadBodiesAndOptionsNamingTheField) {
   EXPECT_EQ(field_of([&] { (void)slide_rock(motion, body, o); }), "e");
   // a squat block (alpha > 54.7 deg) that can lift (mu > b/h) with Housner's e < 0 and no e given
   EXPECT_EQ(field_of([&] { (void)slide_rock(motion, SlideRockBody::block(3.0, 1.0, 3.5), SlideRockOptions{}); }), "e");
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Inclined base (slide_rock.hpp, "Inclined base"; docs/method.md): the sliding solver's incline (Goodman & Seed 1966)
+// when the body cannot lift, the tilted onset thresholds in closed form, rest without drift, the energy with the
+// potential along the slope, and the rocking engine under the resolved loads.
+
+SlideRockOptions on_slope(double beta, double rel_tol = 1e-8) {
+  SlideRockOptions o;
+  o.slope_rad = beta;
+  o.rel_tol = rel_tol;
+  return o;
+}
+
+TEST(SlideRockIncline, BodyThatCannotLiftEqualsTheSlidingSolversIncline) {
+  // A 100 x 40 cm block (b/h = 2.5) with mu_s = 0.3, mu_k = 0.25 cannot lift, on a 10 deg slope (tan = 0.176 < mu_s).
+  // Both paths (sliding.hpp's kernel, and the engine's own exact slide phase on the resolved loads) equal sliding.hpp
+  // two-way on the same slope to 1e-9 relative: all are exact piecewise polynomials (round-off of event times only).
+  const double beta = 10.0 * kPi / 180.0;
+  const auto body = SlideRockBody::block(1.0, 0.4, 0.3, 0.25);
+  ASSERT_TRUE(body.cannot_uplift());
+  std::vector<GroundMotion> motions{half_sine(-0.5 * kG, 0.4, 0.005, 1.0), sine(0.45 * kG, 0.5, 4.0, 0.01)};
+  if (const auto rec = shared_motion("RSN6_IMPVALL.I_I-ELC180.AT2")) motions.push_back(*rec);
+  const auto block = SlidingBlock::make(0.3, 0.25, beta, SlidingMode::two_way);
+  for (const auto& motion : motions) {
+    expect_same_as_sliding(motion, body, block);
+    // the slope ratchets the body down-slope (-x): a check on the sign convention
+    EXPECT_LT(slide_rock(motion, body, on_slope(beta)).summary.residual_slide_m, 0.0);
+  }
+}
+
+TEST(SlideRockIncline, OnsetFromRestAtTheTiltedClosedFormThresholds) {
+  // Resolving a_h and g into the base frame (f_t = a_h cos b + g sin b, n = g cos b - a_h sin b) turns the level
+  // criteria |f_t| <= mu_s n, b1 n - h f_t >= 0, b2 n + h f_t >= 0 into (slide_rock.hpp):
+  //   slip down-slope  a_h > g tan(phi - beta),   up-slope  a_h < -g tan(phi + beta)     (tan phi = mu_s)
+  //   uplift about O-  a_h > g tan(alpha- - beta), about O+  a_h < -g tan(alpha+ + beta)
+  // At 1 +- 1e-6 of each threshold the margin is ~1e-6 of the loads, far above round-off (1e-16).
+  const double beta = 0.15;
+  const double eps = 1e-6;
+  const auto expect_threshold = [&](const SlideRockBody& body, double a, SlideRockMode above) {
+    EXPECT_EQ(slide_rock_onset_mode(body, a * (1.0 + eps), kG, beta), above) << a;
+    EXPECT_EQ(slide_rock_onset_mode(body, a * (1.0 - eps), kG, beta), SlideRockMode::rest) << a;
+  };
+  // squat and rough enough to slide first: 100 x 40 cm, mu = 0.3
+  const double phi = std::atan(0.3);
+  const auto squat = SlideRockBody::block(1.0, 0.4, 0.3);
+  expect_threshold(squat, kG * std::tan(phi - beta), SlideRockMode::slide);
+  expect_threshold(squat, -kG * std::tan(phi + beta), SlideRockMode::slide);
+  // slender and rough (20 x 60 cm, mu = 2): rocks first
+  const double alpha = std::atan(0.1 / 0.3);
+  const auto slender = SlideRockBody::block(0.2, 0.6, 2.0);
+  expect_threshold(slender, kG * std::tan(alpha - beta), SlideRockMode::rock);
+  expect_threshold(slender, -kG * std::tan(alpha + beta), SlideRockMode::rock);
+  // an asymmetric body (b1 = 0.12, b2 = 0.08, h = 0.3): alpha- and alpha+ differ, each threshold uses its own
+  const auto asym = SlideRockBody::make(0.12, 0.08, 0.3, 0.01, 2.0);
+  expect_threshold(asym, kG * std::tan(std::atan(0.12 / 0.3) - beta), SlideRockMode::rock);
+  expect_threshold(asym, -kG * std::tan(std::atan(0.08 / 0.3) + beta), SlideRockMode::rock);
+
+  // A run on a step of a_h 1 % above / below the down-slope uplift threshold: it first lifts about the down-slope
+  // corner O- (theta < 0; after the step it rocks back and may cross over a little) or stays at rest.
+  const double thr = kG * std::tan(alpha - beta);
+  SlideRockOptions o = on_slope(beta);
+  o.record_history = true;
+  const auto run = slide_rock(GroundMotion::uniform({1.01 * thr, 1.01 * thr}, 0.05), slender, o);
+  const auto& above = run.summary;
+  EXPECT_EQ(above.onset_mode, SlideRockMode::rock);
+  EXPECT_GT(above.max_rotation_negative_rad, 0.0);
+  const auto& th = run.history.theta_rad;
+  const auto first = std::find_if(th.begin(), th.end(), [](double x) { return x != 0.0; });
+  ASSERT_NE(first, th.end());
+  EXPECT_LT(*first, 0.0);
+  const auto below = slide_rock(GroundMotion::uniform({0.99 * thr, 0.99 * thr}, 0.05), slender, on_slope(beta)).summary;
+  EXPECT_EQ(below.onset_mode, SlideRockMode::rest);
+  EXPECT_DOUBLE_EQ(below.max_rotation_over_alpha, 0.0);
+}
+
+TEST(SlideRockIncline, AtRestOnASlopeWithoutShakingStaysAtRest) {
+  // Still ground for 10 s: a body whose slope is just inside its friction angle (squat) or its alpha- (slender) is
+  // loaded by g sin(beta) along the slope and must not move at all (exactly 0: no integration happens at rest).
+  const auto still = GroundMotion::uniform(std::vector<double>(1001, 0.0), 0.01);
+  const auto squat = SlideRockBody::block(1.0, 0.4, 0.3, 0.2);
+  const auto slender = SlideRockBody::make(0.1, 0.1, 0.3, 0.01, 2.0);
+  const std::vector<std::pair<SlideRockBody, double>> cases{{squat, 0.999 * std::atan(0.3)},
+                                                            {slender, 0.999 * std::atan(0.1 / 0.3)}};
+  for (const auto& [body, beta] : cases) {
+    for (const bool kernel : {true, false}) {
+      SlideRockOptions o = on_slope(beta);
+      o.sliding_kernel = kernel;
+      o.record_history = true;
+      const auto r = slide_rock(still, body, o);
+      const auto& s = r.summary;
+      EXPECT_EQ(s.onset_mode, SlideRockMode::rest) << beta;
+      EXPECT_EQ(s.end_mode, SlideRockMode::rest);
+      EXPECT_EQ(s.residual_slide_m, 0.0);
+      EXPECT_EQ(s.max_abs_slide_m, 0.0);
+      EXPECT_EQ(s.max_rotation_over_alpha, 0.0);
+      EXPECT_EQ(s.slip_episodes, 0);
+      EXPECT_NEAR(s.end_time_s, 10.0, 1e-12);
+      ASSERT_FALSE(r.history.time_s.empty());
+      for (std::size_t k = 0; k < r.history.time_s.size(); ++k) {
+        EXPECT_EQ(r.history.slide_m[k], 0.0);
+        EXPECT_EQ(r.history.theta_rad[k], 0.0);
+        EXPECT_EQ(r.history.mode[k], SlideRockMode::rest);
+      }
+    }
+  }
+}
+
+TEST(SlideRockIncline, EnergyWithThePotentialAlongTheSlopeNeverIncreases) {
+  // The level release on a 0.1 rad slope (tan = 0.10 < mu_s, < b1/h = 1/3): see expect_release_energy_balance.
+  expect_release_energy_balance(0.1);
+}
+
+TEST(SlideRockIncline, HighFrictionEqualsTheRockingEngineUnderTheResolvedLoads) {
+  // rocking.hpp has no slope; a sticking body on a slope obeys its equation with (a_h, g_e) -> (f_t, n), so the
+  // rocking engine fed the horizontal record f_t and the vertical record n - g must give the same response. A 20 x
+  // 100 cm block, mu = 5 (no slip), a 0.1 rad slope, half-sine pulses toward the down-slope side and the up-slope one.
+  // Same tolerances as the level comparison (test_slide_rock.cpp): 1e-6 on maxima, impacts and verdicts equal.
+  const double beta = 0.1;
+  const auto body = SlideRockBody::block(0.2, 1.0, 5.0);
+  const double cb = std::cos(beta);
+  const double sb = std::sin(beta);
+  const double thr = kG * 0.2;  // the level uplift threshold, a scale
+  int fell = 0;
+  for (const double amp : {1.5 * thr, 3.0 * thr, -3.0 * thr, 6.0 * thr}) {
+    const auto motion = half_sine(-amp, 0.3, 0.005, 6.0);  // a_h = +amp sin: amp > 0 loads down-slope
+    std::vector<double> ft(motion.size());
+    std::vector<double> nv(motion.size());
+    for (std::size_t i = 0; i < motion.size(); ++i) {
+      const double a = motion.accel_m_s2()[i];
+      ft[i] = a * cb + kG * sb;
+      nv[i] = kG * cb - a * sb - kG;
+    }
+    const auto H = GroundMotion::uniform(std::move(ft), 0.005);
+    const auto V = GroundMotion::uniform(std::move(nv), 0.005);
+    RockingOptions ro;
+    ro.rel_tol = 1e-10;
+    ro.max_run_out_s = 0.0;  // still ground on the slope is not still ground for the rocking engine: end with the record
+    const auto r = rock_summary(H, body.rocking_body(), ro, &V);
+    SlideRockOptions o = on_slope(beta, 1e-10);
+    o.max_run_out_s = 0.0;
+    const auto c = slide_rock(motion, body, o).summary;
+    expect_same_rocking(c, r, std::to_string(amp));
+    EXPECT_GT(c.max_rotation_over_alpha, 0.1) << amp;  // it does rock
+    if (c.overturned) ++fell;
+  }
+  EXPECT_GE(fell, 1);  // a fall is compared too
+}
+
+TEST(SlideRockIncline, RefusesASlopeTheBodyCannotStandOn) {
+  const auto field_and_text = [](auto f) -> std::pair<std::string, std::string> {
+    try {
+      f();
+    } catch (const InputError& e) {
+      return {e.where().field, e.what()};
+    }
+    ADD_FAILURE() << "no InputError";
+    return {};
+  };
+  const auto motion = sine(1.0, 1.0, 1.0, 0.01);
+  const auto squat = SlideRockBody::block(1.0, 0.4, 0.3);        // phi = 16.7 deg
+  const auto slender = SlideRockBody::block(0.2, 0.6, 2.0);      // alpha = 18.4 deg
+  const auto steep = field_and_text([&] { (void)slide_rock(motion, squat, on_slope(20.0 * kPi / 180.0)); });
+  EXPECT_EQ(steep.first, "slope");
+  EXPECT_NE(steep.second.find("friction angle"), std::string::npos) << steep.second;
+  const auto tips = field_and_text([&] { (void)slide_rock(motion, slender, on_slope(20.0 * kPi / 180.0)); });
+  EXPECT_EQ(tips.first, "slope");
+  EXPECT_NE(tips.second.find("alpha-"), std::string::npos) << tips.second;
+  EXPECT_EQ(field_and_text([&] { (void)slide_rock(motion, squat, on_slope(-0.1)); }).first, "slope");
+  EXPECT_EQ(field_and_text([&] { (void)slide_rock(motion, squat, on_slope(std::nan(""))); }).first, "slope");
+  EXPECT_EQ(field_and_text([&] { (void)slide_rock_onset_mode(squat, 0.0, kG, 0.5); }).first, "slope");
 }
 
 }  // namespace

@@ -117,10 +117,11 @@ void run_figure_program(const std::string& program, const std::string& script, c
 /// The coupled slide-rock model's run (slide_rock.hpp; needs options.record_history): the record with the uplift
 /// levels g b1/h, -g b2/h and the slip onset ±mu_s g (in g; the vertical too when given), theta over the alpha of its
 /// side with the overturning limits ±1, the pivot's slide u with the slip starts marked, and the mode as a step line;
-/// the fall marked. `g` is the gravity the run used (m/s^2).
+/// the fall marked. `g` is the gravity the run used (m/s^2). On a base inclined at slope_rad (SlideRockOptions) the
+/// levels are the tilted ones: tan(alpha- - beta), -tan(alpha+ + beta), tan(phi - beta), -tan(phi + beta).
 [[nodiscard]] Figure slide_rock_figure(const GroundMotion& horizontal, const SlideRockResult& result,
                                        const SlideRockBody& body, const std::string& title,
-                                       const GroundMotion* vertical, double g_m_s2);
+                                       const GroundMotion* vertical, double g_m_s2, double slope_rad = 0.0);
 
 /// A frequency or period marked on a spectrum by a vertical line with its label.
 struct Mark {

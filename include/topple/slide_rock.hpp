@@ -1,5 +1,5 @@
 #pragma once
-// Coupled sliding and rocking of a rigid body in the vertical plane on a level rigid base (issue 15; docs/method.md,
+// Coupled sliding and rocking of a rigid body in the vertical plane on a level or inclined rigid base (issue 15; docs/method.md,
 // "Coupled slide-rock model").
 //
 // Model. A rigid body of mass m (results are per unit mass and do not depend on m) touches the level ground at two
@@ -54,6 +54,21 @@
 // given) replaces Housner's ratio on a stick impact after pure rocking (theta'+ = e theta'-), as in the rocking engine.
 // The rest rule after an impact is the rocking engine's (rest_energy_fraction of the energy to lift the CM over the
 // landing pivot).
+//
+// Inclined base (SlideRockOptions::slope_rad = beta >= 0; docs/method.md, "Inclined base"). The base is a plane
+// inclined at beta in the plane of shaking; x runs along it, y normal to it. Down-slope is -x (the base rises toward
+// +x), so that sliding.hpp's d = -u is down-slope positive as there, and a positive a_h (the ground accelerating
+// toward the uphill side) pushes the body down-slope. The frame is the ground's (translating): gravity and the
+// ground's acceleration resolve into per-unit-mass loads as in sliding.hpp (Goodman & Seed 1966),
+//   tangential  f_t = a_h cos(beta) + g_e sin(beta)  (toward -x),   normal  n = g_e cos(beta) - a_h sin(beta),
+// and every equation above holds with (a_h, g_e) -> (f_t, n): contact forces, Coulomb's law, the enumeration, the
+// events and the impacts are unchanged in the base frame (u along the slope, theta from the slope's normal, Y normal
+// to it). Still ground is f_t = g sin(beta), n = g cos(beta); the energy's potential is g sin(beta) X + g cos(beta)
+// (Y - h). The body must stand at rest on the slope: tan(beta) <= mu_s (else it slides away) and beta <= alpha- =
+// atan(b1 / h) (else it tips over the down-slope corner O-) are required, else InputError "slope". Onset from rest
+// without vertical input (the level thresholds tilted by beta): slip down-slope at a_h > g tan(phi - beta), up-slope
+// at a_h < -g tan(phi + beta) (tan(phi) = mu_s); uplift about O- at a_h > g tan(alpha- - beta), about O+ at
+// a_h < -g tan(alpha+ + beta).
 //
 // Method. Rock and slide-rock: Boost.Odeint's controlled Dormand-Prince 5(4) (runge_kutta_dopri5, error control on
 // the state scaled as (u / (h alpha), u' / (p h alpha), theta / alpha, theta' / (p alpha))), with its 4th-order dense
@@ -110,6 +125,9 @@ inline constexpr std::size_t kSlideRockModes = 6;
 
 struct SlideRockOptions {
   double g_m_s2 = kStandardGravity;                  ///< gravity, m/s^2
+  /// Inclination beta of the base, rad, in [0, pi/2) (0: level; a ledge: 0.1-0.3); down-slope is -x (see the header).
+  /// Needs tan(beta) <= mu_s and beta <= atan(b1 / h): the body stands on the slope (InputError "slope" otherwise).
+  double slope_rad = 0.0;
   RestitutionMode restitution = RestitutionMode::housner;
   double e = 1.0;                                    ///< restitution when restitution == given, in [0, 1]
   double rel_tol = 1e-8;   ///< relative error per step on the scaled state (see the header)
@@ -195,6 +213,8 @@ struct SlideRockResult {
 
 /// The mode a body at rest enters under a_h and g_e = g + a_v (m/s^2), by the enumeration of the header: rest, slide,
 /// rock, slide-rock or flight (g_e <= 0). For a symmetric body and mu_k = mu_s this is Shenton (1996)'s criteria.
-[[nodiscard]] SlideRockMode slide_rock_onset_mode(const SlideRockBody& body, double a_h_m_s2, double g_e_m_s2);
+/// On a base inclined at slope_rad (validated as SlideRockOptions::slope_rad), the loads f_t, n of the header.
+[[nodiscard]] SlideRockMode slide_rock_onset_mode(const SlideRockBody& body, double a_h_m_s2, double g_e_m_s2,
+                                                  double slope_rad = 0.0);
 
 }  // namespace topple

@@ -844,7 +844,7 @@ dict
 )";
 
 inline constexpr const char* slide_rock =
-    R"(Coupled sliding and rocking of a rigid body with Coulomb friction on a level base (slide_rock.hpp).
+    R"(Coupled sliding and rocking of a rigid body with Coulomb friction on a level or inclined base (slide_rock.hpp).
 
 As `topple rock --model coupled --mu MU [--mu-k MU_K]`: the body may rest, slide, rock, slide and rock, or fly,
 whichever its contact forces allow. A body with mu < min(b1, b2) / h cannot lift and is run by the exact sliding
@@ -870,6 +870,9 @@ rel_tol : float
     Relative tolerance of the adaptive integrator (dimensionless).
 max_run_out_s : float
     Longest time the body is followed after the record ends, s.
+slope_deg : float
+    Inclination of the base in the plane of shaking, degrees (0: level); down-slope is -x (the b1 corner), as
+    `--slope-deg`. InputError (field "slope") when tan(slope) > mu or slope > alpha- (the body cannot stand on it).
 history : bool
     False: summary only.
 

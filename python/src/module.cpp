@@ -442,7 +442,7 @@ struct SlideRockRun {
 SlideRockRun run_slide_rock(const GroundMotion& motion, const RockingBody& shape, double mu,
                             std::optional<double> mu_k, const GroundMotion* vertical,
                             const std::variant<double, std::string>& e, double g_m_s2, double rel_tol,
-                            double max_run_out_s, bool history) {
+                            double max_run_out_s, double slope_deg, bool history) {
   SlideRockRun run;
   run.shape = shape;
   run.body = SlideRockBody::from_rocking(shape, mu, mu_k);
@@ -455,6 +455,7 @@ SlideRockRun run_slide_rock(const GroundMotion& motion, const RockingBody& shape
   run.options.e = rocking.e;
   run.options.rel_tol = rocking.rel_tol;
   run.options.max_run_out_s = rocking.max_run_out_s;
+  run.options.slope_rad = slope_deg * kPi / 180.0;  // validated by slide_rock (field "slope"), as --slope-deg
   run.options.record_history = history;
   {
     nb::gil_scoped_release release;
@@ -1614,7 +1615,7 @@ NB_MODULE(_core, m) {
   m.def("slide_rock", &run_slide_rock, "motion"_a, "body"_a, "mu"_a, "mu_k"_a = nb::none(), nb::kw_only(),
         "vertical"_a = nb::none(), "e"_a = "housner", "g"_a = kStandardGravity,
         "rel_tol"_a = kSlideRockDefaults.rel_tol, "max_run_out_s"_a = kSlideRockDefaults.max_run_out_s,
-        "history"_a = true, doc::slide_rock);
+        "slope_deg"_a = 0.0, "history"_a = true, doc::slide_rock);
   m.def("rock_oriented", &run_rock_oriented, "first"_a, "second"_a, "shape"_a, nb::kw_only(),
         "azimuths_deg"_a = std::vector<double>{90.0, 0.0}, "bearing_deg"_a = nb::none(), "depth_m"_a = nb::none(),
         "direction_step_deg"_a = nb::none(), "vertical"_a = nb::none(), "e"_a = "housner", "mu"_a = nb::none(),

@@ -299,9 +299,9 @@ class SlideRockResult:
 
 def slide_rock(motion: GroundMotion, body: RockingBody, mu: float, mu_k: Optional[float] = None, *,
                vertical: Optional[GroundMotion] = None, e: Union[Literal["housner"], float] = "housner",
-               g: float = 9.80665, rel_tol: float = 1e-8, max_run_out_s: float = 60.0,
+               g: float = 9.80665, rel_tol: float = 1e-8, max_run_out_s: float = 60.0, slope_deg: float = 0.0,
                history: bool = True) -> SlideRockResult:
-    """Coupled sliding and rocking of a rigid body with Coulomb friction on a level base (slide_rock.hpp)."""
+    """Coupled sliding and rocking of a rigid body with Coulomb friction on a level or inclined base (slide_rock.hpp)."""
 
 def rock_oriented(first: GroundMotion, second: GroundMotion, shape: RockingBody, *,
                   azimuths_deg: Sequence[float] = (90.0, 0.0), bearing_deg: Optional[float] = None,

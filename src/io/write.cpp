@@ -267,6 +267,9 @@ nlohmann::ordered_json slide_rock_summary_json(const SlideRockSummary& s, const 
   b["inertia_m2"] = body.inertia_m2;
   j["body"] = b;
   j["sign_convention"] = "theta > 0 and slide > 0 toward +x; sliding.hpp's d is -slide";
+  if (options.slope_rad != 0.0) {  // an inclined base (slide_rock.hpp); a level one keeps the level output
+    j["slope"] = {{"slope_deg", options.slope_rad * 180.0 / kPi}, {"down_slope", "-x"}};
+  }
   return j;
 }
 

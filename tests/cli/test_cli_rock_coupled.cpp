@@ -23,17 +23,22 @@ void expect_error(const std::string& args, const std::string& option) {
   EXPECT_NE(r.err.find(option), std::string::npos) << args << "\n" << r.err;
 }
 
+/// The CLI's `--pulse sine --amp-g 1.2 --duration 0.3` (its default tail: 5 durations).
+GroundMotion sine_1_2g() {
+  PulseSpec spec;
+  spec.kind = PulseKind::sine;
+  spec.amplitude_m_s2 = 1.2 * kStandardGravity;
+  spec.duration_s = 0.3;
+  spec.tail_s = 1.5;
+  return make_pulse(spec);
+}
+
 TEST(CliRockCoupled, JsonIsTheLibrarySummary) {
   // A one-cycle sine of 1.2 g, 0.3 s on a 20 x 60 cm block with mu_s = 0.45, mu_k = 0.4: it rocks, slips and falls.
   // The CLI only translates, so the numbers are slide_rock's on the same pulse (JSON round-trip: 1e-15 relative).
   const auto j = test::run_json("rock --pulse sine --amp-g 1.2 --duration 0.3 --shape block --width 20cm "
                                 "--height 60cm --model coupled --mu 0.45 --mu-k 0.4 --json");
-  PulseSpec spec;
-  spec.kind = PulseKind::sine;
-  spec.amplitude_m_s2 = 1.2 * kStandardGravity;
-  spec.duration_s = 0.3;
-  spec.tail_s = 1.5;  // the CLI's default tail: 5 durations
-  const auto s = slide_rock(make_pulse(spec), SlideRockBody::block(0.2, 0.6, 0.45, 0.4)).summary;
+  const auto s = slide_rock(sine_1_2g(), SlideRockBody::block(0.2, 0.6, 0.45, 0.4)).summary;
   ASSERT_GT(s.slip_episodes, 0);
   EXPECT_EQ(j.at("overturned").get<bool>(), s.overturned);
   EXPECT_EQ(j.at("impacts").get<std::size_t>(), s.impacts);
@@ -99,6 +104,28 @@ TEST(CliRockCoupled, BadInputNamesTheOption) {
   expect_error(base + "--mu 0.4 --mu-k 0.3", "--mu-k");
   expect_error(base + "--model coupled --mu 0.4 --bearing-deg 30", "--bearing-deg");  // no --h2
   expect_error(base + "--model coupled --mu 0.4 --plot fig.pdf", "--plot");
+  expect_error(base + "--model coupled --mu 0.4 --slope-deg 25", "--slope-deg");  // atan(0.4) = 21.8 deg
+  expect_error(base + "--model coupled --mu 2 --slope-deg 20", "--slope-deg");    // alpha = 18.4 deg
+  expect_error(base + "--model coupled --mu 0.4 --slope-deg -5", "--slope-deg");
+  expect_error(base + "--slope-deg 5", "--slope-deg");  // the rocking model has a level base
+}
+
+TEST(CliRockCoupled, SlopeIsTheLibrarysInclinedBase) {
+  // The JSON case above on an 8 deg slope: the CLI only translates, so the numbers are slide_rock's with slope_rad
+  // (JSON round-trip: 1e-15 relative), and the slope is reported.
+  const auto j = test::run_json("rock --pulse sine --amp-g 1.2 --duration 0.3 --shape block --width 20cm "
+                                "--height 60cm --model coupled --mu 0.45 --mu-k 0.4 --slope-deg 8 --json");
+  SlideRockOptions o;
+  o.slope_rad = 8.0 * kPi / 180.0;
+  const auto s = slide_rock(sine_1_2g(), SlideRockBody::block(0.2, 0.6, 0.45, 0.4), o).summary;
+  const auto level = slide_rock(sine_1_2g(), SlideRockBody::block(0.2, 0.6, 0.45, 0.4)).summary;
+  ASSERT_NE(s.max_rotation_over_alpha, level.max_rotation_over_alpha);  // the slope changes the response
+  EXPECT_EQ(j.at("overturned").get<bool>(), s.overturned);
+  EXPECT_EQ(j.at("impacts").get<std::size_t>(), s.impacts);
+  EXPECT_NEAR(j.at("residual_slide_m").get<double>(), s.residual_slide_m, 1e-15);
+  EXPECT_NEAR(j.at("max_rotation_over_alpha").get<double>(), s.max_rotation_over_alpha, 1e-14);
+  EXPECT_NEAR(j.at("slope").at("slope_deg").get<double>(), 8.0, 1e-13);
+  EXPECT_EQ(j.at("slope").at("down_slope").get<std::string>(), "-x");
 }
 
 /// The synthetic station of test::SyntheticStation: at its 0.3 g a 20 x 80 cm block (b/h = 0.25) with mu_s = 0.26
