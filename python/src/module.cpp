@@ -475,17 +475,12 @@ nb::dict run_rock_oriented(const GroundMotion& first, const GroundMotion& second
   const ComponentAzimuths azimuths{azimuths_deg[0], azimuths_deg[1]};
   // The library names its fields; the caller typed these parameters.
   const auto naming = [](auto f) {
-    try {
-      return f();
-    } catch (const InputError& err) {
-      const std::string& field = err.where().field;
-      if (!err.where().file.empty()) throw;
-      if (field == "bearing") throw parameter_error("bearing_deg", err.problem());
-      if (field == "depth") throw parameter_error("depth_m", err.problem());
-      if (field == "cylinder_step") throw parameter_error("direction_step_deg", err.problem());
-      if (field == "azimuths" || field == "azimuth") throw parameter_error("azimuths_deg", err.problem());
-      throw;
-    }
+    return with_field_names({{"bearing", "bearing_deg"},
+                             {"depth", "depth_m"},
+                             {"cylinder_step", "direction_step_deg"},
+                             {"azimuths", "azimuths_deg"},
+                             {"azimuth", "azimuths_deg"}},
+                            f);
   };
   const OrientedBody oriented = naming([&] { return OrientedBody::make(body, depth_m); });
   naming([&] { check_orientation(oriented, bearing_deg, direction_step_deg.has_value()); });
@@ -545,15 +540,7 @@ std::optional<ComponentAzimuths> azimuths_arg(const std::optional<std::vector<do
 /// to its options): "azimuths" -> azimuths_deg, "azimuth" -> azimuth_deg. Errors located in a file are kept.
 template <class F>
 auto with_set_fields(F&& f) -> decltype(f()) {
-  try {
-    return f();
-  } catch (const InputError& e) {
-    if (!e.where().file.empty()) throw;
-    const std::string& field = e.where().field;
-    if (field == "azimuths") throw parameter_error("azimuths_deg", e.problem());
-    if (field == "azimuth") throw parameter_error("azimuth_deg", e.problem());
-    throw;
-  }
+  return with_field_names({{"azimuths", "azimuths_deg"}, {"azimuth", "azimuth_deg"}}, std::forward<F>(f));
 }
 
 MotionSet make_motion_set(const GroundMotion& first, const GroundMotion* second, const GroundMotion* vertical,
