@@ -97,7 +97,12 @@ void print_site(const Site& site, const InversionResult& r) {
   fmt::print("objects: P(observation) posterior-predictive / at the maximum-likelihood cell, information (bits), "
              "misfit if P < {}:\n", kMisfitProbability);
   for (const auto& o : r.objects) {
-    fmt::print("  {:<16} {:<15} {:.3f} / {:.2f}  {:.2f} bit{}\n", o.id, outcome_name(o.outcome), o.posterior_predictive,
+    // With components = 3 the model each object ran with (slide: 2-D sliding block; rock: oriented rocking body)
+    // follows its outcome; a one-component summary keeps its old lines.
+    const std::string outcome = r.three_component ? fmt::format("{} ({})", outcome_name(o.outcome), object_model_name(o.model))
+                                                  : std::string(outcome_name(o.outcome));
+    fmt::print("  {:<16} {:<{}} {:.3f} / {:.2f}  {:.2f} bit{}\n", o.id, outcome, r.three_component ? 23 : 15,
+               o.posterior_predictive,
                o.probability_at_best, o.constraint_bits, o.misfit ? "  MISFIT" : "");
   }
   for (const auto& note : r.notes) fmt::print("note: {}\n", note);
