@@ -197,6 +197,9 @@ void run_invert(const InvertOptions& o) {
   if (!quiet) {
     for (const std::string& note : survey.notes) fmt::print(stderr, "topple: note: {}\n", note);
   }
+  if (cluster->rank() == 0) {  // warnings are said even with --quiet, as the sweep's are
+    for (const std::string& w : survey.warnings) fmt::print(stderr, "topple: warning: {}\n", w);
+  }
   if (!quiet) {
     if (cluster->size() > 1) fmt::print(stderr, "topple: {} sites over {} MPI ranks\n", survey.sites.size(), cluster->size());
     for (const Site& site : survey.sites) {
@@ -260,13 +263,16 @@ void run_invert(const InvertOptions& o) {
   }
   if (o.json) {
     if (!multi) {
-      fmt::print("{}\n", io::inversion_json(results[0], survey.sites[0], provenance).dump(2));
+      nlohmann::ordered_json j = io::inversion_json(results[0], survey.sites[0], provenance);
+      if (!survey.warnings.empty()) j["warnings"] = survey.warnings;  // added only when there are any: old bytes kept
+      fmt::print("{}\n", j.dump(2));
     } else {
       nlohmann::ordered_json all;
       all["sites"] = nlohmann::ordered_json::array();
       for (std::size_t i = 0; i < results.size(); ++i) all["sites"].push_back(io::inversion_json(results[i], with_objects[i], provenance));
       if (region) all["region"] = io::region_json(*region, survey, per_site, region_settings);
       if (!region_notes.empty()) all["region_notes"] = region_notes;
+      if (!survey.warnings.empty()) all["warnings"] = survey.warnings;
       fmt::print("{}\n", all.dump(2));
     }
     return;

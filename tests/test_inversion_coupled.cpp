@@ -287,6 +287,49 @@ TEST(CoupledSurvey, CliWritesTheModelAndRefusesBadCombinationsWithExitTwo) {
   EXPECT_NE(b.err.find("object[1](a).model"), std::string::npos) << b.err;
 }
 
+TEST(CoupledSurvey, FrictionAtThePainleveLimitIsWarnedAndKept) {
+  // Block 10 cm x 40 cm: mu_P = 4/3 (slide_rock.hpp, painleve_friction_limit: any rectangular block). mu = 1.5 is
+  // above it: the reader says so, naming the file, the line of mu, the object and the values, and keeps the value;
+  // mu = 0.3 (object b) is below it and the sliding block (c, model slide) never rocks: no warning for them.
+  const std::string text = kHead + "mu = 1.5\noutcome = \"walked\"\n" + head("b") + "mu = 0.3\noutcome = \"slid_stood\"\n" +
+                           head("c") + "mu = 1.5\noutcome = \"slid\"\n";
+  const Survey s = io::parse_survey(text, "s.toml", ".");
+  ASSERT_EQ(s.warnings.size(), 1u);
+  const std::string& w = s.warnings[0];
+  for (const char* part : {"s.toml:5", "object[1](a).mu", "mu = 1.5", "mu_P = 1.333", "b/h = 0.25", "Painleve's paradox",
+                           "tangential impacts"}) {
+    EXPECT_NE(w.find(part), std::string::npos) << part << " not in: " << w;
+  }
+  EXPECT_TRUE(s.notes.empty());
+  // A range that reaches the limit is warned too, one that stays below it is not.
+  EXPECT_EQ(io::parse_survey(kHead + "mu = [1.0, 1.4]\noutcome = \"walked\"\n", "s.toml", ".").warnings.size(), 1u);
+  EXPECT_TRUE(io::parse_survey(kHead + "mu = [1.0, 1.3]\noutcome = \"walked\"\n", "s.toml", ".").warnings.empty());
+  // The value is kept: the objects, and so the inversion, are those built in code with the same numbers.
+  Site site;
+  site.objects.push_back(testing::block("a", 0.1, 0.4, {1.5, 1.5}, Outcome::walked));
+  site.objects.push_back(testing::block("b", 0.1, 0.4, {0.3, 0.3}, Outcome::slid_stood));
+  site.objects.push_back(testing::block("c", 0.1, 0.4, {1.5, 1.5}, Outcome::slid));
+  InversionSettings st = testing::small_grid(2);
+  st.pga_count = 3;
+  st.freq_count = 2;
+  st.duration_s = 6.0;
+  const InversionResult read = invert_site(s.sites.front(), st);
+  const InversionResult built = invert_site(site, st);
+  EXPECT_EQ(read.log_likelihood, built.log_likelihood);  // the very same runs: exact
+  // The CLI prints it (even with --quiet) and adds it to its JSON.
+  test::TempDir tmp;
+  const auto file = tmp.path() / "s.toml";
+  test::write_file(file, "[inversion]\npga_g = [0.1, 1.5, 3]\nfreq_hz = [1.0, 4.0, 2]\nmotions_per_cell = 2\n"
+                         "duration_s = 6.0\n" + text);
+  const auto r = test::run_cli("invert '" + file.string() + "' --json --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("topple: warning: " + file.string() + ":10: object[1](a).mu: mu = 1.5"), std::string::npos)
+      << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j.at("warnings").size(), 1u);
+  EXPECT_NE(j.at("warnings")[0].get<std::string>().find("mu_P = 1.333"), std::string::npos);
+}
+
 /// What a field engineer would write for a coupled object after the truth: from the coupled solver's own summary by
 /// the definitions of docs/survey.md, written out here again (not through coupled_match, which is under test).
 ObservedObject observe_coupled(ObservedObject obj, const SlideRockSummary& s) {

@@ -710,12 +710,17 @@ nb::object invert_survey(const Survey& survey, int threads, const std::optional<
     }
     return d;
   };
-  if (results.size() == 1) return site_dict(0);
+  // The survey reader's warnings, as `topple invert --json` adds them: only when there are any.
+  const auto with_warnings = [&](nb::dict d) {
+    if (!survey.warnings.empty()) d["warnings"] = to_python(nlohmann::ordered_json(survey.warnings));
+    return d;
+  };
+  if (results.size() == 1) return with_warnings(site_dict(0));
   nb::dict all;
   nb::list sites;
   for (std::size_t i = 0; i < results.size(); ++i) sites.append(site_dict(i));
   all["sites"] = sites;
-  return all;
+  return with_warnings(all);
 }
 
 /// A survey file read by the library (the options checked first, as the CLI does), without the GIL.
