@@ -245,20 +245,11 @@ void run_fragility(const FragilityOptions& o) {
   }
   ProgressBar bar(progress_wanted(o.quiet));
   spec.progress = bar.callback();
-  const FragilityResult res = [&] {
-    try {
-      return fragility_analysis(spec);
-    } catch (const InputError& e) {
-      // The library names its fields; the user typed options.
-      const std::string& field = e.where().field;
-      if (!e.where().file.empty()) throw;
-      if (field == "mode") throw parameter_error("--one-way", e.problem());
-      if (field == "slope") throw parameter_error("--slope-deg", e.problem());
-      if (field == "bearing") throw parameter_error("--bearing-deg", e.problem());
-      if (field == "levels") throw parameter_error("--im-range", e.problem());
-      throw;
-    }
-  }();
+  // The library names its fields; the user typed options.
+  const FragilityResult res =
+      with_field_names({{"mode", "--one-way"}, {"slope", "--slope-deg"}, {"bearing", "--bearing-deg"},
+                        {"levels", "--im-range"}},
+                       [&] { return fragility_analysis(spec); });
   bar.finish();
   const std::string im_column = res.rotd50 ? "im_rotd50_pga_g" : std::string(intensity_measure_column(spec.im));
   const std::string bearing_rule =

@@ -97,7 +97,12 @@ void print_site(const Site& site, const InversionResult& r) {
   fmt::print("objects: P(observation) posterior-predictive / at the maximum-likelihood cell, information (bits), "
              "misfit if P < {}:\n", kMisfitProbability);
   for (const auto& o : r.objects) {
-    fmt::print("  {:<16} {:<15} {:.3f} / {:.2f}  {:.2f} bit{}\n", o.id, outcome_name(o.outcome), o.posterior_predictive,
+    // With components = 3 the model each object ran with (slide: 2-D sliding block; rock: oriented rocking body)
+    // follows its outcome; a one-component summary keeps its old lines.
+    const std::string outcome = r.three_component ? fmt::format("{} ({})", outcome_name(o.outcome), object_model_name(o.model))
+                                                  : std::string(outcome_name(o.outcome));
+    fmt::print("  {:<16} {:<{}} {:.3f} / {:.2f}  {:.2f} bit{}\n", o.id, outcome, r.three_component ? 23 : 15,
+               o.posterior_predictive,
                o.probability_at_best, o.constraint_bits, o.misfit ? "  MISFIT" : "");
   }
   for (const auto& note : r.notes) fmt::print("note: {}\n", note);
@@ -192,6 +197,9 @@ void run_invert(const InvertOptions& o) {
   if (!quiet) {
     for (const std::string& note : survey.notes) fmt::print(stderr, "topple: note: {}\n", note);
   }
+  if (cluster->rank() == 0) {  // warnings are said even with --quiet, as the sweep's are
+    for (const std::string& w : survey.warnings) fmt::print(stderr, "topple: warning: {}\n", w);
+  }
   if (!quiet) {
     if (cluster->size() > 1) fmt::print(stderr, "topple: {} sites over {} MPI ranks\n", survey.sites.size(), cluster->size());
     for (const Site& site : survey.sites) {
@@ -255,13 +263,16 @@ void run_invert(const InvertOptions& o) {
   }
   if (o.json) {
     if (!multi) {
-      fmt::print("{}\n", io::inversion_json(results[0], survey.sites[0], provenance).dump(2));
+      nlohmann::ordered_json j = io::inversion_json(results[0], survey.sites[0], provenance);
+      if (!survey.warnings.empty()) j["warnings"] = survey.warnings;  // added only when there are any: old bytes kept
+      fmt::print("{}\n", j.dump(2));
     } else {
       nlohmann::ordered_json all;
       all["sites"] = nlohmann::ordered_json::array();
       for (std::size_t i = 0; i < results.size(); ++i) all["sites"].push_back(io::inversion_json(results[i], with_objects[i], provenance));
       if (region) all["region"] = io::region_json(*region, survey, per_site, region_settings);
       if (!region_notes.empty()) all["region_notes"] = region_notes;
+      if (!survey.warnings.empty()) all["warnings"] = survey.warnings;
       fmt::print("{}\n", all.dump(2));
     }
     return;

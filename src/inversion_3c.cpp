@@ -499,6 +499,10 @@ InversionResult invert_site_3c(const Site& site, const InversionSettings& st, co
     ObjectReport& rep = r.objects[o];
     rep.id = site.objects[o].id;
     rep.outcome = site.objects[o].outcome;
+    // The solver its runs used (observation_match_3c): the two-dimensional sliding block or the oriented rocking body. The
+    // survey reader refuses the coupled model and a model key that contradicts the outcome with components = 3, so
+    // this is also object_model (survey.hpp).
+    rep.model = is_sliding(rep.outcome) ? ObjectModel::slide : ObjectModel::rock;
     rep.probability.assign(cells, 0.0);
     rep.reproduced_anywhere = false;
     for (std::size_t b = 0; b < nb; ++b) {

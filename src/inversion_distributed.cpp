@@ -25,7 +25,11 @@ class Packer {
   void operator()(const double& v) { words_.push_back(std::bit_cast<std::uint64_t>(v)); }
   void operator()(const bool& v) { words_.push_back(v ? 1 : 0); }
   void operator()(const int& v) { words_.push_back(static_cast<std::uint64_t>(static_cast<std::int64_t>(v))); }
-  void operator()(const Outcome& v) { words_.push_back(static_cast<std::uint64_t>(v)); }
+  template <class E>
+    requires std::is_enum_v<E>
+  void operator()(const E& v) {  // Outcome, ObjectModel
+    words_.push_back(static_cast<std::uint64_t>(v));
+  }
   void operator()(const std::string& s) {
     words_.push_back(s.size());
     for (std::size_t i = 0; i < s.size(); i += 8) {
@@ -67,7 +71,11 @@ class Unpacker {
   void operator()(double& v) { v = std::bit_cast<double>(next()); }
   void operator()(bool& v) { v = next() != 0; }
   void operator()(int& v) { v = static_cast<int>(static_cast<std::int64_t>(next())); }
-  void operator()(Outcome& v) { v = static_cast<Outcome>(next()); }
+  template <class E>
+    requires std::is_enum_v<E>
+  void operator()(E& v) {
+    v = static_cast<E>(next());
+  }
   void operator()(std::string& s) {
     const std::size_t n = next();
     if (n > 8 * (w_.size() - at_)) throw std::runtime_error("unpack_inversion_results: the payload ends early");
@@ -123,7 +131,7 @@ void fields(IO& io, StaticBounds& b) {
 }
 template <class IO>
 void fields(IO& io, ObjectReport& o) {
-  io(o.id), io(o.outcome), io(o.probability), io(o.probability_at_best), io(o.max_probability),
+  io(o.id), io(o.outcome), io(o.model), io(o.probability), io(o.probability_at_best), io(o.max_probability),
       io(o.reproduced_anywhere), io(o.posterior_predictive), io(o.misfit), io(o.constraint_bits);
 }
 template <class IO>

@@ -112,7 +112,7 @@ std::string interval_text(const Interval& iv) {
 
 /// The observation as scored: a measured distance with the sigma the likelihood uses (sliding_sigma_m), and the given
 /// one when the floor raised it.
-std::string observed_text(const ObservedObject& o) {
+std::string observed_text(const ObservedObject& o, const ObjectReport& rep, bool three_component) {
   std::string s(outcome_name(o.outcome));
   if (o.slid_m) {
     const double used = sliding_sigma_m(o);
@@ -122,7 +122,11 @@ std::string observed_text(const ObservedObject& o) {
     }
   }
   if (o.slid_at_least_m) s += fmt::format(" &ge; {:.3g} cm", 100.0 * *o.slid_at_least_m);
-  if (object_model(o) == ObjectModel::coupled) s += " (coupled slide-rock model)";
+  if (rep.model == ObjectModel::coupled) {
+    s += " (coupled slide-rock model)";
+  } else if (three_component) {  // the model its runs used (inversion_3c.cpp): said for every object
+    s += rep.model == ObjectModel::slide ? " (2-D sliding block model)" : " (oriented rocking model)";
+  }
   return s;
 }
 
@@ -645,7 +649,7 @@ void write_report(const std::filesystem::path& dir, const Survey& survey, const 
                      "<td>{}</td><td>{:.3f}{}</td><td>{:.2f}</td><td>{:.2f}</td></tr>\n",
                      rep.misfit ? " class=\"misfit\"" : "", html_escape(obj.id), html_escape(obj.description), dims(obj),
                      interval_text(obj.mu), e, html_escape(obj.support), interval_text(obj.amplification),
-                     observed_text(obj), evidence_name(obj.evidence), bound, rep.posterior_predictive,
+                     observed_text(obj, rep, r.three_component.has_value()), evidence_name(obj.evidence), bound, rep.posterior_predictive,
                      rep.misfit ? " <span class=\"flag\">MISFIT</span>" : "", rep.probability_at_best,
                      rep.constraint_bits);
   }

@@ -1337,6 +1337,19 @@ RockingBody SlideRockBody::rocking_body() const { return RockingBody::general_as
 
 bool SlideRockBody::cannot_uplift() const noexcept { return mu_static < std::min(b1_m, b2_m) / h_m; }
 
+double SlideRockBody::painleve_friction_limit() const noexcept {
+  // About pivot s at tilt theta the CM is at |rho_x| = R |sin phi|, rho_y = R cos phi from it, R^2 = b_s^2 + h^2,
+  // phi = alpha_s - theta (tan alpha_s = b_s / h). With t = tan |phi|, (k2 + rho_x^2) / (|rho_x| rho_y) =
+  // q / t + (q + 1) t, q = k2 / R^2, least at t = sqrt(q / (q + 1)) < 1, where it is 2 sqrt(q (q + 1)). Over
+  // 0 <= theta < pi/2, |phi| runs up to alpha_s or pi/2 - alpha_s, one of which has tan >= 1: that t is reached.
+  double limit = std::numeric_limits<double>::infinity();
+  for (const double b : {b1_m, b2_m}) {
+    const double q = inertia_m2 / (b * b + h_m * h_m);
+    limit = std::min(limit, 2.0 * std::sqrt(q * (q + 1.0)));
+  }
+  return limit;
+}
+
 SlideRockMode slide_rock_onset_mode(const SlideRockBody& body, double a_h_m_s2, double g_e_m_s2, double slope_rad) {
   SlideRockOptions o;
   o.slope_rad = slope_rad;

@@ -12,6 +12,7 @@
 
 #include "support/observed_objects.hpp"
 #include "support/regional_scenario.hpp"
+#include "support/shared_data.hpp"
 #include "topple/error.hpp"
 #include "topple/inversion.hpp"
 #include "topple/inversion_3c.hpp"
@@ -551,6 +552,52 @@ TEST(Inversion3c, SummaryJsonAndReportSayRotD50AndTheDirection) {
   EXPECT_NE(html.str().find("objects' bearings"), std::string::npos);
   EXPECT_NE(html.str().find("<td>RotD50 PGA &gt; "), std::string::npos);
   std::filesystem::remove_all(dir);
+}
+
+TEST(Inversion3c, EveryObjectSaysTheModelItRanWith) {
+  // A slider (the 2-D sliding block), a block at its bearing and a box (both the oriented rocking body): the report's
+  // model is the solver its runs used, in the result, the JSON, the CLI's summary and the HTML report. Before, every
+  // three-component object reported "rock", the default.
+  const std::string objects =
+      "[[object]]\nid = \"slider\"\nwidth = \"30cm\"\nheight = \"20cm\"\nmu = 0.3\noutcome = \"slid\"\n"
+      "[[object]]\nid = \"rocker\"\nwidth = \"8cm\"\nheight = \"40cm\"\nmu = 0.5\nazimuth_deg = 30\n"
+      "outcome = \"overturned\"\n"
+      "[[object]]\nid = \"box\"\nwidth = \"10cm\"\ndepth = \"20cm\"\nheight = \"40cm\"\nmu = 0.5\nazimuth_deg = 30\n"
+      "outcome = \"not_overturned\"\n";
+  const std::string grid = "pga_g = [0.1, 1.0, 3]\nfreq_hz = [1.0, 4.0, 2]\nmotions_per_cell = 2\nduration_s = 6.0\n";
+  const std::string text = "[inversion]\ncomponents = 3\ndirections = 4\n" + grid + objects;
+  const Survey s = parse(text);
+  const InversionResult r = invert_site(s.sites[0], s.inversion);
+  ASSERT_EQ(r.objects.size(), 3u);
+  EXPECT_EQ(r.objects[0].model, ObjectModel::slide);
+  EXPECT_EQ(r.objects[1].model, ObjectModel::rock);
+  EXPECT_EQ(r.objects[2].model, ObjectModel::rock);
+  const auto j = io::inversion_json(r, s.sites[0]);
+  EXPECT_EQ(j["objects"][0]["model"], "slide");
+  EXPECT_EQ(j["objects"][1]["model"], "rock");
+  EXPECT_EQ(j["objects"][2]["model"], "rock");
+  // The HTML report's observations and the CLI's summary say it too.
+  test::TempDir tmp;
+  test::write_file(tmp.path() / "s.toml", text);
+  const auto cli = test::run_cli("invert '" + (tmp.path() / "s.toml").string() + "' --quiet --report '" +
+                                 (tmp.path() / "rep").string() + "'");
+  ASSERT_EQ(cli.exit_code, 0) << cli.err;
+  EXPECT_NE(cli.out.find("slider           slid (slide)"), std::string::npos) << cli.out;
+  EXPECT_NE(cli.out.find("rocker           overturned (rock)"), std::string::npos) << cli.out;
+  EXPECT_NE(cli.out.find("box              not_overturned (rock)"), std::string::npos) << cli.out;
+  const std::string page = test::slurp(tmp.path() / "rep" / "index.html");
+  EXPECT_EQ(test::count(page, "slid (2-D sliding block model)"), 1u);
+  EXPECT_EQ(test::count(page, "overturned (oriented rocking model)"), 2u);  // overturned and not_overturned
+  // One component: the same objects (no bearing or depth) keep their old JSON, with no model key (the rule gives
+  // slide and rock, as before).
+  const Survey one = parse("[inversion]\n" + grid +
+                           "[[object]]\nid = \"slider\"\nwidth = \"30cm\"\nheight = \"20cm\"\nmu = 0.3\n"
+                           "outcome = \"slid\"\n" + std::string(kObjectBlock) + "outcome = \"overturned\"\n");
+  const InversionResult r1 = invert_site(one.sites[0], one.inversion);
+  EXPECT_EQ(r1.objects[0].model, ObjectModel::slide);
+  EXPECT_EQ(r1.objects[1].model, ObjectModel::rock);
+  const auto j1 = io::inversion_json(r1, one.sites[0]);
+  for (const auto& o : j1["objects"]) EXPECT_FALSE(o.contains("model")) << o.dump();
 }
 
 // ---- Recovery -------------------------------------------------------------------------------------------------

@@ -31,71 +31,13 @@
 namespace topple {
 namespace {
 
-// A survey written before the coupled model existed: every outcome kind of that time, a measured distance, an
-// at-least distance, a cylinder, an asymmetric general body, an amplification and an orientation.
-const char* const kOldSurvey = R"(
-[site]
-name = "before the coupled model"
-[inversion]
-pga_g = [0.1, 1.5, 5]
-freq_hz = [1.0, 6.0, 3]
-motions_per_cell = 3
-duration_s = 8.0
-seed = 11
-[[object]]
-id = "pan"
-width = "20cm"
-height = "10cm"
-mu = [0.2, 0.3]
-outcome = "slid"
-slid = "4cm"
-[[object]]
-id = "crate"
-width = "30cm"
-height = "30cm"
-mu = 0.6
-outcome = "slid"
-slid_at_least = "1cm"
-[[object]]
-id = "tv"
-width = "25cm"
-height = "50cm"
-mu = [0.4, 0.5]
-outcome = "not_slid"
-amplification = [1.0, 1.3]
-[[object]]
-id = "vase"
-shape = "cylinder"
-diameter = "8cm"
-height = "40cm"
-mu = 0.5
-outcome = "overturned"
-[[object]]
-id = "clock"
-width = "12cm"
-height = "30cm"
-mu = 0.5
-outcome = "rocked"
-orientation_deg = 30
-[[object]]
-id = "jar"
-width = "15cm"
-height = "25cm"
-mu = 0.5
-outcome = "not_rocked"
-[[object]]
-id = "rock"
-shape = "general"
-b1 = "10cm"
-b2 = "20cm"
-h = "40cm"
-inertia = "0.02m2"
-mu = 0.7
-outcome = "not_overturned"
-)";
-
 TEST(CoupledSurvey, SurveyFromBeforeTheChangeKeepsItsLikelihoodBitForBit) {
-  const Survey s = io::parse_survey(kOldSurvey, "old.toml", ".");
+  // A survey written before the coupled model existed: every outcome kind of that time, a measured distance, an
+  // at-least distance, a cylinder, an asymmetric general body, an amplification and an orientation.
+  const Survey s = io::parse_survey(
+      test::slurp(std::filesystem::path(TOPPLE_SOURCE_DIR) / "tests" / "fixtures" / "survey_before_coupled.toml"),
+      "old.toml", ".");
+  ASSERT_EQ(s.sites.front().objects.size(), 7u) << "tests/fixtures/survey_before_coupled.toml not read";
   for (const ObservedObject& o : s.sites.front().objects) {
     EXPECT_FALSE(o.model.has_value()) << o.id;
     EXPECT_NE(object_model(o), ObjectModel::coupled) << o.id;  // the rule: one motion observed, its own model
@@ -109,27 +51,47 @@ TEST(CoupledSurvey, SurveyFromBeforeTheChangeKeepsItsLikelihoodBitForBit) {
   for (const ObjectReport& o : r.objects) EXPECT_NE(o.model, ObjectModel::coupled) << o.id;
 }
 
-const std::string kHead = "[[object]]\nid = \"a\"\nwidth = \"10cm\"\nheight = \"40cm\"\n";
+/// The head of a survey's block object `id`, 10 cm x 40 cm (b/h = 0.25); its friction and outcome follow.
+std::string head(const std::string& id) {
+  return "[[object]]\nid = \"" + id + "\"\nwidth = \"10cm\"\nheight = \"40cm\"\n";
+}
+const std::string kHead = head("a");
+
+/// What a test expects of an object read from a survey: its outcome, measured distance (m) and model key, where given.
+struct Read {
+  Outcome outcome;
+  std::optional<double> slid_m;
+  std::optional<ObjectModel> model;
+};
+
+/// The survey's one site holds exactly the expected objects, in order.
+void expect_read(const Survey& s, const std::vector<Read>& expected) {
+  const auto& obj = s.sites.front().objects;
+  ASSERT_EQ(obj.size(), expected.size());
+  for (std::size_t i = 0; i < obj.size(); ++i) {
+    SCOPED_TRACE(obj[i].id);
+    EXPECT_EQ(obj[i].outcome, expected[i].outcome);
+    ASSERT_EQ(obj[i].slid_m.has_value(), expected[i].slid_m.has_value());
+    if (expected[i].slid_m) EXPECT_DOUBLE_EQ(*obj[i].slid_m, *expected[i].slid_m);
+    EXPECT_EQ(obj[i].model, expected[i].model);
+  }
+}
 
 TEST(CoupledSurvey, OutcomesAndTheModelAreReadAndTheRuleChoosesTheModel) {
-  const Survey s = io::parse_survey(
-      kHead + "mu = 0.3\noutcome = \"slid_stood\"\nslid = \"3cm\"\n"
-              "[[object]]\nid = \"b\"\nwidth = \"10cm\"\nheight = \"40cm\"\nmu = 0.3\noutcome = \"slid_toppled\"\n"
-              "[[object]]\nid = \"c\"\nwidth = \"10cm\"\nheight = \"40cm\"\nmu = [0.2, 0.3]\noutcome = \"walked\"\n"
-              "[[object]]\nid = \"d\"\nwidth = \"10cm\"\nheight = \"40cm\"\nmu = 0.3\noutcome = \"overturned\"\n"
-              "model = \"coupled\"\n"
-              "[[object]]\nid = \"e\"\nwidth = \"10cm\"\nheight = \"40cm\"\nmu = 0.3\noutcome = \"slid\"\n"
-              "model = \"slide\"\n",
-      "s.toml", ".");
+  const Survey s = io::parse_survey(kHead + "mu = 0.3\noutcome = \"slid_stood\"\nslid = \"3cm\"\n" + head("b") +
+                                        "mu = 0.3\noutcome = \"slid_toppled\"\n" + head("c") +
+                                        "mu = [0.2, 0.3]\noutcome = \"walked\"\n" + head("d") +
+                                        "mu = 0.3\noutcome = \"overturned\"\nmodel = \"coupled\"\n" + head("e") +
+                                        "mu = 0.3\noutcome = \"slid\"\nmodel = \"slide\"\n",
+                                    "s.toml", ".");
+  expect_read(s, {{Outcome::slid_stood, 0.03, std::nullopt},
+                  {Outcome::slid_toppled, std::nullopt, std::nullopt},
+                  {Outcome::walked, std::nullopt, std::nullopt},
+                  {Outcome::overturned, std::nullopt, ObjectModel::coupled},
+                  {Outcome::slid, std::nullopt, ObjectModel::slide}});
   const auto& obj = s.sites.front().objects;
   ASSERT_EQ(obj.size(), 5u);
-  EXPECT_EQ(obj[0].outcome, Outcome::slid_stood);
-  ASSERT_TRUE(obj[0].slid_m.has_value());
-  EXPECT_DOUBLE_EQ(*obj[0].slid_m, 0.03);
-  EXPECT_EQ(obj[1].outcome, Outcome::slid_toppled);
-  EXPECT_EQ(obj[2].outcome, Outcome::walked);
   for (int i = 0; i < 3; ++i) {
-    EXPECT_FALSE(obj[i].model.has_value());
     EXPECT_EQ(object_model(obj[i]), ObjectModel::coupled) << obj[i].id;  // both motions observed: coupled
   }
   EXPECT_EQ(object_model(obj[3]), ObjectModel::coupled);  // forced
@@ -139,19 +101,14 @@ TEST(CoupledSurvey, OutcomesAndTheModelAreReadAndTheRuleChoosesTheModel) {
 }
 
 TEST(CoupledSurvey, ASpreadsheetGivesTheSameObjects) {
-  const Survey s = io::parse_survey(
-      "id,width_cm,height_cm,mu,outcome,slid_cm,model\n"
-      "bottle,10,30,\"[0.2, 0.3]\",slid_stood,3,\n"
-      "clock,12,30,0.45,rocked,,coupled\n"
-      "stool,20,45,0.5,walked,,\n",
-      "s.csv", ".");
-  const auto& obj = s.sites.front().objects;
-  ASSERT_EQ(obj.size(), 3u);
-  EXPECT_EQ(obj[0].outcome, Outcome::slid_stood);
-  ASSERT_TRUE(obj[0].slid_m.has_value());
-  EXPECT_DOUBLE_EQ(*obj[0].slid_m, 0.03);
-  EXPECT_EQ(obj[1].model, ObjectModel::coupled);
-  EXPECT_EQ(obj[2].outcome, Outcome::walked);
+  expect_read(io::parse_survey("id,width_cm,height_cm,mu,outcome,slid_cm,model\n"
+                               "bottle,10,30,\"[0.2, 0.3]\",slid_stood,3,\n"
+                               "clock,12,30,0.45,rocked,,coupled\n"
+                               "stool,20,45,0.5,walked,,\n",
+                               "s.csv", "."),
+              {{Outcome::slid_stood, 0.03, std::nullopt},
+               {Outcome::rocked, std::nullopt, ObjectModel::coupled},
+               {Outcome::walked, std::nullopt, std::nullopt}});
   try {  // a refusal names the CSV's line and column
     (void)io::parse_survey("id,width_cm,height_cm,mu,outcome,model\nx,10,30,0.3,walked,rock\n", "s.csv", ".");
     ADD_FAILURE() << "walked on the rocking model was accepted";
@@ -328,6 +285,49 @@ TEST(CoupledSurvey, CliWritesTheModelAndRefusesBadCombinationsWithExitTwo) {
   EXPECT_EQ(b.exit_code, 2);
   EXPECT_NE(b.err.find("bad.toml:12"), std::string::npos) << b.err;  // the line of `model`
   EXPECT_NE(b.err.find("object[1](a).model"), std::string::npos) << b.err;
+}
+
+TEST(CoupledSurvey, FrictionAtThePainleveLimitIsWarnedAndKept) {
+  // Block 10 cm x 40 cm: mu_P = 4/3 (slide_rock.hpp, painleve_friction_limit: any rectangular block). mu = 1.5 is
+  // above it: the reader says so, naming the file, the line of mu, the object and the values, and keeps the value;
+  // mu = 0.3 (object b) is below it and the sliding block (c, model slide) never rocks: no warning for them.
+  const std::string text = kHead + "mu = 1.5\noutcome = \"walked\"\n" + head("b") + "mu = 0.3\noutcome = \"slid_stood\"\n" +
+                           head("c") + "mu = 1.5\noutcome = \"slid\"\n";
+  const Survey s = io::parse_survey(text, "s.toml", ".");
+  ASSERT_EQ(s.warnings.size(), 1u);
+  const std::string& w = s.warnings[0];
+  for (const char* part : {"s.toml:5", "object[1](a).mu", "mu = 1.5", "mu_P = 1.333", "b/h = 0.25", "Painleve's paradox",
+                           "tangential impacts"}) {
+    EXPECT_NE(w.find(part), std::string::npos) << part << " not in: " << w;
+  }
+  EXPECT_TRUE(s.notes.empty());
+  // A range that reaches the limit is warned too, one that stays below it is not.
+  EXPECT_EQ(io::parse_survey(kHead + "mu = [1.0, 1.4]\noutcome = \"walked\"\n", "s.toml", ".").warnings.size(), 1u);
+  EXPECT_TRUE(io::parse_survey(kHead + "mu = [1.0, 1.3]\noutcome = \"walked\"\n", "s.toml", ".").warnings.empty());
+  // The value is kept: the objects, and so the inversion, are those built in code with the same numbers.
+  Site site;
+  site.objects.push_back(testing::block("a", 0.1, 0.4, {1.5, 1.5}, Outcome::walked));
+  site.objects.push_back(testing::block("b", 0.1, 0.4, {0.3, 0.3}, Outcome::slid_stood));
+  site.objects.push_back(testing::block("c", 0.1, 0.4, {1.5, 1.5}, Outcome::slid));
+  InversionSettings st = testing::small_grid(2);
+  st.pga_count = 3;
+  st.freq_count = 2;
+  st.duration_s = 6.0;
+  const InversionResult read = invert_site(s.sites.front(), st);
+  const InversionResult built = invert_site(site, st);
+  EXPECT_EQ(read.log_likelihood, built.log_likelihood);  // the very same runs: exact
+  // The CLI prints it (even with --quiet) and adds it to its JSON.
+  test::TempDir tmp;
+  const auto file = tmp.path() / "s.toml";
+  test::write_file(file, "[inversion]\npga_g = [0.1, 1.5, 3]\nfreq_hz = [1.0, 4.0, 2]\nmotions_per_cell = 2\n"
+                         "duration_s = 6.0\n" + text);
+  const auto r = test::run_cli("invert '" + file.string() + "' --json --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("topple: warning: " + file.string() + ":10: object[1](a).mu: mu = 1.5"), std::string::npos)
+      << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j.at("warnings").size(), 1u);
+  EXPECT_NE(j.at("warnings")[0].get<std::string>().find("mu_P = 1.333"), std::string::npos);
 }
 
 /// What a field engineer would write for a coupled object after the truth: from the coupled solver's own summary by

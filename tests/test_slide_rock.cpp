@@ -3,6 +3,7 @@
 // the same on an inclined base.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <string>
 #include <utility>
@@ -363,6 +364,31 @@ TEST(SlideRockConvergence, ErrorFallsWithTheTolerance) {
 
 // ---------------------------------------------------------------------------------------------------------------
 // Painleve's paradox (docs/method.md): the impact without collision and the hold
+
+TEST(SlideRockPainleve, FrictionLimitIsTheLeastRatioOverTheTilts) {
+  // mu_P against a scan of (k2 + rho_x^2) / |rho_x rho_y| over 0 <= theta < pi/2 on both pivots, rho from the contact
+  // geometry itself (rho_x = -s b_s cos theta + h sin theta, rho_y = s b_s sin theta + h cos theta), not the closed
+  // form. Step 1e-5 rad: the ratio is smooth at its minimum, so the scan is within ~1e-9 of it; 1e-8 allows that.
+  const auto scanned = [](const SlideRockBody& body) {
+    double least = std::numeric_limits<double>::infinity();
+    for (const int s : {-1, 1}) {
+      const double b = s < 0 ? body.b1_m : body.b2_m;
+      for (double th = 0.0; th < kPi / 2.0; th += 1e-5) {
+        const double rx = -s * b * std::cos(th) + body.h_m * std::sin(th);
+        const double ry = s * b * std::sin(th) + body.h_m * std::cos(th);
+        if (rx != 0.0) least = std::min(least, (body.inertia_m2 + rx * rx) / std::abs(rx * ry));
+      }
+    }
+    return least;
+  };
+  for (const SlideRockBody& body : {SlideRockBody::block(0.1, 0.4, 0.5), SlideRockBody::block(0.6, 0.3, 0.5),
+                                    SlideRockBody::make(0.05, 0.2, 0.3, 0.004, 0.5)}) {
+    EXPECT_NEAR(body.painleve_friction_limit(), scanned(body), 1e-8) << body.b1_m << " " << body.b2_m;
+  }
+  // A rectangular block: q = k2 / R^2 = 1/3 whatever its b/h, so mu_P = 2 sqrt(4/9) = 4/3 (to rounding).
+  EXPECT_NEAR(SlideRockBody::block(0.1, 0.4, 0.5).painleve_friction_limit(), 4.0 / 3.0, 1e-15);
+  EXPECT_NEAR(SlideRockBody::block(0.6, 0.3, 0.5).painleve_friction_limit(), 4.0 / 3.0, 1e-15);
+}
 
 TEST(SlideRockPainleve, AsymmetricBodyGoingOverCompletes) {
   // b1 = 5 cm, b2 = 20 cm, h = 30 cm, k2 = 0.00925 m2, mu = 5, a half-sine of 20 m/s^2 for 0.3 s: the body rocks onto

@@ -9,9 +9,12 @@
 // limit and the parameters that caused it; a file that cannot be written (disk full, permission) throws an
 // OutputError. Each has its own exit status (ExitStatus below; the CLI's documented contract).
 #include <cstddef>
+#include <initializer_list>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
+#include <utility>
 
 namespace topple {
 
@@ -92,5 +95,22 @@ class OutputError : public std::runtime_error {
 
 /// Convenience: an InputError about a named parameter (no file).
 [[nodiscard]] InputError parameter_error(const std::string& field, const std::string& problem);
+
+/// Calls `f()`; an InputError it throws about a parameter (no file) whose field the library named `from` in one of
+/// `names` is thrown again as parameter_error(to, problem): the name the caller typed (a CLI option, a Python keyword).
+/// Any other error passes unchanged. The front ends use it so that every message names what the user wrote.
+template <class F>
+auto with_field_names(std::initializer_list<std::pair<std::string_view, std::string_view>> names, F&& f)
+    -> decltype(f()) {
+  try {
+    return f();
+  } catch (const InputError& e) {
+    if (!e.where().file.empty()) throw;
+    for (const auto& [from, to] : names) {
+      if (e.where().field == from) throw parameter_error(std::string(to), e.problem());
+    }
+    throw;
+  }
+}
 
 }  // namespace topple

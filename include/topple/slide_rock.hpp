@@ -116,6 +116,12 @@ struct SlideRockBody {
   [[nodiscard]] RockingBody rocking_body() const;
   /// True when mu_s < min(b1, b2) / h: the body slides before it can lift and never lifts while sliding.
   [[nodiscard]] bool cannot_uplift() const noexcept;
+  /// mu_P, the Painleve limit (dimensionless; docs/method.md, "Painleve's paradox"): the least kinetic friction
+  /// coefficient at which slide-rock's den = k2 + rho_x^2 + sigma mu_k rho_x rho_y reaches 0 at some tilt
+  /// |theta| < pi/2 on either pivot, i.e. mu_P = min over the pivots of min_theta (k2 + rho_x^2) / |rho_x rho_y|
+  /// = min_s 2 sqrt(q_s (q_s + 1)), q_s = k2 / (b_s^2 + h^2). A rectangular block: 4/3 whatever its b/h. With
+  /// mu_kinetic >= mu_P the run may meet the paradox, which the solver resolves (tangential impacts, holds).
+  [[nodiscard]] double painleve_friction_limit() const noexcept;
 };
 
 enum class SlideRockMode : std::uint8_t { rest, slide, rock, slide_rock, flight, fallen };

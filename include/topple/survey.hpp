@@ -181,6 +181,9 @@ struct Survey {
   /// What the reader applied by a documented rule that changes a given value (the sliding-uncertainty floor), one
   /// "file:line: field: text" line each, for the front ends to show.
   std::vector<std::string> notes;
+  /// Values accepted as given that the user should check (a coupled object's friction at or above its Painleve limit,
+  /// slide_rock.hpp), one "file:line: field: text" line each; the CLI prints them and adds them to its JSON.
+  std::vector<std::string> warnings;
 };
 
 }  // namespace topple

@@ -478,17 +478,12 @@ nb::dict run_rock_oriented(const GroundMotion& first, const GroundMotion& second
   const ComponentAzimuths azimuths{azimuths_deg[0], azimuths_deg[1]};
   // The library names its fields; the caller typed these parameters.
   const auto naming = [](auto f) {
-    try {
-      return f();
-    } catch (const InputError& err) {
-      const std::string& field = err.where().field;
-      if (!err.where().file.empty()) throw;
-      if (field == "bearing") throw parameter_error("bearing_deg", err.problem());
-      if (field == "depth") throw parameter_error("depth_m", err.problem());
-      if (field == "cylinder_step") throw parameter_error("direction_step_deg", err.problem());
-      if (field == "azimuths" || field == "azimuth") throw parameter_error("azimuths_deg", err.problem());
-      throw;
-    }
+    return with_field_names({{"bearing", "bearing_deg"},
+                             {"depth", "depth_m"},
+                             {"cylinder_step", "direction_step_deg"},
+                             {"azimuths", "azimuths_deg"},
+                             {"azimuth", "azimuths_deg"}},
+                            f);
   };
   const OrientedBody oriented = naming([&] { return OrientedBody::make(body, depth_m); });
   naming([&] { check_orientation(oriented, bearing_deg, direction_step_deg.has_value()); });
@@ -544,25 +539,11 @@ std::optional<ComponentAzimuths> azimuths_arg(const std::optional<std::vector<do
   return ComponentAzimuths{(*azimuths_deg)[0], (*azimuths_deg)[1]};
 }
 
-/// Runs `f`, renaming the fields the library names (first of each pair) to the Python parameters the caller typed
-/// (second), as the CLI maps them to its options. Errors located in a file are kept.
-template <class F>
-auto with_fields(std::initializer_list<std::pair<std::string_view, const char*>> names, F&& f) -> decltype(f()) {
-  try {
-    return f();
-  } catch (const InputError& e) {
-    if (!e.where().file.empty()) throw;
-    for (const auto& [field, parameter] : names) {
-      if (e.where().field == field) throw parameter_error(parameter, e.problem());
-    }
-    throw;
-  }
-}
-
-/// A motion set's fields: "azimuths" -> azimuths_deg, "azimuth" -> azimuth_deg.
+/// Runs `f` with a motion set's fields renamed to the Python parameters the caller typed: "azimuths" -> azimuths_deg,
+/// "azimuth" -> azimuth_deg (with_field_names, error.hpp; errors located in a file are kept).
 template <class F>
 auto with_set_fields(F&& f) -> decltype(f()) {
-  return with_fields({{"azimuths", "azimuths_deg"}, {"azimuth", "azimuth_deg"}}, std::forward<F>(f));
+  return with_field_names({{"azimuths", "azimuths_deg"}, {"azimuth", "azimuth_deg"}}, std::forward<F>(f));
 }
 
 MotionSet make_motion_set(const GroundMotion& first, const GroundMotion* second, const GroundMotion* vertical,
@@ -732,12 +713,17 @@ nb::object invert_survey(const Survey& survey, int threads, const std::optional<
     }
     return d;
   };
-  if (results.size() == 1) return site_dict(0);
+  // The survey reader's warnings, as `topple invert --json` adds them: only when there are any.
+  const auto with_warnings = [&](nb::dict d) {
+    if (!survey.warnings.empty()) d["warnings"] = to_python(nlohmann::ordered_json(survey.warnings));
+    return d;
+  };
+  if (results.size() == 1) return with_warnings(site_dict(0));
   nb::dict all;
   nb::list sites;
   for (std::size_t i = 0; i < results.size(); ++i) sites.append(site_dict(i));
   all["sites"] = sites;
-  return all;
+  return with_warnings(all);
 }
 
 /// A survey file read by the library (the options checked first, as the CLI does), without the GIL.
@@ -1122,7 +1108,7 @@ nb::dict fragility_dict(nb::handle motions, nb::handle levels, const std::string
         OverturnFailure{*body, make_rocking_options(e, rock_mu, g_m_s2, method, rel_tol, rk4_substeps, max_run_out_s)};
   }
   spec.threads = threads;
-  const FragilityResult result = with_fields({{"bearing", "bearing_deg"}, {"slope", "slope_deg"}}, [&] {
+  const FragilityResult result = with_field_names({{"bearing", "bearing_deg"}, {"slope", "slope_deg"}}, [&] {
     nb::gil_scoped_release release;
     return fragility_analysis(spec);
   });

@@ -132,8 +132,12 @@ nlohmann::ordered_json inversion_json(const InversionResult& r, const Site& site
     nlohmann::ordered_json oj;
     oj["id"] = rep.id;
     oj["outcome"] = std::string(outcome_name(rep.outcome));
-    // Added (issue 15) only for the coupled model, so that an older survey's JSON keeps its bytes.
-    if (rep.model == ObjectModel::coupled) oj["model"] = std::string(object_model_name(rep.model));
+    // Added (issue 15) only for the coupled model, so that an older one-component survey's JSON keeps its bytes; with
+    // components = 3 (added) for every object: "slide" for the two-dimensional sliding block, "rock" for the oriented
+    // rocking body (a box, a cylinder, a block at its bearing).
+    if (rep.model == ObjectModel::coupled || r.three_component) {
+      oj["model"] = std::string(object_model_name(rep.model));
+    }
     oj["probability_at_best"] = rep.probability_at_best;
     oj["max_probability"] = rep.max_probability;
     oj["reproduced_anywhere"] = rep.reproduced_anywhere;

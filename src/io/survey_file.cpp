@@ -292,9 +292,16 @@ RockingBody mesh_object_body(Reader& named, const std::filesystem::path& base_di
   }
 }
 
+/// What the reader says besides the survey: notes (a documented rule changed a given value) and warnings (a value
+/// accepted as given that the user should check), one "file:line: field: text" line each (Survey).
+struct ReaderMessages {
+  std::vector<std::string>& notes;
+  std::vector<std::string>& warnings;
+};
+
 /// `model = "slide" | "rock" | "coupled"` and the rule's refusals (survey.hpp, object_model; docs/survey.md,
 /// "Objects that slide and rock"). Needs the body, mu and the outcome.
-void parse_object_model(Reader& named, ObservedObject& o, int components) {
+void parse_object_model(Reader& named, ObservedObject& o, int components, std::vector<std::string>& warnings) {
   if (const auto m = named.string("model")) {
     if (*m == "slide") o.model = ObjectModel::slide;
     else if (*m == "rock") o.model = ObjectModel::rock;
@@ -332,10 +339,27 @@ void parse_object_model(Reader& named, ObservedObject& o, int components) {
                                              o.mu.high, b_over_h,
                                              o.outcome == Outcome::walked ? "walked (rocked)" : "toppled"));
   }
+  // Painleve's paradox (slide_rock.hpp, painleve_friction_limit; docs/method.md): with mu at or above mu_P the
+  // coupled runs may meet a slipping corner that Coulomb friction cannot resolve; the solver resolves it (tangential
+  // impacts, holds), which is a modelling choice the user should know of: said, the value kept.
+  const SlideRockBody coupled = SlideRockBody::from_rocking(o.body, o.mu.high);
+  const double mu_p = coupled.painleve_friction_limit();
+  if (o.mu.high >= mu_p) {
+    warnings.push_back(
+        named
+            .error("mu", fmt::format("mu = {} reaches the Painleve limit of this body, mu_P = {:.4g} (b/h = {:.3g}, "
+                                     "k2 = {:.3g} m2): its coupled runs may meet Painleve's paradox (Coulomb friction "
+                                     "without a unique solution), which the solver resolves by tangential impacts "
+                                     "(docs/method.md, \"Painleve's paradox\"); check mu",
+                                     o.mu.is_value() ? fmt::format("{:g}", o.mu.low)
+                                                     : fmt::format("[{:g}, {:g}]", o.mu.low, o.mu.high),
+                                     mu_p, std::min(coupled.b1_m, coupled.b2_m) / coupled.h_m, coupled.inertia_m2))
+            .what());
+  }
 }
 
 ObservedObject parse_object(const toml::table& t, const std::string& file, const std::string& path,
-                            std::vector<std::string>& notes, const std::filesystem::path& base_dir,
+                            ReaderMessages& said, const std::filesystem::path& base_dir,
                             const Site* site = nullptr, int components = 1) {
   Reader r(t, file, path);
   ObservedObject o;
@@ -491,7 +515,7 @@ ObservedObject parse_object(const toml::table& t, const std::string& file, const
   const auto outcome = named.string("outcome");
   if (!outcome) throw named.error("outcome", "every object needs its observed outcome");
   o.outcome = parse_outcome(named, *outcome);
-  parse_object_model(named, o, components);
+  parse_object_model(named, o, components, said.warnings);
   // A body that strikes needs Housner's e >= 0: the rocking model always, the coupled one when it can lift.
   const bool rocks = object_model(o) == ObjectModel::rock ||
                      (object_model(o) == ObjectModel::coupled &&
@@ -549,7 +573,7 @@ ObservedObject parse_object(const toml::table& t, const std::string& file, const
   if (o.slid_m && named.has("slid_uncertainty") && sliding_sigma_m(o) > o.slid_uncertainty_m) {
     // The documented floor (docs/survey.md): said, so that a given uncertainty is never raised silently.
     const bool given = true;
-    notes.push_back(named
+    said.notes.push_back(named
                         .error(given ? "slid_uncertainty" : "slid",
                                fmt::format("the sliding distance's uncertainty used is {:.3g} cm = max({}25 % of slid, "
                                            "2 mm), the floor stated in docs/survey.md",
@@ -569,7 +593,7 @@ ObservedObject parse_object(const toml::table& t, const std::string& file, const
 }
 
 std::vector<ObservedObject> parse_objects(const toml::node* node, const std::string& file, const std::string& key,
-                                          std::vector<std::string>& notes, const std::filesystem::path& base_dir,
+                                          ReaderMessages& said, const std::filesystem::path& base_dir,
                                           const Site* site = nullptr, int components = 1) {
   std::vector<ObservedObject> out;
   if (node == nullptr) return out;
@@ -579,7 +603,7 @@ std::vector<ObservedObject> parse_objects(const toml::node* node, const std::str
   for (std::size_t i = 0; i < arr->size(); ++i) {
     const auto* t = arr->get(i)->as_table();
     if (t == nullptr) throw InputError(InputLocation{file, node->source().begin.line, key}, "expected a table");
-    out.push_back(parse_object(*t, file, fmt::format("{}[{}]", key, i + 1), notes, base_dir, site, components));
+    out.push_back(parse_object(*t, file, fmt::format("{}[{}]", key, i + 1), said, base_dir, site, components));
     if (!ids.insert(out.back().id).second) {
       throw InputError(InputLocation{file, t->source().begin.line, fmt::format("{}[{}].id", key, i + 1)},
                        fmt::format("duplicate object id '{}'", out.back().id));
@@ -723,6 +747,7 @@ Survey parse_toml_survey(std::string_view text, const std::string& name, const s
     }
     r.refuse_unknown();
   }
+  ReaderMessages said{s.notes, s.warnings};
   const bool single = top.has("site") || top.has("object");
   if (single && top.has("sites")) throw top.error("sites", "use either [site] with [[object]] or [[sites]], not both");
   if (single) {
@@ -736,7 +761,7 @@ Survey parse_toml_survey(std::string_view text, const std::string& name, const s
       r.refuse_unknown();
     }
     site.objects =
-        parse_objects(top.get("object"), name, "object", s.notes, base_dir, &site, s.inversion.components);
+        parse_objects(top.get("object"), name, "object", said, base_dir, &site, s.inversion.components);
     s.sites.push_back(std::move(site));
   } else if (const toml::node* sites = top.get("sites")) {
     const auto* arr = sites->as_array();
@@ -748,7 +773,7 @@ Survey parse_toml_survey(std::string_view text, const std::string& name, const s
       Site site;
       parse_site_fields(r, site);
       parse_instrument(r, site, base_dir);
-      site.objects = parse_objects(r.get("object"), name, fmt::format("sites[{}].object", i + 1), s.notes, base_dir,
+      site.objects = parse_objects(r.get("object"), name, fmt::format("sites[{}].object", i + 1), said, base_dir,
                                    &site, s.inversion.components);
       r.refuse_unknown();
       s.sites.push_back(std::move(site));
@@ -786,6 +811,7 @@ Survey parse_survey(std::string_view text, const std::string& name, const std::f
     throw detail::relocate_csv_error(e, csv, name);
   }
   for (std::string& note : s.notes) note = detail::relocate_csv_note(note, csv, name);
+  for (std::string& warning : s.warnings) warning = detail::relocate_csv_note(warning, csv, name);
   return s;
 }
 

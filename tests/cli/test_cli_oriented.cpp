@@ -11,6 +11,7 @@
 
 #include "support/csv_table.hpp"
 #include "support/shared_data.hpp"
+#include "support/toml_fixtures.hpp"
 
 namespace topple {
 namespace {
@@ -129,35 +130,11 @@ TEST_F(CliOriented, SpectrumAlongABearingAndRefusals) {
 
 TEST_F(CliOriented, SweepOverBearingsEqualsSingleRuns) {
   // Bearings x (box, planar block, cylinder) on the station, and its inverse polarity.
-  test::write_file(dir.path() / "s.toml", R"(
-[motions]
-bearing_deg = [0, 37, 90, 200]
-polarity = ["normal", "inverse"]
-[[motions.set]]
-h1 = "m.h1.csv"
-h2 = "m.h2.csv"
-vertical = "m.v.csv"
-azimuths_deg = [0, 90]
-[[object]]
-model = "rock"
-shape = "block"
-width = "20cm"
-height = "80cm"
-depth = ["40cm"]
-[[object]]
-model = "rock"
-shape = "block"
-width = "20cm"
-height = "80cm"
-[[object]]
-model = "rock"
-shape = "cylinder"
-diameter = "20cm"
-height = "80cm"
-)");
-  const auto r = test::run_cli("sweep " + quote(dir.path() / "s.toml") + " --quiet --threads 2");
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  const test::Table t = test::read_table(dir.path() / "s.csv");
+  const test::Table t = test::run_sweep(
+      dir.path(), "[motions]\nbearing_deg = [0, 37, 90, 200]\npolarity = [\"normal\", \"inverse\"]\n" +
+                      test::station_set_toml(true) + test::rock_block_toml("20cm", "80cm", "depth = [\"40cm\"]\n") +
+                      test::rock_block_toml("20cm", "80cm") +
+                      "[[object]]\nmodel = \"rock\"\nshape = \"cylinder\"\ndiameter = \"20cm\"\nheight = \"80cm\"\n");
   ASSERT_EQ(t.rows.size(), 4U * 2U * 3U);
   const char* objects[] = {" --shape block --width 20cm --height 80cm --depth 40cm",
                            " --shape block --width 20cm --height 80cm",
@@ -190,29 +167,11 @@ TEST_F(CliOriented, SweepOfSlidersAndRockersUnderASetEqualsSingleRuns) {
   // Sliding objects under a set are bidirectional sliders (friction is isotropic: the bearing does not enter, the
   // row at every bearing is the same run); rocking objects beside them are oriented. A single record with the same
   // sliders gives 1-D rows, whose columns the 2-D rows share where the names are the same.
-  test::write_file(dir.path() / "s.toml", R"(
-[motions]
-files = "m.h1.csv"
-bearing_deg = [0, 37]
-polarity = ["normal", "inverse"]
-[[motions.set]]
-h1 = "m.h1.csv"
-h2 = "m.h2.csv"
-vertical = "m.v.csv"
-azimuths_deg = [0, 90]
-[[object]]
-model = "slide"
-mu = [0.1, 0.2]
-mu_kinetic = 0.09
-[[object]]
-model = "rock"
-shape = "block"
-width = "20cm"
-height = "80cm"
-)");
-  const auto r = test::run_cli("sweep " + quote(dir.path() / "s.toml") + " --quiet --threads 2");
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  const test::Table t = test::read_table(dir.path() / "s.csv");
+  const test::Table t = test::run_sweep(
+      dir.path(), "[motions]\nfiles = \"m.h1.csv\"\nbearing_deg = [0, 37]\npolarity = [\"normal\", \"inverse\"]\n" +
+                      test::station_set_toml(true) +
+                      "[[object]]\nmodel = \"slide\"\nmu = [0.1, 0.2]\nmu_kinetic = 0.09\n" +
+                      test::rock_block_toml("20cm", "80cm"));
   // (1 record + 1 set x 2 bearings) x 2 polarities x 3 objects
   ASSERT_EQ(t.rows.size(), 3U * 2U * 3U);
   for (const char* column : {"residual_azimuth_deg", "residual_east_m", "residual_north_m", "path_length_m",
@@ -258,8 +217,8 @@ height = "80cm"
 }
 
 TEST_F(CliOriented, BadSetSweepsExitTwoNamingTheKey) {
-  const std::string set = "[[motions.set]]\nh1 = \"m.h1.csv\"\nh2 = \"m.h2.csv\"\nazimuths_deg = [0, 90]\n";
-  const std::string block = "[[object]]\nmodel = \"rock\"\nshape = \"block\"\nwidth = \"20cm\"\nheight = \"80cm\"\n";
+  const std::string set = test::station_set_toml(false);
+  const std::string block = test::rock_block_toml("20cm", "80cm");
   for (const auto& [text, key] : {
            std::pair{"[motions]\n" + set + block, std::string("bearing")},
            std::pair{"[motions]\nbearing_deg = 10\nfiles = \"m.h1.csv\"\n" + block, std::string("bearing_deg")},

@@ -193,11 +193,9 @@ TEST(CliSlide2d, SpectrumOfACollinearPairIsThe1dSpectrum) {
   // record, max |u| and |residual| to 1e-9 relative (the 2-D solver's agreement with the exact 1-D one,
   // test_sliding2d), the block moving west (270 deg) where the 1-D d is positive.
   if (!test::have_shared()) GTEST_SKIP() << "../shared not present";
-  const std::string h1 = "'" + test::shared_record("slammer/Kocaeli_1999_ATS-090.csv").string() + "'";
   test::TempDir tmp;
-  const auto zero = tmp.path() / "zero.csv";
-  test::write_zero_record(zero, 26780, 0.005);  // on the record's grid: 26780 samples at 0.005 s
-  const auto two = test::run_json("spectrum slide " + h1 + " --h2 '" + zero.string() + "' --azimuths 90,0 "
+  const auto [h1, zero] = test::kocaeli_with_zero_partner(tmp.path());
+  const auto two = test::run_json("spectrum slide " + h1 + " --h2 " + zero + " --azimuths 90,0 "
                                   "--mu 0.05,0.1,0.2 --json");
   const auto one = test::run_json("spectrum slide " + h1 + " --mu 0.05,0.1,0.2 --json");
   for (std::size_t i = 0; i < 3; ++i) {

@@ -158,14 +158,12 @@ TEST(CliFragility, RecordPairWithAZeroSecondComponentIsThe1dFragility) {
   // so its levels are the 1-D levels x cos 45 deg (log grids agree to rounding) and theta comes out x cos 45 deg
   // (1e-8 relative: the fit's stopping rule, far above the grids' rounding).
   if (!test::have_shared()) GTEST_SKIP() << "../shared not present";
-  const std::string rec = "'" + test::shared_record("slammer/Kocaeli_1999_ATS-090.csv").string() + "'";
   test::TempDir tmp;
-  const auto zero = tmp.path() / "zero.csv";
-  test::write_zero_record(zero, 26780, 0.005);  // on the record's grid: 26780 samples at 0.005 s
+  const auto [rec, zero] = test::kocaeli_with_zero_partner(tmp.path());
   const double c = std::cos(std::acos(-1.0) / 4.0);
   const std::string objects = " --mu 0.2 --threshold 5cm --shape block --width 20cm --height 80cm --json --quiet";
   const auto one = run_json("fragility " + rec + " --im-range 0.1:1.5:10" + objects);
-  const auto two = run_json("fragility " + rec + " --h2 '" + zero.string() + "' --azimuths 90,0 --bearing-deg 90 " +
+  const auto two = run_json("fragility " + rec + " --h2 " + zero + " --azimuths 90,0 --bearing-deg 90 " +
                             fmt::format("--im-range {:.17g}:{:.17g}:10", 0.1 * c, 1.5 * c) + objects);
   ASSERT_EQ(two.at("curves").size(), 2u);
   int failures = 0;

@@ -60,6 +60,16 @@ Table read_table(const std::filesystem::path& p) {
   return t;
 }
 
+Table run_sweep(const std::filesystem::path& dir, const std::string& toml, const std::string& options) {
+  write_file(dir / "s.toml", toml);
+  const CommandResult r = run_cli("sweep '" + (dir / "s.toml").string() + "' " + options);
+  if (r.exit_code != 0) {
+    ADD_FAILURE() << "sweep exited " << r.exit_code << "\n" << toml << r.err;
+    return {};
+  }
+  return read_table(dir / "s.csv");
+}
+
 void expect_same(const std::string& cell, const nlohmann::json& j, const std::string& key) {
   SCOPED_TRACE(key + ": csv '" + cell + "', json " + j.dump());
   if (j.is_null()) {

@@ -22,6 +22,11 @@ struct Table {
 
 [[nodiscard]] Table read_table(const std::filesystem::path& p);
 
+/// Writes `toml` to dir/s.toml, runs `topple sweep` on it with `options`, expects exit status 0 (a test failure naming
+/// stderr otherwise) and returns the table it wrote, dir/s.csv.
+[[nodiscard]] Table run_sweep(const std::filesystem::path& dir, const std::string& toml,
+                              const std::string& options = "--quiet --threads 2");
+
 /// A CSV cell and a JSON value carry the same number (or both are none), compared exactly as doubles (gtest
 /// assertions).
 void expect_same(const std::string& cell, const nlohmann::json& j, const std::string& key);

@@ -124,4 +124,10 @@ SyntheticStation::SyntheticStation(const std::filesystem::path& dir) {
   v = quote(dir / "m.v.csv");
 }
 
+CollinearPair kocaeli_with_zero_partner(const std::filesystem::path& dir) {
+  write_zero_record(dir / "zero.csv", 26780, 0.005);  // on the record's grid: 26780 samples at 0.005 s
+  return {fmt::format("'{}'", shared_record("slammer/Kocaeli_1999_ATS-090.csv").string()),
+          fmt::format("'{}'", (dir / "zero.csv").string())};
+}
+
 }  // namespace topple::test

@@ -81,4 +81,13 @@ void write_file(const std::filesystem::path& path, const std::string& text);
 /// t = 0 (times printed to 1e-6 s): the second component of a collinear pair, on the grid of a shared SLAMMER record.
 void write_zero_record(const std::filesystem::path& path, int samples, double dt_s);
 
+/// The shared SLAMMER record Kocaeli 1999 ATS-090 and a record of zeros on its grid (26780 samples at 0.005 s),
+/// written as dir/zero.csv; both single-quoted for a command line. With --azimuths 90,0 they are a collinear pair,
+/// whose two-component runs are the record's one-component runs.
+struct CollinearPair {
+  std::string record;
+  std::string zero;
+};
+[[nodiscard]] CollinearPair kocaeli_with_zero_partner(const std::filesystem::path& dir);
+
 }  // namespace topple::test
