@@ -173,6 +173,24 @@ TEST_F(CliRockCoupledPair, BearingAlongEitherComponentIsThatComponentAlone) {
               1e-12 * std::abs(along_h1.at("max_abs_slide_m").get<double>()) + 1e-15);
 }
 
+TEST_F(CliRockCoupledPair, SlopeLiesInTheBearingsPlane) {
+  // --slope-deg with a pair: the base is inclined in the vertical plane of the bearing (down-slope is the body's -x),
+  // so along the first component's azimuth the run is that component's alone on the same slope: compared exactly,
+  // as above (the projection on a component's own azimuth is that component bit for bit).
+  const std::string slope = " --slope-deg 4";
+  const auto along_h1 = test::run_json("rock " + h1 + " --h2 " + h2 + " --vertical " + v +
+                                       " --azimuths 0,90 --bearing-deg 0" + body + slope);
+  const auto alone_h1 = test::run_json("rock " + h1 + " --vertical " + v + body + slope);
+  const auto level = test::run_json("rock " + h1 + " --vertical " + v + body);
+  ASSERT_NE(alone_h1.at("residual_slide_m"), level.at("residual_slide_m"));  // the slope changes the response
+  expect_same_coupled(along_h1, alone_h1);
+  EXPECT_NEAR(along_h1.at("slope").at("slope_deg").get<double>(), 4.0, 1e-13);
+  // Along the second component: that component alone on the slope.
+  expect_same_coupled(test::run_json("rock " + h1 + " --h2 " + h2 + " --vertical " + v +
+                                     " --azimuths 0,90 --bearing-deg 90" + body + slope),
+                      test::run_json("rock " + h2 + " --vertical " + v + body + slope));
+}
+
 TEST_F(CliRockCoupledPair, PairOptionsAreCheckedAndThePlotIsDrawn) {
   const std::string pair = "rock " + h1 + " --h2 " + h2 + " --azimuths 0,90 --shape block --width 20cm --height "
                            "80cm --model coupled --mu 0.26";
