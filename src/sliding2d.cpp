@@ -46,37 +46,22 @@ constexpr int kMaxTurnHalvings = 60;
 /// the velocity turned past 90 degrees within the step (no stop) and the step is halved. At a true stop |w| is the
 /// integration error (<= tolerance x scale); a turn leaves |w| of the order of the scale.
 constexpr double kStopSpeedFraction = 1e-3;
-/// In a slaved phase (Rhs) w stays within kSlavedMaxLag + kSlavedProjectAngle of -a at a step's start: a zero of
-/// w . (-a/|a|) with |w| below this fraction of the scale is a stop (the rest is the cross velocity the slaved field
-/// leaves, at most ~kSlavedProjectAngle of the scale), a turn leaves |w| of the order of the scale.
-constexpr double kSlavedStopSpeedFraction = 0.1;
-/// Slaved phases (Rhs, SlowManifold; docs/method.md S5'). The velocity follows the friction direction's slow manifold
-/// while its speed r is below kSlavedExitSamples F h (F = mu_k g_e+, h the sample step: above it an explicit step of
-/// a whole sample is within DP5's stability interval, h < 3.3 r/F; higher exits, 0.5 and 1 F h, left 2e-6 to 3.5e-5 of
-/// max |u| on bench/accuracy_sliding2d: the kink transients at the sample points grow as r^3) and the series holds: each denominator of
-/// SlowManifold above kSlavedMargin F (the manifold attracts faster than its own terms vary), the terms falling by
-/// kSlavedSeriesRatio or more (|c2| r and |c3| r^2 against |c1|) and the lag |Y| below kSlavedMaxLag.
-constexpr double kSlavedExitSamples = 0.3;
-/// A free phase re-enters the slaved one below kSlavedEntrySamples F h (hysteresis against the exit above) where
-/// the series holds and w lies within kSlavedEntryAngle of the manifold's direction; w is put on it.
-constexpr double kSlavedEntrySamples = 0.15;
-constexpr double kSlavedEntryAngle = 3e-3;  // rad
-constexpr double kSlavedMargin = 0.2;
-/// A slaved phase puts w back on the manifold's direction where it is off by more than this (rad) at a step's start.
-constexpr double kSlavedProjectAngle = 1e-4;
-constexpr double kSlavedSeriesRatio = 0.1;
-constexpr double kSlavedMaxLag = 0.25;  // rad
-/// Bisection steps for the end of a slaved phase inside a sample interval (to 2^-10 of the interval, on the safe side).
-constexpr int kSlavedLimitBisections = 10;
-/// The former launch speed r_L = sqrt(abs_tol x kLaunchSpeedScale) (at least kLaunchSpeedTolerances x abs_tol; 3.2e-5
-/// m/s at the default abs_tol 1e-8): below it, where the series above does not hold (2A - F small: hard
-/// deceleration), the velocity is slaved to -a/|a| itself (order 0, the former quasi-static launch and landing) while
-/// the lag that neglects, r psi'/|a|, stays below kLaunchMaxLag; the noise floor is kFloorLaunchFraction of it.
+/// A block that has just started slipping follows the direction of the inertial load -a until its speed exceeds
+/// sqrt(abs_tol x kLaunchSpeedScale) (3.2e-5 m/s at the default abs_tol 1e-8; at least kLaunchSpeedTolerances x abs_tol):
+/// see Rhs and docs/method.md (S5'), where the error of the slaved phase is estimated. The launch used to end at
+/// 1000 abs_tol (1e-7 m/s); the steps after it are stability-limited (h <= 3.3 r/|a|) and their number falls as
+/// 1/sqrt(launch speed), so this takes 1.6-1.8x fewer DP5 steps on the benchmark (docs/performance.md).
 constexpr double kLaunchSpeedScale = 0.1;  // m/s
 constexpr double kLaunchSpeedTolerances = 1000.0;
-constexpr double kLaunchMaxLag = 1e-3;  // rad
-/// A slipping block back down to this speed (9.5e-7 m/s at the default abs_tol) outside a slaved phase has stopped:
-/// the velocity noise floor (see integrate()).
+/// The launch also ends where the quasi-static direction's lag behind -a, r psi' / |a|, would exceed this (rad).
+constexpr double kLaunchMaxLag = 1e-3;
+/// Landing: a block decelerating (|a| < mu_k g_e) below the launch speed, its velocity within kLaunchMaxLag of -a and
+/// the quasi-static lag below half of it, is slaved to -a / |a| again, as in the launch, to its stop (S5', the same
+/// error estimate). It saves the stiff steps of the way down (8-13 % of all steps, docs/performance.md).
+constexpr double kLandingEntryLagFraction = 0.5;
+/// A slipping block back down to this fraction of the launch speed (9.5e-7 m/s at the default abs_tol) has stopped:
+/// the velocity noise floor (see integrate()). Below the launch speed, so that a launch does not end in a stop at
+/// once.
 constexpr double kFloorLaunchFraction = 0.03;
 /// Brent's minimiser to half the mantissa in time: at a smooth extreme the value is then exact to round-off.
 constexpr int kBrentBits = std::numeric_limits<double>::digits / 2;
@@ -168,117 +153,51 @@ struct Input {
   }
 };
 
-/// The friction direction's slow manifold at local time sigma of a sample interval (docs/method.md, S5'): with
-/// w = r (cos phi, sin phi), psi the angle of -a, A = |a|, F = mu_k g_e+ and y = phi - psi, (S2) reads
-///   r' = A cos y - F,   y' = -(A/r) sin y - psi'
-/// and the invariant curve y = Y(r, t) = c1 r + c2 r^2 + c3 r^3 + O(r^4) through r = 0 has
-///   c1 = -psi'/(2A - F),  c2 = -c1'/(3A - 2F),  c3 = (-c2' + (2/3) A c1^3)/(4A - 3F)
-/// (orders r^0, r^1, r^2 of Y_t + Y_r r' = -(A/r) sin Y - psi'). On a sample a is linear in time and g_e too, so
-/// psi' = (a x a')/A^2 and its derivatives are closed-form: psi'' = -2 psi' A'/A,
-/// psi''' = -2 (a x a') (|a'|^2 - 4 A'^2)/A^4, A' = a.a'/A, A'' = (|a'|^2 - A'^2)/A.
-struct SlowManifold {
-  double a1 = 0.0, a2 = 0.0;       // a
-  double amag = 0.0;               // A = |a|
-  double inv_amag = 0.0;           // 1/A (0 where a = 0)
-  double psi1 = 0.0;               // psi', the turning rate of a (rad/s)
-  double friction = 0.0;           // F = mu_k g_e+
-  double d1 = 0.0, d2 = 0.0, d3 = 0.0;  // 2A - F, 3A - 2F, 4A - 3F
-  double c1 = 0.0, c2 = 0.0, c3 = 0.0;
-  [[nodiscard]] double lag(double r) const { return r * (c1 + r * (c2 + r * c3)); }
-};
-
 /// Right-hand side on one sample interval, in local time sigma = t - t_i: a = a0 + as sigma, g_e = g0 + gs sigma.
 /// The friction direction is w / |w| continued through w = 0 by the sign of w . ref (see the header): smooth up to
 /// and just past a stop, so that the event function w . ref has a simple root there. At w = 0 (slip onset) the
 /// direction is ref itself, the onset direction -a / |a|.
 ///
-/// Slaved phases (launch and low speeds, docs/method.md S5'). The direction of w relaxes onto its slow manifold
-/// y = Y(r, t) (SlowManifold) at the rate A/r, which no explicit step resolves at low speed (DP5 needs h < ~3.3 r/F).
-/// While `slaved`, the friction direction w/|w| is replaced by its value on the manifold, e(psi + Y(|w|, t)):
-///   w' = -a - F e(psi + Y(|w|, t))
-/// the same vector field on the manifold, and off it a non-stiff one (its Jacobian is F e_perp Y_r w^T/r, of the
-/// order of psi' F/(2A - F): the fast relaxation is removed). Off the manifold the true field pulls w back at the
-/// rate F/r (-F (w/|w| - e) ~ -(F/r)(w - |w| e)); slaved, that rate is capped at 1/h (h the sample step, relax_rate;
-/// F/r > 1/h throughout a slaved phase), so the cross velocity that the truncated series and the integration leave
-/// decays within a few samples instead of drifting, at no stiffness (h |J| <= 1). A launch starts on the manifold (w = 0) and integrate() keeps the slaved phase only where the series
-/// holds (SlowManifold's denominators well positive, its terms falling fast) and only at low speed. For collinear
-/// input psi' = 0, so Y = 0: friction along -a, which is (S2) itself.
+/// Launch. Slip starts from rest in the direction -a (eq S5); while the speed is below the velocity tolerance the
+/// direction of w is not resolved by the integration (the direction equation is stiff there, relaxing toward -a at
+/// the rate |a| / |w|, docs/method.md), so until the speed first exceeds the launch speed (above) the
+/// velocity is slaved to the quasi-static direction -a / |a|: w = r n, n = -a / |a|, r' = |a| - mu_k g_e+ (for
+/// collinear input this is (S2) itself; in two dimensions the true lag of w behind -a there is |w| psi' / |a|, psi'
+/// the turning rate of a: below 2e-4 rad at 3.2e-6 m/s (abs_tol 1e-10) for psi' = 60 rad/s and |a| = 1 m/s^2; about
+/// 5e-13 m of displacement per episode, docs/method.md). The launch also ends where that lag would pass
+/// kLaunchMaxLag (near a zero of a, where -a / |a| turns fast).
 struct Rhs {
   double a01 = 0.0, a02 = 0.0, as1 = 0.0, as2 = 0.0, g0 = 0.0, gs = 0.0;
   double mu = 0.0;               // kinetic friction coefficient
   double ref1 = 1.0, ref2 = 0.0; // unit reference direction
-  bool slaved = false;           // friction along the slow manifold's direction (see above)
-  double relax_rate = 0.0;       // 1/s: the slaved phase's relaxation of w onto the manifold (see above)
-  int order = 3;                 // terms of the series Y kept (0-3; integrate() sets it per step)
+  bool launch = false;           // friction along -a / |a| (launch phase)
 
-  [[nodiscard]] SlowManifold manifold(double sigma) const { return manifold(sigma, order); }
-  /// The manifold at sigma with the series to r^k (k = 1-3; the higher coefficients are 0).
-  [[nodiscard]] SlowManifold manifold(double sigma, int k) const {
-    SlowManifold m;
-    m.a1 = a01 + as1 * sigma;
-    m.a2 = a02 + as2 * sigma;
-    const double g = g0 + gs * sigma;
-    m.friction = mu * std::max(g, 0.0);
-    const double fp = g > 0.0 ? mu * gs : 0.0;  // F'
-    const double a_sq = m.a1 * m.a1 + m.a2 * m.a2;
-    m.amag = std::sqrt(a_sq);
-    m.inv_amag = m.amag > 0.0 ? 1.0 / m.amag : 0.0;
-    m.d1 = 2.0 * m.amag - m.friction;
-    m.d2 = 3.0 * m.amag - 2.0 * m.friction;
-    m.d3 = 4.0 * m.amag - 3.0 * m.friction;
-    const double cross = m.a1 * as2 - m.a2 * as1;  // a x a', constant on the interval
-    if (cross == 0.0 || !(m.amag > 0.0)) return m;  // -a keeps its direction: Y = 0 exactly (collinear input)
-    // Two divisions (the latency of the right-hand side): 1/A, and 1/(d1 d2 d3) for the three denominators (a
-    // denominator the series does not reach is taken as 1).
-    const double inv_a = m.inv_amag;
-    m.psi1 = cross * inv_a * inv_a;
-    if (k < 1) return m;
-    const double e2 = k >= 2 ? m.d2 : 1.0;
-    const double e3 = k >= 3 ? m.d3 : 1.0;
-    const double d12 = m.d1 * e2;
-    const double inv_all = 1.0 / (d12 * e3);
-    const double inv_d12 = e3 * inv_all;
-    const double inv_d1 = e2 * inv_d12;
-    const double ap = (m.a1 * as1 + m.a2 * as2) * inv_a;  // A'
-    const double inv_a2 = inv_a * inv_a;
-    const double psi1 = m.psi1;
-    const double psi2 = -2.0 * psi1 * ap * inv_a;  // psi''
-    const double d1p = 2.0 * ap - fp;
-    m.c1 = -psi1 * inv_d1;
-    if (k < 2) return m;
-    const double inv_d2 = m.d1 * inv_d12;
-    const double c1p = (-psi2 + psi1 * d1p * inv_d1) * inv_d1;
-    m.c2 = -c1p * inv_d2;
-    if (k < 3) return m;
-    const double sp = as1 * as1 + as2 * as2;                                    // |a'|^2
-    const double app = (sp - ap * ap) * inv_a;                                  // A''
-    const double psi3 = -2.0 * cross * (sp - 4.0 * ap * ap) * inv_a2 * inv_a2;  // psi'''
-    const double d1pp = 2.0 * app;
-    const double c1pp = (-psi3 + (2.0 * psi2 * d1p + psi1 * d1pp) * inv_d1 - 2.0 * psi1 * d1p * d1p * inv_d1 * inv_d1) *
-                        inv_d1;
-    const double d2p = 3.0 * ap - 2.0 * fp;
-    const double c2p = (-c1pp + c1p * d2p * inv_d2) * inv_d2;
-    m.c3 = (-c2p + (2.0 / 3.0) * m.amag * m.c1 * m.c1 * m.c1) * (d12 * inv_all);
-    return m;
-  }
-
-  // Inlined into the stepper's stages (the free phase is the hot path); the slaved phase is a call.
-  [[gnu::always_inline]] inline void operator()(const State& x, State& dx, double sigma) const {
-    if (slaved) {
-      slaved_rhs(x, dx, sigma);
-      return;
-    }
-    const double w1 = x[kW1];
-    const double w2 = x[kW2];
-    const double speed = std::sqrt(w1 * w1 + w2 * w2);
+  void operator()(const State& x, State& dx, double sigma) const {
     const double ax = a01 + as1 * sigma;
     const double ay = a02 + as2 * sigma;
     const double friction = mu * std::max(g0 + gs * sigma, 0.0);  // mu_k g_e+: no friction off the ground
+    const double w1 = x[kW1];
+    const double w2 = x[kW2];
+    const double speed = std::sqrt(w1 * w1 + w2 * w2);
     dx[kPath] = speed;
     dx[kInputWork] = -(ax * w1 + ay * w2);
     dx[kFrictionWork] = friction * speed;
     dx[kU1] = w1;
     dx[kU2] = w2;
+    const double amag = launch ? std::sqrt(ax * ax + ay * ay) : 0.0;  // a sqrt saved outside the launch
+    if (launch && amag > 0.0) {
+      // Slaved to the load's direction n = -a/|a|: w = r n with r' = |a| - mu_k g_e+ and n' = -(a' - n (a'.n))/|a|
+      // (eq S5'), so w' = r' n + r n'.
+      const double n1 = -ax / amag;
+      const double n2 = -ay / amag;
+      const double r = w1 * n1 + w2 * n2;
+      const double along = as1 * n1 + as2 * n2;
+      const double dn1 = -(as1 - n1 * along) / amag;
+      const double dn2 = -(as2 - n2 * along) / amag;
+      dx[kW1] = (amag - friction) * n1 + r * dn1;
+      dx[kW2] = (amag - friction) * n2 + r * dn2;
+      return;
+    }
     double n1 = ref1;
     double n2 = ref2;
     if (speed > 0.0) {
@@ -288,35 +207,6 @@ struct Rhs {
     }
     dx[kW1] = -ax - friction * n1;  // w' = -a - mu_k g_e+ w/|w|  (method.md, eq S2)
     dx[kW2] = -ay - friction * n2;
-  }
-
-  /// The slaved phase's right-hand side: friction along e(psi + Y(|w|, t)) (see above).
-  [[gnu::noinline]] void slaved_rhs(const State& x, State& dx, double sigma) const {
-    const double w1 = x[kW1];
-    const double w2 = x[kW2];
-    const double speed = std::sqrt(w1 * w1 + w2 * w2);
-    const SlowManifold m = manifold(sigma);
-    dx[kPath] = speed;
-    dx[kInputWork] = -(m.a1 * w1 + m.a2 * w2);
-    dx[kFrictionWork] = m.friction * speed;
-    dx[kU1] = w1;
-    dx[kU2] = w2;
-    double n1 = ref1;
-    double n2 = ref2;
-    if (m.amag > 0.0) {
-      n1 = -m.a1 * m.inv_amag;
-      n2 = -m.a2 * m.inv_amag;
-    }
-    // e(psi + Y) = n cos Y + n_perp sin Y, n_perp = n turned by +90 degrees; |Y| <= kSlavedMaxLag, so the series
-    // to Y^7 are exact to 3e-10 (cos) and 2e-11 (sin).
-    const double y = m.lag(speed);
-    const double y2 = y * y;
-    const double cy = 1.0 - y2 * (0.5 - y2 * (1.0 / 24.0 - y2 * (1.0 / 720.0)));
-    const double sy = y * (1.0 - y2 * (1.0 / 6.0 - y2 * (1.0 / 120.0 - y2 * (1.0 / 5040.0))));
-    const double e1 = n1 * cy - n2 * sy;
-    const double e2 = n2 * cy + n1 * sy;
-    dx[kW1] = -m.a1 - m.friction * e1 - relax_rate * (w1 - speed * e1);
-    dx[kW2] = -m.a2 - m.friction * e2 - relax_rate * (w2 - speed * e2);
   }
 };
 
@@ -547,111 +437,11 @@ void integrate(const Input& in, const SlidingBlock& b, const Sliding2dOptions& o
   Rhs rhs;
   rhs.mu = b.mu_kinetic;
   Stepper stepper(opt, in.grid.dt_s());
-  // The former launch speed r_L: below it the order-0 slaved phase (see usable_order) is allowed.
+  // Below this speed, at a slip onset, the friction direction is the onset limit -a / |a| (see Rhs).
   const double launch_speed =
       std::max(std::sqrt(opt.abs_tol * kLaunchSpeedScale), kLaunchSpeedTolerances * opt.abs_tol);
   // A block slowing down to this speed has stopped (see below).
   const double floor_speed = kFloorLaunchFraction * launch_speed;
-  // Puts w on the manifold's direction e(psi + Y(|w|)) where it is off by more than `angle` (rad); true if it did.
-  // The off-manifold transient that this skips, a cross velocity c0 = r delta0 decaying at the rate F/r while r
-  // changes at the rate A - F (delta ~ (r/r0)^(-A/(A-F))), would have moved the block by
-  // int r delta dt = delta0 r0^2 / (2F - A) across the manifold's direction (to first order in delta0, over a
-  // transient short against the sample step): added to u, and its input work -a . du (docs/method.md S5').
-  // Where 2F - A <= kSlavedMargin F (a transient that does not die out fast) nothing is done.
-  const auto put_on_manifold = [&](const SlowManifold& m, double angle) {
-    const double r = std::hypot(x[kW1], x[kW2]);
-    const double y = m.lag(r);
-    const double n1 = -m.a1 / m.amag;
-    const double n2 = -m.a2 / m.amag;
-    const double m1 = n1 * std::cos(y) - n2 * std::sin(y);
-    const double m2 = n2 * std::cos(y) + n1 * std::sin(y);
-    const double cross = m1 * x[kW2] - m2 * x[kW1];  // r sin(delta0)
-    const double along = m1 * x[kW1] + m2 * x[kW2];
-    const double decay = 2.0 * m.friction - m.amag;
-    if ((std::abs(cross) <= angle * r && along > 0.0) || !(decay > kSlavedMargin * m.friction)) return false;
-    const double delta0 = std::atan2(cross, along);
-    const double shift = delta0 * r * r / decay;
-    const double du1 = -m2 * shift;  // along e_perp = e turned by +90 degrees
-    const double du2 = m1 * shift;
-    x[kU1] += du1;
-    x[kU2] += du2;
-    x[kInputWork] -= m.a1 * du1 + m.a2 * du2;
-    x[kW1] = r * m1;
-    x[kW2] = r * m2;
-    return true;
-  };
-  // The slow manifold's series (SlowManifold; docs/method.md S5'): the terms it may keep at a point for speed r, -1
-  // where it does not hold at all (2A - F at most kSlavedMargin F: the manifold attracts too slowly; but see order 0
-  // below), else 1 + the number of the
-  // next denominators 3A - 2F, 4A - 3F that are away from 0 by more than kSlavedMargin F (near a zero the term
-  // resonates with the off-manifold mode, y ~ r^(A/(F - A)), and the series stops before it).
-  const auto usable_order = [&](const SlowManifold& m, double r) {
-    const double margin = kSlavedMargin * m.friction;
-    if (!(m.amag > 0.0)) return -1;
-    if (m.d1 > margin) {
-      if (!(std::abs(m.d2) > margin)) return 1;
-      return std::abs(m.d3) > margin ? 3 : 2;
-    }
-    // Order 0 (Y = 0, friction along -a): the former quasi-static launch and landing, below r_L and while the lag
-    // r |psi'| / A it neglects stays below kLaunchMaxLag (docs/method.md S5', its error estimate).
-    return r < launch_speed && r * std::abs(m.psi1) <= kLaunchMaxLag * m.amag ? 0 : -1;
-  };
-  // Where the series kept holds for speed r: its terms fall by kSlavedSeriesRatio or more (|c2| r and |c3| r^2 against
-  // |c1|) and |Y| <= kSlavedMaxLag.
-  const auto series_holds = [](const SlowManifold& m, double r) {
-    const double c1 = std::abs(m.c1);
-    return std::abs(m.c2) * r <= kSlavedSeriesRatio * c1 && std::abs(m.c3) * r * r <= kSlavedSeriesRatio * c1 &&
-           std::abs(m.lag(r)) <= kSlavedMaxLag;
-  };
-  // A slaved step from tau0 at speed r: sets rhs.order (the fewest terms usable at tau0, the middle, the minimum of
-  // |a| (a is linear in time: |a| is convex) and h0, with the denominators of one sign at all of them) and returns
-  // its end: h0 where the series holds at those points, else the last point where it holds before the first where it
-  // fails (bisection); tau0 where it fails at tau0.
-  const auto slaved_limit = [&](double tau0, double h0, double r) {
-    double probes[3] = {tau0, h0, h0};
-    int count = 2;
-    const double slope_sq = rhs.as1 * rhs.as1 + rhs.as2 * rhs.as2;
-    if (slope_sq > 0.0) {
-      const double s_min = -(rhs.a01 * rhs.as1 + rhs.a02 * rhs.as2) / slope_sq;
-      if (s_min > tau0 && s_min < h0) {
-        probes[1] = s_min;
-        count = 3;
-      }
-    }
-    SlowManifold ms[3];
-    int order = 3;
-    for (int k = 0; k < count; ++k) {
-      ms[k] = rhs.manifold(probes[k], 3);
-      const int o = usable_order(ms[k], r);
-      if (o < 0) {
-        if (k == 0) return tau0;
-        continue;
-      }
-      order = std::min(order, o);
-      if ((ms[k].d2 > 0.0) != (ms[0].d2 > 0.0)) order = std::min(order, 1);
-      if ((ms[k].d3 > 0.0) != (ms[0].d3 > 0.0)) order = std::min(order, 2);
-    }
-    rhs.order = order;
-    const auto holds = [&](SlowManifold m) {
-      if (usable_order(m, r) < order) return false;
-      if (order < 3) m.c3 = 0.0;
-      if (order < 2) m.c2 = 0.0;
-      if (order < 1) m.c1 = 0.0;
-      return series_holds(m, r);
-    };
-    if (!holds(ms[0])) return tau0;
-    for (int k = 1; k < count; ++k) {
-      if (holds(ms[k])) continue;
-      double lo = tau0;
-      double hi = probes[k];
-      for (int j = 0; j < kSlavedLimitBisections; ++j) {
-        const double mid = 0.5 * (lo + hi);
-        (holds(rhs.manifold(mid, 3)) ? lo : hi) = mid;
-      }
-      return lo;
-    }
-    return h0;
-  };
   rec.row(in.time(0), x, false);
   rec.summary.max_displacement_time_s = in.time(0);
 
@@ -733,7 +523,7 @@ void integrate(const Input& in, const SlidingBlock& b, const Sliding2dOptions& o
       }
       rhs.ref1 = d1 / norm;
       rhs.ref2 = d2 / norm;
-      rhs.slaved = true;  // the launch: on the slow manifold from w = 0 (Rhs)
+      rhs.launch = true;
       tau = std::min(tau + sigma, hi);
       slipping = true;
       dx_valid = false;
@@ -758,26 +548,12 @@ void integrate(const Input& in, const SlidingBlock& b, const Sliding2dOptions& o
     rhs.as2 = (a2[i + 1] - a2[i]) / h;
     rhs.g0 = gravity(i);
     rhs.gs = (gravity(i + 1) - gravity(i)) / h;
-    rhs.relax_rate = 1.0 / h;
     bool stopped = false;
     int halvings = 0;
     while (tau < h) {
       const double w0sq = x[kW1] * x[kW1] + x[kW2] * x[kW2];
-      double s_limit = h;
-      if (rhs.slaved) {
-        s_limit = slaved_limit(tau, h, std::sqrt(w0sq));
-        if (!(s_limit > tau)) {
-          rhs.slaved = false;  // the series fails here: w / |w| from here on; the RHS changes, so no FSAL
-          dx_valid = false;
-          s_limit = h;
-        } else if (w0sq > 0.0 && put_on_manifold(rhs.manifold(tau), kSlavedProjectAngle)) {
-          // Off the manifold's direction by more than kSlavedProjectAngle: at a sample point, where the manifold
-          // moves with the kink of a, and where the truncated series left some cross velocity.
-          dx_valid = false;
-        }
-      }
-      if (rhs.slaved) {
-        // The reference of the stop test is the direction -a at the step's start (a != 0 in a slaved phase, or
+      if (rhs.launch) {
+        // The reference of the stop test is the launch direction -a at the step's start (a != 0 in a launch, or
         // the onset direction stays).
         const double b1 = rhs.a01 + rhs.as1 * tau;
         const double b2 = rhs.a02 + rhs.as2 * tau;
@@ -792,7 +568,7 @@ void integrate(const Input& in, const SlidingBlock& b, const Sliding2dOptions& o
         rhs.ref2 = x[kW2] * inv;
       }
       if (!dx_valid) rhs(x, dx, tau);
-      if (!stepper.step(rhs, tau, x, dx, s_limit, steps, opt.max_steps)) {
+      if (!stepper.step(rhs, tau, x, dx, h, steps, opt.max_steps)) {
         throw StepLimitError(fmt::format("bidirectional sliding: more than {} integrator steps (max_steps) by t = {} s "
                                          "({}, rel_tol = {:g}, abs_tol = {:g})",
                                          opt.max_steps, t_i + tau, describe(b), opt.rel_tol, opt.abs_tol));
@@ -848,8 +624,7 @@ void integrate(const Input& in, const SlidingBlock& b, const Sliding2dOptions& o
           // step's scale, as a block slowing to the floor is (the direction is not resolved there, and halving the
           // step would not resolve it either: EventLimitError at the default tolerances otherwise, seen in
           // Recovery3c).
-          is_stop = rest <= kStopSpeedFraction * scale + 10.0 * opt.abs_tol || rest <= floor_speed ||
-                    (rhs.slaved && rest <= kSlavedStopSpeedFraction * scale);
+          is_stop = rest <= kStopSpeedFraction * scale + 10.0 * opt.abs_tol || rest <= floor_speed;
         }
         if (!is_stop) {
           if (++halvings > kMaxTurnHalvings) {
@@ -861,7 +636,7 @@ void integrate(const Input& in, const SlidingBlock& b, const Sliding2dOptions& o
           continue;  // the same start, a shorter step
         }
         stopped = true;
-      } else if (!rhs.slaved && x1[kW1] * x1[kW1] + x1[kW2] * x1[kW2] <= floor_speed * floor_speed) {
+      } else if (!rhs.launch && x1[kW1] * x1[kW1] + x1[kW2] * x1[kW2] <= floor_speed * floor_speed) {
         // Back down to the velocity noise floor, where the integration no longer resolves the direction of w (the
         // direction equation is stiff there: its rate |a| / |w| exceeds the explicit method's stability limit at
         // any step the error test allows, so w would wander at the tolerance level). The block has come to rest:
@@ -920,36 +695,37 @@ void integrate(const Input& in, const SlidingBlock& b, const Sliding2dOptions& o
       }
       dx = stepper.dx1();
       dx_valid = true;
-      {
+      if (rhs.launch) {
+        // The launch ends at the launch speed, or earlier where the quasi-static direction stops being a good
+        // approximation: its lag behind -a, delta = r psi' / |a| = r |a x a'| / |a|^3 (psi' the turning rate of a),
+        // exceeds kLaunchMaxLag (near a zero of a, where -a / |a| turns fast, docs/method.md S5').
+        const double c1 = rhs.a01 + rhs.as1 * tau;
+        const double c2 = rhs.a02 + rhs.as2 * tau;
+        const double cm = std::sqrt(c1 * c1 + c2 * c2);
+        const double r = std::sqrt(x[kW1] * x[kW1] + x[kW2] * x[kW2]);
+        if (r > launch_speed || r * std::abs(c1 * rhs.as2 - c2 * rhs.as1) > kLaunchMaxLag * cm * cm * cm) {
+          rhs.launch = false;  // w / |w| from here on: the RHS changes, so no FSAL
+          dx_valid = false;
+        }
+      } else if (x[kW1] * x[kW1] + x[kW2] * x[kW2] < launch_speed * launch_speed) {
+        // Landing (see kLandingEntryLagFraction): below the launch speed, decelerating, w already along -a to within
+        // kLaunchMaxLag and the quasi-static lag r |a x a'| / |a|^3 small: slaved to -a / |a| from here (w is put on
+        // that direction; what is dropped, r sin(angle) < kLaunchMaxLag r across it, is the lag the quasi-static
+        // state neglects anyway), to the stop, or until the lag grows (the launch's exit test above).
+        const double c1 = rhs.a01 + rhs.as1 * tau;
+        const double c2 = rhs.a02 + rhs.as2 * tau;
+        const double cm = std::sqrt(c1 * c1 + c2 * c2);
         const double friction = rhs.mu * std::max(rhs.g0 + rhs.gs * tau, 0.0);
         const double r = std::sqrt(x[kW1] * x[kW1] + x[kW2] * x[kW2]);
-        if (rhs.slaved) {
-          // Fast enough for whole-sample explicit steps: w / |w| from here on (the RHS changes, so no FSAL). Where the
-          // series fails the next step's slaved_limit ends the phase.
-          if (r > kSlavedExitSamples * friction * h) {
-            rhs.slaved = false;
+        if (cm > 0.0 && cm < friction && r > 0.0) {
+          const double n1 = -c1 / cm;
+          const double n2 = -c2 / cm;
+          const bool along = x[kW1] * n1 + x[kW2] * n2 > 0.0 && std::abs(x[kW1] * n2 - x[kW2] * n1) < kLaunchMaxLag * r;
+          if (along && r * std::abs(c1 * rhs.as2 - c2 * rhs.as1) < kLandingEntryLagFraction * kLaunchMaxLag * cm * cm * cm) {
+            rhs.launch = true;
+            x[kW1] = r * n1;
+            x[kW2] = r * n2;
             dx_valid = false;
-          }
-        } else if (r > 0.0 && r < kSlavedEntrySamples * friction * h) {
-          // Entry: w within kSlavedEntryAngle of the manifold's direction e(psi + Y(r)) is put on it (what is dropped,
-          // at most kSlavedEntryAngle r across it, is an off-manifold transient that decays at the rate |a|/r).
-          const SlowManifold m = rhs.manifold(tau, 3);
-          const int o = usable_order(m, r);
-          SlowManifold mo = m;
-          if (o < 3) mo.c3 = 0.0;
-          if (o < 2) mo.c2 = 0.0;
-          if (o < 1) mo.c1 = 0.0;
-          if (o >= 0 && series_holds(mo, r)) {
-            const double n1 = -m.a1 / m.amag;
-            const double n2 = -m.a2 / m.amag;
-            const double y = mo.lag(r);
-            const double m1 = n1 * std::cos(y) - n2 * std::sin(y);
-            const double m2 = n2 * std::cos(y) + n1 * std::sin(y);
-            if (x[kW1] * m1 + x[kW2] * m2 > 0.0 && std::abs(m1 * x[kW2] - m2 * x[kW1]) < kSlavedEntryAngle * r) {
-              rhs.slaved = true;
-              put_on_manifold(mo, 0.0);
-              dx_valid = false;
-            }
           }
         }
       }
