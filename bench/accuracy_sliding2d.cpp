@@ -3,7 +3,7 @@
 // 41, 45 with +100 for the second component; mu as in Sliding2d.DefaultsMeetTheStatedAccuracy), the errors of a run
 // at the defaults against a run at rel_tol 1e-12, abs_tol 1e-15: residual (vector) and max |u| relative to max |u| of
 // the reference, path relative to itself; and the integrator tries of both. Prints one line per case and the worst.
-// Run:  build/release/bench/accuracy_sliding2d
+// Run:  build/release/bench/accuracy_sliding2d  [--tolerances: the errors at looser tolerances, see tolerance_table]
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -36,7 +36,30 @@ GroundMotion synthetic_second() {
 }
 }  // namespace
 
+/// --tolerances: the Kocaeli pair's errors and tries at looser tolerances than the defaults (abs_tol 1e-8 ... 1e-5,
+/// rel_tol = 10 abs_tol), beside bench_sliding2d's BM_Sliding2dLoose (their speed).
+int tolerance_table() {
+  const GroundMotion k2 = synthetic_second();
+  std::printf("%6s %8s %10s %10s %10s %8s\n", "mu", "abs_tol", "residual", "max|u|", "path", "tries");
+  for (const double mu : {0.113, 0.075}) {
+    const auto block = topple::SlidingBlock::make(mu);
+    const auto ref = topple::slide_2d_summary(topple::bench::kocaeli_20000(), k2, {}, block, nullptr,
+                                              {.rel_tol = 1e-12, .abs_tol = 1e-15});
+    const double m = ref.max_abs_displacement_m;
+    for (const double abs_tol : {1e-8, 1e-7, 1e-6, 1e-5}) {
+      const auto s = topple::slide_2d_summary(topple::bench::kocaeli_20000(), k2, {}, block, nullptr,
+                                              {.rel_tol = 10.0 * abs_tol, .abs_tol = abs_tol});
+      std::printf("%6.3f %8.0e %10.2e %10.2e %10.2e %8zu\n", mu, abs_tol,
+                  std::hypot(s.residual_east_m - ref.residual_east_m, s.residual_north_m - ref.residual_north_m) / m,
+                  std::abs(s.max_abs_displacement_m - m) / m,
+                  std::abs(s.path_length_m - ref.path_length_m) / ref.path_length_m, s.integrator_steps);
+    }
+  }
+  return 0;
+}
+
 int main(int argc, char** argv) {
+  if (argc > 1 && std::string(argv[1]) == "--tolerances") return tolerance_table();
   if (argc > 1) {  // diagnosis: where the error of the Kocaeli pair at mu = argv[1] grows (largest jumps of |du|)
     const double mu = std::atof(argv[1]);
     const GroundMotion k2 = synthetic_second();

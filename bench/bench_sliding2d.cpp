@@ -86,6 +86,24 @@ void BM_Sliding2d(benchmark::State& state) {
   state.counters["episodes"] = s.slip_episodes;
 }
 
+/// The 2-D cases at looser tolerances than the defaults (abs_tol = 10^-range(1), rel_tol = 10 abs_tol; mu of the
+/// defaults' case): how far the explicit integration's cost falls when accuracy is given up (docs/performance.md;
+/// the errors of the same runs: build/release/bench/accuracy_sliding2d --tolerances).
+void BM_Sliding2dLoose(benchmark::State& state) {
+  const double mu = mu_for(true, static_cast<int>(state.range(0)));
+  const auto block = topple::SlidingBlock::make(mu);
+  const double abs_tol = std::pow(10.0, -static_cast<double>(state.range(1)));
+  const topple::Sliding2dOptions options{.rel_tol = 10.0 * abs_tol, .abs_tol = abs_tol};
+  topple::Sliding2dSummary s;
+  for (auto _ : state) {
+    s = topple::slide_2d_summary(first(), second(), {}, block, nullptr, options);
+    benchmark::DoNotOptimize(s);
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * first().size()));
+  state.counters["steps"] = static_cast<double>(s.integrator_steps);
+  state.counters["abs_tol"] = abs_tol;
+}
+
 /// Never slipping (mu above max |a| / g): the cost of the stick test alone, both solvers.
 void BM_StuckOnly1d(benchmark::State& state) {
   const auto block = topple::SlidingBlock::make(0.5);
@@ -103,5 +121,7 @@ BENCHMARK(BM_StuckOnly2d);
 // Argument: the percentage of the record's duration spent slipping.
 BENCHMARK(BM_Sliding1d)->Arg(5)->Arg(15);
 BENCHMARK(BM_Sliding2d)->Arg(5)->Arg(15);
+// Arguments: slipping percentage, -log10(abs_tol).
+BENCHMARK(BM_Sliding2dLoose)->ArgsProduct({{5, 15}, {7, 6, 5}});
 
 }  // namespace
