@@ -24,35 +24,32 @@ GroundMotion noisy(unsigned seed) {
                                      .resonance_hz = 3.0, .pole_radius = 0.97, .envelope_peak_s = 5.0});
 }
 
-GroundMotion synthetic_second() {
-  const GroundMotion& first = topple::bench::kocaeli_20000();
-  topple::SynthesisSpec s;
-  s.pga_m_s2 = first.pga_m_s2();
-  s.predominant_frequency_hz = 3.0;
-  s.dt_s = first.dt_s();
-  s.duration_s = first.duration_s();
-  s.seed = 7;
-  return topple::synthesize(s);
+struct Errors {
+  double residual, max_u, path;
+};
+/// Errors of `s` against the reference run `ref`: residual (vector) and max |u| relative to the reference's max |u|,
+/// path relative to itself.
+Errors errors(const topple::Sliding2dSummary& s, const topple::Sliding2dSummary& ref) {
+  const double m = ref.max_abs_displacement_m;
+  return {std::hypot(s.residual_east_m - ref.residual_east_m, s.residual_north_m - ref.residual_north_m) / m,
+          std::abs(s.max_abs_displacement_m - m) / m, std::abs(s.path_length_m - ref.path_length_m) / ref.path_length_m};
 }
+constexpr topple::Sliding2dOptions kReference{.rel_tol = 1e-12, .abs_tol = 1e-15};
 }  // namespace
 
 /// --tolerances: the Kocaeli pair's errors and tries at looser tolerances than the defaults (abs_tol 1e-8 ... 1e-5,
 /// rel_tol = 10 abs_tol), beside bench_sliding2d's BM_Sliding2dLoose (their speed).
 int tolerance_table() {
-  const GroundMotion k2 = synthetic_second();
+  const GroundMotion& k1 = topple::bench::kocaeli_20000();
+  const GroundMotion& k2 = topple::bench::kocaeli_partner_20000();
   std::printf("%6s %8s %10s %10s %10s %8s\n", "mu", "abs_tol", "residual", "max|u|", "path", "tries");
   for (const double mu : {0.113, 0.075}) {
     const auto block = topple::SlidingBlock::make(mu);
-    const auto ref = topple::slide_2d_summary(topple::bench::kocaeli_20000(), k2, {}, block, nullptr,
-                                              {.rel_tol = 1e-12, .abs_tol = 1e-15});
-    const double m = ref.max_abs_displacement_m;
+    const auto ref = topple::slide_2d_summary(k1, k2, {}, block, nullptr, kReference);
     for (const double abs_tol : {1e-8, 1e-7, 1e-6, 1e-5}) {
-      const auto s = topple::slide_2d_summary(topple::bench::kocaeli_20000(), k2, {}, block, nullptr,
-                                              {.rel_tol = 10.0 * abs_tol, .abs_tol = abs_tol});
-      std::printf("%6.3f %8.0e %10.2e %10.2e %10.2e %8zu\n", mu, abs_tol,
-                  std::hypot(s.residual_east_m - ref.residual_east_m, s.residual_north_m - ref.residual_north_m) / m,
-                  std::abs(s.max_abs_displacement_m - m) / m,
-                  std::abs(s.path_length_m - ref.path_length_m) / ref.path_length_m, s.integrator_steps);
+      const auto s = topple::slide_2d_summary(k1, k2, {}, block, nullptr, {.rel_tol = 10.0 * abs_tol, .abs_tol = abs_tol});
+      const Errors e = errors(s, ref);
+      std::printf("%6.3f %8.0e %10.2e %10.2e %10.2e %8zu\n", mu, abs_tol, e.residual, e.max_u, e.path, s.integrator_steps);
     }
   }
   return 0;
@@ -60,33 +57,11 @@ int tolerance_table() {
 
 int main(int argc, char** argv) {
   if (argc > 1 && std::string(argv[1]) == "--tolerances") return tolerance_table();
-  if (argc > 1) {  // diagnosis: where the error of the Kocaeli pair at mu = argv[1] grows (largest jumps of |du|)
-    const double mu = std::atof(argv[1]);
-    const GroundMotion k2 = synthetic_second();
-    const auto block = topple::SlidingBlock::make(mu);
-    const auto s = topple::slide_2d(topple::bench::kocaeli_20000(), k2, {}, block);
-    const auto ref = topple::slide_2d(topple::bench::kocaeli_20000(), k2, {}, block, nullptr, {.rel_tol = 1e-12, .abs_tol = 1e-15});
-    std::vector<std::pair<double, double>> jumps;
-    double prev = 0.0;
-    std::size_t j = 0;
-    for (std::size_t k = 0; k < s.history.time_s.size(); ++k) {
-      while (j + 1 < ref.history.time_s.size() && ref.history.time_s[j] < s.history.time_s[k]) ++j;
-      if (ref.history.time_s[j] != s.history.time_s[k]) continue;
-      const double e = std::hypot(s.history.east_m[k] - ref.history.east_m[j], s.history.north_m[k] - ref.history.north_m[j]);
-      const double v = std::hypot(s.history.east_m_s[k] - ref.history.east_m_s[j], s.history.north_m_s[k] - ref.history.north_m_s[j]);
-      jumps.push_back({e - prev, s.history.time_s[k]});
-      if (v > 3e-8) std::printf("t %.4f dv %.2e speed %.2e\n", s.history.time_s[k], v, std::hypot(ref.history.east_m_s[j], ref.history.north_m_s[j]));
-      prev = e;
-    }
-    std::sort(jumps.begin(), jumps.end());
-    for (std::size_t k = jumps.size() - 5; k < jumps.size(); ++k) std::printf("jump %.2e at t %.4f\n", jumps[k].first, jumps[k].second);
-    std::printf("path %.10e ref %.10e  max %.3e\n", s.summary.path_length_m, ref.summary.path_length_m, ref.summary.max_abs_displacement_m);
-    return 0;
-  }
   struct Case { const char* name; GroundMotion h1, h2; double mu; };
   std::vector<Case> cases;
-  const GroundMotion k2 = synthetic_second();
-  for (double mu : {0.113, 0.075, 0.05}) cases.push_back({"kocaeli", topple::bench::kocaeli_20000(), k2, mu});
+  for (double mu : {0.113, 0.075, 0.05}) {
+    cases.push_back({"kocaeli", topple::bench::kocaeli_20000(), topple::bench::kocaeli_partner_20000(), mu});
+  }
   for (const auto& [seed, mu] : {std::pair{31U, 0.2}, std::pair{31U, 0.05}, std::pair{41U, 0.15}, std::pair{45U, 0.3}}) {
     cases.push_back({"noise", noisy(seed), noisy(seed + 100), mu});
   }
@@ -95,16 +70,13 @@ int main(int argc, char** argv) {
               "tries", "ref");
   for (const auto& c : cases) {
     const auto block = topple::SlidingBlock::make(c.mu);
-    const auto ref = topple::slide_2d_summary(c.h1, c.h2, {}, block, nullptr, {.rel_tol = 1e-12, .abs_tol = 1e-15});
+    const auto ref = topple::slide_2d_summary(c.h1, c.h2, {}, block, nullptr, kReference);
     const auto s = topple::slide_2d_summary(c.h1, c.h2, {}, block);
-    const double m = ref.max_abs_displacement_m;
-    const double res = std::hypot(s.residual_east_m - ref.residual_east_m, s.residual_north_m - ref.residual_north_m) / m;
-    const double mx = std::abs(s.max_abs_displacement_m - m) / m;
-    const double path = std::abs(s.path_length_m - ref.path_length_m) / ref.path_length_m;
-    worst_res = std::max(worst_res, res);
-    worst_max = std::max(worst_max, mx);
-    worst_path = std::max(worst_path, path);
-    std::printf("%-8s %6.3f %8d %10.2e %10.2e %10.2e %8zu %8zu\n", c.name, c.mu, s.slip_episodes, res, mx, path,
+    const Errors e = errors(s, ref);
+    worst_res = std::max(worst_res, e.residual);
+    worst_max = std::max(worst_max, e.max_u);
+    worst_path = std::max(worst_path, e.path);
+    std::printf("%-8s %6.3f %8d %10.2e %10.2e %10.2e %8zu %8zu\n", c.name, c.mu, s.slip_episodes, e.residual, e.max_u, e.path,
                 s.integrator_steps, ref.integrator_steps);
   }
   std::printf("worst: residual %.2e  max|u| %.2e  path %.2e  (statement: 1e-6)\n", worst_res, worst_max, worst_path);

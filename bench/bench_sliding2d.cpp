@@ -21,18 +21,7 @@ using topple::GroundMotion;
 
 const GroundMotion& first() { return topple::bench::kocaeli_20000(); }
 
-const GroundMotion& second() {
-  static const GroundMotion r = [] {
-    topple::SynthesisSpec s;
-    s.pga_m_s2 = first().pga_m_s2();
-    s.predominant_frequency_hz = 3.0;
-    s.dt_s = first().dt_s();
-    s.duration_s = first().duration_s();
-    s.seed = 7;
-    return topple::synthesize(s);
-  }();
-  return r;
-}
+const GroundMotion& second() { return topple::bench::kocaeli_partner_20000(); }
 
 double fraction_2d(double mu) {
   const auto s = topple::slide_2d_summary(first(), second(), {}, topple::SlidingBlock::make(mu));

@@ -35,4 +35,19 @@ inline const GroundMotion& kocaeli_20000() {
   return r;
 }
 
+/// The second horizontal component that bench_sliding2d and accuracy_sliding2d pair with kocaeli_20000(): a seeded
+/// synthetic motion of the same length, step and PGA (3 Hz, seed 7), loaded once per process.
+inline const GroundMotion& kocaeli_partner_20000() {
+  static const GroundMotion r = [] {
+    SynthesisSpec s;
+    s.pga_m_s2 = kocaeli_20000().pga_m_s2();
+    s.predominant_frequency_hz = 3.0;
+    s.dt_s = kocaeli_20000().dt_s();
+    s.duration_s = kocaeli_20000().duration_s();
+    s.seed = 7;
+    return synthesize(s);
+  }();
+  return r;
+}
+
 }  // namespace topple::bench
