@@ -13,8 +13,8 @@
 
 #include "kocaeli_record.hpp"
 #include "support/noise_record.hpp"
-#include "topple/sliding2d.hpp"
-#include "topple/synthesis.hpp"
+#include "topple/solvers/sliding2d.hpp"
+#include "topple/motion/synthesis.hpp"
 
 namespace {
 using topple::GroundMotion;

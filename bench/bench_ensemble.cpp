@@ -21,9 +21,9 @@
 #include <benchmark/benchmark.h>
 
 #include "support/noise_record.hpp"
-#include "topple/sweep.hpp"
-#include "topple/pulses.hpp"
-#include "topple/sliding.hpp"
+#include "topple/ensemble/sweep.hpp"
+#include "topple/motion/pulses.hpp"
+#include "topple/solvers/sliding.hpp"
 
 namespace topple::ensemble {
 namespace {

@@ -9,8 +9,8 @@
 #include <benchmark/benchmark.h>
 
 #include "kocaeli_record.hpp"
-#include "topple/flexible.hpp"
-#include "topple/sliding.hpp"
+#include "topple/solvers/flexible.hpp"
+#include "topple/solvers/sliding.hpp"
 
 namespace {
 

@@ -8,7 +8,7 @@
 
 #include <benchmark/benchmark.h>
 
-#include "topple/inversion.hpp"
+#include "topple/inversion/inversion.hpp"
 #include "topple/io/survey_file.hpp"
 
 namespace {

@@ -11,8 +11,8 @@
 #include <benchmark/benchmark.h>
 
 #include "topple/io/read.hpp"
-#include "topple/object_spectra.hpp"
-#include "topple/synthesis.hpp"
+#include "topple/fragility/object_spectra.hpp"
+#include "topple/motion/synthesis.hpp"
 
 #include "kocaeli_record.hpp"
 

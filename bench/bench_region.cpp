@@ -8,10 +8,10 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "topple/inversion.hpp"
-#include "topple/io/region_output.hpp"
+#include "topple/inversion/inversion.hpp"
+#include "topple/output/region_output.hpp"
 #include "topple/io/survey_file.hpp"
-#include "topple/region.hpp"
+#include "topple/region/region.hpp"
 
 namespace {
 

@@ -17,8 +17,8 @@
 #include <benchmark/benchmark.h>
 
 #include "kocaeli_record.hpp"
-#include "topple/pulses.hpp"
-#include "topple/rocking.hpp"
+#include "topple/motion/pulses.hpp"
+#include "topple/solvers/rocking.hpp"
 
 namespace {
 

@@ -11,9 +11,9 @@
 #include <benchmark/benchmark.h>
 
 #include "kocaeli_record.hpp"
-#include "topple/rocking.hpp"
-#include "topple/slide_rock.hpp"
-#include "topple/sliding.hpp"
+#include "topple/solvers/rocking.hpp"
+#include "topple/solvers/slide_rock.hpp"
+#include "topple/solvers/sliding.hpp"
 
 namespace {
 

@@ -9,7 +9,7 @@
 #include <benchmark/benchmark.h>
 
 #include "kocaeli_record.hpp"
-#include "topple/sliding.hpp"
+#include "topple/solvers/sliding.hpp"
 
 namespace {
 

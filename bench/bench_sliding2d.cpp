@@ -11,9 +11,9 @@
 #include <benchmark/benchmark.h>
 
 #include "kocaeli_record.hpp"
-#include "topple/sliding.hpp"
-#include "topple/sliding2d.hpp"
-#include "topple/synthesis.hpp"
+#include "topple/solvers/sliding.hpp"
+#include "topple/solvers/sliding2d.hpp"
+#include "topple/motion/synthesis.hpp"
 
 namespace {
 

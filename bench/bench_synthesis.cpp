@@ -8,10 +8,10 @@
 
 #include <benchmark/benchmark.h>
 
-#include "topple/intensity.hpp"
+#include "topple/motion/intensity.hpp"
 #include "topple/io/read.hpp"
-#include "topple/spectra.hpp"
-#include "topple/synthesis.hpp"
+#include "topple/motion/spectra.hpp"
+#include "topple/motion/synthesis.hpp"
 
 #include "kocaeli_record.hpp"
 

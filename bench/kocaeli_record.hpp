@@ -5,10 +5,10 @@
 #include <filesystem>
 #include <vector>
 
-#include "topple/ground_motion.hpp"
+#include "topple/motion/ground_motion.hpp"
 #include "topple/io/read.hpp"
-#include "topple/synthesis.hpp"
-#include "topple/units.hpp"
+#include "topple/motion/synthesis.hpp"
+#include "topple/core/units.hpp"
 
 namespace topple::bench {
 

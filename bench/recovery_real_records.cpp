@@ -22,10 +22,10 @@
 #include <fmt/format.h>
 
 #include "support/real_record_recovery.hpp"
-#include "topple/intensity.hpp"
+#include "topple/motion/intensity.hpp"
 #include "topple/io/read.hpp"
 #include "topple/io/survey_file.hpp"
-#include "topple/spectra.hpp"
+#include "topple/motion/spectra.hpp"
 
 namespace {
 

@@ -8,10 +8,10 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "progress.hpp"
-#include "topple/body.hpp"
-#include "topple/io/body_json.hpp"
+#include "topple/bodies/body.hpp"
+#include "topple/output/body_json.hpp"
 #include "topple/io/mesh.hpp"
-#include "topple/units.hpp"
+#include "topple/core/units.hpp"
 
 namespace topple::cli {
 namespace {

@@ -15,13 +15,13 @@
 #include "common.hpp"
 #include "grids.hpp"
 #include "motion_set_options.hpp"
-#include "topple/error.hpp"
-#include "topple/io/output_file.hpp"
-#include "topple/fragility.hpp"
-#include "topple/object_spectra.hpp"
-#include "topple/plot.hpp"
-#include "topple/synthesis.hpp"
-#include "topple/units.hpp"
+#include "topple/core/error.hpp"
+#include "topple/core/output_file.hpp"
+#include "topple/fragility/fragility.hpp"
+#include "topple/fragility/object_spectra.hpp"
+#include "topple/output/plot.hpp"
+#include "topple/motion/synthesis.hpp"
+#include "topple/core/units.hpp"
 
 namespace topple::cli {
 namespace {

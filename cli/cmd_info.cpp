@@ -13,13 +13,13 @@
 #include "progress.hpp"
 #include "common.hpp"
 #include "slide_2d.hpp"
-#include "topple/error.hpp"
-#include "topple/intensity.hpp"
-#include "topple/io/write.hpp"
-#include "topple/motion_set.hpp"
-#include "topple/rotd.hpp"
-#include "topple/plot.hpp"
-#include "topple/spectra.hpp"
+#include "topple/core/error.hpp"
+#include "topple/motion/intensity.hpp"
+#include "topple/output/write.hpp"
+#include "topple/motion/motion_set.hpp"
+#include "topple/motion/rotd.hpp"
+#include "topple/output/plot.hpp"
+#include "topple/motion/spectra.hpp"
 
 namespace topple::cli {
 namespace {

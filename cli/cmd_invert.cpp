@@ -11,15 +11,15 @@
 
 #include "commands.hpp"
 #include "progress.hpp"
-#include "topple/error.hpp"
-#include "topple/ensemble.hpp"
-#include "topple/inversion.hpp"
-#include "topple/io/inversion_output.hpp"
-#include "topple/io/provenance.hpp"
-#include "topple/io/region_output.hpp"
-#include "topple/region.hpp"
+#include "topple/core/error.hpp"
+#include "topple/ensemble/ensemble.hpp"
+#include "topple/inversion/inversion.hpp"
+#include "topple/output/inversion_output.hpp"
+#include "topple/output/provenance.hpp"
+#include "topple/output/region_output.hpp"
+#include "topple/region/region.hpp"
 #include "topple/io/survey_file.hpp"
-#include "topple/report.hpp"
+#include "topple/output/report.hpp"
 
 namespace topple::cli {
 namespace {

@@ -15,12 +15,12 @@
 #include "common.hpp"
 #include "motion_set_options.hpp"
 #include "rock_coupled.hpp"
-#include "topple/error.hpp"
-#include "topple/io/write.hpp"
-#include "topple/oriented.hpp"
-#include "topple/plot.hpp"
-#include "topple/rocking.hpp"
-#include "topple/units.hpp"
+#include "topple/core/error.hpp"
+#include "topple/output/write.hpp"
+#include "topple/solvers/oriented.hpp"
+#include "topple/output/plot.hpp"
+#include "topple/solvers/rocking.hpp"
+#include "topple/core/units.hpp"
 
 namespace topple::cli {
 namespace {

@@ -10,13 +10,13 @@
 #include "common.hpp"
 #include "motion_set_options.hpp"
 #include "slide_2d.hpp"
-#include "topple/motion_set.hpp"
+#include "topple/motion/motion_set.hpp"
 #include "slide_flexible.hpp"
-#include "topple/error.hpp"
-#include "topple/io/write.hpp"
-#include "topple/plot.hpp"
-#include "topple/sliding.hpp"
-#include "topple/units.hpp"
+#include "topple/core/error.hpp"
+#include "topple/output/write.hpp"
+#include "topple/output/plot.hpp"
+#include "topple/solvers/sliding.hpp"
+#include "topple/core/units.hpp"
 
 namespace topple::cli {
 namespace {

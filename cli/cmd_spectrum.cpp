@@ -15,14 +15,14 @@
 #include "grids.hpp"
 #include "motion_set_options.hpp"
 #include "slide_flexible.hpp"
-#include "topple/error.hpp"
-#include "topple/flexible.hpp"
-#include "topple/io/output_file.hpp"
-#include "topple/object_spectra.hpp"
-#include "topple/io/write.hpp"
-#include "topple/plot.hpp"
-#include "topple/rotd.hpp"
-#include "topple/units.hpp"
+#include "topple/core/error.hpp"
+#include "topple/solvers/flexible.hpp"
+#include "topple/core/output_file.hpp"
+#include "topple/fragility/object_spectra.hpp"
+#include "topple/output/write.hpp"
+#include "topple/output/plot.hpp"
+#include "topple/motion/rotd.hpp"
+#include "topple/core/units.hpp"
 
 namespace topple::cli {
 namespace {

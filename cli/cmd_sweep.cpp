@@ -10,10 +10,10 @@
 #include "commands.hpp"
 #include "grids.hpp"
 #include "progress.hpp"
-#include "topple/ensemble.hpp"
-#include "topple/error.hpp"
+#include "topple/ensemble/ensemble.hpp"
+#include "topple/core/error.hpp"
 #include "topple/io/sweep_file.hpp"
-#include "topple/sweep.hpp"
+#include "topple/ensemble/sweep.hpp"
 
 namespace topple::cli {
 namespace {

@@ -6,11 +6,11 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "topple/plot.hpp"
-#include "topple/error.hpp"
-#include "topple/io/output_file.hpp"
-#include "topple/pulses.hpp"
-#include "topple/units.hpp"
+#include "topple/output/plot.hpp"
+#include "topple/core/error.hpp"
+#include "topple/core/output_file.hpp"
+#include "topple/motion/pulses.hpp"
+#include "topple/core/units.hpp"
 
 namespace topple::cli {
 

@@ -9,9 +9,9 @@
 
 #include <CLI/CLI.hpp>
 
-#include "topple/ground_motion.hpp"
+#include "topple/motion/ground_motion.hpp"
 #include "topple/io/read.hpp"
-#include "topple/io/write.hpp"
+#include "topple/output/write.hpp"
 
 namespace topple::cli {
 

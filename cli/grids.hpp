@@ -10,7 +10,7 @@
 
 #include <fmt/format.h>
 
-#include "topple/error.hpp"
+#include "topple/core/error.hpp"
 
 namespace topple::cli {
 

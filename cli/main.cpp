@@ -7,8 +7,8 @@
 #include <fmt/format.h>
 
 #include "commands.hpp"
-#include "topple/error.hpp"
-#include "topple/io/output_file.hpp"
+#include "topple/core/error.hpp"
+#include "topple/core/output_file.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"topple: sliding, rocking and overturning of rigid objects in earthquakes, and what they tell "

@@ -7,7 +7,7 @@
 #include <fmt/format.h>
 
 #include "slide_2d.hpp"
-#include "topple/error.hpp"
+#include "topple/core/error.hpp"
 
 namespace topple::cli {
 

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "common.hpp"
-#include "topple/motion_set.hpp"
+#include "topple/motion/motion_set.hpp"
 
 namespace topple::cli {
 

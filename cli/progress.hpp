@@ -1,6 +1,6 @@
 #pragma once
 // The progress bar of the long commands (invert, fragility, spectrum, sweep) and the --quiet flag every command has.
-// The library reports progress through a ProgressCallback (topple/progress.hpp); the bar draws it on stderr, only
+// The library reports progress through a ProgressCallback (topple/core/progress.hpp); the bar draws it on stderr, only
 // when stderr is a terminal and --quiet is not given (pipes, files and CI logs get nothing).
 #include <chrono>
 #include <cstddef>
@@ -9,7 +9,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "topple/progress.hpp"
+#include "topple/core/progress.hpp"
 
 namespace topple::cli {
 

@@ -6,9 +6,9 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "topple/io/write.hpp"
-#include "topple/plot.hpp"
-#include "topple/units.hpp"
+#include "topple/output/write.hpp"
+#include "topple/output/plot.hpp"
+#include "topple/core/units.hpp"
 
 namespace topple::cli {
 

@@ -4,8 +4,8 @@
 #include <string>
 
 #include "common.hpp"
-#include "topple/motion_set.hpp"
-#include "topple/slide_rock.hpp"
+#include "topple/motion/motion_set.hpp"
+#include "topple/solvers/slide_rock.hpp"
 
 namespace topple::cli {
 

@@ -9,9 +9,9 @@
 #include <nlohmann/json.hpp>
 
 #include "common.hpp"
-#include "topple/error.hpp"
-#include "topple/io/write.hpp"
-#include "topple/plot.hpp"
+#include "topple/core/error.hpp"
+#include "topple/output/write.hpp"
+#include "topple/output/plot.hpp"
 
 namespace topple::cli {
 

@@ -2,8 +2,8 @@
 // topple slide FILE --h2 FILE2 --azimuths A1,A2: bidirectional sliding (sliding2d.hpp). Translation only.
 #include <string>
 
-#include "topple/ground_motion.hpp"
-#include "topple/sliding2d.hpp"
+#include "topple/motion/ground_motion.hpp"
+#include "topple/solvers/sliding2d.hpp"
 
 namespace topple::cli {
 

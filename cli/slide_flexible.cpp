@@ -1,4 +1,4 @@
-// topple slide --support-freq ... | --height ...: parsing and printing only (physics in topple/flexible.hpp).
+// topple slide --support-freq ... | --height ...: parsing and printing only (physics in topple/solvers/flexible.hpp).
 #include "slide_flexible.hpp"
 
 #include <charconv>
@@ -9,11 +9,11 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "topple/error.hpp"
-#include "topple/flexible.hpp"
-#include "topple/io/flexible_json.hpp"
-#include "topple/plot.hpp"
-#include "topple/units.hpp"
+#include "topple/core/error.hpp"
+#include "topple/solvers/flexible.hpp"
+#include "topple/output/flexible_json.hpp"
+#include "topple/output/plot.hpp"
+#include "topple/core/units.hpp"
 
 namespace topple::cli {
 namespace {

@@ -5,9 +5,9 @@
 
 #include <CLI/CLI.hpp>
 
-#include "topple/flexible.hpp"
-#include "topple/ground_motion.hpp"
-#include "topple/sliding.hpp"
+#include "topple/solvers/flexible.hpp"
+#include "topple/motion/ground_motion.hpp"
+#include "topple/solvers/sliding.hpp"
 
 namespace topple::cli {
 

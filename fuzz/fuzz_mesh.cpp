@@ -9,8 +9,8 @@
 #include <initializer_list>
 #include <string_view>
 
-#include "topple/body.hpp"
-#include "topple/error.hpp"
+#include "topple/bodies/body.hpp"
+#include "topple/core/error.hpp"
 #include "topple/io/mesh.hpp"
 
 namespace {

@@ -15,12 +15,12 @@
 #include <optional>
 #include <string_view>
 
-#include "topple/error.hpp"
-#include "topple/intensity.hpp"
+#include "topple/core/error.hpp"
+#include "topple/motion/intensity.hpp"
 #include "topple/io/read.hpp"
-#include "topple/rocking.hpp"
-#include "topple/sliding.hpp"
-#include "topple/spectra.hpp"
+#include "topple/solvers/rocking.hpp"
+#include "topple/solvers/sliding.hpp"
+#include "topple/motion/spectra.hpp"
 
 namespace {
 

@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <string_view>
 
-#include "topple/error.hpp"
+#include "topple/core/error.hpp"
 #include "topple/io/survey_file.hpp"
 #include "topple/io/sweep_file.hpp"
 

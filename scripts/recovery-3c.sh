@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The full recovery test in three components (issue 14; tests/test_inversion_3c.cpp, Recovery3c): N trials (default
+# The full recovery test in three components (issue 14; tests/inversion/test_inversion_3c.cpp, Recovery3c): N trials (default
 # 30) of a known three-component motion with a random direction of strongest shaking, objects at random bearings,
 # observed by the solvers, each inverted. Prints each trial and the coverage of the 95 % and 68 % regions and of the
 # direction's 95 % arc; fails if a threshold is missed. About 7 s of CPU a trial (4-7 min on the shared 2-core

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The full regional recovery test (issue 17; tests/test_region.cpp, RegionRecovery): N trials (default 20) of a
+# The full regional recovery test (issue 17; tests/region/test_region.cpp, RegionRecovery): N trials (default 20) of a
 # synthetic regional earthquake simulated by the solvers, each site inverted alone and jointly. Prints each trial's
 # relation and the coverage and width figures; fails if a threshold is missed. About 5 s of wall time a trial on the
 # shared 2-core machine. Usage: scripts/region-recovery.sh [TRIALS] (after building test_region in build/release).

@@ -385,7 +385,7 @@ inline constexpr const char* slide_2d =
     R"(Bidirectional sliding of a rigid block with isotropic Coulomb friction on level or inclined ground.
 
 Both horizontal components (and the vertical, when given) act together: friction opposes the two-dimensional
-relative velocity with magnitude mu_kinetic (g + a_v) (topple/sliding2d.hpp, docs/method.md "Bidirectional
+relative velocity with magnitude mu_kinetic (g + a_v) (topple/solvers/sliding2d.hpp, docs/method.md "Bidirectional
 sliding"). On one axis this is topple.slide's two-way block.
 
 Parameters
@@ -418,7 +418,7 @@ Sliding2dResult
 )";
 
 inline constexpr const char* slide_spectrum =
-    R"(Sliding displacement spectrum: one block per friction coefficient (topple/object_spectra.hpp).
+    R"(Sliding displacement spectrum: one block per friction coefficient (topple/fragility/object_spectra.hpp).
 
 Blocks have mu static = kinetic, on a plane at slope_deg. Draw it with topple.plot.sliding_spectrum.
 
@@ -445,7 +445,7 @@ dict
 )";
 
 inline constexpr const char* slide_spectrum_2d =
-    R"(Bidirectional sliding spectrum: one 2-D block per friction coefficient under a pair (topple/object_spectra.hpp).
+    R"(Bidirectional sliding spectrum: one 2-D block per friction coefficient under a pair (topple/fragility/object_spectra.hpp).
 
 For each mu (static = kinetic, level ground, two-way) the block slides under both horizontal components together,
 with the vertical when given: topple.slide_2d with that mu, bit for bit. The abscissa k_y g / PGA uses the pair's
@@ -479,7 +479,7 @@ dict
 )";
 
 inline constexpr const char* slide_flexible =
-    R"(Sliding on a flexible support (topple/flexible.hpp), decoupled or coupled.
+    R"(Sliding on a flexible support (topple/solvers/flexible.hpp), decoupled or coupled.
 
 Either an object (friction mu) on a shelf or floor, given by support_freq_hz, support_damping and mass_ratio; or
 SLAMMER's flexible sliding mass (mu is k_y), given by height_m, vs_slope_m_s, vs_base_m_s and damping.
@@ -985,7 +985,7 @@ inline constexpr const char* rock_oriented =
     R"(Rocking of an oriented object under two horizontal components (and the vertical), as `topple rock --h2`.
 
 The object rocks in the vertical plane of its bearing under the projection of both components on it (the planar
-model, topple/oriented.hpp, docs/method.md "Oriented objects"). A block with depth_m is a box, also run along
+model, topple/solvers/oriented.hpp, docs/method.md "Oriented objects"). A block with depth_m is a box, also run along
 bearing + 90 deg; a cylinder has no bearing and is taken in its worst direction over a grid of directions (an
 approximation of three-dimensional rocking).
 
@@ -1097,7 +1097,7 @@ inline constexpr const char* invert_region_file = "topple.invert_region's worker
 inline constexpr const char* response_spectrum =
     R"(Elastic response spectrum of linear oscillators, by the exact Nigam-Jennings recurrence.
 
-x'' + 2 zeta w x' + w^2 x = -a_g from rest (topple/spectra.hpp; maxima at the samples, over the record only). Draw
+x'' + 2 zeta w x' + w^2 x = -a_g from rest (topple/motion/spectra.hpp; maxima at the samples, over the record only). Draw
 it with topple.plot.response_spectrum.
 
 Parameters
@@ -1144,7 +1144,7 @@ dict
 )";
 
 inline constexpr const char* overturning_map =
-    R"(Overturning map: which bodies of one slenderness overturn at which PGA (topple/object_spectra.hpp).
+    R"(Overturning map: which bodies of one slenderness overturn at which PGA (topple/fragility/object_spectra.hpp).
 
 Bodies of one shape and slenderness alpha_rad = atan(a / h), of the given full heights, under the motion scaled to
 each PGA. Runs on `threads` cores with the GIL released. Draw it with topple.plot.overturning_map.
@@ -1180,7 +1180,7 @@ dict
 inline constexpr const char* fragility_fit_class =
     R"(Lognormal fragility P(failure | IM = x) = Phi(ln(x / theta) / beta).
 
-Maximum-likelihood fit to binomial counts (Baker 2015; topple/fragility.hpp).
+Maximum-likelihood fit to binomial counts (Baker 2015; topple/fragility/fragility.hpp).
 
 Attributes
 ----------
@@ -1248,7 +1248,7 @@ FragilityFit
 )";
 
 inline constexpr const char* fragility =
-    R"(Fragility analysis: failure counts over scaled motions and their lognormal fits (topple/fragility.hpp).
+    R"(Fragility analysis: failure counts over scaled motions and their lognormal fits (topple/fragility/fragility.hpp).
 
 Every motion is scaled so that its IM equals each level and run on a sliding block (failure: max |d| >
 threshold_m) and/or a rocking body (failure: overturning). Warns (RuntimeWarning) for each curve whose fit has beta

@@ -38,34 +38,34 @@
 
 #include "docstrings.hpp"
 
-#include "topple/ensemble.hpp"
-#include "topple/flexible.hpp"
-#include "topple/error.hpp"
-#include "topple/fragility.hpp"
-#include "topple/ground_motion.hpp"
-#include "topple/intensity.hpp"
-#include "topple/inversion.hpp"
-#include "topple/motion_set.hpp"
-#include "topple/object_spectra.hpp"
-#include "topple/region.hpp"
-#include "topple/oriented.hpp"
-#include "topple/io/flexible_json.hpp"
-#include "topple/io/inversion_output.hpp"
-#include "topple/io/region_output.hpp"
+#include "topple/ensemble/ensemble.hpp"
+#include "topple/solvers/flexible.hpp"
+#include "topple/core/error.hpp"
+#include "topple/fragility/fragility.hpp"
+#include "topple/motion/ground_motion.hpp"
+#include "topple/motion/intensity.hpp"
+#include "topple/inversion/inversion.hpp"
+#include "topple/motion/motion_set.hpp"
+#include "topple/fragility/object_spectra.hpp"
+#include "topple/region/region.hpp"
+#include "topple/solvers/oriented.hpp"
+#include "topple/output/flexible_json.hpp"
+#include "topple/output/inversion_output.hpp"
+#include "topple/output/region_output.hpp"
 #include "topple/io/read.hpp"
 #include "topple/io/survey_file.hpp"
 #include "topple/io/sweep_file.hpp"
-#include "topple/io/write.hpp"
-#include "topple/report.hpp"
-#include "topple/rocking.hpp"
-#include "topple/rotd.hpp"
-#include "topple/slide_rock.hpp"
-#include "topple/sliding.hpp"
-#include "topple/sliding2d.hpp"
-#include "topple/spectra.hpp"
-#include "topple/summary_fields.hpp"
-#include "topple/synthesis.hpp"
-#include "topple/units.hpp"
+#include "topple/output/write.hpp"
+#include "topple/output/report.hpp"
+#include "topple/solvers/rocking.hpp"
+#include "topple/motion/rotd.hpp"
+#include "topple/solvers/slide_rock.hpp"
+#include "topple/solvers/sliding.hpp"
+#include "topple/solvers/sliding2d.hpp"
+#include "topple/motion/spectra.hpp"
+#include "topple/solvers/summary_fields.hpp"
+#include "topple/motion/synthesis.hpp"
+#include "topple/core/units.hpp"
 
 namespace nb = nanobind;
 using namespace nb::literals;
@@ -158,7 +158,7 @@ nb::object to_python(const nlohmann::ordered_json& j) {
 
 nb::object optional_float(const std::optional<double>& v) { return v ? nb::cast(*v) : nb::none(); }
 
-/// A result field's value (topple/field.hpp): None, bool, int, float or str.
+/// A result field's value (topple/core/field.hpp): None, bool, int, float or str.
 nb::object field_to_python(const FieldValue& value) {
   return std::visit(
       [](const auto& v) -> nb::object {
@@ -1381,7 +1381,7 @@ NB_MODULE(_core, m) {
         "damping"_a = 0.05, "g"_a = kStandardGravity, doc::rotd);
 
   // ---- sliding ----
-  // The summary attributes come from the field table (topple/summary_fields.hpp), as the JSON keys do.
+  // The summary attributes come from the field table (topple/solvers/summary_fields.hpp), as the JSON keys do.
   nb::class_<SlidingRun> sliding_result(m, "SlidingResult", doc::sliding_result);
   for (const Field<SlidingOutcome>& field : kSlidingFields) {
     sliding_result.def_prop_ro(field.name, [get = field.get](const SlidingRun& r) {

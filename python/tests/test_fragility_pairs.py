@@ -17,7 +17,7 @@ SLIDE_ARGS = ["--mu", "0.2", "--threshold", "2cm"]
 
 
 def log_grid(lo, hi, n):
-    """The library's log_grid (src/object_spectra.cpp): exp of an even grid of logs, the ends exact; the same libm,
+    """The library's log_grid (src/fragility/object_spectra.cpp): exp of an even grid of logs, the ends exact; the same libm,
     so the same doubles as `--im-range LO:HI:N`."""
     a, b = math.log(lo), math.log(hi)
     v = [math.exp(a + (b - a) * i / (n - 1)) for i in range(n)]

@@ -187,7 +187,7 @@ VENV_TEST = ROOT / ".venv-test" / "bin" / "python"
 
 
 def test_rotd50_psa_against_pyrotd(tmp_path):
-    """As tests/test_motion_set.cpp's RotDPeer: the CSMIP 36456 pair, both codes on the records linearly
+    """As tests/motion/test_motion_set.cpp's RotDPeer: the CSMIP 36456 pair, both codes on the records linearly
     interpolated at dt/10 and padded with 150 s of zeros; 1e-3 relative bounds pyrotd's band-limited interpolation
     against the chords topple integrates exactly ((pi dt / (10 T))^2 / 3 < 4e-4 at T >= 10 dt)."""
     if not VENV_TEST.is_file():

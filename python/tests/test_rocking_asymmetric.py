@@ -1,5 +1,5 @@
 """Asymmetric rocking bodies from Python (topple.GeneralAsymmetric): the binding translates the library's body
-and per-side results (the physics is tested in tests/test_rocking_asymmetric.cpp)."""
+and per-side results (the physics is tested in tests/solvers/test_rocking_asymmetric.cpp)."""
 import math
 
 import pytest
@@ -29,7 +29,7 @@ def test_equal_pivots_equal_the_symmetric_general_body(motion):
     sym = topple.rock(motion, topple.General(a=a, h=h, D=k2 + a * a + h * h), history=False)
     asym = topple.rock(motion, topple.GeneralAsymmetric(b1=a, b2=a, h=h, inertia=k2), history=False)
     assert asym.impacts == sym.impacts and asym.overturned == sym.overturned
-    # the engine's own 1e-12 agreement (tests/test_rocking_asymmetric.cpp, EqualPivotsReproduceTheSymmetricBody)
+    # the engine's own 1e-12 agreement (tests/solvers/test_rocking_asymmetric.cpp, EqualPivotsReproduceTheSymmetricBody)
     assert asym.max_rotation_over_alpha == pytest.approx(sym.max_rotation_over_alpha, rel=1e-12, abs=1e-15)
 
 

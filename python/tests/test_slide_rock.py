@@ -1,5 +1,5 @@
 """The coupled slide-rock model from Python (topple.slide_rock): the binding translates the library's body, options
-and summary (the physics is tested in tests/test_slide_rock.cpp); here its results against the CLI and against the
+and summary (the physics is tested in tests/solvers/test_slide_rock.cpp); here its results against the CLI and against the
 two limits the model must reach (no slip: Housner rocking; no uplift: the sliding solver)."""
 import math
 

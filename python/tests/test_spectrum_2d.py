@@ -74,7 +74,7 @@ def collinear_pair(accel_m_s2, direction_deg, on_second):
 
 def assert_equals_1d(two, one, direction_deg, rel):
     """The 2-D spectrum of shaking along direction_deg against the 1-D spectrum of the record, `rel` of each point's
-    max |d| (the scale the C++ collinear test, tests/test_sliding2d.cpp, uses)."""
+    max |d| (the scale the C++ collinear test, tests/solvers/test_sliding2d.cpp, uses)."""
     scale = one["max_abs_displacement_m"]
     assert np.all(scale > 1e-4)  # every point slides
     assert np.all(np.abs(two["max_abs_displacement_m"] - scale) <= rel * scale)
@@ -94,7 +94,7 @@ def assert_equals_1d(two, one, direction_deg, rel):
 def test_collinear_pair_is_the_1d_spectrum(accel_m_s2, direction_deg, on_second):
     # The record along one azimuth (on either component, the other zero): the block slides on that line only, as
     # the exact 1-D solver's two-way block, to 1e-9 of max |d| (the issue's collinear test; the C++ one,
-    # tests/test_sliding2d.cpp, at the same scale: DP5 integrates the collinear slip exactly, the stops come from
+    # tests/solvers/test_sliding2d.cpp, at the same scale: DP5 integrates the collinear slip exactly, the stops come from
     # TOMS 748 to 4 ulp).
     first, second, azimuths = collinear_pair(accel_m_s2, direction_deg, on_second)
     one = topple.slide_spectrum(topple.GroundMotion(accel_m_s2, DT, units="m/s2"), MU)
@@ -109,7 +109,7 @@ def test_collinear_pair_is_the_1d_spectrum(accel_m_s2, direction_deg, on_second)
 @pytest.mark.parametrize("direction_deg", [30.0, 237.0])
 def test_collinear_shaking_between_the_axes(accel_m_s2, direction_deg):
     # The same line of shaking split over both components (east = a sin psi, north = a cos psi): collinear input at
-    # an azimuth between the axes, to the issue's 1e-9 of max |d| as in the C++ collinear test (tests/test_sliding2d.cpp
+    # an azimuth between the axes, to the issue's 1e-9 of max |d| as in the C++ collinear test (tests/solvers/test_sliding2d.cpp
     # runs the split too). The direction is fixed only to rounding here; measured worst 8.0e-10 (residual, mu = 0.35).
     psi = math.radians(direction_deg)
     east = topple.GroundMotion(accel_m_s2 * math.sin(psi), DT, units="m/s2")

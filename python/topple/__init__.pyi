@@ -166,16 +166,16 @@ def slide_flexible(motion: GroundMotion, *, mu: float, mode: Literal["two-way", 
                    vs_base_m_s: Optional[float] = None, damping: Optional[float] = None,
                    reference_strain: Optional[float] = None, coupled: bool = False,
                    vertical: Optional[GroundMotion] = None, g: float = 9.80665) -> dict[str, Any]:
-    """Sliding on a flexible support (topple/flexible.hpp), decoupled or coupled."""
+    """Sliding on a flexible support (topple/solvers/flexible.hpp), decoupled or coupled."""
 
 def slide_spectrum(motion: GroundMotion, mu: ArrayIn, *, slope_deg: float = 0.0,
                    mode: Literal["two-way", "one-way"] = "two-way", g: float = 9.80665) -> dict[str, Any]:
-    """Sliding displacement spectrum: one block per friction coefficient (topple/object_spectra.hpp)."""
+    """Sliding displacement spectrum: one block per friction coefficient (topple/fragility/object_spectra.hpp)."""
 
 def slide_spectrum_2d(first: GroundMotion, second: GroundMotion, mu: ArrayIn, *,
                       azimuths_deg: Sequence[float] = (90.0, 0.0), vertical: Optional[GroundMotion] = None,
                       g: float = 9.80665) -> dict[str, Any]:
-    """Bidirectional sliding spectrum: one 2-D block per friction coefficient under a pair (topple/object_spectra.hpp)."""
+    """Bidirectional sliding spectrum: one 2-D block per friction coefficient under a pair (topple/fragility/object_spectra.hpp)."""
 
 class RockingBody:
     """A rigid body that rocks about its base edges (made by Block, Cylinder or General)."""
@@ -376,7 +376,7 @@ def overturning_map(motion: GroundMotion, *, alpha_rad: float, heights_m: ArrayI
                     mu: Optional[float] = None, g: float = 9.80665, method: Literal["adaptive", "rk4"] = "adaptive",
                     rel_tol: float = 1e-8, rk4_substeps: int = 10, max_run_out_s: float = 60.0,
                     threads: int = 0) -> dict[str, Any]:
-    """Overturning map: which bodies of one slenderness overturn at which PGA (topple/object_spectra.hpp)."""
+    """Overturning map: which bodies of one slenderness overturn at which PGA (topple/fragility/object_spectra.hpp)."""
 
 class FragilityFit:
     """Lognormal fragility P(failure | IM = x) = Phi(ln(x / theta) / beta)."""
@@ -407,7 +407,7 @@ def fragility(motions: Union[Sequence[GroundMotion], Sequence[MotionSet]], level
               rel_tol: float = 1e-8, rk4_substeps: int = 10, max_run_out_s: float = 60.0,
               threads: int = 0, bearing_deg: Optional[float] = None,
               bearing_seed: Optional[int] = None) -> dict[str, Any]:
-    """Fragility analysis: failure counts over scaled motions and their lognormal fits (topple/fragility.hpp)."""
+    """Fragility analysis: failure counts over scaled motions and their lognormal fits (topple/fragility/fragility.hpp)."""
 
 # ---- sweeps ----
 

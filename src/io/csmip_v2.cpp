@@ -13,7 +13,7 @@
 
 #include <fmt/format.h>
 
-#include "text_lines.hpp"
+#include "io/text_lines.hpp"
 
 namespace topple::io::detail {
 namespace {

@@ -25,8 +25,8 @@
 #include <assimp/scene.h>
 #include <fmt/format.h>
 
-#include "topple/error.hpp"
-#include "topple/units.hpp"
+#include "topple/core/error.hpp"
+#include "topple/core/units.hpp"
 
 namespace topple::io {
 namespace {

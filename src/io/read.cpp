@@ -13,9 +13,9 @@
 
 #include <fmt/format.h>
 
-#include "text_lines.hpp"
-#include "topple/error.hpp"
-#include "topple/units.hpp"
+#include "io/text_lines.hpp"
+#include "topple/core/error.hpp"
+#include "topple/core/units.hpp"
 
 namespace topple::io {
 

@@ -4,7 +4,7 @@
 // detail::split_lines (which drops a UTF-8 byte-order mark and CR before LF, as spreadsheets write them). Debian's one
 // C CSV library (libcsv, last released 2013) would save the 60 lines of the cell splitter below but not the line and
 // column bookkeeping the error messages need, so the splitter is written here.
-#include "survey_csv.hpp"
+#include "io/survey_csv.hpp"
 
 #include <algorithm>
 #include <array>
@@ -14,7 +14,7 @@
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
-#include "text_lines.hpp"
+#include "io/text_lines.hpp"
 
 namespace topple::io::detail {
 namespace {

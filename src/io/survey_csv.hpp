@@ -11,7 +11,7 @@
 #include <string_view>
 #include <vector>
 
-#include "topple/error.hpp"
+#include "topple/core/error.hpp"
 
 namespace topple::io::detail {
 

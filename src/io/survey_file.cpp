@@ -10,78 +10,17 @@
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
-#include "topple/error.hpp"
-#include "topple/body.hpp"
-#include "topple/inversion.hpp"
+#include "topple/core/error.hpp"
+#include "topple/bodies/body.hpp"
+#include "topple/inversion/inversion.hpp"
 #include "topple/io/mesh.hpp"
 #include "topple/io/read.hpp"
-#include "topple/oriented.hpp"
-#include "topple/slide_rock.hpp"
-#include "topple/units.hpp"
-#include "survey_csv.hpp"
+#include "topple/solvers/oriented.hpp"
+#include "topple/solvers/slide_rock.hpp"
+#include "topple/core/units.hpp"
+#include "io/survey_csv.hpp"
 
 namespace topple {
-
-std::string_view outcome_name(Outcome o) {
-  switch (o) {
-    case Outcome::overturned: return "overturned";
-    case Outcome::not_overturned: return "not_overturned";
-    case Outcome::rocked: return "rocked";
-    case Outcome::not_rocked: return "not_rocked";
-    case Outcome::slid: return "slid";
-    case Outcome::not_slid: return "not_slid";
-    case Outcome::slid_stood: return "slid_stood";
-    case Outcome::slid_toppled: return "slid_toppled";
-    case Outcome::walked: return "walked";
-  }
-  return "unknown";
-}
-
-bool is_coupled_outcome(Outcome o) noexcept {
-  return o == Outcome::slid_stood || o == Outcome::slid_toppled || o == Outcome::walked;
-}
-
-std::string_view object_model_name(ObjectModel m) {
-  switch (m) {
-    case ObjectModel::slide: return "slide";
-    case ObjectModel::rock: return "rock";
-    case ObjectModel::coupled: return "coupled";
-  }
-  return "unknown";
-}
-
-ObjectModel object_model(const ObservedObject& o) noexcept {
-  if (o.model) return *o.model;
-  if (is_coupled_outcome(o.outcome)) return ObjectModel::coupled;
-  return o.outcome == Outcome::slid || o.outcome == Outcome::not_slid ? ObjectModel::slide : ObjectModel::rock;
-}
-
-std::string_view motion_family_name(MotionFamily f) {
-  switch (f) {
-    case MotionFamily::synthetic: return "synthetic";
-    case MotionFamily::records: return "records";
-    case MotionFamily::rezaeian2010: return "rezaeian2010";
-  }
-  return "unknown";
-}
-
-std::string_view evidence_name(Evidence e) {
-  switch (e) {
-    case Evidence::certain: return "certain";
-    case Evidence::likely: return "likely";
-    case Evidence::reported: return "reported";
-  }
-  return "unknown";
-}
-
-double evidence_error_rate(Evidence e) noexcept {
-  switch (e) {
-    case Evidence::certain: return 0.02;
-    case Evidence::likely: return 0.10;
-    case Evidence::reported: return 0.25;
-  }
-  return 0.02;
-}
 
 namespace io {
 namespace {
@@ -308,53 +247,13 @@ void parse_object_model(Reader& named, ObservedObject& o, int components, std::v
     else if (*m == "coupled") o.model = ObjectModel::coupled;
     else throw named.error("model", fmt::format("unknown model '{}' (known: slide, rock, coupled)", *m));
   }
-  const bool sliding = o.outcome == Outcome::slid || o.outcome == Outcome::not_slid;
-  if (o.model && *o.model != ObjectModel::coupled && is_coupled_outcome(o.outcome)) {
-    throw named.error("model", fmt::format("outcome \"{}\" is an observation of sliding and rocking together: only "
-                                           "the coupled model makes it (leave model out or write \"coupled\")",
-                                           outcome_name(o.outcome)));
-  }
-  if (o.model == ObjectModel::slide && !sliding) {
-    throw named.error("model", fmt::format("the sliding block cannot rock or topple: outcome \"{}\" needs model "
-                                           "\"rock\" or \"coupled\"", outcome_name(o.outcome)));
-  }
-  if (o.model == ObjectModel::rock && sliding) {
-    throw named.error("model", fmt::format("the rocking body's base does not slide: outcome \"{}\" needs model "
-                                           "\"slide\" or \"coupled\"", outcome_name(o.outcome)));
-  }
-  if (object_model(o) != ObjectModel::coupled) return;
-  if (components != 1) {
-    throw named.error(o.model ? "model" : "outcome", "the coupled slide-rock model is planar: it needs a "
-                                                     "one-component survey ([inversion] components = 1)");
-  }
-  // Shenton (1996): a body with mu_s < min(b1, b2) / h slides before it can lift and never lifts while sliding
-  // (slide_rock.hpp, cannot_uplift), so it can neither topple nor rock; refused when that holds over the whole range.
-  if ((o.outcome == Outcome::slid_toppled || o.outcome == Outcome::walked) &&
-      SlideRockBody::from_rocking(o.body, o.mu.high).cannot_uplift()) {
-    const RockingBody& b = o.body;
-    const double b_over_h = std::min(std::tan(b.alpha_rad()), std::tan(b.side_body(-1).alpha_rad()));
-    throw named.error("outcome", fmt::format("a body with mu <= {:.3g} < b/h = {:.3g} slides before it can lift and "
-                                             "never lifts while sliding (Shenton 1996): it cannot have {}; "
-                                             "write \"slid\" or \"slid_stood\", or check mu and the dimensions",
-                                             o.mu.high, b_over_h,
-                                             o.outcome == Outcome::walked ? "walked (rocked)" : "toppled"));
-  }
-  // Painleve's paradox (slide_rock.hpp, painleve_friction_limit; docs/method.md): with mu at or above mu_P the
-  // coupled runs may meet a slipping corner that Coulomb friction cannot resolve; the solver resolves it (tangential
-  // impacts, holds), which is a modelling choice the user should know of: said, the value kept.
-  const SlideRockBody coupled = SlideRockBody::from_rocking(o.body, o.mu.high);
-  const double mu_p = coupled.painleve_friction_limit();
-  if (o.mu.high >= mu_p) {
-    warnings.push_back(
-        named
-            .error("mu", fmt::format("mu = {} reaches the Painleve limit of this body, mu_P = {:.4g} (b/h = {:.3g}, "
-                                     "k2 = {:.3g} m2): its coupled runs may meet Painleve's paradox (Coulomb friction "
-                                     "without a unique solution), which the solver resolves by tangential impacts "
-                                     "(docs/method.md, \"Painleve's paradox\"); check mu",
-                                     o.mu.is_value() ? fmt::format("{:g}", o.mu.low)
-                                                     : fmt::format("[{:g}, {:g}]", o.mu.low, o.mu.high),
-                                     mu_p, std::min(coupled.b1_m, coupled.b2_m) / coupled.h_m, coupled.inertia_m2))
-            .what());
+  // The survey's rules for the model (survey.hpp, check_object_model), located at this object's keys.
+  try {
+    for (const ObjectCheck& w : check_object_model(o, components)) {
+      warnings.push_back(named.error(w.field, w.problem).what());
+    }
+  } catch (const InputError& e) {
+    throw named.error(e.where().field, e.problem());
   }
 }
 

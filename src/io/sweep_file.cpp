@@ -20,14 +20,14 @@
 #include <oneapi/tbb/parallel_for.h>
 #include <toml++/toml.h>
 
-#include "topple/body.hpp"
-#include "topple/error.hpp"
+#include "topple/bodies/body.hpp"
+#include "topple/core/error.hpp"
 #include "topple/io/mesh.hpp"
 #include "topple/io/read.hpp"
-#include "topple/motion_set.hpp"
-#include "topple/oriented.hpp"
-#include "topple/pulses.hpp"
-#include "topple/units.hpp"
+#include "topple/motion/motion_set.hpp"
+#include "topple/solvers/oriented.hpp"
+#include "topple/motion/pulses.hpp"
+#include "topple/core/units.hpp"
 
 namespace topple::io {
 namespace fs = std::filesystem;

@@ -1,5 +1,5 @@
 // Shared line splitting and number parsing of the readers (see text_lines.hpp).
-#include "text_lines.hpp"
+#include "io/text_lines.hpp"
 
 #include <algorithm>
 #include <array>
@@ -10,7 +10,7 @@
 
 #include <fmt/format.h>
 
-#include "topple/units.hpp"
+#include "topple/core/units.hpp"
 
 namespace topple::io::detail {
 

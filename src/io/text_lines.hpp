@@ -9,8 +9,8 @@
 #include <string_view>
 #include <vector>
 
-#include "topple/error.hpp"
-#include "topple/ground_motion.hpp"
+#include "topple/core/error.hpp"
+#include "topple/motion/ground_motion.hpp"
 #include "topple/io/read.hpp"
 
 namespace topple::io::detail {

@@ -15,7 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "support/shared_data.hpp"
-#include "topple/io/provenance.hpp"
+#include "topple/output/provenance.hpp"
 
 namespace topple {
 namespace {

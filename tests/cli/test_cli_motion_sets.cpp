@@ -11,9 +11,9 @@
 
 #include "support/shared_data.hpp"
 #include "topple/io/read.hpp"
-#include "topple/motion_set.hpp"
-#include "topple/rotd.hpp"
-#include "topple/units.hpp"
+#include "topple/motion/motion_set.hpp"
+#include "topple/motion/rotd.hpp"
+#include "topple/core/units.hpp"
 
 namespace topple {
 namespace {

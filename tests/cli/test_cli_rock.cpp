@@ -10,8 +10,8 @@
 
 #include "support/shared_data.hpp"
 #include "topple/io/read.hpp"
-#include "topple/pulses.hpp"
-#include "topple/rocking.hpp"
+#include "topple/motion/pulses.hpp"
+#include "topple/solvers/rocking.hpp"
 
 namespace topple {
 namespace {

@@ -11,8 +11,8 @@
 #include <nlohmann/json.hpp>
 
 #include "support/shared_data.hpp"
-#include "topple/pulses.hpp"
-#include "topple/slide_rock.hpp"
+#include "topple/motion/pulses.hpp"
+#include "topple/solvers/slide_rock.hpp"
 
 namespace topple {
 namespace {

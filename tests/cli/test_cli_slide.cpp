@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "support/shared_data.hpp"
-#include "topple/pulses.hpp"
+#include "topple/motion/pulses.hpp"
 
 namespace topple {
 namespace {

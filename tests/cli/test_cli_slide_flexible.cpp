@@ -10,9 +10,9 @@
 #include <gtest/gtest.h>
 
 #include "support/shared_data.hpp"
-#include "topple/flexible.hpp"
+#include "topple/solvers/flexible.hpp"
 #include "topple/io/read.hpp"
-#include "topple/object_spectra.hpp"
+#include "topple/fragility/object_spectra.hpp"
 
 namespace topple {
 namespace {

@@ -9,9 +9,9 @@
 #include <nlohmann/json.hpp>
 
 #include "support/shared_data.hpp"
-#include "topple/intensity.hpp"
+#include "topple/motion/intensity.hpp"
 #include "topple/io/read.hpp"
-#include "topple/spectra.hpp"
+#include "topple/motion/spectra.hpp"
 
 namespace topple {
 namespace {
@@ -101,7 +101,7 @@ TEST(CliInfoIntensity, RecordMeasuresMatchTheLibrary) {
   EXPECT_DOUBLE_EQ(j.at("tp_s").get<double>(), *im.tp_s.value);
   EXPECT_DOUBLE_EQ(j.at("tm_s").get<double>(), *im.tm_s.value);
   EXPECT_DOUBLE_EQ(j.at("predominant_frequency_hz").get<double>(), *im.predominant_frequency_hz.value);
-  // El Centro 1940 (180): D5-95 24.19 s (eqsig's sample-level value 24.17 s, tests/test_spectra.cpp); Tm in the
+  // El Centro 1940 (180): D5-95 24.19 s (eqsig's sample-level value 24.17 s, tests/motion/test_spectra.cpp); Tm in the
   // 0.4-0.6 s of Rathje et al.'s records of this size.
   EXPECT_NEAR(im.d5_95->duration_s, 24.19, 0.01);
   EXPECT_GT(*im.tm_s.value, 0.3);

@@ -8,8 +8,8 @@
 
 #include "support/meshes.hpp"
 #include "support/shared_data.hpp"
-#include "topple/body.hpp"
-#include "topple/error.hpp"
+#include "topple/bodies/body.hpp"
+#include "topple/core/error.hpp"
 #include "topple/io/mesh.hpp"
 
 namespace topple {

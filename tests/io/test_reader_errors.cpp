@@ -11,7 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "support/shared_data.hpp"
-#include "topple/error.hpp"
+#include "topple/core/error.hpp"
 #include "topple/io/read.hpp"
 
 namespace topple::io {

@@ -19,9 +19,9 @@
 #include <gtest/gtest.h>
 
 #include "support/shared_data.hpp"
-#include "topple/error.hpp"
+#include "topple/core/error.hpp"
 #include "topple/io/read.hpp"
-#include "topple/units.hpp"
+#include "topple/core/units.hpp"
 
 namespace topple::io {
 namespace {

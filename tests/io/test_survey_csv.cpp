@@ -6,9 +6,9 @@
 #include <gtest/gtest.h>
 
 #include "support/shared_data.hpp"
-#include "topple/error.hpp"
-#include "topple/inversion.hpp"
-#include "topple/io/inversion_output.hpp"
+#include "topple/core/error.hpp"
+#include "topple/inversion/inversion.hpp"
+#include "topple/output/inversion_output.hpp"
 #include "topple/io/survey_file.hpp"
 
 namespace topple {

@@ -13,13 +13,13 @@
 
 #include "support/meshes.hpp"
 #include "support/shared_data.hpp"
-#include "topple/ensemble.hpp"
-#include "topple/error.hpp"
-#include "topple/flexible.hpp"
+#include "topple/ensemble/ensemble.hpp"
+#include "topple/core/error.hpp"
+#include "topple/solvers/flexible.hpp"
 #include "topple/io/sweep_file.hpp"
-#include "topple/pulses.hpp"
-#include "topple/sliding.hpp"
-#include "topple/sweep.hpp"
+#include "topple/motion/pulses.hpp"
+#include "topple/solvers/sliding.hpp"
+#include "topple/ensemble/sweep.hpp"
 
 namespace topple::io {
 namespace {

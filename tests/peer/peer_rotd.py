@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Peer RotD50 / RotD100 for tests/test_motion_set.cpp, computed at test time by pyrotd (scripts/test-venv.sh).
+"""Peer RotD50 / RotD100 for tests/motion/test_motion_set.cpp, computed at test time by pyrotd (scripts/test-venv.sh).
 
 Usage: peer_rotd.py ACCEL_A ACCEL_B DT PERIODS_JSON UPSAMPLE PAD_S
   ACCEL_A, ACCEL_B  the two horizontal components in m/s2, one sample per line, equal lengths (written by the test)

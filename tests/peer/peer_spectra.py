@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Peer values for tests/test_spectra.cpp, computed at test time by pyrotd and eqsig (scripts/test-venv.sh).
+"""Peer values for tests/motion/test_spectra.cpp, computed at test time by pyrotd and eqsig (scripts/test-venv.sh).
 
 Usage: peer_spectra.py ACCEL_FILE DT PERIODS_JSON UPSAMPLE PAD_S
   ACCEL_FILE  acceleration samples in m/s2, one per line (written by the test from topple's reader)

@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "topple/error.hpp"
+#include "topple/core/error.hpp"
 
 namespace topple::test {
 

@@ -6,7 +6,7 @@
 
 #include <fmt/format.h>
 
-#include "topple/units.hpp"
+#include "topple/core/units.hpp"
 
 namespace topple::test {
 

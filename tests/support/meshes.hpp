@@ -1,12 +1,12 @@
 #pragma once
-// Test fixtures for topple/body.hpp: closed triangle meshes built in memory (boxes, prisms on any polygon, a wedge),
+// Test fixtures for topple/bodies/body.hpp: closed triangle meshes built in memory (boxes, prisms on any polygon, a wedge),
 // rigid motions of them, and writers of OBJ, STL (ASCII and binary) and PLY files holding them.
 #include <array>
 #include <filesystem>
 #include <string>
 #include <vector>
 
-#include "topple/body.hpp"
+#include "topple/bodies/body.hpp"
 
 namespace topple::test {
 

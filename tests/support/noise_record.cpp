@@ -4,8 +4,8 @@
 #include <cmath>
 #include <vector>
 
-#include "topple/synthesis.hpp"
-#include "topple/units.hpp"
+#include "topple/motion/synthesis.hpp"
+#include "topple/core/units.hpp"
 
 namespace topple::test {
 

@@ -10,7 +10,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "topple/ground_motion.hpp"
+#include "topple/motion/ground_motion.hpp"
 
 namespace topple::test {
 

@@ -8,12 +8,12 @@
 
 #include <fmt/format.h>
 
-#include "topple/inversion.hpp"
-#include "topple/rocking.hpp"
-#include "topple/sliding.hpp"
-#include "topple/spectra.hpp"
-#include "topple/survey.hpp"
-#include "topple/synthesis.hpp"
+#include "topple/inversion/inversion.hpp"
+#include "topple/solvers/rocking.hpp"
+#include "topple/solvers/sliding.hpp"
+#include "topple/motion/spectra.hpp"
+#include "topple/survey/survey.hpp"
+#include "topple/motion/synthesis.hpp"
 #include "regional_scenario.hpp"
 
 namespace topple::testing {

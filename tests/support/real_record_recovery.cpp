@@ -6,14 +6,14 @@
 
 #include <fmt/format.h>
 
-#include "topple/io/output_file.hpp"
+#include "topple/core/output_file.hpp"
 #include "topple/io/read.hpp"
 #include "topple/io/survey_file.hpp"
-#include "topple/rocking.hpp"
-#include "topple/sliding.hpp"
-#include "topple/survey.hpp"
-#include "topple/spectra.hpp"
-#include "topple/synthesis.hpp"
+#include "topple/solvers/rocking.hpp"
+#include "topple/solvers/sliding.hpp"
+#include "topple/survey/survey.hpp"
+#include "topple/motion/spectra.hpp"
+#include "topple/motion/synthesis.hpp"
 
 namespace topple::recovery {
 

@@ -10,7 +10,7 @@
 // (spectra.hpp: predominant_frequency_hz). Score: coverage of both truths by the marginal 68 % / 95 % intervals
 // (an open end is unconstrained: it covers everything on its side), median / truth, widths (open end: infinite).
 //
-// Used by tests/test_inversion_real_records.cpp (a few surveys on a small grid) and bench/recovery_real_records.cpp
+// Used by tests/inversion/test_inversion_real_records.cpp (a few surveys on a small grid) and bench/recovery_real_records.cpp
 // (the full set on the survey's own grid; figures in docs/verification.md).
 #include <cstdint>
 #include <filesystem>
@@ -18,8 +18,8 @@
 #include <string>
 #include <vector>
 
-#include "topple/ground_motion.hpp"
-#include "topple/inversion.hpp"
+#include "topple/motion/ground_motion.hpp"
+#include "topple/inversion/inversion.hpp"
 
 namespace topple::recovery {
 

@@ -7,8 +7,8 @@
 
 #include <fmt/format.h>
 
-#include "topple/inversion.hpp"
-#include "topple/region.hpp"
+#include "topple/inversion/inversion.hpp"
+#include "topple/region/region.hpp"
 
 namespace topple::testing {
 namespace {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "topple/survey.hpp"
+#include "topple/survey/survey.hpp"
 
 namespace topple::testing {
 

@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "topple/ground_motion.hpp"
+#include "topple/motion/ground_motion.hpp"
 
 namespace topple::test {
 

@@ -24,7 +24,7 @@
 #include "support/shared_data.hpp"
 #include "support/slammer_suite.hpp"
 #include "topple/io/read.hpp"
-#include "topple/sliding.hpp"
+#include "topple/solvers/sliding.hpp"
 
 namespace topple {
 namespace {

@@ -22,7 +22,7 @@
 
 #include "support/shared_data.hpp"
 #include "support/slammer_suite.hpp"
-#include "topple/flexible.hpp"
+#include "topple/solvers/flexible.hpp"
 
 namespace topple {
 namespace {

@@ -1,5 +1,5 @@
 #pragma once
-// Reading a closed triangle mesh (a 3-D scan) for topple/body.hpp.
+// Reading a closed triangle mesh (a 3-D scan) for topple/bodies/body.hpp.
 //
 // Formats: Wavefront OBJ, STL (ASCII and binary), PLY (ASCII and binary), chosen by the file's extension (.obj,
 // .stl, .ply, any case); any other extension is refused, so that the 40-odd other formats of the Open Asset Import
@@ -15,13 +15,13 @@
 // its element counts bounded by MeshLimits.
 //
 // Units: the file's numbers are multiplied by `unit_m` (1 for metres, 0.001 for millimetres) and read as x east,
-// y north, z up. The mesh is then checked (check_mesh in topple/body.hpp); every refusal is an InputError naming the
+// y north, z up. The mesh is then checked (check_mesh in topple/bodies/body.hpp); every refusal is an InputError naming the
 // file.
 #include <cstdint>
 #include <string>
 #include <string_view>
 
-#include "topple/body.hpp"
+#include "topple/bodies/body.hpp"
 
 namespace topple::io {
 

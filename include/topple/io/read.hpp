@@ -12,8 +12,8 @@
 #include <string>
 #include <string_view>
 
-#include "topple/ground_motion.hpp"
-#include "topple/units.hpp"
+#include "topple/motion/ground_motion.hpp"
+#include "topple/core/units.hpp"
 
 namespace topple::io {
 

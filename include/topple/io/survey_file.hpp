@@ -22,7 +22,7 @@
 #include <filesystem>
 #include <string_view>
 
-#include "topple/survey.hpp"
+#include "topple/survey/survey.hpp"
 
 namespace topple::io {
 

@@ -1,5 +1,5 @@
 #pragma once
-// Sweep files: a TOML description of an ensemble (motions x objects x parameters), read into an ensemble::SweepSpec (topple/sweep.hpp).
+// Sweep files: a TOML description of an ensemble (motions x objects x parameters), read into an ensemble::SweepSpec (topple/ensemble/sweep.hpp).
 // docs/sweeps.md describes every key; examples/sweep/ holds commented examples.
 //
 // Validation happens here, before any run: unknown keys, wrong types, empty lists or ranges, dimensional values
@@ -19,7 +19,7 @@
 #include <string_view>
 #include <vector>
 
-#include "topple/sweep.hpp"
+#include "topple/ensemble/sweep.hpp"
 
 namespace topple::io {
 

@@ -1,0 +1,41 @@
+#pragma once
+// Inversion results as JSON (a stable interface), the grid as CSV, sites as GeoJSON, PGA vs epicentral distance.
+#include <filesystem>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "topple/inversion/inversion.hpp"
+#include "topple/output/provenance.hpp"
+#include "topple/survey/survey.hpp"
+
+namespace topple::io {
+
+/// One site's result: keys summary (inversion_summary), pga_g and freq_hz ({best, median, ci68: [low, high], ci95:
+/// [low, high], median_grid_edge, best_grid_edge}, null ends where unconstrained), static_bounds_pga_g ([low, high],
+/// hard and soft thresholds together, null where none), static_bounds_hard_pga_g, static_thresholds (each with its
+/// kind), contradictions, notes, misfit_level, constraining_objects, objects (with posterior_predictive, misfit,
+/// constraint_bits), grid axes, runs, seconds. docs/survey.md lists every key. Keys are only ever added.
+[[nodiscard]] nlohmann::ordered_json inversion_json(const InversionResult& result, const Site& site);
+
+/// The same with a "provenance" object at the end (version, commit, date, command line, survey checksum and text).
+[[nodiscard]] nlohmann::ordered_json inversion_json(const InversionResult& result, const Site& site,
+                                                    const Provenance& provenance);
+
+/// The grid: one row per cell, pga_g,freq_hz,log_likelihood,posterior,p_<object id>...
+void write_inversion_grid_csv(const std::filesystem::path& path, const InversionResult& result);
+
+/// One GeoJSON point per site that has coordinates, with PGA median and intervals (for iso-acceleration maps).
+void write_sites_geojson(const std::filesystem::path& path, const std::vector<Site>& sites,
+                         const std::vector<InversionResult>& results);
+
+/// PGA vs epicentral distance (geodesic on WGS84, region.hpp): site,distance_km,pga_median_g,ci68/ci95 ends.
+void write_distance_csv(const std::filesystem::path& path, const std::vector<Site>& sites,
+                        const std::vector<InversionResult>& results, double epicentre_lat_deg,
+                        double epicentre_lon_deg);
+
+/// Epicentral distance, km: geodesic_distance_km (region.hpp; WGS84, Karney 2013). Until issue 17 it was the
+/// haversine on a 6371 km sphere, which differs by up to 0.5 %.
+[[nodiscard]] double epicentral_distance_km(double lat1_deg, double lon1_deg, double lat2_deg, double lon2_deg);
+
+}  // namespace topple::io

@@ -1,0 +1,202 @@
+#pragma once
+// A field survey: what was seen at one or more sites after an earthquake (thesis section 1.1).
+//
+// At each site, a field engineer notes household objects that slid (and how far), rocked, toppled or stayed put,
+// with their sizes, the surfaces they stood on and how sure the observation is. Read from a TOML file by
+// io::read_survey (topple/io/survey_file.hpp); inverted by topple/inversion/inversion.hpp.
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "topple/motion/ground_motion.hpp"
+#include "topple/bodies/rocking_body.hpp"
+
+namespace topple {
+
+/// A quantity known as a value (low == high) or a range [low, high], sampled uniformly in the inversion. The ends are
+/// in the unit of the field that holds the interval (all of them dimensionless today: mu, e, amplification).
+struct Interval {
+  double low = 0.0;   ///< in the holder's unit
+  double high = 0.0;  ///< in the holder's unit
+  [[nodiscard]] bool is_value() const noexcept { return low == high; }
+  [[nodiscard]] double mid() const noexcept { return 0.5 * (low + high); }
+};
+
+enum class Outcome {
+  overturned,      ///< toppled: |theta| reached pi/2
+  not_overturned,  ///< stood (it may have rocked)
+  rocked,          ///< visibly rocked (max |theta| >= kVisibleRockingRad) but stood
+  slid,            ///< slid: a distance (value +- uncertainty), at least a distance, or just "slid" (>= kVisibleSlipM)
+  not_slid,        ///< did not slide (max |d| < kVisibleSlipM)
+  not_rocked,      ///< stood and did not visibly rock (max |theta| < kVisibleRockingRad)
+  // Outcomes of an object that can both slide and rock, simulated with the coupled model (slide_rock.hpp; the rule:
+  // object_model below; the definitions from the solver's results: docs/survey.md and inversion.hpp, coupled_match).
+  slid_stood,      ///< stood, and its base moved (max |u| >= kVisibleSlipM): "slid 3 cm and stood" (distance as slid)
+  slid_toppled,    ///< toppled, and its base had slid visibly before it fell
+  walked,          ///< stood, rocked visibly with impacts, and is offset (|residual u| >= kVisibleSlipM) without ever
+                   ///< sliding flat on its base: the offset came from slips while rocking (slide-rock, impacts)
+};
+
+/// What "visibly" means (stated once, used for the outcomes above and in docs/method.md).
+inline constexpr double kVisibleRockingRad = 0.01;  ///< 0.57 degrees of tilt at the peak
+inline constexpr double kVisibleSlipM = 0.002;      ///< 2 mm
+
+[[nodiscard]] std::string_view outcome_name(Outcome outcome);  ///< "overturned", "not_overturned", ...
+/// True for slid_stood, slid_toppled, walked: observations of both motions, which only the coupled model makes.
+[[nodiscard]] bool is_coupled_outcome(Outcome outcome) noexcept;
+
+/// The model an object is simulated with in the inversion (docs/survey.md, "Objects that slide and rock").
+///   slide:   the exact sliding block (sliding.hpp), two-way, level ground
+///   rock:    Housner's rocking body on a base that does not slide (rocking.hpp)
+///   coupled: the coupled slide-rock body (slide_rock.hpp) with mu_s = mu_k = the object's mu
+enum class ObjectModel { slide, rock, coupled };
+[[nodiscard]] std::string_view object_model_name(ObjectModel model);  ///< "slide", "rock", "coupled"
+
+enum class Evidence { certain, likely, reported };
+[[nodiscard]] std::string_view evidence_name(Evidence evidence);
+/// The chance that an observation is wrong (misreported, misremembered): certain 0.02, likely 0.10, reported 0.25.
+/// The inversion scores a run that reproduces the observation 1 - eps, one that does not eps.
+[[nodiscard]] double evidence_error_rate(Evidence evidence) noexcept;
+
+/// A flexible support under an object (a shelf, an upper floor): a one-mode oscillator whose absolute acceleration
+/// the object feels (flexible.hpp: support_motion, the decoupled analysis). Frequency and damping are values or
+/// ranges, drawn per (motion k, object) as mu is, after mu, e and the amplification (docs/survey.md).
+struct SupportFilter {
+  Interval freq_hz;   ///< natural frequency of the support, Hz (> 0)
+  Interval damping;   ///< its viscous damping ratio, decimal, in [0, 1)
+};
+
+struct ObservedObject {
+  std::string id;
+  std::string description;
+  RockingBody body;            ///< nominal geometry (shape, a, h, D; asymmetric general: both pivots)
+  std::optional<double> width_m, height_m, diameter_m;  ///< dimensions as given (for reports)
+  /// A body from a 3-D scan (`mesh = "..."`): the mesh file (resolved against the survey file) and the azimuth of
+  /// the plane of shaking in the mesh's frame (degrees clockwise from +y). Empty / none: the body was given by its
+  /// dimensions. The body itself (general, asymmetric: b1, b2, h, inertia) is in `body`.
+  std::string mesh_file;
+  std::optional<double> mesh_azimuth_deg;
+  Interval mu;                 ///< friction coefficient, dimensionless (value or range)
+  bool e_housner = true;       ///< restitution from Housner's formula for the shape
+  Interval e;                  ///< given restitution, dimensionless (value or range) when !e_housner
+  std::string support = "ground";  ///< "ground", "furniture", "upper floor" (free text)
+  Interval amplification{1.0, 1.0};  ///< support motion / ground motion, dimensionless (>= 1 for furniture, floors)
+  /// The support's filter when it is flexible (`support = {freq_hz = ..., damping = ...}`, the object's own or its
+  /// site's default); the amplification, if any, multiplies the filtered motion. None: a rigid support.
+  std::optional<SupportFilter> support_filter;
+  std::optional<double> orientation_deg;  ///< angle between the object's rocking plane and the shaking direction;
+                                          ///< the rocking model sees cos(angle) of the motion (0 when unknown)
+  /// Three-component surveys ([inversion] components = 3; docs/survey.md): the bearing across the object's narrow
+  /// side, degrees clockwise from north, in [0, 360) (its rocking plane; a direction, so 10 and 190 are one bearing
+  /// for a symmetric body). None: unknown, uniformly random (inversion_3c.hpp).
+  std::optional<double> azimuth_deg;
+  /// Outcome slid, three-component surveys: the direction the object moved (marks on the floor), degrees clockwise
+  /// from north, in [0, 360). None: not seen.
+  std::optional<double> slid_azimuth_deg;
+  /// Three-component surveys, shape = "block": the block's other horizontal dimension (along bearing + 90), m. Given,
+  /// the object is a box rocked about both pairs of base edges (oriented.hpp, OrientedBody::make). None: the block
+  /// rocks along its bearing only, as before.
+  std::optional<double> depth_m;
+  /// Outcome overturned, three-component surveys, a cylinder or a box: the direction the object fell (a tombstone's,
+  /// a column's), degrees clockwise from north, in [0, 360). None: not seen. (A block without depth falls along its
+  /// bearing by the planar model: its fall direction says nothing more.)
+  std::optional<double> toppled_azimuth_deg;
+  Outcome outcome = Outcome::not_overturned;
+  /// `model = "slide" | "rock" | "coupled"` as the survey forces it; none: the rule (object_model).
+  std::optional<ObjectModel> model;
+  std::optional<double> slid_m;              ///< observed sliding distance (outcome slid or slid_stood)
+  double slid_uncertainty_m = 0.0;           ///< its one-sigma uncertainty
+  std::optional<double> slid_at_least_m;     ///< or: it slid at least this far
+  Evidence evidence = Evidence::certain;
+};
+
+/// The model the inversion simulates `object` with. The rule (docs/survey.md, "Objects that slide and rock"):
+/// the survey's `model` when given; otherwise the coupled model for an observation of both motions (slid_stood,
+/// slid_toppled, walked), and for an observation of one motion the model that motion is about (slid, not_slid: the
+/// sliding block; the others: the rocking body), as before the coupled model existed, so that a survey keeps its
+/// meaning. io::read_survey refuses the combinations that make no sense (a coupled outcome with model = "slide" or
+/// "rock", a rocking outcome with "slide", a sliding one with "rock"; slid_toppled or walked on a body that can never
+/// lift: mu_s < min(b1, b2) / h over its whole range, Shenton 1996).
+[[nodiscard]] ObjectModel object_model(const ObservedObject& object) noexcept;
+
+/// What the survey's physics checks say of an object: the field it concerns ("model", "outcome", "mu") and why.
+struct ObjectCheck {
+  std::string field;
+  std::string problem;
+};
+
+/// The survey's rules for the model of `object` in a survey of `components` (1 or 3) components, with the object's
+/// model, outcome, body and mu already read: throws parameter_error(field, problem) for a combination that makes no
+/// sense (object_model above; a coupled object in a three-component survey; slid_toppled or walked on a body that
+/// slides before it can lift over its whole mu range, Shenton 1996) and returns the warnings, kept values that the
+/// user should know of (mu at or above the body's Painleve limit, slide_rock.hpp, painleve_friction_limit).
+[[nodiscard]] std::vector<ObjectCheck> check_object_model(const ObservedObject& object, int components);
+
+struct Site {
+  std::string name;
+  std::optional<double> lat_deg, lon_deg;
+  std::string notes;
+  /// The site's default flexible support (`support = {...}` in [site] / [[sites]]): objects without a `support` key
+  /// of their own stand on it (io::read_survey copies it into their support_filter).
+  std::optional<SupportFilter> support_filter;
+  std::vector<ObservedObject> objects;
+  /// An instrument station (docs/survey.md, "Regional surveys"): the PGA an accelerograph measured here, in g, given
+  /// as `pga_g = ...` or read from `record = "file"` (the record's peak |a| over g_m_s2, set by
+  /// io::load_survey_records). Such a site may have no objects; if it has some, they are inverted alone and checked
+  /// against it (a calibration site). None: no instrument.
+  std::optional<double> instrument_pga_g;
+  std::string instrument_record;  ///< the record's path (resolved against the survey file), empty when none
+  [[nodiscard]] bool is_station() const noexcept { return instrument_pga_g.has_value() || !instrument_record.empty(); }
+};
+
+/// The motions the inversion explores. synthetic: Clough-Penzien filtered noise (synthesis.hpp), the default;
+/// rezaeian2010: the record-like family of Rezaeian & Der Kiureghian (2010) (synthesis.hpp, docs/method.md);
+/// records: the survey's own records.
+enum class MotionFamily { synthetic, records, rezaeian2010 };
+/// "synthetic", "records", "rezaeian2010": the names a survey's `family` key takes.
+[[nodiscard]] std::string_view motion_family_name(MotionFamily family);
+
+/// How the inversion explores the shaking (defaults as documented in docs/method.md).
+struct InversionSettings {
+  MotionFamily family = MotionFamily::synthetic;
+  std::vector<std::string> records;      ///< family = records: paths (relative to the survey file, resolved)
+  /// family = records: the records themselves, in the order of `records`, loaded at the edge (io::read_survey); the
+  /// inversion core reads no file.
+  std::vector<std::shared_ptr<const GroundMotion>> record_motions;
+  double pga_min_g = 0.02, pga_max_g = 2.0;
+  int pga_count = 30;
+  double freq_min_hz = 0.3, freq_max_hz = 20.0;
+  int freq_count = 25;
+  int motions_per_cell = 40;             ///< synthetic family: N motions per cell (records: 2 per record)
+  std::uint64_t seed = 1;
+  double duration_s = 20.0;              ///< synthetic motions' length
+  double g_m_s2 = kStandardGravity;
+  /// 1: today's one-component model (the default; old surveys keep their meaning bit for bit). 3: two horizontal
+  /// components and a vertical, oriented objects, bidirectional sliding and the direction of strongest shaking
+  /// (inversion_3c.hpp, docs/method.md "Inversion in three components"). Only the synthetic family.
+  int components = 1;
+  /// components = 3: the correlation coefficient of the two horizontal white noises (synthesis.hpp,
+  /// SynthesisSetSpec::coherence), in [0, 0.95]: 0 independent components, larger values a motion polarised along
+  /// its major axis (major/minor r.m.s. ratio sqrt((1 + rho) / (1 - rho))).
+  double coherence = 0.0;
+  /// components = 3: the number of bins of the direction of strongest shaking over [0, 180) deg (4 to 72; 12 is
+  /// 15 deg bins).
+  int directions = 12;
+};
+
+struct Survey {
+  std::string source_file;
+  std::vector<Site> sites;
+  InversionSettings inversion;
+  std::optional<double> epicentre_lat_deg, epicentre_lon_deg;
+  std::optional<double> epicentre_depth_km;  ///< [event] depth_km: the hypocentre's depth, km (>= 0); none: 0 is used
+  /// What the reader applied by a documented rule that changes a given value (the sliding-uncertainty floor), one
+  /// "file:line: field: text" line each, for the front ends to show.
+  std::vector<std::string> notes;
+  /// Values accepted as given that the user should check (a coupled object's friction at or above its Painleve limit,
+  /// slide_rock.hpp), one "file:line: field: text" line each; the CLI prints them and adds them to its JSON.
+  std::vector<std::string> warnings;
+};
+
+}  // namespace topple

@@ -1,0 +1,1031 @@
+// Inversion of field observations: static bounds and the likelihood over PGA x predominant frequency. See
+// inversion.hpp and docs/method.md for the method.
+#include "topple/inversion/inversion.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <stdexcept>
+
+#include <fmt/format.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "topple/ensemble/ensemble.hpp"
+#include "topple/core/error.hpp"
+#include "topple/solvers/flexible.hpp"
+#include "topple/inversion/inversion_3c.hpp"
+#include "topple/solvers/rocking.hpp"
+#include "topple/solvers/slide_rock.hpp"
+#include "topple/solvers/sliding.hpp"
+#include "topple/motion/spectra.hpp"
+#include "topple/motion/synthesis.hpp"
+#include "topple/core/units.hpp"
+#include "inversion/inversion_detail.hpp"
+
+namespace topple {
+namespace {
+
+std::string fmt_g(double v) { return fmt::format("{:.3g} g", v); }
+
+/// Edges (in log) of the cells of a log-spaced axis: geometric midpoints, extended by half a step at each end.
+std::vector<double> log_edges(const std::vector<double>& v) {
+  const std::size_t n = v.size();
+  std::vector<double> e(n + 1);
+  for (std::size_t i = 1; i < n; ++i) e[i] = 0.5 * (std::log(v[i - 1]) + std::log(v[i]));
+  e[0] = std::log(v[0]) - (n > 1 ? 0.5 * (std::log(v[1]) - std::log(v[0])) : 0.5);
+  e[n] = std::log(v[n - 1]) + (n > 1 ? 0.5 * (std::log(v[n - 1]) - std::log(v[n - 2])) : 0.5);
+  return e;
+}
+
+/// Quantile q of a marginal over a log axis; `cell` receives the cell it falls in.
+double quantile(const std::vector<double>& values, const std::vector<double>& marginal, double q, std::size_t& cell) {
+  const auto e = log_edges(values);
+  double c = 0.0;
+  for (std::size_t i = 0; i < marginal.size(); ++i) {
+    if (c + marginal[i] >= q && marginal[i] > 0.0) {
+      cell = i;
+      return std::exp(e[i] + (q - c) / marginal[i] * (e[i + 1] - e[i]));
+    }
+    c += marginal[i];
+  }
+  cell = marginal.size() - 1;
+  return std::exp(e.back());
+}
+
+Estimate estimate(const std::vector<double>& values, const std::vector<double>& marginal, double best) {
+  Estimate est;
+  est.best = best;
+  std::size_t cell = 0;
+  est.median = quantile(values, marginal, 0.5, cell);
+  const std::size_t last = values.size() - 1;
+  const auto edge = [last](std::size_t at) { return at == 0 ? -1 : (at == last ? 1 : 0); };
+  est.median_edge = edge(cell);
+  est.best_edge = edge(static_cast<std::size_t>(
+      std::min_element(values.begin(), values.end(),
+                       [best](double a, double b) { return std::abs(a - best) < std::abs(b - best); }) -
+      values.begin()));
+  const auto lower = [&](double q) -> std::optional<double> {
+    std::size_t at = 0;
+    const double v = quantile(values, marginal, q, at);
+    return at == 0 ? std::nullopt : std::optional<double>(v);
+  };
+  const auto upper = [&](double q) -> std::optional<double> {
+    std::size_t at = 0;
+    const double v = quantile(values, marginal, q, at);
+    return at == last ? std::nullopt : std::optional<double>(v);
+  };
+  est.ci68_low = lower(0.16);
+  est.ci68_high = upper(0.84);
+  est.ci95_low = lower(0.025);
+  est.ci95_high = upper(0.975);
+  return est;
+}
+
+}  // namespace
+
+namespace detail {
+std::uint64_t mix(std::uint64_t a, std::uint64_t b) {
+  SplitMix64 s(a * 0x9E3779B97F4A7C15ULL + b);
+  return s.next();
+}
+}  // namespace detail
+using detail::mix;
+
+/// tan(alpha) of the uplift threshold g tan(alpha) that a static bound uses. A symmetric body has one. An asymmetric
+/// one (b1 != b2) uplifts about either pivot, at g b1/h or g b2/h by the direction of the peak, which the survey does
+/// not know: a lower bound (it rocked) takes the smaller, an upper one (it did not) the larger, the weaker claim.
+double detail::uplift_tan_alpha(const RockingBody& body, bool lower) {
+  const double plus = std::tan(body.alpha_rad());
+  if (body.symmetric()) return plus;
+  const double minus = std::tan(body.side_body(-1).alpha_rad());
+  return lower ? std::min(plus, minus) : std::max(plus, minus);
+}
+
+namespace {
+using detail::uplift_tan_alpha;
+/// The hard lower threshold tan (g) of an object simulated with the coupled model whose base moved (slid, slid_stood,
+/// slid_toppled, walked) and the words for it; none for the other objects. The body leaves rest only when |a| passes
+/// g min(mu_s, b/h) (slide_rock.hpp: the rest region, Shenton 1996): so a slip needs PGA > g min(mu, b/h) (a body
+/// with mu > b/h may slip while it rocks, below mu g), and an outcome that needs rocking (slid_toppled, walked)
+/// needs uplift, PGA > g b/h.
+std::optional<std::pair<double, std::string>> coupled_moved_threshold(const ObservedObject& o) {
+  if (object_model(o) != ObjectModel::coupled) return std::nullopt;
+  const double tan_alpha = uplift_tan_alpha(o.body, true);
+  switch (o.outcome) {
+    case Outcome::slid:
+    case Outcome::slid_stood: {
+      const double t = std::min(o.mu.low, tan_alpha);
+      return std::pair{t, fmt::format("{} (coupled): PGA > g min(mu, a/h) = {}", outcome_name(o.outcome), fmt_g(t))};
+    }
+    case Outcome::slid_toppled:
+    case Outcome::walked:
+      return std::pair{tan_alpha, fmt::format("{} (coupled): PGA > g a/h = {}", outcome_name(o.outcome),
+                                              fmt_g(tan_alpha))};
+    default: return std::nullopt;
+  }
+}
+
+/// An object on a flexible support: its support's peak is at most max_peak_amplification(zeta_low) times the ground's
+/// (any motion), so an object that slid, rocked or overturned still bounds the ground's PGA from below (weakly). The
+/// support may also attenuate the ground's peak without limit (well above its frequency): no upper bound.
+void flexible_support_bound(const ObservedObject& o, StaticBounds& b) {
+  const double amp_max = o.amplification.high * max_peak_amplification(o.support_filter->damping.low);
+  if (!std::isfinite(amp_max)) return;  // undamped support: no bound
+  const auto text = [&](double threshold_g) {
+    return fmt::format("PGA > {} / {:.3g}, the most its flexible support can amplify a peak", fmt_g(threshold_g),
+                       amp_max);
+  };
+  if (const auto moved = coupled_moved_threshold(o)) {
+    b.lower.push_back({moved->first / amp_max, o.id, moved->second + ": " + text(moved->first), true});
+    return;
+  }
+  switch (o.outcome) {
+    case Outcome::slid:
+      b.lower.push_back({o.mu.low / amp_max, o.id, "slid: " + text(o.mu.low), true});  // hard, as on rigid ground
+      break;
+    case Outcome::overturned:
+    case Outcome::rocked: {
+      const double tan_alpha = uplift_tan_alpha(o.body, true);
+      b.lower.push_back(
+          {tan_alpha / amp_max, o.id, fmt::format("{}: {}", outcome_name(o.outcome), text(tan_alpha)), true});
+      break;
+    }
+    default: break;
+  }
+}
+}  // namespace
+
+StaticBounds static_bounds(const Site& site) {
+  StaticBounds b;
+  for (const ObservedObject& o : site.objects) {
+    if (o.support_filter) {
+      flexible_support_bound(o, b);
+      continue;
+    }
+    // A lower threshold divides by the largest amplification, an upper one by the smallest (the weakest claim); the
+    // text shows the amplification actually used and the result.
+    const auto divided = [](double amp, double value_g) {
+      return amp == 1.0 ? std::string()
+                 : fmt::format(" / amplification {:.3g} = {}", amp, fmt_g(value_g / amp));
+    };
+    const double amp_hi = o.amplification.high;
+    const double amp_lo = o.amplification.low;
+    const double tan_alpha = uplift_tan_alpha(o.body, o.outcome != Outcome::not_rocked);
+    if (const auto moved = coupled_moved_threshold(o)) {  // hard, like every threshold of a body leaving rest
+      b.lower.push_back({moved->first / amp_hi, o.id, moved->second + divided(amp_hi, moved->first), true});
+      continue;
+    }
+    switch (o.outcome) {
+      case Outcome::slid:  // hard: no slip at all while |a| <= mu g (Coulomb, level ground)
+        b.lower.push_back({o.mu.low / amp_hi, o.id,
+                           fmt::format("slid: PGA > mu g = {}{}", fmt_g(o.mu.low), divided(amp_hi, o.mu.low)), true});
+        break;
+      case Outcome::not_slid:  // soft: a brief excursion above mu g may slip it less than the visible 2 mm
+        b.upper.push_back({o.mu.high / amp_lo, o.id,
+                           fmt::format("did not slide visibly: PGA <= mu g = {}{}", fmt_g(o.mu.high),
+                                       divided(amp_lo, o.mu.high)),
+                           false});
+        break;
+      case Outcome::overturned:
+      case Outcome::rocked:  // hard: no uplift while |a| <= g a/h (Housner)
+        b.lower.push_back({tan_alpha / amp_hi, o.id,
+                           fmt::format("{}: PGA > g a/h = {}{}", outcome_name(o.outcome), fmt_g(tan_alpha),
+                                       divided(amp_hi, tan_alpha)),
+                           true});
+        break;
+      case Outcome::not_rocked:  // soft: a brief excursion above g a/h may uplift it less than the visible tilt
+        b.upper.push_back({tan_alpha / amp_lo, o.id,
+                           fmt::format("did not rock visibly: PGA <= g a/h = {}{}", fmt_g(tan_alpha),
+                                       divided(amp_lo, tan_alpha)),
+                           false});
+        break;
+      case Outcome::not_overturned:
+        break;  // a body can rock without falling at any PGA above g a/h: no static threshold
+      case Outcome::slid_stood:
+      case Outcome::slid_toppled:
+      case Outcome::walked:
+        break;  // coupled outcomes: coupled_moved_threshold above
+    }
+  }
+  detail::settle_static_bounds(b);
+  return b;
+}
+
+void detail::settle_static_bounds(StaticBounds& b) {
+  for (const auto& l : b.lower) {
+    if (l.hard && (!b.hard_lower_g || l.pga_g > *b.hard_lower_g)) b.hard_lower_g = l.pga_g;
+  }
+  for (const auto& u : b.upper) {
+    if (u.hard && (!b.hard_upper_g || u.pga_g < *b.hard_upper_g)) b.hard_upper_g = u.pga_g;
+  }
+  for (const auto& l : b.lower) {
+    if (!b.lower_g || l.pga_g > *b.lower_g) b.lower_g = l.pga_g;
+  }
+  for (const auto& u : b.upper) {
+    if (!b.upper_g || u.pga_g < *b.upper_g) b.upper_g = u.pga_g;
+  }
+  for (const auto& l : b.lower) {
+    for (const auto& u : b.upper) {
+      if (l.pga_g > u.pga_g) {
+        b.contradictions.push_back(fmt::format("{} ({}) vs {} ({})", l.object_id, l.reason, u.object_id, u.reason));
+      }
+    }
+  }
+}
+
+bool in_credible_region(const InversionResult& r, double pga_g, double freq_hz, double level) {
+  const auto cell_of = [](const std::vector<double>& v, double x) -> std::optional<std::size_t> {
+    const auto e = log_edges(v);
+    const double lx = std::log(x);
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      if (lx >= e[i] && lx <= e[i + 1]) return i;
+    }
+    return std::nullopt;
+  };
+  const auto i = cell_of(r.pga_g, pga_g);
+  const auto j = cell_of(r.freq_hz, freq_hz);
+  if (!i || !j) return false;
+  const std::size_t target = *i * r.freq_hz.size() + *j;
+  std::vector<std::size_t> order(r.posterior.size());
+  for (std::size_t c = 0; c < order.size(); ++c) order[c] = c;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return r.posterior[a] > r.posterior[b]; });
+  double mass = 0.0;
+  for (std::size_t c : order) {
+    if (c == target) return true;
+    mass += r.posterior[c];
+    if (mass >= level) return false;
+  }
+  return false;
+}
+
+DrawnParameters draw_parameters(const ObservedObject& object, std::uint64_t seed, std::size_t k, std::size_t o) {
+  PortableRandom rng(mix(mix(seed, k + 1), o + 1));
+  const auto draw = [&](const Interval& iv) { return iv.is_value() ? iv.low : iv.low + (iv.high - iv.low) * rng.uniform(); };
+  DrawnParameters p;
+  p.mu = draw(object.mu);
+  p.e = object.e_housner ? housner_restitution(object.body) : draw(object.e);
+  p.amplification = draw(object.amplification);
+  // Drawn last, and only for a flexible support: the draws above, and with them a survey without one, are unchanged.
+  if (object.support_filter) {
+    p.support_freq_hz = draw(object.support_filter->freq_hz);
+    p.support_damping = draw(object.support_filter->damping);
+  }
+  return p;
+}
+
+double sliding_sigma_m(const ObservedObject& object) {
+  const double d = object.slid_m.value_or(0.0);
+  return std::max({object.slid_uncertainty_m, 0.25 * d, kVisibleSlipM});
+}
+
+namespace {
+/// The motion on the object's flexible support (its absolute acceleration, decoupled), or none for a rigid support.
+std::optional<GroundMotion> on_flexible_support(const ObservedObject& object, const DrawnParameters& p,
+                                                const GroundMotion& ground) {
+  if (!object.support_filter) return std::nullopt;
+  return support_motion(ground, SupportOscillator::make(p.support_freq_hz, p.support_damping));
+}
+}  // namespace
+
+GroundMotion nominal_object_motion(const ObservedObject& object, const GroundMotion& ground) {
+  if (!object.support_filter) return ground;
+  return support_motion(ground, SupportOscillator::make(object.support_filter->freq_hz.mid(),
+                                                        object.support_filter->damping.mid()));
+}
+
+double observation_match(const ObservedObject& object, const DrawnParameters& p, const GroundMotion& ground,
+                         double g) {
+  const std::optional<GroundMotion> filtered = on_flexible_support(object, p, ground);
+  const GroundMotion& motion = filtered ? *filtered : ground;
+  const ObjectModel model = object_model(object);  // survey.hpp: the rule
+  if (model == ObjectModel::slide) {
+    // Level ground, no vertical input: the response to amp * a with mu is amp times the response to a with
+    // mu / amp (divide the equation of motion by amp), which spares a copy of the motion.
+    const double amp = p.amplification;
+    const SlidingSummary s = slide_summary(motion, SlidingBlock::make(p.mu / amp, p.mu / amp, 0.0, SlidingMode::two_way, g));
+    const double max_d = amp * s.max_abs_displacement_m;
+    const double residual = amp * std::abs(s.residual_displacement_m);
+    return detail::sliding_match(object, max_d, residual);
+  }
+  double factor = p.amplification;
+  if (object.orientation_deg) factor *= std::cos(*object.orientation_deg * kPi / 180.0);
+  if (model == ObjectModel::coupled) {
+    // The coupled body in the object's rocking plane (the plane the orientation refers to), mu_s = mu_k = mu.
+    const SlideRockOptions options = detail::inversion_slide_rock_options(object, p, g);
+    const SlideRockBody body = SlideRockBody::from_rocking(object.body, p.mu);
+    const SlideRockSummary s = factor == 1.0 ? slide_rock(motion, body, options).summary
+                                             : slide_rock(motion.scaled(factor), body, options).summary;
+    return detail::coupled_match(object, s);
+  }
+  const RockingOptions options = detail::inversion_rocking_options(object, p, g);
+  const RockingSummary s = factor == 1.0 ? rock_summary(motion, object.body, options)
+                                         : rock_summary(motion.scaled(factor), object.body, options);
+  return detail::rocking_match(object.outcome, s.overturned, s.max_abs_rotation_rad);
+}
+
+namespace detail {
+
+double sliding_match(const ObservedObject& object, double max_displacement_m, double residual_m) {
+  if (object.outcome == Outcome::not_slid) return max_displacement_m < kVisibleSlipM ? 1.0 : 0.0;
+  if (object.slid_m) {
+    const double z = (residual_m - *object.slid_m) / sliding_sigma_m(object);
+    return std::exp(-0.5 * z * z);
+  }
+  if (object.slid_at_least_m) return residual_m >= *object.slid_at_least_m ? 1.0 : 0.0;
+  return max_displacement_m >= kVisibleSlipM ? 1.0 : 0.0;
+}
+
+RockingOptions inversion_rocking_options(const ObservedObject& object, const DrawnParameters& p, double g) {
+  RockingOptions options;
+  options.g_m_s2 = g;
+  if (!object.e_housner) {
+    options.restitution = RestitutionMode::given;
+    options.e = p.e;
+  }
+  options.max_run_out_s = 20.0;
+  options.rel_tol = 1e-6;  // outcomes (fell or not, rocked visibly or not) do not need the 1e-8 default
+  return options;
+}
+
+SlideRockOptions inversion_slide_rock_options(const ObservedObject& object, const DrawnParameters& p, double g) {
+  // The rocking runs' choices (inversion_rocking_options): restitution as the object gives it, 20 s run-out,
+  // rel_tol 1e-6 (outcomes, not histories).
+  const RockingOptions rocking = inversion_rocking_options(object, p, g);
+  SlideRockOptions options;
+  options.g_m_s2 = g;
+  options.restitution = rocking.restitution;
+  options.e = rocking.e;
+  options.max_run_out_s = rocking.max_run_out_s;
+  options.rel_tol = rocking.rel_tol;
+  return options;
+}
+
+double coupled_match(const ObservedObject& object, const SlideRockSummary& s) {
+  // The one mapping from the coupled solver's results to the outcomes (docs/survey.md, "Objects that slide and
+  // rock"). The offset a surveyor measures is the net one, u at the end (at rest theta = 0, so the base's offset).
+  const double max_rotation = std::max(s.max_rotation_positive_rad, s.max_rotation_negative_rad);
+  const double residual = std::abs(s.residual_slide_m);
+  const bool visibly_slid = s.max_abs_slide_m >= kVisibleSlipM;
+  switch (object.outcome) {
+    case Outcome::slid:
+    case Outcome::not_slid:
+      return sliding_match(object, s.max_abs_slide_m, residual);
+    case Outcome::overturned:
+    case Outcome::not_overturned:
+    case Outcome::rocked:
+    case Outcome::not_rocked:
+      return rocking_match(object.outcome, s.overturned, max_rotation);
+    case Outcome::slid_stood:  // stood, and slid as observed (a distance, at least a distance, or visibly)
+      return s.overturned ? 0.0 : sliding_match(object, s.max_abs_slide_m, residual);
+    case Outcome::slid_toppled:  // fell, and its base had slid visibly
+      return s.overturned && visibly_slid ? 1.0 : 0.0;
+    case Outcome::walked: {  // stood, rocked visibly with impacts, offset, never slid flat on its base
+      const bool never_slid_flat = s.mode_entries[static_cast<std::size_t>(SlideRockMode::slide)] == 0;
+      return !s.overturned && max_rotation >= kVisibleRockingRad && s.impacts > 0 && residual >= kVisibleSlipM &&
+                     never_slid_flat
+                 ? 1.0
+                 : 0.0;
+    }
+  }
+  return 0.0;
+}
+
+double rocking_match(Outcome outcome, bool overturned, double max_rotation_rad) {
+  switch (outcome) {
+    case Outcome::overturned: return overturned ? 1.0 : 0.0;
+    case Outcome::not_overturned: return overturned ? 0.0 : 1.0;
+    case Outcome::rocked: return !overturned && max_rotation_rad >= kVisibleRockingRad ? 1.0 : 0.0;
+    case Outcome::not_rocked: return !overturned && max_rotation_rad < kVisibleRockingRad ? 1.0 : 0.0;
+    default: return 0.0;
+  }
+}
+
+}  // namespace detail
+
+namespace detail {
+
+/// The synthesis of motion k of a synthetic family's column: 20 samples per period of the column's frequency (at most
+/// 0.01 s) and at least 8 periods.
+SynthesisSpec family_spec(const InversionSettings& st, double freq_hz, int k) {
+  SynthesisSpec spec;
+  spec.pga_m_s2 = 1.0;
+  spec.predominant_frequency_hz = freq_hz;
+  spec.duration_s = std::max(st.duration_s, 8.0 / freq_hz);
+  spec.dt_s = std::min(0.01, 1.0 / (20.0 * freq_hz));
+  spec.seed = mix(st.seed, static_cast<std::uint64_t>(k) + 1);  // the same seeds in every column
+  return spec;
+}
+
+}  // namespace detail
+using detail::family_spec;
+
+void validate_inversion_settings(const InversionSettings& st) {
+  const auto axis = [](const char* field, double lo, double hi, int count, const char* unit) {
+    if (!(lo > 0.0) || !(hi > lo) || !std::isfinite(hi)) {
+      throw parameter_error(field, fmt::format("need 0 < min < max, got [{}, {}] {}", lo, hi, unit));
+    }
+    if (count < 2 || count > 1000) throw parameter_error(field, fmt::format("count must be 2 to 1000, got {}", count));
+  };
+  axis("inversion.pga_g", st.pga_min_g, st.pga_max_g, st.pga_count, "g");
+  axis("inversion.freq_hz", st.freq_min_hz, st.freq_max_hz, st.freq_count, "Hz");
+  if (st.motions_per_cell < 1) {
+    throw parameter_error("inversion.motions_per_cell", fmt::format("must be >= 1, got {}", st.motions_per_cell));
+  }
+  if (!(st.duration_s > 0.0) || !std::isfinite(st.duration_s)) {
+    throw parameter_error("inversion.duration_s", fmt::format("must be positive, got {} s", st.duration_s));
+  }
+  if (!(st.g_m_s2 > 0.0) || !std::isfinite(st.g_m_s2)) {
+    throw parameter_error("inversion.g_m_s2", fmt::format("must be positive, got {} m/s2", st.g_m_s2));
+  }
+  if (st.components != 1 && st.components != 3) {
+    throw parameter_error("inversion.components", fmt::format("must be 1 or 3, got {}", st.components));
+  }
+  if (st.components == 3) {
+    if (st.family != MotionFamily::synthetic) {
+      throw parameter_error("inversion.components", "components = 3 needs family = \"synthetic\"");
+    }
+    if (!(st.coherence >= 0.0 && st.coherence <= 0.95)) {
+      throw parameter_error("inversion.coherence", fmt::format("must lie in [0, 0.95], got {}", st.coherence));
+    }
+    if (st.directions < 4 || st.directions > 72) {
+      throw parameter_error("inversion.directions", fmt::format("must be 4 to 72, got {}", st.directions));
+    }
+    for (const double f : {st.freq_min_hz, st.freq_max_hz}) {
+      try {
+        validate(detail::family_set_spec(st, f, 0));
+      } catch (const InputError& e) {
+        throw parameter_error("inversion.freq_hz",
+                              fmt::format("the three-component family cannot make motions with a predominant "
+                                          "frequency of {} Hz (the grid is [{}, {}] Hz): {}: {}",
+                                          f, st.freq_min_hz, st.freq_max_hz, e.where().field, e.problem()));
+      }
+    }
+  }
+  if (st.family == MotionFamily::records) {
+    if (st.records.empty() && st.record_motions.empty()) {
+      throw parameter_error("inversion.records", "family = \"records\" needs records = [\"file\", ...]");
+    }
+    return;
+  }
+  if (st.family == MotionFamily::rezaeian2010) {
+    // The record-like family makes any frequency whose step (1 / (20 f_max), synthesis.hpp) the readers accept; the
+    // frequency axis is kept to the band predominant_frequency_hz measures (0.1 Hz up), and 25 Hz at the top.
+    if (st.freq_min_hz < 0.1 || st.freq_max_hz > 25.0) {
+      throw parameter_error("inversion.freq_hz", fmt::format("the rezaeian2010 family makes predominant frequencies "
+                                                             "of 0.1 to 25 Hz; the grid is [{}, {}] Hz",
+                                                             st.freq_min_hz, st.freq_max_hz));
+    }
+    return;
+  }
+  for (const double f : {st.freq_min_hz, st.freq_max_hz}) {
+    try {
+      validate(family_spec(st, f, 0));
+    } catch (const InputError& e) {
+      throw parameter_error("inversion.freq_hz",
+                            fmt::format("the synthetic family cannot make motions with a predominant frequency of "
+                                        "{} Hz (the grid is [{}, {}] Hz): {}: {}",
+                                        f, st.freq_min_hz, st.freq_max_hz, e.where().field, e.problem()));
+    }
+  }
+}
+
+std::vector<GroundMotion> family_motions(const InversionSettings& st, double freq_hz) {
+  std::vector<GroundMotion> out;
+  if (st.family == MotionFamily::synthetic) {
+    out.reserve(static_cast<std::size_t>(st.motions_per_cell));
+    for (int k = 0; k < st.motions_per_cell; ++k) {
+      GroundMotion m = synthesize(family_spec(st, freq_hz, k));
+      // Put the motion's measured predominant frequency exactly on the column's: time scaling by c divides every
+      // frequency by c.
+      const double measured = predominant_frequency_hz(m);
+      out.push_back(m.time_scaled(measured / freq_hz).scaled_to_pga(1.0));
+    }
+    return out;
+  }
+  if (st.family == MotionFamily::rezaeian2010) {
+    out.reserve(static_cast<std::size_t>(st.motions_per_cell));
+    for (int k = 0; k < st.motions_per_cell; ++k) {
+      // Parameters of motion k drawn once (the same in every column: common random numbers), f_mid at the column.
+      const std::uint64_t seed = mix(st.seed, static_cast<std::uint64_t>(k) + 1);
+      RezaeianSpec spec = draw_rezaeian(seed, freq_hz);
+      GroundMotion m = synthesize_rezaeian(spec);
+      double measured = predominant_frequency_hz(m);
+      // The measured peak may sit well off f_mid (a broad filter, a strong drift): aim f_mid once more, so that the
+      // time scaling below stays within a factor 1.25 or so and keeps the drawn durations.
+      if (measured > 1.25 * freq_hz || measured < 0.8 * freq_hz) {
+        spec = draw_rezaeian(seed, freq_hz * freq_hz / measured);
+        m = synthesize_rezaeian(spec);
+        measured = predominant_frequency_hz(m);
+      }
+      out.push_back(m.time_scaled(measured / freq_hz).scaled_to_pga(1.0));
+    }
+    return out;
+  }
+  if (st.record_motions.empty()) {
+    throw parameter_error("inversion.records", "family = \"records\" needs the records loaded (io::read_survey does)");
+  }
+  out.reserve(2 * st.record_motions.size());
+  for (const auto& rec : st.record_motions) {
+    const double measured = predominant_frequency_hz(*rec);
+    const GroundMotion m = rec->time_scaled(measured / freq_hz).scaled_to_pga(1.0);
+    out.push_back(m);
+    out.push_back(m.inverted());
+  }
+  return out;
+}
+
+void validate_inversion_options(const InversionOptions& options) {
+  if (options.threads < 0) {
+    throw parameter_error("--threads", fmt::format("must be >= 0 (0: all cores), got {}", options.threads));
+  }
+}
+
+FamilyGrid build_family(const InversionSettings& st, const std::vector<double>& freq_hz,
+                        const InversionOptions& options) {
+  validate_inversion_options(options);
+  const bool loaded = st.records.empty() ? !st.record_motions.empty() : st.record_motions.size() == st.records.size();
+  if (st.family == MotionFamily::records && !loaded) {
+    throw parameter_error("inversion.records", fmt::format("{} record(s) named but {} loaded: the inversion core reads "
+                                                           "no file (io::read_survey loads them)",
+                                                           st.records.size(), st.record_motions.size()));
+  }
+  const std::size_t nf = freq_hz.size();
+  FamilyGrid family;
+  family.freq_hz = freq_hz;
+  family.motions.resize(nf);
+  family.measured_freq_hz.resize(nf);
+  // Columns in parallel, within the thread limit of `options` (the runs below obey it too).
+  tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+  arena.execute([&] {
+    tbb::parallel_for(std::size_t{0}, nf, [&](std::size_t j) {
+      double sum = 0.0;
+      for (GroundMotion& m : family_motions(st, freq_hz[j])) {
+        sum += predominant_frequency_hz(m);
+        family.motions[j].push_back(std::make_shared<const GroundMotion>(std::move(m)));
+      }
+      family.measured_freq_hz[j] = sum / static_cast<double>(family.motions[j].size());
+    });
+  });
+  return family;
+}
+
+MatchTable simulate_matches(const Site& site, const InversionSettings& st, const std::vector<double>& pga_g,
+                            const FamilyGrid& family, const InversionOptions& options) {
+  validate_inversion_options(options);
+  MatchTable table;
+  table.pga_count = pga_g.size();
+  table.freq_count = family.motions.size();
+  table.motions = family.motions_per_column();
+  table.objects = site.objects.size();
+  const std::size_t np = table.pga_count;
+  const std::size_t nf = table.freq_count;
+  const std::size_t n = table.motions;
+  const std::size_t no = table.objects;
+
+  ensemble::Plan plan;
+  plan.motion_columns = {"cell", "pga_g", "freq_hz", "motion"};
+  plan.object_columns = {"object"};
+  plan.result_columns = {"match"};
+  plan.identity = "topple inversion v1";
+  for (std::size_t i = 0; i < np; ++i) {
+    for (std::size_t j = 0; j < nf; ++j) {
+      for (std::size_t k = 0; k < n; ++k) {
+        ensemble::MotionCase mc;
+        mc.base = family.motions[j][k];
+        mc.transform.target_pga_m_s2 = pga_g[i] * st.g_m_s2;
+        mc.values = {ensemble::Value(static_cast<std::int64_t>(i * nf + j)), ensemble::Value(pga_g[i]),
+                     ensemble::Value(family.freq_hz[j]), ensemble::Value(static_cast<std::int64_t>(k))};
+        plan.motions.push_back(std::move(mc));
+      }
+    }
+  }
+  for (const ObservedObject& o : site.objects) plan.objects.push_back({{ensemble::Value(o.id)}});
+  // Parameters drawn once per (motion k, object): the same draw in every cell.
+  std::vector<DrawnParameters> drawn(n * no);
+  for (std::size_t k = 0; k < n; ++k) {
+    for (std::size_t o = 0; o < no; ++o) drawn[k * no + o] = draw_parameters(site.objects[o], st.seed, k, o);
+  }
+  const double g = st.g_m_s2;
+  plan.run = [&site, &drawn, n, no, g](const GroundMotion& motion, std::size_t motion_index, std::size_t o0,
+                                      std::size_t o1, std::span<ensemble::Value> results) {
+    const std::size_t k = motion_index % n;
+    for (std::size_t o = o0; o < o1; ++o) {
+      results[o - o0] = ensemble::Value(observation_match(site.objects[o], drawn[k * no + o], motion, g));
+    }
+  };
+  ensemble::ExecuteOptions exec;
+  exec.threads = options.threads;
+  exec.progress = options.progress;
+  const ensemble::ResultTable rows = ensemble::run_in_memory(plan, exec);
+  // Rows come in run order: row = (cell * N + k) * objects + o, the MatchTable's own indexing.
+  const std::size_t match_col = rows.columns.size() - 1;
+  table.match.resize(rows.rows.size());
+  for (std::size_t row = 0; row < rows.rows.size(); ++row) {
+    table.match[row] = std::get<double>(rows.rows[row][match_col]);
+  }
+  return table;
+}
+
+namespace detail {
+
+/// The 3 x 3 neighbourhood of a cell in the log grid, weighted 4 (the cell), 2 (edge neighbours), 1 (corners): the
+/// response varies smoothly over a cell's width, so pooling the neighbours' runs cuts the Monte Carlo noise of N runs
+/// at the price of about one cell of blur.
+std::vector<std::pair<std::size_t, double>> neighbourhood(std::size_t c, std::size_t np, std::size_t nf) {
+  std::vector<std::pair<std::size_t, double>> out;
+  const auto ci = static_cast<std::ptrdiff_t>(c / nf);
+  const auto cj = static_cast<std::ptrdiff_t>(c % nf);
+  for (int di = -1; di <= 1; ++di) {
+    for (int dj = -1; dj <= 1; ++dj) {
+      const auto i2 = ci + di;
+      const auto j2 = cj + dj;
+      if (i2 < 0 || j2 < 0 || i2 >= static_cast<std::ptrdiff_t>(np) || j2 >= static_cast<std::ptrdiff_t>(nf)) continue;
+      out.emplace_back(static_cast<std::size_t>(i2) * nf + static_cast<std::size_t>(j2),
+                       (di == 0 ? 2.0 : 1.0) * (dj == 0 ? 2.0 : 1.0));
+    }
+  }
+  return out;
+}
+
+}  // namespace detail
+using detail::neighbourhood;
+
+namespace {
+
+/// Matches summed over the motions of each (object, cell): index o * cells + c.
+std::vector<double> match_counts(const MatchTable& m) {
+  const std::size_t cells = m.cells();
+  std::vector<double> counts(m.objects * cells, 0.0);
+  for (std::size_t c = 0; c < cells; ++c) {
+    for (std::size_t k = 0; k < m.motions; ++k) {
+      for (std::size_t o = 0; o < m.objects; ++o) counts[o * cells + c] += m.at(c, k, o);
+    }
+  }
+  return counts;
+}
+
+/// The joint log-likelihood of every cell (reduce_likelihood, header item 2) from the match table, one error rate per
+/// object and each cell's neighbourhood. An error rate of 1/2 makes an object's factor the constant 1/2: the
+/// likelihood without that object (assess_objects), up to a constant.
+std::vector<double> joint_log_likelihood(const MatchTable& m, const std::vector<double>& error_rates,
+                                         const std::vector<std::vector<std::pair<std::size_t, double>>>& hoods) {
+  const std::size_t n = m.motions;
+  const std::size_t no = m.objects;
+  const std::size_t cells = m.cells();
+  const double nn = static_cast<double>(n);
+  // Joint likelihood: all objects saw the same motion, so a cell's likelihood is the average over its motions k of
+  // the product over objects of q = eps + (1 - 2 eps) m, where eps is the chance that the observation is wrong
+  // (evidence_error_rate). Averaging products, not multiplying averages, keeps the correlation the shared motion
+  // induces between objects (a strong realisation topples them all). Log-sum-exp keeps it finite for any number of
+  // objects.
+  std::vector<double> run_log(cells * n, 0.0);
+  for (std::size_t c = 0; c < cells; ++c) {
+    for (std::size_t k = 0; k < n; ++k) {
+      double lq = 0.0;
+      for (std::size_t o = 0; o < no; ++o) {
+        const double eps = error_rates[o];
+        lq += std::log(eps + (1.0 - 2.0 * eps) * m.at(c, k, o));
+      }
+      run_log[c * n + k] = lq;
+    }
+  }
+  std::vector<double> log_likelihood(cells, 0.0);
+  for (std::size_t c = 0; c < cells; ++c) {
+    double top = -std::numeric_limits<double>::infinity();
+    for (const auto& [c2, w] : hoods[c]) {
+      for (std::size_t k = 0; k < n; ++k) top = std::max(top, run_log[c2 * n + k]);
+    }
+    double sum = 0.0;
+    double weight = 0.0;
+    for (const auto& [c2, w] : hoods[c]) {
+      for (std::size_t k = 0; k < n; ++k) sum += w * std::exp(run_log[c2 * n + k] - top);
+      weight += w * nn;
+    }
+    log_likelihood[c] = top + std::log(sum / weight);
+  }
+  return log_likelihood;
+}
+
+}  // namespace
+
+LikelihoodReduction reduce_likelihood(const MatchTable& m, const std::vector<double>& error_rates) {
+  if (error_rates.size() != m.objects) {
+    throw std::invalid_argument("reduce_likelihood: one error rate per object is needed");
+  }
+  const std::size_t np = m.pga_count;
+  const std::size_t nf = m.freq_count;
+  const std::size_t n = m.motions;
+  const std::size_t no = m.objects;
+  const std::size_t cells = m.cells();
+  const double nn = static_cast<double>(n);
+  std::vector<std::vector<std::pair<std::size_t, double>>> hoods(cells);
+  for (std::size_t c = 0; c < cells; ++c) hoods[c] = neighbourhood(c, np, nf);
+  const std::vector<double> counts = match_counts(m);
+
+  LikelihoodReduction out;
+  // Per-object probability of its observation (for the report and the contours): smoothed counts.
+  out.probability.assign(no, std::vector<double>(cells, 0.0));
+  out.max_probability.assign(no, 0.0);
+  out.reproduced_anywhere.assign(no, false);
+  for (std::size_t o = 0; o < no; ++o) {
+    double total = 0.0;
+    for (std::size_t c = 0; c < cells; ++c) {
+      double sum = 0.0;
+      double weight = 0.0;
+      for (const auto& [c2, w] : hoods[c]) {
+        sum += w * counts[o * cells + c2];
+        weight += w;
+      }
+      total += counts[o * cells + c];
+      out.probability[o][c] = (sum / weight + 0.5) / (nn + 1.0);
+      out.max_probability[o] = std::max(out.max_probability[o], out.probability[o][c]);
+    }
+    out.reproduced_anywhere[o] = total > 0.0;
+  }
+  out.log_likelihood = joint_log_likelihood(m, error_rates, hoods);
+  return out;
+}
+
+void fill_posterior_and_estimates(InversionResult& r) {
+  const std::size_t np = r.pga_g.size();
+  const std::size_t nf = r.freq_hz.size();
+  const std::size_t cells = np * nf;
+  // Posterior with a prior uniform over the log grid.
+  const double ll_max = *std::max_element(r.log_likelihood.begin(), r.log_likelihood.end());
+  r.posterior.resize(cells);
+  double z = 0.0;
+  for (std::size_t c = 0; c < cells; ++c) z += r.posterior[c] = std::exp(r.log_likelihood[c] - ll_max);
+  for (double& p : r.posterior) p /= z;
+  r.best_cell = static_cast<std::size_t>(std::max_element(r.log_likelihood.begin(), r.log_likelihood.end()) -
+                                         r.log_likelihood.begin());
+  r.marginal_pga.assign(np, 0.0);
+  r.marginal_freq.assign(nf, 0.0);
+  for (std::size_t i = 0; i < np; ++i) {
+    for (std::size_t j = 0; j < nf; ++j) {
+      r.marginal_pga[i] += r.posterior[i * nf + j];
+      r.marginal_freq[j] += r.posterior[i * nf + j];
+    }
+  }
+  r.pga_estimate_g = estimate(r.pga_g, r.marginal_pga, r.pga_g[r.best_cell / nf]);
+  r.freq_estimate_hz = estimate(r.freq_hz, r.marginal_freq, r.freq_hz[r.best_cell % nf]);
+  for (ObjectReport& rep : r.objects) rep.probability_at_best = rep.probability[r.best_cell];
+}
+
+void assess_objects(InversionResult& r, const MatchTable& m, const std::vector<double>& error_rates) {
+  const std::size_t cells = m.cells();
+  if (r.objects.size() != m.objects || error_rates.size() != m.objects || r.posterior.size() != cells) {
+    throw std::invalid_argument("assess_objects: the result, the match table and the error rates disagree");
+  }
+  std::vector<std::vector<std::pair<std::size_t, double>>> hoods(cells);
+  for (std::size_t c = 0; c < cells; ++c) hoods[c] = neighbourhood(c, m.pga_count, m.freq_count);
+  // log of the normaliser of a log-likelihood (log-sum-exp), so that log posterior = ll - log_z.
+  const auto log_z = [](const std::vector<double>& ll) {
+    const double top = *std::max_element(ll.begin(), ll.end());
+    double sum = 0.0;
+    for (double v : ll) sum += std::exp(v - top);
+    return top + std::log(sum);
+  };
+  const double z_all = log_z(r.log_likelihood);
+  const std::vector<double> counts = match_counts(m);
+  const double nn = static_cast<double>(m.motions);
+  for (std::size_t o = 0; o < r.objects.size(); ++o) {
+    ObjectReport& rep = r.objects[o];
+    // The plain share of each cell's runs (not the smoothed probability, whose +1/2 floors it at 1/(2N + 2): with
+    // few motions per cell that floor alone would pass the misfit level).
+    rep.posterior_predictive = 0.0;
+    for (std::size_t c = 0; c < cells; ++c) rep.posterior_predictive += r.posterior[c] * counts[o * cells + c] / nn;
+    rep.misfit = rep.posterior_predictive < kMisfitProbability;
+    // Without object o: eps = 1/2 turns its factor into the constant 1/2, which the normalisation removes.
+    std::vector<double> rates = error_rates;
+    rates[o] = 0.5;
+    const std::vector<double> ll_without = joint_log_likelihood(m, rates, hoods);
+    const double z_without = log_z(ll_without);
+    double kl_nats = 0.0;  // sum_c p(c) (log p(c) - log p_without(c)), in log space: no 0/0 where p underflows
+    for (std::size_t c = 0; c < cells; ++c) {
+      if (r.posterior[c] > 0.0) {
+        kl_nats += r.posterior[c] * ((r.log_likelihood[c] - z_all) - (ll_without[c] - z_without));
+      }
+    }
+    rep.constraint_bits = std::max(0.0, kl_nats / std::log(2.0));
+  }
+}
+
+std::vector<std::size_t> most_constraining_objects(const InversionResult& r) {
+  std::vector<std::size_t> order;
+  for (std::size_t o = 0; o < r.objects.size(); ++o) {
+    if (r.objects[o].constraint_bits >= 0.1) order.push_back(o);
+  }
+  std::stable_sort(order.begin(), order.end(), [&r](std::size_t a, std::size_t b) {
+    return r.objects[a].constraint_bits > r.objects[b].constraint_bits;
+  });
+  if (order.size() > 3) order.resize(3);
+  return order;
+}
+
+namespace {
+
+std::string two_digits(double v) { return fmt::format("{:.2g}", v); }
+
+std::string list_text(const std::vector<std::string>& items) {
+  std::string out;
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    out += (i == 0 ? "" : (i + 1 == items.size() ? " and " : ", ")) + items[i];
+  }
+  return out;
+}
+
+/// "68 %: 0.45-0.78 g", with an open end said as below/above the grid (never the grid's edge as a number).
+std::string interval_words(const char* level, const std::optional<double>& lo, const std::optional<double>& hi,
+                           const char* unit) {
+  if (lo && hi) return fmt::format("{}: {}\u2013{} {}", level, two_digits(*lo), two_digits(*hi), unit);
+  if (hi) return fmt::format("{}: from below the grid to {} {}", level, two_digits(*hi), unit);
+  if (lo) return fmt::format("{}: from {} {} to above the grid", level, two_digits(*lo), unit);
+  return fmt::format("{}: anywhere on the grid", level);
+}
+
+/// "about 0.55 g", or "below the grid (under 0.02 g)" when the median lies in the grid's first cell.
+std::string median_words(const Estimate& e, const std::vector<double>& axis, const char* unit) {
+  if (e.median_edge < 0) return fmt::format("below the grid (at most about {} {})", two_digits(axis.front()), unit);
+  if (e.median_edge > 0) return fmt::format("above the grid (at least about {} {})", two_digits(axis.back()), unit);
+  return fmt::format("of about {} {}", two_digits(e.median), unit);
+}
+
+}  // namespace
+
+std::string inversion_summary(const InversionResult& r) {
+  const Estimate& pga = r.pga_estimate_g;
+  const Estimate& f = r.freq_estimate_hz;
+  std::string s = fmt::format(
+      "The shaking at {} most likely had a PGA {} (median; {}, {}) and a predominant frequency {} (median; {}, "
+      "{})",
+      r.site.empty() ? std::string("the site") : r.site, median_words(pga, r.pga_g, "g"),
+      interval_words("68 %", pga.ci68_low, pga.ci68_high, "g"), interval_words("95 %", pga.ci95_low, pga.ci95_high, "g"),
+      median_words(f, r.freq_hz, "Hz"), interval_words("68 %", f.ci68_low, f.ci68_high, "Hz"),
+      interval_words("95 %", f.ci95_low, f.ci95_high, "Hz"));
+  const std::vector<std::size_t> top = most_constraining_objects(r);
+  std::vector<std::string> names;
+  for (std::size_t o : top) names.push_back(r.objects[o].id);
+  if (names.empty()) {
+    s += "; no single object constrains it much (each changes the posterior by less than 0.1 bit)";
+  } else {
+    s += fmt::format("; the {} that constrain{} it most {} {}", names.size() == 1 ? "object" : "objects",
+                     names.size() == 1 ? "s" : "", names.size() == 1 ? "is" : "are", list_text(names));
+  }
+  std::vector<std::string> misfits;
+  for (const ObjectReport& o : r.objects) {
+    if (o.misfit) {
+      misfits.push_back(fmt::format("{} ({}, P = {:.2f})", o.id, outcome_name(o.outcome), o.posterior_predictive));
+    }
+  }
+  if (!misfits.empty()) {
+    s += fmt::format("; not explained by this answer (posterior-predictive P below {}): {}", kMisfitProbability,
+                     list_text(misfits));
+  }
+  return s + "." + three_component_summary(r);  // empty for the one-component model
+}
+
+std::vector<std::string> inversion_notes(const InversionResult& r, const MatchTable& m) {
+  std::vector<std::string> notes;
+  if (!r.bounds.lower_g) {
+    notes.push_back("No object moved: the observations give no static lower bound on PGA.");
+  }
+  if (!r.bounds.upper_g) {
+    notes.push_back("No object stayed put on its friction surface: the observations give no static upper threshold "
+                    "on PGA.");
+  }
+  for (const std::string& c : r.bounds.contradictions) notes.push_back("Static contradiction: " + c + ".");
+  const Estimate& pga = r.pga_estimate_g;
+  if (!pga.ci95_low || !pga.ci95_high) {
+    const std::string where =
+        !pga.ci95_low && !pga.ci95_high
+            ? fmt::format("both ends of the grid ({} and {})", fmt_g(r.pga_g.front()), fmt_g(r.pga_g.back()))
+            : fmt::format("the {} end of the grid ({})", !pga.ci95_low ? "lower" : "upper",
+                          !pga.ci95_low ? fmt_g(r.pga_g.front()) : fmt_g(r.pga_g.back()));
+    notes.push_back(fmt::format("The 95 % interval of PGA reaches {}: the observations do not constrain it there.",
+                                where));
+  }
+  if (!r.freq_estimate_hz.ci95_low || !r.freq_estimate_hz.ci95_high) {
+    notes.push_back("The predominant frequency is not constrained at one or both ends of the grid by these "
+                    "observations.");
+  }
+  std::vector<std::string> misfits;
+  for (const ObjectReport& rep : r.objects) {
+    if (rep.misfit) {
+      misfits.push_back(fmt::format("{} ({}, P = {:.3f})", rep.id, outcome_name(rep.outcome), rep.posterior_predictive));
+    }
+  }
+  if (!misfits.empty()) {
+    std::string list;
+    for (const auto& s : misfits) list += (list.empty() ? "" : ", ") + s;
+    notes.push_back(fmt::format("Misfit: the answer gives these observations a posterior-predictive probability below "
+                                "{}: {}. Check them (object, outcome, friction, support) before trusting the estimate.",
+                                kMisfitProbability, list));
+  }
+  std::vector<std::string> never;
+  for (const ObjectReport& rep : r.objects) {
+    if (!rep.reproduced_anywhere) never.push_back(fmt::format("{} ({})", rep.id, outcome_name(rep.outcome)));
+  }
+  if (!never.empty()) {
+    std::string list;
+    for (const auto& s : never) list += (list.empty() ? "" : ", ") + s;
+    notes.push_back(fmt::format("Not reproduced by any run in any cell: {}. Check these observations (or widen the "
+                                "grid or the parameter ranges).", list));
+  }
+  // What the observations share: counts of matches per (object, cell).
+  const std::size_t cells = m.cells();
+  const std::size_t no = m.objects;
+  const std::vector<double> counts = match_counts(m);
+  bool every_cell_contradicted = true;
+  for (std::size_t c = 0; c < cells && every_cell_contradicted; ++c) {
+    bool all_reproduced = true;
+    for (std::size_t o = 0; o < no; ++o) all_reproduced = all_reproduced && counts[o * cells + c] > 0.0;
+    if (all_reproduced) every_cell_contradicted = false;
+  }
+  if (every_cell_contradicted && no > 1) {
+    std::string list;
+    for (std::size_t o = 0; o < no; ++o) {
+      if (counts[o * cells + r.best_cell] == 0.0) list += (list.empty() ? "" : ", ") + r.objects[o].id;
+    }
+    notes.push_back(fmt::format("The observations contradict each other in every cell of the grid: no cell "
+                                "reproduces them all. At the best cell, not reproduced: {}.", list));
+  }
+  return notes;
+}
+
+namespace {
+
+/// Steps 2-5 on a built family (step 1). `started` is when the inversion began (for InversionResult::seconds).
+InversionResult invert_on_family(const Site& site, const InversionSettings& st, const FamilyGrid& family,
+                                 const InversionOptions& options, std::chrono::steady_clock::time_point started) {
+  InversionResult r;
+  r.site = site.name;
+  r.pga_g = log_spaced(st.pga_min_g, st.pga_max_g, static_cast<std::size_t>(st.pga_count));
+  r.freq_hz = family.freq_hz;
+  r.bounds = static_bounds(site);
+  r.measured_freq_hz = family.measured_freq_hz;
+  const MatchTable matches = simulate_matches(site, st, r.pga_g, family, options);
+  r.runs = matches.match.size();
+
+  std::vector<double> error_rates;
+  for (const ObservedObject& o : site.objects) error_rates.push_back(evidence_error_rate(o.evidence));
+  LikelihoodReduction reduced = reduce_likelihood(matches, error_rates);
+  r.log_likelihood = std::move(reduced.log_likelihood);
+  r.objects.resize(site.objects.size());
+  for (std::size_t o = 0; o < site.objects.size(); ++o) {
+    ObjectReport& rep = r.objects[o];
+    rep.id = site.objects[o].id;
+    rep.outcome = site.objects[o].outcome;
+    rep.model = object_model(site.objects[o]);
+    rep.probability = std::move(reduced.probability[o]);
+    rep.max_probability = reduced.max_probability[o];
+    rep.reproduced_anywhere = reduced.reproduced_anywhere[o];
+  }
+  fill_posterior_and_estimates(r);
+  assess_objects(r, matches, error_rates);
+  r.notes = inversion_notes(r, matches);
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return r;
+}
+
+}  // namespace
+
+InversionResult invert_site(const Site& site, const InversionSettings& st, const InversionOptions& options) {
+  validate_inversion_options(options);
+  validate_inversion_settings(st);
+  if (st.components == 3) return invert_sites({site}, st, options).front();  // inversion_3c.hpp
+  const auto start = std::chrono::steady_clock::now();
+  const FamilyGrid family =
+      build_family(st, log_spaced(st.freq_min_hz, st.freq_max_hz, static_cast<std::size_t>(st.freq_count)), options);
+  return invert_on_family(site, st, family, options, start);
+}
+
+std::vector<InversionResult> invert_sites(const std::vector<Site>& sites, const InversionSettings& st,
+                                          const InversionOptions& options) {
+  validate_inversion_options(options);
+  validate_inversion_settings(st);
+  std::vector<InversionResult> out;
+  if (sites.empty()) return out;
+  auto start = std::chrono::steady_clock::now();
+  if (st.components == 3) {  // inversion_3c.hpp: the family is built once for every site
+    const FamilyGrid3c family = build_family_3c(
+        st, log_spaced(st.freq_min_hz, st.freq_max_hz, static_cast<std::size_t>(st.freq_count)), options);
+    const double family_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    for (const Site& site : sites) {
+      out.push_back(invert_site_3c(site, st, family, options));
+      if (out.size() == 1) out.back().seconds += family_s;  // the family's time is counted in the first site's
+    }
+    return out;
+  }
+  const FamilyGrid family =
+      build_family(st, log_spaced(st.freq_min_hz, st.freq_max_hz, static_cast<std::size_t>(st.freq_count)), options);
+  for (const Site& site : sites) {
+    out.push_back(invert_on_family(site, st, family, options, start));
+    start = std::chrono::steady_clock::now();  // the family's time is counted in the first site's
+  }
+  return out;
+}
+
+}  // namespace topple

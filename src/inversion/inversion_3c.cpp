@@ -1,0 +1,625 @@
+// The inversion in three components: family, runs, likelihood over (cell, direction bin) and the direction of
+// strongest shaking. See inversion_3c.hpp and docs/method.md, "Inversion in three components".
+#include "topple/inversion/inversion_3c.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <optional>
+
+#include <fmt/format.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "topple/ensemble/ensemble.hpp"
+#include "topple/core/error.hpp"
+#include "topple/solvers/flexible.hpp"
+#include "topple/motion/motion_set.hpp"
+#include "topple/solvers/oriented.hpp"
+#include "topple/solvers/rocking.hpp"
+#include "topple/motion/rotd.hpp"
+#include "topple/solvers/sliding2d.hpp"
+#include "topple/motion/spectra.hpp"
+#include "topple/motion/synthesis.hpp"
+#include "topple/core/units.hpp"
+#include "inversion/inversion_detail.hpp"
+
+namespace topple {
+namespace {
+
+constexpr double kDeg = kPi / 180.0;
+
+/// x mod m in [0, m).
+double wrap(double x, double m) {
+  const double r = std::fmod(x, m);
+  return r < 0.0 ? r + m : r;
+}
+
+double log_sum_exp(const std::vector<double>& v) {
+  const double top = *std::max_element(v.begin(), v.end());
+  double sum = 0.0;
+  for (double x : v) sum += std::exp(x - top);
+  return top + std::log(sum);
+}
+
+}  // namespace
+
+bool DirectionArc::contains(double azimuth_deg) const noexcept {
+  return wrap(azimuth_deg - low_deg, 180.0) <= width_deg;
+}
+
+std::vector<double> direction_bins_deg(const InversionSettings& st) {
+  const double w = 180.0 / st.directions;
+  std::vector<double> out(static_cast<std::size_t>(st.directions));
+  for (std::size_t b = 0; b < out.size(); ++b) out[b] = w * static_cast<double>(b);
+  return out;
+}
+
+double direction_jitter_deg(const InversionSettings& st, std::size_t k) {
+  PortableRandom rng(detail::mix(detail::mix(st.seed, 0x3C0001), k + 1));
+  return (rng.uniform() - 0.5) * (180.0 / st.directions);
+}
+
+double unknown_bearing_angle_deg(std::uint64_t seed, std::size_t k, std::size_t o) {
+  PortableRandom rng(detail::mix(detail::mix(detail::mix(seed, 0x3C0002), k + 1), o + 1));
+  return 180.0 * rng.uniform();
+}
+
+SynthesisSetSpec detail::family_set_spec(const InversionSettings& st, double freq_hz, int k) {
+  SynthesisSetSpec ss;
+  ss.horizontal = family_spec(st, freq_hz, k);
+  // 20 samples per period of the vertical too (f_v = vertical_frequency_ratio x f_h).
+  ss.horizontal.dt_s = std::min(0.01, 1.0 / (20.0 * freq_hz * std::max(1.0, ss.vertical_frequency_ratio)));
+  ss.coherence = st.coherence;
+  ss.azimuths = ComponentAzimuths{90.0, 0.0};  // first east, second north
+  // The vertical's frequency is capped at the synthesis' 20 Hz (a column above 13.3 Hz gets f_v = 20 Hz).
+  ss.vertical_frequency_ratio = std::min(ss.vertical_frequency_ratio, 20.0 / freq_hz);
+  return ss;
+}
+
+Realisation3c family_realisation_3c(const InversionSettings& st, double freq_hz, int k) {
+  const SynthesizedSet raw = synthesize_set(detail::family_set_spec(st, freq_hz, k));
+  const MotionSet set = MotionSet::make(raw.first, &raw.second, ComponentAzimuths{90.0, 0.0}, &*raw.vertical);
+  // Principal axis of the horizontal acceleration (Penzien & Watabe 1975): theta from east, counter-clockwise.
+  double see = 0.0, snn = 0.0, sen = 0.0;
+  const auto ae = set.first().accel_m_s2();
+  const auto an = set.second().accel_m_s2();
+  for (std::size_t i = 0; i < ae.size(); ++i) {
+    see += ae[i] * ae[i];
+    snn += an[i] * an[i];
+    sen += ae[i] * an[i];
+  }
+  const double theta_deg = 0.5 * std::atan2(2.0 * sen, see - snn) / kDeg;
+  const double major_azimuth = wrap(90.0 - theta_deg, 180.0);
+  const auto [major_raw, minor_raw] = set.rotated(major_azimuth);
+  // Time scaling (it leaves the samples, hence the axes and every peak, unchanged) puts the major-axis component's
+  // measured predominant frequency on the column's.
+  const double c = predominant_frequency_hz(major_raw) / freq_hz;
+  const GroundMotion major = major_raw.time_scaled(c);
+  const GroundMotion minor = minor_raw.time_scaled(c);
+  const RotDValue rotd = rotd_of(rotd_peaks_by_angle(major.accel_m_s2(), minor.accel_m_s2()));
+  const double scale = 1.0 / rotd.rotd50;
+  Realisation3c r;
+  r.major = std::make_shared<const GroundMotion>(major.scaled(scale));
+  r.minor = std::make_shared<const GroundMotion>(minor.scaled(scale));
+  r.vertical = std::make_shared<const GroundMotion>(set.vertical().time_scaled(c).scaled(scale));
+  r.rotd100_angle_deg = rotd.rotd100_angle_deg;
+  r.larger_component_ratio = std::max(set.first().pga_m_s2(), set.second().pga_m_s2()) / rotd.rotd50;
+  r.rotd100_ratio = rotd.rotd100 / rotd.rotd50;
+  r.measured_freq_hz = predominant_frequency_hz(*r.major);
+  return r;
+}
+
+FamilyGrid3c build_family_3c(const InversionSettings& st, const std::vector<double>& freq_hz,
+                             const InversionOptions& options) {
+  validate_inversion_options(options);
+  FamilyGrid3c family;
+  family.freq_hz = freq_hz;
+  family.motions.assign(freq_hz.size(), std::vector<Realisation3c>(static_cast<std::size_t>(st.motions_per_cell)));
+  family.measured_freq_hz.assign(freq_hz.size(), 0.0);
+  tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+  arena.execute([&] {
+    tbb::parallel_for(std::size_t{0}, freq_hz.size() * family.motions.front().size(), [&](std::size_t jk) {
+      const std::size_t n = family.motions.front().size();
+      family.motions[jk / n][jk % n] = family_realisation_3c(st, freq_hz[jk / n], static_cast<int>(jk % n));
+    });
+  });
+  for (std::size_t j = 0; j < freq_hz.size(); ++j) {
+    double sum = 0.0;
+    for (const Realisation3c& r : family.motions[j]) sum += r.measured_freq_hz;
+    family.measured_freq_hz[j] = sum / static_cast<double>(family.motions[j].size());
+  }
+  return family;
+}
+
+namespace {
+
+bool is_sliding(Outcome o) { return o == Outcome::slid || o == Outcome::not_slid; }
+
+/// The von Mises kernel of header item 4, both senses of the axis (x in deg).
+double direction_kernel(double x_deg) {
+  const auto v = [](double d) { return std::exp(kSlidDirectionKappa * (std::cos(d * kDeg) - 1.0)); };
+  return 0.5 * (v(x_deg) + v(x_deg + 180.0));
+}
+
+}  // namespace
+
+void observation_match_3c(const ObservedObject& object, const DrawnParameters& p, const GroundMotion& major_in,
+                          const GroundMotion& minor_in, const GroundMotion& vertical_in, double rotd100_angle_deg,
+                          std::span<const double> major_azimuth_deg, double unknown_angle_deg, double g,
+                          std::span<double> out) {
+  // The object's motion: amplified (all three components), then the horizontals through a flexible support.
+  const double amp = p.amplification;
+  GroundMotion major = amp == 1.0 ? major_in : major_in.scaled(amp);
+  GroundMotion minor = amp == 1.0 ? minor_in : minor_in.scaled(amp);
+  const GroundMotion vertical = amp == 1.0 ? vertical_in : vertical_in.scaled(amp);
+  if (object.support_filter) {
+    const SupportOscillator support = SupportOscillator::make(p.support_freq_hz, p.support_damping);
+    major = support_motion(major, support);
+    minor = support_motion(minor, support);
+  }
+  if (is_sliding(object.outcome)) {
+    const Sliding2dOptions so;  // the solver's defaults (looser tolerances hit its low-speed step limit)
+    const Sliding2dSummary s =
+        slide_2d_summary(major, minor, ComponentAzimuths{0.0, 90.0},
+                         SlidingBlock::make(p.mu, p.mu, 0.0, SlidingMode::two_way, g), &vertical, so);
+    const double m = detail::sliding_match(object, s.max_abs_displacement_m, s.residual_displacement_m);
+    for (std::size_t b = 0; b < out.size(); ++b) {
+      double dir = 1.0;
+      if (object.slid_azimuth_deg) {
+        dir = s.residual_azimuth_deg
+                  ? direction_kernel(*s.residual_azimuth_deg + major_azimuth_deg[b] - *object.slid_azimuth_deg)
+                  : std::exp(-kSlidDirectionKappa) * std::cyl_bessel_i(0.0, kSlidDirectionKappa);
+      }
+      out[b] = m * dir;
+    }
+    return;
+  }
+  const RockingOptions options = detail::inversion_rocking_options(object, p, g);
+  const auto accel_v = vertical.accel_m_s2();
+  const bool lifted = g + *std::min_element(accel_v.begin(), accel_v.end()) <= 0.0;
+  const MotionSet frame = MotionSet::make(major, &minor, ComponentAzimuths{0.0, 90.0});
+  // One run: its match, and the axis it fell along, deg from the major axis (none: it did not fall, or was lifted
+  // off, which has no direction).
+  struct Run {
+    double match = 0.0;
+    std::optional<double> fall_from_major_deg;
+  };
+  const auto run = [&](double angle_deg) -> Run {
+    if (lifted) return {detail::rocking_match(object.outcome, true, 0.0), std::nullopt};  // item 3: as overturned
+    // A box: both axes, the governing one's response (oriented.hpp, "Box"). A cylinder with an observed fall
+    // direction: oriented.hpp's grid of directions, the governing one its fall axis (header, item 4).
+    const bool cylinder_grid = object.body.shape == RockingBody::Shape::cylinder && object.toppled_azimuth_deg;
+    if (object.depth_m || cylinder_grid) {
+      const MotionSet with_vertical = MotionSet::make(major, &minor, ComponentAzimuths{0.0, 90.0}, &vertical);
+      const OrientedRockingSummary both =
+          rock_oriented_summary(with_vertical, OrientedBody::make(object.body, object.depth_m), angle_deg, options);
+      const DirectionResponse& d = both.governing_response();  // azimuth_deg: from the major axis (frame azimuth 0)
+      return {detail::rocking_match(object.outcome, d.summary.overturned, d.summary.max_abs_rotation_rad),
+              d.summary.overturned ? std::optional<double>(d.azimuth_deg) : std::nullopt};
+    }
+    const RockingSummary s = rock_summary(frame.projected(angle_deg), object.body, options, &vertical);
+    return {detail::rocking_match(object.outcome, s.overturned, s.max_abs_rotation_rad),
+            s.overturned ? std::optional<double>(angle_deg) : std::nullopt};
+  };
+  // The fall direction's kernel (item 4) in a bin whose major axis points at major_az: 1 without an observed one;
+  // the kernel's mean over a uniform direction for a run with no fall direction (as a block that never slid).
+  const auto fall = [&](const Run& r, double major_az) {
+    if (!object.toppled_azimuth_deg || r.match == 0.0) return 1.0;
+    return r.fall_from_major_deg
+               ? direction_kernel(*r.fall_from_major_deg + major_az - *object.toppled_azimuth_deg)
+               : std::exp(-kSlidDirectionKappa) * std::cyl_bessel_i(0.0, kSlidDirectionKappa);
+  };
+  if (object.body.shape == RockingBody::Shape::cylinder || !object.azimuth_deg) {
+    const Run r = run(object.body.shape == RockingBody::Shape::cylinder ? rotd100_angle_deg : unknown_angle_deg);
+    for (std::size_t b = 0; b < out.size(); ++b) out[b] = r.match * fall(r, major_azimuth_deg[b]);
+    return;
+  }
+  for (std::size_t b = 0; b < out.size(); ++b) {
+    const Run r = run(wrap(*object.azimuth_deg - major_azimuth_deg[b], 360.0));
+    out[b] = r.match * fall(r, major_azimuth_deg[b]);
+  }
+}
+
+ThreeComponentBounds static_bounds_3c(const Site& site, double rho) {
+  ThreeComponentBounds out;
+  constexpr double c = kRotD50FloorOfRotD100;
+  const auto g3 = [](double v) { return fmt::format("{:.3g} g", v); };
+  for (const ObservedObject& o : site.objects) {
+    const std::string_view name = outcome_name(o.outcome);
+    // s: the static coefficient (mu or tan alpha); h, v: the horizontal and vertical gains of the support.
+    const auto lower = [&](double s, const char* symbol, double h, double v, const std::string& gain) {
+      const double a100 = s / (h + v * rho * s);            // (S3a)
+      const double a50 = c * s / (h + c * v * rho * s);     // (S3b)
+      const std::string why = fmt::format("{} = {:.3g}{}, vertical V/H <= {:.3g}", symbol, s, gain, rho);
+      out.rotd100.lower.push_back({a100, o.id, fmt::format("{}: RotD100 PGA > {} ({})", name, g3(a100), why), true});
+      out.rotd50.lower.push_back({a50, o.id,
+                                  fmt::format("{}: RotD50 PGA > {} (RotD100 > {} and RotD50 >= {:.4f} RotD100; {})",
+                                              name, g3(a50), g3(a100), c, why),
+                                  true});
+    };
+    const auto upper = [&](double s, const char* symbol, double amp, const std::string& gain) {
+      if (!(amp > rho * s)) return;  // the vertical could lift it off: no threshold
+      const double a = s / (amp * (1.0 - rho * s));
+      const std::string why = fmt::format("{} = {:.3g}{}, vertical V/H <= {:.3g}", symbol, s, gain, rho);
+      out.rotd100.upper.push_back({a, o.id, fmt::format("{}: RotD100 PGA <= {} ({})", name, g3(a), why), false});
+      out.rotd50.upper.push_back(
+          {a, o.id, fmt::format("{}: RotD50 PGA <= {} (RotD50 <= RotD100 <= {}; {})", name, g3(a), g3(a), why), false});
+    };
+    const auto amp_text = [](double amp) { return amp == 1.0 ? std::string() : fmt::format(", amplification {:.3g}", amp); };
+    const OrientedBody oriented = OrientedBody::make(o.body, o.depth_m);
+    // Uplift: the planar body's tan alpha (detail::uplift_tan_alpha: an asymmetric body's weaker one); a box rocks
+    // first about its smaller one when it rocked, and is bounded by both when it did not.
+    const double tan_lower = oriented.across ? std::min(std::tan(o.body.alpha_rad()), std::tan(oriented.across->alpha_rad()))
+                                             : detail::uplift_tan_alpha(o.body, true);
+    if (o.support_filter) {  // lower thresholds only (inversion.hpp, item 1); the vertical passes unfiltered
+      const double peak = max_peak_amplification(o.support_filter->damping.low);
+      const double h = o.amplification.high * peak;
+      if (!std::isfinite(h)) continue;
+      const std::string gain = fmt::format(", support peak gain <= {:.3g}", h);
+      if (o.outcome == Outcome::slid) lower(o.mu.low, "mu", h, o.amplification.high, gain);
+      if (o.outcome == Outcome::rocked || o.outcome == Outcome::overturned) {
+        lower(tan_lower, "b/h", h, o.amplification.high, gain);
+      }
+      continue;
+    }
+    const double hi = o.amplification.high, lo = o.amplification.low;
+    switch (o.outcome) {
+      case Outcome::slid: lower(o.mu.low, "mu", hi, hi, amp_text(hi)); break;
+      case Outcome::not_slid: upper(o.mu.high, "mu", lo, amp_text(lo)); break;
+      case Outcome::rocked:
+      case Outcome::overturned: lower(tan_lower, "b/h", hi, hi, amp_text(hi)); break;
+      case Outcome::not_rocked:
+        if (oriented.across) {
+          upper(std::hypot(std::tan(o.body.alpha_rad()), std::tan(oriented.across->alpha_rad())),
+                "hypot of the box's two b/h", lo, amp_text(lo));
+        } else if (oriented.axisymmetric()) {
+          upper(std::tan(o.body.alpha_rad()), "b/h", lo, amp_text(lo));
+        }  // a planar body bounds the projection on its bearing only: no threshold (header, item 6)
+        break;
+      default: break;  // not_overturned: no static threshold, as in one component
+    }
+  }
+  detail::settle_static_bounds(out.rotd100);
+  detail::settle_static_bounds(out.rotd50);
+  return out;
+}
+
+DirectionEstimate direction_estimate(const std::vector<double>& bins_deg, const std::vector<double>& posterior) {
+  DirectionEstimate d;
+  const std::size_t n = bins_deg.size();
+  d.azimuth_deg = bins_deg;
+  d.bin_width_deg = 180.0 / static_cast<double>(n);
+  d.posterior = posterior;
+  const std::size_t mode = static_cast<std::size_t>(std::max_element(posterior.begin(), posterior.end()) -
+                                                    posterior.begin());
+  d.mode_deg = bins_deg[mode];
+  double c = 0.0, s = 0.0;
+  for (std::size_t b = 0; b < n; ++b) {
+    c += posterior[b] * std::cos(2.0 * bins_deg[b] * kDeg);
+    s += posterior[b] * std::sin(2.0 * bins_deg[b] * kDeg);
+  }
+  d.resultant_length = std::hypot(c, s);
+  d.mean_deg = wrap(0.5 * std::atan2(s, c) / kDeg, 180.0);
+  // The shortest arc holding the highest-posterior bins up to `level`: the complement of the longest circular run of
+  // bins not selected.
+  const auto arc = [&](double level) {
+    std::vector<std::size_t> order(n);
+    for (std::size_t b = 0; b < n; ++b) order[b] = b;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return posterior[a] > posterior[b]; });
+    std::vector<bool> in(n, false);
+    double mass = 0.0;
+    for (std::size_t b : order) {
+      in[b] = true;
+      mass += posterior[b];
+      if (mass >= level) break;
+    }
+    std::size_t best_gap = 0, best_end = 0;  // longest run of !in, ending just before bin best_end
+    for (std::size_t start = 0; start < n; ++start) {
+      if (in[start]) continue;
+      std::size_t len = 0;
+      while (len < n && !in[(start + len) % n]) ++len;
+      if (len > best_gap) {
+        best_gap = len;
+        best_end = (start + len) % n;
+      }
+    }
+    DirectionArc a;
+    if (best_gap == 0) {
+      a.low_deg = wrap(bins_deg[0] - 0.5 * d.bin_width_deg, 180.0);
+      a.width_deg = 180.0;
+      return a;
+    }
+    a.low_deg = wrap(bins_deg[best_end] - 0.5 * d.bin_width_deg, 180.0);
+    a.width_deg = static_cast<double>(n - best_gap) * d.bin_width_deg;
+    return a;
+  };
+  d.ci68 = arc(0.68);
+  d.ci95 = arc(0.95);
+  d.constrained = d.ci95.width_deg <= kUnconstrainedArcDeg;
+  return d;
+}
+
+namespace {
+
+/// Every run of every object at every bin: match[((cell * N + k) * objects + o) * bins + b].
+struct MatchTable3c {
+  std::size_t pga_count = 0, freq_count = 0, motions = 0, objects = 0, bins = 0;
+  std::vector<double> match;
+  std::size_t runs = 0;  ///< solver runs done
+  [[nodiscard]] std::size_t cells() const noexcept { return pga_count * freq_count; }
+  /// The one-component table of bin b (inversion.hpp's reductions apply to it unchanged).
+  [[nodiscard]] MatchTable slice(std::size_t b) const {
+    MatchTable t{pga_count, freq_count, motions, objects, {}};
+    t.match.resize(cells() * motions * objects);
+    for (std::size_t i = 0; i < t.match.size(); ++i) t.match[i] = match[i * bins + b];
+    return t;
+  }
+  /// The table of the bins' mean match (for the notes, which ask whether some run matched).
+  [[nodiscard]] MatchTable mean_over_bins() const {
+    MatchTable t{pga_count, freq_count, motions, objects, {}};
+    t.match.assign(cells() * motions * objects, 0.0);
+    for (std::size_t i = 0; i < t.match.size(); ++i) {
+      for (std::size_t b = 0; b < bins; ++b) t.match[i] += match[i * bins + b] / static_cast<double>(bins);
+    }
+    return t;
+  }
+};
+
+MatchTable3c simulate_matches_3c(const Site& site, const InversionSettings& st, const std::vector<double>& pga_g,
+                                 const FamilyGrid3c& family, const InversionOptions& options) {
+  MatchTable3c table;
+  table.pga_count = pga_g.size();
+  table.freq_count = family.motions.size();
+  table.motions = family.motions.front().size();
+  table.objects = site.objects.size();
+  table.bins = static_cast<std::size_t>(st.directions);
+  const std::size_t nf = table.freq_count, n = table.motions, no = table.objects, nb = table.bins;
+  const std::vector<double> bins = direction_bins_deg(st);
+  // Per motion k: the major axis' azimuth in every bin (Psi_b + delta_k); per (k, o): the drawn parameters and the
+  // angle of an object of unknown bearing. The same in every cell.
+  std::vector<double> major_azimuth(n * nb);
+  for (std::size_t k = 0; k < n; ++k) {
+    const double delta = direction_jitter_deg(st, k);
+    for (std::size_t b = 0; b < nb; ++b) major_azimuth[k * nb + b] = bins[b] + delta;
+  }
+  std::vector<DrawnParameters> drawn(n * no);
+  std::vector<double> unknown(n * no);
+  for (std::size_t k = 0; k < n; ++k) {
+    for (std::size_t o = 0; o < no; ++o) {
+      drawn[k * no + o] = draw_parameters(site.objects[o], st.seed, k, o);
+      unknown[k * no + o] = unknown_bearing_angle_deg(st.seed, k, o);
+    }
+  }
+  ensemble::Plan plan;
+  plan.motion_columns = {"cell", "motion"};
+  plan.object_columns = {"object"};
+  for (std::size_t b = 0; b < nb; ++b) plan.result_columns.push_back(fmt::format("match_bin{}", b));
+  plan.identity = "topple inversion 3c v1";
+  for (std::size_t i = 0; i < pga_g.size(); ++i) {
+    for (std::size_t j = 0; j < nf; ++j) {
+      for (std::size_t k = 0; k < n; ++k) {
+        ensemble::MotionCase mc;
+        mc.base = family.motions[j][k].major;
+        mc.transform.factor = pga_g[i] * st.g_m_s2;  // RotD50 1 m/s^2 -> the row's RotD50 PGA
+        mc.values = {ensemble::Value(static_cast<std::int64_t>(i * nf + j)), ensemble::Value(static_cast<std::int64_t>(k))};
+        plan.motions.push_back(std::move(mc));
+      }
+    }
+  }
+  for (const ObservedObject& o : site.objects) plan.objects.push_back({{ensemble::Value(o.id)}});
+  const double g = st.g_m_s2;
+  plan.run = [&](const GroundMotion& major, std::size_t motion_index, std::size_t o0, std::size_t o1,
+                 std::span<ensemble::Value> results) {
+    const std::size_t k = motion_index % n;
+    const std::size_t cell = motion_index / n;
+    const Realisation3c& real = family.motions[cell % nf][k];
+    const double factor = pga_g[cell / nf] * g;
+    const GroundMotion minor = real.minor->scaled(factor);
+    const GroundMotion vertical = real.vertical->scaled(factor);
+    std::vector<double> out(nb);
+    for (std::size_t o = o0; o < o1; ++o) {
+      observation_match_3c(site.objects[o], drawn[k * no + o], major, minor, vertical, real.rotd100_angle_deg,
+                           std::span<const double>(major_azimuth.data() + k * nb, nb), unknown[k * no + o], g, out);
+      for (std::size_t b = 0; b < nb; ++b) results[(o - o0) * nb + b] = ensemble::Value(out[b]);
+    }
+  };
+  ensemble::ExecuteOptions exec;
+  exec.threads = options.threads;
+  exec.progress = options.progress;
+  const ensemble::ResultTable rows = ensemble::run_in_memory(plan, exec);
+  const std::size_t first_col = rows.columns.size() - nb;
+  table.match.resize(rows.rows.size() * nb);
+  for (std::size_t row = 0; row < rows.rows.size(); ++row) {
+    for (std::size_t b = 0; b < nb; ++b) table.match[row * nb + b] = std::get<double>(rows.rows[row][first_col + b]);
+  }
+  // Solver runs: one per bin for a rocking object with a bearing, else one.
+  for (const ObservedObject& o : site.objects) {
+    const bool per_bin = !is_sliding(o.outcome) && o.azimuth_deg && o.body.shape != RockingBody::Shape::cylinder;
+    // A box rocks about both axes; a cylinder with a fall direction on oriented.hpp's 12 directions.
+    const std::size_t axes = is_sliding(o.outcome)                                                     ? 1
+                             : o.depth_m                                                                ? 2
+                             : o.body.shape == RockingBody::Shape::cylinder && o.toppled_azimuth_deg ? 12
+                                                                                                       : 1;
+    table.runs += plan.motions.size() * (per_bin ? nb : 1) * axes;
+  }
+  return table;
+}
+
+}  // namespace
+
+InversionResult invert_site_3c(const Site& site, const InversionSettings& st, const FamilyGrid3c& family,
+                               const InversionOptions& options) {
+  const auto started = std::chrono::steady_clock::now();
+  InversionResult r;
+  r.site = site.name;
+  r.pga_g = log_spaced(st.pga_min_g, st.pga_max_g, static_cast<std::size_t>(st.pga_count));
+  r.freq_hz = family.freq_hz;
+  r.measured_freq_hz = family.measured_freq_hz;
+  // Static thresholds (header, item 6) with the family's largest vertical ratio rho (RotD50 of the stored pair is 1).
+  double rho = 0.0;
+  for (const auto& column : family.motions) {
+    for (const Realisation3c& real : column) rho = std::max(rho, real.vertical->pga_m_s2());
+  }
+  ThreeComponentBounds thresholds = static_bounds_3c(site, rho);
+  r.bounds = std::move(thresholds.rotd50);
+  r.rotd100_bounds = std::move(thresholds.rotd100);
+  const MatchTable3c table = simulate_matches_3c(site, st, r.pga_g, family, options);
+  r.runs = table.runs;
+  const std::size_t cells = table.cells(), nb = table.bins, no = table.objects, n = table.motions;
+  std::vector<double> error_rates;
+  for (const ObservedObject& o : site.objects) error_rates.push_back(evidence_error_rate(o.evidence));
+
+  // Per bin: the one-component reduction of its slice (inversion.hpp, item 2).
+  std::vector<MatchTable> slices;
+  std::vector<LikelihoodReduction> per_bin;
+  for (std::size_t b = 0; b < nb; ++b) {
+    slices.push_back(table.slice(b));
+    per_bin.push_back(reduce_likelihood(slices.back(), error_rates));
+  }
+  // Joint log posterior over (cell, bin), up to a constant, and its normaliser.
+  const auto joint = [&](const std::vector<LikelihoodReduction>& red) {
+    std::vector<double> ll(cells * nb);
+    for (std::size_t c = 0; c < cells; ++c) {
+      for (std::size_t b = 0; b < nb; ++b) ll[c * nb + b] = red[b].log_likelihood[c];
+    }
+    return ll;
+  };
+  const std::vector<double> ll_joint = joint(per_bin);
+  const double z_joint = log_sum_exp(ll_joint);
+  r.log_likelihood.assign(cells, 0.0);
+  for (std::size_t c = 0; c < cells; ++c) {
+    std::vector<double> row(ll_joint.begin() + static_cast<std::ptrdiff_t>(c * nb),
+                            ll_joint.begin() + static_cast<std::ptrdiff_t>((c + 1) * nb));
+    r.log_likelihood[c] = log_sum_exp(row) - std::log(static_cast<double>(nb));
+  }
+  r.objects.resize(no);
+  for (std::size_t o = 0; o < no; ++o) {
+    ObjectReport& rep = r.objects[o];
+    rep.id = site.objects[o].id;
+    rep.outcome = site.objects[o].outcome;
+    // The solver its runs used (observation_match_3c): the two-dimensional sliding block or the oriented rocking body. The
+    // survey reader refuses the coupled model and a model key that contradicts the outcome with components = 3, so
+    // this is also object_model (survey.hpp).
+    rep.model = is_sliding(rep.outcome) ? ObjectModel::slide : ObjectModel::rock;
+    rep.probability.assign(cells, 0.0);
+    rep.reproduced_anywhere = false;
+    for (std::size_t b = 0; b < nb; ++b) {
+      for (std::size_t c = 0; c < cells; ++c) rep.probability[c] += per_bin[b].probability[o][c] / static_cast<double>(nb);
+      rep.reproduced_anywhere = rep.reproduced_anywhere || per_bin[b].reproduced_anywhere[o];
+    }
+    rep.max_probability = *std::max_element(rep.probability.begin(), rep.probability.end());
+  }
+  fill_posterior_and_estimates(r);
+
+  // Objects (inversion.hpp, item 4) over the joint (cell, bin) posterior.
+  std::vector<double> post_joint(cells * nb);
+  for (std::size_t i = 0; i < post_joint.size(); ++i) post_joint[i] = std::exp(ll_joint[i] - z_joint);
+  for (std::size_t o = 0; o < no; ++o) {
+    ObjectReport& rep = r.objects[o];
+    double pp = 0.0;
+    for (std::size_t c = 0; c < cells; ++c) {
+      for (std::size_t k = 0; k < n; ++k) {
+        for (std::size_t b = 0; b < nb; ++b) pp += post_joint[c * nb + b] * slices[b].at(c, k, o) / static_cast<double>(n);
+      }
+    }
+    rep.posterior_predictive = pp;
+    rep.misfit = pp < kMisfitProbability;
+    std::vector<double> rates = error_rates;
+    rates[o] = 0.5;
+    std::vector<LikelihoodReduction> without;
+    for (std::size_t b = 0; b < nb; ++b) without.push_back(reduce_likelihood(slices[b], rates));
+    const std::vector<double> ll_without = joint(without);
+    const double z_without = log_sum_exp(ll_without);
+    double kl = 0.0;
+    for (std::size_t i = 0; i < post_joint.size(); ++i) {
+      if (post_joint[i] > 0.0) kl += post_joint[i] * ((ll_joint[i] - z_joint) - (ll_without[i] - z_without));
+    }
+    rep.constraint_bits = std::max(0.0, kl / std::log(2.0));
+  }
+
+  // The direction of strongest shaking.
+  std::vector<double> post_dir(nb, 0.0);
+  for (std::size_t c = 0; c < cells; ++c) {
+    for (std::size_t b = 0; b < nb; ++b) post_dir[b] += post_joint[c * nb + b];
+  }
+  ThreeComponentResult tc;
+  tc.direction = direction_estimate(direction_bins_deg(st), post_dir);
+  double larger = 0.0, r100 = 0.0, count = 0.0;
+  for (const auto& column : family.motions) {
+    for (const Realisation3c& real : column) {
+      larger += real.larger_component_ratio;
+      r100 += real.rotd100_ratio;
+      count += 1.0;
+    }
+  }
+  tc.larger_component_ratio = larger / count;
+  tc.rotd100_ratio = r100 / count;
+  tc.larger_component_median_g = r.pga_estimate_g.median * tc.larger_component_ratio;
+  if (r.pga_estimate_g.ci95_low) tc.larger_component_ci95_low_g = *r.pga_estimate_g.ci95_low * tc.larger_component_ratio;
+  if (r.pga_estimate_g.ci95_high) tc.larger_component_ci95_high_g = *r.pga_estimate_g.ci95_high * tc.larger_component_ratio;
+  const SynthesisSetSpec defaults;
+  tc.coherence = st.coherence;
+  tc.vertical_pga_ratio = defaults.vertical_pga_ratio;
+  tc.vertical_frequency_ratio = defaults.vertical_frequency_ratio;
+  tc.slid_direction_kappa = kSlidDirectionKappa;
+  tc.threshold_vertical_ratio = rho;
+  r.three_component = tc;
+
+  r.notes = inversion_notes(r, table.mean_over_bins());
+  r.notes.push_back(fmt::format(
+      "Three components: the static thresholds hold on RotD100 PGA, the peak of the horizontal acceleration vector, "
+      "which bounds its projection on every bearing (with the family's vertical, V/H <= {:.3g}); on RotD50, the PGA "
+      "axis of the estimates, they hold as the weaker RotD50 >= {:.4f} RotD100 makes them.",
+      rho, kRotD50FloorOfRotD100));
+  for (const ObservedObject& o : site.objects) {
+    if (o.outcome == Outcome::not_rocked && !o.depth_m && o.body.shape != RockingBody::Shape::cylinder) {
+      r.notes.push_back(fmt::format("{} did not rock: that bounds the motion along its bearing only, no direction-free "
+                                    "measure, so it gives no static threshold here (a box, with depth, does).",
+                                    o.id));
+    }
+  }
+  if (!tc.direction.constrained) {
+    r.notes.push_back(fmt::format("The direction of strongest shaking is unconstrained: its 95 % arc spans {:.0f} deg "
+                                  "(more than {:.0f} deg). Bearings of objects that rocked, overturned or stood, and "
+                                  "sliding directions, constrain it.",
+                                  tc.direction.ci95.width_deg, kUnconstrainedArcDeg));
+  }
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return r;
+}
+
+std::string three_component_summary(const InversionResult& r) {
+  if (!r.three_component) return {};
+  const ThreeComponentResult& tc = *r.three_component;
+  std::string s = fmt::format(
+      " PGA is RotD50 of the two horizontal components (the median of the peak over all directions; the larger "
+      "component's PGA is about {:.2f} times it here, a median of {:.2g} g).",
+      tc.larger_component_ratio, tc.larger_component_median_g);
+  if (r.rotd100_bounds && (r.rotd100_bounds->lower_g || r.rotd100_bounds->upper_g)) {
+    // Item 6: the thresholds are stated on the axis where they hold.
+    const StaticBounds& b = *r.rotd100_bounds;
+    std::string range;
+    if (b.lower_g) range = fmt::format("above {:.3g} g{}", *b.lower_g, b.hard_lower_g == b.lower_g ? " (hard)" : "");
+    if (b.upper_g) range += fmt::format("{}at most {:.3g} g (soft)", range.empty() ? "" : ", ", *b.upper_g);
+    s += fmt::format(" The static thresholds hold on RotD100 PGA (the peak over all directions): {}.", range);
+  }
+  const DirectionEstimate& d = tc.direction;
+  if (!d.constrained) {
+    s += fmt::format(" The direction of strongest shaking is unconstrained (its 95 % arc spans {:.0f} deg).",
+                     d.ci95.width_deg);
+  } else {
+    const auto arc = [](const DirectionArc& a) {
+      return fmt::format("{:.0f}\u2013{:.0f} deg", a.low_deg, wrap(a.high_deg(), 180.0) == 0.0 && a.high_deg() > 0.0
+                                                                  ? 180.0
+                                                                  : wrap(a.high_deg(), 180.0));
+    };
+    s += fmt::format(" The strongest shaking ran along the azimuth {:.0f} deg (mod 180, clockwise from north; 68 %: "
+                     "{}, 95 %: {}).",
+                     d.mode_deg, arc(d.ci68), arc(d.ci95));
+  }
+  return s;
+}
+
+}  // namespace topple

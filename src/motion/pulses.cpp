@@ -1,0 +1,372 @@
+#include "topple/motion/pulses.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "topple/core/error.hpp"
+
+namespace topple {
+namespace {
+
+struct Points {
+  std::vector<double> t;
+  std::vector<double> a;
+  void add(double time, double accel) {
+    t.push_back(time);
+    a.push_back(accel);
+  }
+};
+
+template <class F>
+void sample_smooth(Points& p, double t_end, double dt, F f) {
+  const double samples = std::ceil(t_end / dt - 1e-9);
+  if (!(samples <= kMaxPulseSamples)) {
+    throw parameter_error("dt", fmt::format("{} s sampled every {} s is more than {:.0e} samples", t_end, dt,
+                                            kMaxPulseSamples));
+  }
+  const auto n = static_cast<std::size_t>(samples);
+  for (std::size_t i = 0; i <= n; ++i) {
+    const double t = std::min(static_cast<double>(i) * dt, t_end);
+    p.add(t, f(t));
+  }
+}
+
+}  // namespace
+
+PulseKind parse_pulse_kind(std::string_view name, const std::string& field) {
+  if (name == "rect" || name == "rectangular") return PulseKind::rectangular;
+  if (name == "tri" || name == "triangular") return PulseKind::triangular;
+  if (name == "double-tri" || name == "double-triangular") return PulseKind::double_triangular;
+  if (name == "sine") return PulseKind::sine;
+  if (name == "cosine") return PulseKind::cosine;
+  if (name == "ricker") return PulseKind::ricker;
+  if (name == "tri-train" || name == "triangular-train") return PulseKind::triangular_train;
+  if (name == "trap-train" || name == "trapezoidal-train") return PulseKind::trapezoidal_train;
+  throw parameter_error(field, fmt::format("unknown pulse '{}' (known: rect, tri, double-tri, sine, cosine, ricker, "
+                                           "tri-train, trap-train)", name));
+}
+
+std::string_view pulse_kind_name(PulseKind kind) {
+  switch (kind) {
+    case PulseKind::rectangular: return "rect";
+    case PulseKind::triangular: return "tri";
+    case PulseKind::double_triangular: return "double-tri";
+    case PulseKind::sine: return "sine";
+    case PulseKind::cosine: return "cosine";
+    case PulseKind::ricker: return "ricker";
+    case PulseKind::triangular_train: return "tri-train";
+    case PulseKind::trapezoidal_train: return "trap-train";
+  }
+  return "unknown";
+}
+
+GroundMotion make_pulse(const PulseSpec& spec) {
+  const double amp = spec.amplitude_m_s2;
+  const double t0 = spec.duration_s;
+  if (!std::isfinite(amp)) throw parameter_error("amplitude", "pulse amplitude must be finite");
+  if (!(t0 > 0.0) || !std::isfinite(t0)) {
+    throw parameter_error("duration", fmt::format("pulse duration must be positive and finite, got {} s", t0));
+  }
+  if (!(spec.tail_s >= 0.0) || !std::isfinite(spec.tail_s)) {
+    throw parameter_error("tail", fmt::format("tail must be non-negative and finite, got {} s", spec.tail_s));
+  }
+  const bool train = spec.kind == PulseKind::triangular_train || spec.kind == PulseKind::trapezoidal_train;
+  if (train && (spec.cycles < 1 || spec.cycles > kMaxPulseCycles)) {
+    throw parameter_error("cycles", fmt::format("a pulse train needs 1 to {} cycles, got {}", kMaxPulseCycles,
+                                                spec.cycles));
+  }
+  if (spec.kind == PulseKind::trapezoidal_train &&
+      !(spec.trapezoid_ramp_fraction > 0.0 && spec.trapezoid_ramp_fraction <= 0.5)) {
+    throw parameter_error("trapezoid_ramp_fraction", fmt::format("the ramp fraction must be in (0, 0.5], got {}",
+                                                                 spec.trapezoid_ramp_fraction));
+  }
+  const double dt = spec.dt_s > 0.0 ? spec.dt_s : t0 / 2000.0;
+  if (!std::isfinite(dt)) throw parameter_error("dt", "pulse sampling step must be finite");
+  Points p;
+  double end = t0;
+  switch (spec.kind) {
+    case PulseKind::rectangular:
+      p.add(0.0, 0.0);
+      p.add(0.0, amp);
+      p.add(t0, amp);
+      p.add(t0, 0.0);
+      break;
+    case PulseKind::triangular:
+      p.add(0.0, 0.0);
+      p.add(0.5 * t0, amp);
+      p.add(t0, 0.0);
+      break;
+    case PulseKind::double_triangular:
+      p.add(0.0, 0.0);
+      p.add(0.5 * t0, amp);
+      p.add(t0, 0.0);
+      p.add(1.5 * t0, -amp);
+      p.add(2.0 * t0, 0.0);
+      end = 2.0 * t0;
+      break;
+    case PulseKind::sine:
+      sample_smooth(p, t0, dt, [&](double t) { return amp * std::sin(2.0 * kPi * t / t0); });
+      p.a.back() = 0.0;  // one full cycle ends at zero; keep the jump out
+      break;
+    case PulseKind::cosine:
+      // A cosine cycle starts and ends at A: the ground jumps to A at t = 0 and back to 0 at t0.
+      p.add(0.0, 0.0);
+      sample_smooth(p, t0, dt, [&](double t) { return amp * std::cos(2.0 * kPi * t / t0); });
+      p.add(t0, 0.0);
+      break;
+    case PulseKind::triangular_train:
+    case PulseKind::trapezoidal_train: {
+      // Corner times of one cycle as fractions of t0 (a triangle is a trapezoid with r = 1/2: no plateau).
+      const double r = spec.kind == PulseKind::triangular_train ? 0.5 : spec.trapezoid_ramp_fraction;
+      const double q = 0.5 * r;  // ramp length / t0
+      p.add(0.0, 0.0);
+      for (int c = 0; c < spec.cycles; ++c) {
+        const double start = static_cast<double>(c) * t0;
+        if (r < 0.5) {
+          p.add(start + q * t0, amp);
+          p.add(start + (0.5 - q) * t0, amp);
+        } else {
+          p.add(start + 0.25 * t0, amp);
+        }
+        p.add(start + 0.5 * t0, 0.0);
+        if (r < 0.5) {
+          p.add(start + (0.5 + q) * t0, -amp);
+          p.add(start + (1.0 - q) * t0, -amp);
+        } else {
+          p.add(start + 0.75 * t0, -amp);
+        }
+        p.add(start + t0, 0.0);
+      }
+      end = static_cast<double>(spec.cycles) * t0;
+      break;
+    }
+    case PulseKind::ricker: {
+      const double f = 1.0 / t0;
+      end = 3.0 * t0;
+      sample_smooth(p, end, dt, [&](double t) {
+        const double x = kPi * f * (t - 1.5 * t0);
+        return amp * (1.0 - 2.0 * x * x) * std::exp(-x * x);
+      });
+      break;
+    }
+  }
+  if (spec.tail_s > 0.0) p.add(end + spec.tail_s, 0.0);
+  RecordMetadata meta;
+  meta.format = "pulse";
+  meta.event = fmt::format("{} pulse, amplitude {:.6g} m/s2, duration {:.6g} s", pulse_kind_name(spec.kind), amp, t0);
+  meta.units_as_read = "m/s2";
+  return GroundMotion::irregular(std::move(p.t), std::move(p.a), std::move(meta));
+}
+
+}  // namespace topple
+
+// ---- Closed forms (thesis section 3.2). Everything below is in the thesis' notation: A and N in g, t0 in s; the
+// signs are those of topple (displacement positive in the direction the pulse pushes the block). ----
+namespace topple {
+namespace {
+
+void check_closed_form_inputs(double amplitude_g, double duration_s, double mu, double g) {
+  if (!std::isfinite(amplitude_g) || !(amplitude_g > 0.0)) {
+    throw parameter_error("amplitude_g", fmt::format("closed forms need a positive amplitude, got {}", amplitude_g));
+  }
+  if (!std::isfinite(duration_s) || !(duration_s > 0.0)) {
+    throw parameter_error("duration_s", fmt::format("closed forms need a positive duration, got {}", duration_s));
+  }
+  if (!std::isfinite(mu) || !(mu > 0.0)) {
+    throw parameter_error("mu", fmt::format("closed forms need a positive friction coefficient, got {}", mu));
+  }
+  if (!std::isfinite(g) || !(g > 0.0)) throw parameter_error("g", "g must be positive and finite");
+}
+
+/// Smallest positive root of c2 u^2 + c1 u + c0 = 0 (c0 > 0 > at the far end), cancellation-free.
+double positive_root(double c2, double c1, double c0) {
+  if (c2 == 0.0) return -c0 / c1;
+  const double disc = c1 * c1 - 4.0 * c2 * c0;
+  if (disc < 0.0) return -1.0;
+  const double q = -0.5 * (c1 + std::copysign(std::sqrt(disc), c1));
+  double r = std::numeric_limits<double>::infinity();
+  if (q / c2 > 0.0) r = q / c2;
+  if (q != 0.0 && c0 / q > 0.0) r = std::min(r, c0 / q);
+  return std::isfinite(r) ? r : -1.0;
+}
+
+}  // namespace
+
+PulseSlidingResponse rectangular_pulse_sliding(double A, double t0, double N, double g) {
+  check_closed_form_inputs(A, t0, N, g);
+  PulseSlidingResponse r;
+  if (A <= N) return r;
+  r.end_velocity_m_s = (A - N) * g * t0;                 // eq 2.5 less the friction: (A - N) g t0
+  r.end_displacement_m = 0.5 * (A - N) * g * t0 * t0;
+  const double v = A * g * t0;                           // eq 2.5: velocity the pulse gives the ground
+  r.max_displacement_m = 0.5 * v * v / (g * N) * (1.0 - N / A);  // eq 2.6
+  r.stop_time_s = v / (N * g);                           // t_m = v / (N g)
+  return r;
+}
+
+PulseSlidingResponse triangular_pulse_sliding(double A, double t0, double N, double g) {
+  check_closed_form_inputs(A, t0, N, g);
+  PulseSlidingResponse r;
+  if (A <= N) return r;
+  // Eqs 3.1, 3.2 at t0/2 (slip began at t = N t0 / (2A)).
+  const double v1 = g * t0 / 4.0 * (A - N) * (1.0 - N / A);
+  const double u1 = g * t0 * t0 / 8.0 * (A / 3.0 - N * (1.0 - N / A + N * N / (3.0 * A * A)));
+  // Eqs 3.3, 3.4 at t0, valid while the block still slides there (V0 > 0).
+  const double v0 = g * t0 * (A / 2.0 - N * (1.0 - N / (4.0 * A)));
+  const double u0 = g * t0 * t0 * (A / 4.0 - N / 2.0 * (1.0 - N / (2.0 * A) + N * N / (12.0 * A * A)));
+  if (v0 > 0.0) {
+    r.end_velocity_m_s = v0;
+    r.end_displacement_m = u0;
+    r.max_displacement_m = u0 + v0 * v0 / (2.0 * N * g);  // still ground after t0: deceleration N g
+    r.stop_time_s = t0 + v0 / (N * g);
+    return r;
+  }
+  // The block stops inside the falling half: with u = t - t0/2, V = V1 + (A - N) g u - A g u^2 / t0.
+  const double u = positive_root(-A * g / t0, (A - N) * g, v1);
+  const double um = u1 + v1 * u + 0.5 * (A - N) * g * u * u - A * g * u * u * u / (3.0 * t0);
+  r.end_velocity_m_s = 0.0;
+  r.end_displacement_m = um;
+  r.max_displacement_m = um;
+  r.stop_time_s = 0.5 * t0 + u;
+  return r;
+}
+
+SlidingState double_triangular_pulse_sliding(double A, double t0, double N, double t, double g) {
+  check_closed_form_inputs(A, t0, N, g);
+  if (!std::isfinite(t)) throw parameter_error("time_s", "time must be finite");
+  const auto fail = [&](const char* what) {
+    return parameter_error("double triangular pulse",
+                           fmt::format("A = {}, N = {}: {}; the closed form of thesis Fig. 3.4 assumes the phase "
+                                       "sequence slip forward, stop in the last quarter, slip back", A, N, what));
+  };
+  if (A <= N) throw fail("A <= N, the block does not slide");
+  const double ts = N * t0 / (2.0 * A);
+  if (t <= ts) return {};
+  // Phase 1, [ts, t0/2]: a = 2 A g t / t0 (eq 3.1 and 3.2 integrated from the slip start).
+  if (t <= 0.5 * t0) {
+    const double v = A * g * (t * t - ts * ts) / t0 - N * g * (t - ts);
+    const double u = A * g * (t * t * t - ts * ts * ts) / (3.0 * t0) - N * g * (t * t - ts * ts) / 2.0 +
+                     (-(A * g * ts * ts / t0) + N * g * ts) * (t - ts);
+    return {u, v};
+  }
+  const double v1 = g * t0 / 4.0 * (A - N) * (1.0 - N / A);
+  const double u1 = g * t0 * t0 / 8.0 * (A / 3.0 - N * (1.0 - N / A + N * N / (3.0 * A * A)));
+  // Phase 2, [t0/2, t0]: a = 2 A g (1 - t/t0).
+  const double v0 = g * t0 * (A / 2.0 - N * (1.0 - N / (4.0 * A)));  // eq 3.3
+  if (v0 <= 0.0) throw fail("the block stops before t0");
+  if (t <= t0) {
+    const double w = t - 0.5 * t0;
+    return {u1 + v1 * w + 0.5 * (A - N) * g * w * w - A * g * w * w * w / (3.0 * t0),
+            v1 + (A - N) * g * w - A * g * w * w / t0};
+  }
+  const double u0 = g * t0 * t0 * (A / 4.0 - N / 2.0 * (1.0 - N / (2.0 * A) + N * N / (12.0 * A * A)));  // eq 3.4
+  // Phase 3, [t0, 1.5 t0]: a = -2 A g (t/t0 - 1), still sliding forward (friction -N g).
+  const auto phase3 = [&](double w) {
+    return SlidingState{u0 + v0 * w - A * g * w * w * w / (3.0 * t0) - 0.5 * N * g * w * w,
+                        v0 - A * g * w * w / t0 - N * g * w};
+  };
+  const SlidingState s15 = phase3(0.5 * t0);  // eqs 3.5, 3.6
+  if (s15.velocity_m_s <= 0.0) throw fail("the block stops before 1.5 t0");
+  if (t <= 1.5 * t0) return phase3(t - t0);
+  // Phase 4, [1.5 t0, 2 t0]: a = -A g (1 - 2w/t0); forward slip until V = 0 (eq 3.7), then back slip (+N g).
+  const auto fwd = [&](double w) {
+    return SlidingState{s15.displacement_m + s15.velocity_m_s * w - 0.5 * (A + N) * g * w * w + A * g * w * w * w / (3.0 * t0),
+                        s15.velocity_m_s - (A + N) * g * w + A * g * w * w / t0};
+  };
+  const double w_stop = positive_root(A * g / t0, -(A + N) * g, s15.velocity_m_s);
+  if (!(w_stop > 0.0) || w_stop > 0.5 * t0) throw fail("the block does not stop before 2 t0");
+  const SlidingState at_stop = fwd(w_stop);
+  if (A * (1.0 - 2.0 * w_stop / t0) <= N) throw fail("the ground acceleration at the stop does not exceed N g");
+  if (t <= 1.5 * t0 + w_stop) return fwd(t - 1.5 * t0);
+  // Back slip from rest at w_stop: V' = -A g (1 - 2w/t0) + N g.
+  const auto back = [&](double w) {
+    const double x = w - w_stop;
+    const double acc0 = -A * g * (1.0 - 2.0 * w_stop / t0) + N * g;
+    const double jerk = 2.0 * A * g / t0;
+    return SlidingState{at_stop.displacement_m + 0.5 * acc0 * x * x + jerk * x * x * x / 6.0,
+                        acc0 * x + 0.5 * jerk * x * x};
+  };
+  const SlidingState s20 = back(0.5 * t0);
+  if (s20.velocity_m_s >= 0.0) throw fail("the back slip stops before 2 t0");
+  if (t <= 2.0 * t0) return back(t - 1.5 * t0);
+  // After the pulse: still ground, deceleration N g until rest.
+  const double stop = -s20.velocity_m_s / (N * g);
+  const double x = std::min(t - 2.0 * t0, stop);
+  return {s20.displacement_m + s20.velocity_m_s * x + 0.5 * N * g * x * x, s20.velocity_m_s + N * g * x};
+}
+
+}  // namespace topple
+
+// ---- Mavroeidis & Papageorgiou (2003) ----
+namespace topple {
+
+void MavroeidisPapageorgiouPulse::validate() const {
+  if (!std::isfinite(velocity_amplitude_m_s)) {
+    throw parameter_error("velocity_amplitude_m_s", "the MP pulse's velocity amplitude A must be finite");
+  }
+  if (!(frequency_hz > 0.0) || !std::isfinite(frequency_hz)) {
+    throw parameter_error("frequency_hz", fmt::format("the MP pulse's frequency f_p must be positive, got {} Hz",
+                                                      frequency_hz));
+  }
+  if (!std::isfinite(phase_rad)) throw parameter_error("phase_rad", "the MP pulse's phase nu must be finite");
+  if (!(gamma > 1.0) || !std::isfinite(gamma)) {
+    throw parameter_error("gamma", fmt::format("the MP pulse needs gamma > 1 (MP 2003, eq. 1), got {}", gamma));
+  }
+}
+
+double MavroeidisPapageorgiouPulse::velocity_m_s(double t) const {
+  if (t < 0.0 || t > duration_s()) return 0.0;
+  const double u = 2.0 * kPi * frequency_hz * (t - centre_time_s());
+  return 0.5 * velocity_amplitude_m_s * (1.0 + std::cos(u / gamma)) * std::cos(u + phase_rad);  // MP 2003 eq. 1
+}
+
+double MavroeidisPapageorgiouPulse::acceleration_m_s2(double t) const {
+  if (t < 0.0 || t > duration_s()) return 0.0;
+  const double u = 2.0 * kPi * frequency_hz * (t - centre_time_s());
+  return -(velocity_amplitude_m_s * kPi * frequency_hz / gamma) *
+         (std::sin(u / gamma) * std::cos(u + phase_rad) +
+          gamma * std::sin(u + phase_rad) * (1.0 + std::cos(u / gamma)));
+}
+
+double MavroeidisPapageorgiouPulse::displacement_m(double t) const {
+  // v = A/2 [cos(u + nu) + cos(u p + nu) / 2 + cos(u m + nu) / 2], p = 1 + 1/gamma, m = 1 - 1/gamma (product to sum),
+  // so D(u) = A / (2 w) [sin(u + nu) + sin(u p + nu) / (2 p) + sin(u m + nu) / (2 m)], w = 2 pi f_p, minus D(-pi gamma).
+  const double w = 2.0 * kPi * frequency_hz;
+  const double p = 1.0 + 1.0 / gamma;
+  const double m = 1.0 - 1.0 / gamma;
+  const auto antiderivative = [&](double u) {
+    return 0.5 * velocity_amplitude_m_s / w *
+           (std::sin(u + phase_rad) + std::sin(u * p + phase_rad) / (2.0 * p) + std::sin(u * m + phase_rad) / (2.0 * m));
+  };
+  const double tc = std::clamp(t, 0.0, duration_s());
+  return antiderivative(w * (tc - centre_time_s())) - antiderivative(-kPi * gamma);
+}
+
+GroundMotion make_mavroeidis_papageorgiou_pulse(const MavroeidisPapageorgiouPulse& pulse, double dt_s, double tail_s) {
+  pulse.validate();
+  if (!(dt_s >= 0.0) || !std::isfinite(dt_s)) {
+    throw parameter_error("dt", fmt::format("the sampling step must be non-negative and finite, got {} s", dt_s));
+  }
+  if (!(tail_s >= 0.0) || !std::isfinite(tail_s)) {
+    throw parameter_error("tail", fmt::format("tail must be non-negative and finite, got {} s", tail_s));
+  }
+  const double end = pulse.duration_s();
+  Points p;
+  sample_smooth(p, end, dt_s > 0.0 ? dt_s : end / 2000.0, [&](double t) { return pulse.acceleration_m_s2(t); });
+  p.a.front() = 0.0;  // exactly zero at both ends (eq. 1's envelope vanishes there)
+  p.a.back() = 0.0;
+  if (tail_s > 0.0) p.add(end + tail_s, 0.0);
+  RecordMetadata meta;
+  meta.format = "pulse";
+  meta.event = fmt::format("Mavroeidis-Papageorgiou pulse, A {:.6g} m/s, f_p {:.6g} Hz, nu {:.6g} rad, gamma {:.6g}",
+                           pulse.velocity_amplitude_m_s, pulse.frequency_hz, pulse.phase_rad, pulse.gamma);
+  meta.units_as_read = "m/s2";
+  return GroundMotion::irregular(std::move(p.t), std::move(p.a), std::move(meta));
+}
+
+}  // namespace topple

@@ -1,0 +1,375 @@
+// Fragility: the maximum-likelihood lognormal fit recovers known parameters from binomial data drawn from them, its
+// band contains the truth, degenerate data are handled, and the ensemble analysis counts what single runs give.
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <vector>
+
+#include <boost/math/distributions/normal.hpp>
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include "topple/core/error.hpp"
+#include "topple/fragility/fragility.hpp"
+#include "topple/fragility/object_spectra.hpp"
+#include "topple/motion/motion_set.hpp"
+#include "topple/solvers/oriented.hpp"
+#include "topple/motion/rotd.hpp"
+#include "topple/motion/synthesis.hpp"
+
+namespace topple {
+namespace {
+
+const boost::math::normal kN{};
+
+struct Truth {
+  double theta = 0.5;
+  double beta = 0.4;
+  [[nodiscard]] double p(double x) const { return boost::math::cdf(kN, std::log(x / theta) / beta); }
+};
+
+/// Binomial draws by counting uniforms (portable generator: the same data everywhere).
+FragilityData draw(const Truth& t, const std::vector<double>& levels, int n, std::uint64_t seed) {
+  PortableRandom rng(seed);
+  FragilityData d;
+  for (double x : levels) {
+    int z = 0;
+    for (int i = 0; i < n; ++i) z += rng.uniform() < t.p(x) ? 1 : 0;
+    d.im.push_back(x);
+    d.trials.push_back(n);
+    d.failures.push_back(z);
+  }
+  return d;
+}
+
+/// Expected (Fisher) information of (mu, beta) at the truth: sum_j n_j phi(u_j)^2 / (p_j (1 - p_j)) g_j g_j^T,
+/// g_j = (-1/beta, -u_j/beta). Its inverse is the asymptotic covariance of the MLE.
+std::array<double, 3> expected_covariance(const Truth& t, const std::vector<double>& levels, int n) {
+  double i00 = 0.0, i01 = 0.0, i11 = 0.0;
+  for (double x : levels) {
+    const double u = std::log(x / t.theta) / t.beta;
+    const double p = boost::math::cdf(kN, u);
+    const double w = n * std::pow(boost::math::pdf(kN, u), 2) / (p * (1.0 - p));
+    i00 += w / (t.beta * t.beta);
+    i01 += w * u / (t.beta * t.beta);
+    i11 += w * u * u / (t.beta * t.beta);
+  }
+  const double det = i00 * i11 - i01 * i01;
+  return {i11 / det, -i01 / det, i00 / det};
+}
+
+TEST(FragilityFit, RecoversKnownParametersWithinTheSamplingError) {
+  const Truth t;
+  const std::vector<double> levels = log_grid(0.1, 2.0, 12);
+  constexpr int n = 100;
+  const auto cov = expected_covariance(t, levels, n);
+  const double sd_mu = std::sqrt(cov[0]);
+  const double sd_beta = std::sqrt(cov[2]);
+  int inside = 0;
+  constexpr int kTrials = 20;
+  for (std::uint64_t seed = 1; seed <= kTrials; ++seed) {
+    const FragilityData d = draw(t, levels, n, seed);
+    const LognormalFragilityFit fit = fit_lognormal_fragility(d);
+    ASSERT_FALSE(fit.beta_at_bound);
+    // 4 standard deviations of the asymptotic sampling distribution (n = 100 per level, 12 levels): a failure here
+    // has probability ~6e-5 per parameter and seed.
+    EXPECT_NEAR(std::log(fit.theta), std::log(t.theta), 4.0 * sd_mu) << seed;
+    EXPECT_NEAR(fit.beta, t.beta, 4.0 * sd_beta) << seed;
+    // The observed-information standard errors agree with the expected information to 25 % at this sample size.
+    EXPECT_NEAR(fit.se_ln_theta, sd_mu, 0.25 * sd_mu) << seed;
+    EXPECT_NEAR(fit.se_beta, sd_beta, 0.25 * sd_beta) << seed;
+    // The optimum: no small step improves the likelihood.
+    for (const auto& [dt, db] : {std::pair{1e-4, 0.0}, {-1e-4, 0.0}, {0.0, 1e-4}, {0.0, -1e-4}}) {
+      EXPECT_GE(fit.log_likelihood + 1e-9, fragility_log_likelihood(d, fit.theta * std::exp(dt), fit.beta + db));
+    }
+    // Band at 95 %: count how often it holds the true curve at the median.
+    const auto [lo, hi] = fit.band(t.theta, 0.95);
+    inside += (lo <= 0.5 && 0.5 <= hi) ? 1 : 0;
+  }
+  // Coverage of a 95 % band over 20 seeds: at least 16 (binomial(20, 0.95) is below 16 with probability 0.3 %).
+  EXPECT_GE(inside, 16);
+}
+
+TEST(FragilityFit, BandContainsTheTruthAndNarrowsWithTheSampleSize) {
+  // One draw per sample size, five IM values: the truth must lie in the 99.95 % band (z = 3.48; a pointwise miss
+  // has probability 5e-4), and the 95 % band must lie around the fitted curve and shrink as 1/sqrt(n).
+  const Truth t;
+  const std::vector<double> levels = log_grid(0.1, 2.0, 10);
+  const LognormalFragilityFit small = fit_lognormal_fragility(draw(t, levels, 40, 7));
+  const LognormalFragilityFit large = fit_lognormal_fragility(draw(t, levels, 4000, 7));
+  for (double x : {0.2, 0.35, 0.5, 0.8, 1.3}) {
+    for (const LognormalFragilityFit* fit : {&small, &large}) {
+      const auto [lo, hi] = fit->band(x, 0.9995);
+      EXPECT_LE(lo, t.p(x)) << x;
+      EXPECT_GE(hi, t.p(x)) << x;
+      const auto [lo95, hi95] = fit->band(x, 0.95);
+      EXPECT_LE(lo95, fit->probability(x));
+      EXPECT_GE(hi95, fit->probability(x));
+      EXPECT_GT(lo95, lo);
+      EXPECT_LT(hi95, hi);
+    }
+    // 100 times the data: about a tenth of the width (factor 3 margin).
+    const auto [lo, hi] = small.band(x, 0.95);
+    const auto [lo2, hi2] = large.band(x, 0.95);
+    EXPECT_LT(hi2 - lo2, 0.3 * (hi - lo)) << x;
+  }
+}
+
+TEST(FragilityFit, ExactFractionsGiveTheParametersBack) {
+  // Fractions equal to the true curve (n large, rounded counts): the MLE is the truth to the rounding, 1/n.
+  const Truth t{0.3, 0.6};
+  FragilityData d;
+  constexpr int n = 1'000'000;
+  for (double x : log_grid(0.05, 2.0, 9)) {
+    d.im.push_back(x);
+    d.trials.push_back(n);
+    d.failures.push_back(static_cast<int>(std::lround(n * t.p(x))));
+  }
+  const LognormalFragilityFit fit = fit_lognormal_fragility(d);
+  EXPECT_NEAR(fit.theta, t.theta, 1e-4);
+  EXPECT_NEAR(fit.beta, t.beta, 1e-4);
+}
+
+TEST(FragilityFit, DegenerateData) {
+  FragilityData none{{0.1, 0.2}, {10, 10}, {0, 0}};
+  try {
+    (void)fit_lognormal_fragility(none);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().field, "failures");
+  }
+  FragilityData all{{0.1, 0.2}, {10, 10}, {10, 10}};
+  EXPECT_THROW((void)fit_lognormal_fragility(all), InputError);
+  EXPECT_THROW((void)fit_lognormal_fragility({{0.1, -0.2}, {10, 10}, {1, 2}}), InputError);
+  EXPECT_THROW((void)fit_lognormal_fragility({{0.1, 0.2}, {10, 10}, {1, 12}}), InputError);
+  // Perfectly separated: beta runs to its bound; the median sits between the last safe and first failing level.
+  const LognormalFragilityFit sep = fit_lognormal_fragility({{0.1, 0.2, 0.4, 0.8}, {10, 10, 10, 10}, {0, 0, 10, 10}});
+  EXPECT_TRUE(sep.beta_at_bound);
+  EXPECT_GT(sep.theta, 0.2);
+  EXPECT_LT(sep.theta, 0.4);
+}
+
+/// The ensembles' synthetic motion: PGA 0.3 g (of a pair: RotD50) at 2 Hz.
+SynthesisSpec ensemble_spec(std::uint64_t seed, double duration_s) {
+  SynthesisSpec s;
+  s.pga_m_s2 = 0.3 * kStandardGravity;
+  s.predominant_frequency_hz = 2.0;
+  s.duration_s = duration_s;
+  s.seed = seed;
+  return s;
+}
+
+TEST(FragilityAnalysis, CountsEqualSingleRuns) {
+  std::vector<std::shared_ptr<const GroundMotion>> motions;
+  for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+    motions.push_back(std::make_shared<const GroundMotion>(synthesize(ensemble_spec(seed, 8.0))));
+  }
+  FragilitySpec spec;
+  spec.motions = motions;
+  spec.im = IntensityMeasure::pga;
+  spec.levels_si = log_grid(0.05 * kStandardGravity, 1.5 * kStandardGravity, 6);
+  spec.sliding = SlidingFailure{SlidingBlock::make(0.2), 0.02};
+  spec.overturning = OverturnFailure{RockingBody::block(0.1, 0.4), RockingOptions{}};
+  const FragilityResult r = fragility_analysis(spec);
+  ASSERT_EQ(r.curves.size(), 2u);
+  EXPECT_EQ(r.runs, 4u * 6u * 2u);
+  EXPECT_EQ(r.curves[0].name, "slide");
+  EXPECT_EQ(r.curves[1].name, "overturn");
+  for (std::size_t j = 0; j < spec.levels_si.size(); ++j) {
+    int slid = 0;
+    int fell = 0;
+    for (const auto& m : motions) {
+      const GroundMotion scaled = m->scaled(spec.levels_si[j] / m->pga_m_s2());
+      slid += slide_summary(scaled, spec.sliding->block).max_abs_displacement_m > 0.02 ? 1 : 0;
+      fell += rock_summary(scaled, spec.overturning->body).overturned ? 1 : 0;
+    }
+    EXPECT_EQ(r.curves[0].data.failures[j], slid) << j;
+    EXPECT_EQ(r.curves[1].data.failures[j], fell) << j;
+    EXPECT_EQ(r.curves[0].data.trials[j], 4);
+  }
+  // Sliding grows with the level here: the lowest level (0.05 g < mu) never slides, the highest always does.
+  EXPECT_EQ(r.curves[0].data.failures.front(), 0);
+  EXPECT_EQ(r.curves[0].data.failures.back(), 4);
+  // PGV as the measure: each motion scaled so that its PGV is the level.
+  spec.im = IntensityMeasure::pgv;
+  spec.levels_si = {0.1, 0.5};
+  spec.overturning.reset();
+  const FragilityResult v = fragility_analysis(spec);
+  EXPECT_EQ(v.curves.size(), 1u);
+  spec.sliding.reset();
+  EXPECT_THROW((void)fragility_analysis(spec), InputError);
+}
+
+// Pairs (fragility.hpp, "Pairs"). Each record with a zero second component at 90 deg is collinear input: a block at
+// bearing 90 (the record's azimuth) rocks under the record itself (the projection on a component's azimuth is that
+// component bit for bit, MotionSet::projected), a sliding block slides as the 1-D block to 1e-9 relative
+// (sliding2d.hpp). The pair's RotD50 PGA is the record's PGA x r, r = cos 45 deg to rounding (rotd.hpp, closed
+// forms), so the pair's counts at levels x_j r are the 1-D counts at x_j (the scale factors x_j r / RotD50 and
+// x_j / PGA agree to rounding; no run sits within 1e-9 of the threshold here), and the fitted median is theta r.
+TEST(FragilityAnalysis, PairsWithAZeroSecondComponentAtTheRecordsAzimuthAreThe1dFragility) {
+  std::vector<std::shared_ptr<const GroundMotion>> motions;
+  std::vector<std::shared_ptr<const MotionSet>> sets;
+  std::vector<double> ratio;
+  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+    const auto m = std::make_shared<const GroundMotion>(synthesize(ensemble_spec(seed, 8.0)));
+    motions.push_back(m);
+    const GroundMotion quiet = GroundMotion::uniform(std::vector<double>(m->size(), 0.0), m->dt_s());
+    sets.push_back(std::make_shared<const MotionSet>(MotionSet::make(*m, &quiet, ComponentAzimuths{90.0, 0.0})));
+    ratio.push_back(rotd_measures(*sets.back(), {}).pga_m_s2.rotd50 / m->pga_m_s2());
+    EXPECT_NEAR(ratio.back(), std::cos(kPi / 4.0), 1e-15);
+  }
+  FragilitySpec one;
+  one.motions = motions;
+  one.levels_si = log_grid(0.1 * kStandardGravity, 1.2 * kStandardGravity, 8);
+  one.sliding = SlidingFailure{SlidingBlock::make(0.2), 0.02};
+  one.overturning = OverturnFailure{RockingBody::block(0.15, 0.6), RockingOptions{}};
+  const FragilityResult r1 = fragility_analysis(one);
+  FragilitySpec two = one;
+  two.motions.clear();
+  two.motion_sets = sets;
+  two.bearing_deg = 90.0;
+  for (double& x : two.levels_si) x *= ratio.front();
+  const FragilityResult r2 = fragility_analysis(two);
+  EXPECT_TRUE(r2.rotd50);
+  EXPECT_EQ(r2.bearings_deg, std::vector<double>(6, 90.0));
+  ASSERT_EQ(r2.curves.size(), 2u);
+  for (std::size_t c = 0; c < 2; ++c) {
+    SCOPED_TRACE(r1.curves[c].name);
+    EXPECT_EQ(r2.curves[c].data.failures, r1.curves[c].data.failures);
+    ASSERT_TRUE(r1.curves[c].fit.has_value());
+    ASSERT_TRUE(r2.curves[c].fit.has_value());
+    // The same counts on levels scaled by r: ln L is the same function shifted by ln r; the optimiser stops at 1e-12
+    // relative steps (Newton polish), far inside 1e-8.
+    EXPECT_NEAR(r2.curves[c].fit->theta, r1.curves[c].fit->theta * ratio.front(), 1e-8 * r1.curves[c].fit->theta);
+    EXPECT_NEAR(r2.curves[c].fit->beta, r1.curves[c].fit->beta, 1e-8);
+  }
+  // The failures vary over the levels (the test is not vacuous).
+  EXPECT_EQ(r1.curves[0].data.failures.front(), 0);
+  EXPECT_EQ(r1.curves[0].data.failures.back(), 6);
+  EXPECT_GT(r1.curves[1].data.failures.back(), 0);
+
+  // Across the record (bearing 0, along the zero component) the block never rocks.
+  two.bearing_deg = 0.0;
+  two.sliding.reset();
+  EXPECT_EQ(fragility_analysis(two).curves[0].data.failures, std::vector<int>(8, 0));
+}
+
+TEST(FragilityAnalysis, PairsWithoutABearingDrawOnePerMotionAndBadInputIsNamed) {
+  std::vector<std::shared_ptr<const MotionSet>> sets;
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    SynthesisSetSpec ss;
+    ss.horizontal = ensemble_spec(seed, 6.0);
+    ss.vertical = false;
+    const SynthesizedSet syn = synthesize_set(ss);
+    sets.push_back(std::make_shared<const MotionSet>(MotionSet::make(syn.first, &syn.second, ss.azimuths)));
+  }
+  FragilitySpec spec;
+  spec.motion_sets = sets;
+  spec.levels_si = {0.2 * kStandardGravity, 0.8 * kStandardGravity};
+  spec.overturning = OverturnFailure{RockingBody::block(0.15, 0.6), RockingOptions{}};
+  const FragilityResult a = fragility_analysis(spec);
+  // PortableRandom(1)'s first five uniforms x 360 deg: the same bearings on every machine and every call.
+  PortableRandom random(1);
+  ASSERT_EQ(a.bearings_deg.size(), 5u);
+  for (const double b : a.bearings_deg) {
+    EXPECT_EQ(b, 360.0 * random.uniform());
+    EXPECT_GE(b, 0.0);
+    EXPECT_LT(b, 360.0);
+  }
+  EXPECT_EQ(fragility_analysis(spec).bearings_deg, a.bearings_deg);
+  spec.bearing_seed = 2;
+  EXPECT_NE(fragility_analysis(spec).bearings_deg, a.bearings_deg);
+  // Each count is the oriented run at the motion's bearing, the pair scaled by its RotD50 PGA.
+  for (std::size_t j = 0; j < 2; ++j) {
+    int fell = 0;
+    for (std::size_t i = 0; i < sets.size(); ++i) {
+      const double f = spec.levels_si[j] / rotd_measures(*sets[i], {}).pga_m_s2.rotd50;
+      const GroundMotion h1 = sets[i]->first().scaled(f);
+      const GroundMotion h2 = sets[i]->second().scaled(f);
+      const MotionSet scaled = MotionSet::make(h1, &h2, sets[i]->azimuths());
+      fell += rock_oriented_summary(scaled, OrientedBody::planar(spec.overturning->body), a.bearings_deg[i])
+                      .governing_response().summary.overturned ? 1 : 0;
+    }
+    EXPECT_EQ(a.curves[0].data.failures[j], fell) << j;
+  }
+
+  const auto field_of = [](const FragilitySpec& s) -> std::string {
+    try {
+      (void)fragility_analysis(s);
+    } catch (const InputError& e) {
+      return e.where().field;
+    }
+    return "(none)";
+  };
+  FragilitySpec bad = spec;
+  bad.im = IntensityMeasure::pgv;
+  EXPECT_EQ(field_of(bad), "im");
+  bad = spec;
+  bad.motions.push_back(std::make_shared<const GroundMotion>(sets[0]->first()));
+  EXPECT_EQ(field_of(bad), "motions");
+  bad = spec;
+  bad.motion_sets.push_back(std::make_shared<const MotionSet>(MotionSet::make(sets[0]->first(), nullptr, std::nullopt)));
+  EXPECT_EQ(field_of(bad), "motions");
+  bad = spec;
+  bad.sliding = SlidingFailure{SlidingBlock::make(0.3, 0.3, 0.1, SlidingMode::one_way), 0.02};
+  EXPECT_EQ(field_of(bad), "mode");
+  bad.sliding = SlidingFailure{SlidingBlock::make(0.3, 0.3, 0.1), 0.02};
+  EXPECT_EQ(field_of(bad), "slope");
+  bad = spec;
+  bad.overturning->body = RockingBody::cylinder(0.15, 0.6);
+  bad.bearing_deg = 10.0;
+  EXPECT_EQ(field_of(bad), "bearing");
+  bad = spec;
+  bad.bearing_deg = std::nan("");
+  EXPECT_EQ(field_of(bad), "bearing");
+}
+
+// Pairs with a vertical under the rocking model (fragility.cpp, check_rocking_contact): pair i leaves the ground from
+// L_i = RotD50_i g / max(-a_v,i) up (the vertical scales with the pair). L_i is computed here from each synthetic
+// triple's own samples; the levels are put 1e-9 relative either side of the lowest L_i.
+TEST(FragilityAnalysis, PairsWithAVerticalRefuseLevelsWhereTheRockingBodyWouldLeaveTheGround) {
+  std::vector<std::shared_ptr<const MotionSet>> sets;
+  std::vector<double> lift_off;  // L_i, m/s2 (RotD50 PGA)
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    SynthesisSetSpec ss;
+    ss.horizontal = ensemble_spec(seed, 6.0);
+    const SynthesizedSet syn = synthesize_set(ss);
+    ASSERT_TRUE(syn.vertical.has_value());
+    sets.push_back(std::make_shared<const MotionSet>(MotionSet::make(syn.first, &syn.second, ss.azimuths,
+                                                                     &*syn.vertical)));
+    const auto a_v = syn.vertical->accel_m_s2();
+    const double lowest = *std::min_element(a_v.begin(), a_v.end());
+    ASSERT_LT(lowest, 0.0);
+    lift_off.push_back(rotd_measures(*sets.back(), {}).pga_m_s2.rotd50 * kStandardGravity / -lowest);
+  }
+  const double allowed = *std::min_element(lift_off.begin(), lift_off.end());
+  const auto first = static_cast<std::size_t>(std::min_element(lift_off.begin(), lift_off.end()) - lift_off.begin());
+  FragilitySpec spec;
+  spec.motion_sets = sets;
+  spec.bearing_deg = 30.0;
+  spec.overturning = OverturnFailure{RockingBody::block(0.15, 0.6), RockingOptions{}};
+  // Just below the lowest lift-off level every run keeps contact and the analysis runs (each count 0..3).
+  spec.levels_si = {0.2 * kStandardGravity, allowed * (1.0 - 1e-9)};
+  const FragilityResult ok = fragility_analysis(spec);
+  ASSERT_EQ(ok.curves.size(), 1u);
+  EXPECT_EQ(ok.curves[0].data.trials, std::vector<int>(2, 3));
+  // At it the pair that sets it is named, with the highest allowed level (4 significant digits, in g), before any run.
+  spec.levels_si.back() = allowed * (1.0 + 1e-9);
+  try {
+    (void)fragility_analysis(spec);
+    FAIL() << "no error at the lift-off level";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().field, "levels");
+    EXPECT_NE(e.problem().find(fmt::format("pair {} of the ensemble", first + 1)), std::string::npos) << e.problem();
+    EXPECT_NE(e.problem().find(fmt::format("every pair keeps contact below {:.4g} g", allowed / kStandardGravity)),
+              std::string::npos)
+        << e.problem();
+  }
+  // Sliding alone keeps running there: the 2-D block's friction uses g_e^+ and reports the loss (sliding2d.hpp).
+  spec.overturning.reset();
+  spec.sliding = SlidingFailure{SlidingBlock::make(0.3), 0.02};
+  EXPECT_EQ(fragility_analysis(spec).curves[0].data.trials, std::vector<int>(2, 3));
+}
+
+}  // namespace
+}  // namespace topple

@@ -1,0 +1,502 @@
+// The regional picture (issue 17): geodesic distances, the survey's regional keys, the joint fit against closed
+// forms, and the regional recovery test (sites simulated by the solvers).
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <limits>
+#include <numbers>
+#include <string>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "support/regional_scenario.hpp"
+#include "support/shared_data.hpp"
+#include "topple/core/error.hpp"
+#include "topple/inversion/inversion.hpp"
+#include "topple/io/survey_file.hpp"
+#include "topple/region/region.hpp"
+
+namespace topple {
+namespace {
+
+// ---- Distances ----
+
+// GeographicLib's own worked example (example-Geodesic.cpp, Karney 2013): JFK (40.6, -73.8) to LHR (51.6, -0.5) on
+// WGS84 is 5551759.400319 m. Tolerance 1 mm: the printed digits go to the micrometre; the algorithm is accurate to
+// 15 nm.
+TEST(RegionDistance, KarneyJfkToLhr) {
+  EXPECT_NEAR(geodesic_distance_km(40.6, -73.8, 51.6, -0.5), 5551.759400319, 1e-6);
+}
+
+// One degree of latitude from the equator on WGS84: the meridian arc 110574.3 m (the standard table value, to 0.1 m).
+// A sphere of 6371 km gives 111195 m: the test tells the ellipsoid from the haversine.
+TEST(RegionDistance, OneDegreeOfLatitudeAtTheEquator) {
+  EXPECT_NEAR(geodesic_distance_km(0.0, 10.0, 1.0, 10.0), 110.5743, 1e-4);
+  EXPECT_DOUBLE_EQ(geodesic_distance_km(12.0, 34.0, 12.0, 34.0), 0.0);
+}
+
+TEST(RegionDistance, HypocentralIsTheHypotenuse) {
+  EXPECT_DOUBLE_EQ(hypocentral_distance_km(30.0, 40.0), 50.0);
+  EXPECT_DOUBLE_EQ(hypocentral_distance_km(7.0, 0.0), 7.0);
+}
+
+// ---- The survey's regional keys ----
+
+const std::string kObject = "[[sites.object]]\nid = \"b\"\nwidth = \"10cm\"\nheight = \"40cm\"\nmu = 0.5\n"
+                            "outcome = \"overturned\"\n";
+
+TEST(RegionSurvey, EpicentreDepthAndStations) {
+  const Survey s = io::parse_survey("[event]\nepicentre = [38.0, 23.0]\ndepth_km = 12.5\n"
+                                    "[[sites]]\nname = \"a\"\nlat = 38.1\nlon = 23.0\n" + kObject +
+                                    "[[sites]]\nname = \"station\"\nlat = 38.2\nlon = 23.1\npga_g = 0.31\n"
+                                    "[[sites]]\nname = \"station with objects\"\nlat = 38.0\nlon = 23.2\npga_g = 0.2\n" +
+                                    kObject,
+                                    "r.toml");
+  ASSERT_TRUE(s.epicentre_depth_km);
+  EXPECT_EQ(*s.epicentre_depth_km, 12.5);
+  ASSERT_EQ(s.sites.size(), 3u);
+  EXPECT_FALSE(s.sites[0].is_station());
+  EXPECT_TRUE(s.sites[1].objects.empty());
+  EXPECT_EQ(*s.sites[1].instrument_pga_g, 0.31);
+  EXPECT_EQ(s.sites[2].objects.size(), 1u);
+  EXPECT_EQ(*s.sites[2].instrument_pga_g, 0.2);
+}
+
+// Old surveys keep their meaning: no depth, no instrument, and a site without objects still refused.
+TEST(RegionSurvey, OldSurveysUnchanged) {
+  const Survey s = io::read_survey(std::filesystem::path(TOPPLE_SOURCE_DIR) / "examples/survey.toml");
+  EXPECT_FALSE(s.epicentre_depth_km);
+  ASSERT_EQ(s.sites.size(), 1u);
+  EXPECT_FALSE(s.sites[0].is_station());
+  EXPECT_EQ(s.sites[0].objects.size(), 8u);
+  EXPECT_THROW((void)io::parse_survey("[[sites]]\nname = \"a\"\n" + kObject + "[[sites]]\nname = \"empty\"\n", "s.toml"),
+               InputError);
+}
+
+// A station given by its record: the measured PGA is the record's peak |a| (a plain file in g whose peak is -0.42 g:
+// the sign does not matter), read at the edge by io::read_survey, in g exactly (the file states its unit).
+TEST(RegionSurvey, StationRecordGivesItsPeak) {
+  test::TempDir tmp;
+  test::write_file(tmp.path() / "station.csv", "time_s,accel_g\n0,0\n0.01,0.2\n0.02,-0.42\n0.03,0.1\n0.04,0\n");
+  test::write_file(tmp.path() / "r.toml", "[[sites]]\nname = \"a\"\n" + kObject +
+                                              "[[sites]]\nname = \"station\"\nrecord = \"station.csv\"\n");
+  const Survey s = io::read_survey(tmp.path() / "r.toml");
+  ASSERT_TRUE(s.sites[1].instrument_pga_g);
+  EXPECT_NEAR(*s.sites[1].instrument_pga_g, 0.42, 1e-12);  // g -> m/s^2 -> g: a few ulps
+  EXPECT_EQ(s.sites[1].instrument_record, (tmp.path() / "station.csv").string());
+}
+
+// A spreadsheet's CSV survey carries the regional site keys as `site.KEY` rows, read as the TOML they stand for.
+TEST(RegionSurvey, CsvSurveyCarriesTheStationPga) {
+  const Survey s = io::parse_survey("site.name,station\nsite.lat,38.1\nsite.lon,23.0\nsite.pga_g,0.25\n"
+                                    "event.epicentre,\"[38.0, 23.0]\"\nevent.depth_km,8\n"
+                                    "id,width_cm,height_cm,mu,outcome\nb,10,40,0.5,overturned\n",
+                                    "s.csv");
+  ASSERT_TRUE(s.sites[0].instrument_pga_g);
+  EXPECT_EQ(*s.sites[0].instrument_pga_g, 0.25);
+  EXPECT_EQ(*s.epicentre_depth_km, 8.0);
+}
+
+TEST(RegionSurvey, BadRegionalKeysNameTheirField) {
+  const auto fails = [](const std::string& text, const std::string& field) {
+    try {
+      (void)io::parse_survey(text, "s.toml");
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.where().field, field) << e.what();
+      return;
+    }
+    ADD_FAILURE() << "no InputError for field " << field;
+  };
+  fails("[event]\nepicentre = [38.0, 23.0]\ndepth_km = -1\n[[sites]]\n" + kObject, "event.depth_km");
+  fails("[event]\ndepth_km = 10\n[[sites]]\n" + kObject, "event.depth_km");
+  fails("[event]\nepicentre = [98.0, 23.0]\n[[sites]]\n" + kObject, "event.epicentre");
+  fails("[[sites]]\npga_g = -0.1\n" + kObject, "sites[1].pga_g");
+  fails("[[sites]]\npga_g = 0.1\nrecord = \"x.AT2\"\n" + kObject, "sites[1].record");
+  fails("[[sites]]\nrecord = \"no-such-file.AT2\"\n" + kObject, "sites[1].record");
+  fails("[[sites]]\npga_g = 0.1\n[[sites]]\npga_g = 0.2\n", "sites[1].object");  // nothing to invert
+}
+
+// ---- The joint fit against closed forms ----
+
+SiteEvidence station(const std::string& name, double r_km, double pga_g) {
+  return site_evidence(name, r_km, nullptr, pga_g);
+}
+
+// With the parameters pinned (a prior box a millionth wide), a station's pooled PGA is the product of two normal
+// densities in ln a (docs/method.md eq. R4): mean (mu sigma^2 + y tau^2) / (tau^2 + sigma^2), sd tau sigma /
+// sqrt(tau^2 + sigma^2). Tolerance 0.3 % of the value: the pooled CDF is tabulated at steps of 0.01 in ln a and
+// interpolated linearly (error well under a step), the pinned box spans 1e-6.
+TEST(RegionFit, PinnedParametersGiveTheClosedFormPooledStation) {
+  const double c0 = 2.0, c1 = 1.1, tau = 0.4;
+  RegionalSettings st;
+  std::vector<SiteEvidence> sites{station("a", 10, 0.3), station("b", 30, 0.12), station("c", 60, 0.02)};
+  double mean_ln_rho = 0.0;
+  for (const auto& s : sites) mean_ln_rho += std::log(std::hypot(s.distance_km, st.c2_km)) / 3.0;
+  const double x = c0 - c1 * mean_ln_rho;
+  st.ln_a_ref_min = x;
+  st.ln_a_ref_max = x + 1e-6;
+  st.c1_min = c1;
+  st.c1_max = c1 + 1e-6;
+  st.tau_min = tau;
+  st.tau_max = tau + 1e-6;
+  const RegionalResult fit = fit_region(sites, st);
+  for (std::size_t s = 0; s < sites.size(); ++s) {
+    const double mu = c0 - c1 * std::log(std::hypot(sites[s].distance_km, st.c2_km));
+    const double y = std::log(*sites[s].instrument_pga_g);
+    const double sig = st.instrument_sigma_ln;
+    const double m = (mu * sig * sig + y * tau * tau) / (tau * tau + sig * sig);
+    const double sd = tau * sig / std::hypot(tau, sig);
+    EXPECT_NEAR(fit.sites[s].pga_g.median, std::exp(m), 3e-3 * std::exp(m)) << s;
+    EXPECT_NEAR(fit.sites[s].pga_g.ci95_low, std::exp(m - 1.959964 * sd), 3e-3 * std::exp(m)) << s;
+    EXPECT_NEAR(fit.sites[s].pga_g.ci95_high, std::exp(m + 1.959964 * sd), 3e-3 * std::exp(m)) << s;
+    EXPECT_NEAR(fit.sites[s].relation_pga_g.median, std::exp(mu), 1e-5 * std::exp(mu)) << s;
+  }
+  EXPECT_NEAR(fit.c0.median, c0, 1e-5);
+}
+
+// A site whose likelihood is flat (objects that say nothing) borrows everything: its pooled median is the relation's
+// at its distance. Stations exactly on a relation recover it: c1 within 0.05 of the truth (the stations' 5 % noise
+// over a lever arm of ln(80/8) = 2.3 gives a c1 sd of about 0.02) and tau's 95 % upper end below 0.15.
+TEST(RegionFit, StationsOnTheRelationRecoverItAndAFlatSiteBorrowsIt) {
+  const double c0 = 2.4, c1 = 1.3;
+  std::vector<SiteEvidence> sites;
+  for (double r : {8.0, 12.0, 20.0, 30.0, 45.0, 60.0, 80.0}) {
+    sites.push_back(station(fmt::format("s{}", r), r, relation_pga_g(c0, c1, 6.0, r)));
+  }
+  SiteEvidence flat;
+  flat.name = "flat";
+  flat.distance_km = 25.0;
+  flat.ln_edges = {-std::numeric_limits<double>::infinity(), std::log(0.1), std::numeric_limits<double>::infinity()};
+  flat.likelihood = {1.0, 1.0};
+  sites.push_back(flat);
+  const RegionalResult fit = fit_region(sites);
+  EXPECT_NEAR(fit.c1.median, c1, 0.05);
+  EXPECT_TRUE(fit.c1.holds95(c1));
+  EXPECT_TRUE(fit.c0.holds95(c0));
+  EXPECT_LT(fit.tau.ci95_high, 0.15);
+  // The flat site: median within 3 % of the relation (1000 draws of theta; tau ~ 0.05 here).
+  const double rel = relation_pga_g(c0, c1, 6.0, 25.0);
+  EXPECT_NEAR(fit.sites.back().pga_g.median, rel, 0.03 * rel);
+}
+
+TEST(RegionFit, NeedsThreeSites) {
+  EXPECT_THROW((void)fit_region({station("a", 10, 0.3), station("b", 20, 0.2)}), InputError);
+}
+
+// ---- The frequency relation (F1-F3) ----
+
+// A site with a measured PGA (for the PGA relation) and a frequency known to within a narrow cell of width h around
+// f_hz (likelihood 1 there, 0 elsewhere): its frequency evidence is h times the normal density at ln f (eq. F2).
+SiteEvidence station_with_frequency(const std::string& name, double r_km, double pga_g, double f_hz, double h) {
+  SiteEvidence e = station(name, r_km, pga_g);
+  const double y = std::log(f_hz);
+  e.ln_freq_edges = {-std::numeric_limits<double>::infinity(), y - 0.5 * h, y + 0.5 * h,
+                     std::numeric_limits<double>::infinity()};
+  e.freq_likelihood = {0.0, 1.0, 0.0};
+  return e;
+}
+
+// The marginal likelihoods against closed forms (eq. F3) with tau_f pinned (a box 1e-6 wide) and the frequencies
+// known to cells h = 0.01 wide: Z0 = h^n (2 pi tau^2)^(-n/2) exp(-S0 / 2 tau^2) sqrt(2 pi tau^2 / n) / V_x with S0 the
+// sum of squares about the mean; the relation's ln B = (S0 - RSS) / 2 tau^2 + 1/2 ln(2 pi tau^2 / sum dx^2) - ln V_d1
+// (a linear regression's Gaussian integral over (x, d1), dx centred). Tolerance 2e-3 in ln Z: the cell's mass is
+// h phi to a relative (h / tau)^2 / 24 = 5e-5 per site, the trapezoid rule on a Gaussian at > 2 points per sd errs
+// far less, and the pinned tau moves ln Z by n x 1e-6 / tau.
+TEST(RegionFrequency, MarginalLikelihoodsAreTheClosedForms) {
+  const double tau = 0.3, h = 0.01;
+  RegionalSettings st;
+  st.tau_f_min = tau;
+  st.tau_f_max = tau + 1e-6;
+  const std::vector<double> r{8.0, 15.0, 25.0, 40.0, 60.0, 90.0};
+  const std::vector<double> wobble{0.1, -0.2, 0.15, 0.05, -0.1, 0.0};
+  std::vector<SiteEvidence> sites;
+  std::vector<double> dx, y;
+  double mean_ln_rho = 0.0;
+  for (double d : r) mean_ln_rho += std::log(std::hypot(d, st.c2_km)) / 6.0;
+  for (std::size_t s = 0; s < r.size(); ++s) {
+    dx.push_back(std::log(std::hypot(r[s], st.c2_km)) - mean_ln_rho);
+    y.push_back(std::log(5.0) - 0.5 * dx.back() + wobble[s]);
+    sites.push_back(station_with_frequency(fmt::format("s{}", s), r[s], relation_pga_g(2.0, 1.2, 6.0, r[s]),
+                                           std::exp(y.back()), h));
+  }
+  const RegionalResult fit = fit_region(sites, st);
+  ASSERT_TRUE(fit.frequency);
+  const double n = 6.0;
+  double ybar = 0.0, sxx = 0.0, sxy = 0.0;
+  for (std::size_t s = 0; s < 6; ++s) ybar += y[s] / n;
+  double s0 = 0.0;
+  for (std::size_t s = 0; s < 6; ++s) {
+    s0 += (y[s] - ybar) * (y[s] - ybar);
+    sxx += dx[s] * dx[s];
+    sxy += dx[s] * (y[s] - ybar);
+  }
+  const double rss = s0 - sxy * sxy / sxx;
+  const double two_pi_t2 = 2.0 * std::numbers::pi * tau * tau;
+  const double ln_z0 = n * std::log(h) - 0.5 * n * std::log(two_pi_t2) - s0 / (2.0 * tau * tau) +
+                       0.5 * std::log(two_pi_t2 / n) - std::log(st.ln_f_ref_max - st.ln_f_ref_min);
+  EXPECT_NEAR(fit.frequency->log_evidence_constant, ln_z0, 2e-3);
+  const double ln_b = (s0 - rss) / (2.0 * tau * tau) + 0.5 * std::log(two_pi_t2 / sxx) - std::log(st.d1_max - st.d1_min);
+  EXPECT_NEAR(fit.frequency->ln_bayes_factor, ln_b, 2e-3);
+  // The slope's posterior is the regression's: mean sxy / sxx, sd tau / sqrt(sxx) (the median within 1 % of the sd:
+  // the marginal is tabulated on 41 points).
+  EXPECT_NEAR(fit.frequency->d1.median, sxy / sxx, 0.01 * tau / std::sqrt(sxx));
+  EXPECT_NEAR(fit.frequency->d1.ci95_high - fit.frequency->d1.median, 1.959964 * tau / std::sqrt(sxx),
+              0.01 * tau / std::sqrt(sxx) + 0.02 * 1.959964 * tau / std::sqrt(sxx));
+}
+
+// A clear trend (d1 = -0.6, scatter 0.05 over a lever arm of 2.4 in ln rho) is supported and every site's frequency
+// is pooled through it, a site without frequency evidence (a bare station) at the relation's value; the same sites at
+// one frequency are not: B < 3 (the constant model explains them with one parameter fewer).
+TEST(RegionFrequency, ATrendIsSupportedAndAConstantIsNot) {
+  const std::vector<double> r{6.0, 10.0, 16.0, 25.0, 40.0, 60.0, 90.0};
+  const std::vector<double> wobble{0.05, -0.04, 0.02, -0.05, 0.04, -0.02, 0.0};
+  const double c2 = RegionalSettings{}.c2_km;
+  double mean_ln_rho = 0.0;
+  for (double d : r) mean_ln_rho += std::log(std::hypot(d, c2)) / static_cast<double>(r.size() + 1);
+  mean_ln_rho += std::log(std::hypot(30.0, c2)) / static_cast<double>(r.size() + 1);  // the bare station below
+  const auto sites_for = [&](double d1) {
+    std::vector<SiteEvidence> sites;
+    for (std::size_t s = 0; s < r.size(); ++s) {
+      const double f = std::exp(std::log(4.0) + d1 * (std::log(std::hypot(r[s], c2)) - mean_ln_rho) + wobble[s]);
+      sites.push_back(station_with_frequency(fmt::format("s{}", s), r[s], relation_pga_g(2.0, 1.2, c2, r[s]), f, 0.02));
+    }
+    sites.push_back(station("bare", 30.0, relation_pga_g(2.0, 1.2, c2, 30.0)));
+    return sites;
+  };
+  const RegionalResult trend = fit_region(sites_for(-0.6));
+  ASSERT_TRUE(trend.frequency);
+  EXPECT_TRUE(trend.frequency->supported);
+  EXPECT_GT(trend.frequency->ln_bayes_factor, std::log(100.0));  // a slope 0.6 / 0.05 x 2.4 lever: decisive
+  EXPECT_TRUE(trend.frequency->d1.holds95(-0.6));
+  EXPECT_EQ(trend.frequency->sites_with_frequency, 7u);
+  for (const PooledSite& p : trend.sites) ASSERT_TRUE(p.freq_hz) << p.name;
+  // The bare station: its pooled frequency is the relation's prediction at 30 km, 4 Hz x (rho / rho_ref)^-0.6, with
+  // the relation's and tau_f's spread (the 95 % interval within +-4 tau_f of the median, and the median within 5 %).
+  const double f_bare = 4.0 * std::exp(-0.6 * (std::log(std::hypot(30.0, c2)) - mean_ln_rho));
+  EXPECT_NEAR(trend.sites.back().freq_hz->median, f_bare, 0.05 * f_bare);
+  EXPECT_NEAR(trend.sites.back().relation_freq_hz->median, f_bare, 0.05 * f_bare);
+  // A site known to 0.02 in ln f keeps its own frequency (within 2 %).
+  const double f0 = std::exp(std::log(4.0) - 0.6 * (std::log(std::hypot(6.0, c2)) - mean_ln_rho) + 0.05);
+  EXPECT_NEAR(trend.sites[0].freq_hz->median, f0, 0.02 * f0);
+
+  const RegionalResult flat = fit_region(sites_for(0.0));
+  ASSERT_TRUE(flat.frequency);
+  EXPECT_FALSE(flat.frequency->supported);
+  EXPECT_LT(flat.frequency->ln_bayes_factor, std::log(3.0));
+  EXPECT_NEAR(flat.frequency->constant_f_hz.median, 4.0, 0.05 * 4.0);
+  for (const PooledSite& p : flat.sites) EXPECT_FALSE(p.freq_hz) << p.name;
+}
+
+// The frequency evidence of a site: its inversion's likelihood summed over the PGA rows (eq. F2), scaled to a maximum
+// of 1, on cells with edges at the geometric midpoints of the grid's frequencies (the ends open). Exact to rounding.
+TEST(RegionFrequency, SiteEvidenceMarginalisesThePga) {
+  InversionResult r;
+  r.pga_g = {0.1, 0.2};
+  r.freq_hz = {1.0, 4.0, 16.0};
+  r.log_likelihood = {std::log(0.1), std::log(0.4), std::log(0.2), std::log(0.3), std::log(0.4), std::log(0.0)};
+  const SiteEvidence e = site_evidence("a", 10.0, &r, std::nullopt);
+  ASSERT_EQ(e.freq_likelihood.size(), 3u);
+  EXPECT_NEAR(e.freq_likelihood[0], 0.4 / 0.8, 1e-12);
+  EXPECT_NEAR(e.freq_likelihood[1], 1.0, 1e-12);
+  EXPECT_NEAR(e.freq_likelihood[2], 0.2 / 0.8, 1e-12);
+  ASSERT_EQ(e.ln_freq_edges.size(), 4u);
+  EXPECT_NEAR(e.ln_freq_edges[1], std::log(2.0), 1e-12);
+  EXPECT_NEAR(e.ln_freq_edges[2], std::log(8.0), 1e-12);
+  EXPECT_TRUE(std::isinf(e.ln_freq_edges[0]) && e.ln_freq_edges[0] < 0);
+  EXPECT_TRUE(std::isinf(e.ln_freq_edges[3]) && e.ln_freq_edges[3] > 0);
+}
+
+// Fewer than 3 sites with frequency evidence: no frequency relation, a note saying so.
+TEST(RegionFrequency, NoneWithoutFrequencyEvidence) {
+  const RegionalResult fit = fit_region({station("a", 10, 0.3), station("b", 20, 0.2), station("c", 40, 0.1)});
+  EXPECT_FALSE(fit.frequency);
+  ASSERT_FALSE(fit.notes.empty());
+  EXPECT_NE(fit.notes.back().find("no frequency relation"), std::string::npos);
+}
+
+// ---- The pooled field and its contours ----
+
+// A radially symmetric field (the relation alone, no site): the contour at level L is the circle where the relation
+// gives L. Every vertex must lie within one grid step (the linear interpolation along a cell edge errs by far less)
+// of that radius, measured by the geodesic; the line must close.
+TEST(RegionContours, RelationAloneGivesCirclesOfTheRightRadius) {
+  PooledField f;
+  f.range_km = 8.5;
+  const double c0 = 2.0, c1 = 1.2, c2 = 6.0;
+  for (int i = 0; i < 101; ++i) {
+    f.lat_deg.push_back(37.5 + 0.01 * i);
+    f.lon_deg.push_back(22.5 + 0.0127 * i);  // about 1.1 km a step on both axes at 38 N
+  }
+  for (double la : f.lat_deg) {
+    for (double lo : f.lon_deg) f.pga_g.push_back(relation_pga_g(c0, c1, c2, geodesic_distance_km(38.0, 23.14, la, lo)));
+  }
+  for (double level : {0.2, 0.4}) {
+    // Radius where exp(c0 - c1 ln sqrt(R^2 + c2^2)) = level.
+    const double rho = std::exp((c0 - std::log(level)) / c1);
+    const double radius = std::sqrt(rho * rho - c2 * c2);
+    const auto contours = contour_field(f, {level});
+    ASSERT_EQ(contours.size(), 1u);
+    ASSERT_EQ(contours[0].lines.size(), 1u) << level;
+    const auto& line = contours[0].lines[0];
+    EXPECT_GT(line.size(), 20u);
+    EXPECT_EQ(line.front(), line.back());  // closed
+    for (const auto& p : line) EXPECT_NEAR(geodesic_distance_km(38.0, 23.14, p[1], p[0]), radius, 1.1) << level;
+  }
+}
+
+// Simple kriging with the site's own variance as nugget: near a site with a tiny pooled interval (nugget
+// (0.002/3.92)^2, negligible against tau^2 = 0.09) the field keeps the site's residual; 200 km from every site it is
+// the relation (the correlation exp(-3 * 200 / 8.5) is 2e-31).
+TEST(RegionContours, KrigedFieldHonoursSitesAndFallsBackToTheRelation) {
+  Survey survey;
+  survey.epicentre_lat_deg = 38.0;
+  survey.epicentre_lon_deg = 23.0;
+  RegionalResult fit;
+  fit.c1 = {1.2, 1.2, 1.2, 1.2, 1.2};
+  fit.tau = {0.3, 0.3, 0.3, 0.3, 0.3};
+  fit.c2_km = 6.0;
+  fit.reference_distance_km = 20.0;
+  const double c0 = 2.4;
+  fit.ln_a_ref.median = c0 - 1.2 * std::log(20.0);
+  for (int s = 0; s < 3; ++s) {
+    Site site;
+    site.lat_deg = 38.0 + 0.1 * (s + 1);
+    site.lon_deg = 23.0;
+    survey.sites.push_back(site);
+    PooledSite p;
+    p.site_index = static_cast<std::size_t>(s);
+    p.distance_km = geodesic_distance_km(38.0, 23.0, *site.lat_deg, 23.0);
+    const double value = relation_pga_g(c0, 1.2, 6.0, p.distance_km) * (s == 1 ? 1.5 : 0.8);
+    p.pga_g = {value, value, value, value * 0.999, value * 1.001};
+    fit.sites.push_back(p);
+  }
+  // At the site: the grid node nearest to it.
+  const PooledField g = pooled_field(fit, survey, 8.5, 41);
+  const auto nearest = [&](double la, double lo) {
+    std::size_t bi = 0, bj = 0;
+    for (std::size_t i = 0; i < g.lat_deg.size(); ++i) if (std::abs(g.lat_deg[i] - la) < std::abs(g.lat_deg[bi] - la)) bi = i;
+    for (std::size_t j = 0; j < g.lon_deg.size(); ++j) if (std::abs(g.lon_deg[j] - lo) < std::abs(g.lon_deg[bj] - lo)) bj = j;
+    return std::pair{bi, bj};
+  };
+  const auto [i, j] = nearest(*survey.sites[1].lat_deg, 23.0);
+  const double d = geodesic_distance_km(g.lat_deg[i], g.lon_deg[j], *survey.sites[1].lat_deg, 23.0);
+  ASSERT_LT(d, 0.6);  // the grid passes within 0.6 km of the site
+  // Within 0.6 km the correlation is exp(-3 * 0.6 / 8.5) = 0.81: the residual ln 1.5 is kept to within ~20 %.
+  const double rel = relation_pga_g(c0, 1.2, 6.0, geodesic_distance_km(38.0, 23.0, g.lat_deg[i], g.lon_deg[j]));
+  EXPECT_GT(std::log(g.pga_g[i * g.lon_deg.size() + j] / rel), 0.75 * std::log(1.5));
+  // Far away: a site 200 km from all: the relation exactly (to 1e-12 relative).
+  Survey far = survey;
+  far.epicentre_lat_deg = 36.0;
+  const PooledField h = pooled_field(fit, far, 8.5, 3);
+  const double r0 = geodesic_distance_km(36.0, 23.0, h.lat_deg[0], h.lon_deg[0]);
+  EXPECT_GT(geodesic_distance_km(h.lat_deg[0], h.lon_deg[0], 38.1, 23.0), 200.0);
+  EXPECT_NEAR(h.pga_g[0], relation_pga_g(c0, 1.2, 6.0, r0), 1e-12 * h.pga_g[0]);
+}
+
+// ---- The command on the example (the README's command) ----
+
+// examples/regional_survey.toml end to end: the JSON gains `region` with the relation, every site pooled beside its
+// own estimate, the station's calibration and the contour levels; --map writes the region CSV. The example's truth
+// (its header comment) is c1 = 1.2, c0 = 2.36: both must lie in their 95 % intervals, and the station's pooled PGA
+// within 10 % of its measured 0.573 g (sigma_i = 5 %, so the 95 % interval spans about +-10 %).
+TEST(RegionCli, ExampleRunsEndToEnd) {
+  test::TempDir tmp;
+  const auto map = tmp.path() / "sites.geojson";
+  const auto r = test::run_cli("invert '" + (std::filesystem::path(TOPPLE_SOURCE_DIR) / "examples/regional_survey.toml").string() +
+                               "' --json --quiet --map '" + map.string() + "' --report '" + (tmp.path() / "rep").string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_TRUE(j.contains("region"));
+  const auto& region = j.at("region");
+  const auto holds = [](const nlohmann::json& v, double x) {
+    return v.at("ci95")[0].get<double>() <= x && x <= v.at("ci95")[1].get<double>();
+  };
+  EXPECT_TRUE(holds(region.at("relation").at("c1"), 1.2));
+  EXPECT_TRUE(holds(region.at("relation").at("c0_ln_g"), 2.36));
+  EXPECT_EQ(region.at("relation").at("c2_km").get<double>(), 6.0);
+  ASSERT_EQ(region.at("sites").size(), 12u);
+  const auto& station = region.at("sites")[0];
+  EXPECT_EQ(station.at("instrument_pga_g").get<double>(), 0.573);
+  EXPECT_NEAR(station.at("pooled_pga_g").at("median").get<double>(), 0.573, 0.1 * 0.573);
+  EXPECT_TRUE(station.at("calibration").at("objects_agree").is_boolean());
+  EXPECT_TRUE(region.at("sites")[5].at("independent_pga_g").at("median").is_number());
+  EXPECT_EQ(region.at("contour_levels_g").size(), 4u);
+  // The frequency relation: the example's truth is one frequency (3 Hz) everywhere, so a trend must not be supported
+  // (B < 3) and no site gets a pooled frequency; each site's own frequency estimate is given beside.
+  const auto& freq = region.at("frequency_relation");
+  EXPECT_FALSE(freq.at("supported").get<bool>());
+  EXPECT_LT(freq.at("ln_bayes_factor").get<double>(), std::log(3.0));
+  EXPECT_EQ(freq.at("sites_with_frequency").get<int>(), 12);
+  EXPECT_TRUE(region.at("sites")[5].at("pooled_freq_hz").is_null());
+  EXPECT_TRUE(region.at("sites")[5].at("independent_freq_hz").at("median").is_number());
+  EXPECT_TRUE(std::filesystem::exists(tmp.path() / "sites.region.csv"));
+  const auto contours = nlohmann::json::parse(test::slurp(tmp.path() / "sites.contours.geojson"));
+  ASSERT_EQ(contours.at("features").size(), 4u);
+  EXPECT_EQ(contours["features"][1]["properties"]["pga_g"].get<double>(), 0.1);
+  EXPECT_EQ(contours["features"][1]["geometry"]["type"], "MultiLineString");
+  EXPECT_GE(contours["features"][1]["geometry"]["coordinates"].size(), 1u);  // the sites span 0.05-0.6 g
+  // The regional page: at the report's top, linking every site's page, with both figures inline.
+  const std::string page = test::slurp(tmp.path() / "rep" / "index.html");
+  for (int i = 1; i <= 12; ++i) {
+    EXPECT_NE(page.find(fmt::format("href=\"site{}/index.html\"", i)), std::string::npos) << i;
+    EXPECT_TRUE(std::filesystem::exists(tmp.path() / "rep" / fmt::format("site{}", i) / "index.html")) << i;
+  }
+  EXPECT_NE(page.find("<figure id=\"attenuation\"><svg"), std::string::npos);
+  EXPECT_NE(page.find("<figure id=\"map\"><svg"), std::string::npos);
+  EXPECT_NE(page.find("calibration: the objects"), std::string::npos);
+  EXPECT_NE(page.find("<p id=\"frequency\">Frequency: ln f = d0"), std::string::npos);
+  EXPECT_NE(page.find("not supported (&lt; 3)"), std::string::npos);  // the example's truth: one frequency
+}
+
+// ---- The regional recovery test ----
+
+// Sites simulated by the solvers (tests/support/regional_scenario.hpp: a true relation with tau = 0.3 and residuals
+// correlated as Jayaram & Baker 2009), each site inverted alone (invert_sites), then jointly (fit_survey_region).
+// Over the trials: the relation's 95 % intervals (c0, c1, tau) hold the truth in >= 85 %, the pooled sites' in >= 85 %,
+// and the pooled intervals are narrower on average than the independent ones (an unconstrained independent end is
+// taken at the grid's edge, which flatters the independent interval). TOPPLE_REGION_TRIALS sets the number of trials
+// (default 3 here, the ctest variant; scripts/region-recovery.sh runs more).
+TEST(RegionRecovery, IntervalsCoverTheTruthAndPoolingNarrowsThem) {
+  const char* env = std::getenv("TOPPLE_REGION_TRIALS");
+  const int trials = env != nullptr ? std::atoi(env) : 3;
+  const InversionSettings st = testing::small_grid(0.01, 20, 2.0, 4.5, 2, 8);
+  int rel_hits = 0, rel_checks = 0, site_hits = 0, site_checks = 0;
+  double ln_width_pooled = 0.0, ln_width_own = 0.0;
+  for (int t = 0; t < trials; ++t) {
+    const testing::RegionalTruth truth;
+    const testing::RegionalScenario sc = testing::make_regional_scenario(static_cast<std::uint64_t>(100 + t), truth, st);
+    const std::vector<InversionResult> own = invert_sites(sc.survey.sites, st);
+    std::vector<const InversionResult*> per_site;
+    for (const auto& r : own) per_site.push_back(&r);
+    std::vector<std::string> notes;
+    const auto fit = fit_survey_region(sc.survey, per_site, notes);
+    ASSERT_TRUE(fit) << (notes.empty() ? "" : notes.front());
+    rel_hits += fit->c0.holds95(truth.c0) + fit->c1.holds95(truth.c1) + fit->tau.holds95(truth.tau);
+    rel_checks += 3;
+    for (std::size_t s = 0; s < fit->sites.size(); ++s) {
+      const std::size_t i = fit->sites[s].site_index;
+      const double truth_g = sc.true_pga_g[i];
+      if (sc.survey.sites[i].instrument_pga_g) continue;  // a station's pooled PGA is its measurement
+      site_hits += fit->sites[s].pga_g.holds95(truth_g);
+      ++site_checks;
+      ln_width_pooled += std::log(fit->sites[s].pga_g.ci95_high / fit->sites[s].pga_g.ci95_low);
+      const Estimate& e = own[i].pga_estimate_g;
+      ln_width_own += std::log(e.ci95_high.value_or(st.pga_max_g) / e.ci95_low.value_or(st.pga_min_g));
+    }
+    fmt::print("trial {}: c0 {:.2f} [{:.2f}, {:.2f}], c1 {:.2f} [{:.2f}, {:.2f}], tau {:.2f} [{:.2f}, {:.2f}]\n", t,
+               fit->c0.median, fit->c0.ci95_low, fit->c0.ci95_high, fit->c1.median, fit->c1.ci95_low,
+               fit->c1.ci95_high, fit->tau.median, fit->tau.ci95_low, fit->tau.ci95_high);
+  }
+  fmt::print("relation coverage {}/{}, pooled site coverage {}/{}, mean 95 % width (ln) pooled {:.3f} vs own {:.3f} "
+             "(ratio {:.2f})\n",
+             rel_hits, rel_checks, site_hits, site_checks, ln_width_pooled / site_checks, ln_width_own / site_checks,
+             ln_width_pooled / ln_width_own);
+  EXPECT_GE(rel_hits, 0.85 * rel_checks);
+  EXPECT_GE(site_hits, 0.85 * site_checks);
+  EXPECT_LT(ln_width_pooled, ln_width_own);
+}
+
+}  // namespace
+}  // namespace topple
