@@ -25,7 +25,6 @@ struct BodyCommandOptions {
   bool quiet = false;
 };
 
-double deg(double rad) { return rad * 180.0 / kPi; }
 
 void print_body(const BodyCommandOptions& o, const MeshBody& r, std::size_t vertices, std::size_t triangles) {
   const auto& m = r.mass;
@@ -55,7 +54,7 @@ void print_body(const BodyCommandOptions& o, const MeshBody& r, std::size_t vert
   fmt::print("h             {:.9g} m\n", b.h_m);
   fmt::print("b1, b2        {:.9g} m, {:.9g} m\n", b.b1_m, b.b2_m);
   fmt::print("R1, R2        {:.9g} m, {:.9g} m\n", b.r1_m, b.r2_m);
-  fmt::print("alpha1, 2     {:.6f} deg, {:.6f} deg ({:.9g}, {:.9g} rad)\n", deg(b.alpha1_rad), deg(b.alpha2_rad),
+  fmt::print("alpha1, 2     {:.6f} deg, {:.6f} deg ({:.9g}, {:.9g} rad)\n", rad_to_deg(b.alpha1_rad), rad_to_deg(b.alpha2_rad),
              b.alpha1_rad, b.alpha2_rad);
   fmt::print("I_cm (plane)  {:.9g} kg m^2\n", b.inertia_cm_kg_m2);
   fmt::print("I_O1, I_O2    {:.9g} kg m^2, {:.9g} kg m^2\n", b.inertia_o1_kg_m2, b.inertia_o2_kg_m2);
@@ -66,7 +65,7 @@ void print_body(const BodyCommandOptions& o, const MeshBody& r, std::size_t vert
              "(+x toward the azimuth)\n",
              b.b1_m, b.b2_m, b.h_m, b.inertia_cm_kg_m2 / m.mass_kg);
   fmt::print("symmetric     b = (b1 + b2)/2 = {:.9g} m, alpha = {:.6f} deg, p = {:.9g} rad/s (for information)\n",
-             b.b_sym_m, deg(b.alpha_sym_rad), b.p_sym_rad_s);
+             b.b_sym_m, rad_to_deg(b.alpha_sym_rad), b.p_sym_rad_s);
   fmt::print("              as `topple rock --shape general --a {:.9g}m --h {:.9g}m --D {:.9g}m2`\n", b.b_sym_m,
              b.h_m, b.d_sym_m2);
 }

@@ -141,7 +141,7 @@ void run_fragility(const FragilityOptions& o) {
     if (o.threshold.empty()) throw parameter_error("--threshold", "a sliding block needs its displacement threshold, e.g. 5cm");
     SlidingFailure f;
     try {
-      f.block = SlidingBlock::make(*o.mu, std::nullopt, o.slope_deg * kPi / 180.0,
+      f.block = SlidingBlock::make(*o.mu, std::nullopt, deg_to_rad(o.slope_deg),
                                    o.one_way ? SlidingMode::one_way : SlidingMode::two_way, g);
     } catch (const InputError& e) {
       throw parameter_error(e.where().field == "slope" ? "--slope-deg" : "--mu", e.problem());

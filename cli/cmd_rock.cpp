@@ -211,7 +211,7 @@ void run_rock(const RockOptions& o) {
     request.options.rel_tol = options.rel_tol;
     request.options.max_run_out_s = options.max_run_out_s;
     request.options.max_steps = options.max_steps;
-    if (o.slope_deg) request.options.slope_rad = *o.slope_deg * kPi / 180.0;  // validated by slide_rock ("slope")
+    if (o.slope_deg) request.options.slope_rad = deg_to_rad(*o.slope_deg);  // validated by slide_rock ("slope")
     request.out = o.out;
     request.plot = o.plot;
     request.json = o.json;
@@ -314,7 +314,7 @@ void report(const RockOptions& o, const RunMotion& run, const GroundMotion& hori
                shape_name(body.shape), body.negative_pivot->b_m, body.a_m, body.h_m, body.negative_pivot->D_m2,
                body.D_m2);
     fmt::print("  O-: alpha = {:.6g} rad ({:.4f} deg), e onto O- = {:.6g}, uplift threshold {:.5f} g (b1/h)\n",
-               s.alpha_negative_rad, s.alpha_negative_rad * 180.0 / kPi, s.e_onto_negative,
+               s.alpha_negative_rad, rad_to_deg(s.alpha_negative_rad), s.e_onto_negative,
                body.negative_pivot->b_m / body.h_m);
     fmt::print("  O+ (below: alpha, R, p, e of O+)\n");
   } else {
@@ -322,7 +322,7 @@ void report(const RockOptions& o, const RunMotion& run, const GroundMotion& hori
                body.h_m, body.D_m2);
   }
   fmt::print("  alpha = {:.6g} rad ({:.4f} deg), R = {:.6g} m, p = {:.6g} rad/s, e = {:.6g} ({}), g = {} m/s2\n",
-             s.alpha_rad, s.alpha_rad * 180.0 / kPi, s.R_m, s.p_rad_s, s.e,
+             s.alpha_rad, rad_to_deg(s.alpha_rad), s.R_m, s.p_rad_s, s.e,
              options.restitution == RestitutionMode::housner ? "Housner" : restitution_mode_name(options.restitution), g);
   fmt::print("  uplift threshold {:.5f} g ({})\n", body.a_m / body.h_m, body.negative_pivot ? "b2/h" : "a/h");
   fmt::print("motion: {}{} (PGA {:.4f} g, {} samples)\n", motion_name,

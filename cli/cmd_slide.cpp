@@ -57,7 +57,7 @@ void run_slide(const SlideOptions& o) {
   check_output_path(o.out);
   const SlidingBlock block = [&] {
     try {
-      return SlidingBlock::make(*o.mu, o.mu_kinetic, o.slope_deg * kPi / 180.0,
+      return SlidingBlock::make(*o.mu, o.mu_kinetic, deg_to_rad(o.slope_deg),
                                 o.one_way ? SlidingMode::one_way : SlidingMode::two_way, g);
     } catch (const InputError& e) {
       // The library names its fields; the user typed options.

@@ -215,7 +215,7 @@ void run_slide_spectrum(const SlideSpectrumOptions& o) {
   check_output_path(o.out);
   const double g = o.input.motion.g_m_s2;
   check_g(g);
-  const double slope = o.slope_deg * kPi / 180.0;
+  const double slope = deg_to_rad(o.slope_deg);
   // Every option is checked before the motion is read: the grids first.
   std::vector<double> mu;
   if (!o.mu.empty()) mu = parse_list(o.mu, "--mu", parse_number);

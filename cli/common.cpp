@@ -189,7 +189,7 @@ GroundMotion make_pulse_motion(const PulseOptions& o, double g_m_s2) {
     pulse.velocity_amplitude_m_s = *o.vel_amp_m_s;
     pulse.frequency_hz = 1.0 / duration;
     pulse.gamma = o.gamma.value_or(2.0);
-    pulse.phase_rad = o.nu_deg.value_or(0.0) * kPi / 180.0;
+    pulse.phase_rad = deg_to_rad(o.nu_deg.value_or(0.0));
     return naming_pulse_options([&] { return make_mavroeidis_papageorgiou_pulse(pulse, dt, tail); });
   }
   if (!o.amp_g) throw parameter_error("--amp-g", "a pulse needs its amplitude (--amp-g, in g)");

@@ -22,7 +22,7 @@ void run_coupled(const RunMotion& run, const SlideRockBody& body, const CoupledR
     const std::string title = fmt::format(
         "Coupled slide-rock, b1 = {:.3g} m, b2 = {:.3g} m, h = {:.3g} m, mu_s = {:.3g}, mu_k = {:.3g}{}: {}", body.b1_m,
         body.b2_m, body.h_m, body.mu_static, body.mu_kinetic,
-        options.slope_rad != 0.0 ? fmt::format(", slope {:g}°", options.slope_rad * 180.0 / kPi) : std::string(),
+        options.slope_rad != 0.0 ? fmt::format(", slope {:g}°", rad_to_deg(options.slope_rad)) : std::string(),
         run.title);
     plot::render(plot::slide_rock_figure(run.horizontal, result, body, title, run.vertical_ptr(), options.g_m_s2,
                                          options.slope_rad),
@@ -49,12 +49,12 @@ void run_coupled(const RunMotion& run, const SlideRockBody& body, const CoupledR
   fmt::print("coupled slide-rock body: b1 = {:.6g} m (O-, theta < 0), b2 = {:.6g} m (O+, theta > 0), h = {:.6g} m, "
              "I_cm/m = {:.6g} m2, mu_s = {:.6g}, mu_k = {:.6g}\n",
              body.b1_m, body.b2_m, body.h_m, body.inertia_m2, body.mu_static, body.mu_kinetic);
-  fmt::print("  alpha+ = {:.4f} deg, alpha- = {:.4f} deg{}\n", s.alpha_positive_rad * 180.0 / kPi,
-             s.alpha_negative_rad * 180.0 / kPi,
+  fmt::print("  alpha+ = {:.4f} deg, alpha- = {:.4f} deg{}\n", rad_to_deg(s.alpha_positive_rad),
+             rad_to_deg(s.alpha_negative_rad),
              s.used_sliding_kernel ? " (cannot lift: mu_s < b/h; exact sliding solver)" : "");
   if (options.slope_rad != 0.0) {
     fmt::print("base: inclined at {:g} deg, down-slope toward -x (slide > 0 is up-slope)\n",
-               options.slope_rad * 180.0 / kPi);
+               rad_to_deg(options.slope_rad));
   }
   if (request.bearing_deg) {
     fmt::print("plane of shaking: bearing {:g} deg (+x side), the pair's projection on it (planar model)\n",

@@ -12,6 +12,7 @@
 #include "topple/core/error.hpp"
 #include "topple/output/write.hpp"
 #include "topple/output/plot.hpp"
+#include "topple/core/units.hpp"
 
 namespace topple::cli {
 
@@ -83,7 +84,7 @@ void run_bidirectional_slide(const GroundMotion& first, const GroundMotion& seco
   }
   if (block.slope_rad != 0.0) {
     fmt::print("bidirectional sliding block on a slope of {} deg falling toward {} deg: mu_s = {}, mu_k = {}, g = {} "
-               "m/s2 (displacements in the plane)\n", block.slope_rad * 180.0 / kPi, azimuths.slope_azimuth_deg,
+               "m/s2 (displacements in the plane)\n", rad_to_deg(block.slope_rad), azimuths.slope_azimuth_deg,
                block.mu_static, block.mu_kinetic, g);
   } else {
     fmt::print("bidirectional sliding block (level ground): mu_s = {}, mu_k = {}, g = {} m/s2\n", block.mu_static,

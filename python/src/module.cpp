@@ -241,7 +241,7 @@ SlidingMode parse_mode(const std::string& mode) { return parse_sliding_mode(mode
 SlidingRun run_slide(const GroundMotion& motion, double mu, std::optional<double> mu_kinetic, const std::string& mode,
                      double slope_deg, const GroundMotion* vertical, double g_m_s2, bool history) {
   SlidingRun run;
-  run.block = SlidingBlock::make(mu, mu_kinetic, slope_deg * kPi / 180.0, parse_mode(mode), g_m_s2);
+  run.block = SlidingBlock::make(mu, mu_kinetic, deg_to_rad(slope_deg), parse_mode(mode), g_m_s2);
   {
     nb::gil_scoped_release release;
     if (history) {
@@ -301,7 +301,7 @@ Sliding2dRun run_slide_2d(const GroundMotion& first, const GroundMotion& second,
   Sliding2dRun run;
   run.azimuths = ComponentAzimuths{azimuths_deg[0], azimuths_deg[1], slope_azimuth_deg.value_or(0.0)};
   try {
-    run.block = SlidingBlock::make(mu, mu_kinetic, slope_deg * kPi / 180.0, SlidingMode::two_way, g_m_s2);
+    run.block = SlidingBlock::make(mu, mu_kinetic, deg_to_rad(slope_deg), SlidingMode::two_way, g_m_s2);
     nb::gil_scoped_release release;
     if (history) {
       Sliding2dResult result = slide_2d(first, second, run.azimuths, run.block, vertical);
@@ -455,7 +455,7 @@ SlideRockRun run_slide_rock(const GroundMotion& motion, const RockingBody& shape
   run.options.e = rocking.e;
   run.options.rel_tol = rocking.rel_tol;
   run.options.max_run_out_s = rocking.max_run_out_s;
-  run.options.slope_rad = slope_deg * kPi / 180.0;  // validated by slide_rock (field "slope"), as --slope-deg
+  run.options.slope_rad = deg_to_rad(slope_deg);  // validated by slide_rock (field "slope"), as --slope-deg
   run.options.record_history = history;
   {
     nb::gil_scoped_release release;
@@ -876,7 +876,7 @@ nb::dict sliding_spectrum_dict(const GroundMotion& motion, nb::handle mu, double
   SlidingSpectrum s;
   {
     nb::gil_scoped_release release;
-    s = sliding_spectrum(motion, mus, slope_deg * kPi / 180.0, sliding_mode, g_m_s2);
+    s = sliding_spectrum(motion, mus, deg_to_rad(slope_deg), sliding_mode, g_m_s2);
   }
   const std::size_t n = s.points.size();
   std::vector<double> mu_out(n), yield_g(n), yield_over(n), max_abs(n), residual(n), slip_s(n);
@@ -1097,7 +1097,7 @@ nb::dict fragility_dict(nb::handle motions, nb::handle levels, const std::string
   if (bearing_seed) spec.bearing_seed = *bearing_seed;
   if (mu) {
     if (!threshold_m) throw parameter_error("threshold_m", "a sliding curve (mu given) needs threshold_m, m");
-    spec.sliding = SlidingFailure{SlidingBlock::make(*mu, mu_kinetic, slope_deg * kPi / 180.0,
+    spec.sliding = SlidingFailure{SlidingBlock::make(*mu, mu_kinetic, deg_to_rad(slope_deg),
                                                      parse_mode(mode), g_m_s2),
                                   *threshold_m};
   } else if (threshold_m) {

@@ -331,7 +331,7 @@ PlanarBody planar_body(const MassProperties& mass, const SupportPolygon& support
   PlanarBody b;
   b.azimuth_deg = std::fmod(azimuth_deg, 360.0);
   if (b.azimuth_deg < 0.0) b.azimuth_deg += 360.0;
-  const double phi = azimuth_deg * kPi / 180.0;
+  const double phi = deg_to_rad(azimuth_deg);
   const Vec3 e{std::sin(phi), std::cos(phi), 0.0};   // clockwise from north (+y), x east
   const Vec3 n{std::cos(phi), -std::sin(phi), 0.0};  // horizontal, perpendicular to the plane: the rocking axis
   const double s = e[0] * c[0] + e[1] * c[1];

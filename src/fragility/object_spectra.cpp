@@ -10,6 +10,7 @@
 #include "topple/ensemble/ensemble.hpp"
 #include "topple/core/error.hpp"
 #include "topple/motion/rotd.hpp"
+#include "topple/core/units.hpp"
 
 namespace topple {
 
@@ -79,7 +80,7 @@ double mu_for_yield_ratio(double ratio, double pga_m_s2, double slope_rad, doubl
   const double phi = slope_rad + std::atan(ratio * pga_m_s2 / g_m_s2);
   if (!(phi < kPi / 2.0)) {
     throw parameter_error("ky_over_pga", fmt::format("k_y/PGA = {} on a {} deg slope needs a friction angle of 90 deg "
-                                                     "or more", ratio, slope_rad * 180.0 / kPi));
+                                                     "or more", ratio, rad_to_deg(slope_rad)));
   }
   return std::tan(phi);
 }

@@ -311,7 +311,7 @@ double observation_match(const ObservedObject& object, const DrawnParameters& p,
     return detail::sliding_match(object, max_d, residual);
   }
   double factor = p.amplification;
-  if (object.orientation_deg) factor *= std::cos(*object.orientation_deg * kPi / 180.0);
+  if (object.orientation_deg) factor *= std::cos(deg_to_rad(*object.orientation_deg));
   if (model == ObjectModel::coupled) {
     // The coupled body in the object's rocking plane (the plane the orientation refers to), mu_s = mu_k = mu.
     const SlideRockOptions options = detail::inversion_slide_rock_options(object, p, g);

@@ -422,7 +422,7 @@ ObservedObject parse_object(const toml::table& t, const std::string& file, const
   if (rocks && o.e_housner && housner_restitution(o.body) < 0.0) {
     throw named.error("e", fmt::format("Housner's restitution 1 - 2a^2/D = {:.3g} is negative for so squat a body "
                                        "(alpha = {:.3g} deg > 54.7 deg): {}",
-                                       housner_restitution(o.body), o.body.alpha_rad() * 180.0 / kPi,
+                                       housner_restitution(o.body), rad_to_deg(o.body.alpha_rad()),
                                        kSquatBodyAdvice));
   }
   if (rocks && o.depth_m && o.e_housner) {  // the other axis is a block of width `depth` (oriented.hpp)
@@ -433,7 +433,7 @@ ObservedObject parse_object(const toml::table& t, const std::string& file, const
                                              "e = a value or a range, or leave depth out (the box then rocks along "
                                              "its bearing only)",
                                              housner_restitution(across), *o.depth_m, 2.0 * across.h_m,
-                                             across.alpha_rad() * 180.0 / kPi));
+                                             rad_to_deg(across.alpha_rad())));
     }
   }
   o.slid_m = named.length("slid");

@@ -315,7 +315,7 @@ Parser duration_parser() { return [](std::string_view s, const std::string& f) {
 Parser frequency_parser() { return [](std::string_view s, const std::string& f) { return parse_frequency_hz(s, f); }; }
 Parser area_parser() { return [](std::string_view s, const std::string& f) { return parse_area_m2(s, f); }; }
 Parser angle_deg_parser() {
-  return [](std::string_view s, const std::string& f) { return parse_angle_rad(s, f) * 180.0 / kPi; };
+  return [](std::string_view s, const std::string& f) { return rad_to_deg(parse_angle_rad(s, f)); };
 }
 Parser acceleration_parser(double g, double divide_by) {
   return [g, divide_by](std::string_view s, const std::string& f) { return parse_acceleration_m_s2(s, f, g) / divide_by; };
@@ -587,7 +587,7 @@ void read_slide(const Reader& r, const toml::table& o, const std::string& key, d
         for (const std::optional<double>& k : kinetic) {
           try {
             // slope_deg * pi / 180: the expression `topple slide --slope-deg` uses, so that rows match it exactly.
-            const SlidingBlock b = SlidingBlock::make(m, k, slope_deg * kPi / 180.0, mode, g);
+            const SlidingBlock b = SlidingBlock::make(m, k, deg_to_rad(slope_deg), mode, g);
             for (const auto& support : supports) out.spec.objects.emplace_back(ensemble::SlideObject{b, slope_deg, support});
           } catch (const InputError& e) {
             const std::string f = field_of(e.where().field);

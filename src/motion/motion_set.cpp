@@ -21,7 +21,7 @@ double cos_deg(double deg) {
   if (r == 0.0) return 1.0;
   if (std::abs(r) == 90.0) return 0.0;
   if (std::abs(r) == 180.0) return -1.0;
-  return std::cos(r * kPi / 180.0);
+  return std::cos(deg_to_rad(r));
 }
 
 std::string file_of(const GroundMotion& m, const char* role) {

@@ -9,7 +9,6 @@ namespace {
 using O = MeshBodyOutcome;
 using J = nlohmann::ordered_json;
 
-double deg(double rad) { return rad * 180.0 / kPi; }
 
 J vec(const Vec3& v) { return J::array({v[0], v[1], v[2]}); }
 
@@ -49,8 +48,8 @@ const std::array<BodyField, 34> kMeshBodyFields{{
     {"r2_m", [](const O& o) -> J { return planar(o).r2_m; }},
     {"alpha1_rad", [](const O& o) -> J { return planar(o).alpha1_rad; }},
     {"alpha2_rad", [](const O& o) -> J { return planar(o).alpha2_rad; }},
-    {"alpha1_deg", [](const O& o) -> J { return deg(planar(o).alpha1_rad); }},
-    {"alpha2_deg", [](const O& o) -> J { return deg(planar(o).alpha2_rad); }},
+    {"alpha1_deg", [](const O& o) -> J { return rad_to_deg(planar(o).alpha1_rad); }},
+    {"alpha2_deg", [](const O& o) -> J { return rad_to_deg(planar(o).alpha2_rad); }},
     {"inertia_cm_plane_kg_m2", [](const O& o) -> J { return planar(o).inertia_cm_kg_m2; }},
     {"inertia_o1_kg_m2", [](const O& o) -> J { return planar(o).inertia_o1_kg_m2; }},
     {"inertia_o2_kg_m2", [](const O& o) -> J { return planar(o).inertia_o2_kg_m2; }},
@@ -68,7 +67,7 @@ const std::array<BodyField, 34> kMeshBodyFields{{
        s["b_m"] = b.b_sym_m;
        s["r_m"] = b.r_sym_m;
        s["alpha_rad"] = b.alpha_sym_rad;
-       s["alpha_deg"] = deg(b.alpha_sym_rad);
+       s["alpha_deg"] = rad_to_deg(b.alpha_sym_rad);
        s["d_m2"] = b.d_sym_m2;
        s["p_rad_s"] = b.p_sym_rad_s;
        return s;

@@ -14,6 +14,7 @@
 #include "topple/core/error.hpp"
 #include "topple/core/output_file.hpp"
 #include "topple/output/plot.hpp"
+#include "topple/core/units.hpp"
 
 namespace topple {
 namespace {
@@ -87,7 +88,7 @@ MapBounds map_bounds(const RegionMap& map) {
     b.lat_min_deg = std::min(b.lat_min_deg, s.lat_deg);
     b.lat_max_deg = std::max(b.lat_max_deg, s.lat_deg);
   }
-  const double mid_lat_rad = 0.5 * (b.lat_min_deg + b.lat_max_deg) * M_PI / 180.0;
+  const double mid_lat_rad = deg_to_rad(0.5 * (b.lat_min_deg + b.lat_max_deg));
   const double dlat = std::max(kMarginFraction * (b.lat_max_deg - b.lat_min_deg), kMarginKm / kKmPerDegree);
   const double dlon = std::max(kMarginFraction * (b.lon_max_deg - b.lon_min_deg),
                                kMarginKm / (kKmPerDegree * std::max(std::cos(mid_lat_rad), 0.05)));
@@ -116,7 +117,7 @@ std::string gmt_map_script(const RegionMap& map) {
   const MapBounds b = map_bounds(map);
   const auto [lo_g, hi_g] = map_palette_range_g(map);
   const double mid_lat = 0.5 * (b.lat_min_deg + b.lat_max_deg);
-  const double width_km = (b.lon_max_deg - b.lon_min_deg) * kKmPerDegree * std::cos(mid_lat * M_PI / 180.0);
+  const double width_km = (b.lon_max_deg - b.lon_min_deg) * kKmPerDegree * std::cos(deg_to_rad(mid_lat));
   const double bar_km = floor_125(width_km / 5.0);  // a scale bar about a fifth of the map's width
   std::ostringstream os;
   os << "#!/usr/bin/env bash\n"

@@ -19,6 +19,7 @@
 #include "topple/solvers/rocking.hpp"
 #include "topple/solvers/slide_rock.hpp"
 #include "topple/solvers/sliding.hpp"
+#include "topple/core/units.hpp"
 
 namespace topple {
 namespace {
@@ -416,7 +417,7 @@ plot::Figure best_cell_figure(const InversionResult& r, const Site& site, const 
         opt.e = obj.e.mid();
       }
       double factor = amp;
-      if (obj.orientation_deg) factor *= std::cos(*obj.orientation_deg * kPi / 180.0);
+      if (obj.orientation_deg) factor *= std::cos(deg_to_rad(*obj.orientation_deg));
       const auto res = slide_rock(seen.scaled(factor), SlideRockBody::from_rocking(obj.body, obj.mu.mid()), opt);
       std::vector<double> ratio(res.history.theta_rad.size());
       for (std::size_t i = 0; i < ratio.size(); ++i) {
@@ -438,7 +439,7 @@ plot::Figure best_cell_figure(const InversionResult& r, const Site& site, const 
         opt.e = obj.e.mid();
       }
       double factor = amp;
-      if (obj.orientation_deg) factor *= std::cos(*obj.orientation_deg * kPi / 180.0);
+      if (obj.orientation_deg) factor *= std::cos(deg_to_rad(*obj.orientation_deg));
       const auto res = rock(seen.scaled(factor), obj.body, opt);
       std::vector<double> ratio(res.history.theta_rad.size());
       // theta over its side's alpha (an asymmetric body: alpha- = atan(b1/h) for theta < 0).

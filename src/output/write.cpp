@@ -184,7 +184,7 @@ nlohmann::ordered_json sliding_2d_input_json(const RunInput& input, const std::s
   in["h2"] = second_name;
   in["azimuths_deg"] = {azimuths.first_deg, azimuths.second_deg};
   if (block.slope_rad != 0.0) {
-    in["slope_deg"] = block.slope_rad * 180.0 / kPi;
+    in["slope_deg"] = rad_to_deg(block.slope_rad);
     in["slope_azimuth_deg"] = azimuths.slope_azimuth_deg;
   }
   in["scale_factor"] = input.scale_factor;
@@ -213,8 +213,8 @@ void write_sliding_2d_history_csv(const std::filesystem::path& path, const Slidi
                                   const GroundMotion& first, const GroundMotion& second,
                                   const ComponentAzimuths& azimuths, const GroundMotion* vertical) {
   // Unit vectors (east, north) of the components' azimuths, clockwise from north (sliding2d.hpp's frame).
-  const double r1 = azimuths.first_deg * kPi / 180.0;
-  const double r2 = azimuths.second_deg * kPi / 180.0;
+  const double r1 = deg_to_rad(azimuths.first_deg);
+  const double r2 = deg_to_rad(azimuths.second_deg);
   OutputFile file(path);
   std::ostream& out = file.stream();
   out << "time_s,ground_east_m_s2,ground_north_m_s2,ground_up_m_s2,displacement_east_m,displacement_north_m,"
@@ -268,7 +268,7 @@ nlohmann::ordered_json slide_rock_summary_json(const SlideRockSummary& s, const 
   j["body"] = b;
   j["sign_convention"] = "theta > 0 and slide > 0 toward +x; sliding.hpp's d is -slide";
   if (options.slope_rad != 0.0) {  // an inclined base (slide_rock.hpp); a level one keeps the level output
-    j["slope"] = {{"slope_deg", options.slope_rad * 180.0 / kPi}, {"down_slope", "-x"}};
+    j["slope"] = {{"slope_deg", rad_to_deg(options.slope_rad)}, {"down_slope", "-x"}};
   }
   return j;
 }

@@ -11,6 +11,7 @@
 
 #include "topple/core/error.hpp"
 #include "topple/region/region.hpp"
+#include "topple/core/units.hpp"
 
 namespace topple {
 namespace {
@@ -83,7 +84,7 @@ PooledField pooled_field(const RegionalResult& fit, const Survey& survey, double
   PooledField f;
   f.range_km = range_km;
   const double pad_lat = std::max(0.2 * (lat_hi - lat_lo), 10.0 / 111.0);
-  const double pad_lon = std::max(0.2 * (lon_hi - lon_lo), 10.0 / (111.0 * std::cos(lat0 * std::numbers::pi / 180.0)));
+  const double pad_lon = std::max(0.2 * (lon_hi - lon_lo), 10.0 / (111.0 * std::cos(deg_to_rad(lat0))));
   for (int i = 0; i < points; ++i) {
     f.lat_deg.push_back(lat_lo - pad_lat + (lat_hi - lat_lo + 2 * pad_lat) * i / (points - 1));
     f.lon_deg.push_back(lon_lo - pad_lon + (lon_hi - lon_lo + 2 * pad_lon) * i / (points - 1));

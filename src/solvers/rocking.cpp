@@ -23,6 +23,7 @@
 #include "topple/numerics/angle_series.hpp"
 #include "topple/numerics/step_law.hpp"
 #include "topple/numerics/event_root.hpp"
+#include "topple/core/units.hpp"
 
 namespace topple {
 namespace {
@@ -1025,7 +1026,7 @@ void validate(const RockingBody& body, const RockingOptions& o) {
   if (o.restitution == RestitutionMode::housner && !body.negative_pivot && housner_restitution(body) < 0.0) {
     throw parameter_error("e", fmt::format("Housner's e = 1 - 2a^2/D = {:.6g} is negative for this squat body "
                                            "(alpha = {:.4g} deg): it cannot rock onto the other edge; {}",
-                                           housner_restitution(body), body.alpha_rad() * 180.0 / kPi,
+                                           housner_restitution(body), rad_to_deg(body.alpha_rad()),
                                            kSquatBodyAdvice));
   }
   if (o.mu && (!std::isfinite(*o.mu) || *o.mu < 0.0)) {

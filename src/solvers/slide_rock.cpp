@@ -19,6 +19,7 @@
 #include "topple/core/error.hpp"
 #include "topple/motion/input_grid.hpp"
 #include "topple/solvers/sliding.hpp"
+#include "topple/core/units.hpp"
 
 namespace topple {
 namespace {
@@ -1093,20 +1094,20 @@ class Engine {
 /// tan(beta) <= b1 / h (the CM over the down-slope corner O-).
 void validate_slope(const SlideRockBody& b, double slope_rad) {
   if (!std::isfinite(slope_rad) || slope_rad < 0.0 || slope_rad >= kPi / 2.0) {
-    throw parameter_error("slope", fmt::format("slope must be in [0, 90) deg, got {} deg", slope_rad * 180.0 / kPi));
+    throw parameter_error("slope", fmt::format("slope must be in [0, 90) deg, got {} deg", rad_to_deg(slope_rad)));
   }
   const double t = std::tan(slope_rad);
   if (t > b.mu_static) {
     throw parameter_error("slope", fmt::format("a slope of {:.6g} deg is steeper than the friction angle atan(mu_s = "
                                                "{:.6g}) = {:.6g} deg: the body cannot stand on it (it slides away)",
-                                               slope_rad * 180.0 / kPi, b.mu_static,
-                                               std::atan(b.mu_static) * 180.0 / kPi));
+                                               rad_to_deg(slope_rad), b.mu_static,
+                                               rad_to_deg(std::atan(b.mu_static))));
   }
   if (t * b.h_m > b.b1_m) {
     throw parameter_error("slope", fmt::format("a slope of {:.6g} deg is steeper than alpha- = atan(b1 / h) = {:.6g} "
                                                "deg: the centre of mass is outside the down-slope corner O- and the "
                                                "body topples",
-                                               slope_rad * 180.0 / kPi, std::atan2(b.b1_m, b.h_m) * 180.0 / kPi));
+                                               rad_to_deg(slope_rad), rad_to_deg(std::atan2(b.b1_m, b.h_m))));
   }
 }
 

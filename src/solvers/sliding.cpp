@@ -13,6 +13,7 @@
 
 #include "topple/core/error.hpp"
 #include "topple/motion/input_grid.hpp"
+#include "topple/core/units.hpp"
 
 namespace topple {
 namespace {
@@ -51,7 +52,7 @@ constexpr boost::uintmax_t kMaxRootIterations = 100;
 
 std::string describe(const SlidingBlock& b) {
   return fmt::format("mu_static = {:.6g}, mu_kinetic = {:.6g}, slope = {:.6g} deg, {}", b.mu_static, b.mu_kinetic,
-                     b.slope_rad * 180.0 / kPi, sliding_mode_name(b.mode));
+                     rad_to_deg(b.slope_rad), sliding_mode_name(b.mode));
 }
 
 [[noreturn]] void too_many_events(const Coefficients& k, double t_s) {
@@ -423,12 +424,12 @@ SlidingBlock SlidingBlock::make(double mu_static, std::optional<double> mu_kinet
                                                     "coefficient {}, got {}", mu_static, mu_kinetic));
   }
   if (!std::isfinite(slope_rad) || slope_rad < 0.0 || slope_rad >= kPi / 2.0) {
-    throw parameter_error("slope", fmt::format("slope must be in [0, 90) degrees, got {} deg", slope_rad * 180.0 / kPi));
+    throw parameter_error("slope", fmt::format("slope must be in [0, 90) degrees, got {} deg", rad_to_deg(slope_rad)));
   }
   if (std::atan(mu_static) + slope_rad >= kPi / 2.0) {
     throw parameter_error("slope", fmt::format("slope ({} deg) plus friction angle atan(mu) = {} deg reaches 90 deg: "
                                                "the block cannot slide upslope in this model",
-                                               slope_rad * 180.0 / kPi, std::atan(mu_static) * 180.0 / kPi));
+                                               rad_to_deg(slope_rad), rad_to_deg(std::atan(mu_static))));
   }
   if (!std::isfinite(g_m_s2) || !(g_m_s2 > 0.0)) {
     throw parameter_error("g", fmt::format("g must be positive and finite, got {}", g_m_s2));

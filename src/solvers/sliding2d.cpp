@@ -23,6 +23,7 @@
 
 #include "topple/core/error.hpp"
 #include "topple/motion/input_grid.hpp"
+#include "topple/core/units.hpp"
 
 namespace topple {
 namespace {
@@ -68,7 +69,7 @@ constexpr int kBrentBits = std::numeric_limits<double>::digits / 2;
 
 /// Unit vector (east, north) of an azimuth in degrees clockwise from north.
 std::pair<double, double> axis(double azimuth_deg) {
-  const double r = azimuth_deg * kPi / 180.0;
+  const double r = deg_to_rad(azimuth_deg);
   return {std::sin(r), std::cos(r)};
 }
 
@@ -806,7 +807,7 @@ void integrate(const Input& in, const SlidingBlock& b, const Sliding2dOptions& o
   rec.summary.residual_north_m = north;
   rec.summary.residual_displacement_m = std::hypot(east, north);
   if (east != 0.0 || north != 0.0) {
-    double az = std::atan2(east, north) * 180.0 / kPi;  // clockwise from north
+    double az = rad_to_deg(std::atan2(east, north));  // clockwise from north
     if (az < 0.0) az += 360.0;
     if (az >= 360.0) az -= 360.0;
     rec.summary.residual_azimuth_deg = az;

@@ -52,7 +52,7 @@ const std::array<Field<SlidingOutcome>, 17> kSlidingFields{{
      11},
     {"mu_static", [](const S& r) -> FieldValue { return r.block.mu_static; }},
     {"mu_kinetic", [](const S& r) -> FieldValue { return r.block.mu_kinetic; }},
-    {"slope_deg", [](const S& r) -> FieldValue { return r.block.slope_rad * 180.0 / kPi; }},
+    {"slope_deg", [](const S& r) -> FieldValue { return rad_to_deg(r.block.slope_rad); }},
     {"mode",
      [](const S& r) -> FieldValue {
        return std::string(sliding_mode_name(r.block.mode));
@@ -99,7 +99,7 @@ const std::array<Field<RockingOutcome>, 25> kRockingFields{{
     {"still_rocking_at_end", [](const R& r) -> FieldValue { return r.summary.still_rocking_at_end; }, 13},
     {"energy_lost_j_per_kg", [](const R& r) -> FieldValue { return r.summary.energy_lost_j_per_kg; }, 10},
     {"alpha_rad", [](const R& r) -> FieldValue { return r.summary.alpha_rad; }, 16},
-    {"alpha_deg", [](const R& r) -> FieldValue { return r.summary.alpha_rad * 180.0 / kPi; }},
+    {"alpha_deg", [](const R& r) -> FieldValue { return rad_to_deg(r.summary.alpha_rad); }},
     {"R_m", [](const R& r) -> FieldValue { return r.summary.R_m; }},
     {"p_rad_s", [](const R& r) -> FieldValue { return r.summary.p_rad_s; }, 17},
     {"e", [](const R& r) -> FieldValue { return r.summary.e; }, 18},
@@ -177,8 +177,8 @@ const std::array<Field<SlideRockOutcome>, 30> kSlideRockFields{{
     {"moving_at_end", [](const C& r) -> FieldValue { return r.summary.moving_at_end; }},
     {"friction_energy_j_per_kg", [](const C& r) -> FieldValue { return r.summary.friction_energy_j_per_kg; }},
     {"impact_energy_j_per_kg", [](const C& r) -> FieldValue { return r.summary.impact_energy_j_per_kg; }},
-    {"alpha_positive_deg", [](const C& r) -> FieldValue { return r.summary.alpha_positive_rad * 180.0 / kPi; }},
-    {"alpha_negative_deg", [](const C& r) -> FieldValue { return r.summary.alpha_negative_rad * 180.0 / kPi; }},
+    {"alpha_positive_deg", [](const C& r) -> FieldValue { return rad_to_deg(r.summary.alpha_positive_rad); }},
+    {"alpha_negative_deg", [](const C& r) -> FieldValue { return rad_to_deg(r.summary.alpha_negative_rad); }},
     {"mu_static", [](const C& r) -> FieldValue { return r.body.mu_static; }},
     {"mu_kinetic", [](const C& r) -> FieldValue { return r.body.mu_kinetic; }},
     {"e_mode", [](const C& r) -> FieldValue { return std::string(restitution_mode_name(r.options.restitution)); }},

@@ -15,6 +15,12 @@ inline constexpr double kStandardGravity = 9.80665;
 
 inline constexpr double kPi = 3.141592653589793238462643383279502884;
 
+/// Degrees to radians, (deg * pi) / 180: the one conversion of the library and its front ends (it was written inline
+/// in this order at every site, so the move to it changed no bit of any result).
+[[nodiscard]] constexpr double deg_to_rad(double deg) noexcept { return deg * kPi / 180.0; }
+/// Radians to degrees, (rad * 180) / pi.
+[[nodiscard]] constexpr double rad_to_deg(double rad) noexcept { return rad * 180.0 / kPi; }
+
 /// A length such as "4cm", "0.04 m", "40mm", "1.5in", "2ft". Throws InputError naming `field` when the string has
 /// no number, no unit, an unknown unit, or is not finite.
 [[nodiscard]] double parse_length_m(std::string_view text, const std::string& field);
