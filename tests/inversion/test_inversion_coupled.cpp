@@ -26,7 +26,7 @@
 #include "topple/motion/spectra.hpp"
 #include "topple/motion/synthesis.hpp"
 #include "topple/core/units.hpp"
-#include "../src/inversion_detail.hpp"
+#include "inversion/inversion_detail.hpp"  // private header of src/ (tests see src/)
 
 namespace topple {
 namespace {
