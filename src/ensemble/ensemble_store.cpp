@@ -403,7 +403,9 @@ struct StoreRun {
   std::size_t chunks = 0;
   std::size_t chunk_runs = 0;
 
-  [[nodiscard]] std::size_t rows_of(std::size_t c) const { return std::min(runs, (c + 1) * chunk_runs) - c * chunk_runs; }
+  [[nodiscard]] std::size_t rows_of(std::size_t c) const {
+    return std::min(runs, (c + 1) * chunk_runs) - c * chunk_runs;
+  }
 };
 
 /// A sweep finished before: its outputs verified against their recorded checksums. A missing output (or one never
