@@ -388,6 +388,205 @@ enum class StoreStatus : std::uint64_t { ready = 0, complete = 1, failed = 2 };
 
 }  // namespace
 
+namespace {
+
+/// What the phases of run_to_files share: the plan and its fingerprint, the store and the outputs.
+struct StoreRun {
+  const Plan& plan;
+  const StoreOptions& store;
+  InputLocation where;
+  std::string fingerprint;
+  fs::path dir;
+  fs::path manifest_path;
+  bool jsonl = false;
+  std::size_t runs = 0;
+  std::size_t chunks = 0;
+  std::size_t chunk_runs = 0;
+
+  [[nodiscard]] std::size_t rows_of(std::size_t c) const {
+    return std::min(runs, (c + 1) * chunk_runs) - c * chunk_runs;
+  }
+};
+
+/// A sweep finished before: its outputs verified against their recorded checksums. A missing output (or one never
+/// recorded, such as JSON lines asked for only now) is computed again (false); a changed one is refused.
+bool outputs_verified(const StoreRun& s, const Manifest& manifest) {
+  bool outputs_there = true;
+  for (const auto& [path, record] :
+       {std::pair{std::optional<fs::path>(s.store.csv_path), &manifest.csv},
+        std::pair{s.store.jsonl_path, &manifest.jsonl}}) {
+    if (!path) continue;
+    if (!*record || !fs::exists(*path)) {
+      outputs_there = false;
+      continue;
+    }
+    const std::string difference = output_difference(*path, **record);
+    if (!difference.empty()) {
+      throw InputError(s.where, fmt::format(
+          "'{}' has changed since this sweep finished ({}): it is not reported complete. Rerun with "
+          "--restart to compute it again, or write to another output", path->string(), difference));
+    }
+  }
+  return outputs_there;
+}
+
+/// The checksums the manifest recorded for a chunk's files, if any.
+ChunkRecord recorded_chunk(const std::optional<Manifest>& manifest, std::size_t c) {
+  ChunkRecord recorded;
+  if (manifest) {
+    const auto csv_it = manifest->chunk_hashes.find(chunk_name(c, "csv"));
+    const auto jsonl_it = manifest->chunk_hashes.find(chunk_name(c, "jsonl"));
+    if (csv_it != manifest->chunk_hashes.end()) recorded.csv = csv_it->second;
+    if (jsonl_it != manifest->chunk_hashes.end()) recorded.jsonl = jsonl_it->second;
+  }
+  return recorded;
+}
+
+/// The chunks of the store read back and checked: those done kept in a fresh manifest, the others pending. The
+/// message to the ranks: [ready, already done, pending chunk indices...].
+std::vector<std::uint64_t> scan_chunks(const StoreRun& s, const std::optional<Manifest>& manifest,
+                                       SweepReport& report) {
+  // Temporary files are leftovers of a killed run. Every chunk file is read back and checked (ChunkState).
+  for (const auto& entry : fs::directory_iterator(s.dir)) {
+    if (entry.path().filename().string().rfind(".tmp-", 0) == 0) fs::remove(entry.path());
+  }
+  Manifest fresh;
+  fresh.fingerprint = s.fingerprint;
+  std::vector<std::uint64_t> pending;
+  std::size_t already = 0;
+  for (std::size_t c = 0; c < s.chunks; ++c) {
+    ChunkRecord recorded = recorded_chunk(manifest, c);
+    ChunkText text;
+    const ChunkState state = read_chunk(s.dir, c, s.rows_of(c), s.fingerprint, s.jsonl, &recorded, &text);
+    if (state == ChunkState::foreign) {
+      throw InputError(s.where, fmt::format(
+          "the store '{}' holds chunks of a different sweep ({} carries the fingerprint {}, this sweep's is "
+          "{}{}). Rerun with --restart to discard them and start over, or write to another output",
+          s.dir.string(), chunk_name(c, "csv"), text.fingerprint, s.fingerprint,
+          manifest ? "" : "; the store has no manifest"));
+    }
+    if (state == ChunkState::ok) {
+      ++already;
+      fresh.chunk_hashes[chunk_name(c, "csv")] = text.csv_hash;
+      if (s.jsonl) fresh.chunk_hashes[chunk_name(c, "jsonl")] = text.jsonl_hash;
+      continue;
+    }
+    if (state == ChunkState::damaged) {
+      ++report.chunks_failed_verification;
+      std::error_code ec;
+      fs::remove(s.dir / chunk_name(c, "csv"), ec);
+      fs::remove(s.dir / chunk_name(c, "jsonl"), ec);
+    }
+    pending.push_back(c);
+  }
+  io::write_file_atomically(s.manifest_path, manifest_text(s.plan, fresh));
+  std::vector<std::uint64_t> message = {static_cast<std::uint64_t>(StoreStatus::ready), already};
+  message.insert(message.end(), pending.begin(), pending.end());
+  return message;
+}
+
+/// Rank 0 prepares the store: created and locked, its manifest read, a complete sweep's outputs verified, the chunks
+/// checked. The message to the ranks: [status, already done, pending chunk indices...].
+std::vector<std::uint64_t> prepare_store(const StoreRun& s, std::optional<StoreLock>& lock, SweepReport& report) {
+  try {
+    if (s.store.csv_path.has_parent_path()) fs::create_directories(s.store.csv_path.parent_path());
+    fs::create_directories(s.dir);
+  } catch (const fs::filesystem_error& e) {
+    throw OutputError(fmt::format("cannot create the store '{}': {}", s.dir.string(), e.code().message()));
+  }
+  lock.emplace(s.dir, s.where);
+  remove_stale_temporaries(s.store.csv_path);
+  if (s.jsonl) remove_stale_temporaries(*s.store.jsonl_path);
+  bool restart = s.store.restart;
+  std::optional<Manifest> manifest;
+  if (!restart) manifest = read_manifest(s.manifest_path, s.where);
+  if (manifest && manifest->fingerprint != s.fingerprint) {
+    throw InputError(s.where, fmt::format(
+        "the store '{}' holds results of a different sweep ({} runs in chunks of {}; the sweep file, a "
+        "record or the chunk size has changed since). Rerun with --restart to discard them and start over, "
+        "or write to another output", s.dir.string(), manifest->runs, manifest->chunk_runs));
+  }
+  if (manifest && manifest->complete) {
+    if (outputs_verified(s, *manifest)) {
+      clear_store(s.dir);  // chunk files a killed cleanup may have left (the manifest is rewritten below)
+      io::write_file_atomically(s.manifest_path, manifest_text(s.plan, *manifest));
+      return {static_cast<std::uint64_t>(StoreStatus::complete), s.chunks};
+    }
+    restart = true;
+  }
+  report.restarted = restart && fs::exists(s.manifest_path);
+  if (restart) {
+    clear_store(s.dir);
+    manifest.reset();
+  }
+  return scan_chunks(s, manifest, report);
+}
+
+/// Assembly on rank 0: every chunk is read back and checked once more (the other ranks' too: with several machines
+/// the directory must be on a filesystem they all share); one that fails is computed again here. Then the header
+/// and the chunks in order go to each output through a temporary file, and the outputs' checksums to the manifest.
+void assemble_outputs(const StoreRun& s, detail::Engine& engine, const detail::Engine::Commit& commit,
+                      const Cluster& cluster, SweepReport& report) {
+  io::OutputFile csv_out(s.store.csv_path);
+  std::optional<io::OutputFile> jsonl_out;
+  if (s.jsonl) jsonl_out.emplace(*s.store.jsonl_path);
+  Checksum csv_sum;
+  Checksum jsonl_sum;
+  std::uint64_t csv_bytes = 0;
+  std::uint64_t jsonl_bytes = 0;
+  const auto put = [](io::OutputFile& f, Checksum& sum, std::uint64_t& bytes, std::string_view text) {
+    f.stream().write(text.data(), static_cast<std::streamsize>(text.size()));
+    if (!f.stream()) {
+      f.commit();  // a failed stream: throws OutputError with the system's reason and removes the temporary file
+      throw OutputError(fmt::format("cannot write '{}'", f.final_path().string()));  // (not reached)
+    }
+    sum.add(text);
+    bytes += text.size();
+  };
+  put(csv_out, csv_sum, csv_bytes, csv_header(s.plan));
+  Manifest done;
+  done.fingerprint = s.fingerprint;
+  for (std::size_t c = 0; c < s.chunks; ++c) {
+    ChunkText text;
+    ChunkState state = read_chunk(s.dir, c, s.rows_of(c), s.fingerprint, s.jsonl, nullptr, &text);
+    if (state == ChunkState::missing && cluster.size() > 1) {
+      throw InputError(s.where, fmt::format("chunk {} is missing from '{}' after every rank finished: with several "
+                                            "machines the output must be on a filesystem they all share",
+                                            c, s.dir.string()));
+    }
+    if (state != ChunkState::ok) {
+      ++report.chunks_failed_verification;
+      const std::size_t again[] = {c};
+      const std::size_t before = engine.runs_done();
+      engine.run_chunks(again, commit);
+      report.chunks_computed += 1;
+      report.runs_computed += engine.runs_done() - before;
+      state = read_chunk(s.dir, c, s.rows_of(c), s.fingerprint, s.jsonl, nullptr, &text);
+      if (state != ChunkState::ok) {
+        throw OutputError(fmt::format("chunk {} of '{}' does not read back as it was just written: the disk or "
+                                      "filesystem returns other bytes", c, s.dir.string()));
+      }
+    }
+    put(csv_out, csv_sum, csv_bytes, std::string_view(text.csv_file).substr(text.rows_at));
+    if (jsonl_out) put(*jsonl_out, jsonl_sum, jsonl_bytes, text.jsonl);
+    done.chunk_hashes[chunk_name(c, "csv")] = text.csv_hash;
+    if (s.jsonl) done.chunk_hashes[chunk_name(c, "jsonl")] = text.jsonl_hash;
+  }
+  csv_out.commit();
+  if (jsonl_out) jsonl_out->commit();
+  done.complete = true;  // with every chunk's checksum as assembled, and the outputs'
+  done.csv = OutputRecord{csv_bytes, csv_sum.hex()};
+  if (s.jsonl) done.jsonl = OutputRecord{jsonl_bytes, jsonl_sum.hex()};
+  io::write_file_atomically(s.manifest_path, manifest_text(s.plan, done));
+  for (std::size_t c = 0; c < s.chunks; ++c) {
+    std::error_code ec;
+    fs::remove(s.dir / chunk_name(c, "csv"), ec);
+    fs::remove(s.dir / chunk_name(c, "jsonl"), ec);
+  }
+}
+
+}  // namespace
+
 SweepReport run_to_files(const Plan& plan, const StoreOptions& store, const ExecuteOptions& execute,
                          Cluster& cluster) {
   check_plan(plan);
@@ -408,110 +607,14 @@ SweepReport run_to_files(const Plan& plan, const StoreOptions& store, const Exec
   }
 
   const fs::path dir = parts_directory(store.csv_path);
-  const fs::path manifest_path = dir / "manifest.json";
-  const bool jsonl = store.jsonl_path.has_value();
-  const auto rows_of = [&](std::size_t c) {
-    return std::min(report.runs, (c + 1) * report.chunk_runs) - c * report.chunk_runs;
-  };
+  const StoreRun s{plan, store, where, fingerprint, dir, dir / "manifest.json", store.jsonl_path.has_value(),
+                   report.runs, report.chunks, report.chunk_runs};
   std::optional<StoreLock> lock;
   std::vector<std::uint64_t> message;  // [status, already done, pending chunk indices...]
   std::exception_ptr failure;
   if (cluster.rank() == 0) {
     try {
-      try {
-        if (store.csv_path.has_parent_path()) fs::create_directories(store.csv_path.parent_path());
-        fs::create_directories(dir);
-      } catch (const fs::filesystem_error& e) {
-        throw OutputError(fmt::format("cannot create the store '{}': {}", dir.string(), e.code().message()));
-      }
-      lock.emplace(dir, where);
-      remove_stale_temporaries(store.csv_path);
-      if (jsonl) remove_stale_temporaries(*store.jsonl_path);
-      bool restart = store.restart;
-      std::optional<Manifest> manifest;
-      if (!restart) manifest = read_manifest(manifest_path, where);
-      if (manifest && manifest->fingerprint != fingerprint) {
-        throw InputError(where, fmt::format(
-            "the store '{}' holds results of a different sweep ({} runs in chunks of {}; the sweep file, a "
-            "record or the chunk size has changed since). Rerun with --restart to discard them and start over, "
-            "or write to another output", dir.string(), manifest->runs, manifest->chunk_runs));
-      }
-      if (manifest && manifest->complete) {
-        // Finished before: verify the outputs against their recorded checksums. A missing output (or one never
-        // recorded, such as JSON lines asked for only now) is computed again; a changed one is refused.
-        bool outputs_there = true;
-        for (const auto& [path, record] :
-             {std::pair{std::optional<fs::path>(store.csv_path), &manifest->csv},
-              std::pair{store.jsonl_path, &manifest->jsonl}}) {
-          if (!path) continue;
-          if (!*record || !fs::exists(*path)) {
-            outputs_there = false;
-            continue;
-          }
-          const std::string difference = output_difference(*path, **record);
-          if (!difference.empty()) {
-            throw InputError(where, fmt::format(
-                "'{}' has changed since this sweep finished ({}): it is not reported complete. Rerun with "
-                "--restart to compute it again, or write to another output", path->string(), difference));
-          }
-        }
-        if (outputs_there) {
-          clear_store(dir);  // chunk files a killed cleanup may have left (the manifest is rewritten below)
-          io::write_file_atomically(manifest_path, manifest_text(plan, *manifest));
-          message = {static_cast<std::uint64_t>(StoreStatus::complete), report.chunks};
-        } else {
-          restart = true;
-        }
-      }
-      if (message.empty()) {
-        report.restarted = restart && fs::exists(manifest_path);
-        if (restart) {
-          clear_store(dir);
-          manifest.reset();
-        }
-        // Temporary files are leftovers of a killed run. Every chunk file is read back and checked (ChunkState).
-        for (const auto& entry : fs::directory_iterator(dir)) {
-          if (entry.path().filename().string().rfind(".tmp-", 0) == 0) fs::remove(entry.path());
-        }
-        Manifest fresh;
-        fresh.fingerprint = fingerprint;
-        std::vector<std::uint64_t> pending;
-        std::size_t already = 0;
-        for (std::size_t c = 0; c < report.chunks; ++c) {
-          ChunkRecord recorded;
-          if (manifest) {
-            const auto csv_it = manifest->chunk_hashes.find(chunk_name(c, "csv"));
-            const auto jsonl_it = manifest->chunk_hashes.find(chunk_name(c, "jsonl"));
-            if (csv_it != manifest->chunk_hashes.end()) recorded.csv = csv_it->second;
-            if (jsonl_it != manifest->chunk_hashes.end()) recorded.jsonl = jsonl_it->second;
-          }
-          ChunkText text;
-          const ChunkState state = read_chunk(dir, c, rows_of(c), fingerprint, jsonl, &recorded, &text);
-          if (state == ChunkState::foreign) {
-            throw InputError(where, fmt::format(
-                "the store '{}' holds chunks of a different sweep ({} carries the fingerprint {}, this sweep's is "
-                "{}{}). Rerun with --restart to discard them and start over, or write to another output",
-                dir.string(), chunk_name(c, "csv"), text.fingerprint, fingerprint,
-                manifest ? "" : "; the store has no manifest"));
-          }
-          if (state == ChunkState::ok) {
-            ++already;
-            fresh.chunk_hashes[chunk_name(c, "csv")] = text.csv_hash;
-            if (jsonl) fresh.chunk_hashes[chunk_name(c, "jsonl")] = text.jsonl_hash;
-            continue;
-          }
-          if (state == ChunkState::damaged) {
-            ++report.chunks_failed_verification;
-            std::error_code ec;
-            fs::remove(dir / chunk_name(c, "csv"), ec);
-            fs::remove(dir / chunk_name(c, "jsonl"), ec);
-          }
-          pending.push_back(c);
-        }
-        io::write_file_atomically(manifest_path, manifest_text(plan, fresh));
-        message = {static_cast<std::uint64_t>(StoreStatus::ready), already};
-        message.insert(message.end(), pending.begin(), pending.end());
-      }
+      message = prepare_store(s, lock, report);
     } catch (const fs::filesystem_error& e) {
       failure = std::make_exception_ptr(OutputError(fmt::format("store '{}': {}", dir.string(), e.what())));
       message = {static_cast<std::uint64_t>(StoreStatus::failed), 0};
@@ -545,8 +648,8 @@ SweepReport run_to_files(const Plan& plan, const StoreOptions& store, const Exec
                                             std::vector<Value>& results) {
     std::string csv;
     std::string lines;
-    detail::format_rows(plan, layout, begin, end, results, &csv, jsonl ? &lines : nullptr);
-    static_cast<void>(write_chunk(dir, c, end - begin, fingerprint, csv, jsonl ? &lines : nullptr));
+    detail::format_rows(plan, layout, begin, end, results, &csv, s.jsonl ? &lines : nullptr);
+    static_cast<void>(write_chunk(dir, c, end - begin, fingerprint, csv, s.jsonl ? &lines : nullptr));
   };
   const auto start = std::chrono::steady_clock::now();
   std::size_t my_runs = 0;
@@ -567,66 +670,7 @@ SweepReport run_to_files(const Plan& plan, const StoreOptions& store, const Exec
   for (const auto n : chunk_counts) report.chunks_computed += n;
   for (const auto n : run_counts) report.runs_computed += n;
   if (cluster.rank() != 0) return report;
-
-  // Assembly on rank 0: every chunk is read back and checked once more (the other ranks' too: with several machines
-  // the directory must be on a filesystem they all share); one that fails is computed again here. Then the header
-  // and the chunks in order go to each output through a temporary file, and the outputs' checksums to the manifest.
-  io::OutputFile csv_out(store.csv_path);
-  std::optional<io::OutputFile> jsonl_out;
-  if (jsonl) jsonl_out.emplace(*store.jsonl_path);
-  Checksum csv_sum;
-  Checksum jsonl_sum;
-  std::uint64_t csv_bytes = 0;
-  std::uint64_t jsonl_bytes = 0;
-  const auto put = [](io::OutputFile& f, Checksum& sum, std::uint64_t& bytes, std::string_view text) {
-    f.stream().write(text.data(), static_cast<std::streamsize>(text.size()));
-    if (!f.stream()) {
-      f.commit();  // a failed stream: throws OutputError with the system's reason and removes the temporary file
-      throw OutputError(fmt::format("cannot write '{}'", f.final_path().string()));  // (not reached)
-    }
-    sum.add(text);
-    bytes += text.size();
-  };
-  put(csv_out, csv_sum, csv_bytes, csv_header(plan));
-  Manifest done;
-  done.fingerprint = fingerprint;
-  for (std::size_t c = 0; c < report.chunks; ++c) {
-    ChunkText text;
-    ChunkState state = read_chunk(dir, c, rows_of(c), fingerprint, jsonl, nullptr, &text);
-    if (state == ChunkState::missing && cluster.size() > 1) {
-      throw InputError(where, fmt::format("chunk {} is missing from '{}' after every rank finished: with several "
-                                          "machines the output must be on a filesystem they all share",
-                                          c, dir.string()));
-    }
-    if (state != ChunkState::ok) {
-      ++report.chunks_failed_verification;
-      const std::size_t again[] = {c};
-      const std::size_t before = engine.runs_done();
-      engine.run_chunks(again, commit);
-      report.chunks_computed += 1;
-      report.runs_computed += engine.runs_done() - before;
-      state = read_chunk(dir, c, rows_of(c), fingerprint, jsonl, nullptr, &text);
-      if (state != ChunkState::ok) {
-        throw OutputError(fmt::format("chunk {} of '{}' does not read back as it was just written: the disk or "
-                                      "filesystem returns other bytes", c, dir.string()));
-      }
-    }
-    put(csv_out, csv_sum, csv_bytes, std::string_view(text.csv_file).substr(text.rows_at));
-    if (jsonl_out) put(*jsonl_out, jsonl_sum, jsonl_bytes, text.jsonl);
-    done.chunk_hashes[chunk_name(c, "csv")] = text.csv_hash;
-    if (jsonl) done.chunk_hashes[chunk_name(c, "jsonl")] = text.jsonl_hash;
-  }
-  csv_out.commit();
-  if (jsonl_out) jsonl_out->commit();
-  done.complete = true;  // with every chunk's checksum as assembled, and the outputs'
-  done.csv = OutputRecord{csv_bytes, csv_sum.hex()};
-  if (jsonl) done.jsonl = OutputRecord{jsonl_bytes, jsonl_sum.hex()};
-  io::write_file_atomically(manifest_path, manifest_text(plan, done));
-  for (std::size_t c = 0; c < report.chunks; ++c) {
-    std::error_code ec;
-    fs::remove(dir / chunk_name(c, "csv"), ec);
-    fs::remove(dir / chunk_name(c, "jsonl"), ec);
-  }
+  assemble_outputs(s, engine, commit, cluster, report);
   return report;
 }
 

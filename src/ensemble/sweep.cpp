@@ -235,7 +235,18 @@ MotionSet transformed_set(const MotionSet& set, const MotionTransform& transform
   return MotionSet::make(first, &second, set.azimuths(), vertical ? &*vertical : nullptr);
 }
 
-Plan make_plan(const SweepSpec& spec) {
+void check_housner_restitution(const RockingBody& body) {
+  if (housner_restitution(body) < 0.0) {
+    throw parameter_error("e", fmt::format("Housner's restitution 1 - 2a^2/D = {} is negative for this body (too squat "
+                                           "to rock onto its other edge): {}", housner_restitution(body),
+                                           kSquatBodyAdvice));
+  }
+}
+
+namespace {
+
+/// The spec's own consistency, checked first: something to run, and the constants that every case uses.
+void check_spec(const SweepSpec& spec) {
   if (spec.records.empty() && spec.pulses.empty() && spec.record_sets.empty()) {
     throw parameter_error("motions", "the sweep has no motion");
   }
@@ -247,8 +258,10 @@ Plan make_plan(const SweepSpec& spec) {
   if (!(spec.g_m_s2 > 0.0) || !std::isfinite(spec.g_m_s2)) {
     throw parameter_error("g", fmt::format("g must be positive and finite, got {}", spec.g_m_s2));
   }
-  const double g = spec.g_m_s2;
+}
 
+/// Which kinds of motion and object the sweep holds: they decide its columns.
+struct SweepKinds {
   bool any_slide = false;
   bool any_rock = false;
   bool any_rock_mu = false;
@@ -258,37 +271,45 @@ Plan make_plan(const SweepSpec& spec) {
   bool any_asymmetric = false;  // asymmetric general: b1, b2, h, inertia
   bool any_mesh = false;
   bool any_support = false;
+  bool any_box = false;     // a block with a depth (an oriented box)
+  bool any_set = false;     // record sets (two horizontal components)
+  bool any_single = false;  // single records or pulses
+};
+
+SweepKinds kinds_of(const SweepSpec& spec) {
+  SweepKinds k;
   for (const auto& o : spec.objects) {
-    any_support = any_support || support_of(o).has_value();
+    k.any_support = k.any_support || support_of(o).has_value();
     if (const auto* r = std::get_if<RockObject>(&o)) {
-      any_rock = true;
-      any_rock_mu = any_rock_mu || r->options.mu.has_value();
-      any_block = any_block || r->body.shape == RockingBody::Shape::block;
-      any_cylinder = any_cylinder || r->body.shape == RockingBody::Shape::cylinder;
-      any_general = any_general || (r->body.shape == RockingBody::Shape::general && r->body.symmetric());
-      any_asymmetric = any_asymmetric || !r->body.symmetric();
-      any_mesh = any_mesh || !r->mesh.empty();
+      k.any_rock = true;
+      k.any_rock_mu = k.any_rock_mu || r->options.mu.has_value();
+      k.any_block = k.any_block || r->body.shape == RockingBody::Shape::block;
+      k.any_cylinder = k.any_cylinder || r->body.shape == RockingBody::Shape::cylinder;
+      k.any_general = k.any_general || (r->body.shape == RockingBody::Shape::general && r->body.symmetric());
+      k.any_asymmetric = k.any_asymmetric || !r->body.symmetric();
+      k.any_mesh = k.any_mesh || !r->mesh.empty();
+      k.any_box = k.any_box || r->depth_m.has_value();
     } else {
-      any_slide = true;
+      k.any_slide = true;
     }
   }
+  k.any_set = !spec.record_sets.empty();
+  k.any_single = !spec.records.empty() || !spec.pulses.empty();
+  return k;
+}
 
-  const bool any_set = !spec.record_sets.empty();
-  bool any_box = false;
-  bool all_cylinders_or_sliders = true;  // objects that need no bearing under a set
+/// Each object against the kinds of motion it runs under, before any run.
+void check_objects(const SweepSpec& spec, bool any_set) {
   for (std::size_t k = 0; k < spec.objects.size(); ++k) {
     const auto* r = std::get_if<RockObject>(&spec.objects[k]);
     const std::string name = fmt::format("object[{}]", k + 1);
     if (r != nullptr && r->depth_m) {
-      any_box = true;
       if (!spec.records.empty() || !spec.pulses.empty()) {
         throw parameter_error(name + ".depth", "a box (a block with a depth) needs two horizontal components: run it "
                                                "under [[motions.set]] only, not under single records or pulses");
       }
       (void)OrientedBody::make(r->body, r->depth_m);  // a depth on another shape, or an invalid one: before any run
     }
-    all_cylinders_or_sliders =
-        all_cylinders_or_sliders && (r == nullptr || r->body.shape == RockingBody::Shape::cylinder);
     if (const auto* s = std::get_if<SlideObject>(&spec.objects[k]); any_set && s != nullptr) {
       // Under a set a sliding object is a bidirectional slider (sliding2d.hpp): two-way, on level ground (a slope
       // would need its fall line's azimuth, which a sweep object does not give).
@@ -307,6 +328,16 @@ Plan make_plan(const SweepSpec& spec) {
       throw parameter_error(name + ".support_freq", "flexible supports are not run under [[motions.set]] (the support "
                                                     "of an oriented object would filter each direction)");
     }
+  }
+}
+
+/// The bearings and the record sets: bearings only under sets, and required there unless no object needs one.
+void check_sets(const SweepSpec& spec, bool any_set) {
+  bool all_cylinders_or_sliders = true;  // objects that need no bearing under a set
+  for (const auto& o : spec.objects) {
+    const auto* r = std::get_if<RockObject>(&o);
+    all_cylinders_or_sliders =
+        all_cylinders_or_sliders && (r == nullptr || r->body.shape == RockingBody::Shape::cylinder);
   }
   if (!any_set && !spec.bearings_deg.empty()) {
     throw parameter_error("bearing", "bearings apply to objects under [[motions.set]] (two horizontal components), "
@@ -330,21 +361,25 @@ Plan make_plan(const SweepSpec& spec) {
                                                        "azimuths", rs.name));
     }
   }
+}
 
-  if (any_support) {
-    // The support's response is exact for uniformly sampled input (flexible.hpp); analytic pulses keep their jumps
-    // on an irregular grid. Said before any run.
-    for (const auto& rec : spec.records) {
-      if (rec.motion && !rec.motion->is_uniform()) {
-        throw parameter_error("support_freq", fmt::format("record '{}' is irregularly sampled: objects on a flexible "
-                                                          "support need uniformly sampled records", rec.name));
-      }
-    }
-    if (!spec.pulses.empty()) {
-      throw parameter_error("support_freq", "objects on a flexible support run on records only (analytic pulses are "
-                                            "irregularly sampled, at their jumps)");
+/// Objects on a flexible support against the motions they would filter.
+void check_supports(const SweepSpec& spec) {
+  // The support's response is exact for uniformly sampled input (flexible.hpp); analytic pulses keep their jumps
+  // on an irregular grid. Said before any run.
+  for (const auto& rec : spec.records) {
+    if (rec.motion && !rec.motion->is_uniform()) {
+      throw parameter_error("support_freq", fmt::format("record '{}' is irregularly sampled: objects on a flexible "
+                                                        "support need uniformly sampled records", rec.name));
     }
   }
+  if (!spec.pulses.empty()) {
+    throw parameter_error("support_freq", "objects on a flexible support run on records only (analytic pulses are "
+                                          "irregularly sampled, at their jumps)");
+  }
+}
+
+ColumnSet motion_columns(const SweepSpec& spec, const SweepKinds& k) {
   ColumnSet motion_cols;
   motion_cols.add("motion");
   if (!spec.pulses.empty()) {
@@ -353,60 +388,278 @@ Plan make_plan(const SweepSpec& spec) {
     motion_cols.add("pulse_duration_s");
   }
   for (const char* c : {"time_scale", "scale_factor", "pga_g", "polarity"}) motion_cols.add(c);
-  if (any_set) motion_cols.add("bearing_deg");
+  if (k.any_set) motion_cols.add("bearing_deg");
+  return motion_cols;
+}
 
+ColumnSet object_columns(const SweepKinds& k) {
   ColumnSet object_cols;
   object_cols.add("model");
   object_cols.add("g_m_s2");
-  if (any_slide || any_rock_mu) object_cols.add("mu");
-  if (any_slide) {
+  if (k.any_slide || k.any_rock_mu) object_cols.add("mu");
+  if (k.any_slide) {
     for (const char* c : {"mu_kinetic", "slope_deg", "mode"}) object_cols.add(c);
   }
-  if (any_rock) {
+  if (k.any_rock) {
     object_cols.add("shape");
-    if (any_block) object_cols.add("width_m");
-    if (any_cylinder) object_cols.add("diameter_m");
-    if (any_block || any_cylinder) object_cols.add("height_m");
-    if (any_general) {
+    if (k.any_block) object_cols.add("width_m");
+    if (k.any_cylinder) object_cols.add("diameter_m");
+    if (k.any_block || k.any_cylinder) object_cols.add("height_m");
+    if (k.any_general) {
       for (const char* c : {"a_m", "h_m", "D_m2"}) object_cols.add(c);
     }
-    if (any_asymmetric) {
+    if (k.any_asymmetric) {
       for (const char* c : {"b1_m", "b2_m", "h_m", "inertia_m2"}) object_cols.add(c);
     }
-    if (any_mesh) {
+    if (k.any_mesh) {
       for (const char* c : {"mesh", "mesh_azimuth_deg"}) object_cols.add(c);
     }
     object_cols.add("restitution");
-    if (any_box) object_cols.add("depth_m");
+    if (k.any_box) object_cols.add("depth_m");
   }
-  if (any_support) {
+  if (k.any_support) {
     object_cols.add("support_freq_hz");
     object_cols.add("support_damping");
   }
+  return object_cols;
+}
 
+ColumnSet result_columns(const SweepKinds& k) {
   ColumnSet result_cols;
   // The result columns come from the field tables (summary_fields.hpp); a name both have (end_time_s) is one
   // column.
   // Sliding objects under single records and pulses (1-D); under sets (2-D) the bidirectional columns, those
   // that 1-D rows also have (max_abs_displacement_m ...) shared, the others (residual_azimuth_deg, residual_east_m,
   // residual_north_m, path_length_m) added: a sweep without sets keeps its columns.
-  const bool any_single = !spec.records.empty() || !spec.pulses.empty();
-  if (any_slide && any_single) {
+  if (k.any_slide && k.any_single) {
     for (const auto* f : sweep_fields(kSlidingFields)) result_cols.add(f->name);
   }
-  if (any_slide && any_set) {
+  if (k.any_slide && k.any_set) {
     for (const auto* f : sweep_fields(kSliding2dFields)) result_cols.add(f->name);
   }
-  if (any_rock) {
+  if (k.any_rock) {
     for (const auto* f : sweep_fields(kRockingFields)) result_cols.add(f->name);
   }
-  if (any_set && any_rock) {
+  if (k.any_set && k.any_rock) {
     result_cols.add("governing_azimuth_deg");
     result_cols.add("governing_axis");
   }
-  if (any_asymmetric) {
+  if (k.any_asymmetric) {
     for (const auto* f : sweep_fields(kRockingSideFields)) result_cols.add(f->name);
   }
+  return result_cols;
+}
+
+/// One scale of a record at one time scale: the transform, and the factor it multiplies the record by. A set's
+/// transform carries the factor (its first component's to the target PGA), which the run function applies to its
+/// other components too; a record's carries the target PGA.
+std::pair<MotionTransform, double> scaled_transform(const ScaleSpec& sc, double ts, double peak,
+                                                    const std::string& name, bool of_set) {
+  double factor = 1.0;
+  MotionTransform t;
+  t.time_scale = ts;
+  if (sc.kind == ScaleSpec::Kind::pga) {
+    if (!(sc.value > 0.0) || !std::isfinite(sc.value)) {
+      throw parameter_error("scale_pga", fmt::format("target PGA must be positive and finite, got {} m/s2",
+                                                     sc.value));
+    }
+    if (peak == 0.0) {
+      throw parameter_error("scale_pga", fmt::format("record '{}' is zero everywhere: it cannot be scaled to "
+                                                     "a PGA", name));
+    }
+    factor = sc.value / peak;  // what GroundMotion::scaled_to_pga multiplies by
+    if (of_set) {
+      t.factor = factor;
+    } else {
+      t.target_pga_m_s2 = sc.value;
+    }
+  } else if (sc.kind == ScaleSpec::Kind::factor) {
+    if (!std::isfinite(sc.value)) {
+      throw parameter_error("scale", fmt::format("scale factors must be finite, got {}", sc.value));
+    }
+    t.factor = sc.value;
+    factor = sc.value;
+  }
+  return {t, factor};
+}
+
+/// The plan's motion cases, in order: records, pulses, record sets (at each bearing); and the record sets' cases by
+/// motion index (absent for records and pulses).
+class MotionCases {
+ public:
+  MotionCases(const SweepSpec& spec, const ColumnSet& columns, Plan& plan)
+      : spec_(spec), columns_(columns), plan_(plan), g_(spec.g_m_s2) {}
+
+  void add_records() {
+    for (const auto& rec : spec_.records) {
+      if (!rec.motion) throw parameter_error("motions", fmt::format("record '{}' has no motion", rec.name));
+      add_scaled(rec.name, rec.motion, nullptr);
+    }
+  }
+
+  void add_pulses() {
+    for (const auto& p : spec_.pulses) {
+      const auto base = std::make_shared<const GroundMotion>(make_pulse(p.spec));
+      for (const bool inv : spec_.inverse) {
+        MotionCase mc;
+        mc.base = base;
+        mc.transform.invert = inv;
+        RowValues v(columns_);
+        v.set("motion", p.name);
+        v.set("pulse_kind", std::string(pulse_kind_name(p.spec.kind)));
+        v.set("pulse_amp_g", p.spec.amplitude_m_s2 / g_);
+        v.set("pulse_duration_s", p.spec.duration_s);
+        v.set("time_scale", 1.0);
+        v.set("scale_factor", 1.0);
+        v.set("pga_g", base->pga_m_s2() / g_);
+        v.set("polarity", std::string(polarity_name(inv)));
+        mc.values = v.take();
+        plan_.motions.push_back(std::move(mc));
+      }
+    }
+  }
+
+  /// Record sets at each bearing (cylinders only: the bearing is not used, one case per set).
+  void add_record_sets() {
+    const std::vector<double> bearings = spec_.bearings_deg.empty() ? std::vector<double>{0.0} : spec_.bearings_deg;
+    for (const auto& rs : spec_.record_sets) {
+      // The first component is the case's base motion (aliasing the set, which owns it).
+      const std::shared_ptr<const GroundMotion> first(rs.set, &rs.set->first());
+      for (const double bearing : bearings) {
+        const SetCase c{rs.set, {}, bearing};
+        add_scaled(rs.name, first, &c);
+      }
+      // The fingerprint hashes the base motions; the other components and the azimuths enter through the identity.
+      plan_.identity += fmt::format(";set {} az={},{} h2={} v={}", rs.name, rs.set->azimuths()->first_deg,
+                                    rs.set->azimuths()->second_deg, motion_fingerprint(rs.set->second()),
+                                    rs.set->has_vertical() ? motion_fingerprint(rs.set->vertical()) : "none");
+    }
+  }
+
+  std::vector<std::optional<SetCase>> take_set_cases() {
+    set_cases_.resize(plan_.motions.size());
+    return std::move(set_cases_);
+  }
+
+ private:
+  /// A record's (or a record set's, at one bearing) cases: time scales x scales x polarities of its base motion.
+  void add_scaled(const std::string& name, const std::shared_ptr<const GroundMotion>& base, const SetCase* set_case) {
+    const double peak = base->pga_m_s2();
+    for (const double ts : spec_.time_scales) {
+      if (!(ts > 0.0) || !std::isfinite(ts)) {
+        throw parameter_error("time_scale", fmt::format("time scale factors must be positive and finite, got {}", ts));
+      }
+      for (const auto& sc : spec_.scales) {
+        const auto [t, factor] = scaled_transform(sc, ts, peak, name, set_case != nullptr);
+        // max |a f| = round(peak |f|): rounding is monotone, so this is the scaled record's PGA exactly.
+        const double pga = peak * std::abs(factor);
+        for (const bool inv : spec_.inverse) {
+          MotionCase mc;
+          mc.base = base;
+          mc.transform = t;
+          mc.transform.invert = inv;
+          RowValues v(columns_);
+          v.set("motion", name);
+          v.set("time_scale", ts);
+          v.set("scale_factor", factor);
+          v.set("pga_g", pga / g_);
+          v.set("polarity", std::string(polarity_name(inv)));
+          if (set_case != nullptr) {
+            if (!spec_.bearings_deg.empty()) v.set("bearing_deg", set_case->bearing_deg);  // cylinders: none
+            set_cases_.resize(plan_.motions.size());
+            set_cases_.emplace_back(SetCase{set_case->set, mc.transform, set_case->bearing_deg});
+          }
+          mc.values = v.take();
+          plan_.motions.push_back(std::move(mc));
+        }
+      }
+    }
+  }
+
+  const SweepSpec& spec_;
+  const ColumnSet& columns_;
+  Plan& plan_;
+  double g_;
+  std::vector<std::optional<SetCase>> set_cases_;
+};
+
+void set_rock_values(const RockObject& r, RowValues& v) {
+  v.set("model", std::string("rock"));
+  v.set("g_m_s2", r.options.g_m_s2);
+  if (r.options.mu) v.set("mu", *r.options.mu);
+  v.set("shape", std::string(shape_name(r.body.shape)));
+  if (r.width_m) v.set("width_m", *r.width_m);
+  if (r.diameter_m) v.set("diameter_m", *r.diameter_m);
+  if (r.height_m) v.set("height_m", *r.height_m);
+  if (r.body.shape == RockingBody::Shape::general && r.body.symmetric()) {
+    v.set("a_m", r.body.a_m);
+    v.set("h_m", r.body.h_m);
+    v.set("D_m2", r.body.D_m2);
+  }
+  if (!r.body.symmetric()) {
+    v.set("b1_m", r.body.pivot_b_m(-1));
+    v.set("b2_m", r.body.pivot_b_m(1));
+    v.set("h_m", r.body.h_m);
+    if (r.inertia_m2) v.set("inertia_m2", *r.inertia_m2);
+  }
+  if (!r.mesh.empty()) {
+    v.set("mesh", r.mesh);
+    if (r.mesh_azimuth_deg) v.set("mesh_azimuth_deg", *r.mesh_azimuth_deg);
+  }
+  v.set("restitution", std::string(restitution_mode_name(r.options.restitution)));
+  if (r.depth_m) v.set("depth_m", *r.depth_m);
+}
+
+/// Settings of a rocking object that are not columns still decide the results: they enter the fingerprint.
+std::string rock_identity(const RockObject& r) {
+  const RockingOptions& x = r.options;
+  std::string identity = fmt::format(";rock a={} h={} D={} e={} method={} rtol={} atol={} n={} rest={} runout={} "
+                                     "theta0={} omega0={} stop={} steps={}",
+                                     r.body.a_m, r.body.h_m, r.body.D_m2, x.e, static_cast<int>(x.method), x.rel_tol,
+                                     x.abs_tol, x.rk4_substeps, x.rest_energy_fraction, x.max_run_out_s,
+                                     x.initial_theta_rad, x.initial_theta_dot_rad_s, x.stop_when_alpha_exceeded,
+                                     x.max_steps);
+  // The other pivot of an asymmetric body (appended only for one, so that other sweeps keep their identity).
+  if (!r.body.symmetric()) {
+    identity += fmt::format(" b1={} D1={}", r.body.pivot_b_m(-1), r.body.pivot_D_m2(-1));
+  }
+  return identity;
+}
+
+/// An object's case: its column values; a rocking object's other settings appended to the identity.
+ObjectCase object_case(const ObjectSpec& o, const ColumnSet& columns, std::string& identity) {
+  RowValues v(columns);
+  if (const auto& support = support_of(o)) {
+    v.set("support_freq_hz", support->freq_hz);
+    v.set("support_damping", support->damping_ratio);
+  }
+  if (const auto* s = std::get_if<SlideObject>(&o)) {
+    v.set("model", std::string("slide"));
+    v.set("g_m_s2", s->block.g_m_s2);
+    v.set("mu", s->block.mu_static);
+    v.set("mu_kinetic", s->block.mu_kinetic);
+    v.set("slope_deg", s->slope_deg);
+    v.set("mode", std::string(sliding_mode_name(s->block.mode)));
+  } else {
+    const auto& r = std::get<RockObject>(o);
+    set_rock_values(r, v);
+    identity += rock_identity(r);
+  }
+  return ObjectCase{v.take()};
+}
+
+}  // namespace
+
+Plan make_plan(const SweepSpec& spec) {
+  check_spec(spec);
+  const SweepKinds kinds = kinds_of(spec);
+  check_objects(spec, kinds.any_set);
+  check_sets(spec, kinds.any_set);
+  if (kinds.any_support) check_supports(spec);
+
+  const ColumnSet motion_cols = motion_columns(spec, kinds);
+  const ColumnSet object_cols = object_columns(kinds);
+  const ColumnSet result_cols = result_columns(kinds);
 
   Plan plan;
   plan.motion_columns = motion_cols.names();
@@ -415,165 +668,15 @@ Plan make_plan(const SweepSpec& spec) {
   plan.chunk_runs = spec.chunk_runs;
   plan.identity = "topple-sweep/1";
 
-  // Motion cases of record sets, by motion index (absent for records and pulses).
-  std::vector<std::optional<SetCase>> set_cases;
-  // A record's (or a record set's, at one bearing) cases: time scales x scales x polarities of its base motion. A
-  // set is scaled by a factor (its first component's to a target PGA), which the run function applies to its other
-  // components too.
-  const auto add_scaled = [&](const std::string& name, const std::shared_ptr<const GroundMotion>& base,
-                              const SetCase* set_case) {
-    const double peak = base->pga_m_s2();
-    for (const double ts : spec.time_scales) {
-      if (!(ts > 0.0) || !std::isfinite(ts)) {
-        throw parameter_error("time_scale", fmt::format("time scale factors must be positive and finite, got {}", ts));
-      }
-      for (const auto& sc : spec.scales) {
-        double factor = 1.0;
-        MotionTransform t;
-        t.time_scale = ts;
-        if (sc.kind == ScaleSpec::Kind::pga) {
-          if (!(sc.value > 0.0) || !std::isfinite(sc.value)) {
-            throw parameter_error("scale_pga", fmt::format("target PGA must be positive and finite, got {} m/s2",
-                                                           sc.value));
-          }
-          if (peak == 0.0) {
-            throw parameter_error("scale_pga", fmt::format("record '{}' is zero everywhere: it cannot be scaled to "
-                                                           "a PGA", name));
-          }
-          factor = sc.value / peak;  // what GroundMotion::scaled_to_pga multiplies by
-          if (set_case != nullptr) {
-            t.factor = factor;
-          } else {
-            t.target_pga_m_s2 = sc.value;
-          }
-        } else if (sc.kind == ScaleSpec::Kind::factor) {
-          if (!std::isfinite(sc.value)) {
-            throw parameter_error("scale", fmt::format("scale factors must be finite, got {}", sc.value));
-          }
-          t.factor = sc.value;
-          factor = sc.value;
-        }
-        // max |a f| = round(peak |f|): rounding is monotone, so this is the scaled record's PGA exactly.
-        const double pga = peak * std::abs(factor);
-        for (const bool inv : spec.inverse) {
-          MotionCase mc;
-          mc.base = base;
-          mc.transform = t;
-          mc.transform.invert = inv;
-          RowValues v(motion_cols);
-          v.set("motion", name);
-          v.set("time_scale", ts);
-          v.set("scale_factor", factor);
-          v.set("pga_g", pga / g);
-          v.set("polarity", std::string(polarity_name(inv)));
-          if (set_case != nullptr) {
-            if (!spec.bearings_deg.empty()) v.set("bearing_deg", set_case->bearing_deg);  // cylinders: none
-            set_cases.resize(plan.motions.size());
-            set_cases.emplace_back(SetCase{set_case->set, mc.transform, set_case->bearing_deg});
-          }
-          mc.values = v.take();
-          plan.motions.push_back(std::move(mc));
-        }
-      }
-    }
-  };
-  for (const auto& rec : spec.records) {
-    if (!rec.motion) throw parameter_error("motions", fmt::format("record '{}' has no motion", rec.name));
-    add_scaled(rec.name, rec.motion, nullptr);
-  }
-  for (const auto& p : spec.pulses) {
-    const auto base = std::make_shared<const GroundMotion>(make_pulse(p.spec));
-    for (const bool inv : spec.inverse) {
-      MotionCase mc;
-      mc.base = base;
-      mc.transform.invert = inv;
-      RowValues v(motion_cols);
-      v.set("motion", p.name);
-      v.set("pulse_kind", std::string(pulse_kind_name(p.spec.kind)));
-      v.set("pulse_amp_g", p.spec.amplitude_m_s2 / g);
-      v.set("pulse_duration_s", p.spec.duration_s);
-      v.set("time_scale", 1.0);
-      v.set("scale_factor", 1.0);
-      v.set("pga_g", base->pga_m_s2() / g);
-      v.set("polarity", std::string(polarity_name(inv)));
-      mc.values = v.take();
-      plan.motions.push_back(std::move(mc));
-    }
-  }
+  MotionCases cases(spec, motion_cols, plan);
+  cases.add_records();
+  cases.add_pulses();
+  cases.add_record_sets();
+  if (kinds.any_set) plan.identity += fmt::format(";cylinder_step={}", spec.orientation.cylinder_step_deg);
 
-  // Record sets at each bearing (cylinders only: the bearing is not used, one case per set).
-  const std::vector<double> bearings = spec.bearings_deg.empty() ? std::vector<double>{0.0} : spec.bearings_deg;
-  for (const auto& rs : spec.record_sets) {
-    // The first component is the case's base motion (aliasing the set, which owns it).
-    const std::shared_ptr<const GroundMotion> first(rs.set, &rs.set->first());
-    for (const double bearing : bearings) {
-      const SetCase c{rs.set, {}, bearing};
-      add_scaled(rs.name, first, &c);
-    }
-    // The fingerprint hashes the base motions; the other components and the azimuths enter through the identity.
-    plan.identity += fmt::format(";set {} az={},{} h2={} v={}", rs.name, rs.set->azimuths()->first_deg,
-                                 rs.set->azimuths()->second_deg, motion_fingerprint(rs.set->second()),
-                                 rs.set->has_vertical() ? motion_fingerprint(rs.set->vertical()) : "none");
-  }
-  if (any_set) plan.identity += fmt::format(";cylinder_step={}", spec.orientation.cylinder_step_deg);
+  for (const auto& o : spec.objects) plan.objects.push_back(object_case(o, object_cols, plan.identity));
 
-  for (const auto& o : spec.objects) {
-    RowValues v(object_cols);
-    if (const auto& support = support_of(o)) {
-      v.set("support_freq_hz", support->freq_hz);
-      v.set("support_damping", support->damping_ratio);
-    }
-    if (const auto* s = std::get_if<SlideObject>(&o)) {
-      v.set("model", std::string("slide"));
-      v.set("g_m_s2", s->block.g_m_s2);
-      v.set("mu", s->block.mu_static);
-      v.set("mu_kinetic", s->block.mu_kinetic);
-      v.set("slope_deg", s->slope_deg);
-      v.set("mode", std::string(sliding_mode_name(s->block.mode)));
-    } else {
-      const auto& r = std::get<RockObject>(o);
-      v.set("model", std::string("rock"));
-      v.set("g_m_s2", r.options.g_m_s2);
-      if (r.options.mu) v.set("mu", *r.options.mu);
-      v.set("shape", std::string(shape_name(r.body.shape)));
-      if (r.width_m) v.set("width_m", *r.width_m);
-      if (r.diameter_m) v.set("diameter_m", *r.diameter_m);
-      if (r.height_m) v.set("height_m", *r.height_m);
-      if (r.body.shape == RockingBody::Shape::general && r.body.symmetric()) {
-        v.set("a_m", r.body.a_m);
-        v.set("h_m", r.body.h_m);
-        v.set("D_m2", r.body.D_m2);
-      }
-      if (!r.body.symmetric()) {
-        v.set("b1_m", r.body.pivot_b_m(-1));
-        v.set("b2_m", r.body.pivot_b_m(1));
-        v.set("h_m", r.body.h_m);
-        if (r.inertia_m2) v.set("inertia_m2", *r.inertia_m2);
-      }
-      if (!r.mesh.empty()) {
-        v.set("mesh", r.mesh);
-        if (r.mesh_azimuth_deg) v.set("mesh_azimuth_deg", *r.mesh_azimuth_deg);
-      }
-      v.set("restitution", std::string(restitution_mode_name(r.options.restitution)));
-      if (r.depth_m) v.set("depth_m", *r.depth_m);
-      // Settings that are not columns still decide the results: they enter the fingerprint.
-      const RockingOptions& x = r.options;
-      plan.identity += fmt::format(";rock a={} h={} D={} e={} method={} rtol={} atol={} n={} rest={} runout={} "
-                                   "theta0={} omega0={} stop={} steps={}",
-                                   r.body.a_m, r.body.h_m, r.body.D_m2, x.e, static_cast<int>(x.method), x.rel_tol,
-                                   x.abs_tol, x.rk4_substeps, x.rest_energy_fraction, x.max_run_out_s,
-                                   x.initial_theta_rad, x.initial_theta_dot_rad_s, x.stop_when_alpha_exceeded,
-                                   x.max_steps);
-      // The other pivot of an asymmetric body (appended only for one, so that other sweeps keep their identity).
-      if (!r.body.symmetric()) {
-        plan.identity += fmt::format(" b1={} D1={}", r.body.pivot_b_m(-1), r.body.pivot_D_m2(-1));
-      }
-    }
-    plan.objects.push_back(ObjectCase{v.take()});
-  }
-
-  set_cases.resize(plan.motions.size());
-  plan.run = [runner = std::make_shared<const Runner>(spec.objects, result_cols, std::move(set_cases),
+  plan.run = [runner = std::make_shared<const Runner>(spec.objects, result_cols, cases.take_set_cases(),
                                                       spec.orientation)](
                  const GroundMotion& motion, std::size_t m, std::size_t begin, std::size_t end, std::span<Value> out) {
     (*runner)(motion, m, begin, end, out);

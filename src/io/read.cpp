@@ -329,24 +329,27 @@ void metadata_from_title(std::string_view comment, RecordMetadata& meta) {
   }
 }
 
-}  // namespace
-
-GroundMotion read_plain(const Text& text, const ReadOptions& options) {
+/// A plain file's lines: its header (a line of column names, or the last comment before the data naming them), its
+/// first comment (a title), and its samples, one or two columns.
+struct PlainData {
   std::optional<Header> header;
-  std::optional<Line> last_comment;
   std::optional<Line> first_comment;
   std::size_t columns = 0;
-  std::size_t first_data_line = 0;
   Samples times;
   Samples accels;
+};
 
+PlainData scan_plain(const Text& text) {
+  PlainData d;
+  std::optional<Line> last_comment;
+  std::size_t first_data_line = 0;
   for (const Line& line : text.lines()) {
     const std::string_view s = trim(line.text);
     if (s.empty()) continue;
     if (s.starts_with('#')) {
-      if (columns == 0) {
+      if (d.columns == 0) {
         last_comment = line;
-        if (!first_comment) first_comment = line;
+        if (!d.first_comment) d.first_comment = line;
       }
       continue;
     }
@@ -354,7 +357,7 @@ GroundMotion read_plain(const Text& text, const ReadOptions& options) {
     if (fields.empty()) {
       text.fail(line.number, "", fmt::format("no values on the line {}", detail::quoted(s)));
     }
-    if (columns == 0 && !header && !try_number(fields.front())) {
+    if (d.columns == 0 && !d.header && !try_number(fields.front())) {
       // The first non-comment line that does not start with a number names the columns.
       Header h;
       h.line = line.number;
@@ -362,71 +365,81 @@ GroundMotion read_plain(const Text& text, const ReadOptions& options) {
         if (f.empty()) text.fail(line.number, "header", "empty column name in the header");
         h.columns.push_back(parse_column(f));
       }
-      header = std::move(h);
+      d.header = std::move(h);
       continue;
     }
-    if (columns == 0) {
-      columns = fields.size();
+    if (d.columns == 0) {
+      d.columns = fields.size();
       first_data_line = line.number;
-      if (columns > 2) {
+      if (d.columns > 2) {
         text.fail(line.number, "",
                   fmt::format("{} columns; a plain file holds one (acceleration) or two (time, acceleration)",
-                              columns));
+                              d.columns));
       }
-      if (!header && last_comment) header = header_from_comment(*last_comment, columns);
-    } else if (fields.size() != columns) {
+      if (!d.header && last_comment) d.header = header_from_comment(*last_comment, d.columns);
+    } else if (fields.size() != d.columns) {
       text.fail(line.number, "",
                 fmt::format("{} column{} where line {} has {}", fields.size(), fields.size() == 1 ? "" : "s",
-                            first_data_line, columns));
+                            first_data_line, d.columns));
     }
     for (std::size_t k = 0; k < fields.size(); ++k) {
       if (fields[k].empty()) text.fail(line.number, "", fmt::format("empty field {} (two separators in a row)", k + 1));
     }
-    if (columns == 2) {
-      times.push(parse_number(text, fields[0], line.number, "time"), line.number);
-      accels.push(parse_number(text, fields[1], line.number, "acceleration"), line.number);
+    if (d.columns == 2) {
+      d.times.push(parse_number(text, fields[0], line.number, "time"), line.number);
+      d.accels.push(parse_number(text, fields[1], line.number, "acceleration"), line.number);
     } else {
-      accels.push(parse_number(text, fields[0], line.number, "acceleration"), line.number);
+      d.accels.push(parse_number(text, fields[0], line.number, "acceleration"), line.number);
     }
   }
-  if (accels.size() == 0) {
-    text.fail(header ? header->line : text.last_line_number(), "",
+  if (d.accels.size() == 0) {
+    text.fail(d.header ? d.header->line : text.last_line_number(), "",
               "no data: the file holds no numeric lines (only comments or a header)");
   }
+  return d;
+}
 
-  // Column meaning and units.
+/// Column meaning and units, as the header states them (none without a header).
+struct PlainUnits {
   std::string time_unit;
   std::string accel_unit;
   std::size_t unit_line = 0;
   std::string accel_field = "acceleration";
-  if (header) {
-    if (header->columns.size() != columns) {
-      text.fail(header->line, "header",
-                fmt::format("the header names {} column{} but the data has {}", header->columns.size(),
-                            header->columns.size() == 1 ? "" : "s", columns));
-    }
-    const Column& accel_column = header->columns.back();
-    if (columns == 2 && !is_time_column(header->columns[0])) {
-      text.fail(header->line, header->columns[0].name,
-                "the first of two columns must be the time (e.g. 'time_s,accel_g')");
-    }
-    if (!is_accel_column(accel_column) && !header->from_comment) {
-      text.fail(header->line, accel_column.name,
-                "the acceleration column must be named accel/acc/acceleration with its unit (e.g. 'accel_g')");
-    }
-    if (columns == 2) time_unit = header->columns[0].unit;
-    accel_unit = accel_column.unit;
-    accel_field = accel_column.name;
-    unit_line = header->line;
-  }
+};
 
-  RecordMetadata meta;
-  if (first_comment) metadata_from_title(first_comment->text, meta);
+PlainUnits plain_units(const Text& text, const PlainData& d) {
+  PlainUnits u;
+  if (!d.header) return u;
+  const Header& header = *d.header;
+  if (header.columns.size() != d.columns) {
+    text.fail(header.line, "header",
+              fmt::format("the header names {} column{} but the data has {}", header.columns.size(),
+                          header.columns.size() == 1 ? "" : "s", d.columns));
+  }
+  const Column& accel_column = header.columns.back();
+  if (d.columns == 2 && !is_time_column(header.columns[0])) {
+    text.fail(header.line, header.columns[0].name,
+              "the first of two columns must be the time (e.g. 'time_s,accel_g')");
+  }
+  if (!is_accel_column(accel_column) && !header.from_comment) {
+    text.fail(header.line, accel_column.name,
+              "the acceleration column must be named accel/acc/acceleration with its unit (e.g. 'accel_g')");
+  }
+  if (d.columns == 2) u.time_unit = header.columns[0].unit;
+  u.accel_unit = accel_column.unit;
+  u.accel_field = accel_column.name;
+  u.unit_line = header.line;
+  return u;
+}
+
+/// The factor to m/s^2: the header's unit (--units may only confirm it), or --units.
+double plain_accel_factor(const Text& text, const PlainData& d, const PlainUnits& u, const ReadOptions& options,
+                          RecordMetadata& meta) {
   double factor = 0.0;
-  if (!accel_unit.empty()) {
+  if (!u.accel_unit.empty()) {
     // The header states the unit: --units may only confirm it.
-    factor = file_unit_factor(text, accel_unit, unit_line, accel_field, options);
-    meta.units_as_read = accel_unit;
+    factor = file_unit_factor(text, u.accel_unit, u.unit_line, u.accel_field, options);
+    meta.units_as_read = u.accel_unit;
   } else if (!options.units.empty()) {
     try {
       factor = acceleration_unit_factor(options.units, "--units", options.g_m_s2);
@@ -434,37 +447,28 @@ GroundMotion read_plain(const Text& text, const ReadOptions& options) {
       text.fail_file("--units", e.problem());
     }
     meta.units_as_read = options.units;
-  } else if (header) {
-    text.fail(header->line, accel_field,
+  } else if (d.header) {
+    text.fail(d.header->line, u.accel_field,
               "the header names no acceleration unit; name it (e.g. 'accel_g', 'accel_m_s2', 'accel_cm_s2') or "
               "give --units (g, m/s2, cm/s2, gal)");
   } else {
     text.fail_file("--units",
                    "a plain file without a header naming its unit needs --units (g, m/s2, cm/s2, gal)");
   }
-  std::vector<double> accel = to_m_s2(text, accels, factor, accel_field);
+  return factor;
+}
 
-  if (columns == 1) {
-    if (!options.dt_s) {
-      text.fail_file("--dt", "a one-column file holds no times; give its time step with --dt");
-    }
-    if (!(*options.dt_s > 0.0) || !std::isfinite(*options.dt_s)) {
-      text.fail_file("--dt", fmt::format("the time step must be positive and finite, got {}", *options.dt_s));
-    }
-    return uniform_record(text, std::move(accel), *options.dt_s, std::nullopt, "--dt", std::move(meta), options);
-  }
-
-  if (options.dt_s) {
-    text.fail_file("--dt", "this file has a time column; --dt applies only to one-column files");
-  }
+/// The time column in seconds, checked against the limits of a ground motion (GroundMotionLimits).
+std::vector<double> plain_times_s(const Text& text, const PlainData& d, const PlainUnits& u) {
   double time_factor = 1.0;
-  if (time_unit == "ms") {
+  if (u.time_unit == "ms") {
     time_factor = 1e-3;
-  } else if (!time_unit.empty() && time_unit != "s" && time_unit != "sec") {
-    text.fail(header->line, header->columns[0].name,
-              fmt::format("unknown time unit {} (known: s, ms)", detail::quoted(time_unit)));
+  } else if (!u.time_unit.empty() && u.time_unit != "s" && u.time_unit != "sec") {
+    text.fail(d.header->line, d.header->columns[0].name,
+              fmt::format("unknown time unit {} (known: s, ms)", detail::quoted(u.time_unit)));
   }
   using Limits = GroundMotionLimits;
+  const Samples& times = d.times;
   std::vector<double> t = times.values;
   if (t.size() > Limits::max_samples) {
     text.fail(times.lines.back(), "time",
@@ -501,8 +505,36 @@ GroundMotion read_plain(const Text& text, const ReadOptions& options) {
                           "(6 h) of a ground motion",
                           span, t.front(), t.back(), Limits::max_duration_s));
   }
+  return t;
+}
+
+}  // namespace
+
+GroundMotion read_plain(const Text& text, const ReadOptions& options) {
+  PlainData d = scan_plain(text);
+  const PlainUnits units = plain_units(text, d);
+  RecordMetadata meta;
+  if (d.first_comment) metadata_from_title(d.first_comment->text, meta);
+  const double factor = plain_accel_factor(text, d, units, options, meta);
+  std::vector<double> accel = to_m_s2(text, d.accels, factor, units.accel_field);
+
+  if (d.columns == 1) {
+    if (!options.dt_s) {
+      text.fail_file("--dt", "a one-column file holds no times; give its time step with --dt");
+    }
+    if (!(*options.dt_s > 0.0) || !std::isfinite(*options.dt_s)) {
+      text.fail_file("--dt", fmt::format("the time step must be positive and finite, got {}", *options.dt_s));
+    }
+    return uniform_record(text, std::move(accel), *options.dt_s, std::nullopt, "--dt", std::move(meta), options);
+  }
+
+  if (options.dt_s) {
+    text.fail_file("--dt", "this file has a time column; --dt applies only to one-column files");
+  }
+  std::vector<double> t = plain_times_s(text, d, units);
   // Uniform when every interval equals the mean interval to 1e-9 relative: times printed with a few decimals
   // ("40.13", "40.14") differ from a uniform grid only by the rounding of their decimal representation.
+  const double span = t.back() - t.front();
   const double dt = span / static_cast<double>(t.size() - 1);
   bool uniform = dt > 0.0;
   for (std::size_t i = 1; i < t.size() && uniform; ++i) {

@@ -199,30 +199,34 @@ class Writer {
   CsvSurveyText out_;
 };
 
-}  // namespace
-
-bool is_csv_survey(std::string_view text, std::string_view name) {
-  if (name.size() >= 4 && to_lower(name.substr(name.size() - 4)) == ".csv") return true;
-  if (name.size() >= 5 && to_lower(name.substr(name.size() - 5)) == ".toml") return false;
-  for (const Line& l : split_lines(text, 1000)) {
-    if (is_comment_or_blank(l.text)) continue;
-    const std::string_view t = trim(l.text);
-    if (t.front() == '[') return false;  // a TOML table
-    const std::size_t sep = t.find_first_of(",;");
-    return sep != std::string_view::npos && t.substr(0, sep).find('=') == std::string_view::npos;
+/// A setting's value as TOML: text keys quoted; inversion.records, a list of record files separated by ';' (a TOML
+/// array is accepted too); anything else as written.
+std::string setting_value(const std::string& section, const std::string& key, const std::string& cell) {
+  if (kStringKeys.contains(key)) return toml_string(cell);
+  if (section == "inversion" && key == "records" && !cell.starts_with('[')) {
+    // A list of record files separated by ';' (a TOML array is accepted too).
+    std::string value = "[";
+    std::string_view rest = cell;
+    while (true) {
+      const std::size_t semi = rest.find(';');
+      value += toml_string(trim(rest.substr(0, semi)));
+      if (semi == std::string_view::npos) break;
+      value += ", ";
+      rest.remove_prefix(semi + 1);
+    }
+    value += "]";
+    return value;
   }
-  return false;
+  return toml_value(cell);
 }
 
-CsvSurveyText csv_survey_to_toml(std::string_view content, const std::string& name) {
-  const Text text(content, name);
-  const std::vector<Row> rows = split_rows(text);
-  Writer w;
-
+/// The setting rows ("site.name", "inversion.pga_g", "event.epicentre" and a value), written as TOML tables. Returns
+/// the index of the first row that is not a setting (the header row).
+std::size_t write_settings(const Text& text, const std::vector<Row>& rows, Writer& w) {
   // Setting rows ("site.name", "inversion.pga_g", "event.epicentre" and a value) come before the header row.
-  std::size_t r = 0;
   std::map<std::string, std::vector<std::pair<std::string, CsvOrigin>>> sections;
   std::vector<std::string> order;
+  std::size_t r = 0;
   for (; r < rows.size(); ++r) {
     const Row& row = rows[r];
     const std::string& first = row.cells.front().text;
@@ -245,25 +249,7 @@ CsvSurveyText csv_survey_to_toml(std::string_view content, const std::string& na
                                                                       "what follows {}'s value is not empty", first));
       }
     }
-    const std::string& cell = row.cells[1].text;
-    std::string value;
-    if (kStringKeys.contains(key)) {
-      value = toml_string(cell);
-    } else if (section == "inversion" && key == "records" && !cell.starts_with('[')) {
-      // A list of record files separated by ';' (a TOML array is accepted too).
-      value = "[";
-      std::string_view rest = cell;
-      while (true) {
-        const std::size_t semi = rest.find(';');
-        value += toml_string(trim(rest.substr(0, semi)));
-        if (semi == std::string_view::npos) break;
-        value += ", ";
-        rest.remove_prefix(semi + 1);
-      }
-      value += "]";
-    } else {
-      value = toml_value(cell);
-    }
+    const std::string value = setting_value(section, key, row.cells[1].text);
     if (!sections.contains(section)) order.push_back(section);
     sections[section].emplace_back(key + " = " + value, CsvOrigin{row.cells[1].line, 1, first});
   }
@@ -271,14 +257,11 @@ CsvSurveyText csv_survey_to_toml(std::string_view content, const std::string& na
     w.line("[" + section + "]", CsvOrigin{sections[section].front().second.line, {}, {}});
     for (auto& [toml_line, origin] : sections[section]) w.line(toml_line, origin);
   }
+  return r;
+}
 
-  if (r == rows.size()) {
-    text.fail(text.last_line_number(), "id",
-              "no header row: a CSV survey has one row of column names (id, shape, width_cm, ...) and then one "
-              "object per row (docs/survey.md, \"CSV surveys\")");
-  }
-  // The header row.
-  const Row& head = rows[r++];
+/// The header row's columns: a survey key each, with an optional unit; none for a column without a header.
+std::vector<std::optional<Column>> read_header(const Text& text, const Row& head) {
   std::vector<std::optional<Column>> columns;
   std::map<std::string, std::size_t, std::less<>> seen;
   for (std::size_t c = 0; c < head.cells.size(); ++c) {
@@ -303,9 +286,13 @@ CsvSurveyText csv_survey_to_toml(std::string_view content, const std::string& na
   if (!seen.contains("id")) {
     text.fail(head.line, "id", "the header row has no id column (every object needs an id; docs/survey.md)");
   }
+  return columns;
+}
 
-  // One object per row.
-  for (; r < rows.size(); ++r) {
+/// One object per row from `first` on: a [[object]] table each, a key per non-empty cell.
+void write_objects(const Text& text, const std::vector<Row>& rows, std::size_t first, const Row& head,
+                   const std::vector<std::optional<Column>>& columns, Writer& w) {
+  for (std::size_t r = first; r < rows.size(); ++r) {
     const Row& row = rows[r];
     w.line("[[object]]", CsvOrigin{row.line, {}, {}});
     for (std::size_t c = 0; c < row.cells.size(); ++c) {
@@ -333,6 +320,37 @@ CsvSurveyText csv_survey_to_toml(std::string_view content, const std::string& na
       w.line(col.key + " = " + value, CsvOrigin{cell.line, c, col.header});
     }
   }
+}
+
+}  // namespace
+
+bool is_csv_survey(std::string_view text, std::string_view name) {
+  if (name.size() >= 4 && to_lower(name.substr(name.size() - 4)) == ".csv") return true;
+  if (name.size() >= 5 && to_lower(name.substr(name.size() - 5)) == ".toml") return false;
+  for (const Line& l : split_lines(text, 1000)) {
+    if (is_comment_or_blank(l.text)) continue;
+    const std::string_view t = trim(l.text);
+    if (t.front() == '[') return false;  // a TOML table
+    const std::size_t sep = t.find_first_of(",;");
+    return sep != std::string_view::npos && t.substr(0, sep).find('=') == std::string_view::npos;
+  }
+  return false;
+}
+
+CsvSurveyText csv_survey_to_toml(std::string_view content, const std::string& name) {
+  const Text text(content, name);
+  const std::vector<Row> rows = split_rows(text);
+  Writer w;
+  std::size_t r = write_settings(text, rows, w);
+  if (r == rows.size()) {
+    text.fail(text.last_line_number(), "id",
+              "no header row: a CSV survey has one row of column names (id, shape, width_cm, ...) and then one "
+              "object per row (docs/survey.md, \"CSV surveys\")");
+  }
+  // The header row.
+  const Row& head = rows[r++];
+  const std::vector<std::optional<Column>> columns = read_header(text, head);
+  write_objects(text, rows, r, head, columns, w);
   return w.take();
 }
 

@@ -16,8 +16,6 @@
 #include "topple/io/mesh.hpp"
 #include "topple/io/read.hpp"
 #include "topple/solvers/oriented.hpp"
-#include "topple/solvers/slide_rock.hpp"
-#include "topple/core/units.hpp"
 #include "io/survey_csv.hpp"
 
 namespace topple {
@@ -238,6 +236,17 @@ struct ReaderMessages {
   std::vector<std::string>& warnings;
 };
 
+/// Calls `check`, a rule of the survey (survey.hpp) that throws parameter_error(field, problem): what it throws is
+/// located at this object's key in the file.
+template <class F>
+auto at_object_keys(const Reader& named, F&& check) -> decltype(check()) {
+  try {
+    return check();
+  } catch (const InputError& e) {
+    throw named.error(e.where().field, e.problem());
+  }
+}
+
 /// `model = "slide" | "rock" | "coupled"` and the rule's refusals (survey.hpp, object_model; docs/survey.md,
 /// "Objects that slide and rock"). Needs the body, mu and the outcome.
 void parse_object_model(Reader& named, ObservedObject& o, int components, std::vector<std::string>& warnings) {
@@ -248,30 +257,16 @@ void parse_object_model(Reader& named, ObservedObject& o, int components, std::v
     else throw named.error("model", fmt::format("unknown model '{}' (known: slide, rock, coupled)", *m));
   }
   // The survey's rules for the model (survey.hpp, check_object_model), located at this object's keys.
-  try {
-    for (const ObjectCheck& w : check_object_model(o, components)) {
-      warnings.push_back(named.error(w.field, w.problem).what());
-    }
-  } catch (const InputError& e) {
-    throw named.error(e.where().field, e.problem());
+  for (const ObjectCheck& w : at_object_keys(named, [&] { return check_object_model(o, components); })) {
+    warnings.push_back(named.error(w.field, w.problem).what());
   }
 }
 
-ObservedObject parse_object(const toml::table& t, const std::string& file, const std::string& path,
-                            ReaderMessages& said, const std::filesystem::path& base_dir,
-                            const Site* site = nullptr, int components = 1) {
-  Reader r(t, file, path);
-  ObservedObject o;
-  o.id = r.string("id").value_or("");
-  if (o.id.empty()) throw r.error("id", "every object needs an id");
-  Reader named(t, file, path + "(" + o.id + ")");
-  named.get("id");
-  o.description = named.string("description").value_or("");
-  // A missing shape is a block (the documented default: old surveys rely on it), unless the keys say otherwise:
-  // a diameter, or a/h/D, without a shape would be measured as a block's width only by a dangerous guess. A body
-  // from a mesh (`mesh = "..."`) is a general body: its shape may be left out.
+/// The shape an object's keys give. A missing shape is a block (the documented default: old surveys rely on it),
+/// unless the keys say otherwise: a diameter, or a/h/D, without a shape would be measured as a block's width only by
+/// a dangerous guess. A body from a mesh (`mesh = "..."`) is a general body: its shape may be left out.
+std::string object_shape(Reader& named, bool from_mesh) {
   const std::optional<std::string> given_shape = named.string("shape");
-  const bool from_mesh = named.has("mesh");
   if (!given_shape && !from_mesh) {
     if (named.has("diameter")) {
       throw named.error("shape", "no shape given, but a diameter is: write shape = \"cylinder\" (a missing shape "
@@ -292,6 +287,35 @@ ObservedObject parse_object(const toml::table& t, const std::string& file, const
       if (named.has(key)) throw named.error(key, "goes with mesh = \"file\" (a body from a 3-D scan)");
     }
   }
+  return shape;
+}
+
+/// A general body's D = I/m: an area with its unit.
+double parse_general_D_m2(Reader& named) {
+  const toml::node* dn = named.get("D");
+  if (dn == nullptr || !dn->is_string()) throw named.error("D", "a general body needs D = I/m with its unit, e.g. \"0.01m2\"");
+  std::string dtext = dn->as_string()->get();
+  // D is an area (m^2): accept "m2"/"cm2" by converting the length unit's square.
+  double factor = 0.0;
+  for (const auto& [suffix, f] : {std::pair{"cm2", 1e-4}, std::pair{"mm2", 1e-6}, std::pair{"m2", 1.0}}) {
+    if (dtext.size() > std::string_view(suffix).size() &&
+        dtext.compare(dtext.size() - std::string_view(suffix).size(), std::string::npos, suffix) == 0) {
+      factor = f;
+      dtext.resize(dtext.size() - std::string_view(suffix).size());
+      break;
+    }
+  }
+  double d = 0.0;
+  std::istringstream ss(dtext);
+  if (factor == 0.0 || !(ss >> d) || !(d > 0.0)) {
+    throw named.error("D", fmt::format("'{}' is not a positive area with unit m2, cm2 or mm2", dn->as_string()->get()), dn);
+  }
+  return d * factor;
+}
+
+/// The object's body, of its shape: from a mesh, an asymmetric general body, a block, a cylinder or a general body.
+void parse_object_body(Reader& named, const std::string& shape, bool from_mesh, const std::filesystem::path& base_dir,
+                       ObservedObject& o) {
   const auto require = [&](std::string_view key) {
     auto v = named.length(key);
     if (!v) throw named.error(key, fmt::format("a {} needs its {} (a length with unit)", shape, key));
@@ -332,25 +356,7 @@ ObservedObject parse_object(const toml::table& t, const std::string& file, const
     } else if (shape == "general") {
       const double a = require("a");
       const double h = require("h");
-      const toml::node* dn = named.get("D");
-      if (dn == nullptr || !dn->is_string()) throw named.error("D", "a general body needs D = I/m with its unit, e.g. \"0.01m2\"");
-      std::string dtext = dn->as_string()->get();
-      // D is an area (m^2): accept "m2"/"cm2" by converting the length unit's square.
-      double factor = 0.0;
-      for (const auto& [suffix, f] : {std::pair{"cm2", 1e-4}, std::pair{"mm2", 1e-6}, std::pair{"m2", 1.0}}) {
-        if (dtext.size() > std::string_view(suffix).size() &&
-            dtext.compare(dtext.size() - std::string_view(suffix).size(), std::string::npos, suffix) == 0) {
-          factor = f;
-          dtext.resize(dtext.size() - std::string_view(suffix).size());
-          break;
-        }
-      }
-      double d = 0.0;
-      std::istringstream ss(dtext);
-      if (factor == 0.0 || !(ss >> d) || !(d > 0.0)) {
-        throw named.error("D", fmt::format("'{}' is not a positive area with unit m2, cm2 or mm2", dn->as_string()->get()), dn);
-      }
-      o.body = RockingBody::general(a, h, d * factor);
+      o.body = RockingBody::general(a, h, parse_general_D_m2(named));
     } else {
       throw named.error("shape", fmt::format("unknown shape '{}' (known: block, cylinder, general)", shape));
     }
@@ -358,6 +364,10 @@ ObservedObject parse_object(const toml::table& t, const std::string& file, const
     if (!e.where().file.empty()) throw;
     throw named.error(e.where().field.empty() ? "shape" : e.where().field, e.problem());
   }
+}
+
+/// mu (required) and e ("housner", the default, a value or a range).
+void parse_friction_and_restitution(Reader& named, ObservedObject& o) {
   const auto mu = named.interval("mu");
   if (!mu) throw named.error("mu", "the friction coefficient is required (a value or a range [low, high])");
   if (mu->low < 0.0) throw named.error("mu", "must be >= 0");
@@ -372,6 +382,11 @@ ObservedObject parse_object(const toml::table& t, const std::string& file, const
       o.e = *iv;
     }
   }
+}
+
+/// Where the object stands: its support (its own, or the site's flexible one), amplification, orientation to the
+/// shaking (one component) or bearing (three), and a box's depth.
+void parse_object_placement(Reader& named, ObservedObject& o, const Site* site, int components) {
   if (named.has("support")) {
     o.support_filter = parse_support(named, o.support);
   } else if (site != nullptr && site->support_filter) {
@@ -393,10 +408,7 @@ ObservedObject parse_object(const toml::table& t, const std::string& file, const
   }
   if (const auto az = named.number("azimuth_deg")) {
     if (components != 3) throw named.error("azimuth_deg", "an object's bearing needs [inversion] components = 3");
-    if (o.body.shape == RockingBody::Shape::cylinder) {
-      throw named.error("azimuth_deg", "a cylinder has no narrow side: it rocks toward its worst direction "
-                                       "(docs/method.md), so it takes no bearing");
-    }
+    at_object_keys(named, [&] { check_object_bearing(o); });
     o.azimuth_deg = parse_bearing(named, "azimuth_deg", *az);
   }
   if (named.has("depth")) {  // a box (oriented.hpp): both horizontal axes rock
@@ -411,31 +423,10 @@ ObservedObject parse_object(const toml::table& t, const std::string& file, const
       throw named.error("depth", e.problem());
     }
   }
-  const auto outcome = named.string("outcome");
-  if (!outcome) throw named.error("outcome", "every object needs its observed outcome");
-  o.outcome = parse_outcome(named, *outcome);
-  parse_object_model(named, o, components, said.warnings);
-  // A body that strikes needs Housner's e >= 0: the rocking model always, the coupled one when it can lift.
-  const bool rocks = object_model(o) == ObjectModel::rock ||
-                     (object_model(o) == ObjectModel::coupled &&
-                      !SlideRockBody::from_rocking(o.body, o.mu.high).cannot_uplift());
-  if (rocks && o.e_housner && housner_restitution(o.body) < 0.0) {
-    throw named.error("e", fmt::format("Housner's restitution 1 - 2a^2/D = {:.3g} is negative for so squat a body "
-                                       "(alpha = {:.3g} deg > 54.7 deg): {}",
-                                       housner_restitution(o.body), rad_to_deg(o.body.alpha_rad()),
-                                       kSquatBodyAdvice));
-  }
-  if (rocks && o.depth_m && o.e_housner) {  // the other axis is a block of width `depth` (oriented.hpp)
-    const RockingBody across = *OrientedBody::make(o.body, o.depth_m).across;
-    if (housner_restitution(across) < 0.0) {
-      throw named.error("depth", fmt::format("Housner's restitution 1 - 2a^2/D = {:.3g} is negative across this box "
-                                             "(depth {:.3g} m, height {:.3g} m: alpha = {:.3g} deg > 54.7 deg): give "
-                                             "e = a value or a range, or leave depth out (the box then rocks along "
-                                             "its bearing only)",
-                                             housner_restitution(across), *o.depth_m, 2.0 * across.h_m,
-                                             rad_to_deg(across.alpha_rad())));
-    }
-  }
+}
+
+/// How far and which way the object slid, and which way it fell; the sliding distance's uncertainty floor said.
+void parse_object_displacement(Reader& named, ObservedObject& o, int components, ReaderMessages& said) {
   o.slid_m = named.length("slid");
   if (const auto u = named.length("slid_uncertainty")) o.slid_uncertainty_m = *u;
   o.slid_at_least_m = named.length("slid_at_least");
@@ -456,15 +447,7 @@ ObservedObject parse_object(const toml::table& t, const std::string& file, const
     if (components != 3) {
       throw named.error("toppled_azimuth_deg", "a fall direction needs [inversion] components = 3");
     }
-    if (o.outcome != Outcome::overturned) {
-      throw named.error("toppled_azimuth_deg", "a fall direction goes with outcome = \"overturned\"");
-    }
-    if (o.body.shape != RockingBody::Shape::cylinder && !o.depth_m) {
-      throw named.error("toppled_azimuth_deg",
-                        "only a cylinder or a box (a block with depth) tells the direction of the shaking by the way it "
-                        "fell: the planar model of a block without depth falls along its bearing (give that as "
-                        "azimuth_deg, or give the block's depth)");
-    }
+    at_object_keys(named, [&] { check_object_fall_direction(o); });
     o.toppled_azimuth_deg = parse_bearing(named, "toppled_azimuth_deg", *az);
   }
   if (o.slid_m && !(*o.slid_m > 0.0)) throw named.error("slid", "must be positive");
@@ -481,6 +464,30 @@ ObservedObject parse_object(const toml::table& t, const std::string& file, const
                                                  : std::string()))
                         .what());
   }
+}
+
+ObservedObject parse_object(const toml::table& t, const std::string& file, const std::string& path,
+                            ReaderMessages& said, const std::filesystem::path& base_dir,
+                            const Site* site = nullptr, int components = 1) {
+  Reader r(t, file, path);
+  ObservedObject o;
+  o.id = r.string("id").value_or("");
+  if (o.id.empty()) throw r.error("id", "every object needs an id");
+  Reader named(t, file, path + "(" + o.id + ")");
+  named.get("id");
+  o.description = named.string("description").value_or("");
+  const bool from_mesh = named.has("mesh");
+  const std::string shape = object_shape(named, from_mesh);
+  parse_object_body(named, shape, from_mesh, base_dir, o);
+  parse_friction_and_restitution(named, o);
+  parse_object_placement(named, o, site, components);
+  const auto outcome = named.string("outcome");
+  if (!outcome) throw named.error("outcome", "every object needs its observed outcome");
+  o.outcome = parse_outcome(named, *outcome);
+  parse_object_model(named, o, components, said.warnings);
+  // Housner's restitution of a body that strikes (survey.hpp, check_object_restitution).
+  at_object_keys(named, [&] { check_object_restitution(o); });
+  parse_object_displacement(named, o, components, said);
   if (const auto ev = named.string("evidence")) {
     if (*ev == "certain") o.evidence = Evidence::certain;
     else if (*ev == "likely") o.evidence = Evidence::likely;
@@ -542,110 +549,102 @@ void parse_site_fields(Reader& r, Site& site) {
   site.support_filter = parse_support(r, label);
 }
 
-Survey parse_toml_survey(std::string_view text, const std::string& name, const std::filesystem::path& base_dir) {
-  toml::table root;
+/// The [inversion] table: the motion family, its grid and the number of components, checked by the inversion's own
+/// rule (validate_inversion_settings) and located here.
+void parse_inversion_table(const toml::table& t, const std::string& name, const std::filesystem::path& base_dir,
+                           InversionSettings& st) {
+  Reader r(t, name, "inversion");
+  if (const auto fam = r.string("family")) {
+    if (*fam == "synthetic") st.family = MotionFamily::synthetic;
+    else if (*fam == "records") st.family = MotionFamily::records;
+    else if (*fam == "rezaeian2010") st.family = MotionFamily::rezaeian2010;
+    else throw r.error("family", fmt::format("unknown family '{}' (known: synthetic, records, rezaeian2010)", *fam));
+  }
+  if (const toml::node* rec = r.get("records")) {
+    const auto* arr = rec->as_array();
+    if (arr == nullptr) throw r.error("records", "expected a list of file paths", rec);
+    for (const auto& item : *arr) {
+      if (!item.is_string()) throw r.error("records", "expected file paths (strings)", &item);
+      std::filesystem::path p(item.as_string()->get());
+      if (p.is_relative()) p = base_dir / p;
+      if (!std::filesystem::exists(p)) throw r.error("records", fmt::format("no such record file '{}'", p.string()), &item);
+      st.records.push_back(p.string());  // loaded by load_survey_records (read_survey): parsing reads no file
+    }
+  }
+  if (st.family == MotionFamily::records && st.records.empty()) {
+    throw r.error("records", "family = \"records\" needs records = [\"file\", ...]");
+  }
+  if (const auto ax = r.axis("pga_g")) std::tie(st.pga_min_g, st.pga_max_g, st.pga_count) = *ax;
+  if (const auto ax = r.axis("freq_hz")) std::tie(st.freq_min_hz, st.freq_max_hz, st.freq_count) = *ax;
+  if (const auto n = r.number("motions_per_cell")) {
+    if (*n < 1 || *n > 100000 || *n != std::floor(*n)) throw r.error("motions_per_cell", "must be a whole number >= 1");
+    st.motions_per_cell = static_cast<int>(*n);
+  }
+  if (const auto seed = r.number("seed")) {
+    if (*seed < 0 || *seed != std::floor(*seed)) throw r.error("seed", "must be a whole number >= 0");
+    st.seed = static_cast<std::uint64_t>(*seed);
+  }
+  if (const auto d = r.number("duration_s")) {
+    if (!(*d > 0.0)) throw r.error("duration_s", "must be positive");
+    st.duration_s = *d;
+  }
+  if (const auto g = r.number("g_m_s2")) {
+    if (!(*g > 0.0)) throw r.error("g_m_s2", "must be positive");
+    st.g_m_s2 = *g;
+  }
+  if (const auto c = r.number("components")) {
+    if (*c != 1.0 && *c != 3.0) throw r.error("components", fmt::format("must be 1 or 3, got {}", *c));
+    st.components = static_cast<int>(*c);
+  }
+  if (st.components == 3 && st.family != MotionFamily::synthetic) {
+    throw r.error("components", fmt::format("components = 3 needs family = \"synthetic\" (got \"{}\")",
+                                            motion_family_name(st.family)));
+  }
+  if (const auto rho = r.number("coherence")) {
+    if (st.components != 3) throw r.error("coherence", "coherence needs components = 3");
+    if (!(*rho >= 0.0 && *rho <= 0.95)) throw r.error("coherence", fmt::format("must lie in [0, 0.95], got {}", *rho));
+    st.coherence = *rho;
+  }
+  if (const auto nd = r.number("directions")) {
+    if (st.components != 3) throw r.error("directions", "directions needs components = 3");
+    if (*nd < 4 || *nd > 72 || *nd != std::floor(*nd)) {
+      throw r.error("directions", fmt::format("must be a whole number from 4 to 72, got {}", *nd));
+    }
+    st.directions = static_cast<int>(*nd);
+  }
+  // The family must be able to make motions at both ends of the grid: said here, with the file and the line,
+  // rather than by the synthesis after the survey is read.
   try {
-    root = toml::parse(text, name);
-  } catch (const toml::parse_error& e) {
-    throw InputError(InputLocation{name, static_cast<std::size_t>(e.source().begin.line), {}},
-                     std::string(e.description()));
+    validate_inversion_settings(st);
+  } catch (const InputError& e) {
+    const std::string field = e.where().field;
+    const std::string key = field.rfind("inversion.", 0) == 0 ? field.substr(10) : "freq_hz";
+    throw r.error(key, e.problem(), r.has(key) ? t.get(key) : nullptr);
   }
-  Survey s;
-  s.source_file = name;
-  Reader top(root, name, "");
-  if (const toml::node* inv = top.get("inversion")) {
-    const auto* t = inv->as_table();
-    if (t == nullptr) throw top.error("inversion", "expected a table");
-    Reader r(*t, name, "inversion");
-    InversionSettings& st = s.inversion;
-    if (const auto fam = r.string("family")) {
-      if (*fam == "synthetic") st.family = MotionFamily::synthetic;
-      else if (*fam == "records") st.family = MotionFamily::records;
-      else if (*fam == "rezaeian2010") st.family = MotionFamily::rezaeian2010;
-      else throw r.error("family", fmt::format("unknown family '{}' (known: synthetic, records, rezaeian2010)", *fam));
-    }
-    if (const toml::node* rec = r.get("records")) {
-      const auto* arr = rec->as_array();
-      if (arr == nullptr) throw r.error("records", "expected a list of file paths", rec);
-      for (const auto& item : *arr) {
-        if (!item.is_string()) throw r.error("records", "expected file paths (strings)", &item);
-        std::filesystem::path p(item.as_string()->get());
-        if (p.is_relative()) p = base_dir / p;
-        if (!std::filesystem::exists(p)) throw r.error("records", fmt::format("no such record file '{}'", p.string()), &item);
-        st.records.push_back(p.string());  // loaded by load_survey_records (read_survey): parsing reads no file
-      }
-    }
-    if (st.family == MotionFamily::records && st.records.empty()) {
-      throw r.error("records", "family = \"records\" needs records = [\"file\", ...]");
-    }
-    if (const auto ax = r.axis("pga_g")) std::tie(st.pga_min_g, st.pga_max_g, st.pga_count) = *ax;
-    if (const auto ax = r.axis("freq_hz")) std::tie(st.freq_min_hz, st.freq_max_hz, st.freq_count) = *ax;
-    if (const auto n = r.number("motions_per_cell")) {
-      if (*n < 1 || *n > 100000 || *n != std::floor(*n)) throw r.error("motions_per_cell", "must be a whole number >= 1");
-      st.motions_per_cell = static_cast<int>(*n);
-    }
-    if (const auto seed = r.number("seed")) {
-      if (*seed < 0 || *seed != std::floor(*seed)) throw r.error("seed", "must be a whole number >= 0");
-      st.seed = static_cast<std::uint64_t>(*seed);
-    }
-    if (const auto d = r.number("duration_s")) {
-      if (!(*d > 0.0)) throw r.error("duration_s", "must be positive");
-      st.duration_s = *d;
-    }
-    if (const auto g = r.number("g_m_s2")) {
-      if (!(*g > 0.0)) throw r.error("g_m_s2", "must be positive");
-      st.g_m_s2 = *g;
-    }
-    if (const auto c = r.number("components")) {
-      if (*c != 1.0 && *c != 3.0) throw r.error("components", fmt::format("must be 1 or 3, got {}", *c));
-      st.components = static_cast<int>(*c);
-    }
-    if (st.components == 3 && st.family != MotionFamily::synthetic) {
-      throw r.error("components", fmt::format("components = 3 needs family = \"synthetic\" (got \"{}\")",
-                                              motion_family_name(st.family)));
-    }
-    if (const auto rho = r.number("coherence")) {
-      if (st.components != 3) throw r.error("coherence", "coherence needs components = 3");
-      if (!(*rho >= 0.0 && *rho <= 0.95)) throw r.error("coherence", fmt::format("must lie in [0, 0.95], got {}", *rho));
-      st.coherence = *rho;
-    }
-    if (const auto nd = r.number("directions")) {
-      if (st.components != 3) throw r.error("directions", "directions needs components = 3");
-      if (*nd < 4 || *nd > 72 || *nd != std::floor(*nd)) {
-        throw r.error("directions", fmt::format("must be a whole number from 4 to 72, got {}", *nd));
-      }
-      st.directions = static_cast<int>(*nd);
-    }
-    // The family must be able to make motions at both ends of the grid: said here, with the file and the line,
-    // rather than by the synthesis after the survey is read.
-    try {
-      validate_inversion_settings(st);
-    } catch (const InputError& e) {
-      const std::string field = e.where().field;
-      const std::string key = field.rfind("inversion.", 0) == 0 ? field.substr(10) : "freq_hz";
-      throw r.error(key, e.problem(), r.has(key) ? t->get(key) : nullptr);
-    }
-    r.refuse_unknown();
+  r.refuse_unknown();
+}
+
+/// The [event] table: the epicentre and its depth.
+void parse_event_table(const toml::table& t, const std::string& name, Survey& s) {
+  Reader r(t, name, "event");
+  if (const toml::node* epi = r.get("epicentre")) {
+    const auto* arr = epi->as_array();
+    if (arr == nullptr || arr->size() != 2) throw r.error("epicentre", "expected [lat, lon]", epi);
+    s.epicentre_lat_deg = r.as_number("epicentre", *arr->get(0));
+    s.epicentre_lon_deg = r.as_number("epicentre", *arr->get(1));
+    if (std::abs(*s.epicentre_lat_deg) > 90.0) throw r.error("epicentre", "latitude must lie in [-90, 90]", epi);
+    if (std::abs(*s.epicentre_lon_deg) > 180.0) throw r.error("epicentre", "longitude must lie in [-180, 180]", epi);
   }
-  if (const toml::node* ev = top.get("event")) {
-    const auto* t = ev->as_table();
-    if (t == nullptr) throw top.error("event", "expected a table");
-    Reader r(*t, name, "event");
-    if (const toml::node* epi = r.get("epicentre")) {
-      const auto* arr = epi->as_array();
-      if (arr == nullptr || arr->size() != 2) throw r.error("epicentre", "expected [lat, lon]", epi);
-      s.epicentre_lat_deg = r.as_number("epicentre", *arr->get(0));
-      s.epicentre_lon_deg = r.as_number("epicentre", *arr->get(1));
-      if (std::abs(*s.epicentre_lat_deg) > 90.0) throw r.error("epicentre", "latitude must lie in [-90, 90]", epi);
-      if (std::abs(*s.epicentre_lon_deg) > 180.0) throw r.error("epicentre", "longitude must lie in [-180, 180]", epi);
-    }
-    if (const auto depth = r.number("depth_km")) {
-      if (!s.epicentre_lat_deg) throw r.error("depth_km", "a depth goes with epicentre = [lat, lon]");
-      if (*depth < 0.0 || *depth > 700.0) throw r.error("depth_km", fmt::format("must lie in [0, 700] km, got {}", *depth));
-      s.epicentre_depth_km = depth;
-    }
-    r.refuse_unknown();
+  if (const auto depth = r.number("depth_km")) {
+    if (!s.epicentre_lat_deg) throw r.error("depth_km", "a depth goes with epicentre = [lat, lon]");
+    if (*depth < 0.0 || *depth > 700.0) throw r.error("depth_km", fmt::format("must lie in [0, 700] km, got {}", *depth));
+    s.epicentre_depth_km = depth;
   }
+  r.refuse_unknown();
+}
+
+/// The sites: one [site] with its [[object]] tables, or [[sites]] each with its own.
+void parse_sites(Reader& top, const std::string& name, const std::filesystem::path& base_dir, Survey& s) {
   ReaderMessages said{s.notes, s.warnings};
   const bool single = top.has("site") || top.has("object");
   if (single && top.has("sites")) throw top.error("sites", "use either [site] with [[object]] or [[sites]], not both");
@@ -678,7 +677,10 @@ Survey parse_toml_survey(std::string_view text, const std::string& name, const s
       s.sites.push_back(std::move(site));
     }
   }
-  top.refuse_unknown();
+}
+
+/// Every site has objects or is an instrument station (while some site has objects), and a name.
+void check_sites(const std::string& name, Survey& s) {
   if (s.sites.empty()) throw InputError(InputLocation{name, {}, "object"}, "the survey has no site and no object");
   bool any_objects = false;
   for (const Site& site : s.sites) any_objects = any_objects || !site.objects.empty();
@@ -693,6 +695,32 @@ Survey parse_toml_survey(std::string_view text, const std::string& name, const s
     // The documented default (docs/survey.md): a site without a name is "site N", N its position in the file.
     if (s.sites[i].name.empty()) s.sites[i].name = fmt::format("site {}", i + 1);
   }
+}
+
+Survey parse_toml_survey(std::string_view text, const std::string& name, const std::filesystem::path& base_dir) {
+  toml::table root;
+  try {
+    root = toml::parse(text, name);
+  } catch (const toml::parse_error& e) {
+    throw InputError(InputLocation{name, static_cast<std::size_t>(e.source().begin.line), {}},
+                     std::string(e.description()));
+  }
+  Survey s;
+  s.source_file = name;
+  Reader top(root, name, "");
+  if (const toml::node* inv = top.get("inversion")) {
+    const auto* t = inv->as_table();
+    if (t == nullptr) throw top.error("inversion", "expected a table");
+    parse_inversion_table(*t, name, base_dir, s.inversion);
+  }
+  if (const toml::node* ev = top.get("event")) {
+    const auto* t = ev->as_table();
+    if (t == nullptr) throw top.error("event", "expected a table");
+    parse_event_table(*t, name, s);
+  }
+  parse_sites(top, name, base_dir, s);
+  top.refuse_unknown();
+  check_sites(name, s);
   return s;
 }
 

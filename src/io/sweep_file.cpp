@@ -383,39 +383,30 @@ void read_record_sets(const Reader& r, const toml::table& m, const ReadOptions& 
   }
 }
 
-/// [motions]: records and pulses, scaling, polarity.
-void read_motions(const Reader& r, const toml::table& t, SweepFile& out) {
-  const toml::table* m = nullptr;
-  if (const toml::node* n = t.get("motions")) {
-    m = n->as_table();
-    if (m == nullptr) r.fail(n, "motions", fmt::format("expected a table [motions], got {}", type_name(*n)));
-  } else {
-    r.fail(&t, "motions", "the sweep has no [motions] table");
-  }
-  const double g = out.spec.g_m_s2;
-  r.check_keys(*m, "motions", {"files", "format", "units", "dt", "dt_s", "channel", "scale", "scale_pga",
-                               "scale_pga_g", "time_scale", "polarity", "pulse", "set", "bearing", "bearing_deg",
-                               "direction_step_deg"});
-
-  // Reading options for the record files.
+/// The options for reading the record files of [motions] (format, units, dt, channel).
+ReadOptions read_record_options(const Reader& r, const toml::table& m, double g) {
   ReadOptions ro;
   ro.g_m_s2 = g;
-  if (const auto f = r.string(*m, "format", "motions.format")) {
-    ro.format = r.located(m->get("format"), "motions.format", [&] { return parse_format_name(*f, "motions.format"); });
+  if (const auto f = r.string(m, "format", "motions.format")) {
+    ro.format = r.located(m.get("format"), "motions.format", [&] { return parse_format_name(*f, "motions.format"); });
   }
-  if (const auto u = r.string(*m, "units", "motions.units")) {
-    r.located(m->get("units"), "motions.units", [&] { return acceleration_unit_factor(*u, "motions.units", g); });
+  if (const auto u = r.string(m, "units", "motions.units")) {
+    r.located(m.get("units"), "motions.units", [&] { return acceleration_unit_factor(*u, "motions.units", g); });
     ro.units = *u;
   }
-  ro.dt_s = r.quantity(*m, "dt_s", "dt", "motions.", duration_parser(), "0.01s");
-  if (ro.dt_s && !(*ro.dt_s > 0.0)) r.fail(m->get("dt") ? m->get("dt") : m->get("dt_s"), "motions.dt", "must be > 0");
-  if (const auto c = r.integer(*m, "channel", "motions.channel")) {
-    if (*c < 1 || *c > 1000) r.fail(m->get("channel"), "motions.channel", fmt::format("must be >= 1, got {}", *c));
+  ro.dt_s = r.quantity(m, "dt_s", "dt", "motions.", duration_parser(), "0.01s");
+  if (ro.dt_s && !(*ro.dt_s > 0.0)) r.fail(m.get("dt") ? m.get("dt") : m.get("dt_s"), "motions.dt", "must be > 0");
+  if (const auto c = r.integer(m, "channel", "motions.channel")) {
+    if (*c < 1 || *c > 1000) r.fail(m.get("channel"), "motions.channel", fmt::format("must be >= 1, got {}", *c));
     ro.channel = static_cast<int>(*c);
   }
+  return ro;
+}
 
+/// The record files of [motions] and its record sets. Returns whether there are record files.
+bool read_records(const Reader& r, const toml::table& m, const ReadOptions& ro, SweepFile& out) {
   // Records: every glob match, read once (in parallel; the first failure in file order is reported).
-  const auto files = r.files(*m);
+  const auto files = r.files(m);
   std::vector<std::shared_ptr<const GroundMotion>> loaded(files.size());
   std::vector<std::exception_ptr> errors(files.size());
   tbb::parallel_for(std::size_t{0}, files.size(), [&](std::size_t i) {
@@ -429,16 +420,19 @@ void read_motions(const Reader& r, const toml::table& t, SweepFile& out) {
     if (e) std::rethrow_exception(e);
   }
   for (std::size_t i = 0; i < files.size(); ++i) out.spec.records.push_back({files[i].first, loaded[i]});
-  read_record_sets(r, *m, ro, out);
+  read_record_sets(r, m, ro, out);
+  return !files.empty();
+}
 
-  // Scaling (records only).
-  const toml::node* scale_n = m->get("scale");
-  const toml::node* pga_n = m->get("scale_pga") != nullptr ? m->get("scale_pga") : m->get("scale_pga_g");
+/// Scaling (records only) and polarity.
+void read_scaling(const Reader& r, const toml::table& m, double g, bool any_files, SweepFile& out) {
+  const toml::node* scale_n = m.get("scale");
+  const toml::node* pga_n = m.get("scale_pga") != nullptr ? m.get("scale_pga") : m.get("scale_pga_g");
   if (scale_n != nullptr && pga_n != nullptr) {
     r.fail(scale_n, "motions.scale", "give either scale (factors) or scale_pga / scale_pga_g (target PGAs), not both");
   }
-  if (const auto pgas = r.quantities(*m, "scale_pga_g", "scale_pga", "motions.", acceleration_parser(g, 1.0), "0.2g")) {
-    const bool in_g = m->get("scale_pga_g") != nullptr;
+  if (const auto pgas = r.quantities(m, "scale_pga_g", "scale_pga", "motions.", acceleration_parser(g, 1.0), "0.2g")) {
+    const bool in_g = m.get("scale_pga_g") != nullptr;
     out.spec.scales.clear();
     for (const double v : *pgas) {
       const double target = in_g ? v * g : v;
@@ -447,34 +441,36 @@ void read_motions(const Reader& r, const toml::table& t, SweepFile& out) {
       out.spec.scales.push_back({ensemble::ScaleSpec::Kind::pga, target});
     }
   }
-  if (const auto factors = r.numbers(*m, "scale", "motions.scale")) {
+  if (const auto factors = r.numbers(m, "scale", "motions.scale")) {
     out.spec.scales.clear();
     for (const double v : *factors) out.spec.scales.push_back({ensemble::ScaleSpec::Kind::factor, v});
   }
-  if (const auto ts = r.numbers(*m, "time_scale", "motions.time_scale")) {
+  if (const auto ts = r.numbers(m, "time_scale", "motions.time_scale")) {
     for (const double v : *ts) {
-      if (!(v > 0.0)) r.fail(m->get("time_scale"), "motions.time_scale", fmt::format("factors must be > 0, got {}", v));
+      if (!(v > 0.0)) r.fail(m.get("time_scale"), "motions.time_scale", fmt::format("factors must be > 0, got {}", v));
     }
     out.spec.time_scales = *ts;
   }
-  if ((scale_n != nullptr || pga_n != nullptr || m->get("time_scale") != nullptr) && files.empty() &&
+  if ((scale_n != nullptr || pga_n != nullptr || m.get("time_scale") != nullptr) && !any_files &&
       out.spec.record_sets.empty()) {
-    r.fail(scale_n != nullptr ? scale_n : pga_n != nullptr ? pga_n : m->get("time_scale"), "motions",
+    r.fail(scale_n != nullptr ? scale_n : pga_n != nullptr ? pga_n : m.get("time_scale"), "motions",
            "scale, scale_pga and time_scale apply to record files, and there are none (pulses take their own "
            "amplitudes and frequencies)");
   }
-  if (const auto pol = r.strings(*m, "polarity", "motions.polarity")) {
+  if (const auto pol = r.strings(m, "polarity", "motions.polarity")) {
     out.spec.inverse.clear();
     for (const auto& p : *pol) {
       if (p != "normal" && p != "inverse") {
-        r.fail(m->get("polarity"), "motions.polarity", fmt::format("unknown polarity '{}' (known: normal, inverse)", p));
+        r.fail(m.get("polarity"), "motions.polarity", fmt::format("unknown polarity '{}' (known: normal, inverse)", p));
       }
       out.spec.inverse.push_back(p == "inverse");
     }
   }
+}
 
-  // Analytic pulses: every combination of kind x amplitude x frequency (or duration).
-  if (const toml::node* pn = m->get("pulse")) {
+/// [[motions.pulse]]: every combination of kind x amplitude x frequency (or duration).
+void read_pulses(const Reader& r, const toml::table& m, double g, SweepFile& out) {
+  if (const toml::node* pn = m.get("pulse")) {
     const auto* arr = pn->as_array();
     if (arr == nullptr || !arr->is_array_of_tables()) {
       r.fail(pn, "motions.pulse", "expected [[motions.pulse]] tables");
@@ -520,6 +516,25 @@ void read_motions(const Reader& r, const toml::table& t, SweepFile& out) {
       }
     }
   }
+}
+
+/// [motions]: records and pulses, scaling, polarity.
+void read_motions(const Reader& r, const toml::table& t, SweepFile& out) {
+  const toml::table* m = nullptr;
+  if (const toml::node* n = t.get("motions")) {
+    m = n->as_table();
+    if (m == nullptr) r.fail(n, "motions", fmt::format("expected a table [motions], got {}", type_name(*n)));
+  } else {
+    r.fail(&t, "motions", "the sweep has no [motions] table");
+  }
+  const double g = out.spec.g_m_s2;
+  r.check_keys(*m, "motions", {"files", "format", "units", "dt", "dt_s", "channel", "scale", "scale_pga",
+                               "scale_pga_g", "time_scale", "polarity", "pulse", "set", "bearing", "bearing_deg",
+                               "direction_step_deg"});
+  const ReadOptions ro = read_record_options(r, *m, g);
+  const bool any_files = read_records(r, *m, ro, out);
+  read_scaling(r, *m, g, any_files, out);
+  read_pulses(r, *m, g, out);
   if (out.spec.records.empty() && out.spec.pulses.empty() && out.spec.record_sets.empty()) {
     r.fail(m, "motions", "no motion: give files = [...], [[motions.pulse]] and/or [[motions.set]] tables");
   }
@@ -655,6 +670,149 @@ std::vector<BodyCase> mesh_bodies(const Reader& r, const toml::table& o, const s
   return out;
 }
 
+/// The dimensions of a rocking object's bodies, each a list of values (their product is the object's bodies).
+struct BodyAxes {
+  std::vector<double> first;        // width, diameter, a or b1 (m)
+  std::vector<double> second;       // height or h (m)
+  std::vector<double> third{0.0};   // D (m^2), general only
+  std::vector<double> fourth{0.0};  // asymmetric general: b2 (m)
+  std::vector<double> fifth{0.0};   // asymmetric general: inertia (m^2)
+  std::string first_key;
+  std::string second_key;
+};
+
+/// The keys a rocking object's shape needs, read; those it does not take refused.
+BodyAxes read_body_axes(const Reader& r, const toml::table& o, const std::string& prefix, const std::string& shape,
+                        bool from_mesh, bool asymmetric) {
+  const auto refuse = [&](std::initializer_list<std::string_view> keys) {
+    for (const auto k : keys) {
+      if (const toml::node* n = o.get(k)) {
+        r.fail(n, prefix + std::string(k), fmt::format("does not apply to shape = \"{}\"", shape));
+      }
+    }
+  };
+  const auto need = [&](const std::optional<std::vector<double>>& v, std::string_view name) {
+    if (!v) r.fail(&o, prefix + std::string(name), fmt::format("shape = \"{}\" needs {}", shape, name));
+    return *v;
+  };
+  BodyAxes x;
+  if (!from_mesh) refuse({"mesh_azimuth_deg", "mesh_unit", "mesh_density_kg_m3"});
+  if (from_mesh) {
+    if (shape != "general") {
+      r.fail(o.get("shape"), prefix + "shape", fmt::format("a body from a mesh is a general body: leave shape out or "
+                                                           "write \"general\", not \"{}\"", shape));
+    }
+    for (const auto k : {"width", "width_m", "height", "height_m", "diameter", "diameter_m", "a", "a_m", "h", "h_m",
+                         "D_m2", "b1", "b1_m", "b2", "b2_m", "inertia", "inertia_m2"}) {
+      if (const toml::node* n = o.get(k)) {
+        r.fail(n, prefix + std::string(k), "does not apply to a body from a mesh (the mesh gives b1, b2, h and the "
+                                           "inertia)");
+      }
+    }
+  } else if (shape == "block" || shape == "cylinder") {
+    x.first_key = shape == "block" ? "width" : "diameter";
+    x.second_key = "height";
+    x.first = need(r.quantities(o, x.first_key + "_m", x.first_key, prefix, length_parser(), "4cm"), x.first_key);
+    x.second = need(r.quantities(o, "height_m", "height", prefix, length_parser(), "20cm"), "height");
+    if (shape == "block") refuse({"diameter", "diameter_m"});
+    if (shape == "cylinder") refuse({"width", "width_m"});
+    refuse({"a", "a_m", "h", "h_m", "D_m2", "b1", "b1_m", "b2", "b2_m", "inertia", "inertia_m2"});
+  } else if (asymmetric) {
+    x.first_key = "b1";
+    x.second_key = "h";
+    x.first = need(r.quantities(o, "b1_m", "b1", prefix, length_parser(), "5cm"), "b1");
+    x.second = need(r.quantities(o, "h_m", "h", prefix, length_parser(), "10cm"), "h");
+    x.fourth = need(r.quantities(o, "b2_m", "b2", prefix, length_parser(), "3cm"), "b2");
+    x.fifth = need(r.quantities(o, "inertia_m2", "inertia", prefix, area_parser(), "0.004m2"), "inertia_m2");
+    refuse({"width", "width_m", "height", "height_m", "diameter", "diameter_m", "a", "a_m", "D_m2"});
+  } else if (shape == "general") {
+    x.first_key = "a";
+    x.second_key = "h";
+    x.first = need(r.quantities(o, "a_m", "a", prefix, length_parser(), "2cm"), "a");
+    x.second = need(r.quantities(o, "h_m", "h", prefix, length_parser(), "10cm"), "h");
+    x.third = need(r.numbers(o, "D_m2", prefix + "D_m2"), "D_m2");
+    refuse({"width", "width_m", "height", "height_m", "diameter", "diameter_m"});
+  } else if (shape.empty()) {
+    r.fail(&o, prefix + "shape", "a rocking object needs its shape: block, cylinder or general");
+  } else {
+    r.fail(o.get("shape"), prefix + "shape", fmt::format("unknown shape '{}' (known: block, cylinder, general)", shape));
+  }
+  return x;
+}
+
+/// e: "housner" (none), a number in [0, 1], or a list mixing them; "housner" when not given.
+std::vector<std::optional<double>> read_restitutions(const Reader& r, const toml::table& o, const std::string& prefix) {
+  std::vector<std::optional<double>> es;
+  const toml::node* en = o.get("e");
+  if (en == nullptr) {
+    es.emplace_back(std::nullopt);
+    return es;
+  }
+  const auto one = [&](const toml::node& e) -> std::optional<double> {
+    if (const auto* s = e.as_string()) {
+      if (s->get() == "housner") return std::nullopt;
+      r.fail(&e, prefix + "e", fmt::format("'{}' is neither 'housner' nor a number in [0, 1]", s->get()));
+    }
+    const auto x = number_of(e);
+    if (!x) r.fail(&e, prefix + "e", fmt::format("expected \"housner\" or a number in [0, 1], got {}", type_name(e)));
+    if (!(*x >= 0.0 && *x <= 1.0)) r.fail(&e, prefix + "e", fmt::format("must be in [0, 1], got {}", *x));
+    return *x;
+  };
+  if (const auto* a = en->as_array()) {
+    if (a->empty()) r.fail(en, prefix + "e", "empty list: give at least one value");
+    for (const auto& e : *a) es.push_back(one(e));
+  } else if (en->is_table()) {
+    const std::vector<double> values = *r.numbers(o, "e", prefix + "e");
+    for (const double x : values) {
+      if (!(x >= 0.0 && x <= 1.0)) r.fail(en, prefix + "e", fmt::format("must be in [0, 1], got {}", x));
+      es.emplace_back(x);
+    }
+  } else {
+    es.push_back(one(*en));
+  }
+  return es;
+}
+
+/// The bodies of the product of the axes, each made (and refused at its key) by the body's own rules.
+std::vector<BodyCase> axis_bodies(const Reader& r, const toml::table& o, const std::string& prefix,
+                                  const std::string& shape, bool asymmetric, const BodyAxes& axes) {
+  const auto key_of = [&](const std::string& base) {
+    return o.get(base) != nullptr ? base : base + (base == "D" || base == "inertia" ? "_m2" : "_m");
+  };
+  std::vector<BodyCase> bodies;
+  for (const double x1 : axes.first) {
+    for (const double x2 : axes.second) {
+      for (const double x3 : axes.third) {
+        for (const double x4 : axes.fourth) {
+          for (const double x5 : axes.fifth) {
+            BodyCase c;
+            try {
+              c.body = shape == "block"      ? RockingBody::block(x1, x2)
+                       : shape == "cylinder" ? RockingBody::cylinder(x1, x2)
+                       : asymmetric          ? RockingBody::general_asymmetric(x1, x4, x2, x5)
+                                             : RockingBody::general(x1, x2, x3);
+            } catch (const InputError& e) {
+              std::string f = e.where().field;
+              if (f == "width" || f == "diameter" || f == "a" || f == "b1") f = key_of(axes.first_key);
+              if (f == "height" || f == "h") f = key_of(axes.second_key);
+              if (f == "b2") f = key_of("b2");
+              if (f == "inertia") f = key_of("inertia");
+              if (f == "D") f = "D_m2";
+              r.fail(o.get(f) != nullptr ? o.get(f) : &o, prefix + f, e.problem());
+            }
+            if (shape == "block") c.width_m = x1;
+            if (shape == "cylinder") c.diameter_m = x1;
+            if (shape != "general") c.height_m = x2;
+            if (asymmetric) c.inertia_m2 = x5;
+            bodies.push_back(std::move(c));
+          }
+        }
+      }
+    }
+  }
+  return bodies;
+}
+
 void read_rock(const Reader& r, const toml::table& o, const std::string& key, double g, SweepFile& out) {
   const std::string prefix = key + ".";
   r.check_keys(o, key, {"model", "shape", "width", "width_m", "height", "height_m", "diameter", "diameter_m", "a",
@@ -674,97 +832,12 @@ void read_rock(const Reader& r, const toml::table& o, const std::string& key, do
     }
     depths.assign(d->begin(), d->end());
   }
-  const auto refuse = [&](std::initializer_list<std::string_view> keys) {
-    for (const auto k : keys) {
-      if (const toml::node* n = o.get(k)) {
-        r.fail(n, prefix + std::string(k), fmt::format("does not apply to shape = \"{}\"", shape));
-      }
-    }
-  };
-  const auto need = [&](const std::optional<std::vector<double>>& v, std::string_view name) {
-    if (!v) r.fail(&o, prefix + std::string(name), fmt::format("shape = \"{}\" needs {}", shape, name));
-    return *v;
-  };
   // An asymmetric general body (rocking.hpp, general_asymmetric) is told by b1, b2 or the inertia.
   const bool asymmetric = shape == "general" && !from_mesh &&
                           (o.get("b1") != nullptr || o.get("b1_m") != nullptr || o.get("b2") != nullptr ||
                            o.get("b2_m") != nullptr || o.get("inertia") != nullptr || o.get("inertia_m2") != nullptr);
-  std::vector<double> first;   // width, diameter, a or b1 (m)
-  std::vector<double> second;  // height or h (m)
-  std::vector<double> third{0.0};   // D (m^2), general only
-  std::vector<double> fourth{0.0};  // asymmetric general: b2 (m)
-  std::vector<double> fifth{0.0};   // asymmetric general: inertia (m^2)
-  std::string first_key;
-  std::string second_key;
-  if (!from_mesh) refuse({"mesh_azimuth_deg", "mesh_unit", "mesh_density_kg_m3"});
-  if (from_mesh) {
-    if (shape != "general") {
-      r.fail(o.get("shape"), prefix + "shape", fmt::format("a body from a mesh is a general body: leave shape out or "
-                                                           "write \"general\", not \"{}\"", shape));
-    }
-    for (const auto k : {"width", "width_m", "height", "height_m", "diameter", "diameter_m", "a", "a_m", "h", "h_m",
-                         "D_m2", "b1", "b1_m", "b2", "b2_m", "inertia", "inertia_m2"}) {
-      if (const toml::node* n = o.get(k)) {
-        r.fail(n, prefix + std::string(k), "does not apply to a body from a mesh (the mesh gives b1, b2, h and the "
-                                           "inertia)");
-      }
-    }
-  } else if (shape == "block" || shape == "cylinder") {
-    first_key = shape == "block" ? "width" : "diameter";
-    second_key = "height";
-    first = need(r.quantities(o, first_key + "_m", first_key, prefix, length_parser(), "4cm"), first_key);
-    second = need(r.quantities(o, "height_m", "height", prefix, length_parser(), "20cm"), "height");
-    if (shape == "block") refuse({"diameter", "diameter_m"});
-    if (shape == "cylinder") refuse({"width", "width_m"});
-    refuse({"a", "a_m", "h", "h_m", "D_m2", "b1", "b1_m", "b2", "b2_m", "inertia", "inertia_m2"});
-  } else if (asymmetric) {
-    first_key = "b1";
-    second_key = "h";
-    first = need(r.quantities(o, "b1_m", "b1", prefix, length_parser(), "5cm"), "b1");
-    second = need(r.quantities(o, "h_m", "h", prefix, length_parser(), "10cm"), "h");
-    fourth = need(r.quantities(o, "b2_m", "b2", prefix, length_parser(), "3cm"), "b2");
-    fifth = need(r.quantities(o, "inertia_m2", "inertia", prefix, area_parser(), "0.004m2"), "inertia_m2");
-    refuse({"width", "width_m", "height", "height_m", "diameter", "diameter_m", "a", "a_m", "D_m2"});
-  } else if (shape == "general") {
-    first_key = "a";
-    second_key = "h";
-    first = need(r.quantities(o, "a_m", "a", prefix, length_parser(), "2cm"), "a");
-    second = need(r.quantities(o, "h_m", "h", prefix, length_parser(), "10cm"), "h");
-    third = need(r.numbers(o, "D_m2", prefix + "D_m2"), "D_m2");
-    refuse({"width", "width_m", "height", "height_m", "diameter", "diameter_m"});
-  } else if (shape.empty()) {
-    r.fail(&o, prefix + "shape", "a rocking object needs its shape: block, cylinder or general");
-  } else {
-    r.fail(o.get("shape"), prefix + "shape", fmt::format("unknown shape '{}' (known: block, cylinder, general)", shape));
-  }
-  // e: "housner", a number in [0, 1], or a list mixing them.
-  std::vector<std::optional<double>> es;
-  if (const toml::node* en = o.get("e")) {
-    const auto one = [&](const toml::node& e) -> std::optional<double> {
-      if (const auto* s = e.as_string()) {
-        if (s->get() == "housner") return std::nullopt;
-        r.fail(&e, prefix + "e", fmt::format("'{}' is neither 'housner' nor a number in [0, 1]", s->get()));
-      }
-      const auto x = number_of(e);
-      if (!x) r.fail(&e, prefix + "e", fmt::format("expected \"housner\" or a number in [0, 1], got {}", type_name(e)));
-      if (!(*x >= 0.0 && *x <= 1.0)) r.fail(&e, prefix + "e", fmt::format("must be in [0, 1], got {}", *x));
-      return *x;
-    };
-    if (const auto* a = en->as_array()) {
-      if (a->empty()) r.fail(en, prefix + "e", "empty list: give at least one value");
-      for (const auto& e : *a) es.push_back(one(e));
-    } else if (en->is_table()) {
-      const std::vector<double> values = *r.numbers(o, "e", prefix + "e");
-      for (const double x : values) {
-        if (!(x >= 0.0 && x <= 1.0)) r.fail(en, prefix + "e", fmt::format("must be in [0, 1], got {}", x));
-        es.emplace_back(x);
-      }
-    } else {
-      es.push_back(one(*en));
-    }
-  } else {
-    es.emplace_back(std::nullopt);
-  }
+  const BodyAxes axes = read_body_axes(r, o, prefix, shape, from_mesh, asymmetric);
+  const std::vector<std::optional<double>> es = read_restitutions(r, o, prefix);
   const auto mus = r.numbers(o, "mu", prefix + "mu");
   std::vector<std::optional<double>> mu_values;
   if (mus) {
@@ -775,49 +848,15 @@ void read_rock(const Reader& r, const toml::table& o, const std::string& key, do
   } else {
     mu_values.emplace_back(std::nullopt);
   }
-  const auto key_of = [&](const std::string& base) {
-    return o.get(base) != nullptr ? base : base + (base == "D" || base == "inertia" ? "_m2" : "_m");
-  };
   std::vector<BodyCase> bodies;
   if (from_mesh) bodies = mesh_bodies(r, o, prefix);
-  for (const double x1 : first) {
-    for (const double x2 : second) {
-      for (const double x3 : third) {
-        for (const double x4 : fourth) {
-          for (const double x5 : fifth) {
-            BodyCase c;
-            try {
-              c.body = shape == "block"      ? RockingBody::block(x1, x2)
-                       : shape == "cylinder" ? RockingBody::cylinder(x1, x2)
-                       : asymmetric          ? RockingBody::general_asymmetric(x1, x4, x2, x5)
-                                             : RockingBody::general(x1, x2, x3);
-            } catch (const InputError& e) {
-              std::string f = e.where().field;
-              if (f == "width" || f == "diameter" || f == "a" || f == "b1") f = key_of(first_key);
-              if (f == "height" || f == "h") f = key_of(second_key);
-              if (f == "b2") f = key_of("b2");
-              if (f == "inertia") f = key_of("inertia");
-              if (f == "D") f = "D_m2";
-              r.fail(o.get(f) != nullptr ? o.get(f) : &o, prefix + f, e.problem());
-            }
-            if (shape == "block") c.width_m = x1;
-            if (shape == "cylinder") c.diameter_m = x1;
-            if (shape != "general") c.height_m = x2;
-            if (asymmetric) c.inertia_m2 = x5;
-            bodies.push_back(std::move(c));
-          }
-        }
-      }
-    }
-  }
+  for (BodyCase& c : axis_bodies(r, o, prefix, shape, asymmetric, axes)) bodies.push_back(std::move(c));
   for (const BodyCase& c : bodies) {
     const RockingBody& body = c.body;
     for (const auto& e : es) {
-      if (!e && housner_restitution(body) < 0.0) {
-        r.fail(o.get("e") != nullptr ? o.get("e") : &o, prefix + "e",
-               fmt::format("Housner's restitution 1 - 2a^2/D = {} is negative for this body (too squat to rock "
-                           "onto its other edge): {}", housner_restitution(body), kSquatBodyAdvice));
-      }
+      if (!e) r.located(o.get("e") != nullptr ? o.get("e") : &o, prefix + "e", [&] {
+        ensemble::check_housner_restitution(body);  // the rocking model's rule (sweep.hpp)
+      });
       for (const auto& m : mu_values) {
         ensemble::RockObject ro;
         ro.body = body;

@@ -154,23 +154,18 @@ namespace {
 // kappa = mean over seeds of predominant_frequency_hz(motion) / f_g at the nodes zeta_g x f_g below (T = 20 s,
 // dt = 0.01 s, Saragoni-Hart envelope, 200 seeds per node). Produced by
 // `test_synthesis --gtest_also_run_disabled_tests --gtest_filter='*DISABLED_CalibrationTable*'`; docs/method.md.
-// Bilinear in (zeta_g, log f_g), constant beyond the f_g nodes. Rows: zeta_g; columns: f_g.
+// Bilinear in (zeta_g, log f_g), constant beyond the f_g nodes. Rows: zeta_g; in each, the Kanai-Tajimi filter's
+// kappa over the f_g nodes, then the Clough-Penzien filter's (FilterModel order).
 constexpr std::array<double, 5> kCalibrationDamping = {0.1, 0.2, 0.3, 0.4, 0.5};
 constexpr std::array<double, 5> kCalibrationFrequency = {0.5, 1.0, 2.0, 4.0, 8.0};
-using KappaTable = std::array<std::array<double, 5>, 5>;  // [damping][frequency]
-constexpr KappaTable kKappaKanaiTajimi = {{
-    {0.941, 0.953, 0.975, 0.978, 0.977},
-    {0.871, 0.858, 0.901, 0.900, 0.896},
-    {0.824, 0.785, 0.770, 0.705, 0.681},
-    {0.805, 0.732, 0.660, 0.539, 0.455},
-    {0.782, 0.680, 0.592, 0.442, 0.335},
-}};
-constexpr KappaTable kKappaCloughPenzien = {{
-    {0.941, 0.953, 0.975, 0.978, 0.977},
-    {0.872, 0.869, 0.904, 0.915, 0.941},
-    {0.824, 0.786, 0.802, 0.790, 0.843},
-    {0.808, 0.744, 0.713, 0.658, 0.692},
-    {0.794, 0.698, 0.641, 0.578, 0.580},
+using KappaRow = std::array<double, 5>;                     // [frequency]
+using KappaTable = std::array<std::array<KappaRow, 2>, 5>;  // [damping][filter: Kanai-Tajimi, Clough-Penzien]
+constexpr KappaTable kKappa = {{
+    {{{0.941, 0.953, 0.975, 0.978, 0.977}, {0.941, 0.953, 0.975, 0.978, 0.977}}},
+    {{{0.871, 0.858, 0.901, 0.900, 0.896}, {0.872, 0.869, 0.904, 0.915, 0.941}}},
+    {{{0.824, 0.785, 0.770, 0.705, 0.681}, {0.824, 0.786, 0.802, 0.790, 0.843}}},
+    {{{0.805, 0.732, 0.660, 0.539, 0.455}, {0.808, 0.744, 0.713, 0.658, 0.692}}},
+    {{{0.782, 0.680, 0.592, 0.442, 0.335}, {0.794, 0.698, 0.641, 0.578, 0.580}}},
 }};
 
 /// Index j >= 1 and weight w of x between nodes[j - 1] and nodes[j] (w clamped to [0, 1]).
@@ -193,7 +188,7 @@ double predominant_frequency_ratio(double zeta_g, FilterModel model, double f_g_
   if (!(f_g_hz > 0.0) || !std::isfinite(f_g_hz)) {
     throw parameter_error("f_g", fmt::format("the filter frequency must be positive, got {} Hz", f_g_hz));
   }
-  const KappaTable& kappa = model == FilterModel::kanai_tajimi ? kKappaKanaiTajimi : kKappaCloughPenzien;
+  const std::size_t filter = model == FilterModel::kanai_tajimi ? 0 : 1;
   const auto [i, wz] = bracket(kCalibrationDamping, zeta_g);
   std::array<double, 5> log_f{};
   for (std::size_t k = 0; k < log_f.size(); ++k) log_f[k] = portable_log(kCalibrationFrequency[k]);
@@ -202,7 +197,10 @@ double predominant_frequency_ratio(double zeta_g, FilterModel model, double f_g_
   const std::pair<std::size_t, double> jf = bracket(log_f, portable_log(f_g_hz));
   const std::size_t j = jf.first;
   const double wf = jf.second;
-  const auto row = [&](std::size_t r) { return kappa[r][j - 1] + wf * (kappa[r][j] - kappa[r][j - 1]); };
+  const auto row = [&](std::size_t r) {
+    const KappaRow& kappa = kKappa[r][filter];
+    return kappa[j - 1] + wf * (kappa[j] - kappa[j - 1]);
+  };
   return row(i - 1) + wz * (row(i) - row(i - 1));
 }
 

@@ -1,7 +1,8 @@
 // The survey's observation model (topple/survey/survey.hpp): the names of outcomes, models, families and evidence,
 // the model each object is simulated with, the error rate of each kind of evidence, and the physics checks of an
-// object's model (Shenton 1996; Painleve's paradox). The readers (topple/io/survey_file.hpp) call these and locate
-// what they throw at the file's line; the inversion and the report call the same functions.
+// object's model (Shenton 1996; Painleve's paradox), its restitution (Housner), bearing and fall direction. The
+// readers (topple/io/survey_file.hpp) call these and locate what they throw at the file's line; the inversion and the
+// report call the same functions.
 #include "topple/survey/survey.hpp"
 
 #include <algorithm>
@@ -10,6 +11,9 @@
 #include <fmt/format.h>
 
 #include "topple/core/error.hpp"
+#include "topple/core/units.hpp"
+#include "topple/solvers/oriented.hpp"
+#include "topple/solvers/rocking.hpp"
 #include "topple/solvers/slide_rock.hpp"
 
 namespace topple {
@@ -123,6 +127,49 @@ std::vector<ObjectCheck> check_object_model(const ObservedObject& o, int compone
                                      mu_p, std::min(coupled.b1_m, coupled.b2_m) / coupled.h_m, coupled.inertia_m2)});
   }
   return warnings;
+}
+
+void check_object_restitution(const ObservedObject& o) {
+  // A body that strikes needs Housner's e >= 0: the rocking model always, the coupled one when it can lift.
+  const bool rocks = object_model(o) == ObjectModel::rock ||
+                     (object_model(o) == ObjectModel::coupled &&
+                      !SlideRockBody::from_rocking(o.body, o.mu.high).cannot_uplift());
+  if (rocks && o.e_housner && housner_restitution(o.body) < 0.0) {
+    throw parameter_error("e", fmt::format("Housner's restitution 1 - 2a^2/D = {:.3g} is negative for so squat a body "
+                                           "(alpha = {:.3g} deg > 54.7 deg): {}",
+                                           housner_restitution(o.body), rad_to_deg(o.body.alpha_rad()),
+                                           kSquatBodyAdvice));
+  }
+  if (rocks && o.depth_m && o.e_housner) {  // the other axis is a block of width `depth` (oriented.hpp)
+    const RockingBody across = *OrientedBody::make(o.body, o.depth_m).across;
+    if (housner_restitution(across) < 0.0) {
+      throw parameter_error("depth", fmt::format("Housner's restitution 1 - 2a^2/D = {:.3g} is negative across this "
+                                                 "box (depth {:.3g} m, height {:.3g} m: alpha = {:.3g} deg > 54.7 "
+                                                 "deg): give e = a value or a range, or leave depth out (the box then "
+                                                 "rocks along its bearing only)",
+                                                 housner_restitution(across), *o.depth_m, 2.0 * across.h_m,
+                                                 rad_to_deg(across.alpha_rad())));
+    }
+  }
+}
+
+void check_object_bearing(const ObservedObject& o) {
+  if (o.body.shape == RockingBody::Shape::cylinder) {
+    throw parameter_error("azimuth_deg", "a cylinder has no narrow side: it rocks toward its worst direction "
+                                         "(docs/method.md), so it takes no bearing");
+  }
+}
+
+void check_object_fall_direction(const ObservedObject& o) {
+  if (o.outcome != Outcome::overturned) {
+    throw parameter_error("toppled_azimuth_deg", "a fall direction goes with outcome = \"overturned\"");
+  }
+  if (o.body.shape != RockingBody::Shape::cylinder && !o.depth_m) {
+    throw parameter_error("toppled_azimuth_deg",
+                          "only a cylinder or a box (a block with depth) tells the direction of the shaking by the way "
+                          "it fell: the planar model of a block without depth falls along its bearing (give that as "
+                          "azimuth_deg, or give the block's depth)");
+  }
 }
 
 }  // namespace topple

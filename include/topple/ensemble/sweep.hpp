@@ -139,6 +139,11 @@ struct SweepSpec {
 /// than cylinders and without bearings (field "bearing"), or a bearing without record sets.
 [[nodiscard]] Plan make_plan(const SweepSpec& spec);
 
+/// A rocking object of a sweep with Housner's restitution (e = "housner"): 1 - 2a^2/D must not be negative (a body
+/// too squat to rock onto its other edge, rocking.hpp, kSquatBodyAdvice). Throws parameter_error("e", problem); the
+/// sweep reader calls it for each body and places the error at the file's line.
+void check_housner_restitution(const RockingBody& body);
+
 /// A record set under a motion case's transform: `first` is the engine's transform of set.first() (the case's base
 /// motion); the second component gets the same transform, the vertical the same without the inversion (it keeps its
 /// sign: polarity flips the horizontal shaking). The sweep's set cases and the fragility of pairs use it.

@@ -133,6 +133,21 @@ struct ObjectCheck {
 /// user should know of (mu at or above the body's Painleve limit, slide_rock.hpp, painleve_friction_limit).
 [[nodiscard]] std::vector<ObjectCheck> check_object_model(const ObservedObject& object, int components);
 
+/// Housner's restitution of an object that strikes (the rocking model always, the coupled one when it can lift), with
+/// the model, body, mu, e and depth already read: with e = "housner", 1 - 2a^2/D must not be negative (a body too
+/// squat to rock onto its other edge, rocking.hpp, kSquatBodyAdvice), nor across a box (oriented.hpp: the other axis
+/// is a block of width `depth`). Throws parameter_error("e" or "depth", problem).
+void check_object_restitution(const ObservedObject& object);
+
+/// An object given a bearing (azimuth_deg, three-component surveys), with its body read: a cylinder has no narrow
+/// side and takes none. Throws parameter_error("azimuth_deg", problem).
+void check_object_bearing(const ObservedObject& object);
+
+/// An object given the direction it fell (toppled_azimuth_deg), with its body, depth and outcome read: only an
+/// overturned cylinder or box tells the direction of the shaking by the way it fell (the planar model of a block
+/// without depth falls along its bearing). Throws parameter_error("toppled_azimuth_deg", problem).
+void check_object_fall_direction(const ObservedObject& object);
+
 struct Site {
   std::string name;
   std::optional<double> lat_deg, lon_deg;
