@@ -1,4 +1,5 @@
 // topple invert SURVEY: from observed objects to PGA and predominant-frequency bounds.
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -7,7 +8,6 @@
 #include <memory>
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include "commands.hpp"
 #include "progress.hpp"
@@ -17,9 +17,9 @@
 #include "topple/output/inversion_output.hpp"
 #include "topple/output/provenance.hpp"
 #include "topple/output/region_output.hpp"
-#include "topple/region/region.hpp"
+#include "topple/output/region_report.hpp"
+#include "topple/region/survey_inversion.hpp"
 #include "topple/io/survey_file.hpp"
-#include "topple/output/report.hpp"
 
 namespace topple::cli {
 namespace {
@@ -33,6 +33,24 @@ struct InvertOptions {
   int threads = 0;
   bool quiet = false;
 };
+
+/// The files and folder the command writes (io::write_survey_grids, write_survey_map, write_survey_report), in the
+/// order of --help: each made ready before the runs (prepare_output_folder).
+struct OutputOption {
+  const char* name;
+  std::string InvertOptions::*path;
+  bool folder;  ///< a directory (--report), else a file
+  const char* help;
+};
+
+constexpr std::array<OutputOption, 3> kOutputOptions{{
+    {"--grid", &InvertOptions::grid, false, "Write the likelihood grid to this CSV file"},
+    {"--map", &InvertOptions::map, false,
+     "Write one GeoJSON point per site (and, with an epicentre, PGA vs distance CSV; with a regional fit, the region "
+     "CSV and iso-acceleration contours)"},
+    {"--report", &InvertOptions::report, true,
+     "Write a self-contained HTML report (and its figures) into this directory"},
+}};
 
 std::string interval_text(const std::optional<double>& lo, const std::optional<double>& hi, const char* unit) {
   const auto end = [&](const std::optional<double>& v, const char* none) {
@@ -191,9 +209,9 @@ void run_invert(const InvertOptions& o) {
   options.progress = bar.callback();
   const Survey survey = io::read_survey(o.survey);
   const io::Provenance provenance = io::make_provenance(o.survey, own_command_line());
-  if (!o.grid.empty()) prepare_output_folder(o.grid, "--grid");
-  if (!o.map.empty()) prepare_output_folder(o.map, "--map");
-  if (!o.report.empty()) prepare_output_folder(o.report, "--report", true);
+  for (const OutputOption& out : kOutputOptions) {
+    if (!(o.*out.path).empty()) prepare_output_folder(o.*out.path, out.name, out.folder);
+  }
   if (!quiet) {
     for (const std::string& note : survey.notes) fmt::print(stderr, "topple: note: {}\n", note);
   }
@@ -206,80 +224,30 @@ void run_invert(const InvertOptions& o) {
       fmt::print(stderr, "topple: inverting {} ({} objects)...\n", site.name, site.objects.size());
     }
   }
-  // One family for every site, the sites split across MPI ranks under mpirun, then the regional fit (region.hpp).
+  // The library's survey-level entry point (survey_inversion.hpp), as Python calls it: one family for every site, the
+  // sites split across MPI ranks under mpirun, then the regional fit; the files as the library writes them.
   const RegionalSettings region_settings;
   const SurveyInversion inversion = invert_survey(survey, options, *cluster, region_settings);
   bar.finish();
   if (cluster->rank() != 0) return;  // rank 0 reports
-  const std::vector<InversionResult>& results = inversion.results;
-  const std::vector<std::size_t>& survey_index = inversion.survey_index;
-  std::vector<Site> with_objects;
-  for (const std::size_t i : survey_index) with_objects.push_back(survey.sites[i]);
-  const std::vector<const InversionResult*> per_site = inversion.per_site(survey.sites.size());
-  const std::vector<std::string>& region_notes = inversion.region_notes;
-  const std::optional<RegionalResult>& region = inversion.region;
-  const bool multi = survey.sites.size() > 1;
-  const auto site_path = [&](const std::string& base, std::size_t i) {
-    if (!multi) return std::filesystem::path(base);
-    std::filesystem::path p(base);
-    return p.parent_path() / fmt::format("{}.site{}{}", p.stem().string(), survey_index[i] + 1, p.extension().string());
-  };
-  if (!o.grid.empty()) {
-    for (std::size_t i = 0; i < results.size(); ++i) io::write_inversion_grid_csv(site_path(o.grid, i), results[i]);
-  }
-  if (!o.map.empty()) {
-    io::write_sites_geojson(o.map, with_objects, results);
-    if (region) {
-      std::filesystem::path csv(o.map);
-      csv.replace_extension(".region.csv");
-      io::write_region_csv(csv, *region, per_site);
-      const PooledField field = pooled_field(*region, survey);
-      std::filesystem::path contours(o.map);
-      contours.replace_extension(".contours.geojson");
-      io::write_contours_geojson(contours, contour_field(field, io::contour_levels_g()), field);
-    }
-    if (survey.epicentre_lat_deg) {
-      std::filesystem::path csv(o.map);
-      csv.replace_extension(".distance.csv");
-      io::write_distance_csv(csv, with_objects, results, *survey.epicentre_lat_deg, *survey.epicentre_lon_deg);
-    }
-  }
+  if (!o.grid.empty()) io::write_survey_grids(o.grid, survey, inversion);
+  if (!o.map.empty()) io::write_survey_map(o.map, survey, inversion);
   if (!o.report.empty()) {
-    for (std::size_t i = 0; i < results.size(); ++i) {
-      const std::filesystem::path dir = multi ? std::filesystem::path(o.report) / fmt::format("site{}", survey_index[i] + 1)
-                                              : std::filesystem::path(o.report);
-      write_report(dir, survey, with_objects[i], results[i], provenance);
-      if (!o.quiet) fmt::print(stderr, "topple: report written to {}\n", (dir / "index.html").string());
+    const SurveyReport report = write_survey_report(o.report, survey, inversion, provenance, region_settings);
+    for (const std::filesystem::path& page : report.site_pages) {
+      if (!o.quiet) fmt::print(stderr, "topple: report written to {}\n", page.string());
     }
-    if (region) {
-      // The regional page at the report's top, linking each site's page (a station without objects has none).
-      std::vector<std::string> pages(survey.sites.size());
-      for (std::size_t i = 0; i < results.size(); ++i) pages[survey_index[i]] = fmt::format("site{}/index.html", survey_index[i] + 1);
-      for (const std::string& w : write_region_report(o.report, survey, *region, per_site, pages, region_settings)) {
-        fmt::print(stderr, "topple: warning: {}\n", w);
-      }
-      if (!o.quiet) fmt::print(stderr, "topple: regional page written to {}\n", (std::filesystem::path(o.report) / "index.html").string());
-    }
+    for (const std::string& w : report.warnings) fmt::print(stderr, "topple: warning: {}\n", w);
+    if (report.region_page && !o.quiet) fmt::print(stderr, "topple: regional page written to {}\n", report.region_page->string());
   }
   if (o.json) {
-    if (!multi) {
-      nlohmann::ordered_json j = io::inversion_json(results[0], survey.sites[0], provenance);
-      if (!survey.warnings.empty()) j["warnings"] = survey.warnings;  // added only when there are any: old bytes kept
-      fmt::print("{}\n", j.dump(2));
-    } else {
-      nlohmann::ordered_json all;
-      all["sites"] = nlohmann::ordered_json::array();
-      for (std::size_t i = 0; i < results.size(); ++i) all["sites"].push_back(io::inversion_json(results[i], with_objects[i], provenance));
-      if (region) all["region"] = io::region_json(*region, survey, per_site, region_settings);
-      if (!region_notes.empty()) all["region_notes"] = region_notes;
-      if (!survey.warnings.empty()) all["warnings"] = survey.warnings;
-      fmt::print("{}\n", all.dump(2));
-    }
+    fmt::print("{}\n", io::survey_inversion_json(survey, inversion, provenance, region_settings).dump(2));
     return;
   }
-  for (std::size_t i = 0; i < results.size(); ++i) print_site(with_objects[i], results[i]);
-  for (const std::string& note : region_notes) fmt::print("note: {}\n", note);
-  if (region) print_region(*region, per_site);
+  const std::vector<Site> sites = inversion.sites_with_objects(survey);
+  for (std::size_t k = 0; k < inversion.results.size(); ++k) print_site(sites[k], inversion.results[k]);
+  for (const std::string& note : inversion.region_notes) fmt::print("note: {}\n", note);
+  if (inversion.region) print_region(*inversion.region, inversion.per_site(survey.sites.size()));
 }
 
 }  // namespace
@@ -290,10 +258,7 @@ void add_invert_command(CLI::App& app) {
                                                "frequency bounds, a likelihood map and a report");
   cmd->add_option("survey", o->survey, "Survey file (TOML; see examples/survey.toml)")->required();
   cmd->add_flag("--json", o->json, "Print the result as one JSON object");
-  cmd->add_option("--grid", o->grid, "Write the likelihood grid to this CSV file");
-  cmd->add_option("--map", o->map, "Write one GeoJSON point per site (and, with an epicentre, PGA vs distance CSV; with a "
-                                   "regional fit, the region CSV and iso-acceleration contours)");
-  cmd->add_option("--report", o->report, "Write a self-contained HTML report (and its figures) into this directory");
+  for (const OutputOption& out : kOutputOptions) cmd->add_option(out.name, (*o).*out.path, out.help);
   cmd->add_option("--threads", o->threads, "Worker threads (default: all cores)");
   add_quiet_flag(*cmd, o->quiet, "no notes and no progress messages");
   cmd->callback([o] { run_invert(*o); });

@@ -1,11 +1,16 @@
-// The regional fit as JSON and CSV (region_output.hpp).
+// The regional fit as JSON and CSV, a survey's inversion as JSON, grids and map files (region_output.hpp).
 #include "topple/output/region_output.hpp"
 
-#include <cmath>
+#include <array>
+#include <type_traits>
+#include <variant>
 
 #include <fmt/format.h>
 
 #include "topple/core/output_file.hpp"
+#include "topple/output/inversion_output.hpp"
+#include "topple/output/write.hpp"
+#include "topple/region/fields.hpp"
 
 namespace topple::io {
 namespace {
@@ -16,10 +21,28 @@ nlohmann::ordered_json summary(const Interval95& v) {
 
 nlohmann::ordered_json opt(const std::optional<double>& v) { return v ? nlohmann::ordered_json(*v) : nullptr; }
 
-nlohmann::ordered_json independent(const InversionResult* r, bool frequency = false) {
-  if (r == nullptr) return nullptr;
-  const Estimate& e = frequency ? r->freq_estimate_hz : r->pga_estimate_g;
-  return {{"median", e.median}, {"ci68", {opt(e.ci68_low), opt(e.ci68_high)}}, {"ci95", {opt(e.ci95_low), opt(e.ci95_high)}}};
+/// A value of the regional tables (fields.hpp) as JSON.
+nlohmann::ordered_json value_json(const RegionalValue& value) {
+  return std::visit(
+      [](const auto& v) -> nlohmann::ordered_json {
+        using T = std::decay_t<decltype(v)>;
+        if constexpr (std::is_same_v<T, FieldValue>) {
+          return field_json(v);
+        } else if constexpr (std::is_same_v<T, std::optional<Interval95>>) {
+          return v ? summary(*v) : nlohmann::ordered_json(nullptr);
+        } else {  // a site's own estimate: an unconstrained end is null
+          if (!v) return nullptr;
+          return {{"median", v->median}, {"ci68", {opt(v->ci68_low), opt(v->ci68_high)}},
+                  {"ci95", {opt(v->ci95_low), opt(v->ci95_high)}}};
+        }
+      },
+      value);
+}
+
+/// The table's fields into `j`, in the table's order.
+template <class Row, std::size_t N>
+void put_fields(nlohmann::ordered_json& j, const std::array<RegionalField<Row>, N>& table, const Row& row) {
+  for (const RegionalField<Row>& f : table) j[f.name] = value_json(f.get(row));
 }
 
 std::string csv_name(const std::string& name) {
@@ -40,15 +63,8 @@ nlohmann::ordered_json region_json(const RegionalResult& fit, const Survey& surv
                                    const std::vector<const InversionResult*>& results, const RegionalSettings& st) {
   nlohmann::ordered_json j;
   j["model"] = "ln PGA_s = c0 - c1 ln sqrt(R_s^2 + c2^2) + delta_s, delta_s ~ N(0, tau^2); PGA in g, R hypocentral km";
-  const Interval95 a_ref{std::exp(fit.ln_a_ref.median), std::exp(fit.ln_a_ref.ci68_low), std::exp(fit.ln_a_ref.ci68_high),
-                         std::exp(fit.ln_a_ref.ci95_low), std::exp(fit.ln_a_ref.ci95_high)};
-  j["relation"] = {{"c0_ln_g", summary(fit.c0)},
-                   {"c1", summary(fit.c1)},
-                   {"c2_km", fit.c2_km},
-                   {"c2_fixed", true},
-                   {"tau_ln", summary(fit.tau)},
-                   {"reference_distance_km", fit.reference_distance_km},
-                   {"pga_at_reference_g", summary(a_ref)}};
+  j["relation"] = nlohmann::ordered_json::object();
+  put_fields(j["relation"], kRelationFields, fit);
   j["priors"] = {{"ln_pga_at_reference_g", {st.ln_a_ref_min, st.ln_a_ref_max}},
                  {"c1", {st.c1_min, st.c1_max}},
                  {"tau_ln", {st.tau_min, st.tau_max}},
@@ -59,50 +75,27 @@ nlohmann::ordered_json region_json(const RegionalResult& fit, const Survey& surv
   j["grid_points"] = fit.grid_points;
   if (fit.frequency) {
     const FrequencyRelation& f = *fit.frequency;
-    const Interval95 f_ref{std::exp(f.ln_f_ref.median), std::exp(f.ln_f_ref.ci68_low), std::exp(f.ln_f_ref.ci68_high),
-                           std::exp(f.ln_f_ref.ci95_low), std::exp(f.ln_f_ref.ci95_high)};
-    j["frequency_relation"] = {
-        {"model", "ln f_s = d0 + d1 ln sqrt(R_s^2 + c2^2) + eps_s, eps_s ~ N(0, tau_f^2); f in Hz, R hypocentral km, c2 as "
-                  "the PGA relation's; against the constant model ln f_s = ln f_c + eps_s"},
-        {"d0_ln_hz", summary(f.d0)},
-        {"d1", summary(f.d1)},
-        {"tau_f_ln", summary(f.tau)},
-        {"frequency_at_reference_hz", summary(f_ref)},
-        {"constant_model", {{"f_c_hz", summary(f.constant_f_hz)}, {"tau_f_ln", summary(f.constant_tau)}}},
-        {"ln_evidence_relation", f.log_evidence_relation},
-        {"ln_evidence_constant", f.log_evidence_constant},
-        {"ln_bayes_factor", f.ln_bayes_factor},
-        {"bayes_factor_threshold", st.frequency_bayes_factor},
-        {"supported", f.supported},
-        {"rule", "supported when Z(relation) / Z(constant) >= the threshold (Kass & Raftery 1995: 3 is the lower end of "
-                 "positive evidence); only then are the sites' frequencies pooled"},
-        {"sites_with_frequency", f.sites_with_frequency},
-        {"priors", {{"ln_frequency_at_reference_hz", {st.ln_f_ref_min, st.ln_f_ref_max}},
+    nlohmann::ordered_json fj;
+    fj["model"] = "ln f_s = d0 + d1 ln sqrt(R_s^2 + c2^2) + eps_s, eps_s ~ N(0, tau_f^2); f in Hz, R hypocentral km, c2 as "
+                  "the PGA relation's; against the constant model ln f_s = ln f_c + eps_s";
+    put_fields(fj, kFrequencyRelationFields, f);
+    fj["constant_model"] = nlohmann::ordered_json::object();
+    put_fields(fj["constant_model"], kConstantModelFields, f);
+    put_fields(fj, kFrequencyComparisonFields, FrequencyComparisonRow{f, st});
+    fj["priors"] = {{"ln_frequency_at_reference_hz", {st.ln_f_ref_min, st.ln_f_ref_max}},
                     {"d1", {st.d1_min, st.d1_max}},
                     {"tau_f_ln", {st.tau_f_min, st.tau_f_max}},
-                    {"kind", "uniform on the box"}}},
-        {"notes", f.notes}};
+                    {"kind", "uniform on the box"}};
+    fj["notes"] = f.notes;
+    j["frequency_relation"] = fj;
   } else {
     j["frequency_relation"] = nullptr;
   }
   nlohmann::ordered_json sites = nlohmann::ordered_json::array();
   for (const PooledSite& p : fit.sites) {
-    const Site& site = survey.sites[p.site_index];
     const InversionResult* r = results.at(p.site_index);
-    nlohmann::ordered_json sj;
-    sj["site"] = p.name;
-    sj["survey_index"] = p.site_index;
-    sj["lat"] = opt(site.lat_deg);
-    sj["lon"] = opt(site.lon_deg);
-    sj["hypocentral_distance_km"] = p.distance_km;
-    sj["instrument_pga_g"] = opt(p.instrument_pga_g);
-    sj["objects"] = site.objects.size();
-    sj["pooled_pga_g"] = summary(p.pga_g);
-    sj["relation_pga_g"] = summary(p.relation_pga_g);
-    sj["independent_pga_g"] = independent(r);
-    sj["independent_freq_hz"] = independent(r, true);
-    sj["pooled_freq_hz"] = p.freq_hz ? summary(*p.freq_hz) : nlohmann::ordered_json(nullptr);
-    sj["relation_freq_hz"] = p.relation_freq_hz ? summary(*p.relation_freq_hz) : nlohmann::ordered_json(nullptr);
+    nlohmann::ordered_json sj = nlohmann::ordered_json::object();
+    put_fields(sj, kRegionalSiteFields, RegionalSiteRow{p, survey.sites[p.site_index], r});
     if (r != nullptr && p.instrument_pga_g) {
       sj["calibration"] = {{"objects_agree", objects_agree_with_instrument(r->pga_estimate_g, *p.instrument_pga_g)},
                            {"test", "the instrument's PGA inside the objects' own 95 % interval (open ends count as open)"}};
@@ -158,6 +151,53 @@ void write_contours_geojson(const std::filesystem::path& path, const std::vector
     fc["features"].push_back(f);
   }
   write_file_atomically(path, fc.dump() + "\n");
+}
+
+nlohmann::ordered_json survey_inversion_json(const Survey& survey, const SurveyInversion& inversion,
+                                             const std::optional<Provenance>& provenance, const RegionalSettings& settings) {
+  const std::vector<Site> sites = inversion.sites_with_objects(survey);
+  const auto site_json = [&](std::size_t k) {
+    return provenance ? inversion_json(inversion.results[k], sites[k], *provenance)
+                      : inversion_json(inversion.results[k], sites[k]);
+  };
+  nlohmann::ordered_json j;
+  if (survey.sites.size() <= 1) {
+    j = site_json(0);
+  } else {
+    j["sites"] = nlohmann::ordered_json::array();
+    for (std::size_t k = 0; k < inversion.results.size(); ++k) j["sites"].push_back(site_json(k));
+    if (inversion.region) {
+      j["region"] = region_json(*inversion.region, survey, inversion.per_site(survey.sites.size()), settings);
+    }
+    if (!inversion.region_notes.empty()) j["region_notes"] = inversion.region_notes;
+  }
+  if (!survey.warnings.empty()) j["warnings"] = survey.warnings;  // added only when there are any: old bytes kept
+  return j;
+}
+
+void write_survey_grids(const std::filesystem::path& path, const Survey& survey, const SurveyInversion& inversion) {
+  for (std::size_t k = 0; k < inversion.results.size(); ++k) {
+    write_inversion_grid_csv(site_output_path(path, survey, inversion.survey_index[k]), inversion.results[k]);
+  }
+}
+
+void write_survey_map(const std::filesystem::path& path, const Survey& survey, const SurveyInversion& inversion) {
+  const std::vector<Site> sites = inversion.sites_with_objects(survey);
+  write_sites_geojson(path, sites, inversion.results);
+  if (inversion.region) {
+    std::filesystem::path csv(path);
+    csv.replace_extension(".region.csv");
+    write_region_csv(csv, *inversion.region, inversion.per_site(survey.sites.size()));
+    const PooledField field = pooled_field(*inversion.region, survey);
+    std::filesystem::path contours(path);
+    contours.replace_extension(".contours.geojson");
+    write_contours_geojson(contours, contour_field(field, contour_levels_g()), field);
+  }
+  if (survey.epicentre_lat_deg) {
+    std::filesystem::path csv(path);
+    csv.replace_extension(".distance.csv");
+    write_distance_csv(csv, sites, inversion.results, *survey.epicentre_lat_deg, *survey.epicentre_lon_deg);
+  }
 }
 
 }  // namespace topple::io

@@ -1,6 +1,8 @@
-// The regional report page (region.hpp: write_region_report): the relation, every site pooled beside its own
-// estimate with a link to its page, the calibration sites, the attenuation figure, the pooled PGA field and the map
-// drawn by GMT (region_map.hpp).
+// The survey's report (region_report.hpp: write_survey_report) and its regional page (write_region_report): the
+// relation, every site pooled beside its own estimate with a link to its page, the calibration sites, the attenuation
+// figure, the pooled PGA field and the map drawn by GMT (region_map.hpp).
+#include "topple/output/region_report.hpp"
+
 #include <array>
 #include <cmath>
 #include <limits>
@@ -9,11 +11,11 @@
 #include <fmt/format.h>
 
 #include "topple/core/output_file.hpp"
-#include "topple/output/region_output.hpp"
 #include "topple/output/plot.hpp"
-#include "topple/region/region.hpp"
 #include "topple/output/region_map.hpp"
+#include "topple/output/region_output.hpp"
 #include "topple/output/report.hpp"
+#include "topple/region/field.hpp"
 
 namespace topple {
 namespace {
@@ -228,6 +230,27 @@ std::vector<std::string> write_region_report(const std::filesystem::path& dir, c
        "<a href=\"contours.geojson\">contours.geojson</a>.</p>\n</body></html>\n";
   io::write_file_atomically(dir / "index.html", h.str());
   return warnings;
+}
+
+SurveyReport write_survey_report(const std::filesystem::path& dir, const Survey& survey, const SurveyInversion& inversion,
+                                 const std::optional<io::Provenance>& provenance, const RegionalSettings& settings) {
+  SurveyReport out;
+  const std::vector<Site> sites = inversion.sites_with_objects(survey);
+  // The regional page links each site's page (a station without objects has none), relative to DIR.
+  std::vector<std::string> pages(survey.sites.size());
+  for (std::size_t k = 0; k < inversion.results.size(); ++k) {
+    const std::filesystem::path folder = site_report_folder(survey, inversion.survey_index[k]);
+    const std::filesystem::path site_dir = folder.empty() ? dir : dir / folder;
+    write_report(site_dir, survey, sites[k], inversion.results[k], provenance);
+    out.site_pages.push_back(site_dir / "index.html");
+    if (!folder.empty()) pages[inversion.survey_index[k]] = (folder / "index.html").string();
+  }
+  if (inversion.region) {
+    out.warnings = write_region_report(dir, survey, *inversion.region, inversion.per_site(survey.sites.size()), pages,
+                                       settings);
+    out.region_page = dir / "index.html";
+  }
+  return out;
 }
 
 }  // namespace topple

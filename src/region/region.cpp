@@ -1,5 +1,5 @@
-// The regional joint inversion (region.hpp has the model; docs/method.md, "Regional joint inversion", the equations).
-#include "topple/region/region.hpp"
+// The regional joint inversion (fit.hpp has the model; docs/method.md, "Regional joint inversion", the equations).
+#include "topple/region/fit.hpp"
 
 #include <algorithm>
 #include <array>
@@ -9,12 +9,10 @@
 #include <numeric>
 #include <optional>
 
-#include <GeographicLib/Geodesic.hpp>
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
 #include "topple/core/error.hpp"
-#include "topple/region/inversion_distributed.hpp"
 
 namespace topple {
 namespace {
@@ -352,16 +350,6 @@ std::vector<double> log_axis(double lo, double hi) {
 
 }  // namespace
 
-double geodesic_distance_km(double lat1, double lon1, double lat2, double lon2) {
-  double s12_m = 0.0;
-  GeographicLib::Geodesic::WGS84().Inverse(lat1, lon1, lat2, lon2, s12_m);
-  return s12_m / 1000.0;
-}
-
-double hypocentral_distance_km(double epicentral_km, double depth_km) noexcept {
-  return std::hypot(epicentral_km, depth_km);
-}
-
 double relation_pga_g(double c0, double c1, double c2_km, double distance_km) noexcept {
   return std::exp(c0 - c1 * std::log(std::hypot(distance_km, c2_km)));
 }
@@ -536,59 +524,6 @@ RegionalResult fit_region(const std::vector<SiteEvidence>& sites, const Regional
     });
   }
   out.frequency = std::move(fr);
-  return out;
-}
-
-std::optional<RegionalResult> fit_survey_region(const Survey& survey,
-                                                const std::vector<const InversionResult*>& results,
-                                                std::vector<std::string>& notes, const RegionalSettings& settings) {
-  if (survey.sites.size() < 2) return std::nullopt;  // a one-site survey: no regional picture, nothing to say
-  if (!survey.epicentre_lat_deg || !survey.epicentre_lon_deg) {
-    notes.push_back("no regional fit: the survey gives no [event] epicentre = [lat, lon]");
-    return std::nullopt;
-  }
-  const double depth = survey.epicentre_depth_km.value_or(0.0);
-  std::vector<SiteEvidence> evidence;
-  std::vector<std::size_t> index;
-  for (std::size_t i = 0; i < survey.sites.size(); ++i) {
-    const Site& site = survey.sites[i];
-    if (!site.lat_deg || !site.lon_deg) {
-      notes.push_back(fmt::format("regional fit: site '{}' has no lat/lon and is left out", site.name));
-      continue;
-    }
-    const double r = hypocentral_distance_km(
-        geodesic_distance_km(*survey.epicentre_lat_deg, *survey.epicentre_lon_deg, *site.lat_deg, *site.lon_deg), depth);
-    evidence.push_back(site_evidence(site.name, r, results.at(i), site.instrument_pga_g));
-    index.push_back(i);
-  }
-  if (evidence.size() < 3) {
-    notes.push_back(fmt::format("no regional fit: it needs at least 3 located sites, the survey has {}", evidence.size()));
-    return std::nullopt;
-  }
-  RegionalResult fit = fit_region(evidence, settings);
-  for (std::size_t k = 0; k < fit.sites.size(); ++k) fit.sites[k].site_index = index[k];
-  return fit;
-}
-
-std::vector<const InversionResult*> SurveyInversion::per_site(std::size_t site_count) const {
-  std::vector<const InversionResult*> out(site_count, nullptr);
-  for (std::size_t k = 0; k < results.size(); ++k) out.at(survey_index[k]) = &results[k];
-  return out;
-}
-
-SurveyInversion invert_survey(const Survey& survey, const InversionOptions& options, ensemble::Cluster& cluster,
-                              const RegionalSettings& settings) {
-  SurveyInversion out;
-  // An instrument station without objects has nothing to invert: it enters the regional fit only.
-  std::vector<Site> with_objects;
-  for (std::size_t i = 0; i < survey.sites.size(); ++i) {
-    if (survey.sites[i].objects.empty()) continue;
-    with_objects.push_back(survey.sites[i]);
-    out.survey_index.push_back(i);
-  }
-  out.results = invert_sites_distributed(with_objects, survey.inversion, options, cluster);
-  if (cluster.rank() != 0) return out;  // the joint fit is rank 0's (milliseconds to seconds, on its threads)
-  out.region = fit_survey_region(survey, out.per_site(survey.sites.size()), out.region_notes, settings);
   return out;
 }
 

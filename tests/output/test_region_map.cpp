@@ -17,6 +17,7 @@
 #include "topple/core/output_file.hpp"
 #include "topple/region/region.hpp"
 #include "topple/output/region_map.hpp"
+#include "topple/output/region_report.hpp"
 #include "topple/output/report.hpp"
 
 namespace topple {

@@ -498,5 +498,27 @@ TEST(RegionRecovery, IntervalsCoverTheTruthAndPoolingNarrowsThem) {
   EXPECT_LT(ln_width_pooled, ln_width_own);
 }
 
+// Where a survey's sites write their outputs (survey_inversion.hpp): the rule every front end shares.
+TEST(SurveyInversion, SiteFoldersAndPathsFollowTheSurveyIndex) {
+  Survey one;
+  one.sites.resize(1);
+  EXPECT_EQ(site_report_folder(one, 0), std::filesystem::path());
+  EXPECT_EQ(site_output_path("out/grid.csv", one, 0), std::filesystem::path("out/grid.csv"));
+  Survey three;
+  three.sites.resize(3);
+  EXPECT_EQ(site_report_folder(three, 2), std::filesystem::path("site3"));
+  EXPECT_EQ(site_output_path("out/grid.csv", three, 0), std::filesystem::path("out/grid.site1.csv"));
+  SurveyInversion inv;
+  inv.results.resize(2);
+  inv.survey_index = {0, 2};  // site 2 (index 1): a station without objects
+  three.sites[2].name = "third";
+  const std::vector<const InversionResult*> per_site = inv.per_site(3);
+  EXPECT_EQ(per_site[1], nullptr);
+  EXPECT_EQ(per_site[2], &inv.results[1]);
+  const std::vector<Site> sites = inv.sites_with_objects(three);
+  ASSERT_EQ(sites.size(), 2u);
+  EXPECT_EQ(sites[1].name, "third");
+}
+
 }  // namespace
 }  // namespace topple

@@ -17,7 +17,8 @@
 
 #include "topple/inversion/direction.hpp"
 #include "topple/inversion/inversion.hpp"
-#include "topple/region/region.hpp"
+#include "topple/region/field.hpp"
+#include "topple/region/fit.hpp"
 #include "topple/survey/survey.hpp"
 
 namespace topple {

@@ -1,13 +1,18 @@
 #pragma once
 // The regional fit as JSON (the `region` key of `topple invert --json` on a multi-site survey; docs/survey.md lists
-// every key) and as CSV beside the --map GeoJSON.
+// every key) and as CSV beside the --map GeoJSON; a survey's inversion (survey_inversion.hpp) as the JSON, the grids
+// and the map files `topple invert` writes, so that every front end writes the same.
 #include <filesystem>
+#include <optional>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "topple/inversion/inversion.hpp"
-#include "topple/region/region.hpp"
+#include "topple/output/provenance.hpp"
+#include "topple/region/field.hpp"
+#include "topple/region/fit.hpp"
+#include "topple/region/survey_inversion.hpp"
 #include "topple/survey/survey.hpp"
 
 namespace topple::io {
@@ -34,5 +39,22 @@ void write_region_csv(const std::filesystem::path& path, const RegionalResult& f
 /// properties pga_g (the level) and the field's correlation (model and range_km).
 void write_contours_geojson(const std::filesystem::path& path, const std::vector<Contour>& contours,
                             const PooledField& field);
+
+/// A survey's inversion as `topple invert --json` prints it. One site: its inversion_json (with `provenance` at the
+/// end when given), plus "warnings" (the survey's) only when there are any. Several sites: {"sites": [each inverted
+/// site's inversion_json, in survey order], "region": region_json (with a regional fit), "region_notes" (when any),
+/// "warnings" (when any)}.
+[[nodiscard]] nlohmann::ordered_json survey_inversion_json(const Survey& survey, const SurveyInversion& inversion,
+                                                           const std::optional<Provenance>& provenance = std::nullopt,
+                                                           const RegionalSettings& settings = {});
+
+/// Each inverted site's likelihood grid (write_inversion_grid_csv) at site_output_path(path, survey, its index):
+/// `topple invert --grid`.
+void write_survey_grids(const std::filesystem::path& path, const Survey& survey, const SurveyInversion& inversion);
+
+/// `topple invert --map PATH`: PATH, one GeoJSON point per inverted site (write_sites_geojson); with a regional fit,
+/// PATH with the extension .region.csv (write_region_csv) and .contours.geojson (the pooled field's contours at
+/// contour_levels_g); with an epicentre, .distance.csv (write_distance_csv).
+void write_survey_map(const std::filesystem::path& path, const Survey& survey, const SurveyInversion& inversion);
 
 }  // namespace topple::io

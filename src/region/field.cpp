@@ -1,4 +1,4 @@
-// The pooled PGA field and its iso-acceleration contours (region.hpp; docs/method.md, "Iso-acceleration contours").
+// The pooled PGA field and its iso-acceleration contours (field.hpp; docs/method.md, "Iso-acceleration contours").
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -10,8 +10,9 @@
 #include <optional>
 
 #include "topple/core/error.hpp"
-#include "topple/region/region.hpp"
 #include "topple/core/units.hpp"
+#include "topple/region/field.hpp"
+#include "topple/region/geodesy.hpp"
 
 namespace topple {
 namespace {
