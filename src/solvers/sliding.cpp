@@ -176,11 +176,11 @@ struct BlockExtrema {
   }
 };
 
-/// Stick phase, the fast path (no vertical input, no history, at a sample): the index of the last sample before the
+/// Stick phase, the fast path (no vertical input, no history, at a sample): advances i to the last sample before the
 /// input leaves the yield levels [up, down] (n - 1 when it never does). The only work is comparing samples with the
 /// yield levels (linear input: the stick test at both ends of a step decides the whole step).
-[[gnu::always_inline]] inline std::size_t skip_stuck_samples(const double* a, std::size_t n, std::size_t i, double up,
-                                                            double down, const BlockExtrema* blocks) {
+[[gnu::always_inline]] inline void skip_stuck_samples(const double* a, std::size_t n, std::size_t& i, double up,
+                                                     double down, const BlockExtrema* blocks) {
   if (blocks != nullptr) {
     // Whole blocks whose extremes stay within the yield levels (shared by many blocks on one record).
     while (i + 1 < n && (i + 1) % kBlock != 0 && a[i + 1] <= down && a[i + 1] >= up) ++i;
@@ -198,7 +198,6 @@ struct BlockExtrema {
     i += 8;
   }
   while (i + 1 < n && a[i + 1] <= down && a[i + 1] >= up) ++i;
-  return i;
 }
 
 /// Slip in direction s, the fast path (no vertical input, a uniform grid, at a sample): whole steps from sample i while
@@ -206,10 +205,12 @@ struct BlockExtrema {
 /// not turn from braking to driving inside it (the only way the quadratic speed can touch zero in between). Advances
 /// i, d and v; anything else is left to the general path.
 template <bool kRecord>
-[[gnu::always_inline]] inline void slip_whole_steps(const Input& in, const Coefficients& k, Recorder<kRecord>& rec,
-                                                    int s, std::size_t& i, double& d, double& v) {
-  const std::size_t n = in.size();
-  const double* a = in.accel.data();
+[[gnu::always_inline]] inline void slip_whole_steps(const Input& in, const double* a, std::size_t n,
+                                                    const Coefficients& k, Recorder<kRecord>& rec, int s,
+                                                    std::size_t& i, double& d_io, double& v_io) {
+  // Local copies (written back at the end): the loop keeps them in registers whatever the stores through rec.
+  double d = d_io;
+  double v = v_io;
   const double h = in.grid.dt_s();
   const double sd = static_cast<double>(s);
   const int idx = s > 0 ? 1 : 0;
@@ -232,6 +233,8 @@ template <bool kRecord>
     rec.summary.max_abs_velocity_m_s = std::max(rec.summary.max_abs_velocity_m_s, std::abs(v));
     rec.row(in.time(i), d, v, s);
   }
+  d_io = d;
+  v_io = v;
 }
 
 /// Run-out on still ground after the record's end t_end (a_h = 0, g_e = g), slipping in direction s at speed v:
@@ -280,7 +283,7 @@ void integrate(const Input& in, const Coefficients& k, Recorder<kRecord>& rec, c
       if constexpr (!kVertical && !kRecord) {
         if (tau == 0.0) {
           // Stick phase: the only work is comparing samples with the yield levels (skip_stuck_samples).
-          i = skip_stuck_samples(a, n, i, k.yield_up, k.yield_down, blocks);
+          skip_stuck_samples(a, n, i, k.yield_up, k.yield_down, blocks);
           if (i + 1 >= n) break;
         }
       }
@@ -323,7 +326,7 @@ void integrate(const Input& in, const Coefficients& k, Recorder<kRecord>& rec, c
     if constexpr (!kVertical) {
       if (tau == 0.0 && in.grid.is_uniform()) {
         // Fast slip on a uniform grid, whole steps (slip_whole_steps); anything else goes to the general path below.
-        slip_whole_steps(in, k, rec, s, i, d, v);
+        slip_whole_steps(in, a, n, k, rec, s, i, d, v);
         events_in_step = 0;
         if (i + 1 >= n) break;
       }

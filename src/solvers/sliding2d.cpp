@@ -352,8 +352,10 @@ class Stepper {
 
   /// One accepted step from (s0, x0, dx0) toward s_limit (never past it). Counts tries in `steps`; false when the
   /// cap is reached.
-  [[nodiscard]] bool step(const Rhs& rhs, double s0, const State& x0, const State& dx0, double s_limit,
-                          std::size_t& steps, std::size_t max_steps) {
+  // flatten: Odeint's step and the right-hand side inlined into it, as GCC did on its own before integrate's helpers
+  // grew the unit (without it, 4 % more instructions in bench_sliding2d: the stages called out of line).
+  [[nodiscard, gnu::flatten]] bool step(const Rhs& rhs, double s0, const State& x0, const State& dx0, double s_limit,
+                                        std::size_t& steps, std::size_t max_steps) {
     s0_ = s0;
     x0_ = x0;
     dx0_ = dx0;
@@ -445,7 +447,7 @@ double onset(double p1, double p2, double q1, double q2, double g0, double gs, d
 /// Where e = w . ref, positive at the step's start, falls to e1 <= 0 inside the accepted step [tau, s1] (dense output:
 /// TOMS 748): the velocity reached zero (a stop) or turned by 90 degrees or more (no stop), told apart by |w| there
 /// (w0sq: |w|^2 at the step's start). True for a stop, at s_end with the state x_end there.
-inline bool locate_stop(const Stepper& stepper, const Rhs& rhs, const State& x, double tau, double e1, double w0sq,
+[[gnu::noinline]] bool locate_stop(const Stepper& stepper, const Rhs& rhs, const State& x, double tau, double e1, double w0sq,
                         double floor_speed, const Sliding2dOptions& opt, const SlidingBlock& b, double t_i,
                         double& s_end, State& x_end) {
   const double s1 = stepper.s1();
@@ -507,8 +509,8 @@ inline bool locate_stop(const Stepper& stepper, const Rhs& rhs, const State& x, 
 /// is a small fraction (docs/method.md); when w is not decelerating along its own direction the stop is taken at once.
 /// From the end s1 of an accepted step (state x1), at most to the step's end h: sets s_end and adds the run-in to x_end
 /// (a copy of x1).
-[[gnu::always_inline]] inline void run_in_to_rest(const Rhs& rhs, const State& x1, double s1, double h, double& s_end,
-                                                  State& x_end) {
+[[gnu::noinline]] void run_in_to_rest(const Rhs& rhs, const State& x1, double s1, double h, double& s_end,
+                                      State& x_end) {
   const double b1 = rhs.a01 + rhs.as1 * s1;
   const double b2 = rhs.a02 + rhs.as2 * s1;
   const double friction = rhs.mu * std::max(rhs.g0 + rhs.gs * s1, 0.0);
@@ -598,7 +600,7 @@ template <bool kRecord>
 /// After the last point: the run-out on still ground (or the end of the slope's still tail), the totals of the summary
 /// and the residual mapped to east/north. x and slipping: the state after the last point; steps: integrator steps.
 template <bool kRecord>
-void finish(const Input& in, const SlidingBlock& b, Recorder<kRecord>& rec, State& x, bool slipping,
+[[gnu::noinline]] void finish(const Input& in, const SlidingBlock& b, Recorder<kRecord>& rec, State& x, bool slipping,
             std::size_t steps) {
   const std::size_t n = in.size();
   const double g = b.g_m_s2;
@@ -710,10 +712,9 @@ struct SlipStart {
 /// None when it holds to the step's end, in a jump (the next point's test decides), or off the ground under a still
 /// ground. `gravity(i)` is g_e at point i, `sticks_at(i)` the stick test there.
 template <class Gravity, class Sticks>
-[[gnu::always_inline]] inline std::optional<SlipStart> slip_onset(const double* a1, const double* a2,
-                                                                  const Gravity& gravity, const Sticks& sticks_at,
-                                                                  std::size_t i, double ti, double hi, double tau,
-                                                                  double mus, const SlidingBlock& b) {
+[[gnu::noinline]] std::optional<SlipStart> slip_onset(const double* a1, const double* a2, const Gravity& gravity,
+                                                      const Sticks& sticks_at, std::size_t i, double ti, double hi,
+                                                      double tau, double mus, const SlidingBlock& b) {
   const double L = hi - tau;
   const double frac = hi > 0.0 ? tau / hi : 0.0;
   const double p1 = a1[i] + frac * (a1[i + 1] - a1[i]);
