@@ -79,13 +79,11 @@ enum Witness : std::size_t {
 constexpr std::size_t kEvents = 5;       ///< the witnesses
 constexpr std::size_t kStickMargin = 5;  ///< Engine::events' sixth value, not a witness: rock's (mu_s N - |F|) / g
 
-/// What ended a step: no witness (witness < 0); the first witness to fall through 0, at its root; or a witness that
-/// started at 0 and went the wrong way (not_taken: a lift-off or a slip that round-off decided), the mode then
-/// decided again at the step's end.
-struct StepEnd {
-  int witness = -1;
-  bool not_taken = false;
-};
+/// What ended a step, as one int (`which` in Engine::rock_phase; one int, not a struct, keeps the step loop as fast as
+/// it was): kNoWitness; a Witness (it fell through 0, at its root); or kNotTaken + a Witness (it started at 0 and went
+/// the wrong way: a lift-off or a slip that round-off decided, the mode then decided again at the step's end).
+constexpr int kNoWitness = -1;
+constexpr int kNotTaken = 10;
 /// Sub-intervals of a sample interval on which a strike from flight is looked for (slide_rock.hpp).
 constexpr int kFlightPieces = 16;
 
@@ -707,7 +705,7 @@ class Engine {
       if (std::isnan(tp)) tp = t0_;
     }
     double te = t1_;
-    StepEnd end;
+    int which = kNoWitness;
     for (std::size_t k = 0; k < kEvents; ++k) {
       double ta = t0_;
       double fa = e0[k];
@@ -721,7 +719,7 @@ class Engine {
           // that round-off decided): decided again at the step's end.
           if (t0_ < te) {
             te = t0_;
-            end = {static_cast<int>(k), true};
+            which = kNotTaken + static_cast<int>(k);
           }
           continue;
         }
@@ -738,15 +736,15 @@ class Engine {
           throw RootFindingError(fmt::format("slide-rock: event location did not converge in {} iterations on [{}, {}] "
                                              "s ({})", kMaxRootIterations, ta, t1_, describe()));
         }
-        if (r < te || end.witness < 0) {
+        if (r < te || which == kNoWitness) {
           te = r;
-          end = {static_cast<int>(k), false};
+          which = static_cast<int>(k);
         }
       }
     }
-    locate_alpha(x0, x1, tp, end.witness >= 0 && !end.not_taken ? te : t1_);
+    locate_alpha(x0, x1, tp, which >= 0 && which < kNotTaken ? te : t1_);
     if (tp > t0_ && tp <= te) row_at(tp, dense(tp));
-    if (end.witness < 0) {
+    if (which == kNoWitness) {
       t_ = t1_;
       x_ = x1;
       out_.summary.friction_energy_j_per_kg = work_base_ + x_.work;
@@ -754,18 +752,18 @@ class Engine {
       else track(x_);
       return;
     }
-    if (end.not_taken) {  // did not take: both corners down again (theta = 0) or re-decided on the corner
+    if (which >= kNotTaken) {  // did not take: both corners down again (theta = 0) or re-decided on the corner
       t_ = t1_;
       x_ = x1;
       out_.summary.friction_energy_j_per_kg = work_base_ + x_.work;
-      if (end.witness == kImpact) {
+      if (which == kNotTaken + kImpact) {
         x_.th = 0.0;
         x_.w = 0.0;
         apply(decide_both(P_, x_.v, f_.ah(t_), f_.ge(t_)));
       } else {
         const Decision d =
-            decide_corner(P_, s_, end.witness == kSlipOrStop ? 0.0 : x_.v, x_.th, x_.w, f_.ah(t_), f_.ge(t_));
-        if (end.witness == kSlipOrStop) x_.v = 0.0;
+            decide_corner(P_, s_, which == kNotTaken + kSlipOrStop ? 0.0 : x_.v, x_.th, x_.w, f_.ah(t_), f_.ge(t_));
+        if (which == kNotTaken + kSlipOrStop) x_.v = 0.0;
         apply(d);
       }
       row();
@@ -774,7 +772,7 @@ class Engine {
     t_ = te;
     x_ = dense(te);
     out_.summary.friction_energy_j_per_kg = work_base_ + x_.work;
-    switch (end.witness) {
+    switch (which) {
       case kImpact:
         x_.th = 0.0;
         impact();
