@@ -19,6 +19,7 @@
 #include "kocaeli_record.hpp"
 #include "topple/motion/pulses.hpp"
 #include "topple/solvers/rocking.hpp"
+#include "topple/solvers/threshold_search.hpp"
 
 namespace {
 

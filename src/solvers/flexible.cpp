@@ -548,6 +548,20 @@ double equivalent_damping(double g_ratio, double strain, double ref_strain) {
 
 // State w = (Y, Y', s, s', a_g, a_g', 1) and, with a vertical record, (a_v, a_v'): N = 7 or 9. Without a vertical
 // record the 7-state system runs (the same arithmetic as before vertical input existed).
+// The components by name, also the rows and columns of the generators (row i: the derivative of component i): Y, Y'
+// (the support's modal coordinate and its velocity), s, s' (the slip and its velocity), a_g and its slope within the
+// step, the constant 1 (it carries the friction terms), a_v and its slope.
+enum Component : std::size_t {
+  kY = 0,
+  kYDot = 1,
+  kSlip = 2,
+  kSlipDot = 3,
+  kGround = 4,
+  kGroundSlope = 5,
+  kOne = 6,
+  kVertical = 7,       // N = 9 only
+  kVerticalSlope = 8,  // N = 9 only
+};
 constexpr std::size_t kPlain = 7;
 constexpr std::size_t kWithVertical = 9;
 enum Phase : int { stick = 0, slip_down = 1, slip_up = 2 };
@@ -566,25 +580,25 @@ struct CoupledSystem {
 
 template <std::size_t N>
 void fill_input_rows(Mat<N>& a) {
-  a(0, 1) = 1.0;  // Y' = Y'
-  a(2, 3) = 1.0;  // s' = s'
-  a(4, 5) = 1.0;  // a_g' = slope, constant within a step
-  if constexpr (N == kWithVertical) a(7, 8) = 1.0;  // a_v' likewise
+  a(kY, kYDot) = 1.0;  // Y' = Y'
+  a(kSlip, kSlipDot) = 1.0;  // s' = s'
+  a(kGround, kGroundSlope) = 1.0;  // a_g' = slope, constant within a step
+  if constexpr (N == kWithVertical) a(kVertical, kVerticalSlope) = 1.0;  // a_v' likewise
 }
 
 /// The friction terms of the slip phases: the coefficient c of the constant state (c = X mu g) goes with c / g on a_v,
 /// so that the term is X mu (g + a_v) (normal force m (g + a_v)).
 template <std::size_t N>
 void add_friction(Mat<N>& a, std::size_t row, double coefficient_of_one, double g_m_s2) {
-  a(row, 6) = coefficient_of_one;
-  if constexpr (N == kWithVertical) a(row, 7) = coefficient_of_one / g_m_s2;
+  a(row, kOne) = coefficient_of_one;
+  if constexpr (N == kWithVertical) a(row, kVertical) = coefficient_of_one / g_m_s2;
 }
 
 template <std::size_t N>
 Vec<N> yield_row(double yield_m_s2, double g_m_s2) {
   Vec<N> r{};
-  r[6] = yield_m_s2;
-  if constexpr (N == kWithVertical) r[7] = yield_m_s2 / g_m_s2;
+  r[kOne] = yield_m_s2;
+  if constexpr (N == kWithVertical) r[kVertical] = yield_m_s2 / g_m_s2;
   return r;
 }
 
@@ -599,25 +613,25 @@ CoupledSystem<N> column_system(const ModalProperties& m, double yield_m_s2, doub
   const double d1 = 1.0 - p * q;  // 1 - L1^2 / (M1 m) = 1 - 8/pi^2
   for (auto& g : sys.generator) fill_input_rows<N>(g);
   // stick: Y'' = -p a - c Y' - w2 Y
-  sys.generator[stick](1, 0) = -w2;
-  sys.generator[stick](1, 1) = -c;
-  sys.generator[stick](1, 4) = -p;
+  sys.generator[stick](kYDot, kY) = -w2;
+  sys.generator[stick](kYDot, kYDot) = -c;
+  sys.generator[stick](kYDot, kGround) = -p;
   // D = a + q Y''
-  sys.demand[0] = -q * w2;
-  sys.demand[1] = -q * c;
-  sys.demand[4] = 1.0 - q * p;
+  sys.demand[kY] = -q * w2;
+  sys.demand[kYDot] = -q * c;
+  sys.demand[kGround] = 1.0 - q * p;
   for (int ph : {slip_down, slip_up}) {
     const double sigma = ph == slip_down ? 1.0 : -1.0;
     auto& g = sys.generator[ph];
     // d1 Y'' = -p sigma ky g - c Y' - w2 Y
-    g(1, 0) = -w2 / d1;
-    g(1, 1) = -c / d1;
-    add_friction(g, 1, -p * sigma * yield_m_s2 / d1, g_m_s2);
+    g(kYDot, kY) = -w2 / d1;
+    g(kYDot, kYDot) = -c / d1;
+    add_friction(g, kYDot, -p * sigma * yield_m_s2 / d1, g_m_s2);
     // s'' = a + q Y'' - sigma ky g
-    g(3, 0) = q * g(1, 0);
-    g(3, 1) = q * g(1, 1);
-    g(3, 4) = 1.0;
-    add_friction(g, 3, q * g(1, 6) - sigma * yield_m_s2, g_m_s2);
+    g(kSlipDot, kY) = q * g(kYDot, kY);
+    g(kSlipDot, kYDot) = q * g(kYDot, kYDot);
+    g(kSlipDot, kGround) = 1.0;
+    add_friction(g, kSlipDot, q * g(kYDot, kOne) - sigma * yield_m_s2, g_m_s2);
   }
   sys.yield_row = yield_row<N>(yield_m_s2, g_m_s2);
   sys.g_m_s2 = g_m_s2;
@@ -637,22 +651,22 @@ CoupledSystem<N> shelf_system(const ModalProperties& m, double mass_ratio, doubl
   const double r = mass_ratio;
   for (auto& g : sys.generator) fill_input_rows<N>(g);
   // stick: Y'' = -a - (c Y' + w2 Y) / (1 + r), D = a + Y''
-  sys.generator[stick](1, 0) = -w2 / (1.0 + r);
-  sys.generator[stick](1, 1) = -c / (1.0 + r);
-  sys.generator[stick](1, 4) = -1.0;
-  sys.demand[0] = -w2 / (1.0 + r);
-  sys.demand[1] = -c / (1.0 + r);
+  sys.generator[stick](kYDot, kY) = -w2 / (1.0 + r);
+  sys.generator[stick](kYDot, kYDot) = -c / (1.0 + r);
+  sys.generator[stick](kYDot, kGround) = -1.0;
+  sys.demand[kY] = -w2 / (1.0 + r);
+  sys.demand[kYDot] = -c / (1.0 + r);
   for (int ph : {slip_down, slip_up}) {
     const double sigma = ph == slip_down ? 1.0 : -1.0;
     auto& g = sys.generator[ph];
     // Y'' = -a - c Y' - w2 Y - r sigma mu g ; s'' = a + Y'' - sigma mu g
-    g(1, 0) = -w2;
-    g(1, 1) = -c;
-    g(1, 4) = -1.0;
-    add_friction(g, 1, -r * sigma * yield_m_s2, g_m_s2);
-    g(3, 0) = -w2;
-    g(3, 1) = -c;
-    add_friction(g, 3, -r * sigma * yield_m_s2 - sigma * yield_m_s2, g_m_s2);
+    g(kYDot, kY) = -w2;
+    g(kYDot, kYDot) = -c;
+    g(kYDot, kGround) = -1.0;
+    add_friction(g, kYDot, -r * sigma * yield_m_s2, g_m_s2);
+    g(kSlipDot, kY) = -w2;
+    g(kSlipDot, kYDot) = -c;
+    add_friction(g, kSlipDot, -r * sigma * yield_m_s2 - sigma * yield_m_s2, g_m_s2);
   }
   sys.yield_row = yield_row<N>(yield_m_s2, g_m_s2);
   sys.g_m_s2 = g_m_s2;
@@ -673,7 +687,7 @@ template <std::size_t N>
 Vec<N> watched(const CoupledSystem<N>& sys, Phase phase) {
   if (phase == stick) return sys.demand;
   Vec<N> c{};
-  c[3] = 1.0;
+  c[kSlipDot] = 1.0;
   return c;
 }
 
@@ -714,94 +728,86 @@ Phase stick_or_slip(const CoupledSystem<N>& sys, const Vec<N>& w) {
   return stick;
 }
 
-/// The coupled response; `history` (optional) receives every sub-step end and every event.
-/// And `vertical` (N = 9 only) is read at the sub-step ends, linear between them.
+/// The state of a coupled run between sub-steps (w, the phase, the summary so far) and the two things done to it: a
+/// sub-step of the two-phase linear system with its slip events located, and a row of the history. The propagators
+/// over a sub-step of length h (and over its half, for the event search at the midpoint) are formed once per run.
 template <std::size_t N>
-SlidingSummary run_coupled(const GroundMotion& ground, const CoupledSystem<N>& sys, const GroundMotion* vertical,
-                           FlexibleHistory* history) {
-  const auto acc = ground.accel_m_s2();
-  const double dt = ground.dt_s();
-  // omega h <= 0.5 for the event search; capped at 256 sub-steps (omega dt > 128: a support so stiff that its demand
-  // follows the ground, linear within a record step, apart from transients that decay within the step).
-  const int n_sub = std::min(256, substeps_for(sys.omega_max, dt));
-  const double h = dt / n_sub;
-  std::array<Mat<N>, 3> full;
-  std::array<Vec<N>, 3> mid_row;  // the watched quantity at the sub-step's midpoint, as a row on the state
-  std::array<Vec<N>, 3> mid_yield;  // the friction capacity there, likewise
-  for (int ph = 0; ph < 3; ++ph) {
-    const Mat<N> half = expm(sys.generator[ph], 0.5 * h);
-    full[ph] = mul(half, half);
-    mid_row[ph] = row_through(watched(sys, static_cast<Phase>(ph)), half);
-    mid_yield[ph] = row_through(sys.yield_row, half);
+class CoupledRun {
+ public:
+  CoupledRun(const CoupledSystem<N>& sys, double h, FlexibleHistory* history) : sys_(sys), h_(h), history_(history) {
+    for (int ph = 0; ph < 3; ++ph) {
+      const Mat<N> half = expm(sys.generator[ph], 0.5 * h);
+      full_[ph] = mul(half, half);
+      mid_row_[ph] = row_through(watched(sys, static_cast<Phase>(ph)), half);
+      mid_yield_[ph] = row_through(sys.yield_row, half);
+    }
+    w[kOne] = 1.0;
   }
 
-  SlidingSummary out;
-  Vec<N> w{};
-  w[6] = 1.0;
-  Phase phase = stick;
-  double slip_start_time = 0.0;
-  const auto note_state = [&](double t) {
-    if (history != nullptr) {
+  /// The state at t into the summary (and the history when kept).
+  void note_state(double t) {
+    if (history_ != nullptr) {
       // The sliding surface's absolute acceleration a_g + (L1/m) Y'', Y'' from the current phase's equation.
-      const Mat<N>& gen = sys.generator[phase];
+      const Mat<N>& gen = sys_.generator[phase];
       double y_dd = 0.0;
-      for (std::size_t j = 0; j < N; ++j) y_dd += gen(1, j) * w[j];
-      history->sliding.time_s.push_back(t);
-      history->sliding.displacement_m.push_back(w[2]);
-      history->sliding.velocity_m_s.push_back(w[3]);
-      history->sliding.state.push_back(phase == stick       ? SlipState::stuck
+      for (std::size_t j = 0; j < N; ++j) y_dd += gen(kYDot, j) * w[j];
+      history_->sliding.time_s.push_back(t);
+      history_->sliding.displacement_m.push_back(w[kSlip]);
+      history_->sliding.velocity_m_s.push_back(w[kSlipDot]);
+      history_->sliding.state.push_back(phase == stick       ? SlipState::stuck
                                        : phase == slip_down ? SlipState::slipping_down
                                                             : SlipState::slipping_up);
-      history->support_accel_m_s2.push_back(w[4] + sys.mass_fraction * y_dd);
+      history_->support_accel_m_s2.push_back(w[kGround] + sys_.mass_fraction * y_dd);
     }
-    const double s = std::abs(w[2]);
+    const double s = std::abs(w[kSlip]);
     if (s > out.max_abs_displacement_m) {
       out.max_abs_displacement_m = s;
       out.max_displacement_time_s = t;
     }
-    out.max_abs_velocity_m_s = std::max(out.max_abs_velocity_m_s, std::abs(w[3]));
-  };
-  // One sub-step of length h from time t0 with the current input slope (already in w[4], w[5]).
-  const auto substep = [&](double t0) {
+    out.max_abs_velocity_m_s = std::max(out.max_abs_velocity_m_s, std::abs(w[kSlipDot]));
+  }
+
+  /// One sub-step of length h from time t0 with the current input slope (already in w[kGround], w[kGroundSlope]).
+  void substep(double t0) {
     double tau = 0.0;
     int events = 0;
-    while (tau < h) {
+    while (tau < h_) {
       if (++events > 64) {
         throw EventLimitError(fmt::format("coupled sliding: more than 64 slip events in one sub-step of {} s at t = {} s",
-                                      h, t0 + tau));
+                                      h_, t0 + tau));
       }
-      const double rest = h - tau;
+      const double rest = h_ - tau;
       const bool whole = tau == 0.0;
-      if (rest <= 1e-12 * h) {
+      if (rest <= 1e-12 * h_) {
         // An event within round-off of the sub-step's end: finish the sub-step without looking for another one.
-        w = mul(expm(sys.generator[phase], rest), w);
+        w = mul(expm(sys_.generator[phase], rest), w);
         break;
       }
       double e_mid = 0.0;
       Vec<N> w_end;
       if (whole) {
-        w_end = mul(full[phase], w);
-        e_mid = event_from(sys, phase, dot(mid_row[phase], w), dot(mid_yield[phase], w));
+        w_end = mul(full_[phase], w);
+        e_mid = event_from(sys_, phase, dot(mid_row_[phase], w), dot(mid_yield_[phase], w));
       } else {
-        const Mat<N> p_mid = expm(sys.generator[phase], 0.5 * rest);
+        const Mat<N> p_mid = expm(sys_.generator[phase], 0.5 * rest);
         w_end = mul(mul(p_mid, p_mid), w);
-        e_mid = event_value(sys, phase, mul(p_mid, w));
+        e_mid = event_value(sys_, phase, mul(p_mid, w));
       }
-      const double e_end = event_value(sys, phase, w_end);
+      const double e_end = event_value(sys_, phase, w_end);
       if (e_mid <= 0.0 && e_end <= 0.0) {
         w = w_end;
-        tau = h;
+        tau = h_;
         break;
       }
       // Bracket [lo, hi]: hi is the first probe where the event function is positive; lo a point before it where it
       // is negative. At a phase's start the function may be exactly 0 (slip has just started: s' = 0): then probe
       // inward from hi by halving until it is negative.
-      const Mat<N>& gen = sys.generator[phase];
+      const Mat<N>& gen = sys_.generator[phase];
       const Vec<N> w0 = w;
-      const auto f = [&](double t) { return event_value(sys, phase, mul(expm(gen, t), w0)); };
+      const auto f = [&](double t) { return event_value(sys_, phase, mul(expm(gen, t), w0)); };
       const double hi = e_mid > 0.0 ? 0.5 * rest : rest;
       double lo = e_mid > 0.0 ? 0.0 : 0.5 * rest;
-      double f_lo = e_mid > 0.0 ? event_value(sys, phase, w0) : e_mid;
+      double f_lo = e_mid > 0.0 ? event_value(sys_, phase, w0) : e_mid;
       for (int halvings = 0; f_lo >= 0.0 && halvings < 60; ++halvings) {
         lo = (lo == 0.0 ? hi : lo) * 0.5;
         f_lo = f(lo);
@@ -823,26 +829,54 @@ SlidingSummary run_coupled(const GroundMotion& ground, const CoupledSystem<N>& s
       const double t_now = t0 + tau;
       if (phase == stick) {
         // The demand has reached the yield level: slip in its direction (not re-tested, round-off could undo it).
-        phase = dot(sys.demand, w) >= 0.0 ? slip_down : slip_up;
+        phase = dot(sys_.demand, w) >= 0.0 ? slip_down : slip_up;
         ++out.slip_episodes;
         if (!out.first_slip_time_s) out.first_slip_time_s = t_now;
-        slip_start_time = t_now;
+        slip_start_time_ = t_now;
       } else {
-        w[3] = 0.0;  // the slip velocity is zero at the stop, by definition of the event
-        out.total_slip_duration_s += t_now - slip_start_time;
-        const Phase next = stick_or_slip(sys, w);
+        w[kSlipDot] = 0.0;  // the slip velocity is zero at the stop, by definition of the event
+        out.total_slip_duration_s += t_now - slip_start_time_;
+        const Phase next = stick_or_slip(sys_, w);
         // At a stop s'' has the stopping sign, so the stick demand is inside the yield level on that side (s'' =
         // (D - sigma k_y g) / d1); only a two-way reversal can follow at once.
         phase = next == phase ? stick : next;
         if (phase != stick) {
           ++out.slip_episodes;  // a reversal through s' = 0 counts as a new episode (as sliding.hpp)
-          slip_start_time = t_now;
+          slip_start_time_ = t_now;
         }
       }
       note_state(t_now);
     }
-  };
+  }
 
+  Vec<N> w{};
+  Phase phase = stick;
+  SlidingSummary out;
+
+ private:
+  const CoupledSystem<N>& sys_;
+  double h_;
+  FlexibleHistory* history_;
+  std::array<Mat<N>, 3> full_;
+  std::array<Vec<N>, 3> mid_row_;    // the watched quantity at the sub-step's midpoint, as a row on the state
+  std::array<Vec<N>, 3> mid_yield_;  // the friction capacity there, likewise
+  double slip_start_time_ = 0.0;
+};
+
+/// The coupled response; `history` (optional) receives every sub-step end and every event.
+/// And `vertical` (N = 9 only) is read at the sub-step ends, linear between them.
+template <std::size_t N>
+SlidingSummary run_coupled(const GroundMotion& ground, const CoupledSystem<N>& sys, const GroundMotion* vertical,
+                           FlexibleHistory* history) {
+  const auto acc = ground.accel_m_s2();
+  const double dt = ground.dt_s();
+  // omega h <= 0.5 for the event search; capped at 256 sub-steps (omega dt > 128: a support so stiff that its demand
+  // follows the ground, linear within a record step, apart from transients that decay within the step).
+  const int n_sub = std::min(256, substeps_for(sys.omega_max, dt));
+  const double h = dt / n_sub;
+  CoupledRun<N> run(sys, h, history);
+  Vec<N>& w = run.w;
+  SlidingSummary& out = run.out;
   // Vertical input (N = 9): a_v read at the sub-step's ends and linear between them (exact when the vertical record's
   // samples lie on the sub-step grid, e.g. the horizontal's); the normal force m (g + a_v) vanishing is reported as
   // the rigid solver does (contact_lost_time_s), located by the linear root within the sub-step.
@@ -852,8 +886,8 @@ SlidingSummary run_coupled(const GroundMotion& ground, const CoupledSystem<N>& s
     if constexpr (N == kWithVertical) {
       const double av0 = vertical->accel_at(t0);
       av_end = vertical->accel_at(t0 + h);
-      w[7] = av0;
-      w[8] = (av_end - av0) / h;
+      w[kVertical] = av0;
+      w[kVerticalSlope] = (av_end - av0) / h;
       if (!out.contact_lost_time_s && g_m_s2 + av_end <= 0.0) {
         const double n0 = g_m_s2 + av0;
         out.contact_lost_time_s = n0 <= 0.0 ? t0 : t0 + h * n0 / (n0 - (g_m_s2 + av_end));
@@ -864,37 +898,37 @@ SlidingSummary run_coupled(const GroundMotion& ground, const CoupledSystem<N>& s
   };
   const double t_begin = ground.start_time_s();
   if (history != nullptr) {
-    w[4] = acc[0];
-    if constexpr (N == kWithVertical) w[7] = vertical->accel_at(t_begin);
-    note_state(t_begin);
+    w[kGround] = acc[0];
+    if constexpr (N == kWithVertical) w[kVertical] = vertical->accel_at(t_begin);
+    run.note_state(t_begin);
   }
   for (std::size_t k = 0; k + 1 < acc.size(); ++k) {
     const double slope = (acc[k + 1] - acc[k]) / dt;
     const double tk = t_begin + static_cast<double>(k) * dt;
     for (int j = 0; j < n_sub; ++j) {
-      w[4] = acc[k] + slope * (static_cast<double>(j) * h);
-      w[5] = slope;
+      w[kGround] = acc[k] + slope * (static_cast<double>(j) * h);
+      w[kGroundSlope] = slope;
       set_vertical(tk + static_cast<double>(j) * h);
-      substep(tk + static_cast<double>(j) * h);
-      note_state(tk + static_cast<double>(j + 1) * h);
+      run.substep(tk + static_cast<double>(j) * h);
+      run.note_state(tk + static_cast<double>(j + 1) * h);
     }
   }
   // Run-out: the ground is still after the record; a sliding body decelerates to rest on the still-ringing support.
   double t = ground.end_time_s();
   constexpr long kMaxRunOutSubsteps = 10'000'000;
   long runout = 0;
-  while (phase != stick) {
+  while (run.phase != stick) {
     if (++runout > kMaxRunOutSubsteps) {
       throw StepLimitError(fmt::format("coupled sliding: still sliding {} s after the record's end", static_cast<double>(runout) * h));
     }
-    w[4] = 0.0;
-    w[5] = 0.0;
+    w[kGround] = 0.0;
+    w[kGroundSlope] = 0.0;
     set_vertical(t);  // a vertical record that lasts beyond the horizontal one acts on the run-out
-    substep(t);
+    run.substep(t);
     t += h;
-    note_state(t);
+    run.note_state(t);
   }
-  out.residual_displacement_m = w[2];
+  out.residual_displacement_m = w[kSlip];
   out.end_time_s = std::max(t, ground.end_time_s());
   out.at_rest_at_end = true;
   return out;

@@ -66,8 +66,24 @@ constexpr BaseLoad on_base(double ah, double ge, double cb, double sb) { return 
 
 /// Cap on events inside one sample interval (a valid input gives a handful).
 constexpr int kMaxEventsPerInterval = 100'000;
-/// Event functions of rock and slide-rock (Engine::events).
-constexpr std::size_t kEvents = 5;
+/// The witness functions of rock and slide-rock, by name (as Drake's WitnessFunction: a signed function of the state
+/// and time, positive while the mode holds; a step ends where one falls through 0, located by root finding): their
+/// indices in the values of Engine::events.
+enum Witness : std::size_t {
+  kImpact = 0,      ///< s theta: the body comes back onto its base (impact on the other pivot)
+  kFall = 1,        ///< pi/2 - s theta: it has fallen
+  kFlight = 2,      ///< N / g: the normal force vanishes, the body leaves the ground
+  kSlipOrStop = 3,  ///< rock: the stick limit (mu_s N - |F|) / g (slip starts); slide-rock: sigma u' (the slip stops)
+  kPainleve = 4,    ///< slide-rock: den / D_s (the Painleve point, an impact without collision)
+};
+constexpr std::size_t kEvents = 5;       ///< the witnesses
+constexpr std::size_t kStickMargin = 5;  ///< Engine::events' sixth value, not a witness: rock's (mu_s N - |F|) / g
+
+/// What ended a step, as one int (`which` in Engine::rock_phase; one int, not a struct, keeps the step loop as fast as
+/// it was): kNoWitness; a Witness (it fell through 0, at its root); or kNotTaken + a Witness (it started at 0 and went
+/// the wrong way: a lift-off or a slip that round-off decided, the mode then decided again at the step's end).
+constexpr int kNoWitness = -1;
+constexpr int kNotTaken = 10;
 /// Sub-intervals of a sample interval on which a strike from flight is looked for (slide_rock.hpp).
 constexpr int kFlightPieces = 16;
 
@@ -630,7 +646,7 @@ class Engine {
     } else {
       painleve = c.den * P_.inv_D[side(s_)];
     }
-    return {s_ * x.th, kPi / 2.0 - s_ * x.th, c.N / P_.g, last, painleve, margin};
+    return {s_ * x.th, kPi / 2.0 - s_ * x.th, c.N / P_.g, last, painleve, margin};  // the Witness order, kStickMargin
   }
 
   void rock_phase(double tb) {
@@ -676,7 +692,7 @@ class Engine {
     events_last_ = e1;
     events_cached_ = true;
     if (sigma_ == 0) {  // count the holds (nothing changes in the motion where one starts: not located)
-      const bool hold = e1[5] < 0.0 && e1[3] > 0.0;
+      const bool hold = e1[kStickMargin] < 0.0 && e1[kSlipOrStop] > 0.0;
       if (hold && !holding_) ++out_.summary.painleve_holds;
       holding_ = hold;
     }
@@ -689,21 +705,21 @@ class Engine {
       if (std::isnan(tp)) tp = t0_;
     }
     double te = t1_;
-    int which = -1;
+    int which = kNoWitness;
     for (std::size_t k = 0; k < kEvents; ++k) {
       double ta = t0_;
       double fa = e0[k];
-      if (k == 0 && tp > t0_) {  // the impact function after the peak
+      if (k == kImpact && tp > t0_) {  // the impact function after the peak
         ta = tp;
         fa = s_ * dense(tp).th;
       }
-      if (e1[k] < 0.0 || (k != 1 && e1[k] == 0.0 && fa > 0.0)) {
+      if (e1[k] < 0.0 || (k != kFall && e1[k] == 0.0 && fa > 0.0)) {
         if (fa <= 0.0) {
           // A mode that did not take (an event function starting at 0 and going the wrong way: a lift-off or a slip
           // that round-off decided): decided again at the step's end.
           if (t0_ < te) {
             te = t0_;
-            which = static_cast<int>(k) + 10;
+            which = kNotTaken + static_cast<int>(k);
           }
           continue;
         }
@@ -711,8 +727,8 @@ class Engine {
         // most frequent one)
         const auto fk = [&](double t) {
           const Phys x = dense(t);
-          if (k == 0) return s_ * x.th;
-          if (k == 1) return kPi / 2.0 - s_ * x.th;
+          if (k == kImpact) return s_ * x.th;
+          if (k == kFall) return kPi / 2.0 - s_ * x.th;
           return events(x, t)[k];
         };
         const double r = find_root(fk, ta, t1_, fa, e1[k]);
@@ -720,15 +736,15 @@ class Engine {
           throw RootFindingError(fmt::format("slide-rock: event location did not converge in {} iterations on [{}, {}] "
                                              "s ({})", kMaxRootIterations, ta, t1_, describe()));
         }
-        if (r < te || which < 0) {
+        if (r < te || which == kNoWitness) {
           te = r;
           which = static_cast<int>(k);
         }
       }
     }
-    locate_alpha(x0, x1, tp, which >= 0 && which < 10 ? te : t1_);
+    locate_alpha(x0, x1, tp, which >= 0 && which < kNotTaken ? te : t1_);
     if (tp > t0_ && tp <= te) row_at(tp, dense(tp));
-    if (which < 0) {
+    if (which == kNoWitness) {
       t_ = t1_;
       x_ = x1;
       out_.summary.friction_energy_j_per_kg = work_base_ + x_.work;
@@ -736,17 +752,18 @@ class Engine {
       else track(x_);
       return;
     }
-    if (which >= 10) {  // did not take: both corners down again (theta = 0) or re-decided on the corner
+    if (which >= kNotTaken) {  // did not take: both corners down again (theta = 0) or re-decided on the corner
       t_ = t1_;
       x_ = x1;
       out_.summary.friction_energy_j_per_kg = work_base_ + x_.work;
-      if (which == 10) {
+      if (which == kNotTaken + kImpact) {
         x_.th = 0.0;
         x_.w = 0.0;
         apply(decide_both(P_, x_.v, f_.ah(t_), f_.ge(t_)));
       } else {
-        const Decision d = decide_corner(P_, s_, which == 13 ? 0.0 : x_.v, x_.th, x_.w, f_.ah(t_), f_.ge(t_));
-        if (which == 13) x_.v = 0.0;
+        const Decision d =
+            decide_corner(P_, s_, which == kNotTaken + kSlipOrStop ? 0.0 : x_.v, x_.th, x_.w, f_.ah(t_), f_.ge(t_));
+        if (which == kNotTaken + kSlipOrStop) x_.v = 0.0;
         apply(d);
       }
       row();
@@ -756,11 +773,11 @@ class Engine {
     x_ = dense(te);
     out_.summary.friction_energy_j_per_kg = work_base_ + x_.work;
     switch (which) {
-      case 0:
+      case kImpact:
         x_.th = 0.0;
         impact();
         break;
-      case 1: {
+      case kFall: {
         x_.th = s_ * kPi / 2.0;
         SlideRockSummary& sum = out_.summary;
         sum.overturned = true;
@@ -772,16 +789,16 @@ class Engine {
         done_ = true;
         break;
       }
-      case 2:
+      case kFlight:
         to_flight();
         enter(SlideRockMode::flight);
         row();
         break;
-      case 4:  // slide-rock reached den = 0: the impact without collision, then a decision at zero slip
+      case kPainleve:  // slide-rock reached den = 0: the impact without collision, then a decision at zero slip
         apply({SlideRockMode::slide_rock, s_, sigma_, true, false});
         row();
         break;
-      default:
+      default:  // kSlipOrStop
         if (sigma_ == 0) {  // the stick limit: slip against the friction needed
           const Contact c = contact(P_, s_, 0, x_.th, x_.w, f_.ah(te), f_.ge(te));
           const int sigma = -sign(c.F);

@@ -176,6 +176,86 @@ struct BlockExtrema {
   }
 };
 
+/// Stick phase, the fast path (no vertical input, no history, at a sample): advances i to the last sample before the
+/// input leaves the yield levels [up, down] (n - 1 when it never does). The only work is comparing samples with the
+/// yield levels (linear input: the stick test at both ends of a step decides the whole step).
+[[gnu::always_inline]] inline void skip_stuck_samples(const double* a, std::size_t n, std::size_t& i, double up,
+                                                     double down, const BlockExtrema* blocks) {
+  if (blocks != nullptr) {
+    // Whole blocks whose extremes stay within the yield levels (shared by many blocks on one record).
+    while (i + 1 < n && (i + 1) % kBlock != 0 && a[i + 1] <= down && a[i + 1] >= up) ++i;
+    while (i + 1 < n && (i + 1) % kBlock == 0) {
+      const std::size_t b = (i + 1) / kBlock;
+      if (blocks->max[b] > down || blocks->min[b] < up) break;
+      i = std::min(i + kBlock, n - 1);
+    }
+  }
+  // Eight samples at a time, branch-free inside (vectorises), then one by one to the exceedance.
+  while (i + 8 < n) {
+    bool out = false;
+    for (std::size_t j = 1; j <= 8; ++j) out |= (a[i + j] > down) | (a[i + j] < up);
+    if (out) break;
+    i += 8;
+  }
+  while (i + 1 < n && a[i + 1] <= down && a[i + 1] >= up) ++i;
+}
+
+/// Slip in direction s, the fast path (no vertical input, a uniform grid, at a sample): whole steps from sample i while
+/// no stop can occur in them, i.e. while the relative speed keeps its sign at the step's end and the acceleration does
+/// not turn from braking to driving inside it (the only way the quadratic speed can touch zero in between). Advances
+/// i, d and v; anything else is left to the general path.
+template <bool kRecord>
+[[gnu::always_inline]] inline void slip_whole_steps(const Input& in, const double* a, std::size_t n,
+                                                    const Coefficients& k, Recorder<kRecord>& rec, int s,
+                                                    std::size_t& i, double& d_io, double& v_io) {
+  // Local copies (written back at the end): the loop keeps them in registers whatever the stores through rec.
+  double d = d_io;
+  double v = v_io;
+  const double h = in.grid.dt_s();
+  const double sd = static_cast<double>(s);
+  const int idx = s > 0 ? 1 : 0;
+  const double p = k.p[idx];
+  const double q = k.q[idx] * k.g;
+  double acc0 = p * a[i] + q;
+  while (i + 1 < n) {
+    const double acc1 = p * a[i + 1] + q;
+    const double v1 = v + 0.5 * h * (acc0 + acc1);  // trapezoid (eq 3.10): exact for linear d''
+    if (sd * v1 <= 0.0 || (sd * acc0 < 0.0 && sd * acc1 > 0.0)) break;
+    if (sd * acc0 > 0.0 && sd * acc1 < 0.0) {  // speed peaks inside the step
+      const double at = acc0 * h / (acc0 - acc1);
+      const double vp = v + at * (acc0 + 0.5 * (acc1 - acc0) / h * at);
+      rec.summary.max_abs_velocity_m_s = std::max(rec.summary.max_abs_velocity_m_s, std::abs(vp));
+    }
+    d += h * (v + h * (2.0 * acc0 + acc1) / 6.0);  // cubic, as eq 3.10's ground term: exact
+    v = v1;
+    acc0 = acc1;
+    ++i;
+    rec.summary.max_abs_velocity_m_s = std::max(rec.summary.max_abs_velocity_m_s, std::abs(v));
+    rec.row(in.time(i), d, v, s);
+  }
+  d_io = d;
+  v_io = v;
+}
+
+/// Run-out on still ground after the record's end t_end (a_h = 0, g_e = g), slipping in direction s at speed v:
+/// constant relative acceleration Q_s g.
+template <bool kRecord>
+void run_out(const Coefficients& k, Recorder<kRecord>& rec, double t_end, int s, double v, double& d) {
+  const double acc = k.q[s > 0 ? 1 : 0] * k.g;
+  if (static_cast<double>(s) * acc < 0.0) {
+    const double sigma = -v / acc;         // Newmark's run-out (thesis eqs 2.5, 2.6): t = v / (N g) on level ground
+    d += sigma * (v + 0.5 * acc * sigma);  // ... and v^2 / (2 N g) more displacement
+    rec.stop(t_end + sigma, d);
+    rec.track(t_end + sigma, d);
+    rec.row(t_end + sigma, d, 0.0, 0);
+    rec.summary.end_time_s = t_end + sigma;
+  } else {
+    rec.summary.at_rest_at_end = false;
+    rec.stop(t_end, d);
+    rec.track(t_end, d);
+  }
+}
+
 /// The solver core. kVertical: g_e varies per sample; kRecord: store the history. `blocks` (optional) are the
 /// record's block extrema.
 template <bool kVertical, bool kRecord>
@@ -202,27 +282,8 @@ void integrate(const Input& in, const Coefficients& k, Recorder<kRecord>& rec, c
     if (s == 0) {
       if constexpr (!kVertical && !kRecord) {
         if (tau == 0.0) {
-          // Stick phase: the only work is comparing samples with the yield levels (linear input: the stick test
-          // at both ends of a step decides the whole step).
-          const double up = k.yield_up;
-          const double down = k.yield_down;
-          if (blocks != nullptr) {
-            // Whole blocks whose extremes stay within the yield levels (shared by many blocks on one record).
-            while (i + 1 < n && (i + 1) % kBlock != 0 && a[i + 1] <= down && a[i + 1] >= up) ++i;
-            while (i + 1 < n && (i + 1) % kBlock == 0) {
-              const std::size_t b = (i + 1) / kBlock;
-              if (blocks->max[b] > down || blocks->min[b] < up) break;
-              i = std::min(i + kBlock, n - 1);
-            }
-          }
-          // Eight samples at a time, branch-free inside (vectorises), then one by one to the exceedance.
-          while (i + 8 < n) {
-            bool out = false;
-            for (std::size_t j = 1; j <= 8; ++j) out |= (a[i + j] > down) | (a[i + j] < up);
-            if (out) break;
-            i += 8;
-          }
-          while (i + 1 < n && a[i + 1] <= down && a[i + 1] >= up) ++i;
+          // Stick phase: the only work is comparing samples with the yield levels (skip_stuck_samples).
+          skip_stuck_samples(a, n, i, k.yield_up, k.yield_down, blocks);
           if (i + 1 >= n) break;
         }
       }
@@ -264,31 +325,8 @@ void integrate(const Input& in, const Coefficients& k, Recorder<kRecord>& rec, c
 
     if constexpr (!kVertical) {
       if (tau == 0.0 && in.grid.is_uniform()) {
-        // Fast slip on a uniform grid, whole steps: no stop can occur in a step when the relative speed keeps its
-        // sign at the step's end and the acceleration does not turn from braking to driving inside it (the only
-        // way the quadratic speed can touch zero in between). Anything else goes to the general path below.
-        const double h = in.grid.dt_s();
-        const double sd = static_cast<double>(s);
-        const int idx = s > 0 ? 1 : 0;
-        const double p = k.p[idx];
-        const double q = k.q[idx] * k.g;
-        double acc0 = p * a[i] + q;
-        while (i + 1 < n) {
-          const double acc1 = p * a[i + 1] + q;
-          const double v1 = v + 0.5 * h * (acc0 + acc1);  // trapezoid (eq 3.10): exact for linear d''
-          if (sd * v1 <= 0.0 || (sd * acc0 < 0.0 && sd * acc1 > 0.0)) break;
-          if (sd * acc0 > 0.0 && sd * acc1 < 0.0) {  // speed peaks inside the step
-            const double at = acc0 * h / (acc0 - acc1);
-            const double vp = v + at * (acc0 + 0.5 * (acc1 - acc0) / h * at);
-            rec.summary.max_abs_velocity_m_s = std::max(rec.summary.max_abs_velocity_m_s, std::abs(vp));
-          }
-          d += h * (v + h * (2.0 * acc0 + acc1) / 6.0);  // cubic, as eq 3.10's ground term: exact
-          v = v1;
-          acc0 = acc1;
-          ++i;
-          rec.summary.max_abs_velocity_m_s = std::max(rec.summary.max_abs_velocity_m_s, std::abs(v));
-          rec.row(in.time(i), d, v, s);
-        }
+        // Fast slip on a uniform grid, whole steps (slip_whole_steps); anything else goes to the general path below.
+        slip_whole_steps(in, a, n, k, rec, s, i, d, v);
         events_in_step = 0;
         if (i + 1 >= n) break;
       }
@@ -352,22 +390,7 @@ void integrate(const Input& in, const Coefficients& k, Recorder<kRecord>& rec, c
 
   const double t_end = in.time(n - 1);
   rec.summary.end_time_s = t_end;
-  if (s != 0) {
-    // Run-out on still ground (a_h = 0, g_e = g): constant relative acceleration Q_s g.
-    const double acc = k.q[s > 0 ? 1 : 0] * k.g;
-    if (static_cast<double>(s) * acc < 0.0) {
-      const double sigma = -v / acc;         // Newmark's run-out (thesis eqs 2.5, 2.6): t = v / (N g) on level ground
-      d += sigma * (v + 0.5 * acc * sigma);  // ... and v^2 / (2 N g) more displacement
-      rec.stop(t_end + sigma, d);
-      rec.track(t_end + sigma, d);
-      rec.row(t_end + sigma, d, 0.0, 0);
-      rec.summary.end_time_s = t_end + sigma;
-    } else {
-      rec.summary.at_rest_at_end = false;
-      rec.stop(t_end, d);
-      rec.track(t_end, d);
-    }
-  }
+  if (s != 0) run_out(k, rec, t_end, s, v, d);
   rec.summary.residual_displacement_m = d;
 }
 

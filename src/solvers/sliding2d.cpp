@@ -9,6 +9,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -173,6 +174,34 @@ struct Rhs {
   double ref1 = 1.0, ref2 = 0.0; // unit reference direction
   bool launch = false;           // friction along -a / |a| (launch phase)
 
+  /// The input over the current step: a = (a01 + as1 sigma, a02 + as2 sigma), g_e = g0 + gs sigma.
+  [[gnu::always_inline]] void set_step(double a01_, double a02_, double as1_, double as2_, double g0_, double gs_) {
+    a01 = a01_;
+    a02 = a02_;
+    as1 = as1_;
+    as2 = as2_;
+    g0 = g0_;
+    gs = gs_;
+  }
+
+  /// The reference of the stop test at the start tau of a step (state x, w0sq = |w|^2): in a launch the launch direction
+  /// -a there (a != 0 in a launch, or the onset direction stays), else w / |w| (kept when w = 0).
+  [[gnu::always_inline]] void set_stop_reference(const State& x, double tau, double w0sq) {
+    if (launch) {
+      const double b1 = a01 + as1 * tau;
+      const double b2 = a02 + as2 * tau;
+      const double bm = std::sqrt(b1 * b1 + b2 * b2);
+      if (bm > 0.0) {
+        ref1 = -b1 / bm;
+        ref2 = -b2 / bm;
+      }
+    } else if (w0sq > 0.0) {
+      const double inv = 1.0 / std::sqrt(w0sq);
+      ref1 = x[kW1] * inv;
+      ref2 = x[kW2] * inv;
+    }
+  }
+
   void operator()(const State& x, State& dx, double sigma) const {
     const double ax = a01 + as1 * sigma;
     const double ay = a02 + as2 * sigma;
@@ -249,6 +278,12 @@ struct Recorder {
     summary.total_slip_duration_s += t - slip_start;
     last_stop = t;
   }
+  /// Relative rest at t inside a step (state x): the slip's end, its displacement tracked, a row.
+  void rest(double t, const State& x) {
+    stop(t);
+    track_displacement(t, x[kU1], x[kU2]);
+    row(t, x, false);
+  }
   double last_stop = 0.0;
 };
 
@@ -317,8 +352,10 @@ class Stepper {
 
   /// One accepted step from (s0, x0, dx0) toward s_limit (never past it). Counts tries in `steps`; false when the
   /// cap is reached.
-  [[nodiscard]] bool step(const Rhs& rhs, double s0, const State& x0, const State& dx0, double s_limit,
-                          std::size_t& steps, std::size_t max_steps) {
+  // flatten: Odeint's step and the right-hand side inlined into it, as GCC did on its own before integrate's helpers
+  // grew the unit (without it, 4 % more instructions in bench_sliding2d: the stages called out of line).
+  [[nodiscard, gnu::flatten]] bool step(const Rhs& rhs, double s0, const State& x0, const State& dx0, double s_limit,
+                                        std::size_t& steps, std::size_t max_steps) {
     s0_ = s0;
     x0_ = x0;
     dx0_ = dx0;
@@ -407,353 +444,166 @@ double onset(double p1, double p2, double q1, double q2, double g0, double gs, d
   return bracket.second;
 }
 
-/// The solver core. kVertical: g_e varies per point; kRecord: store the history.
-template <bool kVertical, bool kRecord>
-void integrate(const Input& in, const SlidingBlock& b, const Sliding2dOptions& opt, Recorder<kRecord>& rec) {
-  const std::size_t n = in.size();
-  const double* a1 = in.a1.data();
-  const double* a2 = in.a2.data();
-  const double* ge = kVertical ? in.gravity.data() : nullptr;
-  const double g = b.g_m_s2;
-  const double mus = b.mu_static;
-  const auto gravity = [&](std::size_t i) { return kVertical ? ge[i] : g; };
-  // Stick test at a point: |a| <= mu_s g_e (eq S3), squared; g_e < 0 (off the ground) never sticks.
-  const double stick_sq = mus * mus * g * g;
-  const auto sticks_at = [&](std::size_t i) {
-    const double asq = a1[i] * a1[i] + a2[i] * a2[i];
-    if constexpr (kVertical) {
-      return ge[i] >= 0.0 && asq <= mus * mus * ge[i] * ge[i];
-    } else {
-      return asq <= stick_sq;
-    }
+/// Where e = w . ref, positive at the step's start, falls to e1 <= 0 inside the accepted step [tau, s1] (dense output:
+/// TOMS 748): the velocity reached zero (a stop) or turned by 90 degrees or more (no stop), told apart by |w| there
+/// (w0sq: |w|^2 at the step's start). True for a stop, at s_end with the state x_end there.
+[[gnu::noinline]] bool locate_stop(const Stepper& stepper, const Rhs& rhs, const State& x, double tau, double e1, double w0sq,
+                        double floor_speed, const Sliding2dOptions& opt, const SlidingBlock& b, double t_i,
+                        double& s_end, State& x_end) {
+  const double s1 = stepper.s1();
+  const State& x1 = stepper.x1();
+  const auto e = [&](double s) {
+    const State xs = stepper.dense(s);
+    return xs[kW1] * rhs.ref1 + xs[kW2] * rhs.ref2;
   };
-
-  State x{};
-  State dx{};
-  bool slipping = false;
-  bool dx_valid = false;  // dx holds the RHS at (tau, x) of the current interval (FSAL across samples)
-  double tau = 0.0;       // offset inside the current step, s
-  int events_in_step = 0;
-  std::size_t steps = 0;
-  Rhs rhs;
-  rhs.mu = b.mu_kinetic;
-  Stepper stepper(opt, in.grid.dt_s());
-  // Below this speed, at a slip onset, the friction direction is the onset limit -a / |a| (see Rhs).
-  const double launch_speed =
-      std::max(std::sqrt(opt.abs_tol * kLaunchSpeedScale), kLaunchSpeedTolerances * opt.abs_tol);
-  // A block slowing down to this speed has stopped (see below).
-  const double floor_speed = kFloorLaunchFraction * launch_speed;
-  rec.row(in.time(0), x, false);
-  rec.summary.max_displacement_time_s = in.time(0);
-
-  const auto too_many_events = [&](double t) {
-    throw EventLimitError(fmt::format("bidirectional sliding: more than {} slip starts and stops in the step at t = {} "
-                                      "s ({}): the input is outside the model (check its accelerations)",
-                                      kMaxEventsPerStep, t, describe(b)));
-  };
-
-  std::size_t i = 0;
-  while (i + 1 < n) {
-    const double t_i = in.time(i);
-    const double h = in.time(i + 1) - t_i;
-    if (!slipping) {
-      if (tau == 0.0) {
-        // Stick phase: one comparison per point (the stick test is convex in time over a step, eq S3).
-        if (sticks_at(i)) {
-          if constexpr (!kRecord && !kVertical) {
-            // Eight points at a time, branch-free inside (vectorises), then one by one to the exceedance.
-            while (i + 8 < n) {
-              bool out = false;
-              for (std::size_t j = 1; j <= 8; ++j) out |= a1[i + j] * a1[i + j] + a2[i + j] * a2[i + j] > stick_sq;
-              if (out) break;
-              i += 8;
-            }
-          }
-          while (i + 1 < n && sticks_at(i + 1)) {
-            ++i;
-            rec.row(in.time(i), x, false);
-          }
-          if (i + 1 >= n) break;
-        }
-      }
-      const double ti = in.time(i);
-      const double hi = in.time(i + 1) - ti;
-      const double L = hi - tau;
-      const double frac = hi > 0.0 ? tau / hi : 0.0;
-      const double p1 = a1[i] + frac * (a1[i + 1] - a1[i]);
-      const double p2 = a2[i] + frac * (a2[i + 1] - a2[i]);
-      const double g0 = gravity(i) + frac * (gravity(i + 1) - gravity(i));
-      const double q1 = L > 0.0 ? (a1[i + 1] - p1) / L : 0.0;
-      const double q2 = L > 0.0 ? (a2[i + 1] - p2) / L : 0.0;
-      const double gs = L > 0.0 ? (gravity(i + 1) - g0) / L : 0.0;
-      const bool stick_now = g0 >= 0.0 && p1 * p1 + p2 * p2 <= mus * mus * g0 * g0;
-      if ((stick_now && sticks_at(i + 1)) || !(L > 0.0)) {
-        // Stuck to the step's end; or a jump, where nothing moves and the next point's test decides.
-        ++i;
-        tau = 0.0;
-        events_in_step = 0;
-        rec.row(in.time(i), x, false);
-        continue;
-      }
-      double sigma = 0.0;
-      if (stick_now) {
-        sigma = onset(p1, p2, q1, q2, g0, gs, mus, L);
-        if (std::isnan(sigma)) {
-          throw RootFindingError(fmt::format("bidirectional sliding: the slip onset (TOMS 748) did not converge in {} "
-                                             "iterations in the step [{}, {}] s ({})",
-                                             kMaxRootIterations, ti, ti + hi, describe(b)));
-        }
-      }
-      // Slip starts at tau + sigma in the direction of the inertial load -a (eq S5).
-      const double s1 = p1 + q1 * sigma;
-      const double s2 = p2 + q2 * sigma;
-      double norm = std::sqrt(s1 * s1 + s2 * s2);
-      double d1 = -s1;
-      double d2 = -s2;
-      if (!(norm > 0.0)) {  // off the ground with a = 0 at the onset: the direction a takes next
-        d1 = -q1;
-        d2 = -q2;
-        norm = std::sqrt(q1 * q1 + q2 * q2);
-      }
-      if (!(norm > 0.0)) {  // off the ground under a still ground: nothing moves
-        ++i;
-        tau = 0.0;
-        events_in_step = 0;
-        rec.row(in.time(i), x, false);
-        continue;
-      }
-      rhs.ref1 = d1 / norm;
-      rhs.ref2 = d2 / norm;
-      rhs.launch = true;
-      tau = std::min(tau + sigma, hi);
-      slipping = true;
-      dx_valid = false;
-      rec.start(ti + tau);
-      rec.row(ti + tau, x, true);
-      if (++events_in_step > kMaxEventsPerStep) too_many_events(ti);
-      continue;
-    }
-
-    // Slipping over [tau, h] of step i (local time).
-    if (!(h > tau)) {  // a jump: nothing moves during it; the RHS changes across it
-      ++i;
-      tau = 0.0;
-      events_in_step = 0;
-      dx_valid = false;
-      rec.row(in.time(i), x, true);
-      continue;
-    }
-    rhs.a01 = a1[i];
-    rhs.a02 = a2[i];
-    rhs.as1 = (a1[i + 1] - a1[i]) / h;
-    rhs.as2 = (a2[i + 1] - a2[i]) / h;
-    rhs.g0 = gravity(i);
-    rhs.gs = (gravity(i + 1) - gravity(i)) / h;
-    bool stopped = false;
-    int halvings = 0;
-    while (tau < h) {
-      const double w0sq = x[kW1] * x[kW1] + x[kW2] * x[kW2];
-      if (rhs.launch) {
-        // The reference of the stop test is the launch direction -a at the step's start (a != 0 in a launch, or
-        // the onset direction stays).
-        const double b1 = rhs.a01 + rhs.as1 * tau;
-        const double b2 = rhs.a02 + rhs.as2 * tau;
-        const double bm = std::sqrt(b1 * b1 + b2 * b2);
-        if (bm > 0.0) {
-          rhs.ref1 = -b1 / bm;
-          rhs.ref2 = -b2 / bm;
-        }
-      } else if (w0sq > 0.0) {
-        const double inv = 1.0 / std::sqrt(w0sq);
-        rhs.ref1 = x[kW1] * inv;
-        rhs.ref2 = x[kW2] * inv;
-      }
-      if (!dx_valid) rhs(x, dx, tau);
-      if (!stepper.step(rhs, tau, x, dx, h, steps, opt.max_steps)) {
-        throw StepLimitError(fmt::format("bidirectional sliding: more than {} integrator steps (max_steps) by t = {} s "
-                                         "({}, rel_tol = {:g}, abs_tol = {:g})",
-                                         opt.max_steps, t_i + tau, describe(b), opt.rel_tol, opt.abs_tol));
-      }
-      const State& x1 = stepper.x1();
-      const double s1 = stepper.s1();
-      const double e1 = x1[kW1] * rhs.ref1 + x1[kW2] * rhs.ref2;
-      double s_end = s1;
-      State x_end = x1;
-      if (e1 <= 0.0) {
-        // The velocity reached zero (a stop) or turned by 90 degrees or more (no stop): locate the zero of
-        // e = w . ref on the dense output, then tell the two apart by |w| there.
-        const auto e = [&](double s) {
-          const State xs = stepper.dense(s);
-          return xs[kW1] * rhs.ref1 + xs[kW2] * rhs.ref2;
-        };
-        double lo = tau;
-        double e_lo = x[kW1] * rhs.ref1 + x[kW2] * rhs.ref2;
-        if (!(e_lo > 0.0)) {  // onset step (w = 0 at its start): e grows first; the first positive point brackets
-          lo = s1;
-          for (int k = 1; k < 8; ++k) {
-            const double s = tau + (s1 - tau) * k / 8.0;
-            const double es = e(s);
-            if (es > 0.0) {
-              lo = s;
-              e_lo = es;
-              break;
-            }
-          }
-        }
-        bool is_stop = false;
-        if (!(lo < s1)) {
-          // From rest and never moving forward along the launch direction: the load does not overcome kinetic
-          // friction (an onset decided by round-off at |a| = mu_s g_e with |a| falling): the block is at rest at
-          // the step's end, having moved no more than |w| x the step (below the tolerance).
-          is_stop = true;
-        } else {
-          boost::uintmax_t iterations = kMaxRootIterations;
-          const auto tol = [](double l, double r) {
-            return std::abs(r - l) <= 4.0 * std::numeric_limits<double>::epsilon() * std::max(std::abs(r), 1e-300);
-          };
-          const auto bracket = boost::math::tools::toms748_solve(e, lo, s1, e_lo, e1, tol, iterations);
-          if (iterations >= kMaxRootIterations) {
-            throw RootFindingError(fmt::format("bidirectional sliding: the slip stop (TOMS 748) did not converge in {} "
-                                               "iterations in the step [{}, {}] s ({})",
-                                               kMaxRootIterations, t_i + tau, t_i + s1, describe(b)));
-          }
-          s_end = bracket.second;
-          x_end = stepper.dense(s_end);
-          const double scale = std::max(std::sqrt(w0sq), std::hypot(x1[kW1], x1[kW2]));
-          const double rest = std::hypot(x_end[kW1], x_end[kW2]);
-          // Or at the velocity noise floor (below): a zero of w . ref where |w| is that small is a stop whatever the
-          // step's scale, as a block slowing to the floor is (the direction is not resolved there, and halving the
-          // step would not resolve it either: EventLimitError at the default tolerances otherwise, seen in
-          // Recovery3c).
-          is_stop = rest <= kStopSpeedFraction * scale + 10.0 * opt.abs_tol || rest <= floor_speed;
-        }
-        if (!is_stop) {
-          if (++halvings > kMaxTurnHalvings) {
-            throw EventLimitError(fmt::format("bidirectional sliding: the relative velocity turns by 90 degrees in "
-                                              "steps of {} s at t = {} s ({}): outside the model", s1 - tau,
-                                              t_i + tau, describe(b)));
-          }
-          stepper.halve();
-          continue;  // the same start, a shorter step
-        }
-        stopped = true;
-      } else if (!rhs.launch && x1[kW1] * x1[kW1] + x1[kW2] * x1[kW2] <= floor_speed * floor_speed) {
-        // Back down to the velocity noise floor, where the integration no longer resolves the direction of w (the
-        // direction equation is stiff there: its rate |a| / |w| exceeds the explicit method's stability limit at
-        // any step the error test allows, so w would wander at the tolerance level). The block has come to rest:
-        // the rest of the run-in, along the current direction, is |w| / (mu_k g_e + a . w/|w|) long and covers
-        // |w| times half that (when decelerating at 0.01 m/s^2: 4.5e-11 m from the default floor of 9.5e-7 m/s,
-        // 5e-13 m from 1e-7 m/s at abs_tol 1e-10), of which the extrapolation's error, from the deceleration and
-        // direction changing over the run-in, is a small fraction (docs/method.md); when w is not decelerating along
-        // its own direction the stop is taken at once.
-        // The stick test then decides (eq S6).
-        const double b1 = rhs.a01 + rhs.as1 * s1;
-        const double b2 = rhs.a02 + rhs.as2 * s1;
-        const double friction = rhs.mu * std::max(rhs.g0 + rhs.gs * s1, 0.0);
-        const double speed = std::hypot(x1[kW1], x1[kW2]);
-        const double decel = speed > 0.0 ? friction + (b1 * x1[kW1] + b2 * x1[kW2]) / speed : 0.0;
-        double run = decel > 0.0 ? speed / decel : 0.0;
-        run = std::min(run, h - s1);
-        s_end = s1 + run;
-        x_end[kU1] += 0.5 * run * x1[kW1];
-        x_end[kU2] += 0.5 * run * x1[kW2];
-        x_end[kPath] += 0.5 * run * speed;
-        x_end[kInputWork] -= 0.5 * run * (b1 * x1[kW1] + b2 * x1[kW2]);
-        x_end[kFrictionWork] += 0.5 * run * friction * speed;
-        stopped = true;
-      }
-      // Extremes inside [tau, s_end]: |w| peaks where w . w' turns from + to -, |u| where u . w does (Brent on the
-      // dense output; the ends are checked directly).
-      const double ww0 = x[kW1] * dx[kW1] + x[kW2] * dx[kW2];
-      const double ww1 = stopped ? -1.0 : x1[kW1] * stepper.dx1()[kW1] + x1[kW2] * stepper.dx1()[kW2];
-      if (ww0 > 0.0 && ww1 < 0.0) {
-        const auto neg_speed_sq = [&](double s) {
-          const State xs = stepper.dense(s);
-          return -(xs[kW1] * xs[kW1] + xs[kW2] * xs[kW2]);
-        };
-        const auto best = boost::math::tools::brent_find_minima(neg_speed_sq, tau, s_end, kBrentBits);
-        rec.summary.max_abs_velocity_m_s = std::max(rec.summary.max_abs_velocity_m_s, std::sqrt(-best.second));
-      }
-      const double uw0 = x[kU1] * x[kW1] + x[kU2] * x[kW2];
-      const double uw1 = x_end[kU1] * x_end[kW1] + x_end[kU2] * x_end[kW2];
-      if (uw0 > 0.0 && (stopped || uw1 < 0.0)) {
-        const auto neg_disp_sq = [&](double s) {
-          const State xs = stepper.dense(s);
-          return -(xs[kU1] * xs[kU1] + xs[kU2] * xs[kU2]);
-        };
-        const auto best = boost::math::tools::brent_find_minima(neg_disp_sq, tau, s_end, kBrentBits);
-        const State xs = stepper.dense(best.first);
-        rec.track_displacement(t_i + best.first, xs[kU1], xs[kU2]);
-      }
-      tau = s_end;
-      x = x_end;
-      halvings = 0;
-      if (stopped) {
-        x[kW1] = 0.0;
-        x[kW2] = 0.0;
-        dx_valid = false;
+  double lo = tau;
+  double e_lo = x[kW1] * rhs.ref1 + x[kW2] * rhs.ref2;
+  if (!(e_lo > 0.0)) {  // onset step (w = 0 at its start): e grows first; the first positive point brackets
+    lo = s1;
+    for (int k = 1; k < 8; ++k) {
+      const double s = tau + (s1 - tau) * k / 8.0;
+      const double es = e(s);
+      if (es > 0.0) {
+        lo = s;
+        e_lo = es;
         break;
       }
-      dx = stepper.dx1();
-      dx_valid = true;
-      if (rhs.launch) {
-        // The launch ends at the launch speed, or earlier where the quasi-static direction stops being a good
-        // approximation: its lag behind -a, delta = r psi' / |a| = r |a x a'| / |a|^3 (psi' the turning rate of a),
-        // exceeds kLaunchMaxLag (near a zero of a, where -a / |a| turns fast, docs/method.md S5').
-        const double c1 = rhs.a01 + rhs.as1 * tau;
-        const double c2 = rhs.a02 + rhs.as2 * tau;
-        const double cm = std::sqrt(c1 * c1 + c2 * c2);
-        const double r = std::sqrt(x[kW1] * x[kW1] + x[kW2] * x[kW2]);
-        if (r > launch_speed || r * std::abs(c1 * rhs.as2 - c2 * rhs.as1) > kLaunchMaxLag * cm * cm * cm) {
-          rhs.launch = false;  // w / |w| from here on: the RHS changes, so no FSAL
-          dx_valid = false;
-        }
-      } else if (x[kW1] * x[kW1] + x[kW2] * x[kW2] < launch_speed * launch_speed) {
-        // Landing (see kLandingEntryLagFraction): below the launch speed, decelerating, w already along -a to within
-        // kLaunchMaxLag and the quasi-static lag r |a x a'| / |a|^3 small: slaved to -a / |a| from here (w is put on
-        // that direction; what is dropped, r sin(angle) < kLaunchMaxLag r across it, is the lag the quasi-static
-        // state neglects anyway), to the stop, or until the lag grows (the launch's exit test above).
-        const double c1 = rhs.a01 + rhs.as1 * tau;
-        const double c2 = rhs.a02 + rhs.as2 * tau;
-        const double cm = std::sqrt(c1 * c1 + c2 * c2);
-        const double friction = rhs.mu * std::max(rhs.g0 + rhs.gs * tau, 0.0);
-        const double r = std::sqrt(x[kW1] * x[kW1] + x[kW2] * x[kW2]);
-        if (cm > 0.0 && cm < friction && r > 0.0) {
-          const double n1 = -c1 / cm;
-          const double n2 = -c2 / cm;
-          const bool along = x[kW1] * n1 + x[kW2] * n2 > 0.0 && std::abs(x[kW1] * n2 - x[kW2] * n1) < kLaunchMaxLag * r;
-          if (along && r * std::abs(c1 * rhs.as2 - c2 * rhs.as1) < kLandingEntryLagFraction * kLaunchMaxLag * cm * cm * cm) {
-            rhs.launch = true;
-            x[kW1] = r * n1;
-            x[kW2] = r * n2;
-            dx_valid = false;
-          }
-        }
-      }
-      rec.track_speed(x[kW1], x[kW2]);
-      rec.track_displacement(t_i + tau, x[kU1], x[kU2]);
     }
-    if (stopped) {
-      // Relative rest: the stick test at the top of the loop decides whether it holds or slip restarts (eq S6).
-      slipping = false;
-      rec.stop(t_i + tau);
-      rec.track_displacement(t_i + tau, x[kU1], x[kU2]);
-      rec.row(t_i + tau, x, false);
-      if (++events_in_step > kMaxEventsPerStep) too_many_events(t_i);
-      if (tau >= h) {
-        ++i;
-        tau = 0.0;
-        events_in_step = 0;
-        rec.row(in.time(i), x, false);
-      }
-      continue;
-    }
-    ++i;
-    tau = 0.0;
-    events_in_step = 0;
-    rec.row(in.time(i), x, true);
   }
+  bool is_stop = false;
+  if (!(lo < s1)) {
+    // From rest and never moving forward along the launch direction: the load does not overcome kinetic
+    // friction (an onset decided by round-off at |a| = mu_s g_e with |a| falling): the block is at rest at
+    // the step's end, having moved no more than |w| x the step (below the tolerance).
+    is_stop = true;
+  } else {
+    boost::uintmax_t iterations = kMaxRootIterations;
+    const auto tol = [](double l, double r) {
+      return std::abs(r - l) <= 4.0 * std::numeric_limits<double>::epsilon() * std::max(std::abs(r), 1e-300);
+    };
+    const auto bracket = boost::math::tools::toms748_solve(e, lo, s1, e_lo, e1, tol, iterations);
+    if (iterations >= kMaxRootIterations) {
+      throw RootFindingError(fmt::format("bidirectional sliding: the slip stop (TOMS 748) did not converge in {} "
+                                         "iterations in the step [{}, {}] s ({})",
+                                         kMaxRootIterations, t_i + tau, t_i + s1, describe(b)));
+    }
+    s_end = bracket.second;
+    x_end = stepper.dense(s_end);
+    const double scale = std::max(std::sqrt(w0sq), std::hypot(x1[kW1], x1[kW2]));
+    const double rest = std::hypot(x_end[kW1], x_end[kW2]);
+    // Or at the velocity noise floor (below): a zero of w . ref where |w| is that small is a stop whatever the
+    // step's scale, as a block slowing to the floor is (the direction is not resolved there, and halving the
+    // step would not resolve it either: EventLimitError at the default tolerances otherwise, seen in
+    // Recovery3c).
+    is_stop = rest <= kStopSpeedFraction * scale + 10.0 * opt.abs_tol || rest <= floor_speed;
+  }
+  return is_stop;
+}
 
+/// The run-in to rest from the velocity noise floor. Back down to the floor, the integration no longer resolves the
+/// direction of w (the direction equation is stiff there: its rate |a| / |w| exceeds the explicit method's stability
+/// limit at any step the error test allows, so w would wander at the tolerance level). The block has come to rest:
+/// the rest of the run-in, along the current direction, is |w| / (mu_k g_e + a . w/|w|) long and covers |w| times half
+/// that (when decelerating at 0.01 m/s^2: 4.5e-11 m from the default floor of 9.5e-7 m/s, 5e-13 m from 1e-7 m/s at
+/// abs_tol 1e-10), of which the extrapolation's error, from the deceleration and direction changing over the run-in,
+/// is a small fraction (docs/method.md); when w is not decelerating along its own direction the stop is taken at once.
+/// From the end s1 of an accepted step (state x1), at most to the step's end h: sets s_end and adds the run-in to x_end
+/// (a copy of x1).
+[[gnu::noinline]] void run_in_to_rest(const Rhs& rhs, const State& x1, double s1, double h, double& s_end,
+                                      State& x_end) {
+  const double b1 = rhs.a01 + rhs.as1 * s1;
+  const double b2 = rhs.a02 + rhs.as2 * s1;
+  const double friction = rhs.mu * std::max(rhs.g0 + rhs.gs * s1, 0.0);
+  const double speed = std::hypot(x1[kW1], x1[kW2]);
+  const double decel = speed > 0.0 ? friction + (b1 * x1[kW1] + b2 * x1[kW2]) / speed : 0.0;
+  double run = decel > 0.0 ? speed / decel : 0.0;
+  run = std::min(run, h - s1);
+  s_end = s1 + run;
+  x_end[kU1] += 0.5 * run * x1[kW1];
+  x_end[kU2] += 0.5 * run * x1[kW2];
+  x_end[kPath] += 0.5 * run * speed;
+  x_end[kInputWork] -= 0.5 * run * (b1 * x1[kW1] + b2 * x1[kW2]);
+  x_end[kFrictionWork] += 0.5 * run * friction * speed;
+}
+
+/// The extremes inside an accepted step [tau, s_end] (state x, derivative dx at its start; x_end at its end, stopped:
+/// the block came to rest there): |w| peaks where w . w' turns from + to -, |u| where u . w does (Brent on the dense
+/// output; the ends are checked directly by the caller).
+template <bool kRecord>
+[[gnu::always_inline]] inline void track_step_extremes(const Stepper& stepper, Recorder<kRecord>& rec, const State& x,
+                                                       const State& dx, const State& x_end, double tau, double s_end,
+                                                       double t_i, bool stopped) {
+  const State& x1 = stepper.x1();
+  const double ww0 = x[kW1] * dx[kW1] + x[kW2] * dx[kW2];
+  const double ww1 = stopped ? -1.0 : x1[kW1] * stepper.dx1()[kW1] + x1[kW2] * stepper.dx1()[kW2];
+  if (ww0 > 0.0 && ww1 < 0.0) {
+    const auto neg_speed_sq = [&](double s) {
+      const State xs = stepper.dense(s);
+      return -(xs[kW1] * xs[kW1] + xs[kW2] * xs[kW2]);
+    };
+    const auto best = boost::math::tools::brent_find_minima(neg_speed_sq, tau, s_end, kBrentBits);
+    rec.summary.max_abs_velocity_m_s = std::max(rec.summary.max_abs_velocity_m_s, std::sqrt(-best.second));
+  }
+  const double uw0 = x[kU1] * x[kW1] + x[kU2] * x[kW2];
+  const double uw1 = x_end[kU1] * x_end[kW1] + x_end[kU2] * x_end[kW2];
+  if (uw0 > 0.0 && (stopped || uw1 < 0.0)) {
+    const auto neg_disp_sq = [&](double s) {
+      const State xs = stepper.dense(s);
+      return -(xs[kU1] * xs[kU1] + xs[kU2] * xs[kU2]);
+    };
+    const auto best = boost::math::tools::brent_find_minima(neg_disp_sq, tau, s_end, kBrentBits);
+    const State xs = stepper.dense(best.first);
+    rec.track_displacement(t_i + best.first, xs[kU1], xs[kU2]);
+  }
+}
+
+/// The launch's end and the landing (see Rhs) after an accepted step ending at tau with state x: the launch ends at
+/// the launch speed or where its quasi-static direction lags too far; a slow, decelerating block along -a lands
+/// (slaved to -a / |a|). Either change of the RHS invalidates its FSAL value (dx_valid).
+[[gnu::always_inline]] inline void update_launch(Rhs& rhs, State& x, double tau, double launch_speed, bool& dx_valid) {
+  if (rhs.launch) {
+    // The launch ends at the launch speed, or earlier where the quasi-static direction stops being a good
+    // approximation: its lag behind -a, delta = r psi' / |a| = r |a x a'| / |a|^3 (psi' the turning rate of a),
+    // exceeds kLaunchMaxLag (near a zero of a, where -a / |a| turns fast, docs/method.md S5').
+    const double c1 = rhs.a01 + rhs.as1 * tau;
+    const double c2 = rhs.a02 + rhs.as2 * tau;
+    const double cm = std::sqrt(c1 * c1 + c2 * c2);
+    const double r = std::sqrt(x[kW1] * x[kW1] + x[kW2] * x[kW2]);
+    if (r > launch_speed || r * std::abs(c1 * rhs.as2 - c2 * rhs.as1) > kLaunchMaxLag * cm * cm * cm) {
+      rhs.launch = false;  // w / |w| from here on: the RHS changes, so no FSAL
+      dx_valid = false;
+    }
+  } else if (x[kW1] * x[kW1] + x[kW2] * x[kW2] < launch_speed * launch_speed) {
+    // Landing (see kLandingEntryLagFraction): below the launch speed, decelerating, w already along -a to within
+    // kLaunchMaxLag and the quasi-static lag r |a x a'| / |a|^3 small: slaved to -a / |a| from here (w is put on
+    // that direction; what is dropped, r sin(angle) < kLaunchMaxLag r across it, is the lag the quasi-static
+    // state neglects anyway), to the stop, or until the lag grows (the launch's exit test above).
+    const double c1 = rhs.a01 + rhs.as1 * tau;
+    const double c2 = rhs.a02 + rhs.as2 * tau;
+    const double cm = std::sqrt(c1 * c1 + c2 * c2);
+    const double friction = rhs.mu * std::max(rhs.g0 + rhs.gs * tau, 0.0);
+    const double r = std::sqrt(x[kW1] * x[kW1] + x[kW2] * x[kW2]);
+    if (cm > 0.0 && cm < friction && r > 0.0) {
+      const double n1 = -c1 / cm;
+      const double n2 = -c2 / cm;
+      const bool along = x[kW1] * n1 + x[kW2] * n2 > 0.0 && std::abs(x[kW1] * n2 - x[kW2] * n1) < kLaunchMaxLag * r;
+      if (along && r * std::abs(c1 * rhs.as2 - c2 * rhs.as1) < kLandingEntryLagFraction * kLaunchMaxLag * cm * cm * cm) {
+        rhs.launch = true;
+        x[kW1] = r * n1;
+        x[kW2] = r * n2;
+        dx_valid = false;
+      }
+    }
+  }
+}
+
+/// After the last point: the run-out on still ground (or the end of the slope's still tail), the totals of the summary
+/// and the residual mapped to east/north. x and slipping: the state after the last point; steps: integrator steps.
+template <bool kRecord>
+[[gnu::noinline]] void finish(const Input& in, const SlidingBlock& b, Recorder<kRecord>& rec, State& x, bool slipping,
+            std::size_t steps) {
+  const std::size_t n = in.size();
+  const double g = b.g_m_s2;
   const double t_end = in.time(in.record_points - 1);
   rec.summary.end_time_s = t_end;
   if (in.size() > in.record_points) {
@@ -812,6 +662,245 @@ void integrate(const Input& in, const SlidingBlock& b, const Sliding2dOptions& o
     if (az >= 360.0) az -= 360.0;
     rec.summary.residual_azimuth_deg = az;
   }
+}
+
+[[noreturn]] void too_many_steps(const Sliding2dOptions& opt, const SlidingBlock& b, double t) {
+  throw StepLimitError(fmt::format("bidirectional sliding: more than {} integrator steps (max_steps) by t = {} s "
+                                   "({}, rel_tol = {:g}, abs_tol = {:g})",
+                                   opt.max_steps, t, describe(b), opt.rel_tol, opt.abs_tol));
+}
+
+[[noreturn]] void too_many_events(const SlidingBlock& b, double t) {
+  throw EventLimitError(fmt::format("bidirectional sliding: more than {} slip starts and stops in the step at t = {} "
+                                    "s ({}): the input is outside the model (check its accelerations)",
+                                    kMaxEventsPerStep, t, describe(b)));
+}
+
+/// Stick phase from point i, where the block sticks: one comparison per point (the stick test is convex in time over a
+/// step, eq S3), to the last point before the test fails (n - 1 when it never does), each point a row of the history.
+/// Without history nor vertical input, eight points at a time first, branch-free inside (vectorises); stick_sq is
+/// (mu_s g)^2 there.
+template <bool kVertical, bool kRecord, class Sticks>
+[[gnu::always_inline]] inline std::size_t skip_stuck_points(const Input& in, const double* a1, const double* a2,
+                                                            double stick_sq, const Sticks& sticks_at, std::size_t i,
+                                                            Recorder<kRecord>& rec, const State& x) {
+  const std::size_t n = in.size();
+  if constexpr (!kRecord && !kVertical) {
+    // Eight points at a time, branch-free inside (vectorises), then one by one to the exceedance.
+    while (i + 8 < n) {
+      bool out = false;
+      for (std::size_t j = 1; j <= 8; ++j) out |= a1[i + j] * a1[i + j] + a2[i + j] * a2[i + j] > stick_sq;
+      if (out) break;
+      i += 8;
+    }
+  }
+  while (i + 1 < n && sticks_at(i + 1)) {
+    ++i;
+    rec.row(in.time(i), x, false);
+  }
+  return i;
+}
+
+/// A slip start: at sigma after the offset it was looked for from, in the direction (ref1, ref2) of the inertial load.
+struct SlipStart {
+  double sigma = 0.0;
+  double ref1 = 0.0, ref2 = 0.0;
+};
+
+/// Where the stuck block starts to slip in the step [ti, ti + hi] of point i, from the offset tau: the stick test is
+/// convex in time over the step (eq S3), so it fails inside it iff it fails at an end, first at the onset's root.
+/// None when it holds to the step's end, in a jump (the next point's test decides), or off the ground under a still
+/// ground. `gravity(i)` is g_e at point i, `sticks_at(i)` the stick test there.
+template <class Gravity, class Sticks>
+[[gnu::noinline]] std::optional<SlipStart> slip_onset(const double* a1, const double* a2, const Gravity& gravity,
+                                                      const Sticks& sticks_at, std::size_t i, double ti, double hi,
+                                                      double tau, double mus, const SlidingBlock& b) {
+  const double L = hi - tau;
+  const double frac = hi > 0.0 ? tau / hi : 0.0;
+  const double p1 = a1[i] + frac * (a1[i + 1] - a1[i]);
+  const double p2 = a2[i] + frac * (a2[i + 1] - a2[i]);
+  const double g0 = gravity(i) + frac * (gravity(i + 1) - gravity(i));
+  const double q1 = L > 0.0 ? (a1[i + 1] - p1) / L : 0.0;
+  const double q2 = L > 0.0 ? (a2[i + 1] - p2) / L : 0.0;
+  const double gs = L > 0.0 ? (gravity(i + 1) - g0) / L : 0.0;
+  const bool stick_now = g0 >= 0.0 && p1 * p1 + p2 * p2 <= mus * mus * g0 * g0;
+  if ((stick_now && sticks_at(i + 1)) || !(L > 0.0)) {
+    // Stuck to the step's end; or a jump, where nothing moves and the next point's test decides.
+    return std::nullopt;
+  }
+  double sigma = 0.0;
+  if (stick_now) {
+    sigma = onset(p1, p2, q1, q2, g0, gs, mus, L);
+    if (std::isnan(sigma)) {
+      throw RootFindingError(fmt::format("bidirectional sliding: the slip onset (TOMS 748) did not converge in {} "
+                                         "iterations in the step [{}, {}] s ({})",
+                                         kMaxRootIterations, ti, ti + hi, describe(b)));
+    }
+  }
+  // Slip starts at tau + sigma in the direction of the inertial load -a (eq S5).
+  const double s1 = p1 + q1 * sigma;
+  const double s2 = p2 + q2 * sigma;
+  double norm = std::sqrt(s1 * s1 + s2 * s2);
+  double d1 = -s1;
+  double d2 = -s2;
+  if (!(norm > 0.0)) {  // off the ground with a = 0 at the onset: the direction a takes next
+    d1 = -q1;
+    d2 = -q2;
+    norm = std::sqrt(q1 * q1 + q2 * q2);
+  }
+  if (!(norm > 0.0)) return std::nullopt;  // off the ground under a still ground: nothing moves
+  return SlipStart{sigma, d1 / norm, d2 / norm};
+}
+
+/// The solver core. kVertical: g_e varies per point; kRecord: store the history.
+template <bool kVertical, bool kRecord>
+void integrate(const Input& in, const SlidingBlock& b, const Sliding2dOptions& opt, Recorder<kRecord>& rec) {
+  const std::size_t n = in.size();
+  const double* a1 = in.a1.data();
+  const double* a2 = in.a2.data();
+  const double* ge = kVertical ? in.gravity.data() : nullptr;
+  const double g = b.g_m_s2;
+  const double mus = b.mu_static;
+  const auto gravity = [&](std::size_t i) { return kVertical ? ge[i] : g; };
+  // Stick test at a point: |a| <= mu_s g_e (eq S3), squared; g_e < 0 (off the ground) never sticks.
+  const double stick_sq = mus * mus * g * g;
+  const auto sticks_at = [&](std::size_t i) {
+    const double asq = a1[i] * a1[i] + a2[i] * a2[i];
+    if constexpr (kVertical) {
+      return ge[i] >= 0.0 && asq <= mus * mus * ge[i] * ge[i];
+    } else {
+      return asq <= stick_sq;
+    }
+  };
+
+  State x{};
+  State dx{};
+  bool slipping = false;
+  bool dx_valid = false;  // dx holds the RHS at (tau, x) of the current interval (FSAL across samples)
+  double tau = 0.0;       // offset inside the current step, s
+  int events_in_step = 0;
+  std::size_t steps = 0;
+  Rhs rhs;
+  rhs.mu = b.mu_kinetic;
+  Stepper stepper(opt, in.grid.dt_s());
+  // Below this speed, at a slip onset, the friction direction is the onset limit -a / |a| (see Rhs).
+  const double launch_speed =
+      std::max(std::sqrt(opt.abs_tol * kLaunchSpeedScale), kLaunchSpeedTolerances * opt.abs_tol);
+  // A block slowing down to this speed has stopped (see below).
+  const double floor_speed = kFloorLaunchFraction * launch_speed;
+  rec.row(in.time(0), x, false);
+  rec.summary.max_displacement_time_s = in.time(0);
+
+  std::size_t i = 0;
+  // On to the next point (the rows at points carry the state there, slipping or not).
+  const auto next_point = [&](bool slip) {
+    ++i;
+    tau = 0.0;
+    events_in_step = 0;
+    rec.row(in.time(i), x, slip);
+  };
+  while (i + 1 < n) {
+    const double t_i = in.time(i);
+    const double h = in.time(i + 1) - t_i;
+    if (!slipping) {
+      if (tau == 0.0) {
+        // Stick phase: one comparison per point (the stick test is convex in time over a step, eq S3).
+        if (sticks_at(i)) {
+          i = skip_stuck_points<kVertical>(in, a1, a2, stick_sq, sticks_at, i, rec, x);
+          if (i + 1 >= n) break;
+        }
+      }
+      const double ti = in.time(i);
+      const double hi = in.time(i + 1) - ti;
+      const auto start = slip_onset(a1, a2, gravity, sticks_at, i, ti, hi, tau, mus, b);
+      if (!start) {  // stuck to the step's end; or a jump, or off the ground under a still ground: nothing moves
+        next_point(false);
+        continue;
+      }
+      rhs.ref1 = start->ref1;
+      rhs.ref2 = start->ref2;
+      rhs.launch = true;
+      tau = std::min(tau + start->sigma, hi);
+      slipping = true;
+      dx_valid = false;
+      rec.start(ti + tau);
+      rec.row(ti + tau, x, true);
+      if (++events_in_step > kMaxEventsPerStep) too_many_events(b, ti);
+      continue;
+    }
+
+    // Slipping over [tau, h] of step i (local time).
+    if (!(h > tau)) {  // a jump: nothing moves during it; the RHS changes across it
+      dx_valid = false;
+      next_point(true);
+      continue;
+    }
+    rhs.set_step(a1[i], a2[i], (a1[i + 1] - a1[i]) / h, (a2[i + 1] - a2[i]) / h, gravity(i),
+                 (gravity(i + 1) - gravity(i)) / h);
+    bool stopped = false;
+    int halvings = 0;
+    while (tau < h) {
+      const double w0sq = x[kW1] * x[kW1] + x[kW2] * x[kW2];
+      rhs.set_stop_reference(x, tau, w0sq);
+      if (!dx_valid) rhs(x, dx, tau);
+      if (!stepper.step(rhs, tau, x, dx, h, steps, opt.max_steps)) too_many_steps(opt, b, t_i + tau);
+      const State& x1 = stepper.x1();
+      const double s1 = stepper.s1();
+      const double e1 = x1[kW1] * rhs.ref1 + x1[kW2] * rhs.ref2;
+      double s_end = s1;
+      State x_end = x1;
+      if (e1 <= 0.0) {
+        // The velocity reached zero (a stop) or turned by 90 degrees or more (no stop): locate the zero of
+        // e = w . ref on the dense output, then tell the two apart by |w| there.
+        const bool is_stop = locate_stop(stepper, rhs, x, tau, e1, w0sq, floor_speed, opt, b, t_i, s_end, x_end);
+        if (!is_stop) {
+          if (++halvings > kMaxTurnHalvings) {
+            throw EventLimitError(fmt::format("bidirectional sliding: the relative velocity turns by 90 degrees in "
+                                              "steps of {} s at t = {} s ({}): outside the model", s1 - tau,
+                                              t_i + tau, describe(b)));
+          }
+          stepper.halve();
+          continue;  // the same start, a shorter step
+        }
+        stopped = true;
+      } else if (!rhs.launch && x1[kW1] * x1[kW1] + x1[kW2] * x1[kW2] <= floor_speed * floor_speed) {
+        // Back down to the velocity noise floor: the block has come to rest (run_in_to_rest); the stick test then
+        // decides (eq S6).
+        run_in_to_rest(rhs, x1, s1, h, s_end, x_end);
+        stopped = true;
+      }
+      // Extremes inside [tau, s_end]: |w| peaks where w . w' turns from + to -, |u| where u . w does (Brent on the
+      // dense output; the ends are checked directly).
+      track_step_extremes(stepper, rec, x, dx, x_end, tau, s_end, t_i, stopped);
+      tau = s_end;
+      x = x_end;
+      halvings = 0;
+      if (stopped) {
+        x[kW1] = 0.0;
+        x[kW2] = 0.0;
+        dx_valid = false;
+        break;
+      }
+      dx = stepper.dx1();
+      dx_valid = true;
+      update_launch(rhs, x, tau, launch_speed, dx_valid);
+      rec.track_speed(x[kW1], x[kW2]);
+      rec.track_displacement(t_i + tau, x[kU1], x[kU2]);
+    }
+    if (stopped) {
+      // Relative rest: the stick test at the top of the loop decides whether it holds or slip restarts (eq S6).
+      slipping = false;
+      rec.rest(t_i + tau, x);
+      if (++events_in_step > kMaxEventsPerStep) too_many_events(b, t_i);
+      if (tau >= h) {
+        next_point(false);
+      }
+      continue;
+    }
+    next_point(true);
+  }
+
+  finish(in, b, rec, x, slipping, steps);
 }
 
 /// First time g_e <= 0 (linear per step).

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "support/shared_data.hpp"
+#include "topple/closed_forms/sliding_pulses.hpp"
 #include "topple/motion/pulses.hpp"
 
 namespace topple {

@@ -7,6 +7,7 @@
 
 #include "topple/core/error.hpp"
 #include "topple/fragility/object_spectra.hpp"
+#include "topple/closed_forms/sliding_pulses.hpp"
 #include "topple/motion/pulses.hpp"
 #include "topple/motion/synthesis.hpp"
 #include "topple/motion/motion_set.hpp"

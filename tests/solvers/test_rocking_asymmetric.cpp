@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "support/noise_record.hpp"
+#include "topple/closed_forms/rocking.hpp"
 #include "topple/core/error.hpp"
 #include "topple/motion/pulses.hpp"
 #include "topple/solvers/rocking.hpp"

@@ -5,6 +5,7 @@
 
 #include "support/noise_record.hpp"
 #include "topple/core/error.hpp"
+#include "topple/closed_forms/sliding_pulses.hpp"
 #include "topple/motion/pulses.hpp"
 #include "topple/solvers/sliding.hpp"
 

@@ -59,17 +59,12 @@
 // O_old, angular momentum about O_new: D_new theta'+ = (k2 + h^2 - b1 b2) theta'-, i.e.
 //   e_new = 1 - b_new (b_old + b_new) / D_new   (symmetric: 1 - 2 a^2 / D).
 //
-// Onset mode (Shenton 1996, J. Eng. Mech. 122(7), "Criteria for initiation of slide, rock, and slide-rock rigid-body
-// modes"). At the instant theta = theta' = 0 that rocking starts, with A = |a_h| / (g + a_v):
-//   theta'' = g (A h - a) / D,  friction needed H = m (A g - h theta''),  normal force N = m (g + a theta'').
-// Pure rocking needs H <= mu N, i.e. mu >= mu_crit(A) = [A (D - h^2) + a h] / [(D - a^2) + A a h]; for a block this is
-// [A (4 beta^2 + 1) + 3 beta] / [(beta^2 + 4) + 3 A beta], beta = a / h, the form attributed to Shenton (his printed
-// equation was not retrieved; this one is derived from the three equations above and reduces to mu_crit(beta) = beta).
-// If mu < a/h the body slides before it can rock: the rocking-only result is then not valid.
+// Onset mode (Shenton 1996): shenton.hpp. Closed forms of free rocking and of the overturning thresholds (library
+// oracles): closed_forms/rocking.hpp. The first overturning amplitude of a family of motions: threshold_search.hpp.
 //
 // Method. Adaptive: Dormand-Prince 5(4) (Dormand & Prince 1980) with error control and its 4th-order dense output
-// (Hairer, Norsett & Wanner 1993, II.5-II.6), written out for the two components (the tableau, error norm and step-size
-// law of Boost.Odeint's controlled runge_kutta_dopri5), state scaled as (theta / alpha, theta' / (p alpha)) so that
+// (Hairer, Norsett & Wanner 1993, II.5-II.6), written out for the two components (the tableau of numerics/dp5.hpp, the
+// error norm and step-size law of Boost.Odeint's controlled runge_kutta_dopri5; src/solvers/rocking_steppers.hpp), state scaled as (theta / alpha, theta' / (p alpha)) so that
 // one tolerance fits both. Steps end on every sample instant of the input (its derivative jumps there) and never
 // straddle one. Events (uplift aside) are roots of the dense output, a degree-5 polynomial in the step fraction,
 // found by Newton's method kept inside the sign-change bracket (bisection when a Newton step leaves it): impact
@@ -84,13 +79,13 @@
 // extension), where the thesis cut the step to a fifth and interpolated linearly.
 #include <cstddef>
 #include <cstdint>
-#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "topple/bodies/rocking_body.hpp"
+#include "topple/solvers/shenton.hpp"  // OnsetMode, the Shenton criteria (declared here before the split)
 #include "topple/motion/ground_motion.hpp"
 #include "topple/core/units.hpp"
 
@@ -147,9 +142,6 @@ struct RockingOptions {
 
 enum class RockingState : std::int8_t { rocking_negative = -1, rest = 0, rocking_positive = 1, fallen = 2 };
 [[nodiscard]] std::string_view rocking_state_name(RockingState state);  ///< "rocking-", "rest", "rocking+", "fallen"
-
-enum class OnsetMode : std::uint8_t { unchecked, rest, rock, slide, slide_rock };
-[[nodiscard]] std::string_view onset_mode_name(OnsetMode mode);  ///< "unchecked", "rest", "rock", "slide", "slide-rock"
 
 /// Time history on the record's samples (and, after the record, on the same spacing, or max_run_out_s / 1e5 if
 /// coarser, until the run ends) plus every event instant. At an event the row carries the state after the event.
@@ -232,75 +224,5 @@ struct RockingResult {
 /// Summary only, no history nor events stored (the fast path for sweeps and threshold searches).
 [[nodiscard]] RockingSummary rock_summary(const GroundMotion& horizontal, const RockingBody& body,
                                           const RockingOptions& options = {}, const GroundMotion* vertical = nullptr);
-
-// ---- Onset mode (Shenton 1996; see the header) ----
-
-/// mu_crit(A) = [A (D - h^2) + a h] / [(D - a^2) + A a h], A = |a_h| / (g + a_v) >= 0.
-[[nodiscard]] double shenton_critical_mu(const RockingBody& body, double accel_ratio);
-
-/// Mode the body starts in under A = |a_h| / (g + a_v) with friction mu: rest if A < min(mu, a/h); slide if
-/// mu < a/h; otherwise rock if mu >= mu_crit(A), else slide-rock. Throws InputError for mu or A < 0 or not finite.
-[[nodiscard]] OnsetMode shenton_onset_mode(const RockingBody& body, double accel_ratio, double mu);
-
-// ---- Closed forms (benchmarks for the solver; p and alpha of the body, g given). Sources: Housner 1963, "The
-// behavior of inverted pendulum structures during earthquakes", Bull. Seismol. Soc. Am. 53(2), 403-417 (the period, the impact law, the energy argument); the pulse and impulse thresholds are derived from
-// Housner's equation of motion in docs/method.md ("Rocking"). ----
-
-/// Housner's linearised free-rocking period, s, from rest at theta0 (rad, 0 < theta0 < alpha), e = 1 (Housner 1963):
-/// T = (4 / p) acosh(1 / (1 - theta0 / alpha)).
-[[nodiscard]] double linearized_free_rocking_period_s(const RockingBody& body, double theta0_rad, double g_m_s2);
-
-/// Exact nonlinear free-rocking period, s, from rest at theta0 (rad), e = 1:
-/// T = 4 integral_0^theta0 dtheta / theta'(theta) with
-/// theta'^2 = 2 p^2 (cos(alpha - theta0) - cos(alpha - theta)), by Gauss-Legendre quadrature after the substitution
-/// that removes the inverse-square-root end point.
-[[nodiscard]] double free_rocking_period_s(const RockingBody& body, double theta0_rad, double g_m_s2);
-
-/// |theta'|, rad/s, on reaching theta = 0 from rest at theta0 (rad): sqrt(2 p^2 (cos(alpha - theta0) - cos(alpha)))
-/// (conservation of energy).
-[[nodiscard]] double free_rocking_impact_speed_rad_s(const RockingBody& body, double theta0_rad, double g_m_s2);
-
-/// Amplitude, rad, after n impacts of free rocking from rest at theta0 (rad) with restitution e, exact recursion
-/// cos(alpha - theta_{k+1}) = cos(alpha) + e^2 (cos(alpha - theta_k) - cos(alpha)).
-[[nodiscard]] double free_rocking_amplitude_rad(const RockingBody& body, double theta0_rad, double e, int impacts);
-
-/// Linearised overturning threshold of a rectangular acceleration pulse of duration t1 (derived from Housner's
-/// linearised equation, docs/method.md): a / (g alpha) = 1 / (1 - exp(-p t1)); returns a in m/s^2.
-[[nodiscard]] double rectangular_pulse_threshold_linearized_m_s2(const RockingBody& body, double duration_s,
-                                                                 double g_m_s2);
-
-/// Smallest sudden base-velocity change that overturns the body (Housner's impulse argument, 1963): the impulse
-/// gives theta'_0 = dv p^2 cos(alpha) / g, which must reach sqrt(2 p^2 (1 - cos alpha)); returns dv in m/s.
-[[nodiscard]] double velocity_impulse_threshold_m_s(const RockingBody& body, double g_m_s2);
-
-// ---- Threshold search ----
-
-enum class OverturnCriterion : std::uint8_t {
-  exceeds_alpha,  ///< |theta| >= alpha at some time (the CM passes over the pivot)
-  falls,          ///< |theta| reaches pi/2
-};
-
-struct ThresholdSearch {
-  double start = 0.0;          ///< first amplitude tried (caller's unit, e.g. m/s^2 or a multiple of g tan(alpha))
-  double step = 0.0;           ///< scan increment (> 0): windows of survival narrower than this may be missed
-  double max = 0.0;            ///< last amplitude of the scan (>= start)
-  double rel_tol = 1e-7;       ///< bisection stops when the bracket is narrower than rel_tol * amplitude
-  std::size_t max_runs = 100000;  ///< cap on response computations; throws past it
-};
-
-struct ThresholdResult {
-  std::optional<double> amplitude;  ///< first overturning amplitude (upper end of the final bracket); none if
-                                    ///< nothing up to max overturns
-  double below = 0.0;               ///< largest amplitude known not to overturn just below it
-  std::size_t runs = 0;
-};
-
-/// The smallest amplitude that overturns by the criterion: scan upward from start in increments of step to the
-/// first amplitude that overturns, then bisect between it and the previous scan point. Bisection only keeps a
-/// bracket whose ends differ in outcome, so it needs no monotonicity: it converges to a change of outcome inside
-/// the first scan interval that overturns. `motion_for(amplitude)` builds the horizontal motion.
-[[nodiscard]] ThresholdResult first_overturning_amplitude(const std::function<GroundMotion(double)>& motion_for,
-                                                          const RockingBody& body, const RockingOptions& options,
-                                                          OverturnCriterion criterion, const ThresholdSearch& search);
 
 }  // namespace topple
