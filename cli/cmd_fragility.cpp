@@ -19,6 +19,7 @@
 #include "topple/core/output_file.hpp"
 #include "topple/fragility/fragility.hpp"
 #include "topple/fragility/object_spectra.hpp"
+#include "topple/output/fragility_output.hpp"
 #include "topple/output/plot.hpp"
 #include "topple/motion/synthesis.hpp"
 #include "topple/core/units.hpp"
@@ -83,13 +84,9 @@ std::string fragility_title(const FragilityOptions& o, std::size_t motions) {
   return t;
 }
 
-void run_fragility(const FragilityOptions& o) {
-  check_plot_path(o.plot);
-  check_output_path(o.out);
-  check_threads(o.threads);
-  const double g = o.motion.g_m_s2;
-  check_g(g);
-  // Pairs: synthetic (--synth N --components 2|3) or records (FILES --h2 FILES2 [--vertical FILES3]).
+/// The ensemble's options: pairs (synthetic: --synth N --components 2|3; records: FILES --h2 FILES2 [--vertical
+/// FILES3]) or single components, and the options that apply to pairs only. True for pairs.
+bool check_ensemble_options(const FragilityOptions& o) {
   if (o.components < 1 || o.components > 3) {
     throw parameter_error("--components", fmt::format("1, 2 (horizontal pairs) or 3 (pairs and a vertical), got {}",
                                                       o.components));
@@ -120,23 +117,11 @@ void run_fragility(const FragilityOptions& o) {
     throw parameter_error("--scale-pga", "fragility scales every motion to each IM level itself: --scale-pga, --scale "
                                          "and --invert do not apply");
   }
-  if (!(o.band > 0.0 && o.band < 1.0)) throw parameter_error("--band", fmt::format("must be in (0, 1), got {}", o.band));
-  FragilitySpec spec;
-  spec.im = parse_intensity_measure(o.im, "--im");
-  if (pairs && spec.im != IntensityMeasure::pga) {
-    throw parameter_error("--im", fmt::format("an ensemble of pairs is scaled by its RotD50 PGA: --im must be pga, got "
-                                              "'{}'", o.im));
-  }
-  spec.bearing_deg = o.bearing_deg;
-  spec.bearing_seed = parse_seed(o.bearing_seed, "--bearing-seed");
-  spec.threads = o.threads;
-  if (o.im_range.empty()) throw parameter_error("--im-range", "the IM levels are required, e.g. --im-range 0.05:2:12 "
-                                                              "(in g for PGA, SI for the others)");
-  const Range r = parse_range(o.im_range, "--im-range", parse_number, kMaxLevels);
-  const double to_si = 1.0 / intensity_measure_display_factor(spec.im, g);
-  for (double x : log_grid(r.lo, r.hi, r.n, "--im-range")) spec.levels_si.push_back(x * to_si);
+  return pairs;
+}
 
-  // Objects.
+/// The failure modes asked for: a sliding block past its threshold and/or an overturning rocking body.
+void add_failures(const FragilityOptions& o, double g, FragilitySpec& spec) {
   if (o.mu) {
     if (o.threshold.empty()) throw parameter_error("--threshold", "a sliding block needs its displacement threshold, e.g. 5cm");
     SlidingFailure f;
@@ -179,9 +164,12 @@ void run_fragility(const FragilityOptions& o) {
     throw parameter_error("--mu", "give a sliding block (--mu, --threshold) and/or a rocking body (--shape ...)");
   }
 
-  // Motions.
-  if (o.synth.has_value() == !o.files.empty()) throw parameter_error("FILES", "give record files or --synth N");
+}
+
+/// The ensemble (synthetic motions or pairs, record files or pairs of files) into spec; returns the motions' names.
+std::vector<std::string> add_motions(const FragilityOptions& o, bool pairs, double g, FragilitySpec& spec) {
   std::vector<std::string> names;
+  if (o.synth.has_value() == !o.files.empty()) throw parameter_error("FILES", "give record files or --synth N");
   if (o.synth) {
     if (*o.synth < 1 || *o.synth > kMaxSynthMotions) {
       throw parameter_error("--synth", fmt::format("needs 1 to {} motions, got {}", kMaxSynthMotions, *o.synth));
@@ -243,90 +231,16 @@ void run_fragility(const FragilityOptions& o) {
       names.push_back(f);
     }
   }
-  ProgressBar bar(progress_wanted(o.quiet));
-  spec.progress = bar.callback();
-  // The library names its fields; the user typed options.
-  const FragilityResult res =
-      with_field_names({{"mode", "--one-way"}, {"slope", "--slope-deg"}, {"bearing", "--bearing-deg"},
-                        {"levels", "--im-range"}},
-                       [&] { return fragility_analysis(spec); });
-  bar.finish();
-  const std::string im_column = res.rotd50 ? "im_rotd50_pga_g" : std::string(intensity_measure_column(spec.im));
-  const std::string bearing_rule =
-      o.bearing_deg ? fmt::format("{:g} deg for every motion", *o.bearing_deg)
-                    : fmt::format("uniformly random on [0, 360) deg per motion (PortableRandom seed {})",
-                                  spec.bearing_seed);
-  const double k = intensity_measure_display_factor(spec.im, g);
-  const std::string unit(intensity_measure_unit(spec.im));
+  return names;
+}
 
-  if (!o.out.empty()) {
-    io::OutputFile file(o.out);
-    std::ostream& out = file.stream();
-    out << "curve," << im_column << ",trials,failures,fraction,fitted_probability,band_lower,band_upper\n";
-    for (const auto& c : res.curves) {
-      for (std::size_t j = 0; j < c.data.im.size(); ++j) {
-        out << fmt::format("{},{},{},{},{}", c.name, c.data.im[j] * k, c.data.trials[j], c.data.failures[j],
-                           static_cast<double>(c.data.failures[j]) / c.data.trials[j]);
-        if (c.fit) {
-          const auto [lo, hi] = c.fit->band(c.data.im[j], o.band);
-          out << fmt::format(",{},{},{}\n", c.fit->probability(c.data.im[j]), lo, hi);
-        } else {
-          out << ",,,\n";
-        }
-      }
-    }
-    file.commit();
-  }
-  if (!o.plot.empty()) {
-    plot::render(plot::fragility_figure(res, g, o.band,
-                                        fragility_title(o, names.size()) + (res.rotd50 ? " (RotD50 PGA of pairs)" : "")),
-                 o.plot);
-  }
-  if (o.json) {
-    nlohmann::ordered_json j;
-    j["im"] = o.im;
-    j["im_unit"] = unit;
-    if (res.rotd50) {
-      j["im_definition"] = "RotD50 PGA of each pair (Boore 2010): every pair scaled as a whole to each level";
-      j["bearing"] = bearing_rule;
-      j["bearings_deg"] = res.bearings_deg;
-    }
-    j["g_m_s2"] = g;
-    j["motions"] = names;
-    j["runs"] = res.runs;
-    j["band_level"] = o.band;
-    j["band_method"] = "delta method on the probit scale, observed information";
-    auto& curves = j["curves"] = nlohmann::ordered_json::array();
-    for (const auto& c : res.curves) {
-      nlohmann::ordered_json cj;
-      cj["curve"] = c.name;
-      nlohmann::ordered_json lv = nlohmann::ordered_json::array();
-      for (std::size_t i = 0; i < c.data.im.size(); ++i) {
-        lv.push_back({{im_column, c.data.im[i] * k}, {"trials", c.data.trials[i]},
-                      {"failures", c.data.failures[i]}});
-      }
-      cj["levels"] = lv;
-      if (c.fit) {
-        const double th = c.fit->theta * k;
-        cj["fit"] = {{"theta", th},
-                     {"theta_unit", unit},
-                     {"beta", c.fit->beta},
-                     {"se_ln_theta", c.fit->se_ln_theta},
-                     {"se_beta", c.fit->se_beta},
-                     {"cov_ln_theta_beta", c.fit->cov_ln_theta_beta},
-                     {"log_likelihood", c.fit->log_likelihood},
-                     {"beta_at_bound", c.fit->beta_at_bound}};
-      } else {
-        cj["fit"] = nullptr;
-        cj["fit_note"] = c.fit_note;
-      }
-      curves.push_back(cj);
-    }
-    fmt::print("{}\n", j.dump(2));
-    return;
-  }
-  fmt::print("fragility over {} motions x {} {} levels ({} runs), g = {} m/s2\n", names.size(),
-             spec.levels_si.size(), res.rotd50 ? "RotD50 PGA" : o.im, res.runs, g);
+/// The fits and counts as text.
+void print_fragility(const FragilityOptions& o, const FragilityResult& res, std::size_t motions, std::size_t levels,
+                     const std::string& bearing_rule) {
+  const double k = intensity_measure_display_factor(res.im, o.motion.g_m_s2);
+  const std::string unit(intensity_measure_unit(res.im));
+  fmt::print("fragility over {} motions x {} {} levels ({} runs), g = {} m/s2\n", motions,
+             levels, res.rotd50 ? "RotD50 PGA" : o.im, res.runs, o.motion.g_m_s2);
   if (res.rotd50) {
     fmt::print("pairs: IM = each pair's RotD50 PGA (Boore 2010), both components scaled together; sliding in two "
                "dimensions; rocking bodies at a bearing of {}\n", bearing_rule);
@@ -345,6 +259,63 @@ void run_fragility(const FragilityOptions& o) {
                  c.data.failures[i], c.data.trials[i]);
     }
   }
+}
+
+void run_fragility(const FragilityOptions& o) {
+  check_plot_path(o.plot);
+  check_output_path(o.out);
+  check_threads(o.threads);
+  const double g = o.motion.g_m_s2;
+  check_g(g);
+  const bool pairs = check_ensemble_options(o);
+  if (!(o.band > 0.0 && o.band < 1.0)) throw parameter_error("--band", fmt::format("must be in (0, 1), got {}", o.band));
+  FragilitySpec spec;
+  spec.im = parse_intensity_measure(o.im, "--im");
+  if (pairs && spec.im != IntensityMeasure::pga) {
+    throw parameter_error("--im", fmt::format("an ensemble of pairs is scaled by its RotD50 PGA: --im must be pga, got "
+                                              "'{}'", o.im));
+  }
+  spec.bearing_deg = o.bearing_deg;
+  spec.bearing_seed = parse_seed(o.bearing_seed, "--bearing-seed");
+  spec.threads = o.threads;
+  if (o.im_range.empty()) throw parameter_error("--im-range", "the IM levels are required, e.g. --im-range 0.05:2:12 "
+                                                              "(in g for PGA, SI for the others)");
+  const Range r = parse_range(o.im_range, "--im-range", parse_number, kMaxLevels);
+  const double to_si = 1.0 / intensity_measure_display_factor(spec.im, g);
+  for (double x : log_grid(r.lo, r.hi, r.n, "--im-range")) spec.levels_si.push_back(x * to_si);
+
+  add_failures(o, g, spec);
+
+  const std::vector<std::string> names = add_motions(o, pairs, g, spec);
+  ProgressBar bar(progress_wanted(o.quiet));
+  spec.progress = bar.callback();
+  // The library names its fields; the user typed options.
+  const FragilityResult res =
+      with_field_names({{"mode", "--one-way"}, {"slope", "--slope-deg"}, {"bearing", "--bearing-deg"},
+                        {"levels", "--im-range"}},
+                       [&] { return fragility_analysis(spec); });
+  bar.finish();
+  const std::string bearing_rule =
+      o.bearing_deg ? fmt::format("{:g} deg for every motion", *o.bearing_deg)
+                    : fmt::format("uniformly random on [0, 360) deg per motion (PortableRandom seed {})",
+                                  spec.bearing_seed);
+
+  if (!o.out.empty()) {
+    io::OutputFile file(o.out);
+    io::write_fragility_csv(file.stream(), res, g, o.band);
+    file.commit();
+  }
+  if (!o.plot.empty()) {
+    plot::render(plot::fragility_figure(res, g, o.band,
+                                        fragility_title(o, names.size()) + (res.rotd50 ? " (RotD50 PGA of pairs)" : "")),
+                 o.plot);
+  }
+  if (o.json) {
+    const nlohmann::ordered_json j = io::fragility_json(res, {o.im, g, names, o.band, bearing_rule});
+    fmt::print("{}\n", j.dump(2));
+    return;
+  }
+  print_fragility(o, res, names.size(), spec.levels_si.size(), bearing_rule);
   if (!o.out.empty()) fmt::print("table written to {}\n", o.out);
   if (!o.plot.empty()) fmt::print("figure written to {}\n", o.plot);
 }

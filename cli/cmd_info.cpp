@@ -15,6 +15,7 @@
 #include "slide_2d.hpp"
 #include "topple/core/error.hpp"
 #include "topple/motion/intensity.hpp"
+#include "topple/output/record_fields.hpp"
 #include "topple/output/write.hpp"
 #include "topple/motion/motion_set.hpp"
 #include "topple/motion/rotd.hpp"
@@ -63,20 +64,15 @@ std::vector<std::optional<int>> channels_of(const InfoOptions& o, const MotionOp
   return list;
 }
 
-/// One component as JSON (the object `topple info FILE --json` prints): the record's metadata, then its measures
-/// from the library's field table (kIntensityFields, which topple.intensity returns too).
+/// One component as JSON (the object `topple info FILE --json` prints): the record's metadata (kRecordMetadataFields),
+/// then its measures from the library's field table (kIntensityFields, which topple.intensity returns too).
 nlohmann::ordered_json component_json(const GroundMotion& motion, const IntensityMeasures& all, const std::string& file,
                                       double g) {
-  const auto& meta = motion.metadata();
   nlohmann::ordered_json out;
-  out["file"] = file;
-  out["format"] = meta.format;
-  out["event"] = meta.event;
-  out["station"] = meta.station;
-  out["component"] = meta.component;
-  out["azimuth_deg"] = meta.azimuth_deg ? nlohmann::ordered_json(*meta.azimuth_deg) : nlohmann::ordered_json(nullptr);
-  out["vertical"] = meta.vertical;
-  out["units_as_read"] = meta.units_as_read;
+  out["file"] = file;  // the path as typed: it stands for the table's source_file
+  for (const Field<RecordMetadata>& field : kRecordMetadataFields) {
+    if (std::string_view(field.name) != "source_file") out[field.name] = io::field_json(field.get(motion.metadata()));
+  }
   out.update(io::fields_json(kIntensityFields, IntensityOutcome{motion, all, g}));
   return out;
 }
@@ -165,7 +161,7 @@ void run_info_set(const InfoOptions& o, const MotionOptions& base) {
   }
   const MotionSet set = MotionSet::make(h1, &h2, azimuths, motions.size() == 3 ? &motions[2] : nullptr);
   const std::vector<double> periods = rotd_periods_s();
-  const RotDMeasures rotd = rotd_measures(set, periods, 0.05);
+  const RotDMeasures rotd = rotd_measures(set, periods, kDefaultDampingRatio);
   std::vector<IntensityMeasures> measures;
   for (const GroundMotion& m : motions) {
     measures.push_back(intensity_measures(m, g));
@@ -178,10 +174,10 @@ void run_info_set(const InfoOptions& o, const MotionOptions& base) {
     // Every component on the set's grid, each with its ground velocity, displacement and PSA on Tp's periods
     // (spectra.hpp), and the pair's RotD50 / RotD100 PSA on the same periods.
     const std::vector<double> plot_periods = tp_periods_s();
-    const RotDMeasures plot_rotd = rotd_measures(set, plot_periods, 0.05);
+    const RotDMeasures plot_rotd = rotd_measures(set, plot_periods, kDefaultDampingRatio);
     std::vector<plot::ComponentRecord> components;
     const auto add = [&](std::string label, const GroundMotion& m) {
-      components.push_back({std::move(label), &m, integrate_ground(m), response_spectrum(m, plot_periods, 0.05)});
+      components.push_back({std::move(label), &m, integrate_ground(m), response_spectrum(m, plot_periods, kDefaultDampingRatio)});
     };
     add(azimuths ? fmt::format("H1 ({:g} deg)", azimuths->first_deg) : "H1", set.first());
     add(azimuths ? fmt::format("H2 ({:g} deg)", azimuths->second_deg) : "H2", set.second());
@@ -301,7 +297,7 @@ void add_info_command(CLI::App& app) {
       const std::string title = fmt::format("{}{}: PGA {:.3g} g, PGV {:.3g} m/s, PGD {:.3g} m", name,
                                             meta.component.empty() ? "" : " " + meta.component, im.pga_m_s2 / g,
                                             im.pgv_m_s, im.pgd_m);
-      plot::render(plot::record_figure(motion, integrate_ground(motion), response_spectrum(motion, periods, 0.05),
+      plot::render(plot::record_figure(motion, integrate_ground(motion), response_spectrum(motion, periods, kDefaultDampingRatio),
                                        marks, g, title),
                    *plot_path);
     }

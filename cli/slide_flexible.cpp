@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "topple/core/error.hpp"
+#include "topple/motion/spectra.hpp"
 #include "topple/solvers/flexible.hpp"
 #include "topple/output/flexible_json.hpp"
 #include "topple/output/plot.hpp"
@@ -39,7 +40,7 @@ double parse_ratio(const std::string& text, const std::string& field) {
 SupportOscillator support_from_options(const std::string& support_freq, const std::string& support_damping,
                                        double mass_ratio) {
   return SupportOscillator::make(parse_frequency_hz(support_freq, "--support-freq"),
-                                 support_damping.empty() ? 0.05 : parse_ratio(support_damping, "--support-damping"),
+                                 support_damping.empty() ? kDefaultDampingRatio : parse_ratio(support_damping, "--support-damping"),
                                  mass_ratio);
 }
 

@@ -95,8 +95,9 @@ g_m_s2 : float
     The g the motion was built or read with, m/s^2; operations (scaled, inverted ...) keep it.
 pga_time_s : float
     Time of the peak, s.
-metadata : dict of str
-    format, source_file, event, station, component, units_as_read.
+metadata : dict
+    format, source_file, event, station, component (str), azimuth_deg (float, None when the file does not state
+    it), vertical (bool), units_as_read (str): the fields of ``topple info --json``.
 name : str
     The source file as given, else the event description (synthetic and pulse motions).
 )";

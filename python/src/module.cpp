@@ -47,6 +47,8 @@
 #include "topple/inversion/inversion.hpp"
 #include "topple/motion/motion_set.hpp"
 #include "topple/fragility/object_spectra.hpp"
+#include "topple/output/fragility_output.hpp"
+#include "topple/output/record_fields.hpp"
 #include "topple/region/region.hpp"
 #include "topple/solvers/oriented.hpp"
 #include "topple/output/flexible_json.hpp"
@@ -680,27 +682,44 @@ nb::object run_synth(double pga_g, double freq_hz, double duration_s, std::uint6
 
 // ---- inversion ----
 
-/// The inversion of every site of a survey read by the library (io::read_survey or io::parse_survey: the same
-/// validation and messages as the CLI), optionally with the HTML report written as `topple invert --report` does
-/// (several sites: DIR/site1, DIR/site2 ...).
-nb::object invert_survey(const Survey& survey, int threads, const std::optional<std::string>& report_dir) {
-  std::vector<InversionResult> results;
+/// The inversion of a survey read by the library (io::read_survey or io::parse_survey: the same validation and
+/// messages as the CLI), run by the library's survey entry point as `topple invert` runs it (region.hpp:
+/// invert_survey, one process): every site with objects inverted, then the regional fit of a multi-site survey.
+/// Stations without objects get no result and no report, as in the CLI. Optionally with the HTML report written as
+/// `topple invert --report` does (several sites: DIR/site<N>, N the site's place in the survey, and the regional
+/// page DIR/index.html when there is a regional fit; its warnings as RuntimeWarning).
+nb::object invert_survey_dict(const Survey& survey, int threads, const std::optional<std::string>& report_dir) {
+  const RegionalSettings region_settings;
+  SurveyInversion inv;
+  std::vector<std::string> report_warnings;
+  const bool multi = survey.sites.size() > 1;
   {
     nb::gil_scoped_release release;
-    for (const Site& site : survey.sites) results.push_back(invert_site(site, survey.inversion, InversionOptions{threads}));
+    ensemble::SingleProcess one;
+    inv = invert_survey(survey, InversionOptions{threads}, one, region_settings);
     if (report_dir) {
-      const bool multi = results.size() > 1;
-      for (std::size_t i = 0; i < results.size(); ++i) {
-        const std::filesystem::path dir = multi ? std::filesystem::path(*report_dir) / fmt::format("site{}", i + 1)
-                                                : std::filesystem::path(*report_dir);
+      const std::filesystem::path top(*report_dir);
+      for (std::size_t k = 0; k < inv.results.size(); ++k) {
+        const std::size_t i = inv.survey_index[k];
+        const std::filesystem::path dir = multi ? top / fmt::format("site{}", i + 1) : top;
         std::filesystem::create_directories(dir);
-        write_report(dir, survey, survey.sites[i], results[i]);
+        write_report(dir, survey, survey.sites[i], inv.results[k]);
+      }
+      if (inv.region) {
+        // The regional page at the report's top, linking each site's page (a station without objects has none).
+        std::vector<std::string> pages(survey.sites.size());
+        for (const std::size_t i : inv.survey_index) pages[i] = fmt::format("site{}/index.html", i + 1);
+        report_warnings = write_region_report(top, survey, *inv.region, inv.per_site(survey.sites.size()), pages,
+                                              region_settings);
       }
     }
   }
-  const auto site_dict = [&](std::size_t i) {
-    const InversionResult& r = results[i];
-    nb::dict d = nb::cast<nb::dict>(to_python(io::inversion_json(r, survey.sites[i])));
+  for (const std::string& w : report_warnings) {
+    if (PyErr_WarnEx(PyExc_RuntimeWarning, w.c_str(), 1) != 0) throw nb::python_error();
+  }
+  const auto site_dict = [&](std::size_t k) {
+    const InversionResult& r = inv.results[k];
+    nb::dict d = nb::cast<nb::dict>(to_python(io::inversion_json(r, survey.sites[inv.survey_index[k]])));
     // Beyond the CLI's JSON: the grids, rows = PGA, columns = frequency (for topple.plot.inversion_map).
     const std::size_t rows = r.pga_g.size();
     const std::size_t cols = r.freq_hz.size();
@@ -708,8 +727,8 @@ nb::object invert_survey(const Survey& survey, int threads, const std::optional<
     d["log_likelihood_grid"] = to_numpy_2d(r.log_likelihood, rows, cols);
     // Each object's P(observation | cell), same layout: its 0.5 line is the map's per-object threshold line.
     nb::list objects = nb::cast<nb::list>(d["objects"]);
-    for (std::size_t k = 0; k < r.objects.size() && k < objects.size(); ++k) {
-      objects[k]["probability_grid"] = to_numpy_2d(r.objects[k].probability, rows, cols);
+    for (std::size_t j = 0; j < r.objects.size() && j < objects.size(); ++j) {
+      objects[j]["probability_grid"] = to_numpy_2d(r.objects[j].probability, rows, cols);
     }
     return d;
   };
@@ -718,11 +737,16 @@ nb::object invert_survey(const Survey& survey, int threads, const std::optional<
     if (!survey.warnings.empty()) d["warnings"] = to_python(nlohmann::ordered_json(survey.warnings));
     return d;
   };
-  if (results.size() == 1) return with_warnings(site_dict(0));
+  if (!multi) return with_warnings(site_dict(0));
+  // Several sites, as `topple invert --json`: the sites with objects, the regional fit and its notes.
   nb::dict all;
   nb::list sites;
-  for (std::size_t i = 0; i < results.size(); ++i) sites.append(site_dict(i));
+  for (std::size_t k = 0; k < inv.results.size(); ++k) sites.append(site_dict(k));
   all["sites"] = sites;
+  if (inv.region) {
+    all["region"] = to_python(io::region_json(*inv.region, survey, inv.per_site(survey.sites.size()), region_settings));
+  }
+  if (!inv.region_notes.empty()) all["region_notes"] = to_python(nlohmann::ordered_json(inv.region_notes));
   return with_warnings(all);
 }
 
@@ -743,12 +767,12 @@ Survey survey_from_text(const std::string& text, const std::string& name, const 
 }
 
 nb::object invert_file(const std::string& path, int threads, const std::optional<std::string>& report_dir) {
-  return invert_survey(survey_from_file(path, threads), threads, report_dir);
+  return invert_survey_dict(survey_from_file(path, threads), threads, report_dir);
 }
 
 nb::object invert_text(const std::string& text, const std::string& name, const std::string& base_dir, int threads,
                        const std::optional<std::string>& report_dir) {
-  return invert_survey(survey_from_text(text, name, base_dir, threads), threads, report_dir);
+  return invert_survey_dict(survey_from_text(text, name, base_dir, threads), threads, report_dir);
 }
 
 // ---- the regional inversion ----
@@ -1231,16 +1255,8 @@ void translate_input_error(const std::exception_ptr& p, void* payload) {
   }
 }
 
-}  // namespace
-}  // namespace topple::python
-
-NB_MODULE(_core, m) {
-  using namespace topple;
-  using namespace topple::python;
-  m.doc() = "topple's C++ library (see the topple package for the documented API)";
-  m.attr("STANDARD_GRAVITY") = kStandardGravity;
-  const RockingOptions kRockingDefaults;  // the library's defaults are the Python defaults
-
+/// The Python exception types of InputError and MissingFileError and their translator.
+void bind_errors(nb::module_& m) {
   // The exception type lives as long as the module: it is an attribute of it.
   nb::object input_error =
       nb::steal(PyErr_NewExceptionWithDoc("topple.InputError", doc::input_error, PyExc_ValueError, nullptr));
@@ -1255,7 +1271,10 @@ NB_MODULE(_core, m) {
   // The translator's payload: both types, alive as long as the module (they are its attributes).
   static std::pair<PyObject*, PyObject*> error_types{input_error.ptr(), missing_file_error.ptr()};
   nb::register_exception_translator(translate_input_error, &error_types);
+}
 
+/// GroundMotion, motion sets and RotD.
+void bind_motion(nb::module_& m) {
   // ---- GroundMotion ----
   nb::class_<GroundMotion>(m, "GroundMotion", doc::ground_motion)
       .def("__init__",
@@ -1290,14 +1309,11 @@ NB_MODULE(_core, m) {
       .def_prop_ro("pga_time_s", &GroundMotion::pga_time_s)
       .def_prop_ro("metadata",
                    [](const GroundMotion& g) {
-                     const RecordMetadata& md = g.metadata();
+                     // The fields of `topple info --json`'s record metadata, one table (output/record_fields.hpp).
                      nb::dict d;
-                     d["format"] = md.format;
-                     d["source_file"] = md.source_file;
-                     d["event"] = md.event;
-                     d["station"] = md.station;
-                     d["component"] = md.component;
-                     d["units_as_read"] = md.units_as_read;
+                     for (const Field<RecordMetadata>& field : kRecordMetadataFields) {
+                       d[field.name] = field_to_python(field.get(g.metadata()));
+                     }
                      return d;
                    })
       .def_prop_ro("name", [](const GroundMotion& g) { return motion_name(g); })
@@ -1363,7 +1379,7 @@ NB_MODULE(_core, m) {
              return with_set_fields([&] { return s.rotated(azimuth_deg); });
            },
            "azimuth_deg"_a, doc::rotated)
-      .def("rotd", &rotd_dict, "periods_s"_a = nb::none(), "damping"_a = 0.05, nb::kw_only(),
+      .def("rotd", &rotd_dict, "periods_s"_a = nb::none(), "damping"_a = kDefaultDampingRatio, nb::kw_only(),
            "g"_a = kStandardGravity, doc::motion_set_rotd)
       .def("__repr__", [](const MotionSet& s) {
         const auto& az = s.azimuths();
@@ -1378,8 +1394,11 @@ NB_MODULE(_core, m) {
           return rotd_dict(make_motion_set(first, &second, nullptr, azimuths_deg), periods_s, damping, g);
         },
         "first"_a, "second"_a, nb::kw_only(), "azimuths_deg"_a = nb::none(), "periods_s"_a = nb::none(),
-        "damping"_a = 0.05, "g"_a = kStandardGravity, doc::rotd);
+        "damping"_a = kDefaultDampingRatio, "g"_a = kStandardGravity, doc::rotd);
+}
 
+/// Sliding blocks: 1-D, 2-D, flexible supports.
+void bind_sliding(nb::module_& m) {
   // ---- sliding ----
   // The summary attributes come from the field table (topple/solvers/summary_fields.hpp), as the JSON keys do.
   nb::class_<SlidingRun> sliding_result(m, "SlidingResult", doc::sliding_result);
@@ -1450,11 +1469,15 @@ NB_MODULE(_core, m) {
         "azimuths_deg"_a = std::vector<double>{90.0, 0.0}, "vertical"_a = nb::none(), "g"_a = kStandardGravity,
         doc::slide_spectrum_2d);
   m.def("slide_flexible", &run_slide_flexible, "motion"_a, nb::kw_only(), "mu"_a, "mode"_a = "two-way",
-        "support_freq_hz"_a = nb::none(), "support_damping"_a = 0.05, "mass_ratio"_a = 0.0, "height_m"_a = nb::none(),
+        "support_freq_hz"_a = nb::none(), "support_damping"_a = kDefaultDampingRatio, "mass_ratio"_a = 0.0, "height_m"_a = nb::none(),
         "vs_slope_m_s"_a = nb::none(), "vs_base_m_s"_a = nb::none(), "damping"_a = nb::none(),
         "reference_strain"_a = nb::none(), "coupled"_a = false, "vertical"_a = nb::none(), "g"_a = kStandardGravity,
         doc::slide_flexible);
+}
 
+/// Rocking bodies and rocking runs.
+void bind_rocking(nb::module_& m) {
+  const RockingOptions kRockingDefaults;  // the library's defaults are the Python defaults
   // ---- rocking ----
   nb::class_<RockingBody>(m, "RockingBody", doc::rocking_body)
       .def_prop_ro("shape", [](const RockingBody& b) { return std::string(shape_name(b.shape)); })
@@ -1544,6 +1567,11 @@ NB_MODULE(_core, m) {
         "g"_a = kStandardGravity, "method"_a = std::string(rocking_method_name(kRockingDefaults.method)),
         "rel_tol"_a = kRockingDefaults.rel_tol, "rk4_substeps"_a = kRockingDefaults.rk4_substeps,
         "max_run_out_s"_a = kRockingDefaults.max_run_out_s, "vertical"_a = nb::none(), "history"_a = true, doc::rock);
+}
+
+/// The coupled slide-rock runs and oriented rocking objects.
+void bind_slide_rock(nb::module_& m) {
+  const RockingOptions kRockingDefaults;  // the library's defaults are the Python defaults
   nb::class_<SlideRockRun> slide_rock_result(m, "SlideRockResult", doc::slide_rock_result);
   for (const Field<SlideRockOutcome>& field : kSlideRockFields) {
     slide_rock_result.def_prop_ro(field.name, [get = field.get](const SlideRockRun& r) {
@@ -1608,7 +1636,10 @@ NB_MODULE(_core, m) {
         "g"_a = kStandardGravity, "method"_a = std::string(rocking_method_name(kRockingDefaults.method)),
         "rel_tol"_a = kRockingDefaults.rel_tol, "rk4_substeps"_a = kRockingDefaults.rk4_substeps,
         "max_run_out_s"_a = kRockingDefaults.max_run_out_s, doc::rock_oriented);
+}
 
+/// Synthetic motions, intensity measures, the survey and regional inversions.
+void bind_synthesis_and_inversion(nb::module_& m) {
   // ---- synthesis, intensity, inversion ----
   m.def("synth", &run_synth, nb::kw_only(), "pga_g"_a, "freq_hz"_a, "duration_s"_a, "seed"_a = 0, "dt_s"_a = 0.01,
         "model"_a = "clough-penzien", "envelope"_a = "saragoni-hart", "zeta_g"_a = 0.3, "g"_a = kStandardGravity,
@@ -1625,9 +1656,13 @@ NB_MODULE(_core, m) {
   m.def("_invert_region_file", &invert_region_file, "path"_a, nb::kw_only(), "threads"_a = 0, doc::invert_region_file);
   m.def("_invert_region_text", &invert_region_text, "text"_a, nb::kw_only(), "name"_a, "base_dir"_a, "threads"_a = 0,
         doc::invert_region_text);
+}
 
+/// Spectra, object spectra, fragility, sweeps.
+void bind_spectra_and_fragility(nb::module_& m) {
+  const RockingOptions kRockingDefaults;  // the library's defaults are the Python defaults
   // ---- spectra, object spectra, fragility, sweeps ----
-  m.def("response_spectrum", &response_spectrum_dict, "motion"_a, "periods_s"_a = nb::none(), "damping"_a = 0.05,
+  m.def("response_spectrum", &response_spectrum_dict, "motion"_a, "periods_s"_a = nb::none(), "damping"_a = kDefaultDampingRatio,
         nb::kw_only(), "g"_a = kStandardGravity, doc::response_spectrum);
   m.def("fourier_spectrum", &fourier_spectrum_dict, "motion"_a, "smoothing_b"_a = 40.0, nb::kw_only(),
         "centre_hz"_a = nb::none(), "fft_length"_a = nb::none(), doc::fourier_spectrum);
@@ -1637,15 +1672,18 @@ NB_MODULE(_core, m) {
         "rk4_substeps"_a = kRockingDefaults.rk4_substeps, "max_run_out_s"_a = kRockingDefaults.max_run_out_s,
         "threads"_a = 0, doc::overturning_map);
 
-  nb::class_<LognormalFragilityFit>(m, "FragilityFit", doc::fragility_fit_class)
-      .def_ro("theta", &LognormalFragilityFit::theta)
-      .def_ro("beta", &LognormalFragilityFit::beta)
-      .def_ro("log_likelihood", &LognormalFragilityFit::log_likelihood)
-      .def_ro("se_ln_theta", &LognormalFragilityFit::se_ln_theta)
-      .def_ro("se_beta", &LognormalFragilityFit::se_beta)
-      .def_ro("cov_ln_theta_beta", &LognormalFragilityFit::cov_ln_theta_beta)
+  // The fit's attributes come from the field table of `topple fragility --json`'s "fit" (output/fragility_output.hpp).
+  // The fit here is already in the IM's display unit (fit_in_unit), hence the factor 1; a bare fit (fragility_fit)
+  // has no unit, so theta_unit is the dict's im_unit instead of an attribute.
+  nb::class_<LognormalFragilityFit> fragility_fit(m, "FragilityFit", doc::fragility_fit_class);
+  for (const Field<FragilityFitShown>& field : kFragilityFitFields) {
+    if (std::string_view(field.name) == "theta_unit") continue;
+    fragility_fit.def_prop_ro(field.name, [get = field.get](const LognormalFragilityFit& f) {
+      return field_to_python(get(FragilityFitShown{f, 1.0, ""}));
+    });
+  }
+  fragility_fit
       .def_ro("iterations", &LognormalFragilityFit::iterations)
-      .def_ro("beta_at_bound", &LognormalFragilityFit::beta_at_bound)
       .def("probability",
            [](const LognormalFragilityFit& f, nb::handle im) {
              return map_im(im, [&](double x) { return f.probability(x); });
@@ -1683,4 +1721,47 @@ NB_MODULE(_core, m) {
         "rk4_substeps"_a = kRockingDefaults.rk4_substeps, "max_run_out_s"_a = kRockingDefaults.max_run_out_s,
         "threads"_a = 0, "bearing_deg"_a = nb::none(), "bearing_seed"_a = nb::none(), doc::fragility);
   m.def("_sweep", &sweep_dict, "path"_a, nb::kw_only(), "threads"_a = 0, doc::sweep);
+}
+
+/// The names of the library's field tables by the Python object they become (`_core._field_tables()`): a class
+/// whose attributes are a table's fields, or a dict whose keys are ("intensity": topple.intensity,
+/// "GroundMotion.metadata"). python/tests/test_docstrings.py checks each against the classes, their docstrings and
+/// the stubs, so that neither can drift from the tables.
+template <class Result, std::size_t N>
+nb::list field_names(const std::array<Field<Result>, N>& table) {
+  nb::list names;
+  for (const Field<Result>& field : table) names.append(field.name);
+  return names;
+}
+
+void bind_field_tables(nb::module_& m) {
+  m.def("_field_tables", [] {
+    nb::dict d;
+    d["SlidingResult"] = field_names(kSlidingFields);
+    d["Sliding2dResult"] = field_names(kSliding2dFields);
+    d["RockingResult"] = field_names(kRockingFields);
+    d["SlideRockResult"] = field_names(kSlideRockFields);
+    d["FragilityFit"] = field_names(kFragilityFitFields);
+    d["intensity"] = field_names(kIntensityFields);
+    d["GroundMotion.metadata"] = field_names(kRecordMetadataFields);
+    return d;
+  });
+}
+
+}  // namespace
+}  // namespace topple::python
+
+NB_MODULE(_core, m) {
+  using namespace topple;
+  using namespace topple::python;
+  m.doc() = "topple's C++ library (see the topple package for the documented API)";
+  m.attr("STANDARD_GRAVITY") = kStandardGravity;
+  bind_errors(m);
+  bind_motion(m);
+  bind_sliding(m);
+  bind_rocking(m);
+  bind_slide_rock(m);
+  bind_synthesis_and_inversion(m);
+  bind_spectra_and_fragility(m);
+  bind_field_tables(m);
 }

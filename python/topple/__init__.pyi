@@ -66,8 +66,8 @@ class GroundMotion:
     @property
     def pga_time_s(self) -> float: ...
     @property
-    def metadata(self) -> dict[str, str]:
-        """format, source_file, event, station, component, units_as_read."""
+    def metadata(self) -> dict[str, Any]:
+        """format, source_file, event, station, component, azimuth_deg, vertical, units_as_read."""
     @property
     def name(self) -> str:
         """The source file as given, else the event description (synthetic and pulse motions)."""

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "topple/core/error.hpp"
+#include "topple/core/enum_names.hpp"
 
 namespace topple {
 RockingBody RockingBody::block(double width_m, double height_m) {
@@ -60,14 +61,13 @@ double RockingBody::alpha_rad() const noexcept { return std::atan2(a_m, h_m); }
 double RockingBody::R_m() const noexcept { return std::hypot(a_m, h_m); }
 double RockingBody::p_rad_s(double g_m_s2) const noexcept { return std::sqrt(g_m_s2 * R_m() / D_m2); }
 
-std::string_view shape_name(RockingBody::Shape shape) {
-  switch (shape) {
-    case RockingBody::Shape::block: return "block";
-    case RockingBody::Shape::cylinder: return "cylinder";
-    case RockingBody::Shape::general: return "general";
-  }
-  return "unknown";
-}
+constexpr std::array<EnumName<RockingBody::Shape>, 3> kShapeNames{{
+    {RockingBody::Shape::block, "block"},
+    {RockingBody::Shape::cylinder, "cylinder"},
+    {RockingBody::Shape::general, "general"},
+}};
+
+std::string_view shape_name(RockingBody::Shape shape) { return enum_name(kShapeNames, shape); }
 
 RockingBody::Shape parse_shape(std::string_view name, const std::string& field) {
   if (name == "block") return RockingBody::Shape::block;

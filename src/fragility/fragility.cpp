@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include <boost/math/distributions/normal.hpp>
 #include <fmt/format.h>
@@ -18,6 +19,7 @@
 #include "topple/solvers/sliding2d.hpp"
 #include "topple/ensemble/sweep.hpp"
 #include "topple/motion/synthesis.hpp"
+#include "topple/core/enum_names.hpp"
 
 namespace topple {
 
@@ -29,15 +31,14 @@ IntensityMeasure parse_intensity_measure(std::string_view name, const std::strin
   throw parameter_error(field, fmt::format("unknown intensity measure '{}' (known: pga, pgv, pgd, cav)", name));
 }
 
-std::string_view intensity_measure_name(IntensityMeasure im) {
-  switch (im) {
-    case IntensityMeasure::pga: return "pga";
-    case IntensityMeasure::pgv: return "pgv";
-    case IntensityMeasure::pgd: return "pgd";
-    case IntensityMeasure::cav: return "cav";
-  }
-  return "?";
-}
+constexpr std::array<EnumName<IntensityMeasure>, 4> kIntensityMeasureNames{{
+    {IntensityMeasure::pga, "pga"},
+    {IntensityMeasure::pgv, "pgv"},
+    {IntensityMeasure::pgd, "pgd"},
+    {IntensityMeasure::cav, "cav"},
+}};
+
+std::string_view intensity_measure_name(IntensityMeasure im) { return enum_name(kIntensityMeasureNames, im); }
 
 std::string_view intensity_measure_unit(IntensityMeasure im) {
   switch (im) {
@@ -161,112 +162,90 @@ void check_data(const FragilityData& d) {
   if (failed == total) throw parameter_error("failures", "failures at every trial: the fragility cannot be fitted");
 }
 
-}  // namespace
-
-double fragility_log_likelihood(const FragilityData& data, double theta, double beta) {
-  check_data(data);
+/// The likelihood of the counts (ln x per level, trials and failures as doubles).
+Likelihood likelihood_of(const FragilityData& data) {
   Likelihood L;
   for (std::size_t j = 0; j < data.im.size(); ++j) {
     L.ln_x.push_back(std::log(data.im[j]));
     L.n.push_back(data.trials[j]);
     L.z.push_back(data.failures[j]);
   }
-  return L.value(std::log(theta), beta);
+  return L;
 }
 
-double LognormalFragilityFit::probability(double im) const {
-  if (!(im > 0.0)) return 0.0;
-  return normal_cdf(std::log(im / theta) / beta);  // Phi(ln(x / theta) / beta), Baker (2015) eq 1
-}
-
-std::pair<double, double> LognormalFragilityFit::band(double im, double level) const {
-  if (!(im > 0.0)) return {0.0, 0.0};
-  const double u = std::log(im / theta) / beta;
-  // var u = g^T C g, g = (-1/beta, -u/beta) (delta method; header)
-  const double var = (se_ln_theta * se_ln_theta + 2.0 * u * cov_ln_theta_beta + u * u * se_beta * se_beta) /
-                     (beta * beta);
-  const double z = boost::math::quantile(kStandardNormal, 0.5 * (1.0 + level));  // z = Phi^-1((1 + c) / 2)
-  const double s = std::sqrt(std::max(0.0, var));
-  return {normal_cdf(u - z * s), normal_cdf(u + z * s)};
-}
-
-LognormalFragilityFit fit_lognormal_fragility(const FragilityData& data) {
-  check_data(data);
-  Likelihood L;
-  for (std::size_t j = 0; j < data.im.size(); ++j) {
-    L.ln_x.push_back(std::log(data.im[j]));
-    L.n.push_back(data.trials[j]);
-    L.z.push_back(data.failures[j]);
-  }
-  const double lb_min = std::log(kMinimumBeta);
-
-  // Perfectly separated data (every level all-safe or all-fail, the safe ones below): ln L -> 0 as beta -> 0 for any
-  // theta between the last safe and the first failing level. Report beta at its bound and theta at the geometric
-  // middle of that interval.
-  {
-    double last_safe = -std::numeric_limits<double>::infinity();
-    double first_fail = std::numeric_limits<double>::infinity();
-    bool separated = true;
-    for (std::size_t j = 0; j < L.ln_x.size() && separated; ++j) {
-      if (L.z[j] == 0.0) {
-        last_safe = std::max(last_safe, L.ln_x[j]);
-      } else if (L.z[j] == L.n[j]) {
-        first_fail = std::min(first_fail, L.ln_x[j]);
-      } else {
-        separated = false;
-      }
-    }
-    if (separated && last_safe < first_fail) {
-      LognormalFragilityFit fit;
-      fit.theta = std::exp(0.5 * (last_safe + first_fail));
-      fit.beta = kMinimumBeta;
-      fit.beta_at_bound = true;
-      fit.log_likelihood = L.value(std::log(fit.theta), fit.beta);
-      return fit;
+/// Perfectly separated data (every level all-safe or all-fail, the safe ones below): ln L -> 0 as beta -> 0 for any
+/// theta between the last safe and the first failing level. Report beta at its bound and theta at the geometric
+/// middle of that interval (none when the data are not separated).
+std::optional<LognormalFragilityFit> separated_fit(const Likelihood& L) {
+  double last_safe = -std::numeric_limits<double>::infinity();
+  double first_fail = std::numeric_limits<double>::infinity();
+  bool separated = true;
+  for (std::size_t j = 0; j < L.ln_x.size() && separated; ++j) {
+    if (L.z[j] == 0.0) {
+      last_safe = std::max(last_safe, L.ln_x[j]);
+    } else if (L.z[j] == L.n[j]) {
+      first_fail = std::min(first_fail, L.ln_x[j]);
+    } else {
+      separated = false;
     }
   }
+  if (separated && last_safe < first_fail) {
+    LognormalFragilityFit fit;
+    fit.theta = std::exp(0.5 * (last_safe + first_fail));
+    fit.beta = kMinimumBeta;
+    fit.beta_at_bound = true;
+    fit.log_likelihood = L.value(std::log(fit.theta), fit.beta);
+    return fit;
+  }
+  return std::nullopt;
+}
 
-  // Start: probit least squares ln x = mu + beta u through the levels with 0 < z/n < 1.
+/// Start: probit least squares ln x = mu + beta u through the levels with 0 < z/n < 1. Returns {mu0, beta0};
+/// without two such levels, the middle of the IM range (or the one level) and beta = 0.4.
+std::array<double, 2> probit_start(const Likelihood& L) {
   double mu0 = 0.0;
   double beta0 = 0.4;
-  {
-    std::vector<double> us;
-    std::vector<double> xs;
-    for (std::size_t j = 0; j < L.ln_x.size(); ++j) {
-      if (L.z[j] > 0.0 && L.z[j] < L.n[j]) {
-        us.push_back(boost::math::quantile(kStandardNormal, L.z[j] / L.n[j]));
-        xs.push_back(L.ln_x[j]);
-      }
-    }
-    const auto [lo, hi] = std::minmax_element(L.ln_x.begin(), L.ln_x.end());
-    mu0 = 0.5 * (*lo + *hi);
-    if (us.size() >= 2) {
-      double mu_u = 0.0;
-      double mu_x = 0.0;
-      for (std::size_t i = 0; i < us.size(); ++i) {
-        mu_u += us[i];
-        mu_x += xs[i];
-      }
-      mu_u /= static_cast<double>(us.size());
-      mu_x /= static_cast<double>(us.size());
-      double sxu = 0.0;
-      double suu = 0.0;
-      for (std::size_t i = 0; i < us.size(); ++i) {
-        sxu += (us[i] - mu_u) * (xs[i] - mu_x);
-        suu += (us[i] - mu_u) * (us[i] - mu_u);
-      }
-      if (suu > 0.0 && sxu > 0.0) {
-        beta0 = std::clamp(sxu / suu, 0.05, 3.0);
-        mu0 = mu_x - beta0 * mu_u;
-      } else {
-        mu0 = mu_x;
-      }
-    } else if (us.size() == 1) {
-      mu0 = xs.front();
+  std::vector<double> us;
+  std::vector<double> xs;
+  for (std::size_t j = 0; j < L.ln_x.size(); ++j) {
+    if (L.z[j] > 0.0 && L.z[j] < L.n[j]) {
+      us.push_back(boost::math::quantile(kStandardNormal, L.z[j] / L.n[j]));
+      xs.push_back(L.ln_x[j]);
     }
   }
+  const auto [lo, hi] = std::minmax_element(L.ln_x.begin(), L.ln_x.end());
+  mu0 = 0.5 * (*lo + *hi);
+  if (us.size() >= 2) {
+    double mu_u = 0.0;
+    double mu_x = 0.0;
+    for (std::size_t i = 0; i < us.size(); ++i) {
+      mu_u += us[i];
+      mu_x += xs[i];
+    }
+    mu_u /= static_cast<double>(us.size());
+    mu_x /= static_cast<double>(us.size());
+    double sxu = 0.0;
+    double suu = 0.0;
+    for (std::size_t i = 0; i < us.size(); ++i) {
+      sxu += (us[i] - mu_u) * (xs[i] - mu_x);
+      suu += (us[i] - mu_u) * (us[i] - mu_u);
+    }
+    if (suu > 0.0 && sxu > 0.0) {
+      beta0 = std::clamp(sxu / suu, 0.05, 3.0);
+      mu0 = mu_x - beta0 * mu_u;
+    } else {
+      mu0 = mu_x;
+    }
+  } else if (us.size() == 1) {
+    mu0 = xs.front();
+  }
+  return {mu0, beta0};
+}
 
-  // Nelder-Mead on (mu, ln beta), minimising -ln L; ln beta is clamped at its lower bound.
+/// Nelder-Mead on (mu, ln beta), minimising -ln L; ln beta is clamped at its lower bound. Returns the best vertex
+/// (mu, ln beta) and sets `iterations`.
+std::array<double, 2> nelder_mead(const Likelihood& L, double mu0, double beta0, int& iterations) {
+  const double lb_min = std::log(kMinimumBeta);
   const auto f = [&](const std::array<double, 2>& q) {
     return -L.value(q[0], std::exp(std::max(q[1], lb_min)));
   };
@@ -312,48 +291,83 @@ LognormalFragilityFit fit_lognormal_fragility(const FragilityData& data) {
       }
     }
   }
-  const std::size_t best = static_cast<std::size_t>(std::min_element(fs.begin(), fs.end()) - fs.begin());
-  double mu = s[best][0];
-  double beta = std::exp(std::max(s[best][1], lb_min));
-  const bool at_bound = s[best][1] <= lb_min + 1e-6;
+  iterations = it;
+  return s[static_cast<std::size_t>(std::min_element(fs.begin(), fs.end()) - fs.begin())];
+}
 
-  LognormalFragilityFit fit;
-  fit.iterations = it;
-  if (!at_bound) {
-    // Newton polish in (mu, beta) on the analytic gradient, with step halving (at most 20 steps).
-    for (int k = 0; k < 20; ++k) {
-      const auto g = L.gradient(mu, beta);
-      const auto H = L.hessian(mu, beta);
-      const double det = H[0] * H[3] - H[1] * H[2];
-      if (!(det > 0.0) || !(H[0] < 0.0)) break;  // not concave here: keep the Nelder-Mead point
-      double dmu = -(H[3] * g[0] - H[1] * g[1]) / det;
-      double dbeta = -(-H[2] * g[0] + H[0] * g[1]) / det;
-      const double f0 = L.value(mu, beta);
-      double t = 1.0;
-      while (t > 1e-4 && (!(beta + t * dbeta > kMinimumBeta) || L.value(mu + t * dmu, beta + t * dbeta) < f0)) t *= 0.5;
-      if (t <= 1e-4) break;
-      mu += t * dmu;
-      beta += t * dbeta;
-      if (std::abs(t * dmu) < 1e-12 * (1.0 + std::abs(mu)) && std::abs(t * dbeta) < 1e-12 * beta) break;
-    }
+/// Newton polish in (mu, beta) on the analytic gradient, with step halving (at most 20 steps).
+void newton_polish(const Likelihood& L, double& mu, double& beta) {
+  for (int k = 0; k < 20; ++k) {
+    const auto g = L.gradient(mu, beta);
+    const auto H = L.hessian(mu, beta);
+    const double det = H[0] * H[3] - H[1] * H[2];
+    if (!(det > 0.0) || !(H[0] < 0.0)) break;  // not concave here: keep the Nelder-Mead point
+    double dmu = -(H[3] * g[0] - H[1] * g[1]) / det;
+    double dbeta = -(-H[2] * g[0] + H[0] * g[1]) / det;
+    const double f0 = L.value(mu, beta);
+    double t = 1.0;
+    while (t > 1e-4 && (!(beta + t * dbeta > kMinimumBeta) || L.value(mu + t * dmu, beta + t * dbeta) < f0)) t *= 0.5;
+    if (t <= 1e-4) break;
+    mu += t * dmu;
+    beta += t * dbeta;
+    if (std::abs(t * dmu) < 1e-12 * (1.0 + std::abs(mu)) && std::abs(t * dbeta) < 1e-12 * beta) break;
   }
+}
+
+/// Observed information I = -H; covariance C = I^-1.
+void set_standard_errors(const Likelihood& L, double mu, double beta, LognormalFragilityFit& fit) {
+  const auto H = L.hessian(mu, beta);
+  const double i00 = -H[0];
+  const double i01 = -H[1];
+  const double i11 = -H[3];
+  const double det = i00 * i11 - i01 * i01;
+  if (det > 0.0 && i00 > 0.0) {
+    fit.se_ln_theta = std::sqrt(i11 / det);
+    fit.se_beta = std::sqrt(i00 / det);
+    fit.cov_ln_theta_beta = -i01 / det;
+  }
+}
+
+}  // namespace
+
+double fragility_log_likelihood(const FragilityData& data, double theta, double beta) {
+  check_data(data);
+  return likelihood_of(data).value(std::log(theta), beta);
+}
+
+double LognormalFragilityFit::probability(double im) const {
+  if (!(im > 0.0)) return 0.0;
+  return normal_cdf(std::log(im / theta) / beta);  // Phi(ln(x / theta) / beta), Baker (2015) eq 1
+}
+
+std::pair<double, double> LognormalFragilityFit::band(double im, double level) const {
+  if (!(im > 0.0)) return {0.0, 0.0};
+  const double u = std::log(im / theta) / beta;
+  // var u = g^T C g, g = (-1/beta, -u/beta) (delta method; header)
+  const double var = (se_ln_theta * se_ln_theta + 2.0 * u * cov_ln_theta_beta + u * u * se_beta * se_beta) /
+                     (beta * beta);
+  const double z = boost::math::quantile(kStandardNormal, 0.5 * (1.0 + level));  // z = Phi^-1((1 + c) / 2)
+  const double s = std::sqrt(std::max(0.0, var));
+  return {normal_cdf(u - z * s), normal_cdf(u + z * s)};
+}
+
+LognormalFragilityFit fit_lognormal_fragility(const FragilityData& data) {
+  check_data(data);
+  const Likelihood L = likelihood_of(data);
+  if (std::optional<LognormalFragilityFit> fit = separated_fit(L)) return *fit;
+  const auto [mu0, beta0] = probit_start(L);
+  LognormalFragilityFit fit;
+  const std::array<double, 2> best = nelder_mead(L, mu0, beta0, fit.iterations);
+  const double lb_min = std::log(kMinimumBeta);
+  double mu = best[0];
+  double beta = std::exp(std::max(best[1], lb_min));
+  const bool at_bound = best[1] <= lb_min + 1e-6;
+  if (!at_bound) newton_polish(L, mu, beta);
   fit.theta = std::exp(mu);
   fit.beta = beta;
   fit.log_likelihood = L.value(mu, beta);
   fit.beta_at_bound = at_bound;
-  if (!at_bound) {
-    // Observed information I = -H; covariance C = I^-1.
-    const auto H = L.hessian(mu, beta);
-    const double i00 = -H[0];
-    const double i01 = -H[1];
-    const double i11 = -H[3];
-    const double det = i00 * i11 - i01 * i01;
-    if (det > 0.0 && i00 > 0.0) {
-      fit.se_ln_theta = std::sqrt(i11 / det);
-      fit.se_beta = std::sqrt(i00 / det);
-      fit.cov_ln_theta_beta = -i01 / det;
-    }
-  }
+  if (!at_bound) set_standard_errors(L, mu, beta, fit);
   return fit;
 }
 

@@ -16,22 +16,22 @@
 #include "io/text_lines.hpp"
 #include "topple/core/error.hpp"
 #include "topple/core/units.hpp"
+#include "topple/core/enum_names.hpp"
 
 namespace topple::io {
 
-std::string_view format_name(Format format) {
-  switch (format) {
-    case Format::automatic: return "auto";
-    case Format::peer_at2: return "peer-at2";
-    case Format::cosmos_v2: return "cosmos-v2";
-    case Format::csmip_v2: return "csmip-v2";
-    case Format::knet: return "knet";
-    case Format::usgs_smc: return "usgs-smc";
-    case Format::esm: return "esm";
-    case Format::plain: return "plain";
-  }
-  return "unknown";
-}
+constexpr std::array<EnumName<Format>, 8> kFormatNames{{
+    {Format::automatic, "auto"},
+    {Format::peer_at2, "peer-at2"},
+    {Format::cosmos_v2, "cosmos-v2"},
+    {Format::csmip_v2, "csmip-v2"},
+    {Format::knet, "knet"},
+    {Format::usgs_smc, "usgs-smc"},
+    {Format::esm, "esm"},
+    {Format::plain, "plain"},
+}};
+
+std::string_view format_name(Format format) { return enum_name(kFormatNames, format); }
 
 Format parse_format_name(std::string_view name, const std::string& field) {
   for (Format f : {Format::automatic, Format::peer_at2, Format::cosmos_v2, Format::csmip_v2, Format::knet,

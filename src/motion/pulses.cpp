@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "topple/core/error.hpp"
+#include "topple/core/enum_names.hpp"
 
 namespace topple {
 namespace {
@@ -51,19 +52,18 @@ PulseKind parse_pulse_kind(std::string_view name, const std::string& field) {
                                            "tri-train, trap-train)", name));
 }
 
-std::string_view pulse_kind_name(PulseKind kind) {
-  switch (kind) {
-    case PulseKind::rectangular: return "rect";
-    case PulseKind::triangular: return "tri";
-    case PulseKind::double_triangular: return "double-tri";
-    case PulseKind::sine: return "sine";
-    case PulseKind::cosine: return "cosine";
-    case PulseKind::ricker: return "ricker";
-    case PulseKind::triangular_train: return "tri-train";
-    case PulseKind::trapezoidal_train: return "trap-train";
-  }
-  return "unknown";
-}
+constexpr std::array<EnumName<PulseKind>, 8> kPulseKindNames{{
+    {PulseKind::rectangular, "rect"},
+    {PulseKind::triangular, "tri"},
+    {PulseKind::double_triangular, "double-tri"},
+    {PulseKind::sine, "sine"},
+    {PulseKind::cosine, "cosine"},
+    {PulseKind::ricker, "ricker"},
+    {PulseKind::triangular_train, "tri-train"},
+    {PulseKind::trapezoidal_train, "trap-train"},
+}};
+
+std::string_view pulse_kind_name(PulseKind kind) { return enum_name(kPulseKindNames, kind); }
 
 GroundMotion make_pulse(const PulseSpec& spec) {
   const double amp = spec.amplitude_m_s2;

@@ -16,6 +16,7 @@
 #include "topple/core/error.hpp"
 #include "topple/motion/rotd.hpp"
 #include "topple/core/units.hpp"
+#include "topple/core/enum_names.hpp"
 
 namespace topple {
 
@@ -134,9 +135,12 @@ FilterModel parse_filter_model(std::string_view name, const std::string& field) 
   throw parameter_error(field, fmt::format("unknown filter model '{}' (known: kanai-tajimi, clough-penzien)", name));
 }
 
-std::string_view filter_model_name(FilterModel model) {
-  return model == FilterModel::kanai_tajimi ? "kanai-tajimi" : "clough-penzien";
-}
+constexpr std::array<EnumName<FilterModel>, 2> kFilterModelNames{{
+    {FilterModel::kanai_tajimi, "kanai-tajimi"},
+    {FilterModel::clough_penzien, "clough-penzien"},
+}};
+
+std::string_view filter_model_name(FilterModel model) { return enum_name(kFilterModelNames, model); }
 
 EnvelopeKind parse_envelope_kind(std::string_view name, const std::string& field) {
   if (name == "saragoni-hart") return EnvelopeKind::saragoni_hart;
@@ -144,9 +148,12 @@ EnvelopeKind parse_envelope_kind(std::string_view name, const std::string& field
   throw parameter_error(field, fmt::format("unknown envelope '{}' (known: saragoni-hart, jennings)", name));
 }
 
-std::string_view envelope_kind_name(EnvelopeKind kind) {
-  return kind == EnvelopeKind::saragoni_hart ? "saragoni-hart" : "jennings";
-}
+constexpr std::array<EnumName<EnvelopeKind>, 2> kEnvelopeKindNames{{
+    {EnvelopeKind::saragoni_hart, "saragoni-hart"},
+    {EnvelopeKind::jennings, "jennings"},
+}};
+
+std::string_view envelope_kind_name(EnvelopeKind kind) { return enum_name(kEnvelopeKindNames, kind); }
 
 // ---- Calibration -------------------------------------------------------------------------------------------------
 namespace {

@@ -9,12 +9,16 @@
 #include "topple/core/error.hpp"
 #include "topple/solvers/rocking.hpp"
 #include "topple/solvers/sliding.hpp"
+#include "topple/core/enum_names.hpp"
 
 namespace topple {
 
-std::string_view sliding_mode_name(SlidingMode mode) {
-  return mode == SlidingMode::one_way ? "one-way" : "two-way";
-}
+constexpr std::array<EnumName<SlidingMode>, 2> kSlidingModeNames{{
+    {SlidingMode::two_way, "two-way"},
+    {SlidingMode::one_way, "one-way"},
+}};
+
+std::string_view sliding_mode_name(SlidingMode mode) { return enum_name(kSlidingModeNames, mode); }
 
 SlidingMode parse_sliding_mode(std::string_view name, const std::string& field) {
   if (name == "two-way") return SlidingMode::two_way;
@@ -22,13 +26,19 @@ SlidingMode parse_sliding_mode(std::string_view name, const std::string& field) 
   throw parameter_error(field, fmt::format("unknown mode '{}' (known: two-way, one-way)", name));
 }
 
-std::string_view restitution_mode_name(RestitutionMode mode) {
-  return mode == RestitutionMode::housner ? "housner" : "given";
-}
+constexpr std::array<EnumName<RestitutionMode>, 2> kRestitutionModeNames{{
+    {RestitutionMode::housner, "housner"},
+    {RestitutionMode::given, "given"},
+}};
 
-std::string_view rocking_method_name(RockingMethod method) {
-  return method == RockingMethod::rk4 ? "rk4" : "adaptive";
-}
+std::string_view restitution_mode_name(RestitutionMode mode) { return enum_name(kRestitutionModeNames, mode); }
+
+constexpr std::array<EnumName<RockingMethod>, 2> kRockingMethodNames{{
+    {RockingMethod::adaptive, "adaptive"},
+    {RockingMethod::rk4, "rk4"},
+}};
+
+std::string_view rocking_method_name(RockingMethod method) { return enum_name(kRockingMethodNames, method); }
 
 RockingMethod parse_rocking_method(std::string_view name, const std::string& field) {
   if (name == "adaptive") return RockingMethod::adaptive;

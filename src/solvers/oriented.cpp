@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "topple/core/error.hpp"
+#include "topple/core/enum_names.hpp"
 
 namespace topple {
 namespace {
@@ -18,14 +19,13 @@ double wrap_azimuth(double deg) {
 
 }  // namespace
 
-std::string_view oriented_axis_name(OrientedAxis axis) {
-  switch (axis) {
-    case OrientedAxis::bearing: return "bearing";
-    case OrientedAxis::across: return "across";
-    case OrientedAxis::grid: return "grid";
-  }
-  return "bearing";
-}
+constexpr std::array<EnumName<OrientedAxis>, 3> kOrientedAxisNames{{
+    {OrientedAxis::bearing, "bearing"},
+    {OrientedAxis::across, "across"},
+    {OrientedAxis::grid, "grid"},
+}};
+
+std::string_view oriented_axis_name(OrientedAxis axis) { return enum_name(kOrientedAxisNames, axis); }
 
 OrientedBody OrientedBody::planar(const RockingBody& body) { return OrientedBody{body, std::nullopt}; }
 

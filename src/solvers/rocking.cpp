@@ -17,6 +17,7 @@
 #include "solvers/rocking_steppers.hpp"
 #include "topple/core/error.hpp"
 #include "topple/core/units.hpp"
+#include "topple/core/enum_names.hpp"
 
 namespace topple {
 namespace {
@@ -777,27 +778,25 @@ double housner_restitution(const RockingBody& body, int onto) noexcept {
   return 1.0 - b_new * (b_old + b_new) / body.pivot_D_m2(onto);
 }
 
-std::string_view rocking_state_name(RockingState state) {
-  switch (state) {
-    case RockingState::rocking_negative: return "rocking-";
-    case RockingState::rest: return "rest";
-    case RockingState::rocking_positive: return "rocking+";
-    case RockingState::fallen: return "fallen";
-  }
-  return "unknown";
-}
+constexpr std::array<EnumName<RockingState>, 4> kRockingStateNames{{
+    {RockingState::rocking_negative, "rocking-"},
+    {RockingState::rest, "rest"},
+    {RockingState::rocking_positive, "rocking+"},
+    {RockingState::fallen, "fallen"},
+}};
 
-std::string_view rocking_event_name(RockingEventKind kind) {
-  switch (kind) {
-    case RockingEventKind::uplift: return "uplift";
-    case RockingEventKind::impact: return "impact";
-    case RockingEventKind::rest: return "rest";
-    case RockingEventKind::peak: return "peak";
-    case RockingEventKind::exceeded_alpha: return "exceeded-alpha";
-    case RockingEventKind::overturned: return "overturned";
-  }
-  return "unknown";
-}
+std::string_view rocking_state_name(RockingState state) { return enum_name(kRockingStateNames, state); }
+
+constexpr std::array<EnumName<RockingEventKind>, 6> kRockingEventNames{{
+    {RockingEventKind::uplift, "uplift"},
+    {RockingEventKind::impact, "impact"},
+    {RockingEventKind::rest, "rest"},
+    {RockingEventKind::peak, "peak"},
+    {RockingEventKind::exceeded_alpha, "exceeded-alpha"},
+    {RockingEventKind::overturned, "overturned"},
+}};
+
+std::string_view rocking_event_name(RockingEventKind kind) { return enum_name(kRockingEventNames, kind); }
 
 RockingResult rock(const GroundMotion& horizontal, const RockingBody& body, const RockingOptions& options,
                    const GroundMotion* vertical) {

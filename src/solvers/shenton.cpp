@@ -6,20 +6,20 @@
 
 #include <fmt/format.h>
 
+#include "topple/core/enum_names.hpp"
 #include "topple/core/error.hpp"
 
 namespace topple {
 
-std::string_view onset_mode_name(OnsetMode mode) {
-  switch (mode) {
-    case OnsetMode::unchecked: return "unchecked";
-    case OnsetMode::rest: return "rest";
-    case OnsetMode::rock: return "rock";
-    case OnsetMode::slide: return "slide";
-    case OnsetMode::slide_rock: return "slide-rock";
-  }
-  return "unknown";
-}
+constexpr std::array<EnumName<OnsetMode>, 5> kOnsetModeNames{{
+    {OnsetMode::unchecked, "unchecked"},
+    {OnsetMode::rest, "rest"},
+    {OnsetMode::rock, "rock"},
+    {OnsetMode::slide, "slide"},
+    {OnsetMode::slide_rock, "slide-rock"},
+}};
+
+std::string_view onset_mode_name(OnsetMode mode) { return enum_name(kOnsetModeNames, mode); }
 
 double shenton_critical_mu(const RockingBody& body, double accel_ratio) {
   if (!std::isfinite(accel_ratio) || accel_ratio < 0.0) {

@@ -20,6 +20,7 @@
 #include "topple/motion/input_grid.hpp"
 #include "topple/solvers/sliding.hpp"
 #include "topple/core/units.hpp"
+#include "topple/core/enum_names.hpp"
 
 namespace topple {
 namespace {
@@ -1309,17 +1310,16 @@ SlideRockResult via_sliding(const GroundMotion& horizontal, const SlideRockBody&
 
 }  // namespace
 
-std::string_view slide_rock_mode_name(SlideRockMode mode) {
-  switch (mode) {
-    case SlideRockMode::rest: return "rest";
-    case SlideRockMode::slide: return "slide";
-    case SlideRockMode::rock: return "rock";
-    case SlideRockMode::slide_rock: return "slide-rock";
-    case SlideRockMode::flight: return "flight";
-    case SlideRockMode::fallen: return "fallen";
-  }
-  return "unknown";
-}
+constexpr std::array<EnumName<SlideRockMode>, 6> kSlideRockModeNames{{
+    {SlideRockMode::rest, "rest"},
+    {SlideRockMode::slide, "slide"},
+    {SlideRockMode::rock, "rock"},
+    {SlideRockMode::slide_rock, "slide-rock"},
+    {SlideRockMode::flight, "flight"},
+    {SlideRockMode::fallen, "fallen"},
+}};
+
+std::string_view slide_rock_mode_name(SlideRockMode mode) { return enum_name(kSlideRockModeNames, mode); }
 
 SlideRockBody SlideRockBody::make(double b1_m, double b2_m, double h_m, double inertia_m2, double mu_static,
                                   std::optional<double> mu_kinetic) {

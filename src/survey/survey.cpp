@@ -15,36 +15,35 @@
 #include "topple/solvers/oriented.hpp"
 #include "topple/solvers/rocking.hpp"
 #include "topple/solvers/slide_rock.hpp"
+#include "topple/core/enum_names.hpp"
 
 namespace topple {
 
-std::string_view outcome_name(Outcome o) {
-  switch (o) {
-    case Outcome::overturned: return "overturned";
-    case Outcome::not_overturned: return "not_overturned";
-    case Outcome::rocked: return "rocked";
-    case Outcome::not_rocked: return "not_rocked";
-    case Outcome::slid: return "slid";
-    case Outcome::not_slid: return "not_slid";
-    case Outcome::slid_stood: return "slid_stood";
-    case Outcome::slid_toppled: return "slid_toppled";
-    case Outcome::walked: return "walked";
-  }
-  return "unknown";
-}
+constexpr std::array<EnumName<Outcome>, 9> kOutcomeNames{{
+    {Outcome::overturned, "overturned"},
+    {Outcome::not_overturned, "not_overturned"},
+    {Outcome::rocked, "rocked"},
+    {Outcome::not_rocked, "not_rocked"},
+    {Outcome::slid, "slid"},
+    {Outcome::not_slid, "not_slid"},
+    {Outcome::slid_stood, "slid_stood"},
+    {Outcome::slid_toppled, "slid_toppled"},
+    {Outcome::walked, "walked"},
+}};
+
+std::string_view outcome_name(Outcome o) { return enum_name(kOutcomeNames, o); }
 
 bool is_coupled_outcome(Outcome o) noexcept {
   return o == Outcome::slid_stood || o == Outcome::slid_toppled || o == Outcome::walked;
 }
 
-std::string_view object_model_name(ObjectModel m) {
-  switch (m) {
-    case ObjectModel::slide: return "slide";
-    case ObjectModel::rock: return "rock";
-    case ObjectModel::coupled: return "coupled";
-  }
-  return "unknown";
-}
+constexpr std::array<EnumName<ObjectModel>, 3> kObjectModelNames{{
+    {ObjectModel::slide, "slide"},
+    {ObjectModel::rock, "rock"},
+    {ObjectModel::coupled, "coupled"},
+}};
+
+std::string_view object_model_name(ObjectModel m) { return enum_name(kObjectModelNames, m); }
 
 ObjectModel object_model(const ObservedObject& o) noexcept {
   if (o.model) return *o.model;
@@ -52,23 +51,21 @@ ObjectModel object_model(const ObservedObject& o) noexcept {
   return o.outcome == Outcome::slid || o.outcome == Outcome::not_slid ? ObjectModel::slide : ObjectModel::rock;
 }
 
-std::string_view motion_family_name(MotionFamily f) {
-  switch (f) {
-    case MotionFamily::synthetic: return "synthetic";
-    case MotionFamily::records: return "records";
-    case MotionFamily::rezaeian2010: return "rezaeian2010";
-  }
-  return "unknown";
-}
+constexpr std::array<EnumName<MotionFamily>, 3> kMotionFamilyNames{{
+    {MotionFamily::synthetic, "synthetic"},
+    {MotionFamily::records, "records"},
+    {MotionFamily::rezaeian2010, "rezaeian2010"},
+}};
 
-std::string_view evidence_name(Evidence e) {
-  switch (e) {
-    case Evidence::certain: return "certain";
-    case Evidence::likely: return "likely";
-    case Evidence::reported: return "reported";
-  }
-  return "unknown";
-}
+std::string_view motion_family_name(MotionFamily f) { return enum_name(kMotionFamilyNames, f); }
+
+constexpr std::array<EnumName<Evidence>, 3> kEvidenceNames{{
+    {Evidence::certain, "certain"},
+    {Evidence::likely, "likely"},
+    {Evidence::reported, "reported"},
+}};
+
+std::string_view evidence_name(Evidence e) { return enum_name(kEvidenceNames, e); }
 
 double evidence_error_rate(Evidence e) noexcept {
   switch (e) {

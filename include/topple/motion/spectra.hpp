@@ -71,9 +71,13 @@ struct FourierSpectrum {
 /// record is zero there.
 [[nodiscard]] double mean_period_s(const GroundMotion& motion);
 
+/// The damping ratio of a response spectrum when none is given: 5 % of critical, the ratio of design spectra and
+/// ground-motion models; also the default of a flexible support's damping (`topple slide --support-freq`).
+inline constexpr double kDefaultDampingRatio = 0.05;
+
 struct ResponseSpectrum {
   std::vector<double> period_s;
-  double damping = 0.05;          ///< damping ratio zeta (dimensionless fraction of critical; 0.05 = 5 %)
+  double damping = kDefaultDampingRatio;  ///< damping ratio zeta (dimensionless fraction of critical; 0.05 = 5 %)
   std::vector<double> sd_m;       ///< max |x|
   std::vector<double> psv_m_s;    ///< w SD
   std::vector<double> psa_m_s2;   ///< w^2 SD
@@ -108,7 +112,7 @@ class OscillatorBank {
 
 /// Response spectrum of any record (irregular ones: coefficients per distinct step, still exact).
 [[nodiscard]] ResponseSpectrum response_spectrum(const GroundMotion& motion, std::span<const double> period_s,
-                                                 double damping = 0.05);
+                                                 double damping = kDefaultDampingRatio);
 
 /// Time history of one oscillator at the record's samples (relative displacement, velocity, absolute acceleration).
 struct OscillatorHistory {
