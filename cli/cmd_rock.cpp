@@ -205,12 +205,7 @@ void run_rock(const RockOptions& o) {
       throw parameter_error("--method", "the coupled model is adaptive only");
     }
     CoupledRequest request;
-    request.options.g_m_s2 = options.g_m_s2;
-    request.options.restitution = options.restitution;
-    request.options.e = options.e;
-    request.options.rel_tol = options.rel_tol;
-    request.options.max_run_out_s = options.max_run_out_s;
-    request.options.max_steps = options.max_steps;
+    request.options = slide_rock_options(options);
     if (o.slope_deg) request.options.slope_rad = deg_to_rad(*o.slope_deg);  // validated by slide_rock ("slope")
     request.out = o.out;
     request.plot = o.plot;

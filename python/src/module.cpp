@@ -452,11 +452,7 @@ SlideRockRun run_slide_rock(const GroundMotion& motion, const RockingBody& shape
   // coupled model as the CLI does (cli/cmd_rock.cpp).
   const RockingOptions rocking = make_rocking_options(e, std::nullopt, g_m_s2, "adaptive", rel_tol,
                                                       RockingOptions{}.rk4_substeps, max_run_out_s);
-  run.options.g_m_s2 = rocking.g_m_s2;
-  run.options.restitution = rocking.restitution;
-  run.options.e = rocking.e;
-  run.options.rel_tol = rocking.rel_tol;
-  run.options.max_run_out_s = rocking.max_run_out_s;
+  run.options = slide_rock_options(rocking);
   run.options.slope_rad = deg_to_rad(slope_deg);  // validated by slide_rock (field "slope"), as --slope-deg
   run.options.record_history = history;
   {

@@ -20,6 +20,7 @@
 #include "topple/ensemble/sweep.hpp"
 #include "topple/motion/synthesis.hpp"
 #include "topple/core/enum_names.hpp"
+#include "topple/numerics/statistics.hpp"
 
 namespace topple {
 
@@ -91,8 +92,6 @@ double hazard(double u) {
   const double r = 1.0 / (u * u);
   return -u / (1.0 - r + 3.0 * r * r);
 }
-
-double normal_cdf(double u) { return boost::math::cdf(kStandardNormal, u); }
 
 /// Log-likelihood in (mu = ln theta, beta) with ln x precomputed.
 struct Likelihood {

@@ -23,6 +23,7 @@
 #include "topple/motion/spectra.hpp"
 #include "topple/motion/synthesis.hpp"
 #include "topple/core/units.hpp"
+#include "topple/numerics/statistics.hpp"
 #include "inversion/inversion_detail.hpp"
 
 namespace topple {
@@ -30,19 +31,9 @@ namespace {
 
 std::string fmt_g(double v) { return fmt::format("{:.3g} g", v); }
 
-/// Edges (in log) of the cells of a log-spaced axis: geometric midpoints, extended by half a step at each end.
-std::vector<double> log_edges(const std::vector<double>& v) {
-  const std::size_t n = v.size();
-  std::vector<double> e(n + 1);
-  for (std::size_t i = 1; i < n; ++i) e[i] = 0.5 * (std::log(v[i - 1]) + std::log(v[i]));
-  e[0] = std::log(v[0]) - (n > 1 ? 0.5 * (std::log(v[1]) - std::log(v[0])) : 0.5);
-  e[n] = std::log(v[n - 1]) + (n > 1 ? 0.5 * (std::log(v[n - 1]) - std::log(v[n - 2])) : 0.5);
-  return e;
-}
-
 /// Quantile q of a marginal over a log axis; `cell` receives the cell it falls in.
 double quantile(const std::vector<double>& values, const std::vector<double>& marginal, double q, std::size_t& cell) {
-  const auto e = log_edges(values);
+  const auto e = log_cell_edges(values);
   double c = 0.0;
   for (std::size_t i = 0; i < marginal.size(); ++i) {
     if (c + marginal[i] >= q && marginal[i] > 0.0) {
@@ -238,7 +229,7 @@ void detail::settle_static_bounds(StaticBounds& b) {
 
 bool in_credible_region(const InversionResult& r, double pga_g, double freq_hz, double level) {
   const auto cell_of = [](const std::vector<double>& v, double x) -> std::optional<std::size_t> {
-    const auto e = log_edges(v);
+    const auto e = log_cell_edges(v);
     const double lx = std::log(x);
     for (std::size_t i = 0; i < v.size(); ++i) {
       if (lx >= e[i] && lx <= e[i + 1]) return i;
@@ -260,150 +251,6 @@ bool in_credible_region(const InversionResult& r, double pga_g, double freq_hz, 
   }
   return false;
 }
-
-DrawnParameters draw_parameters(const ObservedObject& object, std::uint64_t seed, std::size_t k, std::size_t o) {
-  PortableRandom rng(mix(mix(seed, k + 1), o + 1));
-  const auto draw = [&](const Interval& iv) { return iv.is_value() ? iv.low : iv.low + (iv.high - iv.low) * rng.uniform(); };
-  DrawnParameters p;
-  p.mu = draw(object.mu);
-  p.e = object.e_housner ? housner_restitution(object.body) : draw(object.e);
-  p.amplification = draw(object.amplification);
-  // Drawn last, and only for a flexible support: the draws above, and with them a survey without one, are unchanged.
-  if (object.support_filter) {
-    p.support_freq_hz = draw(object.support_filter->freq_hz);
-    p.support_damping = draw(object.support_filter->damping);
-  }
-  return p;
-}
-
-double sliding_sigma_m(const ObservedObject& object) {
-  const double d = object.slid_m.value_or(0.0);
-  return std::max({object.slid_uncertainty_m, 0.25 * d, kVisibleSlipM});
-}
-
-namespace {
-/// The motion on the object's flexible support (its absolute acceleration, decoupled), or none for a rigid support.
-std::optional<GroundMotion> on_flexible_support(const ObservedObject& object, const DrawnParameters& p,
-                                                const GroundMotion& ground) {
-  if (!object.support_filter) return std::nullopt;
-  return support_motion(ground, SupportOscillator::make(p.support_freq_hz, p.support_damping));
-}
-}  // namespace
-
-GroundMotion nominal_object_motion(const ObservedObject& object, const GroundMotion& ground) {
-  if (!object.support_filter) return ground;
-  return support_motion(ground, SupportOscillator::make(object.support_filter->freq_hz.mid(),
-                                                        object.support_filter->damping.mid()));
-}
-
-double observation_match(const ObservedObject& object, const DrawnParameters& p, const GroundMotion& ground,
-                         double g) {
-  const std::optional<GroundMotion> filtered = on_flexible_support(object, p, ground);
-  const GroundMotion& motion = filtered ? *filtered : ground;
-  const ObjectModel model = object_model(object);  // survey.hpp: the rule
-  if (model == ObjectModel::slide) {
-    // Level ground, no vertical input: the response to amp * a with mu is amp times the response to a with
-    // mu / amp (divide the equation of motion by amp), which spares a copy of the motion.
-    const double amp = p.amplification;
-    const SlidingSummary s = slide_summary(motion, SlidingBlock::make(p.mu / amp, p.mu / amp, 0.0, SlidingMode::two_way, g));
-    const double max_d = amp * s.max_abs_displacement_m;
-    const double residual = amp * std::abs(s.residual_displacement_m);
-    return detail::sliding_match(object, max_d, residual);
-  }
-  double factor = p.amplification;
-  if (object.orientation_deg) factor *= std::cos(deg_to_rad(*object.orientation_deg));
-  if (model == ObjectModel::coupled) {
-    // The coupled body in the object's rocking plane (the plane the orientation refers to), mu_s = mu_k = mu.
-    const SlideRockOptions options = detail::inversion_slide_rock_options(object, p, g);
-    const SlideRockBody body = SlideRockBody::from_rocking(object.body, p.mu);
-    const SlideRockSummary s = factor == 1.0 ? slide_rock(motion, body, options).summary
-                                             : slide_rock(motion.scaled(factor), body, options).summary;
-    return detail::coupled_match(object, s);
-  }
-  const RockingOptions options = detail::inversion_rocking_options(object, p, g);
-  const RockingSummary s = factor == 1.0 ? rock_summary(motion, object.body, options)
-                                         : rock_summary(motion.scaled(factor), object.body, options);
-  return detail::rocking_match(object.outcome, s.overturned, s.max_abs_rotation_rad);
-}
-
-namespace detail {
-
-double sliding_match(const ObservedObject& object, double max_displacement_m, double residual_m) {
-  if (object.outcome == Outcome::not_slid) return max_displacement_m < kVisibleSlipM ? 1.0 : 0.0;
-  if (object.slid_m) {
-    const double z = (residual_m - *object.slid_m) / sliding_sigma_m(object);
-    return std::exp(-0.5 * z * z);
-  }
-  if (object.slid_at_least_m) return residual_m >= *object.slid_at_least_m ? 1.0 : 0.0;
-  return max_displacement_m >= kVisibleSlipM ? 1.0 : 0.0;
-}
-
-RockingOptions inversion_rocking_options(const ObservedObject& object, const DrawnParameters& p, double g) {
-  RockingOptions options;
-  options.g_m_s2 = g;
-  if (!object.e_housner) {
-    options.restitution = RestitutionMode::given;
-    options.e = p.e;
-  }
-  options.max_run_out_s = 20.0;
-  options.rel_tol = 1e-6;  // outcomes (fell or not, rocked visibly or not) do not need the 1e-8 default
-  return options;
-}
-
-SlideRockOptions inversion_slide_rock_options(const ObservedObject& object, const DrawnParameters& p, double g) {
-  // The rocking runs' choices (inversion_rocking_options): restitution as the object gives it, 20 s run-out,
-  // rel_tol 1e-6 (outcomes, not histories).
-  const RockingOptions rocking = inversion_rocking_options(object, p, g);
-  SlideRockOptions options;
-  options.g_m_s2 = g;
-  options.restitution = rocking.restitution;
-  options.e = rocking.e;
-  options.max_run_out_s = rocking.max_run_out_s;
-  options.rel_tol = rocking.rel_tol;
-  return options;
-}
-
-double coupled_match(const ObservedObject& object, const SlideRockSummary& s) {
-  // The one mapping from the coupled solver's results to the outcomes (docs/survey.md, "Objects that slide and
-  // rock"). The offset a surveyor measures is the net one, u at the end (at rest theta = 0, so the base's offset).
-  const double max_rotation = std::max(s.max_rotation_positive_rad, s.max_rotation_negative_rad);
-  const double residual = std::abs(s.residual_slide_m);
-  const bool visibly_slid = s.max_abs_slide_m >= kVisibleSlipM;
-  switch (object.outcome) {
-    case Outcome::slid:
-    case Outcome::not_slid:
-      return sliding_match(object, s.max_abs_slide_m, residual);
-    case Outcome::overturned:
-    case Outcome::not_overturned:
-    case Outcome::rocked:
-    case Outcome::not_rocked:
-      return rocking_match(object.outcome, s.overturned, max_rotation);
-    case Outcome::slid_stood:  // stood, and slid as observed (a distance, at least a distance, or visibly)
-      return s.overturned ? 0.0 : sliding_match(object, s.max_abs_slide_m, residual);
-    case Outcome::slid_toppled:  // fell, and its base had slid visibly
-      return s.overturned && visibly_slid ? 1.0 : 0.0;
-    case Outcome::walked: {  // stood, rocked visibly with impacts, offset, never slid flat on its base
-      const bool never_slid_flat = s.mode_entries[static_cast<std::size_t>(SlideRockMode::slide)] == 0;
-      return !s.overturned && max_rotation >= kVisibleRockingRad && s.impacts > 0 && residual >= kVisibleSlipM &&
-                     never_slid_flat
-                 ? 1.0
-                 : 0.0;
-    }
-  }
-  return 0.0;
-}
-
-double rocking_match(Outcome outcome, bool overturned, double max_rotation_rad) {
-  switch (outcome) {
-    case Outcome::overturned: return overturned ? 1.0 : 0.0;
-    case Outcome::not_overturned: return overturned ? 0.0 : 1.0;
-    case Outcome::rocked: return !overturned && max_rotation_rad >= kVisibleRockingRad ? 1.0 : 0.0;
-    case Outcome::not_rocked: return !overturned && max_rotation_rad < kVisibleRockingRad ? 1.0 : 0.0;
-    default: return 0.0;
-  }
-}
-
-}  // namespace detail
 
 namespace detail {
 
@@ -655,6 +502,13 @@ using detail::neighbourhood;
 
 namespace {
 
+/// The neighbourhood of every cell of an np x nf grid.
+std::vector<std::vector<std::pair<std::size_t, double>>> neighbourhoods(std::size_t np, std::size_t nf) {
+  std::vector<std::vector<std::pair<std::size_t, double>>> hoods(np * nf);
+  for (std::size_t c = 0; c < hoods.size(); ++c) hoods[c] = neighbourhood(c, np, nf);
+  return hoods;
+}
+
 /// Matches summed over the motions of each (object, cell): index o * cells + c.
 std::vector<double> match_counts(const MatchTable& m) {
   const std::size_t cells = m.cells();
@@ -693,18 +547,19 @@ std::vector<double> joint_log_likelihood(const MatchTable& m, const std::vector<
     }
   }
   std::vector<double> log_likelihood(cells, 0.0);
+  std::vector<double> x, w;  // the neighbourhood's runs and their weights
   for (std::size_t c = 0; c < cells; ++c) {
-    double top = -std::numeric_limits<double>::infinity();
-    for (const auto& [c2, w] : hoods[c]) {
-      for (std::size_t k = 0; k < n; ++k) top = std::max(top, run_log[c2 * n + k]);
-    }
-    double sum = 0.0;
+    x.clear();
+    w.clear();
     double weight = 0.0;
-    for (const auto& [c2, w] : hoods[c]) {
-      for (std::size_t k = 0; k < n; ++k) sum += w * std::exp(run_log[c2 * n + k] - top);
-      weight += w * nn;
+    for (const auto& [c2, wc] : hoods[c]) {
+      for (std::size_t k = 0; k < n; ++k) {
+        x.push_back(run_log[c2 * n + k]);
+        w.push_back(wc);
+      }
+      weight += wc * nn;
     }
-    log_likelihood[c] = top + std::log(sum / weight);
+    log_likelihood[c] = log_sum_exp(x, w, weight);  // log of the weighted mean of the runs' products
   }
   return log_likelihood;
 }
@@ -721,8 +576,7 @@ LikelihoodReduction reduce_likelihood(const MatchTable& m, const std::vector<dou
   const std::size_t no = m.objects;
   const std::size_t cells = m.cells();
   const double nn = static_cast<double>(n);
-  std::vector<std::vector<std::pair<std::size_t, double>>> hoods(cells);
-  for (std::size_t c = 0; c < cells; ++c) hoods[c] = neighbourhood(c, np, nf);
+  const std::vector<std::vector<std::pair<std::size_t, double>>> hoods = neighbourhoods(np, nf);
   const std::vector<double> counts = match_counts(m);
 
   LikelihoodReduction out;
@@ -774,43 +628,61 @@ void fill_posterior_and_estimates(InversionResult& r) {
   for (ObjectReport& rep : r.objects) rep.probability_at_best = rep.probability[r.best_cell];
 }
 
-void assess_objects(InversionResult& r, const MatchTable& m, const std::vector<double>& error_rates) {
-  const std::size_t cells = m.cells();
-  if (r.objects.size() != m.objects || error_rates.size() != m.objects || r.posterior.size() != cells) {
-    throw std::invalid_argument("assess_objects: the result, the match table and the error rates disagree");
-  }
-  std::vector<std::vector<std::pair<std::size_t, double>>> hoods(cells);
-  for (std::size_t c = 0; c < cells; ++c) hoods[c] = neighbourhood(c, m.pga_count, m.freq_count);
-  // log of the normaliser of a log-likelihood (log-sum-exp), so that log posterior = ll - log_z.
-  const auto log_z = [](const std::vector<double>& ll) {
-    const double top = *std::max_element(ll.begin(), ll.end());
-    double sum = 0.0;
-    for (double v : ll) sum += std::exp(v - top);
-    return top + std::log(sum);
-  };
-  const double z_all = log_z(r.log_likelihood);
-  const std::vector<double> counts = match_counts(m);
-  const double nn = static_cast<double>(m.motions);
-  for (std::size_t o = 0; o < r.objects.size(); ++o) {
+void detail::assess_objects(InversionResult& r, const std::vector<MatchTable>& bins,
+                            const std::vector<double>& error_rates, const std::vector<double>& ll_joint,
+                            const std::vector<double>& posterior_joint) {
+  const std::size_t nb = bins.size();
+  const std::size_t cells = bins.front().cells();
+  const std::size_t no = bins.front().objects;
+  const std::vector<std::vector<std::pair<std::size_t, double>>> hoods =
+      neighbourhoods(bins.front().pga_count, bins.front().freq_count);
+  const double z_all = log_sum_exp(ll_joint);  // log posterior = ll - z_all
+  const std::vector<double> counts = nb == 1 ? match_counts(bins.front()) : std::vector<double>{};  // see below
+  const double nn = static_cast<double>(bins.front().motions);
+  for (std::size_t o = 0; o < no; ++o) {
     ObjectReport& rep = r.objects[o];
     // The plain share of each cell's runs (not the smoothed probability, whose +1/2 floors it at 1/(2N + 2): with
     // few motions per cell that floor alone would pass the misfit level).
+    // Summed in the order each model used before they were one pipeline, which keeps both to the bit: one bin by the
+    // cells' counts, several bins run by run (by the cells' counts, three components' P moves by about 4e-14,
+    // relative).
     rep.posterior_predictive = 0.0;
-    for (std::size_t c = 0; c < cells; ++c) rep.posterior_predictive += r.posterior[c] * counts[o * cells + c] / nn;
+    if (nb == 1) {
+      for (std::size_t c = 0; c < cells; ++c) rep.posterior_predictive += posterior_joint[c] * counts[o * cells + c] / nn;
+    } else {
+      for (std::size_t c = 0; c < cells; ++c) {
+        for (std::size_t k = 0; k < bins.front().motions; ++k) {
+          for (std::size_t b = 0; b < nb; ++b) {
+            rep.posterior_predictive += posterior_joint[c * nb + b] * bins[b].at(c, k, o) / nn;
+          }
+        }
+      }
+    }
     rep.misfit = rep.posterior_predictive < kMisfitProbability;
     // Without object o: eps = 1/2 turns its factor into the constant 1/2, which the normalisation removes.
     std::vector<double> rates = error_rates;
     rates[o] = 0.5;
-    const std::vector<double> ll_without = joint_log_likelihood(m, rates, hoods);
-    const double z_without = log_z(ll_without);
-    double kl_nats = 0.0;  // sum_c p(c) (log p(c) - log p_without(c)), in log space: no 0/0 where p underflows
-    for (std::size_t c = 0; c < cells; ++c) {
-      if (r.posterior[c] > 0.0) {
-        kl_nats += r.posterior[c] * ((r.log_likelihood[c] - z_all) - (ll_without[c] - z_without));
+    std::vector<double> ll_without(cells * nb);
+    for (std::size_t b = 0; b < nb; ++b) {
+      const std::vector<double> ll = joint_log_likelihood(bins[b], rates, hoods);
+      for (std::size_t c = 0; c < cells; ++c) ll_without[c * nb + b] = ll[c];
+    }
+    const double z_without = log_sum_exp(ll_without);
+    double kl_nats = 0.0;  // sum_i p(i) (log p(i) - log p_without(i)), in log space: no 0/0 where p underflows
+    for (std::size_t i = 0; i < ll_joint.size(); ++i) {
+      if (posterior_joint[i] > 0.0) {
+        kl_nats += posterior_joint[i] * ((ll_joint[i] - z_all) - (ll_without[i] - z_without));
       }
     }
     rep.constraint_bits = std::max(0.0, kl_nats / std::log(2.0));
   }
+}
+
+void assess_objects(InversionResult& r, const MatchTable& m, const std::vector<double>& error_rates) {
+  if (r.objects.size() != m.objects || error_rates.size() != m.objects || r.posterior.size() != m.cells()) {
+    throw std::invalid_argument("assess_objects: the result, the match table and the error rates disagree");
+  }
+  detail::assess_objects(r, {m}, error_rates, r.log_likelihood, r.posterior);  // one direction bin
 }
 
 std::vector<std::size_t> most_constraining_objects(const InversionResult& r) {
@@ -955,51 +827,133 @@ std::vector<std::string> inversion_notes(const InversionResult& r, const MatchTa
   return notes;
 }
 
+std::vector<double> detail::pga_axis(const InversionSettings& st) {
+  return log_spaced(st.pga_min_g, st.pga_max_g, static_cast<std::size_t>(st.pga_count));
+}
+
+std::vector<double> detail::freq_axis(const InversionSettings& st) {
+  return log_spaced(st.freq_min_hz, st.freq_max_hz, static_cast<std::size_t>(st.freq_count));
+}
+
+std::vector<double> detail::evidence_error_rates(const Site& site) {
+  std::vector<double> rates;
+  for (const ObservedObject& o : site.objects) rates.push_back(evidence_error_rate(o.evidence));
+  return rates;
+}
+
+detail::SiteRuns detail::simulate_site(const Site& site, const InversionSettings& st, const std::vector<double>& pga_g,
+                                       const FamilyGrid& family, const InversionOptions& options) {
+  SiteRuns runs;
+  runs.bounds = static_bounds(site);
+  runs.bins.push_back(simulate_matches(site, st, pga_g, family, options));  // one component: one direction bin
+  runs.runs = runs.bins.front().match.size();
+  for (const ObservedObject& o : site.objects) runs.models.push_back(object_model(o));
+  return runs;
+}
+
 namespace {
 
-/// Steps 2-5 on a built family (step 1). `started` is when the inversion began (for InversionResult::seconds).
-InversionResult invert_on_family(const Site& site, const InversionSettings& st, const FamilyGrid& family,
-                                 const InversionOptions& options, std::chrono::steady_clock::time_point started) {
-  InversionResult r;
-  r.site = site.name;
-  r.pga_g = log_spaced(st.pga_min_g, st.pga_max_g, static_cast<std::size_t>(st.pga_count));
-  r.freq_hz = family.freq_hz;
-  r.bounds = static_bounds(site);
-  r.measured_freq_hz = family.measured_freq_hz;
-  const MatchTable matches = simulate_matches(site, st, r.pga_g, family, options);
-  r.runs = matches.match.size();
-
-  std::vector<double> error_rates;
-  for (const ObservedObject& o : site.objects) error_rates.push_back(evidence_error_rate(o.evidence));
-  LikelihoodReduction reduced = reduce_likelihood(matches, error_rates);
-  r.log_likelihood = std::move(reduced.log_likelihood);
-  r.objects.resize(site.objects.size());
-  for (std::size_t o = 0; o < site.objects.size(); ++o) {
-    ObjectReport& rep = r.objects[o];
-    rep.id = site.objects[o].id;
-    rep.outcome = site.objects[o].outcome;
-    rep.model = object_model(site.objects[o]);
-    rep.probability = std::move(reduced.probability[o]);
-    rep.max_probability = reduced.max_probability[o];
-    rep.reproduced_anywhere = reduced.reproduced_anywhere[o];
+/// The bins' mean match (for the notes, which ask whether some run matched); the table itself for one bin.
+MatchTable mean_over_bins(const std::vector<MatchTable>& bins) {
+  MatchTable t = bins.front();
+  if (bins.size() == 1) return t;
+  const double nb = static_cast<double>(bins.size());
+  for (std::size_t i = 0; i < t.match.size(); ++i) {
+    t.match[i] = 0.0;
+    for (const MatchTable& b : bins) t.match[i] += b.match[i] / nb;
   }
-  fill_posterior_and_estimates(r);
-  assess_objects(r, matches, error_rates);
-  r.notes = inversion_notes(r, matches);
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  return r;
+  return t;
+}
+
+/// The direction axis' estimate (inversion_3c.hpp, item 5) from the joint posterior over (cell, bin), and what the
+/// three-component result says in larger-component PGA.
+void estimate_direction(InversionResult& r, const detail::SiteRuns& runs, const std::vector<double>& posterior_joint) {
+  ThreeComponentResult tc = *runs.three_component;
+  const std::size_t nb = runs.bins.size();
+  std::vector<double> post_dir(nb, 0.0);
+  for (std::size_t c = 0; c < r.posterior.size(); ++c) {
+    for (std::size_t b = 0; b < nb; ++b) post_dir[b] += posterior_joint[c * nb + b];
+  }
+  tc.direction = direction_estimate(runs.direction_bins_deg, post_dir);
+  tc.larger_component_median_g = r.pga_estimate_g.median * tc.larger_component_ratio;
+  if (r.pga_estimate_g.ci95_low) tc.larger_component_ci95_low_g = *r.pga_estimate_g.ci95_low * tc.larger_component_ratio;
+  if (r.pga_estimate_g.ci95_high) tc.larger_component_ci95_high_g = *r.pga_estimate_g.ci95_high * tc.larger_component_ratio;
+  r.three_component = tc;
 }
 
 }  // namespace
 
+InversionResult detail::infer_site(const Site& site, const std::vector<double>& pga_g,
+                                   const std::vector<double>& freq_hz, const std::vector<double>& measured_freq_hz,
+                                   SiteRuns runs) {
+  InversionResult r;
+  r.site = site.name;
+  r.pga_g = pga_g;
+  r.freq_hz = freq_hz;
+  r.measured_freq_hz = measured_freq_hz;
+  r.bounds = std::move(runs.bounds);
+  r.rotd100_bounds = std::move(runs.rotd100_bounds);
+  r.runs = runs.runs;
+  const std::vector<double> error_rates = evidence_error_rates(site);
+  const std::size_t nb = runs.bins.size();
+  const std::size_t cells = runs.bins.front().cells();
+  const std::size_t no = site.objects.size();
+
+  // Step 3 per direction bin (inversion.hpp, item 2); the joint log-likelihood over (cell, bin), index c * nb + b,
+  // and the cell's, log of the bins' mean (inversion_3c.hpp, item 5; with one bin, the bin's to the bit).
+  std::vector<LikelihoodReduction> per_bin;
+  for (const MatchTable& m : runs.bins) per_bin.push_back(reduce_likelihood(m, error_rates));
+  std::vector<double> ll_joint(cells * nb);
+  for (std::size_t c = 0; c < cells; ++c) {
+    for (std::size_t b = 0; b < nb; ++b) ll_joint[c * nb + b] = per_bin[b].log_likelihood[c];
+  }
+  r.log_likelihood.assign(cells, 0.0);
+  for (std::size_t c = 0; c < cells; ++c) {
+    r.log_likelihood[c] = log_sum_exp(std::span<const double>(ll_joint).subspan(c * nb, nb)) -
+                          std::log(static_cast<double>(nb));
+  }
+  r.objects.resize(no);
+  for (std::size_t o = 0; o < no; ++o) {
+    ObjectReport& rep = r.objects[o];
+    rep.id = site.objects[o].id;
+    rep.outcome = site.objects[o].outcome;
+    rep.model = runs.models[o];
+    rep.probability.assign(cells, 0.0);
+    rep.reproduced_anywhere = false;
+    for (std::size_t b = 0; b < nb; ++b) {
+      for (std::size_t c = 0; c < cells; ++c) rep.probability[c] += per_bin[b].probability[o][c] / static_cast<double>(nb);
+      rep.reproduced_anywhere = rep.reproduced_anywhere || per_bin[b].reproduced_anywhere[o];
+    }
+    rep.max_probability = *std::max_element(rep.probability.begin(), rep.probability.end());
+  }
+  // Step 4, and 4b over the joint posterior. With one bin it is the cell posterior, normalised as
+  // fill_posterior_and_estimates does (which keeps one component's numbers to the bit).
+  fill_posterior_and_estimates(r);
+  std::vector<double> posterior_joint = r.posterior;
+  if (nb > 1) {
+    const double z_joint = log_sum_exp(ll_joint);
+    posterior_joint.resize(ll_joint.size());
+    for (std::size_t i = 0; i < ll_joint.size(); ++i) posterior_joint[i] = std::exp(ll_joint[i] - z_joint);
+  }
+  assess_objects(r, runs.bins, error_rates, ll_joint, posterior_joint);
+  // Step 5, the notes: the common ones, then the motion family's own.
+  r.notes = inversion_notes(r, mean_over_bins(runs.bins));
+  for (std::string& note : runs.notes) r.notes.push_back(std::move(note));
+  if (runs.three_component) {
+    estimate_direction(r, runs, posterior_joint);
+    const DirectionEstimate& d = r.three_component->direction;
+    if (!d.constrained) {
+      r.notes.push_back(fmt::format("The direction of strongest shaking is unconstrained: its 95 % arc spans {:.0f} "
+                                    "deg (more than {:.0f} deg). Bearings of objects that rocked, overturned or stood, "
+                                    "and sliding directions, constrain it.",
+                                    d.ci95.width_deg, kUnconstrainedArcDeg));
+    }
+  }
+  return r;
+}
+
 InversionResult invert_site(const Site& site, const InversionSettings& st, const InversionOptions& options) {
-  validate_inversion_options(options);
-  validate_inversion_settings(st);
-  if (st.components == 3) return invert_sites({site}, st, options).front();  // inversion_3c.hpp
-  const auto start = std::chrono::steady_clock::now();
-  const FamilyGrid family =
-      build_family(st, log_spaced(st.freq_min_hz, st.freq_max_hz, static_cast<std::size_t>(st.freq_count)), options);
-  return invert_on_family(site, st, family, options, start);
+  return invert_sites({site}, st, options).front();
 }
 
 std::vector<InversionResult> invert_sites(const std::vector<Site>& sites, const InversionSettings& st,
@@ -1009,21 +963,25 @@ std::vector<InversionResult> invert_sites(const std::vector<Site>& sites, const 
   std::vector<InversionResult> out;
   if (sites.empty()) return out;
   auto start = std::chrono::steady_clock::now();
-  if (st.components == 3) {  // inversion_3c.hpp: the family is built once for every site
-    const FamilyGrid3c family = build_family_3c(
-        st, log_spaced(st.freq_min_hz, st.freq_max_hz, static_cast<std::size_t>(st.freq_count)), options);
-    const double family_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    for (const Site& site : sites) {
-      out.push_back(invert_site_3c(site, st, family, options));
-      if (out.size() == 1) out.back().seconds += family_s;  // the family's time is counted in the first site's
-    }
-    return out;
+  // Step 1, the family, built once for every site (the same motions for each): one component, a ground motion per
+  // run; three components (inversion_3c.hpp), a realisation of the motion set and a direction axis.
+  const std::vector<double> pga_g = detail::pga_axis(st);
+  const std::vector<double> freq_hz = detail::freq_axis(st);
+  std::optional<FamilyGrid> one;
+  std::optional<FamilyGrid3c> three;
+  if (st.components == 3) {
+    three = build_family_3c(st, freq_hz, options);
+  } else {
+    one = build_family(st, freq_hz, options);
   }
-  const FamilyGrid family =
-      build_family(st, log_spaced(st.freq_min_hz, st.freq_max_hz, static_cast<std::size_t>(st.freq_count)), options);
+  const std::vector<double>& measured = three ? three->measured_freq_hz : one->measured_freq_hz;
   for (const Site& site : sites) {
-    out.push_back(invert_on_family(site, st, family, options, start));
-    start = std::chrono::steady_clock::now();  // the family's time is counted in the first site's
+    detail::SiteRuns runs = three ? detail::simulate_site_3c(site, st, pga_g, *three, options)
+                                  : detail::simulate_site(site, st, pga_g, *one, options);
+    out.push_back(detail::infer_site(site, pga_g, freq_hz, measured, std::move(runs)));
+    const auto now = std::chrono::steady_clock::now();
+    out.back().seconds = std::chrono::duration<double>(now - start).count();
+    start = now;  // the family's time is counted in the first site's
   }
   return out;
 }

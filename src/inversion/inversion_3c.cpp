@@ -7,6 +7,8 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <tuple>
+#include <utility>
 
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
@@ -34,13 +36,6 @@ constexpr double kDeg = kPi / 180.0;
 double wrap(double x, double m) {
   const double r = std::fmod(x, m);
   return r < 0.0 ? r + m : r;
-}
-
-double log_sum_exp(const std::vector<double>& v) {
-  const double top = *std::max_element(v.begin(), v.end());
-  double sum = 0.0;
-  for (double x : v) sum += std::exp(x - top);
-  return top + std::log(sum);
 }
 
 }  // namespace
@@ -164,7 +159,7 @@ void observation_match_3c(const ObservedObject& object, const DrawnParameters& p
     const Sliding2dSummary s =
         slide_2d_summary(major, minor, ComponentAzimuths{0.0, 90.0},
                          SlidingBlock::make(p.mu, p.mu, 0.0, SlidingMode::two_way, g), &vertical, so);
-    const double m = detail::sliding_match(object, s.max_abs_displacement_m, s.residual_displacement_m);
+    const double m = sliding_match(object, s.max_abs_displacement_m, s.residual_displacement_m);
     for (std::size_t b = 0; b < out.size(); ++b) {
       double dir = 1.0;
       if (object.slid_azimuth_deg) {
@@ -176,7 +171,7 @@ void observation_match_3c(const ObservedObject& object, const DrawnParameters& p
     }
     return;
   }
-  const RockingOptions options = detail::inversion_rocking_options(object, p, g);
+  const RockingOptions options = inversion_rocking_options(object, p, g);
   const auto accel_v = vertical.accel_m_s2();
   const bool lifted = g + *std::min_element(accel_v.begin(), accel_v.end()) <= 0.0;
   const MotionSet frame = MotionSet::make(major, &minor, ComponentAzimuths{0.0, 90.0});
@@ -187,7 +182,7 @@ void observation_match_3c(const ObservedObject& object, const DrawnParameters& p
     std::optional<double> fall_from_major_deg;
   };
   const auto run = [&](double angle_deg) -> Run {
-    if (lifted) return {detail::rocking_match(object.outcome, true, 0.0), std::nullopt};  // item 3: as overturned
+    if (lifted) return {rocking_match(object.outcome, true, 0.0), std::nullopt};  // item 3: as overturned
     // A box: both axes, the governing one's response (oriented.hpp, "Box"). A cylinder with an observed fall
     // direction: oriented.hpp's grid of directions, the governing one its fall axis (header, item 4).
     const bool cylinder_grid = object.body.shape == RockingBody::Shape::cylinder && object.toppled_azimuth_deg;
@@ -196,11 +191,11 @@ void observation_match_3c(const ObservedObject& object, const DrawnParameters& p
       const OrientedRockingSummary both =
           rock_oriented_summary(with_vertical, OrientedBody::make(object.body, object.depth_m), angle_deg, options);
       const DirectionResponse& d = both.governing_response();  // azimuth_deg: from the major axis (frame azimuth 0)
-      return {detail::rocking_match(object.outcome, d.summary.overturned, d.summary.max_abs_rotation_rad),
+      return {rocking_match(object.outcome, d.summary.overturned, d.summary.max_abs_rotation_rad),
               d.summary.overturned ? std::optional<double>(d.azimuth_deg) : std::nullopt};
     }
     const RockingSummary s = rock_summary(frame.projected(angle_deg), object.body, options, &vertical);
-    return {detail::rocking_match(object.outcome, s.overturned, s.max_abs_rotation_rad),
+    return {rocking_match(object.outcome, s.overturned, s.max_abs_rotation_rad),
             s.overturned ? std::optional<double>(angle_deg) : std::nullopt};
   };
   // The fall direction's kernel (item 4) in a bin whose major axis points at major_az: 1 without an observed one;
@@ -342,40 +337,14 @@ DirectionEstimate direction_estimate(const std::vector<double>& bins_deg, const 
 }
 
 namespace {
-
-/// Every run of every object at every bin: match[((cell * N + k) * objects + o) * bins + b].
-struct MatchTable3c {
-  std::size_t pga_count = 0, freq_count = 0, motions = 0, objects = 0, bins = 0;
-  std::vector<double> match;
-  std::size_t runs = 0;  ///< solver runs done
-  [[nodiscard]] std::size_t cells() const noexcept { return pga_count * freq_count; }
-  /// The one-component table of bin b (inversion.hpp's reductions apply to it unchanged).
-  [[nodiscard]] MatchTable slice(std::size_t b) const {
-    MatchTable t{pga_count, freq_count, motions, objects, {}};
-    t.match.resize(cells() * motions * objects);
-    for (std::size_t i = 0; i < t.match.size(); ++i) t.match[i] = match[i * bins + b];
-    return t;
-  }
-  /// The table of the bins' mean match (for the notes, which ask whether some run matched).
-  [[nodiscard]] MatchTable mean_over_bins() const {
-    MatchTable t{pga_count, freq_count, motions, objects, {}};
-    t.match.assign(cells() * motions * objects, 0.0);
-    for (std::size_t i = 0; i < t.match.size(); ++i) {
-      for (std::size_t b = 0; b < bins; ++b) t.match[i] += match[i * bins + b] / static_cast<double>(bins);
-    }
-    return t;
-  }
-};
-
-MatchTable3c simulate_matches_3c(const Site& site, const InversionSettings& st, const std::vector<double>& pga_g,
-                                 const FamilyGrid3c& family, const InversionOptions& options) {
-  MatchTable3c table;
-  table.pga_count = pga_g.size();
-  table.freq_count = family.motions.size();
-  table.motions = family.motions.front().size();
-  table.objects = site.objects.size();
-  table.bins = static_cast<std::size_t>(st.directions);
-  const std::size_t nf = table.freq_count, n = table.motions, no = table.objects, nb = table.bins;
+/// The runs of every object at every direction bin (header, items 2-4): one MatchTable per bin, and the solver runs
+/// done.
+std::pair<std::vector<MatchTable>, std::size_t> simulate_matches_3c(const Site& site, const InversionSettings& st,
+                                                                    const std::vector<double>& pga_g,
+                                                                    const FamilyGrid3c& family,
+                                                                    const InversionOptions& options) {
+  const std::size_t nf = family.motions.size(), n = family.motions.front().size(), no = site.objects.size();
+  const std::size_t nb = static_cast<std::size_t>(st.directions);
   const std::vector<double> bins = direction_bins_deg(st);
   // Per motion k: the major axis' azimuth in every bin (Psi_b + delta_k); per (k, o): the drawn parameters and the
   // angle of an object of unknown bearing. The same in every cell.
@@ -429,11 +398,13 @@ MatchTable3c simulate_matches_3c(const Site& site, const InversionSettings& st, 
   exec.threads = options.threads;
   exec.progress = options.progress;
   const ensemble::ResultTable rows = ensemble::run_in_memory(plan, exec);
+  // Rows come in run order: row = (cell * N + k) * objects + o, the MatchTable's own indexing, one table per bin.
   const std::size_t first_col = rows.columns.size() - nb;
-  table.match.resize(rows.rows.size() * nb);
+  std::vector<MatchTable> tables(nb, MatchTable{pga_g.size(), nf, n, no, std::vector<double>(rows.rows.size())});
   for (std::size_t row = 0; row < rows.rows.size(); ++row) {
-    for (std::size_t b = 0; b < nb; ++b) table.match[row * nb + b] = std::get<double>(rows.rows[row][first_col + b]);
+    for (std::size_t b = 0; b < nb; ++b) tables[b].match[row] = std::get<double>(rows.rows[row][first_col + b]);
   }
+  std::size_t runs = 0;
   // Solver runs: one per bin for a rocking object with a bearing, else one.
   for (const ObservedObject& o : site.objects) {
     const bool per_bin = !is_sliding(o.outcome) && o.azimuth_deg && o.body.shape != RockingBody::Shape::cylinder;
@@ -442,110 +413,32 @@ MatchTable3c simulate_matches_3c(const Site& site, const InversionSettings& st, 
                              : o.depth_m                                                                ? 2
                              : o.body.shape == RockingBody::Shape::cylinder && o.toppled_azimuth_deg ? 12
                                                                                                        : 1;
-    table.runs += plan.motions.size() * (per_bin ? nb : 1) * axes;
+    runs += plan.motions.size() * (per_bin ? nb : 1) * axes;
   }
-  return table;
+  return {std::move(tables), runs};
 }
 
 }  // namespace
 
-InversionResult invert_site_3c(const Site& site, const InversionSettings& st, const FamilyGrid3c& family,
-                               const InversionOptions& options) {
-  const auto started = std::chrono::steady_clock::now();
-  InversionResult r;
-  r.site = site.name;
-  r.pga_g = log_spaced(st.pga_min_g, st.pga_max_g, static_cast<std::size_t>(st.pga_count));
-  r.freq_hz = family.freq_hz;
-  r.measured_freq_hz = family.measured_freq_hz;
+detail::SiteRuns detail::simulate_site_3c(const Site& site, const InversionSettings& st,
+                                          const std::vector<double>& pga_g, const FamilyGrid3c& family,
+                                          const InversionOptions& options) {
+  SiteRuns out;
   // Static thresholds (header, item 6) with the family's largest vertical ratio rho (RotD50 of the stored pair is 1).
   double rho = 0.0;
   for (const auto& column : family.motions) {
     for (const Realisation3c& real : column) rho = std::max(rho, real.vertical->pga_m_s2());
   }
   ThreeComponentBounds thresholds = static_bounds_3c(site, rho);
-  r.bounds = std::move(thresholds.rotd50);
-  r.rotd100_bounds = std::move(thresholds.rotd100);
-  const MatchTable3c table = simulate_matches_3c(site, st, r.pga_g, family, options);
-  r.runs = table.runs;
-  const std::size_t cells = table.cells(), nb = table.bins, no = table.objects, n = table.motions;
-  std::vector<double> error_rates;
-  for (const ObservedObject& o : site.objects) error_rates.push_back(evidence_error_rate(o.evidence));
-
-  // Per bin: the one-component reduction of its slice (inversion.hpp, item 2).
-  std::vector<MatchTable> slices;
-  std::vector<LikelihoodReduction> per_bin;
-  for (std::size_t b = 0; b < nb; ++b) {
-    slices.push_back(table.slice(b));
-    per_bin.push_back(reduce_likelihood(slices.back(), error_rates));
-  }
-  // Joint log posterior over (cell, bin), up to a constant, and its normaliser.
-  const auto joint = [&](const std::vector<LikelihoodReduction>& red) {
-    std::vector<double> ll(cells * nb);
-    for (std::size_t c = 0; c < cells; ++c) {
-      for (std::size_t b = 0; b < nb; ++b) ll[c * nb + b] = red[b].log_likelihood[c];
-    }
-    return ll;
-  };
-  const std::vector<double> ll_joint = joint(per_bin);
-  const double z_joint = log_sum_exp(ll_joint);
-  r.log_likelihood.assign(cells, 0.0);
-  for (std::size_t c = 0; c < cells; ++c) {
-    std::vector<double> row(ll_joint.begin() + static_cast<std::ptrdiff_t>(c * nb),
-                            ll_joint.begin() + static_cast<std::ptrdiff_t>((c + 1) * nb));
-    r.log_likelihood[c] = log_sum_exp(row) - std::log(static_cast<double>(nb));
-  }
-  r.objects.resize(no);
-  for (std::size_t o = 0; o < no; ++o) {
-    ObjectReport& rep = r.objects[o];
-    rep.id = site.objects[o].id;
-    rep.outcome = site.objects[o].outcome;
-    // The solver its runs used (observation_match_3c): the two-dimensional sliding block or the oriented rocking body. The
-    // survey reader refuses the coupled model and a model key that contradicts the outcome with components = 3, so
-    // this is also object_model (survey.hpp).
-    rep.model = is_sliding(rep.outcome) ? ObjectModel::slide : ObjectModel::rock;
-    rep.probability.assign(cells, 0.0);
-    rep.reproduced_anywhere = false;
-    for (std::size_t b = 0; b < nb; ++b) {
-      for (std::size_t c = 0; c < cells; ++c) rep.probability[c] += per_bin[b].probability[o][c] / static_cast<double>(nb);
-      rep.reproduced_anywhere = rep.reproduced_anywhere || per_bin[b].reproduced_anywhere[o];
-    }
-    rep.max_probability = *std::max_element(rep.probability.begin(), rep.probability.end());
-  }
-  fill_posterior_and_estimates(r);
-
-  // Objects (inversion.hpp, item 4) over the joint (cell, bin) posterior.
-  std::vector<double> post_joint(cells * nb);
-  for (std::size_t i = 0; i < post_joint.size(); ++i) post_joint[i] = std::exp(ll_joint[i] - z_joint);
-  for (std::size_t o = 0; o < no; ++o) {
-    ObjectReport& rep = r.objects[o];
-    double pp = 0.0;
-    for (std::size_t c = 0; c < cells; ++c) {
-      for (std::size_t k = 0; k < n; ++k) {
-        for (std::size_t b = 0; b < nb; ++b) pp += post_joint[c * nb + b] * slices[b].at(c, k, o) / static_cast<double>(n);
-      }
-    }
-    rep.posterior_predictive = pp;
-    rep.misfit = pp < kMisfitProbability;
-    std::vector<double> rates = error_rates;
-    rates[o] = 0.5;
-    std::vector<LikelihoodReduction> without;
-    for (std::size_t b = 0; b < nb; ++b) without.push_back(reduce_likelihood(slices[b], rates));
-    const std::vector<double> ll_without = joint(without);
-    const double z_without = log_sum_exp(ll_without);
-    double kl = 0.0;
-    for (std::size_t i = 0; i < post_joint.size(); ++i) {
-      if (post_joint[i] > 0.0) kl += post_joint[i] * ((ll_joint[i] - z_joint) - (ll_without[i] - z_without));
-    }
-    rep.constraint_bits = std::max(0.0, kl / std::log(2.0));
-  }
-
-  // The direction of strongest shaking.
-  std::vector<double> post_dir(nb, 0.0);
-  for (std::size_t c = 0; c < cells; ++c) {
-    for (std::size_t b = 0; b < nb; ++b) post_dir[b] += post_joint[c * nb + b];
-  }
+  out.bounds = std::move(thresholds.rotd50);
+  out.rotd100_bounds = std::move(thresholds.rotd100);
+  std::tie(out.bins, out.runs) = simulate_matches_3c(site, st, pga_g, family, options);
+  // The solver its runs used (observation_match_3c): the two-dimensional sliding block or the oriented rocking body.
+  // The survey reader refuses the coupled model and a model key that contradicts the outcome with components = 3, so
+  // this is also object_model (survey.hpp).
+  for (const ObservedObject& o : site.objects) out.models.push_back(is_sliding(o.outcome) ? ObjectModel::slide : ObjectModel::rock);
+  // The family's facts (the direction estimate is the pipeline's, from the posterior).
   ThreeComponentResult tc;
-  tc.direction = direction_estimate(direction_bins_deg(st), post_dir);
   double larger = 0.0, r100 = 0.0, count = 0.0;
   for (const auto& column : family.motions) {
     for (const Realisation3c& real : column) {
@@ -556,36 +449,36 @@ InversionResult invert_site_3c(const Site& site, const InversionSettings& st, co
   }
   tc.larger_component_ratio = larger / count;
   tc.rotd100_ratio = r100 / count;
-  tc.larger_component_median_g = r.pga_estimate_g.median * tc.larger_component_ratio;
-  if (r.pga_estimate_g.ci95_low) tc.larger_component_ci95_low_g = *r.pga_estimate_g.ci95_low * tc.larger_component_ratio;
-  if (r.pga_estimate_g.ci95_high) tc.larger_component_ci95_high_g = *r.pga_estimate_g.ci95_high * tc.larger_component_ratio;
   const SynthesisSetSpec defaults;
   tc.coherence = st.coherence;
   tc.vertical_pga_ratio = defaults.vertical_pga_ratio;
   tc.vertical_frequency_ratio = defaults.vertical_frequency_ratio;
   tc.slid_direction_kappa = kSlidDirectionKappa;
   tc.threshold_vertical_ratio = rho;
-  r.three_component = tc;
-
-  r.notes = inversion_notes(r, table.mean_over_bins());
-  r.notes.push_back(fmt::format(
+  out.three_component = tc;
+  out.direction_bins_deg = direction_bins_deg(st);
+  out.notes.push_back(fmt::format(
       "Three components: the static thresholds hold on RotD100 PGA, the peak of the horizontal acceleration vector, "
       "which bounds its projection on every bearing (with the family's vertical, V/H <= {:.3g}); on RotD50, the PGA "
       "axis of the estimates, they hold as the weaker RotD50 >= {:.4f} RotD100 makes them.",
       rho, kRotD50FloorOfRotD100));
   for (const ObservedObject& o : site.objects) {
     if (o.outcome == Outcome::not_rocked && !o.depth_m && o.body.shape != RockingBody::Shape::cylinder) {
-      r.notes.push_back(fmt::format("{} did not rock: that bounds the motion along its bearing only, no direction-free "
-                                    "measure, so it gives no static threshold here (a box, with depth, does).",
-                                    o.id));
+      out.notes.push_back(fmt::format("{} did not rock: that bounds the motion along its bearing only, no "
+                                      "direction-free measure, so it gives no static threshold here (a box, with "
+                                      "depth, does).",
+                                      o.id));
     }
   }
-  if (!tc.direction.constrained) {
-    r.notes.push_back(fmt::format("The direction of strongest shaking is unconstrained: its 95 % arc spans {:.0f} deg "
-                                  "(more than {:.0f} deg). Bearings of objects that rocked, overturned or stood, and "
-                                  "sliding directions, constrain it.",
-                                  tc.direction.ci95.width_deg, kUnconstrainedArcDeg));
-  }
+  return out;
+}
+
+InversionResult invert_site_3c(const Site& site, const InversionSettings& st, const FamilyGrid3c& family,
+                               const InversionOptions& options) {
+  const auto started = std::chrono::steady_clock::now();
+  const std::vector<double> pga_g = detail::pga_axis(st);
+  InversionResult r = detail::infer_site(site, pga_g, family.freq_hz, family.measured_freq_hz,
+                                         detail::simulate_site_3c(site, st, pga_g, family, options));
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return r;
 }

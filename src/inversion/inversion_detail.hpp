@@ -1,11 +1,12 @@
 #pragma once
 // Internals of the inversion shared by inversion.cpp (one component) and inversion_3c.cpp (three components).
 #include <cstdint>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "topple/inversion/inversion.hpp"
-#include "topple/solvers/rocking.hpp"
-#include "topple/solvers/slide_rock.hpp"
+#include "topple/inversion/inversion_3c.hpp"
 #include "topple/motion/synthesis.hpp"
 
 namespace topple::detail {
@@ -21,21 +22,6 @@ namespace topple::detail {
 /// (at most 0.01 s), the survey's coherence, components called east (first) and north (second), a vertical.
 [[nodiscard]] SynthesisSetSpec family_set_spec(const InversionSettings& settings, double freq_hz, int k);
 
-/// The match of a sliding observation (inversion.hpp, item 2) from a run's max |displacement| and residual distance
-/// (m): not_slid: max < 2 mm; a measured distance: its Gaussian kernel; slid_at_least: residual >= it; slid: max >= 2 mm.
-[[nodiscard]] double sliding_match(const ObservedObject& object, double max_displacement_m, double residual_m);
-/// The rocking options of the inversion's runs: restitution as the object gives it, 20 s run-out, rel_tol 1e-6.
-[[nodiscard]] RockingOptions inversion_rocking_options(const ObservedObject& object, const DrawnParameters& parameters,
-                                                      double g_m_s2);
-/// The coupled runs' options: those of inversion_rocking_options (restitution, 20 s run-out, rel_tol 1e-6).
-[[nodiscard]] SlideRockOptions inversion_slide_rock_options(const ObservedObject& object,
-                                                           const DrawnParameters& parameters, double g_m_s2);
-/// The match of any observation of an object simulated with the coupled model, from the run's summary: the one place
-/// the coupled solver's results become outcomes (docs/survey.md, "Objects that slide and rock").
-[[nodiscard]] double coupled_match(const ObservedObject& object, const SlideRockSummary& summary);
-/// The match (0 or 1) of a rocking observation for a run that overturned or not, with its max |theta| (rad).
-[[nodiscard]] double rocking_match(Outcome outcome, bool overturned, double max_rotation_rad);
-
 /// tan(alpha) of a body's uplift threshold g tan(alpha) in a static threshold: an asymmetric body's smaller one for a
 /// lower threshold (it rocked), its larger one for an upper threshold (it did not), the weaker claim.
 [[nodiscard]] double uplift_tan_alpha(const RockingBody& body, bool lower);
@@ -46,5 +32,50 @@ void settle_static_bounds(StaticBounds& b);
 /// The 3 x 3 neighbourhood of a cell with weights 4/2/1 (inversion.hpp, item 2).
 [[nodiscard]] std::vector<std::pair<std::size_t, double>> neighbourhood(std::size_t c, std::size_t np,
                                                                         std::size_t nf);
+
+// ---- The one pipeline (invert_sites, inversion.cpp) ----
+
+/// The grid's PGA rows (g) and frequency columns (Hz): log-spaced over the settings' ranges.
+[[nodiscard]] std::vector<double> pga_axis(const InversionSettings& settings);
+[[nodiscard]] std::vector<double> freq_axis(const InversionSettings& settings);
+/// eps_o of every object of the site (survey.hpp, evidence_error_rate), in the site's order.
+[[nodiscard]] std::vector<double> evidence_error_rates(const Site& site);
+
+/// What the runs of a motion family give the pipeline for one site. The direction axis: one component has one bin;
+/// three components (inversion_3c.hpp) have settings.directions bins and the family's own facts.
+struct SiteRuns {
+  StaticBounds bounds;                         ///< the static thresholds on the PGA axis of the estimates
+  std::optional<StaticBounds> rotd100_bounds;  ///< components = 3: the thresholds on RotD100, where they hold
+  std::vector<MatchTable> bins;                ///< the matches of every direction bin
+  std::vector<ObjectModel> models;             ///< per object: the model its runs used (matching.hpp)
+  std::size_t runs = 0;                        ///< solver runs done
+  /// components = 3: the family's facts (ratios, coherence, rho, kappa); the pipeline adds the direction estimate.
+  std::optional<ThreeComponentResult> three_component;
+  std::vector<double> direction_bins_deg;      ///< components = 3: the bins' centres, deg
+  std::vector<std::string> notes;              ///< the family's own notes, after the common ones
+};
+
+/// Steps 2 of one component: static_bounds and simulate_matches (one bin).
+[[nodiscard]] SiteRuns simulate_site(const Site& site, const InversionSettings& settings,
+                                     const std::vector<double>& pga_g, const FamilyGrid& family,
+                                     const InversionOptions& options);
+/// Steps 2 of three components (inversion_3c.cpp): static_bounds_3c and the runs at every direction bin.
+[[nodiscard]] SiteRuns simulate_site_3c(const Site& site, const InversionSettings& settings,
+                                        const std::vector<double>& pga_g, const FamilyGrid3c& family,
+                                        const InversionOptions& options);
+
+/// Steps 3-5 for either: per bin reduce_likelihood; the cell's log-likelihood, log of the bins' mean; the objects'
+/// probabilities (the bins' mean); fill_posterior_and_estimates; assess_objects over the joint (cell, bin) posterior;
+/// the notes; with three components the direction estimate (inversion_3c.hpp, item 5). Not `seconds`.
+[[nodiscard]] InversionResult infer_site(const Site& site, const std::vector<double>& pga_g,
+                                         const std::vector<double>& freq_hz,
+                                         const std::vector<double>& measured_freq_hz, SiteRuns runs);
+
+/// Step 4b (inversion.hpp, item 4) over the direction axis: posterior_predictive = sum over (cell, bin) of the
+/// posterior times the share of the cell's runs that match; constraint_bits the KL divergence, over (cell, bin), from
+/// the posterior without the object. ll_joint and posterior_joint: index c * bins + b.
+void assess_objects(InversionResult& result, const std::vector<MatchTable>& bins,
+                    const std::vector<double>& error_rates, const std::vector<double>& ll_joint,
+                    const std::vector<double>& posterior_joint);
 
 }  // namespace topple::detail

@@ -93,13 +93,7 @@ nlohmann::ordered_json three_component_json(const ThreeComponentResult& tc, cons
 nlohmann::ordered_json inversion_json(const InversionResult& r, const Site& site, const Provenance& provenance) {
   nlohmann::ordered_json j = inversion_json(r, site);
   nlohmann::ordered_json p;
-  p["topple_version"] = provenance.topple_version;
-  p["git_commit"] = provenance.git_commit;
-  p["date_utc"] = provenance.date_utc;
-  p["command_line"] = provenance.command_line;
-  p["survey_file"] = provenance.survey_file;
-  p["survey_xxh3_64"] = provenance.survey_xxh3_64;
-  p["survey_text"] = provenance.survey_text;
+  for (const ProvenanceField& field : kProvenanceFields) p[field.key] = provenance.*field.member;
   j["provenance"] = p;
   return j;
 }

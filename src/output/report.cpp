@@ -16,6 +16,7 @@
 #include "topple/output/inversion_output.hpp"
 #include "topple/output/provenance.hpp"
 #include "topple/inversion/inversion_3c.hpp"
+#include "topple/inversion/matching.hpp"
 #include "topple/solvers/rocking.hpp"
 #include "topple/solvers/slide_rock.hpp"
 #include "topple/solvers/sliding.hpp"
@@ -405,20 +406,17 @@ plot::Figure best_cell_figure(const InversionResult& r, const Site& site, const 
   for (std::size_t o = 0; o < site.objects.size(); ++o) {
     const ObservedObject& obj = site.objects[o];
     const std::string color = object_color(o);
-    const double amp = obj.amplification.mid();
-    const GroundMotion seen = nominal_object_motion(obj, motion);  // through a flexible support, if any
-    if (object_model(obj) == ObjectModel::coupled) {
+    // The inversion's own matching (matching.hpp) at the middle of every range: the model, the motion the object
+    // feels (flexible support, amplification, orientation) and the solver options its runs use.
+    const DrawnParameters nominal = nominal_parameters(obj);
+    const GroundMotion seen = object_motion(obj, nominal, motion);  // through a flexible support, if any
+    const double factor = rocking_plane_factor(obj, nominal);
+    const ObjectModel model = object_model(obj);
+    if (model == ObjectModel::coupled) {
       // The coupled body (survey.hpp, object_model): its tilt over its side's alpha and its base's slide.
-      SlideRockOptions opt;
-      opt.g_m_s2 = settings.g_m_s2;
+      SlideRockOptions opt = inversion_slide_rock_options(obj, nominal, settings.g_m_s2);
       opt.record_history = true;
-      if (!obj.e_housner) {
-        opt.restitution = RestitutionMode::given;
-        opt.e = obj.e.mid();
-      }
-      double factor = amp;
-      if (obj.orientation_deg) factor *= std::cos(deg_to_rad(*obj.orientation_deg));
-      const auto res = slide_rock(seen.scaled(factor), SlideRockBody::from_rocking(obj.body, obj.mu.mid()), opt);
+      const auto res = slide_rock(seen.scaled(factor), SlideRockBody::from_rocking(obj.body, nominal.mu), opt);
       std::vector<double> ratio(res.history.theta_rad.size());
       for (std::size_t i = 0; i < ratio.size(); ++i) {
         const double theta = res.history.theta_rad[i];
@@ -426,20 +424,15 @@ plot::Figure best_cell_figure(const InversionResult& r, const Site& site, const 
       }
       const std::string fell = res.summary.overturned ? " (falls in this one motion)" : "";
       rocking.series.push_back({obj.id + " (coupled)" + fell, res.history.time_s, ratio, "lines", color, 1.6});
-      sliding.series.push_back({fmt::format("{} (coupled, mu {:.2g})", obj.id, obj.mu.mid()), res.history.time_s,
+      sliding.series.push_back({fmt::format("{} (coupled, mu {:.2g})", obj.id, nominal.mu), res.history.time_s,
                                 res.history.slide_m, "lines", color, 1.6});
-    } else if (obj.outcome == Outcome::slid || obj.outcome == Outcome::not_slid) {
-      const auto res = slide(seen.scaled(amp), SlidingBlock::make(obj.mu.mid(), obj.mu.mid(), 0.0, SlidingMode::two_way, settings.g_m_s2));
-      sliding.series.push_back({fmt::format("{} (mu {:.2g})", obj.id, obj.mu.mid()), res.history.time_s, res.history.displacement_m, "lines", color, 1.6});
+    } else if (model == ObjectModel::slide) {
+      const auto res = slide(seen.scaled(nominal.amplification),
+                             SlidingBlock::make(nominal.mu, nominal.mu, 0.0, SlidingMode::two_way, settings.g_m_s2));
+      sliding.series.push_back({fmt::format("{} (mu {:.2g})", obj.id, nominal.mu), res.history.time_s,
+                                res.history.displacement_m, "lines", color, 1.6});
     } else {
-      RockingOptions opt;
-      opt.g_m_s2 = settings.g_m_s2;
-      if (!obj.e_housner) {
-        opt.restitution = RestitutionMode::given;
-        opt.e = obj.e.mid();
-      }
-      double factor = amp;
-      if (obj.orientation_deg) factor *= std::cos(deg_to_rad(*obj.orientation_deg));
+      const RockingOptions opt = inversion_rocking_options(obj, nominal, settings.g_m_s2);
       const auto res = rock(seen.scaled(factor), obj.body, opt);
       std::vector<double> ratio(res.history.theta_rad.size());
       // theta over its side's alpha (an asymmetric body: alpha- = atan(b1/h) for theta < 0).
@@ -491,12 +484,12 @@ std::string best_html(const Estimate& e, const char* unit) {
 
 }  // namespace
 
-void write_report(const std::filesystem::path& dir, const Survey& survey, const Site& site, const InversionResult& r,
-                  const std::optional<io::Provenance>& given_provenance) {
+namespace {
+
+/// The provenance the report shows: the caller's, or, for a library caller without one, the survey file's (when there
+/// is one) and an unknown command line.
+io::Provenance report_provenance(const Survey& survey, const std::optional<io::Provenance>& given_provenance) {
   std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec) throw OutputError(fmt::format("cannot create the report directory '{}': {}", dir.string(), ec.message()));
-  // A library caller without provenance gets the survey file's (when there is one) and an unknown command line.
   io::Provenance provenance;
   if (given_provenance) {
     provenance = *given_provenance;
@@ -505,17 +498,11 @@ void write_report(const std::filesystem::path& dir, const Survey& survey, const 
   } else {
     provenance = io::make_provenance_without_file("unknown (the report was written by a library call)");
   }
-  plot::render(likelihood_map_figure(r, site), dir / "likelihood.svg");
-  plot::render(marginal_figure(r, true), dir / "marginal_pga.svg");
-  plot::render(marginal_figure(r, false), dir / "marginal_freq.svg");
-  plot::render(best_cell_figure(r, site, survey.inversion), dir / "best_cell.svg");
-  if (r.three_component) plot::render(direction_figure(r, site), dir / "direction.svg");
-  io::write_inversion_grid_csv(dir / "grid.csv", r);
-  io::write_file_atomically(dir / "result.json", io::inversion_json(r, site, provenance).dump(2) + "\n");
-  const InversionSettings& st = survey.inversion;
-  const Estimate& pga = r.pga_estimate_g;
-  const Estimate& freq = r.freq_estimate_hz;
-  std::ostringstream h;
+  return provenance;
+}
+
+/// The page's head, title, summary and location.
+void head_html(std::ostringstream& h, const Site& site, const InversionResult& r) {
   h << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n<title>topple: " << html_escape(site.name)
     << "</title>\n<style>\nbody{font-family:Helvetica,Arial,sans-serif;max-width:1150px;margin:2em auto;color:#222;line-height:1.45}\n"
        "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #ccc;padding:4px 8px;text-align:left}th{background:#f2f2f2}\n"
@@ -530,7 +517,12 @@ void write_report(const std::filesystem::path& dir, const Survey& survey, const 
   if (site.lat_deg && site.lon_deg) h << fmt::format("<p>Location {:.4f}&deg;, {:.4f}&deg;.</p>\n", *site.lat_deg, *site.lon_deg);
   if (!site.notes.empty()) h << "<p>" << html_escape(site.notes) << "</p>\n";
 
-  // ---- The estimate, every number defined beside it ----
+}
+
+/// The estimate, every number defined beside it.
+void estimate_html(std::ostringstream& h, const InversionResult& r) {
+  const Estimate& pga = r.pga_estimate_g;
+  const Estimate& freq = r.freq_estimate_hz;
   h << "<h2 id=\"estimate\">Estimate</h2>\n<table id=\"numbers\"><tr><th></th><th>median</th><th>68 % interval</th>"
        "<th>95 % interval</th><th>maximum-likelihood cell</th></tr>\n";
   h << fmt::format("<tr><td>PGA</td><td class=\"num\">{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
@@ -556,8 +548,11 @@ void write_report(const std::filesystem::path& dir, const Survey& survey, const 
        "whose likelihood is largest; among cells of nearly equal likelihood it moves with the seed, so it is a "
        "diagnostic, not the estimate. <b>Predominant frequency</b>: the peak of the motion's Konno&ndash;Ohmachi-"
        "smoothed Fourier amplitude spectrum. PGA in g = 9.80665 m/s&#178;.</p>\n";
+}
 
-  // ---- Static thresholds, hard and soft, beside the estimate ----
+/// Static thresholds, hard and soft, beside the estimate; then the notes.
+void thresholds_html(std::ostringstream& h, const InversionResult& r) {
+  const Estimate& pga = r.pga_estimate_g;
   h << "<h2 id=\"thresholds\">Static thresholds</h2>\n<table id=\"static\"><tr><th>object</th><th>threshold on PGA</th>"
        "<th>kind</th><th>from</th></tr>\n";
   const auto threshold_row = [&h](const StaticBound& b, const char* relation, const char* axis) {
@@ -598,8 +593,10 @@ void write_report(const std::filesystem::path& dir, const Survey& survey, const 
   }
   h << "</p>\n";
   for (const auto& note : r.notes) h << "<p class=\"note\">" << html_escape(note) << "</p>\n";
+}
 
-  // ---- Figures, each with its caption ----
+/// Figures 1 to 3b, each with its caption (the SVGs already written in `dir`).
+void figures_html(std::ostringstream& h, const std::filesystem::path& dir, const InversionResult& r) {
   std::string undrawn;
   for (std::size_t o = 0; o < r.objects.size(); ++o) {
     const ObjectLine line = object_line(r, o);
@@ -630,8 +627,11 @@ void write_report(const std::filesystem::path& dir, const Survey& survey, const 
          "triangles: observed sliding directions. The direction is unconstrained when the 95 % arc spans more "
          "than 120&deg;.</figcaption></figure>\n";
   }
+}
 
-  // ---- Observations and how well the answer explains each ----
+/// The observations and how well the answer explains each, and Figure 4.
+void observations_html(std::ostringstream& h, const std::filesystem::path& dir, const Site& site,
+                       const InversionResult& r) {
   h << "<h2 id=\"objects\">Observations</h2>\n<div class=\"wide\"><table id=\"observations\"><tr><th>id</th><th>description</th>"
        "<th>geometry</th><th>&mu;</th><th>e</th><th>support (amplification)</th><th>observed</th><th>evidence</th>"
        "<th>static threshold</th><th>P(observation), posterior-predictive</th><th>P at the maximum-likelihood cell</th>"
@@ -670,6 +670,10 @@ void write_report(const std::filesystem::path& dir, const Survey& survey, const 
        "sliding ones as displacement). One motion is one sample: an object observed standing may fall in it (its label "
        "then says so) while most motions of the cell leave it standing; the likelihood counts every motion with drawn "
        "parameters.</figcaption></figure>\n";
+}
+
+/// The method in short, with the grid and the family of this run.
+void method_html(std::ostringstream& h, const InversionSettings& st, const Site& site, const InversionResult& r) {
   h << "<h2>Method in short</h2>\n<ol>\n"
        "<li>Static thresholds (Mittal 1971, section 1.1): an object that slid needs PGA &gt; &mu;g, one that rocked or "
        "overturned PGA &gt; g&middot;b/h (divided by the support's amplification): hard; one that did not slide "
@@ -690,17 +694,18 @@ void write_report(const std::filesystem::path& dir, const Survey& survey, const 
        "cells are pooled. Prior uniform in log PGA and log frequency. Intervals are equal-tailed from the marginal "
        "posteriors; an end that lies in the grid's first or last cell is reported as below/above the grid.</li>\n</ol>\n";
 
-  // ---- Provenance: enough to trace and rerun the result ----
+}
+
+/// Provenance: enough to trace and rerun the result.
+void provenance_html(std::ostringstream& h, const io::Provenance& provenance, const InversionSettings& st,
+                     const InversionResult& r) {
   h << "<h2 id=\"provenance\">Provenance</h2>\n<table id=\"provenance-table\">\n";
   const auto row = [&h](const char* key, const std::string& value) {
     h << "<tr><th>" << key << "</th><td><code>" << html_escape(value) << "</code></td></tr>\n";
   };
-  row("topple version", provenance.topple_version);
-  row("git commit", provenance.git_commit);
-  row("date (UTC)", provenance.date_utc);
-  row("command line", provenance.command_line);
-  row("survey file", provenance.survey_file);
-  row("survey checksum (XXH3-64)", provenance.survey_xxh3_64);
+  for (const io::ProvenanceField& field : io::kProvenanceFields) {
+    if (field.label != nullptr) row(field.label, provenance.*field.member);
+  }
   h << "</table>\n";
   h << fmt::format("<p>Family {}, seed {}, g = {} m/s&#178;, {} runs in {:.1f} s.</p>\n",
                    motion_family_name(st.family), st.seed, st.g_m_s2, r.runs, r.seconds);
@@ -711,6 +716,31 @@ void write_report(const std::filesystem::path& dir, const Survey& survey, const 
   }
   h << "<p>The survey, verbatim:</p>\n<pre id=\"survey-text\">" << html_escape(provenance.survey_text) << "</pre>\n";
   h << "<p>Files beside this page: <a href=\"grid.csv\">grid.csv</a> (the likelihood grid), <a href=\"result.json\">result.json</a>.</p>\n";
+}
+
+}  // namespace
+
+void write_report(const std::filesystem::path& dir, const Survey& survey, const Site& site, const InversionResult& r,
+                  const std::optional<io::Provenance>& given_provenance) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw OutputError(fmt::format("cannot create the report directory '{}': {}", dir.string(), ec.message()));
+  const io::Provenance provenance = report_provenance(survey, given_provenance);
+  plot::render(likelihood_map_figure(r, site), dir / "likelihood.svg");
+  plot::render(marginal_figure(r, true), dir / "marginal_pga.svg");
+  plot::render(marginal_figure(r, false), dir / "marginal_freq.svg");
+  plot::render(best_cell_figure(r, site, survey.inversion), dir / "best_cell.svg");
+  if (r.three_component) plot::render(direction_figure(r, site), dir / "direction.svg");
+  io::write_inversion_grid_csv(dir / "grid.csv", r);
+  io::write_file_atomically(dir / "result.json", io::inversion_json(r, site, provenance).dump(2) + "\n");
+  std::ostringstream h;
+  head_html(h, site, r);
+  estimate_html(h, r);
+  thresholds_html(h, r);
+  figures_html(h, dir, r);
+  observations_html(h, dir, site, r);
+  method_html(h, survey.inversion, site, r);
+  provenance_html(h, provenance, survey.inversion, r);
   h << "</body></html>\n";
   io::write_file_atomically(dir / "index.html", h.str());
 }

@@ -13,13 +13,12 @@
 #include <tbb/parallel_for.h>
 
 #include "topple/core/error.hpp"
+#include "topple/numerics/statistics.hpp"
 
 namespace topple {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-double normal_cdf(double z) noexcept { return 0.5 * std::erfc(-z / std::numbers::sqrt2); }
 
 /// f(i, mass_i) for each cell [edges_i, edges_i+1] with mass_i the N(m, s^2) mass on it, Phi(b) - Phi(a) of the
 /// standardised edges a <= b computed in the tail nearer to the cell, so that two CDF values near 1 are not
@@ -384,10 +383,7 @@ SiteEvidence site_evidence(const std::string& name, double distance_km, const In
   const auto cells = [](std::vector<double>& lik, std::vector<double>& edges, const std::vector<double>& values) {
     const double peak = *std::max_element(lik.begin(), lik.end());
     for (double& l : lik) l /= peak;
-    edges.assign(values.size() + 1, 0.0);
-    edges.front() = -kInf;
-    edges.back() = kInf;
-    for (std::size_t i = 1; i < values.size(); ++i) edges[i] = 0.5 * (std::log(values[i - 1]) + std::log(values[i]));
+    edges = log_cell_edges(values, CellEnds::open);
   };
   cells(e.likelihood, e.ln_edges, objects->pga_g);
   cells(e.freq_likelihood, e.ln_freq_edges, objects->freq_hz);

@@ -1420,4 +1420,15 @@ SlideRockResult slide_rock(const GroundMotion& horizontal, const SlideRockBody& 
   return r;
 }
 
+SlideRockOptions slide_rock_options(const RockingOptions& rocking) {
+  SlideRockOptions options;
+  options.g_m_s2 = rocking.g_m_s2;
+  options.restitution = rocking.restitution;
+  options.e = rocking.e;
+  options.rel_tol = rocking.rel_tol;
+  options.max_run_out_s = rocking.max_run_out_s;
+  options.max_steps = rocking.max_steps;
+  return options;
+}
+
 }  // namespace topple

@@ -26,7 +26,7 @@
 #include "topple/motion/spectra.hpp"
 #include "topple/motion/synthesis.hpp"
 #include "topple/core/units.hpp"
-#include "inversion/inversion_detail.hpp"  // private header of src/ (tests see src/)
+#include "topple/inversion/matching.hpp"
 
 namespace topple {
 namespace {
@@ -197,7 +197,7 @@ TEST(CoupledSurvey, TheSolversResultsBecomeOutcomesByTheDocumentedDefinitions) {
   const auto match = [](Outcome outcome, const SlideRockSummary& s, std::optional<double> slid_m = std::nullopt) {
     ObservedObject o = testing::block("x", 0.1, 0.4, {0.3, 0.3}, outcome);
     o.slid_m = slid_m;
-    return detail::coupled_match(o, s);
+    return coupled_match(o, s);
   };
   const SlideRockSummary slid_flat = summary(false, 0.0, 0.03, 0.03, 0, 2);      // slid 3 cm flat, stood
   const SlideRockSummary walked = summary(false, 0.05, 0.01, 0.008, 6, 0);      // rocked, 8 mm offset, no flat slide

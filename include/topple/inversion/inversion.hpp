@@ -46,6 +46,7 @@
 #include <vector>
 
 #include "topple/inversion/direction.hpp"
+#include "topple/inversion/matching.hpp"
 #include "topple/core/progress.hpp"
 #include "topple/motion/ground_motion.hpp"
 #include "topple/survey/survey.hpp"
@@ -150,7 +151,9 @@ void validate_inversion_settings(const InversionSettings& settings);
 /// the report's example motion. Motions have PGA 1 m/s^2.
 [[nodiscard]] std::vector<GroundMotion> family_motions(const InversionSettings& settings, double freq_hz);
 
-/// The inversion of one site: family, runs, likelihood, estimates and notes (the steps below, in that order).
+/// The inversion of one site: family, runs, likelihood, estimates and notes (the steps below, in that order). One
+/// pipeline for one and three components: three components (inversion_3c.hpp) differ in the family (a motion set)
+/// and the runs (one match table per direction bin); the steps after the runs are the same.
 [[nodiscard]] InversionResult invert_site(const Site& site, const InversionSettings& settings,
                                           const InversionOptions& options = {});
 
@@ -228,31 +231,5 @@ void assess_objects(InversionResult& result, const MatchTable& matches, const st
 /// the smallest set of cells, taken by decreasing posterior, whose mass reaches `level`; the point belongs to the cell
 /// whose log extent contains it (points outside the grid belong to no cell).
 [[nodiscard]] bool in_credible_region(const InversionResult& result, double pga_g, double freq_hz, double level);
-
-/// Per-run match of an object's observation (exposed for tests): simulate `object` with the given parameters under
-/// `motion` (already scaled to the cell's PGA; filtered here through the object's flexible support, if it has one)
-/// and compare with the observation.
-struct DrawnParameters {
-  double mu = 0.0;              ///< friction coefficient (dimensionless)
-  double e = 0.0;               ///< restitution (dimensionless), used when !object.e_housner
-  double amplification = 1.0;   ///< support motion / ground motion (dimensionless)
-  double support_freq_hz = 0.0;  ///< the flexible support's frequency (Hz), when the object has a support_filter
-  double support_damping = 0.0;  ///< its damping ratio (decimal), likewise
-};
-[[nodiscard]] double observation_match(const ObservedObject& object, const DrawnParameters& parameters,
-                                       const GroundMotion& motion, double g_m_s2);
-
-/// The motion an object feels at its nominal parameters (for the report's replay): the ground's, or, on a flexible
-/// support, the support's absolute acceleration with the middle of its frequency and damping ranges.
-[[nodiscard]] GroundMotion nominal_object_motion(const ObservedObject& object, const GroundMotion& ground);
-
-/// The one-sigma width (m) of the Gaussian kernel that scores a measured sliding distance: the larger of the given
-/// slid_uncertainty, 25 % of slid (a distance read off marks is rarely better than that) and kVisibleSlipM (2 mm).
-/// docs/survey.md states this floor; the survey keeps the given value, the report shows the one used.
-[[nodiscard]] double sliding_sigma_m(const ObservedObject& object);
-
-/// The drawn parameters of object o for motion k (deterministic in seed, k, o; uniform in each range).
-[[nodiscard]] DrawnParameters draw_parameters(const ObservedObject& object, std::uint64_t seed, std::size_t k,
-                                              std::size_t o);
 
 }  // namespace topple

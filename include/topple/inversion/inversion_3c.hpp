@@ -148,7 +148,8 @@ void observation_match_3c(const ObservedObject& object, const DrawnParameters& p
 [[nodiscard]] DirectionEstimate direction_estimate(const std::vector<double>& bins_deg,
                                                    const std::vector<double>& posterior);
 
-/// The three-component inversion of one site on a built family (invert_site dispatches here for components = 3).
+/// The three-component inversion of one site on a built family: the one pipeline of invert_sites (inversion.hpp)
+/// with this family's runs, one match table per direction bin (what invert_site does for components = 3).
 [[nodiscard]] InversionResult invert_site_3c(const Site& site, const InversionSettings& settings,
                                              const FamilyGrid3c& family, const InversionOptions& options = {});
 

@@ -1,6 +1,8 @@
 #pragma once
 // Inversion results as JSON (a stable interface), the grid as CSV, sites as GeoJSON, PGA vs epicentral distance.
+#include <array>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -17,6 +19,24 @@ namespace topple::io {
 /// kind), contradictions, notes, misfit_level, constraining_objects, objects (with posterior_predictive, misfit,
 /// constraint_bits), grid axes, runs, seconds. docs/survey.md lists every key. Keys are only ever added.
 [[nodiscard]] nlohmann::ordered_json inversion_json(const InversionResult& result, const Site& site);
+
+/// One field of the provenance: its key in the JSON "provenance" object (in this order), its label in the report's
+/// provenance table (nullptr: not a row there; the report shows the survey text verbatim below the table), and the
+/// member that holds it. The one table both writers read.
+struct ProvenanceField {
+  const char* key;
+  const char* label;
+  std::string Provenance::*member;
+};
+inline constexpr std::array<ProvenanceField, 7> kProvenanceFields{{
+    {"topple_version", "topple version", &Provenance::topple_version},
+    {"git_commit", "git commit", &Provenance::git_commit},
+    {"date_utc", "date (UTC)", &Provenance::date_utc},
+    {"command_line", "command line", &Provenance::command_line},
+    {"survey_file", "survey file", &Provenance::survey_file},
+    {"survey_xxh3_64", "survey checksum (XXH3-64)", &Provenance::survey_xxh3_64},
+    {"survey_text", nullptr, &Provenance::survey_text},
+}};
 
 /// The same with a "provenance" object at the end (version, commit, date, command line, survey checksum and text).
 [[nodiscard]] nlohmann::ordered_json inversion_json(const InversionResult& result, const Site& site,

@@ -223,4 +223,9 @@ struct SlideRockResult {
 [[nodiscard]] SlideRockMode slide_rock_onset_mode(const SlideRockBody& body, double a_h_m_s2, double g_e_m_s2,
                                                   double slope_rad = 0.0);
 
+/// The coupled model's options from the rocking model's (one conversion for the inversion, `topple rock --model
+/// coupled` and Python's slide_rock): gravity, restitution and e, rel_tol, max_run_out_s and max_steps; the rest at
+/// SlideRockOptions' defaults (the rocking-only choices, method and rk4 substeps, have no coupled counterpart).
+[[nodiscard]] SlideRockOptions slide_rock_options(const RockingOptions& rocking);
+
 }  // namespace topple
