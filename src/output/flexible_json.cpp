@@ -1,10 +1,13 @@
 #include "topple/output/flexible_json.hpp"
 
+#include <array>
 #include <iterator>
+#include <variant>
 #include <utility>
 
 #include <fmt/format.h>
 
+#include "topple/core/field.hpp"
 #include "topple/core/output_file.hpp"
 #include "topple/output/write.hpp"
 
@@ -18,6 +21,22 @@ nlohmann::ordered_json support_head(FlexibleAnalysis a, const char* kind) {
   s["kind"] = kind;
   return s;
 }
+
+/// The supports' own fields, in the JSON's order: one table per support type (core/field.hpp).
+constexpr std::array<Field<SupportOscillator>, 3> kOscillatorFields{{
+    {"freq_hz", [](const SupportOscillator& o) -> FieldValue { return o.freq_hz; }},
+    {"damping_ratio", [](const SupportOscillator& o) -> FieldValue { return o.damping_ratio; }},
+    {"mass_ratio", [](const SupportOscillator& o) -> FieldValue { return o.mass_ratio; }},
+}};
+constexpr std::array<Field<SlidingMassColumn>, 5> kSlidingMassFields{{
+    {"height_m", [](const SlidingMassColumn& c) -> FieldValue { return c.height_m; }},
+    {"vs_slope_m_s", [](const SlidingMassColumn& c) -> FieldValue { return c.vs_slope_m_s; }},
+    {"vs_base_m_s", [](const SlidingMassColumn& c) -> FieldValue { return c.vs_base_m_s; }},
+    {"damping_ratio", [](const SlidingMassColumn& c) -> FieldValue { return c.damping_ratio; }},
+    {"reference_strain", [](const SlidingMassColumn& c) -> FieldValue {
+       return c.reference_strain ? FieldValue(*c.reference_strain) : FieldValue(std::monostate{});
+     }},
+}};
 
 /// The rigid block's summary with the support object, closed by the mode's fields.
 nlohmann::ordered_json with_support(nlohmann::ordered_json support, const FlexibleSummary& s, const SlidingBlock& block) {
@@ -34,21 +53,14 @@ nlohmann::ordered_json with_support(nlohmann::ordered_json support, const Flexib
 nlohmann::ordered_json flexible_summary_json(const FlexibleSummary& summary, const SlidingBlock& block,
                                              const SupportOscillator& support, FlexibleAnalysis analysis) {
   nlohmann::ordered_json s = support_head(analysis, "oscillator");
-  s["freq_hz"] = support.freq_hz;
-  s["damping_ratio"] = support.damping_ratio;
-  s["mass_ratio"] = support.mass_ratio;
+  s.update(fields_json(kOscillatorFields, support));
   return with_support(std::move(s), summary, block);
 }
 
 nlohmann::ordered_json flexible_summary_json(const FlexibleSummary& summary, const SlidingBlock& block,
                                              const SlidingMassColumn& column, FlexibleAnalysis analysis) {
   nlohmann::ordered_json s = support_head(analysis, "sliding_mass");
-  s["height_m"] = column.height_m;
-  s["vs_slope_m_s"] = column.vs_slope_m_s;
-  s["vs_base_m_s"] = column.vs_base_m_s;
-  s["damping_ratio"] = column.damping_ratio;
-  s["reference_strain"] =
-      column.reference_strain ? nlohmann::ordered_json(*column.reference_strain) : nlohmann::ordered_json(nullptr);
+  s.update(fields_json(kSlidingMassFields, column));
   s["vs_final_m_s"] = summary.mode.vs_m_s;
   s["equivalent_linear_iterations"] = summary.mode.iterations;
   return with_support(std::move(s), summary, block);
