@@ -49,7 +49,7 @@
 #include "topple/fragility/object_spectra.hpp"
 #include "topple/output/fragility_output.hpp"
 #include "topple/output/record_fields.hpp"
-#include "topple/region/region.hpp"
+#include "topple/region/survey_inversion.hpp"
 #include "topple/solvers/oriented.hpp"
 #include "topple/output/flexible_json.hpp"
 #include "topple/output/inversion_output.hpp"
@@ -58,7 +58,7 @@
 #include "topple/io/survey_file.hpp"
 #include "topple/io/sweep_file.hpp"
 #include "topple/output/write.hpp"
-#include "topple/output/report.hpp"
+#include "topple/output/region_report.hpp"
 #include "topple/solvers/rocking.hpp"
 #include "topple/motion/rotd.hpp"
 #include "topple/solvers/slide_rock.hpp"
@@ -678,45 +678,40 @@ nb::object run_synth(double pga_g, double freq_hz, double duration_s, std::uint6
 
 // ---- inversion ----
 
+/// The library's survey entry point as `topple invert` runs it (survey_inversion.hpp: invert_survey), in one process
+/// and without the GIL: every site with objects inverted, then the regional fit of a multi-site survey.
+SurveyInversion run_invert_survey(const Survey& survey, int threads, const RegionalSettings& settings) {
+  nb::gil_scoped_release release;
+  ensemble::SingleProcess one;
+  return invert_survey(survey, InversionOptions{threads}, one, settings);
+}
+
 /// The inversion of a survey read by the library (io::read_survey or io::parse_survey: the same validation and
-/// messages as the CLI), run by the library's survey entry point as `topple invert` runs it (region.hpp:
-/// invert_survey, one process): every site with objects inverted, then the regional fit of a multi-site survey.
-/// Stations without objects get no result and no report, as in the CLI. Optionally with the HTML report written as
-/// `topple invert --report` does (several sites: DIR/site<N>, N the site's place in the survey, and the regional
-/// page DIR/index.html when there is a regional fit; its warnings as RuntimeWarning).
+/// messages as the CLI), run and written by the library as `topple invert` does: the dict is its --json
+/// (io::survey_inversion_json, without provenance); stations without objects get no result and no report. Optionally
+/// with the HTML report written by write_survey_report as `topple invert --report` does (folders by
+/// site_report_folder, the regional page; its warnings as RuntimeWarning).
 nb::object invert_survey_dict(const Survey& survey, int threads, const std::optional<std::string>& report_dir) {
   const RegionalSettings region_settings;
-  SurveyInversion inv;
-  std::vector<std::string> report_warnings;
-  const bool multi = survey.sites.size() > 1;
-  {
-    nb::gil_scoped_release release;
-    ensemble::SingleProcess one;
-    inv = invert_survey(survey, InversionOptions{threads}, one, region_settings);
-    if (report_dir) {
-      const std::filesystem::path top(*report_dir);
-      for (std::size_t k = 0; k < inv.results.size(); ++k) {
-        const std::size_t i = inv.survey_index[k];
-        const std::filesystem::path dir = multi ? top / fmt::format("site{}", i + 1) : top;
-        std::filesystem::create_directories(dir);
-        write_report(dir, survey, survey.sites[i], inv.results[k]);
-      }
-      if (inv.region) {
-        // The regional page at the report's top, linking each site's page (a station without objects has none).
-        std::vector<std::string> pages(survey.sites.size());
-        for (const std::size_t i : inv.survey_index) pages[i] = fmt::format("site{}/index.html", i + 1);
-        report_warnings = write_region_report(top, survey, *inv.region, inv.per_site(survey.sites.size()), pages,
-                                              region_settings);
-      }
+  const SurveyInversion inv = run_invert_survey(survey, threads, region_settings);
+  if (report_dir) {
+    SurveyReport report;
+    {
+      nb::gil_scoped_release release;
+      report = write_survey_report(*report_dir, survey, inv, std::nullopt, region_settings);
+    }
+    for (const std::string& w : report.warnings) {
+      if (PyErr_WarnEx(PyExc_RuntimeWarning, w.c_str(), 1) != 0) throw nb::python_error();
     }
   }
-  for (const std::string& w : report_warnings) {
-    if (PyErr_WarnEx(PyExc_RuntimeWarning, w.c_str(), 1) != 0) throw nb::python_error();
-  }
-  const auto site_dict = [&](std::size_t k) {
+  nb::dict all = nb::cast<nb::dict>(to_python(io::survey_inversion_json(survey, inv, std::nullopt, region_settings)));
+  // Beyond the CLI's JSON: each site's grids, rows = PGA, columns = frequency (for topple.plot.inversion_map), in the
+  // site's object (several sites: "sites"[k]; one site: the top).
+  const bool multi = survey.sites.size() > 1;
+  nb::list sites = multi ? nb::cast<nb::list>(all["sites"]) : nb::list();
+  for (std::size_t k = 0; k < inv.results.size(); ++k) {
     const InversionResult& r = inv.results[k];
-    nb::dict d = nb::cast<nb::dict>(to_python(io::inversion_json(r, survey.sites[inv.survey_index[k]])));
-    // Beyond the CLI's JSON: the grids, rows = PGA, columns = frequency (for topple.plot.inversion_map).
+    nb::dict d = multi ? nb::cast<nb::dict>(sites[k]) : all;
     const std::size_t rows = r.pga_g.size();
     const std::size_t cols = r.freq_hz.size();
     d["posterior_grid"] = to_numpy_2d(r.posterior, rows, cols);
@@ -726,24 +721,8 @@ nb::object invert_survey_dict(const Survey& survey, int threads, const std::opti
     for (std::size_t j = 0; j < r.objects.size() && j < objects.size(); ++j) {
       objects[j]["probability_grid"] = to_numpy_2d(r.objects[j].probability, rows, cols);
     }
-    return d;
-  };
-  // The survey reader's warnings, as `topple invert --json` adds them: only when there are any.
-  const auto with_warnings = [&](nb::dict d) {
-    if (!survey.warnings.empty()) d["warnings"] = to_python(nlohmann::ordered_json(survey.warnings));
-    return d;
-  };
-  if (!multi) return with_warnings(site_dict(0));
-  // Several sites, as `topple invert --json`: the sites with objects, the regional fit and its notes.
-  nb::dict all;
-  nb::list sites;
-  for (std::size_t k = 0; k < inv.results.size(); ++k) sites.append(site_dict(k));
-  all["sites"] = sites;
-  if (inv.region) {
-    all["region"] = to_python(io::region_json(*inv.region, survey, inv.per_site(survey.sites.size()), region_settings));
   }
-  if (!inv.region_notes.empty()) all["region_notes"] = to_python(nlohmann::ordered_json(inv.region_notes));
-  return with_warnings(all);
+  return all;
 }
 
 /// A survey file read by the library (the options checked first, as the CLI does), without the GIL.
@@ -773,19 +752,14 @@ nb::object invert_text(const std::string& text, const std::string& name, const s
 
 // ---- the regional inversion ----
 
-/// A multi-site survey's inversion and regional fit as `topple invert --json` makes them (region.hpp: invert_survey,
+/// A multi-site survey's inversion and regional fit as `topple invert --json` makes them (run_invert_survey,
 /// one process): the `region` object (relation, frequency_relation, sites pooled beside their own estimates,
 /// contour_levels_g, notes), plus region_notes and each site's own inversion (site_results, None for a station
 /// without objects). A survey that gets no regional fit (no epicentre, fewer than 3 located sites) raises InputError
 /// with the reason.
 nb::object invert_region_survey(const Survey& survey, const std::string& where, int threads) {
   const RegionalSettings settings;
-  SurveyInversion inv;
-  {
-    nb::gil_scoped_release release;
-    ensemble::SingleProcess one;
-    inv = invert_survey(survey, InversionOptions{threads}, one, settings);
-  }
+  const SurveyInversion inv = run_invert_survey(survey, threads, settings);
   if (!inv.region) {
     std::string why = inv.region_notes.empty() ? std::string("a regional fit needs a multi-site survey") : inv.region_notes.front();
     throw InputError(InputLocation{where, {}, "region"}, why);
