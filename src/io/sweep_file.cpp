@@ -858,18 +858,14 @@ void read_rock(const Reader& r, const toml::table& o, const std::string& key, do
         ensemble::check_housner_restitution(body);  // the rocking model's rule (sweep.hpp)
       });
       for (const auto& m : mu_values) {
-        ensemble::RockObject ro;
-        ro.body = body;
-        ro.options.g_m_s2 = g;
-        ro.options.restitution = e ? RestitutionMode::given : RestitutionMode::housner;
-        if (e) ro.options.e = *e;
-        ro.options.mu = m;
-        ro.width_m = c.width_m;
-        ro.diameter_m = c.diameter_m;
-        ro.height_m = c.height_m;
-        ro.inertia_m2 = c.inertia_m2;
-        ro.mesh = c.mesh;
-        ro.mesh_azimuth_deg = c.mesh_azimuth_deg;
+        RockingOptions options;
+        options.g_m_s2 = g;
+        options.restitution = e ? RestitutionMode::given : RestitutionMode::housner;
+        if (e) options.e = *e;
+        options.mu = m;
+        ensemble::RockObject ro{.body = body, .options = options, .width_m = c.width_m, .height_m = c.height_m,
+                                .diameter_m = c.diameter_m, .inertia_m2 = c.inertia_m2, .mesh = c.mesh,
+                                .mesh_azimuth_deg = c.mesh_azimuth_deg};
         for (const auto& depth : depths) {
           ro.depth_m = depth;
           if (depth) r.located(o.get("depth") != nullptr ? o.get("depth") : o.get("depth_m"), prefix + "depth",
