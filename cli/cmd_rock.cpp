@@ -381,12 +381,9 @@ void add_rock_command(CLI::App& app) {
   cmd->add_option("--mu-k", o->mu_k, "--model coupled: kinetic friction coefficient (default: --mu)");
   cmd->add_option("--slope-deg", o->slope_deg, "--model coupled: inclination of the base, degrees, down-slope toward "
                                                "-x (the b1 corner); needs tan(slope) <= --mu and slope <= alpha-");
-  cmd->add_option("--vertical", o->vertical, "Vertical acceleration record (positive up), scaled with the horizontal");
-  cmd->add_option("--h2", o->h2, "Second horizontal component (record file): an oriented object rocking under the "
-                                 "projection of both components on its directions (planar model); --azimuths unless "
-                                 "the headers state them");
-  cmd->add_option("--azimuths", o->azimuths, "With --h2: the two components' azimuths A1,A2 in degrees clockwise "
-                                             "from north (perpendicular), e.g. 90,0; default: the files' headers");
+  add_motion_set_options(*cmd, o->vertical, o->h2, o->azimuths,
+                         "an oriented object rocking under the projection of both components on its directions "
+                         "(planar model)");
   cmd->add_option("--bearing-deg", o->bearing_deg, "With --h2: the direction across the object's narrow side "
                                                    "(its +x side), degrees clockwise from north; not for a cylinder");
   cmd->add_option("--depth", o->depth, "With --h2, a block: its other horizontal dimension (along bearing + 90), "

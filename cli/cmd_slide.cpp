@@ -164,13 +164,8 @@ void add_slide_command(CLI::App& app) {
   cmd->add_option("--slope-deg", o->slope_deg, "Inclination of the plane, degrees (positive displacement is "
                                                "down-slope)")->capture_default_str();
   cmd->add_flag("--one-way", o->one_way, "Down-slope sliding only (SLAMMER rigid-block convention)");
-  cmd->add_option("--vertical", o->vertical, "Vertical acceleration record (positive up), scaled with the horizontal");
-  cmd->add_option("--h2", o->h2, "Second horizontal component (record file): bidirectional sliding, friction "
-                                 "against the 2-D relative velocity in the plane; --azimuths unless the headers "
-                                 "state them");
-  cmd->add_option("--azimuths", o->azimuths, "With --h2: the two components' azimuths A1,A2 in degrees clockwise "
-                                             "from north (perpendicular), e.g. 90,0; default: the files' headers "
-                                             "where they state them (a value given here wins, with a warning)");
+  add_motion_set_options(*cmd, o->vertical, o->h2, o->azimuths,
+                         "bidirectional sliding, friction against the 2-D relative velocity in the plane");
   cmd->add_option("--slope-azimuth-deg", o->slope_azimuth_deg, "With --h2 and --slope-deg: azimuth of the downslope "
                                                                "direction, degrees clockwise from north");
   cmd->add_option("--out", o->out, "Write the time history to this CSV file (with --h2: east and north "

@@ -37,4 +37,14 @@ void refuse_without_h2(const std::string& azimuths_text,
   }
 }
 
+void add_motion_set_options(CLI::App& cmd, std::string& vertical, std::string& h2, std::string& azimuths,
+                            const std::string& h2_does) {
+  cmd.add_option("--vertical", vertical, "Vertical acceleration record (positive up), scaled with the horizontal");
+  cmd.add_option("--h2", h2, "Second horizontal component (record file): " + h2_does +
+                                 "; --azimuths unless the headers state them");
+  cmd.add_option("--azimuths", azimuths, "With --h2: the two components' azimuths A1,A2 in degrees clockwise from "
+                                         "north (perpendicular), e.g. 90,0; default: the files' headers where they "
+                                         "state them (a value given here wins, with a warning)");
+}
+
 }  // namespace topple::cli

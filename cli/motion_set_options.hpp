@@ -4,6 +4,8 @@
 // merge, azimuths from the headers, the user's value winning with a warning) are the library's (motion_set.hpp).
 #include <string>
 
+#include <CLI/CLI.hpp>
+
 #include "common.hpp"
 #include "topple/motion/motion_set.hpp"
 
@@ -16,6 +18,11 @@ namespace topple::cli {
 /// Warnings (a header overridden) go to stderr. Throws InputError naming --azimuths or the file.
 [[nodiscard]] MotionSet load_motion_set(const RunMotion& run, const MotionOptions& motion, const std::string& h2_path,
                                         const std::string& azimuths_text);
+
+/// Registers --vertical, --h2 and --azimuths on a single-run command (slide, rock) in the same words everywhere but
+/// for what the second component does in that command (`h2_does`, e.g. "bidirectional sliding, ...").
+void add_motion_set_options(CLI::App& cmd, std::string& vertical, std::string& h2, std::string& azimuths,
+                            const std::string& h2_does);
 
 /// Refuses the set options on a command run with one component: InputError naming the first option given
 /// (--azimuths, then each of `others` = {option, text}), saying it needs --h2.
