@@ -134,11 +134,6 @@ struct SlideSpectrumOptions {
   bool json = false;
 };
 
-/// A number or null (the JSON of an optional).
-nlohmann::ordered_json or_null(const std::optional<double>& v) {
-  return v ? nlohmann::ordered_json(*v) : nlohmann::ordered_json(nullptr);
-}
-
 /// spectrum slide FILE --h2 H2 [--vertical V]: the bidirectional spectrum (object_spectra.hpp, sliding_spectrum_2d)
 /// over `mu` or, with `ky_ratios`, over k_y / RotD50 PGA. The set is read as `slide --h2` reads it, so that each
 /// point is that command's run.

@@ -5,30 +5,19 @@
 
 #include <gtest/gtest.h>
 
+#include "support/rocking_references.hpp"
 #include "topple/closed_forms/rocking.hpp"
 #include "topple/core/error.hpp"
+#include "topple/core/units.hpp"
 #include "topple/solvers/rocking.hpp"
 
 namespace topple {
 namespace {
 
-/// rocking.md uses g = 9.81 m/s^2 unless a case says otherwise.
-constexpr double kG = 9.81;
-
-/// Half a unit in the last printed digit of a rocking.md number given with 6 decimals: the closed form may differ
-/// from the printed value by that much and no more.
-constexpr double kPrinted6 = 5e-7;
-
-double deg(double d) { return d * kPi / 180.0; }
-
-/// Rectangular block with slenderness alpha and frequency parameter p: R = 3 g / (4 p^2) (rocking.md section 0).
-RockingBody block_alpha_p(double alpha, double p, double g = kG) {
-  const double R = 3.0 * g / (4.0 * p * p);
-  return RockingBody::block(2.0 * R * std::sin(alpha), 2.0 * R * std::cos(alpha));
-}
-
-/// The R4 geometry: full width B = 1 m, alpha = 0.2 rad, H = B / tan(alpha) (OpenSees RockingBC_example.tcl).
-RockingBody r4_block() { return RockingBody::block(1.0, 1.0 / std::tan(0.2)); }
+using test::block_alpha_p;
+using test::kG;
+using test::kPrinted6;
+using test::r4_block;
 
 TEST(RockingClosedForms, R4PeriodOfFreeRockingWithoutLoss) {
   const auto b = r4_block();
@@ -74,9 +63,9 @@ TEST(RockingClosedForms, R8VelocityImpulse) {
   const double table[] = {0.429541, 0.868188, 1.812815};
   const double small[] = {0.428042, 0.856084, 1.712168};
   for (int i = 0; i < 3; ++i) {
-    const auto b = block_alpha_p(deg(alphas[i]), 2.0);
+    const auto b = block_alpha_p(deg_to_rad(alphas[i]), 2.0);
     EXPECT_NEAR(velocity_impulse_threshold_m_s(b, kG), table[i], kPrinted6);
-    EXPECT_NEAR(kG * deg(alphas[i]) / 2.0, small[i], kPrinted6);
+    EXPECT_NEAR(kG * deg_to_rad(alphas[i]) / 2.0, small[i], kPrinted6);
   }
   const auto b = r4_block();
   const double dv = velocity_impulse_threshold_m_s(b, kG);

@@ -12,8 +12,10 @@
 
 #include "support/noise_record.hpp"
 #include "support/shared_data.hpp"
+#include "support/rocking_references.hpp"
 #include "topple/closed_forms/rocking.hpp"
 #include "topple/core/error.hpp"
+#include "topple/core/units.hpp"
 #include "topple/io/read.hpp"
 #include "topple/motion/pulses.hpp"
 #include "topple/solvers/rocking.hpp"
@@ -22,23 +24,10 @@
 namespace topple {
 namespace {
 
-/// rocking.md uses g = 9.81 m/s^2 unless a case says otherwise.
-constexpr double kG = 9.81;
-
-/// Half a unit in the last printed digit of a rocking.md number given with 6 decimals: the closed form may differ
-/// from the printed value by that much and no more.
-constexpr double kPrinted6 = 5e-7;
-
-double deg(double d) { return d * kPi / 180.0; }
-
-/// Rectangular block with slenderness alpha and frequency parameter p: R = 3 g / (4 p^2) (rocking.md section 0).
-RockingBody block_alpha_p(double alpha, double p, double g = kG) {
-  const double R = 3.0 * g / (4.0 * p * p);
-  return RockingBody::block(2.0 * R * std::sin(alpha), 2.0 * R * std::cos(alpha));
-}
-
-/// The R4 geometry: full width B = 1 m, alpha = 0.2 rad, H = B / tan(alpha) (OpenSees RockingBC_example.tcl).
-RockingBody r4_block() { return RockingBody::block(1.0, 1.0 / std::tan(0.2)); }
+using test::block_alpha_p;
+using test::kG;
+using test::kPrinted6;
+using test::r4_block;
 
 GroundMotion still_ground(double duration_s, double dt_s = 0.01) {
   const auto n = static_cast<std::size_t>(std::llround(duration_s / dt_s)) + 1;
@@ -233,12 +222,12 @@ TEST(RockingRestitution, R2RectangleTable) {
   const double e_tab[] = {0.988606, 0.954769, 0.899519, 0.824533, 0.625000, 0.250000};
   const double r_tab[] = {0.977341, 0.911585, 0.809135, 0.679855, 0.390625, 0.062500};
   for (int i = 0; i < 6; ++i) {
-    const auto b = RockingBody::block(2.0 * std::sin(deg(alphas[i])), 2.0 * std::cos(deg(alphas[i])));
+    const auto b = RockingBody::block(2.0 * std::sin(deg_to_rad(alphas[i])), 2.0 * std::cos(deg_to_rad(alphas[i])));
     const double e = housner_restitution(b);
     EXPECT_NEAR(e, e_tab[i], kPrinted6) << alphas[i];
     EXPECT_NEAR(e * e, r_tab[i], kPrinted6) << alphas[i];
     // The pure formula, to a few ulps (the body is built from sin and cos of alpha).
-    EXPECT_NEAR(e, 1.0 - 1.5 * std::pow(std::sin(deg(alphas[i])), 2), 1e-12);
+    EXPECT_NEAR(e, 1.0 - 1.5 * std::pow(std::sin(deg_to_rad(alphas[i])), 2), 1e-12);
   }
   // Exact values at 30 and 45 degrees (sin^2 = 1/4, 1/2).
   EXPECT_NEAR(housner_restitution(RockingBody::block(1.0, std::sqrt(3.0))), 0.625, 1e-12);
@@ -659,7 +648,7 @@ auto one_cycle(PulseKind kind, double w, double unit) {
 TEST(RockingThreshold, P1OneCycleCosinePulse) {
   // wshwwl rock.md: p = 2 rad/s, alpha = 15 deg, a_g = a_p cos(pi t) for 0 <= t <= 2 s, e = Housner; critical
   // a_p = 0.315034 g for |theta| >= alpha; the first toppling amplitude (pi/2) is the same. Tolerance 1e-4 relative.
-  const double alpha = deg(15.0);
+  const double alpha = deg_to_rad(15.0);
   const auto b = block_alpha_p(alpha, 2.0);
   ThresholdSearch search;
   search.start = std::tan(alpha);  // no uplift below g tan(alpha)
@@ -736,7 +725,7 @@ TEST(RockingThreshold, OverturningIsNotMonotoneInAmplitude) {
   // P1 block and pulse: it falls at 0.3155 g, survives at 0.33 g and 0.35 g, and falls again at 0.36 g. A bisection
   // between 0.3 g and 0.6 g that assumed monotonicity could end anywhere among these changes (rocking.md P1 reports
   // 0.351088 g found that way); the scan-then-bisect search returns the first one.
-  const double alpha = deg(15.0);
+  const double alpha = deg_to_rad(15.0);
   const auto b = block_alpha_p(alpha, 2.0);
   const auto motion = one_cycle(PulseKind::cosine, kPi, kG);
   EXPECT_TRUE(rock_summary(motion(0.3155), b, housner()).overturned);
