@@ -4,6 +4,7 @@
 // as-scanned pose is the earlier pipeline bit for bit.
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -14,7 +15,11 @@
 #include "topple/bodies/pose.hpp"
 #include "topple/core/error.hpp"
 #include "topple/core/units.hpp"
+#include "support/shared_data.hpp"
+#include "topple/ensemble/sweep.hpp"
 #include "topple/io/mesh.hpp"
+#include "topple/io/survey_file.hpp"
+#include "topple/io/sweep_file.hpp"
 
 namespace topple {
 namespace {
@@ -285,6 +290,125 @@ TEST(PoseAsScanned, IsTheEarlierAnswerBitForBit) {
   const TriangleMesh tilted = turned(box_mesh(1.0, 1.0, 1.5), axis_angle_quaternion({1, 0, 0}, 3.0));
   expect_as_scanned_is_old(tilted, 0.04);
   EXPECT_NEAR(rest(tilted, 90.0).pose.tilt_deg, 3.0, 1e-9);
+}
+
+// ---- Surveys: an old file (no pose keys) rests the mesh; mesh_pose = "as-scanned" is the earlier body bit for bit,
+// on the example's scanned rock and on a tilted box (which, as scanned, stands on a point and is refused, as
+// before); the pose keys reach the pipeline and their errors name the key.
+std::string survey_text(const std::string& mesh, const std::string& keys) {
+  return "[site]\nname = \"t\"\n\n[inversion]\npga_g = [0.05, 2.0, 20]\nfreq_hz = [0.3, 10.0, 12]\n\n[[object]]\nid = \"r\"\n"
+         "mesh = \"" + mesh + "\"\nmesh_azimuth_deg = 90\nmu = 0.7\noutcome = \"not_overturned\"\n" + keys;
+}
+
+Survey survey_of(const test::TempDir& dir, const std::string& text) {
+  test::write_file(dir.path() / "s.toml", text);
+  return io::read_survey(dir.path() / "s.toml");
+}
+
+void expect_same_body(const RockingBody& a, const RockingBody& b) {
+  EXPECT_EQ(a.pivot_b_m(-1), b.pivot_b_m(-1));
+  EXPECT_EQ(a.pivot_b_m(1), b.pivot_b_m(1));
+  EXPECT_EQ(a.h_m, b.h_m);
+  EXPECT_EQ(a.pivot_D_m2(-1), b.pivot_D_m2(-1));
+  EXPECT_EQ(a.pivot_D_m2(1), b.pivot_D_m2(1));
+}
+
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.where().field + ": " + e.what();
+  }
+  return "accepted";
+}
+
+TEST(PoseSurvey, OldFilesRestAndAsScannedIsTheEarlierBody) {
+  test::TempDir dir;
+  const std::string rock = (std::filesystem::path(TOPPLE_SOURCE_DIR) / "examples" / "mesh" / "balanced_rock.obj").string();
+  BodyOptions old;
+  old.azimuth_deg = 90.0;
+  old.pose = PoseMethod::as_scanned;
+  const TriangleMesh mesh = io::read_mesh(rock, 1.0);
+  const MassProperties mass = mass_properties(mesh, old.density_kg_m3);
+  const PlanarBody p = planar_body(mass, support_polygon(mesh, 1e-6, rock), 90.0, old.g_m_s2, rock);
+  const RockingBody earlier = RockingBody::general_asymmetric(p.b1_m, p.b2_m, p.h_m, p.inertia_cm_kg_m2 / mass.mass_kg);
+  const Survey as_scanned = survey_of(dir, survey_text(rock, "mesh_pose = \"as-scanned\"\n"));
+  expect_same_body(as_scanned.sites.at(0).objects.at(0).body, earlier);
+  BodyOptions rest_options;
+  rest_options.azimuth_deg = 90.0;
+  const Survey plain = survey_of(dir, survey_text(rock, ""));
+  expect_same_body(plain.sites.at(0).objects.at(0).body, rocking_body(io::read_mesh_body(rock, 1.0, rest_options)));
+
+  // A box 1 x 1 x 1.5 m tilted 3 degrees about x and 2 about y stands on a corner as scanned: refused as before.
+  const TriangleMesh tilted =
+      turned(turned(box_mesh(1.0, 1.0, 1.5), axis_angle_quaternion({1, 0, 0}, 3.0)), axis_angle_quaternion({0, 1, 0}, 2.0));
+  test::write_file(dir.path() / "tilted.obj", test::obj_text(tilted));
+  const std::string tilted_path = (dir.path() / "tilted.obj").string();
+  const std::string refused = error_of([&] { (void)survey_of(dir, survey_text(tilted_path, "mesh_pose = \"as-scanned\"\n")); });
+  EXPECT_NE(refused.find("a single point"), std::string::npos) << refused;
+  // At rest (the default) it is the box on its base, h = 0.75 (1e-6: the reader's single precision). The minimal
+  // rotation undoes the two tilts but for a turn about the vertical of psi = t1 t2 / 2 to second order (two small
+  // rotations about x and y compose to one about z of their product's half: 0.0524 x 0.0349 / 2 = 9.14e-4 rad), so
+  // along east b = 0.5 (cos psi + sin psi) (1e-5: the third-order terms).
+  const RockingBody box = survey_of(dir, survey_text(tilted_path, "")).sites.at(0).objects.at(0).body;
+  const double psi = deg_to_rad(3.0) * deg_to_rad(2.0) / 2;
+  EXPECT_NEAR(box.pivot_b_m(-1), 0.5 * (std::cos(psi) + std::sin(psi)), 1e-5);
+  EXPECT_NEAR(box.pivot_b_m(1), 0.5 * (std::cos(psi) + std::sin(psi)), 1e-5);
+  EXPECT_NEAR(box.h_m, 0.75, 1e-6);
+  // The keys reach the pipeline: face 2 of the listing is a side (tilt 87-88 degrees), h = 0.5 there.
+  const RockingBody side = survey_of(dir, survey_text(tilted_path, "mesh_face = 2\nmesh_contact_tolerance = \"2mm\"\n"))
+                               .sites.at(0).objects.at(0).body;
+  EXPECT_NEAR(side.h_m, 0.5, 1e-6);
+  for (const auto& [keys, key] : std::vector<std::pair<std::string, std::string>>{
+           {"mesh_rotation_wxyz = [0, 0, 0, 0]\n", "mesh_rotation_wxyz"},
+           {"mesh_up = [0, 0]\n", "mesh_up"},
+           {"mesh_up = [0, 0, 0]\n", "mesh_up"},
+           {"mesh_axis_angle_deg = [0, 0, 0, 5]\n", "mesh_axis_angle_deg"},
+           {"mesh_face = 0\n", "mesh_face"},
+           {"mesh_face = 99\n", "mesh_face"},
+           {"mesh_contact_tolerance = 2\n", "mesh_contact_tolerance"},
+           {"mesh_pose = \"upright\"\n", "mesh_pose"},
+           {"mesh_pose = \"as-scanned\"\nmesh_up = [0, 0, 1]\n", "mesh_up"}}) {
+    const std::string e = error_of([&] { (void)survey_of(dir, survey_text(tilted_path, keys)); });
+    EXPECT_NE(e.find(key), std::string::npos) << keys << " -> " << e;
+    EXPECT_NE(e.find("s.toml"), std::string::npos) << keys << " -> " << e;
+  }
+}
+
+// ---- Sweeps: the same keys with the mesh_ prefix.
+TEST(PoseSweep, MeshKeysPoseTheBodies) {
+  test::TempDir dir;
+  const TriangleMesh tilted = turned(box_mesh(1.0, 1.0, 1.5), axis_angle_quaternion({1, 0, 0}, 3.0));
+  test::write_file(dir.path() / "tilted.obj", test::obj_text(tilted));
+  const auto sweep = [&](const std::string& keys) {
+    test::write_file(dir.path() / "w.toml", "[motions]\n[[motions.pulse]]\nkind = \"sine\"\namp_g = 0.3\nfreq_hz = 2\n\n"
+                                            "[[object]]\nmodel = \"rock\"\ne = 0\nmesh = \"tilted.obj\"\nmesh_azimuth_deg = 0\n" + keys);
+    return io::read_sweep_file(dir.path() / "w.toml");
+  };
+  const auto body = [](const io::SweepFile& f) { return std::get<ensemble::RockObject>(f.spec.objects.at(0)).body; };
+  // Old file: at rest on the base; along north b = 0.5, h = 0.75.
+  EXPECT_NEAR(body(sweep("")).pivot_b_m(1), 0.5, 1e-6);
+  EXPECT_NEAR(body(sweep("")).h_m, 0.75, 1e-6);
+  // As scanned it rests on an edge: refused naming the mesh, as before.
+  const std::string e = error_of([&] { (void)sweep("mesh_pose = \"as-scanned\"\n"); });
+  EXPECT_NE(e.find("a line (an edge)"), std::string::npos) << e;
+  // Turned 90 degrees about x first: the nearest stable face is then a side, h = 0.5.
+  EXPECT_NEAR(body(sweep("mesh_axis_angle_deg = [1, 0, 0, 87]\nmesh_contact_tolerance_m = 0.002\n")).h_m, 0.5, 1e-6);
+  for (const auto& [keys, key] : std::vector<std::pair<std::string, std::string>>{
+           {"mesh_rotation_wxyz = [2, 0, 0, 0]\n", "object[1].mesh_rotation_wxyz"},
+           {"mesh_up = [1, 2]\n", "object[1].mesh_up"},
+           {"mesh_face = 0\n", "object[1].mesh_face"},
+           {"mesh_face = 40\n", "object[1].mesh_face"},
+           {"mesh_contact_tolerance = \"1 furlong\"\n", "object[1].mesh_contact_tolerance"},
+           {"mesh_contact_tolerance_m = 1\n", "object[1].mesh_contact_tolerance_m"},
+           {"mesh_pose = \"flat\"\n", "object[1].mesh_pose"}}) {
+    try {
+      (void)sweep(keys);
+      ADD_FAILURE() << keys << " accepted";
+    } catch (const InputError& err) {
+      EXPECT_EQ(err.where().field, key) << keys << " -> " << err.what();
+    }
+  }
 }
 
 }  // namespace
