@@ -201,6 +201,9 @@ std::vector<RestingFace> resting_faces(const TriangleMesh& mesh, const Vec3& cen
   std::vector<RestingFace> out;
   for (std::size_t seed : order) {
     if (owner[seed] >= 0) continue;
+    // A facet whose cross product rounds to zero (a sliver of a near-degenerate hull) has no normal to seed a face:
+    // it stays out of every face (its corners belong to its neighbours' faces).
+    if (!(norm(area_normal[seed]) > 0.0)) continue;
     const long id = static_cast<long>(out.size());
     const Vec3 ns = scale(area_normal[seed], 1.0 / norm(area_normal[seed]));
     const double ds = dot(ns, corners[seed][0]);
