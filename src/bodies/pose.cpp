@@ -193,10 +193,18 @@ std::vector<RestingFace> resting_faces(const TriangleMesh& mesh, const Vec3& cen
   const double tol = contact_tolerance_m;
 
   // Merge: seeds by area, largest first; a flood over adjacent facets whose corners lie within tol of the seed plane.
+  // The order is made canonical (area, then the facet's corners sorted): CGAL's output order of the facets depends on
+  // where its handles were allocated, and equal areas (a symmetric scan) must not leave the seeds to it.
+  for (auto& c : corners) std::sort(c.begin(), c.end());  // the normal is already taken from the winding
   std::vector<std::size_t> order(nf);
   for (std::size_t i = 0; i < nf; ++i) order[i] = i;
-  std::stable_sort(order.begin(), order.end(),
-                   [&](std::size_t a, std::size_t b) { return norm(area_normal[a]) > norm(area_normal[b]); });
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    const double na = norm(area_normal[a]), nb = norm(area_normal[b]);
+    if (na != nb) return na > nb;
+    return corners[a] < corners[b];
+  });
+  std::vector<std::size_t> rank(nf);
+  for (std::size_t i = 0; i < nf; ++i) rank[order[i]] = i;
   std::vector<long> owner(nf, -1);
   std::vector<RestingFace> out;
   for (std::size_t seed : order) {
@@ -213,18 +221,11 @@ std::vector<RestingFace> resting_faces(const TriangleMesh& mesh, const Vec3& cen
     };
     std::deque<std::size_t> queue{seed};
     owner[seed] = id;
-    Vec3 sum{};
-    std::vector<Vec3> contact;
-    std::unordered_map<Key, bool, KeyHash> seen;
+    std::vector<std::size_t> members;
     while (!queue.empty()) {
       const std::size_t f = queue.front();
       queue.pop_front();
-      sum = add(sum, area_normal[f]);
-      for (const auto& p : corners[f]) {
-        Key key{};
-        std::memcpy(key.bits.data(), p.data(), sizeof(key.bits));
-        if (seen.emplace(key, true).second) contact.push_back(p);
-      }
+      members.push_back(f);
       for (auto h : hull.halfedges_around_face(hull.halfedge(faces[f]))) {
         const auto g = hull.face(hull.opposite(h));
         if (g == HullMesh::null_face()) continue;
@@ -233,6 +234,19 @@ std::vector<RestingFace> resting_faces(const TriangleMesh& mesh, const Vec3& cen
           owner[j] = id;
           queue.push_back(j);
         }
+      }
+    }
+    // Summed in the canonical order, so that the face's normal does not depend on the flood's order either.
+    std::sort(members.begin(), members.end(), [&](std::size_t a, std::size_t b) { return rank[a] < rank[b]; });
+    Vec3 sum{};
+    std::vector<Vec3> contact;
+    std::unordered_map<Key, bool, KeyHash> seen;
+    for (const std::size_t f : members) {
+      sum = add(sum, area_normal[f]);
+      for (const auto& p : corners[f]) {
+        Key key{};
+        std::memcpy(key.bits.data(), p.data(), sizeof(key.bits));
+        if (seen.emplace(key, true).second) contact.push_back(p);
       }
     }
     RestingFace face;

@@ -3,6 +3,8 @@
 // tilt; a leaning prism whose base is unstable rests on its one stable slanted face; the options are checked; the
 // as-scanned pose is the earlier pipeline bit for bit.
 #include <cmath>
+#include <cstdint>
+#include <numeric>
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -207,6 +209,34 @@ TEST(PoseTolerance, ContactToleranceIsALength) {
   const MeshBody exact = rest(box, 90.0, fine);
   EXPECT_EQ(exact.support.contact_vertices, 3u);
   EXPECT_GT(exact.pose.tilt_deg, 0.01);
+}
+
+// ---- The listing does not depend on the order of the mesh's vertices and triangles (CGAL's hull gives its facets in
+// an order of its own; a symmetric body has many facets of equal area): the same faces in the same order. The caps'
+// coplanar points are triangulated by the hull as their order falls, so a cap's normal (a sum over its facets) may
+// differ by a rounding: 1e-15.
+TEST(PoseFaces, ListingIsIndependentOfTheMeshOrder) {
+  const TriangleMesh prism = test::prism_mesh(test::regular_polygon(12, 0.5), 1.0);
+  TriangleMesh shuffled;
+  const std::size_t n = prism.vertices_m.size();
+  for (std::size_t i = 0; i < n; ++i) shuffled.vertices_m.push_back(prism.vertices_m[(i * 7 + 3) % n]);
+  std::vector<std::uint32_t> where(n);  // old index -> new index
+  for (std::size_t i = 0; i < n; ++i) where[(i * 7 + 3) % n] = static_cast<std::uint32_t>(i);
+  for (auto it = prism.triangles.rbegin(); it != prism.triangles.rend(); ++it) {
+    shuffled.triangles.push_back({where[(*it)[1]], where[(*it)[2]], where[(*it)[0]]});
+  }
+  ASSERT_EQ(std::gcd(n, std::size_t{7}), 1u);
+  const Vec3 c = mass_properties(prism, 1.0).centre_of_mass_m;
+  const auto a = resting_faces(prism, c, kIdentityQuaternion, 1e-3);
+  const auto b = resting_faces(shuffled, c, kIdentityQuaternion, 1e-3);
+  ASSERT_EQ(a.size(), 14u);  // 12 sides, the base and the top
+  ASSERT_EQ(b.size(), a.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(a[i].normal[k], b[i].normal[k], 1e-15) << i;
+    EXPECT_NEAR(a[i].area_m2, b[i].area_m2, 1e-15) << i;
+    EXPECT_EQ(a[i].contact_vertices, b[i].contact_vertices) << i;
+    EXPECT_EQ(a[i].stable, b[i].stable) << i;
+  }
 }
 
 // ---- Options refused, each naming the option.
