@@ -210,12 +210,24 @@ void add_body_command(CLI::App& app) {
   cmd->add_option("--contact-tolerance", o->contact_tolerance,
                   "rest: hull facets within this length of a face's plane are one face, e.g. 2mm (default 1mm)");
   cmd->add_option("--base-tolerance", o->body.base_tolerance_fraction,
-                  "as-scanned: vertices within this fraction of the mesh's size above its lowest point are in contact")
+                  "as-scanned: vertices within this fraction of the mesh's size above its lowest point are in contact "
+                  "(given without --pose, it means --pose as-scanned, as before the resting pose)")
       ->capture_default_str();
   cmd->add_option("--g", o->body.g_m_s2, "Gravitational acceleration, m/s2")->capture_default_str();
   cmd->add_flag("--json", o->json, "Print one JSON object instead of text");
   add_quiet_flag(*cmd, o->quiet);  // quick: no bar; accepted so that every command takes --quiet
-  cmd->callback([o] {
+  cmd->callback([o, cmd] {
+    // --base-tolerance is the as-scanned pose's contact (its meaning before the resting pose): a command line with it
+    // and no --pose means what it meant, the as-scanned pose; with --pose rest it has nothing to set.
+    const bool base_given = cmd->count("--base-tolerance") > 0, pose_given = cmd->count("--pose") > 0;
+    if (base_given && !pose_given) o->pose = "as-scanned";
+    if (base_given && o->pose == "rest") {
+      throw parameter_error("--base-tolerance", "is the as-scanned pose's contact (a fraction of the mesh's size); "
+                                                "the resting pose takes --contact-tolerance (a length)");
+    }
+    if (cmd->count("--contact-tolerance") > 0 && o->pose == "as-scanned") {
+      throw parameter_error("--contact-tolerance", "is the resting pose's; the as-scanned pose takes --base-tolerance");
+    }
     check_g(o->body.g_m_s2);
     o->body.azimuth_deg = o->azimuth_deg;
     pose_options(*o);

@@ -169,10 +169,21 @@ TEST(CliBody, RestsATiltedScanOnItsBase) {
   EXPECT_NE(text.out.find("pose          rest on face 1 of 6 (6 stable; nearest the scan), tilted 20.0000 deg"),
             std::string::npos)
       << text.out;
-  // As scanned it stands on its lowest edge: refused, as before.
+  // As scanned it stands on its lowest edge: refused, as before; an old command line with --base-tolerance (and no
+  // --pose) means the as-scanned pose, as it did: refused the same way (the edge is 2 vertices; the next ones are
+  // 0.2 m higher, past the 10 % limit).
   const auto old = run_cli("body " + quote(path) + " --azimuth 90 --pose as-scanned");
   EXPECT_EQ(old.exit_code, 2);
   EXPECT_NE(old.err.find("a line (an edge)"), std::string::npos) << old.err;
+  const auto old_line = run_cli("body " + quote(path) + " --azimuth 90 --base-tolerance 0.05");
+  EXPECT_EQ(old_line.exit_code, 2);
+  EXPECT_NE(old_line.err.find("a line (an edge)"), std::string::npos) << old_line.err;
+  const auto level = (dir.path() / "level.obj").string();
+  write_file(level, test::obj_text(test::box_mesh(0.4, 0.6, 1.0)));
+  EXPECT_EQ(test::run_json("body " + quote(level) + " --azimuth 90 --base-tolerance 0.01 --json")["pose"]["method"],
+            "as-scanned");
+  EXPECT_EQ(run_cli("body " + quote(path) + " --azimuth 90 --base-tolerance 0.05 --pose rest").exit_code, 2);
+  EXPECT_EQ(run_cli("body " + quote(path) + " --azimuth 90 --contact-tolerance 2mm --pose as-scanned").exit_code, 2);
   // --axis-angle undoing the tilt, and --up naming the box's up: the same body.
   for (const char* opt : {" --axis-angle 1,0,0,-20", " --up 0,-0.3420201433256687,0.9396926207859084"}) {
     const auto k = test::run_json("body " + quote(path) + " --azimuth 90 --json" + opt);
