@@ -621,6 +621,7 @@ struct BodyCase {
   std::optional<double> inertia_m2;  ///< asymmetric general body: I_cm / m
   std::string mesh;                  ///< a body from a mesh: the file as given, and its plane's azimuth
   std::optional<double> mesh_azimuth_deg;
+  std::string mesh_pose;             ///< "rest" or "as-scanned"
 };
 
 /// The sweep key of a BodyOptions option named by check_body_options or mesh_body.
@@ -726,6 +727,7 @@ std::vector<BodyCase> mesh_bodies(const Reader& r, const toml::table& o, const s
       }
       c.mesh = file;
       c.mesh_azimuth_deg = azimuth;
+      c.mesh_pose = options.pose == PoseMethod::as_scanned ? "as-scanned" : "rest";
       out.push_back(std::move(c));
     }
   }
@@ -932,7 +934,7 @@ void read_rock(const Reader& r, const toml::table& o, const std::string& key, do
         options.mu = m;
         ensemble::RockObject ro{.body = body, .options = options, .width_m = c.width_m, .height_m = c.height_m,
                                 .diameter_m = c.diameter_m, .inertia_m2 = c.inertia_m2, .mesh = c.mesh,
-                                .mesh_azimuth_deg = c.mesh_azimuth_deg};
+                                .mesh_azimuth_deg = c.mesh_azimuth_deg, .mesh_pose = c.mesh_pose};
         for (const auto& depth : depths) {
           ro.depth_m = depth;
           if (depth) r.located(o.get("depth") != nullptr ? o.get("depth") : o.get("depth_m"), prefix + "depth",

@@ -2,6 +2,7 @@
 // pose and offset comes back to the box; a box tilted by a known angle rests on the face the geometry says, with that
 // tilt; a leaning prism whose base is unstable rests on its one stable slanted face; the options are checked; the
 // as-scanned pose is the earlier pipeline bit for bit.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <numeric>
@@ -416,9 +417,13 @@ TEST(PoseSweep, MeshKeysPoseTheBodies) {
     return io::read_sweep_file(dir.path() / "w.toml");
   };
   const auto body = [](const io::SweepFile& f) { return std::get<ensemble::RockObject>(f.spec.objects.at(0)).body; };
-  // Old file: at rest on the base; along north b = 0.5, h = 0.75.
-  EXPECT_NEAR(body(sweep("")).pivot_b_m(1), 0.5, 1e-6);
-  EXPECT_NEAR(body(sweep("")).h_m, 0.75, 1e-6);
+  // Old file: at rest on the base; along north b = 0.5, h = 0.75; the output says which pose (column mesh_pose).
+  const io::SweepFile plain = sweep("");
+  EXPECT_NEAR(body(plain).pivot_b_m(1), 0.5, 1e-6);
+  EXPECT_NEAR(body(plain).h_m, 0.75, 1e-6);
+  EXPECT_EQ(std::get<ensemble::RockObject>(plain.spec.objects.at(0)).mesh_pose, "rest");
+  const auto cols = ensemble::make_plan(plain.spec).columns();
+  EXPECT_NE(std::find(cols.begin(), cols.end(), "mesh_pose"), cols.end());
   // As scanned it rests on an edge: refused naming the mesh, as before.
   const std::string e = error_of([&] { (void)sweep("mesh_pose = \"as-scanned\"\n"); });
   EXPECT_NE(e.find("a line (an edge)"), std::string::npos) << e;
