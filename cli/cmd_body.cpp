@@ -112,9 +112,11 @@ void print_faces(const BodyCommandOptions& o, const TriangleMesh& mesh) {
   fmt::print("{:>6} {:>10} {:>7} {:>12} {:>9} {:>10} {:>10} {:>12}\n", "face", "tilt_deg", "stable", "area_m2",
              "contacts", "h_m", "min_a_g", "azimuth_deg");
   for (const auto& f : faces) {
-    fmt::print("{:>6} {:>10.4f} {:>7} {:>12.6g} {:>9} {:>10.6g} {:>10.4g} {:>12.2f}\n", f.number, f.tilt_deg,
-               f.stable ? "yes" : "no", f.area_m2, f.contact_vertices, f.h_m,
-               f.stable ? f.overturning.min_g : 0.0, f.stable ? f.overturning.min_azimuth_deg : 0.0);
+    // An unstable face has no overturning acceleration (it tips without one): "-".
+    const std::string min_g = f.stable ? fmt::format("{:.4g}", f.overturning.min_g) : "-";
+    const std::string azimuth = f.stable ? fmt::format("{:.2f}", f.overturning.min_azimuth_deg) : "-";
+    fmt::print("{:>6} {:>10.4f} {:>7} {:>12.6g} {:>9} {:>10.6g} {:>10} {:>12}\n", f.number, f.tilt_deg,
+               f.stable ? "yes" : "no", f.area_m2, f.contact_vertices, f.h_m, min_g, azimuth);
   }
 }
 
