@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "bodies/body_geometry.hpp"
+#include "topple/bodies/pose.hpp"
 #include "topple/core/error.hpp"
 #include "topple/core/units.hpp"
 
@@ -134,6 +135,50 @@ void check_azimuth_and_g(double azimuth_deg, double g_m_s2) {
   }
 }
 
+bool finite_all(const auto& values) {
+  return std::all_of(values.begin(), values.end(), [](double x) { return std::isfinite(x); });
+}
+
+void check_pose_options(const BodyOptions& o) {
+  if (!(o.contact_tolerance_m >= 0.0 && o.contact_tolerance_m <= 0.1)) {
+    throw parameter_error("--contact-tolerance", fmt::format("{} m is not a length in [0, 0.1] m (e.g. 1mm)",
+                                                             o.contact_tolerance_m));
+  }
+  if (o.up) {
+    if (!finite_all(*o.up) || norm(*o.up) == 0.0) {
+      throw parameter_error("--up", fmt::format("({}, {}, {}) is not a direction: three finite numbers, not all zero",
+                                                (*o.up)[0], (*o.up)[1], (*o.up)[2]));
+    }
+  }
+  if (o.rotation_wxyz) {
+    const auto& q = *o.rotation_wxyz;
+    const double n = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+    if (!finite_all(q) || !(std::abs(n - 1.0) <= 1e-3)) {
+      throw parameter_error("--rotation", fmt::format("({}, {}, {}, {}) is not a unit quaternion w, x, y, z (its norm "
+                                                      "is {:.6g}; a rotation's is 1, to within 1e-3)",
+                                                      q[0], q[1], q[2], q[3], n));
+    }
+  }
+  if (o.axis_angle_deg) {
+    const auto& a = *o.axis_angle_deg;
+    if (!finite_all(a) || norm({a[0], a[1], a[2]}) == 0.0) {
+      throw parameter_error("--axis-angle", fmt::format("({}, {}, {}, {}) is not an axis x, y, z (finite, not all "
+                                                        "zero) and a finite angle in degrees",
+                                                        a[0], a[1], a[2], a[3]));
+    }
+  }
+  if (o.face && *o.face < 1) throw parameter_error("--face", "face numbers start at 1 (see --list-faces)");
+  const int given = (o.up ? 1 : 0) + (o.rotation_wxyz ? 1 : 0) + (o.axis_angle_deg ? 1 : 0) + (o.face ? 1 : 0);
+  const char* first = o.up ? "--up" : o.rotation_wxyz ? "--rotation" : o.axis_angle_deg ? "--axis-angle" : "--face";
+  if (o.pose == PoseMethod::as_scanned && given > 0) {
+    throw parameter_error(first, "applies to the resting pose (--pose rest); the as-scanned pose takes the mesh as "
+                                 "given");
+  }
+  if (given > 1) {
+    throw parameter_error(first, "give one of --up, --rotation, --axis-angle and --face, not several");
+  }
+}
+
 }  // namespace
 
 void check_body_options(const BodyOptions& options) {
@@ -143,6 +188,7 @@ void check_body_options(const BodyOptions& options) {
   }
   check_azimuth_and_g(options.azimuth_deg, options.g_m_s2);
   check_base_tolerance(options.base_tolerance_fraction);
+  check_pose_options(options);
 }
 
 void check_mesh(const TriangleMesh& mesh, const std::string& file) {
@@ -375,9 +421,29 @@ MeshBody mesh_body(const TriangleMesh& mesh, const BodyOptions& options, const s
   check_body_options(options);
   check_mesh(mesh, file);
   MeshBody out;
-  out.mass = mass_properties(mesh, options.density_kg_m3);
-  out.support = support_polygon(mesh, options.base_tolerance_fraction, file);
+  if (options.pose == PoseMethod::as_scanned) {
+    out.mass = mass_properties(mesh, options.density_kg_m3);
+    out.support = support_polygon(mesh, options.base_tolerance_fraction, file);
+    out.planar = planar_body(out.mass, out.support, options.azimuth_deg, options.g_m_s2, file);
+    out.pose.method = PoseMethod::as_scanned;
+    out.pose.chosen_by = "as-scanned";
+    out.pose.contact_tolerance_m = out.support.tolerance_m;
+    out.pose.overturning = static_overturning(out.support.hull_xy_m,
+                                              {out.mass.centre_of_mass_m[0], out.mass.centre_of_mass_m[1]},
+                                              out.planar.h_m);
+    return out;
+  }
+  // At rest (bodies/pose.hpp): the stable hull face chosen, the mesh levelled onto it, the support polygon that
+  // face's (not a fraction of the mesh's size).
+  const Vec3 centre = mass_properties(mesh, 1.0).centre_of_mass_m;
+  RestedMesh rested = rest_mesh(mesh, centre, options, file);
+  out.mass = mass_properties(rested.mesh, options.density_kg_m3);
+  out.support.z_m = 0.0;
+  out.support.tolerance_m = rested.pose.contact_tolerance_m;
+  out.support.contact_vertices = rested.face.contact_vertices;
+  out.support.hull_xy_m = rested.face.polygon_xy_m;
   out.planar = planar_body(out.mass, out.support, options.azimuth_deg, options.g_m_s2, file);
+  out.pose = std::move(rested.pose);
   return out;
 }
 

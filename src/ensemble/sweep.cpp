@@ -412,7 +412,7 @@ ColumnSet object_columns(const SweepKinds& k) {
       for (const char* c : {"b1_m", "b2_m", "h_m", "inertia_m2"}) object_cols.add(c);
     }
     if (k.any_mesh) {
-      for (const char* c : {"mesh", "mesh_azimuth_deg"}) object_cols.add(c);
+      for (const char* c : {"mesh", "mesh_azimuth_deg", "mesh_pose"}) object_cols.add(c);
     }
     object_cols.add("restitution");
     if (k.any_box) object_cols.add("depth_m");
@@ -605,6 +605,7 @@ void set_rock_values(const RockObject& r, RowValues& v) {
   if (!r.mesh.empty()) {
     v.set("mesh", r.mesh);
     if (r.mesh_azimuth_deg) v.set("mesh_azimuth_deg", *r.mesh_azimuth_deg);
+    if (!r.mesh_pose.empty()) v.set("mesh_pose", r.mesh_pose);
   }
   v.set("restitution", std::string(restitution_mode_name(r.options.restitution)));
   if (r.depth_m) v.set("depth_m", *r.depth_m);

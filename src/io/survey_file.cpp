@@ -186,8 +186,60 @@ double parse_bearing(Reader& r, std::string_view key, double value) {
 /// The body of an object given as a mesh (docs/survey.md, "Asymmetric bodies and bodies from 3-D scans"): `mesh` (a
 /// path relative to the survey file), `mesh_azimuth_deg` (the plane of shaking, as `topple body --azimuth`),
 /// optional `mesh_unit` ("m", "cm", "mm"; default "m") and `mesh_density_kg_m3` (checked; it does not change a
-/// rocking body). The planar body comes from the mesh pipeline (io::read_mesh_body, rocking_body); a refusal names
-/// the survey's line and field and the mesh file.
+/// rocking body), and the pose (bodies/pose.hpp; default: at rest on the stable hull face nearest the scan):
+/// `mesh_pose` ("rest" or "as-scanned"), `mesh_up` [x, y, z], `mesh_rotation_wxyz` [w, x, y, z], `mesh_axis_angle_deg`
+/// [x, y, z, degrees], `mesh_face` (a number of `topple body --list-faces`), `mesh_contact_tolerance` ("1mm"). The
+/// planar body comes from the mesh pipeline (io::read_mesh_body, rocking_body); a refusal names the survey's line and
+/// field and the mesh file.
+/// The survey key of a BodyOptions option named by check_body_options.
+std::string mesh_option_key(const std::string& option) {
+  if (option == "--density") return "mesh_density_kg_m3";
+  if (option == "--pose") return "mesh_pose";
+  if (option == "--up") return "mesh_up";
+  if (option == "--rotation") return "mesh_rotation_wxyz";
+  if (option == "--axis-angle") return "mesh_axis_angle_deg";
+  if (option == "--face") return "mesh_face";
+  if (option == "--contact-tolerance") return "mesh_contact_tolerance";
+  return "mesh_azimuth_deg";
+}
+
+/// The pose keys of a mesh object (checked later by check_body_options, by name).
+void read_mesh_pose(Reader& named, BodyOptions& options) {
+  if (const auto pose = named.string("mesh_pose")) {
+    if (*pose == "rest") options.pose = PoseMethod::rest;
+    else if (*pose == "as-scanned") options.pose = PoseMethod::as_scanned;
+    else throw named.error("mesh_pose", fmt::format("'{}' is not a pose: \"rest\" or \"as-scanned\"", *pose));
+  }
+  const auto fixed = [&](std::string_view key, std::size_t count, const char* what) -> std::optional<std::vector<double>> {
+    const toml::node* n = named.get(key);
+    if (n == nullptr) return std::nullopt;
+    const auto* arr = n->as_array();
+    if (arr == nullptr || arr->size() != count) {
+      throw named.error(key, fmt::format("expected {} numbers: {}", count, what), n);
+    }
+    std::vector<double> v;
+    for (const auto& e : *arr) v.push_back(named.as_number(key, e));
+    return v;
+  };
+  if (const auto v = fixed("mesh_up", 3, "[x, y, z], the mesh's direction that becomes up")) {
+    options.up = Vec3{(*v)[0], (*v)[1], (*v)[2]};
+  }
+  if (const auto v = fixed("mesh_rotation_wxyz", 4, "[w, x, y, z], a unit quaternion")) {
+    options.rotation_wxyz = Quaternion{(*v)[0], (*v)[1], (*v)[2], (*v)[3]};
+  }
+  if (const auto v = fixed("mesh_axis_angle_deg", 4, "[x, y, z, degrees], an axis and an angle")) {
+    options.axis_angle_deg = std::array<double, 4>{(*v)[0], (*v)[1], (*v)[2], (*v)[3]};
+  }
+  if (const toml::node* n = named.get("mesh_face")) {
+    const auto* i = n->as_integer();
+    if (i == nullptr || i->get() < 1) {
+      throw named.error("mesh_face", "expected a face number (an integer from 1; see topple body --list-faces)", n);
+    }
+    options.face = static_cast<std::size_t>(i->get());
+  }
+  if (const auto tol = named.length("mesh_contact_tolerance")) options.contact_tolerance_m = *tol;
+}
+
 RockingBody mesh_object_body(Reader& named, const std::filesystem::path& base_dir, ObservedObject& o) {
   for (const char* key : {"width", "height", "diameter", "a", "h", "D", "b1", "b2", "inertia"}) {
     if (named.has(key)) {
@@ -205,6 +257,7 @@ RockingBody mesh_object_body(Reader& named, const std::filesystem::path& base_di
   BodyOptions options;
   options.azimuth_deg = *azimuth;
   if (const auto density = named.number("mesh_density_kg_m3")) options.density_kg_m3 = *density;
+  read_mesh_pose(named, options);
   double unit_m = 1.0;
   if (const auto unit = named.string("mesh_unit")) {
     try {
@@ -216,7 +269,7 @@ RockingBody mesh_object_body(Reader& named, const std::filesystem::path& base_di
   try {
     check_body_options(options);
   } catch (const InputError& e) {
-    throw named.error(e.where().field == "--density" ? "mesh_density_kg_m3" : "mesh_azimuth_deg", e.problem());
+    throw named.error(mesh_option_key(e.where().field), e.problem());
   }
   std::filesystem::path path(*file);
   if (path.is_relative()) path = base_dir / path;
@@ -225,6 +278,7 @@ RockingBody mesh_object_body(Reader& named, const std::filesystem::path& base_di
   try {
     return rocking_body(read_mesh_body(path.string(), unit_m, options));
   } catch (const InputError& e) {
+    if (e.where().field == "--face") throw named.error("mesh_face", fmt::format("mesh '{}': {}", path.string(), e.problem()));
     throw named.error("mesh", fmt::format("mesh '{}' gives no body: {}", path.string(), e.what()), mesh_node);
   }
 }
@@ -283,7 +337,8 @@ std::string object_shape(Reader& named, bool from_mesh) {
   }
   const std::string shape = given_shape.value_or(from_mesh ? "general" : "block");
   if (!from_mesh) {
-    for (const char* key : {"mesh_azimuth_deg", "mesh_unit", "mesh_density_kg_m3"}) {
+    for (const char* key : {"mesh_azimuth_deg", "mesh_unit", "mesh_density_kg_m3", "mesh_pose", "mesh_up",
+                            "mesh_rotation_wxyz", "mesh_axis_angle_deg", "mesh_face", "mesh_contact_tolerance"}) {
       if (named.has(key)) throw named.error(key, "goes with mesh = \"file\" (a body from a 3-D scan)");
     }
   }

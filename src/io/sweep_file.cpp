@@ -621,11 +621,69 @@ struct BodyCase {
   std::optional<double> inertia_m2;  ///< asymmetric general body: I_cm / m
   std::string mesh;                  ///< a body from a mesh: the file as given, and its plane's azimuth
   std::optional<double> mesh_azimuth_deg;
+  std::string mesh_pose;             ///< "rest" or "as-scanned"
 };
 
+/// The sweep key of a BodyOptions option named by check_body_options or mesh_body.
+std::string mesh_option_key(const std::string& option) {
+  if (option == "--density") return "mesh_density_kg_m3";
+  if (option == "--pose") return "mesh_pose";
+  if (option == "--up") return "mesh_up";
+  if (option == "--rotation") return "mesh_rotation_wxyz";
+  if (option == "--axis-angle") return "mesh_axis_angle_deg";
+  if (option == "--face") return "mesh_face";
+  if (option == "--contact-tolerance") return "mesh_contact_tolerance";
+  return "mesh_azimuth_deg";
+}
+
+/// The pose keys of a mesh object (bodies/pose.hpp; one value each, for every mesh of the object): `mesh_pose`
+/// ("rest", the default, or "as-scanned"), `mesh_up` [x, y, z], `mesh_rotation_wxyz` [w, x, y, z],
+/// `mesh_axis_angle_deg` [x, y, z, degrees], `mesh_face` (a number of `topple body --list-faces`),
+/// `mesh_contact_tolerance` ("1mm") or `mesh_contact_tolerance_m`.
+void read_mesh_pose(const Reader& r, const toml::table& o, const std::string& prefix, BodyOptions& options) {
+  if (const auto pose = r.string(o, "mesh_pose", prefix + "mesh_pose")) {
+    if (*pose == "rest") options.pose = PoseMethod::rest;
+    else if (*pose == "as-scanned") options.pose = PoseMethod::as_scanned;
+    else r.fail(o.get("mesh_pose"), prefix + "mesh_pose", fmt::format("'{}' is not a pose: \"rest\" or \"as-scanned\"", *pose));
+  }
+  const auto fixed = [&](std::string_view key, std::size_t count, const char* what) {
+    auto v = r.numbers(o, key, prefix + std::string(key));
+    if (v && (v->size() != count || o.get(key)->as_array() == nullptr)) {
+      r.fail(o.get(key), prefix + std::string(key), fmt::format("expected a list of {} numbers: {}", count, what));
+    }
+    return v;
+  };
+  if (const auto v = fixed("mesh_up", 3, "[x, y, z], the mesh's direction that becomes up")) {
+    options.up = Vec3{(*v)[0], (*v)[1], (*v)[2]};
+  }
+  if (const auto v = fixed("mesh_rotation_wxyz", 4, "[w, x, y, z], a unit quaternion")) {
+    options.rotation_wxyz = Quaternion{(*v)[0], (*v)[1], (*v)[2], (*v)[3]};
+  }
+  if (const auto v = fixed("mesh_axis_angle_deg", 4, "[x, y, z, degrees], an axis and an angle")) {
+    options.axis_angle_deg = std::array<double, 4>{(*v)[0], (*v)[1], (*v)[2], (*v)[3]};
+  }
+  if (const toml::node* n = o.get("mesh_face")) {
+    const auto* i = n->as_integer();
+    if (i == nullptr || i->get() < 1) {
+      r.fail(n, prefix + "mesh_face", "expected a face number (an integer from 1; see topple body --list-faces)");
+    }
+    options.face = static_cast<std::size_t>(i->get());
+  }
+  if (const auto tol = r.quantities(o, "mesh_contact_tolerance_m", "mesh_contact_tolerance", prefix, length_parser(),
+                                    "1mm")) {
+    if (tol->size() != 1) {
+      r.fail(o.get("mesh_contact_tolerance") != nullptr ? o.get("mesh_contact_tolerance")
+                                                         : o.get("mesh_contact_tolerance_m"),
+             prefix + "mesh_contact_tolerance", "expected a single value");
+    }
+    options.contact_tolerance_m = tol->front();
+  }
+}
+
 /// The bodies of an object given as meshes (docs/sweeps.md): `mesh` (a path or a list, relative to the sweep file)
-/// x `mesh_azimuth_deg` (one value, a list or a range), through the mesh pipeline (io::read_mesh_body,
-/// rocking_body). A refusal names the sweep file, the line, the key and the mesh file.
+/// x `mesh_azimuth_deg` (one value, a list or a range), posed by the `mesh_pose` keys (read_mesh_pose), through the
+/// mesh pipeline (io::read_mesh_body, rocking_body). A refusal names the sweep file, the line, the key and the mesh
+/// file.
 std::vector<BodyCase> mesh_bodies(const Reader& r, const toml::table& o, const std::string& prefix) {
   const auto files = r.strings(o, "mesh", prefix + "mesh");
   const auto azimuths = r.numbers(o, "mesh_azimuth_deg", prefix + "mesh_azimuth_deg");
@@ -638,6 +696,7 @@ std::vector<BodyCase> mesh_bodies(const Reader& r, const toml::table& o, const s
     if (density->size() != 1) r.fail(o.get("mesh_density_kg_m3"), prefix + "mesh_density_kg_m3", "expected a single value");
     options.density_kg_m3 = density->front();
   }
+  read_mesh_pose(r, o, prefix, options);
   double unit_m = 1.0;
   if (const auto unit = r.string(o, "mesh_unit", prefix + "mesh_unit")) {
     unit_m = r.located(o.get("mesh_unit"), prefix + "mesh_unit", [&] { return mesh_unit_m(*unit, "mesh_unit"); });
@@ -651,7 +710,8 @@ std::vector<BodyCase> mesh_bodies(const Reader& r, const toml::table& o, const s
       try {
         check_body_options(options);
       } catch (const InputError& e) {
-        const std::string key = e.where().field == "--density" ? "mesh_density_kg_m3" : "mesh_azimuth_deg";
+        std::string key = mesh_option_key(e.where().field);
+        if (key == "mesh_contact_tolerance" && o.get(key) == nullptr) key = "mesh_contact_tolerance_m";
         r.fail(o.get(key), prefix + key, e.problem());
       }
       BodyCase c;
@@ -660,10 +720,14 @@ std::vector<BodyCase> mesh_bodies(const Reader& r, const toml::table& o, const s
         c.body = rocking_body(mb);
         c.inertia_m2 = mb.planar.inertia_cm_kg_m2 / mb.mass.mass_kg;
       } catch (const InputError& e) {
+        if (e.where().field == "--face") {
+          r.fail(o.get("mesh_face"), prefix + "mesh_face", fmt::format("mesh '{}': {}", path.string(), e.problem()));
+        }
         r.fail(o.get("mesh"), prefix + "mesh", fmt::format("mesh '{}' gives no body: {}", path.string(), e.what()));
       }
       c.mesh = file;
       c.mesh_azimuth_deg = azimuth;
+      c.mesh_pose = options.pose == PoseMethod::as_scanned ? "as-scanned" : "rest";
       out.push_back(std::move(c));
     }
   }
@@ -696,7 +760,10 @@ BodyAxes read_body_axes(const Reader& r, const toml::table& o, const std::string
     return *v;
   };
   BodyAxes x;
-  if (!from_mesh) refuse({"mesh_azimuth_deg", "mesh_unit", "mesh_density_kg_m3"});
+  if (!from_mesh) {
+    refuse({"mesh_azimuth_deg", "mesh_unit", "mesh_density_kg_m3", "mesh_pose", "mesh_up", "mesh_rotation_wxyz",
+            "mesh_axis_angle_deg", "mesh_face", "mesh_contact_tolerance", "mesh_contact_tolerance_m"});
+  }
   if (from_mesh) {
     if (shape != "general") {
       r.fail(o.get("shape"), prefix + "shape", fmt::format("a body from a mesh is a general body: leave shape out or "
@@ -817,7 +884,9 @@ void read_rock(const Reader& r, const toml::table& o, const std::string& key, do
   const std::string prefix = key + ".";
   r.check_keys(o, key, {"model", "shape", "width", "width_m", "height", "height_m", "diameter", "diameter_m", "a",
                         "a_m", "h", "h_m", "D_m2", "b1", "b1_m", "b2", "b2_m", "inertia", "inertia_m2", "mesh",
-                        "mesh_azimuth_deg", "mesh_unit", "mesh_density_kg_m3", "e", "mu", "support_freq_hz",
+                        "mesh_azimuth_deg", "mesh_unit", "mesh_density_kg_m3", "mesh_pose", "mesh_up",
+                        "mesh_rotation_wxyz", "mesh_axis_angle_deg", "mesh_face", "mesh_contact_tolerance",
+                        "mesh_contact_tolerance_m", "e", "mu", "support_freq_hz",
                         "support_freq", "support_damping", "depth", "depth_m"});
   const auto supports = read_supports(r, o, prefix);
   const bool from_mesh = o.get("mesh") != nullptr;
@@ -865,7 +934,7 @@ void read_rock(const Reader& r, const toml::table& o, const std::string& key, do
         options.mu = m;
         ensemble::RockObject ro{.body = body, .options = options, .width_m = c.width_m, .height_m = c.height_m,
                                 .diameter_m = c.diameter_m, .inertia_m2 = c.inertia_m2, .mesh = c.mesh,
-                                .mesh_azimuth_deg = c.mesh_azimuth_deg};
+                                .mesh_azimuth_deg = c.mesh_azimuth_deg, .mesh_pose = c.mesh_pose};
         for (const auto& depth : depths) {
           ro.depth_m = depth;
           if (depth) r.located(o.get("depth") != nullptr ? o.get("depth") : o.get("depth_m"), prefix + "depth",

@@ -16,7 +16,43 @@ const PlanarBody& planar(const O& o) { return o.body.planar; }
 
 }  // namespace
 
-const std::array<BodyField, 34> kMeshBodyFields{{
+const char* pose_method_name(PoseMethod method) {
+  return method == PoseMethod::as_scanned ? "as-scanned" : "rest";
+}
+
+nlohmann::ordered_json static_overturning_json(const StaticOverturning& s) {
+  J j;
+  j["min_g"] = s.min_g;
+  j["min_azimuth_deg"] = s.min_azimuth_deg;
+  j["toward_north_g"] = s.principal_g[0];
+  j["toward_east_g"] = s.principal_g[1];
+  j["toward_south_g"] = s.principal_g[2];
+  j["toward_west_g"] = s.principal_g[3];
+  return j;
+}
+
+nlohmann::ordered_json resting_faces_json(const std::vector<RestingFace>& faces) {
+  J out = J::array();
+  for (const auto& f : faces) {
+    J j;
+    j["face"] = f.number;
+    j["tilt_deg"] = f.tilt_deg;
+    j["stable"] = f.stable;
+    j["area_m2"] = f.area_m2;
+    j["margin_m"] = f.margin_m;
+    j["h_m"] = f.h_m;
+    j["contact_vertices"] = f.contact_vertices;
+    j["normal"] = vec(f.normal);
+    J poly = J::array();
+    for (const auto& p : f.polygon_xy_m) poly.push_back({p[0], p[1]});
+    j["support_polygon_xy_m"] = poly;
+    j["static_overturning"] = f.stable ? static_overturning_json(f.overturning) : J(nullptr);
+    out.push_back(j);
+  }
+  return out;
+}
+
+const std::array<BodyField, 35> kMeshBodyFields{{
     {"file", [](const O& o) -> J { return o.file; }},
     {"unit_m", [](const O& o) -> J { return o.unit_m; }},
     {"vertices", [](const O& o) -> J { return o.vertices; }},
@@ -71,6 +107,22 @@ const std::array<BodyField, 34> kMeshBodyFields{{
        s["d_m2"] = b.d_sym_m2;
        s["p_rad_s"] = b.p_sym_rad_s;
        return s;
+     }},
+    // Which pose produced the body (bodies/pose.hpp); "as-scanned" is the earlier answer.
+    {"pose",
+     [](const O& o) -> J {
+       const Pose& p = o.body.pose;
+       J j;
+       j["method"] = pose_method_name(p.method);
+       j["chosen_by"] = p.chosen_by;
+       j["face"] = p.face ? J(*p.face) : J(nullptr);
+       j["tilt_deg"] = p.tilt_deg;
+       j["rotation_wxyz"] = J::array({p.rotation_wxyz[0], p.rotation_wxyz[1], p.rotation_wxyz[2], p.rotation_wxyz[3]});
+       j["contact_tolerance_m"] = p.contact_tolerance_m;
+       j["faces"] = p.faces;
+       j["stable_faces"] = p.stable_faces;
+       j["static_overturning"] = static_overturning_json(p.overturning);
+       return j;
      }},
 }};
 

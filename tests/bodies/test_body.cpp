@@ -333,17 +333,22 @@ TEST(BodyRefuses, RestingOnAnEdgeOrAPoint) {
   TriangleMesh edge = box_mesh(1, 1, 1);
   const double c = std::sqrt(0.5);
   for (auto& p : edge.vertices_m) p = {p[0], c * p[1] - c * p[2], c * p[1] + c * p[2]};
-  expect_refused(edge, "a line (an edge)");
+  BodyOptions as_scanned;
+  as_scanned.pose = PoseMethod::as_scanned;  // the lowest plane as given (at rest, the body lies on a face)
+  expect_refused(edge, "a line (an edge)", as_scanned);
   // A tetrahedron standing on a vertex.
   TriangleMesh tip;
   tip.vertices_m = {{0, 0, 0}, {1, 0, 1}, {-0.5, 0.8, 1}, {-0.5, -0.8, 1}};
   tip.triangles = {{0, 1, 2}, {0, 2, 3}, {0, 3, 1}, {1, 3, 2}};
-  expect_refused(test::inverted(tip), "a single point");  // as listed the faces point in: inverted to face out
+  expect_refused(test::inverted(tip), "a single point", as_scanned);  // as listed the faces point in: inverted to face out
 }
 
 TEST(BodyRefuses, CentreOfMassOutsideTheBase) {
   // A leaning parallelepiped: base x in [0, 0.2], top x in [1.0, 1.2]; its CM (x = 0.6) is far past the base.
-  expect_refused(test::xz_prism_mesh({{0, 0}, {0.2, 0}, {1.2, 1}, {1.0, 1}}, 0.5), "not standing");
+  // As scanned (at rest it lies on its slanted face: tests/bodies/test_pose.cpp).
+  BodyOptions as_scanned;
+  as_scanned.pose = PoseMethod::as_scanned;
+  expect_refused(test::xz_prism_mesh({{0, 0}, {0.2, 0}, {1.2, 1}, {1.0, 1}}, 0.5), "not standing", as_scanned);
 }
 
 TEST(BodyRefuses, BadOptions) {

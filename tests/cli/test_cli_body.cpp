@@ -109,12 +109,12 @@ TEST(CliBody, ExampleRockStands) {
 }
 
 // The JSON of `topple body` is an interface: the field table that writes it (io/body_json.hpp) gives the keys in
-// this order and, on the example rock at azimuth 30, the values the hand-written writer gave before the table
-// (tests/cli/fixtures/balanced_rock_body_az30.json, main's output, the file name aside). Doubles print to 17 digits
-// and read back to the same doubles: exact equality.
+// this order and, on the example rock at azimuth 30 as scanned (--pose as-scanned, the earlier pose), the values the
+// hand-written writer gave before the table (tests/cli/fixtures/balanced_rock_body_az30.json, main's output, the file
+// name aside; the pose object is new). Doubles print to 17 digits and read back to the same doubles: exact equality.
 TEST(CliBody, JsonKeysAndValuesAreTheInterface) {
   const std::string rock = std::string(TOPPLE_SOURCE_DIR) + "/examples/mesh/balanced_rock.obj";
-  nlohmann::json j = test::run_json("body " + quote(rock) + " --azimuth 30 --json");
+  nlohmann::json j = test::run_json("body " + quote(rock) + " --azimuth 30 --pose as-scanned --json");
   const nlohmann::ordered_json ordered =
       nlohmann::ordered_json::parse(run_cli("body " + quote(rock) + " --azimuth 30 --json").out);
   std::vector<std::string> keys;
@@ -126,15 +126,121 @@ TEST(CliBody, JsonKeysAndValuesAreTheInterface) {
       "h_m",          "b1_m",          "b2_m",           "r1_m",               "r2_m",
       "alpha1_rad",   "alpha2_rad",    "alpha1_deg",     "alpha2_deg",         "inertia_cm_plane_kg_m2",
       "inertia_o1_kg_m2", "inertia_o2_kg_m2", "d1_m2",   "d2_m2",              "p1_rad_s",
-      "p2_rad_s",     "pivot1_m",      "pivot2_m",       "symmetric"};
+      "p2_rad_s",     "pivot1_m",      "pivot2_m",       "symmetric",          "pose"};
   EXPECT_EQ(keys, expected_keys);
   EXPECT_EQ(j["file"], rock);
   nlohmann::json pinned = nlohmann::json::parse(
       test::slurp(std::string(TOPPLE_SOURCE_DIR) + "/tests/cli/fixtures/balanced_rock_body_az30.json"));
   ASSERT_FALSE(pinned.empty());
+  EXPECT_EQ(j["pose"]["method"], "as-scanned");
+  EXPECT_TRUE(j["pose"]["face"].is_null());
   j.erase("file");
+  j.erase("pose");
   pinned.erase("file");
   EXPECT_EQ(j, pinned) << j.dump(2);
+  // By default (rest) the JSON says which pose: the rock's flat base is the face nearest the scan (tilt 0).
+  EXPECT_EQ(ordered["pose"]["method"], "rest");
+  EXPECT_EQ(ordered["pose"]["chosen_by"], "nearest the scan");
+  EXPECT_EQ(ordered["pose"]["face"], 1);
+  EXPECT_NEAR(ordered["pose"]["tilt_deg"].get<double>(), 0.0, 1e-9);
+}
+
+// ---- The resting pose from the command line: a box 0.4 x 0.6 x 1.0 m tilted 20 degrees about x (scanned on a
+// slope) rests on its base, 20 degrees from the scan; levelled by the minimal rotation its x is east again:
+// b1 = b2 = 0.2 m at azimuth 90, h = 0.5 m; the least static overturning acceleration is 0.2/0.5 = 0.4 g, toward
+// east or west. The quaternion printed is the inverse tilt, (cos 10 deg, -sin 10 deg, 0, 0).
+TEST(CliBody, RestsATiltedScanOnItsBase) {
+  TempDir dir;
+  TriangleMesh box = test::box_mesh(0.4, 0.6, 1.0);
+  const double c = std::cos(20 * 3.141592653589793 / 180), s = std::sin(20 * 3.141592653589793 / 180);
+  for (auto& p : box.vertices_m) p = {p[0], c * p[1] - s * p[2], s * p[1] + c * p[2]};
+  const auto path = (dir.path() / "tilted.obj").string();
+  write_file(path, test::obj_text(box));
+  const auto j = test::run_json("body " + quote(path) + " --azimuth 90 --json");
+  EXPECT_NEAR(j["pose"]["tilt_deg"].get<double>(), 20.0, 1e-6);
+  EXPECT_NEAR(j["b1_m"].get<double>(), 0.2, 1e-6);  // the OBJ's 17-digit coordinates; 1e-6 covers a float reader
+  EXPECT_NEAR(j["b2_m"].get<double>(), 0.2, 1e-6);
+  EXPECT_NEAR(j["h_m"].get<double>(), 0.5, 1e-6);
+  EXPECT_NEAR(j["pose"]["static_overturning"]["min_g"].get<double>(), 0.4, 1e-6);
+  EXPECT_NEAR(j["pose"]["rotation_wxyz"][0].get<double>(), std::cos(10 * 3.141592653589793 / 180), 1e-6);
+  EXPECT_NEAR(j["pose"]["rotation_wxyz"][1].get<double>(), -std::sin(10 * 3.141592653589793 / 180), 1e-6);
+  const auto text = run_cli("body " + quote(path) + " --azimuth 90");
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_NE(text.out.find("pose          rest on face 1 of 6 (6 stable; nearest the scan), tilted 20.0000 deg"),
+            std::string::npos)
+      << text.out;
+  // As scanned it stands on its lowest edge: refused, as before; an old command line with --base-tolerance (and no
+  // --pose) means the as-scanned pose, as it did: refused the same way (the edge is 2 vertices; the next ones are
+  // 0.2 m higher, past the 10 % limit).
+  const auto old = run_cli("body " + quote(path) + " --azimuth 90 --pose as-scanned");
+  EXPECT_EQ(old.exit_code, 2);
+  EXPECT_NE(old.err.find("a line (an edge)"), std::string::npos) << old.err;
+  const auto old_line = run_cli("body " + quote(path) + " --azimuth 90 --base-tolerance 0.05");
+  EXPECT_EQ(old_line.exit_code, 2);
+  EXPECT_NE(old_line.err.find("a line (an edge)"), std::string::npos) << old_line.err;
+  const auto level = (dir.path() / "level.obj").string();
+  write_file(level, test::obj_text(test::box_mesh(0.4, 0.6, 1.0)));
+  EXPECT_EQ(test::run_json("body " + quote(level) + " --azimuth 90 --base-tolerance 0.01 --json")["pose"]["method"],
+            "as-scanned");
+  EXPECT_EQ(run_cli("body " + quote(path) + " --azimuth 90 --base-tolerance 0.05 --pose rest").exit_code, 2);
+  EXPECT_EQ(run_cli("body " + quote(path) + " --azimuth 90 --contact-tolerance 2mm --pose as-scanned").exit_code, 2);
+  // --axis-angle undoing the tilt, and --up naming the box's up: the same body.
+  for (const char* opt : {" --axis-angle 1,0,0,-20", " --up 0,-0.3420201433256687,0.9396926207859084"}) {
+    const auto k = test::run_json("body " + quote(path) + " --azimuth 90 --json" + opt);
+    EXPECT_NEAR(k["b1_m"].get<double>(), 0.2, 1e-6) << opt;
+    EXPECT_NEAR(k["h_m"].get<double>(), 0.5, 1e-6) << opt;
+    EXPECT_NEAR(k["pose"]["tilt_deg"].get<double>(), 0.0, 1e-6) << opt;
+  }
+}
+
+// ---- --list-faces on the leaning prism of test_pose (cross-section (0,0), (0.2,0), (1.2,1), (1,1) in x-z, 0.5 deep):
+// six faces by tilt: the base (0 deg, unstable), the slanted side (45, stable), the two ends (90), the other slanted
+// side (135), the top (180, unstable). --face 1 is refused naming --face; --face 2 is the 45-degree side.
+TEST(CliBody, ListsFacesAndTakesOneByNumber) {
+  TempDir dir;
+  const auto path = (dir.path() / "lean.obj").string();
+  write_file(path, test::obj_text(test::xz_prism_mesh({{0, 0}, {0.2, 0}, {1.2, 1}, {1.0, 1}}, 0.5)));
+  const auto j = test::run_json("body " + quote(path) + " --azimuth 90 --list-faces --json");
+  ASSERT_EQ(j["faces"].size(), 6u);
+  const std::vector<double> tilts{0, 45, 90, 90, 135, 180};
+  const std::vector<bool> stable{false, true, true, true, true, false};
+  for (std::size_t i = 0; i < 6; ++i) {
+    EXPECT_EQ(j["faces"][i]["face"].get<std::size_t>(), i + 1);
+    // 1e-4 deg: the mesh reader's single precision (1e-7 relative on 0.2, 1.2) turns a normal by ~1e-7 rad.
+    EXPECT_NEAR(j["faces"][i]["tilt_deg"].get<double>(), tilts[i], 1e-4) << i;
+    EXPECT_EQ(j["faces"][i]["stable"].get<bool>(), stable[i]) << i;
+  }
+  EXPECT_TRUE(j["faces"][0]["static_overturning"].is_null());
+  // On the slanted side the least b/h is the half depth 0.25 m over h = 0.1/sqrt2 m.
+  EXPECT_NEAR(j["faces"][1]["static_overturning"]["min_g"].get<double>(), 0.25 / (0.1 / std::sqrt(2.0)), 1e-6);
+  const auto text = run_cli("body " + quote(path) + " --azimuth 90 --list-faces");
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_NE(text.out.find("6 faces of the convex hull (4 stable)"), std::string::npos) << text.out;
+  const auto refused = run_cli("body " + quote(path) + " --azimuth 90 --face 1");
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_NE(refused.err.find("--face"), std::string::npos) << refused.err;
+  EXPECT_NE(refused.err.find("not stable"), std::string::npos) << refused.err;
+  const auto second = test::run_json("body " + quote(path) + " --azimuth 90 --face 2 --json");
+  EXPECT_NEAR(second["h_m"].get<double>(), 0.1 / std::sqrt(2.0), 1e-6);
+  EXPECT_EQ(second["pose"]["chosen_by"], "face number");
+}
+
+TEST(CliBody, BadPoseOptionsExitTwoNamingTheOption) {
+  TempDir dir;
+  const auto good = (dir.path() / "good.obj").string();
+  write_file(good, test::obj_text(test::box_mesh(1, 1, 1)));
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {" --rotation 0,0,0,0", "--rotation"},       {" --rotation 1,0,0", "--rotation"},
+      {" --up 0,0,0", "--up"},                      {" --up 1,x,0", "--up"},
+      {" --axis-angle 0,0,0,10", "--axis-angle"},  {" --face 0", "--face"},
+      {" --face 7", "--face"},                      {" --contact-tolerance 2", "--contact-tolerance"},
+      {" --pose lying", "--pose"},                  {" --pose as-scanned --up 0,0,1", "--up"},
+      {" --up 0,0,1 --face 1", "--up"}};
+  for (const auto& [opt, name] : cases) {
+    const auto r = run_cli("body " + quote(good) + " --azimuth 0" + opt);
+    EXPECT_EQ(r.exit_code, 2) << opt << ": " << r.err;
+    EXPECT_NE(r.err.find(name), std::string::npos) << opt << ": " << r.err;
+  }
 }
 
 }  // namespace

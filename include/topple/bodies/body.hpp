@@ -2,8 +2,13 @@
 // A rigid body from a closed triangle mesh (a 3-D scan of a rock or a museum object), and the planar body it gives
 // in a chosen vertical plane: the two pivots, the height of the centre of mass, the inertia about each pivot.
 //
-// Axes. The mesh's axes are taken as x east, y north, z up (metres; io/mesh.hpp converts other units). The body
-// stands on its lowest plane z = z_min; nothing is levelled or rotated: a scan must be levelled before use.
+// Axes. The mesh's axes are taken as x east, y north, z up (metres; io/mesh.hpp converts other units).
+//
+// Pose (BodyOptions::pose). By default (PoseMethod::rest) the body rests on the stable face of its convex hull
+// nearest the scanned pose (or nearest a given up direction or rotation, or a face chosen by number), levelled onto
+// it by the minimal rotation (bodies/pose.hpp); the support polygon is that face's, and every quantity below is of
+// the levelled mesh. PoseMethod::as_scanned is the earlier behaviour, bit for bit: the body stands on its lowest
+// plane z = z_min of the mesh as given, with the contact points within base_tolerance_fraction of its size.
 //
 // Mass properties (exact for the polyhedron, up to rounding). Each triangle (a, b, c), wound counter-clockwise seen
 // from outside, closes with a reference point r (the bounding-box centre, to limit cancellation) a signed
@@ -18,7 +23,7 @@
 //   m = rho V,  c = (integral of x dV) / V,  C = rho (integral of x x^T dV) - m (c - r)(c - r)^T  (about the CM),
 //   I_cm = tr(C) 1 - C  (the inertia tensor about the centre of mass, kg m^2).
 //
-// Support polygon. The vertices with z <= z_min + tol (tol = base_tolerance_fraction times the largest extent of the
+// Support polygon (as scanned). The vertices with z <= z_min + tol (tol = base_tolerance_fraction times the largest extent of the
 // mesh's bounding box) are the contact points; their 2-D convex hull (CGAL's convex_hull_2, exact predicates) is the
 // support polygon. A body whose contact points are one point or collinear (a rock on a point or on an edge) is
 // refused: it cannot stand in 3-D (neutral at best). A body whose centre of mass does not project strictly inside
@@ -38,6 +43,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -115,17 +121,61 @@ struct PlanarBody {
   double b_sym_m = 0.0, r_sym_m = 0.0, alpha_sym_rad = 0.0, d_sym_m2 = 0.0, p_sym_rad_s = 0.0;
 };
 
+/// How the body is posed on the base (bodies/pose.hpp).
+enum class PoseMethod {
+  rest,        ///< on a stable face of the convex hull, levelled (the default)
+  as_scanned,  ///< on the lowest plane of the mesh as given (the earlier behaviour)
+};
+
+/// A unit quaternion (w, x, y, z), w the scalar part: v -> q v q*.
+using Quaternion = std::array<double, 4>;
+inline constexpr Quaternion kIdentityQuaternion{1.0, 0.0, 0.0, 0.0};
+
 /// What `topple body` computes.
 struct BodyOptions {
   double azimuth_deg = 0.0;                 ///< plane of shaking, clockwise from north; any finite value
   double density_kg_m3 = 2700.0;            ///< uniform; 2700 kg/m^3 is granite (typical of balanced rocks)
-  double base_tolerance_fraction = 1e-6;    ///< contact tolerance / largest bounding-box extent, in [0, 0.1]
+  double base_tolerance_fraction = 1e-6;    ///< as-scanned only: contact tolerance / largest extent, in [0, 0.1]
   double g_m_s2 = 9.80665;
+  PoseMethod pose = PoseMethod::rest;
+  /// rest only: hull facets within this distance of a face's plane are one face; its contact points (bodies/pose.hpp)
+  /// in [0, 0.1] m. 1 mm: the resolution of a photogrammetry or lidar scan of a boulder-size object, and the scale
+  /// of the roughness a rock and a shake table's top leave between them; a floor of 1e-9 x the mesh's size holds
+  /// coplanar facets together against rounding.
+  double contact_tolerance_m = 1e-3;
+  std::optional<Vec3> up;                          ///< rest: this mesh direction becomes +z (non-zero)
+  std::optional<Quaternion> rotation_wxyz;         ///< rest: turn the mesh by this unit quaternion first
+  std::optional<std::array<double, 4>> axis_angle_deg;  ///< rest: or by this rotation (axis x, y, z; angle deg)
+  std::optional<std::size_t> face;                 ///< rest: the face of this number (1-based) in the listing
 };
 
 /// Checks the options before any work: density in (0, 1e5] kg/m^3, azimuth finite, g positive and finite, base
-/// tolerance in [0, 0.1]. Throws InputError naming the option (--density, --azimuth, --g, --base-tolerance).
+/// tolerance in [0, 0.1], contact tolerance in [0, 0.1] m, up finite and non-zero, the quaternion finite and of unit
+/// norm within 1e-3 (it is normalised), the axis finite and non-zero and the angle finite, the face >= 1; at most
+/// one of up, rotation, axis-angle and face; none of them with the as-scanned pose. Throws InputError naming the
+/// option (--density, --azimuth, --g, --base-tolerance, --contact-tolerance, --up, --rotation, --axis-angle,
+/// --face, --pose).
 void check_body_options(const BodyOptions& options);
+
+/// The static overturning accelerations of a body on its support polygon (bodies/pose.hpp): b / h per direction.
+struct StaticOverturning {
+  double min_g = 0.0;            ///< min over all directions of b / h
+  double min_azimuth_deg = 0.0;  ///< the direction the body tips toward there, clockwise from north, [0, 360)
+  std::array<double, 4> principal_g{};  ///< b / h toward north (azimuth 0), east (90), south (180), west (270)
+};
+
+/// The pose mesh_body used.
+struct Pose {
+  PoseMethod method = PoseMethod::rest;
+  /// What chose it: "nearest the scan", "nearest up", "nearest the rotation", "face number", "as-scanned".
+  std::string chosen_by;
+  Quaternion rotation_wxyz = kIdentityQuaternion;  ///< mesh as given -> as rested, about the CM
+  std::optional<std::size_t> face;                 ///< the face's number in the listing (none as-scanned)
+  double tilt_deg = 0.0;           ///< of that face from the (pre-rotated) scan's -z; 0 as-scanned
+  double contact_tolerance_m = 0.0;  ///< used (the floor applied); as-scanned: the base tolerance in metres
+  std::size_t faces = 0, stable_faces = 0;  ///< in the listing (0 as-scanned)
+  StaticOverturning overturning;            ///< of the support polygon used
+};
 
 /// The planar body of a checked solid: refuses (InputError naming `file`) a CM outside the support polygon.
 [[nodiscard]] PlanarBody planar_body(const MassProperties& mass, const SupportPolygon& support, double azimuth_deg,
@@ -133,12 +183,14 @@ void check_body_options(const BodyOptions& options);
 
 /// Everything for one mesh.
 struct MeshBody {
-  MassProperties mass;
+  MassProperties mass;     ///< of the mesh as posed
   SupportPolygon support;
   PlanarBody planar;
+  Pose pose;
 };
 
-/// check_mesh, mass_properties, support_polygon and planar_body in turn. Throws InputError naming `file` (the mesh)
+/// check_mesh, the pose (rest_mesh of bodies/pose.hpp, or as scanned), mass_properties, support_polygon (as
+/// scanned; at rest the face's polygon) and planar_body in turn. Throws InputError naming `file` (the mesh)
 /// or the option (--density, --azimuth, --base-tolerance, --g) that is wrong.
 [[nodiscard]] MeshBody mesh_body(const TriangleMesh& mesh, const BodyOptions& options, const std::string& file);
 

@@ -77,6 +77,7 @@ struct RockObject {
   std::optional<double> inertia_m2 = std::nullopt;  ///< asymmetric general body: I_cm / m as given (or from the mesh), m^2
   std::string mesh = {};             ///< a body from a mesh: the file as the sweep file names it (empty: none)
   std::optional<double> mesh_azimuth_deg = std::nullopt;  ///< and the azimuth of its plane of shaking, degrees
+  std::string mesh_pose = {};        ///< and the pose it was given: "rest" or "as-scanned" (bodies/pose.hpp)
   std::optional<SupportOscillator> support = std::nullopt;  ///< as SlideObject::support
   /// A block's other horizontal dimension, m: a box checked about both axes (oriented.hpp). Record sets only.
   std::optional<double> depth_m = std::nullopt;
@@ -111,7 +112,7 @@ struct SweepSpec {
 ///           [bearing_deg] (only with record sets: a sweep without one has the columns it always had; pga_g of a
 ///           set is its first component's)
 ///   object: model, g_m_s2, [mu, mu_kinetic, slope_deg, mode], [shape, width_m, height_m, diameter_m, (a_m, h_m,
-///           D_m2), (b1_m, b2_m, h_m, inertia_m2: asymmetric bodies), (mesh, mesh_azimuth_deg: bodies from meshes),
+///           D_m2), (b1_m, b2_m, h_m, inertia_m2: asymmetric bodies), (mesh, mesh_azimuth_deg, mesh_pose: bodies from meshes),
 ///           restitution],
 ///           [support_freq_hz, support_damping] (only when some object has a flexible support: a sweep without one
 ///           has the columns it always had; a rigid object's cells there are empty), [depth_m] (only when some
