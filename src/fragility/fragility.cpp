@@ -681,8 +681,8 @@ FragilitySurfaceFit fit_fragility_surface(std::span<const SurfaceOutcome> outcom
   }
   // Start at the constant model (a1 = a2 = 0: P = the failure fraction), then Newton with step halving; the probit
   // log-likelihood is concave, so every Newton step from a point where H is negative definite ascends for small t.
-  std::array<double, 3> a{boost::math::quantile(kStandardNormal, static_cast<double>(failures) / static_cast<double>(n)),
-                          0.0, 0.0};
+  const double fraction = static_cast<double>(failures) / static_cast<double>(n);
+  std::array<double, 3> a{boost::math::quantile(kStandardNormal, fraction), 0.0, 0.0};
   FragilitySurfaceFit fit;
   std::array<double, 3> g{};
   std::array<std::array<double, 3>, 3> H{};

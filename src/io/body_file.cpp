@@ -51,7 +51,8 @@ BodyFile parse_body_file(std::string_view content, const std::string& name) {
   } catch (const nlohmann::json::parse_error& e) {
     // e.byte is the 1-based offset of the error: turn it into a line for the message.
     const std::size_t upto = std::min<std::size_t>(e.byte, content.size());
-    const std::size_t line = 1 + static_cast<std::size_t>(std::count(content.begin(), content.begin() + static_cast<std::ptrdiff_t>(upto), '\n'));
+    const auto end = content.begin() + static_cast<std::ptrdiff_t>(upto);
+    const std::size_t line = 1 + static_cast<std::size_t>(std::count(content.begin(), end, '\n'));
     throw InputError(InputLocation{name, line, ""}, fmt::format("not JSON ({}): a body file is what `topple body MESH "
                                                                 "--json` writes", e.what()));
   }

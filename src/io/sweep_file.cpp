@@ -873,35 +873,35 @@ void read_rock(const Reader& r, const toml::table& o, const std::string& key, do
         ensemble::check_housner_restitution(body);  // the rocking model's rule (sweep.hpp)
       });
       for (const auto& m : mu_values) {
-       for (const auto& mu_k : mu_k_values) {
-        if (coupled) {  // the body with its friction (SlideRockBody::make's rules), placed at the key's line
-          try {
-            (void)SlideRockBody::from_rocking(body, *m, mu_k);
-          } catch (const InputError& err) {
-            const bool kinetic = err.where().field == "mu_k";
-            r.fail(o.get(kinetic ? "mu_kinetic" : "mu"), prefix + (kinetic ? "mu_kinetic" : "mu"), err.problem());
+        for (const auto& mu_k : mu_k_values) {
+          if (coupled) {  // the body with its friction (SlideRockBody::make's rules), placed at the key's line
+            try {
+              (void)SlideRockBody::from_rocking(body, *m, mu_k);
+            } catch (const InputError& err) {
+              const bool kinetic = err.where().field == "mu_k";
+              r.fail(o.get(kinetic ? "mu_kinetic" : "mu"), prefix + (kinetic ? "mu_kinetic" : "mu"), err.problem());
+            }
+          }
+          RockingOptions options;
+          options.g_m_s2 = g;
+          options.restitution = e ? RestitutionMode::given : RestitutionMode::housner;
+          if (e) options.e = *e;
+          options.mu = m;
+          ensemble::RockObject ro{.body = body, .options = options, .width_m = c.width_m, .height_m = c.height_m,
+                                  .diameter_m = c.diameter_m, .inertia_m2 = c.inertia_m2, .mesh = c.mesh,
+                                  .mesh_azimuth_deg = c.mesh_azimuth_deg};
+          ro.coupled = coupled;
+          ro.mu_kinetic = mu_k;
+          for (const auto& depth : depths) {
+            ro.depth_m = depth;
+            if (depth) r.located(o.get("depth") != nullptr ? o.get("depth") : o.get("depth_m"), prefix + "depth",
+                                 [&] { return OrientedBody::box(*c.width_m, *depth, *c.height_m); });
+            for (const auto& support : supports) {
+              ro.support = support;
+              out.spec.objects.emplace_back(ro);
+            }
           }
         }
-        RockingOptions options;
-        options.g_m_s2 = g;
-        options.restitution = e ? RestitutionMode::given : RestitutionMode::housner;
-        if (e) options.e = *e;
-        options.mu = m;
-        ensemble::RockObject ro{.body = body, .options = options, .width_m = c.width_m, .height_m = c.height_m,
-                                .diameter_m = c.diameter_m, .inertia_m2 = c.inertia_m2, .mesh = c.mesh,
-                                .mesh_azimuth_deg = c.mesh_azimuth_deg};
-        ro.coupled = coupled;
-        ro.mu_kinetic = mu_k;
-        for (const auto& depth : depths) {
-          ro.depth_m = depth;
-          if (depth) r.located(o.get("depth") != nullptr ? o.get("depth") : o.get("depth_m"), prefix + "depth",
-                               [&] { return OrientedBody::box(*c.width_m, *depth, *c.height_m); });
-          for (const auto& support : supports) {
-            ro.support = support;
-            out.spec.objects.emplace_back(ro);
-          }
-        }
-       }
       }
     }
   }

@@ -241,9 +241,9 @@ TEST(CliRock, BadInputExitsWithStatus2NamingTheOption) {
 }
 
 // `rock --body FILE` reads what `topple body --json` writes: the same run as the `rock --shape general --b1 --b2 --h
-// --inertia` command `topple body` prints for that mesh and azimuth. The printed command carries 9 significant
-// digits (5e-9 relative rounding each), the JSON 17: the bodies agree to 1e-8 relative, and the response on a pulse that rocks the body without
-// overturning it (a smooth function of the body there) to 1e-6 relative.
+// --inertia` command `topple body` prints for that mesh and azimuth. The printed command carries 9 significant digits
+// (5e-9 relative rounding each), the JSON 17: the bodies agree to 1e-8 relative, and the response on a pulse that
+// rocks the body without overturning it (a smooth function of the body there) to 1e-6 relative.
 TEST(CliRock, BodyFileIsTheBodyTopplePrints) {
   test::TempDir dir;
   const std::string mesh = "'" + std::string(TOPPLE_SOURCE_DIR) + "/examples/mesh/balanced_rock.obj'";
