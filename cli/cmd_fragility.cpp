@@ -1,5 +1,6 @@
 // topple fragility: P(overturn) and P(slide > d) against an intensity measure over an ensemble of records or
 // synthetic motions, with the lognormal maximum-likelihood fit and its band. Parsing and printing only.
+#include <algorithm>
 #include <cstdio>
 #include <limits>
 #include <memory>
@@ -19,6 +20,8 @@
 #include "topple/core/output_file.hpp"
 #include "topple/fragility/fragility.hpp"
 #include "topple/fragility/object_spectra.hpp"
+#include "topple/io/body_file.hpp"
+#include "topple/io/mesh.hpp"
 #include "topple/output/fragility_output.hpp"
 #include "topple/output/plot.hpp"
 #include "topple/motion/synthesis.hpp"
@@ -45,6 +48,18 @@ struct FragilityOptions {
   std::string width;
   std::string height;
   std::string diameter;
+  std::string b1;          // general (asymmetric) body: --shape general --b1 --b2 --h --inertia
+  std::string b2;
+  std::string h;
+  std::string inertia;
+  std::string body_file;   // --body: what `topple body --json` writes
+  std::string mesh;        // --mesh FILE: a scanned body, at --azimuth (BodyOptions: every option of the mesh body)
+  std::string mesh_unit = "m";
+  BodyOptions mesh_options;
+  std::string model = "rocking";  // or "coupled": the slide-rock model (slide_rock.hpp)
+  std::optional<double> rock_mu;
+  std::optional<double> rock_mu_k;
+  bool as_recorded = false;
   std::string e = "housner";
   double band = 0.95;
   int threads = 0;
@@ -76,10 +91,22 @@ std::string fragility_title(const FragilityOptions& o, std::size_t motions) {
     if (o.slope_deg != 0.0) t += fmt::format(", slope {:g}°", o.slope_deg);
     t += o.one_way ? ", one-way" : ", two-way";
   }
-  if (!o.shape.empty()) {
+  if (!o.body_file.empty()) {
+    t += ", overturn of the body in " + plot::file_label(o.body_file);
+  } else if (!o.mesh.empty()) {
+    t += fmt::format(", overturn of {} at azimuth {:g}°", plot::file_label(o.mesh), o.mesh_options.azimuth_deg);
+  } else if (o.shape == "general") {
+    t += fmt::format(", overturn of a body b1 {}, b2 {}, h {}", o.b1, o.b2, o.h);
+  } else if (!o.shape.empty()) {
     t += o.shape == "cylinder" ? fmt::format(", overturn of a cylinder {} x {}", o.diameter, o.height)
                                : fmt::format(", overturn of a {} {} x {}", o.shape, o.width, o.height);
+  }
+  if (!o.shape.empty() || !o.body_file.empty() || !o.mesh.empty()) {
     t += ", e = " + o.e;
+    if (o.model == "coupled") {
+      t += fmt::format(", coupled slide-rock (μ = {:g}{})", o.rock_mu.value_or(0.0),
+                       o.rock_mu_k ? fmt::format(", μ_k = {:g}", *o.rock_mu_k) : std::string());
+    }
   }
   return t;
 }
@@ -120,6 +147,58 @@ bool check_ensemble_options(const FragilityOptions& o) {
   return pairs;
 }
 
+/// The rocking body: --body FILE (what `topple body --json` writes), --mesh FILE at --azimuth (io::read_mesh_body
+/// with the whole BodyOptions), or --shape block / cylinder / general (--b1 --b2 --h --inertia, asymmetric).
+RockingBody make_fragility_body(const FragilityOptions& o, double g) {
+  if (!o.body_file.empty()) return io::read_body_file(o.body_file).rocking_body();
+  if (!o.mesh.empty()) {
+    BodyOptions b = o.mesh_options;
+    b.g_m_s2 = g;
+    const double unit_m = io::mesh_unit_m(o.mesh_unit, "--mesh-unit");
+    const MeshBody body = with_field_names({{"--unit", "--mesh-unit"}}, [&] { return io::read_mesh_body(o.mesh, unit_m, b); });
+    return rocking_body(body);
+  }
+  const RockingBody::Shape shape = parse_shape(o.shape, "--shape");
+  BodyDimensions d;
+  const auto length = [](const std::string& text, const char* option) -> std::optional<double> {
+    if (text.empty()) return std::nullopt;
+    return parse_length_m(text, option);
+  };
+  if (shape == RockingBody::Shape::general) {
+    for (const auto& [option, given] : {std::pair{"--width", !o.width.empty()}, std::pair{"--height", !o.height.empty()},
+                                        std::pair{"--diameter", !o.diameter.empty()}}) {
+      if (given) throw parameter_error(option, "a general body is given by --b1, --b2, --h and --inertia");
+    }
+    d.b1_m = length(o.b1, "--b1");
+    d.b2_m = length(o.b2, "--b2");
+    d.h_m = length(o.h, "--h");
+    if (!o.inertia.empty()) d.inertia_m2 = parse_area_m2(o.inertia, "--inertia");
+    for (const auto& [option, given] : {std::pair{"--b1", d.b1_m.has_value()}, std::pair{"--b2", d.b2_m.has_value()},
+                                        std::pair{"--h", d.h_m.has_value()},
+                                        std::pair{"--inertia", d.inertia_m2.has_value()}}) {
+      if (!given) throw parameter_error(option, "a general body needs --b1, --b2, --h and --inertia");
+    }
+  } else {
+    for (const auto& [option, given] : {std::pair{"--b1", !o.b1.empty()}, std::pair{"--b2", !o.b2.empty()},
+                                        std::pair{"--h", !o.h.empty()}, std::pair{"--inertia", !o.inertia.empty()}}) {
+      if (given) throw parameter_error(option, "applies to --shape general");
+    }
+    if (o.height.empty()) throw parameter_error("--height", "the rocking body needs --height");
+    d.height_m = parse_length_m(o.height, "--height");
+    d.width_m = length(o.width, "--width");
+    d.diameter_m = length(o.diameter, "--diameter");
+  }
+  try {
+    return make_rocking_body(shape, d);
+  } catch (const InputError& err) {
+    const std::string& field = err.where().field;
+    for (const char* known : {"width", "height", "diameter", "b1", "b2", "h", "inertia"}) {
+      if (field == known) throw parameter_error("--" + field, err.problem());
+    }
+    throw;
+  }
+}
+
 /// The failure modes asked for: a sliding block past its threshold and/or an overturning rocking body.
 void add_failures(const FragilityOptions& o, double g, FragilitySpec& spec) {
   if (o.mu) {
@@ -136,32 +215,33 @@ void add_failures(const FragilityOptions& o, double g, FragilitySpec& spec) {
   } else if (!o.threshold.empty()) {
     throw parameter_error("--mu", "--threshold applies to a sliding block: give its friction coefficient --mu");
   }
-  if (!o.shape.empty()) {
+  if (!o.shape.empty() || !o.body_file.empty() || !o.mesh.empty()) {
     OverturnFailure f;
     f.options.g_m_s2 = g;
     const RestitutionChoice e = parse_restitution(o.e, "--e");
     f.options.restitution = e.mode;
     f.options.e = e.e;
-    if (o.height.empty()) throw parameter_error("--height", "the rocking body needs --height");
-    const RockingBody::Shape shape = parse_shape(o.shape, "--shape");
-    if (shape == RockingBody::Shape::general) {
-      throw parameter_error("--shape", fmt::format("unknown shape '{}' (known: block, cylinder)", o.shape));
-    }
-    BodyDimensions d;
-    d.height_m = parse_length_m(o.height, "--height");
-    if (!o.width.empty()) d.width_m = parse_length_m(o.width, "--width");
-    if (!o.diameter.empty()) d.diameter_m = parse_length_m(o.diameter, "--diameter");
-    try {
-      f.body = make_rocking_body(shape, d);
-    } catch (const InputError& err) {
-      const std::string& field = err.where().field;
-      if (field == "width" || field == "height" || field == "diameter") throw parameter_error("--" + field, err.problem());
-      throw;
+    f.body = make_fragility_body(o, g);
+    if (o.model == "coupled") {
+      if (!o.rock_mu) {
+        throw parameter_error("--rock-mu", "the coupled model needs the rocking body's friction coefficient");
+      }
+      f.coupled = with_field_names({{"mu", "--rock-mu"}, {"mu_k", "--rock-mu-k"}},
+                                   [&] { return SlideRockBody::from_rocking(f.body, *o.rock_mu, o.rock_mu_k); });
+    } else if (o.model != "rocking") {
+      throw parameter_error("--model", fmt::format("'rocking' or 'coupled', got '{}'", o.model));
+    } else if (o.rock_mu || o.rock_mu_k) {
+      throw parameter_error(o.rock_mu ? "--rock-mu" : "--rock-mu-k", "needs --model coupled (the rocking model does "
+                                                                     "not slide)");
     }
     spec.overturning = f;
+  } else if (o.model != "rocking" || o.rock_mu || o.rock_mu_k) {
+    throw parameter_error(o.model != "rocking" ? "--model" : "--rock-mu",
+                          "applies to a rocking body (--shape, --body or --mesh)");
   }
   if (!spec.sliding && !spec.overturning) {
-    throw parameter_error("--mu", "give a sliding block (--mu, --threshold) and/or a rocking body (--shape ...)");
+    throw parameter_error("--mu", "give a sliding block (--mu, --threshold) and/or a rocking body (--shape ..., "
+                                  "--body FILE or --mesh FILE)");
   }
 
 }
@@ -261,6 +341,70 @@ void print_fragility(const FragilityOptions& o, const FragilityResult& res, std:
   }
 }
 
+/// --as-recorded: every record run once as recorded; per record its PGA, PGV, PGV/PGA and outcome, and the fragility
+/// surface in PGA and PGV/PGA (fragility.hpp, "As recorded").
+void run_as_recorded(const FragilityOptions& o, bool pairs) {
+  const double g = o.motion.g_m_s2;
+  if (pairs) throw parameter_error("--as-recorded", "runs single components (pairs are scaled by their RotD50 PGA)");
+  if (o.synth) throw parameter_error("--synth", "--as-recorded runs record files as they are (synthetic motions have "
+                                                "no PGA of their own here: use the scaled fragility)");
+  if (!o.im_range.empty()) throw parameter_error("--im-range", "--as-recorded does not scale the records to levels");
+  if (o.im != "pga") throw parameter_error("--im", "--as-recorded fits a surface in PGA and PGV/PGA");
+  FragilitySpec spec;
+  spec.threads = o.threads;
+  add_failures(o, g, spec);
+  const std::vector<std::string> names = add_motions(o, false, g, spec);
+  ProgressBar bar(progress_wanted(o.quiet));
+  spec.progress = bar.callback();
+  const AsRecordedResult res = with_field_names({{"mode", "--one-way"}, {"slope", "--slope-deg"}, {"model", "--model"}},
+                                                [&] { return as_recorded_analysis(spec); });
+  bar.finish();
+  if (!o.out.empty()) {
+    io::OutputFile file(o.out);
+    io::write_as_recorded_csv(file.stream(), res, names, g);
+    file.commit();
+  }
+  if (!o.plot.empty()) {
+    // The overturning surface when there is a rocking body (the last curve), else the sliding one.
+    const std::size_t curve = res.curves.size() - 1;
+    plot::render(io::fragility_surface_figure(res, curve, g, fragility_title(o, names.size()) + ", as recorded"),
+                 o.plot);
+  }
+  for (const auto& c : res.curves) {
+    if (c.fit) require_finite({{"theta_ref", c.fit->ln_theta_ref}, {"gamma", c.fit->gamma}, {"beta", c.fit->beta}});
+  }
+  if (o.json) {
+    fmt::print("{}\n", io::as_recorded_json(res, names, g).dump(2));
+    return;
+  }
+  fmt::print("fragility over {} records as recorded (no rescaling), g = {} m/s2\n", names.size(), g);
+  fmt::print("surface: {}\n", io::kFragilitySurfaceForm);
+  for (const auto& c : res.curves) {
+    const auto failures = std::count(c.failed.begin(), c.failed.end(), true);
+    fmt::print("{}: {} of {} records\n", c.name == "overturn" ? "P(overturn)" : "P(slide > threshold)", failures,
+               c.failed.size());
+    if (c.fit) {
+      const FragilitySurfaceFit& f = *c.fit;
+      fmt::print("  median PGA at PGV/PGA = {:.4g} s: {:.4g} g (ln theta_ref +- {:.3g}); gamma = {:.3f} +- {:.3f}; "
+                 "beta = {:.3f} +- {:.3f}\n",
+                 f.v_ref_s, std::exp(f.ln_theta_ref) / g, f.se_ln_theta_ref, f.gamma, f.se_gamma, f.beta, f.se_beta);
+    } else {
+      fmt::print("  no surface: {}\n", c.fit_note);
+    }
+  }
+  fmt::print("{:<40} {:>9} {:>9} {:>9}", "record", "PGA (g)", "PGV (m/s)", "PGV/PGA");
+  for (const auto& c : res.curves) fmt::print(" {:>9}", c.name);
+  fmt::print("\n");
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    fmt::print("{:<40} {:>9.4f} {:>9.4f} {:>9.4f}", plot::file_label(names[i]), res.pga_m_s2[i] / g, res.pgv_m_s[i],
+               res.pgv_m_s[i] / res.pga_m_s2[i]);
+    for (const auto& c : res.curves) fmt::print(" {:>9}", c.failed[i] ? "yes" : "no");
+    fmt::print("\n");
+  }
+  if (!o.out.empty()) fmt::print("table written to {}\n", o.out);
+  if (!o.plot.empty()) fmt::print("figure written to {}\n", o.plot);
+}
+
 void run_fragility(const FragilityOptions& o) {
   check_plot_path(o.plot);
   check_output_path(o.out);
@@ -269,6 +413,10 @@ void run_fragility(const FragilityOptions& o) {
   check_g(g);
   const bool pairs = check_ensemble_options(o);
   if (!(o.band > 0.0 && o.band < 1.0)) throw parameter_error("--band", fmt::format("must be in (0, 1), got {}", o.band));
+  if (o.as_recorded) {
+    run_as_recorded(o, pairs);
+    return;
+  }
   FragilitySpec spec;
   spec.im = parse_intensity_measure(o.im, "--im");
   if (pairs && spec.im != IntensityMeasure::pga) {
@@ -292,7 +440,7 @@ void run_fragility(const FragilityOptions& o) {
   // The library names its fields; the user typed options.
   const FragilityResult res =
       with_field_names({{"mode", "--one-way"}, {"slope", "--slope-deg"}, {"bearing", "--bearing-deg"},
-                        {"levels", "--im-range"}},
+                        {"levels", "--im-range"}, {"model", "--model"}},
                        [&] { return fragility_analysis(spec); });
   bar.finish();
   const std::string bearing_rule =
@@ -342,10 +490,43 @@ void add_fragility_command(CLI::App& app) {
   cmd->add_option("--slope-deg", o->slope_deg, "Sliding block: inclination, degrees")->capture_default_str();
   cmd->add_flag("--one-way", o->one_way, "Sliding block: down-slope sliding only");
   cmd->add_option("--threshold", o->threshold, "Sliding block: failure when max |d| exceeds this, with a unit (5cm)");
-  cmd->add_option("--shape", o->shape, "Rocking body: block (--width, --height) or cylinder (--diameter, --height)");
+  cmd->add_option("--shape", o->shape, "Rocking body: block (--width, --height), cylinder (--diameter, --height) or "
+                                       "general (--b1, --b2, --h, --inertia)");
   cmd->add_option("--width", o->width, "Block width, with a unit");
   cmd->add_option("--height", o->height, "Block or cylinder height, with a unit");
   cmd->add_option("--diameter", o->diameter, "Cylinder diameter, with a unit");
+  cmd->add_option("--b1", o->b1, "General body (--shape general): CM to the pivot on the -x side, with a unit");
+  cmd->add_option("--b2", o->b2, "General body: CM to the pivot on the +x side, with a unit");
+  cmd->add_option("--h", o->h, "General body: height of the CM above the base, with a unit");
+  cmd->add_option("--inertia", o->inertia, "General body: I_cm / m about the rocking axis, with a unit (e.g. 0.02m2)");
+  CLI::Option* body_option =
+      cmd->add_option("--body", o->body_file, "Rocking body: the JSON `topple body MESH --json` wrote (instead of "
+                                              "--shape)");
+  CLI::Option* mesh_option =
+      cmd->add_option("--mesh", o->mesh, "Rocking body: a mesh file (.obj, .stl, .ply), rocking in the plane of "
+                                         "--azimuth (as `topple body`)");
+  cmd->add_option("--azimuth", o->mesh_options.azimuth_deg, "With --mesh: the plane of shaking, degrees clockwise "
+                                                            "from north")->capture_default_str();
+  cmd->add_option("--mesh-unit", o->mesh_unit, "With --mesh: unit of its coordinates (m, cm, mm)")
+      ->capture_default_str();
+  cmd->add_option("--density", o->mesh_options.density_kg_m3, "With --mesh: uniform density, kg/m^3")
+      ->capture_default_str();
+  cmd->add_option("--base-tolerance", o->mesh_options.base_tolerance_fraction,
+                  "With --mesh: contact tolerance as a fraction of the mesh's largest extent (as `topple body`)")
+      ->capture_default_str();
+  for (const char* name : {"--shape", "--width", "--height", "--diameter", "--b1", "--b2", "--h", "--inertia"}) {
+    body_option->excludes(cmd->get_option(name));
+    mesh_option->excludes(cmd->get_option(name));
+  }
+  body_option->excludes(mesh_option);
+  cmd->add_option("--model", o->model, "Rocking body: rocking (Housner) or coupled (sliding and rocking at once, "
+                                       "slide_rock.hpp; needs --rock-mu)")->capture_default_str();
+  cmd->add_option("--rock-mu", o->rock_mu, "--model coupled: the rocking body's static friction coefficient");
+  cmd->add_option("--rock-mu-k", o->rock_mu_k, "--model coupled: its kinetic friction coefficient (default: "
+                                               "--rock-mu)");
+  cmd->add_flag("--as-recorded", o->as_recorded, "Run each record once as recorded (no rescaling; no --im-range): "
+                                                 "per record PGA, PGV, PGV/PGA and outcome, and the fragility surface "
+                                                 "in PGA and PGV/PGA (--out: the table; --plot: the surface)");
   cmd->add_option("--e", o->e, "Coefficient of restitution in [0, 1], or 'housner'")->capture_default_str();
   cmd->add_option("--band", o->band, "Confidence level of the band")->capture_default_str();
   cmd->add_option("--threads", o->threads, "Worker threads (0: every core)")->capture_default_str();

@@ -16,6 +16,7 @@
 #include "motion_set_options.hpp"
 #include "rock_coupled.hpp"
 #include "topple/core/error.hpp"
+#include "topple/io/body_file.hpp"
 #include "topple/output/write.hpp"
 #include "topple/solvers/oriented.hpp"
 #include "topple/output/plot.hpp"
@@ -39,6 +40,7 @@ struct RockOptions {
   std::string b1;
   std::string b2;
   std::string inertia;
+  std::string body_file;  // --body: what `topple body --json` writes (io/body_file.hpp)
   std::string e = "housner";
   std::optional<double> mu;
   std::optional<double> mu_k;
@@ -87,6 +89,7 @@ auto naming_options(F f) {
 }
 
 RockingBody make_body(const RockOptions& o) {
+  if (!o.body_file.empty()) return io::read_body_file(o.body_file).rocking_body();  // errors name the file and field
   const RockingBody::Shape shape = naming_options([&] { return parse_shape(o.shape, "--shape"); });
   const auto length = [](const std::string& text, const char* option) -> std::optional<double> {
     if (text.empty()) return std::nullopt;
@@ -372,6 +375,14 @@ void add_rock_command(CLI::App& app) {
                                  "acceleration toward -x lifts the body about it), with a unit");
   cmd->add_option("--inertia", o->inertia, "Asymmetric general body: moment of inertia about the centre of mass "
                                            "per unit mass I_cm/m, with a unit (e.g. 0.004m2)");
+  CLI::Option* body_option =
+      cmd->add_option("--body", o->body_file, "The body `topple body MESH --json` wrote (its b1_m, b2_m, h_m, "
+                                              "inertia_cm_plane_kg_m2, mass_kg): the mesh's asymmetric general body "
+                                              "at its azimuth; instead of --shape and the dimensions");
+  for (const char* name : {"--shape", "--width", "--height", "--diameter", "--a", "--h", "--D", "--b1", "--b2",
+                           "--inertia"}) {
+    body_option->excludes(cmd->get_option(name));
+  }
   cmd->add_option("--e", o->e, "Coefficient of restitution (angular-velocity ratio at impact) in [0, 1], or "
                                "'housner' (1 - 2a^2/D, from angular momentum)")->capture_default_str();
   cmd->add_option("--mu", o->mu, "Friction coefficient: check Shenton's slide/rock/slide-rock onset criterion; with "

@@ -72,6 +72,30 @@ struct FieldSlots {
   }
 };
 
+/// The coupled model's result columns: kSlideRockFields in order, less those that are object columns (sweep.hpp).
+std::vector<const Field<SlideRockOutcome>*> coupled_fields() {
+  std::vector<const Field<SlideRockOutcome>*> fields;
+  for (const auto& f : kSlideRockFields) {
+    const std::string_view n = f.name;
+    if (n != "mu_static" && n != "mu_kinetic" && n != "g_m_s2" && n != "e_mode") fields.push_back(&f);
+  }
+  return fields;
+}
+
+/// Where each coupled field goes in a row.
+struct CoupledSlots {
+  std::vector<std::pair<const Field<SlideRockOutcome>*, std::size_t>> slots;
+  explicit CoupledSlots(const ColumnSet& columns) {
+    for (const auto* f : coupled_fields()) {
+      const std::size_t i = columns.at(f->name);
+      if (i != kAbsent) slots.emplace_back(f, i);
+    }
+  }
+  void fill(const SlideRockOutcome& result, Value* row) const {
+    for (const auto& [field, column] : slots) row[column] = field->get(result);
+  }
+};
+
 /// The object's flexible support, if any.
 const std::optional<SupportOscillator>& support_of(const ObjectSpec& o) {
   return std::visit([](const auto& x) -> const std::optional<SupportOscillator>& { return x.support; }, o);
@@ -119,7 +143,7 @@ class Runner {
          OrientationOptions orientation)
       : objects_(std::move(objects)), slide_(kSlidingFields, results), slide_2d_(kSliding2dFields, results),
         rock_(kRockingFields, results),
-        rock_sides_(kRockingSideFields, results), stride_(results.names().size()), set_cases_(std::move(set_cases)),
+        rock_sides_(kRockingSideFields, results), coupled_(results), stride_(results.names().size()), set_cases_(std::move(set_cases)),
         orientation_(orientation), governing_azimuth_(results.at("governing_azimuth_deg")),
         governing_axis_(results.at("governing_axis")) {}
 
@@ -152,6 +176,14 @@ class Runner {
         slide_.fill(SlidingOutcome{slide_summary(motion, s->block), s->block}, row);
       } else {
         const auto& r = std::get<RockObject>(objects_[o]);
+        if (r.coupled) {  // the coupled slide-rock model (checked by make_plan: options.mu is set)
+          const SlideRockBody body = SlideRockBody::from_rocking(r.body, *r.options.mu, r.mu_kinetic);
+          const SlideRockOptions options = slide_rock_options(r.options);
+          const SlideRockSummary summary = slide_rock(motion, body, options).summary;
+          coupled_.fill(SlideRockOutcome{summary, body, options}, row);
+          ++o;
+          continue;
+        }
         const RockingSummary summary = rock_summary(motion, r.body, r.options);
         rock_.fill(RockingOutcome{summary, r.body, r.options}, row);
         rock_sides_.fill(RockingOutcome{summary, r.body, r.options}, row);  // no slots: no asymmetric body
@@ -200,6 +232,7 @@ class Runner {
   FieldSlots<Sliding2dOutcome> slide_2d_;
   FieldSlots<RockingOutcome> rock_;
   FieldSlots<RockingOutcome> rock_sides_;
+  CoupledSlots coupled_;
   std::size_t stride_ = 0;
   std::vector<std::optional<SetCase>> set_cases_;  ///< by motion index; empty for records and pulses
   OrientationOptions orientation_;
@@ -274,6 +307,8 @@ struct SweepKinds {
   bool any_box = false;     // a block with a depth (an oriented box)
   bool any_set = false;     // record sets (two horizontal components)
   bool any_single = false;  // single records or pulses
+  bool any_rocking = false;  // rocking objects (Housner's model)
+  bool any_coupled = false;  // coupled slide-rock objects
 };
 
 SweepKinds kinds_of(const SweepSpec& spec) {
@@ -282,6 +317,8 @@ SweepKinds kinds_of(const SweepSpec& spec) {
     k.any_support = k.any_support || support_of(o).has_value();
     if (const auto* r = std::get_if<RockObject>(&o)) {
       k.any_rock = true;
+      k.any_coupled = k.any_coupled || r->coupled;
+      k.any_rocking = k.any_rocking || !r->coupled;
       k.any_rock_mu = k.any_rock_mu || r->options.mu.has_value();
       k.any_block = k.any_block || r->body.shape == RockingBody::Shape::block;
       k.any_cylinder = k.any_cylinder || r->body.shape == RockingBody::Shape::cylinder;
@@ -303,6 +340,19 @@ void check_objects(const SweepSpec& spec, bool any_set) {
   for (std::size_t k = 0; k < spec.objects.size(); ++k) {
     const auto* r = std::get_if<RockObject>(&spec.objects[k]);
     const std::string name = fmt::format("object[{}]", k + 1);
+    if (r != nullptr && r->coupled) {
+      if (!r->options.mu) throw parameter_error(name + ".mu", "a coupled object needs its friction coefficient mu");
+      if (any_set) {
+        throw parameter_error(name + ".model", "coupled objects run under single records and pulses; under "
+                                               "[[motions.set]] use model = \"rock\" (oriented rocking)");
+      }
+      // The body with its friction, valid before any run (from_rocking names "mu", "mu_k").
+      try {
+        (void)SlideRockBody::from_rocking(r->body, *r->options.mu, r->mu_kinetic);
+      } catch (const InputError& e) {
+        throw parameter_error(name + "." + (e.where().field == "mu_k" ? "mu_kinetic" : e.where().field), e.problem());
+      }
+    }
     if (r != nullptr && r->depth_m) {
       if (!spec.records.empty() || !spec.pulses.empty()) {
         throw parameter_error(name + ".depth", "a box (a block with a depth) needs two horizontal components: run it "
@@ -400,6 +450,7 @@ ColumnSet object_columns(const SweepKinds& k) {
   if (k.any_slide) {
     for (const char* c : {"mu_kinetic", "slope_deg", "mode"}) object_cols.add(c);
   }
+  if (k.any_coupled) object_cols.add("mu_kinetic");
   if (k.any_rock) {
     object_cols.add("shape");
     if (k.any_block) object_cols.add("width_m");
@@ -437,15 +488,18 @@ ColumnSet result_columns(const SweepKinds& k) {
   if (k.any_slide && k.any_set) {
     for (const auto* f : sweep_fields(kSliding2dFields)) result_cols.add(f->name);
   }
-  if (k.any_rock) {
+  if (k.any_rocking) {
     for (const auto* f : sweep_fields(kRockingFields)) result_cols.add(f->name);
   }
   if (k.any_set && k.any_rock) {
     result_cols.add("governing_azimuth_deg");
     result_cols.add("governing_axis");
   }
-  if (k.any_asymmetric) {
+  if (k.any_asymmetric && k.any_rocking) {
     for (const auto* f : sweep_fields(kRockingSideFields)) result_cols.add(f->name);
+  }
+  if (k.any_coupled) {
+    for (const auto* f : coupled_fields()) result_cols.add(f->name);
   }
   return result_cols;
 }
@@ -584,8 +638,9 @@ class MotionCases {
 };
 
 void set_rock_values(const RockObject& r, RowValues& v) {
-  v.set("model", std::string("rock"));
+  v.set("model", std::string(r.coupled ? "coupled" : "rock"));
   v.set("g_m_s2", r.options.g_m_s2);
+  if (r.coupled) v.set("mu_kinetic", r.mu_kinetic.value_or(r.options.mu.value_or(0.0)));
   if (r.options.mu) v.set("mu", *r.options.mu);
   v.set("shape", std::string(shape_name(r.body.shape)));
   if (r.width_m) v.set("width_m", *r.width_m);
@@ -624,6 +679,7 @@ std::string rock_identity(const RockObject& r) {
   if (!r.body.symmetric()) {
     identity += fmt::format(" b1={} D1={}", r.body.pivot_b_m(-1), r.body.pivot_D_m2(-1));
   }
+  if (r.coupled) identity += " coupled";  // appended only for one: other sweeps keep their identity
   return identity;
 }
 

@@ -372,6 +372,24 @@ LognormalFragilityFit fit_lognormal_fragility(const FragilityData& data) {
 
 namespace {
 
+/// Whether the body falls under `m`: Housner's rocking, or the coupled slide-rock model when given.
+bool overturns(const GroundMotion& m, const OverturnFailure& f) {
+  if (f.coupled) return slide_rock(m, *f.coupled, slide_rock_options(f.options)).summary.overturned;
+  return rock_summary(m, f.body, f.options).overturned;
+}
+
+/// The objects: at least one, a valid threshold; the rocking options (and the coupled body) checked on a still
+/// record in the caller's thread, so that a bad option is an InputError here, not a worker's.
+void check_objects(const FragilitySpec& spec) {
+  if (!spec.sliding && !spec.overturning) {
+    throw parameter_error("object", "give a sliding block with a threshold, a rocking body, or both");
+  }
+  if (spec.sliding && (!std::isfinite(spec.sliding->threshold_m) || spec.sliding->threshold_m < 0.0)) {
+    throw parameter_error("threshold", fmt::format("must be >= 0 m, got {}", spec.sliding->threshold_m));
+  }
+  if (spec.overturning) (void)overturns(GroundMotion::uniform({0.0, 0.0}, 1.0), *spec.overturning);
+}
+
 /// Under pairs: checks the sets and the objects, and gives each motion's bearing (header, "Pairs").
 std::vector<double> check_pairs(const FragilitySpec& spec) {
   if (!spec.motions.empty()) {
@@ -451,14 +469,10 @@ FragilityResult fragility_analysis(const FragilitySpec& spec) {
   for (double x : spec.levels_si) {
     if (!std::isfinite(x) || !(x > 0.0)) throw parameter_error("levels", fmt::format("must be positive, got {}", x));
   }
-  if (!spec.sliding && !spec.overturning) {
-    throw parameter_error("object", "give a sliding block with a threshold, a rocking body, or both");
-  }
-  if (spec.sliding && (!std::isfinite(spec.sliding->threshold_m) || spec.sliding->threshold_m < 0.0)) {
-    throw parameter_error("threshold", fmt::format("must be >= 0 m, got {}", spec.sliding->threshold_m));
-  }
-  if (spec.overturning) {  // validate options in the caller's thread
-    (void)rock_summary(GroundMotion::uniform({0.0, 0.0}, 1.0), spec.overturning->body, spec.overturning->options);
+  check_objects(spec);
+  if (pairs && spec.overturning && spec.overturning->coupled) {
+    throw parameter_error("model", "the coupled model runs single-component motions; pairs rock an oriented body "
+                                   "(the rocking model)");
   }
   // Each motion's base: the record, or a pair's first component (aliasing the set, which owns it).
   std::vector<std::shared_ptr<const GroundMotion>> bases = spec.motions;
@@ -521,7 +535,7 @@ FragilityResult fragility_analysis(const FragilitySpec& spec) {
       if (has_slide && o == 0) {
         failed = slide_summary(m, spec.sliding->block).max_abs_displacement_m > spec.sliding->threshold_m;
       } else {
-        failed = rock_summary(m, spec.overturning->body, spec.overturning->options).overturned;
+        failed = overturns(m, *spec.overturning);
       }
       results[o - o0] = ensemble::Value(failed);
     }
@@ -555,6 +569,271 @@ FragilityResult fragility_analysis(const FragilitySpec& spec) {
       c.fit = fit_lognormal_fragility(c.data);
     } catch (const InputError& e) {
       c.fit_note = fmt::format("{} (widen the IM range)", e.problem());
+    }
+    out.curves.push_back(std::move(c));
+  }
+  return out;
+}
+
+// ---- The fragility surface (fragility.hpp, "As recorded") ----
+
+namespace {
+
+/// The inverse of a symmetric 3x3 matrix by cofactors; false when it is singular to round-off (|det| below 1e-12 of
+/// the product of the diagonal's magnitudes).
+bool invert3(const std::array<std::array<double, 3>, 3>& m, std::array<std::array<double, 3>, 3>& inv) {
+  const double c00 = m[1][1] * m[2][2] - m[1][2] * m[2][1];
+  const double c01 = m[1][2] * m[2][0] - m[1][0] * m[2][2];
+  const double c02 = m[1][0] * m[2][1] - m[1][1] * m[2][0];
+  const double det = m[0][0] * c00 + m[0][1] * c01 + m[0][2] * c02;
+  const double scale = std::abs(m[0][0] * m[1][1] * m[2][2]);
+  if (!(std::abs(det) > 1e-12 * scale) || !std::isfinite(det)) return false;
+  inv[0][0] = c00 / det;
+  inv[0][1] = (m[0][2] * m[2][1] - m[0][1] * m[2][2]) / det;
+  inv[0][2] = (m[0][1] * m[1][2] - m[0][2] * m[1][1]) / det;
+  inv[1][0] = c01 / det;
+  inv[1][1] = (m[0][0] * m[2][2] - m[0][2] * m[2][0]) / det;
+  inv[1][2] = (m[0][2] * m[1][0] - m[0][0] * m[1][2]) / det;
+  inv[2][0] = c02 / det;
+  inv[2][1] = (m[0][1] * m[2][0] - m[0][0] * m[2][1]) / det;
+  inv[2][2] = (m[0][0] * m[1][1] - m[0][1] * m[1][0]) / det;
+  return true;
+}
+
+/// The probit GLM's Bernoulli log-likelihood at a = (a0, a1, a2) on rows x = (1, ln PGA, ln(v / v_ref)), with its
+/// gradient and Hessian: d/du ln Phi(s u) = s lambda(s u) (lambda = phi / Phi, the inverse Mills ratio, `hazard`),
+/// d2/du2 ln Phi(s u) = -lambda(s u) (s u + lambda(s u)), s = +1 for a failure, -1 for a survival.
+struct ProbitLikelihood {
+  std::vector<std::array<double, 3>> x;
+  std::vector<bool> y;
+
+  double value(const std::array<double, 3>& a, std::array<double, 3>* g = nullptr,
+               std::array<std::array<double, 3>, 3>* H = nullptr) const {
+    double sum = 0.0;
+    if (g) *g = {0.0, 0.0, 0.0};
+    if (H) *H = {};
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      const double u = a[0] * x[i][0] + a[1] * x[i][1] + a[2] * x[i][2];
+      const double sgn = y[i] ? 1.0 : -1.0;
+      sum += log_cdf(sgn * u);
+      const double lam = hazard(sgn * u);
+      if (g) {
+        for (std::size_t k = 0; k < 3; ++k) (*g)[k] += sgn * lam * x[i][k];
+      }
+      if (H) {
+        const double w = lam * (sgn * u + lam);  // > 0: the log-likelihood is concave (probit)
+        for (std::size_t k = 0; k < 3; ++k) {
+          for (std::size_t l = 0; l < 3; ++l) (*H)[k][l] -= w * x[i][k] * x[i][l];
+        }
+      }
+    }
+    return sum;
+  }
+};
+
+InputError outcome_error(const std::string& problem) { return parameter_error("outcomes", problem); }
+
+}  // namespace
+
+double FragilitySurfaceFit::median_pga_m_s2(double pgv_over_pga_s) const {
+  return std::exp(ln_theta_ref + gamma * std::log(pgv_over_pga_s / v_ref_s));
+}
+
+double FragilitySurfaceFit::probability(double pga_m_s2, double pgv_over_pga_s) const {
+  if (!(pga_m_s2 > 0.0) || !(pgv_over_pga_s > 0.0)) return 0.0;
+  return normal_cdf((std::log(pga_m_s2) - std::log(median_pga_m_s2(pgv_over_pga_s))) / beta);
+}
+
+FragilitySurfaceFit fit_fragility_surface(std::span<const SurfaceOutcome> outcomes) {
+  std::size_t failures = 0;
+  double mean_ln_v = 0.0;
+  double lo_v = std::numeric_limits<double>::infinity();
+  double hi_v = -lo_v;
+  for (std::size_t i = 0; i < outcomes.size(); ++i) {
+    const SurfaceOutcome& o = outcomes[i];
+    if (!(o.pga_m_s2 > 0.0) || !std::isfinite(o.pga_m_s2) || !(o.pgv_m_s > 0.0) || !std::isfinite(o.pgv_m_s)) {
+      throw outcome_error(fmt::format("record {}: PGA {} m/s2 and PGV {} m/s must be positive and finite", i + 1,
+                                      o.pga_m_s2, o.pgv_m_s));
+    }
+    const double ln_v = std::log(o.pgv_m_s / o.pga_m_s2);
+    mean_ln_v += ln_v;
+    lo_v = std::min(lo_v, ln_v);
+    hi_v = std::max(hi_v, ln_v);
+    if (o.failed) ++failures;
+  }
+  const std::size_t n = outcomes.size();
+  if (failures == 0 || failures == n) {
+    throw outcome_error(fmt::format("{} of {} records failed: the surface cannot be fitted without both outcomes",
+                                    failures, n));
+  }
+  if (failures < 3 || n - failures < 3) {
+    throw outcome_error(fmt::format("{} failures and {} survivals: the surface has three parameters, give at least "
+                                    "3 records of each outcome", failures, n - failures));
+  }
+  if (hi_v - lo_v < 1e-9) {
+    throw outcome_error("every record has the same PGV/PGA: the surface is a curve in PGA (run the scaled fragility)");
+  }
+  mean_ln_v /= static_cast<double>(n);
+  ProbitLikelihood L;
+  for (const SurfaceOutcome& o : outcomes) {
+    L.x.push_back({1.0, std::log(o.pga_m_s2), std::log(o.pgv_m_s / o.pga_m_s2) - mean_ln_v});
+    L.y.push_back(o.failed);
+  }
+  // Start at the constant model (a1 = a2 = 0: P = the failure fraction), then Newton with step halving; the probit
+  // log-likelihood is concave, so every Newton step from a point where H is negative definite ascends for small t.
+  const double fraction = static_cast<double>(failures) / static_cast<double>(n);
+  std::array<double, 3> a{boost::math::quantile(kStandardNormal, fraction), 0.0, 0.0};
+  FragilitySurfaceFit fit;
+  std::array<double, 3> g{};
+  std::array<std::array<double, 3>, 3> H{};
+  std::array<std::array<double, 3>, 3> Hinv{};
+  double f = L.value(a, &g, &H);
+  bool converged = false;
+  constexpr int kMaxIterations = 200;
+  for (int it = 0; it < kMaxIterations; ++it) {
+    fit.iterations = it + 1;
+    if (!invert3(H, Hinv)) {
+      throw outcome_error("ln PGA and ln(PGV/PGA) move together over the records (the information matrix is "
+                          "singular): the surface cannot be told from a curve");
+    }
+    std::array<double, 3> step{};
+    for (std::size_t k = 0; k < 3; ++k) {
+      for (std::size_t l = 0; l < 3; ++l) step[k] -= Hinv[k][l] * g[l];
+    }
+    const double decrement = step[0] * g[0] + step[1] * g[1] + step[2] * g[2];  // g^T (-H)^-1 g >= 0
+    if (decrement < 1e-12 * (1.0 + std::abs(f))) {  // ln L within ~1e-12 relative of its maximum
+      converged = true;
+      break;
+    }
+    double t = 1.0;
+    std::array<double, 3> trial{};
+    double ft = 0.0;
+    for (int halving = 0; halving < 60; ++halving, t *= 0.5) {
+      for (std::size_t k = 0; k < 3; ++k) trial[k] = a[k] + t * step[k];
+      ft = L.value(trial);
+      if (ft >= f) break;
+    }
+    if (!(ft >= f)) {
+      converged = true;  // no ascent left at round-off: the maximum
+      break;
+    }
+    a = trial;
+    f = L.value(a, &g, &H);
+  }
+  // Separated outcomes: the likelihood rises toward 0 as |a| grows without bound; the iteration stops where the gain
+  // is below round-off, or runs to its cap.
+  // Complete separation shows as ln L -> 0 (every outcome predicted with certainty) with |a| large; quasi-complete
+  // separation as beta = 1 / a1 -> 0.
+  const bool separated = a[1] > 0.0 && (1.0 / a[1] < kMinimumBeta || -f < 1e-6);
+  if (!converged || !(a[1] > 0.0) || separated) {
+    if (separated) {
+      throw outcome_error(fmt::format("the outcomes are separated by a line in ln PGA and ln(PGV/PGA) (beta -> 0 after "
+                                      "{} Newton steps): no finite maximum-likelihood surface; more records near the "
+                                      "boundary are needed", fit.iterations));
+    }
+    throw outcome_error(!converged ? "the maximum-likelihood iteration did not converge (separated outcomes?)"
+                                   : "failures do not become likelier with PGA (the fitted slope in ln PGA is not "
+                                     "positive): no fragility surface");
+  }
+  (void)L.value(a, &g, &H);
+  std::array<std::array<double, 3>, 3> info{};
+  for (std::size_t k = 0; k < 3; ++k) {
+    for (std::size_t l = 0; l < 3; ++l) info[k][l] = -H[k][l];
+  }
+  std::array<std::array<double, 3>, 3> ca{};
+  if (!invert3(info, ca)) throw outcome_error("singular information matrix at the maximum");
+  fit.beta = 1.0 / a[1];
+  fit.ln_theta_ref = -a[0] / a[1];
+  fit.gamma = -a[2] / a[1];
+  fit.v_ref_s = std::exp(mean_ln_v);
+  fit.log_likelihood = f;
+  fit.records = n;
+  fit.failures = failures;
+  // Delta method: J = d(ln theta_ref, gamma, beta) / d(a0, a1, a2).
+  const double a1 = a[1];
+  const std::array<std::array<double, 3>, 3> J{{{-1.0 / a1, a[0] / (a1 * a1), 0.0},
+                                                {0.0, a[2] / (a1 * a1), -1.0 / a1},
+                                                {0.0, -1.0 / (a1 * a1), 0.0}}};
+  for (std::size_t r = 0; r < 3; ++r) {
+    for (std::size_t c = 0; c < 3; ++c) {
+      double sum = 0.0;
+      for (std::size_t k = 0; k < 3; ++k) {
+        for (std::size_t l = 0; l < 3; ++l) sum += J[r][k] * ca[k][l] * J[c][l];
+      }
+      fit.covariance[r][c] = sum;
+    }
+  }
+  fit.se_ln_theta_ref = std::sqrt(std::max(0.0, fit.covariance[0][0]));
+  fit.se_gamma = std::sqrt(std::max(0.0, fit.covariance[1][1]));
+  fit.se_beta = std::sqrt(std::max(0.0, fit.covariance[2][2]));
+  return fit;
+}
+
+AsRecordedResult as_recorded_analysis(const FragilitySpec& spec) {
+  if (!spec.motion_sets.empty()) {
+    throw parameter_error("motions", "records as recorded are single components (pairs are scaled by their RotD50 "
+                                     "PGA: the scaled fragility)");
+  }
+  if (spec.motions.empty()) throw parameter_error("motions", "the ensemble has no motion");
+  check_objects(spec);
+  AsRecordedResult out;
+  for (std::size_t i = 0; i < spec.motions.size(); ++i) {
+    const GroundMotion& m = *spec.motions[i];
+    const double pga = m.pga_m_s2();
+    const double pgv = basic_intensity(m).pgv_m_s;
+    if (!(pga > 0.0) || !(pgv > 0.0) || !std::isfinite(pga) || !std::isfinite(pgv)) {
+      throw parameter_error("motions", fmt::format("motion {} has PGA {} m/s2 and PGV {} m/s: PGV/PGA is not defined",
+                                                   i + 1, pga, pgv));
+    }
+    out.pga_m_s2.push_back(pga);
+    out.pgv_m_s.push_back(pgv);
+  }
+  ensemble::Plan plan;
+  plan.motion_columns = {"motion"};
+  plan.object_columns = {"object"};
+  plan.result_columns = {"failed"};
+  plan.identity = "topple fragility as recorded v1";
+  for (std::size_t i = 0; i < spec.motions.size(); ++i) {
+    ensemble::MotionCase mc;
+    mc.base = spec.motions[i];
+    mc.values = {ensemble::Value(static_cast<std::int64_t>(i))};
+    plan.motions.push_back(std::move(mc));
+  }
+  std::vector<std::string> names;
+  if (spec.sliding) names.emplace_back("slide");
+  if (spec.overturning) names.emplace_back("overturn");
+  for (const auto& name : names) plan.objects.push_back({{ensemble::Value(name)}});
+  plan.chunk_runs = std::max<std::size_t>(1, plan.runs() / 64);
+  const bool has_slide = spec.sliding.has_value();
+  plan.run = [&spec, has_slide](const GroundMotion& m, std::size_t, std::size_t o0, std::size_t o1,
+                                std::span<ensemble::Value> results) {
+    for (std::size_t o = o0; o < o1; ++o) {
+      const bool failed = has_slide && o == 0
+                              ? slide_summary(m, spec.sliding->block).max_abs_displacement_m > spec.sliding->threshold_m
+                              : overturns(m, *spec.overturning);
+      results[o - o0] = ensemble::Value(failed);
+    }
+  };
+  ensemble::ExecuteOptions exec;
+  exec.threads = spec.threads;
+  exec.progress = spec.progress;
+  const ensemble::ResultTable table = ensemble::run_in_memory(plan, exec);
+  out.runs = table.rows.size();
+  const std::size_t no = names.size();
+  const std::size_t col = table.columns.size() - 1;
+  for (std::size_t o = 0; o < no; ++o) {
+    AsRecordedCurve c;
+    c.name = names[o];
+    std::vector<SurfaceOutcome> points;
+    for (std::size_t i = 0; i < spec.motions.size(); ++i) {
+      const bool failed = std::get<bool>(table.rows[i * no + o][col]);
+      c.failed.push_back(failed);
+      points.push_back({out.pga_m_s2[i], out.pgv_m_s[i], failed});
+    }
+    try {
+      c.fit = fit_fragility_surface(points);
+    } catch (const InputError& e) {
+      c.fit_note = e.problem();
     }
     out.curves.push_back(std::move(c));
   }

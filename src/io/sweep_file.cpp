@@ -78,6 +78,9 @@ class Reader {
   }
 
   void check_keys(const toml::table& t, const std::string& where, std::initializer_list<std::string_view> allowed) const {
+    check_keys(t, where, std::vector<std::string_view>(allowed));
+  }
+  void check_keys(const toml::table& t, const std::string& where, const std::vector<std::string_view>& allowed) const {
     for (auto&& [k, v] : t) {
       const std::string_view name = k.str();
       if (std::find(allowed.begin(), allowed.end(), name) != allowed.end()) continue;
@@ -880,14 +883,21 @@ std::vector<BodyCase> axis_bodies(const Reader& r, const toml::table& o, const s
   return bodies;
 }
 
-void read_rock(const Reader& r, const toml::table& o, const std::string& key, double g, SweepFile& out) {
+/// A rocking object (model = "rock") or, `coupled`, a coupled slide-rock object (model = "coupled": the same body
+/// keys, mu required, mu_kinetic optional; slide_rock.hpp).
+void read_rock(const Reader& r, const toml::table& o, const std::string& key, double g, SweepFile& out,
+               bool coupled = false) {
   const std::string prefix = key + ".";
-  r.check_keys(o, key, {"model", "shape", "width", "width_m", "height", "height_m", "diameter", "diameter_m", "a",
-                        "a_m", "h", "h_m", "D_m2", "b1", "b1_m", "b2", "b2_m", "inertia", "inertia_m2", "mesh",
-                        "mesh_azimuth_deg", "mesh_unit", "mesh_density_kg_m3", "mesh_pose", "mesh_up",
-                        "mesh_rotation_wxyz", "mesh_axis_angle_deg", "mesh_face", "mesh_contact_tolerance",
-                        "mesh_contact_tolerance_m", "e", "mu", "support_freq_hz",
-                        "support_freq", "support_damping", "depth", "depth_m"});
+  // The body keys of every rocking object; a coupled one (model = "coupled") also takes mu_kinetic.
+  std::vector<std::string_view> keys{"model", "shape", "width", "width_m", "height", "height_m", "diameter",
+                                     "diameter_m", "a", "a_m", "h", "h_m", "D_m2", "b1", "b1_m", "b2", "b2_m",
+                                     "inertia", "inertia_m2", "mesh", "mesh_azimuth_deg", "mesh_unit",
+                                     "mesh_density_kg_m3", "mesh_pose", "mesh_up", "mesh_rotation_wxyz",
+                                     "mesh_axis_angle_deg", "mesh_face", "mesh_contact_tolerance",
+                                     "mesh_contact_tolerance_m", "e", "mu", "support_freq_hz", "support_freq",
+                                     "support_damping", "depth", "depth_m"};
+  if (coupled) keys.emplace_back("mu_kinetic");
+  r.check_keys(o, key, keys);
   const auto supports = read_supports(r, o, prefix);
   const bool from_mesh = o.get("mesh") != nullptr;
   // A body from a mesh is a general body: its shape may be left out.
@@ -915,7 +925,12 @@ void read_rock(const Reader& r, const toml::table& o, const std::string& key, do
       mu_values.emplace_back(m);
     }
   } else {
+    if (coupled) r.fail(&o, prefix + "mu", "a coupled object needs its friction coefficient mu (static)");
     mu_values.emplace_back(std::nullopt);
+  }
+  std::vector<std::optional<double>> mu_k_values{std::nullopt};
+  if (coupled) {
+    if (const auto ks = r.numbers(o, "mu_kinetic", prefix + "mu_kinetic")) mu_k_values.assign(ks->begin(), ks->end());
   }
   std::vector<BodyCase> bodies;
   if (from_mesh) bodies = mesh_bodies(r, o, prefix);
@@ -927,21 +942,33 @@ void read_rock(const Reader& r, const toml::table& o, const std::string& key, do
         ensemble::check_housner_restitution(body);  // the rocking model's rule (sweep.hpp)
       });
       for (const auto& m : mu_values) {
-        RockingOptions options;
-        options.g_m_s2 = g;
-        options.restitution = e ? RestitutionMode::given : RestitutionMode::housner;
-        if (e) options.e = *e;
-        options.mu = m;
-        ensemble::RockObject ro{.body = body, .options = options, .width_m = c.width_m, .height_m = c.height_m,
-                                .diameter_m = c.diameter_m, .inertia_m2 = c.inertia_m2, .mesh = c.mesh,
-                                .mesh_azimuth_deg = c.mesh_azimuth_deg, .mesh_pose = c.mesh_pose};
-        for (const auto& depth : depths) {
-          ro.depth_m = depth;
-          if (depth) r.located(o.get("depth") != nullptr ? o.get("depth") : o.get("depth_m"), prefix + "depth",
-                               [&] { return OrientedBody::box(*c.width_m, *depth, *c.height_m); });
-          for (const auto& support : supports) {
-            ro.support = support;
-            out.spec.objects.emplace_back(ro);
+        for (const auto& mu_k : mu_k_values) {
+          if (coupled) {  // the body with its friction (SlideRockBody::make's rules), placed at the key's line
+            try {
+              (void)SlideRockBody::from_rocking(body, *m, mu_k);
+            } catch (const InputError& err) {
+              const bool kinetic = err.where().field == "mu_k";
+              r.fail(o.get(kinetic ? "mu_kinetic" : "mu"), prefix + (kinetic ? "mu_kinetic" : "mu"), err.problem());
+            }
+          }
+          RockingOptions options;
+          options.g_m_s2 = g;
+          options.restitution = e ? RestitutionMode::given : RestitutionMode::housner;
+          if (e) options.e = *e;
+          options.mu = m;
+          ensemble::RockObject ro{.body = body, .options = options, .width_m = c.width_m, .height_m = c.height_m,
+                                  .diameter_m = c.diameter_m, .inertia_m2 = c.inertia_m2, .mesh = c.mesh,
+                                  .mesh_azimuth_deg = c.mesh_azimuth_deg, .mesh_pose = c.mesh_pose};
+          ro.coupled = coupled;
+          ro.mu_kinetic = mu_k;
+          for (const auto& depth : depths) {
+            ro.depth_m = depth;
+            if (depth) r.located(o.get("depth") != nullptr ? o.get("depth") : o.get("depth_m"), prefix + "depth",
+                                 [&] { return OrientedBody::box(*c.width_m, *depth, *c.height_m); });
+            for (const auto& support : supports) {
+              ro.support = support;
+              out.spec.objects.emplace_back(ro);
+            }
           }
         }
       }
@@ -960,13 +987,15 @@ void read_objects(const Reader& r, const toml::table& t, SweepFile& out) {
     const toml::table& o = *arr->get(i)->as_table();
     const std::string key = fmt::format("object[{}]", i + 1);
     const auto model = r.string(o, "model", key + ".model");
-    if (!model) r.fail(&o, key + ".model", "an object needs its model: \"slide\" or \"rock\"");
+    if (!model) r.fail(&o, key + ".model", "an object needs its model: \"slide\", \"rock\" or \"coupled\"");
     if (*model == "slide") {
       read_slide(r, o, key, out.spec.g_m_s2, out);
     } else if (*model == "rock") {
       read_rock(r, o, key, out.spec.g_m_s2, out);
+    } else if (*model == "coupled") {
+      read_rock(r, o, key, out.spec.g_m_s2, out, true);
     } else {
-      r.fail(o.get("model"), key + ".model", fmt::format("unknown model '{}' (known: slide, rock)", *model));
+      r.fail(o.get("model"), key + ".model", fmt::format("unknown model '{}' (known: slide, rock, coupled)", *model));
     }
   }
 }

@@ -240,5 +240,78 @@ TEST(CliRock, BadInputExitsWithStatus2NamingTheOption) {
   expect_error("rock --shape block --width 4cm --height 20cm", "FILE");  // neither a file nor a pulse
 }
 
+// `rock --body FILE` reads what `topple body --json` writes: the same run as the `rock --shape general --b1 --b2 --h
+// --inertia` command `topple body` prints for that mesh and azimuth. The printed command carries 9 significant digits
+// (5e-9 relative rounding each), the JSON 17: the bodies agree to 1e-8 relative, and the response on a pulse that
+// rocks the body without overturning it (a smooth function of the body there) to 1e-6 relative.
+TEST(CliRock, BodyFileIsTheBodyTopplePrints) {
+  test::TempDir dir;
+  const std::string mesh = "'" + std::string(TOPPLE_SOURCE_DIR) + "/examples/mesh/balanced_rock.obj'";
+  const auto body_json = test::run_cli("body " + mesh + " --azimuth 30 --json");
+  ASSERT_EQ(body_json.exit_code, 0) << body_json.err;
+  const auto body_path = dir.path() / "rock body.json";
+  test::write_file(body_path, body_json.out);
+  const auto text = test::run_cli("body " + mesh + " --azimuth 30");
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  const auto from = text.out.find("topple rock --shape general --b1");
+  ASSERT_NE(from, std::string::npos) << text.out;
+  const auto to = text.out.find('`', from);
+  const std::string printed = text.out.substr(from + std::string("topple ").size(), to - from - 7);
+  const std::string pulse = " --pulse sine --amp-g 0.2 --duration 0.8s --json";
+  const auto a = run_json("rock --body '" + body_path.string() + "'" + pulse);
+  const auto b = run_json(printed + pulse);
+  ASSERT_GT(a.at("max_rotation_over_alpha").get<double>(), 0.05);  // it rocks...
+  ASSERT_FALSE(a.at("overturned").get<bool>());                    // ...and stands
+  EXPECT_EQ(b.at("overturned").get<bool>(), false);
+  for (const char* key : {"alpha_rad", "R_m", "p_rad_s", "e"}) {
+    EXPECT_NEAR(a.at(key).get<double>(), b.at(key).get<double>(), 1e-8 * std::abs(b.at(key).get<double>())) << key;
+  }
+  for (const char* key : {"max_abs_rotation_rad", "max_rotation_over_alpha", "energy_lost_j_per_kg"}) {
+    EXPECT_NEAR(a.at(key).get<double>(), b.at(key).get<double>(), 1e-6 * std::abs(b.at(key).get<double>())) << key;
+  }
+  EXPECT_EQ(a.at("uplifts"), b.at("uplifts"));
+  // The body's b1, b2 and h are the file's exactly (doubles read back from 17 digits).
+  const auto j = nlohmann::json::parse(body_json.out);
+  EXPECT_EQ(a.at("body").at("b1_m").get<double>(), j.at("b1_m").get<double>());
+  EXPECT_EQ(a.at("body").at("b2_m").get<double>(), j.at("b2_m").get<double>());
+  EXPECT_EQ(a.at("body").at("h_m").get<double>(), j.at("h_m").get<double>());
+}
+
+// A file that is not such a JSON object is refused with exit status 2, naming the file and the field; --body
+// excludes the shape options; unknown fields (the pose fields other commands add) are ignored.
+TEST(CliRock, BadBodyFileNamesTheFileAndTheField) {
+  test::TempDir dir;
+  const std::string pulse = " --pulse sine --amp-g 0.2 --duration 0.8s";
+  const auto check = [&](const std::string& name, const std::string& content, const std::string& field) {
+    const auto path = dir.path() / name;
+    test::write_file(path, content);
+    const auto r = test::run_cli("rock --body '" + path.string() + "'" + pulse);
+    EXPECT_EQ(r.exit_code, 2) << content << "\n" << r.out;
+    EXPECT_NE(r.err.find(name), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(field), std::string::npos) << r.err;
+  };
+  const std::string good_rest = R"("h_m": 0.6, "mass_kg": 100, "inertia_cm_plane_kg_m2": 10)";
+  check("missing.json", R"({"b1_m": 0.1, )" + good_rest + "}", "b2_m");
+  check("text.json", R"({"b1_m": 0.1, "b2_m": "0.2", )" + good_rest + "}", "b2_m");
+  check("negative.json", R"({"b1_m": -0.1, "b2_m": 0.2, )" + good_rest + "}", "b1_m");
+  check("nan.json", R"({"b1_m": 0.1, "b2_m": 0.2, "h_m": 0.6, "mass_kg": 0, "inertia_cm_plane_kg_m2": 10})", "mass_kg");
+  check("array.json", "[1, 2]", "JSON object");
+  check("broken.json", "{\"b1_m\": 0.1,\n \"b2_m\": }", "not JSON");
+  check("mesh.obj", "v 0 0 0\n", "not JSON");
+  const auto none = test::run_cli("rock --body '" + (dir.path() / "absent.json").string() + "'" + pulse);
+  EXPECT_EQ(none.exit_code, 2);
+  EXPECT_NE(none.err.find("absent.json"), std::string::npos) << none.err;
+  // Unknown keys ignored: the body is k2 = 10 / 100 = 0.1 m2, as `--shape general` with the same numbers.
+  const auto extra = dir.path() / "extra.json";
+  test::write_file(extra, R"({"pose": {"up": [0, 0, 1]}, "b1_m": 0.1, "b2_m": 0.2, )" + good_rest + "}");
+  const auto a = run_json("rock --body '" + extra.string() + "'" + pulse + " --json");
+  const auto b = run_json("rock --shape general --b1 0.1m --b2 0.2m --h 0.6m --inertia 0.1m2" + pulse + " --json");
+  EXPECT_EQ(a.at("max_abs_rotation_rad").get<double>(), b.at("max_abs_rotation_rad").get<double>());
+  EXPECT_EQ(a.at("p_rad_s").get<double>(), b.at("p_rad_s").get<double>());
+  const auto both = test::run_cli("rock --body '" + extra.string() + "' --shape block" + pulse);
+  EXPECT_NE(both.exit_code, 0);
+  EXPECT_NE(both.err.find("--body"), std::string::npos) << both.err;
+}
+
 }  // namespace
 }  // namespace topple

@@ -1,6 +1,10 @@
 // `topple spectrum slide|rock` and `topple fragility`: JSON equals single runs, CSV headers carry units, figures
 // are produced and non-trivial, bad input exits 2 naming the option.
 #include <cmath>
+#include <algorithm>
+#include <vector>
+#include <string>
+#include <array>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -231,6 +235,139 @@ TEST(CliSpectrum, BadInputExitsTwoNamingTheOption) {
   expect2("fragility --synth 3 --mu 0.2 --threshold 1cm", "--im-range");
   expect2("fragility /nonexistent/a.AT2 --im-range 0.1:1:3 --mu 0.2 --threshold 1cm", "/nonexistent/a.AT2");
   expect2("fragility --synth 3 --im-range 0.1:1:3 --shape block --width 0cm --height 1m", "--width");
+}
+
+// ---- fragility --as-recorded, general bodies, --body, --mesh, the coupled model ----
+
+/// 40 synthetic records written by `topple synth` (PGA 0.086 to 1.2 g, f_p 1 to 6 Hz, 8 s), their paths quoted.
+std::vector<std::string> write_records(const std::filesystem::path& dir) {
+  std::vector<std::string> files;
+  for (int s = 1; s <= 40; ++s) {
+    const double pga = 0.08 * std::pow(1.07, s);
+    const double freq = std::array{1.0, 1.5, 2.0, 3.0, 4.0, 6.0}[static_cast<std::size_t>(s % 6)];
+    const auto path = dir / fmt::format("r{}.csv", s);
+    const auto r = test::run_cli(fmt::format("synth --pga {:.4f}g --freq {}Hz --duration 8s --seed {} --out '{}'", pga,
+                                             freq, s, path.string()));
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    files.push_back("'" + path.string() + "'");
+  }
+  return files;
+}
+
+std::string joined(const std::vector<std::string>& v, std::size_t n = 1000) {
+  std::string out;
+  for (std::size_t i = 0; i < std::min(n, v.size()); ++i) out += " " + v[i];
+  return out;
+}
+
+// Each record runs once as recorded: its PGA is the record's (the synth's, to the 4 decimals asked), its outcome is
+// `rock`'s on the same file, and the surface is fitted with finite standard errors (21 of 40 fall here). The CSV has
+// its stated columns and the figure its axes.
+TEST(CliFragility, AsRecordedRunsEachRecordOnceAndFitsTheSurface) {
+  test::TempDir tmp;
+  const auto files = write_records(tmp.path());
+  const std::string body = " --shape general --b1 5cm --b2 8cm --h 30cm --inertia 0.02m2";
+  const auto csv = tmp.path() / "records.csv";
+  const auto svg = tmp.path() / "surface.svg";
+  const auto j = run_json("fragility --as-recorded --quiet --json" + body + joined(files) + " --out '" + csv.string() +
+                          "' --plot '" + svg.string() + "'");
+  EXPECT_EQ(j.at("mode"), "as-recorded");
+  ASSERT_EQ(j.at("records").size(), 40u);
+  EXPECT_EQ(j.at("runs").get<int>(), 40);
+  int fell = 0;
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    const auto& r = j.at("records")[i];
+    EXPECT_NEAR(r.at("pga_g").get<double>(), 0.08 * std::pow(1.07, static_cast<double>(i + 1)), 6e-5) << i;
+    EXPECT_NEAR(r.at("pgv_over_pga_s").get<double>(),
+                r.at("pgv_m_s").get<double>() / (r.at("pga_g").get<double>() * 9.80665), 1e-12);
+    const auto one = run_json("rock " + files[i] + body + " --json");
+    EXPECT_EQ(r.at("overturn_failed").get<bool>(), one.at("overturned").get<bool>()) << files[i];
+    fell += one.at("overturned").get<bool>() ? 1 : 0;
+  }
+  const auto& c = j.at("curves")[0];
+  EXPECT_EQ(c.at("curve"), "overturn");
+  EXPECT_EQ(c.at("failures").get<int>(), fell);
+  ASSERT_FALSE(c.at("surface").is_null()) << c;
+  const auto& f = c.at("surface");
+  EXPECT_GT(f.at("beta").get<double>(), 0.0);
+  EXPECT_GT(f.at("se_beta").get<double>(), 0.0);
+  EXPECT_GT(f.at("se_gamma").get<double>(), 0.0);
+  // The median lies above min(b1, b2)/h = 0.167 g, below which no record can even lift the body, and inside the
+  // records' PGA range.
+  EXPECT_GT(f.at("theta_ref_g").get<double>(), 0.05 / 0.30);
+  EXPECT_LT(f.at("theta_ref_g").get<double>(), 1.2);
+  EXPECT_EQ(first_line(csv), "motion,pga_g,pgv_m_s,pgv_over_pga_s,overturn_failed,overturn_probability");
+  const std::string figure = slurp(svg);
+  EXPECT_NE(figure.find("PGV/PGA (s)"), std::string::npos);
+  EXPECT_NE(figure.find("P = 0.5"), std::string::npos);
+  // The text names the form and the source.
+  const auto text = test::run_cli("fragility --as-recorded --quiet" + body + joined(files));
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_NE(text.out.find("Purvance"), std::string::npos);
+  EXPECT_NE(text.out.find("gamma = "), std::string::npos);
+}
+
+// The coupled model: each record's outcome is `rock --model coupled`'s; the mesh (--mesh at an azimuth) and the body
+// file `topple body --json` wrote for it give the same outcomes; a general body runs in the scaled fragility too.
+TEST(CliFragility, CoupledModelMeshAndBodyFile) {
+  test::TempDir tmp;
+  const auto files = write_records(tmp.path());
+  const std::string some = joined(files, 8);
+  const auto j = run_json("fragility --as-recorded --quiet --json --shape block --width 20cm --height 60cm --model "
+                          "coupled --rock-mu 0.4 --rock-mu-k 0.35" + some);
+  for (std::size_t i = 0; i < 8; ++i) {
+    const auto one = run_json("rock " + files[i] + " --shape block --width 20cm --height 60cm --model coupled --mu 0.4 "
+                              "--mu-k 0.35 --json");
+    EXPECT_EQ(j.at("records")[i].at("overturn_failed").get<bool>(), one.at("overturned").get<bool>()) << files[i];
+  }
+  const std::string mesh = "'" + std::string(TOPPLE_SOURCE_DIR) + "/examples/mesh/balanced_rock.obj'";
+  const auto body_json = test::run_cli("body " + mesh + " --azimuth 30 --json");
+  ASSERT_EQ(body_json.exit_code, 0) << body_json.err;
+  const auto body_path = tmp.path() / "rock.json";
+  test::write_file(body_path, body_json.out);
+  const auto by_mesh = run_json("fragility --as-recorded --quiet --json --mesh " + mesh + " --azimuth 30" +
+                                joined(files));
+  const auto by_body = run_json("fragility --as-recorded --quiet --json --body '" + body_path.string() + "'" +
+                                joined(files));
+  int fell = 0;
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    EXPECT_EQ(by_mesh.at("records")[i].at("overturn_failed"), by_body.at("records")[i].at("overturn_failed")) << i;
+    fell += by_mesh.at("records")[i].at("overturn_failed").get<bool>() ? 1 : 0;
+  }
+  EXPECT_GT(fell, 0);  // the example rock (alpha- 9 deg) falls under the strongest records...
+  EXPECT_LT(fell, 40);  // ...and stands under the weakest
+  const auto scaled = run_json("fragility --quiet --json --im-range 0.1:1.5:5 --shape general --b1 5cm --b2 8cm --h "
+                               "30cm --inertia 0.02m2 --model coupled --rock-mu 0.5" + some);
+  EXPECT_EQ(scaled.at("runs").get<int>(), 8 * 5);
+  EXPECT_EQ(scaled.at("curves")[0].at("levels").size(), 5u);
+}
+
+TEST(CliFragility, AsRecordedAndBodyBadInputExitsTwoNamingTheOption) {
+  const std::string block = " --shape block --width 10cm --height 40cm --quiet";
+  for (const auto& [args, option] :
+       {std::pair{"fragility a.csv --as-recorded --im-range 0.1:1:3" + block, "--im-range"},
+        std::pair{"fragility --synth 3 --as-recorded" + block, "--synth"},
+        std::pair{"fragility a.csv --h2 b.csv --as-recorded" + block, "--as-recorded"},
+        std::pair{"fragility a.csv --as-recorded --im pgv" + block, "--im"},
+        std::pair{"fragility --synth 3 --im-range 0.1:1:3 --rock-mu 0.5" + block, "--rock-mu"},
+        std::pair{"fragility --synth 3 --im-range 0.1:1:3 --model coupled" + block, "--rock-mu"},
+        std::pair{"fragility --synth 3 --im-range 0.1:1:3 --model sliding" + block, "--model"},
+        std::pair{"fragility --synth 3 --im-range 0.1:1:3 --model coupled --rock-mu -1" + block, "--rock-mu"},
+        std::pair{std::string("fragility --synth 3 --im-range 0.1:1:3 --shape general --b1 5cm --b2 8cm --h 30cm "
+                              "--quiet"), "--inertia"},
+        std::pair{std::string("fragility --synth 3 --im-range 0.1:1:3 --shape general --b1 5cm --b2 8cm --h 30cm "
+                              "--inertia 0.02m2 --height 1m --quiet"), "--height"},
+        std::pair{"fragility --synth 3 --im-range 0.1:1:3 --b1 5cm" + block, "--b1"},
+        std::pair{"fragility --synth 3 --im-range 0.1:1:3 --body b.json" + block, "--body"},
+        std::pair{std::string("fragility --synth 3 --im-range 0.1:1:3 --body absent.json --quiet"), "absent.json"},
+        std::pair{std::string("fragility --synth 3 --im-range 0.1:1:3 --mesh absent.obj --quiet"), "absent.obj"}}) {
+    const auto r = test::run_cli(args);
+    EXPECT_NE(r.exit_code, 0) << args;
+    if (std::string(option) != "--body") {
+      EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
+    }
+    EXPECT_NE(r.err.find(option), std::string::npos) << args << ": " << r.err;
+  }
 }
 
 }  // namespace

@@ -201,6 +201,115 @@ mesh_azimuth_deg = [90, 270]
   EXPECT_GT(fell[1], 0u);
 }
 
+// model = "coupled" (sweep.hpp): each row equals `topple rock --model coupled --mu --mu-k` on the same pulse or
+// record (a synthetic record the test writes), every coupled result column the JSON's (printed to 17 digits: the
+// same doubles); a rocking object beside it keeps its columns; a coupled object needs mu, takes mu_kinetic, and is
+// refused under [[motions.set]] naming the key.
+TEST(CliSweep, CoupledRowsEqualSingleRunsOfRockModelCoupled) {
+  TempDir dir;
+  const fs::path record = dir.path() / "synthetic.csv";
+  const auto synth = run_cli("synth --pga 0.4g --freq 2Hz --duration 6s --seed 3 --out " + quote(record.string()));
+  ASSERT_EQ(synth.exit_code, 0) << synth.err;
+  write_file(dir.path() / "c.toml", R"(
+[motions]
+files = ["synthetic.csv"]
+scale_pga_g = [0.3, 0.8]
+polarity = ["normal", "inverse"]
+[[motions.pulse]]
+kind = ["sine", "rect"]
+amp_g = 0.6
+freq_hz = 2
+[[object]]
+model = "coupled"
+shape = "block"
+width = "20cm"
+height = "60cm"
+mu = [0.25, 0.6]
+mu_kinetic = 0.2
+[[object]]
+model = "coupled"
+shape = "general"
+b1 = "5cm"
+b2 = "8cm"
+h = "30cm"
+inertia_m2 = 0.02
+mu = 0.5
+[[object]]
+model = "rock"
+shape = "block"
+width_m = 0.2
+height_m = 0.6
+)");
+  const auto r = run_cli("sweep " + quote((dir.path() / "c.toml").string()) + " --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Table t = read_table(dir.path() / "c.csv");
+  ASSERT_EQ(t.rows.size(), (2u * 2u + 2u * 2u) * 4u);
+  const std::vector<std::string> keys{
+      "overturned", "overturned_side", "overturn_time_s", "max_rotation_over_alpha", "max_rotation_positive_rad",
+      "max_rotation_negative_rad", "exceeded_alpha_time_s", "residual_slide_m", "max_abs_slide_m", "slip_episodes",
+      "impacts", "uplifts", "tangential_impacts", "onset_mode", "end_mode", "end_time_s", "moving_at_end",
+      "friction_energy_j_per_kg", "impact_energy_j_per_kg", "alpha_positive_deg", "alpha_negative_deg",
+      "used_sliding_kernel"};
+  int coupled = 0;
+  int fell = 0;
+  int slid = 0;
+  for (std::size_t row = 0; row < t.rows.size(); ++row) {
+    const std::string model = t.at(row, "model");
+    if (model == "rock") {
+      EXPECT_NE(t.at(row, "max_abs_rotation_rad"), "");
+      EXPECT_EQ(t.at(row, "residual_slide_m"), "");
+      continue;
+    }
+    ASSERT_EQ(model, "coupled");
+    ++coupled;
+    SCOPED_TRACE("row " + t.at(row, "run") + " (" + t.at(row, "motion") + ")");
+    std::string motion;
+    if (t.at(row, "pulse_kind").empty()) {
+      const double target = std::round(std::strtod(t.at(row, "pga_g").c_str(), nullptr) * 10.0) / 10.0;
+      motion = quote(record.string()) + fmt::format(" --scale-pga {}g", target);
+    } else {
+      motion = "--pulse " + t.at(row, "pulse_kind") + " --amp-g " + t.at(row, "pulse_amp_g") + " --duration " +
+               t.at(row, "pulse_duration_s");
+    }
+    const std::string body = t.at(row, "shape") == "block"
+                                 ? " --shape block --width " + t.at(row, "width_m") + "m --height " +
+                                       t.at(row, "height_m") + "m"
+                                 : " --shape general --b1 " + t.at(row, "b1_m") + "m --b2 " + t.at(row, "b2_m") +
+                                       "m --h " + t.at(row, "h_m") + "m --inertia " + t.at(row, "inertia_m2") + "m2";
+    const std::string args = "rock " + motion + (t.at(row, "polarity") == "inverse" ? " --invert" : "") + body +
+                             " --model coupled --mu " + t.at(row, "mu") + " --mu-k " + t.at(row, "mu_kinetic") +
+                             " --json";
+    const auto out = run_cli(args);
+    ASSERT_EQ(out.exit_code, 0) << args << "\n" << out.err;
+    const auto j = nlohmann::json::parse(out.out);
+    for (const auto& k : keys) expect_same(t.at(row, k), j.at(k), k);
+    fell += t.at(row, "overturned") == "true" ? 1 : 0;
+    slid += std::abs(std::strtod(t.at(row, "max_abs_slide_m").c_str(), nullptr)) > 1e-3 ? 1 : 0;
+  }
+  EXPECT_EQ(coupled, 8 * 3);
+  EXPECT_GT(fell, 0);  // both outcomes and real sliding are exercised
+  EXPECT_LT(fell, coupled);
+  EXPECT_GT(slid, 0);
+
+  const std::string pulse = "[motions]\n[[motions.pulse]]\nkind = \"sine\"\namp_g = 0.3\nfreq_hz = 2\n";
+  const std::string block = "shape = \"block\"\nwidth = \"20cm\"\nheight = \"60cm\"\n";
+  const std::vector<std::pair<std::string, std::string>> bad{
+      {pulse + "[[object]]\nmodel = \"coupled\"\n" + block, "object[1].mu"},
+      {pulse + "[[object]]\nmodel = \"coupled\"\n" + block + "mu = 0.3\nmu_kinetic = 0.5\n", "object[1].mu_kinetic"},
+      {pulse + "[[object]]\nmodel = \"rock\"\n" + block + "mu = 0.3\nmu_kinetic = 0.2\n", "object[1].mu_kinetic"},
+      {pulse + "[[object]]\nmodel = \"bounce\"\n" + block, "object[1].model"},
+  };
+  for (std::size_t i = 0; i < bad.size(); ++i) {
+    const fs::path p = dir.path() / fmt::format("bad{}.toml", i);
+    write_file(p, bad[i].first);
+    const auto b = run_cli("sweep " + quote(p.string()));
+    SCOPED_TRACE(bad[i].first);
+    EXPECT_EQ(b.exit_code, 2) << b.err;
+    EXPECT_NE(b.err.find(p.string()), std::string::npos) << b.err;
+    EXPECT_NE(b.err.find(bad[i].second + ":"), std::string::npos) << b.err;
+  }
+}
+
 TEST(CliSweep, RecordRowsEqualSingleRuns) {
   if (!test::have_shared()) GTEST_SKIP() << "shared/records not found";
   TempDir dir;

@@ -20,6 +20,7 @@
 #include "topple/solvers/oriented.hpp"
 #include "topple/motion/pulses.hpp"
 #include "topple/solvers/rocking.hpp"
+#include "topple/solvers/slide_rock.hpp"
 #include "topple/solvers/sliding.hpp"
 #include "topple/core/units.hpp"
 
@@ -81,6 +82,11 @@ struct RockObject {
   std::optional<SupportOscillator> support = std::nullopt;  ///< as SlideObject::support
   /// A block's other horizontal dimension, m: a box checked about both axes (oriented.hpp). Record sets only.
   std::optional<double> depth_m = std::nullopt;
+  /// The coupled slide-rock model (slide_rock.hpp) instead of Housner's rocking (model = "coupled" in a sweep file):
+  /// SlideRockBody::from_rocking(body, *options.mu, mu_kinetic), run with slide_rock_options(options). options.mu
+  /// (the static friction coefficient) is then required. Single records and pulses only.
+  bool coupled = false;
+  std::optional<double> mu_kinetic = std::nullopt;  ///< coupled: kinetic friction (none: options.mu)
 };
 
 using ObjectSpec = std::variant<SlideObject, RockObject>;
@@ -134,9 +140,13 @@ struct SweepSpec {
 ///            alpha_rad, p_rad_s, e; under a record set they are the governing direction's, and
 ///            [governing_azimuth_deg, governing_axis] (only with record sets) say which it was; then, only when some
 ///            body is asymmetric, the per-side results (kRockingSideFields: alpha_negative_rad ... overturned_side)
+///            coupled slide-rock objects (model "coupled"; only when some object is one): kSlideRockFields in their
+///            order (overturned ... used_sliding_kernel), less mu_static, mu_kinetic, g_m_s2 and e_mode, which are
+///            object columns (mu, mu_kinetic, g_m_s2, restitution); a name a rocking column has is that column
 /// Throws InputError for an empty spec (no motion or no object), a motion that cannot be scaled (zero record), a
 /// one-way or inclined sliding object under a record set (fields "object[k].mode", "object[k].slope_deg"), a flexible
-/// support under a record set, a box (depth) under a single record or pulse, record sets with rocking objects other
+/// support under a record set, a box (depth) under a single record or pulse, a coupled object without mu or under a
+/// record set ("object[k].model"), record sets with rocking objects other
 /// than cylinders and without bearings (field "bearing"), or a bearing without record sets.
 [[nodiscard]] Plan make_plan(const SweepSpec& spec);
 

@@ -38,6 +38,7 @@
 // bearing for every motion or, when none is given, a bearing drawn uniformly on [0, 360) deg for each motion
 // (PortableRandom(bearing_seed), the i-th draw for the i-th motion, the same at every level: common random numbers
 // across levels), i.e. objects standing at unknown, uniformly distributed orientations.
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -51,6 +52,7 @@
 #include "topple/motion/ground_motion.hpp"
 #include "topple/motion/motion_set.hpp"
 #include "topple/solvers/rocking.hpp"
+#include "topple/solvers/slide_rock.hpp"
 #include "topple/solvers/sliding.hpp"
 #include "topple/core/units.hpp"
 
@@ -116,6 +118,10 @@ struct SlidingFailure {
 struct OverturnFailure {
   RockingBody body;
   RockingOptions options;
+  /// The coupled slide-rock model (slide_rock.hpp) instead of Housner's rocking: the body with its friction
+  /// (SlideRockBody::from_rocking(body, mu, mu_k)), run with slide_rock_options(options); failure when it falls.
+  /// Single-component ensembles only (the pairs' oriented model is the rocking one).
+  std::optional<SlideRockBody> coupled;
 };
 
 struct FragilitySpec {
@@ -149,6 +155,75 @@ struct FragilityResult {
   std::vector<FragilityCurve> curves;  ///< slide first, then overturn, as asked
   std::size_t runs = 0;
 };
+
+// ---- As recorded: a fragility surface in PGA and PGV/PGA ----
+//
+// Precariously-balanced-rock studies report the overturning probability of a body as a function of two measures of
+// the shaking, PGA and PGV/PGA, with the body's slenderness alpha fixed (Purvance, Anooshehpoor & Brune 2008,
+// "Freestanding block overturning fragilities: numerical simulation and experimental validation", Earthquake Engng
+// Struct. Dyn. 37, 791-808: overturning needs PGA above the static threshold g tan(alpha) and becomes likelier as
+// the pulse lengthens, i.e. as PGV/PGA grows). topple fits, to the binary outcomes (record i, failed y_i) of records
+// run as recorded (no rescaling), the probit surface
+//   P(fail | PGA, PGV/PGA) = Phi( (ln PGA - ln theta(v)) / beta ),   ln theta(v) = ln theta_ref + gamma ln(v / v_ref),
+// v = PGV/PGA (s): a lognormal fragility in PGA (as the scaled curve) whose median moves as a power of PGV/PGA
+// (gamma < 0: longer pulses topple at lower PGA), with one dispersion beta. v_ref is the geometric mean of the
+// records' v (it centres the regressor, so ln theta_ref and gamma are nearly uncorrelated). The form is a probit GLM
+// P = Phi(a0 + a1 ln PGA + a2 ln(v / v_ref)), fitted by maximum likelihood (Newton-Raphson on the exact Hessian of
+// the Bernoulli log-likelihood, sum_i y_i ln Phi(u_i) + (1 - y_i) ln Phi(-u_i)), and mapped back by beta = 1/a1,
+// ln theta_ref = -a0/a1, gamma = -a2/a1; their covariance is the delta method on the inverse observed information.
+// Degenerate data are refused (InputError naming "outcomes"): no failure or failures only, fewer than 3 records of
+// either outcome, PGV/PGA that does not vary (then the surface is a curve: run the scaled fragility), and separated
+// outcomes (a line in (ln PGA, ln v) splits them: the maximum likelihood lies at beta -> 0, no finite estimate).
+
+/// One record's outcome: its PGA (m/s^2), its PGV (m/s), and whether the object failed.
+struct SurfaceOutcome {
+  double pga_m_s2 = 0.0;
+  double pgv_m_s = 0.0;
+  bool failed = false;
+};
+
+struct FragilitySurfaceFit {
+  double ln_theta_ref = 0.0;  ///< ln of the median PGA (m/s^2) at v = v_ref
+  double gamma = 0.0;         ///< d ln theta / d ln(PGV/PGA)
+  double beta = 0.0;          ///< logarithmic standard deviation in PGA
+  double v_ref_s = 0.0;       ///< geometric mean of the records' PGV/PGA, s
+  double se_ln_theta_ref = 0.0;
+  double se_gamma = 0.0;
+  double se_beta = 0.0;
+  std::array<std::array<double, 3>, 3> covariance{};  ///< of (ln theta_ref, gamma, beta)
+  double log_likelihood = 0.0;
+  int iterations = 0;
+  std::size_t records = 0;
+  std::size_t failures = 0;
+
+  /// theta(v) = theta_ref (v / v_ref)^gamma, m/s^2.
+  [[nodiscard]] double median_pga_m_s2(double pgv_over_pga_s) const;
+  /// Phi((ln PGA - ln theta(v)) / beta).
+  [[nodiscard]] double probability(double pga_m_s2, double pgv_over_pga_s) const;
+};
+
+/// Maximum-likelihood fit of the surface (see above). Throws InputError naming "outcomes" for degenerate data and for
+/// a PGA or PGV that is not positive and finite.
+[[nodiscard]] FragilitySurfaceFit fit_fragility_surface(std::span<const SurfaceOutcome> outcomes);
+
+struct AsRecordedCurve {
+  std::string name;                          ///< "slide" or "overturn"
+  std::vector<bool> failed;                  ///< per record
+  std::optional<FragilitySurfaceFit> fit;    ///< none when the outcomes cannot be fitted (fit_note says why)
+  std::string fit_note;
+};
+
+struct AsRecordedResult {
+  std::vector<double> pga_m_s2;  ///< per record
+  std::vector<double> pgv_m_s;   ///< per record
+  std::vector<AsRecordedCurve> curves;  ///< slide first, then overturn, as asked
+  std::size_t runs = 0;
+};
+
+/// Runs every motion of spec.motions once, as recorded (no scaling; spec.levels_si and spec.im unused), on each
+/// object, and fits each curve's surface. Throws InputError naming "motions" (none, pairs, a motion with zero PGA or
+/// PGV), "object" or "threshold".
+[[nodiscard]] AsRecordedResult as_recorded_analysis(const FragilitySpec& spec);
 
 /// Runs every motion scaled to every level on each object and fits each curve (a curve with no failure or only
 /// failures on the grid keeps its counts and gets no fit). Throws InputError naming "motions", "levels", "object"

@@ -13,6 +13,7 @@
 
 #include "topple/core/field.hpp"
 #include "topple/fragility/fragility.hpp"
+#include "topple/output/plot.hpp"
 
 namespace topple {
 
@@ -52,5 +53,34 @@ struct FragilityJsonContext {
 /// The table of `topple fragility --out`: curve,<im column>,trials,failures,fraction,fitted_probability,band_lower,
 /// band_upper, one row per curve and level (the last three empty without a fit).
 void write_fragility_csv(std::ostream& out, const FragilityResult& result, double g_m_s2, double band_level);
+
+// ---- As recorded (fragility.hpp, "As recorded"): `topple fragility --as-recorded` ----
+
+/// The functional form of the surface, in words, as the JSON and the text state it.
+inline constexpr std::string_view kFragilitySurfaceForm =
+    "P = Phi((ln PGA - ln theta(v)) / beta), ln theta(v) = ln theta_ref + gamma ln(v / v_ref), v = PGV/PGA: a probit "
+    "in ln PGA whose median moves as a power of PGV/PGA (the variables of Purvance, Anooshehpoor & Brune 2008, EESD "
+    "37), maximum likelihood on the binary outcomes";
+
+/// A surface fit as JSON: form, theta_ref_g, ln_theta_ref_g, gamma, beta, v_ref_s, se_ln_theta_ref, se_gamma,
+/// se_beta, covariance (of ln theta_ref, gamma, beta), log_likelihood, records, failures, iterations.
+[[nodiscard]] nlohmann::ordered_json fragility_surface_json(const FragilitySurfaceFit& fit, double g_m_s2);
+
+/// The object `topple fragility --as-recorded --json` prints: mode "as-recorded", g_m_s2, runs, records [{motion,
+/// pga_g, pgv_m_s, pgv_over_pga_s, <curve>_failed...}], curves [{curve, failures, surface (fragility_surface_json)
+/// or null with fit_note}].
+[[nodiscard]] nlohmann::ordered_json as_recorded_json(const AsRecordedResult& result,
+                                                      const std::vector<std::string>& motions, double g_m_s2);
+
+/// The table of `topple fragility --as-recorded --out`: motion,pga_g,pgv_m_s,pgv_over_pga_s, then per curve
+/// <curve>_failed (0/1) and <curve>_probability (the fitted surface at the record; empty without a fit).
+void write_as_recorded_csv(std::ostream& out, const AsRecordedResult& result, const std::vector<std::string>& motions,
+                           double g_m_s2);
+
+/// The surface of `result.curves[curve]`: P over PGV/PGA x PGA (log axes, the records' range widened by 1.3 each
+/// way), its 10, 50 and 90 % contours (straight lines on these axes) and the records as points, failed or not.
+/// Without a fit, the points only over P = 0.
+[[nodiscard]] plot::MapFigure fragility_surface_figure(const AsRecordedResult& result, std::size_t curve,
+                                                       double g_m_s2, const std::string& title);
 
 }  // namespace topple::io
