@@ -1,6 +1,5 @@
 // topple body MESH --azimuth DEG: the planar rocking body of a closed triangle mesh (a 3-D scan) in a vertical plane,
 // at rest on a stable face of its convex hull (or as scanned), and the list of those faces.
-#include <charconv>
 #include <cmath>
 #include <memory>
 #include <optional>
@@ -11,6 +10,7 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "pose_options.hpp"
 #include "progress.hpp"
 #include "topple/bodies/body.hpp"
 #include "topple/bodies/pose.hpp"
@@ -29,65 +29,9 @@ struct BodyCommandOptions {
   std::string unit = "m";
   bool json = false;
   bool quiet = false;
-  std::string pose = "rest";
-  std::string up, rotation, axis_angle, contact_tolerance;
-  std::optional<std::size_t> face;
+  PoseOptionsText pose;
   bool list_faces = false;
 };
-
-/// "a,b,c": exactly `count` numbers separated by commas (spaces allowed around them), or parameter_error(option).
-std::vector<double> number_list(const std::string& text, std::size_t count, const std::string& option,
-                                const char* what) {
-  std::vector<double> out;
-  std::size_t at = 0;
-  while (true) {
-    const std::size_t comma = text.find(',', at);
-    std::string item = text.substr(at, comma == std::string::npos ? std::string::npos : comma - at);
-    const auto first = item.find_first_not_of(" \t"), last = item.find_last_not_of(" \t");
-    item = first == std::string::npos ? std::string() : item.substr(first, last - first + 1);
-    double x = 0.0;
-    const auto [end, ec] = std::from_chars(item.data(), item.data() + item.size(), x);
-    if (item.empty() || ec != std::errc() || end != item.data() + item.size() || !std::isfinite(x)) {
-      throw parameter_error(option, fmt::format("'{}' is not {} ({} finite numbers separated by commas)", text,
-                                                what, count));
-    }
-    out.push_back(x);
-    if (comma == std::string::npos) break;
-    at = comma + 1;
-  }
-  if (out.size() != count) {
-    throw parameter_error(option, fmt::format("'{}' holds {} numbers; {} takes {}: {}", text, out.size(), option,
-                                              count, what));
-  }
-  return out;
-}
-
-/// The pose options as BodyOptions holds them (checked by check_body_options).
-void pose_options(BodyCommandOptions& o) {
-  if (o.pose == "rest") {
-    o.body.pose = PoseMethod::rest;
-  } else if (o.pose == "as-scanned") {
-    o.body.pose = PoseMethod::as_scanned;
-  } else {
-    throw parameter_error("--pose", fmt::format("'{}' is not a pose: rest or as-scanned", o.pose));
-  }
-  if (!o.up.empty()) {
-    const auto v = number_list(o.up, 3, "--up", "a direction x,y,z in the mesh's coordinates");
-    o.body.up = Vec3{v[0], v[1], v[2]};
-  }
-  if (!o.rotation.empty()) {
-    const auto v = number_list(o.rotation, 4, "--rotation", "a unit quaternion w,x,y,z");
-    o.body.rotation_wxyz = Quaternion{v[0], v[1], v[2], v[3]};
-  }
-  if (!o.axis_angle.empty()) {
-    const auto v = number_list(o.axis_angle, 4, "--axis-angle", "an axis x,y,z and an angle in degrees");
-    o.body.axis_angle_deg = std::array<double, 4>{v[0], v[1], v[2], v[3]};
-  }
-  if (!o.contact_tolerance.empty()) {
-    o.body.contact_tolerance_m = parse_length_m(o.contact_tolerance, "--contact-tolerance");
-  }
-  o.body.face = o.face;
-}
 
 /// --list-faces: the hull's faces of the (pre-rotated) mesh, numbered as --face takes them.
 void print_faces(const BodyCommandOptions& o, const TriangleMesh& mesh) {
@@ -193,46 +137,17 @@ void add_body_command(CLI::App& app) {
       ->required();
   cmd->add_option("--density", o->body.density_kg_m3, "Uniform density, kg/m^3 (granite)")->capture_default_str();
   cmd->add_option("--unit", o->unit, "Unit of the mesh's coordinates: m, cm or mm")->capture_default_str();
-  cmd->add_option("--pose", o->pose,
-                  "rest: on the stable face of the convex hull nearest the scanned pose (or --up, --rotation, "
-                  "--axis-angle, --face), levelled by the minimal rotation; as-scanned: on the mesh's lowest plane as "
-                  "given (the earlier answer)")
-      ->capture_default_str();
-  cmd->add_option("--up", o->up, "rest: the direction x,y,z of the mesh that becomes up; then the nearest stable face");
-  cmd->add_option("--rotation", o->rotation,
-                  "rest: turn the mesh first by this unit quaternion w,x,y,z (about its CM); then the nearest stable "
-                  "face");
-  cmd->add_option("--axis-angle", o->axis_angle,
-                  "rest: turn the mesh first by this angle about this axis: x,y,z,degrees; then the nearest stable "
-                  "face");
-  cmd->add_option("--face", o->face, "rest: the face of this number in --list-faces (must be stable)");
+  add_pose_options(*cmd, o->pose, o->body);
   cmd->add_flag("--list-faces", o->list_faces,
                 "List the convex hull's faces (number, tilt from the scan, stable, area, least static overturning "
                 "acceleration and its azimuth) and stop");
-  cmd->add_option("--contact-tolerance", o->contact_tolerance,
-                  "rest: hull facets within this length of a face's plane are one face, e.g. 2mm (default 1mm)");
-  cmd->add_option("--base-tolerance", o->body.base_tolerance_fraction,
-                  "as-scanned: vertices within this fraction of the mesh's size above its lowest point are in contact "
-                  "(given without --pose, it means --pose as-scanned, as before the resting pose)")
-      ->capture_default_str();
   cmd->add_option("--g", o->body.g_m_s2, "Gravitational acceleration, m/s2")->capture_default_str();
   cmd->add_flag("--json", o->json, "Print one JSON object instead of text");
   add_quiet_flag(*cmd, o->quiet);  // quick: no bar; accepted so that every command takes --quiet
   cmd->callback([o, cmd] {
-    // --base-tolerance is the as-scanned pose's contact (its meaning before the resting pose): a command line with it
-    // and no --pose means what it meant, the as-scanned pose; with --pose rest it has nothing to set.
-    const bool base_given = cmd->count("--base-tolerance") > 0, pose_given = cmd->count("--pose") > 0;
-    if (base_given && !pose_given) o->pose = "as-scanned";
-    if (base_given && o->pose == "rest") {
-      throw parameter_error("--base-tolerance", "is the as-scanned pose's contact (a fraction of the mesh's size); "
-                                                "the resting pose takes --contact-tolerance (a length)");
-    }
-    if (cmd->count("--contact-tolerance") > 0 && o->pose == "as-scanned") {
-      throw parameter_error("--contact-tolerance", "is the resting pose's; the as-scanned pose takes --base-tolerance");
-    }
     check_g(o->body.g_m_s2);
     o->body.azimuth_deg = o->azimuth_deg;
-    pose_options(*o);
+    apply_pose_options(*cmd, o->pose, o->body);
     check_body_options(o->body);
     const double unit_m = io::mesh_unit_m(o->unit, "--unit");
     const TriangleMesh mesh = io::read_mesh(o->mesh, unit_m);

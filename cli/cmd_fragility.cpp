@@ -16,6 +16,7 @@
 #include "common.hpp"
 #include "grids.hpp"
 #include "motion_set_options.hpp"
+#include "pose_options.hpp"
 #include "topple/core/error.hpp"
 #include "topple/core/output_file.hpp"
 #include "topple/fragility/fragility.hpp"
@@ -56,6 +57,7 @@ struct FragilityOptions {
   std::string mesh;        // --mesh FILE: a scanned body, at --azimuth (BodyOptions: every option of the mesh body)
   std::string mesh_unit = "m";
   BodyOptions mesh_options;
+  PoseOptionsText mesh_pose;  // --pose, --up, --rotation, --axis-angle, --face, --contact-tolerance, --base-tolerance
   std::string model = "rocking";  // or "coupled": the slide-rock model (slide_rock.hpp)
   std::optional<double> rock_mu;
   std::optional<double> rock_mu_k;
@@ -511,9 +513,7 @@ void add_fragility_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--density", o->mesh_options.density_kg_m3, "With --mesh: uniform density, kg/m^3")
       ->capture_default_str();
-  cmd->add_option("--base-tolerance", o->mesh_options.base_tolerance_fraction,
-                  "With --mesh: contact tolerance as a fraction of the mesh's largest extent (as `topple body`)")
-      ->capture_default_str();
+  add_pose_options(*cmd, o->mesh_pose, o->mesh_options, "With --mesh: ");
   for (const char* name : {"--shape", "--width", "--height", "--diameter", "--b1", "--b2", "--h", "--inertia"}) {
     body_option->excludes(cmd->get_option(name));
     mesh_option->excludes(cmd->get_option(name));
@@ -545,7 +545,17 @@ void add_fragility_command(CLI::App& app) {
   cmd->add_option("--bearing-seed", o->bearing_seed, "Pairs without --bearing-deg: seed of the random bearings")
       ->capture_default_str();
   add_quiet_flag(*cmd, o->quiet);
-  cmd->callback([o] { run_fragility(*o); });
+  cmd->callback([o, cmd] {
+    if (!o->mesh.empty()) {
+      apply_pose_options(*cmd, o->mesh_pose, o->mesh_options);
+    } else {
+      for (const char* name : {"--pose", "--up", "--rotation", "--axis-angle", "--face", "--contact-tolerance",
+                               "--base-tolerance"}) {
+        if (cmd->count(name) > 0) throw parameter_error(name, "places a mesh body: it applies with --mesh only");
+      }
+    }
+    run_fragility(*o);
+  });
 }
 
 }  // namespace topple::cli
