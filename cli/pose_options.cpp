@@ -9,6 +9,7 @@
 
 #include "common.hpp"
 #include "topple/bodies/pose.hpp"
+#include "topple/core/error.hpp"
 #include "topple/core/units.hpp"
 
 namespace topple::cli {
