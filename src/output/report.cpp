@@ -307,9 +307,10 @@ plot::MapFigure likelihood_map_figure(const InversionResult& r, const Site& site
   // The ridge (evidence.hpp, item 2): the PGA the objects need at each frequency, median and 68 % band, where the
   // column's likelihood is not negligible; a gap where an end is off the grid.
   {
-    plot::Series mid{"PGA the objects need at each frequency (likelihood median)", {}, {}, "lines", "#d95f02", 3.0};
-    plot::Series lo{"its 68 % band", {}, {}, "lines dt 4", "#d95f02", 1.8};
-    plot::Series hi{"", {}, {}, "lines dt 4", "#d95f02", 1.8};
+    // Magenta: a colour no object line, threshold or region uses (the objects' palette is Okabe-Ito's).
+    plot::Series mid{"PGA the objects need at each frequency (likelihood median)", {}, {}, "lines", "#e7298a", 3.5};
+    plot::Series lo{"its 68 % band", {}, {}, "lines dt 4", "#e7298a", 2.0};
+    plot::Series hi{"", {}, {}, "lines dt 4", "#e7298a", 2.0};
     for (const PgaGivenFreq& g : r.pga_given_freq) {
       const bool on = g.pga_g.has_value();
       mid.x.push_back(on ? g.pga_g->median : kNaN);
@@ -353,7 +354,9 @@ plot::Figure marginal_figure(const InversionResult& r, bool pga) {
   panel.series.push_back({fmt::format("prior ({})", r.prior), x, prior_marginal, "lines dt 2", "#7f7f7f", 2.0});
   const auto& lik = pga ? r.marginal_pga_likelihood : r.marginal_freq_likelihood;
   if (lik.size() == x.size()) {
-    panel.series.push_back({"likelihood (the objects alone)", x, lik, "lines", "#d95f02", 2.5});
+    // Wide and light under the posterior: under the log-uniform prior the two are one curve, and this one shows as
+    // its halo.
+    panel.series.push_back({"likelihood (the objects alone)", x, lik, "lines", "#fdae6b", 6.0});
   }
   panel.series.push_back({"posterior", x, p, "linespoints pt 7 ps 0.6", "#2171b5", 2.0});
   double top = *std::max_element(p.begin(), p.end());
@@ -656,7 +659,7 @@ void figures_html(std::ostringstream& h, const std::filesystem::path& dir, const
        "posterior divided by its maximum). Black lines: the 68 % (solid) and 95 % (dashed) credible regions, the "
        "smallest sets of cells holding that probability. Dotted vertical lines: the static lower and upper "
        "thresholds (hard or soft, see above). Coloured lines: for each object the line where its observation has "
-       "probability 0.5; the legend says on which side it fits. Orange: the ridge, the PGA the objects need at each "
+       "probability 0.5; the legend says on which side it fits. Magenta: the ridge, the PGA the objects need at each "
        "frequency (the median of that frequency's likelihood over PGA, no prior; dashed: its 68 % band; absent where "
        "that frequency's likelihood is negligible): if the frequency is known from elsewhere, read the PGA off it "
        "(JSON: pga_given_freq). Cross: the medians; circle: the maximum-likelihood cell.";
@@ -664,8 +667,9 @@ void figures_html(std::ostringstream& h, const std::filesystem::path& dir, const
   h << "</figcaption></figure>\n";
   h << "<figure id=\"marginal-pga\">" << inline_svg(dir / "marginal_pga.svg")
     << "<figcaption>Figure 2. PGA: the marginal posterior (blue; the probability of each grid cell, the posterior "
-       "summed over frequency) beside the prior's marginal (grey, dashed) and the objects' own evidence (orange: the "
-       "likelihood normalised over the grid, i.e. the posterior under the log-uniform prior), with the posterior's "
+       "summed over frequency) beside the prior's marginal (grey, dashed) and the objects' own evidence (wide light orange: "
+       "the likelihood normalised over the grid, i.e. the posterior under the log-uniform prior, under which the two "
+       "curves coincide), with the posterior's "
        "median and its 68 % and 95 % intervals (drawn where both ends are on the grid). Where orange and blue differ, "
        "the prior, not the objects, made the difference.</figcaption></figure>\n";
   h << "<figure id=\"marginal-freq\">" << inline_svg(dir / "marginal_freq.svg")
