@@ -268,7 +268,8 @@ std::string likelihood_summary_clause(const InversionResult& r) {
 
 std::string next_objects_summary_clause(const InversionResult& r) {
   if (r.next_objects.empty()) return {};
-  const auto best = [&r](bool freq) {
+  // By reference into the list: the same object best on both axes is named once.
+  const auto best = [&r](bool freq) -> const NextObject& {
     return *std::max_element(r.next_objects.begin(), r.next_objects.end(), [freq](const NextObject& a, const NextObject& b) {
       return freq ? a.bits_freq < b.bits_freq : a.bits_pga < b.bits_pga;
     });

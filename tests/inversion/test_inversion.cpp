@@ -1010,6 +1010,25 @@ TEST(Evidence, HouseholdCatalogueCitesItsRows) {
             1u);
 }
 
+// The summary's sentence on what to look for next: the largest gain on each axis, one object named once when it is
+// the best on both, nothing below 0.05 bit.
+TEST(Evidence, NextObjectsSentence) {
+  InversionResult r;
+  EXPECT_EQ(next_objects_summary_clause(r), "");
+  r.next_objects = {{"bookend", "block", "whether it fell", 0.30, 0.01}, {"wine bottle", "cylinder", "whether it fell", 0.02, 0.40}};
+  EXPECT_EQ(next_objects_summary_clause(r),
+            " To narrow the frequency, look for a wine bottle (cylinder) and whether it fell (0.40 bit); to narrow the "
+            "PGA, look for a bookend (block) and whether it fell (0.30 bit).");
+  r.next_objects = {{"bookend", "block", "whether it fell", 0.30, 0.20}};
+  EXPECT_EQ(next_objects_summary_clause(r),
+            " To narrow both the frequency (0.20 bit) and the PGA (0.30 bit), look for a bookend (block) and whether it "
+            "fell.");
+  r.next_objects = {{"bookend", "block", "whether it fell", 0.30, 0.04}};
+  EXPECT_EQ(next_objects_summary_clause(r), " To narrow the PGA, look for a bookend (block) and whether it fell (0.30 bit).");
+  r.next_objects = {{"bookend", "block", "whether it fell", 0.04, 0.04}};
+  EXPECT_EQ(next_objects_summary_clause(r), "");
+}
+
 // The pipeline: every catalogue object ranked, by decreasing total bits, each finite and within the marginals'
 // entropies; with next_objects off, none; the ridge has a point per column.
 TEST(Evidence, InvertSiteRanksTheCatalogue) {
