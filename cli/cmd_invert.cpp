@@ -32,6 +32,7 @@ struct InvertOptions {
   std::string report;
   int threads = 0;
   bool quiet = false;
+  bool no_next_objects = false;
 };
 
 /// The files and folder the command writes (io::write_survey_grids, write_survey_map, write_survey_report), in the
@@ -112,6 +113,15 @@ void print_site(const Site& site, const InversionResult& r) {
   fmt::print("frequency: median {:.3g} Hz{}, 68 % {}, 95 % {}; maximum-likelihood cell {:.3g} Hz{}\n", freq.median,
              edge(freq.median_edge), interval_text(freq.ci68_low, freq.ci68_high, "Hz"),
              interval_text(freq.ci95_low, freq.ci95_high, "Hz"), freq.best, edge(freq.best_edge));
+  if (!r.marginal_pga_likelihood.empty() && !r.log_prior.empty()) {
+    // The objects alone (evidence.hpp): only where a prior other than the log-uniform one makes them differ.
+    const Estimate& lp = r.pga_likelihood_g;
+    const Estimate& lf = r.freq_likelihood_hz;
+    fmt::print("objects alone (likelihood, no {} prior): PGA median {:.3g} g{}, 68 % {}; frequency median {:.3g} Hz{}, "
+               "68 % {}\n",
+               r.prior, lp.median, edge(lp.median_edge), interval_text(lp.ci68_low, lp.ci68_high, "g"), lf.median,
+               edge(lf.median_edge), interval_text(lf.ci68_low, lf.ci68_high, "Hz"));
+  }
   fmt::print("objects: P(observation) posterior-predictive / at the maximum-likelihood cell, information (bits), "
              "misfit if P < {}:\n", kMisfitProbability);
   for (const auto& o : r.objects) {
@@ -122,6 +132,12 @@ void print_site(const Site& site, const InversionResult& r) {
     fmt::print("  {:<16} {:<{}} {:.3f} / {:.2f}  {:.2f} bit{}\n", o.id, outcome, r.three_component ? 23 : 15,
                o.posterior_predictive,
                o.probability_at_best, o.constraint_bits, o.misfit ? "  MISFIT" : "");
+  }
+  if (!r.next_objects.empty()) {
+    fmt::print("what to look for next: expected information (bits) of one more object's outcome, on PGA / on frequency:\n");
+    for (const NextObject& n : r.next_objects) {
+      fmt::print("  {:<24} {:.2f} / {:.2f}  {}, {}\n", n.object, n.bits_pga, n.bits_freq, n.description, n.look_for);
+    }
   }
   for (const auto& note : r.notes) fmt::print("note: {}\n", note);
 }
@@ -200,6 +216,7 @@ void run_invert(const InvertOptions& o) {
   // Every option is checked before any work (the survey is read in milliseconds; the runs take seconds).
   InversionOptions options;
   options.threads = o.threads;
+  options.next_objects = !o.no_next_objects;
   validate_inversion_options(options);
   // Under mpirun/srun the sites are split across the ranks (inversion_distributed.hpp); rank 0 alone prints and
   // writes, the others return after the gather.
@@ -261,6 +278,8 @@ void add_invert_command(CLI::App& app) {
   for (const OutputOption& out : kOutputOptions) cmd->add_option(out.name, (*o).*out.path, out.help);
   cmd->add_option("--threads", o->threads, "Worker threads (default: all cores)");
   add_quiet_flag(*cmd, o->quiet, "no notes and no progress messages");
+  cmd->add_flag("--no-next-objects", o->no_next_objects,
+                "Skip ranking the household catalogue by what one more object would tell (saves its runs)");
   cmd->callback([o] { run_invert(*o); });
 }
 

@@ -289,7 +289,9 @@ def invert(survey: _Union[str, "_os.PathLike[str]", _Mapping[str, _Any]], *, thr
     dict
         One site's result (several sites: ``{"sites": [...]}``) with the keys of ``topple invert --json``:
         pga_g (g) and freq_hz (Hz) estimates (median, ci68, ci95, best), static_bounds_pga_g (g), objects,
-        notes, grid (pga_g in g, freq_hz in Hz); and beyond the CLI's JSON: posterior_grid and log_likelihood_grid
+        notes, grid (pga_g in g, freq_hz in Hz), prior, likelihood (the objects' own estimates, without the prior),
+        pga_given_freq (per frequency column, the PGA in g the objects need there; median_g None where negligible),
+        next_objects (household objects ranked by the bits one more observation adds); and beyond the CLI's JSON: posterior_grid and log_likelihood_grid
         (numpy, rows = PGA, columns = frequency) and each object's probability_grid (P(observation | cell)),
         for topple.plot.inversion_map.
     """

@@ -15,6 +15,7 @@
 
 #include "topple/ensemble/ensemble.hpp"
 #include "topple/core/error.hpp"
+#include "topple/inversion/evidence.hpp"
 #include "topple/solvers/flexible.hpp"
 #include "topple/inversion/inversion_3c.hpp"
 #include "topple/solvers/rocking.hpp"
@@ -76,6 +77,10 @@ Estimate estimate(const std::vector<double>& values, const std::vector<double>& 
 }
 
 }  // namespace
+
+Estimate detail::marginal_estimate(const std::vector<double>& values, const std::vector<double>& marginal, double best) {
+  return estimate(values, marginal, best);
+}
 
 namespace detail {
 std::uint64_t mix(std::uint64_t a, std::uint64_t b) {
@@ -607,11 +612,19 @@ void fill_posterior_and_estimates(InversionResult& r) {
   const std::size_t np = r.pga_g.size();
   const std::size_t nf = r.freq_hz.size();
   const std::size_t cells = np * nf;
-  // Posterior with a prior uniform over the log grid.
-  const double ll_max = *std::max_element(r.log_likelihood.begin(), r.log_likelihood.end());
+  // Posterior = likelihood x prior: the prior uniform over the log grid when log_prior is empty (then the sum below is
+  // the likelihood's alone, bit for bit), else log_prior per cell.
+  if (!r.log_prior.empty() && r.log_prior.size() != cells) {
+    throw std::invalid_argument("fill_posterior_and_estimates: log_prior has not one value per cell");
+  }
+  std::vector<double> log_post = r.log_likelihood;
+  if (!r.log_prior.empty()) {
+    for (std::size_t c = 0; c < cells; ++c) log_post[c] += r.log_prior[c];
+  }
+  const double ll_max = *std::max_element(log_post.begin(), log_post.end());
   r.posterior.resize(cells);
   double z = 0.0;
-  for (std::size_t c = 0; c < cells; ++c) z += r.posterior[c] = std::exp(r.log_likelihood[c] - ll_max);
+  for (std::size_t c = 0; c < cells; ++c) z += r.posterior[c] = std::exp(log_post[c] - ll_max);
   for (double& p : r.posterior) p /= z;
   r.best_cell = static_cast<std::size_t>(std::max_element(r.log_likelihood.begin(), r.log_likelihood.end()) -
                                          r.log_likelihood.begin());
@@ -626,6 +639,7 @@ void fill_posterior_and_estimates(InversionResult& r) {
   r.pga_estimate_g = estimate(r.pga_g, r.marginal_pga, r.pga_g[r.best_cell / nf]);
   r.freq_estimate_hz = estimate(r.freq_hz, r.marginal_freq, r.freq_hz[r.best_cell % nf]);
   for (ObjectReport& rep : r.objects) rep.probability_at_best = rep.probability[r.best_cell];
+  fill_likelihood_estimates(r);  // the objects' own evidence and the ridge (evidence.hpp)
 }
 
 void detail::assess_objects(InversionResult& r, const std::vector<MatchTable>& bins,
@@ -756,7 +770,8 @@ std::string inversion_summary(const InversionResult& r) {
     s += fmt::format("; not explained by this answer (posterior-predictive P below {}): {}", kMisfitProbability,
                      list_text(misfits));
   }
-  return s + "." + three_component_summary(r);  // empty for the one-component model
+  // evidence.hpp: the objects alone when they differ from the posterior; what to look for next.
+  return s + likelihood_summary_clause(r) + "." + three_component_summary(r) + next_objects_summary_clause(r);
 }
 
 std::vector<std::string> inversion_notes(const InversionResult& r, const MatchTable& m) {
@@ -782,6 +797,11 @@ std::vector<std::string> inversion_notes(const InversionResult& r, const MatchTa
   if (!r.freq_estimate_hz.ci95_low || !r.freq_estimate_hz.ci95_high) {
     notes.push_back("The predominant frequency is not constrained at one or both ends of the grid by these "
                     "observations.");
+    if (!r.pga_given_freq.empty()) {
+      notes.push_back("If the predominant frequency is known from elsewhere (a nearby record's spectrum, the event's "
+                      "size), read the PGA the objects need at it off pga_given_freq (JSON) or the ridge in the "
+                      "report's Figure 1.");
+    }
   }
   std::vector<std::string> misfits;
   for (const ObjectReport& rep : r.objects) {
@@ -979,6 +999,10 @@ std::vector<InversionResult> invert_sites(const std::vector<Site>& sites, const 
     detail::SiteRuns runs = three ? detail::simulate_site_3c(site, st, pga_g, *three, options)
                                   : detail::simulate_site(site, st, pga_g, *one, options);
     out.push_back(detail::infer_site(site, pga_g, freq_hz, measured, std::move(runs)));
+    // What to look for next (evidence.hpp): one component only (the catalogue is run on the family's motions).
+    if (one && options.next_objects && !site.objects.empty()) {
+      out.back().next_objects = suggest_next_objects(out.back(), st, *one, options);
+    }
     const auto now = std::chrono::steady_clock::now();
     out.back().seconds = std::chrono::duration<double>(now - start).count();
     start = now;  // the family's time is counted in the first site's

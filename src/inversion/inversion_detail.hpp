@@ -29,6 +29,11 @@ namespace topple::detail {
 /// contradictions (a lower threshold above an upper one).
 void settle_static_bounds(StaticBounds& b);
 
+/// The marginal estimate of an axis (inversion.hpp, item 3): median and equal-tailed intervals from a marginal over
+/// the log cells of `values`, `best` the axis value of the maximum-likelihood cell.
+[[nodiscard]] Estimate marginal_estimate(const std::vector<double>& values, const std::vector<double>& marginal,
+                                         double best);
+
 /// The 3 x 3 neighbourhood of a cell with weights 4/2/1 (inversion.hpp, item 2).
 [[nodiscard]] std::vector<std::pair<std::size_t, double>> neighbourhood(std::size_t c, std::size_t np,
                                                                         std::size_t nf);

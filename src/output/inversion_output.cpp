@@ -159,6 +159,39 @@ nlohmann::ordered_json inversion_json(const InversionResult& r, const Site& site
   j["best_cell"] = {{"pga_g", r.pga_g[r.best_cell / r.freq_hz.size()]}, {"freq_hz", r.freq_hz[r.best_cell % r.freq_hz.size()]}};
   j["runs"] = r.runs;
   j["seconds"] = r.seconds;
+  // Added (issue 32, evidence.hpp): the prior used, the objects' own evidence (the likelihood normalised over the
+  // grid: the posterior under the log-uniform prior), the ridge and what to look for next.
+  j["prior"] = r.prior;
+  if (!r.marginal_pga_likelihood.empty()) {
+    j["likelihood"] = {{"pga_g", estimate_json(r.pga_likelihood_g)},
+                       {"freq_hz", estimate_json(r.freq_likelihood_hz)},
+                       {"marginal_pga", r.marginal_pga_likelihood},
+                       {"marginal_freq", r.marginal_freq_likelihood}};
+  }
+  nlohmann::ordered_json ridge = nlohmann::ordered_json::array();
+  for (const PgaGivenFreq& g : r.pga_given_freq) {
+    nlohmann::ordered_json col;
+    col["freq_hz"] = g.freq_hz;
+    col["likelihood_share"] = g.likelihood_share;
+    col["median_g"] = g.pga_g ? nlohmann::ordered_json(g.pga_g->median) : nlohmann::ordered_json(nullptr);
+    col["ci68_g"] = g.pga_g ? nlohmann::ordered_json{opt(g.pga_g->ci68_low), opt(g.pga_g->ci68_high)}
+                            : nlohmann::ordered_json(nullptr);
+    col["ci95_g"] = g.pga_g ? nlohmann::ordered_json{opt(g.pga_g->ci95_low), opt(g.pga_g->ci95_high)}
+                            : nlohmann::ordered_json(nullptr);
+    ridge.push_back(col);
+  }
+  j["pga_given_freq"] = ridge;
+  j["pga_given_freq_rule"] = fmt::format(
+      "per frequency column, the likelihood of that column normalised over PGA (no prior): its median and 68 % / "
+      "95 % intervals (null ends: the grid's edge cells); null where the column's likelihood mass is below {:g} of "
+      "the largest column's",
+      kRidgeNegligibleShare);
+  nlohmann::ordered_json next = nlohmann::ordered_json::array();
+  for (const NextObject& n : r.next_objects) {
+    next.push_back({{"object", n.object}, {"description", n.description}, {"look_for", n.look_for},
+                    {"bits_pga", n.bits_pga}, {"bits_freq", n.bits_freq}});
+  }
+  j["next_objects"] = next;
   if (r.three_component) j["three_component"] = three_component_json(*r.three_component, r);
   return j;
 }

@@ -15,6 +15,7 @@
 #include "topple/core/output_file.hpp"
 #include "topple/output/inversion_output.hpp"
 #include "topple/output/provenance.hpp"
+#include "topple/inversion/evidence.hpp"
 #include "topple/inversion/inversion_3c.hpp"
 #include "topple/inversion/matching.hpp"
 #include "topple/solvers/rocking.hpp"
@@ -303,6 +304,29 @@ plot::MapFigure likelihood_map_figure(const InversionResult& r, const Site& site
     ObjectLine line = object_line(r, o);
     if (line.line) m.overlay.push_back(std::move(*line.line));
   }
+  // The ridge (evidence.hpp, item 2): the PGA the objects need at each frequency, median and 68 % band, where the
+  // column's likelihood is not negligible; a gap where an end is off the grid.
+  {
+    // Magenta: a colour no object line, threshold or region uses (the objects' palette is Okabe-Ito's).
+    plot::Series mid{"PGA the objects need at each frequency (likelihood median)", {}, {}, "lines", "#e7298a", 3.5};
+    plot::Series lo{"its 68 % band", {}, {}, "lines dt 4", "#e7298a", 2.0};
+    plot::Series hi{"", {}, {}, "lines dt 4", "#e7298a", 2.0};
+    for (const PgaGivenFreq& g : r.pga_given_freq) {
+      const bool on = g.pga_g.has_value();
+      mid.x.push_back(on ? g.pga_g->median : kNaN);
+      mid.y.push_back(g.freq_hz);
+      lo.x.push_back(on && g.pga_g->ci68_low ? *g.pga_g->ci68_low : kNaN);
+      lo.y.push_back(g.freq_hz);
+      hi.x.push_back(on && g.pga_g->ci68_high ? *g.pga_g->ci68_high : kNaN);
+      hi.y.push_back(g.freq_hz);
+    }
+    const auto drawn = [](const plot::Series& se) {
+      return std::any_of(se.x.begin(), se.x.end(), [](double v) { return std::isfinite(v); });
+    };
+    if (drawn(mid)) m.overlay.push_back(std::move(mid));
+    if (drawn(lo)) m.overlay.push_back(std::move(lo));
+    if (drawn(hi)) m.overlay.push_back(std::move(hi));
+  }
   m.overlay.push_back({"median (PGA, frequency)", {r.pga_estimate_g.median}, {r.freq_estimate_hz.median}, "points pt 3 ps 2.2", "#000000", 2.0});
   m.overlay.push_back({"maximum-likelihood cell", {r.pga_estimate_g.best}, {r.freq_estimate_hz.best}, "points pt 6 ps 1.6", "#000000", 1.5});
   m.width_px = 1150;
@@ -316,13 +340,27 @@ plot::Figure marginal_figure(const InversionResult& r, bool pga) {
   const Estimate& e = pga ? r.pga_estimate_g : r.freq_estimate_hz;
   const char* unit = pga ? "g" : "Hz";
   plot::Figure f;
-  f.title = pga ? "Marginal posterior of PGA" : "Marginal posterior of the predominant frequency";
+  f.title = pga ? "PGA: prior, the objects' likelihood and the posterior"
+                : "Predominant frequency: prior, the objects' likelihood and the posterior";
   f.xlabel = pga ? "PGA (g)" : "predominant frequency (Hz)";
   plot::Panel panel;
-  panel.ylabel = "posterior probability per grid cell";
+  panel.ylabel = "probability per grid cell";
   panel.log_x = true;
+  // Prior and likelihood marginals beside the posterior's (evidence.hpp, item 1): what the prior adds is the
+  // difference between the two last curves.
+  const std::size_t np = r.pga_g.size(), nf = r.freq_hz.size();
+  const std::vector<double> prior = prior_cells(r);
+  const std::vector<double> prior_marginal = pga ? marginal_over_pga(prior, np, nf) : marginal_over_freq(prior, np, nf);
+  panel.series.push_back({fmt::format("prior ({})", r.prior), x, prior_marginal, "lines dt 2", "#7f7f7f", 2.0});
+  const auto& lik = pga ? r.marginal_pga_likelihood : r.marginal_freq_likelihood;
+  if (lik.size() == x.size()) {
+    // Wide and light under the posterior: under the log-uniform prior the two are one curve, and this one shows as
+    // its halo.
+    panel.series.push_back({"likelihood (the objects alone)", x, lik, "lines", "#fdae6b", 6.0});
+  }
   panel.series.push_back({"posterior", x, p, "linespoints pt 7 ps 0.6", "#2171b5", 2.0});
-  const double top = *std::max_element(p.begin(), p.end());
+  double top = *std::max_element(p.begin(), p.end());
+  for (const auto& se : panel.series) top = std::max(top, *std::max_element(se.y.begin(), se.y.end()));
   panel.series.push_back({fmt::format("median {:.3g} {}", e.median, unit), {e.median, e.median}, {0.0, top}, "lines", "#000000", 2.0});
   if (e.ci68_low && e.ci68_high) {
     panel.series.push_back({"68 % interval", {*e.ci68_low, *e.ci68_high}, {0.5 * top, 0.5 * top}, "linespoints pt 2", "#e6550d", 3.0});
@@ -531,6 +569,20 @@ void estimate_html(std::ostringstream& h, const InversionResult& r) {
   h << fmt::format("<tr><td>predominant frequency</td><td class=\"num\">{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
                    median_html(freq, r.freq_hz, "Hz"), interval_html(freq.ci68_low, freq.ci68_high, "Hz"),
                    interval_html(freq.ci95_low, freq.ci95_high, "Hz"), best_html(freq, "Hz"));
+  if (!r.marginal_pga_likelihood.empty()) {
+    // The objects alone (evidence.hpp, item 1): the likelihood normalised over the grid, no prior; the same numbers
+    // as the rows above under the log-uniform prior.
+    const Estimate& lp = r.pga_likelihood_g;
+    const Estimate& lf = r.freq_likelihood_hz;
+    h << fmt::format("<tr id=\"likelihood-pga\"><td>PGA, the objects alone (likelihood, no prior)</td><td class=\"num\">"
+                     "{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
+                     median_html(lp, r.pga_g, "g"), interval_html(lp.ci68_low, lp.ci68_high, "g"),
+                     interval_html(lp.ci95_low, lp.ci95_high, "g"), best_html(lp, "g"));
+    h << fmt::format("<tr id=\"likelihood-freq\"><td>predominant frequency, the objects alone</td><td class=\"num\">"
+                     "{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
+                     median_html(lf, r.freq_hz, "Hz"), interval_html(lf.ci68_low, lf.ci68_high, "Hz"),
+                     interval_html(lf.ci95_low, lf.ci95_high, "Hz"), best_html(lf, "Hz"));
+  }
   if (r.three_component) {  // components = 3 (inversion_3c.hpp): the direction of strongest shaking, an axis
     const DirectionEstimate& d = r.three_component->direction;
     const auto arc = [](const DirectionArc& a) {
@@ -607,17 +659,23 @@ void figures_html(std::ostringstream& h, const std::filesystem::path& dir, const
        "posterior divided by its maximum). Black lines: the 68 % (solid) and 95 % (dashed) credible regions, the "
        "smallest sets of cells holding that probability. Dotted vertical lines: the static lower and upper "
        "thresholds (hard or soft, see above). Coloured lines: for each object the line where its observation has "
-       "probability 0.5; the legend says on which side it fits. Cross: the medians; circle: the maximum-likelihood "
-       "cell.";
+       "probability 0.5; the legend says on which side it fits. Magenta: the ridge, the PGA the objects need at each "
+       "frequency (the median of that frequency's likelihood over PGA, no prior; dashed: its 68 % band; absent where "
+       "that frequency's likelihood is negligible): if the frequency is known from elsewhere, read the PGA off it "
+       "(JSON: pga_given_freq). Cross: the medians; circle: the maximum-likelihood cell.";
   if (!undrawn.empty()) h << " Not drawn:" << undrawn;
   h << "</figcaption></figure>\n";
   h << "<figure id=\"marginal-pga\">" << inline_svg(dir / "marginal_pga.svg")
-    << "<figcaption>Figure 2. Marginal posterior of PGA: the probability of each grid cell (the posterior summed over "
-       "frequency), with the median and the 68 % and 95 % intervals (drawn where both ends are on the "
-       "grid).</figcaption></figure>\n";
+    << "<figcaption>Figure 2. PGA: the marginal posterior (blue; the probability of each grid cell, the posterior "
+       "summed over frequency) beside the prior's marginal (grey, dashed) and the objects' own evidence (wide light orange: "
+       "the likelihood normalised over the grid, i.e. the posterior under the log-uniform prior, under which the two "
+       "curves coincide), with the posterior's "
+       "median and its 68 % and 95 % intervals (drawn where both ends are on the grid). Where orange and blue differ, "
+       "the prior, not the objects, made the difference.</figcaption></figure>\n";
   h << "<figure id=\"marginal-freq\">" << inline_svg(dir / "marginal_freq.svg")
-    << "<figcaption>Figure 3. Marginal posterior of the predominant frequency (the posterior summed over PGA), with "
-       "the median and the 68 % and 95 % intervals.</figcaption></figure>\n";
+    << "<figcaption>Figure 3. Predominant frequency: the marginal posterior (the posterior summed over PGA), the "
+       "prior's and the likelihood's, as in Figure 2, with the posterior's median and the 68 % and 95 % "
+       "intervals.</figcaption></figure>\n";
   if (r.three_component) {
     h << "<figure id=\"direction-figure\">" << inline_svg(dir / "direction.svg")
       << "<figcaption>Figure 3b. Posterior of the direction of strongest shaking, the azimuth of the major axis of "
@@ -627,6 +685,26 @@ void figures_html(std::ostringstream& h, const std::filesystem::path& dir, const
          "triangles: observed sliding directions. The direction is unconstrained when the 95 % arc spans more "
          "than 120&deg;.</figcaption></figure>\n";
   }
+}
+
+/// What to look for next (evidence.hpp, item 3): the catalogue ranked by expected information gain.
+void next_objects_html(std::ostringstream& h, const InversionResult& r) {
+  if (r.next_objects.empty()) return;
+  h << "<h2 id=\"next\">What to look for next</h2>\n<p>Before leaving the site: the expected information (bits) that "
+       "seeing what happened to one more object of each kind would add to the PGA and to the frequency, for the "
+       "answer above (Lindley 1956: the entropy of the marginal now, less its expected entropy after the "
+       "observation; 1 bit halves the uncertainty). Each object's outcome was simulated under the inversion's own motions "
+       "(the first ten of each cell, pooled over neighbouring cells) in the cells that hold 99.9 % of the posterior, "
+       "on a rigid support (amplification 1).</p>\n"
+       "<table id=\"next-objects\"><tr><th>object</th><th>size and base</th><th>look for</th><th>bits on PGA</th>"
+       "<th>bits on frequency</th></tr>\n";
+  for (const NextObject& n : r.next_objects) {
+    h << fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td class=\"num\">{:.2f}</td><td class=\"num\">{:.2f}"
+                     "</td></tr>\n",
+                     html_escape(n.object), html_escape(n.description), html_escape(n.look_for), n.bits_pga,
+                     n.bits_freq);
+  }
+  h << "</table>\n";
 }
 
 /// The observations and how well the answer explains each, and Figure 4.
@@ -738,6 +816,7 @@ void write_report(const std::filesystem::path& dir, const Survey& survey, const 
   estimate_html(h, r);
   thresholds_html(h, r);
   figures_html(h, dir, r);
+  next_objects_html(h, r);
   observations_html(h, dir, site, r);
   method_html(h, survey.inversion, site, r);
   provenance_html(h, provenance, survey.inversion, r);

@@ -150,11 +150,21 @@ void fields(IO& io, ThreeComponentResult& t) {
       io(t.vertical_frequency_ratio), io(t.slid_direction_kappa), io(t.threshold_vertical_ratio);
 }
 template <class IO>
+void fields(IO& io, PgaGivenFreq& g) {
+  io(g.freq_hz), io(g.likelihood_share), io(g.pga_g);
+}
+template <class IO>
+void fields(IO& io, NextObject& n) {
+  io(n.object), io(n.description), io(n.look_for), io(n.bits_pga), io(n.bits_freq);
+}
+template <class IO>
 void fields(IO& io, InversionResult& r) {
   io(r.site), io(r.pga_g), io(r.freq_hz), io(r.measured_freq_hz), io(r.log_likelihood), io(r.posterior),
       io(r.marginal_pga), io(r.marginal_freq);
   io(r.best_cell), io(r.runs), io(r.pga_estimate_g), io(r.freq_estimate_hz), io(r.bounds), io(r.objects), io(r.notes), io(r.seconds);
   io(r.three_component), io(r.rotd100_bounds);  // components = 3 (inversion_3c.hpp)
+  io(r.log_prior), io(r.prior), io(r.marginal_pga_likelihood), io(r.marginal_freq_likelihood), io(r.pga_likelihood_g),
+      io(r.freq_likelihood_hz), io(r.pga_given_freq), io(r.next_objects);  // the objects' own evidence (evidence.hpp)
 }
 
 // The first word of a rank's broadcast: ok, or how it failed (its exception's kind; the message follows).

@@ -13,6 +13,7 @@
 
 #include "topple/core/error.hpp"
 #include "topple/solvers/flexible.hpp"
+#include "topple/inversion/evidence.hpp"
 #include "topple/inversion/inversion.hpp"
 #include "topple/io/read.hpp"
 #include "topple/io/survey_file.hpp"
@@ -824,6 +825,241 @@ TEST(InversionMap, BestCellFigureSaysWhenOneMotionContradictsTheObservation) {
   ASSERT_EQ(fig.panels.size(), 2u);  // ground and rocking
   ASSERT_EQ(fig.panels[1].series.size(), 1u);
   EXPECT_EQ(fig.panels[1].series[0].label, "pole (falls in this one motion; observed standing)");
+}
+
+// ---- The objects' own evidence, the ridge, what to look for next (evidence.hpp, issue 32) ----
+
+/// A hand-made result on the given axes with the given log-likelihood (index i * nf + j) and no objects.
+InversionResult hand_result(std::vector<double> pga, std::vector<double> freq, std::vector<double> ll) {
+  InversionResult r;
+  r.site = "hand";
+  r.pga_g = std::move(pga);
+  r.freq_hz = std::move(freq);
+  r.log_likelihood = std::move(ll);
+  return r;
+}
+
+// Under the log-uniform prior (log_prior empty) the objects' own estimate is the posterior's, to the bit.
+TEST(Evidence, LikelihoodEstimateEqualsThePosteriorsUnderTheUniformPrior) {
+  const std::vector<double> pga = log_spaced(0.05, 2.0, 12), freq = log_spaced(0.5, 12.0, 8);
+  std::vector<double> ll;
+  for (std::size_t i = 0; i < pga.size(); ++i) {
+    for (std::size_t j = 0; j < freq.size(); ++j) {
+      const double x = std::log(pga[i] / 0.3), y = std::log(freq[j] / 3.0);
+      ll.push_back(-2.0 * x * x - 0.7 * y * y + 0.9 * x * y);
+    }
+  }
+  InversionResult r = hand_result(pga, freq, ll);
+  fill_posterior_and_estimates(r);
+  EXPECT_EQ(r.prior, "log-uniform");
+  EXPECT_EQ(r.marginal_pga_likelihood, r.marginal_pga);
+  EXPECT_EQ(r.marginal_freq_likelihood, r.marginal_freq);
+  for (const auto& [a, b] : {std::pair{&r.pga_likelihood_g, &r.pga_estimate_g},
+                             std::pair{&r.freq_likelihood_hz, &r.freq_estimate_hz}}) {
+    EXPECT_EQ(a->median, b->median);
+    EXPECT_EQ(a->best, b->best);
+    EXPECT_EQ(a->ci68_low, b->ci68_low);
+    EXPECT_EQ(a->ci68_high, b->ci68_high);
+    EXPECT_EQ(a->ci95_low, b->ci95_low);
+    EXPECT_EQ(a->ci95_high, b->ci95_high);
+  }
+  EXPECT_EQ(likelihood_summary_clause(r), "");  // equal: the summary says nothing more
+}
+
+// A non-uniform prior moves the posterior as the prior says and leaves the objects' estimate alone. 2 x 2 grid,
+// PGA {0.1, 1} g, frequency {1, 4} Hz; likelihood 1:2:3:4 and prior 4:3:2:1 (index i * 2 + j): posterior 4:6:6:4/20,
+// marginals 1/2, 1/2 on both axes, so its medians sit on the cell edge: sqrt(0.1 x 1) g and sqrt(1 x 4) = 2 Hz. The
+// likelihood's marginals are 0.3, 0.7 (PGA) and 0.4, 0.6 (frequency); the median spreads the second cell's mass
+// uniformly in log over [ln sqrt(0.1), ln sqrt(10)] and [ln 2, ln 8]: 10^(-1/2 + 0.2/0.7) g and 2 x 4^(0.1/0.6) Hz.
+TEST(Evidence, NonUniformPriorMovesThePosteriorAndNotTheObjectsEstimate) {
+  InversionResult r = hand_result({0.1, 1.0}, {1.0, 4.0}, {std::log(1.0), std::log(2.0), std::log(3.0), std::log(4.0)});
+  r.log_prior = {std::log(4.0), std::log(3.0), std::log(2.0), std::log(1.0)};
+  r.prior = "hand-made";
+  fill_posterior_and_estimates(r);
+  const std::vector<double> post{0.2, 0.3, 0.3, 0.2};
+  for (std::size_t c = 0; c < 4; ++c) EXPECT_NEAR(r.posterior[c], post[c], 1e-15);
+  EXPECT_NEAR(r.marginal_pga[0], 0.5, 1e-15);
+  EXPECT_NEAR(r.marginal_freq[0], 0.5, 1e-15);
+  EXPECT_NEAR(r.marginal_pga_likelihood[0], 0.3, 1e-15);
+  EXPECT_NEAR(r.marginal_freq_likelihood[0], 0.4, 1e-15);
+  EXPECT_NEAR(r.pga_estimate_g.median, std::sqrt(0.1), 1e-12);
+  EXPECT_NEAR(r.freq_estimate_hz.median, 2.0, 1e-12);
+  EXPECT_NEAR(r.pga_likelihood_g.median, std::pow(10.0, -0.5 + 0.2 / 0.7), 1e-12);
+  EXPECT_NEAR(r.freq_likelihood_hz.median, 2.0 * std::pow(4.0, 0.1 / 0.6), 1e-12);
+  // The prior's own marginals (the report's grey curve): 7/10, 3/10 over PGA; 6/10, 4/10 over frequency.
+  const std::vector<double> prior = prior_cells(r);
+  EXPECT_NEAR(marginal_over_pga(prior, 2, 2)[0], 0.7, 1e-15);
+  EXPECT_NEAR(marginal_over_freq(prior, 2, 2)[0], 0.6, 1e-15);
+  // They differ, so the summary says what the objects alone give, naming the prior.
+  const std::string clause = likelihood_summary_clause(r);
+  EXPECT_NE(clause.find("the objects alone"), std::string::npos) << clause;
+  EXPECT_NE(clause.find("hand-made prior"), std::string::npos) << clause;
+  EXPECT_NE(inversion_summary(r).find(clause), std::string::npos);
+  r.log_prior = {0.0, 0.0, 0.0};
+  EXPECT_THROW(fill_posterior_and_estimates(r), std::invalid_argument);
+}
+
+// The ridge: log L = -((ln pga - a - b ln f) / s)^2 - 2 (ln f - ln 2)^2. In column f the likelihood over ln PGA is
+// normal with mean a + b ln f and sigma s / sqrt 2, so the PGA the objects need is exp(a + b ln f) (median) and
+// exp(a + b ln f -+ 0.99446 s / sqrt 2) (16 % and 84 %). The cells are 0.058 wide in ln PGA; the quantiles,
+// interpolated uniformly in log within a cell, are within 1.5 % of the continuous ones. The column at 16 Hz holds
+// exp(-2 ln(8)^2) = 1.7e-4 of the 2 Hz column's mass (below 1e-3: none); at 8 Hz 0.021 (kept).
+TEST(Evidence, PgaGivenFreqRecoversAKnownRidge) {
+  const double a = std::log(0.3), b = 0.5, s = 0.3;
+  const std::vector<double> pga = log_spaced(0.01, 10.0, 121), freq = log_spaced(0.5, 16.0, 6);
+  std::vector<double> ll;
+  for (const double p : pga) {
+    for (const double f : freq) {
+      const double z = (std::log(p) - a - b * std::log(f)) / s;
+      ll.push_back(-z * z - 2.0 * std::pow(std::log(f / 2.0), 2));
+    }
+  }
+  const std::vector<PgaGivenFreq> ridge = ridge_pga_given_freq(ll, pga, freq);
+  ASSERT_EQ(ridge.size(), freq.size());
+  const double z84 = 0.994458;  // Phi^-1(0.84)
+  for (std::size_t j = 0; j < freq.size(); ++j) {
+    EXPECT_DOUBLE_EQ(ridge[j].freq_hz, freq[j]);
+    EXPECT_NEAR(ridge[j].likelihood_share, std::exp(-2.0 * std::pow(std::log(freq[j] / 2.0), 2)), 1e-9) << j;
+    if (j == 5) {
+      EXPECT_FALSE(ridge[j].pga_g.has_value());  // 16 Hz: negligible
+      continue;
+    }
+    ASSERT_TRUE(ridge[j].pga_g.has_value()) << j;
+    const Estimate& e = *ridge[j].pga_g;
+    const double mu = a + b * std::log(freq[j]);
+    EXPECT_NEAR(e.median / std::exp(mu), 1.0, 0.015) << freq[j];
+    ASSERT_TRUE(e.ci68_low && e.ci68_high);
+    EXPECT_NEAR(*e.ci68_low / std::exp(mu - z84 * s / std::sqrt(2.0)), 1.0, 0.015) << freq[j];
+    EXPECT_NEAR(*e.ci68_high / std::exp(mu + z84 * s / std::sqrt(2.0)), 1.0, 0.015) << freq[j];
+  }
+  // fill_likelihood_estimates puts the same ridge in the result.
+  InversionResult r = hand_result(pga, freq, ll);
+  fill_posterior_and_estimates(r);
+  ASSERT_EQ(r.pga_given_freq.size(), freq.size());
+  EXPECT_EQ(r.pga_given_freq[2].pga_g->median, ridge[2].pga_g->median);
+}
+
+// Expected information gain on hand-made tables, 2 x 2 grid, uniform posterior (1 bit on each axis):
+// an outcome certain everywhere gives 0; one that says which PGA row gives 1 bit on PGA and 0 on frequency (and the
+// other way round); a noisy one (right with probability 0.8) gives 1 - H2(0.8) = 0.278072 bit; never negative.
+TEST(Evidence, ExpectedInformationGainOnHandMadeTables) {
+  const std::vector<double> uniform(4, 0.25);
+  const auto gain = [&](std::vector<double> y0) {
+    std::vector<double> y1(4);
+    for (std::size_t c = 0; c < 4; ++c) y1[c] = 1.0 - y0[c];
+    return expected_information_gain(uniform, 2, 2, {y0, y1});
+  };
+  const InformationGain certain = gain({1.0, 1.0, 1.0, 1.0});
+  EXPECT_NEAR(certain.bits_pga, 0.0, 1e-15);
+  EXPECT_NEAR(certain.bits_freq, 0.0, 1e-15);
+  const InformationGain rows = gain({1.0, 1.0, 0.0, 0.0});  // index i * 2 + j: y0 exactly when i = 0
+  EXPECT_NEAR(rows.bits_pga, 1.0, 1e-15);
+  EXPECT_NEAR(rows.bits_freq, 0.0, 1e-15);
+  const InformationGain columns = gain({1.0, 0.0, 1.0, 0.0});
+  EXPECT_NEAR(columns.bits_pga, 0.0, 1e-15);
+  EXPECT_NEAR(columns.bits_freq, 1.0, 1e-15);
+  const InformationGain noisy = gain({0.8, 0.8, 0.2, 0.2});
+  EXPECT_NEAR(noisy.bits_pga, 1.0 + 0.8 * std::log2(0.8) + 0.2 * std::log2(0.2), 1e-14);
+  EXPECT_NEAR(noisy.bits_pga, 0.278072, 1e-6);
+  // Three outcomes: y0 on row 0, y1 and y2 split row 1 by column: 1 bit on PGA, and on frequency
+  // H(1/2) - [1/2 H(1/2) + 1/4 x 0 + 1/4 x 0] = 1/2 bit.
+  const InformationGain three = expected_information_gain(
+      uniform, 2, 2, {{1.0, 1.0, 0.0, 0.0}, {0.0, 0.0, 1.0, 0.0}, {0.0, 0.0, 0.0, 1.0}});
+  EXPECT_NEAR(three.bits_pga, 1.0, 1e-15);
+  EXPECT_NEAR(three.bits_freq, 0.5, 1e-15);
+  // Random posteriors and tables: never negative, never above the marginal's entropy.
+  std::uint64_t state = 12345;
+  const auto next = [&state] {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<double>(state >> 11) / 9007199254740992.0;
+  };
+  for (int t = 0; t < 200; ++t) {
+    std::vector<double> post(12), y0(12), y1(12);
+    double z = 0.0;
+    for (double& p : post) z += p = next() * next();
+    for (double& p : post) p /= z;
+    for (std::size_t c = 0; c < 12; ++c) y1[c] = 1.0 - (y0[c] = t % 2 ? next() : 0.5);
+    const InformationGain g = expected_information_gain(post, 3, 4, {y0, y1});
+    EXPECT_GE(g.bits_pga, 0.0);
+    EXPECT_GE(g.bits_freq, 0.0);
+    EXPECT_LE(g.bits_pga, std::log2(3.0) + 1e-12);
+    EXPECT_LE(g.bits_freq, std::log2(4.0) + 1e-12);
+  }
+  EXPECT_THROW((void)expected_information_gain(uniform, 2, 2, {{1.0, 1.0}}), std::invalid_argument);
+}
+
+// The catalogue: every entry cites its documentation row; the rocking ones are the bodies of that row.
+TEST(Evidence, HouseholdCatalogueCitesItsRows) {
+  const auto& catalogue = household_catalogue();
+  ASSERT_GE(catalogue.size(), 10u);
+  for (const CatalogueObject& c : catalogue) {
+    EXPECT_TRUE(c.source.starts_with("docs/")) << c.name;
+    EXPECT_FALSE(c.description.empty()) << c.name;
+  }
+  EXPECT_EQ(catalogue[0].name, "wine bottle");
+  EXPECT_NEAR(catalogue[0].object.body.alpha_rad(), std::atan(0.06 / 0.30), 1e-12);  // a cylinder: tan alpha = D/h
+  EXPECT_EQ(catalogue_outcome_count(catalogue[0].object), 3u);
+  EXPECT_EQ(catalogue_outcome_count(catalogue.back().object), 2u);
+  // One run each way: a tall slender bottle under 1 g at 2 Hz falls or rocks; a glass (mu 0.9-1.0) under 0.05 g
+  // does not slide (|a| < mu g throughout: Coulomb).
+  const GroundMotion m = family_motions(small_grid(1), 2.0).front();
+  const DrawnParameters p = nominal_parameters(catalogue[0].object);
+  EXPECT_LE(catalogue_outcome(catalogue[0].object, p, m.scaled(kStandardGravity), kStandardGravity), 1u);
+  EXPECT_EQ(catalogue_outcome(catalogue.back().object, nominal_parameters(catalogue.back().object),
+                              m.scaled(0.05 * kStandardGravity), kStandardGravity),
+            1u);
+}
+
+// The summary's sentence on what to look for next: the largest gain on each axis, one object named once when it is
+// the best on both, nothing below 0.05 bit.
+TEST(Evidence, NextObjectsSentence) {
+  InversionResult r;
+  EXPECT_EQ(next_objects_summary_clause(r), "");
+  r.next_objects = {{"bookend", "block", "whether it fell", 0.30, 0.01}, {"wine bottle", "cylinder", "whether it fell", 0.02, 0.40}};
+  EXPECT_EQ(next_objects_summary_clause(r),
+            " To narrow the frequency, look for a wine bottle (cylinder) and whether it fell (0.40 bit); to narrow the "
+            "PGA, look for a bookend (block) and whether it fell (0.30 bit).");
+  r.next_objects = {{"bookend", "block", "whether it fell", 0.30, 0.20}};
+  EXPECT_EQ(next_objects_summary_clause(r),
+            " To narrow both the frequency (0.20 bit) and the PGA (0.30 bit), look for a bookend (block) and whether it "
+            "fell.");
+  r.next_objects = {{"bookend", "block", "whether it fell", 0.30, 0.04}};
+  EXPECT_EQ(next_objects_summary_clause(r), " To narrow the PGA, look for a bookend (block) and whether it fell (0.30 bit).");
+  r.next_objects = {{"bookend", "block", "whether it fell", 0.04, 0.04}};
+  EXPECT_EQ(next_objects_summary_clause(r), "");
+}
+
+// The pipeline: every catalogue object ranked, by decreasing total bits, each finite and within the marginals'
+// entropies; with next_objects off, none; the ridge has a point per column.
+TEST(Evidence, InvertSiteRanksTheCatalogue) {
+  Site site;
+  site.name = "evidence";
+  site.objects.push_back(block("fell", 0.08, 0.5, {0.5, 0.5}, Outcome::overturned));
+  site.objects.push_back(block("stuck", 0.3, 0.3, {0.5, 0.6}, Outcome::not_slid));
+  InversionSettings st = small_grid(4);
+  const InversionResult r = invert_site(site, st);
+  ASSERT_EQ(r.next_objects.size(), household_catalogue().size());
+  ASSERT_EQ(r.pga_given_freq.size(), r.freq_hz.size());
+  const auto entropy = [](const std::vector<double>& p) {
+    double h = 0.0;
+    for (const double v : p) h -= v > 0.0 ? v * std::log2(v) : 0.0;
+    return h;
+  };
+  for (std::size_t x = 0; x < r.next_objects.size(); ++x) {
+    const NextObject& n = r.next_objects[x];
+    EXPECT_TRUE(std::isfinite(n.bits_pga) && std::isfinite(n.bits_freq)) << n.object;
+    EXPECT_GE(n.bits_pga, 0.0);
+    EXPECT_GE(n.bits_freq, 0.0);
+    EXPECT_LE(n.bits_pga, entropy(r.marginal_pga) + 0.01) << n.object;  // 0.01: the 99.9 % truncation
+    EXPECT_LE(n.bits_freq, entropy(r.marginal_freq) + 0.01) << n.object;
+    if (x > 0) {
+      EXPECT_LE(n.bits_pga + n.bits_freq, r.next_objects[x - 1].bits_pga + r.next_objects[x - 1].bits_freq);
+    }
+  }
+  EXPECT_GT(r.next_objects.front().bits_pga + r.next_objects.front().bits_freq, 0.05);
+  InversionOptions off;
+  off.next_objects = false;
+  EXPECT_TRUE(invert_site(site, st, off).next_objects.empty());
 }
 
 }  // namespace

@@ -307,7 +307,10 @@ std::vector<CaseScore> run(const std::vector<RecordCase>& records, const std::ve
                            const std::filesystem::path& write_dir) {
   const Prepared p = prepare(records, pga_g, options, write_dir);
   if (p.sites.empty()) return {};
-  const std::vector<InversionResult> results = invert_sites(p.sites, p.settings, inversion_options);
+  // The recovery scores the estimates: the ranking of what to look for next (evidence.hpp) is not run.
+  InversionOptions estimates_only = inversion_options;
+  estimates_only.next_objects = false;
+  const std::vector<InversionResult> results = invert_sites(p.sites, p.settings, estimates_only);
   std::vector<CaseScore> scores;
   for (std::size_t i = 0; i < p.cases.size(); ++i) scores.push_back(score(p.cases[i], results[i], p.sites[i]));
   return scores;

@@ -105,6 +105,29 @@ struct ObjectReport {
   double constraint_bits = 0.0;       ///< KL divergence of the posterior from the one without this object, bits
 };
 
+/// The PGA that the objects need at one frequency column (the ridge, docs/method.md "The objects' own evidence"): the
+/// likelihood of that column alone, normalised over the PGA axis (no prior), its median and 68 % interval (g). None
+/// where the column holds a negligible share of the likelihood (kRidgeNegligibleShare of the largest column's).
+struct PgaGivenFreq {
+  double freq_hz = 0.0;              ///< the column, Hz
+  double likelihood_share = 0.0;     ///< the column's likelihood mass / the largest column's (dimensionless)
+  std::optional<Estimate> pga_g;     ///< median and 68 % / 95 % interval ends (g); none: negligible column
+};
+
+/// A column whose likelihood mass is below this share of the largest column's gives no ridge point (dimensionless):
+/// the objects say nothing about PGA there beyond "not this frequency".
+inline constexpr double kRidgeNegligibleShare = 1e-3;
+
+/// One more object worth looking for (evidence.hpp, suggest_next_objects): the expected information gain of seeing
+/// what happened to a catalogue object, on PGA and on frequency (bits; docs/method.md, "What to look for next").
+struct NextObject {
+  std::string object;       ///< the catalogue's name, e.g. "wine bottle"
+  std::string description;  ///< its size and base, e.g. "cylinder 6 cm x 30 cm on wood (mu 0.25-0.5)"
+  std::string look_for;     ///< what to check: "whether it fell or rocked" / "whether it slid"
+  double bits_pga = 0.0;    ///< EIG on the PGA marginal, bits (>= 0)
+  double bits_freq = 0.0;   ///< EIG on the frequency marginal, bits (>= 0)
+};
+
 struct InversionResult {
   std::string site;
   std::vector<double> pga_g;     ///< grid rows, g
@@ -128,12 +151,31 @@ struct InversionResult {
   /// components = 3: the static thresholds on RotD100 PGA, the axis on which they hold (inversion_3c.hpp, item 6);
   /// `bounds` then holds their exact, weaker consequence on RotD50, the PGA axis of the estimates. None: one component.
   std::optional<StaticBounds> rotd100_bounds;
+  /// The prior's log density per cell (natural log, up to a constant; same indexing as log_likelihood); empty: the
+  /// log-uniform prior, the same for every cell. `prior` names it ("log-uniform").
+  std::vector<double> log_prior;
+  std::string prior = "log-uniform";
+  /// The objects' own evidence (docs/method.md, "The objects' own evidence"): the likelihood normalised over the grid
+  /// (the posterior under the log-uniform prior), its marginals (each sums to 1) and estimates (g, Hz). Equal to the
+  /// posterior's when log_prior is empty.
+  std::vector<double> marginal_pga_likelihood;
+  std::vector<double> marginal_freq_likelihood;
+  Estimate pga_likelihood_g;
+  Estimate freq_likelihood_hz;
+  /// The ridge: per frequency column, the PGA the objects need there (PgaGivenFreq).
+  std::vector<PgaGivenFreq> pga_given_freq;
+  /// What to look for next, ranked by bits_pga + bits_freq (evidence.hpp); empty when not computed (components = 3,
+  /// or InversionOptions::next_objects false).
+  std::vector<NextObject> next_objects;
 };
 
 struct InversionOptions {
   int threads = 0;  ///< worker threads, >= 0 (0: all cores)
   /// Runs done / to do of the simulation step (progress.hpp), per site; empty: none.
   ProgressCallback progress{};
+  /// Rank the household catalogue by the information one more observation would add (evidence.hpp); it costs runs
+  /// of the catalogue objects in the posterior's cells (CLI: --no-next-objects turns it off).
+  bool next_objects = true;
 };
 
 /// Checks options before any work: InputError naming "--threads" for a negative thread count.
