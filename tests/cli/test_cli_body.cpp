@@ -1,6 +1,10 @@
 // `topple body MESH --azimuth DEG`: the text and JSON outputs against closed forms, --unit and --density, and exit
 // status 2 with the file named on bad meshes and options.
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -241,6 +245,50 @@ TEST(CliBody, BadPoseOptionsExitTwoNamingTheOption) {
     EXPECT_EQ(r.exit_code, 2) << opt << ": " << r.err;
     EXPECT_NE(r.err.find(name), std::string::npos) << opt << ": " << r.err;
   }
+}
+
+TEST(CliBody, ScannedRockExampleGoesFromMeshToFragility) {
+  // examples/scanned_rock.sh (README): mesh -> faces -> body at rest -> records -> fragility surface, exit 0. The
+  // example rock (examples/mesh/make_rock.py) is built on a flat base at z = 0, so it rests on that face untilted; no
+  // record may overturn it below its static uplift threshold min(b1, b2) / h in the plane (Housner 1963: no rocking
+  // while |a| <= g b / h), and the 0.1 g records (below every face's b/h in that plane) leave it standing.
+  TempDir dir;
+  const std::string cmd = std::string("TOPPLE='") + TOPPLE_CLI_PATH + "' '" + TOPPLE_SOURCE_DIR +
+                          "/examples/scanned_rock.sh' '" + dir.path().string() + "' 2>&1";
+  std::FILE* pipe = popen(cmd.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string out;
+  char buf[4096];
+  while (std::size_t n = std::fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
+  ASSERT_EQ(pclose(pipe), 0) << out;
+  EXPECT_NE(out.find("fragility over 40 records as recorded"), std::string::npos) << out;
+  const nlohmann::json rock = nlohmann::json::parse(test::slurp(dir.path() / "rock.json"));
+  EXPECT_EQ(rock["pose"]["method"], "rest");
+  EXPECT_NEAR(rock["pose"]["tilt_deg"].get<double>(), 0.0, 1e-9);
+  const double uplift_g =
+      std::min(rock["b1_m"].get<double>(), rock["b2_m"].get<double>()) / rock["h_m"].get<double>();
+  ASSERT_GT(uplift_g, 0.1);
+  const std::string csv = test::slurp(dir.path() / "fragility.csv");
+  std::istringstream lines(csv);
+  std::string line;
+  std::getline(lines, line);
+  ASSERT_EQ(line, "motion,pga_g,pgv_m_s,pgv_over_pga_s,overturn_failed,overturn_probability");
+  int rows = 0, overturned = 0;
+  while (std::getline(lines, line)) {
+    std::vector<std::string> f;
+    std::istringstream fields(line);
+    for (std::string x; std::getline(fields, x, ',');) f.push_back(x);
+    ASSERT_EQ(f.size(), 6U) << line;
+    ++rows;
+    if (f[4] == "1") {
+      ++overturned;
+      EXPECT_GT(std::stod(f[1]), uplift_g) << line;
+    }
+  }
+  EXPECT_EQ(rows, 40);
+  EXPECT_GT(overturned, 0);
+  EXPECT_LT(overturned, 40);
+  EXPECT_TRUE(std::filesystem::is_regular_file(dir.path() / "fragility.png"));
 }
 
 }  // namespace
