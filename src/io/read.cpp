@@ -678,10 +678,7 @@ PlainUnits plain_units(const Text& text, PlainData& d, const ReadOptions& option
               "the acceleration column must be named accel/acc/acceleration with its unit (e.g. 'accel_g'), or "
               "chosen with --columns");
   }
-  if (d.columns == 2) {
-    u.time_unit = header.columns[0].unit;
-    d.time_field = header.columns[0].name;
-  }
+  if (d.columns == 2) u.time_unit = header.columns[0].unit;
   u.accel_unit = accel_column.unit;
   d.accel_field = accel_column.name;
   return u;
@@ -714,12 +711,12 @@ double plain_accel_factor(const Text& text, const PlainData& d, const PlainUnits
 }
 
 /// The time column in seconds, checked against the limits of a ground motion (GroundMotionLimits).
-std::vector<double> plain_times_s(const Text& text, const PlainData& d, const PlainUnits& u) {
+std::vector<double> plain_times_s(const Text& text, const PlainData& d, const PlainUnits& u, bool options_chose) {
   double time_factor = 1.0;
   if (u.time_unit == "ms") {
     time_factor = 1e-3;
   } else if (!u.time_unit.empty() && u.time_unit != "s" && u.time_unit != "sec") {
-    text.fail(d.header->line, d.time_field,
+    text.fail(d.header->line, options_chose ? d.time_field : d.header->columns[0].name,
               fmt::format("unknown time unit {} (known: s, ms)", detail::quoted(u.time_unit)));
   }
   using Limits = GroundMotionLimits;
@@ -788,7 +785,7 @@ GroundMotion read_plain(const Text& text, const ReadOptions& options) {
   if (options.dt_s) {
     text.fail_file("--dt", "this file has a time column; --dt applies only to files without one");
   }
-  std::vector<double> t = plain_times_s(text, d, units);
+  std::vector<double> t = plain_times_s(text, d, units, options.columns.has_value());
   // Uniform when every interval equals the mean interval to 1e-9 relative: times printed with a few decimals
   // ("40.13", "40.14") differ from a uniform grid only by the rounding of their decimal representation.
   const double span = t.back() - t.front();
