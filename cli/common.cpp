@@ -19,9 +19,9 @@ void add_record_layout_options(CLI::App& cmd, MotionOptions& o) {
                                          "from 1 or a header name (e.g. 1,2 or \"Time (s)\",\"Table Acc (g)\"); "
                                          ",ACCEL or accel=ACCEL for no time column (then --dt); other columns "
                                          "are ignored");
-  cmd.add_option("--separator", o.separator, "Plain files: field separator: auto (from the header or first data "
-                                             "line: tab, else semicolon, else comma, else blanks), whitespace, tab, "
-                                             "comma, semicolon")
+  cmd.add_option("--separator", o.separator, "Plain files: field separator: auto (header and data each judged from "
+                                             "their first line: tab, else semicolon, else comma, else blanks), "
+                                             "whitespace, tab, comma, semicolon")
       ->capture_default_str();
   cmd.add_option("--baseline", o.baseline, "Offset removal of the record as read: none, mean (the record's mean), "
                                            "pre-event:T (mean of the first T seconds), poly:N (least-squares "

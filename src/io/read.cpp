@@ -438,8 +438,9 @@ std::string header_names(const Header& h) {
 /// when it has one name per data column, not all of them numbers (with one).
 std::optional<Header> header_from_comment(const Line& comment, std::size_t data_columns, Separator sep,
                                           bool chosen) {
-  const auto fields = split_fields(comment_body(comment.text),
-                                   sep == Separator::whitespace ? Separator::automatic : sep);
+  // The comment's own separator unless one is forced (a tab-separated header over blank-separated data).
+  const std::string_view body = comment_body(comment.text);
+  const auto fields = split_fields(body, sep == Separator::automatic ? detect_separator(body) : sep);
   if (fields.size() != data_columns) return std::nullopt;
   Header h;
   h.line = comment.number;
@@ -556,6 +557,8 @@ void choose_columns(const Text& text, PlainData& d, const ColumnChoice& choice) 
 
 PlainData scan_plain(const Text& text, const ReadOptions& options) {
   PlainData d;
+  // Automatic: the header is split by its own separator and the data by the first data line's, as before separators
+  // could be chosen ("time_s, accel_g" over "0 0.1" read then and reads now).
   Separator sep = options.separator;
   const bool chosen = options.columns.has_value();
   std::optional<Line> last_comment;
@@ -569,8 +572,8 @@ PlainData scan_plain(const Text& text, const ReadOptions& options) {
       }
       continue;
     }
-    if (sep == Separator::automatic) sep = detect_separator(s);
-    const auto fields = split_fields(s, sep);
+    const Separator line_sep = sep == Separator::automatic ? detect_separator(s) : sep;
+    const auto fields = split_fields(s, line_sep);
     if (fields.empty()) {
       text.fail(line.number, "", fmt::format("no values on the line {}", detail::quoted(s)));
     }
@@ -588,9 +591,10 @@ PlainData scan_plain(const Text& text, const ReadOptions& options) {
       continue;
     }
     if (d.columns == 0) {
+      sep = line_sep;  // the data's separator, from its first line
       d.columns = fields.size();
       d.first_data_line = line.number;
-      if (!d.header && last_comment) d.header = header_from_comment(*last_comment, d.columns, sep, chosen);
+      if (!d.header && last_comment) d.header = header_from_comment(*last_comment, d.columns, options.separator, chosen);
       if (chosen) {
         choose_columns(text, d, *options.columns);
       } else if (d.columns > 2) {

@@ -351,6 +351,11 @@ TEST(ReaderColumns, OldFilesMeanWhatTheyMeant) {
   const GroundMotion m = parse("Time (s)\tAcceleration (g)\n0\t0.1\n0.01\t-0.2\n");
   EXPECT_DOUBLE_EQ(m.pga_m_s2(), 0.2 * kStandardGravity);
   EXPECT_DOUBLE_EQ(parse("time_s;accel_g\n0;0.1\n0.01;-0.3\n").pga_m_s2(), 0.3 * kStandardGravity);
+  // The header and the data split by their own separators, as every line was before: a "name, name" header over
+  // blank-separated data, a tab-separated header (commented too) over data aligned with blanks.
+  EXPECT_DOUBLE_EQ(parse("time_s, accel_g\n0 0.1\n0.01 -0.4\n").pga_m_s2(), 0.4 * kStandardGravity);
+  EXPECT_DOUBLE_EQ(parse("Time (s)\tAcc (g)\n0  0.1\n0.01  -0.5\n").pga_m_s2(), 0.5 * kStandardGravity);
+  EXPECT_DOUBLE_EQ(parse("# Time (s)\tAcceleration (g)\n0  0.1\n0.01  -0.6\n").pga_m_s2(), 0.6 * kStandardGravity);
 }
 
 TEST(ReaderColumns, ParseColumnsGrammar) {

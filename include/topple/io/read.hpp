@@ -48,8 +48,8 @@ struct ColumnChoice {
 
 /// The separator of a plain file's fields.
 enum class Separator {
-  automatic,   ///< from the header (or the first data line): tab if it holds one, else semicolon, else comma, else
-               ///< blanks
+  automatic,   ///< the header by its own content, the data by the first data line's: tab if it holds one, else
+               ///< semicolon, else comma, else blanks
   whitespace,  ///< runs of blanks and tabs
   tab,
   comma,
