@@ -440,13 +440,16 @@ std::optional<Header> header_from_comment(const Line& comment, std::size_t data_
                                           bool chosen) {
   // The comment's own separator unless one is forced (a tab-separated header over blank-separated data).
   const std::string_view body = comment_body(comment.text);
-  const auto fields = split_fields(body, sep == Separator::automatic ? detect_separator(body) : sep);
+  const Separator comment_sep = sep == Separator::automatic ? detect_separator(body) : sep;
+  const auto fields = split_fields(body, comment_sep);
   if (fields.size() != data_columns) return std::nullopt;
   Header h;
   h.line = comment.number;
   h.from_comment = true;
   for (std::string_view f : fields) h.columns.push_back(parse_column(f));
-  if (chosen) {
+  // With a column choice any names do, but only from a comment split at tabs, commas or semicolons: a blank-separated
+  // comment is more often a sentence ("# test 3") than a row of names.
+  if (chosen && comment_sep != Separator::whitespace) {
     const bool names = std::any_of(fields.begin(), fields.end(), [](std::string_view f) { return !try_number(f); });
     const bool complete = std::none_of(fields.begin(), fields.end(), [](std::string_view f) { return f.empty(); });
     if (!names || !complete) return std::nullopt;

@@ -343,6 +343,13 @@ TEST(ReaderColumns, CommaSemicolonAndBlankSeparators) {
   ReadOptions h;
   h.columns = parse_columns("Time (s),Acc (gal)");
   EXPECT_DOUBLE_EQ(parse("# Time (s)\tAcc (gal)\tDisp (mm)\n0\t10\t1\n0.01\t-20\t2\n", h).pga_m_s2(), 0.2);
+  // A blank-separated comment is a sentence, not a header, even when it has as many words as the data has columns.
+  ReadOptions n;
+  n.columns = parse_columns("1,2");
+  n.units = "cm/s2";
+  const GroundMotion title = parse("# amplitude (g)\n0\t10\n0.01\t-20\n", n);  // not column 2 in g
+  EXPECT_DOUBLE_EQ(title.pga_m_s2(), 0.2);
+  EXPECT_EQ(title.metadata().units_as_read, "cm/s2");
 }
 
 TEST(ReaderColumns, OldFilesMeanWhatTheyMeant) {
