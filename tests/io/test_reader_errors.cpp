@@ -13,6 +13,7 @@
 #include "support/shared_data.hpp"
 #include "topple/core/error.hpp"
 #include "topple/io/read.hpp"
+#include "topple/io/survey_file.hpp"
 
 namespace topple::io {
 namespace {
@@ -503,6 +504,58 @@ TEST_F(ReaderErrors, BaselineChoicesRefusedNamingTheFile) {
   }
 }
 
+
+TEST_F(ReaderErrors, SurveyRecordOptionsReadTablesAsRecorded) {
+  // [inversion] record_columns / record_baseline / record_separator / record_units / record_dt_s read the survey's
+  // records (and a site's instrument record) as the CLI options do.
+  write_file(dir.path() / "table.txt", kTable);
+  const std::string object = "[[object]]\nid = \"b\"\nwidth = \"10cm\"\nheight = \"40cm\"\nmu = 0.5\n"
+                             "outcome = \"overturned\"\n";
+  const auto survey = [&](const std::string& keys) {
+    const auto path = dir.path() / "s.toml";
+    write_file(path, "[inversion]\nfamily = \"records\"\nrecords = [\"table.txt\"]\npga_g = [0.1, 1.0, 3]\n"
+                     "freq_hz = [1.0, 4.0, 2]\n" + keys + object);
+    return path;
+  };
+  for (const char* columns : {"record_columns = [\"Time (s)\", \"Table Acc (g)\"]\n", "record_columns = [1, 2]\n",
+                              "record_columns = \"1,2\"\n"}) {
+    const Survey s = read_survey(survey(std::string(columns) + "record_baseline = \"mean\"\n"));
+    ASSERT_EQ(s.inversion.record_motions.size(), 1u) << columns;
+    // The mean of 0.01, 0.5, 0.01 g is 0.52/3 g: the peak becomes 0.5 - 0.52/3 g.
+    EXPECT_NEAR(s.inversion.record_motions[0]->pga_m_s2(), (0.5 - 0.52 / 3.0) * 9.80665, 1e-12) << columns;
+  }
+  const Survey nt = read_survey(survey("record_columns = [\"\", 2]\nrecord_dt_s = 0.02\nrecord_separator = \"tab\"\n"));
+  EXPECT_NEAR(nt.inversion.record_motions[0]->dt_s(), 0.02, 1e-15);
+  // Without the keys the table file is refused as before (four columns), naming its line.
+  try {
+    (void)read_survey(survey(""));
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(e.where().file.find("table.txt"), std::string::npos) << e.what();
+    EXPECT_EQ(e.where().line, std::optional<std::size_t>(3)) << e.what();
+  }
+  // Bad keys at their line of the survey; a column the header lacks at the record's header line.
+  const auto refused = [&](const std::string& keys, const std::string& file_part, std::size_t line,
+                           const std::string& field, const std::string& problem) {
+    try {
+      (void)read_survey(survey(keys));
+      ADD_FAILURE() << "accepted: " << keys;
+    } catch (const InputError& e) {
+      EXPECT_NE(e.where().file.find(file_part), std::string::npos) << e.what();
+      EXPECT_EQ(e.where().line, line == 0 ? std::nullopt : std::optional<std::size_t>(line)) << e.what();
+      EXPECT_EQ(e.where().field, field) << e.what();
+      EXPECT_NE(e.problem().find(problem), std::string::npos) << e.what();
+    }
+  };
+  refused("record_baseline = \"poly:9\"\n", "s.toml", 6, "inversion.record_baseline", "0..3");
+  refused("record_columns = [1, 2, 3]\n", "s.toml", 6, "inversion.record_columns", "[time, acceleration]");
+  refused("record_columns = \"2,2\"\n", "s.toml", 6, "inversion.record_columns", "same column");
+  refused("record_separator = \"pipe\"\n", "s.toml", 6, "inversion.record_separator", "unknown separator");
+  refused("record_units = \"furlong\"\n", "s.toml", 6, "inversion.record_units", "unknown acceleration unit");
+  refused("record_columns = \"1,Acc (g)\"\n", "table.txt", 2, "inversion.record_columns", "'Table Acc (g)'");
+  refused("record_columns = \"1,2\"\nrecord_baseline = \"pre-event:1\"\n", "table.txt", 0, "inversion.record_baseline",
+          "longer than the record");
+}
 
 // ---- hardening (issue 11): non-regular files, size and line caps, limits, declared lengths, option conflicts ----
 
