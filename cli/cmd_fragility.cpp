@@ -480,6 +480,7 @@ void add_fragility_command(CLI::App& app) {
   cmd->add_option("--format", o->motion.format, "Record format (default: detect)")->capture_default_str();
   cmd->add_option("--units", o->motion.units, "Unit of the values of plain files: g, m/s2, cm/s2, gal");
   cmd->add_option("--dt", o->motion.dt_s, "Time step of one-column plain files, s");
+  add_record_layout_options(*cmd, o->motion);
   cmd->add_option("--g", o->motion.g_m_s2, "Gravitational acceleration, m/s2")->capture_default_str();
   cmd->add_option("--synth", o->synth, "Use N synthetic motions instead of files (seeds SEED .. SEED+N-1)");
   cmd->add_option("--freq", o->freq, "Synthetic: predominant frequency, with a unit")->capture_default_str();

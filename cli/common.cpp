@@ -14,6 +14,21 @@
 
 namespace topple::cli {
 
+void add_record_layout_options(CLI::App& cmd, MotionOptions& o) {
+  cmd.add_option("--columns", o.columns, "Plain files: the time and acceleration columns TIME,ACCEL, each a number "
+                                         "from 1 or a header name (e.g. 1,2 or \"Time (s)\",\"Table Acc (g)\"); "
+                                         ",ACCEL or accel=ACCEL for no time column (then --dt); other columns "
+                                         "are ignored");
+  cmd.add_option("--separator", o.separator, "Plain files: field separator: auto (header and data each judged from "
+                                             "their first line: tab, else semicolon, else comma, else blanks), "
+                                             "whitespace, tab, comma, semicolon")
+      ->capture_default_str();
+  cmd.add_option("--baseline", o.baseline, "Offset removal of the record as read: none, mean (the record's mean), "
+                                           "pre-event:T (mean of the first T seconds), poly:N (least-squares "
+                                           "polynomial of degree N = 0..3)")
+      ->capture_default_str();
+}
+
 void add_motion_options(CLI::App& cmd, MotionOptions& o) {
   cmd.add_option("--format", o.format, "Record format: auto (detect from content), peer-at2, cosmos-v2, csmip-v2, "
                                        "knet, usgs-smc, esm, plain")
@@ -23,6 +38,7 @@ void add_motion_options(CLI::App& cmd, MotionOptions& o) {
                                      "for a file that states its unit, it must agree");
   cmd.add_option("--dt", o.dt_s, "Time step of a one-column plain file, s; for a file that states its dt, it must "
                                  "agree");
+  add_record_layout_options(cmd, o);
   cmd.add_option("--scale-pga", o.scale_pga, "Scale the record to this PGA, with a unit (e.g. 0.5g, 3m/s2)");
   cmd.add_option("--scale", o.scale, "Multiply the record by this factor");
   cmd.add_flag("--invert", o.invert, "Flip the polarity of the record");
@@ -36,6 +52,9 @@ io::ReadOptions read_options(const MotionOptions& o) {
   r.units = o.units;
   r.dt_s = o.dt_s;
   r.g_m_s2 = o.g_m_s2;
+  if (!o.columns.empty()) r.columns = io::parse_columns(o.columns, "--columns");
+  r.separator = io::parse_separator(o.separator, "--separator");
+  r.baseline = parse_baseline(o.baseline, "--baseline");
   return r;
 }
 

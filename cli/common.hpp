@@ -22,15 +22,23 @@ struct MotionOptions {
   std::optional<int> channel;
   std::string units;             // plain files: unit of the values
   std::optional<double> dt_s;    // plain one-column files
+  std::string columns;           // plain files: "TIME,ACCEL" (io::parse_columns); empty: one or two columns
+  std::string separator = "auto";  // plain files: auto, whitespace, tab, comma, semicolon
+  std::string baseline = "none";   // offset removal: none, mean, pre-event:T, poly:N (motion/baseline.hpp)
   std::string scale_pga;         // "0.5g": scale to this PGA
   std::optional<double> scale;   // plain factor
   bool invert = false;
   double g_m_s2 = 9.80665;
 };
 
-/// Adds --format, --channel, --units, --dt, --scale-pga, --scale, --invert, --g to `cmd` (the file positional is
+/// Adds --format, --channel, --units, --dt, --columns, --separator, --baseline, --scale-pga, --scale, --invert, --g
+/// to `cmd` (the file positional is
 /// added by each command, since some take pulses instead).
 void add_motion_options(CLI::App& cmd, MotionOptions& options);
+
+/// Adds --columns, --separator, --baseline (how a plain record is laid out, and its offset removal): part of
+/// add_motion_options, for a command that adds its own read options (fragility).
+void add_record_layout_options(CLI::App& cmd, MotionOptions& options);
 
 /// Reads and transforms the motion as the options say. Throws InputError.
 [[nodiscard]] GroundMotion load_motion(const MotionOptions& options);

@@ -18,6 +18,7 @@
 #include "topple/core/error.hpp"
 #include "topple/motion/intensity.hpp"
 #include "topple/io/read.hpp"
+#include "topple/motion/baseline.hpp"
 #include "topple/solvers/rocking.hpp"
 #include "topple/solvers/sliding.hpp"
 #include "topple/motion/spectra.hpp"
@@ -136,5 +137,26 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   options.units = "g";
   options.dt_s = 0.01;
   parse(text, options);
+  // Records as recorded (issue 28): a column choice by number and by name, with and without a time column, a forced
+  // separator, and each baseline method (applied to whatever reads, in every format).
+  options.dt_s = std::nullopt;
+  options.units.clear();
+  options.baseline = topple::parse_baseline("poly:3");
+  parse(text, options);
+  options.baseline = topple::parse_baseline("pre-event:0.05");
+  parse(text, options);
+  options.baseline = topple::Baseline{};
+  if (options.format == topple::io::Format::plain || options.format == topple::io::Format::automatic) {
+    options.columns = topple::io::parse_columns("1,3");
+    parse(text, options);
+    options.columns = topple::io::parse_columns("Time (s),Table Acc (g)");
+    options.baseline = topple::parse_baseline("mean");
+    parse(text, options);
+    options.columns = topple::io::parse_columns(",2");
+    options.separator = topple::io::Separator::tab;
+    options.units = "g";
+    options.dt_s = 0.01;
+    parse(text, options);
+  }
   return 0;
 }

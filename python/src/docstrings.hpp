@@ -225,6 +225,15 @@ channel : int, optional
     1-based channel of a multi-channel file.
 g : float
     Gravity, m/s^2, for values in g and for the motion's accel_g / pga_g (default 9.80665 m/s^2).
+columns : str or (time, accel), optional
+    Plain files: the time and acceleration columns, as `topple --columns` ('1,2', 'Time (s),Table Acc (g)',
+    ',3' for no time column) or a pair of 1-based numbers or header names ((1, 2), ('Time (s)', 'Table Acc (g)'),
+    ('', 3) for no time column). Other columns are ignored. See docs/formats.md.
+separator : str
+    Plain files: "auto" (default), "whitespace", "tab", "comma" or "semicolon".
+baseline : str
+    Offset removal of the record as read: "none" (default), "mean", "pre-event:T" (mean of the first T seconds),
+    "poly:N" (least-squares polynomial of degree N = 0..3). See docs/method.md, "Baseline removal".
 
 Returns
 -------

@@ -1305,15 +1305,48 @@ void bind_motion(nb::module_& m) {
                            motion_name(g).empty() ? "" : ", name='" + motion_name(g) + "'");
       });
 
+  using ColumnsArg = std::variant<std::string, std::vector<std::variant<long long, std::string>>>;
   m.def("read",
         [](const std::string& path, std::optional<std::string> format, std::optional<std::string> units,
-           std::optional<double> dt, std::optional<int> channel, double g) {
+           std::optional<double> dt, std::optional<int> channel, double g, std::optional<ColumnsArg> columns,
+           const std::string& separator, const std::string& baseline) {
           io::ReadOptions o;
           o.format = io::parse_format_name(format.value_or("auto"), "format");
           o.channel = channel;
           o.units = units.value_or("");
           o.dt_s = dt;
           o.g_m_s2 = g;
+          if (columns) {
+            // "1,2" / "Time (s),Table Acc (g)" as --columns, or (time, accel) as a sweep file's columns ("" for no
+            // time column).
+            std::string text;
+            if (const auto* str = std::get_if<std::string>(&*columns)) {
+              text = *str;
+            } else {
+              const auto& parts = std::get<1>(*columns);
+              if (parts.size() != 2) {
+                throw parameter_error("columns", fmt::format("expected (time, acceleration), got {} items",
+                                                             parts.size()));
+              }
+              for (std::size_t k = 0; k < 2; ++k) {
+                std::string part;
+                if (const auto* n = std::get_if<long long>(&parts[k])) {
+                  if (*n < 1) throw parameter_error("columns", fmt::format("column numbers start at 1, got {}", *n));
+                  part = std::to_string(*n);
+                } else {
+                  const std::string& name = std::get<std::string>(parts[k]);
+                  if (name.find('"') != std::string::npos) {
+                    throw parameter_error("columns", "a column name with a double quote");
+                  }
+                  if (!name.empty()) part = "\"" + name + "\"";
+                }
+                text += (k == 0 ? "" : ",") + part;
+              }
+            }
+            o.columns = io::parse_columns(text, "columns");
+          }
+          o.separator = io::parse_separator(separator, "separator");
+          o.baseline = parse_baseline(baseline, "baseline");
           nb::gil_scoped_release release;
           GroundMotion motion = io::read_motion(path, o);
           RecordMetadata meta = motion.metadata();
@@ -1322,7 +1355,7 @@ void bind_motion(nb::module_& m) {
           return motion;
         },
         "path"_a, "format"_a = nb::none(), "units"_a = nb::none(), "dt"_a = nb::none(), "channel"_a = nb::none(),
-        "g"_a = kStandardGravity, doc::read);
+        "g"_a = kStandardGravity, "columns"_a = nb::none(), "separator"_a = "auto", "baseline"_a = "none", doc::read);
 
   // ---- motion sets (motion_set.hpp) and RotD (rotd.hpp) ----
   nb::class_<MotionSet>(m, "MotionSet", doc::motion_set)

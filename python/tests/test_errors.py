@@ -105,6 +105,32 @@ def test_file_errors_carry_the_cli_message(cli, tmp_path):
     assert err.value.file == str(bad) and err.value.line == 3
 
 
+def test_records_as_recorded_columns_and_baseline(cli, tmp_path):
+    # Issue 28: an eight-column tab-separated table file with spaces in its header names and a +0.02 g offset.
+    path = tmp_path / "table.txt"
+    rows = ["Time (s)\tTable Acc (g)\tTable Disp (mm)\tV (m/s)\tAcc 2 (g)\tStatus\tLVDT (mm)\tCmd (mm)"]
+    for k in range(201):
+        a = 0.02 + 0.3 * np.sin(2 * np.pi * k / 20)
+        rows.append(f"{k * 0.005:.3f}\t{float(a)!r}\t{k}\t0\t0.1\tOK\t0\t0")
+    path.write_text("\n".join(rows) + "\n")
+    for columns in ("Time (s),Table Acc (g)", "1,2", ("Time (s)", "Table Acc (g)"), (1, 2)):
+        m = topple.read(str(path), columns=columns, baseline="mean")
+        assert m.accel_m_s2.size == 201
+        # 10 whole periods of 20 samples plus one (sin 0 = 0): the mean is the offset, the sine remains.
+        assert m.accel_m_s2[5] == pytest.approx(0.3 * 9.80665, abs=1e-12)
+    raw = topple.read(str(path), columns=(1, 2))
+    assert raw.accel_m_s2[0] == pytest.approx(0.02 * 9.80665, abs=1e-14)
+    with pytest.raises(topple.InputError, match="Table Acc"):
+        topple.read(str(path), columns="Time (s),Acc (g)")
+    with pytest.raises(topple.InputError, match="0..3"):
+        topple.read(str(path), columns="1,2", baseline="poly:5")
+    with pytest.raises(topple.InputError):
+        topple.read(str(path), columns=(1, 2, 3))
+    # The CLI reads it the same way.
+    j = cli.json("info", path, "--columns", "1,2", "--baseline", "mean")
+    assert j["pga_g"] == pytest.approx(0.3, abs=1e-12)
+
+
 def test_missing_file():
     with pytest.raises(topple.InputError, match="cannot open"):
         topple.read("/nonexistent/record.AT2")

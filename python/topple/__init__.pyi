@@ -89,7 +89,9 @@ class GroundMotion:
         """The motion with a least-squares polynomial baseline removed."""
 
 def read(path: str, format: Optional[str] = None, units: Optional[str] = None, dt: Optional[float] = None,
-         channel: Optional[int] = None, g: float = 9.80665) -> GroundMotion:
+         channel: Optional[int] = None, g: float = 9.80665,
+         columns: Optional[Union[str, Sequence[Union[int, str]]]] = None, separator: str = "auto",
+         baseline: str = "none") -> GroundMotion:
     """Read a strong-motion record."""
 
 class SlidingResult:

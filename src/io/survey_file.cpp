@@ -604,6 +604,69 @@ void parse_site_fields(Reader& r, Site& site) {
   site.support_filter = parse_support(r, label);
 }
 
+/// How the record files are read (records, and the sites' instrument records): record_format, record_units,
+/// record_dt_s, record_columns (the --columns text, or [time, accel] with numbers or header names, "" for no time
+/// column), record_separator, record_baseline. Each is checked here, at its line; the files are read by
+/// load_survey_records.
+void parse_record_options(Reader& r, InversionSettings& st) {
+  const auto checked = [&](std::string_view key, auto parse) {
+    const auto v = r.string(key);
+    if (!v) return std::string();
+    try {
+      (void)parse(*v, "inversion." + std::string(key));
+    } catch (const InputError& e) {
+      throw r.error(key, e.problem());
+    }
+    return *v;
+  };
+  st.record_format = checked("record_format", [](const std::string& v, const std::string& f) {
+    return parse_format_name(v, f);
+  });
+  st.record_units = checked("record_units", [](const std::string& v, const std::string& f) {
+    return acceleration_unit_factor(v, f, kStandardGravity);
+  });
+  st.record_separator = checked("record_separator", [](const std::string& v, const std::string& f) {
+    return parse_separator(v, f);
+  });
+  st.record_baseline = checked("record_baseline", [](const std::string& v, const std::string& f) {
+    return parse_baseline(v, f);
+  });
+  if (const auto dt = r.number("record_dt_s")) {
+    if (!(*dt > 0.0)) throw r.error("record_dt_s", fmt::format("must be positive, got {} s", *dt));
+    st.record_dt_s = dt;
+  }
+  if (const toml::node* n = r.get("record_columns")) {
+    std::string text;
+    if (const auto* str = n->as_string()) {
+      text = str->get();
+    } else if (const auto* a = n->as_array(); a != nullptr && a->size() == 2) {
+      for (std::size_t k = 0; k < 2; ++k) {
+        const toml::node& e = *a->get(k);
+        std::string part;
+        if (const auto* i = e.as_integer()) {
+          if (i->get() < 1 || i->get() > 100000) {
+            throw r.error("record_columns", fmt::format("column numbers start at 1, got {}", i->get()), &e);
+          }
+          part = std::to_string(i->get());
+        } else if (const auto* name = e.as_string(); name != nullptr && name->get().find('"') == std::string::npos) {
+          if (!name->get().empty()) part = "\"" + name->get() + "\"";
+        } else {
+          throw r.error("record_columns", "expected a column number or a header name (without double quotes)", &e);
+        }
+        text += (k == 0 ? "" : ",") + part;
+      }
+    } else {
+      throw r.error("record_columns", "expected [time, acceleration] (\"\" for no time column) or \"TIME,ACCEL\"", n);
+    }
+    try {
+      (void)parse_columns(text, "inversion.record_columns");
+    } catch (const InputError& e) {
+      throw r.error("record_columns", e.problem(), n);
+    }
+    st.record_columns = text;
+  }
+}
+
 /// The [inversion] table: the motion family, its grid and the number of components, checked by the inversion's own
 /// rule (validate_inversion_settings) and located here.
 void parse_inversion_table(const toml::table& t, const std::string& name, const std::filesystem::path& base_dir,
@@ -629,6 +692,7 @@ void parse_inversion_table(const toml::table& t, const std::string& name, const 
   if (st.family == MotionFamily::records && st.records.empty()) {
     throw r.error("records", "family = \"records\" needs records = [\"file\", ...]");
   }
+  parse_record_options(r, st);
   if (const auto ax = r.axis("pga_g")) std::tie(st.pga_min_g, st.pga_max_g, st.pga_count) = *ax;
   if (const auto ax = r.axis("freq_hz")) std::tie(st.freq_min_hz, st.freq_max_hz, st.freq_count) = *ax;
   if (const auto n = r.number("motions_per_cell")) {
@@ -797,17 +861,54 @@ Survey parse_survey(std::string_view text, const std::string& name, const std::f
   return s;
 }
 
+namespace {
+
+/// The ReadOptions the [inversion] record_* keys give (checked when parsed; empty keys: the reader's defaults).
+ReadOptions survey_read_options(const InversionSettings& st) {
+  ReadOptions o;
+  if (!st.record_format.empty()) o.format = parse_format_name(st.record_format, "inversion.record_format");
+  o.units = st.record_units;
+  o.dt_s = st.record_dt_s;
+  if (!st.record_columns.empty()) o.columns = parse_columns(st.record_columns, "inversion.record_columns");
+  if (!st.record_separator.empty()) o.separator = parse_separator(st.record_separator, "inversion.record_separator");
+  if (!st.record_baseline.empty()) o.baseline = parse_baseline(st.record_baseline, "inversion.record_baseline");
+  return o;
+}
+
+/// read_motion, the reader's option names (--columns, ...) given as the survey's keys, the record's file and line kept.
+GroundMotion read_survey_record(const std::string& path, const ReadOptions& o) {
+  try {
+    return read_motion(path, o);
+  } catch (const InputError& e) {
+    static const std::pair<const char*, const char*> names[] = {
+        {"--format", "inversion.record_format"},       {"--units", "inversion.record_units"},
+        {"--dt", "inversion.record_dt_s"},             {"--columns", "inversion.record_columns"},
+        {"--separator", "inversion.record_separator"}, {"--baseline", "inversion.record_baseline"}};
+    for (const auto& [option, key] : names) {
+      if (e.where().field == option) {
+        InputLocation at = e.where();
+        at.field = key;
+        throw InputError(std::move(at), e.problem());
+      }
+    }
+    throw;
+  }
+}
+
+}  // namespace
+
 void load_survey_records(Survey& survey) {
   InversionSettings& st = survey.inversion;
+  const ReadOptions options = survey_read_options(st);
   st.record_motions.clear();
   for (const std::string& path : st.records) {
     // A record that does not read names itself (file, line, field) in read_motion's InputError.
-    st.record_motions.push_back(std::make_shared<const GroundMotion>(read_motion(path)));
+    st.record_motions.push_back(std::make_shared<const GroundMotion>(read_survey_record(path, options)));
   }
   // An instrument station's record gives its measured PGA (the record's peak |a|, in g).
   for (Site& site : survey.sites) {
     if (site.instrument_record.empty()) continue;
-    site.instrument_pga_g = read_motion(site.instrument_record).pga_m_s2() / st.g_m_s2;
+    site.instrument_pga_g = read_survey_record(site.instrument_record, options).pga_m_s2() / st.g_m_s2;
   }
 }
 

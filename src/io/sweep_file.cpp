@@ -324,6 +324,23 @@ Parser acceleration_parser(double g, double divide_by) {
   return [g, divide_by](std::string_view s, const std::string& f) { return parse_acceleration_m_s2(s, f, g) / divide_by; };
 }
 
+/// read_motion with the reader's option names (--columns, --separator, --baseline) given as this file's keys, the
+/// record's file and line kept.
+GroundMotion read_sweep_record(const fs::path& path, const ReadOptions& ro) {
+  try {
+    return read_motion(path, ro);
+  } catch (const InputError& e) {
+    for (const std::string_view key : {"columns", "separator", "baseline"}) {
+      if (e.where().field == "--" + std::string(key)) {
+        InputLocation at = e.where();
+        at.field = "motions." + std::string(key);
+        throw InputError(std::move(at), e.problem());
+      }
+    }
+    throw;
+  }
+}
+
 /// [[motions.set]] tables (a station's components, read together) and the objects' bearings under them.
 void read_record_sets(const Reader& r, const toml::table& m, const ReadOptions& ro, SweepFile& out) {
   if (const auto b = r.quantities(m, "bearing_deg", "bearing", "motions.", angle_deg_parser(), "45deg")) {
@@ -359,7 +376,7 @@ void read_record_sets(const Reader& r, const toml::table& m, const ReadOptions& 
     const std::optional<std::string> vertical = path_of("vertical", false);
     const auto read = [&](const std::string& name) {
       const fs::path p(name);
-      return read_motion(p.is_absolute() || r.dir().empty() ? p : r.dir() / p, ro);
+      return read_sweep_record(p.is_absolute() || r.dir().empty() ? p : r.dir() / p, ro);
     };
     const GroundMotion first = read(h1);
     const GroundMotion second = read(h2);
@@ -386,7 +403,7 @@ void read_record_sets(const Reader& r, const toml::table& m, const ReadOptions& 
   }
 }
 
-/// The options for reading the record files of [motions] (format, units, dt, channel).
+/// The options for reading the record files of [motions] (format, units, dt, channel, columns, separator, baseline).
 ReadOptions read_record_options(const Reader& r, const toml::table& m, double g) {
   ReadOptions ro;
   ro.g_m_s2 = g;
@@ -403,6 +420,45 @@ ReadOptions read_record_options(const Reader& r, const toml::table& m, double g)
     if (*c < 1 || *c > 1000) r.fail(m.get("channel"), "motions.channel", fmt::format("must be >= 1, got {}", *c));
     ro.channel = static_cast<int>(*c);
   }
+  // Plain records as recorded (docs/sweeps.md): columns = ["Time (s)", "Table Acc (g)"], [1, 2], ["", 3] (no time
+  // column) or the --columns text "1,2"; separator = "tab"; baseline = "pre-event:2".
+  if (const toml::node* n = m.get("columns")) {
+    const std::string field = "motions.columns";
+    std::string text;
+    if (const auto* s = n->as_string()) {
+      text = s->get();
+    } else if (const auto* a = n->as_array()) {
+      if (a->size() != 2) {
+        r.fail(n, field, fmt::format("expected [time, acceleration] (2 columns; \"\" for no time column), got {} "
+                                     "element{}",
+                                     a->size(), a->size() == 1 ? "" : "s"));
+      }
+      for (std::size_t k = 0; k < 2; ++k) {
+        const toml::node& e = *a->get(k);
+        std::string part;
+        if (const auto* i = e.as_integer()) {
+          if (i->get() < 1 || i->get() > 100000) r.fail(&e, field, fmt::format("column numbers start at 1, got {}", i->get()));
+          part = std::to_string(i->get());
+        } else if (const auto* str = e.as_string()) {
+          if (str->get().find('"') != std::string::npos) r.fail(&e, field, "a column name with a double quote");
+          part = str->get().empty() ? std::string() : "\"" + str->get() + "\"";
+        } else {
+          r.fail(&e, field, fmt::format("expected a column number or a header name, got {}", type_name(e)));
+        }
+        text += (k == 0 ? "" : ",") + part;
+      }
+    } else {
+      r.fail(n, field, fmt::format("expected [time, acceleration] or a string \"TIME,ACCEL\", got {}", type_name(*n)));
+    }
+    ro.columns = r.located(n, field, [&] { return parse_columns(text, field); });
+  }
+  if (const auto sep = r.string(m, "separator", "motions.separator")) {
+    ro.separator = r.located(m.get("separator"), "motions.separator",
+                             [&] { return parse_separator(*sep, "motions.separator"); });
+  }
+  if (const auto b = r.string(m, "baseline", "motions.baseline")) {
+    ro.baseline = r.located(m.get("baseline"), "motions.baseline", [&] { return parse_baseline(*b, "motions.baseline"); });
+  }
   return ro;
 }
 
@@ -414,7 +470,7 @@ bool read_records(const Reader& r, const toml::table& m, const ReadOptions& ro, 
   std::vector<std::exception_ptr> errors(files.size());
   tbb::parallel_for(std::size_t{0}, files.size(), [&](std::size_t i) {
     try {
-      loaded[i] = std::make_shared<const GroundMotion>(read_motion(files[i].second, ro));
+      loaded[i] = std::make_shared<const GroundMotion>(read_sweep_record(files[i].second, ro));
     } catch (...) {
       errors[i] = std::current_exception();
     }
@@ -531,7 +587,8 @@ void read_motions(const Reader& r, const toml::table& t, SweepFile& out) {
     r.fail(&t, "motions", "the sweep has no [motions] table");
   }
   const double g = out.spec.g_m_s2;
-  r.check_keys(*m, "motions", {"files", "format", "units", "dt", "dt_s", "channel", "scale", "scale_pga",
+  r.check_keys(*m, "motions", {"files", "format", "units", "dt", "dt_s", "channel", "columns", "separator",
+                               "baseline", "scale", "scale_pga",
                                "scale_pga_g", "time_scale", "polarity", "pulse", "set", "bearing", "bearing_deg",
                                "direction_step_deg"});
   const ReadOptions ro = read_record_options(r, *m, g);

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -81,6 +82,51 @@ TEST(CliSlide, EveryRecordInSharedSlides) {
     ++files;
   }
   EXPECT_GE(files, 12);
+}
+
+TEST(CliSlide, ShakeTableFileAsRecordedWithColumnsAndBaseline) {
+  // A table record as a lab writes it (issue 28): a tab-separated header whose names hold spaces, eight columns, a
+  // +0.02 g DC offset on the table acceleration; the shaking is a 2 g, 0.1 s pulse after 1 s of quiet. With
+  // --columns and --baseline pre-event:0.5 the slide is the one of the clean pulse written as a two-column file,
+  // to rounding; without --baseline the offset changes it.
+  test::TempDir tmp;
+  const auto table = tmp.path() / "table.txt";
+  const auto clean = tmp.path() / "clean.csv";
+  std::string t = "Time (s)\tTable Acc (g)\tTable Disp (mm)\tTable Vel (m/s)\tAcc 2 (g)\tStatus\tLVDT 1 (mm)\tCmd (mm)\n";
+  std::string c = "time_s,accel_g\n";
+  for (int k = 0; k <= 3000; ++k) {
+    const double time = 0.001 * k;
+    const double a = (k >= 1000 && k <= 1100) ? 2.0 : 0.0;
+    t += fmt::format("{:.3f}\t{:.17g}\t{}\t0\t0.1\t{}\t0\t0\n", time, a + 0.02, k, k % 7 ? "run" : "-");
+    c += fmt::format("{:.3f},{:.17g}\n", time, a);
+  }
+  test::write_file(table, t);
+  test::write_file(clean, c);
+  const auto ref = run_json("slide '" + clean.string() + "' --mu 0.3 --json");
+  const double d_ref = ref.at("max_abs_displacement_m").get<double>();
+  // The sampled pulse is a trapezoid (ramps of 1 ms) of the area of a 0.101 s rectangle: it slides as that
+  // rectangle (closed form) to within the ramps' effect.
+  const auto cf = rectangular_pulse_sliding(2.0, 0.101, 0.3);
+  EXPECT_NEAR(d_ref, cf.max_displacement_m, 0.005 * cf.max_displacement_m);
+  for (const std::string cols : {"--columns 1,2", "--columns 'Time (s),Table Acc (g)'",
+                                 "--columns '\"Time (s)\",\"Table Acc (g)\"'"}) {
+    const auto j = run_json("slide '" + table.string() + "' " + cols + " --baseline pre-event:0.5 --mu 0.3 --json");
+    EXPECT_NEAR(j.at("max_abs_displacement_m").get<double>(), d_ref, 1e-9 * d_ref) << cols;
+    EXPECT_NEAR(j.at("input").at("pga_g").get<double>(), 2.0, 1e-12) << cols;
+  }
+  const auto raw = run_json("slide '" + table.string() + "' --columns 1,2 --mu 0.3 --json");
+  EXPECT_GT(std::abs(raw.at("max_abs_displacement_m").get<double>() - d_ref), 1e-3 * d_ref);
+  // Bad choices: exit 2 naming the option and, for a missing name, the header's names.
+  auto r = test::run_cli("slide '" + table.string() + "' --columns 'Time (s),Acc (g)' --mu 0.3");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--columns"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("'Table Acc (g)'"), std::string::npos) << r.err;
+  r = test::run_cli("slide '" + table.string() + "' --columns 1,2 --baseline poly:4 --mu 0.3");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--baseline"), std::string::npos) << r.err;
+  r = test::run_cli("slide '" + table.string() + "' --mu 0.3");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("8 columns"), std::string::npos) << r.err;
 }
 
 TEST(CliSlide, BadInputExitsTwoNamingTheOption) {

@@ -13,6 +13,7 @@
 #include "support/shared_data.hpp"
 #include "topple/core/error.hpp"
 #include "topple/io/read.hpp"
+#include "topple/io/survey_file.hpp"
 
 namespace topple::io {
 namespace {
@@ -423,6 +424,138 @@ TEST_F(ReaderErrors, PlainBadTokensAndColumns) {
   expect_error("accel_g,time_s\n0,0\n1,1\n", {1, "accel_g", {"first of two columns must be the time"}});
 }
 
+
+// ---- plain files as recorded (issue 28): column choice, separators, baseline ----
+
+const std::string kTable = "# test 3\nTime (s)\tTable Acc (g)\tTable Disp (mm)\tStatus\n0\t0.01\t1\tOK\n0.01\t0.5\t2\tOK\n"
+                           "0.02\t0.01\t3\tstop\n";
+
+ReadOptions columns(const std::string& text) {
+  ReadOptions o;
+  o.columns = parse_columns(text);
+  return o;
+}
+
+TEST_F(ReaderErrors, ColumnsReadTheTableFile) {
+  const auto path = dir.path() / "table.txt";
+  write_file(path, kTable);
+  EXPECT_DOUBLE_EQ(read_motion(path, columns("Time (s),Table Acc (g)")).pga_m_s2(), 0.5 * 9.80665);
+  EXPECT_DOUBLE_EQ(read_motion(path, columns("1,2")).pga_m_s2(), 0.5 * 9.80665);
+}
+
+TEST_F(ReaderErrors, ColumnsMissingOrRepeatedAreRefusedListingTheHeader) {
+  // A name the header does not hold: the header's line, the option, and every name the header holds.
+  expect_error(kTable, {2, "--columns", {"no column named 'Table Accel (g)'", "1 'Time (s)'", "2 'Table Acc (g)'",
+                                         "4 'Status'"}},
+               columns("Time (s),Table Accel (g)"));
+  // A number beyond the data's columns: the first data line.
+  expect_error(kTable, {3, "--columns", {"column 9", "4 columns", "'Table Disp (mm)'"}}, columns("1,9"));
+  // The same column twice, once by number and once by name.
+  expect_error(kTable, {std::nullopt, "--columns", {"same column", "'Time (s)'"}}, columns("1,Time (s)"));
+  // A name without a header.
+  expect_error("0 1 2\n0.01 3 4\n", {std::nullopt, "--columns", {"no header", "by number"}}, columns("t,a"));
+  // A name the header holds twice.
+  expect_error("t_s,a_g,a_g\n0,1,2\n0.01,3,4\n", {1, "--columns", {"columns 2 and 3"}}, columns("1,a_g"));
+  // A header naming fewer columns than the data holds.
+  expect_error("t_s,a_g\n0,1,2\n0.01,3,4\n", {1, "header", {"names 2 columns", "has 3"}}, columns("1,2"));
+  // The parse itself (the CLI and the sweep reader call it).
+  for (const char* bad : {"2,2", "x,X", "1,2,3", "0,1", "", "time=1"}) {
+    EXPECT_THROW((void)parse_columns(bad), InputError) << bad;
+  }
+}
+
+TEST_F(ReaderErrors, ColumnsValuesNamedByTheirColumn) {
+  // A bad value in a chosen column names the column's header name and the line; an ignored column may hold text.
+  expect_error(kTable + "0.03\t0.x\t4\tOK\n", {6, "Table Acc (g)", {"'0.x'"}}, columns("1,2"));
+  expect_error("0 1 2\n0.01 x 4\n", {2, "column 2", {"'x'"}}, [] {
+    ReadOptions o = columns("1,2");
+    o.units = "g";
+    return o;
+  }());
+  // A row with a field missing (shifted columns) is refused even though the missing field is ignored.
+  expect_error(kTable + "0.03\t0.1\t4\n", {6, "", {"3 columns", "line 3 has 4"}}, columns("1,2"));
+  // More than two columns without a choice: the option to use and the header's names.
+  expect_error(kTable, {3, "--columns", {"4 columns", "--columns", "'Table Acc (g)'"}});
+  // The chosen column's unit: displacement is not an acceleration; none stated needs --units.
+  expect_error(kTable, {2, "Table Disp (mm)", {"unknown acceleration unit"}}, columns("1,3"));
+  expect_error("t (s)\tacc\n0\t1\n0.01\t2\n", {1, "acc", {"--units"}}, columns("1,2"));
+  // Without a time column, --dt; with one, no --dt.
+  expect_error(kTable, {std::nullopt, "--dt", {"no time column is chosen"}}, columns(",2"));
+  ReadOptions dt = columns("1,2");
+  dt.dt_s = 0.01;
+  expect_error(kTable, {std::nullopt, "--dt", {"time column"}}, dt);
+  // Column options on an agency file.
+  expect_error(at2_ok(), {std::nullopt, "--columns", {"plain files"}}, columns("1,2"));
+}
+
+TEST_F(ReaderErrors, BaselineChoicesRefusedNamingTheFile) {
+  ReadOptions o = columns("1,2");
+  o.baseline = parse_baseline("pre-event:5");
+  expect_error(kTable, {std::nullopt, "--baseline", {"longer than the record"}}, o);
+  o.baseline = parse_baseline("pre-event:0.005");
+  expect_error(kTable, {std::nullopt, "--baseline", {"holds 1 sample"}}, o);
+  o.baseline = Baseline{BaselineMethod::polynomial, 0.0, 4};
+  expect_error(kTable, {std::nullopt, "--baseline", {"0..3"}}, o);
+  o.baseline = Baseline{BaselineMethod::polynomial, 0.0, 3};
+  expect_error(kTable, {std::nullopt, "--baseline", {"at least 4 samples"}}, o);
+  for (const char* bad : {"poly:4", "poly:-1", "poly:", "poly:1.5", "pre-event:0", "pre-event:-1", "pre-event:x",
+                          "median", "", "Mean"}) {
+    EXPECT_THROW((void)parse_baseline(bad, "--baseline"), InputError) << bad;
+  }
+}
+
+
+TEST_F(ReaderErrors, SurveyRecordOptionsReadTablesAsRecorded) {
+  // [inversion] record_columns / record_baseline / record_separator / record_units / record_dt_s read the survey's
+  // records (and a site's instrument record) as the CLI options do.
+  write_file(dir.path() / "table.txt", kTable);
+  const std::string object = "[[object]]\nid = \"b\"\nwidth = \"10cm\"\nheight = \"40cm\"\nmu = 0.5\n"
+                             "outcome = \"overturned\"\n";
+  const auto survey = [&](const std::string& keys) {
+    const auto path = dir.path() / "s.toml";
+    write_file(path, "[inversion]\nfamily = \"records\"\nrecords = [\"table.txt\"]\npga_g = [0.1, 1.0, 3]\n"
+                     "freq_hz = [1.0, 4.0, 2]\n" + keys + object);
+    return path;
+  };
+  for (const char* columns : {"record_columns = [\"Time (s)\", \"Table Acc (g)\"]\n", "record_columns = [1, 2]\n",
+                              "record_columns = \"1,2\"\n"}) {
+    const Survey s = read_survey(survey(std::string(columns) + "record_baseline = \"mean\"\n"));
+    ASSERT_EQ(s.inversion.record_motions.size(), 1u) << columns;
+    // The mean of 0.01, 0.5, 0.01 g is 0.52/3 g: the peak becomes 0.5 - 0.52/3 g.
+    EXPECT_NEAR(s.inversion.record_motions[0]->pga_m_s2(), (0.5 - 0.52 / 3.0) * 9.80665, 1e-12) << columns;
+  }
+  const Survey nt = read_survey(survey("record_columns = [\"\", 2]\nrecord_dt_s = 0.02\nrecord_separator = \"tab\"\n"));
+  EXPECT_NEAR(nt.inversion.record_motions[0]->dt_s(), 0.02, 1e-15);
+  // Without the keys the table file is refused as before (four columns), naming its line.
+  try {
+    (void)read_survey(survey(""));
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(e.where().file.find("table.txt"), std::string::npos) << e.what();
+    EXPECT_EQ(e.where().line, std::optional<std::size_t>(3)) << e.what();
+  }
+  // Bad keys at their line of the survey; a column the header lacks at the record's header line.
+  const auto refused = [&](const std::string& keys, const std::string& file_part, std::size_t line,
+                           const std::string& field, const std::string& problem) {
+    try {
+      (void)read_survey(survey(keys));
+      ADD_FAILURE() << "accepted: " << keys;
+    } catch (const InputError& e) {
+      EXPECT_NE(e.where().file.find(file_part), std::string::npos) << e.what();
+      EXPECT_EQ(e.where().line, line == 0 ? std::nullopt : std::optional<std::size_t>(line)) << e.what();
+      EXPECT_EQ(e.where().field, field) << e.what();
+      EXPECT_NE(e.problem().find(problem), std::string::npos) << e.what();
+    }
+  };
+  refused("record_baseline = \"poly:9\"\n", "s.toml", 6, "inversion.record_baseline", "0..3");
+  refused("record_columns = [1, 2, 3]\n", "s.toml", 6, "inversion.record_columns", "[time, acceleration]");
+  refused("record_columns = \"2,2\"\n", "s.toml", 6, "inversion.record_columns", "same column");
+  refused("record_separator = \"pipe\"\n", "s.toml", 6, "inversion.record_separator", "unknown separator");
+  refused("record_units = \"furlong\"\n", "s.toml", 6, "inversion.record_units", "unknown acceleration unit");
+  refused("record_columns = \"1,Acc (g)\"\n", "table.txt", 2, "inversion.record_columns", "'Table Acc (g)'");
+  refused("record_columns = \"1,2\"\nrecord_baseline = \"pre-event:1\"\n", "table.txt", 0, "inversion.record_baseline",
+          "longer than the record");
+}
 
 // ---- hardening (issue 11): non-regular files, size and line caps, limits, declared lengths, option conflicts ----
 

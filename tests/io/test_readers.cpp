@@ -9,6 +9,10 @@
 // first |a| maximum), independent of topple.
 #include <cctype>
 #include <cmath>
+#include <functional>
+#include <vector>
+
+#include <fmt/format.h>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -21,6 +25,7 @@
 #include "support/shared_data.hpp"
 #include "topple/core/error.hpp"
 #include "topple/io/read.hpp"
+#include "topple/motion/baseline.hpp"
 #include "topple/core/units.hpp"
 
 namespace topple::io {
@@ -260,6 +265,225 @@ TEST(ReaderFormatNames, RoundTrip) {
     EXPECT_EQ(parse_format_name(format_name(f)), f);
   }
   EXPECT_THROW((void)parse_format_name("at2"), InputError);
+}
+
+// ---- plain files as recorded: column choice, separators, baseline (issue 28) ----
+
+/// A shake-table-like file: a tab-separated header whose names hold spaces, eight columns, a text column (Status)
+/// and a displacement column in mm; the table acceleration is a_k = 0.02 + 0.5 sin(2 pi k / 10) g at t_k = k dt.
+std::string shake_table(char sep, int rows = 41, double dt = 0.005) {
+  const std::vector<std::string> names = {"Time (s)",  "Table Acc (g)", "Table Disp (mm)", "Table Vel (m/s)",
+                                          "Acc 2 (g)", "Status",        "LVDT 1 (mm)",     "Cmd Disp (mm)"};
+  std::string s = "# Shake table test 17, rock B2\n";
+  for (std::size_t k = 0; k < names.size(); ++k) s += (k ? std::string(1, sep) : "") + names[k];
+  s += "\n";
+  for (int k = 0; k < rows; ++k) {
+    const double a = 0.02 + 0.5 * std::sin(2.0 * M_PI * k / 10.0);
+    s += fmt::format("{:.6f}{s}{:.17g}{s}{}{s}0.1{s}-0.3{s}{}{s}12.5{s}0\n", k * dt, a, 1.5 * k,
+                     k % 2 ? "OK" : "n/a", fmt::arg("s", std::string(1, sep)));
+  }
+  return s;
+}
+
+double expected_shake_accel_m_s2(int k) { return (0.02 + 0.5 * std::sin(2.0 * M_PI * k / 10.0)) * kStandardGravity; }
+
+TEST(ReaderColumns, ShakeTableFileByNameAndByNumber) {
+  ReadOptions by_name;
+  by_name.columns = parse_columns("Time (s),Table Acc (g)");
+  ReadOptions by_number;
+  by_number.columns = parse_columns("1,2");
+  ReadOptions quoted;
+  quoted.columns = parse_columns("\"time (S)\" , \"TABLE ACC (G)\"");  // case-insensitive, trimmed
+  for (const ReadOptions& o : {by_name, by_number, quoted}) {
+    const GroundMotion m = parse(shake_table('\t'), o);
+    ASSERT_EQ(m.size(), 41u);
+    EXPECT_TRUE(m.is_uniform());
+    EXPECT_NEAR(m.dt_s(), 0.005, 1e-15);
+    EXPECT_EQ(m.metadata().units_as_read, "g");  // from "(g)" in the chosen column's name
+    for (int k = 0; k < 41; ++k) EXPECT_NEAR(m.accel_m_s2()[k], expected_shake_accel_m_s2(k), 1e-14) << k;
+  }
+  // Another acceleration channel, chosen by its number: the same rows, column 5 (-0.3 g everywhere).
+  ReadOptions five;
+  five.columns = parse_columns("1,5");
+  EXPECT_DOUBLE_EQ(parse(shake_table('\t'), five).pga_m_s2(), 0.3 * kStandardGravity);
+  // No time column: the acceleration alone, with dt.
+  for (const char* text : {",Table Acc (g)", "accel=2"}) {
+    ReadOptions o;
+    o.columns = parse_columns(text);
+    o.dt_s = 0.005;
+    const GroundMotion m = parse(shake_table('\t'), o);
+    ASSERT_EQ(m.size(), 41u) << text;
+    EXPECT_DOUBLE_EQ(m.accel_m_s2()[3], expected_shake_accel_m_s2(3)) << text;
+  }
+}
+
+TEST(ReaderColumns, CommaSemicolonAndBlankSeparators) {
+  ReadOptions o;
+  o.columns = parse_columns("Time (s),Table Acc (g)");
+  for (char sep : {',', ';'}) {
+    const GroundMotion m = parse(shake_table(sep), o);
+    ASSERT_EQ(m.size(), 41u) << sep;
+    EXPECT_NEAR(m.accel_m_s2()[7], expected_shake_accel_m_s2(7), 1e-14) << sep;
+  }
+  // Forced: a file with semicolons read as comma-separated has no column 2.
+  ReadOptions forced = o;
+  forced.separator = Separator::comma;
+  EXPECT_THROW((void)parse(shake_table(';'), forced), InputError);
+  // Blank-separated with names without spaces; units given by the name's suffix or by --units.
+  ReadOptions b;
+  b.columns = parse_columns("t_s,table_acc");
+  b.units = "m/s2";
+  const GroundMotion blank = parse("t_s  table_acc  disp_mm\n0 0.5 1\n0.01 -1.5 2\n0.02 0 3\n", b);
+  EXPECT_DOUBLE_EQ(blank.pga_m_s2(), 1.5);
+  EXPECT_EQ(blank.metadata().units_as_read, "m/s2");
+  ReadOptions c;
+  c.columns = parse_columns("3,accel_cm_s2");
+  EXPECT_DOUBLE_EQ(parse("accel_cm_s2;x;time_ms\n50;a;0\n-100;b;10\n", c).pga_m_s2(), 1.0);
+  // A commented header counts when it names every column.
+  ReadOptions h;
+  h.columns = parse_columns("Time (s),Acc (gal)");
+  EXPECT_DOUBLE_EQ(parse("# Time (s)\tAcc (gal)\tDisp (mm)\n0\t10\t1\n0.01\t-20\t2\n", h).pga_m_s2(), 0.2);
+  // A blank-separated comment is a sentence, not a header, even when it has as many words as the data has columns.
+  ReadOptions n;
+  n.columns = parse_columns("1,2");
+  n.units = "cm/s2";
+  const GroundMotion title = parse("# amplitude (g)\n0\t10\n0.01\t-20\n", n);  // not column 2 in g
+  EXPECT_DOUBLE_EQ(title.pga_m_s2(), 0.2);
+  EXPECT_EQ(title.metadata().units_as_read, "cm/s2");
+}
+
+TEST(ReaderColumns, OldFilesMeanWhatTheyMeant) {
+  // Without --columns the one- and two-column files read as before (the whole existing ReaderPlain suite too), and a
+  // tab-separated two-column file with names holding spaces now reads.
+  const GroundMotion m = parse("Time (s)\tAcceleration (g)\n0\t0.1\n0.01\t-0.2\n");
+  EXPECT_DOUBLE_EQ(m.pga_m_s2(), 0.2 * kStandardGravity);
+  EXPECT_DOUBLE_EQ(parse("time_s;accel_g\n0;0.1\n0.01;-0.3\n").pga_m_s2(), 0.3 * kStandardGravity);
+  // The header and the data split by their own separators, as every line was before: a "name, name" header over
+  // blank-separated data, a tab-separated header (commented too) over data aligned with blanks.
+  EXPECT_DOUBLE_EQ(parse("time_s, accel_g\n0 0.1\n0.01 -0.4\n").pga_m_s2(), 0.4 * kStandardGravity);
+  EXPECT_DOUBLE_EQ(parse("Time (s)\tAcc (g)\n0  0.1\n0.01  -0.5\n").pga_m_s2(), 0.5 * kStandardGravity);
+  EXPECT_DOUBLE_EQ(parse("# Time (s)\tAcceleration (g)\n0  0.1\n0.01  -0.6\n").pga_m_s2(), 0.6 * kStandardGravity);
+}
+
+TEST(ReaderColumns, ParseColumnsGrammar) {
+  const ColumnChoice a = parse_columns("1,2");
+  ASSERT_TRUE(a.time);
+  EXPECT_EQ(a.time->number, 1u);
+  EXPECT_EQ(a.accel.number, 2u);
+  const ColumnChoice b = parse_columns("time=Time (s), accel=Table Acc (g)");
+  EXPECT_EQ(b.time->name, "Time (s)");
+  EXPECT_EQ(b.accel.name, "Table Acc (g)");
+  EXPECT_FALSE(parse_columns(",3").time);
+  EXPECT_FALSE(parse_columns("accel=3").time);
+  EXPECT_EQ(parse_columns("accel=3").accel.number, 3u);
+  EXPECT_EQ(parse_columns("\"a,b\",2").time->name, "a,b");
+  for (const char* bad : {"", "3", "1,2,3", "0,2", "1,", "2,2", "x,X", "time=1,time=2", "speed=2", "\"a,2"}) {
+    EXPECT_THROW((void)parse_columns(bad), InputError) << bad;
+  }
+  EXPECT_EQ(parse_separator("tab"), Separator::tab);
+  EXPECT_EQ(parse_separator("semicolon"), Separator::semicolon);
+  EXPECT_THROW((void)parse_separator("pipe"), InputError);
+}
+
+// Baselines against closed forms. The record: n = 2001 samples at dt = 0.005 s over T = 10 s, a sine of 20 whole
+// periods (f = 2 Hz) whose uniform samples sum to zero (to rounding), on top of an offset.
+GroundMotion offset_record(const std::function<double(double)>& offset, double amp = 1.0) {
+  std::vector<double> a(2001);
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const double t = 0.005 * static_cast<double>(i);
+    a[i] = offset(t) + amp * std::sin(2.0 * M_PI * 2.0 * t);
+  }
+  return GroundMotion::uniform(std::move(a), 0.005);
+}
+
+double max_abs_diff(const GroundMotion& m, const std::function<double(double)>& expected) {
+  double worst = 0.0;
+  for (std::size_t i = 0; i < m.size(); ++i) worst = std::max(worst, std::abs(m.accel_m_s2()[i] - expected(m.time_s(i))));
+  return worst;
+}
+
+TEST(Baseline, MeanAndPolyZeroRemoveAConstantExactly) {
+  const auto sine = [](double t) { return std::sin(2.0 * M_PI * 2.0 * t); };
+  const GroundMotion m = offset_record([](double) { return 0.15; });
+  EXPECT_LT(max_abs_diff(remove_baseline(m, parse_baseline("mean")), sine), 1e-13);
+  EXPECT_LT(max_abs_diff(remove_baseline(m, parse_baseline("poly:0")), sine), 1e-13);
+  // none: the record itself, bit for bit.
+  const GroundMotion same = remove_baseline(m, parse_baseline("none"));
+  for (std::size_t i = 0; i < m.size(); ++i) ASSERT_EQ(same.accel_m_s2()[i], m.accel_m_s2()[i]);
+}
+
+TEST(Baseline, PolynomialsRemoveDriftsOfTheirDegreeExactly) {
+  // A linear drift alone is removed to rounding by poly:1; with the sine on top the result is the sine's own poly:1
+  // residual (the fit is linear in the data), whatever the drift.
+  const auto drift = [](double t) { return 0.3 - 0.04 * t; };
+  const GroundMotion pure = offset_record(drift, 0.0);
+  EXPECT_LT(max_abs_diff(remove_baseline(pure, parse_baseline("poly:1")), [](double) { return 0.0; }), 1e-13);
+  const GroundMotion with = remove_baseline(offset_record(drift), parse_baseline("poly:1"));
+  const GroundMotion alone = remove_baseline(offset_record([](double) { return 0.0; }), parse_baseline("poly:1"));
+  for (std::size_t i = 0; i < with.size(); ++i) ASSERT_NEAR(with.accel_m_s2()[i], alone.accel_m_s2()[i], 1e-13);
+  // A cubic in t (large coefficients, t far from 0: the Legendre basis on [-1, 1] keeps this well conditioned).
+  std::vector<double> a(3001);
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const double t = 1000.0 + 0.01 * static_cast<double>(i);
+    a[i] = 2.0 - 0.5 * (t - 1000.0) + 0.03 * std::pow(t - 1010.0, 2) - 0.002 * std::pow(t - 1015.0, 3);
+  }
+  const GroundMotion cubic = GroundMotion::uniform(a, 0.01, 1000.0);
+  EXPECT_LT(max_abs_diff(remove_baseline(cubic, parse_baseline("poly:3")), [](double) { return 0.0; }), 1e-10);
+  // poly:2 of x^3 on [-1, 1]: the continuous least-squares residual is x^3 - (3/5) x (x^3 minus its projection on
+  // P_1, since x^3 = (2/5) P_3 + (3/5) P_1); on 10001 uniform samples within 1e-3.
+  std::vector<double> x3(10001);
+  for (std::size_t i = 0; i < x3.size(); ++i) x3[i] = std::pow(-1.0 + 2e-4 * static_cast<double>(i), 3);
+  const GroundMotion x3m = GroundMotion::uniform(x3, 2e-4, -1.0);
+  EXPECT_LT(max_abs_diff(remove_baseline(x3m, parse_baseline("poly:2")),
+                         [](double x) { return x * x * x - 0.6 * x; }),
+            1e-3);
+}
+
+TEST(Baseline, PreEventRemovesTheWindowsMean) {
+  // Over the first 2 s the record is 0.2 + 0.05 t (no shaking yet): the window's mean is 0.2 + 0.05 * 1 = 0.25 (the
+  // samples are symmetric about t = 1 s); afterwards a sine. The whole record loses 0.25.
+  std::vector<double> a(2001);
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const double t = 0.005 * static_cast<double>(i);
+    a[i] = t <= 2.0 + 1e-12 ? 0.2 + 0.05 * t : 0.3 + std::sin(2.0 * M_PI * t);
+  }
+  const GroundMotion m = GroundMotion::uniform(a, 0.005);
+  const GroundMotion r = remove_baseline(m, parse_baseline("pre-event:2"));
+  for (std::size_t i = 0; i < m.size(); ++i) ASSERT_NEAR(r.accel_m_s2()[i], a[i] - 0.25, 1e-14) << i;
+  // With a unit; and the names round-trip.
+  const GroundMotion ms = remove_baseline(m, parse_baseline("pre-event:2000ms"));
+  EXPECT_NEAR(ms.accel_m_s2()[0], a[0] - 0.25, 1e-14);
+  for (const char* name : {"none", "mean", "pre-event:2", "pre-event:0.5", "poly:0", "poly:3"}) {
+    EXPECT_EQ(baseline_name(parse_baseline(name)), name);
+  }
+}
+
+TEST(Baseline, ReadOptionsApplyItToEveryFormat) {
+  ReadOptions o;
+  o.columns = parse_columns("Time (s),Table Acc (g)");
+  o.baseline = parse_baseline("pre-event:0.0001");  // refused: the window holds one sample
+  EXPECT_THROW((void)parse(shake_table('\t'), o), InputError);
+  o.baseline = parse_baseline("mean");
+  const GroundMotion m = parse(shake_table('\t', 41), o);
+  // 41 samples over 4 whole periods of 10 samples plus one (sin 0 = 0): the mean is the 0.02 g offset.
+  EXPECT_NEAR(m.accel_m_s2()[5], (0.5 * std::sin(M_PI)) * kStandardGravity, 1e-13);
+  EXPECT_NEAR(m.accel_m_s2()[2], 0.5 * std::sin(0.4 * M_PI) * kStandardGravity, 1e-13);
+  // A one-column file, and an agency format (PEER AT2) too.
+  ReadOptions one;
+  one.units = "g";
+  one.dt_s = 0.01;
+  one.baseline = parse_baseline("poly:0");
+  EXPECT_DOUBLE_EQ(parse("1\n2\n3\n", one).accel_m_s2()[2], 1.0 * kStandardGravity);
+  if (have_shared()) {
+    ReadOptions at2;
+    at2.baseline = parse_baseline("mean");
+    const GroundMotion raw = read_motion(shared_record("Rinaldi228.AT2"));
+    const GroundMotion cor = read_motion(shared_record("Rinaldi228.AT2"), at2);
+    double mean = 0.0;
+    for (double v : raw.accel_m_s2()) mean += v;
+    mean /= static_cast<double>(raw.size());
+    EXPECT_NEAR(cor.accel_m_s2()[100], raw.accel_m_s2()[100] - mean, 1e-12);
+  }
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // any run with an InputError naming the file, the line and the key.
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <variant>
 #include <filesystem>
@@ -320,6 +321,55 @@ void expect_refused(const fs::path& p, const std::string& text, const std::strin
       EXPECT_EQ(e.where().line.value_or(0), line) << e.what();
     }
     EXPECT_NE(e.problem().find(problem_part), std::string::npos) << e.what();
+  }
+}
+
+TEST(SweepFile, RecordsAsRecordedColumnsSeparatorBaseline) {
+  // Issue 28: [motions] columns, separator and baseline read plain records as a lab writes them. The table file has
+  // four semicolon-separated columns and a +0.05 g offset over a 2.5 Hz sine of 0.2 g (200 samples, 5 periods).
+  TempDir dir;
+  std::string table = "Time (s);Table Acc (g);Disp (mm);Note\n";
+  for (int i = 0; i < 200; ++i) {
+    const double t = 0.01 * i;
+    table += fmt::format("{};{:.17g};{};x\n", t, 0.05 + 0.2 * std::sin(2.0 * kPi * 2.5 * t), i);
+  }
+  write_file(dir.path() / "t.txt", table);
+  for (const char* columns : {R"x(["Time (s)", "Table Acc (g)"])x", "[1, 2]", R"x("1,2")x"}) {
+    const SweepFile s = parse_in(dir, fmt::format(R"(
+[motions]
+files = "t.txt"
+columns = {}
+separator = "semicolon"
+baseline = "mean"
+[[object]]
+model = "slide"
+mu = 0.1
+)", columns));
+    ASSERT_EQ(s.spec.records.size(), 1u) << columns;
+    // The mean of 5 whole periods sampled uniformly is the offset: the sine remains, peak 0.2 g at t = 0.1 s.
+    EXPECT_NEAR(s.spec.records[0].motion->pga_m_s2(), 0.2 * kG, 1e-12) << columns;
+    EXPECT_NEAR(s.spec.records[0].motion->accel_m_s2()[0], 0.0, 1e-13) << columns;
+  }
+  // No time column: ["", 2] with dt.
+  const SweepFile n = parse_in(dir, "[motions]\nfiles = \"t.txt\"\ncolumns = [\"\", 2]\ndt_s = 0.01\n"
+                                    "[[object]]\nmodel = \"slide\"\nmu = 0.1\n");
+  EXPECT_NEAR(n.spec.records[0].motion->pga_m_s2(), 0.25 * kG, 1e-3 * kG);  // offset kept: baseline none
+  // Errors name the sweep's keys; a column missing from the header names the record's file and header line.
+  const std::string slide = "[[object]]\nmodel = \"slide\"\nmu = 0.1\n";
+  expect_refused(dir.path() / "b1.toml", "[motions]\nfiles = \"t.txt\"\nbaseline = \"poly:7\"\n" + slide,
+                 "motions.baseline", 3, "0..3");
+  expect_refused(dir.path() / "b2.toml", "[motions]\nfiles = \"t.txt\"\ncolumns = [1, 2, 3]\n" + slide,
+                 "motions.columns", 3, "2 columns");
+  expect_refused(dir.path() / "b3.toml", "[motions]\nfiles = \"t.txt\"\nseparator = \"pipe\"\n" + slide,
+                 "motions.separator", 3, "unknown separator");
+  try {
+    static_cast<void>(parse_in(dir, "[motions]\nfiles = \"t.txt\"\ncolumns = [1, \"Acc (g)\"]\n" + slide));
+    FAIL() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(e.where().file.find("t.txt"), std::string::npos) << e.what();
+    EXPECT_EQ(e.where().line, std::optional<std::size_t>(1)) << e.what();
+    EXPECT_EQ(e.where().field, "motions.columns") << e.what();
+    EXPECT_NE(e.problem().find("'Table Acc (g)'"), std::string::npos) << e.what();
   }
 }
 

@@ -12,6 +12,7 @@
 #include <string>
 #include <string_view>
 
+#include "topple/motion/baseline.hpp"
 #include "topple/motion/ground_motion.hpp"
 #include "topple/core/units.hpp"
 
@@ -27,8 +28,41 @@ enum class Format {
   esm,        ///< ESM / ITACA ASCII ("KEY: value" header)
   plain,      ///< plain text: one column with a given dt, or time/acceleration columns (CSV or whitespace);
               ///< '#' comments, optional UTF-8 BOM, optional header naming the columns with units ("time_s,accel_g",
-              ///< "accel_cm_s2", or a last comment line such as "# Time (s),Acceleration (g's)")
+              ///< "accel_cm_s2", or a last comment line such as "# Time (s),Acceleration (g's)"); any number of
+              ///< columns separated by tabs, blanks, commas or semicolons with ReadOptions::columns
 };
+
+/// One column of a plain file: by its 1-based number or by its header name (the name as the header writes it,
+/// compared after trimming blanks, ignoring ASCII case; names may hold spaces).
+struct ColumnRef {
+  std::size_t number = 0;  ///< 1-based; 0 when chosen by name
+  std::string name;        ///< when chosen by name
+  [[nodiscard]] bool by_name() const noexcept { return number == 0; }
+};
+
+/// Which columns of a plain file hold the time and the acceleration (docs/formats.md, "Plain text").
+struct ColumnChoice {
+  std::optional<ColumnRef> time;  ///< none: the file has no time column, and ReadOptions::dt_s gives the step
+  ColumnRef accel;
+};
+
+/// The separator of a plain file's fields.
+enum class Separator {
+  automatic,   ///< the header by its own content, the data by the first data line's: tab if it holds one, else
+               ///< semicolon, else comma, else blanks
+  whitespace,  ///< runs of blanks and tabs
+  tab,
+  comma,
+  semicolon,
+};
+
+/// "TIME,ACCEL" (each a 1-based number or a header name: "1,2", "Time (s),Table Acc (g)"), ",ACCEL" or "accel=ACCEL"
+/// (no time column), or "time=TIME,accel=ACCEL". A part made of digits only is a number. Throws InputError naming
+/// `field` for an empty choice, a number < 1, or the same column twice (by number, or the same name).
+[[nodiscard]] ColumnChoice parse_columns(std::string_view text, const std::string& field = "--columns");
+
+/// "auto", "whitespace" (or "space"), "tab", "comma", "semicolon"; InputError naming `field` otherwise.
+[[nodiscard]] Separator parse_separator(std::string_view text, const std::string& field = "--separator");
 
 struct ReadOptions {
   Format format = Format::automatic;
@@ -45,6 +79,15 @@ struct ReadOptions {
   std::optional<double> dt_s;
   /// g used to convert values in g to m/s^2.
   double g_m_s2 = kStandardGravity;
+  /// Plain files: the time and acceleration columns. Without it a plain file holds one column (acceleration) or two
+  /// (time, acceleration), as before; with it any number, the others ignored (never parsed: they may hold text),
+  /// every data row having as many fields as the first. The unit comes from the chosen column's header name
+  /// ("Table Acc (g)", "acc [m/s2]", "accel_g") or `units`. An error for the other formats.
+  std::optional<ColumnChoice> columns;
+  /// Plain files: how fields are separated. An error for the other formats unless automatic.
+  Separator separator = Separator::automatic;
+  /// Offset removal applied to the record as read (every format): none by default (the record bit for bit).
+  Baseline baseline;
 };
 
 /// Limits on every text file topple reads (records, survey and sweep files), README "Limits". Records of real

@@ -198,6 +198,12 @@ struct InversionSettings {
   /// components = 3: the number of bins of the direction of strongest shaking over [0, 180) deg (4 to 72; 12 is
   /// 15 deg bins).
   int directions = 12;
+  /// How the survey's record files (`records`, and the sites' instrument `record`s) are read: [inversion]
+  /// record_format, record_units, record_dt_s, record_columns, record_separator, record_baseline (docs/survey.md),
+  /// as the CLI's --format, --units, --dt, --columns, --separator, --baseline; checked when the survey is parsed,
+  /// applied by io::load_survey_records. Empty: the reader's default.
+  std::string record_format, record_units, record_columns, record_separator, record_baseline;
+  std::optional<double> record_dt_s;
 };
 
 struct Survey {
