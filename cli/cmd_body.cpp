@@ -96,7 +96,8 @@ void add_body_command(CLI::App& app) {
     check_body_options(o->body);
     const double unit_m = io::mesh_unit_m(o->unit, "--unit");
     const TriangleMesh mesh = io::read_mesh(o->mesh, unit_m);
-    const MeshBody result = mesh_body(mesh, o->body, o->mesh);
+    MeshBody result = mesh_body(mesh, o->body, o->mesh);
+    io::to_file_coordinates(result, mesh.origin_m);  // positions printed in the file's coordinates, as before
     print_body(*o, result, mesh.vertices_m.size(), mesh.triangles.size());
   });
 }

@@ -36,9 +36,14 @@ inline constexpr std::uintmax_t kMaxMeshFileBytes = std::uintmax_t{1} << 30;
 [[nodiscard]] TriangleMesh read_mesh(const std::string& path, double unit_m = 1.0);
 
 /// A mesh file's planar body at options.azimuth_deg: check_body_options, then read_mesh (scaled by `unit_m`), then
-/// mesh_body. Throws InputError naming the mesh file, or the option that is wrong. What the survey and sweep readers
+/// mesh_body (its positions moved to the file's coordinates: to_file_coordinates). Throws InputError naming the mesh file, or the option that is wrong. What the survey and sweep readers
 /// call for an object given as `mesh = "..."` (the file's vertex and triangle counts: call read_mesh and mesh_body).
 [[nodiscard]] MeshBody read_mesh_body(const std::string& path, double unit_m, const BodyOptions& options);
+
+/// Moves the positions of a body computed from a mesh read by read_mesh (centre of mass, support plane and polygon,
+/// pivots; computed in the mesh's local frame) to the file's coordinates, adding mesh.origin_m: what `topple body`
+/// prints, with the meaning these keys had before meshes were recentred. Lengths, angles and inertias do not change.
+void to_file_coordinates(MeshBody& body, const Vec3& origin_m);
 
 /// Same as read_mesh on a file's content already in memory, of `format` "obj", "stl" or "ply" (what the extension
 /// says); `name` is used in messages (and is what the fuzz targets call).
