@@ -506,6 +506,7 @@ class Builder {
   const std::string& name_;
   double unit_m_;
   TriangleMesh mesh_;
+  std::vector<char> used_;                                // file vertex -> used by a face
   std::vector<std::uint32_t> rep_;                        // file vertex -> the first file vertex at the same point
   std::vector<std::uint32_t> tri_face_;                   // triangle -> file face (0-based)
   std::vector<std::array<std::uint32_t, 3>> tri_file_;    // triangle -> the file's vertex indices, before welding
@@ -566,7 +567,8 @@ class Builder {
   /// part of the surface is sampled nor on the order of a sum, and it is the reference mass_properties uses.
   void place() {
     const std::size_t nv = soup_.points.size();
-    std::vector<char> used(nv, 0);
+    used_.assign(nv, 0);
+    std::vector<char>& used = used_;
     for (const auto& poly : soup_.polygons) {
       for (std::size_t v : poly) used[v] = 1;
     }
@@ -574,16 +576,16 @@ class Builder {
     bool first = true;
     std::size_t first_used = 0;
     for (std::size_t v = 0; v < nv; ++v) {
-      if (used[v] == 0) continue;
       const Point& p = soup_.points[v];
       const Vec3 x{p.x(), p.y(), p.z()};
-      for (int k = 0; k < 3; ++k) {
+      for (int k = 0; k < 3; ++k) {  // every vertex, used or not: a bad number is bad input wherever it is
         if (!std::isfinite(x[k]) || !(std::abs(x[k]) * unit_m_ <= kMaxFileCoordinateM)) {
           throw mesh_error(name_, fmt::format("{} has a coordinate that is not a finite number within {:g} m of the "
                                               "file's origin: check --unit",
                                               vertex_name(v), kMaxFileCoordinateM));
         }
       }
+      if (used[v] == 0) continue;
       if (first) {
         lo = hi = x;
         first_used = v;
@@ -614,23 +616,27 @@ class Builder {
 
   /// Vertices at bitwise-equal file coordinates (-0 and +0 one value) become one, the first in the file: an STL
   /// repeats every corner (CGAL welds those already), and OBJ or PLY writers split vertices at texture seams. Nothing
-  /// is snapped within a tolerance. Sorting, not a tree: 4 bytes a vertex.
+  /// is snapped within a tolerance. Sorting, not a tree: 4 bytes a vertex. Only the vertices faces use (place() has
+  /// checked that they are finite: a NaN would break the sort's ordering); an unused one stays itself.
   void weld() {
     const std::size_t nv = soup_.points.size();
     const auto key = [this](std::uint32_t v) {
       const Point& p = soup_.points[v];
       return std::array<double, 3>{p.x() + 0.0, p.y() + 0.0, p.z() + 0.0};
     };
-    std::vector<std::uint32_t> order(nv);
-    for (std::size_t v = 0; v < nv; ++v) order[v] = static_cast<std::uint32_t>(v);
+    std::vector<std::uint32_t> order;
+    rep_.resize(nv);
+    for (std::size_t v = 0; v < nv; ++v) {
+      rep_[v] = static_cast<std::uint32_t>(v);
+      if (used_[v] != 0) order.push_back(static_cast<std::uint32_t>(v));
+    }
     std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
       const auto ka = key(a), kb = key(b);
       return ka != kb ? ka < kb : a < b;
     });
-    rep_.assign(nv, 0);
-    for (std::size_t i = 0; i < nv;) {
-      std::size_t j = i;
-      while (j < nv && key(order[j]) == key(order[i])) rep_[order[j++]] = order[i];  // order[i]: the first of the run
+    for (std::size_t i = 0; i < order.size();) {
+      std::size_t j = i + 1;  // order[i]: the first in the file of its run of equal points
+      while (j < order.size() && key(order[j]) == key(order[i])) rep_[order[j++]] = order[i];
       i = j;
     }
   }

@@ -71,7 +71,12 @@ TEST(MeshRead, ObjStlAsciiStlBinaryAndPlyGiveTheSameBody) {
   write_file(off, test::off_text(mesh));
   write_file(plyl, test::ply_binary_bytes(mesh, false));
   write_file(plyb, test::ply_binary_bytes(mesh, true));
-  for (const auto& path : {obj, stl, stlb, ply, off, plyl, plyb}) {
+  // A binary STL whose 80-byte header begins with "solid" (as some CAD programs write): read as binary all the same.
+  const auto stls = dir.path() / "l_solid_header.stl";
+  std::string solid_header = test::stl_binary_bytes(mesh);
+  solid_header.replace(0, 6, "solid ");
+  write_file(stls, solid_header);
+  for (const auto& path : {obj, stl, stlb, ply, off, plyl, plyb, stls}) {
     SCOPED_TRACE(path.string());
     const TriangleMesh read = io::read_mesh(path.string());
     EXPECT_EQ(read.vertices_m.size(), mesh.vertices_m.size());  // STL's repeated vertices welded back to 12
@@ -276,6 +281,11 @@ TEST(MeshRead, RefusesWithTheFileName) {
   expect_refused(d / "negative.off", "face 2 is not 'n i_1 ... i_n'");
   write_file(d / "short.off", "OFF\n4 4 0\n0 0 0\n1 0 0\n");
   expect_refused(d / "short.off", "the file ends after 2 of its 4 vertices");
+  // Found by fuzz_mesh_ply: a NaN in a vertex no face uses (binary PLY) hung the welding; every vertex is checked.
+  TriangleMesh with_nan = l_prism();
+  with_nan.vertices_m.push_back({0.0, std::nan(""), 0.0});
+  write_file(d / "unused_nan.ply", test::ply_binary_bytes(with_nan, true));
+  expect_refused(d / "unused_nan.ply", "vertex 13 (index 12) (0, nan, 0) has a coordinate that is not a finite number");
   write_file(d / "coff.off", "COFF\n4 4 0\n");
   expect_refused(d / "coff.off", "does not begin with the keyword OFF");
 }
