@@ -131,12 +131,14 @@ bool is_identifier(std::string_view t) {
   return std::all_of(t.begin(), t.end(), [](unsigned char c) { return std::isalnum(c) || c == '_' || c == '-'; });
 }
 
+/// The tokens of a line split at white space as a C++ stream sees it (space, \t, \r, \v, \f), as CGAL's readers do.
 std::vector<std::string_view> split_blank(std::string_view line) {
+  const auto blank = [](char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; };
   std::vector<std::string_view> tokens;
   for (std::size_t i = 0; i < line.size();) {
-    while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+    while (i < line.size() && blank(line[i])) ++i;
     std::size_t j = i;
-    while (j < line.size() && line[j] != ' ' && line[j] != '\t') ++j;
+    while (j < line.size() && !blank(line[j])) ++j;
     if (j > i) tokens.push_back(line.substr(i, j - i));
     i = j;
   }
@@ -288,9 +290,23 @@ bool parse_index(std::string_view token, std::size_t& value) {
   return ec == std::errc{} && end == token.data() + token.size();
 }
 
+/// The statements CGAL::IO::read_OBJ (CGAL 5.5, OBJ.h) passes over as valid; any other but v, vt, vn, f, l and a
+/// comment makes it fail without saying where, so the line is named here first.
+bool is_obj_statement(std::string_view key) {
+  for (std::string_view known :
+       {"v", "vt", "vn", "f", "vp", "bevel", "lod", "ctech", "c_interp", "usemap", "usemtl", "stech", "d_interp",
+        "mtllib", "shadow_obj", "trace_obj", "o", "g", "s", "p", "cstype", "deg", "step", "bmat", "con", "curv",
+        "curv2", "surf", "parm", "trim", "hole", "scrv", "sp", "end", "surf_1", "q0_1", "q1_1", "curv2d_1", "surf_2",
+        "q0_2", "q1_2", "curv2d_2", "bsp", "bzp", "cdc", "cdp", "res"}) {
+    if (key == known) return true;
+  }
+  return false;
+}
+
 /// OBJ statements counted before CGAL reads the file: vertices (v) but no faces (f) is a point cloud; a polyline (l),
 /// which CGAL's reader stops at without saying where, is refused with its line; a v line must hold three finite
-/// numbers (CGAL reads them with a stream, and does not say which line it could not read).
+/// numbers (CGAL reads them with a stream, and does not say which line it could not read); an unknown statement is
+/// refused with its line.
 void check_obj(std::string_view content, const std::string& name) {
   std::size_t pos = 0, line_no = 0, vertices = 0, faces = 0, first_l = 0;
   while (pos < content.size()) {
@@ -308,8 +324,12 @@ void check_obj(std::string_view content, const std::string& name) {
       }
     } else if (tokens[0] == "f") {
       ++faces;
-    } else if (tokens[0] == "l" && first_l == 0) {
-      first_l = line_no;
+    } else if (tokens[0] == "l") {
+      if (first_l == 0) first_l = line_no;
+    } else if (tokens[0].front() != '#' && !is_obj_statement(tokens[0])) {
+      throw line_error(name, line_no, fmt::format("'{}' is not an OBJ statement (v, vt, vn, f, g, o, s, usemtl, "
+                                                  "mtllib, ...)",
+                                                  std::string(tokens[0].substr(0, 40))));
     }
   }
   if (faces == 0) {

@@ -262,6 +262,8 @@ TEST(MeshRead, RefusesWithTheFileName) {
   expect_refused(d / "concave.obj", "not a convex polygon");
   write_file(d / "nan.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 nan\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
   expect_refused(d / "nan.obj", "vertex 4 (this v line) does not hold three finite numbers");
+  write_file(d / "unknown.obj", test::obj_text(l_prism()) + "vx 1 2 3\n");
+  expect_refused(d / "unknown.obj", "'vx' is not an OBJ statement");
   write_file(d / "comma.obj", "v 0 0 0\nv 1,5 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
   expect_refused(d / "comma.obj", "vertex 2 (this v line)");
   // A face naming a vertex the file does not have (CGAL's own bound lets the one past the last through).
