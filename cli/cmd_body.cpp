@@ -128,10 +128,12 @@ void print_body(const BodyCommandOptions& o, const MeshBody& r, std::size_t vert
 void add_body_command(CLI::App& app) {
   auto o = std::make_shared<BodyCommandOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "body", "The planar rocking body of a closed triangle mesh (OBJ, STL, PLY; x east, y north, z up) in the "
+      "body", "The planar rocking body of a closed triangle mesh (OBJ, OFF, STL, PLY; x east, y north, z up) in the "
               "vertical plane at an azimuth: volume, mass, centre of mass, inertia, pivots b1/b2, h, alpha1/2, "
               "I_O1/2, p1/p2");
-  cmd->add_option("mesh", o->mesh, "Mesh file: .obj, .stl (ASCII or binary) or .ply, a closed outward-facing solid")
+  cmd->add_option("mesh", o->mesh,
+                  "Mesh file: .obj, .off, .stl or .ply (ASCII or binary), a closed outward-facing solid; read in double "
+                  "precision (georeferenced coordinates are fine)")
       ->required();
   cmd->add_option("--azimuth", o->azimuth_deg, "Direction of the plane of shaking, degrees clockwise from north (+y)")
       ->required();
@@ -158,7 +160,11 @@ void add_body_command(CLI::App& app) {
       print_faces(*o, mesh);
       return;
     }
-    const MeshBody result = mesh_body(mesh, o->body, o->mesh);
+    // Positions printed in the file's coordinates: the reader recentred the mesh (a translation) and the resting pose
+    // turns it about its centre of mass, so adding the origin back is the same rotation about the CM done in the
+    // file's frame (as scanned: exactly the file's positions, as before).
+    MeshBody result = mesh_body(mesh, o->body, o->mesh);
+    io::to_file_coordinates(result, mesh.origin_m);
     print_body(*o, result, mesh.vertices_m.size(), mesh.triangles.size());
   });
 }

@@ -1,5 +1,5 @@
-// libFuzzer target for the mesh reader (io::parse_mesh, assimp's OBJ, STL or PLY loader, the format fixed at compile
-// time by TOPPLE_FUZZ_MESH) and what `topple body` computes on a mesh that reads. Contract (docs/fuzzing.md): an
+// libFuzzer target for the mesh reader (io::parse_mesh: topple's pre-checks and CGAL's OBJ, OFF, STL or PLY reader,
+// the format fixed at compile time by TOPPLE_FUZZ_MESH) and what `topple body` computes on a mesh that reads. Contract (docs/fuzzing.md): an
 // InputError, or a mesh that check_mesh accepts and whose planar body (at two azimuths) is all finite numbers with
 // b1, b2, h > 0; any other exception, a crash, a sanitizer report or a non-finite number ends the run.
 #include <cmath>
@@ -27,6 +27,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string_view content(reinterpret_cast<const char*>(data), size);
   try {
     const topple::TriangleMesh mesh = topple::io::parse_mesh(content, TOPPLE_FUZZ_MESH, "fuzz-mesh");
+    require_finite({mesh.origin_m[0], mesh.origin_m[1], mesh.origin_m[2]});
     for (double azimuth : {0.0, 123.0}) {
       topple::BodyOptions options;
       options.azimuth_deg = azimuth;

@@ -92,7 +92,8 @@ EOF
 }
 
 status=0
-# Mesh seeds: the example rock as OBJ, and a unit cube in the format (OBJ; ASCII and binary STL; ASCII PLY).
+# Mesh seeds: the example rock as OBJ, and a unit cube in the format (OBJ; OFF; ASCII and binary STL; ASCII and binary
+# PLY).
 mesh_seeds() {
   [[ "$1" == obj ]] && cp examples/mesh/balanced_rock.obj "$2/seed-rock.obj"
   python3 - "$1" "$2" <<'EOF' || true
@@ -104,6 +105,9 @@ f = [(0, 2, 1), (0, 3, 2), (4, 5, 6), (4, 6, 7), (0, 1, 5), (0, 5, 4), (1, 2, 6)
 if fmt == 'obj':
     text = ''.join('v %g %g %g\n' % p for p in v) + ''.join('f %d %d %d\n' % (a + 1, b + 1, c + 1) for a, b, c in f)
     open(out + '/seed-cube.obj', 'w').write(text)
+elif fmt == 'off':
+    text = 'OFF\n%d %d 0\n' % (len(v), len(f)) + ''.join('%g %g %g\n' % p for p in v)
+    open(out + '/seed-cube.off', 'w').write(text + ''.join('3 %d %d %d\n' % t for t in f))
 elif fmt == 'stl':
     text = 'solid cube\n'
     for tri in f:
@@ -119,6 +123,10 @@ else:
             'element face %d\nproperty list uchar int vertex_indices\nend_header\n' % (len(v), len(f)))
     text = head + ''.join('%g %g %g\n' % p for p in v) + ''.join('3 %d %d %d\n' % t for t in f)
     open(out + '/seed-cube.ply', 'w').write(text)
+    head = head.replace('ascii', 'binary_big_endian').replace('float', 'double')
+    data = head.encode() + b''.join(struct.pack('>3d', *p) for p in v)
+    data += b''.join(struct.pack('>B3i', 3, *t) for t in f)
+    open(out + '/seed-cube-be.ply', 'wb').write(data)
 EOF
 }
 
@@ -144,8 +152,7 @@ for target in "${targets[@]}"; do
     fuzz_mesh_*) mesh_seeds "${target#fuzz_mesh_}" "$corpus"; dict=fuzz/mesh.dict ;;
   esac
   echo "== $target: ${seconds} s$([[ "$runs" == -1 ]] || echo ", at most $runs runs")"
-  # assimp's own leaks on malformed files are suppressed (fuzz/lsan_assimp.supp); everything else is reported.
-  [[ "$target" == fuzz_mesh_* ]] && export LSAN_OPTIONS="suppressions=$(pwd)/fuzz/lsan_assimp.supp" || unset LSAN_OPTIONS
+  unset LSAN_OPTIONS  # every leak is reported
   if ! "$out/fuzz/$target" "$corpus" -max_total_time="$seconds" -runs="$runs" -max_len=65536 -timeout=10 \
        -rss_limit_mb=2048 -dict="$dict" -print_final_stats=1 -artifact_prefix="$out/artifacts/$target-" \
        2>"$out/$target.log"; then

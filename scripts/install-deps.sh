@@ -21,7 +21,7 @@ run_packages=(
   libcli11-dev libfmt-dev nlohmann-json3-dev libtomlplusplus-dev libboost-dev
   libtbb-dev libfftw3-dev libxxhash-dev
   libgeographiclib-dev  # geodesic distances (WGS84, Karney 2013) for the regional fit
-  libassimp-dev libcgal-dev  # meshes (topple body): reading OBJ/STL/PLY; convex hull and self-intersection
+  libcgal-dev  # meshes (topple body): reading OBJ/OFF/STL/PLY in double precision; convex hull, self-intersection
   gnuplot-nox  # figures: --plot, the inversion report
   gmt gmt-gshhg gmt-dcw ghostscript  # the regional report's map: GMT, its coastlines and borders (GSHHG), its
                                      # country polygons (DCW, for coast -E when restyling), ghostscript for the PNG

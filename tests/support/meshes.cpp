@@ -1,5 +1,6 @@
 #include "support/meshes.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -107,11 +108,43 @@ std::string stl_binary_bytes(const TriangleMesh& mesh) {
 
 std::string ply_ascii_text(const TriangleMesh& mesh) {
   std::string s = fmt::format(
-      "ply\nformat ascii 1.0\ncomment written by topple's tests\nelement vertex {}\nproperty float x\n"
-      "property float y\nproperty float z\nelement face {}\nproperty list uchar int vertex_indices\nend_header\n",
+      "ply\nformat ascii 1.0\ncomment written by topple's tests\nelement vertex {}\nproperty double x\n"
+      "property double y\nproperty double z\nelement face {}\nproperty list uchar int vertex_indices\nend_header\n",
       mesh.vertices_m.size(), mesh.triangles.size());
   for (const auto& p : mesh.vertices_m) s += fmt::format("{} {} {}\n", p[0], p[1], p[2]);
   for (const auto& t : mesh.triangles) s += fmt::format("3 {} {} {}\n", t[0], t[1], t[2]);
+  return s;
+}
+
+std::string off_text(const TriangleMesh& mesh) {
+  std::string s = fmt::format("OFF\n# written by topple's tests\n{} {} 0\n", mesh.vertices_m.size(), mesh.triangles.size());
+  for (const auto& p : mesh.vertices_m) s += fmt::format("{} {} {}\n", p[0], p[1], p[2]);
+  for (const auto& t : mesh.triangles) s += fmt::format("3 {} {} {}\n", t[0], t[1], t[2]);
+  return s;
+}
+
+std::string ply_binary_bytes(const TriangleMesh& mesh, bool big_endian) {
+  std::string s = fmt::format(
+      "ply\nformat {} 1.0\nelement vertex {}\nproperty double x\nproperty double y\nproperty double z\n"
+      "element face {}\nproperty list uchar int vertex_indices\nend_header\n",
+      big_endian ? "binary_big_endian" : "binary_little_endian", mesh.vertices_m.size(), mesh.triangles.size());
+  // Bytes in the file's order: the host is little-endian (x86-64, aarch64), so big-endian reverses each number.
+  const auto append = [&s, big_endian](const void* data, std::size_t n) {
+    std::string bytes(static_cast<const char*>(data), n);
+    if (big_endian) std::reverse(bytes.begin(), bytes.end());
+    s += bytes;
+  };
+  for (const auto& p : mesh.vertices_m) {
+    for (double x : p) append(&x, sizeof x);
+  }
+  for (const auto& t : mesh.triangles) {
+    const std::uint8_t n = 3;
+    append(&n, 1);
+    for (auto v : t) {
+      const auto i = static_cast<std::int32_t>(v);
+      append(&i, sizeof i);
+    }
+  }
   return s;
 }
 

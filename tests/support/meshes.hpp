@@ -30,11 +30,14 @@ namespace topple::test {
 /// The mesh with every triangle's winding reversed (inside out).
 [[nodiscard]] TriangleMesh inverted(const TriangleMesh& mesh);
 
-/// Mesh files (vertices printed to round-trip doubles; readers see single precision, so tests use coordinates that
-/// floats hold exactly).
+/// Mesh files. The text forms print every coordinate as the shortest decimal that reads back to the same double
+/// (fmt's "{}"), so a reader in double precision gets the mesh's numbers exactly; binary STL stores floats (the
+/// format's own precision); binary PLY stores doubles, little- or big-endian.
 [[nodiscard]] std::string obj_text(const TriangleMesh& mesh);
+[[nodiscard]] std::string off_text(const TriangleMesh& mesh);
 [[nodiscard]] std::string stl_ascii_text(const TriangleMesh& mesh);
 [[nodiscard]] std::string stl_binary_bytes(const TriangleMesh& mesh);
 [[nodiscard]] std::string ply_ascii_text(const TriangleMesh& mesh);
+[[nodiscard]] std::string ply_binary_bytes(const TriangleMesh& mesh, bool big_endian);
 
 }  // namespace topple::test

@@ -58,6 +58,10 @@ using Vec3 = std::array<double, 3>;
 struct TriangleMesh {
   std::vector<Vec3> vertices_m;
   std::vector<std::array<std::uint32_t, 3>> triangles;
+  /// The file's coordinates (m) of the point vertices_m are measured from: io::read_mesh recentres a file on its
+  /// bounding box's centre before any arithmetic, so that a georeferenced scan (UTM-size coordinates) keeps double
+  /// precision; zero for a mesh built in memory.
+  Vec3 origin_m{};
 };
 
 /// The limits a mesh must keep (check_mesh). A mesh outside them is refused as bad input, never computed on.

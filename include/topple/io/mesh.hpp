@@ -1,22 +1,32 @@
 #pragma once
-// Reading a closed triangle mesh (a 3-D scan) for topple/bodies/body.hpp.
+// Reading a closed triangle mesh (a 3-D scan) for topple/bodies/body.hpp, in double precision.
 //
-// Formats: Wavefront OBJ, STL (ASCII and binary), PLY (ASCII and binary), chosen by the file's extension (.obj,
-// .stl, .ply, any case); any other extension is refused, so that the 40-odd other formats of the Open Asset Import
-// Library (assimp, which parses these three) are never reached from topple. Polygons are split into triangles by
-// topple (a fan; a polygon that is not convex is refused); the meshes of every object and group in the file are
-// joined, with their node transforms applied; lines and points are refused. Vertices with bitwise-equal coordinates are welded into one (an STL file
-// repeats each vertex in every triangle that uses it; OBJ and PLY index them): a scan whose neighbouring triangles
-// do not share exactly equal vertices reads as open and is refused, nothing is snapped within a tolerance.
+// Formats, chosen by the file's extension (any case): Wavefront OBJ (.obj), OFF (.off, ASCII), STL (.stl, ASCII and
+// binary) and PLY (.ply, ASCII, binary little- and big-endian), read by CGAL's own I/O (CGAL::IO::read_OBJ, read_OFF,
+// read_STL, read_PLY) into double-precision points and polygons; what those readers assume without checking (PLY
+// property types and list widths, OFF counts and indices, binary STL sizes and finite floats, OBJ v lines) is checked
+// before them. Any other extension is refused; a file whose content is not of its extension's format is refused.
 //
-// Precision: Debian's assimp holds coordinates as float (ai_real; binary STL stores floats anyway), so a coordinate
-// is read to 6e-8 relative (0.1 um on a 2 m rock, far below a scan's noise); everything after is double.
-// A PLY header is first checked against the PLY grammar (assimp 5.2 loops forever on some malformed headers), and
-// its element counts bounded by MeshLimits.
+// Recentring: before any arithmetic, the coordinates are measured from the centre of the bounding box of the vertices
+// the faces use (in the file's units: x - o is then exact for any mesh lying at least half its size from a coordinate
+// plane, e.g. a georeferenced scan at x = 500000 m, y = 4.2e6 m), then scaled by `unit_m`; the file's coordinates of
+// that origin are kept in TriangleMesh::origin_m. The bounding-box centre, not the centroid of the vertices: it does
+// not depend on how densely a part of the scan is sampled or on a sum's order. A file coordinate beyond 1e8 m is
+// refused; the mesh's size is limited as check_mesh says (1 mm to 1 km).
+//
+// Welding and polygons: vertices with bitwise-equal coordinates are welded into the first of them in the file (an STL
+// repeats each vertex in every facet; OBJ and PLY writers split vertices at texture seams); nothing is snapped within a
+// tolerance. Polygons are split into fans (a polygon that is not convex is refused). A vertex no face uses takes no
+// part (it is given the place of a used one); the numbering of the others is kept.
+//
+// Messages number vertices and faces as the file does: OBJ vertex numbers as its f lines write them (from 1) and the
+// n-th f line as "face n (f a b c)"; OFF and PLY the n-th vertex with the index the faces write (from 0) and the n-th
+// face; STL the n-th facet and its corners' coordinates. A file with vertices but no faces (a point cloud) is refused
+// with what to do (mesh it first); an open mesh with its first boundary edge and how to close it.
 //
 // Units: the file's numbers are multiplied by `unit_m` (1 for metres, 0.001 for millimetres) and read as x east,
-// y north, z up. The mesh is then checked (check_mesh in topple/bodies/body.hpp); every refusal is an InputError naming the
-// file.
+// y north, z up. The mesh is then checked (check_mesh in topple/bodies/body.hpp); every refusal is an InputError naming
+// the file.
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -32,16 +42,22 @@ inline constexpr std::uintmax_t kMaxMeshFileBytes = std::uintmax_t{1} << 30;
 /// parse_length_m knows, e.g. "in"). Throws InputError naming `field` otherwise.
 [[nodiscard]] double mesh_unit_m(const std::string& unit, const std::string& field);
 
-/// Reads `path` (OBJ, STL, PLY), scales it by `unit_m` and checks it (check_mesh). Throws InputError naming the file.
+/// Reads `path` (OBJ, OFF, STL, PLY), recentres it (origin_m), scales it by `unit_m` and checks it (check_mesh).
+/// Throws InputError naming the file.
 [[nodiscard]] TriangleMesh read_mesh(const std::string& path, double unit_m = 1.0);
 
 /// A mesh file's planar body at options.azimuth_deg: check_body_options, then read_mesh (scaled by `unit_m`), then
-/// mesh_body. Throws InputError naming the mesh file, or the option that is wrong. What the survey and sweep readers
+/// mesh_body (its positions moved to the file's coordinates: to_file_coordinates). Throws InputError naming the mesh file, or the option that is wrong. What the survey and sweep readers
 /// call for an object given as `mesh = "..."` (the file's vertex and triangle counts: call read_mesh and mesh_body).
 [[nodiscard]] MeshBody read_mesh_body(const std::string& path, double unit_m, const BodyOptions& options);
 
-/// Same as read_mesh on a file's content already in memory, of `format` "obj", "stl" or "ply" (what the extension
-/// says); `name` is used in messages (and is what the fuzz targets call).
+/// Moves the positions of a body computed from a mesh read by read_mesh (centre of mass, support plane and polygon,
+/// pivots; computed in the mesh's local frame) to the file's coordinates, adding mesh.origin_m: what `topple body`
+/// prints, with the meaning these keys had before meshes were recentred. Lengths, angles and inertias do not change.
+void to_file_coordinates(MeshBody& body, const Vec3& origin_m);
+
+/// Same as read_mesh on a file's content already in memory, of `format` "obj", "off", "stl" or "ply" (what the
+/// extension says); `name` is used in messages (and is what the fuzz targets call).
 [[nodiscard]] TriangleMesh parse_mesh(std::string_view content, const std::string& format, const std::string& name,
                                       double unit_m = 1.0);
 
