@@ -116,6 +116,7 @@ nlohmann::ordered_json inversion_json(const InversionResult& r, const Site& site
   j["static_thresholds"] = thresholds;
   j["contradictions"] = r.bounds.contradictions;
   j["notes"] = r.notes;
+  j["prior"] = r.prior;  // added (issue 32): which prior made the posterior ("log-uniform", "earthquake")
   j["misfit_level"] = kMisfitProbability;
   nlohmann::ordered_json constraining = nlohmann::ordered_json::array();
   for (std::size_t o : most_constraining_objects(r)) constraining.push_back(r.objects[o].id);
