@@ -32,7 +32,9 @@ struct Node {
 Node node(double m, double rjb_km, double r_km, double vs30, double weight) {
   const Bssa14Pga a = bssa14_pga(m, rjb_km, vs30);
   const MeanPeriodModel t = mean_period_rathje(m, r_km);
-  return {a.ln_mean, a.sigma_ln, -std::log(t.median_s), t.sigma_ln, weight};
+  // f_p = kFpTmRatio / Tm, the ratio's own lognormal scatter added to Tm's (independent): prior.hpp.
+  return {a.ln_mean, a.sigma_ln, std::log(kFpTmRatio) - std::log(t.median_s),
+          std::hypot(t.sigma_ln, kFpTmRatioSigmaLn), weight};
 }
 
 }  // namespace
@@ -64,6 +66,8 @@ std::vector<double> earthquake_log_prior(const std::vector<double>& pga_g, const
   for (double m : mags) {
     for (double r : dists) nodes.push_back(node(m, r, std::sqrt(r * r + depth * depth), vs30, w));
   }
+  // Without the event the PGA part is left out (uniform in ln A): see the header, "Without the event".
+  const bool with_pga = event.has_value();
   const std::size_t np = pga_g.size(), nf = freq_hz.size();
   std::vector<double> out(np * nf);
   std::vector<double> terms(nodes.size());
@@ -73,9 +77,10 @@ std::vector<double> earthquake_log_prior(const std::vector<double>& pga_g, const
       const double lf = std::log(freq_hz[j]);
       for (std::size_t n = 0; n < nodes.size(); ++n) {
         const Node& q = nodes[n];
-        const double za = (la - q.mu_a) / q.sigma_a, zf = (lf - q.mu_f) / q.sigma_f;
+        const double za = with_pga ? (la - q.mu_a) / q.sigma_a : 0.0, zf = (lf - q.mu_f) / q.sigma_f;
         // ln of weight x N(za) / sigma_a x N(zf) / sigma_f; the 2 pi drops out with the normalisation.
-        terms[n] = std::log(q.weight) - 0.5 * (za * za + zf * zf) - std::log(q.sigma_a * q.sigma_f);
+        terms[n] = std::log(q.weight) - 0.5 * (za * za + zf * zf) -
+                   std::log((with_pga ? q.sigma_a : 1.0) * q.sigma_f);
       }
       out[i * nf + j] = log_sum_exp(terms);
     }
@@ -106,7 +111,10 @@ std::string prior_description(const Site& site, const InversionSettings& st) {
     mr = fmt::format("M {:.1f}, R log-uniform on [{}, {}] km (no site location)", st.event->magnitude,
                      kPriorDistanceMinKm, kPriorDistanceMaxKm);
   }
-  return fmt::format("earthquake prior: BSSA14 PGA and the Rathje mean period, {}, {}", mr, vs30);
+  if (!st.event) {
+    return fmt::format("earthquake prior on the frequency (the Bray-Rathje mean period, {}), uniform in log PGA", mr);
+  }
+  return fmt::format("earthquake prior: BSSA14 PGA and the Bray-Rathje mean period, {}, {}", mr, vs30);
 }
 
 }  // namespace topple

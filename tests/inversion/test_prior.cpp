@@ -137,9 +137,10 @@ TEST(MeanPeriod, BrayRathje1998ValuesAndTheMagnitudeCap) {
 // ---- the earthquake prior ----
 TEST(EarthquakePrior, WithTheEventKnownItIsTheProductOfTwoLognormals) {
   // M 6 at 10 km (depth 0), Vs30 760: PGA lognormal, median 0.174912 g, sigma 0.605086 (by hand, above); frequency
-  // lognormal about 1 / Tm = 1 / (0.411 + 0.0208) = 2.31589 Hz, sigma 0.437. On a grid placed at the medians and at
-  // whole sigmas from them, ln prior = -(z_a^2 + z_f^2) / 2 exactly, up to the constant that makes the top 0.
-  const double a0 = 0.174912, sa = 0.605086, f0 = 1.0 / 0.4318, sf = 0.437;
+  // lognormal about 0.70 / Tm = 0.70 / (0.411 + 0.0208) = 1.62112 Hz, sigma sqrt(0.437^2 + 0.33^2) = 0.547607. On a
+  // grid placed at the medians and at whole sigmas from them, ln prior = -(z_a^2 + z_f^2) / 2 exactly, up to the
+  // constant that makes the top 0.
+  const double a0 = 0.174912, sa = 0.605086, f0 = 0.70 / 0.4318, sf = 0.547607;
   const std::vector<double> pga{a0 * std::exp(-sa), a0, a0 * std::exp(2.0 * sa)};
   const std::vector<double> freq{f0 * std::exp(-2.0 * sf), f0, f0 * std::exp(sf)};
   Site site;
@@ -155,16 +156,16 @@ TEST(EarthquakePrior, WithTheEventKnownItIsTheProductOfTwoLognormals) {
     }
   }
   // The depth enters the period model's distance only: r = sqrt(10^2 + 10^2) moves Tm by 0.00208 x 4.142 s.
-  const std::vector<double> deep = earthquake_log_prior({a0}, {1.0 / (0.4318 + 0.00208 * (std::sqrt(200.0) - 10.0))},
+  const std::vector<double> deep = earthquake_log_prior({a0}, {0.70 / (0.4318 + 0.00208 * (std::sqrt(200.0) - 10.0))},
                                                         site, EventSource{6.0, 10.0});
   EXPECT_NEAR(deep[0], 0.0, 1e-12);
 }
 
 TEST(EarthquakePrior, WithoutTheEventItFavoursTheFrequenciesEarthquakesPeakAt) {
-  // M uniform on [4.5, 7.5], R log-uniform on [5, 200] km: the medians 1/Tm run from 1/(0.411 - 0.1256 + 0.0104) =
-  // 3.4 Hz (M 4.5 at 5 km) down to 1/(0.411 + 0.1046 + 0.416) = 1.07 Hz (M 7.5 at 200 km), scatter 0.437 in ln:
-  // 20 Hz lies (ln 20 - ln 3.4) / 0.437 = 4.1 sigmas above the highest median, so its prior is below
-  // exp(-4.1^2 / 2) = 2e-4 of the top, while 2 Hz is inside the medians' range.
+  // M uniform on [4.5, 7.5], R log-uniform on [5, 200] km: the medians 0.70/Tm run from 0.70/(0.411 - 0.1256 +
+  // 0.0104) = 2.37 Hz (M 4.5 at 5 km) down to 0.70/(0.411 + 0.1046 + 0.416) = 0.75 Hz (M 7.5 at 200 km), scatter
+  // 0.548 in ln: 20 Hz lies (ln 20 - ln 2.37) / 0.548 = 3.9 sigmas above the highest median, its density below
+  // exp(-3.9^2 / 2) = 5e-4 of that median's, while 2 Hz is inside the medians' range.
   const std::vector<double> pga{0.05, 0.1, 0.2, 0.4};
   const std::vector<double> freq{0.3, 1.0, 2.0, 5.0, 10.0, 20.0};
   const std::vector<double> lp = earthquake_log_prior(pga, freq, Site{}, std::nullopt);
@@ -175,14 +176,18 @@ TEST(EarthquakePrior, WithoutTheEventItFavoursTheFrequenciesEarthquakesPeakAt) {
     top = std::max(top, v);
   }
   EXPECT_DOUBLE_EQ(top, 0.0);
+  // Without the event the PGA part is left out (prior.hpp): every PGA row is the same.
+  for (std::size_t i = 1; i < pga.size(); ++i) {
+    for (std::size_t j = 0; j < freq.size(); ++j) EXPECT_EQ(lp[i * freq.size() + j], lp[j]);
+  }
   const auto marginal_f = [&](std::size_t j) {
     double s = 0.0;
     for (std::size_t i = 0; i < pga.size(); ++i) s += std::exp(lp[i * freq.size() + j]);
     return s;
   };
   EXPECT_LT(marginal_f(5) / marginal_f(2), 1e-3);  // 20 Hz against 2 Hz
-  EXPECT_LT(marginal_f(4) / marginal_f(2), 0.2);   // 10 Hz: (ln 10 - ln 3.4) / 0.437 = 2.5 sigmas above the top median
-  EXPECT_GT(marginal_f(2), marginal_f(0));         // 2 Hz against 0.3 Hz (2.9 sigmas below the lowest median)
+  EXPECT_LT(marginal_f(4) / marginal_f(2), 0.2);   // 10 Hz: (ln 10 - ln 2.37) / 0.548 = 2.6 sigmas above the top median
+  EXPECT_GT(marginal_f(2), marginal_f(0));         // 2 Hz against 0.3 Hz (1.7 sigmas below the lowest median)
 }
 
 TEST(EarthquakePrior, TheSettingsChooseItAndLogUniformIsEmpty) {
@@ -251,6 +256,36 @@ TEST(PosteriorWithPrior, AnInversionUsesThePriorAndSaysWhich) {
   EXPECT_TRUE(said);
   EXPECT_EQ(io::inversion_json(eq, site)["prior"], "earthquake");
   EXPECT_EQ(io::inversion_json(plain, site)["prior"], "log-uniform");
+}
+
+// ---- the synthetic calibration test with the earthquake prior ----
+// test_inversion.cpp's RecoversKnownShakingWithCalibratedIntervals (30 truths log-uniform in [0.12, 1.2] g x
+// [0.8, 8] Hz, the same objects, seeds and solvers), inverted with prior = "earthquake" (no event: the frequency
+// prior alone). The truths are not drawn from that prior: a third lie above 4 Hz, where it is thin, and they are
+// Clough-Penzien motions, whose f_p Tm is about 0.98 where real records' is 0.70 (docs/verification.md), so the
+// prior's f_p = 0.70 / Tm reads them low. The coverage still holds the criterion, >= 85 % (95 % region) and
+// >= 55 % (68 %), with no margin on the first. Measured 2026-11-28: 26/30 and 19/30 (log-uniform: 30/30, 19/30; with
+// f_p = 1 / Tm: 29/30, 18/30); the four 95 % misses are truths of 3.9-6.3 Hz read at 1.3-1.6 Hz.
+TEST(PosteriorWithPrior, SyntheticCalibrationWithTheEarthquakePrior) {
+  InversionSettings st = small_grid(10);
+  st.prior = InversionPrior::earthquake;
+  std::vector<ObservedObject> objects;
+  objects.push_back(block("slender", 0.06, 0.40, {0.5, 0.7}, Outcome::overturned));
+  objects.push_back(block("medium", 0.10, 0.30, {0.5, 0.7}, Outcome::overturned));
+  objects.push_back(block("stocky", 0.15, 0.25, {0.5, 0.7}, Outcome::overturned));
+  objects.push_back(block("tall-box", 0.25, 1.00, {0.5, 0.7}, Outcome::overturned));
+  objects.push_back(block("pan", 0.2, 0.1, {0.15, 0.25}, Outcome::slid));
+  objects.push_back(block("crate", 0.3, 0.3, {0.4, 0.6}, Outcome::slid));
+  objects.push_back(block("bin", 0.3, 0.3, {0.7, 0.9}, Outcome::slid));
+  const int trials = 30;
+  const testing::RecoveryCoverage c = testing::recovery_coverage(
+      st, objects, trials, 2026, 777, [&st](const ObservedObject& o, double mu, const GroundMotion& truth) {
+        return testing::observe_uncoupled(o, mu, truth, st);
+      });
+  RecordProperty("in95", c.in95);
+  RecordProperty("in68", c.in68);
+  EXPECT_GE(c.in95, static_cast<int>(std::ceil(0.85 * trials)));
+  EXPECT_GE(c.in68, static_cast<int>(std::ceil(0.55 * trials)));
 }
 
 // ---- the survey keys ----
