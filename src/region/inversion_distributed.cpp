@@ -155,6 +155,7 @@ void fields(IO& io, InversionResult& r) {
       io(r.marginal_pga), io(r.marginal_freq);
   io(r.best_cell), io(r.runs), io(r.pga_estimate_g), io(r.freq_estimate_hz), io(r.bounds), io(r.objects), io(r.notes), io(r.seconds);
   io(r.three_component), io(r.rotd100_bounds);  // components = 3 (inversion_3c.hpp)
+  io(r.log_prior), io(r.prior);  // the prior (inversion/prior.hpp): empty and "log-uniform" by default
 }
 
 // The first word of a rank's broadcast: ok, or how it failed (its exception's kind; the message follows).
