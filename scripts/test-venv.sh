@@ -8,8 +8,8 @@ cd "$(dirname "$0")/.."
 venv=.venv-test
 # OpenQuake's hazardlib (BSSA14's peer, tests/inversion/test_prior.cpp) is optional: the engine's full requirements
 # need GDAL's development files, so the engine is installed without them and with only what `import
-# openquake.hazardlib.gsim` needs (measured 2026-11-28: about 2 minutes, most of it numba); where that fails, the
-# BSSA14 peer test skips and the rest of the environment stays.
+# openquake.hazardlib.gsim` needs (measured 2026-11-28: the whole script from nothing 3.6 min, most of it numba);
+# where that fails, the BSSA14 peer test skips and the rest of the environment stays.
 hazardlib() {
   $venv/bin/python -c "import openquake.hazardlib.gsim.boore_2014" 2>/dev/null && return 0
   $venv/bin/pip install -q --disable-pip-version-check --no-deps openquake.engine &&
