@@ -546,7 +546,9 @@ void parse_site_fields(Reader& r, Site& site) {
   // value (docs/survey.md): A 1500, B 1070, C 525, D 255 m/s (the geometric means of the class bounds 760-1500,
   // 360-760, 180-360), E 150 m/s.
   if (const auto v = r.number("vs30_m_s")) {
-    if (!(*v >= 100.0 && *v <= 3000.0)) throw r.error("vs30_m_s", fmt::format("must lie in [100, 3000] m/s, got {}", *v));
+    if (!(*v >= 100.0 && *v <= 3000.0)) {
+      throw r.error("vs30_m_s", fmt::format("must lie in [100, 3000] m/s, got {}", *v));
+    }
     site.vs30_m_s = v;
   }
   if (const auto cls = r.string("site_class")) {
@@ -556,7 +558,9 @@ void parse_site_fields(Reader& r, Site& site) {
     for (const auto& [label, vs30] : kClasses) {
       if (*cls == label) site.vs30_m_s = vs30;
     }
-    if (!site.vs30_m_s) throw r.error("site_class", fmt::format("unknown site class '{}' (known: A, B, C, D, E)", *cls));
+    if (!site.vs30_m_s) {
+      throw r.error("site_class", fmt::format("unknown site class '{}' (known: A, B, C, D, E)", *cls));
+    }
   }
   // A site's support is a default for its objects: only a flexible support table makes sense there.
   if (const toml::node* n = r.get("support"); n != nullptr && !n->is_table()) {
@@ -665,7 +669,9 @@ void parse_event_table(const toml::table& t, const std::string& name, Survey& s)
   // The magnitude, for the earthquake prior (inversion/prior.hpp): BSSA14 and the period model hold for shallow
   // crustal events of about M 3 to 8.5.
   if (const auto m = r.number("magnitude")) {
-    if (!(*m >= 3.0 && *m <= 8.5)) throw r.error("magnitude", fmt::format("must lie in [3, 8.5] (BSSA14's range), got {}", *m));
+    if (!(*m >= 3.0 && *m <= 8.5)) {
+      throw r.error("magnitude", fmt::format("must lie in [3, 8.5] (BSSA14's range), got {}", *m));
+    }
     s.inversion.event = EventSource{*m, s.epicentre_depth_km.value_or(0.0)};
   }
   r.refuse_unknown();

@@ -311,7 +311,8 @@ TEST(SurveyFile, PriorEventMagnitudeAndVs30Keys) {
   const Survey c = io::parse_survey("[site]\nsite_class = \"D\"\n[[object]]\nid = \"v\"\nwidth = \"10cm\"\n"
                                     "height = \"40cm\"\nmu = 0.5\noutcome = \"overturned\"\n", "s.toml");
   EXPECT_DOUBLE_EQ(*c.sites[0].vs30_m_s, 255.0);
-  const std::string obj = "[[object]]\nid = \"v\"\nwidth = \"10cm\"\nheight = \"40cm\"\nmu = 0.5\noutcome = \"overturned\"\n";
+  const std::string obj =
+      "[[object]]\nid = \"v\"\nwidth = \"10cm\"\nheight = \"40cm\"\nmu = 0.5\noutcome = \"overturned\"\n";
   test::expect_input_error([&] { return io::parse_survey("[inversion]\nprior = \"flat\"\n" + obj, "s.toml"); },
                            "inversion.prior", "unknown prior 'flat'");
   test::expect_input_error([&] { return io::parse_survey("[event]\nmagnitude = 9.5\n" + obj, "s.toml"); },

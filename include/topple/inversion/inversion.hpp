@@ -28,8 +28,8 @@
 //    observation from erasing a cell. The runs of the 3 x 3 neighbouring cells are pooled (weights 4/2/1) to cut
 //    the Monte Carlo noise. The prior ([inversion] prior): "log-uniform" (the default), uniform in log PGA and log
 //    frequency, i.e. the same for every cell of the log grid; "earthquake", a seismological prior (prior.hpp,
-//    docs/method.md "Priors"). Posterior = likelihood x prior, normalised over the grid. Each object's own probability of its
-//    observation, P = (sum m + 1/2) / (N + 1) over the same neighbourhood, is reported and drawn as a contour.
+//    docs/method.md "Priors"). Posterior = likelihood x prior, normalised over the grid. Each object's own probability
+//    of its observation, P = (sum m + 1/2) / (N + 1) over the same neighbourhood, is reported and drawn as a contour.
 // 3. Estimates. Best: the maximum-likelihood cell (it moves with the seed: a diagnostic, not the headline). Median and equal-tailed 68 % and 95 % credible intervals from each
 //    marginal posterior, with the mass of a cell spread uniformly in log over its extent (cell edges at the
 //    geometric midpoints of the grid values). An interval end that falls in the first or last cell is reported as
