@@ -1,6 +1,7 @@
 // Inversion of field observations: static bounds and the likelihood over PGA x predominant frequency. See
 // inversion.hpp and docs/method.md for the method.
 #include "topple/inversion/inversion.hpp"
+#include "topple/inversion/prior.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -679,7 +680,9 @@ void detail::assess_objects(InversionResult& r, const std::vector<MatchTable>& b
     std::vector<double> ll_without(cells * nb);
     for (std::size_t b = 0; b < nb; ++b) {
       const std::vector<double> ll = joint_log_likelihood(bins[b], rates, hoods);
-      for (std::size_t c = 0; c < cells; ++c) ll_without[c * nb + b] = ll[c];
+      // With a prior, ll_joint carries it (infer_site) and so must the posterior without object o.
+      const double* lp = r.log_prior.empty() ? nullptr : r.log_prior.data();
+      for (std::size_t c = 0; c < cells; ++c) ll_without[c * nb + b] = lp == nullptr ? ll[c] : ll[c] + lp[c];
     }
     const double z_without = log_sum_exp(ll_without);
     double kl_nats = 0.0;  // sum_i p(i) (log p(i) - log p_without(i)), in log space: no 0/0 where p underflows
@@ -696,7 +699,13 @@ void assess_objects(InversionResult& r, const MatchTable& m, const std::vector<d
   if (r.objects.size() != m.objects || error_rates.size() != m.objects || r.posterior.size() != m.cells()) {
     throw std::invalid_argument("assess_objects: the result, the match table and the error rates disagree");
   }
-  detail::assess_objects(r, {m}, error_rates, r.log_likelihood, r.posterior);  // one direction bin
+  if (r.log_prior.empty()) {
+    detail::assess_objects(r, {m}, error_rates, r.log_likelihood, r.posterior);  // one direction bin
+    return;
+  }
+  std::vector<double> lp(r.log_likelihood.size());  // the log posterior up to a constant: likelihood x prior
+  for (std::size_t c = 0; c < lp.size(); ++c) lp[c] = r.log_likelihood[c] + r.log_prior[c];
+  detail::assess_objects(r, {m}, error_rates, lp, r.posterior);
 }
 
 std::vector<std::size_t> most_constraining_objects(const InversionResult& r) {
@@ -868,6 +877,9 @@ detail::SiteRuns detail::simulate_site(const Site& site, const InversionSettings
   runs.bins.push_back(simulate_matches(site, st, pga_g, family, options));  // one component: one direction bin
   runs.runs = runs.bins.front().match.size();
   for (const ObservedObject& o : site.objects) runs.models.push_back(object_model(o));
+  runs.log_prior = log_prior_for(pga_g, family.freq_hz, site, st);  // the prior (prior.hpp)
+  runs.prior = std::string(inversion_prior_name(st.prior));
+  if (st.prior != InversionPrior::log_uniform) runs.notes.push_back("The prior: " + prior_description(site, st) + ".");
   return runs;
 }
 
@@ -947,8 +959,16 @@ InversionResult detail::infer_site(const Site& site, const std::vector<double>& 
     rep.max_probability = *std::max_element(rep.probability.begin(), rep.probability.end());
   }
   // Step 4, and 4b over the joint posterior. With one bin it is the cell posterior, normalised as
-  // fill_posterior_and_estimates does (which keeps one component's numbers to the bit).
+  // fill_posterior_and_estimates does (which keeps one component's numbers to the bit). A prior (prior.hpp) multiplies
+  // every bin of a cell alike: the joint log posterior is ll_joint + log_prior of the cell.
+  r.log_prior = std::move(runs.log_prior);
+  r.prior = runs.prior;
   fill_posterior_and_estimates(r);
+  if (!r.log_prior.empty()) {
+    for (std::size_t c = 0; c < cells; ++c) {
+      for (std::size_t b = 0; b < nb; ++b) ll_joint[c * nb + b] += r.log_prior[c];
+    }
+  }
   std::vector<double> posterior_joint = r.posterior;
   if (nb > 1) {
     const double z_joint = log_sum_exp(ll_joint);

@@ -1,6 +1,7 @@
 // The inversion in three components: family, runs, likelihood over (cell, direction bin) and the direction of
 // strongest shaking. See inversion_3c.hpp and docs/method.md, "Inversion in three components".
 #include "topple/inversion/inversion_3c.hpp"
+#include "topple/inversion/prior.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -457,6 +458,9 @@ detail::SiteRuns detail::simulate_site_3c(const Site& site, const InversionSetti
   tc.threshold_vertical_ratio = rho;
   out.three_component = tc;
   out.direction_bins_deg = direction_bins_deg(st);
+  out.log_prior = log_prior_for(pga_g, family.freq_hz, site, st);  // the prior (prior.hpp)
+  out.prior = std::string(inversion_prior_name(st.prior));
+  if (st.prior != InversionPrior::log_uniform) out.notes.push_back("The prior: " + prior_description(site, st) + ".");
   out.notes.push_back(fmt::format(
       "Three components: the static thresholds hold on RotD100 PGA, the peak of the horizontal acceleration vector, "
       "which bounds its projection on every bearing (with the family's vertical, V/H <= {:.3g}); on RotD50, the PGA "

@@ -58,6 +58,9 @@ struct SiteRuns {
   std::optional<ThreeComponentResult> three_component;
   std::vector<double> direction_bins_deg;      ///< components = 3: the bins' centres, deg
   std::vector<std::string> notes;              ///< the family's own notes, after the common ones
+  /// The prior (prior.hpp): ln per cell, empty for log-uniform; and its name (survey.hpp, inversion_prior_name).
+  std::vector<double> log_prior;
+  std::string prior = "log-uniform";
 };
 
 /// Steps 2 of one component: static_bounds and simulate_matches (one bin).

@@ -15,6 +15,7 @@
 #include "topple/inversion/inversion.hpp"
 #include "topple/io/mesh.hpp"
 #include "topple/io/read.hpp"
+#include "topple/region/geodesy.hpp"
 #include "topple/solvers/oriented.hpp"
 #include "io/survey_csv.hpp"
 
@@ -596,6 +597,26 @@ void parse_site_fields(Reader& r, Site& site) {
   site.notes = r.string("notes").value_or("");
   if (site.lat_deg && std::abs(*site.lat_deg) > 90.0) throw r.error("lat", "latitude must lie in [-90, 90]");
   if (site.lon_deg && std::abs(*site.lon_deg) > 180.0) throw r.error("lon", "longitude must lie in [-180, 180]");
+  // The site's Vs30 for the earthquake prior (inversion/prior.hpp): given, or a NEHRP site class mapped to a stated
+  // value (docs/survey.md): A 1500, B 1070, C 525, D 255 m/s (the geometric means of the class bounds 760-1500,
+  // 360-760, 180-360), E 150 m/s.
+  if (const auto v = r.number("vs30_m_s")) {
+    if (!(*v >= 100.0 && *v <= 3000.0)) {
+      throw r.error("vs30_m_s", fmt::format("must lie in [100, 3000] m/s, got {}", *v));
+    }
+    site.vs30_m_s = v;
+  }
+  if (const auto cls = r.string("site_class")) {
+    if (site.vs30_m_s) throw r.error("site_class", "give either vs30_m_s or site_class, not both");
+    static constexpr std::pair<std::string_view, double> kClasses[] = {
+        {"A", 1500.0}, {"B", 1070.0}, {"C", 525.0}, {"D", 255.0}, {"E", 150.0}};
+    for (const auto& [label, vs30] : kClasses) {
+      if (*cls == label) site.vs30_m_s = vs30;
+    }
+    if (!site.vs30_m_s) {
+      throw r.error("site_class", fmt::format("unknown site class '{}' (known: A, B, C, D, E)", *cls));
+    }
+  }
   // A site's support is a default for its objects: only a flexible support table makes sense there.
   if (const toml::node* n = r.get("support"); n != nullptr && !n->is_table()) {
     throw r.error("support", "a site's default support is a flexible support {freq_hz = ..., damping = ...}", n);
@@ -731,6 +752,11 @@ void parse_inversion_table(const toml::table& t, const std::string& name, const 
     }
     st.directions = static_cast<int>(*nd);
   }
+  if (const auto prior = r.string("prior")) {
+    if (*prior == "log-uniform") st.prior = InversionPrior::log_uniform;
+    else if (*prior == "earthquake") st.prior = InversionPrior::earthquake;
+    else throw r.error("prior", fmt::format("unknown prior '{}' (known: log-uniform, earthquake)", *prior));
+  }
   // The family must be able to make motions at both ends of the grid: said here, with the file and the line,
   // rather than by the synthesis after the survey is read.
   try {
@@ -758,6 +784,14 @@ void parse_event_table(const toml::table& t, const std::string& name, Survey& s)
     if (!s.epicentre_lat_deg) throw r.error("depth_km", "a depth goes with epicentre = [lat, lon]");
     if (*depth < 0.0 || *depth > 700.0) throw r.error("depth_km", fmt::format("must lie in [0, 700] km, got {}", *depth));
     s.epicentre_depth_km = depth;
+  }
+  // The magnitude, for the earthquake prior (inversion/prior.hpp): BSSA14 and the period model hold for shallow
+  // crustal events of about M 3 to 8.5.
+  if (const auto m = r.number("magnitude")) {
+    if (!(*m >= 3.0 && *m <= 8.5)) {
+      throw r.error("magnitude", fmt::format("must lie in [3, 8.5] (BSSA14's range), got {}", *m));
+    }
+    s.inversion.event = EventSource{*m, s.epicentre_depth_km.value_or(0.0)};
   }
   r.refuse_unknown();
 }
@@ -840,6 +874,15 @@ Survey parse_toml_survey(std::string_view text, const std::string& name, const s
   parse_sites(top, name, base_dir, s);
   top.refuse_unknown();
   check_sites(name, s);
+  // Each site's epicentral distance (the earthquake prior's R_JB for a point source), where both ends are known.
+  if (s.epicentre_lat_deg && s.epicentre_lon_deg) {
+    for (Site& site : s.sites) {
+      if (site.lat_deg && site.lon_deg) {
+        site.epicentral_distance_km =
+            geodesic_distance_km(*s.epicentre_lat_deg, *s.epicentre_lon_deg, *site.lat_deg, *site.lon_deg);
+      }
+    }
+  }
   return s;
 }
 

@@ -116,6 +116,7 @@ nlohmann::ordered_json inversion_json(const InversionResult& r, const Site& site
   j["static_thresholds"] = thresholds;
   j["contradictions"] = r.bounds.contradictions;
   j["notes"] = r.notes;
+  j["prior"] = r.prior;  // added (issue 32): which prior made the posterior ("log-uniform", "earthquake")
   j["misfit_level"] = kMisfitProbability;
   nlohmann::ordered_json constraining = nlohmann::ordered_json::array();
   for (std::size_t o : most_constraining_objects(r)) constraining.push_back(r.objects[o].id);
@@ -159,9 +160,8 @@ nlohmann::ordered_json inversion_json(const InversionResult& r, const Site& site
   j["best_cell"] = {{"pga_g", r.pga_g[r.best_cell / r.freq_hz.size()]}, {"freq_hz", r.freq_hz[r.best_cell % r.freq_hz.size()]}};
   j["runs"] = r.runs;
   j["seconds"] = r.seconds;
-  // Added (issue 32, evidence.hpp): the prior used, the objects' own evidence (the likelihood normalised over the
-  // grid: the posterior under the log-uniform prior), the ridge and what to look for next.
-  j["prior"] = r.prior;
+  // Added (issue 32, evidence.hpp): the objects' own evidence (the likelihood normalised over the grid: the posterior
+  // under the log-uniform prior), the ridge and what to look for next ("prior", above, names the prior used).
   if (!r.marginal_pga_likelihood.empty()) {
     j["likelihood"] = {{"pga_g", estimate_json(r.pga_likelihood_g)},
                        {"freq_hz", estimate_json(r.freq_likelihood_hz)},

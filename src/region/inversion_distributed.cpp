@@ -164,7 +164,8 @@ void fields(IO& io, InversionResult& r) {
   io(r.best_cell), io(r.runs), io(r.pga_estimate_g), io(r.freq_estimate_hz), io(r.bounds), io(r.objects), io(r.notes), io(r.seconds);
   io(r.three_component), io(r.rotd100_bounds);  // components = 3 (inversion_3c.hpp)
   io(r.log_prior), io(r.prior), io(r.marginal_pga_likelihood), io(r.marginal_freq_likelihood), io(r.pga_likelihood_g),
-      io(r.freq_likelihood_hz), io(r.pga_given_freq), io(r.next_objects);  // the objects' own evidence (evidence.hpp)
+      io(r.freq_likelihood_hz), io(r.pga_given_freq), io(r.next_objects);  // the prior (inversion/prior.hpp) and the
+                                                                           // objects' own evidence (evidence.hpp)
 }
 
 // The first word of a rank's broadcast: ok, or how it failed (its exception's kind; the message follows).

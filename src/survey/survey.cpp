@@ -59,6 +59,13 @@ constexpr std::array<EnumName<MotionFamily>, 3> kMotionFamilyNames{{
 
 std::string_view motion_family_name(MotionFamily f) { return enum_name(kMotionFamilyNames, f); }
 
+constexpr std::array<EnumName<InversionPrior>, 2> kInversionPriorNames{{
+    {InversionPrior::log_uniform, "log-uniform"},
+    {InversionPrior::earthquake, "earthquake"},
+}};
+
+std::string_view inversion_prior_name(InversionPrior p) { return enum_name(kInversionPriorNames, p); }
+
 constexpr std::array<EnumName<Evidence>, 3> kEvidenceNames{{
     {Evidence::certain, "certain"},
     {Evidence::likely, "likely"},

@@ -36,6 +36,18 @@ nlohmann::json comparable(nlohmann::json j) {
   return j;
 }
 
+// The prior (issue 32) travels too: a site inverted on another rank keeps its log prior and says which prior it was.
+TEST(InversionDistributed, ThePriorTravels) {
+  InversionSettings st = testing::small_grid(0.02, 8, 2.0, 4.5, 2, 3);
+  st.prior = InversionPrior::earthquake;
+  const std::vector<Site> sites = scenario_sites(1, st);
+  const std::vector<InversionResult> results = invert_sites(sites, st);
+  ASSERT_FALSE(results.front().log_prior.empty());
+  const std::vector<InversionResult> back = unpack_inversion_results(pack_inversion_results(results));
+  EXPECT_EQ(back.front().log_prior, results.front().log_prior);
+  EXPECT_EQ(back.front().prior, "earthquake");
+}
+
 // Every field survives the trip: the JSON of each result (all of its fields, numbers printed to round-trip precision)
 // is the same string before and after, and the wall time (not in every JSON) bit for bit.
 TEST(InversionDistributed, PackedResultsUnpackExactly) {

@@ -26,9 +26,10 @@
 //    motion induces between objects (assuming independent objects given the cell made the intervals too narrow:
 //    26/30 coverage of the 95 % region in the recovery test, against 30/30 now), and eps keeps one unreproduced
 //    observation from erasing a cell. The runs of the 3 x 3 neighbouring cells are pooled (weights 4/2/1) to cut
-//    the Monte Carlo noise. The prior is uniform in log PGA and log frequency, i.e. the same for every cell of the
-//    log grid. Posterior = likelihood x prior, normalised over the grid. Each object's own probability of its
-//    observation, P = (sum m + 1/2) / (N + 1) over the same neighbourhood, is reported and drawn as a contour.
+//    the Monte Carlo noise. The prior ([inversion] prior): "log-uniform" (the default), uniform in log PGA and log
+//    frequency, i.e. the same for every cell of the log grid; "earthquake", a seismological prior (prior.hpp,
+//    docs/method.md "Priors"). Posterior = likelihood x prior, normalised over the grid. Each object's own probability
+//    of its observation, P = (sum m + 1/2) / (N + 1) over the same neighbourhood, is reported and drawn as a contour.
 // 3. Estimates. Best: the maximum-likelihood cell (it moves with the seed: a diagnostic, not the headline). Median and equal-tailed 68 % and 95 % credible intervals from each
 //    marginal posterior, with the mass of a cell spread uniformly in log over its extent (cell edges at the
 //    geometric midpoints of the grid values). An interval end that falls in the first or last cell is reported as
@@ -134,6 +135,10 @@ struct InversionResult {
   std::vector<double> freq_hz;   ///< grid columns, Hz
   std::vector<double> measured_freq_hz;  ///< mean measured predominant frequency of each column's motions, Hz
   std::vector<double> log_likelihood;    ///< natural log, per cell, index = i_pga * freq_hz.size() + j_freq
+  /// The prior, natural log per cell up to a constant, same indexing as log_likelihood; empty: uniform over the log
+  /// grid (prior = "log-uniform"). inversion/prior.hpp computes it; the posterior is likelihood x exp(log_prior).
+  std::vector<double> log_prior;
+  std::string prior = "log-uniform";     ///< which prior made the posterior (survey.hpp, inversion_prior_name)
   std::vector<double> posterior;         ///< normalised (dimensionless), same indexing
   std::vector<double> marginal_pga;      ///< sums to 1
   std::vector<double> marginal_freq;     ///< sums to 1
@@ -151,10 +156,6 @@ struct InversionResult {
   /// components = 3: the static thresholds on RotD100 PGA, the axis on which they hold (inversion_3c.hpp, item 6);
   /// `bounds` then holds their exact, weaker consequence on RotD50, the PGA axis of the estimates. None: one component.
   std::optional<StaticBounds> rotd100_bounds;
-  /// The prior's log density per cell (natural log, up to a constant; same indexing as log_likelihood); empty: the
-  /// log-uniform prior, the same for every cell. `prior` names it ("log-uniform").
-  std::vector<double> log_prior;
-  std::string prior = "log-uniform";
   /// The objects' own evidence (docs/method.md, "The objects' own evidence"): the likelihood normalised over the grid
   /// (the posterior under the log-uniform prior), its marginals (each sums to 1) and estimates (g, Hz). Equal to the
   /// posterior's when log_prior is empty.

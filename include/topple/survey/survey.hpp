@@ -162,6 +162,13 @@ struct Site {
   /// against it (a calibration site). None: no instrument.
   std::optional<double> instrument_pga_g;
   std::string instrument_record;  ///< the record's path (resolved against the survey file), empty when none
+  /// [site] vs30_m_s, or site_class "A".."E" mapped to a stated Vs30 (survey_file.cpp, docs/survey.md), m/s: the
+  /// site's time-averaged shear-wave velocity of the top 30 m, used by the earthquake prior's ground-motion model
+  /// (inversion/prior.hpp). None: not given.
+  std::optional<double> vs30_m_s;
+  /// The epicentral distance from [event] epicentre to the site's lat/lon (geodesic, WGS84), km; set by the reader
+  /// when both are given. None: unknown.
+  std::optional<double> epicentral_distance_km;
   [[nodiscard]] bool is_station() const noexcept { return instrument_pga_g.has_value() || !instrument_record.empty(); }
 };
 
@@ -171,6 +178,20 @@ struct Site {
 enum class MotionFamily { synthetic, records, rezaeian2010 };
 /// "synthetic", "records", "rezaeian2010": the names a survey's `family` key takes.
 [[nodiscard]] std::string_view motion_family_name(MotionFamily family);
+
+/// The prior on (PGA, predominant frequency) (docs/method.md, "Priors"; inversion/prior.hpp). log_uniform: uniform
+/// in log PGA and log frequency over the grid (the default; old surveys keep their answer bit for bit). earthquake:
+/// from a ground-motion model (BSSA14) and a mean-period model (Bray & Rathje 1998), over weak priors on M and R,
+/// or at the event's M and each site's distance when [event] magnitude is given.
+enum class InversionPrior { log_uniform, earthquake };
+/// "log-uniform", "earthquake": the names the survey's [inversion] prior key takes and the JSON's "prior" says.
+[[nodiscard]] std::string_view inversion_prior_name(InversionPrior prior);
+
+/// The earthquake, as the prior sees it ([event] magnitude, depth_km): set by the reader when a magnitude is given.
+struct EventSource {
+  double magnitude = 0.0;  ///< moment magnitude M
+  double depth_km = 0.0;   ///< hypocentre depth, km (0 when not given)
+};
 
 /// How the inversion explores the shaking (defaults as documented in docs/method.md).
 struct InversionSettings {
@@ -204,6 +225,10 @@ struct InversionSettings {
   /// applied by io::load_survey_records. Empty: the reader's default.
   std::string record_format, record_units, record_columns, record_separator, record_baseline;
   std::optional<double> record_dt_s;
+  /// [inversion] prior (see InversionPrior).
+  InversionPrior prior = InversionPrior::log_uniform;
+  /// [event] magnitude (and depth_km), copied here by the reader for the earthquake prior; none: unknown event.
+  std::optional<EventSource> event;
 };
 
 struct Survey {
