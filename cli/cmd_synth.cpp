@@ -18,6 +18,7 @@
 #include "topple/core/output_file.hpp"
 #include "topple/output/plot.hpp"
 #include "topple/motion/spectra.hpp"
+#include "topple/motion/stochastic.hpp"
 #include "topple/motion/synthesis.hpp"
 #include "topple/core/units.hpp"
 #include "topple/motion/motion_set.hpp"
@@ -46,6 +47,9 @@ struct SynthOptions {
   double vh_ratio = 2.0 / 3.0;
   double vh_freq_ratio = 1.5;
   std::string azimuths = "90,0";
+  // The stochastic point-source method (stochastic.hpp) instead of filtered noise: --magnitude and --distance-km.
+  std::optional<double> magnitude;
+  std::optional<double> distance_km;
 };
 
 /// "motion.csv" -> "motion.h1.csv" (the suffix before the extension; appended when there is none).
@@ -179,7 +183,104 @@ void run_synth_set(const SynthOptions& o, const SynthesisSpec& horizontal) {
   }
 }
 
+/// --magnitude M --distance-km R: one motion of Boore's (2003) stochastic method (stochastic.hpp), its own PGA
+/// unless --pga scales it; its length and frequency content follow from M and R.
+void run_synth_stochastic(const SynthOptions& o) {
+  if (!o.magnitude) throw parameter_error("--magnitude", "--distance-km needs --magnitude");
+  if (!o.distance_km) throw parameter_error("--distance-km", "--magnitude needs --distance-km");
+  if (!o.freq.empty() || !o.duration.empty()) {
+    throw parameter_error(o.freq.empty() ? "--duration" : "--freq",
+                          "the stochastic method's frequency content and duration follow from --magnitude and "
+                          "--distance-km; give neither --freq nor --duration");
+  }
+  if (o.components != 1) throw parameter_error("--components", "the stochastic method makes one component");
+  StochasticSpec spec;
+  spec.magnitude = *o.magnitude;
+  spec.distance_km = *o.distance_km;
+  spec.dt_s = parse_seconds(o.dt, "--dt");
+  spec.seed = parse_seed(o.seed, "--seed");
+  try {
+    validate(spec);
+  } catch (const InputError& e) {
+    const std::string& field = e.where().field;
+    throw parameter_error(field == "magnitude" ? "--magnitude" : field == "distance_km" ? "--distance-km"
+                          : field == "dt_s"    ? "--dt"
+                                               : field,
+                          e.problem());
+  }
+  GroundMotion motion = synthesize_stochastic(spec);
+  if (!o.pga.empty()) motion = motion.scaled_to_pga(parse_acceleration_m_s2(o.pga, "--pga", o.g_m_s2));
+  const double measured = predominant_frequency_hz(motion);
+  const double fc = corner_frequency_hz(spec.magnitude, spec.model);
+  const double t_gm = stochastic_duration_s(spec.magnitude, spec.distance_km, spec.model);
+  if (!o.out.empty()) {
+    io::OutputFile file(o.out);
+    std::ostream& out = file.stream();
+    out << "# topple synth: stochastic point-source motion (Boore 2003; docs/method.md)\n";
+    out << fmt::format("# magnitude={} distance_km={} stress_bar={} kappa0_s={} corner_hz={:.9g} duration_gm_s={:.9g} "
+                       "dt_s={} seed={} g_m_s2={}\n",
+                       spec.magnitude, spec.distance_km, spec.model.stress_drop_bar, spec.model.kappa0_s, fc, t_gm,
+                       spec.dt_s, spec.seed, o.g_m_s2);
+    out << "time_s,accel_g\n";
+    const auto a = motion.accel_m_s2();
+    const std::optional<int> decimals = decimals_of(spec.dt_s);
+    std::string buffer;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      const double t = static_cast<double>(i) * spec.dt_s;
+      buffer += decimals ? fmt::format("{:.{}f}", t, *decimals) : fmt::format("{}", t);
+      buffer += fmt::format(",{}\n", a[i] / o.g_m_s2);
+    }
+    out << buffer;
+    file.commit();
+  }
+  if (!o.plot.empty()) {
+    const FourierSpectrum fas = fourier_amplitude_spectrum(motion, predominant_frequency_fft_length(motion.size()));
+    const std::vector<double> centres = predominant_frequency_centres_hz(motion.dt_s());
+    const std::vector<double> smooth = konno_ohmachi_smooth(fas, centres, 40.0);
+    const double peak = fas_peak_frequency_hz(spec.magnitude, spec.distance_km, spec.model);
+    const std::vector<plot::Mark> marks{{peak, fmt::format("model peak {:.3g} Hz", peak), "#e67e22"},
+                                        {measured, fmt::format("measured f_p {:.3g} Hz", measured), "#c0392b"}};
+    const std::string title = fmt::format("Stochastic point-source motion (Boore 2003): M {:.3g}, R {:.3g} km, PGA "
+                                          "{:.3g} g, seed {}",
+                                          spec.magnitude, spec.distance_km, motion.pga_m_s2() / o.g_m_s2, spec.seed);
+    plot::render(plot::motion_spectrum_figure(motion, fas, centres, smooth, marks, o.g_m_s2, title), o.plot);
+  }
+  if (o.json) {
+    nlohmann::ordered_json j;
+    j["out"] = o.out.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(o.out);
+    j["plot"] = o.plot.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(o.plot);
+    j["model"] = "boore2003";
+    j["magnitude"] = spec.magnitude;
+    j["distance_km"] = spec.distance_km;
+    j["stress_bar"] = spec.model.stress_drop_bar;
+    j["kappa0_s"] = spec.model.kappa0_s;
+    j["corner_frequency_hz"] = fc;
+    j["duration_gm_s"] = t_gm;
+    j["seed"] = spec.seed;
+    j["npts"] = motion.size();
+    j["dt_s"] = spec.dt_s;
+    j["duration_s"] = motion.duration_s();
+    j["pga_g"] = motion.pga_m_s2() / o.g_m_s2;
+    j["predominant_frequency_hz"] = measured;
+    j["g_m_s2"] = o.g_m_s2;
+    fmt::print("{}\n", j.dump(2));
+    return;
+  }
+  if (!o.out.empty()) fmt::print("wrote {}: ", o.out);
+  fmt::print("{} samples, dt {} s, stochastic point source M {} at {} km (corner {:.3g} Hz, T_gm {:.3g} s), seed {}\n",
+             motion.size(), spec.dt_s, spec.magnitude, spec.distance_km, fc, t_gm, spec.seed);
+  fmt::print("PGA {:.5g} g; predominant frequency measured {:.4g} Hz\n", motion.pga_m_s2() / o.g_m_s2, measured);
+  if (!o.plot.empty()) fmt::print("figure written to {}\n", o.plot);
+}
+
 void run_synth(const SynthOptions& o) {
+  // Without the stochastic method's options, the filtered noise needs all three: CLI11's own error, first, as when
+  // they were marked required.
+  if (!o.magnitude && !o.distance_km) {
+    for (const auto& [value, name] : {std::pair{&o.pga, "--pga"}, {&o.freq, "--freq"}, {&o.duration, "--duration"}}) {
+      if (value->empty()) throw CLI::RequiredError(name);
+    }
+  }
   check_g(o.g_m_s2);
   if (o.out.empty() && o.plot.empty()) {
     throw parameter_error("--out",
@@ -187,6 +288,10 @@ void run_synth(const SynthOptions& o) {
   }
   check_plot_path(o.plot);
   if (o.components == 1) check_output_path(o.out);
+  if (o.magnitude || o.distance_km) {
+    run_synth_stochastic(o);
+    return;
+  }
   SynthesisSpec spec;
   spec.pga_m_s2 = parse_acceleration_m_s2(o.pga, "--pga", o.g_m_s2);
   spec.predominant_frequency_hz = parse_frequency_hz(o.freq, "--freq");
@@ -260,9 +365,17 @@ void add_synth_command(CLI::App& app) {
   auto o = std::make_shared<SynthOptions>();
   CLI::App* cmd = app.add_subcommand("synth", "Synthetic ground motion: Kanai-Tajimi / Clough-Penzien filtered white "
                                               "noise under a time envelope, reproducible from its seed");
-  cmd->add_option("--pga", o->pga, "Peak ground acceleration, with a unit (0.3g, 3m/s2)")->required();
-  cmd->add_option("--freq", o->freq, "Predominant frequency of the motion as topple measures it, e.g. 3Hz")->required();
-  cmd->add_option("--duration", o->duration, "Record length, s (a bare number) or with a unit, e.g. 20s")->required();
+  // --pga, --freq and --duration are required unless --magnitude and --distance-km choose the stochastic method
+  // (checked in run_synth, with CLI11's RequiredError as before).
+  cmd->add_option("--pga", o->pga, "Peak ground acceleration, with a unit (0.3g, 3m/s2); required (with "
+                                   "--magnitude: optional, scales the motion to it)");
+  cmd->add_option("--freq", o->freq, "Predominant frequency of the motion as topple measures it, e.g. 3Hz (required "
+                                     "without --magnitude)");
+  cmd->add_option("--duration", o->duration, "Record length, s (a bare number) or with a unit, e.g. 20s (required "
+                                             "without --magnitude)");
+  cmd->add_option("--magnitude", o->magnitude, "Moment magnitude (2-9): a motion of Boore's (2003) stochastic "
+                                               "point-source method instead of filtered noise (with --distance-km)");
+  cmd->add_option("--distance-km", o->distance_km, "With --magnitude: the hypocentral distance, km (1-1000)");
   cmd->add_option("--dt", o->dt, "Sample interval")->capture_default_str();
   cmd->add_option("--seed", o->seed, "Random seed (any 64-bit integer): same parameters and seed, same motion")
       ->capture_default_str();

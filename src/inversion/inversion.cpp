@@ -23,6 +23,7 @@
 #include "topple/solvers/slide_rock.hpp"
 #include "topple/solvers/sliding.hpp"
 #include "topple/motion/spectra.hpp"
+#include "topple/motion/stochastic.hpp"
 #include "topple/motion/synthesis.hpp"
 #include "topple/core/units.hpp"
 #include "topple/numerics/statistics.hpp"
@@ -323,13 +324,15 @@ void validate_inversion_settings(const InversionSettings& st) {
     }
     return;
   }
-  if (st.family == MotionFamily::rezaeian2010) {
+  if (st.family == MotionFamily::rezaeian2010 || st.family == MotionFamily::boore2003) {
     // The record-like family makes any frequency whose step (1 / (20 f_max), synthesis.hpp) the readers accept; the
-    // frequency axis is kept to the band predominant_frequency_hz measures (0.1 Hz up), and 25 Hz at the top.
+    // frequency axis is kept to the band predominant_frequency_hz measures (0.1 Hz up), and 25 Hz at the top. The
+    // stochastic family (stochastic.hpp) samples at the same step and is kept to the same band.
     if (st.freq_min_hz < 0.1 || st.freq_max_hz > 25.0) {
-      throw parameter_error("inversion.freq_hz", fmt::format("the rezaeian2010 family makes predominant frequencies "
+      throw parameter_error("inversion.freq_hz", fmt::format("the {} family makes predominant frequencies "
                                                              "of 0.1 to 25 Hz; the grid is [{}, {}] Hz",
-                                                             st.freq_min_hz, st.freq_max_hz));
+                                                             motion_family_name(st.family), st.freq_min_hz,
+                                                             st.freq_max_hz));
     }
     return;
   }
@@ -374,6 +377,17 @@ std::vector<GroundMotion> family_motions(const InversionSettings& st, double fre
         measured = predominant_frequency_hz(m);
       }
       out.push_back(m.time_scaled(measured / freq_hz).scaled_to_pga(1.0));
+    }
+    return out;
+  }
+  if (st.family == MotionFamily::boore2003) {
+    out.reserve(static_cast<std::size_t>(st.motions_per_cell));
+    for (int k = 0; k < st.motions_per_cell; ++k) {
+      // Motion k: scenarios (M, R, kappa0) drawn for a spectral peak at the column and kept when the motion's measured
+      // predominant frequency lies within a factor 1.15 of it (stochastic.hpp, draw_boore2003); the same seeds in
+      // every column. The time scaling then puts it exactly on the column.
+      const BooreDraw d = draw_boore2003(mix(st.seed, static_cast<std::uint64_t>(k) + 1), freq_hz);
+      out.push_back(d.motion.time_scaled(d.measured_hz / freq_hz).scaled_to_pga(1.0));
     }
     return out;
   }

@@ -697,7 +697,9 @@ void parse_inversion_table(const toml::table& t, const std::string& name, const 
     if (*fam == "synthetic") st.family = MotionFamily::synthetic;
     else if (*fam == "records") st.family = MotionFamily::records;
     else if (*fam == "rezaeian2010") st.family = MotionFamily::rezaeian2010;
-    else throw r.error("family", fmt::format("unknown family '{}' (known: synthetic, records, rezaeian2010)", *fam));
+    else if (*fam == "boore2003") st.family = MotionFamily::boore2003;
+    else throw r.error("family", fmt::format("unknown family '{}' (known: synthetic, records, rezaeian2010, boore2003)",
+                                             *fam));
   }
   if (const toml::node* rec = r.get("records")) {
     const auto* arr = rec->as_array();

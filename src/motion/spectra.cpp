@@ -11,18 +11,25 @@
 #include <fftw3.h>
 #include <fmt/format.h>
 
+#include "motion/fftw_lock.hpp"
 #include "topple/core/error.hpp"
 #include "topple/core/units.hpp"
 
 namespace topple {
-namespace {
+namespace detail {
 
 /// FFTW's planner is not thread-safe (FFTW manual, sec. 5.2): plan creation and destruction take this lock; execution
-/// of a plan on its own arrays does not need it. The one piece of shared mutable state in the library, and FFTW's.
+/// of a plan on its own arrays does not need it. The one piece of shared mutable state in the library, and FFTW's
+/// (motion/fftw_lock.hpp: stochastic.cpp plans under it too).
 std::mutex& fftw_planner_mutex() {
   static std::mutex m;
   return m;
 }
+
+}  // namespace detail
+namespace {
+
+using detail::fftw_planner_mutex;
 
 /// |DFT| of `x` (length N, real) at k = 0 .. N/2.
 std::vector<double> dft_magnitude(std::vector<double> x) {

@@ -765,7 +765,9 @@ void method_html(std::ostringstream& h, const InversionSettings& st, const Site&
                    r.runs / std::max<std::size_t>(1, site.objects.size() * r.pga_g.size() * r.freq_hz.size()),
                    st.family == MotionFamily::synthetic      ? "synthetic (Clough&ndash;Penzien filtered noise)"
                    : st.family == MotionFamily::rezaeian2010 ? "synthetic record-like (Rezaeian &amp; Der Kiureghian 2010)"
-                                                             : "recorded")
+                   : st.family == MotionFamily::boore2003
+                       ? "stochastic point-source (Boore 2003: Brune source, magnitude and distance drawn for the frequency)"
+                       : "recorded")
     << "<li>All objects saw the same motion: a cell's likelihood is the average over its motions of the product over "
        "objects of 0.98 (certain), 0.90 (likely) or 0.75 (reported) when the run reproduces the observation and 0.02, "
        "0.10 or 0.25 when it does not (the chance that the observation itself is wrong); the runs of neighbouring "

@@ -51,10 +51,11 @@ ObjectModel object_model(const ObservedObject& o) noexcept {
   return o.outcome == Outcome::slid || o.outcome == Outcome::not_slid ? ObjectModel::slide : ObjectModel::rock;
 }
 
-constexpr std::array<EnumName<MotionFamily>, 3> kMotionFamilyNames{{
+constexpr std::array<EnumName<MotionFamily>, 4> kMotionFamilyNames{{
     {MotionFamily::synthetic, "synthetic"},
     {MotionFamily::records, "records"},
     {MotionFamily::rezaeian2010, "rezaeian2010"},
+    {MotionFamily::boore2003, "boore2003"},
 }};
 
 std::string_view motion_family_name(MotionFamily f) { return enum_name(kMotionFamilyNames, f); }

@@ -53,6 +53,37 @@ TEST(CliSynth, WritesACsvThatEveryCommandReadsBack) {
   EXPECT_EQ(rock.exit_code, 0) << rock.err;
 }
 
+// --magnitude and --distance-km: a motion of Boore's (2003) stochastic method (motion/stochastic.hpp); its corner
+// frequency and duration are the hand values of tests/motion/test_stochastic.cpp (M 6: fc 0.316103 Hz; R 20 km:
+// T_gm 4.16353 s); the file reads back; --pga scales it; --freq / --duration are refused with it, and without it
+// --pga stays required.
+TEST(CliSynth, StochasticPointSourceFromMagnitudeAndDistance) {
+  const test::TempDir dir;
+  const auto csv = (dir.path() / "m6.csv").string();
+  const auto made = run_json("synth --magnitude 6 --distance-km 20 --seed 3 --out '" + csv + "' --json");
+  EXPECT_EQ(made.at("model").get<std::string>(), "boore2003");
+  EXPECT_NEAR(made.at("corner_frequency_hz").get<double>(), 0.31610274573218144, 1e-12);
+  EXPECT_NEAR(made.at("duration_gm_s").get<double>(), 4.163528357476691, 1e-12);
+  const double pga = made.at("pga_g").get<double>();
+  EXPECT_GT(pga, 0.005);  // M 6 at 20 km on rock: a few hundredths to a tenth of g
+  EXPECT_LT(pga, 0.5);
+  const auto info = run_json("info '" + csv + "' --json");
+  EXPECT_NEAR(info.at("pga_g").get<double>(), pga, 1e-12);
+  EXPECT_NEAR(info.at("predominant_frequency_hz").get<double>(), made.at("predominant_frequency_hz").get<double>(),
+              1e-9);
+  const auto scaled = run_json("synth --magnitude 6 --distance-km 20 --seed 3 --pga 0.2g --out '" + csv + "' --json");
+  EXPECT_NEAR(scaled.at("pga_g").get<double>(), 0.2, 1e-12);
+  const auto expect_error = [&](const std::string& args, const std::string& option) {
+    const auto r = test::run_cli(args);
+    EXPECT_EQ(r.exit_code, 2) << args;
+    EXPECT_NE(r.err.find(option), std::string::npos) << args << ": " << r.err;
+  };
+  expect_error("synth --magnitude 6 --out '" + csv + "'", "--distance-km");
+  expect_error("synth --magnitude 6 --distance-km 20 --freq 3Hz --out '" + csv + "'", "--freq");
+  expect_error("synth --magnitude 9.5 --distance-km 20 --out '" + csv + "'", "--magnitude");
+  expect_error("synth --freq 3Hz --duration 20s --out '" + csv + "'", "--pga");
+}
+
 TEST(CliSynth, SameSeedSameFileOtherSeedOtherFile) {
   const test::TempDir dir;
   const auto a = (dir.path() / "a.csv").string();

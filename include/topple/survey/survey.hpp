@@ -174,9 +174,10 @@ struct Site {
 
 /// The motions the inversion explores. synthetic: Clough-Penzien filtered noise (synthesis.hpp), the default;
 /// rezaeian2010: the record-like family of Rezaeian & Der Kiureghian (2010) (synthesis.hpp, docs/method.md);
-/// records: the survey's own records.
-enum class MotionFamily { synthetic, records, rezaeian2010 };
-/// "synthetic", "records", "rezaeian2010": the names a survey's `family` key takes.
+/// records: the survey's own records; boore2003: the stochastic point-source method of Boore (2003), motions from an
+/// earthquake's magnitude and distance (stochastic.hpp, docs/method.md).
+enum class MotionFamily { synthetic, records, rezaeian2010, boore2003 };
+/// "synthetic", "records", "rezaeian2010", "boore2003": the names a survey's `family` key takes.
 [[nodiscard]] std::string_view motion_family_name(MotionFamily family);
 
 /// The prior on (PGA, predominant frequency) (docs/method.md, "Priors"; inversion/prior.hpp). log_uniform: uniform
