@@ -186,6 +186,10 @@ std::vector<RestingFace> resting_faces(const TriangleMesh& mesh, const Vec3& cen
       if (k < 3) corners[i][k] = point_of(v);
       ++k;
     }
+    // The cross product from the smallest corner (a cyclic turn keeps the winding): CGAL starts the facet at whichever
+    // halfedge its allocation gave, and the product's last bits depend on the starting corner, so that without this
+    // the same mesh gave bodies that differ by an ulp from run to run.
+    std::rotate(corners[i].begin(), std::min_element(corners[i].begin(), corners[i].end()), corners[i].end());
     area_normal[i] = cross(sub(corners[i][1], corners[i][0]), sub(corners[i][2], corners[i][0]));
   }
   std::vector<Vec3> hull_points;
@@ -251,7 +255,9 @@ std::vector<RestingFace> resting_faces(const TriangleMesh& mesh, const Vec3& cen
     }
     RestingFace face;
     face.normal = scale(sum, 1.0 / norm(sum));
-    face.tilt_deg = rad_to_deg(std::acos(std::clamp(-face.normal[2], -1.0, 1.0)));
+    // The angle from -z as atan2(horizontal, vertical): acos(-n_z) is ill-conditioned near 0 (a normal one ulp short of
+    // unit length read as 8.5e-7 deg), atan2 gives exactly 0 for a level face and full precision at every angle.
+    face.tilt_deg = rad_to_deg(std::atan2(std::hypot(face.normal[0], face.normal[1]), -face.normal[2]));
     double d = -std::numeric_limits<double>::infinity();
     for (const auto& p : hull_points) d = std::max(d, dot(face.normal, p));
     face.h_m = d - dot(face.normal, centre);

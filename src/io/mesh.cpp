@@ -806,12 +806,15 @@ MeshBody read_mesh_body(const std::string& path, double unit_m, const BodyOption
 }
 
 void to_file_coordinates(MeshBody& body, const Vec3& origin_m) {
-  for (int k = 0; k < 3; ++k) {
+  // At rest the body is turned about its CM (x, y kept) and lowered onto z = 0 (bodies/pose.hpp): its x, y go back to
+  // the file's, its heights stay measured from the base it rests on. As scanned every coordinate is the file's.
+  const int axes = body.pose.method == PoseMethod::rest ? 2 : 3;
+  for (int k = 0; k < axes; ++k) {
     body.mass.centre_of_mass_m[k] += origin_m[k];
     body.planar.pivot1_m[k] += origin_m[k];
     body.planar.pivot2_m[k] += origin_m[k];
   }
-  body.support.z_m += origin_m[2];
+  if (axes == 3) body.support.z_m += origin_m[2];
   for (auto& p : body.support.hull_xy_m) p = {p[0] + origin_m[0], p[1] + origin_m[1]};
 }
 

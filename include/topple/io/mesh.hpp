@@ -54,6 +54,7 @@ inline constexpr std::uintmax_t kMaxMeshFileBytes = std::uintmax_t{1} << 30;
 /// Moves the positions of a body computed from a mesh read by read_mesh (centre of mass, support plane and polygon,
 /// pivots; computed in the mesh's local frame) to the file's coordinates, adding mesh.origin_m: what `topple body`
 /// prints, with the meaning these keys had before meshes were recentred. Lengths, angles and inertias do not change.
+/// At rest (PoseMethod::rest) only x and y move: the rested body stands on z = 0, its heights measured from its base.
 void to_file_coordinates(MeshBody& body, const Vec3& origin_m);
 
 /// Same as read_mesh on a file's content already in memory, of `format` "obj", "off", "stl" or "ply" (what the
