@@ -158,6 +158,45 @@ StaticOverturning static_overturning(const std::vector<std::array<double, 2>>& h
   return out;
 }
 
+/// A face's outward unit normal from its contact points alone: the vector area (Newell's method, from the smallest
+/// point) of the points in their angular order about their centroid in the plane of `provisional`, oriented as it.
+/// The sum of the hull facets' area normals (`provisional`) is the same vector in exact arithmetic, but CGAL
+/// triangulates a planar region differently with the input's order and its handles' addresses, and the rounding of
+/// that sum then moved h and b by an ulp from run to run. The points are sorted first, so the result depends on the
+/// set, not on any order; a level face's points share their z, so its normal comes out exactly vertical.
+static Vec3 canonical_normal(std::vector<Vec3>& points, const Vec3& provisional) {
+  std::sort(points.begin(), points.end());
+  if (points.size() < 3) return provisional;
+  Vec3 mean{};
+  for (const auto& p : points) mean = add(mean, p);
+  mean = scale(mean, 1.0 / static_cast<double>(points.size()));
+  // An orthonormal basis (u, v) of the plane: u across the axis least aligned with the normal.
+  const int k = std::abs(provisional[0]) <= std::abs(provisional[1])
+                    ? (std::abs(provisional[0]) <= std::abs(provisional[2]) ? 0 : 2)
+                    : (std::abs(provisional[1]) <= std::abs(provisional[2]) ? 1 : 2);
+  Vec3 axis{};
+  axis[static_cast<std::size_t>(k)] = 1.0;
+  const Vec3 w = cross(provisional, axis);
+  const Vec3 u = scale(w, 1.0 / norm(w));
+  const Vec3 v = cross(provisional, u);
+  std::vector<std::pair<double, std::size_t>> angle(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Vec3 d = sub(points[i], mean);
+    angle[i] = {std::atan2(dot(d, v), dot(d, u)), i};
+  }
+  std::sort(angle.begin(), angle.end());  // ties (points in line with the centroid) by their sorted index
+  std::vector<Vec3> ring(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) ring[i] = points[angle[i].second];
+  std::rotate(ring.begin(), std::min_element(ring.begin(), ring.end()), ring.end());
+  Vec3 area{};
+  for (std::size_t i = 1; i + 1 < ring.size(); ++i) {
+    area = add(area, cross(sub(ring[i], ring[0]), sub(ring[i + 1], ring[0])));
+  }
+  const double n = norm(area);
+  if (!(n > 0.0)) return provisional;
+  return scale(area, (dot(area, provisional) >= 0.0 ? 1.0 : -1.0) / n);
+}
+
 std::vector<RestingFace> resting_faces(const TriangleMesh& mesh, const Vec3& centre, const Quaternion& pre,
                                        double contact_tolerance_m) {
   std::vector<Vec3> turned;
@@ -254,7 +293,7 @@ std::vector<RestingFace> resting_faces(const TriangleMesh& mesh, const Vec3& cen
       }
     }
     RestingFace face;
-    face.normal = scale(sum, 1.0 / norm(sum));
+    face.normal = canonical_normal(contact, scale(sum, 1.0 / norm(sum)));
     // The angle from -z as atan2(horizontal, vertical): acos(-n_z) is ill-conditioned near 0 (a normal one ulp short of
     // unit length read as 8.5e-7 deg), atan2 gives exactly 0 for a level face and full precision at every angle.
     face.tilt_deg = rad_to_deg(std::atan2(std::hypot(face.normal[0], face.normal[1]), -face.normal[2]));
