@@ -277,7 +277,12 @@ RockingBody mesh_object_body(Reader& named, const std::filesystem::path& base_di
   o.mesh_file = path.string();
   o.mesh_azimuth_deg = options.azimuth_deg;
   try {
-    return rocking_body(read_mesh_body(path.string(), unit_m, options));
+    const MeshBody mb = read_mesh_body(path.string(), unit_m, options);
+    o.mesh_pose = mb.pose.method == PoseMethod::as_scanned
+                      ? std::string("as-scanned")
+                      : fmt::format("rest on face {} (tilt {:.4g} deg from the scan)", mb.pose.face.value_or(0),
+                                    mb.pose.tilt_deg);
+    return rocking_body(mb);
   } catch (const InputError& e) {
     if (e.where().field == "--face") throw named.error("mesh_face", fmt::format("mesh '{}': {}", path.string(), e.problem()));
     throw named.error("mesh", fmt::format("mesh '{}' gives no body: {}", path.string(), e.what()), mesh_node);

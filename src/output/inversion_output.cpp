@@ -150,6 +150,9 @@ nlohmann::ordered_json inversion_json(const InversionResult& r, const Site& site
         if (b.object_id == rep.id) oj["static_upper_bound_rotd100_pga_g"] = b.pga_g;
       }
     }
+    for (const auto& so : site.objects) {  // added (issue 28): a scanned body's pose, only for bodies from meshes
+      if (so.id == rep.id && !so.mesh_pose.empty()) oj["mesh_pose"] = so.mesh_pose;
+    }
     oj["posterior_predictive"] = rep.posterior_predictive;
     oj["misfit"] = rep.misfit;
     oj["constraint_bits"] = rep.constraint_bits;

@@ -99,8 +99,9 @@ std::string dims(const ObservedObject& o) {
       if (!o.body.symmetric()) {  // asymmetric: both pivots; from a scan, the mesh and its plane
         const std::string from_mesh =
             o.mesh_file.empty() ? std::string()
-                                : fmt::format(" (mesh {}, azimuth {:g}&#176;)", html_escape(o.mesh_file),
-                                              o.mesh_azimuth_deg.value_or(0.0));
+                                : fmt::format(" (mesh {}, azimuth {:g}&#176;{}{})", html_escape(o.mesh_file),
+                                              o.mesh_azimuth_deg.value_or(0.0), o.mesh_pose.empty() ? "" : "; ",
+                                              html_escape(o.mesh_pose));
         return fmt::format("b1 = {}, b2 = {}, h = {}{}", cm(o.body.pivot_b_m(-1)), cm(o.body.pivot_b_m(1)),
                            cm(o.body.h_m), from_mesh);
       }

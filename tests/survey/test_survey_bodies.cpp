@@ -16,6 +16,7 @@
 #include "topple/io/mesh.hpp"
 #include "topple/io/survey_file.hpp"
 #include "topple/motion/pulses.hpp"
+#include "topple/output/inversion_output.hpp"
 #include "topple/solvers/rocking.hpp"
 
 namespace topple {
@@ -192,6 +193,11 @@ outcome = "not_overturned"
   // The asymmetric body that fell cannot have done so below its uplift threshold: at the lowest PGA (0.05 g) no
   // run reproduces it, so its probability there is the smoothing floor, below that at the highest PGA.
   EXPECT_LT(r.objects[0].probability.front(), r.objects[0].probability.back());
+  // The JSON says which pose a scanned body was given (issue 28), and only for bodies from meshes: the wedge rests on
+  // its base, the face of least tilt (0: its base is level in the file), numbered 1.
+  const nlohmann::ordered_json j = io::inversion_json(r, s.sites.at(0));
+  EXPECT_FALSE(j["objects"][0].contains("mesh_pose"));
+  EXPECT_EQ(j["objects"][2]["mesh_pose"], "rest on face 1 (tilt 0 deg from the scan)");
 }
 
 // An asymmetric body's run in the inversion is the rocking engine's run of that body: observation_match says

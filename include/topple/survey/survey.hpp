@@ -77,6 +77,9 @@ struct ObservedObject {
   /// dimensions. The body itself (general, asymmetric: b1, b2, h, inertia) is in `body`.
   std::string mesh_file;
   std::optional<double> mesh_azimuth_deg;
+  /// A body from a 3-D scan: the pose it was given (bodies/pose.hpp), as the invert JSON and the report say it:
+  /// "rest on face N (tilt T deg from the scan)" or "as-scanned" (`mesh_pose = "as-scanned"`, the earlier answer).
+  std::string mesh_pose;
   Interval mu;                 ///< friction coefficient, dimensionless (value or range)
   bool e_housner = true;       ///< restitution from Housner's formula for the shape
   Interval e;                  ///< given restitution, dimensionless (value or range) when !e_housner
