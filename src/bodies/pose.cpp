@@ -1,6 +1,7 @@
 // The resting poses of a mesh on a level base (bodies/pose.hpp). CGAL's convex_hull_3 and convex_hull_2 (exact
 // predicates) are used here; like body_geometry.cpp this file is compiled with -frounding-math.
 #include "topple/bodies/pose.hpp"
+#include "bodies/body_geometry.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -14,7 +15,6 @@
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
-#include <CGAL/convex_hull_2.h>
 #include <CGAL/convex_hull_3.h>
 #include <fmt/format.h>
 
@@ -43,17 +43,6 @@ double azimuth_of(double ex, double ny) {  // of the horizontal direction (ex ea
   return a;
 }
 
-std::vector<std::array<double, 2>> hull_2d(const std::vector<std::array<double, 2>>& points) {
-  std::vector<Kernel::Point_2> in;
-  in.reserve(points.size());
-  for (const auto& p : points) in.emplace_back(p[0], p[1]);
-  std::vector<Kernel::Point_2> hull;
-  CGAL::convex_hull_2(in.begin(), in.end(), std::back_inserter(hull));
-  std::vector<std::array<double, 2>> out;
-  out.reserve(hull.size());
-  for (const auto& p : hull) out.push_back({p.x(), p.y()});
-  return out;
-}
 
 /// Signed distance from c to the nearest edge of the counter-clockwise polygon (> 0 inside).
 double inside_margin(const std::vector<std::array<double, 2>>& hull, const std::array<double, 2>& c) {
@@ -310,7 +299,7 @@ std::vector<RestingFace> resting_faces(const TriangleMesh& mesh, const Vec3& cen
     }
     face.contact_vertices = contact.size();
     face.contact_m = std::move(contact);
-    face.polygon_xy_m = hull_2d(xy);
+    face.polygon_xy_m = detail::convex_hull_2d(xy);  // body_geometry.hpp: CGAL, exact predicates
     face.area_m2 = polygon_area(face.polygon_xy_m);
     const std::array<double, 2> c_xy{centre[0], centre[1]};  // the CM is the centre of rotation
     face.margin_m = inside_margin(face.polygon_xy_m, c_xy);
