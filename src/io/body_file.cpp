@@ -55,6 +55,11 @@ BodyFile parse_body_file(std::string_view content, const std::string& name) {
     const std::size_t line = 1 + static_cast<std::size_t>(std::count(content.begin(), end, '\n'));
     throw InputError(InputLocation{name, line, ""}, fmt::format("not JSON ({}): a body file is what `topple body MESH "
                                                                 "--json` writes", e.what()));
+  } catch (const nlohmann::json::exception& e) {
+    // The parser's other refusals, e.g. out_of_range 406 for a number beyond double's range (1e400): found by
+    // fuzz_body_file, which ended on them before this.
+    throw InputError(InputLocation{name, std::nullopt, ""},
+                     fmt::format("not a body file ({}): a body file is what `topple body MESH --json` writes", e.what()));
   }
   if (!j.is_object()) {
     throw InputError(InputLocation{name, std::nullopt, ""},
