@@ -34,7 +34,7 @@ seeds_for() {
     fuzz_usgs_smc) echo '*.smc' ;;
     fuzz_esm) echo '*.ASC' ;;
     fuzz_plain) echo '*.csv slammer/*.csv' ;;
-    fuzz_survey|fuzz_sweep|fuzz_mesh_*) echo '' ;;  # seeded from examples/ below
+    fuzz_survey|fuzz_sweep|fuzz_mesh_*|fuzz_body_file) echo '' ;;  # seeded from examples/ and tests/ below
     *) echo '*' ;;
   esac
 }
@@ -150,6 +150,7 @@ for target in "${targets[@]}"; do
                  dict=fuzz/toml.dict ;;
     fuzz_sweep) for f in examples/sweep/*.toml; do cp "$f" "$corpus/seed-$(basename "$f")"; done; dict=fuzz/toml.dict ;;
     fuzz_mesh_*) mesh_seeds "${target#fuzz_mesh_}" "$corpus"; dict=fuzz/mesh.dict ;;
+    fuzz_body_file) cp tests/cli/fixtures/balanced_rock_body_az30*.json "$corpus/"; dict=fuzz/toml.dict ;;
   esac
   echo "== $target: ${seconds} s$([[ "$runs" == -1 ]] || echo ", at most $runs runs")"
   unset LSAN_OPTIONS  # every leak is reported

@@ -298,6 +298,8 @@ TEST(CliRock, BadBodyFileNamesTheFileAndTheField) {
   check("array.json", "[1, 2]", "JSON object");
   check("broken.json", "{\"b1_m\": 0.1,\n \"b2_m\": }", "not JSON");
   check("mesh.obj", "v 0 0 0\n", "not JSON");
+  // A number beyond double's range: the JSON parser's out_of_range, refused as the others (found by fuzz_body_file).
+  check("huge.json", R"({"b1_m": 1e400, "b2_m": 0.2, )" + good_rest + "}", "not a body file");
   const auto none = test::run_cli("rock --body '" + (dir.path() / "absent.json").string() + "'" + pulse);
   EXPECT_EQ(none.exit_code, 2);
   EXPECT_NE(none.err.find("absent.json"), std::string::npos) << none.err;
