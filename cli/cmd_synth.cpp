@@ -71,6 +71,19 @@ std::optional<int> decimals_of(double dt) {
   return std::nullopt;
 }
 
+/// The rows "time_s,accel_g" of a motion sampled at dt_s (times printed exactly enough to read as a uniform grid).
+std::string csv_rows(const GroundMotion& motion, double dt_s, double g) {
+  const auto a = motion.accel_m_s2();
+  const std::optional<int> decimals = decimals_of(dt_s);
+  std::string buffer;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const double t = static_cast<double>(i) * dt_s;
+    buffer += decimals ? fmt::format("{:.{}f}", t, *decimals) : fmt::format("{}", t);
+    buffer += fmt::format(",{}\n", a[i] / g);
+  }
+  return buffer;
+}
+
 void write_motion_csv(const std::string& path, const GroundMotion& motion, const SynthesisSpec& spec, double f_g,
                       double g, const std::string& component_line = {}) {
   io::OutputFile file(path);
@@ -81,16 +94,7 @@ void write_motion_csv(const std::string& path, const GroundMotion& motion, const
                      "f_g_hz={:.9g} g_m_s2={}\n",
                      filter_model_name(spec.model), envelope_kind_name(spec.envelope), spec.pga_m_s2 / g,
                      spec.predominant_frequency_hz, spec.duration_s, spec.dt_s, spec.seed, spec.ground_damping, f_g, g);
-  out << "time_s,accel_g\n";
-  const auto a = motion.accel_m_s2();
-  const std::optional<int> decimals = decimals_of(spec.dt_s);
-  std::string buffer;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    const double t = static_cast<double>(i) * spec.dt_s;
-    buffer += decimals ? fmt::format("{:.{}f}", t, *decimals) : fmt::format("{}", t);
-    buffer += fmt::format(",{}\n", a[i] / g);
-  }
-  out << buffer;
+  out << "time_s,accel_g\n" << csv_rows(motion, spec.dt_s, g);
   file.commit();
 }
 
@@ -221,16 +225,7 @@ void run_synth_stochastic(const SynthOptions& o) {
                        "dt_s={} seed={} g_m_s2={}\n",
                        spec.magnitude, spec.distance_km, spec.model.stress_drop_bar, spec.model.kappa0_s, fc, t_gm,
                        spec.dt_s, spec.seed, o.g_m_s2);
-    out << "time_s,accel_g\n";
-    const auto a = motion.accel_m_s2();
-    const std::optional<int> decimals = decimals_of(spec.dt_s);
-    std::string buffer;
-    for (std::size_t i = 0; i < a.size(); ++i) {
-      const double t = static_cast<double>(i) * spec.dt_s;
-      buffer += decimals ? fmt::format("{:.{}f}", t, *decimals) : fmt::format("{}", t);
-      buffer += fmt::format(",{}\n", a[i] / o.g_m_s2);
-    }
-    out << buffer;
+    out << "time_s,accel_g\n" << csv_rows(motion, spec.dt_s, o.g_m_s2);
     file.commit();
   }
   if (!o.plot.empty()) {

@@ -280,14 +280,9 @@ TEST(CliBody, ScannedRockExampleGoesFromMeshToFragility) {
   // record may overturn it below its static uplift threshold min(b1, b2) / h in the plane (Housner 1963: no rocking
   // while |a| <= g b / h), and the 0.1 g records (below every face's b/h in that plane) leave it standing.
   TempDir dir;
-  const std::string cmd = std::string("TOPPLE='") + TOPPLE_CLI_PATH + "' '" + TOPPLE_SOURCE_DIR +
-                          "/examples/scanned_rock.sh' '" + dir.path().string() + "' 2>&1";
-  std::FILE* pipe = popen(cmd.c_str(), "r");
-  ASSERT_NE(pipe, nullptr);
-  std::string out;
-  char buf[4096];
-  while (std::size_t n = std::fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
-  ASSERT_EQ(pclose(pipe), 0) << out;
+  const auto run = test::run_example("scanned_rock.sh", "'" + dir.path().string() + "'");
+  const std::string& out = run.out;
+  ASSERT_EQ(run.exit_code, 0) << out;
   EXPECT_NE(out.find("fragility over 40 records as recorded"), std::string::npos) << out;
   const nlohmann::json rock = nlohmann::json::parse(test::slurp(dir.path() / "rock.json"));
   EXPECT_EQ(rock["pose"]["method"], "rest");

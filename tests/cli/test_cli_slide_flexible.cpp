@@ -145,14 +145,9 @@ TEST(CliSlideFlexible, SpectraOnAFlexibleSupport) {
 TEST(CliSlideFlexible, UpperFloorExampleRuns) {
   // examples/upper_floor.sh (README) must keep working: four runs, the coupled one included, exit status 0.
   if (!test::have_shared()) GTEST_SKIP() << "../shared not present";
-  const std::string cmd = std::string("TOPPLE='") + TOPPLE_CLI_PATH + "' '" + TOPPLE_SOURCE_DIR +
-                          "/examples/upper_floor.sh' '" + test::shared_record(kRecord).string() + "' 2>&1";
-  std::FILE* pipe = popen(cmd.c_str(), "r");
-  ASSERT_NE(pipe, nullptr);
-  std::string out;
-  char buf[4096];
-  while (std::size_t n = std::fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
-  EXPECT_EQ(pclose(pipe), 0) << out;
+  const auto run = test::run_example("upper_floor.sh", "'" + test::shared_record(kRecord).string() + "'");
+  const std::string& out = run.out;
+  EXPECT_EQ(run.exit_code, 0) << out;
   EXPECT_NE(out.find("coupled analysis on a shelf/floor oscillator"), std::string::npos) << out;
   EXPECT_EQ(std::count(out.begin(), out.end(), '='), 8) << out;  // four "== ..." headers
 }

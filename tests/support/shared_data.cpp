@@ -59,6 +59,18 @@ CommandResult run_cli(const std::string& args, int timeout_s) {
   return r;
 }
 
+CommandResult run_example(const std::string& script, const std::string& args) {
+  TempDir tmp;
+  const auto out = tmp.path() / "out.txt";
+  const std::string cmd = std::string("TOPPLE='") + TOPPLE_CLI_PATH + "' '" + TOPPLE_SOURCE_DIR + "/examples/" + script +
+                          "' " + args + " >'" + out.string() + "' 2>&1 </dev/null";
+  const int status = std::system(cmd.c_str());
+  CommandResult r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = slurp(out);
+  return r;
+}
+
 TempDir::TempDir() {
   std::random_device rd;
   const auto base = std::filesystem::temp_directory_path();

@@ -27,6 +27,10 @@ struct CommandResult {
 /// eats memory fails the test instead of stalling it.
 [[nodiscard]] CommandResult run_cli(const std::string& args, int timeout_s = 0);
 
+/// Runs a script of examples/ (`script`, e.g. "upper_floor.sh") with its arguments (shell-quoted by the caller) and
+/// TOPPLE set to the built CLI; stdout and stderr together in `out`.
+[[nodiscard]] CommandResult run_example(const std::string& script, const std::string& args);
+
 /// Runs the CLI, expects exit status 0 (a test failure naming the arguments and stderr otherwise) and parses stdout
 /// as JSON.
 [[nodiscard]] nlohmann::json run_json(const std::string& args);
