@@ -128,7 +128,7 @@ std::vector<SurveyKey> make_schema() {
   dimension("a", {"general"}, "centre of mass to the pivot edge, horizontally", "\"5cm\"");
   dimension("h", {"general", "general asymmetric"}, "height of the centre of mass", "\"20cm\"");
   {
-    auto& k = add(key("object", "D", K::area, "I_pivot / m, an area with its unit (\"0.0123m2\")", "\"0.02m2\""));
+    auto& k = add(key("object", "D", K::area, "I_pivot / m, an area with its unit (\"0.0123m2\")", "\"0.06m2\""));
     k.required_for_shapes = {"general"};
     k.missing_problem = "a general body needs D = I/m with its unit, e.g. \"0.01m2\"";
   }
