@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "commands.hpp"
+#include "progress.hpp"
 #include "topple/core/output_file.hpp"
 #include "topple/output/survey_form.hpp"
 
@@ -14,11 +15,13 @@ namespace topple::cli {
 
 void add_survey_form_command(CLI::App& app) {
   auto output = std::make_shared<std::string>();
+  auto quiet = std::make_shared<bool>(false);
   CLI::App* cmd = app.add_subcommand(
       "survey-form", "Print the offline survey form: one self-contained HTML page (no network, no server) where a field "
                      "team enters a site and its objects, sees the survey reader's errors as it types, and saves the "
                      "survey as TOML or CSV (docs/survey.md, \"The offline survey form\")");
   cmd->add_option("-o,--output", *output, "Write the page to this file instead of stdout");
+  add_quiet_flag(*cmd, *quiet);  // nothing to silence: accepted so that every command takes --quiet
   cmd->callback([output] {
     const std::string page = io::survey_form_html();
     if (!output->empty()) {

@@ -123,8 +123,8 @@ std::vector<SurveyKey> make_schema() {
     return &k;
   };
   dimension("width", {"block"}, "full base width across the narrow side it rocks over", "\"10cm\"");
-  dimension("height", {"block", "cylinder"}, "full height", "\"40cm\"");
   dimension("diameter", {"cylinder"}, "full base diameter", "\"10cm\"");
+  dimension("height", {"block", "cylinder"}, "full height", "\"40cm\"");
   dimension("a", {"general"}, "centre of mass to the pivot edge, horizontally", "\"5cm\"");
   dimension("h", {"general", "general asymmetric"}, "height of the centre of mass", "\"20cm\"");
   {
@@ -166,6 +166,13 @@ std::vector<SurveyKey> make_schema() {
            "expected a face number (an integer from 1; see topple body --list-faces)");
   }
   mesh_key("mesh_contact_tolerance", K::length, "contact tolerance of the pose", "\"1mm\"");
+  {
+    auto& k = add(key("object", "outcome", K::choice, "what it did", "\"overturned\""));
+    k.choices = {"overturned", "not_overturned", "rocked", "not_rocked", "slid", "not_slid",
+                 "slid_stood", "slid_toppled", "walked", "toppled", "fell"};
+    k.required = true;
+    k.missing_problem = "every object needs its observed outcome";
+  }
   {
     auto& k = add(key("object", "mu", K::value_or_range,
                       "static friction coefficient of the base on its support: a value or a range [low, high]",
@@ -231,13 +238,6 @@ std::vector<SurveyKey> make_schema() {
     ranged(k, incl(0.0), excl(360.0), kBearingProblem);
     k.conditions.push_back({"inversion.components", kComponents3, "a sliding direction needs [inversion] components = 3"});
     k.conditions.push_back({"outcome", {"slid"}, "a sliding direction goes with outcome = \"slid\""});
-  }
-  {
-    auto& k = add(key("object", "outcome", K::choice, "what it did", "\"overturned\""));
-    k.choices = {"overturned", "not_overturned", "rocked", "not_rocked", "slid", "not_slid",
-                 "slid_stood", "slid_toppled", "walked", "toppled", "fell"};
-    k.required = true;
-    k.missing_problem = "every object needs its observed outcome";
   }
   {
     auto& k = add(key("object", "model", K::choice,

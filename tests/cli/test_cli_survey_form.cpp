@@ -170,7 +170,7 @@ TEST(CliSurveyForm, PageIsOneSelfContainedFile) {
   // --output writes the same page.
   test::TempDir tmp;
   const auto file = tmp.path() / "form.html";
-  ASSERT_EQ(test::run_cli("survey-form --output '" + file.string() + "'").exit_code, 0);
+  ASSERT_EQ(test::run_cli("survey-form --quiet --output '" + file.string() + "'").exit_code, 0);
   EXPECT_EQ(slurp(file), r.out);
 }
 

@@ -64,7 +64,7 @@ struct SurveyKey {
   bool in_form = true;               ///< offered by the offline form (not: keys that name files, nested tables)
 };
 
-/// Every key of the survey file, in the order of docs/survey.md.
+/// Every key of the survey file, table by table, an object's in the order a field team fills them in (the form's order).
 [[nodiscard]] const std::vector<SurveyKey>& survey_schema();
 /// The key `key` of `table`, or nullptr.
 [[nodiscard]] const SurveyKey* find_survey_key(std::string_view table, std::string_view key);
