@@ -255,5 +255,31 @@ TEST(CliSurveyForm, AnImpossibleValueOrAMissingFieldShowsTheReadersErrorInThePag
   EXPECT_NE(dom.find("must lie in [100, 3000] m/s, got 50</div>"), std::string::npos);
 }
 
+TEST(CliSurveyForm, TheWordsThePageWritesItselfAreTheReadersToo) {
+  // Besides the key table's words, the page words a few refusals itself (a range typed backwards, an axis' count, a
+  // duplicate id): each as the reader says it, checked here on the reader's own output.
+  if (!have_chromium()) GTEST_SKIP() << "chromium is not installed";
+  test::TempDir tmp;
+  const auto [dom, log] = form_dom(
+      R"({"inversion": {"pga_g": "0.05, 2, 1"}, "objects": [{"id": "vase", "width": "8cm", "height": "40cm",
+          "mu": "0.6-0.4", "outcome": "overturned"}, {"id": "vase", "width": "8cm", "height": "40cm", "mu": "0.5",
+          "outcome": "overturned"}], "save": true})",
+      tmp.path());
+  EXPECT_EQ(log.find("Uncaught"), std::string::npos) << log;
+  const std::string errors = element_text(dom, "<ul id=\"errors\"", "</ul>");
+  const std::string object = "[[object]]\nid = \"vase\"\nwidth = \"8cm\"\nheight = \"40cm\"\noutcome = \"overturned\"\n";
+  const std::string count = "inversion.pga_g: count must be a whole number from 2 to 1000, got 1";
+  const std::string backwards = "object[1](vase).mu: range [0.6, 0.4] has low > high";
+  const std::string twice = "object[2].id: duplicate object id 'vase'";
+  for (const std::string& said : {count, backwards, twice}) {
+    EXPECT_NE(errors.find("<li>" + said + "</li>"), std::string::npos) << said << "\n" << errors;
+  }
+  EXPECT_NE(reader_error(tmp.path() / "a.toml", "[inversion]\npga_g = [0.05, 2, 1]\n" + object + "mu = 0.5\n").find(count),
+            std::string::npos);
+  EXPECT_NE(reader_error(tmp.path() / "b.toml", object + "mu = [0.6, 0.4]\n").find(backwards), std::string::npos);
+  EXPECT_NE(reader_error(tmp.path() / "c.toml", object + "mu = 0.5\n" + object + "mu = 0.5\n").find(twice),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace topple
