@@ -13,5 +13,6 @@ void add_sweep_command(CLI::App& app);
 void add_spectrum_command(CLI::App& app);
 void add_fragility_command(CLI::App& app);
 void add_body_command(CLI::App& app);
+void add_survey_form_command(CLI::App& app);
 
 }  // namespace topple::cli

@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
   topple::cli::add_spectrum_command(app);
   topple::cli::add_fragility_command(app);
   topple::cli::add_body_command(app);
+  topple::cli::add_survey_form_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,285 @@
+// `topple survey-form`: the offline survey form (docs/survey.md, "The offline survey form") opened in a real headless
+// browser (Debian's chromium): the page's own JavaScript fills the form from a query string (?prefill=JSON, as typed),
+// saves, and `topple invert` gives the saved TOML and CSV the same answer as the equivalent hand-written survey; an
+// impossible value or a missing field shows the reader's own error in the page.
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "support/shared_data.hpp"
+
+namespace topple {
+namespace {
+
+using test::slurp;
+
+bool have_chromium() { return std::system("command -v chromium >/dev/null 2>&1") == 0; }
+
+std::string percent_encoded(const std::string& text) {
+  std::string out;
+  for (const unsigned char c : text) {
+    if (std::isalnum(c) != 0 || c == '-' || c == '_' || c == '.' || c == '~') out += static_cast<char>(c);
+    else out += fmt::format("%{:02X}", c);
+  }
+  return out;
+}
+
+/// The form written by `topple survey-form`, loaded in headless chromium with ?prefill=`prefill`; returns the DOM the
+/// page built (its scripts run) and the browser's log.
+std::pair<std::string, std::string> form_dom(const std::string& prefill, const std::filesystem::path& tmp) {
+  const auto page = tmp / "form.html";
+  if (!std::filesystem::exists(page)) {
+    const auto r = test::run_cli("survey-form --output '" + page.string() + "'");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+  }
+  const auto dom = tmp / "dom.html";
+  const auto log = tmp / "browser.log";
+  const std::string cmd = "timeout 120 chromium --headless --no-sandbox --disable-gpu --enable-logging=stderr --v=0 "
+                          "--dump-dom 'file://" + page.string() + "?prefill=" + percent_encoded(prefill) + "' >'" +
+                          dom.string() + "' 2>'" + log.string() + "'";
+  EXPECT_EQ(std::system(cmd.c_str()), 0) << slurp(log);
+  return {slurp(dom), slurp(log)};
+}
+
+std::string unescaped(std::string s) {
+  for (const auto& [from, to] : {std::pair{"&lt;", "<"}, std::pair{"&gt;", ">"}, std::pair{"&quot;", "\""},
+                                 std::pair{"&#39;", "'"}, std::pair{"&nbsp;", "\u00a0"}, std::pair{"&amp;", "&"}}) {
+    for (auto at = s.find(from); at != std::string::npos; at = s.find(from, at + std::string(to).size())) {
+      s.replace(at, std::string(from).size(), to);
+    }
+  }
+  return s;
+}
+
+/// The text of the element that opens with `open` (e.g. `<textarea id="toml-out"`), up to `close`.
+std::string element_text(const std::string& html, const std::string& open, const std::string& close) {
+  const auto at = html.find(open);
+  if (at == std::string::npos) return {};
+  const auto start = html.find('>', at) + 1;
+  const auto end = html.find(close, start);
+  return end == std::string::npos ? std::string() : unescaped(html.substr(start, end - start));
+}
+
+// A small grid (as tests/cli/test_cli_invert.cpp's) keeps each inversion to a few seconds.
+const char* kHandWritten = R"(# the survey typed by hand that the form's entries stand for
+[site]
+name = "kitchen & hall, \"north\""
+lat = 35.5
+lon = 139.25
+vs30_m_s = 400
+notes = "ground floor"
+
+[event]
+epicentre = [35.2, 139.1]
+depth_km = 10
+
+[inversion]
+pga_g = [0.05, 2.0, 10]
+freq_hz = [0.5, 10.0, 6]
+motions_per_cell = 6
+seed = 11
+duration_s = 8
+
+[[object]]
+id = "vase"
+description = "blue vase, on the sideboard"
+shape = "cylinder"
+diameter = "8cm"
+height = "40cm"
+mu = [0.25, 0.5]
+outcome = "overturned"
+evidence = "likely"
+
+[[object]]
+id = "tv"
+shape = "block"
+width = "25cm"
+height = "45cm"
+mu = 0.5
+outcome = "not_slid"
+
+[[object]]
+id = "pot"
+shape = "cylinder"
+diameter = "250mm"
+height = "15cm"
+mu = 0.25
+amplification = [1, 1.5]
+outcome = "slid"
+slid = "3cm"
+slid_uncertainty = "1cm"
+)";
+
+// The same survey as a field team types it into the form: the vase's mu from the friction table (wood on wood,
+// 0.25-0.5), a range typed as "1-1.5", lengths as a number and a unit.
+const char* kPrefill = R"({
+  "site": {"name": "kitchen & hall, \"north\"", "lat": "35.5", "lon": "139.25", "vs30_m_s": "400",
+           "notes": "ground floor"},
+  "event": {"epicentre": "35.2, 139.1", "depth_km": "10"},
+  "inversion": {"pga_g": "0.05, 2.0, 10", "freq_hz": "0.5, 10, 6", "motions_per_cell": "6", "seed": "11",
+                "duration_s": "8"},
+  "objects": [
+    {"id": "vase", "description": "blue vase, on the sideboard", "shape": "cylinder", "diameter": "8cm",
+     "height": "40cm", "material": "wood on wood", "outcome": "overturned", "evidence": "likely"},
+    {"id": "tv", "shape": "block", "width": "25cm", "height": "45cm", "mu": "0.5", "outcome": "not_slid"},
+    {"id": "pot", "shape": "cylinder", "diameter": "250mm", "height": "15cm", "mu": "0.25", "amplification": "1-1.5",
+     "outcome": "slid", "slid": "3cm", "slid_uncertainty": "1cm"}
+  ],
+  "save": true
+})";
+
+/// Every number of the inversion's answer (estimates, intervals, bounds, objects' probabilities), compared exactly:
+/// the two surveys state the same decimal numbers, so the runs are the same runs. Strings (the file's name, the
+/// provenance) may differ.
+void expect_same_numbers(const nlohmann::json& want, const nlohmann::json& got, const std::string& where, int& count) {
+  if (want.is_number()) {
+    ASSERT_TRUE(got.is_number()) << where;
+    EXPECT_EQ(want.get<double>(), got.get<double>()) << where;
+    ++count;
+    return;
+  }
+  if (want.is_object()) {
+    for (const auto& [k, v] : want.items()) {
+      if (k == "provenance" || k == "seconds") continue;  // what ran it, when, from which file; how long it took
+      ASSERT_TRUE(got.contains(k)) << where << "." << k;
+      expect_same_numbers(v, got.at(k), where + "." + k, count);
+    }
+  } else if (want.is_array()) {
+    ASSERT_EQ(want.size(), got.size()) << where;
+    for (std::size_t i = 0; i < want.size(); ++i) expect_same_numbers(want[i], got[i], fmt::format("{}[{}]", where, i), count);
+  }
+}
+
+TEST(CliSurveyForm, PageIsOneSelfContainedFile) {
+  const auto r = test::run_cli("survey-form");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(r.out.starts_with("<!doctype html>"));
+  EXPECT_NE(r.out.find("</html>"), std::string::npos);
+  // Nothing loaded from elsewhere: no external script, style sheet, image, font or request.
+  for (const char* outside : {"src=", "<link", "@import", "url(", "fetch(", "XMLHttpRequest", "http://", "https://"}) {
+    EXPECT_EQ(r.out.find(outside), std::string::npos) << outside;
+  }
+  // The key table and the friction table are in the page, as the library states them.
+  EXPECT_NE(r.out.find(R"("key":"vs30_m_s")"), std::string::npos);
+  EXPECT_NE(r.out.find(R"("range_problem":"must lie in [100, 3000] m/s, got {}")"), std::string::npos);
+  EXPECT_NE(r.out.find(R"("surfaces":"felt pads on wood","mu_low":0.2,"mu_high":0.3)"), std::string::npos);
+  // --output writes the same page.
+  test::TempDir tmp;
+  const auto file = tmp.path() / "form.html";
+  ASSERT_EQ(test::run_cli("survey-form --quiet --output '" + file.string() + "'").exit_code, 0);
+  EXPECT_EQ(slurp(file), r.out);
+}
+
+TEST(CliSurveyForm, FilledInABrowserSavesSurveysThatInvertAsTheHandWrittenOne) {
+  if (!have_chromium()) GTEST_SKIP() << "chromium is not installed";
+  test::TempDir tmp;
+  const auto [dom, log] = form_dom(kPrefill, tmp.path());
+  EXPECT_EQ(log.find("Uncaught"), std::string::npos) << log;
+  EXPECT_NE(dom.find("ready to save"), std::string::npos) << element_text(dom, "<ul id=\"errors\"", "</ul>");
+  const std::string toml = element_text(dom, "<textarea id=\"toml-out\"", "</textarea>");
+  const std::string csv = element_text(dom, "<textarea id=\"csv-out\"", "</textarea>");
+  ASSERT_FALSE(toml.empty()) << dom;
+  ASSERT_FALSE(csv.empty()) << dom;
+  // The page's own JavaScript wrote these: the friction table's range, a range typed "1-1.5", a unit kept.
+  EXPECT_NE(toml.find("mu = [0.25, 0.5]"), std::string::npos) << toml;
+  EXPECT_NE(toml.find("amplification = [1, 1.5]"), std::string::npos) << toml;
+  EXPECT_NE(toml.find("diameter = \"250mm\""), std::string::npos) << toml;
+  EXPECT_NE(csv.find("\"blue vase, on the sideboard\""), std::string::npos) << csv;
+  test::write_file(tmp.path() / "form.toml", toml);
+  test::write_file(tmp.path() / "form.csv", csv);
+  test::write_file(tmp.path() / "hand.toml", kHandWritten);
+  const auto invert = [&](const char* name) {
+    const auto r = test::run_cli("invert '" + (tmp.path() / name).string() + "' --json --quiet", 300);
+    EXPECT_EQ(r.exit_code, 0) << name << ": " << r.err << "\n" << slurp(tmp.path() / name);
+    return r.exit_code == 0 ? nlohmann::json::parse(r.out) : nlohmann::json();
+  };
+  const nlohmann::json hand = invert("hand.toml");
+  ASSERT_TRUE(hand.contains("pga_g"));
+  EXPECT_EQ(hand.at("objects").size(), 3u);
+  for (const char* saved : {"form.toml", "form.csv"}) {
+    SCOPED_TRACE(saved);
+    const nlohmann::json got = invert(saved);
+    int count = 0;
+    expect_same_numbers(hand, got, "json", count);
+    EXPECT_GT(count, 20);  // the estimates, intervals, bounds and every object's numbers were compared
+  }
+}
+
+/// What `topple invert` says of a hand-written survey (stderr), which must exit 2.
+std::string reader_error(const std::filesystem::path& file, const std::string& text) {
+  test::write_file(file, text);
+  const auto r = test::run_cli("invert '" + file.string() + "' --json --quiet");
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  return r.err;
+}
+
+TEST(CliSurveyForm, AnImpossibleValueOrAMissingFieldShowsTheReadersErrorInThePage) {
+  if (!have_chromium()) GTEST_SKIP() << "chromium is not installed";
+  test::TempDir tmp;
+  const auto [dom, log] = form_dom(
+      R"({"site": {"vs30_m_s": "50"}, "objects": [{"id": "vase", "shape": "cylinder", "diameter": "8cm",
+          "height": "40cm", "outcome": "overturned"}, {"id": "tv", "width": "0", "height": "45cm", "mu": "0.5",
+          "outcome": "not_slid"}], "save": true})",
+      tmp.path());
+  EXPECT_EQ(log.find("Uncaught"), std::string::npos) << log;
+  const std::string errors = element_text(dom, "<ul id=\"errors\"", "</ul>");
+  // Nothing saved while the survey has problems.
+  EXPECT_EQ(element_text(dom, "<textarea id=\"toml-out\"", "</textarea>"), "");
+  EXPECT_NE(dom.find("3 problem(s): not saved yet"), std::string::npos) << errors;
+  // Each problem as the reader words it, the field named as the reader names it: one survey per problem (the reader
+  // stops at its first).
+  const std::string objects =
+      "[[object]]\nid = \"vase\"\nshape = \"cylinder\"\ndiameter = \"8cm\"\nheight = \"40cm\"\noutcome = \"overturned\"\n"
+      "mu = 0.5\n";
+  const std::string vs30 = "site.vs30_m_s: must lie in [100, 3000] m/s, got 50";
+  const std::string mu = "object[1](vase).mu: the friction coefficient is required (a value or a range [low, high])";
+  const std::string width = "object[2](tv).width: must be positive, got 0 m";
+  for (const std::string& said : {vs30, mu, width}) {
+    EXPECT_NE(errors.find("<li>" + said + "</li>"), std::string::npos) << said << "\n" << errors;
+  }
+  EXPECT_NE(reader_error(tmp.path() / "a.toml", "[site]\nvs30_m_s = 50\n" + objects).find(vs30), std::string::npos);
+  EXPECT_NE(reader_error(tmp.path() / "b.toml",
+                         "[[object]]\nid = \"vase\"\nshape = \"cylinder\"\ndiameter = \"8cm\"\nheight = \"40cm\"\n"
+                         "outcome = \"overturned\"\n")
+                .find(mu),
+            std::string::npos);
+  EXPECT_NE(reader_error(tmp.path() / "c.toml", objects + "[[object]]\nid = \"tv\"\nwidth = \"0cm\"\nheight = \"45cm\"\n"
+                                                          "mu = 0.5\noutcome = \"not_slid\"\n")
+                .find(width),
+            std::string::npos);
+  // The field itself is marked, with the problem beside it.
+  EXPECT_NE(dom.find("must lie in [100, 3000] m/s, got 50</div>"), std::string::npos);
+}
+
+TEST(CliSurveyForm, TheWordsThePageWritesItselfAreTheReadersToo) {
+  // Besides the key table's words, the page words a few refusals itself (a range typed backwards, an axis' count, a
+  // duplicate id): each as the reader says it, checked here on the reader's own output.
+  if (!have_chromium()) GTEST_SKIP() << "chromium is not installed";
+  test::TempDir tmp;
+  const auto [dom, log] = form_dom(
+      R"({"inversion": {"pga_g": "0.05, 2, 1"}, "objects": [{"id": "vase", "width": "8cm", "height": "40cm",
+          "mu": "0.6-0.4", "outcome": "overturned"}, {"id": "vase", "width": "8cm", "height": "40cm", "mu": "0.5",
+          "outcome": "overturned"}], "save": true})",
+      tmp.path());
+  EXPECT_EQ(log.find("Uncaught"), std::string::npos) << log;
+  const std::string errors = element_text(dom, "<ul id=\"errors\"", "</ul>");
+  const std::string object = "[[object]]\nid = \"vase\"\nwidth = \"8cm\"\nheight = \"40cm\"\noutcome = \"overturned\"\n";
+  const std::string count = "inversion.pga_g: count must be a whole number from 2 to 1000, got 1";
+  const std::string backwards = "object[1](vase).mu: range [0.6, 0.4] has low > high";
+  const std::string twice = "object[2].id: duplicate object id 'vase'";
+  for (const std::string& said : {count, backwards, twice}) {
+    EXPECT_NE(errors.find("<li>" + said + "</li>"), std::string::npos) << said << "\n" << errors;
+  }
+  EXPECT_NE(reader_error(tmp.path() / "a.toml", "[inversion]\npga_g = [0.05, 2, 1]\n" + object + "mu = 0.5\n").find(count),
+            std::string::npos);
+  EXPECT_NE(reader_error(tmp.path() / "b.toml", object + "mu = [0.6, 0.4]\n").find(backwards), std::string::npos);
+  EXPECT_NE(reader_error(tmp.path() / "c.toml", object + "mu = 0.5\n" + object + "mu = 0.5\n").find(twice),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace topple
