@@ -422,21 +422,18 @@ RegionalResult fit_region(const std::vector<SiteEvidence>& sites, const Regional
   for (const SiteEvidence& e : sites) {
     AxisSite a{&e.ln_edges, &e.likelihood, std::nullopt, 0.0};
     // The direct observations (header): an instrument (sigma st.instrument_sigma_ln), an intensity through its
-    // conversion, or both as one normal in ln a (precision-weighted mean, precisions added).
-    double precision = 0.0, weighted = 0.0;
-    if (e.instrument_pga_g) {
-      const double p = 1.0 / (st.instrument_sigma_ln * st.instrument_sigma_ln);
-      precision += p;
-      weighted += p * std::log(*e.instrument_pga_g);
-    }
-    if (e.intensity) {
-      const double p = 1.0 / (e.intensity->sigma_ln * e.intensity->sigma_ln);
-      precision += p;
-      weighted += p * std::log(e.intensity->pga_g);
-    }
-    if (precision > 0.0) {
-      a.direct_ln = weighted / precision;
-      a.direct_sigma = 1.0 / std::sqrt(precision);
+    // conversion, or both as one normal in ln a (precision-weighted mean, precisions added). An instrument alone is
+    // taken as it was before intensities existed (no arithmetic on it: old surveys keep their bits).
+    if (e.instrument_pga_g && !e.intensity) {
+      a.direct_ln = std::log(*e.instrument_pga_g);
+    } else if (e.intensity && !e.instrument_pga_g) {
+      a.direct_ln = std::log(e.intensity->pga_g);
+      a.direct_sigma = e.intensity->sigma_ln;
+    } else if (e.intensity && e.instrument_pga_g) {
+      const double p_inst = 1.0 / (st.instrument_sigma_ln * st.instrument_sigma_ln);
+      const double p_int = 1.0 / (e.intensity->sigma_ln * e.intensity->sigma_ln);
+      a.direct_ln = (p_inst * std::log(*e.instrument_pga_g) + p_int * std::log(e.intensity->pga_g)) / (p_inst + p_int);
+      a.direct_sigma = 1.0 / std::sqrt(p_inst + p_int);
     }
     pga.sites.push_back(a);
   }

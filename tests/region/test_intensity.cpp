@@ -274,6 +274,18 @@ TEST(IntensityCli, RegionalSurveyWithIntensitySitesEndToEnd) {
   EXPECT_NE(page.find("<th>intensity [reports]: PGA median [95 %] (g)</th>"), std::string::npos);
   EXPECT_NE(page.find("the intensity</"), std::string::npos);  // agree / disagree with the intensity
 
+  // A one-site survey: the intensity beside the objects' estimate in the site's JSON.
+  test::write_file(tmp.path() / "one.toml", "[inversion]\npga_g = [0.02, 2.0, 10]\nfreq_hz = [2.0, 4.0, 2]\n"
+                                            "motions_per_cell = 4\n[site]\nname = \"x\"\nintensity = 8\n"
+                                            "intensity_reports = 20\n[[object]]\nid = \"b\"\nwidth = \"10cm\"\n"
+                                            "height = \"40cm\"\nmu = 0.5\noutcome = \"overturned\"\n");
+  const auto one = test::run_cli("invert '" + (tmp.path() / "one.toml").string() + "' --json --quiet");
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  const auto jo = nlohmann::json::parse(one.out);
+  EXPECT_NEAR(jo.at("intensity").at("pga_g").at("median").get<double>(), 0.4013, 1e-3);
+  EXPECT_TRUE(jo.at("intensity").at("objects_agree").is_boolean());
+  EXPECT_TRUE(jo.contains("pga_g"));  // the objects' own answer, unchanged beside it
+
   // The same survey without intensities (the felt sites become stations): no intensity key anywhere.
   test::write_file(tmp.path() / "s.toml", head + object + others +
                                               "[[sites]]\nname = \"s2\"\nlat = 38.2\nlon = 23.1\npga_g = 0.15\n");
