@@ -169,6 +169,16 @@ void print_region(const RegionalResult& fit, const std::vector<const InversionRe
                  *p.instrument_pga_g,
                  objects_agree_with_instrument(r->pga_estimate_g, *p.instrument_pga_g) ? "inside" : "outside");
     }
+    if (p.intensity) {  // issue 30: the intensity's PGA through WGRW12, and whether the objects agree with it
+      fmt::print("  intensity {} {:g} ({} reports): PGA {:.3g} g [{:.3g}, {:.3g}] through WGRW12{}\n",
+                 intensity_scale_name(p.intensity->intensity.scale), p.intensity->intensity.value,
+                 p.intensity->intensity.reports ? fmt::format("{}", *p.intensity->intensity.reports) : "unstated",
+                 p.intensity->pga_g, p.intensity->ci95_low_g(), p.intensity->ci95_high_g(),
+                 r == nullptr ? ""
+                 : objects_agree_with_intensity(r->pga_estimate_g, *p.intensity)
+                     ? "; the objects agree with it"
+                     : "; the objects DISAGREE with it");
+    }
   }
   for (const std::string& note : fit.notes) fmt::print("note: region: {}\n", note);
   if (!fit.frequency) return;

@@ -595,6 +595,46 @@ void parse_instrument(Reader& r, Site& site, const std::filesystem::path& base_d
   }
 }
 
+/// A site's macroseismic intensity (docs/survey.md, "Macroseismic intensity"; issue 30): `intensity` (1-12),
+/// `intensity_scale` ("MMI" or "EMS-98"; default "MMI"), `intensity_reports` (an integer >= 1, the reports behind
+/// it). The scale and the reports go with an intensity. JMA is refused by name: no sourced conversion to PGA.
+void parse_intensity(Reader& r, Site& site) {
+  const auto value = r.number("intensity");
+  const auto scale = r.string("intensity_scale");
+  const toml::node* reports = r.get("intensity_reports");
+  if (!value) {
+    if (scale) throw r.error("intensity_scale", "an intensity_scale goes with an intensity = value");
+    if (reports != nullptr) throw r.error("intensity_reports", "intensity_reports go with an intensity = value");
+    return;
+  }
+  if (!(*value >= 1.0 && *value <= 12.0)) {
+    throw r.error("intensity", fmt::format("a macroseismic intensity lies in [1, 12], got {}", *value));
+  }
+  SiteIntensity in;
+  in.value = *value;
+  if (scale) {
+    if (*scale == "MMI") in.scale = IntensityScale::mmi;
+    else if (*scale == "EMS-98") in.scale = IntensityScale::ems98;
+    else if (*scale == "JMA") {
+      throw r.error("intensity_scale", "JMA intensities are not supported: topple has no sourced conversion from the "
+                                       "JMA scale to PGA (known: MMI, EMS-98)");
+    } else {
+      throw r.error("intensity_scale", fmt::format("unknown intensity scale '{}' (known: MMI, EMS-98)", *scale));
+    }
+  }
+  if (reports != nullptr) {
+    const auto* i = reports->as_integer();
+    if (i == nullptr) throw r.error("intensity_reports", "expected a whole number of reports", reports);
+    // 10^8: more reports than any felt-report system holds for one place; bounds the int below.
+    if (i->get() < 1 || i->get() > 100000000) {
+      throw r.error("intensity_reports",
+                    fmt::format("the number of reports must lie in [1, 100000000], got {}", i->get()), reports);
+    }
+    in.reports = static_cast<int>(i->get());
+  }
+  site.intensity = in;
+}
+
 void parse_site_fields(Reader& r, Site& site) {
   site.name = r.string("name").value_or("");
   site.lat_deg = r.number("lat");
@@ -816,6 +856,7 @@ void parse_sites(Reader& top, const std::string& name, const std::filesystem::pa
       Reader r(*t, name, "site");
       parse_site_fields(r, site);
       parse_instrument(r, site, base_dir);
+      parse_intensity(r, site);
       r.refuse_unknown();
     }
     site.objects =
@@ -831,6 +872,7 @@ void parse_sites(Reader& top, const std::string& name, const std::filesystem::pa
       Site site;
       parse_site_fields(r, site);
       parse_instrument(r, site, base_dir);
+      parse_intensity(r, site);
       site.objects = parse_objects(r.get("object"), name, fmt::format("sites[{}].object", i + 1), said, base_dir,
                                    &site, s.inversion.components);
       r.refuse_unknown();
@@ -846,11 +888,13 @@ void check_sites(const std::string& name, Survey& s) {
   for (const Site& site : s.sites) any_objects = any_objects || !site.objects.empty();
   for (std::size_t i = 0; i < s.sites.size(); ++i) {
     // An instrument station may have no objects (docs/survey.md), as long as some site has objects to invert.
-    if (s.sites[i].objects.empty() && !(s.sites[i].is_station() && any_objects)) {
+    // So may an intensity site (issue 30): it too enters the regional fit only.
+    const bool evidence = s.sites[i].is_station() || s.sites[i].intensity.has_value();
+    if (s.sites[i].objects.empty() && !(evidence && any_objects)) {
       throw InputError(InputLocation{name, {}, s.sites.size() == 1 ? "object" : fmt::format("sites[{}].object", i + 1)},
-                       s.sites[i].is_station() ? "the survey has no site with observed objects to invert"
-                                               : "a site needs at least one observed object (or an instrument: "
-                                                 "pga_g or record)");
+                       evidence ? "the survey has no site with observed objects to invert"
+                                : "a site needs at least one observed object (or an instrument: pga_g or record; or "
+                                  "a macroseismic intensity)");
     }
     // The documented default (docs/survey.md): a site without a name is "site N", N its position in the file.
     if (s.sites[i].name.empty()) s.sites[i].name = fmt::format("site {}", i + 1);

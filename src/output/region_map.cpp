@@ -53,9 +53,10 @@ std::string comment_text(const std::string& s) {
   return out;
 }
 
-void site_rows(std::ostringstream& os, const RegionMap& map, bool instrument) {
+/// The rows of one kind of site: instrument stations, intensity sites (issue 30), or the others (sites with objects).
+void site_rows(std::ostringstream& os, const RegionMap& map, bool instrument, bool intensity = false) {
   for (const MapSite& s : map.sites) {
-    if (s.instrument != instrument) continue;
+    if (s.instrument != instrument || s.intensity != intensity) continue;
     os << fmt::format("# {} {}\n{:.6f} {:.6f} {:.6g}\n", s.number, comment_text(s.name), s.lon_deg, s.lat_deg, s.pga_g);
   }
 }
@@ -70,7 +71,8 @@ RegionMap region_map(const RegionalResult& fit, const Survey& survey, const std:
   for (const PooledSite& p : fit.sites) {
     const Site& site = survey.sites.at(p.site_index);
     m.sites.push_back(MapSite{static_cast<int>(p.site_index) + 1, p.name, site.lat_deg.value(), site.lon_deg.value(),
-                              p.pga_g.median, p.instrument_pga_g.has_value(), std::nullopt});
+                              p.pga_g.median, p.instrument_pga_g.has_value(), std::nullopt,
+                              p.intensity.has_value() && site.objects.empty() && !p.instrument_pga_g});
     const InversionResult* r = p.site_index < per_site.size() ? per_site[p.site_index] : nullptr;
     if (r != nullptr && r->three_component && r->three_component->direction.constrained) {
       m.sites.back().direction = r->three_component->direction;
@@ -181,6 +183,14 @@ std::string gmt_map_script(const RegionMap& map) {
         "gmt plot -Si0.48c -C -W1p,black << 'EOD'\n";
   site_rows(os, map, true);
   os << "EOD\n";
+  // Intensity sites (issue 30), only when the survey has some: other surveys' scripts are unchanged.
+  const bool any_intensity = std::any_of(map.sites.begin(), map.sites.end(), [](const MapSite& s) { return s.intensity; });
+  if (any_intensity) {
+    os << "# intensity sites (diamonds): lon lat pooled PGA (g), a macroseismic intensity and no objects\n"
+          "gmt plot -Sd0.38c -C -W0.8p,gray30 << 'EOD'\n";
+    site_rows(os, map, false, true);
+    os << "EOD\n";
+  }
   if (map.sites.size() <= kMaxNumberedSites) {
     os << "# site numbers (their position in the survey, as the report's siteN pages)\n"
           "gmt text -F+f7p,Helvetica-Bold,black+jBL -D0.18c/0.12c << 'EOD'\n";
@@ -196,8 +206,9 @@ std::string gmt_map_script(const RegionMap& map) {
                     mid_lat, bar_km);
   os << "gmt legend -DjTR+o0.2c -F+gwhite@10+p0.5p,gray40 << 'EOD'\n"
         "S 0.25c c 0.3c gray70 0.6p,black 0.6c site with objects (colour: pooled PGA)\n"
-        "S 0.25c i 0.4c gray70 1p,black 0.6c instrument station\n"
-        "S 0.25c a 0.45c red 0.6p,black 0.6c epicentre\n"
+        "S 0.25c i 0.4c gray70 1p,black 0.6c instrument station\n";
+  if (any_intensity) os << "S 0.25c d 0.38c gray70 0.8p,gray30 0.6c intensity site (macroseismic intensity)\n";
+  os << "S 0.25c a 0.45c red 0.6p,black 0.6c epicentre\n"
         "S 0.25c - 0.5c - 1.1p,gray10 0.6c iso-acceleration line (g)\n";
   if (any_direction) {
     os << "S 0.25c - 0.5c - 2p,black 0.6c direction of strongest shaking (grey: its 95 % arc)\n";

@@ -1,6 +1,7 @@
 // The regional fit as JSON and CSV, a survey's inversion as JSON, grids and map files (region_output.hpp).
 #include "topple/output/region_output.hpp"
 
+#include <algorithm>
 #include <array>
 #include <type_traits>
 #include <variant>
@@ -52,6 +53,20 @@ std::string csv_name(const std::string& name) {
   return q + "\"";
 }
 
+/// A site's intensity and its PGA through the conversion (issue 30; region/intensity.hpp).
+nlohmann::ordered_json intensity_json(const IntensityPga& i) {
+  nlohmann::ordered_json j;
+  j["value"] = i.intensity.value;
+  j["scale"] = std::string(intensity_scale_name(i.intensity.scale));
+  j["reports"] = i.intensity.reports ? nlohmann::ordered_json(*i.intensity.reports) : nlohmann::ordered_json(nullptr);
+  j["mmi"] = i.mmi;
+  j["pga_g"] = {{"median", i.pga_g}, {"ci95", {i.ci95_low_g(), i.ci95_high_g()}}};
+  j["sigma_ln"] = i.sigma_ln;
+  j["sigma_intensity"] = i.sigma_intensity;
+  j["extrapolated"] = i.extrapolated;
+  return j;
+}
+
 }  // namespace
 
 const std::vector<double>& contour_levels_g() {
@@ -91,6 +106,11 @@ nlohmann::ordered_json region_json(const RegionalResult& fit, const Survey& surv
   } else {
     j["frequency_relation"] = nullptr;
   }
+  // Intensity sites (issue 30): the keys appear only when some site has an intensity, so that the JSON of a survey
+  // without one is unchanged.
+  const bool any_intensity =
+      std::any_of(fit.sites.begin(), fit.sites.end(), [](const PooledSite& p) { return p.intensity.has_value(); });
+  if (any_intensity) j["intensity_conversion"] = std::string(kIntensityConversion);
   nlohmann::ordered_json sites = nlohmann::ordered_json::array();
   for (const PooledSite& p : fit.sites) {
     const InversionResult* r = results.at(p.site_index);
@@ -101,6 +121,15 @@ nlohmann::ordered_json region_json(const RegionalResult& fit, const Survey& surv
                            {"test", "the instrument's PGA inside the objects' own 95 % interval (open ends count as open)"}};
     } else {
       sj["calibration"] = nullptr;
+    }
+    if (any_intensity) {
+      sj["intensity"] = p.intensity ? intensity_json(*p.intensity) : nlohmann::ordered_json(nullptr);
+      if (r != nullptr && p.intensity) {
+        sj["intensity_check"] = {{"objects_agree", objects_agree_with_intensity(r->pga_estimate_g, *p.intensity)},
+                                 {"test", std::string(kIntensityAgreementTest)}};
+      } else {
+        sj["intensity_check"] = nullptr;
+      }
     }
     sites.push_back(sj);
   }
@@ -157,8 +186,19 @@ nlohmann::ordered_json survey_inversion_json(const Survey& survey, const SurveyI
                                              const std::optional<Provenance>& provenance, const RegionalSettings& settings) {
   const std::vector<Site> sites = inversion.sites_with_objects(survey);
   const auto site_json = [&](std::size_t k) {
-    return provenance ? inversion_json(inversion.results[k], sites[k], *provenance)
-                      : inversion_json(inversion.results[k], sites[k]);
+    nlohmann::ordered_json sj = provenance ? inversion_json(inversion.results[k], sites[k], *provenance)
+                                           : inversion_json(inversion.results[k], sites[k]);
+    // A site's macroseismic intensity (issue 30), beside its objects' estimate: its PGA through the conversion and
+    // whether the two agree. Only for a site with an intensity: other sites' JSON is unchanged.
+    if (sites[k].intensity) {
+      const IntensityPga i = intensity_pga(*sites[k].intensity);
+      nlohmann::ordered_json ij = intensity_json(i);
+      ij["conversion"] = std::string(kIntensityConversion);
+      ij["objects_agree"] = objects_agree_with_intensity(inversion.results[k].pga_estimate_g, i);
+      ij["test"] = std::string(kIntensityAgreementTest);
+      sj["intensity"] = ij;
+    }
+    return sj;
   };
   nlohmann::ordered_json j;
   if (survey.sites.size() <= 1) {

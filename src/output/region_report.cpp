@@ -3,6 +3,7 @@
 // figure, the pooled PGA field and the map drawn by GMT (region_map.hpp).
 #include "topple/output/region_report.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -54,7 +55,17 @@ plot::Figure attenuation_figure(const RegionalResult& fit, const std::vector<con
   plot::Series own = points("site, own median (objects alone)", "#E69F00");
   plot::Series own_bars{"site, own 95 % interval (objects alone)", {}, {}, "lines", "#E69F00", 1.0};
   plot::Series inst = points("instrument", "#D55E00");
+  // Intensity sites (issue 30): the intensity's PGA through WGRW12 and its 95 % interval, beside the pooled one.
+  plot::Series inten = points("intensity through WGRW12", "#56B4E9");
+  plot::Series inten_bars{"intensity site, 95 % interval", {}, {}, "lines", "#56B4E9", 1.0};
   for (const PooledSite& s : fit.sites) {
+    if (s.intensity) {
+      const double x = s.distance_km * 0.97;
+      inten.x.push_back(x);
+      inten.y.push_back(s.intensity->pga_g);
+      inten_bars.x.insert(inten_bars.x.end(), {x, x, kNaN});
+      inten_bars.y.insert(inten_bars.y.end(), {s.intensity->ci95_low_g(), s.intensity->ci95_high_g(), kNaN});
+    }
     bars.x.insert(bars.x.end(), {s.distance_km, s.distance_km, kNaN});
     bars.y.insert(bars.y.end(), {s.pga_g.ci95_low, s.pga_g.ci95_high, kNaN});
     pooled.x.push_back(s.distance_km);
@@ -75,6 +86,7 @@ plot::Figure attenuation_figure(const RegionalResult& fit, const std::vector<con
   p.series = {median, lo, hi, bars, pooled};
   if (!own.x.empty()) p.series.insert(p.series.end(), {own_bars, own});
   if (!inst.x.empty()) p.series.push_back(inst);
+  if (!inten.x.empty()) p.series.insert(p.series.end(), {inten_bars, inten});
   plot::Figure f;
   f.title = "PGA against hypocentral distance";
   f.xlabel = "hypocentral distance (km)";
@@ -110,14 +122,17 @@ plot::MapFigure field_figure(const PooledField& field, const std::vector<Contour
   }
   plot::Series sites = points("sites", "#222222");
   plot::Series stations = points("instrument stations", "#D55E00");
+  plot::Series intensities = points("intensity sites", "#56B4E9");
   for (const PooledSite& p : fit.sites) {
     const Site& site = survey.sites.at(p.site_index);
-    plot::Series& s = p.instrument_pga_g ? stations : sites;
+    // A station is drawn as a station; an intensity site without objects or instrument as an intensity site.
+    plot::Series& s = p.instrument_pga_g ? stations : (site.objects.empty() && p.intensity ? intensities : sites);
     s.x.push_back(*site.lon_deg);
     s.y.push_back(*site.lat_deg);
   }
-  m.overlay.push_back(sites);
+  if (!sites.x.empty()) m.overlay.push_back(sites);
   if (!stations.x.empty()) m.overlay.push_back(stations);
+  if (!intensities.x.empty()) m.overlay.push_back(intensities);
   plot::Series epi = points("epicentre", "#b71c1c");
   epi.x.push_back(*survey.epicentre_lon_deg);
   epi.y.push_back(*survey.epicentre_lat_deg);
@@ -195,8 +210,12 @@ std::vector<std::string> write_region_report(const std::filesystem::path& dir, c
       << ". The pooled field below shows the sites, the stations, the epicentre and the contours without "
          "coastlines.</p>\n";
   }
+  // The intensity column only when some site has an intensity (issue 30): other surveys' pages are unchanged.
+  const bool any_intensity =
+      std::any_of(fit.sites.begin(), fit.sites.end(), [](const PooledSite& p) { return p.intensity.has_value(); });
   h << "<h2>Sites</h2>\n<table><tr><th>site</th><th>R (km)</th><th>objects</th><th>instrument (g)</th>"
-       "<th>own median [95 %] (g)</th><th>pooled median [95 %] (g)</th><th>relation median (g)</th></tr>\n";
+    << (any_intensity ? "<th>intensity [reports]: PGA median [95 %] (g)</th>" : "")
+    << "<th>own median [95 %] (g)</th><th>pooled median [95 %] (g)</th><th>relation median (g)</th></tr>\n";
   for (const PooledSite& p : fit.sites) {
     const InversionResult* r = per_site.at(p.site_index);
     const std::string& page = site_pages.at(p.site_index);
@@ -212,11 +231,25 @@ std::vector<std::string> write_region_report(const std::filesystem::path& dir, c
                    ? " &mdash; calibration: the objects agree with the instrument"
                    : " &mdash; <span class=\"flag\">calibration: the objects disagree with the instrument</span>";
       }
+      if (p.intensity) {
+        own += objects_agree_with_intensity(e, *p.intensity)
+                   ? " &mdash; the objects agree with the intensity"
+                   : " &mdash; <span class=\"flag\">the objects disagree with the intensity</span>";
+      }
     }
-    h << fmt::format("<tr><td>{}</td><td>{:.1f}</td><td>{}</td><td>{}</td><td>{}</td><td>{:.3g} [{:.3g}, {:.3g}]</td>"
+    std::string inten;
+    if (any_intensity) {
+      inten = "<td>&ndash;</td>";
+      if (const auto& i = p.intensity) {
+        inten = fmt::format("<td>{} {:g} [{}]: {:.3g} [{:.3g}, {:.3g}]{}</td>", intensity_scale_name(i->intensity.scale),
+                            i->intensity.value, i->intensity.reports ? fmt::format("{}", *i->intensity.reports) : "?",
+                            i->pga_g, i->ci95_low_g(), i->ci95_high_g(), i->extrapolated ? " (extrapolated above X)" : "");
+      }
+    }
+    h << fmt::format("<tr><td>{}</td><td>{:.1f}</td><td>{}</td><td>{}</td>{}<td>{}</td><td>{:.3g} [{:.3g}, {:.3g}]</td>"
                      "<td>{:.3g}</td></tr>\n",
                      name, p.distance_km, survey.sites.at(p.site_index).objects.size(),
-                     p.instrument_pga_g ? fmt::format("{:.3g}", *p.instrument_pga_g) : std::string("&ndash;"), own,
+                     p.instrument_pga_g ? fmt::format("{:.3g}", *p.instrument_pga_g) : std::string("&ndash;"), inten, own,
                      p.pga_g.median, p.pga_g.ci95_low, p.pga_g.ci95_high, p.relation_pga_g.median);
   }
   h << "</table>\n";

@@ -97,11 +97,13 @@ struct Grid3 {
 };
 
 /// One site's evidence on one axis (ln PGA or ln frequency): cells (edges, likelihood; empty: none) and an optional
-/// direct lognormal observation of the log value (an instrument's PGA).
+/// direct lognormal observation of the log value (an instrument's PGA, an intensity's, or both combined) with its
+/// own sigma (natural-log units; 0: the problem's direct_sigma).
 struct AxisSite {
   const std::vector<double>* edges = nullptr;
   const std::vector<double>* likelihood = nullptr;
   std::optional<double> direct_ln;
+  double direct_sigma = 0.0;
 };
 
 /// A lognormal relation ln v_s = x + sign * p * dx_s + e_s, e_s ~ N(0, tau^2), dx_s = ln rho_s - ln rho_ref, fitted
@@ -135,6 +137,7 @@ struct SiteGaussian {
 SiteGaussian site_gaussian(const AxisSite& e, double mu, double tau, double sigma_i) noexcept {
   if (!e.direct_ln) return {mu, tau, 0.0};
   const double y = *e.direct_ln;
+  if (e.direct_sigma > 0.0) sigma_i = e.direct_sigma;
   const double v = tau * tau + sigma_i * sigma_i;
   SiteGaussian g;
   g.log_scale = -0.5 * (y - mu) * (y - mu) / v - 0.5 * std::log(2.0 * std::numbers::pi * v);
@@ -358,11 +361,12 @@ bool objects_agree_with_instrument(const Estimate& e, double pga_g) noexcept {
 }
 
 SiteEvidence site_evidence(const std::string& name, double distance_km, const InversionResult* objects,
-                           std::optional<double> instrument_pga_g) {
+                           std::optional<double> instrument_pga_g, const std::optional<SiteIntensity>& intensity) {
   SiteEvidence e;
   e.name = name;
   e.distance_km = distance_km;
   e.instrument_pga_g = instrument_pga_g;
+  if (intensity) e.intensity = intensity_pga(*intensity);
   if (objects == nullptr) return e;
   const std::size_t np = objects->pga_g.size(), nf = objects->freq_hz.size();
   double max_ll = -kInf;
@@ -416,8 +420,22 @@ RegionalResult fit_region(const std::vector<SiteEvidence>& sites, const Regional
   pga.direct_sigma = st.instrument_sigma_ln;
   pga.fine_points = st.fine_points;
   for (const SiteEvidence& e : sites) {
-    pga.sites.push_back({&e.ln_edges, &e.likelihood,
-                         e.instrument_pga_g ? std::optional<double>(std::log(*e.instrument_pga_g)) : std::nullopt});
+    AxisSite a{&e.ln_edges, &e.likelihood, std::nullopt, 0.0};
+    // The direct observations (header): an instrument (sigma st.instrument_sigma_ln), an intensity through its
+    // conversion, or both as one normal in ln a (precision-weighted mean, precisions added). An instrument alone is
+    // taken as it was before intensities existed (no arithmetic on it: old surveys keep their bits).
+    if (e.instrument_pga_g && !e.intensity) {
+      a.direct_ln = std::log(*e.instrument_pga_g);
+    } else if (e.intensity && !e.instrument_pga_g) {
+      a.direct_ln = std::log(e.intensity->pga_g);
+      a.direct_sigma = e.intensity->sigma_ln;
+    } else if (e.intensity && e.instrument_pga_g) {
+      const double p_inst = 1.0 / (st.instrument_sigma_ln * st.instrument_sigma_ln);
+      const double p_int = 1.0 / (e.intensity->sigma_ln * e.intensity->sigma_ln);
+      a.direct_ln = (p_inst * std::log(*e.instrument_pga_g) + p_int * std::log(e.intensity->pga_g)) / (p_inst + p_int);
+      a.direct_sigma = 1.0 / std::sqrt(p_inst + p_int);
+    }
+    pga.sites.push_back(a);
   }
   const RelationPosterior post = fit_relation(pga);
   const Grid3& fine = post.fine;
@@ -468,6 +486,7 @@ RegionalResult fit_region(const std::vector<SiteEvidence>& sites, const Regional
     p.site_index = s;
     p.distance_km = e.distance_km;
     p.instrument_pga_g = e.instrument_pga_g;
+    p.intensity = e.intensity;
     p.pga_g = exp_of(pooled);
     p.relation_pga_g = exp_of(relation);
     out.sites[s] = p;
@@ -483,7 +502,7 @@ RegionalResult fit_region(const std::vector<SiteEvidence>& sites, const Regional
   freq.fine_points = st.fine_points;
   std::size_t informative = 0;
   for (const SiteEvidence& e : sites) {
-    freq.sites.push_back({&e.ln_freq_edges, &e.freq_likelihood, std::nullopt});
+    freq.sites.push_back({&e.ln_freq_edges, &e.freq_likelihood, std::nullopt, 0.0});
     informative += e.freq_likelihood.size() > 1 ? 1 : 0;
   }
   if (informative < 3) {

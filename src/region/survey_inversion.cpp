@@ -27,7 +27,7 @@ std::optional<RegionalResult> fit_survey_region(const Survey& survey,
     }
     const double r = hypocentral_distance_km(
         geodesic_distance_km(*survey.epicentre_lat_deg, *survey.epicentre_lon_deg, *site.lat_deg, *site.lon_deg), depth);
-    evidence.push_back(site_evidence(site.name, r, results.at(i), site.instrument_pga_g));
+    evidence.push_back(site_evidence(site.name, r, results.at(i), site.instrument_pga_g, site.intensity));
     index.push_back(i);
   }
   if (evidence.size() < 3) {
@@ -55,7 +55,8 @@ std::vector<Site> SurveyInversion::sites_with_objects(const Survey& survey) cons
 SurveyInversion invert_survey(const Survey& survey, const InversionOptions& options, ensemble::Cluster& cluster,
                               const RegionalSettings& settings) {
   SurveyInversion out;
-  // An instrument station without objects has nothing to invert: it enters the regional fit only.
+  // An instrument station (or an intensity site) without objects has nothing to invert: it enters the regional fit
+  // only.
   std::vector<Site> with_objects;
   for (std::size_t i = 0; i < survey.sites.size(); ++i) {
     if (survey.sites[i].objects.empty()) continue;

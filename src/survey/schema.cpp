@@ -100,6 +100,23 @@ std::vector<SurveyKey> make_schema() {
     k.conditions.push_back({"pga_g", {"<absent>"}, "give either pga_g (measured) or record, not both"});
     k.in_form = false;  // names a file
   }
+  // Macroseismic intensity (issue 30; survey_file.cpp's parse_intensity, docs/survey.md "Macroseismic intensity").
+  {
+    auto& k = add(key("site", "intensity", K::number, "macroseismic intensity at the site (MMI or EMS-98, 1-12)", "7"));
+    ranged(k, incl(1.0), incl(12.0), "a macroseismic intensity lies in [1, 12], got {}");
+  }
+  {
+    auto& k = add(key("site", "intensity_scale", K::choice, "the intensity's scale (EMS-98 is read as MMI)", "\"MMI\""));
+    k.choices = {"MMI", "EMS-98"};
+    k.default_text = "MMI";
+    k.conditions.push_back({"intensity", {}, "an intensity_scale goes with an intensity = value"});
+  }
+  {
+    auto& k = add(key("site", "intensity_reports", K::integer, "the number of felt reports behind the intensity", "12"));
+    ranged(k, incl(1.0), incl(1e8), "the number of reports must lie in [1, 100000000], got {}");
+    k.default_text = "1";
+    k.conditions.push_back({"intensity", {}, "intensity_reports go with an intensity = value"});
+  }
 
   // ---- [[object]] (docs/survey.md, "[[object]]") ----
   {

@@ -35,6 +35,8 @@ struct MapSite {
   /// drawn as a bar through the site along its mode, over a wedge pair of its 95 % arc. None: one component, or
   /// unconstrained (nothing drawn).
   std::optional<DirectionEstimate> direction;
+  /// An intensity site (issue 30): a macroseismic intensity and neither objects nor an instrument (drawn as a diamond).
+  bool intensity = false;
 };
 
 /// What the map shows, as plain values.

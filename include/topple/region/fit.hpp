@@ -16,7 +16,11 @@
 // edge cells extended to 0 and infinity: beyond its grid a site's likelihood is taken as its edge cell's). A
 // measured PGA (an instrument station) is a lognormal observation, ln a_obs ~ N(ln a_s, sigma_i^2), sigma_i =
 // RegionalSettings::instrument_sigma_ln (0.05: the record's instrument and processing). A station with objects carries
-// both (they are independent observations of one PGA).
+// both (they are independent observations of one PGA). A macroseismic intensity (intensity.hpp, issue 30) is the same
+// kind of lognormal observation, its median and sigma from the conversion (WGRW12 and ShakeMap's few-reports term,
+// eqs. I2-I3); a site with an instrument and an intensity carries their product, one normal in ln a with the
+// precision-weighted mean and 1 / sigma^2 = 1 / sigma_instrument^2 + 1 / sigma_intensity^2 (the factor that does not
+// depend on a_s is dropped: it moves no posterior).
 //
 // Method: grid integration. Given (mu_s, tau) with mu_s = ln a_ref - c1 (ln rho_s - ln rho_ref), each site's marginal
 // likelihood integral over ln a_s is closed form (normal CDFs over its cells; docs/method.md eq. R3), so the joint
@@ -44,6 +48,7 @@
 #include <vector>
 
 #include "topple/inversion/inversion.hpp"
+#include "topple/region/intensity.hpp"
 
 namespace topple {
 
@@ -55,6 +60,7 @@ struct SiteEvidence {
   std::vector<double> ln_edges;
   std::vector<double> likelihood;  ///< per cell, dimensionless, scaled so that its maximum is 1
   std::optional<double> instrument_pga_g;  ///< a measured PGA, g
+  std::optional<IntensityPga> intensity;   ///< a macroseismic intensity through its conversion (intensity.hpp)
   /// The same over ln(frequency / Hz), PGA marginalised (header, "Frequency"); empty: no objects (flat).
   std::vector<double> ln_freq_edges;
   std::vector<double> freq_likelihood;  ///< per frequency cell, dimensionless, maximum 1
@@ -62,7 +68,8 @@ struct SiteEvidence {
 
 /// A site's evidence from its inversion (frequency marginalised, header) and/or its instrument.
 [[nodiscard]] SiteEvidence site_evidence(const std::string& name, double distance_km, const InversionResult* objects,
-                                         std::optional<double> instrument_pga_g);
+                                         std::optional<double> instrument_pga_g,
+                                         const std::optional<SiteIntensity>& intensity = std::nullopt);
 
 struct RegionalSettings {
   double c2_km = 6.0;                ///< fixed saturation distance, km (header)
@@ -112,6 +119,7 @@ struct PooledSite {
   Interval95 pga_g;                  ///< the pooled PGA posterior, g
   Interval95 relation_pga_g;         ///< the relation's median prediction exp(mu_s) at this distance, g
   std::optional<double> instrument_pga_g;
+  std::optional<IntensityPga> intensity;  ///< the site's intensity and its PGA through the conversion, if any
   /// The pooled frequency posterior and the frequency relation's prediction, Hz: only when the relation is supported.
   std::optional<Interval95> freq_hz;
   std::optional<Interval95> relation_freq_hz;

@@ -151,6 +151,20 @@ void check_object_bearing(const ObservedObject& object);
 /// without depth falls along its bearing). Throws parameter_error("toppled_azimuth_deg", problem).
 void check_object_fall_direction(const ObservedObject& object);
 
+/// The macroseismic scales a site's intensity may be given on (docs/survey.md, "Macroseismic intensity"): MMI
+/// (Modified Mercalli, as in USGS "Did You Feel It?") and EMS-98, taken as equal to MMI (Musson, Grunthal & Stucchi
+/// 2010; region/intensity.hpp). JMA is not accepted: no sourced JMA-to-PGA conversion is implemented.
+enum class IntensityScale { mmi, ems98 };
+
+/// A macroseismic intensity observed at a site (issue 30): `intensity = 7.5`, `intensity_scale = "MMI"`,
+/// `intensity_reports = 12`. It is evidence on the site's PGA through a ground-motion-to-intensity conversion
+/// (region/intensity.hpp: Worden et al. 2012) with its sigma, widened for few reports as ShakeMap does.
+struct SiteIntensity {
+  double value = 0.0;                       ///< intensity on `scale`, in [1, 12] (decimals: an average of reports)
+  IntensityScale scale = IntensityScale::mmi;
+  std::optional<int> reports;               ///< the number of reports behind it (>= 1); none: not stated (taken as 1)
+};
+
 struct Site {
   std::string name;
   std::optional<double> lat_deg, lon_deg;
@@ -172,6 +186,9 @@ struct Site {
   /// The epicentral distance from [event] epicentre to the site's lat/lon (geodesic, WGS84), km; set by the reader
   /// when both are given. None: unknown.
   std::optional<double> epicentral_distance_km;
+  /// A macroseismic intensity observed here (SiteIntensity). Such a site may have no objects (it enters the regional
+  /// fit only, as a station does); with objects, the report says whether the two agree. None: no intensity.
+  std::optional<SiteIntensity> intensity;
   [[nodiscard]] bool is_station() const noexcept { return instrument_pga_g.has_value() || !instrument_record.empty(); }
 };
 
