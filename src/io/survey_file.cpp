@@ -1020,13 +1020,18 @@ void load_records(Survey& survey, std::optional<std::string_view> text) {
     try {
       return read_survey_record(path, options);
     } catch (const InputError& e) {
-      if (e.where().field.starts_with("inversion.record_")) throw;  // a survey key, already located
+      const auto survey_keys = [](std::string said) {  // the reader's advice names its CLI option: the survey's key
+        for (std::size_t at = said.find("--columns"); at != std::string::npos; at = said.find("--columns", at)) {
+          said.replace(at, 9, "[inversion] record_columns");
+        }
+        return said;
+      };
+      // An [inversion] record_* key that does not fit the record already names the key to change (at the record's
+      // line, or the survey's): kept where it is.
+      if (e.where().field.starts_with("inversion.record_")) throw InputError(e.where(), survey_keys(e.problem()));
       auto [field, line] = record_key_location(text, survey.source_file, key);
       const std::string site = key.site ? fmt::format("site '{}': ", survey.sites[*key.site].name) : std::string();
-      std::string said = e.what();  // the reader's advice names its CLI option; the survey's key is what to write
-      for (std::size_t at = said.find("--columns"); at != std::string::npos; at = said.find("--columns", at)) {
-        said.replace(at, 9, "[inversion] record_columns");
-      }
+      const std::string said = survey_keys(e.what());
       throw InputError(InputLocation{survey.source_file, line, std::move(field)},
                        fmt::format("{}the record '{}' cannot be used: {}", site, path, said));
     }

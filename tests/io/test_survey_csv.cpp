@@ -1,6 +1,7 @@
 // CSV surveys (docs/survey.md, "CSV surveys"): the same survey as the TOML reader gives, the same answer from the
 // inversion, and errors that name the file, the line and the column.
 #include <filesystem>
+#include <ostream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -221,6 +222,8 @@ struct CsvRefusal {
   std::string says;
 };
 
+void PrintTo(const CsvRefusal& c, std::ostream* os) { *os << c.name; }
+
 class SurveyCsvRefusals : public ::testing::TestWithParam<CsvRefusal> {};
 
 TEST_P(SurveyCsvRefusals, NameLineAndColumnAsTyped) {
@@ -262,7 +265,7 @@ INSTANTIATE_TEST_SUITE_P(
                    "id,description,width,height,mu,outcome\rb,\"a, b\",10cm,40cm,0.5,overturned\r"
                    "c,x,10cm,40cm,high,overturned\r",
                    3, "object[2](c).mu in column E ('mu')", "expected a number"}),
-    [](const ::testing::TestParamInfo<CsvRefusal>& info) { return std::string(info.param.name); });
+    [](const ::testing::TestParamInfo<CsvRefusal>& p) { return std::string(p.param.name); });
 
 // CR-only line ends are read as line ends: the same survey as with LF.
 TEST(SurveyCsv, CrOnlyLineEndsAreLineEnds) {

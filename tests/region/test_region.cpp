@@ -11,6 +11,7 @@
 #include <limits>
 #include <numbers>
 #include <optional>
+#include <ostream>
 #include <string>
 
 #include <fmt/format.h>
@@ -595,6 +596,8 @@ struct BadRecord {
   std::string says;  ///< from the record reader
 };
 
+void PrintTo(const BadRecord& c, std::ostream* os) { *os << c.name; }
+
 class StationRecordErrors : public ::testing::TestWithParam<BadRecord> {
  protected:
   static void SetUpTestSuite() {
@@ -644,7 +647,7 @@ INSTANTIATE_TEST_SUITE_P(
                       BadRecord{"dev_zero", "/dev/zero", "is a character device"},
                       // the reader's advice names the survey key, not the CLI option
                       BadRecord{"plain_csv", "plain.csv", "plain.csv:1: a: the first of two columns must be the time"}),
-    [](const ::testing::TestParamInfo<BadRecord>& info) { return std::string(info.param.name); });
+    [](const ::testing::TestParamInfo<BadRecord>& p) { return std::string(p.param.name); });
 
 TEST(RegionSurvey, PlainCsvStationRecordAdviceNamesTheSurveyKey) {
   test::TempDir tmp;
