@@ -684,6 +684,29 @@ TEST(RegionSurvey, InversionRecordErrorsNameTheSurveyLine) {
   }
 }
 
+// Through the CLI, as a user meets them: exit 2, "file:line: field:" first, promptly (a FIFO must not block; every
+// command runs under a kill timeout so that a hang fails instead of stalling the suite).
+TEST(RegionSurvey, CliRefusesIssue31SurveysWithExitTwoAtTheirLine) {
+  test::TempDir tmp;
+  const auto d = tmp.path();
+  ::mkfifo((d / "fifo").c_str(), 0600);
+  const std::string two = "[[sites]]\nname = \"a\"\n" + kObject + "[[sites]]\nname = \"st\"\n";
+  test::write_file(d / "fifo.toml", two + "record = \"fifo\"\n");
+  test::write_file(d / "huge.toml", two + "pga_g = 1e300\n");
+  test::write_file(d / "nul.csv", std::string("id,width,height,mu,outcome\nb\0,10cm,40cm,0.5,overturned\n", 55));
+  const std::pair<const char*, std::string> cases[] = {
+      {"fifo.toml", "fifo.toml:11: sites[2].record: site 'st': the record"},
+      {"huge.toml", "huge.toml:11: sites[2].pga_g: a measured PGA is at most 100 g"},
+      {"nul.csv", "nul.csv:2: column A: a NUL byte (\\0)"}};
+  for (const auto& [file, says] : cases) {
+    const auto start = std::chrono::steady_clock::now();
+    const test::CommandResult r = test::run_cli("invert '" + (d / file).string() + "' --quiet", 20);
+    EXPECT_EQ(r.exit_code, 2) << file << ": " << r.err;
+    EXPECT_NE(r.err.find(says), std::string::npos) << r.err;
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0) << file;
+  }
+}
+
 // ---- Issue 31: maps near the poles and across the antimeridian ----
 
 /// A regional fit of stations alone (pga_g), around an epicentre, as test_region_map builds one.
@@ -738,7 +761,9 @@ std::size_t check_contours_file(const StationField& s, const std::filesystem::pa
         EXPECT_TRUE(std::isfinite(lon) && std::isfinite(lat));
         EXPECT_LE(std::abs(lon), 180.0);
         EXPECT_LE(std::abs(lat), 90.0);
-        if (k > 0) EXPECT_LE(std::abs(lon - line[k - 1][0].get<double>()), 180.0) << line;
+        if (k > 0) {
+          EXPECT_LE(std::abs(lon - line[k - 1][0].get<double>()), 180.0) << line;
+        }
         ++points;
       }
     }
