@@ -93,6 +93,10 @@ std::vector<Row> split_rows(const Text& text) {
         continue;
       }
       const char c = t[p++];
+      if (c == '\0') {  // quoted as \0 here: a raw NUL would end the message where it is printed as a C string
+        text.fail(lines[li].number, column_field(row.cells.size(), ""),
+                  "a NUL byte (\\0) in the cell: a CSV survey is text (was the file saved as UTF-16 or binary?)");
+      }
       if (in_quotes) {
         if (c != '"') cell += c;
         else if (p < t.size() && t[p] == '"') cell += '"', ++p;
@@ -187,6 +191,37 @@ Column column_of(const std::string& header) {
   return {header, "", header};
 }
 
+/// A header that column_of read as a key of its own but that looks like KEY_UNIT with a unit that does not fit
+/// (`height_furlong`, `height_cm2`, `height_CM`, `height_g`, `mu_cm`) is refused, naming the column as typed:
+/// unrefused, the misspelt column would be an unknown key found only after "a block needs its height".
+void check_header_unit(const Text& text, std::size_t line, std::size_t c, const Column& col) {
+  if (!col.unit.empty() || kLengthKeys.contains(col.key) || kAreaKeys.contains(col.key) ||
+      kStringKeys.contains(col.key)) {
+    return;  // a key with a known unit, or a key of its own (slid_uncertainty)
+  }
+  const std::size_t us = col.header.rfind('_');
+  if (us == std::string::npos || us == 0) return;
+  const std::string base = col.header.substr(0, us);
+  const std::string unit = col.header.substr(us + 1);
+  const auto listed = [](const auto& units, const std::string& u) {
+    return std::find(units.begin(), units.end(), to_lower(u)) != units.end();
+  };
+  const auto field = column_field(c, col.header);
+  if (kLengthKeys.contains(base)) {
+    text.fail(line, field, fmt::format("{} is not a length unit for {} (a length column's unit is one of mm, cm, m, "
+                                       "in, ft, in lower case: {}_cm)", detail::quoted(unit), base, base));
+  }
+  if (kAreaKeys.contains(base)) {
+    text.fail(line, field, fmt::format("{} is not an area unit for {} (an area column's unit is one of mm2, cm2, m2, "
+                                       "in lower case: {}_cm2)", detail::quoted(unit), base, base));
+  }
+  if (listed(kLengthUnits, unit) || listed(kAreaUnits, unit)) {
+    text.fail(line, field, fmt::format("{} takes no unit: only lengths (width, height, diameter, a, h, b1, b2, slid, "
+                                       "slid_uncertainty, slid_at_least, depth) and areas (D, inertia) name one in "
+                                       "the header", base));
+  }
+}
+
 class Writer {
  public:
   void line(std::string text, CsvOrigin origin) {
@@ -199,6 +234,16 @@ class Writer {
  private:
   CsvSurveyText out_;
 };
+
+/// A cell that opens a TOML inline table ('{') but is not one (its closing brace missing, a typo inside) is refused:
+/// taken as text, a flexible support would become a free-text label and the object would stand on a rigid support.
+void refuse_broken_table(const Text& text, const Cell& cell, const std::string& field, const std::string& value) {
+  if (cell.text.starts_with('{') && value.starts_with('"')) {
+    text.fail(cell.line, field,
+              fmt::format("{} opens a table with '{{' but is not one (a closing '}}' missing?): write e.g. "
+                          "\"{{freq_hz = 3, damping = 0.05}}\"", detail::quoted(cell.text)));
+  }
+}
 
 /// A setting's value as TOML: text keys quoted; inversion.records, a list of record files separated by ';' (a TOML
 /// array is accepted too); anything else as written.
@@ -251,6 +296,7 @@ std::size_t write_settings(const Text& text, const std::vector<Row>& rows, Write
       }
     }
     const std::string value = setting_value(section, key, row.cells[1].text);
+    refuse_broken_table(text, row.cells[1], column_field(1, ""), value);
     if (!sections.contains(section)) order.push_back(section);
     sections[section].emplace_back(key + " = " + value, CsvOrigin{row.cells[1].line, 1, first});
   }
@@ -277,6 +323,7 @@ std::vector<std::optional<Column>> read_header(const Text& text, const Row& head
                             "an optional unit (width_cm)", detail::quoted(h)));
     }
     Column col = column_of(h);
+    check_header_unit(text, head.line, c, col);
     if (const auto it = seen.find(col.key); it != seen.end()) {
       text.fail(head.line, column_field(c, h),
                 fmt::format("{} is given twice: here and in {}", col.key, column_field(it->second, columns[it->second]->header)));
@@ -290,11 +337,30 @@ std::vector<std::optional<Column>> read_header(const Text& text, const Row& head
   return columns;
 }
 
+/// A row that reads as a setting (`site.KEY`, `inversion.KEY` or `event.KEY` and one value): below the header row it
+/// would be read as an object whose id is the setting's name.
+bool is_setting_row(const Row& row) {
+  const std::string& first = row.cells.front().text;
+  const std::size_t dot = first.find('.');
+  if (dot == std::string::npos) return false;
+  const std::string section = first.substr(0, dot);
+  if (section != "site" && section != "inversion" && section != "event") return false;
+  if (!is_bare_key(std::string_view(first).substr(dot + 1))) return false;
+  return std::all_of(row.cells.begin() + std::min<std::size_t>(2, row.cells.size()), row.cells.end(),
+                     [](const Cell& c) { return c.text.empty(); });
+}
+
 /// One object per row from `first` on: a [[object]] table each, a key per non-empty cell.
 void write_objects(const Text& text, const std::vector<Row>& rows, std::size_t first, const Row& head,
                    const std::vector<std::optional<Column>>& columns, Writer& w) {
   for (std::size_t r = first; r < rows.size(); ++r) {
     const Row& row = rows[r];
+    if (is_setting_row(row)) {
+      text.fail(row.line, column_field(0, ""),
+                fmt::format("{} is a setting row after the header row (line {}): setting rows (site.KEY, "
+                            "inversion.KEY, event.KEY) go before the header row (docs/survey.md, \"CSV surveys\")",
+                            detail::quoted(row.cells.front().text), head.line));
+    }
     w.line("[[object]]", CsvOrigin{row.line, {}, {}});
     for (std::size_t c = 0; c < row.cells.size(); ++c) {
       const Cell& cell = row.cells[c];
@@ -317,6 +383,7 @@ void write_objects(const Text& text, const std::vector<Row>& rows, std::size_t f
         value = toml_string(cell.text);  // a length without a header unit carries its own ("8cm"), as in TOML
       } else {
         value = toml_value(cell.text);
+        refuse_broken_table(text, cell, column_field(c, col.header), value);
       }
       w.line(col.key + " = " + value, CsvOrigin{cell.line, c, col.header});
     }
@@ -339,6 +406,15 @@ bool is_csv_survey(std::string_view text, std::string_view name) {
 }
 
 CsvSurveyText csv_survey_to_toml(std::string_view content, const std::string& name) {
+  // Line ends: LF and CRLF (split_lines), and a CR alone, as old Mac programs write it (one line end each, so that
+  // line numbers stay those an editor shows).
+  std::string lone_cr;
+  for (std::size_t i = 0; i < content.size(); ++i) {
+    if (content[i] != '\r' || (i + 1 < content.size() && (content[i + 1] == '\n' || content[i + 1] == '\r'))) continue;
+    if (lone_cr.empty()) lone_cr.assign(content);
+    lone_cr[i] = '\n';
+  }
+  if (!lone_cr.empty()) content = lone_cr;
   const Text text(content, name);
   const std::vector<Row> rows = split_rows(text);
   Writer w;

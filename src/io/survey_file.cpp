@@ -445,6 +445,9 @@ void parse_friction_and_restitution(Reader& named, ObservedObject& o) {
   }
 }
 
+/// The largest support amplification a survey may state (parse_object_placement).
+constexpr double kMaxAmplification = 10.0;
+
 /// Where the object stands: its support (its own, or the site's flexible one), amplification, orientation to the
 /// shaking (one component) or bearing (three), and a box's depth.
 void parse_object_placement(Reader& named, ObservedObject& o, const Site* site, int components) {
@@ -457,6 +460,13 @@ void parse_object_placement(Reader& named, ObservedObject& o, const Site* site, 
   }
   if (const auto amp = named.interval("amplification")) {
     if (!(amp->low > 0.0)) throw named.error("amplification", "must be positive");
+    // At most 10 (docs/survey.md, "Support amplification"): the largest tabulated case is an object on flexible
+    // furniture at a building's roof, 3 (ASCE/SEI 7-16 Eq. 13.3-1) x 2.5 (a_p, Tables 13.5-1/13.6-1) = 7.5.
+    if (amp->high > kMaxAmplification) {
+      throw named.error("amplification", fmt::format("must lie in (0, {:g}] (a support amplifies the ground motion at "
+                                                     "most 7.5 times: a roof's 3 x flexible furniture's 2.5), got {:g}",
+                                                     kMaxAmplification, amp->high));
+    }
     o.amplification = *amp;
   }
   if (const auto orient = named.number("orientation_deg")) {
@@ -580,12 +590,25 @@ std::vector<ObservedObject> parse_objects(const toml::node* node, const std::str
 }
 
 /// A site's instrument (docs/survey.md, "Regional surveys"): `pga_g = value` (g, > 0) or `record = "file"` (checked
-/// to exist here, read by load_survey_records), not both.
-void parse_instrument(Reader& r, Site& site, const std::filesystem::path& base_dir) {
+/// to exist here, read by load_survey_records), not both. A measured PGA is at most the records' limit (100 g,
+/// GroundMotionLimits::max_record_accel_m_s2). In a three-component survey the PGA axis is RotD50, which one record
+/// file (one component) cannot give: such a station gives its RotD50 as pga_g (docs/survey.md, "Regional surveys").
+void parse_instrument(Reader& r, Site& site, const std::filesystem::path& base_dir, int components) {
   if (r.has("pga_g") && r.has("record")) throw r.error("record", "give either pga_g (measured) or record, not both");
   if (const auto pga = r.number("pga_g")) {
     if (!(*pga > 0.0)) throw r.error("pga_g", fmt::format("a measured PGA must be positive, got {} g", *pga));
+    constexpr double kMaxG = GroundMotionLimits::max_record_accel_m_s2 / kStandardGravity;
+    if (*pga > kMaxG) {
+      throw r.error("pga_g", fmt::format("a measured PGA is at most {:g} g (the limit records have), got {} g{}", kMaxG,
+                                         *pga, site.name.empty() ? "" : fmt::format(" at site '{}'", site.name)));
+    }
     site.instrument_pga_g = pga;
+  }
+  if (components == 3 && r.has("record")) {
+    throw r.error("record", fmt::format("{}a station record is one component, and components = 3 estimates RotD50 "
+                                        "(the median over rotation angles of the two horizontal components): its "
+                                        "peak is not RotD50; give the station's RotD50 as pga_g instead",
+                                        site.name.empty() ? "" : fmt::format("site '{}': ", site.name)));
   }
   if (const auto rec = r.string("record")) {
     std::filesystem::path p(*rec);
@@ -855,7 +878,7 @@ void parse_sites(Reader& top, const std::string& name, const std::filesystem::pa
       if (t == nullptr) throw top.error("site", "expected a table");
       Reader r(*t, name, "site");
       parse_site_fields(r, site);
-      parse_instrument(r, site, base_dir);
+      parse_instrument(r, site, base_dir, s.inversion.components);
       parse_intensity(r, site);
       r.refuse_unknown();
     }
@@ -871,7 +894,7 @@ void parse_sites(Reader& top, const std::string& name, const std::filesystem::pa
       Reader r(*t, name, fmt::format("sites[{}]", i + 1));
       Site site;
       parse_site_fields(r, site);
-      parse_instrument(r, site, base_dir);
+      parse_instrument(r, site, base_dir, s.inversion.components);
       parse_intensity(r, site);
       site.objects = parse_objects(r.get("object"), name, fmt::format("sites[{}].object", i + 1), said, base_dir,
                                    &site, s.inversion.components);
@@ -989,26 +1012,94 @@ GroundMotion read_survey_record(const std::string& path, const ReadOptions& o) {
   }
 }
 
-}  // namespace
+/// Where a record is named in the survey: `inversion.records` (item `item`) or a site's `record` (site `site`).
+struct RecordKey {
+  std::optional<std::size_t> site;  ///< index into survey.sites; none: inversion.records
+  std::size_t item = 0;             ///< index into inversion.records
+};
 
-void load_survey_records(Survey& survey) {
-  InversionSettings& st = survey.inversion;
-  const ReadOptions options = survey_read_options(st);
-  st.record_motions.clear();
-  for (const std::string& path : st.records) {
-    // A record that does not read names itself (file, line, field) in read_motion's InputError.
-    st.record_motions.push_back(std::make_shared<const GroundMotion>(read_survey_record(path, options)));
-  }
-  // An instrument station's record gives its measured PGA (the record's peak |a|, in g).
-  for (Site& site : survey.sites) {
-    if (site.instrument_record.empty()) continue;
-    site.instrument_pga_g = read_survey_record(site.instrument_record, options).pga_m_s2() / st.g_m_s2;
+/// The survey field that names the record ("sites[2].record", "site.record", "inversion.records") and its line in
+/// `text` (the survey's own text; a CSV survey's line through its TOML rewrite). Only on the error path: the text is
+/// parsed again; no line when it is not at hand.
+std::pair<std::string, std::optional<std::size_t>> record_key_location(std::optional<std::string_view> text,
+                                                                       const std::string& name, const RecordKey& key) {
+  std::string field = key.site ? "site.record" : "inversion.records";
+  if (!text) return {field, std::nullopt};
+  try {
+    const bool csv = detail::is_csv_survey(*text, name);
+    std::optional<detail::CsvSurveyText> rewritten;
+    if (csv) rewritten = detail::csv_survey_to_toml(*text, name);
+    const toml::table root = toml::parse(csv ? std::string_view(rewritten->toml) : *text, name);
+    const toml::node* node = nullptr;
+    if (!key.site) {
+      node = root.at_path("inversion.records").node();
+      if (const auto* arr = node ? node->as_array() : nullptr; arr != nullptr && key.item < arr->size()) {
+        node = arr->get(key.item);
+      }
+    } else if (const auto* sites = root.get_as<toml::array>("sites")) {
+      field = fmt::format("sites[{}].record", *key.site + 1);
+      if (const auto* t = *key.site < sites->size() ? sites->get(*key.site)->as_table() : nullptr) node = t->get("record");
+    } else {
+      node = root.at_path("site.record").node();
+    }
+    if (node == nullptr || node->source().begin.line == 0) return {field, std::nullopt};
+    std::size_t line = node->source().begin.line;
+    if (csv) {
+      if (line > rewritten->origins.size()) return {field, std::nullopt};
+      line = rewritten->origins[line - 1].line;
+    }
+    return {field, line};
+  } catch (const std::exception&) {  // the text parsed once already: no line rather than a second error
+    return {field, std::nullopt};
   }
 }
 
+/// Loads the records; a record that does not read is named where the survey names it: the survey file, the line, the
+/// field (`sites[N].record`, `inversion.records`), the site, then the record reader's own message (its file, line and
+/// field).
+void load_records(Survey& survey, std::optional<std::string_view> text) {
+  InversionSettings& st = survey.inversion;
+  const ReadOptions options = survey_read_options(st);
+  const auto read = [&](const std::string& path, const RecordKey& key) {
+    try {
+      return read_survey_record(path, options);
+    } catch (const InputError& e) {
+      const auto survey_keys = [](std::string said) {  // the reader's advice names its CLI option: the survey's key
+        for (std::size_t at = said.find("--columns"); at != std::string::npos; at = said.find("--columns", at)) {
+          said.replace(at, 9, "[inversion] record_columns");
+        }
+        return said;
+      };
+      // An [inversion] record_* key that does not fit the record already names the key to change (at the record's
+      // line, or the survey's): kept where it is.
+      if (e.where().field.starts_with("inversion.record_")) throw InputError(e.where(), survey_keys(e.problem()));
+      auto [field, line] = record_key_location(text, survey.source_file, key);
+      const std::string site = key.site ? fmt::format("site '{}': ", survey.sites[*key.site].name) : std::string();
+      const std::string said = survey_keys(e.what());
+      throw InputError(InputLocation{survey.source_file, line, std::move(field)},
+                       fmt::format("{}the record '{}' cannot be used: {}", site, path, said));
+    }
+  };
+  st.record_motions.clear();
+  for (std::size_t j = 0; j < st.records.size(); ++j) {
+    st.record_motions.push_back(std::make_shared<const GroundMotion>(read(st.records[j], RecordKey{std::nullopt, j})));
+  }
+  // An instrument station's record gives its measured PGA (the record's peak |a|, in g).
+  for (std::size_t i = 0; i < survey.sites.size(); ++i) {
+    Site& site = survey.sites[i];
+    if (site.instrument_record.empty()) continue;
+    site.instrument_pga_g = read(site.instrument_record, RecordKey{i, 0}).pga_m_s2() / st.g_m_s2;
+  }
+}
+
+}  // namespace
+
+void load_survey_records(Survey& survey) { load_records(survey, std::nullopt); }
+
 Survey read_survey(const std::filesystem::path& path) {
-  Survey survey = parse_survey(read_input_file(path, "survey"), path.string(), path.parent_path());
-  load_survey_records(survey);
+  const std::string text = read_input_file(path, "survey");
+  Survey survey = parse_survey(text, path.string(), path.parent_path());
+  load_records(survey, text);
   return survey;
 }
 

@@ -166,9 +166,12 @@ void write_contours_geojson(const std::filesystem::path& path, const std::vector
   for (const Contour& c : contours) {
     nlohmann::ordered_json lines = nlohmann::ordered_json::array();
     for (const auto& line : c.lines) {
-      nlohmann::ordered_json l = nlohmann::ordered_json::array();
-      for (const auto& p : line) l.push_back({p[0], p[1]});
-      lines.push_back(l);
+      // Longitudes in [-180, 180), lines cut at the antimeridian (RFC 7946 3.1.9; field.hpp, split_at_antimeridian).
+      for (const auto& piece : split_at_antimeridian(line)) {
+        nlohmann::ordered_json l = nlohmann::ordered_json::array();
+        for (const auto& p : piece) l.push_back({p[0], p[1]});
+        lines.push_back(l);
+      }
     }
     nlohmann::ordered_json f;
     f["type"] = "Feature";
@@ -204,12 +207,34 @@ nlohmann::ordered_json survey_inversion_json(const Survey& survey, const SurveyI
   if (survey.sites.size() <= 1) {
     j = site_json(0);
   } else {
+    // Provenance once per output (issue 31): the survey text verbatim at the top level; each site keeps the small
+    // fields and a reference (RFC 6901 JSON pointer) to the text instead of a copy of it, so that the JSON grows
+    // linearly in the sites with a small constant (the copy made 1000 one-object sites 273 MB).
     j["sites"] = nlohmann::ordered_json::array();
-    for (std::size_t k = 0; k < inversion.results.size(); ++k) j["sites"].push_back(site_json(k));
+    for (std::size_t k = 0; k < inversion.results.size(); ++k) {
+      if (!provenance) {
+        j["sites"].push_back(inversion_json(inversion.results[k], sites[k]));
+        continue;
+      }
+      nlohmann::ordered_json sj = inversion_json(inversion.results[k], sites[k]);
+      nlohmann::ordered_json p = nlohmann::ordered_json::object();
+      for (const ProvenanceField& field : kProvenanceFields) {
+        if (field.member != &Provenance::survey_text) p[field.key] = (*provenance).*field.member;
+      }
+      p["survey_text_at"] = "#/provenance/survey_text";
+      p["site"] = sites[k].name;
+      sj["provenance"] = std::move(p);
+      j["sites"].push_back(std::move(sj));
+    }
     if (inversion.region) {
       j["region"] = region_json(*inversion.region, survey, inversion.per_site(survey.sites.size()), settings);
     }
     if (!inversion.region_notes.empty()) j["region_notes"] = inversion.region_notes;
+    if (provenance) {
+      nlohmann::ordered_json p = nlohmann::ordered_json::object();
+      for (const ProvenanceField& field : kProvenanceFields) p[field.key] = (*provenance).*field.member;
+      j["provenance"] = std::move(p);
+    }
   }
   if (!survey.warnings.empty()) j["warnings"] = survey.warnings;  // added only when there are any: old bytes kept
   return j;

@@ -66,8 +66,11 @@ PooledField pooled_field(const RegionalResult& fit, const Survey& survey, double
     slon[s] = site.lon_deg.value();
     lat_lo = std::min(lat_lo, slat[s]);
     lat_hi = std::max(lat_hi, slat[s]);
-    lon_lo = std::min(lon_lo, slon[s]);
-    lon_hi = std::max(lon_hi, slon[s]);
+    // The box in longitudes taken within 180 degrees of the epicentre's (issue 31): sites at 179.9 and -179.9 are
+    // neighbours, not 360 degrees apart. The grid's longitudes may then pass +-180 (contours_for_geojson folds them).
+    const double lon_u = lon0 + std::remainder(slon[s] - lon0, 360.0);
+    lon_lo = std::min(lon_lo, lon_u);
+    lon_hi = std::max(lon_hi, lon_u);
     resid[s] = std::log(fit.sites[s].pga_g.median) - std::log(relation_pga_g(c0, c1, fit.c2_km, fit.sites[s].distance_km));
     const double sd = std::log(fit.sites[s].pga_g.ci95_high / fit.sites[s].pga_g.ci95_low) / (2.0 * 1.959964);
     nugget[s] = sd * sd;
@@ -86,9 +89,19 @@ PooledField pooled_field(const RegionalResult& fit, const Survey& survey, double
   f.range_km = range_km;
   const double pad_lat = std::max(0.2 * (lat_hi - lat_lo), 10.0 / 111.0);
   const double pad_lon = std::max(0.2 * (lon_hi - lon_lo), 10.0 / (111.0 * std::cos(deg_to_rad(lat0))));
+  // Near a pole (issue 31) the padded box would pass latitude +-90 (where the geodesic is undefined: NaN nodes) and
+  // the 10 km longitude pad grows without bound (1/cos(lat)): the latitudes stop at the pole, and a box whose
+  // longitudes span 360 degrees or more (or whose pad is not finite) is the whole circle around the epicentre: a
+  // polar cap, which the lat/lon grid represents exactly (docs/method.md, "Iso-acceleration contours").
+  const double grid_lat_lo = std::max(lat_lo - pad_lat, -90.0), grid_lat_hi = std::min(lat_hi + pad_lat, 90.0);
+  double grid_lon_lo = lon_lo - pad_lon, grid_lon_hi = lon_hi + pad_lon;
+  if (!(grid_lon_hi - grid_lon_lo < 360.0)) {
+    grid_lon_lo = lon0 - 180.0;
+    grid_lon_hi = lon0 + 180.0;
+  }
   for (int i = 0; i < points; ++i) {
-    f.lat_deg.push_back(lat_lo - pad_lat + (lat_hi - lat_lo + 2 * pad_lat) * i / (points - 1));
-    f.lon_deg.push_back(lon_lo - pad_lon + (lon_hi - lon_lo + 2 * pad_lon) * i / (points - 1));
+    f.lat_deg.push_back(grid_lat_lo + (grid_lat_hi - grid_lat_lo) * i / (points - 1));
+    f.lon_deg.push_back(grid_lon_lo + (grid_lon_hi - grid_lon_lo) * i / (points - 1));
   }
   f.pga_g.resize(static_cast<std::size_t>(points) * points);
   // Rows in parallel (oneTBB): every node is computed alone (deterministic).
@@ -190,6 +203,43 @@ std::vector<Contour> contour_field(const PooledField& f, const std::vector<doubl
     }
     out.push_back(std::move(c));
   }
+  return out;
+}
+
+std::vector<std::vector<std::array<double, 2>>> split_at_antimeridian(const std::vector<std::array<double, 2>>& line) {
+  using Point = std::array<double, 2>;
+  // The 360-degree window [-180 + 360 w, 180 + 360 w) a longitude lies in, and the longitude within [-180, 180).
+  const auto window = [](double lon) { return std::floor((lon + 180.0) / 360.0); };
+  const auto wrap = [&](double lon) { return lon - 360.0 * window(lon); };
+  std::vector<std::vector<Point>> out;
+  std::vector<Point> piece;
+  const auto add = [&](const Point& p) {
+    if (piece.empty() || piece.back() != p) piece.push_back(p);
+  };
+  const auto close = [&] {
+    if (piece.size() >= 2) out.push_back(std::move(piece));
+    piece.clear();
+  };
+  for (std::size_t k = 0; k < line.size(); ++k) {
+    const Point& b = line[k];
+    if (k > 0) {
+      // Each antimeridian (180 + 360 m, unwrapped) the segment from the previous point crosses cuts the line there,
+      // at the latitude interpolated linearly along the segment (as the grid interpolates): one piece ends at +-180,
+      // the next starts at -+180 (RFC 7946 section 3.1.9).
+      const Point& a = line[k - 1];
+      const double wa = window(a[0]), wb = window(b[0]);
+      const bool east = wb > wa;
+      for (double w = wa; w != wb; w += east ? 1.0 : -1.0) {
+        const double cut = east ? 180.0 + 360.0 * w : -180.0 + 360.0 * w;
+        const double lat = a[1] + (cut - a[0]) / (b[0] - a[0]) * (b[1] - a[1]);
+        add({east ? 180.0 : -180.0, lat});
+        close();
+        add({east ? -180.0 : 180.0, lat});
+      }
+    }
+    add({wrap(b[0]), b[1]});
+  }
+  close();
   return out;
 }
 

@@ -1,6 +1,7 @@
 // CSV surveys (docs/survey.md, "CSV surveys"): the same survey as the TOML reader gives, the same answer from the
 // inversion, and errors that name the file, the line and the column.
 #include <filesystem>
+#include <ostream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -210,6 +211,91 @@ TEST(SurveyCsv, BadCellsNameFileLineAndColumn) {
   expect_csv_error("sight.name,x\nid\n", 1, "column A", "unknown setting");
   expect_csv_error("inversion.pga_g,\"[2, 1, 30]\"\nid,width,height,mu,outcome\nb,1cm,4cm,0.5,slid\n", 1,
                    "inversion.pga_g in column B ('inversion.pga_g')", "0 < min < max");
+}
+
+// Issue 31, CSV surveys: each case refused at its line, naming the column as typed (or read as the format allows).
+struct CsvRefusal {
+  const char* name;
+  std::string text;
+  std::size_t line;
+  std::string field;
+  std::string says;
+};
+
+void PrintTo(const CsvRefusal& c, std::ostream* os) { *os << c.name; }
+
+class SurveyCsvRefusals : public ::testing::TestWithParam<CsvRefusal> {};
+
+TEST_P(SurveyCsvRefusals, NameLineAndColumnAsTyped) {
+  const CsvRefusal& c = GetParam();
+  expect_csv_error(c.text, c.line, c.field, c.says);
+}
+
+const std::string kRow = "b,10,40,0.5,overturned\n";
+
+INSTANTIATE_TEST_SUITE_P(
+    Issue31, SurveyCsvRefusals,
+    ::testing::Values(
+        // A header with a unit suffix that is no unit of its key: the column, not "a block needs its height".
+        CsvRefusal{"furlong", "id,width_cm,height_furlong,mu,outcome\n" + kRow, 1, "column C ('height_furlong')",
+                   "'furlong' is not a length unit"},
+        CsvRefusal{"area_unit_on_a_length", "id,width_cm,height_cm2,mu,outcome\n" + kRow, 1,
+                   "column C ('height_cm2')", "'cm2' is not a length unit"},
+        CsvRefusal{"upper_case_unit", "id,width_cm,height_CM,mu,outcome\n" + kRow, 1, "column C ('height_CM')",
+                   "in lower case"},
+        CsvRefusal{"unit_on_a_number", "id,width_cm,height_cm,mu_cm,outcome\n" + kRow, 1, "column D ('mu_cm')",
+                   "mu takes no unit"},
+        CsvRefusal{"g_on_a_length", "id,width_cm,height_g,mu,outcome\n" + kRow, 1, "column C ('height_g')",
+                   "'g' is not a length unit"},
+        CsvRefusal{"area_key", "id,shape,a,h,D_furlong2,mu,outcome\nb,general,5cm,20cm,3,0.5,overturned\n", 1,
+                   "column E ('D_furlong2')", "not an area unit"},
+        // A setting row after the header row (it used to be read as an object: "unknown shape '17.4'").
+        CsvRefusal{"setting_after_header",
+                   "id,shape,width,height,mu,outcome\nb,block,10cm,40cm,0.5,overturned\nsite.lat,17.4\n", 3,
+                   "column A", "go before the header row"},
+        // An unclosed flexible support table is refused, never taken as a free-text support.
+        CsvRefusal{"support_without_brace",
+                   "id,width,height,mu,outcome,support\nb,10cm,40cm,0.5,overturned,\"{freq_hz = 3, damping = 0.05\"\n",
+                   2, "column F ('support')", "closing '}' missing"},
+        CsvRefusal{"site_support_without_brace",
+                   "site.support,\"{freq_hz = 3, damping = 0.05\"\nid,width,height,mu,outcome\nb,10cm,40cm,0.5,overturned\n",
+                   1, "column B", "closing '}' missing"},
+        // Lines ended by CR alone (old Mac) are lines: the error is at the third, not "text after the closing quote".
+        CsvRefusal{"cr_only_line_ends",
+                   "id,description,width,height,mu,outcome\rb,\"a, b\",10cm,40cm,0.5,overturned\r"
+                   "c,x,10cm,40cm,high,overturned\r",
+                   3, "object[2](c).mu in column E ('mu')", "expected a number"}),
+    [](const ::testing::TestParamInfo<CsvRefusal>& p) { return std::string(p.param.name); });
+
+// CR-only line ends are read as line ends: the same survey as with LF.
+TEST(SurveyCsv, CrOnlyLineEndsAreLineEnds) {
+  const std::string lf = "site.name,\"x, y\"\nid,description,width,height,mu,outcome\nb,\"a, b\",10cm,40cm,0.5,overturned\n";
+  std::string cr = lf;
+  for (char& c : cr) c = c == '\n' ? '\r' : c;
+  expect_same_survey(io::parse_survey(cr, "mac.csv"), io::parse_survey(lf, "unix.csv"));
+  EXPECT_EQ(io::parse_survey(cr, "mac.csv").sites[0].objects[0].height_m, 0.4);
+}
+
+// A NUL byte is refused at its line and column, and the message is whole (a raw NUL would end it where it is printed
+// as a C string): the byte is quoted as \0.
+TEST(SurveyCsv, NulByteIsQuotedAndDoesNotCutTheMessage) {
+  const std::string text = std::string("id,width,height,mu,outcome\nb\0x,10cm,40cm,0.5,overturned\n", 56);
+  ASSERT_EQ(text.size(), 56u);
+  expect_csv_error(text, 2, "column A", "(\\0)");
+  try {
+    (void)io::parse_survey(text, "field.csv");
+  } catch (const InputError& e) {
+    const std::string what = e.what();  // up to the first NUL, as a C string
+    EXPECT_NE(what.find("a CSV survey is text"), std::string::npos) << what;
+  }
+}
+
+// Headers that are keys of their own, with an underscore, stay keys (not a key and a unit).
+TEST(SurveyCsv, UnderscoredKeysAreNotUnits) {
+  const Survey s = io::parse_survey("id,width,height,mu,outcome,slid,slid_uncertainty\n"
+                                    "b,10cm,40cm,0.5,slid,4cm,\nc,10cm,40cm,0.5,slid,4cm,1cm\n",
+                                    "k.csv");
+  EXPECT_EQ(s.sites[0].objects.size(), 2u);
 }
 
 // The sliding-uncertainty note (a documented floor that raises a given value) names the CSV line.

@@ -39,4 +39,11 @@ struct Contour {
 /// edges; a saddle cell is resolved by its centre's mean), the segments joined into polylines.
 [[nodiscard]] std::vector<Contour> contour_field(const PooledField& field, const std::vector<double>& levels_g);
 
+/// A polyline of [lon, lat] points in the grid's continuous longitudes (which may pass +-180 where the sites straddle
+/// the antimeridian, pooled_field) as GeoJSON wants it (RFC 7946 section 3.1.9): longitudes in [-180, 180), and cut
+/// into pieces wherever it crosses the antimeridian, each cut at the latitude interpolated along its segment, the
+/// piece ending at +-180 and the next one starting at -+180. A line that crosses nothing comes back whole.
+[[nodiscard]] std::vector<std::vector<std::array<double, 2>>> split_at_antimeridian(
+    const std::vector<std::array<double, 2>>& line);
+
 }  // namespace topple
