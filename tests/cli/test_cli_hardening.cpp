@@ -55,6 +55,7 @@ class CliHardening : public ::testing::TestWithParam<Case> {
     std::filesystem::resize_file(d / "big.csv", (std::uintmax_t{64} << 20) + 1);  // sparse: no disk used
     std::filesystem::create_directory(d / "a-directory");
     // Issue 31: a 0.2 x 0.2 x 0.4 box (file units), a survey and a sweep on a flexible support of 1e300 Hz.
+    write_file(d / "irregular.csv", "time_s,accel_g\n0,0\n0.01,0.2\n0.025,-0.1\n0.03,0\n");
     write_file(d / "box.obj", test::obj_text(test::box_mesh(0.2, 0.2, 0.4)));
     write_file(d / "support.toml", "[site]\nname = \"s\"\n[inversion]\npga_g = [0.05, 2.0, 4]\nfreq_hz = [0.5, 10.0, 3]\n"
                                    "motions_per_cell = 2\n[[object]]\nid = \"vase\"\nshape = \"cylinder\"\n"
@@ -198,6 +199,9 @@ const Case kCases31[] = {
      {"--mu: yield coefficient must be positive"}},
     {"CoupledMuKinetic", kRec + "--mu-kinetic 0.05 --support-freq 4Hz --coupled", {"--mu-kinetic: the coupled analysis"}},
     {"CoupledSlope", kRec + "--slope-deg 5 --support-freq 4Hz --coupled", {"--slope-deg: the coupled analysis"}},
+    // An irregular record is named (was "record: ..." without the file).
+    {"IrregularRecordOnSupport", "slide {dir}/irregular.csv --mu 0.1 --support-freq 4Hz",
+     {"{dir}/irregular.csv: ", "irregularly sampled", "resample it first"}},
     // A pulse is not a record: say so about the pulse.
     {"PulseOnSupport", "slide --pulse sine --amp-g 0.3 --duration 0.5 --mu 0.1 --support-freq 4Hz",
      {"--pulse: the sine pulse is sampled irregularly", "uniformly sampled records"}},
