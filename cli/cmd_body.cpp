@@ -138,7 +138,8 @@ void add_body_command(CLI::App& app) {
   cmd->add_option("--azimuth", o->azimuth_deg, "Direction of the plane of shaking, degrees clockwise from north (+y)")
       ->required();
   cmd->add_option("--density", o->body.density_kg_m3, "Uniform density, kg/m^3 (granite)")->capture_default_str();
-  cmd->add_option("--unit", o->unit, "Unit of the mesh's coordinates: m, cm or mm")->capture_default_str();
+  cmd->add_option("--unit", o->unit, "Unit of the mesh's coordinates: a unit (m, cm, mm, in, ft), a length per file "
+                                     "unit (2cm) or a bare number of metres per file unit (0.001)")->capture_default_str();
   add_pose_options(*cmd, o->pose, o->body);
   cmd->add_flag("--list-faces", o->list_faces,
                 "List the convex hull's faces (number, tilt from the scan, stable, area, least static overturning "

@@ -53,6 +53,7 @@ void run_slide(const SlideOptions& o) {
   const double g = o.motion.g_m_s2;
   check_g(g);
   if (!o.mu) throw parameter_error("--mu", "the friction coefficient is required");
+  check_flexible_options(o.flexible);
   check_plot_path(o.plot);
   check_output_path(o.out);
   const SlidingBlock block = [&] {
@@ -96,7 +97,8 @@ void run_slide(const SlideOptions& o) {
   }
   if (o.flexible.active()) {
     run_flexible_slide(horizontal, block, o.flexible, o.json,
-                       o.pulse.kind.empty() ? o.motion.file : horizontal.metadata().event, vertical_ptr, o.out, o.plot);
+                       o.pulse.kind.empty() ? o.motion.file : horizontal.metadata().event, vertical_ptr, o.out, o.plot,
+                       o.pulse.kind);
     return;
   }
 

@@ -35,13 +35,68 @@ double parse_ratio(const std::string& text, const std::string& field) {
   return value * factor;
 }
 
+/// The library names its fields (SupportOscillator::make, SlidingMassColumn::make, the analyses); the user typed
+/// options. `mu_option` is the option the library's "mu_kinetic" refusal is about (--mu-kinetic or --slope-deg).
+template <class F>
+auto naming_flexible_options(F f, const char* mu_option = "--mu-kinetic") -> decltype(f()) {
+  try {
+    return f();
+  } catch (const InputError& e) {
+    if (!e.where().file.empty()) throw;
+    const std::pair<const char*, const char*> names[] = {
+        {"support_freq", "--support-freq"}, {"support_damping", "--support-damping"}, {"mass_ratio", "--mass-ratio"},
+        {"height", "--height"},             {"vs_slope", "--vs-slope"},               {"vs_base", "--vs-base"},
+        {"damping", "--damping"},           {"reference_strain", "--ref-strain"},     {"ky", "--mu"},
+        {"mu_kinetic", mu_option}};
+    for (const auto& [field, option] : names) {
+      if (e.where().field == field) throw parameter_error(option, e.problem());
+    }
+    throw;
+  }
+}
+
 }  // namespace
+
+void check_flexible_options(const FlexibleOptions& o) {
+  const bool shelf = !o.support_freq.empty(), column = !o.height.empty();
+  if (shelf && column) {
+    throw parameter_error("--height", "give either --support-freq (shelf, floor) or --height (sliding mass)");
+  }
+  // Options that describe one of the two supports mean nothing without it: refused, never ignored.
+  const std::pair<bool, const char*> column_options[] = {{o.vs_slope_m_s.has_value(), "--vs-slope"},
+                                                         {o.vs_base_m_s.has_value(), "--vs-base"},
+                                                         {!o.damping.empty(), "--damping"},
+                                                         {!o.reference_strain.empty(), "--ref-strain"}};
+  const std::pair<bool, const char*> shelf_options[] = {{!o.support_damping.empty(), "--support-damping"},
+                                                        {o.mass_ratio.has_value(), "--mass-ratio"}};
+  for (const auto& [given, option] : column_options) {
+    if (!given) continue;
+    if (shelf) {
+      throw parameter_error("--support-freq", "--height, --vs-slope, --vs-base, --damping and --ref-strain describe "
+                                              "a sliding mass, not a shelf or floor");
+    }
+    if (!column) throw parameter_error(option, fmt::format("{} needs --height (a flexible sliding mass)", option));
+  }
+  for (const auto& [given, option] : shelf_options) {
+    if (!given) continue;
+    if (column) throw parameter_error("--height", "--support-damping and --mass-ratio describe a shelf or floor");
+    if (!shelf) throw parameter_error(option, fmt::format("{} needs --support-freq (a shelf or floor)", option));
+  }
+  if (o.coupled && !shelf && !column) {
+    throw parameter_error("--coupled", "--coupled needs --support-freq (a shelf or floor) or --height (a sliding "
+                                       "mass): a rigid support has no coupling");
+  }
+  if (o.mass_ratio && !o.coupled) {
+    throw parameter_error("--mass-ratio", "--mass-ratio needs --coupled (the decoupled analysis leaves the support "
+                                          "unloaded by the object)");
+  }
+}
 
 SupportOscillator support_from_options(const std::string& support_freq, const std::string& support_damping,
                                        double mass_ratio) {
-  return SupportOscillator::make(parse_frequency_hz(support_freq, "--support-freq"),
-                                 support_damping.empty() ? kDefaultDampingRatio : parse_ratio(support_damping, "--support-damping"),
-                                 mass_ratio);
+  const double freq_hz = parse_frequency_hz(support_freq, "--support-freq");
+  const double damping = support_damping.empty() ? kDefaultDampingRatio : parse_ratio(support_damping, "--support-damping");
+  return naming_flexible_options([&] { return SupportOscillator::make(freq_hz, damping, mass_ratio); });
 }
 
 void add_flexible_options(CLI::App& cmd, FlexibleOptions& o) {
@@ -60,51 +115,70 @@ void add_flexible_options(CLI::App& cmd, FlexibleOptions& o) {
 
 void run_flexible_slide(const GroundMotion& horizontal, const SlidingBlock& block, const FlexibleOptions& o, bool json,
                         const std::string& motion_name, const GroundMotion* vertical, const std::string& out,
-                        const std::string& plot) {
+                        const std::string& plot, const std::string& pulse_kind) {
   const bool with_history = !out.empty() || !plot.empty();
   FlexibleHistory history;
-  if (!o.support_freq.empty() && !o.height.empty()) {
-    throw parameter_error("--height", "give either --support-freq (shelf, floor) or --height (sliding mass)");
+  check_flexible_options(o);
+  // The support's response is exact for uniformly sampled input (flexible.hpp); analytic pulses keep their jumps
+  // and the end of their last cycle exactly, on an irregular grid. Said about what the user gave, a pulse or a file.
+  if (!horizontal.is_uniform()) {
+    if (!pulse_kind.empty()) {
+      throw parameter_error("--pulse", fmt::format("the {} pulse is sampled irregularly (at its jumps and the end of "
+                                                   "its cycles): flexible supports run on uniformly sampled records "
+                                                   "only (write the pulse to a record file at a uniform step)",
+                                                   pulse_kind));
+    }
+    throw InputError(InputLocation{.file = motion_name, .line = {}, .field = {}},
+                     "the record is irregularly sampled: flexible-support analyses need a uniformly sampled record "
+                     "(resample it first)");
   }
   const FlexibleAnalysis analysis = o.coupled ? FlexibleAnalysis::coupled : FlexibleAnalysis::decoupled;
   const double g = block.g_m_s2;
   FlexibleSummary r;
   nlohmann::ordered_json j;
+  const char* mu_option = block.mu_kinetic != block.mu_static ? "--mu-kinetic" : "--slope-deg";
   if (!o.support_freq.empty()) {
-    if (!o.height.empty() || o.vs_slope_m_s || o.vs_base_m_s || !o.damping.empty() || !o.reference_strain.empty()) {
-      throw parameter_error("--support-freq", "--height, --vs-slope, --vs-base, --damping and --ref-strain describe a "
-                                              "sliding mass, not a shelf or floor");
-    }
-    const SupportOscillator s = support_from_options(o.support_freq, o.support_damping, o.mass_ratio);
-    if (with_history) {
-      FlexibleResult full = slide_flexible_history(horizontal, s, block, analysis, vertical);
-      r = full.summary;
-      history = std::move(full.history);
-    } else {
-      r = slide_flexible(horizontal, s, block, analysis, vertical);
-    }
+    const SupportOscillator s = support_from_options(o.support_freq, o.support_damping, o.mass_ratio.value_or(0.0));
+    naming_flexible_options([&] {
+      if (with_history) {
+        FlexibleResult full = slide_flexible_history(horizontal, s, block, analysis, vertical);
+        r = full.summary;
+        history = std::move(full.history);
+      } else {
+        r = slide_flexible(horizontal, s, block, analysis, vertical);
+      }
+    }, mu_option);
     j = io::flexible_summary_json(r, block, s, analysis);
   } else {
     if (!o.vs_slope_m_s || !o.vs_base_m_s || o.damping.empty()) {
       throw parameter_error("--height", "a sliding mass needs --vs-slope, --vs-base and --damping");
-    }
-    if (!o.support_damping.empty() || o.mass_ratio != 0.0) {
-      throw parameter_error("--height", "--support-damping and --mass-ratio describe a shelf or floor");
     }
     if (block.slope_rad != 0.0 || block.mu_kinetic != block.mu_static) {
       throw parameter_error("--height", "the sliding mass is described by k_y (--mu) alone: no --slope-deg or --mu-kinetic");
     }
     std::optional<double> ref;
     if (!o.reference_strain.empty()) ref = parse_ratio(o.reference_strain, "--ref-strain");
-    const SlidingMassColumn col = SlidingMassColumn::make(parse_length_m(o.height, "--height"), *o.vs_slope_m_s,
-                                                          *o.vs_base_m_s, parse_ratio(o.damping, "--damping"), ref);
-    if (with_history) {
-      FlexibleResult full = slide_flexible_history(horizontal, col, block.mu_static, analysis, block.mode, g, vertical);
-      r = full.summary;
-      history = std::move(full.history);
-    } else {
-      r = slide_flexible(horizontal, col, block.mu_static, analysis, block.mode, g, vertical);
+    const double damping = parse_ratio(o.damping, "--damping");
+    // The library accepts a negative material damping while the total with the impedance damping stays in [0, 1)
+    // (SLAMMER's published suite enters -5 % against its 20 % impedance damping, flexible.hpp); a user's
+    // --damping -5% is a typing slip far more often than that: refused, the range stated.
+    if (!(damping >= 0.0 && damping < 1.0)) {
+      throw parameter_error("--damping", fmt::format("the material damping ratio must be in [0, 1) (0.05 or 5%), "
+                                                     "got '{}'", o.damping));
     }
+    const SlidingMassColumn col = naming_flexible_options([&] {
+      return SlidingMassColumn::make(parse_length_m(o.height, "--height"), *o.vs_slope_m_s, *o.vs_base_m_s, damping,
+                                     ref);
+    });
+    naming_flexible_options([&] {
+      if (with_history) {
+        FlexibleResult full = slide_flexible_history(horizontal, col, block.mu_static, analysis, block.mode, g, vertical);
+        r = full.summary;
+        history = std::move(full.history);
+      } else {
+        r = slide_flexible(horizontal, col, block.mu_static, analysis, block.mode, g, vertical);
+      }
+    });
     j = io::flexible_summary_json(r, block, col, analysis);
   }
   if (!out.empty()) io::write_flexible_history_csv(out, history, horizontal);

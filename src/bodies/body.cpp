@@ -377,7 +377,9 @@ PlanarBody planar_body(const MassProperties& mass, const SupportPolygon& support
   PlanarBody b;
   b.azimuth_deg = std::fmod(azimuth_deg, 360.0);
   if (b.azimuth_deg < 0.0) b.azimuth_deg += 360.0;
-  const double phi = deg_to_rad(azimuth_deg);
+  // Reduced exactly (fmod) before radians: any finite azimuth is a direction, and 1e308 deg * pi overflows to inf
+  // (a NaN body); within (-360, 360) fmod returns the value itself, so those keep their bits.
+  const double phi = deg_to_rad(std::fmod(azimuth_deg, 360.0));
   const Vec3 e{std::sin(phi), std::cos(phi), 0.0};   // clockwise from north (+y), x east
   const Vec3 n{std::cos(phi), -std::sin(phi), 0.0};  // horizontal, perpendicular to the plane: the rocking axis
   const double s = e[0] * c[0] + e[1] * c[1];

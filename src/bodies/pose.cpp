@@ -93,7 +93,9 @@ Quaternion multiply(const Quaternion& a, const Quaternion& b) {
 
 Quaternion axis_angle_quaternion(const Vec3& axis, double angle_deg) {
   const Vec3 u = scale(axis, 1.0 / norm(axis));
-  const double half = deg_to_rad(angle_deg) / 2;
+  // Reduced exactly (fmod) before radians: 1e308 deg * pi overflows to inf, and a NaN rotation reached CGAL's exact
+  // predicates (GMP raised SIGFPE); within (-360, 360) the angle keeps its bits.
+  const double half = deg_to_rad(std::fmod(angle_deg, 360.0)) / 2;
   const double s = std::sin(half);
   return {std::cos(half), u[0] * s, u[1] * s, u[2] * s};
 }

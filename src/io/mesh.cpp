@@ -792,8 +792,36 @@ class Builder {
 }  // namespace
 
 double mesh_unit_m(const std::string& unit, const std::string& field) {
-  const double factor = parse_length_m("1" + unit, field);
-  if (!(factor > 0.0)) throw parameter_error(field, fmt::format("'{}' is not a unit of length", unit));
+  // The text is read as a whole and only it is quoted: a unit name ("mm": one file unit is 1 mm), a length ("2cm":
+  // one file unit is 2 cm; parse_length_m) or a bare number of metres ("0.001"). Prefixing "1" to any text made
+  // "2cm" 12 cm and quoted "10.001" for "0.001".
+  const auto refuse = [&] {
+    throw parameter_error(field, fmt::format("'{}' is not a unit of length: give a unit (m, cm, mm, in, ft, km), a "
+                                             "positive length per file unit (2cm) or a positive number of metres "
+                                             "per file unit (0.001)",
+                                             unit));
+  };
+  const std::size_t first = unit.find_first_not_of(" \t");
+  if (first == std::string::npos) refuse();
+  double factor = 0.0;
+  if (std::isalpha(static_cast<unsigned char>(unit[first])) != 0) {
+    try {
+      factor = parse_length_m("1" + unit.substr(first), field);
+    } catch (const InputError&) {
+      refuse();
+    }
+  } else {
+    const std::size_t last = unit.find_last_not_of(" \t") + 1;
+    const auto [end, ec] = std::from_chars(unit.data() + first, unit.data() + last, factor);
+    if (ec != std::errc{} || end != unit.data() + last) {
+      try {
+        factor = parse_length_m(unit, field);
+      } catch (const InputError&) {
+        refuse();
+      }
+    }
+  }
+  if (!(factor > 0.0) || !std::isfinite(factor)) refuse();
   return factor;
 }
 

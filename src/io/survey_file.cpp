@@ -16,6 +16,7 @@
 #include "topple/io/mesh.hpp"
 #include "topple/io/read.hpp"
 #include "topple/region/geodesy.hpp"
+#include "topple/solvers/flexible.hpp"
 #include "topple/solvers/oriented.hpp"
 #include "io/survey_csv.hpp"
 
@@ -143,6 +144,12 @@ SupportFilter parse_support_filter(const toml::table& t, const std::string& file
   const auto freq = r.interval("freq_hz");
   if (!freq) throw r.error("freq_hz", "a flexible support needs its natural frequency freq_hz (Hz, a value or a range)");
   if (!(freq->low > 0.0)) throw r.error("freq_hz", fmt::format("must be positive, got {} Hz", freq->low));
+  if (freq->high > SupportOscillator::kMaxFreqHz) {
+    // The library's limit (flexible.hpp), said here with the survey's file and line before any record is read.
+    throw r.error("freq_hz", fmt::format("{} Hz is above {:g} Hz, where no shelf or floor is: a support that stiff "
+                                         "moves with the ground (give the support as text for a rigid one)",
+                                         freq->high, SupportOscillator::kMaxFreqHz));
+  }
   const auto damping = r.interval("damping");
   if (!damping) throw r.error("damping", "a flexible support needs its damping ratio (decimal: 0.05 is 5 %)");
   if (damping->low < 0.0 || damping->high >= 1.0) {

@@ -949,6 +949,12 @@ SupportOscillator SupportOscillator::make(double freq_hz, double damping_ratio, 
   if (!std::isfinite(freq_hz) || !(freq_hz > 0.0)) {
     throw parameter_error("support_freq", fmt::format("support frequency must be positive and finite, got {} Hz", freq_hz));
   }
+  if (freq_hz > kMaxFreqHz) {
+    throw parameter_error("support_freq", fmt::format("support frequency {} Hz is above {:g} Hz, where no shelf or floor "
+                                                      "is: a support that stiff moves with the ground (leave the "
+                                                      "support out for a rigid one)",
+                                                      freq_hz, kMaxFreqHz));
+  }
   if (!std::isfinite(damping_ratio) || damping_ratio < 0.0 || damping_ratio >= 1.0) {
     throw parameter_error("support_damping",
                           fmt::format("support damping ratio must be in [0, 1), got {}", damping_ratio));
@@ -973,6 +979,14 @@ SlidingMassColumn SlidingMassColumn::make(double height_m, double vs_slope_m_s, 
   positive(height_m, "height", "sliding-mass height", "m");
   positive(vs_slope_m_s, "vs_slope", "shear-wave velocity of the sliding mass", "m/s");
   positive(vs_base_m_s, "vs_base", "shear-wave velocity of the base", "m/s");
+  // The column's first mode, V_s / 4H (column_mode), under the same limit as a shelf's frequency (SupportOscillator::
+  // kMaxFreqHz): beyond it the mass moves with its base, and a column of 1e-150 m would overflow omega^2 in the
+  // propagator as a 1e200 Hz shelf does.
+  if (const double f1 = vs_slope_m_s / (4.0 * height_m); !(f1 <= SupportOscillator::kMaxFreqHz)) {
+    throw parameter_error("height", fmt::format("a {} m column with V_s {} m/s has its first mode at V_s / 4H = {:.4g} Hz, "
+                                                "above {:g} Hz: it moves with its base (a rigid block)",
+                                                height_m, vs_slope_m_s, f1, SupportOscillator::kMaxFreqHz));
+  }
   if (reference_strain) positive(*reference_strain, "reference_strain", "reference strain", "(decimal)");
   const double total = damping_ratio + impedance_damping(vs_base_m_s, vs_slope_m_s);
   if (!std::isfinite(damping_ratio) || total < 0.0 || total >= 1.0) {

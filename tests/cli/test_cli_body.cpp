@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -77,6 +78,43 @@ TEST(CliBody, UnitMillimetres) {
   for (const char* key : {"volume_m3", "h_m", "b1_m", "b2_m", "p1_rad_s", "inertia_o1_kg_m2"}) {
     EXPECT_NEAR(a[key].get<double>(), b[key].get<double>(), 1e-12 * std::abs(a[key].get<double>())) << key;
   }
+}
+
+// Issue 31: --unit is read as a whole. "2cm" is one file unit of 2 cm (was "1" + "2cm" = 12 cm), a bare number is
+// metres per file unit (was refused quoting "10.001"). The box 10 x 5 x 40 file units at 2 cm is the box 0.2 x 0.1 x
+// 0.8 m, the same box the file 0.2 x 0.1 x 0.8 in metres gives: V = 0.016 m^3, along north b1 = 0.05 m, h = 0.4 m.
+TEST(CliBody, UnitIsALengthOrMetresPerFileUnit) {
+  TempDir dir;
+  write_file(dir.path() / "units.obj", test::obj_text(test::box_mesh(10, 5, 40)));
+  const std::string body = "body " + quote((dir.path() / "units.obj").string()) + " --azimuth 0 --json --unit ";
+  for (const char* unit : {"2cm", "0.02", "2e-2", " 2 cm", "20mm"}) {
+    SCOPED_TRACE(unit);
+    const auto j = test::run_json(body + quote(unit));
+    EXPECT_NEAR(j["volume_m3"].get<double>(), 0.2 * 0.1 * 0.8, 1e-12);
+    EXPECT_NEAR(j["b1_m"].get<double>(), 0.05, 1e-12);
+    EXPECT_NEAR(j["h_m"].get<double>(), 0.4, 1e-12);
+  }
+}
+
+// Issue 31: any finite azimuth is a direction, reduced exactly (fmod) before radians: 1e308 and 1.7e308 deg (were
+// "internal error: b1 came out as -nan") give the body of their remainder mod 360, to the bit; so does an
+// --axis-angle of 1e308 deg (was SIGFPE inside CGAL's exact predicates on a NaN rotation).
+TEST(CliBody, HugeAnglesAreReducedExactly) {
+  TempDir dir;
+  const auto path = dir.path() / "box.obj";
+  write_file(path, test::obj_text(test::box_mesh(0.5, 0.25, 2.0)));
+  const std::string body = "body " + quote(path.string()) + " --json ";
+  for (const double azimuth : {1e308, 1.7e308, -1e308}) {
+    SCOPED_TRACE(azimuth);
+    const auto a = test::run_json(body + fmt::format("--azimuth {}", azimuth));
+    const auto b = test::run_json(body + fmt::format("--azimuth {}", std::fmod(azimuth, 360.0)));
+    for (const char* key : {"b1_m", "b2_m", "h_m", "inertia_o1_kg_m2"}) {
+      EXPECT_EQ(a[key].get<double>(), b[key].get<double>()) << key;
+    }
+  }
+  const auto a = test::run_json(body + "--azimuth 30 --pose rest --axis-angle 1,0,0,1e308");
+  const auto b = test::run_json(body + fmt::format("--azimuth 30 --pose rest --axis-angle 1,0,0,{}", std::fmod(1e308, 360.0)));
+  for (const char* key : {"volume_m3", "b1_m", "b2_m", "h_m"}) EXPECT_EQ(a[key].get<double>(), b[key].get<double>()) << key;
 }
 
 TEST(CliBody, BadInputExitsTwoNamingTheFile) {

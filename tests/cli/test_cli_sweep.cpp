@@ -137,6 +137,48 @@ TEST(CliSweep, RowsEqualSingleRunsOfSlideAndRock) {
   }
 }
 
+// Issue 31: `mesh_unit = "2cm"` is one file unit of 2 cm (was "1" + "2cm" = 12 cm); a bare number is metres per file
+// unit; `mesh_azimuth_deg = 1e308` is the direction fmod(1e308, 360) (was "internal error: b1 came out as -nan").
+// The box 10 x 5 x 40 file units at 2 cm is 0.2 x 0.1 x 0.8 m: along north (azimuth 0) b1 = b2 = 0.05 m, h = 0.4 m.
+TEST(CliSweep, MeshUnitIsALengthAndHugeAzimuthsAreReduced) {
+  TempDir dir;
+  write_file(dir.path() / "box.obj", test::obj_text(test::box_mesh(10, 5, 40)));
+  write_file(dir.path() / "a.toml", fmt::format(R"(
+[motions]
+[[motions.pulse]]
+kind = "sine"
+amp_g = 0.3
+freq_hz = 2
+[[object]]
+model = "rock"
+mesh = "box.obj"
+mesh_azimuth_deg = 0
+mesh_unit = "2cm"
+[[object]]
+model = "rock"
+mesh = "box.obj"
+mesh_azimuth_deg = 0
+mesh_unit = "0.02"
+[[object]]
+model = "rock"
+mesh = "box.obj"
+mesh_azimuth_deg = [1e308, {}]
+mesh_unit = "cm"
+)", std::fmod(1e308, 360.0)));
+  const auto r = run_cli("sweep " + quote((dir.path() / "a.toml").string()) + " --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Table t = read_table(dir.path() / "a.csv");
+  ASSERT_EQ(t.rows.size(), 4u);
+  for (const std::size_t row : {0u, 1u}) {
+    EXPECT_NEAR(std::stod(t.at(row, "b1_m")), 0.05, 1e-12);
+    EXPECT_NEAR(std::stod(t.at(row, "b2_m")), 0.05, 1e-12);
+    EXPECT_NEAR(std::stod(t.at(row, "h_m")), 0.4, 1e-12);
+  }
+  for (const char* k : {"b1_m", "b2_m", "h_m", "inertia_m2", "max_abs_rotation_rad"}) {
+    EXPECT_EQ(t.at(2, k), t.at(3, k)) << k;
+  }
+}
+
 // Asymmetric general bodies, given by their numbers or by a mesh (the wedge of test_body, azimuths 90 and 270), give
 // per run the numbers `topple rock --shape general --b1 --b2 --h --inertia` gives for the body in the row's columns
 // (printed to 17 digits, so the same doubles): every result, and the side it fell to or first passed alpha on.

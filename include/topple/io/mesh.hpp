@@ -38,8 +38,9 @@ namespace topple::io {
 /// Largest mesh file read: 1 GiB (a binary STL of MeshLimits::max_triangles is 500 MB).
 inline constexpr std::uintmax_t kMaxMeshFileBytes = std::uintmax_t{1} << 30;
 
-/// The length of one unit of the file's coordinates, m, from "m", "cm", "mm" (or any length unit that
-/// parse_length_m knows, e.g. "in"). Throws InputError naming `field` otherwise.
+/// The length of one unit of the file's coordinates, m, from a unit ("m", "cm", "mm" or any length unit that
+/// parse_length_m knows, e.g. "in"), a length ("2cm": one unit is 2 cm) or a bare number of metres ("0.001").
+/// Throws InputError naming `field` and quoting `unit` otherwise (zero, negative, non-finite, unknown).
 [[nodiscard]] double mesh_unit_m(const std::string& unit, const std::string& field);
 
 /// Reads `path` (OBJ, OFF, STL, PLY), recentres it (origin_m), scales it by `unit_m` and checks it (check_mesh).

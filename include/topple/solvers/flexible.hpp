@@ -69,7 +69,15 @@ struct SupportOscillator {
   double damping_ratio = 0.0;  ///< viscous damping ratio of the support (typical 0.02-0.05), 0 <= zeta < 1
   double mass_ratio = 0.0;     ///< object mass / support mass (0 = the object does not load the support)
 
-  /// Throws InputError (quoting the value) for non-finite values, freq <= 0, damping outside [0, 1), ratio < 0.
+  /// The highest natural frequency a support may have, Hz. Shelves are 5-20 Hz, floors 2-10 Hz, and seismic
+  /// qualification treats equipment above 33 Hz as rigid (its zero-period acceleration is the floor's); 1e4 Hz is
+  /// beyond the Nyquist frequency of any accelerograph (50 Hz to a few kHz sampling), so a support above it moves with
+  /// the ground to within (f_ground / f)^2 ~ 1e-6. It also bounds the sub-steps of the coupled analysis (omega h <= 0.5)
+  /// and keeps omega^2 far from overflow (from about 2e154 Hz the propagator's scaling and squaring never ended).
+  static constexpr double kMaxFreqHz = 1e4;
+
+  /// Throws InputError (quoting the value) for non-finite values, freq <= 0 or > kMaxFreqHz, damping outside [0, 1),
+  /// ratio < 0.
   [[nodiscard]] static SupportOscillator make(double freq_hz, double damping_ratio, double mass_ratio = 0.0);
 };
 
@@ -82,8 +90,8 @@ struct SlidingMassColumn {
   /// Equivalent-linear analysis when set: the hyperbola's reference shear strain (decimal: 0.0005 is 0.05 %).
   std::optional<double> reference_strain;
 
-  /// Throws InputError for non-finite values, H, V_s, V_b <= 0, a reference strain <= 0, or a total damping
-  /// (material + impedance) outside [0, 1). A negative material damping is accepted as long as the total is not:
+  /// Throws InputError for non-finite values, H, V_s, V_b <= 0, a first mode V_s / 4H above
+  /// SupportOscillator::kMaxFreqHz, a reference strain <= 0, or a total damping (material + impedance) outside [0, 1). A negative material damping is accepted as long as the total is not:
   /// SLAMMER's published suite enters -5 % to get 15 % in all with its 20 % impedance damping.
   [[nodiscard]] static SlidingMassColumn make(double height_m, double vs_slope_m_s, double vs_base_m_s,
                                               double damping_ratio,
