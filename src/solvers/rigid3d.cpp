@@ -405,6 +405,14 @@ class Engine {
     return dot(R[2], geo_.v[j] - geo_.vertices[static_cast<std::size_t>(vertex_)].p);
   }
 
+  /// The vertical velocity of vertex j in the pivot mode: (w x (R (v_j - p)))_z, w = R w_B.
+  [[nodiscard]] double vertex_rate(const S7& x, std::size_t j) const {
+    const M3 R = rotation({x[0], x[1], x[2], x[3]});
+    const Vec3 w = mul(R, Vec3{x[4], x[5], x[6]});
+    const Vec3 r = mul(R, geo_.v[j] - geo_.vertices[static_cast<std::size_t>(vertex_)].p);
+    return w[0] * r[1] - w[1] * r[0];
+  }
+
   /// d/dt (q_x^2 + q_y^2) / |q|^2 ... its sign: the tilt grows when q_x q_x' + q_y q_y' > 0 (cos tilt =
   /// 1 - 2 (q_x^2 + q_y^2) for a unit q).
   [[nodiscard]] static double tilt_rate(const S7& x) {
@@ -776,12 +784,21 @@ class Engine {
         const double za = vertex_height(xa, j);
         const double zb = vertex_height(xb, j);
         any_up = any_up || zb > eps_z_;
+        double tt = std::numeric_limits<double>::infinity();
+        const auto height = [&](double t) { return vertex_height(pivot_.dense(t), j); };
         if (zb <= 0.0 && za > eps_z_) {
-          const double tt = locate([&](double t) { return vertex_height(pivot_.dense(t), j); }, ta, tb2, za, zb);
-          if (tt < t_touch) {
-            t_touch = tt;
-            touched = static_cast<int>(j);
-          }
+          tt = locate(height, ta, tb2, za, zb);
+        } else if (zb < 0.0 && vertex_rate(xa, j) > 0.0 && vertex_rate(xb, j) < 0.0) {
+          // it left the ground at the start (a flat landing or a lift-off) and came down within the part: locate its
+          // highest point, then the touch-down after it
+          const double tp = locate([&](double t) { return vertex_rate(pivot_.dense(t), j); }, ta, tb2,
+                                   vertex_rate(xa, j), vertex_rate(xb, j));
+          const double zp = height(tp);
+          if (zp > 0.0) tt = locate(height, tp, tb2, zp, zb);
+        }
+        if (tt < t_touch) {
+          t_touch = tt;
+          touched = static_cast<int>(j);
         }
       }
       if (!lifted && !any_up && touched < 0) {
@@ -1067,7 +1084,7 @@ class Engine {
   }
 
   static constexpr int kMaxEventsPerInterval = 100'000;
-  static constexpr int kPivotSubdivisions = 8;
+  static constexpr int kPivotSubdivisions = 4;
   const InputGrid& grid_;
   std::span<const double> ax_, ay_;
   std::vector<double> gravity_;
