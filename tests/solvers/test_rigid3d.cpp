@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdio>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -76,7 +77,9 @@ TEST(Rigid3D, BoxInItsPlaneOfSymmetryEqualsThePlanarEngine) {
         EXPECT_NEAR(s.max_tilt_rad, p.max_abs_rotation_rad, 1e-6);
         EXPECT_NEAR(s.max_tilt_over_limit, p.max_rotation_over_alpha, 1e-6);
         EXPECT_NEAR(s.energy_lost_j_per_kg, p.energy_lost_j_per_kg, 1e-6 * std::max(1.0, p.energy_lost_j_per_kg));
-        if (p.overturned) EXPECT_NEAR(*s.overturn_time_s, *p.overturn_time_s, 1e-6);
+        if (p.overturned) {
+          EXPECT_NEAR(*s.overturn_time_s, *p.overturn_time_s, 1e-6);
+        }
         // only edge rocking: no pivot
         for (const auto& mc : s.modes) EXPECT_NE(mc.mode, Rigid3DMode::pivot);
         ++cases;
@@ -178,22 +181,25 @@ TEST(Rigid3D, StaticOnsetOnTheCornerAndOnTheEdge) {
 
 // Free motion after the ground stops: the total energy (kinetic about the contact + potential) never increases;
 // with Housner's law it drops at impacts; with a given e = 1 it is conserved through impacts (to the integration
-// tolerance). A rectangular box under two components 30 degrees off its x axis: rocking, pivoting, impacts.
+// tolerance). A 0.2 x 0.3 x 0.8 m box under one sine cycle 50 degrees off its x axis (its diagonal is at 56.3
+// degrees): rocking about the x edge, pivots on a corner, impacts.
 TEST(Rigid3D, EnergyNeverIncreasesInFreeMotion) {
   const RigidBody3D box = RigidBody3D::box(0.2, 0.3, 0.8);
-  const double A = 0.45 * kG;
+  const double A = 0.5 * kG;
   const GroundMotion base = sine(A, 0.4, 1.0, 0.002, 3.0);
-  const GroundMotion mx = scaled(base, std::cos(M_PI / 6.0));
-  const GroundMotion my = scaled(base, std::sin(M_PI / 6.0));
+  const double phi = 50.0 * M_PI / 180.0;
+  const GroundMotion mx = scaled(base, std::cos(phi));
+  const GroundMotion my = scaled(base, std::sin(phi));
   const double t_quiet = 0.4 + 1e-9;
   for (const bool elastic : {false, true}) {
     Rigid3DOptions o;
     o.g_m_s2 = kG;
     o.record_history = true;
     o.rel_tol = 1e-10;
-    if (elastic) {
+    if (elastic) {  // it never comes to rest: 3 s of free motion after the record
       o.restitution = RestitutionMode::given;
       o.e = 1.0;
+      o.max_run_out_s = 3.0;
     }
     const Rigid3DResult r = rock3d(mx, &my, nullptr, box, o);
     const auto& hist = r.history;
@@ -211,7 +217,9 @@ TEST(Rigid3D, EnergyNeverIncreasesInFreeMotion) {
       const double E = hist.energy_j_per_kg[i];
       if (first < 0.0) first = E;
       scale = std::max(scale, E);
-      if (previous >= 0.0) EXPECT_LE(E, previous + 1e-8 * scale) << "t = " << hist.time_s[i];
+      if (previous >= 0.0) {
+        EXPECT_LE(E, previous + 1e-8 * scale) << "t = " << hist.time_s[i];
+      }
       previous = E;
     }
     ASSERT_GT(first, 0.0);
@@ -224,17 +232,19 @@ TEST(Rigid3D, EnergyNeverIncreasesInFreeMotion) {
   }
 }
 
-// Order of convergence of a genuinely three-dimensional pivot (a rectangular box under a component along its
-// diagonal: no plane of symmetry through the corner) before its first impact: the error of the orientation at a
-// fixed instant against a run at rel_tol = 1e-13, at rel_tol halved three times. Error-per-step control of a 5(4)
-// pair gives a global error roughly proportional to the tolerance (Hairer, Norsett & Wanner 1993, II.4): the
-// observed exponent must be between 0.6 and 1.4 per halving, and the error must fall every halving.
+// Order of convergence of a genuinely three-dimensional pivot: a rectangular box (no plane of symmetry through its
+// corner) under a constant acceleration 1.1 times its corner threshold, along its diagonal, for 0.5 s (one sample
+// interval, so that only the tolerance sets the steps): the error of the orientation at 0.5 s against a run at
+// rel_tol = 1e-13, at rel_tol = 1e-4 halved four times. Error-per-step control of a 5(4) pair gives a global error
+// about proportional to the tolerance (Hairer, Norsett & Wanner 1993, II.4): measured exponents 0.75-0.94 per
+// halving; asserted within [0.6, 1.4] each, and 1 within 0.2 over the four halvings (measured 0.85).
 TEST(Rigid3D, PivotMotionConvergesWithTheTolerance) {
   const RigidBody3D box = RigidBody3D::box(0.3, 0.2, 0.9);
   const double phi = std::atan2(0.1, 0.15);
-  const GroundMotion base = sine(-0.6 * kG, 1.0, 0.5, 0.05, 1.0);
-  const GroundMotion mx = scaled(base, std::cos(phi));
-  const GroundMotion my = scaled(base, std::sin(phi));
+  const double threshold = std::hypot(0.15, 0.1) / 0.45 * kG;
+  const double T = 0.5;
+  const GroundMotion mx = GroundMotion::uniform({-1.1 * threshold * std::cos(phi), -1.1 * threshold * std::cos(phi)}, T);
+  const GroundMotion my = GroundMotion::uniform({-1.1 * threshold * std::sin(phi), -1.1 * threshold * std::sin(phi)}, T);
   const auto at = [&](double rel_tol) {
     Rigid3DOptions o;
     o.g_m_s2 = kG;
@@ -243,20 +253,16 @@ TEST(Rigid3D, PivotMotionConvergesWithTheTolerance) {
     o.record_history = true;
     o.max_run_out_s = 0.0;
     const Rigid3DResult r = rock3d(mx, &my, nullptr, box, o);
-    // the sample at t = 0.5 s (pivoting; before any impact)
-    for (std::size_t i = 0; i < r.history.time_s.size(); ++i) {
-      if (std::abs(r.history.time_s[i] - 0.5) < 1e-12) {
-        EXPECT_EQ(r.history.mode[i], Rigid3DMode::pivot);
-        EXPECT_EQ(r.summary.impacts, 0U);
-        return r.history.orientation[i];
-      }
-    }
-    ADD_FAILURE() << "no row at 0.5 s";
-    return Quaternion{};
+    // pivoting on the corner (+a, +b) from t = 0 to the end, no other mode
+    EXPECT_EQ(r.summary.modes.size(), 2U);
+    EXPECT_EQ(r.summary.modes.at(1).mode, Rigid3DMode::pivot);
+    EXPECT_EQ(r.summary.modes.at(1).vertex_a, 2);
+    EXPECT_NEAR(r.history.time_s.back(), T, 1e-15);
+    return r.history.orientation.back();
   };
   const Quaternion ref = at(1e-13);
   std::vector<double> errors;
-  for (const double tol : {1e-6, 0.5e-6, 0.25e-6, 0.125e-6}) {
+  for (const double tol : {1e-4, 5e-5, 2.5e-5, 1.25e-5, 6.25e-6}) {
     const Quaternion q = at(tol);
     double e = 0.0;
     for (std::size_t i = 0; i < 4; ++i) e = std::max(e, std::abs(q[i] - ref[i]));
@@ -264,11 +270,12 @@ TEST(Rigid3D, PivotMotionConvergesWithTheTolerance) {
   }
   for (std::size_t i = 1; i < errors.size(); ++i) {
     const double order = std::log2(errors[i - 1] / errors[i]);
-    SCOPED_TRACE(testing::Message() << "errors " << errors[i - 1] << " -> " << errors[i]);
+    std::printf("rel_tol halved: error %.3e -> %.3e, observed exponent %.3f\n", errors[i - 1], errors[i], order);
     EXPECT_GT(order, 0.6);
     EXPECT_LT(order, 1.4);
   }
-  EXPECT_LT(errors.back(), 1e-5);
+  EXPECT_NEAR(std::log2(errors.front() / errors.back()) / 4.0, 1.0, 0.2);
+  EXPECT_LT(errors.front(), 1e-6);
 }
 
 // Frame independence: the box turned by 35 degrees about the vertical, under the ground motion turned the same,
@@ -277,6 +284,7 @@ TEST(Rigid3D, RotatedBodyUnderRotatedMotionMovesTheSame) {
   const RigidBody3D box = RigidBody3D::box(0.2, 0.3, 0.8);
   const double beta = 35.0 * M_PI / 180.0;
   const RigidBody3D turned = box.rotated_about_vertical(beta);
+  std::size_t pivots = 0;
   for (const double pga_g : {0.35, 0.7}) {
     const GroundMotion m1 = record(7, pga_g * kG);
     const GroundMotion m2 = record(8, 0.8 * pga_g * kG);
@@ -299,7 +307,10 @@ TEST(Rigid3D, RotatedBodyUnderRotatedMotionMovesTheSame) {
     EXPECT_EQ(s.overturned, t.overturned);
     EXPECT_EQ(s.impacts, t.impacts);
     ASSERT_EQ(s.modes.size(), t.modes.size());
-    for (std::size_t i = 0; i < s.modes.size(); ++i) EXPECT_EQ(s.modes[i].mode, t.modes[i].mode);
+    for (std::size_t i = 0; i < s.modes.size(); ++i) {
+      EXPECT_EQ(s.modes[i].mode, t.modes[i].mode);
+      pivots += s.modes[i].mode == Rigid3DMode::pivot ? 1 : 0;
+    }
     EXPECT_NEAR(s.max_tilt_rad, t.max_tilt_rad, 1e-7);
     double da = std::remainder(t.max_tilt_azimuth_deg - (s.max_tilt_azimuth_deg - 35.0), 360.0);
     EXPECT_NEAR(da, 0.0, 1e-5);
@@ -308,6 +319,7 @@ TEST(Rigid3D, RotatedBodyUnderRotatedMotionMovesTheSame) {
       EXPECT_NEAR(da, 0.0, 1e-5);
     }
   }
+  EXPECT_GT(pivots, 0U);  // the motions are three-dimensional: the body pivoted on corners
 }
 
 TEST(Rigid3D, BadBodiesAndOptionsAreInputErrors) {
