@@ -18,6 +18,7 @@
 
 #include "kocaeli_record.hpp"
 #include "topple/motion/pulses.hpp"
+#include "topple/solvers/rigid3d.hpp"
 #include "topple/solvers/rocking.hpp"
 #include "topple/solvers/threshold_search.hpp"
 
@@ -83,6 +84,28 @@ void BM_RockingWithHistory(benchmark::State& state) {
   counters(state, r.summary, rec.size());
 }
 BENCHMARK(BM_RockingWithHistory)->Args({100, 15})->Unit(benchmark::kMillisecond);
+
+void BM_Rigid3DEdge(benchmark::State& state) {
+  // The three-dimensional engine (rigid3d.hpp) on the same body with a depth of 0.5 m under the same record along x:
+  // it rocks about its edges parallel to y exactly as BM_Rocking's block (tests/solvers/test_rigid3d.cpp), so the
+  // ratio of the two figures is the cost of the general engine per sample (issue 29 asks within 5x). Default
+  // tolerances, as BM_Rocking.
+  const GroundMotion& rec = record();
+  const double width = static_cast<double>(state.range(0)) / 100.0;
+  const double slenderness = static_cast<double>(state.range(1)) / 100.0;
+  const auto body = topple::RigidBody3D::box(width, 0.5, width / slenderness);
+  const topple::Rigid3DOptions options;
+  topple::Rigid3DSummary s;
+  for (auto _ : state) {
+    s = topple::rock3d(rec, nullptr, nullptr, body, options).summary;
+    benchmark::DoNotOptimize(s);
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * rec.size()));
+  state.counters["impacts"] = static_cast<double>(s.impacts);
+  state.counters["max_tilt_over_limit"] = s.max_tilt_over_limit;
+  state.counters["steps_per_sample"] = static_cast<double>(s.steps) / static_cast<double>(rec.size());
+}
+BENCHMARK(BM_Rigid3DEdge)->Args({100, 15})->Args({100, 10})->Args({100, 50})->Unit(benchmark::kMillisecond);
 
 void BM_RockingRk4Thesis(benchmark::State& state) {
   // The thesis' method for comparison: fixed-step RK4, 10 steps per sample interval.

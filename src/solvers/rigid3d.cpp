@@ -308,7 +308,32 @@ class Engine {
     t_ = grid_.time_s(0);
     enter(Rigid3DMode::rest, -1, -1);
     row();
+    refresh_rest();
     for (std::size_t i = 0; !done_ && i + 1 < n; ++i) {
+      if (mode_ == Rigid3DMode::rest && (i > 0 || rest_below(0))) {
+        // Full contact: each sample costs one test per edge (the uplift functions are linear in t over an interval,
+        // so both ends below zero keep the whole interval below).
+        if (ay_.empty() && gravity_.empty()) {  // x alone: the test is x_lo <= a_x <= x_hi
+          const double* a = ax_.data();
+          while (i + 1 < n && a[i + 1] >= x_lo_ && a[i + 1] <= x_hi_) {
+            ++i;
+            if (opt_.record_history) {
+              t_ = grid_.time_s(i);
+              row();
+            }
+          }
+        } else {
+          while (i + 1 < n && rest_below(i + 1)) {
+            ++i;
+            if (opt_.record_history) {
+              t_ = grid_.time_s(i);
+              row();
+            }
+          }
+        }
+        t_ = grid_.time_s(i);
+        if (i + 1 >= n) break;
+      }
       const double ta = grid_.time_s(i);
       const double tb = grid_.time_s(i + 1);
       if (!(tb > ta)) {
@@ -541,16 +566,44 @@ class Engine {
   }
 
   // ---- rest: the centre of pressure leaving the polygon (linear in t over the interval) ----
+  /// The ground-frame outward normals of the edges and their distances b_e, for the pose at rest.
+  void refresh_rest() {
+    const M3 R = rotation(q_flat_);
+    rest_edges_.clear();
+    for (const EdgeGeom& e : geo_.edges) {
+      const Vec3 n = mul(R, e.n_b);
+      rest_edges_.push_back({geo_.h * n[0], geo_.h * n[1], e.dist});
+    }
+    // Under x alone, -a_x h n_x - g b <= 0 for every edge is x_lo <= a_x <= x_hi.
+    x_lo_ = -std::numeric_limits<double>::infinity();
+    x_hi_ = std::numeric_limits<double>::infinity();
+    for (const auto& r : rest_edges_) {
+      if (r[0] > 0.0) x_lo_ = std::max(x_lo_, -g_ * r[2] / r[0]);
+      if (r[0] < 0.0) x_hi_ = std::min(x_hi_, -g_ * r[2] / r[0]);
+    }
+  }
+  /// Every edge's uplift function u_e = -h a_h . n_e - (g + a_z) b_e at sample i is <= 0.
+  [[nodiscard]] bool rest_below(std::size_t i) const {
+    const double ax = ax_[i];
+    const double ay = ay_.empty() ? 0.0 : ay_[i];
+    const double G = gravity_.empty() ? g_ : gravity_[i];
+    for (const auto& r : rest_edges_) {
+      if (-(ax * r[0] + ay * r[1]) - G * r[2] > 0.0) return false;
+    }
+    return true;
+  }
+
   void rest_phase(double tb) {
     // edge e: uplift when u_e(t) = -h a_h . n_e - G b_e > 0, linear in t (a_h and G linear).
     const double ta = t_;
     double t_first = std::numeric_limits<double>::infinity();
     std::vector<std::pair<double, int>> hits;
-    for (const EdgeGeom& e : geo_.edges) {
-      const Vec3 n = mul(rotation(q_flat_), e.n_b);
+    for (std::size_t k = 0; k < geo_.edges.size(); ++k) {
+      const EdgeGeom& e = geo_.edges[k];
+      const auto& r = rest_edges_[k];
       const auto u = [&](double t) {
         const Vec3 f = forcing_.f(t);
-        return geo_.h * (f[0] * n[0] + f[1] * n[1]) + f[2] * e.dist;
+        return f[0] * r[0] + f[1] * r[1] + f[2] * r[2];
       };
       const double u0 = u(ta);
       const double u1 = u(tb);
@@ -638,6 +691,7 @@ class Engine {
     out_.summary.energy_lost_j_per_kg += lost;
     edge_index_ = -1;
     vertex_ = -1;
+    refresh_rest();
     enter(Rigid3DMode::rest, -1, -1);
   }
 
@@ -1112,6 +1166,8 @@ class Engine {
   Quaternion q_flat_ = kIdentityQuaternion;  // rest: the pose; rocking: the pose at theta = 0
   Vec3 P_w_{};                               // the contact point in the ground frame
   Vec3 rest_contact_{};
+  std::vector<std::array<double, 3>> rest_edges_;
+  double x_lo_ = 0.0, x_hi_ = 0.0;  // rest: h n_x, h n_y (ground frame) and b_e per edge
 };
 
 void check_options(const Rigid3DOptions& o) {
