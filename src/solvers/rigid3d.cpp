@@ -455,7 +455,10 @@ class Engine {
     auto& s = out_.summary;
     if (tilt <= 0.0) return;
     const Vec3 d{zb[0] / horizontal, zb[1] / horizontal, 0.0};
-    Vec3 u = mul_t(R, d);  // that direction in the body's plan
+    // The body's plan direction that tips toward d: with the tilt tau a rotation about the horizontal axis z x d,
+    // the plan direction u_B with R u_B = d cos(tau) - z sin(tau) (the base's line of steepest descent; at 90 degrees
+    // still defined, where the plan part of R^T d vanishes).
+    Vec3 u = mul_t(R, Vec3{d[0] * zb[2], d[1] * zb[2], -horizontal});
     const double un = std::hypot(u[0], u[1]);
     u = {u[0] / un, u[1] / un, 0.0};
     const double ratio = tilt / geo_.limit_toward(u);
@@ -911,11 +914,12 @@ class Engine {
 
   // ---- impacts (header: Housner's law about the new contact) ----
   /// Angular momentum per unit mass about the ground point P' of the motion omega (ground frame) about the fixed
-  /// point P (both on the ground): J_w omega + r' x (omega x (c - P)).
-  [[nodiscard]] Vec3 momentum_about(const M3& R, const Vec3& omega, const Vec3& c_w, const Vec3& P, const Vec3& Pn) const {
+  /// point P (both on the ground): J_w omega + r' x (omega x (c - P)), r' = c - P'.
+  [[nodiscard]] Vec3 momentum_about(const M3& R, const Vec3& omega, const Vec3& c_w, const Vec3& Pn) const {
+    // positions relative to the old contact P (the origin here): v_c = omega x c_w
     const Vec3 wb = mul_t(R, omega);
     const Vec3 Jw = mul(R, mul(geo_.J, wb));
-    return Jw + cross(c_w - Pn, cross(omega, c_w - P));
+    return Jw + cross(c_w - Pn, cross(omega, c_w));
   }
 
   /// Kinetic energy per unit mass of the rotation omega (ground frame) about the fixed body point pb.
@@ -941,13 +945,13 @@ class Engine {
     if (edge >= 0) {
       const EdgeGeom& e = geo_.edges[static_cast<std::size_t>(edge)];
       const Vec3 Pn = mul(R, geo_.v[static_cast<std::size_t>(e.a)] - pb_old);
-      const Vec3 H = momentum_about(R, omega, cw, {0.0, 0.0, 0.0}, Pn);
+      const Vec3 H = momentum_about(R, omega, cw, Pn);
       const Vec3 ew = mul(R, e.e_b);
       out.omega = (dot(ew, H) / e.J) * ew;
     } else {
       const VertexGeom& vg = geo_.vertices[static_cast<std::size_t>(vertex)];
       const Vec3 Pn = mul(R, vg.p - pb_old);
-      const Vec3 H = momentum_about(R, omega, cw, {0.0, 0.0, 0.0}, Pn);
+      const Vec3 H = momentum_about(R, omega, cw, Pn);
       out.omega = mul(R, mul(vg.Jp_inv, mul_t(R, H)));
     }
     out.ok = true;

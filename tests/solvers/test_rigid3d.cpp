@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdio>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -243,8 +244,10 @@ TEST(Rigid3D, PivotMotionConvergesWithTheTolerance) {
   const double phi = std::atan2(0.1, 0.15);
   const double threshold = std::hypot(0.15, 0.1) / 0.45 * kG;
   const double T = 0.5;
-  const GroundMotion mx = GroundMotion::uniform({-1.1 * threshold * std::cos(phi), -1.1 * threshold * std::cos(phi)}, T);
-  const GroundMotion my = GroundMotion::uniform({-1.1 * threshold * std::sin(phi), -1.1 * threshold * std::sin(phi)}, T);
+  const double ax = -1.1 * threshold * std::cos(phi);
+  const double ay = -1.1 * threshold * std::sin(phi);
+  const GroundMotion mx = GroundMotion::uniform({ax, ax}, T);
+  const GroundMotion my = GroundMotion::uniform({ay, ay}, T);
   const auto at = [&](double rel_tol) {
     Rigid3DOptions o;
     o.g_m_s2 = kG;
@@ -312,6 +315,7 @@ TEST(Rigid3D, RotatedBodyUnderRotatedMotionMovesTheSame) {
       pivots += s.modes[i].mode == Rigid3DMode::pivot ? 1 : 0;
     }
     EXPECT_NEAR(s.max_tilt_rad, t.max_tilt_rad, 1e-7);
+    EXPECT_NEAR(s.max_tilt_over_limit, t.max_tilt_over_limit, 1e-6);
     double da = std::remainder(t.max_tilt_azimuth_deg - (s.max_tilt_azimuth_deg - 35.0), 360.0);
     EXPECT_NEAR(da, 0.0, 1e-5);
     if (s.overturned) {
@@ -320,6 +324,52 @@ TEST(Rigid3D, RotatedBodyUnderRotatedMotionMovesTheSame) {
     }
   }
   EXPECT_GT(pivots, 0U);  // the motions are three-dimensional: the body pivoted on corners
+}
+
+// A scanned body: the box as a closed triangle mesh, turned by 20 degrees about the vertical and moved to
+// (5, -3, 2) m, through mesh_body (as scanned) and RigidBody3D::from_mesh, under the ground motion turned the same,
+// moves as the box built by RigidBody3D::box under the original motion (issue 29: "a rotated and translated scan
+// gives the same motion").
+TEST(Rigid3D, RotatedAndTranslatedMeshMovesAsTheBox) {
+  const double w = 0.2, d = 0.3, H = 0.8;
+  const double beta = 20.0 * M_PI / 180.0;
+  const Vec3 shift{5.0, -3.0, 2.0};
+  TriangleMesh mesh;
+  for (const double z : {0.0, H}) {
+    for (const auto& [x, y] : {std::pair{-w / 2, -d / 2}, {w / 2, -d / 2}, {w / 2, d / 2}, {-w / 2, d / 2}}) {
+      mesh.vertices_m.push_back({std::cos(beta) * x - std::sin(beta) * y + shift[0],
+                                 std::sin(beta) * x + std::cos(beta) * y + shift[1], z + shift[2]});
+    }
+  }
+  mesh.triangles = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
+                    {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
+  BodyOptions bo;
+  bo.pose = PoseMethod::as_scanned;
+  const RigidBody3D scanned = RigidBody3D::from_mesh(mesh_body(mesh, bo, "box.obj"));
+  EXPECT_NEAR(scanned.height_m(), H / 2, 1e-12);
+  const RigidBody3D box = RigidBody3D::box(w, d, H);
+  const GroundMotion m1 = record(9, 0.6 * kG);
+  const GroundMotion m2 = record(10, 0.5 * kG);
+  std::vector<double> x1(m1.size()), y1(m1.size());
+  for (std::size_t i = 0; i < m1.size(); ++i) {
+    x1[i] = std::cos(beta) * m1.accel_m_s2()[i] - std::sin(beta) * m2.accel_m_s2()[i];
+    y1[i] = std::sin(beta) * m1.accel_m_s2()[i] + std::cos(beta) * m2.accel_m_s2()[i];
+  }
+  const GroundMotion rx = GroundMotion::uniform(x1, m1.dt_s());
+  const GroundMotion ry = GroundMotion::uniform(y1, m1.dt_s());
+  Rigid3DOptions o;
+  o.g_m_s2 = kG;
+  o.rel_tol = 1e-10;
+  const Rigid3DSummary s = rock3d(m1, &m2, nullptr, box, o).summary;
+  const Rigid3DSummary t = rock3d(rx, &ry, nullptr, scanned, o).summary;
+  EXPECT_GT(s.impacts, 0U);
+  EXPECT_EQ(s.overturned, t.overturned);
+  EXPECT_EQ(s.impacts, t.impacts);
+  ASSERT_EQ(s.modes.size(), t.modes.size());
+  for (std::size_t i = 0; i < s.modes.size(); ++i) EXPECT_EQ(s.modes[i].mode, t.modes[i].mode);
+  EXPECT_NEAR(s.max_tilt_rad, t.max_tilt_rad, 1e-7);
+  EXPECT_NEAR(s.max_tilt_over_limit, t.max_tilt_over_limit, 1e-6);
+  EXPECT_NEAR(std::remainder(t.max_tilt_azimuth_deg - (s.max_tilt_azimuth_deg - 20.0), 360.0), 0.0, 1e-5);
 }
 
 TEST(Rigid3D, BadBodiesAndOptionsAreInputErrors) {

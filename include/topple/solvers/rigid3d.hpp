@@ -126,7 +126,9 @@ struct Rigid3DSummary {
   double max_tilt_rad = 0.0;             ///< largest angle between the body's z axis and the vertical
   double max_tilt_azimuth_deg = 0.0;     ///< the direction of that tilt (toward which the top leans)
   double max_tilt_time_s = 0.0;
-  double max_tilt_over_limit = 0.0;      ///< max over time of tilt / static_tilt_limit_rad(its direction)
+  /// max over time of tilt / static limit atan(b(u) / h) toward u, the body's plan direction that tips toward the
+  /// tilt's direction d (R u = d cos(tilt) - z sin(tilt)); an edge: tilt / alpha_e (the planar theta / alpha)
+  double max_tilt_over_limit = 0.0;
   std::optional<double> exceeded_limit_time_s;  ///< first time the tilt passed the static limit of its direction
   std::size_t impacts = 0;
   std::size_t uplifts = 0;               ///< departures from rest
