@@ -1068,10 +1068,10 @@ class Engine {
     const M3 R = rotation(q);
     const Vec3 pb_old = contact_b();
     const int n = static_cast<int>(geo_.n);
-    // Flat landing: a vertex not adjacent to the pivot is down too (then the whole base is).
+    // Flat landing: another vertex is down too (three vertices of a convex base on the ground: the whole base is).
     bool flat = false;
     for (int k = 0; k < n; ++k) {
-      if (k == vertex_ || k == (vertex_ + 1) % n || (k + 1) % n == vertex_) continue;
+      if (k == vertex_ || k == j) continue;
       if (dot(R[2], geo_.v[static_cast<std::size_t>(k)] - pb_old) <= tie_z_) flat = true;
     }
     if (flat || (j != (vertex_ + 1) % n && (j + 1) % n != vertex_)) {
