@@ -1068,11 +1068,15 @@ class Engine {
     const M3 R = rotation(q);
     const Vec3 pb_old = contact_b();
     const int n = static_cast<int>(geo_.n);
-    // Flat landing: another vertex is down too (three vertices of a convex base on the ground: the whole base is).
+    // Flat landing: another vertex is down too and coming down (three vertices of a convex base on the ground: the
+    // whole base is). One that is down but rising (a base almost flat turning about the edge of the pivot and j)
+    // leaves an edge impact onto that edge.
     bool flat = false;
+    const Vec3 w = omega_world();
     for (int k = 0; k < n; ++k) {
       if (k == vertex_ || k == j) continue;
-      if (dot(R[2], geo_.v[static_cast<std::size_t>(k)] - pb_old) <= tie_z_) flat = true;
+      const Vec3 rk = mul(R, geo_.v[static_cast<std::size_t>(k)] - pb_old);
+      if (rk[2] <= tie_z_ && cross(w, rk)[2] < 0.0) flat = true;
     }
     if (flat || (j != (vertex_ + 1) % n && (j + 1) % n != vertex_)) {
       land_flat();
