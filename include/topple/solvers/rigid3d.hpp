@@ -34,7 +34,7 @@
 //   rocking -> pivot: the vertical contact force at one end of the edge vanishes (the centre of pressure reaches the
 //           end): the body pivots on the other end with the same angular velocity (no impact).
 //   rocking -> impact: theta returns to 0 (the base lands flat). pivot -> impact: another vertex touches down (an
-//           adjacent one: the new contact is that edge) or the base lands flat.
+//           adjacent one: the new contact is that edge) or the base lands flat (a third vertex down and coming down).
 //   rocking/pivot -> fallen: the tilt (the angle between the body's z axis and the vertical) reaches 90 degrees.
 //
 // Impact law (Housner 1963, generalised): the impulse acts at the new contact only, so the angular momentum about it
@@ -47,12 +47,16 @@
 // (RestitutionMode::given) keeps Housner's direction of the motion after the impact and sets the ratio of kinetic
 // energies to e^2 (the planar engine's theta'+ = e theta'- for a block on its opposite edge).
 //
-// Rest rule: as the planar engine's (rocking.hpp): after an impact, kinetic energy below rest_energy_fraction times
+// Rest rule: as the planar engine's (rocking.hpp): after a flat landing, kinetic energy below rest_energy_fraction times
 // the energy to lift the centre of mass over the new contact (g (|c - contact| - h)) puts the body at rest.
 //
 // Method: Dormand-Prince 5(4) with its 4th-order dense output (as rocking_steppers.hpp), steps ending on every
-// sample; events are roots of the dense output by TOMS 748 (event_root.hpp). In the pivot mode the quaternion is
-// normalised at the end of every step (the exact flow keeps |q| = 1; the drift is of the order of the tolerance).
+// sample; events are roots of the dense output by TOMS 748 (event_root.hpp): while rocking on the pieces between
+// turning points of theta, while pivoting on 4 equal parts of each step (a vertex that left the ground inside a part
+// is located by its highest point, then the root after it). The quaternion is normalised at each mode change; R is
+// formed from q / |q| (the exact flow keeps |q| = 1; the drift is of the order of the tolerance). Approximations
+// (docs/method.md): a sign change that begins and ends inside one part is missed; the max tilt over the static limit
+// is evaluated at the located tilt maxima and step ends.
 #include <array>
 #include <cstddef>
 #include <cstdint>
