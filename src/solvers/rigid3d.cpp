@@ -722,6 +722,13 @@ class Engine {
       const S2 xb = edge_.dense(tb2);
       // Events on the piece, earliest first: fall (theta = pi/2), impact (theta = 0), an end unloading.
       const double half_pi = kPi / 2.0;
+      // theta passing alpha_e (the static limit toward this edge's normal): located, as the planar engine's
+      // exceeded_alpha_time_s
+      const double alpha_e = geo_.edges[static_cast<std::size_t>(edge_index_)].alpha;
+      if (!out_.summary.exceeded_limit_time_s && xa[0] < alpha_e && xb[0] >= alpha_e) {
+        out_.summary.exceeded_limit_time_s =
+            locate([&](double t) { return edge_.dense(t)[0] - alpha_e; }, ta, tb2, xa[0] - alpha_e, xb[0] - alpha_e);
+      }
       if (xb[0] >= half_pi && xa[0] < half_pi) {
         const double tf = locate([&](double t) { return edge_.dense(t)[0] - half_pi; }, ta, tb2, xa[0] - half_pi,
                                  xb[0] - half_pi);

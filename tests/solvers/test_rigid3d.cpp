@@ -82,6 +82,10 @@ TEST(Rigid3D, BoxInItsPlaneOfSymmetryEqualsThePlanarEngine) {
         if (p.overturned) {
           EXPECT_NEAR(*s.overturn_time_s, *p.overturn_time_s, 1e-6);
         }
+        ASSERT_EQ(s.exceeded_limit_time_s.has_value(), p.exceeded_alpha_time_s.has_value());
+        if (p.exceeded_alpha_time_s) {
+          EXPECT_NEAR(*s.exceeded_limit_time_s, *p.exceeded_alpha_time_s, 1e-6);
+        }
         // only edge rocking: no pivot
         for (const auto& mc : s.modes) EXPECT_NE(mc.mode, Rigid3DMode::pivot);
         ++cases;

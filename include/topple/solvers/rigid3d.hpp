@@ -56,7 +56,7 @@
 // is located by its highest point, then the root after it). The quaternion is normalised at each mode change; R is
 // formed from q / |q| (the exact flow keeps |q| = 1; the drift is of the order of the tolerance). Approximations
 // (docs/method.md): a sign change that begins and ends inside one part is missed; the max tilt over the static limit
-// is evaluated at the located tilt maxima and step ends.
+// (and, while pivoting, the first time it passes 1) is evaluated at the located tilt maxima and step ends.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -133,7 +133,9 @@ struct Rigid3DSummary {
   /// max over time of tilt / static limit atan(b(u) / h) toward u, the body's plan direction that tips toward the
   /// tilt's direction d (R u = d cos(tilt) - z sin(tilt)); an edge: tilt / alpha_e (the planar theta / alpha)
   double max_tilt_over_limit = 0.0;
-  std::optional<double> exceeded_limit_time_s;  ///< first time the tilt passed the static limit of its direction
+  /// first time the tilt passed the static limit of its direction (rocking: located, theta = alpha_e; pivoting:
+  /// at the located tilt maxima and step ends)
+  std::optional<double> exceeded_limit_time_s;
   std::size_t impacts = 0;
   std::size_t uplifts = 0;               ///< departures from rest
   std::optional<double> uplift_time_s;
