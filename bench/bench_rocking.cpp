@@ -18,6 +18,7 @@
 
 #include "kocaeli_record.hpp"
 #include "topple/motion/pulses.hpp"
+#include "topple/solvers/rigid3d.hpp"
 #include "topple/solvers/rocking.hpp"
 #include "topple/solvers/threshold_search.hpp"
 
@@ -83,6 +84,52 @@ void BM_RockingWithHistory(benchmark::State& state) {
   counters(state, r.summary, rec.size());
 }
 BENCHMARK(BM_RockingWithHistory)->Args({100, 15})->Unit(benchmark::kMillisecond);
+
+void BM_Rigid3DEdge(benchmark::State& state) {
+  // The three-dimensional engine (rigid3d.hpp) on the same body with a depth of 0.5 m under the same record along x:
+  // it rocks about its edges parallel to y exactly as BM_Rocking's block (tests/solvers/test_rigid3d.cpp), so the
+  // ratio of the two figures is the cost of the general engine per sample (issue 29 asks within 5x). Default
+  // tolerances, as BM_Rocking.
+  const GroundMotion& rec = record();
+  const double width = static_cast<double>(state.range(0)) / 100.0;
+  const double slenderness = static_cast<double>(state.range(1)) / 100.0;
+  const auto body = topple::RigidBody3D::box(width, 0.5, width / slenderness);
+  const topple::Rigid3DOptions options;
+  topple::Rigid3DSummary s;
+  for (auto _ : state) {
+    s = topple::rock3d(rec, nullptr, nullptr, body, options).summary;
+    benchmark::DoNotOptimize(s);
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * rec.size()));
+  state.counters["impacts"] = static_cast<double>(s.impacts);
+  state.counters["max_tilt_over_limit"] = s.max_tilt_over_limit;
+  state.counters["steps_per_sample"] = static_cast<double>(s.steps) / static_cast<double>(rec.size());
+}
+BENCHMARK(BM_Rigid3DEdge)->Args({100, 15})->Args({100, 10})->Args({100, 50})->Unit(benchmark::kMillisecond);
+
+void BM_Rigid3DCorner(benchmark::State& state) {
+  // The three-dimensional engine pivoting on the corners of a square box (1 m base, height 1 m / (a/h)) under the
+  // record split equally along x and y (its diagonal): the pivot mode (7 components, Euler's equations) for every
+  // sample the body moves; the same motion as the planar engine on the diagonal section (test_rigid3d.cpp).
+  const GroundMotion& rec = record();
+  const double slenderness = static_cast<double>(state.range(1)) / 100.0;
+  const double width = static_cast<double>(state.range(0)) / 100.0;
+  const auto body = topple::RigidBody3D::box(width, width, width / slenderness);
+  std::vector<double> a(rec.accel_m_s2().begin(), rec.accel_m_s2().end());
+  for (double& x : a) x /= std::sqrt(2.0);  // each axis carries the record / sqrt(2): the record along the diagonal
+  const GroundMotion half = GroundMotion::uniform(a, rec.dt_s(), rec.start_time_s());
+  const topple::Rigid3DOptions options;
+  topple::Rigid3DSummary s;
+  for (auto _ : state) {
+    s = topple::rock3d(half, &half, nullptr, body, options).summary;
+    benchmark::DoNotOptimize(s);
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * rec.size()));
+  state.counters["impacts"] = static_cast<double>(s.impacts);
+  state.counters["max_tilt_over_limit"] = s.max_tilt_over_limit;
+  state.counters["steps_per_sample"] = static_cast<double>(s.steps) / static_cast<double>(rec.size());
+}
+BENCHMARK(BM_Rigid3DCorner)->Args({100, 10})->Unit(benchmark::kMillisecond);
 
 void BM_RockingRk4Thesis(benchmark::State& state) {
   // The thesis' method for comparison: fixed-step RK4, 10 steps per sample interval.

@@ -14,6 +14,7 @@
 #include "progress.hpp"
 #include "common.hpp"
 #include "motion_set_options.hpp"
+#include "rock_3d.hpp"
 #include "rock_coupled.hpp"
 #include "topple/core/error.hpp"
 #include "topple/io/body_file.hpp"
@@ -184,6 +185,60 @@ void run_oriented(const RockOptions& o, const RunMotion& run, const RockingBody&
   report(o, run, horizontal, planar, options, gov.summary, &report_of);
 }
 
+/// --model 3d: the three-dimensional engine (rigid3d.hpp) for a block with a depth (rock_3d.hpp).
+void run_model_3d(const RockOptions& o, RunMotion& run, const RockingBody& body, const RockingOptions& options) {
+  if (!o.body_file.empty() || body.shape != RockingBody::Shape::block) {
+    throw parameter_error(o.body_file.empty() ? "--shape" : "--body",
+                          "--model 3d takes a block (--shape block --width --height --depth) for now; other bodies "
+                          "in three dimensions are not built yet (issue 29)");
+  }
+  if (o.depth.empty()) {
+    throw parameter_error("--depth", "--model 3d needs the block's depth, with a unit (its extent along its own y "
+                                     "axis: along bearing + 90 with --h2)");
+  }
+  if (o.mu || o.mu_k) {
+    throw parameter_error(o.mu ? "--mu" : "--mu-k", "--model 3d does not slide (friction large enough); sliding in "
+                                                    "three dimensions is not built yet");
+  }
+  if (o.slope_deg) throw parameter_error("--slope-deg", "--model 3d has a level base");
+  if (o.direction_step_deg) throw parameter_error("--direction-step-deg", "is for a cylinder of the rocking model");
+  if (options.method != RockingMethod::adaptive) throw parameter_error("--method", "--model 3d is adaptive only");
+  if (!o.out.empty() || !o.plot.empty()) {
+    throw parameter_error(o.out.empty() ? "--plot" : "--out", "--model 3d writes its summary only for now");
+  }
+  Rigid3DRequest request;
+  request.width_m = 2.0 * body.a_m;
+  request.height_m = 2.0 * body.h_m;
+  request.depth_m = parse_length_m(o.depth, "--depth");
+  request.options.g_m_s2 = options.g_m_s2;
+  request.options.restitution = options.restitution;
+  request.options.e = options.e;
+  request.options.rel_tol = options.rel_tol;
+  request.options.max_steps = options.max_steps;
+  request.options.max_run_out_s = options.max_run_out_s;
+  request.json = o.json;
+  std::optional<MotionSet> set;
+  if (!o.h2.empty()) {
+    if (!o.bearing_deg) {
+      throw parameter_error("--bearing-deg", "required with --model 3d and --h2: the azimuth of the block's +x axis "
+                                             "(across its width), degrees clockwise from north");
+    }
+    if (!std::isfinite(*o.bearing_deg)) {
+      throw parameter_error("--bearing-deg", fmt::format("must be finite, got {}", *o.bearing_deg));
+    }
+    set = load_motion_set(run, o.motion, o.h2, o.azimuths);
+    request.set = &*set;
+    request.bearing_deg = o.bearing_deg;
+    request.h2 = o.h2;
+  } else {
+    refuse_without_h2(o.azimuths, {{"--bearing-deg", o.bearing_deg.has_value()}});
+  }
+  naming_options([&] {
+    (void)RigidBody3D::box(request.width_m, request.depth_m, request.height_m);  // "depth" -> --depth
+    run_3d(run, request);
+  });
+}
+
 void run_rock(const RockOptions& o) {
   const double g = o.motion.g_m_s2;
   check_g(g);
@@ -193,6 +248,10 @@ void run_rock(const RockOptions& o) {
   const RockingOptions options = make_options(o);
   RunMotion run = load_run_motion(o.motion, o.pulse, o.vertical);
   run.input.with_duration = true;
+  if (o.model == "3d") {
+    run_model_3d(o, run, body, options);
+    return;
+  }
   if (o.model == "coupled") {  // the coupled slide-rock model (rock_coupled.hpp)
     if (!o.mu) throw parameter_error("--mu", "the coupled model needs the friction coefficient (--mu)");
     if (!o.depth.empty()) {
@@ -240,7 +299,7 @@ void run_rock(const RockOptions& o) {
     return;
   }
   if (o.model != "rocking") {
-    throw parameter_error("--model", fmt::format("'rocking' or 'coupled', got '{}'", o.model));
+    throw parameter_error("--model", fmt::format("'rocking', 'coupled' or '3d', got '{}'", o.model));
   }
   if (o.mu_k) throw parameter_error("--mu-k", "needs --model coupled (the rocking model does not slide)");
   if (o.slope_deg) throw parameter_error("--slope-deg", "needs --model coupled (the rocking model has a level base)");
@@ -387,8 +446,10 @@ void add_rock_command(CLI::App& app) {
                                "'housner' (1 - 2a^2/D, from angular momentum)")->capture_default_str();
   cmd->add_option("--mu", o->mu, "Friction coefficient: check Shenton's slide/rock/slide-rock onset criterion; with "
                                  "--model coupled the static friction coefficient");
-  cmd->add_option("--model", o->model, "rocking (Housner; no sliding) or coupled (sliding and rocking at once, "
-                                       "Coulomb friction --mu/--mu-k: slide_rock.hpp)")->capture_default_str();
+  cmd->add_option("--model", o->model, "rocking (Housner; no sliding), coupled (sliding and rocking at once, "
+                                       "Coulomb friction --mu/--mu-k: slide_rock.hpp) or 3d (a block with --depth "
+                                       "rocking and pivoting on its corners in three dimensions, no sliding: "
+                                       "rigid3d.hpp)")->capture_default_str();
   cmd->add_option("--mu-k", o->mu_k, "--model coupled: kinetic friction coefficient (default: --mu)");
   cmd->add_option("--slope-deg", o->slope_deg, "--model coupled: inclination of the base, degrees, down-slope toward "
                                                "-x (the b1 corner); needs tan(slope) <= --mu and slope <= alpha-");

@@ -1,6 +1,7 @@
 // Oriented objects through the CLI: `topple rock H1 --h2 H2 [--vertical V] --azimuths A1,A2 --bearing-deg B` (box:
 // --depth; cylinder: worst direction), the sweep's bearing axis over motion sets, and their bad input.
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <vector>
 #include <string>
@@ -243,6 +244,60 @@ TEST_F(CliOriented, BadSetSweepsExitTwoNamingTheKey) {
     EXPECT_EQ(r.exit_code, 2) << text << r.err;
     EXPECT_NE(r.err.find(key), std::string::npos) << text << r.err;
   }
+}
+
+// --model 3d (rigid3d.hpp): a block with a depth under one component rocks about its edges parallel to its y axis
+// as the planar block (tests/solvers/test_rigid3d.cpp), with the vertical too: the same verdict and impacts, and the
+// max tilt over its static limit equal to the planar max |theta| / alpha (1e-6; default tolerances in both).
+TEST_F(CliOriented, Model3dBlockUnderOneComponentIsThePlanarBlock) {
+  const auto planar = test::run_json("rock " + h1 + " --vertical " + v + " --shape block --width 20cm --height 80cm "
+                                     "--json");
+  const auto solid = test::run_json("rock " + h1 + " --vertical " + v + " --model 3d --shape block --width 20cm "
+                                    "--depth 30cm --height 80cm --json");
+  EXPECT_EQ(solid.at("model"), "3d");
+  EXPECT_EQ(solid.at("impacts"), planar.at("impacts"));
+  EXPECT_EQ(solid.at("overturned"), planar.at("overturned"));
+  EXPECT_GT(planar.at("impacts").get<int>(), 0);
+  EXPECT_NEAR(solid.at("max_tilt_over_limit").get<double>(), planar.at("max_rotation_over_alpha").get<double>(),
+              1e-6);
+  for (const char* key : {"overturn_time_s", "overturn_azimuth_deg", "max_tilt_rad", "max_tilt_azimuth_deg",
+                          "exceeded_limit_time_s", "uplifts", "energy_lost_j_per_kg", "flight_time_s", "modes", "body",
+                          "solver", "input", "warnings"}) {
+    EXPECT_TRUE(solid.contains(key)) << key;
+  }
+}
+
+// --model 3d with --h2: the block's bearing and the components' azimuths turned together by 30 degrees give the same
+// motion relative to the block (impacts, modes, max tilt to 1e-7) with the azimuths of the tilt turned by 30.
+TEST_F(CliOriented, Model3dBearingTurnsWithTheComponents) {
+  const std::string block = " --model 3d --shape block --width 20cm --depth 30cm --height 80cm --json";
+  const auto a = test::run_json("rock " + h1 + " --h2 " + h2 + " --vertical " + v + " --azimuths 0,90 "
+                                "--bearing-deg 0" + block);
+  const auto b = test::run_json("rock " + h1 + " --h2 " + h2 + " --vertical " + v + " --azimuths 30,120 "
+                                "--bearing-deg 30" + block);
+  EXPECT_GT(a.at("impacts").get<int>(), 0);
+  EXPECT_EQ(a.at("impacts"), b.at("impacts"));
+  EXPECT_EQ(a.at("overturned"), b.at("overturned"));
+  EXPECT_EQ(a.at("modes").size(), b.at("modes").size());
+  EXPECT_NEAR(a.at("max_tilt_rad").get<double>(), b.at("max_tilt_rad").get<double>(), 1e-7);
+  EXPECT_NEAR(std::remainder(b.at("max_tilt_azimuth_deg").get<double>() - a.at("max_tilt_azimuth_deg").get<double>() -
+                                 30.0, 360.0),
+              0.0, 1e-4);
+  EXPECT_EQ(a.at("body").at("bearing_deg"), 0.0);
+}
+
+TEST_F(CliOriented, Model3dRefusesWhatItDoesNotModel) {
+  const auto expect_error = [](const std::string& args, const std::string& option) {
+    const auto r = test::run_cli(args);
+    EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.out;
+    EXPECT_NE(r.err.find(option), std::string::npos) << args << "\n" << r.err;
+  };
+  expect_error("rock " + h1 + " --model 3d --shape block --width 20cm --height 80cm", "--depth");
+  expect_error("rock " + h1 + " --h2 " + h2 + " --azimuths 0,90 --model 3d --shape block --width 20cm --depth 30cm "
+               "--height 80cm", "--bearing-deg");
+  expect_error("rock " + h1 + " --model 3d --shape cylinder --diameter 20cm --height 80cm --depth 20cm", "--shape");
+  expect_error("rock " + h1 + " --model 3d --shape block --width 20cm --depth 30cm --height 80cm --mu 0.5", "--mu");
+  expect_error("rock " + h1 + " --model 3d --shape block --width 20cm --depth 0cm --height 80cm", "--depth");
 }
 
 }  // namespace

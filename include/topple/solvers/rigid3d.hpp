@@ -1,0 +1,172 @@
+#pragma once
+// Three-dimensional rocking and pivoting of a rigid body with a convex polygonal base on a rigid level base under
+// three ground components, without sliding (issue 29, the foundation; docs/method.md, "Rocking in three
+// dimensions").
+//
+// Frames. The ground frame G moves with the ground: x east, y north, z up (the ground's acceleration enters as the
+// inertial force -a_g per unit mass, gravity as -g z). The body frame B: the base plane is z = 0, the base polygon's
+// vertices v_i = (x_i, y_i, 0) are counter-clockwise seen from above, the centre of mass is c = (c_x, c_y, h), h > 0,
+// strictly inside the polygon in plan, J = I_cm / m the inertia tensor about c per unit mass (B axes). Orientation:
+// the unit quaternion q with R(q) mapping B to G. Everything is per unit mass (the mass drops out).
+//
+// Contact modes (friction large enough that no contact point slides):
+//   rest    the base lies flat on the ground;
+//   rocking the body turns about a base edge (v_i, v_i+1) lying on the ground: one degree of freedom, the tilt theta
+//           about the edge's axis e (unit, from v_i to v_i+1); the outward normal of the edge n = e x z. With
+//           b = distance of c's plan from the edge (> 0) and G_v = g + a_z, f_n = -a_g . n (Konstantinidis & Makris
+//           2007, eq 1, for a block; here any edge of a polygon):
+//             J_e theta'' = (b sin theta + h cos theta) f_n - G_v (b cos theta - h sin theta),
+//             J_e = e . J e + b^2 + h^2   (the moment of inertia about the edge, parallel axes).
+//           This is the planar engine's equation (rocking.hpp) with alpha = atan(b / h), D = J_e, a_h = a_g . n.
+//   pivot   the body turns about a base vertex p fixed on the ground: three rotational degrees of freedom, Euler's
+//           equations about the fixed point in the body frame with r = c - p, J_p = J + |r|^2 1 - r r^T:
+//             J_p w' = r x f_B - w x (J_p w),   q' = q (0, w) / 2,   f_B = R^T (-a_x, -a_y, -(g + a_z)).
+//   flight  not modelled (a stated limit): when the vertical contact force vanishes (a body thrown up by a strong
+//           vertical input, or one falling fast near the ground) the first instant is reported
+//           (Rigid3DSummary::flight_time_s, a warning) and the contact is kept, as the planar engine keeps it.
+//
+// Transitions (contact forces and moment balance):
+//   rest -> the centre of pressure p(t) = c_plan - h a_h(t) / (g + a_z(t)) (where the resultant of gravity and the
+//           ground's inertial force meets the base) leaves the polygon: across the interior of edge e (the static
+//           threshold -a_h . n_e > (g + a_z) b_e / h) the body rocks about e; exactly through a vertex V (two
+//           adjacent edges at once, e.g. a box under a component along its diagonal: |a_h| / (g + a_z) = |V - c| / h
+//           with a_h pointing from V to c) it pivots on V.
+//   rocking -> pivot: the vertical contact force at one end of the edge vanishes (the centre of pressure reaches the
+//           end): the body pivots on the other end with the same angular velocity (no impact).
+//   rocking -> impact: theta returns to 0 (the base lands flat). pivot -> impact: another vertex touches down (an
+//           adjacent one: the new contact is that edge) or the base lands flat (a third vertex down and coming down).
+//   rocking/pivot -> fallen: the tilt (the angle between the body's z axis and the vertical) reaches 90 degrees.
+//
+// Impact law (Housner 1963, generalised): the impulse acts at the new contact only, so the angular momentum about it
+// is conserved: about a new vertex p' the whole vector, J_p' w+ = J w- + r' x v_c- (r' = c - p', v_c- the velocity
+// of c before); about a new edge the component along its axis, J_e' theta'+ = e' . (J w- + r' x v_c-). For a block
+// landing on its opposite edge this is Housner's e = 1 - 2 a^2 / D exactly (the planar law). The new contact of a
+// base landing flat is the vertex, or the edge of two vertices, hit with the largest downward velocity; when the
+// motion after the impact would push another vertex into the ground the contact is that edge instead, and when no
+// contact gives a motion that lifts the body it comes to rest (energy counted as lost). A given e
+// (RestitutionMode::given) keeps Housner's direction of the motion after the impact and sets the ratio of kinetic
+// energies to e^2 (the planar engine's theta'+ = e theta'- for a block on its opposite edge).
+//
+// Rest rule: as the planar engine's (rocking.hpp): after a flat landing, kinetic energy below rest_energy_fraction times
+// the energy to lift the centre of mass over the new contact (g (|c - contact| - h)) puts the body at rest.
+//
+// Method: Dormand-Prince 5(4) with its 4th-order dense output (as rocking_steppers.hpp), steps ending on every
+// sample; events are roots of the dense output by TOMS 748 (event_root.hpp): while rocking on the pieces between
+// turning points of theta, while pivoting on 4 equal parts of each step (a vertex that left the ground inside a part
+// is located by its highest point, then the root after it). The quaternion is normalised at each mode change; R is
+// formed from q / |q| (the exact flow keeps |q| = 1; the drift is of the order of the tolerance). Approximations
+// (docs/method.md): a sign change that begins and ends inside one part is missed; the max tilt over the static limit
+// (and, while pivoting, the first time it passes 1) is evaluated at the located tilt maxima and step ends.
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "topple/bodies/body.hpp"
+#include "topple/core/units.hpp"
+#include "topple/motion/ground_motion.hpp"
+#include "topple/solvers/rocking.hpp"
+
+namespace topple {
+
+/// A rigid body with a convex polygonal base, for the three-dimensional engine (frames in the header).
+struct RigidBody3D {
+  std::vector<std::array<double, 2>> base_xy_m;  ///< base polygon in the body frame (z = 0), counter-clockwise
+  Vec3 centre_of_mass_m{};                       ///< c in the body frame; c_z = h > 0
+  std::array<Vec3, 3> inertia_cm_m2{};           ///< J = I_cm / m about c, body axes, m^2 (symmetric)
+
+  /// A uniform box: width along x, depth along y, height (m, > 0, <= kMaxBodyDimension_m), base centred at the
+  /// origin. Throws InputError naming "width", "depth" or "height".
+  [[nodiscard]] static RigidBody3D box(double width_m, double depth_m, double height_m);
+  /// Any body: checks the polygon (>= 3 vertices, finite, convex, counter-clockwise, no repeated vertex), c inside it
+  /// in plan (strictly) with h > 0, J symmetric and positive definite with the triangle inequalities of principal
+  /// moments. Throws InputError naming "base", "centre_of_mass" or "inertia".
+  [[nodiscard]] static RigidBody3D polygon(std::vector<std::array<double, 2>> base_xy_m, Vec3 centre_of_mass_m,
+                                           std::array<Vec3, 3> inertia_cm_m2);
+  /// The body of a mesh as posed (bodies/body.hpp): its support polygon, its centre of mass above the support plane,
+  /// its inertia per unit mass. The body frame is the mesh's frame shifted down to the support plane.
+  [[nodiscard]] static RigidBody3D from_mesh(const MeshBody& body);
+  /// This body turned by angle_rad about the vertical through the body frame's origin (a test of frame
+  /// independence).
+  [[nodiscard]] RigidBody3D rotated_about_vertical(double angle_rad) const;
+
+  [[nodiscard]] double height_m() const noexcept { return centre_of_mass_m[2]; }
+  /// The static tilt limit toward plan direction azimuth (clockwise from north) atan(b / h), b = the base's extent
+  /// beyond c in that direction (its support function): the tilt at which c passes over the base's edge or vertex.
+  [[nodiscard]] double static_tilt_limit_rad(double azimuth_deg) const;
+};
+
+struct Rigid3DOptions {
+  double g_m_s2 = kStandardGravity;
+  RestitutionMode restitution = RestitutionMode::housner;
+  double e = 1.0;                        ///< given: the kinetic-energy ratio at an impact is e^2, e in [0, 1]
+  double rel_tol = 1e-8;                 ///< Dormand-Prince relative tolerance per step
+  double abs_tol = 1e-12;                ///< absolute, on the state scaled by alpha and p alpha (as rocking.hpp)
+  double rest_energy_fraction = 1e-8;    ///< rest rule (header), in (0, 1)
+  double max_run_out_s = 60.0;           ///< after the record, still ground, until rest, fall or this long, s
+  std::size_t max_steps = 100'000'000;   ///< integrator steps (accepted and rejected); StepLimitError past it
+  bool record_history = false;           ///< fill Rigid3DResult::history
+};
+
+enum class Rigid3DMode : std::uint8_t { rest, rocking, pivot, fallen };
+[[nodiscard]] std::string_view rigid3d_mode_name(Rigid3DMode mode);  ///< "rest", "rocking", "pivot", "fallen"
+
+/// A mode entered at time_s, with its contact: rocking: the edge (vertex_a, vertex_b = vertex_a + 1, indices into
+/// base_xy_m); pivot: the vertex vertex_a (vertex_b = -1); others -1, -1.
+struct Rigid3DModeChange {
+  double time_s = 0.0;
+  Rigid3DMode mode = Rigid3DMode::rest;
+  int vertex_a = -1;
+  int vertex_b = -1;
+};
+
+struct Rigid3DSummary {
+  bool overturned = false;
+  std::optional<double> overturn_time_s;
+  double overturn_azimuth_deg = 0.0;     ///< the direction the top fell toward, clockwise from north
+  double max_tilt_rad = 0.0;             ///< largest angle between the body's z axis and the vertical
+  double max_tilt_azimuth_deg = 0.0;     ///< the direction of that tilt (toward which the top leans)
+  double max_tilt_time_s = 0.0;
+  /// max over time of tilt / static limit atan(b(u) / h) toward u, the body's plan direction that tips toward the
+  /// tilt's direction d (R u = d cos(tilt) - z sin(tilt)); an edge: tilt / alpha_e (the planar theta / alpha)
+  double max_tilt_over_limit = 0.0;
+  /// first time the tilt passed the static limit of its direction (rocking: located, theta = alpha_e; pivoting:
+  /// at the located tilt maxima and step ends)
+  std::optional<double> exceeded_limit_time_s;
+  std::size_t impacts = 0;
+  std::size_t uplifts = 0;               ///< departures from rest
+  std::optional<double> uplift_time_s;
+  double energy_lost_j_per_kg = 0.0;     ///< to impacts and the rest rule
+  std::optional<double> flight_time_s;   ///< first instant the vertical contact force vanished (contact kept: a limit)
+  std::vector<Rigid3DModeChange> modes;  ///< every mode entered, in order (the first: rest at the start)
+  double end_time_s = 0.0;
+  Rigid3DMode end_mode = Rigid3DMode::rest;
+  std::size_t steps = 0;
+  std::vector<std::string> warnings;
+};
+
+/// On the record's samples and at every event (the state after it).
+struct Rigid3DHistory {
+  std::vector<double> time_s;
+  std::vector<Vec3> position_m;          ///< the body frame's origin in the ground frame
+  std::vector<Quaternion> orientation;   ///< q (w, x, y, z): body -> ground
+  std::vector<Vec3> angular_velocity_rad_s;  ///< in the ground frame
+  std::vector<double> energy_j_per_kg;   ///< kinetic (relative to the ground) + g (z_c - h)
+  std::vector<Rigid3DMode> mode;
+};
+
+struct Rigid3DResult {
+  Rigid3DSummary summary;
+  Rigid3DHistory history;
+};
+
+/// The response to ground accelerations along x (east; required), y (north) and z (up) (m/s^2; null: absent). The
+/// components may have different grids (the union is used, input_grid.hpp). Throws InputError for a bad option or
+/// g + a_z <= 0 ("vertical").
+[[nodiscard]] Rigid3DResult rock3d(const GroundMotion& x, const GroundMotion* y, const GroundMotion* z,
+                                   const RigidBody3D& body, const Rigid3DOptions& options = {});
+
+}  // namespace topple
