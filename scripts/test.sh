@@ -8,9 +8,13 @@
 # mesh files; the sanitized CLI on good and bad input, which runs every solver too) and a stated list (units, object
 # choices, ground motions, input grids, motion sets, the ensemble store, bodies, the inversions' survey keys). The
 # solver-only tests run in the optimised build only: the whole suite under the sanitizers took 19 of this script's
-# 38-40 minutes (docs/performance.md, "The test command"). One statistical test of the list is left out there too (the
-# asan test preset excludes it): the three-component recovery trials (Recovery3c.RecoversPgaFrequencyAndDirection), a
-# minute of the same solvers and likelihood that the other Inversion3c/Survey3c tests already run under the sanitizers.
+# 38-40 minutes (docs/performance.md, "The test command"). The statistical recovery trials of the list are left out
+# there too (the asan test preset excludes them; they run in the optimised build): Recovery3c.RecoversPgaFrequency-
+# AndDirection, Inversion.RecoversKnownShakingWithCalibratedIntervals, PosteriorWithPrior.SyntheticCalibrationWithThe-
+# EarthquakePrior, CoupledSurvey.RecoversKnownShakingWithCoupledObjectsAndCalibratedIntervals and RegionRecovery.-
+# IntervalsCoverTheTruthAndPoolingNarrowsThem: 2.5 CPU minutes under the sanitizers, repeating on many synthetic
+# surveys the inversions that the other tests of the same executables run once there. A test's own code compiles at
+# -O0 in that build (tests/CMakeLists.txt), the library and the CLI at -O1.
 # Tests that read ../shared/ (records, verification data) skip when it is absent.
 set -euo pipefail
 cd "$(dirname "$0")/.."
