@@ -25,7 +25,8 @@ fi
 # scripts/test.sh sets TOPPLE_PYTHON_CCACHE=1 (and ccache's settings): the library's objects then come from the
 # release build's cache entries. Those match only for the same command line, compiler name included (ccache hashes
 # it): scikit-build-core would otherwise set CXX to Python's sysconfig compiler (x86_64-linux-gnu-g++), where the
-# release preset finds c++; both are Debian's GCC. CXX is read on build/python's first configure only.
+# release preset finds c++; both are Debian's GCC. CXX and the launcher are read on build/python's first configure
+# only: a build/python made before this reuses nothing until it is removed.
 if [[ ${TOPPLE_PYTHON_CCACHE:-0} == 1 ]]; then
   export CMAKE_CXX_COMPILER_LAUNCHER=ccache CXX="${CXX:-c++}"
 fi

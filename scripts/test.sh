@@ -13,8 +13,8 @@
 # AndDirection, Inversion.RecoversKnownShakingWithCalibratedIntervals, PosteriorWithPrior.SyntheticCalibrationWithThe-
 # EarthquakePrior, CoupledSurvey.RecoversKnownShakingWithCoupledObjectsAndCalibratedIntervals and RegionRecovery.-
 # IntervalsCoverTheTruthAndPoolingNarrowsThem: 2.5 CPU minutes under the sanitizers, repeating on many synthetic
-# surveys the inversions that the other tests of the same executables run once there. A test's own code compiles at
-# -O0 in that build (tests/CMakeLists.txt), the library and the CLI at -O1.
+# surveys the inversions that the other tests of the same executables run once there. A test's own code and the CLI
+# compile at -O0 in that build (tests/CMakeLists.txt, cmake/ToppleOptions.cmake), the library at -O1.
 # Tests that read ../shared/ (records, verification data) skip when it is absent.
 set -euo pipefail
 cd "$(dirname "$0")/.."
