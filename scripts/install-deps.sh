@@ -32,6 +32,7 @@ test_packages=(
   libopenmpi-dev openmpi-bin
   clang     # the fuzz preset (libFuzzer)
   chromium  # the inversion report is opened in a real headless browser
+  ccache    # scripts/test.sh: the Python package's build reuses the release build's objects of the library
 )
 case "$mode" in
   --run) packages=("${run_packages[@]}") ;;

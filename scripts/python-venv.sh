@@ -22,5 +22,13 @@ if $venv/bin/python -m pip show topple >/dev/null 2>&1; then
   "${pip[@]}" uninstall -y topple
 fi
 # CMAKE_BUILD_PARALLEL_LEVEL: the extension build uses every core (TOPPLE_JOBS when set).
+# scripts/test.sh sets TOPPLE_PYTHON_CCACHE=1 (and ccache's settings): the library's objects then come from the
+# release build's cache entries. Those match only for the same command line, compiler name included (ccache hashes
+# it): scikit-build-core would otherwise set CXX to Python's sysconfig compiler (x86_64-linux-gnu-g++), where the
+# release preset finds c++; both are Debian's GCC. CXX and the launcher are read on build/python's first configure
+# only: a build/python made before this reuses nothing until it is removed.
+if [[ ${TOPPLE_PYTHON_CCACHE:-0} == 1 ]]; then
+  export CMAKE_CXX_COMPILER_LAUNCHER=ccache CXX="${CXX:-c++}"
+fi
 CMAKE_BUILD_PARALLEL_LEVEL="${TOPPLE_JOBS:-$(nproc)}" "${pip[@]}" install --no-build-isolation --no-deps ./
 $venv/bin/python -c "import topple; topple.GroundMotion([0.0, 0.1], 0.01)"

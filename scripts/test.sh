@@ -8,9 +8,13 @@
 # mesh files; the sanitized CLI on good and bad input, which runs every solver too) and a stated list (units, object
 # choices, ground motions, input grids, motion sets, the ensemble store, bodies, the inversions' survey keys). The
 # solver-only tests run in the optimised build only: the whole suite under the sanitizers took 19 of this script's
-# 38-40 minutes (docs/performance.md, "The test command"). One statistical test of the list is left out there too (the
-# asan test preset excludes it): the three-component recovery trials (Recovery3c.RecoversPgaFrequencyAndDirection), a
-# minute of the same solvers and likelihood that the other Inversion3c/Survey3c tests already run under the sanitizers.
+# 38-40 minutes (docs/performance.md, "The test command"). The statistical recovery trials of the list are left out
+# there too (the asan test preset excludes them; they run in the optimised build): Recovery3c.RecoversPgaFrequency-
+# AndDirection, Inversion.RecoversKnownShakingWithCalibratedIntervals, PosteriorWithPrior.SyntheticCalibrationWithThe-
+# EarthquakePrior, CoupledSurvey.RecoversKnownShakingWithCoupledObjectsAndCalibratedIntervals and RegionRecovery.-
+# IntervalsCoverTheTruthAndPoolingNarrowsThem: 2.5 CPU minutes under the sanitizers, repeating on many synthetic
+# surveys the inversions that the other tests of the same executables run once there. A test's own code and the CLI
+# compile at -O0 in that build (tests/CMakeLists.txt, cmake/ToppleOptions.cmake), the library at -O1.
 # Tests that read ../shared/ (records, verification data) skip when it is absent.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -26,8 +30,21 @@ phase() {
 scripts/install-deps.sh --test  # everything: the run packages plus test libraries, MPI, clang, chromium
 scripts/test-venv.sh || echo "test-venv: no .venv-test; the pyrotd/eqsig comparisons will be skipped"
 
+# ccache (Debian's, from install-deps --test) between the release and the Python phases only: the Python package's
+# build (build/python, scikit-build-core) compiles the library's sources with exactly the release preset's command
+# lines (-O3 -DNDEBUG -fPIC, the same includes and definitions; python-venv.sh names the same compiler), so with the
+# cache they are hits instead of a third compile of the library (358 of the phase's 444 CPU seconds). Depend mode:
+# the hash comes from the compiler's own -MD output, without running the preprocessor a second time on a miss. A
+# cache already configured (CCACHE_DIR) is used as it is; otherwise one in build/ccache, empty on a clean clone.
+launcher=()
+if command -v ccache >/dev/null; then
+  export CCACHE_DIR="${CCACHE_DIR:-$PWD/build/ccache}" CCACHE_BASEDIR="${CCACHE_BASEDIR:-$PWD}" CCACHE_DEPEND=true
+  launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+  export TOPPLE_PYTHON_CCACHE=1
+fi
+
 phase "release build and tests"
-cmake --preset release -DTOPPLE_BUILD_TESTS=ON -DTOPPLE_BUILD_BENCH=ON >/dev/null  # on after a demo.sh build
+cmake --preset release -DTOPPLE_BUILD_TESTS=ON -DTOPPLE_BUILD_BENCH=ON "${launcher[@]}" >/dev/null  # bench: on after a demo.sh build
 cmake --build --preset release -j "$jobs"
 ctest --preset release -j "$jobs"
 
