@@ -70,6 +70,13 @@ double mean_over(const std::vector<double>& a, double dt, double t0, double t1) 
   return integral / (t1 - t0);
 }
 
+// Steps whose contact problem the solver left unconverged (its info != 0), counted instead of Siconos' default
+// message on stderr. A plain function pointer is all TimeStepping takes, hence the thread-local counter.
+thread_local std::vector<double>* unconverged_times = nullptr;
+void count_unconverged(int info, Simulation* simulation) {
+  if (info != 0 && unconverged_times != nullptr) unconverged_times->push_back(simulation->nextTime());
+}
+
 bool inside_footprint(const std::array<Vec3, 4>& c, double x, double y) {
   // Convex quadrilateral in order: the point is inside when all cross products have one sign.
   int sign = 0;
@@ -133,8 +140,10 @@ SiconosResult simulate_siconos_box(const SiconosBox& box, const SiconosGroundMot
   auto simulation = std::make_shared<TimeStepping>(nsds, td, osi, osnspb);
   simulation->setNewtonTolerance(1e-10);
   simulation->setNewtonMaxIteration(20);
+  simulation->setCheckSolverFunction(&count_unconverged);
 
   SiconosResult result;
+  unconverged_times = &result.unconverged_step_times_s;
   SiconosHistory& h = result.history;
   auto record = [&](double t) {
     const SiconosVector& q = *body->q();
@@ -180,6 +189,7 @@ SiconosResult simulate_siconos_box(const SiconosBox& box, const SiconosGroundMot
     record(t1);
   }
 
+  unconverged_times = nullptr;
   const auto& last = h.position_m.back();
   result.final_displacement_m = {last[0], last[1]};
   const auto& ql = h.quaternion.back();

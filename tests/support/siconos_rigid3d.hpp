@@ -75,6 +75,9 @@ struct SiconosResult {
   std::array<double, 4> max_corner_z_m{0.0, 0.0, 0.0, 0.0};  ///< max height reached by each base corner
   std::array<double, 2> final_displacement_m{0.0, 0.0};     ///< CM horizontal displacement at the end
   double final_yaw_rad = 0.0;                                ///< rotation about the vertical at the end
+  /// Ends of the steps whose contact problem NSGS left above solver_tolerance (Siconos' info != 0); counted here
+  /// instead of Siconos' default message on stderr.
+  std::vector<double> unconverged_step_times_s;
 };
 
 /// Runs the Siconos simulation. Throws std::runtime_error when Siconos fails.

@@ -113,6 +113,7 @@ TEST(SiconosReference, RockingInItsPlaneOfSymmetryMatchesThePlanarEngine) {
     ASSERT_FALSE(planar.overturned);
     ASSERT_GT(planar.impacts, 5u);  // the comparison really runs through impacts
     EXPECT_FALSE(run.reference.overturned);
+    EXPECT_TRUE(run.reference.unconverged_step_times_s.empty()) << "h = " << h;
 
     double first_impact_s = 1e9;
     for (const auto& e : run.planar.events)
@@ -156,6 +157,19 @@ TEST(SiconosReference, OverturningUnderALongPulseMatchesThePlanarVerdictAndTime)
   std::printf("overturning 0.5 g, 0.5 s: reference reaches 80 deg at %.4f s, planar at %.4f s (falls at %.4f s)\n",
               *run.reference.overturn_time_s, planar_80, run.planar.summary.overturn_time_s.value_or(-1));
   EXPECT_NEAR(*run.reference.overturn_time_s, planar_80, 0.01 * planar_80);
+  // The CM leaves the base's footprint when the planar |theta| first exceeds alpha (same tolerance and reason).
+  ASSERT_TRUE(run.planar.summary.exceeded_alpha_time_s.has_value());
+  ASSERT_TRUE(run.reference.cm_past_base_time_s.has_value());
+  const auto& unconverged = run.reference.unconverged_step_times_s;
+  std::printf("  CM past the base at %.4f s, planar |theta| > alpha at %.4f s; %zu unconverged contact steps, from "
+              "%.4f s\n", *run.reference.cm_past_base_time_s, *run.planar.summary.exceeded_alpha_time_s,
+              unconverged.size(), unconverged.empty() ? -1.0 : unconverged.front());
+  EXPECT_NEAR(*run.reference.cm_past_base_time_s, *run.planar.summary.exceeded_alpha_time_s,
+              0.01 * *run.planar.summary.exceeded_alpha_time_s);
+  // NSGS leaves a few steps unconverged late in the fall (measured: 4, from 1.42 s, tilt above 70 deg, the two
+  // pivot corners carrying the whole weight at a grazing angle); none before the CM passed the base, after which
+  // the pulse is over and the fall is decided.
+  for (const double t : unconverged) EXPECT_GT(t, *run.reference.cm_past_base_time_s);
   // The fall is on the planar engine's side (+1: toward +x), in the plane of the input.
   ASSERT_NE(run.planar.summary.overturned_side, 0);
   EXPECT_NEAR(run.reference.max_tilt_axis[0], run.planar.summary.overturned_side, 1e-6);
@@ -191,6 +205,7 @@ TEST(SiconosReference, ABoxThatCannotUpliftSlidesAsTheTwoDimensionalSlidingSolve
     error[k] = std::hypot(residual[k][0] - ux, residual[k][1] - uy);
     EXPECT_LT(r.max_tilt_rad, 1e-4) << "h = " << steps[k];
     EXPECT_LT(std::abs(r.final_yaw_rad), 1e-5) << "h = " << steps[k];
+    EXPECT_TRUE(r.unconverged_step_times_s.empty()) << "h = " << steps[k];
   }
   const double ex = 2 * residual[1][0] - residual[0][0], ey = 2 * residual[1][1] - residual[0][1];
   const double extrapolated_error = std::hypot(ex - ux, ey - uy);
@@ -213,20 +228,20 @@ TEST(SiconosReference, ABoxThatCannotUpliftSlidesAsTheTwoDimensionalSlidingSolve
 // and the tilt points along the diagonal within 2 deg (measured 0.6 deg: the corner's inertia tensor is not
 // isotropic, so the tilt axis leans slightly off the perpendicular to the diagonal). The edge threshold a / c (0.25)
 // lies below the corner one (0.29) here, so a load along the diagonal at 1.02 x the edge threshold must not lift:
-// the onset is the corner's, not the edge's.
+// the onset is the corner's, not the edge's. The same with a vertical ground acceleration (g -> g + a_v).
 TEST(SiconosReference, ALoadAlongTheDiagonalPivotsOnACornerAtTheCornersStaticThreshold) {
   const double a = 0.1, b = 0.06, c = 0.4;
   const double d = std::hypot(a, b);
   const double corner_threshold = d / c;  // A / g
-  auto run = [&](double ratio) {
+  auto run = [&](double ratio, double vertical_g = 0.0) {
     const double A = ratio * kG;
     const double dt = 0.005;
     // Ground acceleration toward -diagonal: the inertial load pushes the box toward the +x+y corner.
-    std::vector<double> ax(101, -A * a / d), ay(101, -A * b / d);
+    std::vector<double> ax(101, -A * a / d), ay(101, -A * b / d), az(101, vertical_g * kG);
     SiconosOptions options;
     options.step_s = 2e-4;
     options.duration_s = 0.4;
-    return simulate_siconos_box(SiconosBox{a, b, c, 1.0, 0.0, 10.0}, SiconosGroundMotion{dt, ax, ay, {}}, options);
+    return simulate_siconos_box(SiconosBox{a, b, c, 1.0, 0.0, 10.0}, SiconosGroundMotion{dt, ax, ay, az}, options);
   };
   const auto below = run(0.98 * corner_threshold);
   const auto above = run(1.02 * corner_threshold);
@@ -246,6 +261,17 @@ TEST(SiconosReference, ALoadAlongTheDiagonalPivotsOnACornerAtTheCornersStaticThr
   for (std::size_t i = 1; i < 4; ++i) EXPECT_GT(above.max_corner_z_m[i], 5e-4) << "corner " << i;
   EXPECT_NEAR(direction_deg, diagonal_deg, 2.0);
   EXPECT_FALSE(above.overturned);
+  for (const auto& r : {below, above, edge}) EXPECT_TRUE(r.unconverged_step_times_s.empty());
+
+  // With a vertical ground acceleration a_v (up) the effective gravity is g + a_v and the threshold A = (g + a_v)
+  // d / c: under a_v = -0.3 g the box lifts at 1.02 x 0.7 of the static threshold and not at 0.98 x 0.7.
+  const auto below_v = run(0.98 * 0.7 * corner_threshold, -0.3);
+  const auto above_v = run(1.02 * 0.7 * corner_threshold, -0.3);
+  std::printf("corner with a_v = -0.3 g: max lift at 0.98x %.2e m, at 1.02x %.2e m\n", max_lift(below_v),
+              max_lift(above_v));
+  EXPECT_LT(max_lift(below_v), 1e-5);
+  EXPECT_GT(max_lift(above_v), 5e-4);
+  EXPECT_LT(above_v.max_corner_z_m[0], 1e-6);
 }
 
 }  // namespace
