@@ -60,9 +60,10 @@ double mean_over(const std::vector<double>& a, double dt, double t0, double t1) 
   const double t_end = dt * static_cast<double>(a.size() - 1);
   double integral = 0.0;
   for (double ta = std::max(t0, 0.0); ta < std::min(t1, t_end);) {
-    const auto i = std::min(static_cast<std::size_t>(std::floor(ta / dt)), a.size() - 2);
-    double tb = std::min({t1, t_end, dt * static_cast<double>(i + 1)});
-    if (tb <= ta) tb = std::min({t1, t_end, dt * static_cast<double>(i + 2)});  // ta rounded onto a sample
+    auto i = std::min(static_cast<std::size_t>(std::floor(ta / dt)), a.size() - 2);
+    if (dt * static_cast<double>(i + 1) <= ta && i + 2 < a.size()) ++i;  // ta on a sample, floor rounded down
+    const double tb = std::min({t1, t_end, dt * static_cast<double>(i + 1)});
+    if (tb <= ta) break;
     auto on_piece = [&](double t) { return a[i] + (t / dt - static_cast<double>(i)) * (a[i + 1] - a[i]); };
     integral += 0.5 * (on_piece(ta) + on_piece(tb)) * (tb - ta);
     ta = tb;
