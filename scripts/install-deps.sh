@@ -31,6 +31,7 @@ test_packages=(
   libgtest-dev libgmock-dev googletest libbenchmark-dev
   libopenmpi-dev openmpi-bin
   clang     # the fuzz preset (libFuzzer)
+  libsiconos-kernel-dev libsiconos-mechanics-dev libsiconos-numerics-dev  # test_siconos_reference: the 3-D check
   chromium  # the inversion report is opened in a real headless browser
   ccache    # scripts/test.sh: the Python package's build reuses the release build's objects of the library
 )
