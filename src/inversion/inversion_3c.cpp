@@ -424,6 +424,9 @@ std::pair<std::vector<MatchTable>, std::size_t> simulate_matches_3c(const Site& 
 detail::SiteRuns detail::simulate_site_3c(const Site& site, const InversionSettings& st,
                                           const std::vector<double>& pga_g, const FamilyGrid3c& family,
                                           const InversionOptions& options) {
+  if (!site.populations.empty()) {  // not yet: io::read_survey refuses them first (docs/survey.md, "Populations")
+    throw parameter_error("population", "populations are inverted with one component only (components = 1)");
+  }
   SiteRuns out;
   // Static thresholds (header, item 6) with the family's largest vertical ratio rho (RotD50 of the stored pair is 1).
   double rho = 0.0;
