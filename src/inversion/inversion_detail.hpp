@@ -9,6 +9,7 @@
 #include "topple/inversion/inversion.hpp"
 #include "topple/inversion/inversion_3c.hpp"
 #include "topple/motion/synthesis.hpp"
+#include "topple/survey/population.hpp"
 
 namespace topple::detail {
 
@@ -71,9 +72,6 @@ struct SiteRuns {
 
 // ---- Populations (population_likelihood.cpp; docs/method.md, "Populations of objects") ----
 
-/// The category of a member's run: stayed, rocked (visibly, stood), slid (visibly, stood; coupled model), overturned.
-enum class PopulationCategory { stayed = 0, rocked = 1, slid = 2, overturned = 3 };
-inline constexpr std::size_t kPopulationCategories = 4;
 
 /// The runs of every population's members: per population its member count K and the members' shares in each
 /// category per (cell, motion), index ((c * motions + k) * 4 + category); run_log the sum over populations of
@@ -88,9 +86,6 @@ struct PopulationRuns {
 [[nodiscard]] PopulationRuns simulate_populations(const Site& site, const InversionSettings& settings,
                                                   const std::vector<double>& pga_g, const FamilyGrid& family,
                                                   const InversionOptions& options);
-/// ln P(counts | shares): the multinomial over overturned, rocked (if counted), slid (if counted) and the rest, each
-/// share floored by the population's evidence error rate (eq. P1, docs/method.md).
-[[nodiscard]] double population_log_likelihood(const Population& population, std::span<const double> share);
 /// The populations' reports with model_fraction (the mean over each cell's motions of the overturned share).
 [[nodiscard]] std::vector<PopulationReport> population_reports(const Site& site, const PopulationRuns& runs,
                                                                std::size_t cells);

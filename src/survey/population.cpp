@@ -165,6 +165,39 @@ double population_min_slenderness(const Population& p) {
   return out;
 }
 
+double population_log_likelihood(const Population& p, std::span<const double> share) {
+  // The categories the survey counts: overturned always, rocked and slid when given; the rest (count minus those)
+  // takes every other run's category. Observed n_j, model f_j (the members' shares), J categories with the rest.
+  std::vector<double> n_obs{static_cast<double>(p.overturned)};
+  std::vector<double> f{share[static_cast<std::size_t>(PopulationCategory::overturned)]};
+  if (p.rocked) {
+    n_obs.push_back(*p.rocked);
+    f.push_back(share[static_cast<std::size_t>(PopulationCategory::rocked)]);
+  }
+  if (p.slid) {
+    n_obs.push_back(*p.slid);
+    f.push_back(share[static_cast<std::size_t>(PopulationCategory::slid)]);
+  }
+  double n_rest = p.count;
+  double f_rest = 1.0;
+  for (std::size_t j = 0; j < n_obs.size(); ++j) {
+    n_rest -= n_obs[j];
+    f_rest -= f[j];
+  }
+  n_obs.push_back(n_rest);
+  f.push_back(std::max(0.0, f_rest));
+  // Each object's observation is wrong with probability eps (evidence_error_rate), into any of the J categories:
+  // p_j = eps + (1 - J eps) f_j, which for J = 2 is the objects' eps + (1 - 2 eps) m (inversion.hpp, item 2).
+  const double eps = evidence_error_rate(p.prototype.evidence);
+  const auto J = static_cast<double>(f.size());
+  // log multinomial: ln N! - sum ln n_j! + sum n_j ln p_j (eq. P1, docs/method.md).
+  double ll = std::lgamma(static_cast<double>(p.count) + 1.0);
+  for (std::size_t j = 0; j < f.size(); ++j) {
+    ll += n_obs[j] * std::log(eps + (1.0 - J * eps) * f[j]) - std::lgamma(n_obs[j] + 1.0);
+  }
+  return ll;
+}
+
 std::string population_member_rule(const Population& p) {
   const std::size_t n = p.sample.size();
   const auto k = static_cast<std::size_t>(p.members);

@@ -1,6 +1,8 @@
 #pragma once
 // Populations of similar objects (survey.hpp, Population; docs/survey.md "Populations"; docs/method.md "Populations of
 // objects"): the checks of a population's counts and sizes, and the K representative members the inversion simulates.
+#include <cstddef>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -10,6 +12,16 @@ namespace topple {
 
 /// The most representative members a population may ask for (`members`): each costs the runs of one object.
 inline constexpr int kMaxPopulationMembers = 200;
+
+/// The category of a member's run: stayed, rocked (visibly, stood), slid (visibly, stood; coupled model), overturned
+/// (docs/method.md, "Populations of objects").
+enum class PopulationCategory { stayed = 0, rocked = 1, slid = 2, overturned = 3 };
+inline constexpr std::size_t kPopulationCategories = 4;
+
+/// ln P(counts | shares) (eq. P1, docs/method.md): the multinomial over overturned, rocked (if counted), slid (if
+/// counted) and the rest, the model's share f_j of each (`share`, indexed by PopulationCategory; the rest takes
+/// 1 - the counted ones' shares) floored by the population's evidence error rate eps: p_j = eps + (1 - J eps) f_j.
+[[nodiscard]] double population_log_likelihood(const Population& population, std::span<const double> share);
 
 /// Checks a population read by io::read_survey: counts (count >= 1; overturned, rocked, slid >= 0; their sum <= count),
 /// fallen azimuths (at most `overturned`, each in [0, 360)), sizes (a range or a sample for each dimension the shape
