@@ -110,7 +110,7 @@ void check_population(const Population& p) {
       if (!v) throw parameter_error(field, fmt::format("a measured {} needs its {}", p.shape, key));
       if (!(*v > 0.0)) throw parameter_error(field, fmt::format("must be positive, got {} m", *v));
       if (range && (*v < range->low || *v > range->high)) {
-        throw parameter_error(field, fmt::format("{} m is outside the population's stated range [{}, {}] m", *v,
+        throw parameter_error(field, fmt::format("{:.4g} m is outside the population's stated range [{:.4g}, {:.4g}] m", *v,
                                                  range->low, range->high));
       }
     };

@@ -8,10 +8,13 @@
 #include <gtest/gtest.h>
 
 #include "support/observed_objects.hpp"
+#include "support/shared_data.hpp"
 
 #include "topple/core/error.hpp"
 #include "topple/inversion/inversion.hpp"
 #include "topple/io/survey_file.hpp"
+#include "topple/output/inversion_output.hpp"
+#include "topple/output/report.hpp"
 #include "topple/motion/synthesis.hpp"
 #include "topple/survey/population.hpp"
 
@@ -124,6 +127,81 @@ TEST(PopulationReader, KeysAsDocumented) {
   EXPECT_NEAR(*p.sample[1].height_m, 0.90, 1e-12);
   EXPECT_EQ(p.prototype.evidence, Evidence::likely);
   EXPECT_NEAR(p.prototype.mu.high, 0.7, 1e-12);
+}
+
+TEST(PopulationReader, CsvRowsAreTheTomlPopulation) {
+  // A row with a count is the population (ranges in the header's unit), rows tagged population = its id its sample.
+  const Survey csv = io::parse_survey(
+      "site.name,c\nid,shape,width_cm,height_cm,mu,count,overturned,rocked,population\n"
+      "stones,block,\"[25, 45]\",\"[70, 130]\",\"[0.5, 0.7]\",150,18,4,\n"
+      "s1,,30,100,,,,,stones\ns2,,40,90,,,,,stones\n",
+      "pop.csv", ".");
+  const Survey toml = io::parse_survey(
+      "[site]\nname = \"c\"\n[[population]]\nid = \"stones\"\nshape = \"block\"\nwidth = [\"25cm\", \"45cm\"]\n"
+      "height = [\"70cm\", \"130cm\"]\nmu = [0.5, 0.7]\ncount = 150\noverturned = 18\nrocked = 4\n"
+      "sample = [{width = \"30cm\", height = \"100cm\"}, {width = \"40cm\", height = \"90cm\"}]\n",
+      "pop.toml", ".");
+  ASSERT_EQ(csv.sites.front().populations.size(), 1U);
+  EXPECT_TRUE(csv.sites.front().objects.empty());
+  const Population& a = csv.sites.front().populations.front();
+  const Population& b = toml.sites.front().populations.front();
+  EXPECT_EQ(a.count, b.count);
+  EXPECT_EQ(a.overturned, b.overturned);
+  EXPECT_EQ(a.rocked, b.rocked);
+  EXPECT_EQ(a.width_m->low, b.width_m->low);
+  EXPECT_EQ(a.height_m->high, b.height_m->high);
+  ASSERT_EQ(a.sample.size(), 2U);
+  EXPECT_EQ(*a.sample[1].width_m, *b.sample[1].width_m);
+  EXPECT_EQ(*a.sample[0].height_m, *b.sample[0].height_m);
+  // A member of no population is refused at its cell.
+  try {
+    (void)io::parse_survey("id,width_cm,height_cm,mu,count,overturned,population\nst,30,90,0.6,10,2,\n"
+                           "m1,30,100,,,,stone\n", "bad.csv", ".");
+    ADD_FAILURE() << "accepted a member of an unknown population";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().line, std::optional<std::size_t>(3)) << e.what();
+    EXPECT_NE(std::string(e.what()).find("population"), std::string::npos) << e.what();
+  }
+}
+
+TEST(PopulationInversion, JsonAndReportShowObservedAgainstModel) {
+  // A population only, on a 4 x 3 grid with 3 motions: the JSON's observed fraction is the count's, the model's
+  // fractions are shares in [0, 1], and the report writes its table and Figure 5.
+  InversionSettings st = testing::small_grid(3);
+  st.pga_count = 4;
+  st.freq_count = 3;
+  Site site;
+  site.name = "cemetery";
+  Population p = stones(40, 10);
+  p.members = 4;
+  site.populations.push_back(p);
+  InversionOptions options;
+  options.next_objects = false;
+  const InversionResult r = invert_site(site, st, options);
+  ASSERT_EQ(r.populations.size(), 1U);
+  const auto j = io::inversion_json(r, site);
+  const auto& pj = j.at("populations").at(0);
+  EXPECT_EQ(pj.at("count").get<int>(), 40);
+  EXPECT_DOUBLE_EQ(pj.at("observed_fraction").get<double>(), 0.25);
+  EXPECT_EQ(pj.at("model_fraction_over_pga").at("fraction").size(), 4U);
+  EXPECT_EQ(pj.at("model_fraction_over_freq").at("fraction").size(), 3U);
+  for (const double f : r.populations.front().model_fraction) {
+    EXPECT_GE(f, 0.0);
+    EXPECT_LE(f, 1.0);
+  }
+  // The highest PGA (2 g) topples more of the class than the lowest (0.05 g, below every member's g b/h >= 0.17 g:
+  // none can even lift there).
+  EXPECT_EQ(r.populations.front().model_fraction[0], 0.0);
+  EXPECT_GT(r.populations.front().model_fraction[3 * 3 + 0], 0.0);
+  test::TempDir tmp;
+  Survey survey;
+  survey.sites = {site};
+  survey.inversion = st;
+  write_report(tmp.path(), survey, site, r);
+  EXPECT_TRUE(std::filesystem::exists(tmp.path() / "population.svg"));
+  const std::string html = test::slurp(tmp.path() / "index.html");
+  EXPECT_NE(html.find("populations-table"), std::string::npos);
+  EXPECT_NE(html.find("Figure 5"), std::string::npos);
 }
 
 TEST(PopulationInversion, TwoHundredCountedInvertAsTightlyAsListedAndFaster) {
