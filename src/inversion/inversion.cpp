@@ -804,7 +804,14 @@ std::string inversion_summary(const InversionResult& r) {
   const std::vector<std::size_t> top = most_constraining_objects(r);
   std::vector<std::string> names;
   for (std::size_t o : top) names.push_back(r.objects[o].id);
-  if (names.empty()) {
+  if (names.empty() && r.objects.empty() && !r.populations.empty()) {
+    // Populations only (issue 30): say what the counts were.
+    std::vector<std::string> counts;
+    for (const PopulationReport& p : r.populations) {
+      counts.push_back(fmt::format("{} ({} of {} overturned)", p.id, p.overturned, p.count));
+    }
+    s += "; the evidence is the count" + std::string(counts.size() == 1 ? " of " : "s of ") + list_text(counts);
+  } else if (names.empty()) {
     s += "; no single object constrains it much (each changes the posterior by less than 0.1 bit)";
   } else {
     s += fmt::format("; the {} that constrain{} it most {} {}", names.size() == 1 ? "object" : "objects",
