@@ -204,6 +204,34 @@ TEST(PopulationInversion, JsonAndReportShowObservedAgainstModel) {
   EXPECT_NE(html.find("Figure 5"), std::string::npos);
 }
 
+TEST(PopulationInversion, SlidCountedRunsTheCoupledModel) {
+  // Counting the ones that slid makes the members coupled slide-rock bodies (the only model that does both): with
+  // mu 0.15 below every member's b/h >= 0.17, members slide before they lift (Shenton 1996), so at 2 g some slide and
+  // at 0.05 g (below mu g = 0.15 g) none moves; the likelihood stays finite everywhere.
+  InversionSettings st = testing::small_grid(2);
+  st.pga_count = 3;
+  st.freq_count = 2;
+  Site site;
+  Population p = stones(20, 2);
+  p.rocked = 3;
+  p.slid = 6;
+  p.prototype.mu = {0.15, 0.15};
+  p.members = 3;
+  site.populations.push_back(p);
+  InversionOptions options;
+  options.next_objects = false;
+  const InversionResult r = invert_site(site, st, options);
+  for (const double ll : r.log_likelihood) EXPECT_TRUE(std::isfinite(ll));
+  // The static threshold: some overturned, so some lifted, PGA > g min(b/h) = 0.2 / 1.2 g (the smallest width over
+  // the largest height), above the slip's g min(mu, b/h) = 0.15 g.
+  ASSERT_TRUE(r.bounds.hard_lower_g);
+  EXPECT_NEAR(*r.bounds.hard_lower_g, 0.2 / 1.2, 1e-12);
+  // Only slid counted: the slip's threshold.
+  site.populations.front().overturned = 0;
+  site.populations.front().rocked = 0;
+  EXPECT_NEAR(*static_bounds(site).hard_lower_g, 0.15, 1e-12);
+}
+
 TEST(PopulationInversion, TwoHundredCountedInvertAsTightlyAsListedAndFaster) {
   // 200 gravestones, width U(0.2, 0.45) m and height U(0.6, 1.2) m (PortableRandom(2030), in order), under one true
   // motion (0.45 g, 2 Hz, seed 0xC0FFEE30, never a family seed). Listed: 200 objects, each overturned or not (from
