@@ -648,6 +648,13 @@ void thresholds_html(std::ostringstream& h, const InversionResult& r) {
   for (const auto& note : r.notes) h << "<p class=\"note\">" << html_escape(note) << "</p>\n";
 }
 
+/// The representative members the populations ran (each one run per motion, as an object): for the runs per cell.
+std::size_t population_members_simulated(const InversionResult& r) {
+  std::size_t n = 0;
+  for (const PopulationReport& p : r.populations) n += p.members;
+  return n;
+}
+
 /// Populations (issue 30; docs/method.md, "Populations of objects"): each population's observed overturned fraction
 /// (dashed, constant) against the model's, over PGA in the median frequency's column (top) and over frequency in the
 /// median PGA's row (bottom): the slices of io::populations_json.
@@ -813,7 +820,8 @@ void method_html(std::ostringstream& h, const InversionSettings& st, const Site&
                    "uncertain &mu;, e and amplification drawn per motion. The frequency axis is the motions' measured "
                    "predominant frequency (peak of the Konno&ndash;Ohmachi-smoothed Fourier amplitude spectrum).</li>\n",
                    st.pga_count, st.pga_min_g, st.pga_max_g, st.freq_count, st.freq_min_hz, st.freq_max_hz,
-                   r.runs / std::max<std::size_t>(1, site.objects.size() * r.pga_g.size() * r.freq_hz.size()),
+                   r.runs / std::max<std::size_t>(1, (site.objects.size() + population_members_simulated(r)) *
+                                                         r.pga_g.size() * r.freq_hz.size()),
                    st.family == MotionFamily::synthetic      ? "synthetic (Clough&ndash;Penzien filtered noise)"
                    : st.family == MotionFamily::rezaeian2010 ? "synthetic record-like (Rezaeian &amp; Der Kiureghian 2010)"
                    : st.family == MotionFamily::boore2003
