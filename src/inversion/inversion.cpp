@@ -565,7 +565,7 @@ std::vector<double> match_counts(const MatchTable& m) {
 /// likelihood without that object (assess_objects), up to a constant.
 std::vector<double> joint_log_likelihood(const MatchTable& m, const std::vector<double>& error_rates,
                                          const std::vector<std::vector<std::pair<std::size_t, double>>>& hoods,
-                                         const std::vector<double>* population_run_log = nullptr) {
+                                         const double* population_run_log = nullptr) {
   const std::size_t n = m.motions;
   const std::size_t no = m.objects;
   const std::size_t cells = m.cells();
@@ -584,7 +584,7 @@ std::vector<double> joint_log_likelihood(const MatchTable& m, const std::vector<
         lq += std::log(eps + (1.0 - 2.0 * eps) * m.at(c, k, o));
       }
       // The populations' multinomials under the same motion (eq. P1, docs/method.md): one more factor of the run.
-      if (population_run_log != nullptr) lq += (*population_run_log)[c * n + k];
+      if (population_run_log != nullptr) lq += population_run_log[c * n + k];
       run_log[c * n + k] = lq;
     }
   }
@@ -613,7 +613,7 @@ LikelihoodReduction reduce_likelihood(const MatchTable& m, const std::vector<dou
 }
 
 LikelihoodReduction detail::reduce_likelihood(const MatchTable& m, const std::vector<double>& error_rates,
-                                              const std::vector<double>* population_run_log) {
+                                              const double* population_run_log) {
   if (error_rates.size() != m.objects) {
     throw std::invalid_argument("reduce_likelihood: one error rate per object is needed");
   }
@@ -720,7 +720,11 @@ void detail::assess_objects(InversionResult& r, const std::vector<MatchTable>& b
     rates[o] = 0.5;
     std::vector<double> ll_without(cells * nb);
     for (std::size_t b = 0; b < nb; ++b) {
-      const std::vector<double> ll = joint_log_likelihood(bins[b], rates, hoods, population_run_log);
+      // The populations' factor of bin b (SiteRuns::population_run_log: bin-major blocks of cells x motions).
+      const double* pop = population_run_log == nullptr || population_run_log->empty()
+                              ? nullptr
+                              : population_run_log->data() + b * cells * bins[b].motions;
+      const std::vector<double> ll = joint_log_likelihood(bins[b], rates, hoods, pop);
       // With a prior, ll_joint carries it (infer_site) and so must the posterior without object o.
       const double* lp = r.log_prior.empty() ? nullptr : r.log_prior.data();
       for (std::size_t c = 0; c < cells; ++c) ll_without[c * nb + b] = lp == nullptr ? ll[c] : ll[c] + lp[c];
@@ -997,10 +1001,11 @@ InversionResult detail::infer_site(const Site& site, const std::vector<double>& 
   // and the cell's, log of the bins' mean (inversion_3c.hpp, item 5; with one bin, the bin's to the bit).
   std::vector<LikelihoodReduction> per_bin;
   const std::vector<double>* population_run_log = runs.population_run_log.empty() ? nullptr : &runs.population_run_log;
-  if (population_run_log != nullptr && runs.bins.size() != 1) {
-    throw std::invalid_argument("infer_site: populations take one direction bin (one component)");
+  for (std::size_t b = 0; b < runs.bins.size(); ++b) {
+    const MatchTable& m = runs.bins[b];
+    const double* pop = population_run_log == nullptr ? nullptr : population_run_log->data() + b * m.cells() * m.motions;
+    per_bin.push_back(detail::reduce_likelihood(m, error_rates, pop));
   }
-  for (const MatchTable& m : runs.bins) per_bin.push_back(detail::reduce_likelihood(m, error_rates, population_run_log));
   std::vector<double> ll_joint(cells * nb);
   for (std::size_t c = 0; c < cells; ++c) {
     for (std::size_t b = 0; b < nb; ++b) ll_joint[c * nb + b] = per_bin[b].log_likelihood[c];

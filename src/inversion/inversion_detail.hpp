@@ -63,9 +63,10 @@ struct SiteRuns {
   /// The prior (prior.hpp): ln per cell, empty for log-uniform; and its name (survey.hpp, inversion_prior_name).
   std::vector<double> log_prior;
   std::string prior = "log-uniform";
-  /// The site's populations (population_likelihood.cpp): per (cell c, motion k), index c * motions + k, the log of
-  /// the populations' multinomial likelihoods (eq. P1, docs/method.md), added to each run's product over objects;
-  /// empty: no population. And their reports, model_fraction filled.
+  /// The site's populations (population_likelihood.cpp): per (bin b, cell c, motion k), index
+  /// (b * cells + c) * motions + k, the log of the populations' multinomial likelihoods (eq. P1, docs/method.md; with
+  /// three components, their fall directions too, eq. P2), added to each run's product over objects; empty: no
+  /// population. And their reports, model_fraction filled.
   std::vector<double> population_run_log;
   std::vector<PopulationReport> populations;
 };
@@ -119,6 +120,6 @@ void assess_objects(InversionResult& result, const std::vector<MatchTable>& bins
 /// reduce_likelihood (inversion.hpp, step 3) with the populations' log-likelihood per (cell, motion) as one more
 /// factor of every run (none: nullptr, the public function).
 [[nodiscard]] LikelihoodReduction reduce_likelihood(const MatchTable& matches, const std::vector<double>& error_rates,
-                                                    const std::vector<double>* population_run_log);
+                                                    const double* population_run_log);
 
 }  // namespace topple::detail

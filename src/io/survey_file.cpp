@@ -647,10 +647,6 @@ Population parse_population(const toml::table& t, const std::string& file, const
   if (p.id.empty()) throw r.error("id", "every population needs an id");
   Reader named(t, file, path + "(" + p.id + ")");
   named.get("id");
-  if (components != 1) {
-    throw named.error("", "populations are inverted with one component only: [inversion] components = 1 (a "
-                          "population's fallen directions in three components are not yet supported)");
-  }
   p.line = t.source().begin.line;
   p.description = named.string("description").value_or("");
   p.shape = named.string("shape").value_or("block");
@@ -673,19 +669,6 @@ Population parse_population(const toml::table& t, const std::string& file, const
   p.diameter_m = population_length_range(named, "diameter");
   std::vector<const toml::node*> sample_nodes;
   p.sample = population_sample(named, sample_nodes);
-  // The class' shared keys, read as an object's (mu, e, support, amplification, orientation_deg, evidence).
-  ObservedObject& o = p.prototype;
-  o.id = p.id;
-  o.description = p.description;
-  parse_friction_and_restitution(named, o);
-  parse_object_placement(named, o, site, components);
-  if (const auto ev = named.string("evidence")) {
-    if (*ev == "certain") o.evidence = Evidence::certain;
-    else if (*ev == "likely") o.evidence = Evidence::likely;
-    else if (*ev == "reported") o.evidence = Evidence::reported;
-    else throw named.error("evidence", fmt::format("unknown evidence '{}' (known: certain, likely, reported)", *ev));
-  }
-  named.refuse_unknown();
   // Counts and sizes (survey/population.hpp, check_population), located at the key, or at the sample's member.
   try {
     check_population(p);
@@ -697,10 +680,43 @@ Population parse_population(const toml::table& t, const std::string& file, const
     }
     throw named.error(field, e.problem());
   }
-  // The class' middle member as the prototype's body (for messages); the restitution check of every member's shape.
-  const std::vector<ObservedObject> members = population_members(p);
-  o.body = members[members.size() / 2].body;
-  for (const ObservedObject& m : members) at_object_keys(named, [&] { check_object_restitution(m); });
+  // The class' shared keys, read as an object's (mu, e, support, amplification, orientation_deg, evidence; with three
+  // components the bearing azimuth_deg and a box's depth), on the class' middle member's body.
+  ObservedObject& o = p.prototype;
+  o.id = p.id;
+  o.description = p.description;
+  {
+    const std::vector<ObservedObject> shape_members = population_members(p);
+    o.body = shape_members[shape_members.size() / 2].body;
+  }
+  parse_friction_and_restitution(named, o);
+  parse_object_placement(named, o, site, components);
+  if (const auto ev = named.string("evidence")) {
+    if (*ev == "certain") o.evidence = Evidence::certain;
+    else if (*ev == "likely") o.evidence = Evidence::likely;
+    else if (*ev == "reported") o.evidence = Evidence::reported;
+    else throw named.error("evidence", fmt::format("unknown evidence '{}' (known: certain, likely, reported)", *ev));
+  }
+  named.refuse_unknown();
+  if (components == 3) {
+    // Three components (docs/survey.md, "[[population]]"): the counts of overturned and the fall directions; the
+    // rocked and slid counts need the one-component models.
+    if (p.rocked) throw named.error("rocked", "a population's rocked count needs [inversion] components = 1");
+    if (p.slid) throw named.error("slid", "a population's slid count needs [inversion] components = 1");
+    if (!p.fallen_azimuths_deg.empty()) {
+      ObservedObject fell = o;
+      fell.outcome = Outcome::overturned;
+      try {
+        check_object_fall_direction(fell);
+      } catch (const InputError& e) {
+        throw named.error("fallen_azimuths_deg", e.problem());
+      }
+    }
+  } else if (!p.fallen_azimuths_deg.empty()) {
+    throw named.error("fallen_azimuths_deg", "fall directions need [inversion] components = 3");
+  }
+  // The restitution check of every member's shape (Housner's e of a squat member).
+  for (const ObservedObject& m : population_members(p)) at_object_keys(named, [&] { check_object_restitution(m); });
   return p;
 }
 

@@ -232,6 +232,44 @@ TEST(PopulationInversion, SlidCountedRunsTheCoupledModel) {
   EXPECT_NEAR(*static_bounds(site).hard_lower_g, 0.15, 1e-12);
 }
 
+TEST(PopulationInversion, FallenAzimuthsPointTheDirectionInThreeComponents) {
+  // Three components (eq. P2): 40 tombstone-like cylinders (diameter 0.15-0.25 m, height 0.6-1.0 m), 20 fallen, five
+  // of them towards 35-50 deg (and 220 deg, the same axis). The direction of strongest shaking is then found near that
+  // axis (the mode within one bin, 30 deg, of 42 deg) and its 95 % arc is narrower than from the count alone.
+  InversionSettings st = testing::small_grid(0.1, 4, 1.0, 4.0, 2, 3);
+  st.components = 3;
+  st.directions = 6;
+  st.duration_s = 6.0;
+  st.coherence = 0.5;
+  Population p;
+  p.id = "tombs";
+  p.shape = "cylinder";
+  p.count = 40;
+  p.overturned = 20;
+  p.diameter_m = Interval{0.15, 0.25};
+  p.height_m = Interval{0.6, 1.0};
+  p.prototype.mu = {0.6, 0.6};
+  p.members = 4;
+  Site counted;
+  counted.populations.push_back(p);
+  p.fallen_azimuths_deg = {40.0, 45.0, 35.0, 220.0, 50.0};
+  Site directed;
+  directed.populations.push_back(p);
+  InversionOptions options;
+  options.next_objects = false;
+  const InversionResult a = invert_site(counted, st, options);
+  const InversionResult b = invert_site(directed, st, options);
+  ASSERT_TRUE(a.three_component && b.three_component);
+  ASSERT_EQ(b.populations.size(), 1U);
+  const DirectionEstimate& da = a.three_component->direction;
+  const DirectionEstimate& db = b.three_component->direction;
+  const double off = std::abs(std::remainder(db.mode_deg - 42.0, 180.0));
+  EXPECT_LE(off, 30.0) << "mode " << db.mode_deg;
+  EXPECT_LT(db.ci95.width_deg, da.ci95.width_deg);
+  std::printf("[ population 3c ] direction mode %.0f deg, 95 %% arc %.0f deg (count alone: mode %.0f, arc %.0f deg)\n",
+              db.mode_deg, db.ci95.width_deg, da.mode_deg, da.ci95.width_deg);
+}
+
 TEST(PopulationInversion, TwoHundredCountedInvertAsTightlyAsListedAndFaster) {
   // 200 gravestones, width U(0.2, 0.45) m and height U(0.6, 1.2) m (PortableRandom(2030), in order), under one true
   // motion (0.45 g, 2 Hz, seed 0xC0FFEE30, never a family seed). Listed: 200 objects, each overturned or not (from
