@@ -412,6 +412,13 @@ plot::Figure direction_figure(const InversionResult& r, const Site& site) {
   slid.y.assign(slid.x.size(), 0.0);
   if (!bearings.x.empty()) panel.series.push_back(std::move(bearings));
   if (!slid.x.empty()) panel.series.push_back(std::move(slid));
+  // Populations (issue 30): their fallen azimuths, a sample of fall directions (mod 180: an axis).
+  plot::Series fallen{"populations' fall directions", {}, {}, "points pt 5 ps 1.0", "#d95f02", 1.0};
+  for (const Population& p : site.populations) {
+    for (const double az : p.fallen_azimuths_deg) fallen.x.push_back(std::fmod(az, 180.0));
+  }
+  fallen.y.assign(fallen.x.size(), 0.0);
+  if (!fallen.x.empty()) panel.series.push_back(std::move(fallen));
   f.panels.push_back(panel);
   f.panel_height_px = 380;
   return f;
@@ -740,7 +747,7 @@ void figures_html(std::ostringstream& h, const std::filesystem::path& dir, const
          "horizontal motion (an axis: 10&deg; and 190&deg; are one direction), per bin, with its mode and its 68 % and "
          "95 % arcs (the shortest arcs holding those shares of the highest bins; an arc passing 180&deg; goes on "
          "from 0&deg;). Diamonds on the axis: the objects' bearings (across their narrow side, mod 180&deg;); "
-         "triangles: observed sliding directions. The direction is unconstrained when the 95 % arc spans more "
+         "triangles: observed sliding directions; filled squares: the populations' fall directions. The direction is unconstrained when the 95 % arc spans more "
          "than 120&deg;.</figcaption></figure>\n";
   }
 }
