@@ -133,6 +133,13 @@ void print_site(const Site& site, const InversionResult& r) {
                o.posterior_predictive,
                o.probability_at_best, o.constraint_bits, o.misfit ? "  MISFIT" : "");
   }
+  if (!r.populations.empty()) {  // issue 30: populations (docs/survey.md, "[[population]]")
+    fmt::print("populations: overturned observed / model at the estimate / posterior-predictive:\n");
+    for (const PopulationReport& p : r.populations) {
+      fmt::print("  {:<16} {} of {} = {:.3f} / {:.3f} / {:.3f}  ({})\n", p.id, p.overturned, p.count, p.observed_fraction,
+                 p.model_fraction_at_estimate, p.posterior_predictive_fraction, p.member_rule);
+    }
+  }
   if (!r.next_objects.empty()) {
     fmt::print("what to look for next: expected information (bits) of one more object's outcome, on PGA / on frequency:\n");
     for (const NextObject& n : r.next_objects) {

@@ -17,6 +17,7 @@
 #include "topple/ensemble/ensemble.hpp"
 #include "topple/core/error.hpp"
 #include "topple/inversion/evidence.hpp"
+#include "topple/survey/population.hpp"
 #include "topple/solvers/flexible.hpp"
 #include "topple/inversion/inversion_3c.hpp"
 #include "topple/solvers/rocking.hpp"
@@ -207,6 +208,24 @@ StaticBounds static_bounds(const Site& site) {
       case Outcome::walked:
         break;  // coupled outcomes: coupled_moved_threshold above
     }
+  }
+  // A population some of whose members overturned, rocked or slid (docs/method.md, "Populations of objects"): at
+  // least one member left rest, so PGA exceeded the lowest threshold in the class, g min(b/h) (and for a slip,
+  // g min(mu, b/h), Shenton 1996), over the largest amplification; hard, as for an object. None on a flexible support.
+  for (const Population& p : site.populations) {
+    if (p.prototype.support_filter) continue;
+    const bool lifted = p.overturned > 0 || p.rocked.value_or(0) > 0;
+    const bool slipped = p.slid.value_or(0) > 0;
+    if (!lifted && !slipped) continue;
+    const double b_h = population_min_slenderness(p);
+    const double t = lifted ? b_h : std::min(b_h, p.prototype.mu.low);
+    const double amp = p.prototype.amplification.high;
+    b.lower.push_back({t / amp, p.id,
+                       fmt::format("population: {} of {} {}: PGA > g {} = {}{}", lifted ? p.overturned + p.rocked.value_or(0) : *p.slid,
+                                   p.count, lifted ? "overturned or rocked" : "slid",
+                                   lifted ? "min(b/h)" : "min(mu, b/h)", fmt_g(t),
+                                   amp == 1.0 ? std::string() : fmt::format(" / amplification {:.3g}", amp)),
+                       true});
   }
   detail::settle_static_bounds(b);
   return b;
@@ -545,7 +564,8 @@ std::vector<double> match_counts(const MatchTable& m) {
 /// object and each cell's neighbourhood. An error rate of 1/2 makes an object's factor the constant 1/2: the
 /// likelihood without that object (assess_objects), up to a constant.
 std::vector<double> joint_log_likelihood(const MatchTable& m, const std::vector<double>& error_rates,
-                                         const std::vector<std::vector<std::pair<std::size_t, double>>>& hoods) {
+                                         const std::vector<std::vector<std::pair<std::size_t, double>>>& hoods,
+                                         const double* population_run_log = nullptr) {
   const std::size_t n = m.motions;
   const std::size_t no = m.objects;
   const std::size_t cells = m.cells();
@@ -563,6 +583,8 @@ std::vector<double> joint_log_likelihood(const MatchTable& m, const std::vector<
         const double eps = error_rates[o];
         lq += std::log(eps + (1.0 - 2.0 * eps) * m.at(c, k, o));
       }
+      // The populations' multinomials under the same motion (eq. P1, docs/method.md): one more factor of the run.
+      if (population_run_log != nullptr) lq += population_run_log[c * n + k];
       run_log[c * n + k] = lq;
     }
   }
@@ -587,6 +609,11 @@ std::vector<double> joint_log_likelihood(const MatchTable& m, const std::vector<
 }  // namespace
 
 LikelihoodReduction reduce_likelihood(const MatchTable& m, const std::vector<double>& error_rates) {
+  return detail::reduce_likelihood(m, error_rates, nullptr);
+}
+
+LikelihoodReduction detail::reduce_likelihood(const MatchTable& m, const std::vector<double>& error_rates,
+                                              const double* population_run_log) {
   if (error_rates.size() != m.objects) {
     throw std::invalid_argument("reduce_likelihood: one error rate per object is needed");
   }
@@ -619,7 +646,7 @@ LikelihoodReduction reduce_likelihood(const MatchTable& m, const std::vector<dou
     }
     out.reproduced_anywhere[o] = total > 0.0;
   }
-  out.log_likelihood = joint_log_likelihood(m, error_rates, hoods);
+  out.log_likelihood = joint_log_likelihood(m, error_rates, hoods, population_run_log);
   return out;
 }
 
@@ -659,7 +686,7 @@ void fill_posterior_and_estimates(InversionResult& r) {
 
 void detail::assess_objects(InversionResult& r, const std::vector<MatchTable>& bins,
                             const std::vector<double>& error_rates, const std::vector<double>& ll_joint,
-                            const std::vector<double>& posterior_joint) {
+                            const std::vector<double>& posterior_joint, const std::vector<double>* population_run_log) {
   const std::size_t nb = bins.size();
   const std::size_t cells = bins.front().cells();
   const std::size_t no = bins.front().objects;
@@ -693,7 +720,11 @@ void detail::assess_objects(InversionResult& r, const std::vector<MatchTable>& b
     rates[o] = 0.5;
     std::vector<double> ll_without(cells * nb);
     for (std::size_t b = 0; b < nb; ++b) {
-      const std::vector<double> ll = joint_log_likelihood(bins[b], rates, hoods);
+      // The populations' factor of bin b (SiteRuns::population_run_log: bin-major blocks of cells x motions).
+      const double* pop = population_run_log == nullptr || population_run_log->empty()
+                              ? nullptr
+                              : population_run_log->data() + b * cells * bins[b].motions;
+      const std::vector<double> ll = joint_log_likelihood(bins[b], rates, hoods, pop);
       // With a prior, ll_joint carries it (infer_site) and so must the posterior without object o.
       const double* lp = r.log_prior.empty() ? nullptr : r.log_prior.data();
       for (std::size_t c = 0; c < cells; ++c) ll_without[c * nb + b] = lp == nullptr ? ll[c] : ll[c] + lp[c];
@@ -777,7 +808,14 @@ std::string inversion_summary(const InversionResult& r) {
   const std::vector<std::size_t> top = most_constraining_objects(r);
   std::vector<std::string> names;
   for (std::size_t o : top) names.push_back(r.objects[o].id);
-  if (names.empty()) {
+  if (names.empty() && r.objects.empty() && !r.populations.empty()) {
+    // Populations only (issue 30): say what the counts were.
+    std::vector<std::string> counts;
+    for (const PopulationReport& p : r.populations) {
+      counts.push_back(fmt::format("{} ({} of {} overturned)", p.id, p.overturned, p.count));
+    }
+    s += "; the evidence is the count" + std::string(counts.size() == 1 ? " of " : "s of ") + list_text(counts);
+  } else if (names.empty()) {
     s += "; no single object constrains it much (each changes the posterior by less than 0.1 bit)";
   } else {
     s += fmt::format("; the {} that constrain{} it most {} {}", names.size() == 1 ? "object" : "objects",
@@ -888,8 +926,22 @@ detail::SiteRuns detail::simulate_site(const Site& site, const InversionSettings
                                        const FamilyGrid& family, const InversionOptions& options) {
   SiteRuns runs;
   runs.bounds = static_bounds(site);
-  runs.bins.push_back(simulate_matches(site, st, pga_g, family, options));  // one component: one direction bin
+  if (site.objects.empty()) {  // populations only: an empty table of the grid's shape
+    MatchTable empty;
+    empty.pga_count = pga_g.size();
+    empty.freq_count = family.motions.size();
+    empty.motions = family.motions_per_column();
+    runs.bins.push_back(std::move(empty));
+  } else {
+    runs.bins.push_back(simulate_matches(site, st, pga_g, family, options));  // one component: one direction bin
+  }
   runs.runs = runs.bins.front().match.size();
+  if (!site.populations.empty()) {  // population_likelihood.cpp
+    PopulationRuns pop = simulate_populations(site, st, pga_g, family, options);
+    runs.runs += pop.runs;
+    runs.populations = population_reports(site, pop, pga_g.size() * family.motions.size());
+    runs.population_run_log = std::move(pop.run_log);
+  }
   for (const ObservedObject& o : site.objects) runs.models.push_back(object_model(o));
   runs.log_prior = log_prior_for(pga_g, family.freq_hz, site, st);  // the prior (prior.hpp)
   runs.prior = std::string(inversion_prior_name(st.prior));
@@ -948,7 +1000,12 @@ InversionResult detail::infer_site(const Site& site, const std::vector<double>& 
   // Step 3 per direction bin (inversion.hpp, item 2); the joint log-likelihood over (cell, bin), index c * nb + b,
   // and the cell's, log of the bins' mean (inversion_3c.hpp, item 5; with one bin, the bin's to the bit).
   std::vector<LikelihoodReduction> per_bin;
-  for (const MatchTable& m : runs.bins) per_bin.push_back(reduce_likelihood(m, error_rates));
+  const std::vector<double>* population_run_log = runs.population_run_log.empty() ? nullptr : &runs.population_run_log;
+  for (std::size_t b = 0; b < runs.bins.size(); ++b) {
+    const MatchTable& m = runs.bins[b];
+    const double* pop = population_run_log == nullptr ? nullptr : population_run_log->data() + b * m.cells() * m.motions;
+    per_bin.push_back(detail::reduce_likelihood(m, error_rates, pop));
+  }
   std::vector<double> ll_joint(cells * nb);
   for (std::size_t c = 0; c < cells; ++c) {
     for (std::size_t b = 0; b < nb; ++b) ll_joint[c * nb + b] = per_bin[b].log_likelihood[c];
@@ -989,7 +1046,9 @@ InversionResult detail::infer_site(const Site& site, const std::vector<double>& 
     posterior_joint.resize(ll_joint.size());
     for (std::size_t i = 0; i < ll_joint.size(); ++i) posterior_joint[i] = std::exp(ll_joint[i] - z_joint);
   }
-  assess_objects(r, runs.bins, error_rates, ll_joint, posterior_joint);
+  assess_objects(r, runs.bins, error_rates, ll_joint, posterior_joint, population_run_log);
+  r.populations = std::move(runs.populations);
+  finish_population_reports(r);
   // Step 5, the notes: the common ones, then the motion family's own.
   r.notes = inversion_notes(r, mean_over_bins(runs.bins));
   for (std::string& note : runs.notes) r.notes.push_back(std::move(note));

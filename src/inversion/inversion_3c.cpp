@@ -26,6 +26,7 @@
 #include "topple/motion/spectra.hpp"
 #include "topple/motion/synthesis.hpp"
 #include "topple/core/units.hpp"
+#include "topple/survey/population.hpp"
 #include "inversion/inversion_detail.hpp"
 
 namespace topple {
@@ -419,6 +420,76 @@ std::pair<std::vector<MatchTable>, std::size_t> simulate_matches_3c(const Site& 
   return {std::move(tables), runs};
 }
 
+/// Populations in three components (docs/method.md, "Populations of objects", eq. P2): the K members of each run
+/// as objects that overturned (their match: 1 when the run overturned), and, for each fallen azimuth, K variants with
+/// that fall direction (their match: overturned times the fall direction's kernel, as an object's). Per (bin, cell,
+/// motion): the binomial of the count with the members' overturned share f (eq. P1), and for each fall direction
+/// eps + (1 - 2 eps) E[kernel | overturned], E[kernel | overturned] = (the variants' mean) / f (the kernel's mean
+/// over a uniform direction where no member fell). Fills out.population_run_log, out.populations and adds the runs.
+void simulate_populations_3c(const Site& site, const InversionSettings& st, const std::vector<double>& pga_g,
+                             const FamilyGrid3c& family, const InversionOptions& options, detail::SiteRuns& out) {
+  struct Span {
+    std::size_t first = 0, count = 0;
+  };
+  Site members;
+  std::vector<Span> base;                  // per population: its K members
+  std::vector<std::vector<Span>> variants;  // per population, per fallen azimuth: its K variants
+  for (const Population& p : site.populations) {
+    const std::vector<ObservedObject> m = population_members(p);
+    base.push_back({members.objects.size(), m.size()});
+    for (const ObservedObject& o : m) members.objects.push_back(o);
+    variants.emplace_back();
+    for (std::size_t i = 0; i < p.fallen_azimuths_deg.size(); ++i) {
+      variants.back().push_back({members.objects.size(), m.size()});
+      for (ObservedObject o : m) {
+        o.id += fmt::format("@{}", i + 1);
+        o.toppled_azimuth_deg = p.fallen_azimuths_deg[i];
+        members.objects.push_back(std::move(o));
+      }
+    }
+  }
+  auto [tables, runs] = simulate_matches_3c(members, st, pga_g, family, options);
+  out.runs += runs;
+  const std::size_t nb = tables.size();
+  const std::size_t cells = pga_g.size() * family.motions.size();
+  const std::size_t n = family.motions.front().size();
+  out.population_run_log.assign(nb * cells * n, 0.0);
+  const double uniform_kernel = std::exp(-kSlidDirectionKappa) * std::cyl_bessel_i(0.0, kSlidDirectionKappa);
+  for (std::size_t q = 0; q < site.populations.size(); ++q) {
+    const Population& pop = site.populations[q];
+    const double eps = evidence_error_rate(pop.prototype.evidence);
+    PopulationReport rep;
+    rep.id = pop.id;
+    rep.count = pop.count;
+    rep.overturned = pop.overturned;
+    rep.members = base[q].count;
+    rep.member_rule = population_member_rule(pop);
+    rep.observed_fraction = static_cast<double>(pop.overturned) / static_cast<double>(pop.count);
+    rep.model_fraction.assign(cells, 0.0);
+    const auto mean = [&](const MatchTable& t, std::size_t c, std::size_t k, const Span& sp) {
+      double sum = 0.0;
+      for (std::size_t o = sp.first; o < sp.first + sp.count; ++o) sum += t.at(c, k, o);
+      return sum / static_cast<double>(sp.count);
+    };
+    for (std::size_t b = 0; b < nb; ++b) {
+      for (std::size_t c = 0; c < cells; ++c) {
+        for (std::size_t k = 0; k < n; ++k) {
+          const double f = mean(tables[b], c, k, base[q]);
+          rep.model_fraction[c] += f / static_cast<double>(nb * n);
+          const double share[kPopulationCategories] = {1.0 - f, 0.0, 0.0, f};
+          double ll = population_log_likelihood(pop, share);
+          for (const Span& v : variants[q]) {
+            const double conditional = f > 0.0 ? std::min(1.0, mean(tables[b], c, k, v) / f) : uniform_kernel;
+            ll += std::log(eps + (1.0 - 2.0 * eps) * conditional);
+          }
+          out.population_run_log[(b * cells + c) * n + k] += ll;
+        }
+      }
+    }
+    out.populations.push_back(std::move(rep));
+  }
+}
+
 }  // namespace
 
 detail::SiteRuns detail::simulate_site_3c(const Site& site, const InversionSettings& st,
@@ -433,7 +504,13 @@ detail::SiteRuns detail::simulate_site_3c(const Site& site, const InversionSetti
   ThreeComponentBounds thresholds = static_bounds_3c(site, rho);
   out.bounds = std::move(thresholds.rotd50);
   out.rotd100_bounds = std::move(thresholds.rotd100);
-  std::tie(out.bins, out.runs) = simulate_matches_3c(site, st, pga_g, family, options);
+  if (site.objects.empty()) {  // populations only: empty tables of the grid's shape, one per direction bin
+    const std::size_t nb = direction_bins_deg(st).size();
+    out.bins.assign(nb, MatchTable{pga_g.size(), family.motions.size(), family.motions.front().size(), 0, {}});
+  } else {
+    std::tie(out.bins, out.runs) = simulate_matches_3c(site, st, pga_g, family, options);
+  }
+  if (!site.populations.empty()) simulate_populations_3c(site, st, pga_g, family, options, out);
   // The solver its runs used (observation_match_3c): the two-dimensional sliding block or the oriented rocking body.
   // The survey reader refuses the coupled model and a model key that contradicts the outcome with components = 3, so
   // this is also object_model (survey.hpp).

@@ -2,12 +2,14 @@
 // Internals of the inversion shared by inversion.cpp (one component) and inversion_3c.cpp (three components).
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "topple/inversion/inversion.hpp"
 #include "topple/inversion/inversion_3c.hpp"
 #include "topple/motion/synthesis.hpp"
+#include "topple/survey/population.hpp"
 
 namespace topple::detail {
 
@@ -61,7 +63,35 @@ struct SiteRuns {
   /// The prior (prior.hpp): ln per cell, empty for log-uniform; and its name (survey.hpp, inversion_prior_name).
   std::vector<double> log_prior;
   std::string prior = "log-uniform";
+  /// The site's populations (population_likelihood.cpp): per (bin b, cell c, motion k), index
+  /// (b * cells + c) * motions + k, the log of the populations' multinomial likelihoods (eq. P1, docs/method.md; with
+  /// three components, their fall directions too, eq. P2), added to each run's product over objects; empty: no
+  /// population. And their reports, model_fraction filled.
+  std::vector<double> population_run_log;
+  std::vector<PopulationReport> populations;
 };
+
+// ---- Populations (population_likelihood.cpp; docs/method.md, "Populations of objects") ----
+
+
+/// The runs of every population's members: per population its member count K and the members' shares in each
+/// category per (cell, motion), index ((c * motions + k) * 4 + category); run_log the sum over populations of
+/// population_log_likelihood per (cell, motion).
+struct PopulationRuns {
+  std::size_t motions = 0;
+  std::vector<std::size_t> members;
+  std::vector<std::vector<double>> shares;
+  std::vector<double> run_log;
+  std::size_t runs = 0;
+};
+[[nodiscard]] PopulationRuns simulate_populations(const Site& site, const InversionSettings& settings,
+                                                  const std::vector<double>& pga_g, const FamilyGrid& family,
+                                                  const InversionOptions& options);
+/// The populations' reports with model_fraction (the mean over each cell's motions of the overturned share).
+[[nodiscard]] std::vector<PopulationReport> population_reports(const Site& site, const PopulationRuns& runs,
+                                                               std::size_t cells);
+/// The reports' fractions at the estimate and posterior-predictive, once the posterior is known.
+void finish_population_reports(InversionResult& result);
 
 /// Steps 2 of one component: static_bounds and simulate_matches (one bin).
 [[nodiscard]] SiteRuns simulate_site(const Site& site, const InversionSettings& settings,
@@ -84,6 +114,12 @@ struct SiteRuns {
 /// the posterior without the object. ll_joint and posterior_joint: index c * bins + b.
 void assess_objects(InversionResult& result, const std::vector<MatchTable>& bins,
                     const std::vector<double>& error_rates, const std::vector<double>& ll_joint,
-                    const std::vector<double>& posterior_joint);
+                    const std::vector<double>& posterior_joint,
+                    const std::vector<double>* population_run_log = nullptr);
+
+/// reduce_likelihood (inversion.hpp, step 3) with the populations' log-likelihood per (cell, motion) as one more
+/// factor of every run (none: nullptr, the public function).
+[[nodiscard]] LikelihoodReduction reduce_likelihood(const MatchTable& matches, const std::vector<double>& error_rates,
+                                                    const double* population_run_log);
 
 }  // namespace topple::detail

@@ -160,7 +160,7 @@ std::string toml_value(std::string_view cell) {
 // `support` is not among them: besides a text it may be a flexible support's inline table {freq_hz = ..., ...}.
 const std::set<std::string, std::less<>> kStringKeys{"id",   "description", "shape",  "outcome",  "evidence",
                                                      "name", "notes",       "family", "mesh", "mesh_unit", "model",
-                                                     "intensity_scale"};
+                                                     "intensity_scale", "population"};
 const std::set<std::string, std::less<>> kLengthKeys{"width", "height", "diameter",         "a",            "h",
                                                      "b1",    "b2",     "slid", "slid_uncertainty", "slid_at_least",
                                                      "depth"};
@@ -350,11 +350,128 @@ bool is_setting_row(const Row& row) {
                      [](const Cell& c) { return c.text.empty(); });
 }
 
+// ---- Populations in a CSV survey (docs/survey.md, "[[population]]"): a row with a `count` cell is a population (its
+// keys as in TOML; a size range in a column with a unit is written "[25, 45]"), a row with a `population` cell is a
+// measured member of the population of that id (its width/height/diameter). Kept apart from write_objects. ----
+
+/// The column of `key`, if the header has it.
+std::optional<std::size_t> column_index(const std::vector<std::optional<Column>>& columns, std::string_view key) {
+  for (std::size_t c = 0; c < columns.size(); ++c) {
+    if (columns[c] && columns[c]->key == key) return c;
+  }
+  return std::nullopt;
+}
+
+bool cell_given(const Row& row, std::optional<std::size_t> c) {
+  return c && *c < row.cells.size() && !row.cells[*c].text.empty();
+}
+
+/// A population's row or a sample member's row: not an object.
+bool is_population_row(const Row& row, const std::vector<std::optional<Column>>& columns) {
+  return cell_given(row, column_index(columns, "count")) || cell_given(row, column_index(columns, "population"));
+}
+
+/// A cell's TOML value in a population's row or a member's: a length column with a header unit takes a number or a
+/// range "[low, high]" of numbers (each given the unit); the rest as an object's cell.
+std::string population_cell_value(const Text& text, const Cell& cell, std::size_t c, const Column& col) {
+  if (col.unit.empty()) {
+    // The counts (a population's `slid` is a count, an object's a distance).
+    if (col.key == "slid" || col.key == "count" || col.key == "overturned" || col.key == "rocked") {
+      return toml_value(cell.text);
+    }
+    if (kStringKeys.contains(col.key) || kLengthKeys.contains(col.key) || kAreaKeys.contains(col.key)) {
+      return toml_string(cell.text);
+    }
+    return toml_value(cell.text);
+  }
+  const std::string_view t = trim(cell.text);
+  if (t.size() >= 2 && t.front() == '[' && t.back() == ']') {
+    const std::string_view inner = t.substr(1, t.size() - 2);
+    const std::size_t comma = inner.find(',');
+    const std::string lo(trim(inner.substr(0, comma)));
+    const std::string hi(comma == std::string_view::npos ? "" : std::string(trim(inner.substr(comma + 1))));
+    if (comma == std::string_view::npos || !try_number(lo) || !try_number(hi)) {
+      text.fail(cell.line, column_field(c, col.header),
+                fmt::format("a range of sizes is [low, high] in the header's unit ({}), not {}", col.unit,
+                            detail::quoted(cell.text)));
+    }
+    return fmt::format("[{}, {}]", toml_string(lo + col.unit), toml_string(hi + col.unit));
+  }
+  if (!try_number(cell.text)) {
+    text.fail(cell.line, column_field(c, col.header),
+              fmt::format("the header gives the unit ({}): write a bare number or a range [low, high], not {}",
+                          col.unit, detail::quoted(cell.text)));
+  }
+  return toml_string(cell.text + col.unit);
+}
+
+/// The populations: a [[population]] table per row with a `count`, its measured members (rows whose `population` is
+/// its id) as its `sample`, one inline table per row. A member of an unknown population is refused at its cell.
+void write_populations(const Text& text, const std::vector<Row>& rows, std::size_t first,
+                       const std::vector<std::optional<Column>>& columns, Writer& w) {
+  const auto count_col = column_index(columns, "count");
+  const auto pop_col = column_index(columns, "population");
+  const auto id_col = column_index(columns, "id");
+  std::set<std::string, std::less<>> ids;
+  for (std::size_t r = first; r < rows.size(); ++r) {
+    if (cell_given(rows[r], count_col) && cell_given(rows[r], id_col)) ids.insert(rows[r].cells[*id_col].text);
+  }
+  for (std::size_t r = first; r < rows.size(); ++r) {
+    const Row& row = rows[r];
+    if (cell_given(row, pop_col) && !ids.contains(row.cells[*pop_col].text)) {
+      text.fail(row.cells[*pop_col].line, column_field(*pop_col, columns[*pop_col]->header),
+                fmt::format("no population with id {} (a row with that id and a count)",
+                            detail::quoted(row.cells[*pop_col].text)));
+    }
+    if (cell_given(row, pop_col) && cell_given(row, count_col)) {
+      text.fail(row.cells[*count_col].line, column_field(*count_col, columns[*count_col]->header),
+                "a row is a population (a count) or a measured member of one (population), not both");
+    }
+  }
+  for (std::size_t r = first; r < rows.size(); ++r) {
+    const Row& row = rows[r];
+    if (!cell_given(row, count_col)) continue;
+    w.line("[[population]]", CsvOrigin{row.line, {}, {}});
+    for (std::size_t c = 0; c < row.cells.size(); ++c) {
+      const Cell& cell = row.cells[c];
+      if (cell.text.empty()) continue;
+      if (c >= columns.size() || !columns[c]) {
+        text.fail(cell.line, column_field(c, ""), fmt::format("{} is in a column without a header", detail::quoted(cell.text)));
+      }
+      w.line(columns[c]->key + " = " + population_cell_value(text, cell, c, *columns[c]), CsvOrigin{cell.line, c, columns[c]->header});
+    }
+    const std::string& id = id_col && *id_col < row.cells.size() ? row.cells[*id_col].text : std::string();
+    bool any = false;
+    for (std::size_t m = first; m < rows.size(); ++m) {
+      const Row& member = rows[m];
+      if (!cell_given(member, pop_col) || member.cells[*pop_col].text != id) continue;
+      if (!any) w.line("sample = [", CsvOrigin{member.line, {}, {}});
+      any = true;
+      std::string entry;
+      for (std::size_t c = 0; c < member.cells.size(); ++c) {
+        const Cell& cell = member.cells[c];
+        if (cell.text.empty() || c >= columns.size() || !columns[c]) continue;
+        const std::string& key = columns[c]->key;
+        if (key == "population" || key == "id" || key == "description") continue;
+        if (key != "width" && key != "height" && key != "diameter") {
+          text.fail(cell.line, column_field(c, columns[c]->header),
+                    fmt::format("a measured member of a population gives its sizes (width, height, diameter), not {}",
+                                key));
+        }
+        entry += (entry.empty() ? "" : ", ") + key + " = " + population_cell_value(text, cell, c, *columns[c]);
+      }
+      w.line("  {" + entry + "},", CsvOrigin{member.line, {}, {}});
+    }
+    if (any) w.line("]", CsvOrigin{row.line, {}, {}});
+  }
+}
+
 /// One object per row from `first` on: a [[object]] table each, a key per non-empty cell.
 void write_objects(const Text& text, const std::vector<Row>& rows, std::size_t first, const Row& head,
                    const std::vector<std::optional<Column>>& columns, Writer& w) {
   for (std::size_t r = first; r < rows.size(); ++r) {
     const Row& row = rows[r];
+    if (is_population_row(row, columns)) continue;  // write_populations
     if (is_setting_row(row)) {
       text.fail(row.line, column_field(0, ""),
                 fmt::format("{} is a setting row after the header row (line {}): setting rows (site.KEY, "
@@ -428,6 +545,7 @@ CsvSurveyText csv_survey_to_toml(std::string_view content, const std::string& na
   const Row& head = rows[r++];
   const std::vector<std::optional<Column>> columns = read_header(text, head);
   write_objects(text, rows, r, head, columns, w);
+  write_populations(text, rows, r, columns, w);
   return w.take();
 }
 

@@ -18,6 +18,7 @@
 #include "topple/region/geodesy.hpp"
 #include "topple/solvers/flexible.hpp"
 #include "topple/solvers/oriented.hpp"
+#include "topple/survey/population.hpp"
 #include "io/survey_csv.hpp"
 
 namespace topple {
@@ -596,6 +597,166 @@ std::vector<ObservedObject> parse_objects(const toml::node* node, const std::str
   return out;
 }
 
+// ---- Populations (docs/survey.md, "Populations"; survey/population.hpp) ----
+
+/// A whole, non-negative count (`count`, `overturned`, `rocked`, `slid`, `members`).
+std::optional<int> population_count(Reader& named, std::string_view key) {
+  const toml::node* n = named.get(key);
+  if (n == nullptr) return std::nullopt;
+  if (!n->is_integer()) throw named.error(key, "a count is a whole number", n);
+  const std::int64_t v = n->as_integer()->get();
+  if (v < 0) throw named.error(key, fmt::format("a count cannot be negative, got {}", v), n);
+  if (v > 100000000) throw named.error(key, fmt::format("{} is more than topple counts (at most 1e8)", v), n);
+  return static_cast<int>(v);
+}
+
+/// A length ("1.2m") or a range of two lengths (["0.8m", "1.2m"], low <= high), m.
+std::optional<Interval> population_length_range(Reader& named, std::string_view key) {
+  const toml::node* n = named.get(key);
+  if (n == nullptr) return std::nullopt;
+  const auto one = [&](const toml::node& x) {
+    if (!x.is_string()) throw named.error(key, "a length needs its unit: write it as a string such as \"1.2m\"", &x);
+    try {
+      return parse_length_m(x.as_string()->get(), named.field(key));
+    } catch (const InputError& e) {
+      throw named.error(key, e.problem(), &x);
+    }
+  };
+  if (const auto* arr = n->as_array()) {
+    if (arr->size() != 2) throw named.error(key, "a range of sizes is [low, high], e.g. [\"0.8m\", \"1.2m\"]", n);
+    const Interval r{one(*arr->get(0)), one(*arr->get(1))};
+    if (r.low > r.high) throw named.error(key, fmt::format("range [{}, {}] m has low > high", r.low, r.high), n);
+    return r;
+  }
+  const double v = one(*n);
+  return Interval{v, v};
+}
+
+/// `sample = [{height = "1.0m", width = "0.45m"}, ...]`: the measured members (an empty list is refused).
+std::vector<PopulationMember> population_sample(Reader& named, std::vector<const toml::node*>& nodes) {
+  std::vector<PopulationMember> out;
+  const toml::node* n = named.get("sample");
+  if (n == nullptr) return out;
+  const auto* arr = n->as_array();
+  if (arr == nullptr) throw named.error("sample", "expected a list of members: [{height = \"...\", width = \"...\"}, ...]", n);
+  if (arr->empty()) throw named.error("sample", "the measured sample is empty: give its members, or leave sample out "
+                                                "and state the sizes as ranges", n);
+  for (std::size_t i = 0; i < arr->size(); ++i) {
+    const auto* t = arr->get(i)->as_table();
+    if (t == nullptr) throw named.error("sample", fmt::format("member {} is not a table {{height = ..., ...}}", i + 1), arr->get(i));
+    Reader m(*t, named.file(), named.field(fmt::format("sample[{}]", i + 1)));
+    PopulationMember member;
+    member.width_m = m.length("width");
+    member.height_m = m.length("height");
+    member.diameter_m = m.length("diameter");
+    m.refuse_unknown();
+    out.push_back(member);
+    nodes.push_back(arr->get(i));
+  }
+  return out;
+}
+
+Population parse_population(const toml::table& t, const std::string& file, const std::string& path, const Site* site,
+                            int components) {
+  Reader r(t, file, path);
+  Population p;
+  p.id = r.string("id").value_or("");
+  if (p.id.empty()) throw r.error("id", "every population needs an id");
+  Reader named(t, file, path + "(" + p.id + ")");
+  named.get("id");
+  p.line = t.source().begin.line;
+  p.description = named.string("description").value_or("");
+  p.shape = named.string("shape").value_or("block");
+  const auto count = population_count(named, "count");
+  if (!count) throw named.error("count", "a population needs its count (how many objects of the class were there)");
+  p.count = *count;
+  const auto overturned = population_count(named, "overturned");
+  if (!overturned) throw named.error("overturned", "a population needs how many overturned (0 if none)");
+  p.overturned = *overturned;
+  p.rocked = population_count(named, "rocked");
+  p.slid = population_count(named, "slid");
+  if (const auto members = population_count(named, "members")) p.members = *members;
+  if (const toml::node* az = named.get("fallen_azimuths_deg")) {
+    const auto* arr = az->as_array();
+    if (arr == nullptr) throw named.error("fallen_azimuths_deg", "expected a list of directions in degrees", az);
+    for (std::size_t i = 0; i < arr->size(); ++i) p.fallen_azimuths_deg.push_back(named.as_number("fallen_azimuths_deg", *arr->get(i)));
+  }
+  p.width_m = population_length_range(named, "width");
+  p.height_m = population_length_range(named, "height");
+  p.diameter_m = population_length_range(named, "diameter");
+  std::vector<const toml::node*> sample_nodes;
+  p.sample = population_sample(named, sample_nodes);
+  // Counts and sizes (survey/population.hpp, check_population), located at the key, or at the sample's member.
+  try {
+    check_population(p);
+  } catch (const InputError& e) {
+    const std::string& field = e.where().field;
+    if (field.starts_with("sample[")) {
+      const std::size_t i = std::stoul(field.substr(7)) - 1;
+      throw named.error(field, e.problem(), i < sample_nodes.size() ? sample_nodes[i] : nullptr);
+    }
+    throw named.error(field, e.problem());
+  }
+  // The class' shared keys, read as an object's (mu, e, support, amplification, orientation_deg, evidence; with three
+  // components the bearing azimuth_deg and a box's depth), on the class' middle member's body.
+  ObservedObject& o = p.prototype;
+  o.id = p.id;
+  o.description = p.description;
+  {
+    const std::vector<ObservedObject> shape_members = population_members(p);
+    o.body = shape_members[shape_members.size() / 2].body;
+  }
+  parse_friction_and_restitution(named, o);
+  parse_object_placement(named, o, site, components);
+  if (const auto ev = named.string("evidence")) {
+    if (*ev == "certain") o.evidence = Evidence::certain;
+    else if (*ev == "likely") o.evidence = Evidence::likely;
+    else if (*ev == "reported") o.evidence = Evidence::reported;
+    else throw named.error("evidence", fmt::format("unknown evidence '{}' (known: certain, likely, reported)", *ev));
+  }
+  named.refuse_unknown();
+  if (components == 3) {
+    // Three components (docs/survey.md, "[[population]]"): the counts of overturned and the fall directions; the
+    // rocked and slid counts need the one-component models.
+    if (p.rocked) throw named.error("rocked", "a population's rocked count needs [inversion] components = 1");
+    if (p.slid) throw named.error("slid", "a population's slid count needs [inversion] components = 1");
+    if (!p.fallen_azimuths_deg.empty()) {
+      ObservedObject fell = o;
+      fell.outcome = Outcome::overturned;
+      try {
+        check_object_fall_direction(fell);
+      } catch (const InputError& e) {
+        throw named.error("fallen_azimuths_deg", e.problem());
+      }
+    }
+  } else if (!p.fallen_azimuths_deg.empty()) {
+    throw named.error("fallen_azimuths_deg", "fall directions need [inversion] components = 3");
+  }
+  // The restitution check of every member's shape (Housner's e of a squat member).
+  for (const ObservedObject& m : population_members(p)) at_object_keys(named, [&] { check_object_restitution(m); });
+  return p;
+}
+
+std::vector<Population> parse_populations(const toml::node* node, const std::string& file, const std::string& key,
+                                          const Site* site, int components) {
+  std::vector<Population> out;
+  if (node == nullptr) return out;
+  const auto* arr = node->as_array();
+  if (arr == nullptr) throw InputError(InputLocation{file, node->source().begin.line, key}, "expected [[" + key + "]] tables");
+  std::set<std::string> ids;
+  for (const ObservedObject& o : site->objects) ids.insert(o.id);
+  for (std::size_t i = 0; i < arr->size(); ++i) {
+    const auto* t = arr->get(i)->as_table();
+    if (t == nullptr) throw InputError(InputLocation{file, node->source().begin.line, key}, "expected a table");
+    out.push_back(parse_population(*t, file, fmt::format("{}[{}]", key, i + 1), site, components));
+    if (!ids.insert(out.back().id).second) {
+      throw InputError(InputLocation{file, t->source().begin.line, fmt::format("{}[{}].id", key, i + 1)},
+                       fmt::format("duplicate id '{}' (objects and populations share one list of ids)", out.back().id));
+    }
+  }
+  return out;
+}
+
 /// A site's instrument (docs/survey.md, "Regional surveys"): `pga_g = value` (g, > 0) or `record = "file"` (checked
 /// to exist here, read by load_survey_records), not both. A measured PGA is at most the records' limit (100 g,
 /// GroundMotionLimits::max_record_accel_m_s2). In a three-component survey the PGA axis is RotD50, which one record
@@ -876,7 +1037,7 @@ void parse_event_table(const toml::table& t, const std::string& name, Survey& s)
 /// The sites: one [site] with its [[object]] tables, or [[sites]] each with its own.
 void parse_sites(Reader& top, const std::string& name, const std::filesystem::path& base_dir, Survey& s) {
   ReaderMessages said{s.notes, s.warnings};
-  const bool single = top.has("site") || top.has("object");
+  const bool single = top.has("site") || top.has("object") || top.has("population");
   if (single && top.has("sites")) throw top.error("sites", "use either [site] with [[object]] or [[sites]], not both");
   if (single) {
     Site site;
@@ -891,6 +1052,7 @@ void parse_sites(Reader& top, const std::string& name, const std::filesystem::pa
     }
     site.objects =
         parse_objects(top.get("object"), name, "object", said, base_dir, &site, s.inversion.components);
+    site.populations = parse_populations(top.get("population"), name, "population", &site, s.inversion.components);
     s.sites.push_back(std::move(site));
   } else if (const toml::node* sites = top.get("sites")) {
     const auto* arr = sites->as_array();
@@ -905,6 +1067,8 @@ void parse_sites(Reader& top, const std::string& name, const std::filesystem::pa
       parse_intensity(r, site);
       site.objects = parse_objects(r.get("object"), name, fmt::format("sites[{}].object", i + 1), said, base_dir,
                                    &site, s.inversion.components);
+      site.populations = parse_populations(r.get("population"), name, fmt::format("sites[{}].population", i + 1),
+                                           &site, s.inversion.components);
       r.refuse_unknown();
       s.sites.push_back(std::move(site));
     }
@@ -915,12 +1079,12 @@ void parse_sites(Reader& top, const std::string& name, const std::filesystem::pa
 void check_sites(const std::string& name, Survey& s) {
   if (s.sites.empty()) throw InputError(InputLocation{name, {}, "object"}, "the survey has no site and no object");
   bool any_objects = false;
-  for (const Site& site : s.sites) any_objects = any_objects || !site.objects.empty();
+  for (const Site& site : s.sites) any_objects = any_objects || site.has_observations();
   for (std::size_t i = 0; i < s.sites.size(); ++i) {
     // An instrument station may have no objects (docs/survey.md), as long as some site has objects to invert.
     // So may an intensity site (issue 30): it too enters the regional fit only.
     const bool evidence = s.sites[i].is_station() || s.sites[i].intensity.has_value();
-    if (s.sites[i].objects.empty() && !(evidence && any_objects)) {
+    if (!s.sites[i].has_observations() && !(evidence && any_objects)) {
       throw InputError(InputLocation{name, {}, s.sites.size() == 1 ? "object" : fmt::format("sites[{}].object", i + 1)},
                        evidence ? "the survey has no site with observed objects to invert"
                                 : "a site needs at least one observed object (or an instrument: pga_g or record; or "

@@ -195,8 +195,48 @@ nlohmann::ordered_json inversion_json(const InversionResult& r, const Site& site
                     {"bits_pga", n.bits_pga}, {"bits_freq", n.bits_freq}});
   }
   j["next_objects"] = next;
+  if (!r.populations.empty()) j["populations"] = populations_json(r);  // added (issue 30), only with populations
   if (r.three_component) j["three_component"] = three_component_json(*r.three_component, r);
   return j;
+}
+
+nlohmann::ordered_json populations_json(const InversionResult& r) {
+  const std::size_t nf = r.freq_hz.size();
+  const PopulationSlices at = population_slices_at_estimate(r);
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (const PopulationReport& p : r.populations) {
+    nlohmann::ordered_json pj;
+    pj["id"] = p.id;
+    pj["count"] = p.count;
+    pj["overturned"] = p.overturned;
+    if (p.rocked) pj["rocked"] = *p.rocked;
+    if (p.slid) pj["slid"] = *p.slid;
+    pj["observed_fraction"] = p.observed_fraction;
+    pj["model_fraction_at_estimate"] = p.model_fraction_at_estimate;
+    pj["posterior_predictive_fraction"] = p.posterior_predictive_fraction;
+    pj["members"] = p.members;
+    pj["member_rule"] = p.member_rule;
+    // The model's overturned fraction along the grid through the estimate: over PGA in the median frequency's
+    // column, over frequency in the median PGA's row (the report's figure).
+    std::vector<double> over_pga, over_freq;
+    for (std::size_t i = 0; i < r.pga_g.size(); ++i) over_pga.push_back(p.model_fraction[i * nf + at.freq_column]);
+    for (std::size_t j = 0; j < nf; ++j) over_freq.push_back(p.model_fraction[at.pga_row * nf + j]);
+    pj["model_fraction_over_pga"] = {{"freq_hz", r.freq_hz[at.freq_column]}, {"pga_g", r.pga_g}, {"fraction", over_pga}};
+    pj["model_fraction_over_freq"] = {{"pga_g", r.pga_g[at.pga_row]}, {"freq_hz", r.freq_hz}, {"fraction", over_freq}};
+    out.push_back(pj);
+  }
+  return out;
+}
+
+PopulationSlices population_slices_at_estimate(const InversionResult& r) {
+  const auto nearest = [](const std::vector<double>& axis, double x) {
+    std::size_t best = 0;
+    for (std::size_t i = 1; i < axis.size(); ++i) {
+      if (std::abs(std::log(axis[i] / x)) < std::abs(std::log(axis[best] / x))) best = i;
+    }
+    return best;
+  };
+  return {nearest(r.pga_g, r.pga_estimate_g.median), nearest(r.freq_hz, r.freq_estimate_hz.median)};
 }
 
 void write_inversion_grid_csv(const std::filesystem::path& path, const InversionResult& r) {

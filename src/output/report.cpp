@@ -412,6 +412,13 @@ plot::Figure direction_figure(const InversionResult& r, const Site& site) {
   slid.y.assign(slid.x.size(), 0.0);
   if (!bearings.x.empty()) panel.series.push_back(std::move(bearings));
   if (!slid.x.empty()) panel.series.push_back(std::move(slid));
+  // Populations (issue 30): their fallen azimuths, a sample of fall directions (mod 180: an axis).
+  plot::Series fallen{"populations' fall directions", {}, {}, "points pt 5 ps 1.0", "#d95f02", 1.0};
+  for (const Population& p : site.populations) {
+    for (const double az : p.fallen_azimuths_deg) fallen.x.push_back(std::fmod(az, 180.0));
+  }
+  fallen.y.assign(fallen.x.size(), 0.0);
+  if (!fallen.x.empty()) panel.series.push_back(std::move(fallen));
   f.panels.push_back(panel);
   f.panel_height_px = 380;
   return f;
@@ -648,6 +655,63 @@ void thresholds_html(std::ostringstream& h, const InversionResult& r) {
   for (const auto& note : r.notes) h << "<p class=\"note\">" << html_escape(note) << "</p>\n";
 }
 
+/// The representative members the populations ran (each one run per motion, as an object): for the runs per cell.
+std::size_t population_members_simulated(const InversionResult& r) {
+  std::size_t n = 0;
+  for (const PopulationReport& p : r.populations) n += p.members;
+  return n;
+}
+
+/// Populations (issue 30; docs/method.md, "Populations of objects"): each population's observed overturned fraction
+/// (dashed, constant) against the model's, over PGA in the median frequency's column (top) and over frequency in the
+/// median PGA's row (bottom): the slices of io::populations_json.
+plot::Figure population_figure(const InversionResult& r) {
+  const io::PopulationSlices at = io::population_slices_at_estimate(r);
+  const std::size_t nf = r.freq_hz.size();
+  plot::Figure f;
+  f.title = "Populations: the observed overturned fraction against the model's";
+  f.xlabel = fmt::format("PGA (g), at {:.3g} Hz (the median frequency's column)", r.freq_hz[at.freq_column]);
+  plot::Panel over_pga{"overturned fraction", {}, {}, {}, true, false};
+  plot::Panel over_freq{"overturned fraction", {}, {}, {}, true, false};
+  for (std::size_t p = 0; p < r.populations.size(); ++p) {
+    const PopulationReport& rep = r.populations[p];
+    std::vector<double> by_pga, by_freq;
+    for (std::size_t i = 0; i < r.pga_g.size(); ++i) by_pga.push_back(rep.model_fraction[i * nf + at.freq_column]);
+    for (std::size_t j = 0; j < nf; ++j) by_freq.push_back(rep.model_fraction[at.pga_row * nf + j]);
+    const std::string color = object_color(p);
+    over_pga.series.push_back({fmt::format("{}: model", rep.id), r.pga_g, by_pga, "linespoints pt 7 ps 0.6", color, 2.0});
+    over_pga.series.push_back({fmt::format("{}: observed {} of {}", rep.id, rep.overturned, rep.count),
+                               {r.pga_g.front(), r.pga_g.back()}, {rep.observed_fraction, rep.observed_fraction},
+                               "lines dt 2", color, 2.0});
+    over_freq.series.push_back({fmt::format("{}: model", rep.id), r.freq_hz, by_freq, "linespoints pt 7 ps 0.6", color, 2.0});
+    over_freq.series.push_back({fmt::format("{}: observed", rep.id), {r.freq_hz.front(), r.freq_hz.back()},
+                                {rep.observed_fraction, rep.observed_fraction}, "lines dt 2", color, 2.0});
+  }
+  f.panels = {over_pga, over_freq};
+  f.own_xlabels = {"", fmt::format("predominant frequency (Hz), at {:.3g} g (the median PGA's row)", r.pga_g[at.pga_row])};
+  f.panel_height_px = 300;
+  return f;
+}
+
+/// The populations' table and Figure 5 (only for a survey with populations).
+void populations_html(std::ostringstream& h, const std::filesystem::path& dir, const InversionResult& r) {
+  if (r.populations.empty()) return;
+  h << "<h2 id=\"populations\">Populations</h2>\n<table id=\"populations-table\">\n<tr><th>population</th><th>count</th>"
+       "<th>overturned</th><th>observed fraction</th><th>model at the estimate</th><th>posterior-predictive</th>"
+       "<th>members simulated</th></tr>\n";
+  for (const PopulationReport& p : r.populations) {
+    h << fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{:.3f}</td><td>{:.3f}</td><td>{:.3f}</td><td>{}</td></tr>\n",
+                     html_escape(p.id), p.count, p.overturned, p.observed_fraction, p.model_fraction_at_estimate,
+                     p.posterior_predictive_fraction, html_escape(p.member_rule));
+  }
+  h << "</table>\n<figure id=\"population-figure\">" << inline_svg(dir / "population.svg")
+    << "<figcaption>Figure 5. Each population's observed overturned fraction (dashed) against the model's (the mean, "
+       "over the cell's motions, of the share of its representative members that overturned): over PGA in the median "
+       "frequency's column (top) and over frequency in the median PGA's row (bottom). The likelihood of the counts is "
+       "the multinomial under each motion, averaged over the motions (docs/method.md, \"Populations of "
+       "objects\").</figcaption></figure>\n";
+}
+
 /// Figures 1 to 3b, each with its caption (the SVGs already written in `dir`).
 void figures_html(std::ostringstream& h, const std::filesystem::path& dir, const InversionResult& r) {
   std::string undrawn;
@@ -683,7 +747,7 @@ void figures_html(std::ostringstream& h, const std::filesystem::path& dir, const
          "horizontal motion (an axis: 10&deg; and 190&deg; are one direction), per bin, with its mode and its 68 % and "
          "95 % arcs (the shortest arcs holding those shares of the highest bins; an arc passing 180&deg; goes on "
          "from 0&deg;). Diamonds on the axis: the objects' bearings (across their narrow side, mod 180&deg;); "
-         "triangles: observed sliding directions. The direction is unconstrained when the 95 % arc spans more "
+         "triangles: observed sliding directions; filled squares: the populations' fall directions. The direction is unconstrained when the 95 % arc spans more "
          "than 120&deg;.</figcaption></figure>\n";
   }
 }
@@ -763,7 +827,8 @@ void method_html(std::ostringstream& h, const InversionSettings& st, const Site&
                    "uncertain &mu;, e and amplification drawn per motion. The frequency axis is the motions' measured "
                    "predominant frequency (peak of the Konno&ndash;Ohmachi-smoothed Fourier amplitude spectrum).</li>\n",
                    st.pga_count, st.pga_min_g, st.pga_max_g, st.freq_count, st.freq_min_hz, st.freq_max_hz,
-                   r.runs / std::max<std::size_t>(1, site.objects.size() * r.pga_g.size() * r.freq_hz.size()),
+                   r.runs / std::max<std::size_t>(1, (site.objects.size() + population_members_simulated(r)) *
+                                                         r.pga_g.size() * r.freq_hz.size()),
                    st.family == MotionFamily::synthetic      ? "synthetic (Clough&ndash;Penzien filtered noise)"
                    : st.family == MotionFamily::rezaeian2010 ? "synthetic record-like (Rezaeian &amp; Der Kiureghian 2010)"
                    : st.family == MotionFamily::boore2003
@@ -812,6 +877,7 @@ void write_report(const std::filesystem::path& dir, const Survey& survey, const 
   plot::render(marginal_figure(r, false), dir / "marginal_freq.svg");
   plot::render(best_cell_figure(r, site, survey.inversion), dir / "best_cell.svg");
   if (r.three_component) plot::render(direction_figure(r, site), dir / "direction.svg");
+  if (!r.populations.empty()) plot::render(population_figure(r), dir / "population.svg");
   io::write_inversion_grid_csv(dir / "grid.csv", r);
   io::write_file_atomically(dir / "result.json", io::inversion_json(r, site, provenance).dump(2) + "\n");
   std::ostringstream h;
@@ -821,6 +887,7 @@ void write_report(const std::filesystem::path& dir, const Survey& survey, const 
   figures_html(h, dir, r);
   next_objects_html(h, r);
   observations_html(h, dir, site, r);
+  populations_html(h, dir, r);
   method_html(h, survey.inversion, site, r);
   provenance_html(h, provenance, survey.inversion, r);
   h << "</body></html>\n";

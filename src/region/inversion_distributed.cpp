@@ -158,13 +158,19 @@ void fields(IO& io, NextObject& n) {
   io(n.object), io(n.description), io(n.look_for), io(n.bits_pga), io(n.bits_freq);
 }
 template <class IO>
+void fields(IO& io, PopulationReport& p) {
+  io(p.id), io(p.count), io(p.overturned), io(p.rocked), io(p.slid), io(p.members), io(p.member_rule),
+      io(p.observed_fraction), io(p.model_fraction), io(p.model_fraction_at_estimate), io(p.posterior_predictive_fraction);
+}
+template <class IO>
 void fields(IO& io, InversionResult& r) {
   io(r.site), io(r.pga_g), io(r.freq_hz), io(r.measured_freq_hz), io(r.log_likelihood), io(r.posterior),
       io(r.marginal_pga), io(r.marginal_freq);
   io(r.best_cell), io(r.runs), io(r.pga_estimate_g), io(r.freq_estimate_hz), io(r.bounds), io(r.objects), io(r.notes), io(r.seconds);
   io(r.three_component), io(r.rotd100_bounds);  // components = 3 (inversion_3c.hpp)
   io(r.log_prior), io(r.prior), io(r.marginal_pga_likelihood), io(r.marginal_freq_likelihood), io(r.pga_likelihood_g),
-      io(r.freq_likelihood_hz), io(r.pga_given_freq), io(r.next_objects);  // the prior (inversion/prior.hpp) and the
+      io(r.freq_likelihood_hz), io(r.pga_given_freq), io(r.next_objects);
+  io(r.populations);  // populations (docs/method.md, "Populations of objects")  // the prior (inversion/prior.hpp) and the
                                                                            // objects' own evidence (evidence.hpp)
 }
 

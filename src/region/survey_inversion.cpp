@@ -59,7 +59,7 @@ SurveyInversion invert_survey(const Survey& survey, const InversionOptions& opti
   // only.
   std::vector<Site> with_objects;
   for (std::size_t i = 0; i < survey.sites.size(); ++i) {
-    if (survey.sites[i].objects.empty()) continue;
+    if (!survey.sites[i].has_observations()) continue;
     with_objects.push_back(survey.sites[i]);
     out.survey_index.push_back(i);
   }

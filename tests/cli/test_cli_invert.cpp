@@ -569,5 +569,32 @@ TEST(CliInvert, DocsStateTheExampleTrue) {
   check("static thresholds", {j.at("static_bounds_pga_g")[0].get<double>(), j.at("static_bounds_pga_g")[1].get<double>()});
 }
 
+// The cemetery example (issue 30): examples/make_cemetery.sh makes it from topple's own forward model (its header
+// says how), the same bytes every time; inverted, the population's observed fraction is its count's and the true PGA
+// (0.5 g, the script's synth) lies in the 95 % interval.
+TEST(CliInvert, CemeteryExampleIsItsScriptsOutputAndRecoversThePga) {
+  test::TempDir dir;
+  const auto made = dir.path() / "cemetery.toml";
+  const auto run = test::run_example("make_cemetery.sh", "'" + made.string() + "'");
+  ASSERT_EQ(run.exit_code, 0) << run.out;
+  const std::string committed = slurp(std::filesystem::path(TOPPLE_SOURCE_DIR) / "examples" / "cemetery.toml");
+  EXPECT_EQ(slurp(made), committed) << "examples/cemetery.toml is not what examples/make_cemetery.sh makes: rerun it";
+  const std::smatch m = [&] {
+    std::smatch out;
+    std::regex_search(committed, out, std::regex("\\noverturned = ([0-9]+)\\n"));
+    return out;
+  }();
+  ASSERT_EQ(m.size(), 2U);
+  const int overturned = std::stoi(m[1].str());
+  const nlohmann::json j = test::run_json(fmt::format("invert '{}' --json --no-next-objects --quiet", made.string()));
+  const auto& p = j.at("populations").at(0);
+  EXPECT_EQ(p.at("count").get<int>(), 150);
+  EXPECT_EQ(p.at("overturned").get<int>(), overturned);
+  EXPECT_DOUBLE_EQ(p.at("observed_fraction").get<double>(), overturned / 150.0);
+  const auto& ci95 = j.at("pga_g").at("ci95");
+  EXPECT_TRUE(ci95[0].is_null() || ci95[0].get<double>() < 0.5) << ci95;
+  EXPECT_TRUE(ci95[1].is_null() || ci95[1].get<double>() > 0.5) << ci95;
+}
+
 }  // namespace
 }  // namespace topple

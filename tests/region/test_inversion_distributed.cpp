@@ -48,6 +48,28 @@ TEST(InversionDistributed, ThePriorTravels) {
   EXPECT_EQ(back.front().prior, "earthquake");
 }
 
+// A population's report (issue 30) travels with its site's result.
+TEST(InversionDistributed, ThePopulationsTravel) {
+  const InversionSettings st = testing::small_grid(0.02, 8, 2.0, 4.5, 2, 3);
+  std::vector<Site> sites = scenario_sites(1, st);
+  Population p;
+  p.id = "stones";
+  p.count = 30;
+  p.overturned = 7;
+  p.rocked = 5;
+  p.width_m = Interval{0.2, 0.4};
+  p.height_m = Interval{0.8, 1.2};
+  p.prototype.mu = {0.6, 0.6};
+  p.members = 3;
+  sites.front().populations.push_back(p);
+  const std::vector<InversionResult> results = invert_sites(sites, st);
+  ASSERT_EQ(results.front().populations.size(), 1u);
+  const std::vector<InversionResult> back = unpack_inversion_results(pack_inversion_results(results));
+  ASSERT_EQ(back.front().populations.size(), 1u);
+  EXPECT_EQ(io::inversion_json(back.front(), sites.front()).dump(), io::inversion_json(results.front(), sites.front()).dump());
+  EXPECT_EQ(back.front().populations.front().rocked, std::optional<int>(5));
+}
+
 // Every field survives the trip: the JSON of each result (all of its fields, numbers printed to round-trip precision)
 // is the same string before and after, and the wall time (not in every JSON) bit for bit.
 TEST(InversionDistributed, PackedResultsUnpackExactly) {

@@ -129,6 +129,22 @@ struct NextObject {
   double bits_freq = 0.0;   ///< EIG on the frequency marginal, bits (>= 0)
 };
 
+/// A population's observation and what the model says of it (docs/method.md, "Populations of objects").
+struct PopulationReport {
+  std::string id;
+  int count = 0;
+  int overturned = 0;
+  std::optional<int> rocked, slid;
+  std::size_t members = 0;             ///< K, the representative members simulated
+  std::string member_rule;             ///< how they were chosen ("the measured sample", "stratified quantiles ...")
+  double observed_fraction = 0.0;      ///< overturned / count
+  /// The model's overturned fraction per cell (mean over the cell's motions and the K members), dimensionless; index
+  /// i_pga * freq_count + j_freq.
+  std::vector<double> model_fraction;
+  double model_fraction_at_estimate = 0.0;  ///< model_fraction at the cell of the median PGA and median frequency
+  double posterior_predictive_fraction = 0.0;  ///< sum_c posterior(c) model_fraction(c)
+};
+
 struct InversionResult {
   std::string site;
   std::vector<double> pga_g;     ///< grid rows, g
@@ -147,6 +163,7 @@ struct InversionResult {
   Estimate freq_estimate_hz;    ///< predominant frequency, in Hz
   StaticBounds bounds;
   std::vector<ObjectReport> objects;
+  std::vector<PopulationReport> populations;  ///< the site's populations (empty: none, and no "populations" key)
   std::vector<std::string> notes;  ///< honesty: what the observations cannot constrain, contradictions
   std::size_t runs = 0;
   double seconds = 0.0;         ///< wall-clock time of the inversion, s

@@ -42,6 +42,18 @@ inline constexpr std::array<ProvenanceField, 7> kProvenanceFields{{
 [[nodiscard]] nlohmann::ordered_json inversion_json(const InversionResult& result, const Site& site,
                                                     const Provenance& provenance);
 
+/// The grid row of the median PGA and the column of the median frequency (nearest in log): where the report and the
+/// JSON slice a population's model fraction (docs/method.md, "Populations of objects").
+struct PopulationSlices {
+  std::size_t pga_row = 0;
+  std::size_t freq_column = 0;
+};
+[[nodiscard]] PopulationSlices population_slices_at_estimate(const InversionResult& result);
+/// The "populations" array of the invert JSON: each population's counts, observed fraction, the model's fraction at
+/// the estimate and posterior-predictive, its members and rule, and the model's fraction over PGA (median
+/// frequency's column) and over frequency (median PGA's row).
+[[nodiscard]] nlohmann::ordered_json populations_json(const InversionResult& result);
+
 /// The grid: one row per cell, pga_g,freq_hz,log_likelihood,posterior,p_<object id>...
 void write_inversion_grid_csv(const std::filesystem::path& path, const InversionResult& result);
 

@@ -165,6 +165,32 @@ struct SiteIntensity {
   std::optional<int> reports;               ///< the number of reports behind it (>= 1); none: not stated (taken as 1)
 };
 
+/// One measured member of a population's sample (docs/survey.md, "Populations"): its dimensions, m (a block: width and
+/// height; a cylinder: diameter and height).
+struct PopulationMember {
+  std::optional<double> width_m, height_m, diameter_m;
+};
+
+/// A population (docs/survey.md, "Populations"; docs/method.md, "Populations of objects"): a class of similar objects
+/// counted, not listed ("71 of 212 gravestones toppled; 20 of them measured"). Everything an object has but its size
+/// and outcome is the class' (`prototype`: shape, mu, e, support, amplification, orientation, model, evidence); the
+/// sizes are a stated range per dimension (uniform in it) or a measured sample; the outcomes are counts.
+struct Population {
+  std::string id;
+  std::string description;
+  std::string shape = "block";        ///< "block" or "cylinder"
+  ObservedObject prototype;           ///< the class' shared keys; its body is the class' middle member's
+  int count = 0;                      ///< objects in the class (>= 1)
+  int overturned = 0;                 ///< of them, toppled
+  std::optional<int> rocked;          ///< stood and visibly rocked (given: a category of the multinomial)
+  std::optional<int> slid;            ///< stood and visibly slid (given: a category; the coupled model is used)
+  std::vector<double> fallen_azimuths_deg;  ///< directions the toppled ones fell, deg clockwise from north
+  std::optional<Interval> width_m, height_m, diameter_m;  ///< stated ranges, m (uniform in each)
+  std::vector<PopulationMember> sample;                   ///< measured members (used instead of the ranges)
+  int members = 16;                   ///< K, the representative members simulated (`members` key, 1 to 200)
+  std::size_t line = 0;               ///< where the population starts in the survey file (for messages)
+};
+
 struct Site {
   std::string name;
   std::optional<double> lat_deg, lon_deg;
@@ -173,6 +199,10 @@ struct Site {
   /// of their own stand on it (io::read_survey copies it into their support_filter).
   std::optional<SupportFilter> support_filter;
   std::vector<ObservedObject> objects;
+  /// Populations of similar objects counted, not listed (Population); inverted with the objects.
+  std::vector<Population> populations;
+  /// Objects or populations: something observed to invert.
+  [[nodiscard]] bool has_observations() const noexcept { return !objects.empty() || !populations.empty(); }
   /// An instrument station (docs/survey.md, "Regional surveys"): the PGA an accelerograph measured here, in g, given
   /// as `pga_g = ...` or read from `record = "file"` (the record's peak |a| over g_m_s2, set by
   /// io::load_survey_records). Such a site may have no objects; if it has some, they are inverted alone and checked
