@@ -315,8 +315,8 @@ void expect_synthetic_calibration(const InversionSettings& st) {
       st, objects, trials, 2026, 777, [&st](const ObservedObject& o, double mu, const GroundMotion& truth) {
         return testing::observe_uncoupled(o, mu, truth, st);
       });
-  RecordProperty("in95", c.in95);
-  RecordProperty("in68", c.in68);
+  ::testing::Test::RecordProperty("in95", c.in95);
+  ::testing::Test::RecordProperty("in68", c.in68);
   EXPECT_GE(c.in95, static_cast<int>(std::ceil(0.85 * trials)));
   EXPECT_GE(c.in68, static_cast<int>(std::ceil(0.55 * trials)));
 }
