@@ -6,7 +6,6 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdio>
-#include <cstdlib>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -168,28 +167,41 @@ TEST(Rigid3DDisc, FreeRollingConservesEnergy) {
   EXPECT_GT(std::abs(swept), 2.0 * M_PI);
   const double scale = kG * 0.5;  // g h: the potential energy's scale, J/kg
   EXPECT_LT(max_energy_drift(r), 1e-7 * scale);
+  std::printf("free wobble: energy drift %.3g J/kg over 3 s (g h = %.3g), axis swept %.3g rad\n", max_energy_drift(r),
+              scale, swept);
 }
 
-// With impacts (free, from a tilt that comes back down with a spin): the energy never increases.
+// With impacts (free, from a tilt coming back down, with no or a small sideways rate): the energy never increases.
+// With a spin about the vertical the ideal rim does not land: the contact runs round the rim near the upright and
+// the body rolls over onto the other side (the rolling disk; energy conserved, checked too).
 TEST(Rigid3DDisc, EnergyNeverIncreasesWithImpacts) {
   const CylinderBody3D cyl = CylinderBody3D::solid(0.3, 1.0);
-  for (const double spin : {0.0, 0.3, 1.0}) {
-    Rigid3DOptions o;
-    o.g_m_s2 = kG;
-    o.max_run_out_s = 0.0;
-    o.record_history = true;
-    // tilted by 0.15 rad toward azimuth phi = 1 rad (from east), coming back down about the rocking axis t, with a
-    // sideways rate along u and a spin about the vertical
-    const double phi = 1.0;
-    const Vec3 u{std::cos(phi), std::sin(phi), 0.0}, t{-std::sin(phi), std::cos(phi), 0.0};
-    const CylinderInitialState init{tilted(0.15, phi),
-                                    {-0.3 * t[0] + 0.02 * u[0], -0.3 * t[1] + 0.02 * u[1], spin}};
-    const Rigid3DResult r = rock3d_cylinder(still(4.0), nullptr, nullptr, cyl, o, init);
-    SCOPED_TRACE(testing::Message() << "spin " << spin);
-    EXPECT_GT(r.summary.impacts, 0U);
-    const auto& e = r.history.energy_j_per_kg;
-    for (std::size_t i = 1; i < e.size(); ++i) EXPECT_LE(e[i], e[i - 1] + 1e-8 * kG * 0.5) << "at " << i;
-    EXPECT_GT(r.summary.energy_lost_j_per_kg, 0.0);
+  const double phi = 1.0;
+  const Vec3 u{std::cos(phi), std::sin(phi), 0.0}, t{-std::sin(phi), std::cos(phi), 0.0};
+  for (const double side : {0.0, 1e-4, 1e-3}) {
+    for (const double spin : {0.0, 0.3}) {
+      Rigid3DOptions o;
+      o.g_m_s2 = kG;
+      o.max_run_out_s = 0.0;
+      o.record_history = true;
+      // tilted by 0.15 rad toward azimuth phi (from east), coming back down about the rocking axis t at 0.3 rad/s,
+      // a sideways rate along u, a spin about the vertical
+      const CylinderInitialState init{tilted(0.15, phi),
+                                      {-0.3 * t[0] + side * u[0], -0.3 * t[1] + side * u[1], spin}};
+      const Rigid3DResult r = rock3d_cylinder(still(4.0), nullptr, nullptr, cyl, o, init);
+      SCOPED_TRACE(testing::Message() << "sideways " << side << " spin " << spin);
+      const auto& e = r.history.energy_j_per_kg;
+      ASSERT_GT(e.size(), 10U);
+      for (std::size_t i = 1; i < e.size(); ++i) EXPECT_LE(e[i], e[i - 1] + 1e-9 * kG * 0.5) << "at " << i;
+      if (spin == 0.0) {
+        EXPECT_GT(r.summary.impacts, 5U);
+        EXPECT_GT(r.summary.energy_lost_j_per_kg, 0.5 * e.front());
+        EXPECT_NEAR(r.summary.energy_lost_j_per_kg + e.back(), e.front(), 1e-6 * e.front());
+      } else {
+        EXPECT_EQ(r.summary.impacts, 0U);
+        EXPECT_NEAR(e.back(), e.front(), 1e-8 * kG * 0.5);
+      }
+    }
   }
 }
 
@@ -218,6 +230,7 @@ TEST(Rigid3DDisc, ErrorFallsWithTheTolerance) {
   EXPECT_LT(e10, e8 / 10.0);
   EXPECT_LT(e10, 1e-8);
   const double order = std::log10(e6 / e10) / 4.0;  // error ~ tol^order
+  std::printf("end-axis error at rel_tol 1e-6 / 1e-8 / 1e-10: %.3g / %.3g / %.3g, order %.3f\n", e6, e8, e10, order);
   EXPECT_GT(order, 0.7);
   EXPECT_LT(order, 1.3);
 }
@@ -257,24 +270,6 @@ TEST(Rigid3DDisc, RotatedGroundMotionGivesTheRotatedMotion) {
     EXPECT_GT(a.uplifts, 0U);
   }
   (void)fell;
-}
-
-TEST(Rigid3DDisc, Debug) {
-  const CylinderBody3D cyl = CylinderBody3D::solid(0.3, 1.0);
-  for (const double pga : {0.5}) {
-  const GroundMotion m = noise(1, pga * kG);
-  for (const double tol : {1e-8, 1e-10, 1e-12, 1e-13}) {
-    RockingOptions po;
-    po.g_m_s2 = kG;
-    po.rel_tol = tol;
-    const RockingSummary p = rock_summary(m, RockingBody::cylinder(0.3, 1.0), po);
-    Rigid3DOptions o;
-    o.g_m_s2 = kG;
-    o.rel_tol = tol;
-    const Rigid3DSummary r = rock3d_cylinder(m, nullptr, nullptr, cyl, o).summary;
-    std::printf("tol %g planar %.10f %zu %.10f  3d %.10f %zu %.10f steps %zu\n", tol, p.max_abs_rotation_rad, p.impacts, p.energy_lost_j_per_kg, r.max_tilt_rad, r.impacts, r.energy_lost_j_per_kg, r.steps);
-  }
-  }
 }
 
 TEST(Rigid3DDisc, BadInputNamesTheField) {

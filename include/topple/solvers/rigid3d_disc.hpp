@@ -19,16 +19,21 @@
 //   M_p w' = r x f - w x (J_G w) - r x (w x r'),   M_p = J_G + |r|^2 1 - r r^T,   r' = h (w x a) - R u',
 //   q' = (0, w) q / 2 (w in the ground frame),   x_c' = w x r.
 // (Newton: a_c = F + f, a_c = d(w x r)/dt; Euler about c: d(J_G w)/dt = -r x F; eliminating the contact force F.)
-// u' follows from a' = w x a: z_perp' = -(z . a') a - (z . a) a', u' = -(z_perp' - u (u . z_perp')) / sin(theta).
+// u' follows from a' = w x a: z_perp' = -(z . a') a - (z . a) a', u' = -(z_perp' - u (u . z_perp')) / sin(theta);
+// at the upright (sin(theta) < 1e-12: the first stage after an uplift or an impact) u is the contact chosen there and
+// u' = w x u (the rim point fixed in the body: the rocking limit).
 // Under one horizontal component with no spin the motion stays in the vertical plane through the axis and this is
 // the planar engine's cylinder (rocking.hpp) with a = R, D = J_t + R^2 + h^2.
 //
 // Transitions. rest -> rim: the static threshold |a_h| > (g + a_z) R / h (the resultant of gravity and the ground's
 // inertial force leaves the base), located in each sample interval by TOMS 748 on |a_h|^2 - ((g + a_z) R / h)^2; the
 // contact is the rim point toward -a_h (the body tips away from the ground's acceleration, as the planar engine's
-// "a_h < 0 drives theta > 0"). rim -> landing: the base lands flat when the height of the rim point opposite the
-// step's initial contact, 2 R (-a . u0)... precisely s(t) = -k(t) . u0 with k = z in the body's base plane, falls to
-// sin(theta_land) (kLandingTilt_rad = 1e-9 rad: a body whose contact whirls round the rim as theta -> 0 lands too).
+// "a_h < 0 drives theta > 0"). rim -> landing: the base lands flat when s(t) = -z_perp(t) . u0 (sin(theta) cos(theta)
+// cos(the contact's turn since the step's start u0)) falls to 0; in planar rocking this is theta = 0 exactly. A body
+// with a sideways rate (w . u != 0) near the upright does not land on the ideal rim: its contact runs round the rim
+// (u' ~ rate / theta) and it rolls over onto the other side (the rolling disk); a tilt minimum below 1e-3 alpha with a
+// sideways rate counts as a flat landing at the minimum (a stated approximation: the whole base is then within
+// 2 R sin(1e-3 alpha) of the ground).
 // rim -> fallen: theta = 90 degrees (the azimuth of the fall: the axis' horizontal direction).
 //
 // Impact (Housner 1963 generalised, as rigid3d.hpp): the base lands flat; the new contact p' is the rim point with
