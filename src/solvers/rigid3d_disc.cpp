@@ -263,6 +263,7 @@ class Engine {
     if (!s.uplift_time_s) s.uplift_time_s = t;
     s.modes.push_back({t, mode_, -1, -1});
     h_try_ = 0.0;
+    fsal_valid_ = false;
     record(t);
   }
 
@@ -288,7 +289,14 @@ class Engine {
         }
         return y;
       };
-      const State k1 = rhs(y0, acc_at(t));
+      // first same as last: the previous accepted step's k7 is this step's k1 (same state, same time, same input)
+      // (and with the same input there: a jump between pieces, or the run-out's still ground, changes it)
+      const std::array<double, 3> acc0 = acc_at(t);
+      if (!fsal_valid_ || acc0 != fsal_acc_) {
+        k1_ = rhs(y0, acc0);
+        fsal_valid_ = true;
+      }
+      const State& k1 = k1_;
       const State k2 = rhs(stage({{{b21, &k1}}}, 1), acc_at(t + a2 * h));
       const State k3 = rhs(stage({{{b31, &k1}, {b32, &k2}}}, 2), acc_at(t + a3 * h));
       const State k4 = rhs(stage({{{b41, &k1}, {b42, &k2}, {b43, &k3}}}, 3), acc_at(t + a4 * h));
@@ -298,7 +306,8 @@ class Engine {
       const State y1 = stage({{{c1, &k1}, {c3, &k3}, {c4, &k4}, {c5, &k5}, {c6, &k6}}}, 5);
       const State k7 = rhs(y1, acc_at(t + h));
       double err = 0.0;
-      for (std::size_t i = 0; i < kN; ++i) {
+      // q and w: x_c is a quadrature (w x r) that does not feed back, so it does not set the step
+      for (std::size_t i = 0; i < 7; ++i) {
         const double e = h * (dc1 * k1[i] + dc3 * k3[i] + dc4 * k4[i] + dc5 * k5[i] + dc6 * k6[i] + dc7 * k7[i]);
         const double sc = opt_.abs_tol * scale[i] + opt_.rel_tol * std::max(std::abs(y0[i]), std::abs(y1[i]));
         err = std::max(err, std::abs(e) / sc);
@@ -314,6 +323,8 @@ class Engine {
       h_try_ = h * std::min(5.0, std::max(0.2, 0.9 * std::pow(std::max(err, 1e-10), -0.2)));
       const std::array<const State*, 6> ks{&k1, &k3, &k4, &k5, &k6, &k7};
       const auto dense = [&](double s) {
+        if (s == 0.0) return y0;  // the step's ends: exact (the events look there first)
+        if (s == 1.0) return y1;
         State y = y0;
         for (std::size_t j = 0; j < 6; ++j) {
           double b = 0.0;
@@ -322,7 +333,16 @@ class Engine {
         }
         return y;
       };
-      return finish_step(t, h, y1, dense, acc_at);
+      const double t_new = finish_step(t, h, y1, dense, acc_at);
+      // k7 is f(y1, t + h) of this step's input piece: valid as the next k1 only when the step ran to its end with no
+      // event and the state was not changed
+      if (t_new == t + h && mode_ == Rigid3DMode::rocking && y_ == y1) {
+        k1_ = k7;
+        fsal_acc_ = acc_at(t + h);
+      } else {
+        fsal_valid_ = false;
+      }
+      return t_new;
     }
   }
 
@@ -477,6 +497,7 @@ class Engine {
       s.modes.push_back({t, mode_, -1, -1});
     }
     h_try_ = 0.0;
+    fsal_valid_ = false;
     record(t);
   }
 
@@ -490,6 +511,9 @@ class Engine {
   Rigid3DMode mode_ = Rigid3DMode::rest;
   double h_try_ = 0.0;
   std::size_t steps_ = 0;
+  State k1_{};
+  bool fsal_valid_ = false;
+  std::array<double, 3> fsal_acc_{};
 };
 
 }  // namespace
