@@ -173,6 +173,13 @@ void BM_Cylinder3DWobble(benchmark::State& state) {
   state.counters["max_tilt_over_limit"] = s.max_tilt_over_limit;
   state.counters["steps_per_sample"] = static_cast<double>(s.steps) / static_cast<double>(rec.size());
   state.counters["overturned"] = s.overturned ? 1.0 : 0.0;
+  // the fraction of the record on the rim (from the mode changes), as BM_Rocking's rocking_fraction
+  double on_rim = 0.0;
+  for (std::size_t i = 0; i < s.modes.size(); ++i) {
+    const double end = i + 1 < s.modes.size() ? s.modes[i + 1].time_s : s.end_time_s;
+    if (s.modes[i].mode == topple::Rigid3DMode::rocking) on_rim += end - s.modes[i].time_s;
+  }
+  state.counters["rim_fraction"] = on_rim / (rec.end_time_s() - rec.start_time_s());
 }
 BENCHMARK(BM_Cylinder3DWobble)
     ->Args({100, 15, 70})
