@@ -19,6 +19,7 @@
 #include "kocaeli_record.hpp"
 #include "topple/motion/pulses.hpp"
 #include "topple/solvers/rigid3d.hpp"
+#include "topple/solvers/rigid3d_disc.hpp"
 #include "topple/solvers/rocking.hpp"
 #include "topple/solvers/threshold_search.hpp"
 
@@ -130,6 +131,62 @@ void BM_Rigid3DCorner(benchmark::State& state) {
   state.counters["steps_per_sample"] = static_cast<double>(s.steps) / static_cast<double>(rec.size());
 }
 BENCHMARK(BM_Rigid3DCorner)->Args({100, 10})->Unit(benchmark::kMillisecond);
+
+void BM_CylinderPlanar(benchmark::State& state) {
+  // A solid cylinder (diameter in cm, a/h = d/H in percent) in the planar engine under the record: the reference for
+  // BM_Cylinder3DWobble (issue 29 asks the wobbling cylinder within 10x of the planar engine per sample).
+  const GroundMotion& rec = record();
+  const double d = static_cast<double>(state.range(0)) / 100.0;
+  const double slenderness = static_cast<double>(state.range(1)) / 100.0;
+  const auto body = topple::RockingBody::cylinder(d, d / slenderness);
+  const topple::RockingOptions options;
+  topple::RockingSummary s;
+  for (auto _ : state) {
+    s = topple::rock_summary(rec, body, options);
+    benchmark::DoNotOptimize(s);
+  }
+  counters(state, s, rec.size());
+}
+BENCHMARK(BM_CylinderPlanar)->Args({100, 15})->Args({100, 10})->Unit(benchmark::kMillisecond);
+
+void BM_Cylinder3DWobble(benchmark::State& state) {
+  // The same cylinder in the three-dimensional rim engine (rigid3d_disc.hpp) under the record along x and, along y,
+  // the record times the third argument (percent) delayed by 1 s: two components, so it wobbles (the contact moves
+  // round the rim); with 0 the input of BM_CylinderPlanar (the same planar motion, tests/solvers/test_rigid3d_disc.cpp).
+  const GroundMotion& rec = record();
+  const double d = static_cast<double>(state.range(0)) / 100.0;
+  const double slenderness = static_cast<double>(state.range(1)) / 100.0;
+  const auto body = topple::CylinderBody3D::solid(d, d / slenderness);
+  std::vector<double> a(rec.size(), 0.0);
+  const auto delay = static_cast<std::size_t>(std::llround(1.0 / rec.dt_s()));
+  const double k = static_cast<double>(state.range(2)) / 100.0;
+  for (std::size_t i = delay; i < rec.size(); ++i) a[i] = k * rec.accel_m_s2()[i - delay];
+  const GroundMotion y = GroundMotion::uniform(a, rec.dt_s(), rec.start_time_s());
+  const topple::Rigid3DOptions options;
+  topple::Rigid3DSummary s;
+  for (auto _ : state) {
+    s = topple::rock3d_cylinder(rec, &y, nullptr, body, options).summary;
+    benchmark::DoNotOptimize(s);
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * rec.size()));
+  state.counters["impacts"] = static_cast<double>(s.impacts);
+  state.counters["max_tilt_over_limit"] = s.max_tilt_over_limit;
+  state.counters["steps_per_sample"] = static_cast<double>(s.steps) / static_cast<double>(rec.size());
+  state.counters["overturned"] = s.overturned ? 1.0 : 0.0;
+  // the fraction of the record on the rim (from the mode changes), as BM_Rocking's rocking_fraction
+  double on_rim = 0.0;
+  for (std::size_t i = 0; i < s.modes.size(); ++i) {
+    const double end = i + 1 < s.modes.size() ? s.modes[i + 1].time_s : s.end_time_s;
+    if (s.modes[i].mode == topple::Rigid3DMode::rocking) on_rim += end - s.modes[i].time_s;
+  }
+  state.counters["rim_fraction"] = on_rim / (rec.end_time_s() - rec.start_time_s());
+}
+BENCHMARK(BM_Cylinder3DWobble)
+    ->Args({100, 15, 70})
+    ->Args({100, 10, 70})
+    ->Args({100, 15, 0})
+    ->Args({100, 10, 0})
+    ->Unit(benchmark::kMillisecond);
 
 void BM_RockingRk4Thesis(benchmark::State& state) {
   // The thesis' method for comparison: fixed-step RK4, 10 steps per sample interval.

@@ -1,0 +1,577 @@
+// A cylinder rocking and rolling on its rim in three dimensions (rigid3d_disc.hpp; docs/method.md, "A circular base:
+// rolling on the rim").
+#include "topple/solvers/rigid3d_disc.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <utility>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "topple/core/error.hpp"
+#include "topple/motion/input_grid.hpp"
+#include "topple/numerics/dp5.hpp"
+#include "topple/numerics/event_root.hpp"
+
+namespace topple {
+namespace {
+
+using V = Vec3;
+constexpr std::size_t kN = 10;  // q (4), w (3, ground frame), x_c (3)
+using State = std::array<double, kN>;
+// Below this sin(tilt) the contact's direction is taken from the last step's end (or the uplift, or the impact): the
+// direction of z_perp there is rounding noise (|q| = 1 to 1e-16).
+constexpr double kDirectionFloor = 1e-12;
+// A tilt minimum below kFlatTilt times alpha with a sideways rate above kWhirlRate_rad_s is a flat landing (header).
+constexpr double kFlatTilt = 1e-3;
+constexpr double kWhirlRate_rad_s = 1e-8;
+
+V add(V a, V b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
+V sub(V a, V b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+V mul(V a, double k) { return {a[0] * k, a[1] * k, a[2] * k}; }
+double dot(V a, V b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+V cross(V a, V b) { return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}; }
+double norm(V a) { return std::sqrt(dot(a, a)); }
+constexpr V kZ{0.0, 0.0, 1.0};
+
+Quaternion quat(const State& y) { return {y[0], y[1], y[2], y[3]}; }
+V omega(const State& y) { return {y[4], y[5], y[6]}; }
+V position(const State& y) { return {y[7], y[8], y[9]}; }
+
+/// R(q) v for q = (w, x, y, z), normalised.
+V rotate(Quaternion q, V v) {
+  const double n = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+  for (double& c : q) c /= n;
+  const V u{q[1], q[2], q[3]};
+  const V t = mul(cross(u, v), 2.0);
+  return add(add(v, mul(t, q[0])), cross(u, t));
+}
+Quaternion qmul(Quaternion a, Quaternion b) {
+  return {a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3], a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
+          a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1], a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0]};
+}
+Quaternion normalised(Quaternion q) {
+  const double n = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+  for (double& c : q) c /= n;
+  return q;
+}
+/// Solves the symmetric 3x3 system M x = b (Cramer; M is an inertia tensor, positive definite).
+V solve3(const std::array<V, 3>& M, V b) {
+  const V c0{M[0][0], M[1][0], M[2][0]}, c1{M[0][1], M[1][1], M[2][1]}, c2{M[0][2], M[1][2], M[2][2]};
+  const double det = dot(c0, cross(c1, c2));
+  return {dot(b, cross(c1, c2)) / det, dot(c0, cross(b, c2)) / det, dot(c0, cross(c1, b)) / det};
+}
+double azimuth_deg(V d) {  // clockwise from north of a plan direction
+  double az = std::atan2(d[0], d[1]) * 180.0 / M_PI;
+  if (az < 0.0) az += 360.0;
+  return az;
+}
+
+struct Geo {
+  double R, h, Ja, Jt, alpha, lift_energy;
+  [[nodiscard]] V JG(V a, V w) const { return add(mul(w, Jt), mul(a, (Ja - Jt) * dot(a, w))); }
+  /// M_p = J_G + |r|^2 1 - r r^T
+  [[nodiscard]] std::array<V, 3> Mp(V a, V r) const {
+    std::array<V, 3> M{};
+    const double rr = dot(r, r);
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) {
+        M[i][j] = (Ja - Jt) * a[i] * a[j] - r[i] * r[j] + (i == j ? Jt + rr : 0.0);
+      }
+    }
+    return M;
+  }
+  [[nodiscard]] V Mp_times(V a, V r, V w) const {
+    return add(JG(a, w), sub(mul(w, dot(r, r)), mul(r, dot(r, w))));
+  }
+};
+
+/// z - (a . z) a = a x (z x a), written so that each component keeps its relative precision at small tilts (the
+/// z component a_x^2 + a_y^2 rather than 1 - a_z^2).
+V z_perp(V a) { return {-a[2] * a[0], -a[2] * a[1], a[0] * a[0] + a[1] * a[1]}; }
+/// Its time derivative for a' = ad.
+V z_perp_rate(V a, V ad) {
+  return {-ad[2] * a[0] - a[2] * ad[0], -ad[2] * a[1] - a[2] * ad[1], 2.0 * (a[0] * ad[0] + a[1] * ad[1])};
+}
+
+/// The contact geometry of a state: axis a, contact direction u (from the base's centre), sin(theta), r = c - p.
+struct Contact {
+  V a, u, r;
+  double sin_tilt;
+};
+Contact contact_of(const Geo& g, const Quaternion& q, V fallback_u) {
+  Contact c;
+  c.a = rotate(q, kZ);
+  const V zp = z_perp(c.a);
+  c.sin_tilt = norm(zp);
+  if (c.sin_tilt > kDirectionFloor) {
+    c.u = mul(zp, -1.0 / c.sin_tilt);
+  } else {
+    c.u = fallback_u;  // flat: the contact chosen at the uplift or the impact (first stage only)
+  }
+  c.r = sub(mul(c.a, g.h), mul(c.u, g.R));
+  return c;
+}
+
+/// Kinetic energy (relative to the ground) plus potential, per unit mass, on the rim.
+double energy(const Geo& g, const State& y, V fallback_u, double grav) {
+  const Contact c = contact_of(g, quat(y), fallback_u);
+  const V w = omega(y);
+  return 0.5 * dot(w, g.Mp_times(c.a, c.r, w)) + grav * (c.r[2] - g.h);
+}
+
+class Engine {
+ public:
+  Engine(const InputGrid& grid, std::vector<double> gravity, const Geo& geo, const Rigid3DOptions& opt)
+      : grid_(grid), gravity_(std::move(gravity)), g_(geo), opt_(opt) {}
+
+  Rigid3DResult run(const std::optional<CylinderInitialState>& initial) {
+    Rigid3DSummary& s = res_.summary;
+    y_ = State{1, 0, 0, 0, 0, 0, 0, 0, 0, g_.h};
+    mode_ = Rigid3DMode::rest;
+    const double t0 = grid_.time_s(0);
+    if (initial) {
+      const Quaternion q = normalised(initial->orientation);
+      const V a = rotate(q, kZ);
+      if (!(a[2] > 0.0 && a[2] < 1.0)) {
+        throw parameter_error("initial", "the initial tilt must be strictly between 0 and 90 degrees");
+      }
+      const V w = initial->angular_velocity_rad_s;
+      const Contact c = contact_of(g_, q, kZ);
+      y_ = State{q[0], q[1], q[2], q[3], w[0], w[1], w[2], 0.0, 0.0, c.r[2]};
+      y_[7] = c.r[0];  // the contact point at the ground frame's origin
+      y_[8] = c.r[1];
+      u_ = c.u;
+      mode_ = Rigid3DMode::rocking;
+    }
+    s.modes.push_back({t0, mode_, -1, -1});
+    record(t0);
+    const std::size_t n = grid_.size();
+    double t_end = t0;
+    for (std::size_t i = 0; i + 1 < n && !done(); ++i) {
+      const double ta = grid_.time_s(i), tb = grid_.time_s(i + 1);
+      if (tb > ta) advance(ta, tb, accel(i), accel(i + 1));
+      t_end = tb;
+      if (!done() && opt_.record_history) record(tb);
+    }
+    // run-out on still ground
+    const double dt = grid_.dt_s() > 0.0 ? grid_.dt_s() : 0.01;
+    const std::array<double, 3> still{0.0, 0.0, opt_.g_m_s2};
+    double t = t_end;
+    while (!done() && mode_ != Rigid3DMode::rest && t - t_end < opt_.max_run_out_s) {
+      advance(t, t + dt, still, still);
+      t += dt;
+      if (!done() && opt_.record_history) record(t);
+    }
+    s.end_time_s = done() ? *s.overturn_time_s : t;
+    s.end_mode = mode_;
+    s.steps = steps_;
+    s.max_tilt_over_limit = s.max_tilt_rad / g_.alpha;
+    return std::move(res_);
+  }
+
+ private:
+  /// (a_x, a_y, g + a_z) at grid point i.
+  [[nodiscard]] std::array<double, 3> accel(std::size_t i) const {
+    const auto comp = [&](std::size_t c) { return grid_.has(c) ? grid_.accel_m_s2(c)[i] : 0.0; };
+    return {comp(0), comp(1), gravity_.empty() ? opt_.g_m_s2 : gravity_[i]};
+  }
+  [[nodiscard]] bool done() const { return mode_ == Rigid3DMode::fallen; }
+
+  void record(double t) {
+    if (!opt_.record_history) return;
+    Rigid3DHistory& h = res_.history;
+    const Quaternion q = normalised(quat(y_));
+    const V a = rotate(q, kZ);
+    h.time_s.push_back(t);
+    h.position_m.push_back(sub(position(y_), mul(a, g_.h)));
+    h.orientation.push_back(q);
+    h.angular_velocity_rad_s.push_back(omega(y_));
+    h.energy_j_per_kg.push_back(mode_ == Rigid3DMode::rest ? 0.0 : energy(g_, y_, u_, opt_.g_m_s2));
+    h.mode.push_back(mode_);
+  }
+
+  // The equations of motion on the rim (header), f = (-a_x, -a_y, -(g + a_z)).
+  [[nodiscard]] State rhs(const State& y, const std::array<double, 3>& acc) const {
+    const Quaternion q = quat(y);
+    const V w = omega(y);
+    const Contact c = contact_of(g_, q, u_);
+    const V ad = cross(w, c.a);
+    // flat (first stage after an uplift or an impact): the contact is the rim point fixed in the body, u' = w x u
+    // (the rocking limit; a sideways rate there would make u' infinite)
+    V ud = cross(w, c.u);
+    if (c.sin_tilt > kDirectionFloor) {
+      const V zpd = z_perp_rate(c.a, ad);
+      ud = mul(sub(zpd, mul(c.u, dot(c.u, zpd))), -1.0 / c.sin_tilt);
+    }
+    const V rd = sub(mul(ad, g_.h), mul(ud, g_.R));
+    const V f{-acc[0], -acc[1], -acc[2]};
+    const V rhs_m = sub(sub(cross(c.r, f), cross(w, g_.JG(c.a, w))), cross(c.r, cross(w, rd)));
+    const V wd = solve3(g_.Mp(c.a, c.r), rhs_m);
+    const Quaternion qd = qmul({0.0, w[0], w[1], w[2]}, q);
+    const V vc = cross(w, c.r);
+    return {0.5 * qd[0], 0.5 * qd[1], 0.5 * qd[2], 0.5 * qd[3], wd[0], wd[1], wd[2], vc[0], vc[1], vc[2]};
+  }
+
+  /// The sample interval [ta, tb] with the input linear between acc_a and acc_b.
+  void advance(double ta, double tb, std::array<double, 3> acc_a, std::array<double, 3> acc_b) {
+    const auto acc_at = [&](double t) {
+      const double s = (t - ta) / (tb - ta);
+      return std::array<double, 3>{acc_a[0] + s * (acc_b[0] - acc_a[0]), acc_a[1] + s * (acc_b[1] - acc_a[1]),
+                                   acc_a[2] + s * (acc_b[2] - acc_a[2])};
+    };
+    double t = ta;
+    while (t < tb && !done()) {
+      if (mode_ == Rigid3DMode::rest) {
+        // onset: |a_h|^2 - ((g + a_z) R / h)^2 crosses zero upward (header)
+        const double k = g_.R / g_.h;
+        const auto f = [&](double tt) {
+          const auto a = acc_at(tt);
+          return a[0] * a[0] + a[1] * a[1] - (a[2] * k) * (a[2] * k);
+        };
+        const double fa = f(t), fb = f(tb);
+        if (fa > 0.0) {
+          uplift(t, acc_at(t));
+          continue;
+        }
+        if (!(fb > 0.0)) return;
+        const double tu = detail::find_root(f, t, tb, fa, fb);
+        // the uplift instant: the root (the planar engine's too), nudged up by a few ulps to where the threshold is
+        // met when rounding left it just below
+        double tr = tu;
+        for (int k = 0; k < 16 && !(f(tr) > 0.0) && tr < tb; ++k) tr = std::nextafter(tr, tb);
+        if (!std::isfinite(tr)) tr = tb;
+        t = tr;
+        uplift(t, acc_at(t));
+        continue;
+      }
+      t = step(t, tb, acc_at);
+    }
+  }
+
+  void uplift(double t, std::array<double, 3> acc) {
+    Rigid3DSummary& s = res_.summary;
+    const double ah = std::hypot(acc[0], acc[1]);
+    const V u_g{-acc[0] / ah, -acc[1] / ah, 0.0};  // toward -a_h (the base is flat: body plane = ground plane)
+    u_ = u_g;
+    mode_ = Rigid3DMode::rocking;
+    ++s.uplifts;
+    if (!s.uplift_time_s) s.uplift_time_s = t;
+    s.modes.push_back({t, mode_, -1, -1});
+    h_try_ = 0.0;
+    fsal_valid_ = false;
+    record(t);
+  }
+
+  /// One Dormand-Prince step from t toward at most tb (events inside); returns the new time.
+  template <class Acc>
+  double step(double t, double tb, const Acc& acc_at) {
+    using namespace detail::dp5;
+    if (h_try_ <= 0.0) h_try_ = std::min(tb - t, 1e-3);
+    double h = std::min(h_try_, tb - t);
+    if (tb - t - h < 1e-12 * std::max(1.0, std::abs(tb))) h = tb - t;
+    const double p = std::sqrt(opt_.g_m_s2 / std::hypot(g_.R, g_.h));
+    const std::array<double, kN> scale{g_.alpha, g_.alpha, g_.alpha, g_.alpha, p * g_.alpha, p * g_.alpha,
+                                       p * g_.alpha, g_.alpha * g_.h, g_.alpha * g_.h, g_.alpha * g_.h};
+    while (true) {
+      if (++steps_ > opt_.max_steps) {
+        throw StepLimitError(fmt::format("rock3d_cylinder: more than {} integrator steps", opt_.max_steps));
+      }
+      const State& y0 = y_;
+      const auto stage = [&](const std::array<std::pair<double, const State*>, 6>& terms, std::size_t m) {
+        State y = y0;
+        for (std::size_t j = 0; j < m; ++j) {
+          for (std::size_t i = 0; i < kN; ++i) y[i] += h * terms[j].first * (*terms[j].second)[i];
+        }
+        return y;
+      };
+      // first same as last: the previous accepted step's k7 is this step's k1 (same state, same time, same input)
+      // (and with the same input there: a jump between pieces, or the run-out's still ground, changes it)
+      const std::array<double, 3> acc0 = acc_at(t);
+      if (!fsal_valid_ || acc0 != fsal_acc_) {
+        k1_ = rhs(y0, acc0);
+        fsal_valid_ = true;
+      }
+      const State& k1 = k1_;
+      const State k2 = rhs(stage({{{b21, &k1}}}, 1), acc_at(t + a2 * h));
+      const State k3 = rhs(stage({{{b31, &k1}, {b32, &k2}}}, 2), acc_at(t + a3 * h));
+      const State k4 = rhs(stage({{{b41, &k1}, {b42, &k2}, {b43, &k3}}}, 3), acc_at(t + a4 * h));
+      const State k5 = rhs(stage({{{b51, &k1}, {b52, &k2}, {b53, &k3}, {b54, &k4}}}, 4), acc_at(t + a5 * h));
+      const State k6 =
+          rhs(stage({{{b61, &k1}, {b62, &k2}, {b63, &k3}, {b64, &k4}, {b65, &k5}}}, 5), acc_at(t + h));
+      const State y1 = stage({{{c1, &k1}, {c3, &k3}, {c4, &k4}, {c5, &k5}, {c6, &k6}}}, 5);
+      const State k7 = rhs(y1, acc_at(t + h));
+      double err = 0.0;
+      // q and w: x_c is a quadrature (w x r) that does not feed back, so it does not set the step
+      for (std::size_t i = 0; i < 7; ++i) {
+        const double e = h * (dc1 * k1[i] + dc3 * k3[i] + dc4 * k4[i] + dc5 * k5[i] + dc6 * k6[i] + dc7 * k7[i]);
+        const double sc = opt_.abs_tol * scale[i] + opt_.rel_tol * std::max(std::abs(y0[i]), std::abs(y1[i]));
+        err = std::max(err, std::abs(e) / sc);
+      }
+      if (!(err <= 1.0)) {
+        if (!std::isfinite(err)) err = 1e10;
+        h *= std::max(0.2, 0.9 * std::pow(err, -0.2));
+        if (h < 1e-15 * std::max(1.0, std::abs(t))) {
+          throw StepLimitError("rock3d_cylinder: the step size fell below the time's resolution");
+        }
+        continue;
+      }
+      h_try_ = h * std::min(5.0, std::max(0.2, 0.9 * std::pow(std::max(err, 1e-10), -0.2)));
+      const std::array<const State*, 6> ks{&k1, &k3, &k4, &k5, &k6, &k7};
+      const auto dense = [&](double s) {
+        if (s == 0.0) return y0;  // the step's ends: exact (the events look there first)
+        if (s == 1.0) return y1;
+        State y = y0;
+        for (std::size_t j = 0; j < 6; ++j) {
+          double b = 0.0;
+          for (std::size_t d = 6; d-- > 0;) b = b * s + kDense[j].c[d];
+          for (std::size_t i = 0; i < kN; ++i) y[i] += h * b * (*ks[j])[i];
+        }
+        return y;
+      };
+      const double t_new = finish_step(t, h, y1, dense, acc_at);
+      // k7 is f(y1, t + h) of this step's input piece: valid as the next k1 only when the step ran to its end with no
+      // event and the state was not changed
+      if (t_new == t + h && mode_ == Rigid3DMode::rocking && y_ == y1) {
+        k1_ = k7;
+        fsal_acc_ = acc_at(t + h);
+      } else {
+        fsal_valid_ = false;
+      }
+      return t_new;
+    }
+  }
+
+  template <class Dense, class Acc>
+  double finish_step(double t, double h, const State& y1, const Dense& dense, const Acc& acc_at) {
+    Rigid3DSummary& s = res_.summary;
+    const V u0 = contact_of(g_, quat(y_), u_).u;
+    // event functions of the step fraction
+    const auto axis_z = [&](double sf) { return rotate(quat(dense(sf)), kZ)[2]; };
+    const auto tilt_rate = [&](double sf) {  // d(a_z)/dt = (w x a)_z: > 0 while the tilt decreases
+      const State y = dense(sf);
+      return cross(omega(y), rotate(quat(y), kZ))[2];
+    };
+    const auto landing = [&](double sf) {
+      const State y = dense(sf);
+      const V a = rotate(quat(y), kZ);
+      return -dot(z_perp(a), u0);
+    };
+    const double cos_alpha = std::cos(g_.alpha);
+    // the earliest terminal event
+    double s_end = 1.0;
+    int kind = 0;  // 0 none, 1 landing, 2 fall
+    const double l0 = landing(0.0);
+    double l1 = landing(1.0);
+    double s_land = 1.0;
+    if (l0 > 0.0 && l1 > 0.0) {
+      // a tilt minimum inside the step (a_z' from > 0 to < 0) may dip below the landing level and come back: look
+      // there (the planar engine's turning points)
+      const double q0 = tilt_rate(0.0), q1 = tilt_rate(1.0);
+      if (q0 > 0.0 && q1 < 0.0) {
+        const double s_min = detail::find_root(tilt_rate, 0.0, 1.0, q0, q1);
+        if (std::isfinite(s_min)) {
+          l1 = landing(s_min);
+          s_land = s_min;
+          // a whirl: the contact runs round the rim as the tilt passes a small minimum with a sideways rate (w . u
+          // != 0; exactly 0 in planar rocking) instead of landing: the base is within 2 R sin(theta) of the ground
+          // all round; below kFlatTilt alpha it counts as landed flat at the minimum (docs/method.md)
+          const State ym = dense(s_min);
+          const Contact cm = contact_of(g_, quat(ym), u0);
+          if (l1 > 0.0 && std::asin(std::min(cm.sin_tilt, 1.0)) < kFlatTilt * g_.alpha &&
+              std::abs(dot(omega(ym), cm.u)) > kWhirlRate_rad_s) {
+            s_end = s_min;
+            kind = 1;
+          }
+        }
+      }
+    }
+    if (kind == 0 && l0 > 0.0 && l1 <= 0.0) {
+      s_end = detail::find_root(landing, 0.0, s_land, l0, l1);
+      kind = 1;
+    }
+    const double z0 = axis_z(0.0), z1 = axis_z(s_end);
+    if (z0 > 0.0 && z1 <= 0.0) {
+      s_end = detail::find_root(axis_z, 0.0, s_end, z0, z1);
+      kind = 2;
+    }
+    // tilt maxima (a_z' from < 0 to > 0) and the static limit, before the terminal event
+    const double r0 = tilt_rate(0.0), r1 = tilt_rate(s_end);
+    const auto note_tilt = [&](double sf) {
+      const State y = dense(sf);
+      const V a = rotate(quat(y), kZ);
+      const double tilt = std::atan2(std::hypot(a[0], a[1]), a[2]);
+      if (tilt > s.max_tilt_rad) {
+        s.max_tilt_rad = tilt;
+        s.max_tilt_azimuth_deg = azimuth_deg(a);
+        s.max_tilt_time_s = t + sf * h;
+      }
+    };
+    if (r0 < 0.0 && r1 > 0.0) note_tilt(detail::find_root(tilt_rate, 0.0, s_end, r0, r1));
+    note_tilt(s_end);
+    if (!s.exceeded_limit_time_s) {
+      const auto lim = [&](double sf) { return axis_z(sf) - cos_alpha; };
+      const double e0 = lim(0.0), e1 = lim(s_end);
+      if (e0 > 0.0 && e1 <= 0.0) s.exceeded_limit_time_s = t + h * detail::find_root(lim, 0.0, s_end, e0, e1);
+    }
+    const double t_new = kind == 0 ? t + h : t + h * s_end;
+    y_ = kind == 0 ? y1 : dense(s_end);
+    u_ = contact_of(g_, quat(y_), u_).u;
+    if (!std::isfinite(t_new)) throw StepLimitError("rock3d_cylinder: an event could not be located");
+    if (kind == 2) {
+      mode_ = Rigid3DMode::fallen;
+      s.overturned = true;
+      s.overturn_time_s = t_new;
+      s.overturn_azimuth_deg = azimuth_deg(rotate(quat(y_), kZ));
+      s.modes.push_back({t_new, mode_, -1, -1});
+      record(t_new);
+    } else if (kind == 1) {
+      impact(t_new, u0);
+    }
+    (void)acc_at;
+    return t_new;
+  }
+
+  /// The base lands flat (header: the impact law).
+  void impact(double t, V u_old) {
+    Rigid3DSummary& s = res_.summary;
+    ++s.impacts;
+    const Quaternion q = normalised(quat(y_));
+    const Contact c = contact_of(g_, q, u_old);
+    const V w = omega(y_);
+    const double ke_before = 0.5 * dot(w, g_.Mp_times(c.a, c.r, w));
+    const double e_before = ke_before + opt_.g_m_s2 * (c.r[2] - g_.h);
+    // put the body flat: turn it back by its tilt about the horizontal axis z x a
+    const V n = cross(c.a, kZ);  // a -> z
+    const double sn = norm(n);
+    Quaternion qf = q;
+    if (sn > 0.0) {
+      const double ang = std::atan2(sn, c.a[2]);
+      const double hs = std::sin(0.5 * ang) / sn;
+      qf = normalised(qmul({std::cos(0.5 * ang), n[0] * hs, n[1] * hs, n[2] * hs}, q));
+    }
+    // the new contact: the rim point with the largest downward velocity, -(z x w_h) (header)
+    const V wh{w[0], w[1], 0.0};
+    V zw = cross(kZ, wh);
+    const double nzw = norm(zw);
+    V u_new = nzw > 0.0 ? mul(zw, -1.0 / nzw) : mul(u_old, -1.0);
+    u_new[2] = 0.0;
+    const V tn = cross(kZ, u_new);
+    // angular momentum about the new contact (flat): L = J w- + r' x v_c-, v_c- = w- x r
+    const V a_f = kZ;
+    const V r_new = sub(mul(a_f, g_.h), mul(u_new, g_.R));
+    const V vc = cross(w, c.r);
+    const V L = add(g_.JG(c.a, w), cross(r_new, vc));
+    const std::array<V, 3> M = g_.Mp(a_f, r_new);
+    const auto Mv = [&](V v) { return V{dot(M[0], v), dot(M[1], v), dot(M[2], v)}; };
+    const double m11 = dot(tn, Mv(tn)), m12 = dot(tn, Mv(kZ)), m22 = dot(kZ, Mv(kZ));
+    const double l1 = dot(tn, L), l2 = dot(kZ, L);
+    const double det = m11 * m22 - m12 * m12;
+    double wt = (l1 * m22 - l2 * m12) / det;
+    double wz = (m11 * l2 - m12 * l1) / det;
+    double ke_after = 0.5 * (m11 * wt * wt + 2.0 * m12 * wt * wz + m22 * wz * wz);
+    if (opt_.restitution == RestitutionMode::given && ke_after > 0.0) {
+      const double k = opt_.e * std::sqrt(ke_before / ke_after);
+      wt *= k;
+      wz *= k;
+      ke_after = opt_.e * opt_.e * ke_before;
+    }
+    // the position of the centre of mass: flat, above the landing spot
+    const V o_flat = sub(position(y_), mul(c.a, g_.h));  // the base's centre (the tilt is 0 to rounding)
+    y_[0] = qf[0], y_[1] = qf[1], y_[2] = qf[2], y_[3] = qf[3];
+    y_[7] = o_flat[0], y_[8] = o_flat[1], y_[9] = g_.h;
+    if (!(wt > 0.0) || ke_after < opt_.rest_energy_fraction * g_.lift_energy) {
+      s.energy_lost_j_per_kg += e_before;
+      y_[4] = y_[5] = y_[6] = 0.0;
+      mode_ = Rigid3DMode::rest;
+      s.modes.push_back({t, mode_, -1, -1});
+    } else {
+      s.energy_lost_j_per_kg += e_before - ke_after;
+      const V wn = add(mul(tn, wt), mul(kZ, wz));
+      y_[4] = wn[0], y_[5] = wn[1], y_[6] = wn[2];
+      u_ = u_new;
+      s.modes.push_back({t, mode_, -1, -1});
+    }
+    h_try_ = 0.0;
+    fsal_valid_ = false;
+    record(t);
+  }
+
+  const InputGrid& grid_;
+  std::vector<double> gravity_;
+  Geo g_;
+  Rigid3DOptions opt_;
+  Rigid3DResult res_;
+  State y_{};
+  V u_{1.0, 0.0, 0.0};
+  Rigid3DMode mode_ = Rigid3DMode::rest;
+  double h_try_ = 0.0;
+  std::size_t steps_ = 0;
+  State k1_{};
+  bool fsal_valid_ = false;
+  std::array<double, 3> fsal_acc_{};
+};
+
+}  // namespace
+
+CylinderBody3D CylinderBody3D::solid(double diameter_m, double height_m) {
+  require_positive(diameter_m, "diameter", "the diameter");
+  require_positive(height_m, "height", "the height");
+  if (diameter_m > kMaxBodyDimension_m) throw parameter_error("diameter", "the diameter exceeds 1000 m");
+  if (height_m > kMaxBodyDimension_m) throw parameter_error("height", "the height exceeds 1000 m");
+  const double R = 0.5 * diameter_m;
+  return {R, 0.5 * height_m, 0.5 * R * R, (3.0 * R * R + height_m * height_m) / 12.0};
+}
+
+CylinderBody3D CylinderBody3D::general(double radius_m, double centre_height_m, double inertia_axial_m2,
+                                       double inertia_transverse_m2) {
+  require_positive(radius_m, "radius", "the radius");
+  require_positive(centre_height_m, "height", "the height of the centre of mass");
+  require_positive(inertia_axial_m2, "inertia", "the axial inertia");
+  require_positive(inertia_transverse_m2, "inertia", "the transverse inertia");
+  if (inertia_axial_m2 > 2.0 * inertia_transverse_m2) {
+    throw parameter_error("inertia", "J_axial > 2 J_transverse violates the triangle inequality of principal moments");
+  }
+  return {radius_m, centre_height_m, inertia_axial_m2, inertia_transverse_m2};
+}
+
+double CylinderBody3D::static_tilt_limit_rad() const { return std::atan2(radius_m, centre_height_m); }
+
+Rigid3DResult rock3d_cylinder(const GroundMotion& x, const GroundMotion* y, const GroundMotion* z,
+                              const CylinderBody3D& body, const Rigid3DOptions& options,
+                              const std::optional<CylinderInitialState>& initial) {
+  const CylinderBody3D b =
+      CylinderBody3D::general(body.radius_m, body.centre_height_m, body.inertia_axial_m2, body.inertia_transverse_m2);
+  if (!(options.g_m_s2 > 0.0) || !std::isfinite(options.g_m_s2)) throw parameter_error("g", "g must be positive");
+  if (!(options.rel_tol > 0.0 && options.rel_tol < 1.0)) throw parameter_error("rel_tol", "rel_tol must be in (0, 1)");
+  if (!(options.abs_tol > 0.0 && options.abs_tol < 1.0)) throw parameter_error("abs_tol", "abs_tol must be in (0, 1)");
+  if (!(options.e >= 0.0 && options.e <= 1.0)) throw parameter_error("e", "e must be in [0, 1]");
+  if (!(options.rest_energy_fraction > 0.0 && options.rest_energy_fraction < 1.0)) {
+    throw parameter_error("rest_energy_fraction", "rest_energy_fraction must be in (0, 1)");
+  }
+  if (!(options.max_run_out_s >= 0.0) || !std::isfinite(options.max_run_out_s)) {
+    throw parameter_error("max_run_out_s", "max_run_out_s must be >= 0 and finite");
+  }
+  const std::array<const GroundMotion*, 3> components{&x, y, z};
+  const InputGrid grid(components);
+  std::vector<double> gravity = effective_gravity(grid, 2, options.g_m_s2);
+  if (!gravity.empty()) {
+    const double lowest = *std::min_element(gravity.begin(), gravity.end());
+    if (!(lowest > 0.0)) {
+      throw parameter_error("vertical", fmt::format("g + a_z reaches {} m/s2 <= 0: the body would leave the ground, "
+                                                    "which this model excludes",
+                                                    lowest));
+    }
+  }
+  Geo geo{b.radius_m, b.centre_height_m, b.inertia_axial_m2, b.inertia_transverse_m2,
+          std::atan2(b.radius_m, b.centre_height_m), 0.0};
+  geo.lift_energy = options.g_m_s2 * (std::hypot(geo.R, geo.h) - geo.h);
+  Engine engine(grid, std::move(gravity), geo, options);
+  return engine.run(initial);
+}
+
+}  // namespace topple
