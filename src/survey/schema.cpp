@@ -23,6 +23,7 @@ std::string_view survey_key_kind_name(SurveyKeyKind kind) {
     case SurveyKeyKind::paths: return "paths";
     case SurveyKeyKind::numbers: return "numbers";
     case SurveyKeyKind::columns: return "columns";
+    case SurveyKeyKind::tables: return "tables";
   }
   return "text";
 }
@@ -305,6 +306,58 @@ std::vector<SurveyKey> make_schema() {
     k.in_form = false;
   }
   add(key("support", "name", K::text, "a label for the report", "\"upper floor\"")).in_form = false;
+
+  // ---- [[population]] (docs/survey.md, "Populations"; survey_file.cpp's parse_population). Not in the form yet: the
+  // page lists them under the keys it does not offer. Shared keys (mu, e, support, amplification, evidence, bearing)
+  // are read as an object's. ----
+  const auto population = [&](const char* name, K kind, const char* help, const char* example) -> SurveyKey& {
+    auto& k = add(key("population", name, kind, help, example));
+    k.in_form = false;
+    return k;
+  };
+  {
+    auto& k = population("id", K::text, "a short unique name of the class (\"stones-A\")", "\"stones\"");
+    k.required = true;
+    k.missing_problem = "every population needs an id";
+  }
+  population("description", K::text, "free text", "\"gravestones, row 3\"");
+  {
+    auto& k = population("shape", K::choice, "block (width, height) or cylinder (diameter, height)", "\"block\"");
+    k.choices = {"block", "cylinder"};
+    k.default_text = "block";
+  }
+  {
+    auto& k = population("count", K::integer, "how many objects of the class were there", "10");
+    k.required = true;
+    k.missing_problem = "a population needs its count (how many objects of the class were there)";
+  }
+  {
+    auto& k = population("overturned", K::integer, "how many of them toppled (0 if none)", "2");
+    k.required = true;
+    k.missing_problem = "a population needs how many overturned (0 if none)";
+    ranged(k, incl(0.0), std::nullopt, "a count cannot be negative, got {}");
+  }
+  {
+    auto& k = population("rocked", K::integer, "how many stood and visibly rocked (a category when given)", "1");
+    ranged(k, incl(0.0), std::nullopt, "a count cannot be negative, got {}");
+  }
+  {
+    auto& k = population("slid", K::integer, "how many stood and visibly slid (a category when given)", "1");
+    ranged(k, incl(0.0), std::nullopt, "a count cannot be negative, got {}");
+  }
+  population("width", K::length, "a block's width: a length or a range [low, high] of lengths", "\"10cm\"");
+  population("height", K::length, "the height: a length or a range [low, high] of lengths", "\"40cm\"");
+  population("diameter", K::length, "a cylinder's diameter: a length or a range [low, high]", "\"10cm\"")
+      .conditions.push_back({"shape", {"cylinder"}, "a population of blocks has no diameter"});
+  population("sample", K::tables, "the measured members, instead of ranges: [{width = ..., height = ...}, ...]",
+             "[{width = \"10cm\", height = \"40cm\"}]");
+  population("members", K::integer, "K, the representative members simulated", "16").default_text = "16";
+  {
+    auto& k = population("fallen_azimuths_deg", K::numbers, "the directions the toppled ones fell, deg from north",
+                         "[40.0]");
+    k.conditions.push_back({"inversion.components", kComponents3, "fall directions need [inversion] components = 3"});
+    k.conditions.push_back({"shape", {"cylinder"}, "only a cylinder or a box"});
+  }
 
   // ---- [inversion] (docs/survey.md, "[inversion]") ----
   {

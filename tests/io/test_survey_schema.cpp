@@ -50,6 +50,10 @@ struct SurveyText {
       for (const auto& [k, v] : tables.at("support")) inline_table += (inline_table.empty() ? "" : ", ") + k + " = " + v;
       out += "support = {" + inline_table + "}\n";
     }
+    if (tables.contains("population")) {
+      out += "[[population]]\n";
+      for (const auto& [k, v] : tables.at("population")) out += fmt::format("{} = {}\n", k, v);
+    }
     return out;
   }
 };
@@ -107,6 +111,21 @@ void complete(SurveyText& s) {
     } else {
       put("width", "\"10cm\"");
       put("height", "\"40cm\"");
+    }
+  }
+  if (s.tables.contains("population")) {
+    auto& p = s.tables["population"];
+    const auto pput = [&](const char* k, const char* v) {
+      if (!p.contains(k)) p[k] = v;
+    };
+    pput("id", "\"p1\"");
+    pput("count", "10");
+    pput("overturned", "2");
+    pput("mu", "0.5");
+    if (!p.contains("sample")) {
+      if (p.contains("shape") && p["shape"] == "\"cylinder\"") pput("diameter", "\"10cm\"");
+      else pput("width", "\"10cm\"");
+      pput("height", "\"40cm\"");
     }
   }
   if (s.tables.contains("support")) {
@@ -274,6 +293,7 @@ TEST_F(SchemaAgainstReader, RequiredKeysAreMissedInTheReadersWords) {
         if (shape == "general asymmetric") s.set("object", k.key == "b1" ? "b2" : "b1", "\"10cm\"");
       }
       if (k.table == "support") s.set("support", k.key == "freq_hz" ? "damping" : "freq_hz", k.key == "freq_hz" ? "0.05" : "3");
+      if (k.table == "population") s.set("population", "id", "\"p1\"");  // complete() fills the rest of it
       complete(s);
       s.unset(k.table, k.key);
       const auto e = refusal(s);
@@ -312,12 +332,14 @@ TEST_F(SchemaAgainstReader, EveryChoiceParsesAndNoOtherWord) {
 }
 
 /// The keys the reader asks a table for, read from its source: the calls of its Reader (string, number, interval,
-/// length, axis, get, has), of the mesh pose's `fixed` and the record options' `checked`, and the key lists of the
+/// length, axis, get, has), of the mesh pose's `fixed`, the record options' `checked` and a population's counts and
+/// sizes (`population_count`, `population_length_range`), and the key lists of the
 /// shape checks. A key the reader reads and the table lacks fails here, naming it.
 std::set<std::string> reader_keys() {
   const std::string source = test::slurp(kSource / "src" / "io" / "survey_file.cpp");
   std::set<std::string> keys;
-  const std::regex call(R"re(\b(?:string|number|interval|length|axis|get|has|fixed|checked|require)\("([A-Za-z_][A-Za-z0-9_]*)")re");
+  const std::regex call(
+      R"re(\b(?:(?:string|number|interval|length|axis|get|has|fixed|checked|require)\(|(?:population_count|population_length_range)\(named, )"([A-Za-z_][A-Za-z0-9_]*)")re");
   for (auto it = std::sregex_iterator(source.begin(), source.end(), call); it != std::sregex_iterator(); ++it) {
     keys.insert((*it)[1]);
   }
@@ -336,7 +358,7 @@ TEST(SurveySchema, EveryKeyTheReaderReadsIsInTheTable) {
   const std::set<std::string> keys = reader_keys();
   ASSERT_GT(keys.size(), 50u);  // the scan found the reader's calls
   // The tables themselves, not keys of one.
-  const std::set<std::string> tables{"site", "sites", "object", "inversion", "event"};
+  const std::set<std::string> tables{"site", "sites", "object", "population", "inversion", "event"};
   for (const std::string& key : keys) {
     if (tables.contains(key)) continue;
     const bool found = std::any_of(survey_schema().begin(), survey_schema().end(),
@@ -380,6 +402,7 @@ TEST(SurveySchema, TheCsvReadersKindsAreTheTables) {
   for (const auto& key : lengths) EXPECT_TRUE(kinds_of(key).contains(SurveyKeyKind::length)) << key;
   for (const auto& key : areas) EXPECT_TRUE(kinds_of(key).contains(SurveyKeyKind::area)) << key;
   for (const auto& key : strings) {
+    if (key == "population") continue;  // a CSV sample row's link to its population's id, not a TOML key
     const auto kinds = kinds_of(key);
     EXPECT_TRUE(kinds.contains(SurveyKeyKind::text) || kinds.contains(SurveyKeyKind::choice) ||
                 kinds.contains(SurveyKeyKind::path))

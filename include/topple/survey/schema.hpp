@@ -26,6 +26,7 @@ enum class SurveyKeyKind {
   paths,           ///< a list of file paths
   numbers,         ///< a fixed list of numbers (mesh pose vectors)
   columns,         ///< a record's columns: [time, acceleration] or "TIME,ACCEL"
+  tables,          ///< a list of inline tables (a population's measured sample)
 };
 [[nodiscard]] std::string_view survey_key_kind_name(SurveyKeyKind kind);  ///< "text", "choice", "number", ...
 
@@ -45,7 +46,7 @@ struct SurveyKeyCondition {
 };
 
 struct SurveyKey {
-  std::string table;  ///< "site", "object", "inversion", "event" (a [[sites]] table takes the site's keys)
+  std::string table;  ///< "site", "object", "population", "inversion", "event" (a [[sites]] table takes the site's keys)
   std::string key;
   SurveyKeyKind kind = SurveyKeyKind::text;
   std::string unit;  ///< of a number, axis or range ("g", "Hz", "deg", "m/s", "km", "s"); empty: dimensionless/in text
