@@ -393,6 +393,21 @@ TEST_F(CliOriented, Model3dWritesItsHistoryAndFigure) {
   EXPECT_EQ(modes.back(), summary.at("end_mode").get<std::string>());
   ASSERT_TRUE(std::filesystem::exists(svg));
   EXPECT_GT(std::filesystem::file_size(svg), 1000U);
+
+  // A fall: the last row is the state at the fall, marked fallen (tilt pi/2, the orientation and rates of the row
+  // before it, at the summary's overturn time), not the body upright again.
+  const auto fell_csv = dir.path() / "fell.csv";
+  const auto fell = test::run_json("rock --pulse sine --amp-g 1.0 --duration 1.0 --model 3d --shape block --width 20cm "
+                                   "--depth 30cm --height 80cm --json --out " + quote(fell_csv));
+  ASSERT_TRUE(fell.at("overturned").get<bool>());
+  const auto fr = test::read_csv(fell_csv);
+  ASSERT_GT(fr.size(), 3U);
+  const auto& last = fr.back();
+  const auto& before = fr[fr.size() - 2];
+  EXPECT_EQ(last[13], "fallen");
+  EXPECT_NEAR(std::stod(last[0]), fell.at("overturn_time_s").get<double>(), 1e-9);
+  EXPECT_NEAR(std::stod(last[11]), M_PI / 2, 1e-9);
+  for (std::size_t k = 0; k < 13; ++k) EXPECT_EQ(last[k], before[k]) << rows[0][k];
 }
 
 }  // namespace
