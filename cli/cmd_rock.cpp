@@ -192,14 +192,9 @@ void run_oriented(const RockOptions& o, const RunMotion& run, const RockingBody&
 }
 
 /// --model 3d: the three-dimensional engine (rigid3d.hpp) for a block with a depth or a mesh as posed (rock_3d.hpp).
-/// `body` is the planar body of the options (none with --mesh).
+/// `body` is the planar body of the options (none with --mesh); run_rock refused --body already.
 void run_model_3d(const RockOptions& o, RunMotion& run, const std::optional<RockingBody>& body,
                   const RockingOptions& options) {
-  if (!o.body_file.empty()) {
-    throw parameter_error("--body", "--model 3d needs the body in three dimensions: a body file holds its section in "
-                                    "one vertical plane only; give the mesh it came from (--mesh FILE, with the same "
-                                    "pose options as `topple body`)");
-  }
   if (body && body->shape == RockingBody::Shape::cylinder) {
     throw parameter_error("--shape", "--model 3d: a cylinder's circular base (rolling and wobbling on its rim) is not "
                                      "built in the three-dimensional engine yet; use the planar model (--model rocking "
