@@ -14,10 +14,12 @@
 #include "progress.hpp"
 #include "common.hpp"
 #include "motion_set_options.hpp"
+#include "pose_options.hpp"
 #include "rock_3d.hpp"
 #include "rock_coupled.hpp"
 #include "topple/core/error.hpp"
 #include "topple/io/body_file.hpp"
+#include "topple/io/mesh.hpp"
 #include "topple/output/write.hpp"
 #include "topple/solvers/oriented.hpp"
 #include "topple/output/plot.hpp"
@@ -42,6 +44,10 @@ struct RockOptions {
   std::string b2;
   std::string inertia;
   std::string body_file;  // --body: what `topple body --json` writes (io/body_file.hpp)
+  std::string mesh;       // --mesh FILE (--model 3d): the mesh as posed (BodyOptions, the pose options)
+  std::string mesh_unit = "m";
+  BodyOptions mesh_options;
+  PoseOptionsText mesh_pose;
   std::string e = "housner";
   std::optional<double> mu;
   std::optional<double> mu_k;
@@ -185,17 +191,25 @@ void run_oriented(const RockOptions& o, const RunMotion& run, const RockingBody&
   report(o, run, horizontal, planar, options, gov.summary, &report_of);
 }
 
-/// --model 3d: the three-dimensional engine (rigid3d.hpp) for a block with a depth (rock_3d.hpp).
-void run_model_3d(const RockOptions& o, RunMotion& run, const RockingBody& body, const RockingOptions& options) {
-  if (!o.body_file.empty() || body.shape != RockingBody::Shape::block) {
-    throw parameter_error(o.body_file.empty() ? "--shape" : "--body",
-                          "--model 3d takes a block (--shape block --width --height --depth) for now; other bodies "
-                          "in three dimensions are not built yet (issue 29)");
+/// --model 3d: the three-dimensional engine (rigid3d.hpp) for a block with a depth or a mesh as posed (rock_3d.hpp).
+/// `body` is the planar body of the options (none with --mesh); run_rock refused --body already.
+void run_model_3d(const RockOptions& o, RunMotion& run, const std::optional<RockingBody>& body,
+                  const RockingOptions& options) {
+  if (body && body->shape == RockingBody::Shape::cylinder) {
+    throw parameter_error("--shape", "--model 3d: a cylinder's circular base (rolling and wobbling on its rim) is not "
+                                     "built in the three-dimensional engine yet; use the planar model (--model rocking "
+                                     "with --h2: the worst of its directions)");
   }
-  if (o.depth.empty()) {
+  if (body && body->shape != RockingBody::Shape::block) {
+    throw parameter_error("--shape", "--model 3d: a general body (--a/--h/--D or --b1/--b2/--h/--inertia) is a "
+                                     "section in one vertical plane, without a base in three dimensions; give a block "
+                                     "(--shape block --width --depth --height) or a mesh (--mesh FILE)");
+  }
+  if (body && o.depth.empty()) {
     throw parameter_error("--depth", "--model 3d needs the block's depth, with a unit (its extent along its own y "
                                      "axis: along bearing + 90 with --h2)");
   }
+  if (!body && !o.depth.empty()) throw parameter_error("--depth", "is a block's: a mesh has its own shape");
   if (o.mu || o.mu_k) {
     throw parameter_error(o.mu ? "--mu" : "--mu-k", "--model 3d does not slide (friction large enough); sliding in "
                                                     "three dimensions is not built yet");
@@ -203,13 +217,26 @@ void run_model_3d(const RockOptions& o, RunMotion& run, const RockingBody& body,
   if (o.slope_deg) throw parameter_error("--slope-deg", "--model 3d has a level base");
   if (o.direction_step_deg) throw parameter_error("--direction-step-deg", "is for a cylinder of the rocking model");
   if (options.method != RockingMethod::adaptive) throw parameter_error("--method", "--model 3d is adaptive only");
-  if (!o.out.empty() || !o.plot.empty()) {
-    throw parameter_error(o.out.empty() ? "--plot" : "--out", "--model 3d writes its summary only for now");
-  }
   Rigid3DRequest request;
-  request.width_m = 2.0 * body.a_m;
-  request.height_m = 2.0 * body.h_m;
-  request.depth_m = parse_length_m(o.depth, "--depth");
+  if (body) {
+    request.width_m = 2.0 * body->a_m;
+    request.height_m = 2.0 * body->h_m;
+    request.depth_m = parse_length_m(o.depth, "--depth");
+    request.body = naming_options([&] {  // "depth" -> --depth
+      return RigidBody3D::box(request.width_m, request.depth_m, request.height_m);
+    });
+  } else {
+    BodyOptions b = o.mesh_options;
+    b.g_m_s2 = options.g_m_s2;
+    const double unit_m = io::mesh_unit_m(o.mesh_unit, "--mesh-unit");
+    const MeshBody mesh =
+        with_field_names({{"--unit", "--mesh-unit"}}, [&] { return io::read_mesh_body(o.mesh, unit_m, b); });
+    request.body = RigidBody3D::from_mesh(mesh);
+    request.mesh_file = o.mesh;
+  }
+  request.out = o.out;
+  request.plot = o.plot;
+  request.vertical_label = o.vertical;
   request.options.g_m_s2 = options.g_m_s2;
   request.options.restitution = options.restitution;
   request.options.e = options.e;
@@ -220,8 +247,8 @@ void run_model_3d(const RockOptions& o, RunMotion& run, const RockingBody& body,
   std::optional<MotionSet> set;
   if (!o.h2.empty()) {
     if (!o.bearing_deg) {
-      throw parameter_error("--bearing-deg", "required with --model 3d and --h2: the azimuth of the block's +x axis "
-                                             "(across its width), degrees clockwise from north");
+      throw parameter_error("--bearing-deg", "required with --model 3d and --h2: the azimuth of the body's +x axis "
+                                             "(a block: across its width), degrees clockwise from north");
     }
     if (!std::isfinite(*o.bearing_deg)) {
       throw parameter_error("--bearing-deg", fmt::format("must be finite, got {}", *o.bearing_deg));
@@ -233,10 +260,7 @@ void run_model_3d(const RockOptions& o, RunMotion& run, const RockingBody& body,
   } else {
     refuse_without_h2(o.azimuths, {{"--bearing-deg", o.bearing_deg.has_value()}});
   }
-  naming_options([&] {
-    (void)RigidBody3D::box(request.width_m, request.depth_m, request.height_m);  // "depth" -> --depth
-    run_3d(run, request);
-  });
+  naming_options([&] { run_3d(run, request); });
 }
 
 void run_rock(const RockOptions& o) {
@@ -244,14 +268,24 @@ void run_rock(const RockOptions& o) {
   check_g(g);
   check_plot_path(o.plot);
   check_output_path(o.out);
-  const RockingBody body = make_body(o);
+  if (!o.mesh.empty() && o.model != "3d") {
+    throw parameter_error("--mesh", "needs --model 3d (for the planar models: `topple body MESH --json > body.json`, "
+                                    "then --body body.json)");
+  }
+  if (!o.body_file.empty() && o.model == "3d") {
+    throw parameter_error("--body", "--model 3d needs the body in three dimensions: a body file holds its section in "
+                                    "one vertical plane only; give the mesh it came from (--mesh FILE, with the same "
+                                    "pose options as `topple body`)");
+  }
+  const std::optional<RockingBody> body3d = o.mesh.empty() ? std::optional(make_body(o)) : std::nullopt;
   const RockingOptions options = make_options(o);
   RunMotion run = load_run_motion(o.motion, o.pulse, o.vertical);
   run.input.with_duration = true;
   if (o.model == "3d") {
-    run_model_3d(o, run, body, options);
+    run_model_3d(o, run, body3d, options);
     return;
   }
+  const RockingBody& body = *body3d;
   if (o.model == "coupled") {  // the coupled slide-rock model (rock_coupled.hpp)
     if (!o.mu) throw parameter_error("--mu", "the coupled model needs the friction coefficient (--mu)");
     if (!o.depth.empty()) {
@@ -438,18 +472,29 @@ void add_rock_command(CLI::App& app) {
       cmd->add_option("--body", o->body_file, "The body `topple body MESH --json` wrote (its b1_m, b2_m, h_m, "
                                               "inertia_cm_plane_kg_m2, mass_kg): the mesh's asymmetric general body "
                                               "at its azimuth; instead of --shape and the dimensions");
+  CLI::Option* mesh_option =
+      cmd->add_option("--mesh", o->mesh, "--model 3d: the body of a mesh file (.obj, .stl, .ply) as `topple body` "
+                                         "poses it (its support polygon, centre of mass and inertia); instead of "
+                                         "--shape and the dimensions");
+  cmd->add_option("--mesh-unit", o->mesh_unit, "With --mesh: unit of its coordinates (m, cm, mm)")
+      ->capture_default_str();
+  cmd->add_option("--density", o->mesh_options.density_kg_m3, "With --mesh: uniform density, kg/m^3")
+      ->capture_default_str();
+  add_pose_options(*cmd, o->mesh_pose, o->mesh_options, "With --mesh: ");
   for (const char* name : {"--shape", "--width", "--height", "--diameter", "--a", "--h", "--D", "--b1", "--b2",
                            "--inertia"}) {
     body_option->excludes(cmd->get_option(name));
+    mesh_option->excludes(cmd->get_option(name));
   }
+  body_option->excludes(mesh_option);
   cmd->add_option("--e", o->e, "Coefficient of restitution (angular-velocity ratio at impact) in [0, 1], or "
                                "'housner' (1 - 2a^2/D, from angular momentum)")->capture_default_str();
   cmd->add_option("--mu", o->mu, "Friction coefficient: check Shenton's slide/rock/slide-rock onset criterion; with "
                                  "--model coupled the static friction coefficient");
   cmd->add_option("--model", o->model, "rocking (Housner; no sliding), coupled (sliding and rocking at once, "
-                                       "Coulomb friction --mu/--mu-k: slide_rock.hpp) or 3d (a block with --depth "
-                                       "rocking and pivoting on its corners in three dimensions, no sliding: "
-                                       "rigid3d.hpp)")->capture_default_str();
+                                       "Coulomb friction --mu/--mu-k: slide_rock.hpp) or 3d (a block with --depth, "
+                                       "or a mesh (--mesh), rocking and pivoting on its base in three dimensions, "
+                                       "no sliding: rigid3d.hpp)")->capture_default_str();
   cmd->add_option("--mu-k", o->mu_k, "--model coupled: kinetic friction coefficient (default: --mu)");
   cmd->add_option("--slope-deg", o->slope_deg, "--model coupled: inclination of the base, degrees, down-slope toward "
                                                "-x (the b1 corner); needs tan(slope) <= --mu and slope <= alpha-");
@@ -469,12 +514,24 @@ void add_rock_command(CLI::App& app) {
   cmd->add_option("--max-steps", o->max_steps, "Cap on integrator steps; past it the run stops with exit status 3 "
                                                "(default 100000000)");
   cmd->add_option("--run-out", o->run_out, "Longest integration after the record on still ground, s (default 60)");
-  cmd->add_option("--out", o->out, "Write the time history to this CSV file (time_s,theta_rad,theta_dot_rad_s,state)");
+  cmd->add_option("--out", o->out, "Write the time history to this CSV file (time_s,theta_rad,theta_dot_rad_s,state; "
+                                   "--model 3d: time_s, x_m, y_m, z_m, qw..qz, wx..wz_rad_s, tilt_rad, "
+                                   "energy_j_per_kg, mode)");
   cmd->add_option("--plot", o->plot, "Draw record with the uplift levels, theta/alpha with the overturning limits, "
                                      "theta', impacts and the fall, to this .svg or .png file (gnuplot)");
   cmd->add_flag("--json", o->json, "Print the summary as one JSON object");
   add_quiet_flag(*cmd, o->quiet);  // a single run is quick: no bar; warnings are still printed
-  cmd->callback([o] { run_rock(*o); });
+  cmd->callback([o, cmd] {
+    if (!o->mesh.empty()) {
+      apply_pose_options(*cmd, o->mesh_pose, o->mesh_options);
+    } else {
+      for (const char* name : {"--pose", "--up", "--rotation", "--axis-angle", "--face", "--contact-tolerance",
+                               "--base-tolerance", "--mesh-unit", "--density"}) {
+        if (cmd->count(name) > 0) throw parameter_error(name, "places a mesh body: it applies with --mesh only");
+      }
+    }
+    run_rock(*o);
+  });
 }
 
 }  // namespace topple::cli

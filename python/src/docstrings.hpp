@@ -991,6 +991,48 @@ inline constexpr const char* rotd =
     "damping : float\n    Damping ratio of the oscillators (dimensionless fraction of critical), 0 <= damping < 1.\n"
     "g : float\n    Gravity, m/s^2, for the values in g.\n\n" TOPPLE_DOC_ROTD_RETURNS;
 
+inline constexpr const char* rock3d =
+    R"(Rocking and pivoting of a box in three dimensions, as `topple rock --model 3d --json` (no sliding).
+
+The box rocks about an edge of its base or pivots on a corner under one or two horizontal components and the
+vertical (topple/solvers/rigid3d.hpp, docs/method.md "Rocking in three dimensions"): impacts by Housner's law
+generalised (angular momentum about the new contact conserved) or a given e; no sliding, no flight (a warning names
+the first instant the vertical contact force vanished).
+
+Parameters
+----------
+first : GroundMotion
+    The horizontal component; alone, it acts along the box's +x axis (reported as azimuth 90 deg).
+second : GroundMotion, optional
+    The other horizontal component: the pair acts along east and north, the box's +x axis toward bearing_deg.
+width_m, depth_m, height_m : float
+    The box along its x, y and z axes, m (> 0).
+azimuths_deg : sequence of two float
+    With second: the components' azimuths, deg clockwise from north (default (90, 0): east, north); perpendicular.
+bearing_deg : float, optional
+    With second (required): the azimuth of the box's +x axis, deg clockwise from north.
+vertical : GroundMotion, optional
+    Vertical ground acceleration (up positive); g + a_z must stay positive.
+e : "housner" or float
+    Restitution: "housner" (angular momentum about the new contact) or the kinetic-energy ratio e^2 at an impact,
+    e in [0, 1].
+g : float
+    Gravity, m/s^2.
+rel_tol : float
+    Relative tolerance of the Dormand-Prince steps (dimensionless).
+max_run_out_s : float
+    Longest integration after the record on still ground, s.
+history : bool
+    Add "history": time_s (s), position_m (the body frame's origin, m), orientation_wxyz (unit quaternion, body to
+    ground), angular_velocity_rad_s (rad/s, ground frame), energy_j_per_kg (J/kg), mode; a row per sample and event.
+
+Returns
+-------
+dict
+    The summary with the CLI's JSON keys less "input": overturned, overturn_time_s (s), overturn_azimuth_deg (deg),
+    max_tilt_rad (rad), max_tilt_azimuth_deg (deg), max_tilt_time_s (s), max_tilt_over_limit, impacts, uplifts,
+    energy_lost_j_per_kg (J/kg), modes, body, solver, ...)";
+
 inline constexpr const char* rock_oriented =
     R"(Rocking of an oriented object under two horizontal components (and the vertical), as `topple rock --h2`.
 

@@ -51,6 +51,7 @@
 #include "topple/output/record_fields.hpp"
 #include "topple/region/survey_inversion.hpp"
 #include "topple/solvers/oriented.hpp"
+#include "topple/solvers/rigid3d.hpp"
 #include "topple/output/flexible_json.hpp"
 #include "topple/output/inversion_output.hpp"
 #include "topple/output/region_output.hpp"
@@ -462,6 +463,121 @@ SlideRockRun run_slide_rock(const GroundMotion& motion, const RockingBody& shape
   run.inputs = RunInputs(motion, vertical);
   run.inputs.with_duration = true;
   return run;
+}
+
+/// rock3d: the three-dimensional engine (rigid3d.hpp) for a box, as `topple rock --model 3d --json` less its "input"
+/// (the same keys, in the same order; cli/rock_3d.cpp), plus "history" when asked.
+nb::dict run_rock3d(const GroundMotion& first, const GroundMotion* second, double width_m, double depth_m,
+                    double height_m, const std::vector<double>& azimuths_deg, std::optional<double> bearing_deg,
+                    const GroundMotion* vertical, const std::variant<double, std::string>& e, double g_m_s2,
+                    double rel_tol, double max_run_out_s, bool history) {
+  const auto naming = [](auto f) {
+    return with_field_names({{"bearing", "bearing_deg"},
+                             {"depth", "depth_m"},
+                             {"width", "width_m"},
+                             {"height", "height_m"},
+                             {"azimuths", "azimuths_deg"},
+                             {"azimuth", "azimuths_deg"},
+                             {"g", "g"},
+                             {"rel_tol", "rel_tol"},
+                             {"max_run_out_s", "max_run_out_s"}},
+                            f);
+  };
+  const RigidBody3D box = naming([&] { return RigidBody3D::box(width_m, depth_m, height_m); });
+  // The restitution as `rock` takes it ("housner" or a number in [0, 1]); the rocking options check it.
+  const RockingOptions rocking = make_rocking_options(e, std::nullopt, g_m_s2, "adaptive", rel_tol,
+                                                      RockingOptions{}.rk4_substeps, max_run_out_s);
+  Rigid3DOptions options;
+  options.g_m_s2 = rocking.g_m_s2;
+  options.restitution = rocking.restitution;
+  options.e = rocking.e;
+  options.rel_tol = rocking.rel_tol;
+  options.max_run_out_s = rocking.max_run_out_s;
+  options.record_history = history;
+  Rigid3DResult r;
+  if (second != nullptr) {
+    // As the CLI: the pair along east and north (eq. M1), the box turned so that its +x axis points to the bearing.
+    check_two_azimuths(azimuths_deg);
+    if (!bearing_deg) {
+      throw parameter_error("bearing_deg", "required with a second component: the azimuth of the box's +x axis "
+                                           "(across its width), degrees clockwise from north");
+    }
+    if (!std::isfinite(*bearing_deg)) {
+      throw parameter_error("bearing_deg", fmt::format("must be finite, got {}", *bearing_deg));
+    }
+    const MotionSet set = naming([&] {
+      return MotionSet::make(first, second, ComponentAzimuths{azimuths_deg[0], azimuths_deg[1]}, vertical);
+    });
+    const GroundMotion east = set.projected(90.0);
+    const GroundMotion north = set.projected(0.0);
+    const RigidBody3D turned = box.rotated_about_vertical(deg_to_rad(90.0 - *bearing_deg));
+    r = naming([&] {
+      nb::gil_scoped_release release;
+      return rock3d(east, &north, set.vertical_ptr(), turned, options);
+    });
+  } else {
+    if (bearing_deg) throw parameter_error("bearing_deg", "applies with a second component (second=...)");
+    r = naming([&] {
+      nb::gil_scoped_release release;
+      return rock3d(first, nullptr, vertical, box, options);
+    });
+  }
+  const Rigid3DSummary& s = r.summary;
+  const auto opt = [](const std::optional<double>& v) { return v ? nlohmann::ordered_json(*v) : nullptr; };
+  nlohmann::ordered_json j;
+  j["model"] = "3d";
+  j["overturned"] = s.overturned;
+  j["overturn_time_s"] = opt(s.overturn_time_s);
+  j["overturn_azimuth_deg"] = s.overturned ? nlohmann::ordered_json(s.overturn_azimuth_deg) : nullptr;
+  j["max_tilt_rad"] = s.max_tilt_rad;
+  j["max_tilt_azimuth_deg"] = s.max_tilt_azimuth_deg;
+  j["max_tilt_time_s"] = s.max_tilt_time_s;
+  j["max_tilt_over_limit"] = s.max_tilt_over_limit;
+  j["exceeded_limit_time_s"] = opt(s.exceeded_limit_time_s);
+  j["impacts"] = s.impacts;
+  j["uplifts"] = s.uplifts;
+  j["uplift_time_s"] = opt(s.uplift_time_s);
+  j["energy_lost_j_per_kg"] = s.energy_lost_j_per_kg;
+  j["flight_time_s"] = opt(s.flight_time_s);
+  j["end_time_s"] = s.end_time_s;
+  j["end_mode"] = rigid3d_mode_name(s.end_mode);
+  nlohmann::ordered_json modes = nlohmann::ordered_json::array();
+  for (const Rigid3DModeChange& m : s.modes) {
+    modes.push_back({{"time_s", m.time_s},
+                     {"mode", rigid3d_mode_name(m.mode)},
+                     {"vertex_a", m.vertex_a >= 0 ? nlohmann::ordered_json(m.vertex_a) : nullptr},
+                     {"vertex_b", m.vertex_b >= 0 ? nlohmann::ordered_json(m.vertex_b) : nullptr}});
+  }
+  j["modes"] = modes;
+  j["steps"] = s.steps;
+  j["warnings"] = s.warnings;
+  j["body"] = {{"shape", "block"}, {"width_m", width_m}, {"depth_m", depth_m}, {"height_m", height_m},
+               {"bearing_deg", opt(bearing_deg)}};
+  j["solver"] = {{"model", "3d"},
+                 {"restitution", restitution_mode_name(options.restitution)},
+                 {"e", options.restitution == RestitutionMode::given ? nlohmann::ordered_json(options.e) : nullptr},
+                 {"rel_tol", options.rel_tol},
+                 {"g_m_s2", options.g_m_s2}};
+  if (history) {
+    const Rigid3DHistory& h = r.history;
+    nlohmann::ordered_json hj;
+    hj["time_s"] = h.time_s;
+    nlohmann::ordered_json pos = nlohmann::ordered_json::array(), q = nlohmann::ordered_json::array(),
+                           w = nlohmann::ordered_json::array(), mode = nlohmann::ordered_json::array();
+    for (std::size_t i = 0; i < h.time_s.size(); ++i) {
+      pos.push_back(h.position_m[i]);
+      q.push_back(h.orientation[i]);
+      w.push_back(h.angular_velocity_rad_s[i]);
+      mode.push_back(rigid3d_mode_name(h.mode[i]));
+    }
+    hj["position_m"] = pos;
+    hj["orientation_wxyz"] = q;
+    hj["angular_velocity_rad_s"] = w;
+    hj["energy_j_per_kg"] = h.energy_j_per_kg;
+    hj["mode"] = mode;
+    j["history"] = hj;
+  }
+  return nb::cast<nb::dict>(to_python(j));
 }
 
 /// rock_oriented: an oriented object under two components (oriented.hpp), as `topple rock H1 --h2 H2 --json` less
@@ -1639,6 +1755,11 @@ void bind_slide_rock(nb::module_& m) {
         "g"_a = kStandardGravity, "method"_a = std::string(rocking_method_name(kRockingDefaults.method)),
         "rel_tol"_a = kRockingDefaults.rel_tol, "rk4_substeps"_a = kRockingDefaults.rk4_substeps,
         "max_run_out_s"_a = kRockingDefaults.max_run_out_s, doc::rock_oriented);
+  const Rigid3DOptions kRigid3DDefaults;  // the library's defaults are the Python defaults
+  m.def("rock3d", &run_rock3d, "first"_a, "second"_a = nb::none(), nb::kw_only(), "width_m"_a, "depth_m"_a,
+        "height_m"_a, "azimuths_deg"_a = std::vector<double>{90.0, 0.0}, "bearing_deg"_a = nb::none(),
+        "vertical"_a = nb::none(), "e"_a = "housner", "g"_a = kStandardGravity, "rel_tol"_a = kRigid3DDefaults.rel_tol,
+        "max_run_out_s"_a = kRigid3DDefaults.max_run_out_s, "history"_a = false, doc::rock3d);
 }
 
 /// Synthetic motions, intensity measures, the survey and regional inversions.

@@ -1119,7 +1119,17 @@ class Engine {
     row();
     mode_ = Rigid3DMode::fallen;
     s.modes.push_back({t, Rigid3DMode::fallen, -1, -1});
-    row();
+    if (opt_.record_history) {
+      // The fallen row repeats the state at the fall: row() would take the resting orientation (orientation() has
+      // no fallen state) and report the body upright, at rest, after its fall.
+      auto& h = out_.history;
+      h.time_s.push_back(t);
+      h.position_m.push_back(Vec3(h.position_m.back()));
+      h.orientation.push_back(Quaternion(h.orientation.back()));
+      h.angular_velocity_rad_s.push_back(Vec3(h.angular_velocity_rad_s.back()));
+      h.energy_j_per_kg.push_back(double(h.energy_j_per_kg.back()));
+      h.mode.push_back(Rigid3DMode::fallen);
+    }
     done_ = true;
   }
 

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "support/csv_table.hpp"
+#include "support/meshes.hpp"
 #include "support/shared_data.hpp"
 #include "support/toml_fixtures.hpp"
 
@@ -298,6 +299,115 @@ TEST_F(CliOriented, Model3dRefusesWhatItDoesNotModel) {
   expect_error("rock " + h1 + " --model 3d --shape cylinder --diameter 20cm --height 80cm --depth 20cm", "--shape");
   expect_error("rock " + h1 + " --model 3d --shape block --width 20cm --depth 30cm --height 80cm --mu 0.5", "--mu");
   expect_error("rock " + h1 + " --model 3d --shape block --width 20cm --depth 0cm --height 80cm", "--depth");
+  // Bodies without a base in three dimensions: a body file (a section in one plane), a general body.
+  test::write_file(dir.path() / "body.json", "{}");
+  expect_error("rock " + h1 + " --model 3d --body " + quote(dir.path() / "body.json"), "--body");
+  expect_error("rock " + h1 + " --model 3d --shape general --a 10cm --h 40cm --D 0.2m2", "--shape");
+  // The mesh options: --mesh needs --model 3d, the pose options need --mesh, a mesh has no --depth.
+  test::write_file(dir.path() / "box.obj", test::obj_text(test::box_mesh(0.2, 0.3, 0.8)));
+  const std::string mesh = " --mesh " + quote(dir.path() / "box.obj");
+  expect_error("rock " + h1 + mesh, "--mesh");
+  expect_error("rock " + h1 + " --model 3d --shape block --width 20cm --depth 30cm --height 80cm --pose rest",
+               "--pose");
+  expect_error("rock " + h1 + " --model 3d --depth 30cm" + mesh, "--depth");
+  expect_error("rock " + h1 + " --model 3d --face 0" + mesh, "--face");
+}
+
+// --model 3d --mesh: the body of a mesh as posed (its support polygon, centre of mass, inertia). A box mesh 20 x 30
+// x 80 cm is the block of those dimensions: the same motion (impacts, modes, max tilt to 1e-9 relative: the mesh's
+// exact mass integrals against the box's closed form, to rounding), with the vertical. The same mesh turned by 30 deg
+// about the vertical and moved, as posed (its +x axis toward azimuth 60), under the pair at --bearing-deg 90 (the
+// mesh's frame not turned) moves as the block at --bearing-deg 60: frames and poses carried through the CLI.
+TEST_F(CliOriented, Model3dMeshIsTheBlock) {
+  test::write_file(dir.path() / "box.obj", test::obj_text(test::box_mesh(0.2, 0.3, 0.8)));
+  test::write_file(dir.path() / "turned.obj",
+                   test::obj_text(test::rotated_z(test::box_mesh(0.2, 0.3, 0.8), 30.0, {5.0, -2.0, 1.0})));
+  const auto expect_same = [](const nlohmann::json& x, const nlohmann::json& y, const std::string& what) {
+    SCOPED_TRACE(what);
+    EXPECT_GT(y.at("impacts").get<int>(), 0);
+    EXPECT_EQ(x.at("impacts"), y.at("impacts"));
+    EXPECT_EQ(x.at("overturned"), y.at("overturned"));
+    EXPECT_EQ(x.at("modes").size(), y.at("modes").size());
+    EXPECT_NEAR(x.at("max_tilt_rad").get<double>(), y.at("max_tilt_rad").get<double>(),
+                1e-9 * y.at("max_tilt_rad").get<double>());
+    EXPECT_NEAR(std::remainder(x.at("max_tilt_azimuth_deg").get<double>() -
+                                   y.at("max_tilt_azimuth_deg").get<double>(), 360.0), 0.0, 1e-6);
+    EXPECT_NEAR(x.at("end_time_s").get<double>(), y.at("end_time_s").get<double>(), 1e-9);
+  };
+  const auto mesh = test::run_json("rock " + h1 + " --vertical " + v + " --model 3d --mesh " +
+                                   quote(dir.path() / "box.obj") + " --json");
+  const auto block = test::run_json("rock " + h1 + " --vertical " + v + " --model 3d --shape block --width 20cm "
+                                    "--depth 30cm --height 80cm --json");
+  expect_same(mesh, block, "one component");
+  EXPECT_EQ(mesh.at("body").at("shape"), "mesh");
+  EXPECT_EQ(mesh.at("body").at("file"), "box.obj");
+  EXPECT_EQ(mesh.at("body").at("base_xy_m").size(), 4U);
+  EXPECT_NEAR(mesh.at("body").at("centre_of_mass_m")[2].get<double>(), 0.4, 1e-12);
+
+  const std::string pair = "rock " + h1 + " --h2 " + h2 + " --vertical " + v + " --azimuths 0,90 --model 3d --json";
+  const auto turned = test::run_json(pair + " --bearing-deg 90 --mesh " + quote(dir.path() / "turned.obj"));
+  const auto block60 = test::run_json(pair + " --bearing-deg 60 --shape block --width 20cm --depth 30cm "
+                                             "--height 80cm");
+  expect_same(turned, block60, "turned mesh under the pair");
+}
+
+// --model 3d --out and --plot: the history as CSV (one row per sample and event: time, the body frame's origin,
+// the orientation quaternion, the angular velocity, the tilt, the energy, the mode) and the figure. The rows are
+// checked against the summary the same run prints: times rising to end_time_s, unit quaternions (1e-9), the tilt
+// column the quaternion's (cos = 1 - 2 (qx^2 + qy^2)) and never above the located max tilt, and within 2 % of it
+// (the maximum falls between rows 5 ms apart: theta changes by less than that there), the modes the summary's.
+TEST_F(CliOriented, Model3dWritesItsHistoryAndFigure) {
+  const auto csv = dir.path() / "h3d.csv";
+  const auto svg = dir.path() / "f3d.svg";
+  const std::string args = "rock " + h1 + " --h2 " + h2 + " --vertical " + v + " --azimuths 0,90 --bearing-deg 20 "
+                           "--model 3d --shape block --width 20cm --depth 30cm --height 80cm";
+  const auto summary = test::run_json(args + " --json --out " + quote(csv) + " --plot " + quote(svg));
+  ASSERT_GT(summary.at("impacts").get<int>(), 0);
+  const auto rows = test::read_csv(csv);
+  ASSERT_GT(rows.size(), 10U);
+  EXPECT_EQ(rows[0], (std::vector<std::string>{"time_s", "x_m", "y_m", "z_m", "qw", "qx", "qy", "qz", "wx_rad_s",
+                                               "wy_rad_s", "wz_rad_s", "tilt_rad", "energy_j_per_kg", "mode"}));
+  double previous_t = -1.0, max_tilt = 0.0;
+  std::vector<std::string> modes;
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    ASSERT_EQ(rows[i].size(), 14U) << i;
+    const double t = std::stod(rows[i][0]);
+    EXPECT_GE(t, previous_t) << i;
+    previous_t = t;
+    const double qw = std::stod(rows[i][4]), qx = std::stod(rows[i][5]), qy = std::stod(rows[i][6]),
+                 qz = std::stod(rows[i][7]);
+    EXPECT_NEAR(qw * qw + qx * qx + qy * qy + qz * qz, 1.0, 1e-9) << i;
+    const double tilt = std::stod(rows[i][11]);
+    EXPECT_NEAR(tilt, std::acos(std::clamp(1.0 - 2.0 * (qx * qx + qy * qy), -1.0, 1.0)), 1e-9) << i;
+    max_tilt = std::max(max_tilt, tilt);
+    if (modes.empty() || modes.back() != rows[i][13]) modes.push_back(rows[i][13]);
+  }
+  EXPECT_NEAR(previous_t, summary.at("end_time_s").get<double>(), 1e-9);
+  const double located = summary.at("max_tilt_rad").get<double>();
+  EXPECT_LE(max_tilt, located * (1 + 1e-9));
+  EXPECT_GE(max_tilt, 0.98 * located);
+  for (const auto& m : modes) {
+    EXPECT_TRUE(m == "rest" || m == "rocking" || m == "pivot" || m == "fallen") << m;
+  }
+  EXPECT_EQ(modes.front(), "rest");
+  EXPECT_EQ(modes.back(), summary.at("end_mode").get<std::string>());
+  ASSERT_TRUE(std::filesystem::exists(svg));
+  EXPECT_GT(std::filesystem::file_size(svg), 1000U);
+
+  // A fall: the last row is the state at the fall, marked fallen (tilt pi/2, the orientation and rates of the row
+  // before it, at the summary's overturn time), not the body upright again.
+  const auto fell_csv = dir.path() / "fell.csv";
+  const auto fell = test::run_json("rock --pulse sine --amp-g 1.0 --duration 1.0 --model 3d --shape block --width 20cm "
+                                   "--depth 30cm --height 80cm --json --out " + quote(fell_csv));
+  ASSERT_TRUE(fell.at("overturned").get<bool>());
+  const auto fr = test::read_csv(fell_csv);
+  ASSERT_GT(fr.size(), 3U);
+  const auto& last = fr.back();
+  const auto& before = fr[fr.size() - 2];
+  EXPECT_EQ(last[13], "fallen");
+  EXPECT_NEAR(std::stod(last[0]), fell.at("overturn_time_s").get<double>(), 1e-9);
+  EXPECT_NEAR(std::stod(last[11]), M_PI / 2, 1e-9);
+  for (std::size_t k = 0; k < 13; ++k) EXPECT_EQ(last[k], before[k]) << rows[0][k];
 }
 
 }  // namespace
