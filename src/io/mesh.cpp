@@ -279,7 +279,7 @@ void check_ply_body(std::string_view content, std::size_t pos, std::size_t line_
       for (std::uint64_t r = 0; r < e.count; ++r) {
         std::size_t record_line = 0;
         for (const PlyProperty& p : e.properties) {
-          const auto value = [&](const std::string& type, const char* what) {
+          const auto value = [&](const std::string& type, bool list_count) {
             std::string_view token;
             if (!next_token(token)) throw ends(e, r);
             if (record_line == 0) record_line = line_no;
@@ -295,7 +295,8 @@ void check_ply_body(std::string_view content, std::size_t pos, std::size_t line_
             const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), i);
             const bool integer = ec == std::errc{} && end == token.data() + token.size();
             if (is_ply_integer(type) ? !integer : !(parse_double(token, v) && std::isfinite(v))) {
-              throw field_error(name, line_no, fmt::format("{} {}, {}", e.name, r + 1, what),
+              throw field_error(name, line_no,
+                                fmt::format("{} {}, {}{}", e.name, r + 1, p.name, list_count ? "'s count" : ""),
                                 fmt::format("{} is not {} ({})", quoted(token),
                                                           is_ply_integer(type) ? "a whole number" : "a finite number",
                                                           type));
@@ -303,10 +304,10 @@ void check_ply_body(std::string_view content, std::size_t pos, std::size_t line_
             return is_ply_integer(type) ? static_cast<double>(i) : v;
           };
           if (p.count_type.empty()) {
-            (void)value(p.type, p.name.c_str());
+            (void)value(p.type, false);
             continue;
           }
-          const double n = value(p.count_type, (p.name + "'s count").c_str());
+          const double n = value(p.count_type, true);
           const double most = p.count_type == "uchar" || p.count_type == "uint8" ? 255.0
                               : p.count_type == "char" || p.count_type == "int8" ? 127.0
                               : p.count_type == "short" || p.count_type == "int16" ? 32767.0 : 65535.0;
@@ -314,7 +315,7 @@ void check_ply_body(std::string_view content, std::size_t pos, std::size_t line_
             throw field_error(name, line_no, fmt::format("{} {}, {}", e.name, r + 1, p.name),
                               fmt::format("the list's count is {}, outside [0, {}] ({})", n, most, p.count_type));
           }
-          for (int k = 0; k < static_cast<int>(n); ++k) (void)value(p.type, p.name.c_str());
+          for (int k = 0; k < static_cast<int>(n); ++k) (void)value(p.type, false);
         }
         if (face) face_lines.push_back(record_line);
       }
@@ -601,25 +602,26 @@ void check_obj(std::string_view content, const std::string& name, double unit_m,
     if (tokens.empty()) continue;
     if (tokens[0] == "v") {
       ++vertices;
-      const std::string vertex = fmt::format("vertex {}", vertices);
+      const auto vertex = [&]() { return fmt::format("vertex {}", vertices); };
       const std::size_t n = tokens.size() - 1;
       if (n != 3 && n != 4 && n != 6) {
-        throw field_error(name, line_no, vertex,
+        throw field_error(name, line_no, vertex(),
                           fmt::format("the v line holds {} value{} where it needs x y z (or x y z w with w = 1, or "
                                       "x y z r g b)",
                                       n, n == 1 ? "" : "s"));
       }
       for (std::size_t k = 0; k < n; ++k) {
         double value = 0.0;
-        const std::string field = k < 3 ? vertex + ", " + kAxes[k] : n == 4 ? vertex + ", w"
-                                                                           : vertex + ", " + "rgb"[k - 3];
+        const auto field = [&]() {
+          return k < 3 ? vertex() + ", " + kAxes[k] : n == 4 ? vertex() + ", w" : vertex() + ", " + "rgb"[k - 3];
+        };
         const std::string problem = k < 3 ? coordinate_problem(tokens[1 + k], unit_m, value)
                                            : parse_double(tokens[1 + k], value) && std::isfinite(value)
                                                  ? std::string()
                                                  : quoted(tokens[1 + k]) + " is not a finite number";
-        if (!problem.empty()) throw field_error(name, line_no, field, problem);
+        if (!problem.empty()) throw field_error(name, line_no, field(), problem);
         if (n == 4 && k == 3 && value != 1.0) {
-          throw field_error(name, line_no, field,
+          throw field_error(name, line_no, field(),
                             fmt::format("a weight w = {}: OBJ's fourth vertex number is the weight of rational "
                                         "curves and surfaces, which topple does not read; a polygon vertex is x y z "
                                         "(w = 1 or none)",
@@ -670,7 +672,7 @@ std::string check_stl_ascii(std::string_view content, const std::string& name, d
     bad_line = line_no;
     const std::vector<std::string_view> t = split_blank(next_line(content, pos));
     if (t.empty()) continue;
-    const std::string facet = fmt::format("facet {} (line {})", face_lines.size(), facet_line);
+    const auto facet_name = [&]() { return fmt::format("facet {} (line {})", face_lines.size(), facet_line); };
     switch (want) {
       case Want::solid:
         if (t[0] != "solid") return "the first line is not 'solid NAME'";
@@ -696,7 +698,7 @@ std::string check_stl_ascii(std::string_view content, const std::string& name, d
         want = Want::loop;
         continue;
       case Want::loop:
-        if (t.size() != 2 || t[0] != "outer" || t[1] != "loop") return facet + ": 'outer loop' belongs here";
+        if (t.size() != 2 || t[0] != "outer" || t[1] != "loop") return facet_name() + ": 'outer loop' belongs here";
         corners = 0;
         want = Want::vertex;
         continue;
@@ -704,30 +706,32 @@ std::string check_stl_ascii(std::string_view content, const std::string& name, d
       case Want::endloop:
         if (t[0] == "vertex") {
           if (want == Want::endloop) {
-            throw field_error(name, line_no, facet + ", vertex 4",
+            throw field_error(name, line_no, facet_name() + ", vertex 4",
                               "a fourth vertex: an STL facet is a triangle of three (split the polygon into "
                               "triangles in the program that wrote the file)");
           }
           ++corners;
-          const std::string field = fmt::format("facet {}, vertex {}", face_lines.size(), corners);
+          const auto field = [&]() { return fmt::format("facet {}, vertex {}", face_lines.size(), corners); };
           if (t.size() != 4) {
-            throw field_error(name, line_no, field,
+            throw field_error(name, line_no, field(),
                               fmt::format("the vertex line holds {} values where it needs x y z", t.size() - 1));
           }
           for (int k = 0; k < 3; ++k) {
             double v = 0.0;
             const std::string problem = coordinate_problem(t[1 + k], unit_m, v);
-            if (!problem.empty()) throw field_error(name, line_no, field + ", " + kAxes[k], problem);
+            if (!problem.empty()) throw field_error(name, line_no, field() + ", " + kAxes[k], problem);
           }
           if (corners == 3) want = Want::endloop;
           continue;
         }
-        if (want == Want::vertex) return fmt::format("{} has {} vertices: a facet is a triangle of three", facet, corners);
-        if (t.size() != 1 || t[0] != "endloop") return facet + ": 'endloop' belongs here";
+        if (want == Want::vertex) {
+          return fmt::format("{} has {} vertices: a facet is a triangle of three", facet_name(), corners);
+        }
+        if (t.size() != 1 || t[0] != "endloop") return facet_name() + ": 'endloop' belongs here";
         want = Want::endfacet;
         continue;
       case Want::endfacet:
-        if (t.size() != 1 || t[0] != "endfacet") return facet + ": 'endfacet' belongs here";
+        if (t.size() != 1 || t[0] != "endfacet") return facet_name() + ": 'endfacet' belongs here";
         want = Want::facet;
         continue;
       case Want::end:
@@ -835,9 +839,9 @@ void check_off(std::string_view content, const std::string& name, double unit_m,
   for (std::size_t v = 0; v < nv; ++v) {
     if (!next()) throw line_error(name, line_no, fmt::format("the file ends after {} of its {} vertices", v, nv));
     double x = 0.0;
-    const std::string vertex = fmt::format("vertex {} (index {})", v + 1, v);
+    const auto vertex = [&]() { return fmt::format("vertex {} (index {})", v + 1, v); };
     if (tokens.size() < 3 || tokens.size() > 7) {  // x y z and an optional colour of 1, 3 or 4 numbers
-      throw field_error(name, line_no, vertex,
+      throw field_error(name, line_no, vertex(),
                         fmt::format("the line holds {} values where it needs x y z (and an optional colour of 1, 3 "
                                     "or 4 numbers)",
                                     tokens.size()));
@@ -848,7 +852,7 @@ void check_off(std::string_view content, const std::string& name, double unit_m,
                                       ? std::string()
                                       : quoted(tokens[k]) + " is not a finite number";
       if (!problem.empty()) {
-        throw field_error(name, line_no, vertex + ", " + (k < 3 ? std::string(kAxes[k]) : "colour"), problem);
+        throw field_error(name, line_no, vertex() + ", " + (k < 3 ? std::string(kAxes[k]) : "colour"), problem);
       }
     }
   }
