@@ -363,9 +363,13 @@ void check_ply_body(std::string_view content, std::size_t pos, std::size_t line_
         }
         const std::size_t count_size = ply_type_bytes(p.count_type);
         if (content.size() - pos < count_size) throw ends(e, r);
-        std::uint64_t n = read_uint(pos, count_size);
-        if ((p.count_type == "char" || p.count_type == "int8") && n >= 0x80) n = 0;  // negative: CGAL fails; none
-        if ((p.count_type == "short" || p.count_type == "int16") && n >= 0x8000) n = 0;
+        const std::uint64_t n = read_uint(pos, count_size);
+        const bool negative = ((p.count_type == "char" || p.count_type == "int8") && n >= 0x80) ||
+                              ((p.count_type == "short" || p.count_type == "int16") && n >= 0x8000);
+        if (negative) {
+          throw field_error(name, 0, fmt::format("{} {}, {}", e.name, r + 1, p.name),
+                            fmt::format("the list's count is negative ({})", p.count_type));
+        }
         pos += count_size;
         if ((content.size() - pos) / size < n) throw ends(e, r);
         pos += n * size;
