@@ -405,6 +405,15 @@ void check_ply(std::string_view content, const std::string& name, double unit_m,
   const auto finish_element = [&]() {
     if (elements.empty()) return;
     const PlyElement& e = elements.back();
+    if ((e.name == "face" || e.name == "faces") &&
+        std::none_of(e.properties.begin(), e.properties.end(), [](const PlyProperty& p) {
+          return p.name == "vertex_indices" || p.name == "vertex_index";
+        })) {
+      // found by fuzz_mesh_ply: CGAL's reader then fails, printing "can't find vertex indices" to stderr
+      fail(e.line, fmt::format("the {} element has no property 'vertex_indices' (the list of a face's vertex "
+                               "indices)",
+                               e.name));
+    }
     if (e.name == "vertex" || e.name == "vertices") {
       for (const char* axis : kAxes) {
         const auto it = std::find_if(e.properties.begin(), e.properties.end(),

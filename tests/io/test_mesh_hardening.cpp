@@ -141,6 +141,10 @@ std::vector<Case> cases() {
        "ply\nformat ascii 1.0\nelement vertex 4\nproperty float y\nproperty float z\nproperty float w\n"
        "element face 4\nproperty list uchar int vertex_indices\nend_header\n",
        "the vertex element has no property 'x'", 3},
+      {"no_indices.ply",  // found by fuzz_mesh_ply: main said "cannot be read as ply" (CGAL printed its own line)
+       "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+       "element face 1\nproperty list uchar int corners\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+       "the face element has no property 'vertex_indices'", 7},
       // Binary STL: the count against the size, both said (never CGAL's "$$$___magic___$$$").
       {"short.stl", stl_short, "as a binary STL of 12 facets (the count at bytes 80-83) it would be 84 + 50 x 12 = "
                                "684 bytes, but the file is 674 bytes (truncated", 0},
