@@ -1,7 +1,7 @@
 // libFuzzer target for the mesh reader (io::parse_mesh: topple's pre-checks and CGAL's OBJ, OFF, STL or PLY reader,
 // the format fixed at compile time by TOPPLE_FUZZ_MESH) and what `topple body` computes on a mesh that reads. Contract (docs/fuzzing.md): an
 // InputError, or a mesh that check_mesh accepts and whose planar body (at two azimuths) is all finite numbers with
-// b1, b2, h > 0; any other exception, a crash, a sanitizer report or a non-finite number ends the run.
+// b1, b2, h > 0 (a refusal names the file); any other exception, a crash, a sanitizer report or a non-finite number ends the run.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -41,8 +41,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         // a mesh that is a solid but does not stand (on a point, an edge, or leaning) is refused
       }
     }
-  } catch (const topple::InputError&) {
-    // refusing bad input is the expected outcome
+  } catch (const topple::InputError& e) {
+    // refusing bad input is the expected outcome; the refusal names the file (issue 31: file, line and field)
+    if (e.where().file != "fuzz-mesh") std::abort();
   }
   return 0;
 }

@@ -16,7 +16,7 @@ seconds="${1:-20}"
 jobs="${TOPPLE_JOBS:-2}"
 shared="${TOPPLE_SHARED_DIR:-$(pwd)/../shared}"
 runs="${TOPPLE_FUZZ_RUNS:--1}"   # -1: no limit on executions, only on time
-read -r -a targets <<<"${TOPPLE_FUZZ_TARGETS:-fuzz_peer_at2 fuzz_cosmos_v2 fuzz_csmip_v2 fuzz_knet fuzz_usgs_smc fuzz_esm fuzz_plain fuzz_detect fuzz_survey fuzz_sweep}"
+read -r -a targets <<<"${TOPPLE_FUZZ_TARGETS:-fuzz_peer_at2 fuzz_cosmos_v2 fuzz_csmip_v2 fuzz_knet fuzz_usgs_smc fuzz_esm fuzz_plain fuzz_detect fuzz_survey fuzz_sweep fuzz_mesh_obj fuzz_mesh_off fuzz_mesh_stl fuzz_mesh_ply}"
 
 cmake --preset fuzz >/dev/null
 cmake --build --preset fuzz -j "$jobs" --target "${targets[@]}"

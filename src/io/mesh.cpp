@@ -17,6 +17,7 @@
 #include <limits>
 #include <map>
 #include <new>
+#include <optional>
 #include <stdexcept>
 #include <streambuf>
 #include <string>
@@ -51,6 +52,13 @@ InputError mesh_error(const std::string& file, const std::string& problem) {
 }
 InputError line_error(const std::string& file, std::size_t line, const std::string& problem) {
   return InputError(InputLocation{.file = file, .line = line, .field = {}}, problem);
+}
+
+/// An error at a line (0: none, a binary file) and a field of the file: "file:12: vertex 5, z: problem".
+InputError field_error(const std::string& file, std::size_t line, const std::string& field, const std::string& problem) {
+  return InputError(InputLocation{.file = file, .line = line == 0 ? std::optional<std::size_t>{} : line,
+                                  .field = field},
+                    problem);
 }
 
 std::string lower_extension(const std::string& path) {
@@ -108,7 +116,71 @@ struct Soup {
   /// The number a file writes for points[0] in its faces: 1 for OBJ, 0 for OFF and PLY.
   std::size_t base = 1;
   std::string face_word = "face";  // "face" (the n-th f line of an OBJ, the n-th face of an OFF or PLY), "facet"
+  /// The line of the file each polygon is written on (text formats: OBJ, OFF, ASCII PLY and STL); empty for binary.
+  std::vector<std::size_t> face_lines;
 };
+
+// --- Tokens and coordinates, as typed ---------------------------------------------------------------------------
+
+/// A token that is a whole number in the C locale (a leading '+' allowed, as C++ streams read it): the token entire,
+/// not its numeric prefix (a stream reads "6D-1" as 6 and "0.3x" as 0.3).
+bool parse_double(std::string_view token, double& value) {
+  if (!token.empty() && token.front() == '+') token.remove_prefix(1);
+  const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
+  return ec == std::errc{} && end == token.data() + token.size();
+}
+bool parse_index(std::string_view token, std::size_t& value) {
+  const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
+  return ec == std::errc{} && end == token.data() + token.size();
+}
+
+std::string_view next_line(std::string_view content, std::size_t& pos) {
+  std::size_t eol = content.find('\n', pos);
+  if (eol == std::string_view::npos) eol = content.size();
+  std::string_view line = content.substr(pos, eol - pos);
+  pos = eol + 1;
+  if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+  return line;
+}
+
+/// A token as the user typed it, quoted, for a message: cut to 40 bytes, control bytes shown as \xNN (UTF-8 kept:
+/// a Unicode minus is shown as typed).
+std::string quoted(std::string_view token) {
+  std::string out = "'";
+  for (std::size_t i = 0; i < token.size() && i < 40; ++i) {
+    const auto c = static_cast<unsigned char>(token[i]);
+    out += c >= 0x20 && c != 0x7f ? std::string(1, static_cast<char>(c)) : fmt::format("\\x{:02x}", c);
+  }
+  return out + (token.size() > 40 ? "...'" : "'");
+}
+
+/// What is wrong with a coordinate token of a text file, in words that quote it as typed ("" when it is a finite
+/// number within kMaxFileCoordinateM of the file's origin after --unit): the value read is `value`.
+std::string coordinate_problem(std::string_view token, double unit_m, double& value) {
+  std::string_view t = token;
+  if (!t.empty() && t.front() == '+') t.remove_prefix(1);
+  const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), value);
+  const bool whole = end == t.data() + t.size();
+  if (ec == std::errc::result_out_of_range && whole) {
+    return fmt::format("{} is beyond the range of a double (and beyond {:g} m of the file's origin)", quoted(token),
+                       kMaxFileCoordinateM);
+  }
+  if (ec != std::errc{} || !whole) {
+    if (token.find("\xe2\x88\x92") != std::string_view::npos) {
+      return fmt::format("{} is not a number: it holds the Unicode minus sign U+2212; write the ASCII '-'",
+                         quoted(token));
+    }
+    return fmt::format("{} is not a number", quoted(token));
+  }
+  if (!std::isfinite(value)) return fmt::format("{} is not a finite number", quoted(token));
+  if (!(std::abs(value) * unit_m <= kMaxFileCoordinateM)) {
+    return fmt::format("{} is beyond {:g} m of the file's origin (at --unit {:g} m): check --unit", quoted(token),
+                       kMaxFileCoordinateM, unit_m);
+  }
+  return {};
+}
+
+constexpr std::array<const char*, 3> kAxes{"x", "y", "z"};
 
 // --- PLY ---------------------------------------------------------------------------------------------------------
 
@@ -145,36 +217,217 @@ std::vector<std::string_view> split_blank(std::string_view line) {
   return tokens;
 }
 
+/// A PLY element as its header declares it: name, count, the header line, and its properties (for a list: the
+/// count's type and the items' type).
+struct PlyProperty {
+  std::string name, type;       // type: the scalar's, or the list items'
+  std::string count_type;       // "" for a scalar
+};
+struct PlyElement {
+  std::string name;
+  std::uint64_t count = 0;
+  std::size_t line = 0;
+  std::vector<PlyProperty> properties;
+};
+
+std::size_t ply_type_bytes(std::string_view t) {
+  if (t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
+  if (t == "short" || t == "ushort" || t == "int16" || t == "uint16") return 2;
+  if (t == "double" || t == "float64") return 8;
+  return 4;  // int, uint, float and their sized names
+}
+bool is_ply_integer(std::string_view t) { return !is_ply_float(t); }
+
+/// The body of a PLY file checked against its header before CGAL reads it, element by element in the header's
+/// order, so that a count the file does not hold, an element absent from the file or a value that is not of its
+/// type is refused with the element, the record and (ASCII) the line, instead of CGAL's "cannot read". ASCII: every
+/// value a whole token of its type (integers for integer types; the vertex coordinates finite and within
+/// kMaxFileCoordinateM, quoted as typed); binary: the bytes each record takes, lists by their counts, and nothing
+/// after the last element. Records the line of each face (ASCII) for messages.
+void check_ply_body(std::string_view content, std::size_t pos, std::size_t line_no, bool ascii, bool big_endian,
+                    const std::vector<PlyElement>& elements, const std::string& name, double unit_m,
+                    std::vector<std::size_t>& face_lines) {
+  const auto is_vertex = [](const std::string& e) { return e == "vertex" || e == "vertices"; };
+  const auto is_face = [](const std::string& e) { return e == "face" || e == "faces"; };
+  if (ascii) ++line_no;  // pos is at the start of the line after end_header
+  const auto ends = [&](const PlyElement& e, std::uint64_t record) {
+    return field_error(name, ascii ? line_no : 0, "element " + e.name,
+                       fmt::format("the file ends in element '{}' (declared at line {} with {} records): {} of them "
+                                   "are there",
+                                   e.name, e.line, e.count, record));
+  };
+  if (ascii) {
+    // Tokens as a C++ stream (CGAL's reader) sees them: separated by white space, lines counted for messages.
+    const auto next_token = [&](std::string_view& token) {
+      while (pos < content.size()) {
+        const char c = content[pos];
+        if (c == '\n') ++line_no;
+        if (c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' || c == '\f') {
+          ++pos;
+          continue;
+        }
+        break;
+      }
+      if (pos >= content.size()) return false;
+      const std::size_t begin = pos;
+      while (pos < content.size() && !std::isspace(static_cast<unsigned char>(content[pos]))) ++pos;
+      token = content.substr(begin, pos - begin);
+      return true;
+    };
+    for (const PlyElement& e : elements) {
+      const bool vertex = is_vertex(e.name), face = is_face(e.name);
+      for (std::uint64_t r = 0; r < e.count; ++r) {
+        std::size_t record_line = 0;
+        for (const PlyProperty& p : e.properties) {
+          const auto value = [&](const std::string& type, bool list_count) {
+            std::string_view token;
+            if (!next_token(token)) throw ends(e, r);
+            if (record_line == 0) record_line = line_no;
+            double v = 0.0;
+            if (vertex && p.count_type.empty() && (p.name == "x" || p.name == "y" || p.name == "z")) {
+              const std::string problem = coordinate_problem(token, unit_m, v);
+              if (!problem.empty()) {
+                throw field_error(name, line_no, fmt::format("vertex {} (index {}), {}", r + 1, r, p.name), problem);
+              }
+              return v;
+            }
+            std::int64_t i = 0;
+            const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), i);
+            const bool integer = ec == std::errc{} && end == token.data() + token.size();
+            if (is_ply_integer(type) ? !integer : !(parse_double(token, v) && std::isfinite(v))) {
+              throw field_error(name, line_no,
+                                fmt::format("{} {}, {}{}", e.name, r + 1, p.name, list_count ? "'s count" : ""),
+                                fmt::format("{} is not {} ({})", quoted(token),
+                                                          is_ply_integer(type) ? "a whole number" : "a finite number",
+                                                          type));
+            }
+            return is_ply_integer(type) ? static_cast<double>(i) : v;
+          };
+          if (p.count_type.empty()) {
+            (void)value(p.type, false);
+            continue;
+          }
+          const double n = value(p.count_type, true);
+          const double most = p.count_type == "uchar" || p.count_type == "uint8" ? 255.0
+                              : p.count_type == "char" || p.count_type == "int8" ? 127.0
+                              : p.count_type == "short" || p.count_type == "int16" ? 32767.0 : 65535.0;
+          if (!(n >= 0.0 && n <= most)) {
+            throw field_error(name, line_no, fmt::format("{} {}, {}", e.name, r + 1, p.name),
+                              fmt::format("the list's count is {}, outside [0, {}] ({})", n, most, p.count_type));
+          }
+          for (int k = 0; k < static_cast<int>(n); ++k) (void)value(p.type, false);
+        }
+        if (face) face_lines.push_back(record_line);
+      }
+    }
+    std::string_view token;
+    if (next_token(token)) {
+      throw line_error(name, line_no, fmt::format("{} after the last record the header declares (element '{}'): the "
+                                                  "header's counts are smaller than the data",
+                                                  quoted(token), elements.back().name));
+    }
+    return;
+  }
+  const auto read_uint = [&](std::size_t at, std::size_t bytes) {
+    std::uint64_t v = 0;
+    for (std::size_t k = 0; k < bytes; ++k) {
+      const auto byte = static_cast<unsigned char>(content[at + (big_endian ? k : bytes - 1 - k)]);
+      v = (v << 8) | byte;
+    }
+    return v;
+  };
+  for (const PlyElement& e : elements) {
+    const bool vertex = is_vertex(e.name);
+    for (std::uint64_t r = 0; r < e.count; ++r) {
+      for (const PlyProperty& p : e.properties) {
+        const std::size_t size = ply_type_bytes(p.type);
+        if (p.count_type.empty()) {
+          if (content.size() - pos < size) throw ends(e, r);
+          if (vertex && (p.name == "x" || p.name == "y" || p.name == "z")) {
+            const std::uint64_t bits = read_uint(pos, size);
+            double v = 0.0;
+            if (size == 8) {
+              v = std::bit_cast<double>(bits);
+            } else {
+              v = std::bit_cast<float>(static_cast<std::uint32_t>(bits));
+            }
+            if (!std::isfinite(v) || !(std::abs(v) * unit_m <= kMaxFileCoordinateM)) {
+              throw field_error(name, 0, fmt::format("vertex {} (index {}), {}", r + 1, r, p.name),
+                                fmt::format("{} is not a finite number within {:g} m of the file's origin (at --unit "
+                                            "{:g} m)",
+                                            v, kMaxFileCoordinateM, unit_m));
+            }
+          }
+          pos += size;
+          continue;
+        }
+        const std::size_t count_size = ply_type_bytes(p.count_type);
+        if (content.size() - pos < count_size) throw ends(e, r);
+        const std::uint64_t n = read_uint(pos, count_size);
+        const bool negative = ((p.count_type == "char" || p.count_type == "int8") && n >= 0x80) ||
+                              ((p.count_type == "short" || p.count_type == "int16") && n >= 0x8000);
+        if (negative) {
+          throw field_error(name, 0, fmt::format("{} {}, {}", e.name, r + 1, p.name),
+                            fmt::format("the list's count is negative ({})", p.count_type));
+        }
+        pos += count_size;
+        if ((content.size() - pos) / size < n) throw ends(e, r);
+        pos += n * size;
+      }
+    }
+  }
+  if (pos != content.size()) {
+    throw mesh_error(name, fmt::format("{} bytes after the last record the header declares (element '{}'): the "
+                                       "header's counts are smaller than the data",
+                                       content.size() - pos, elements.empty() ? "" : elements.back().name));
+  }
+}
+
 /// The PLY header checked against the format's grammar (Turk 1994, "The PLY polygon file format": the lines "ply",
 /// "format ascii|binary_little_endian|binary_big_endian 1.0", "comment ...", "obj_info ...", "element NAME COUNT",
 /// "property TYPE NAME", "property list TYPE TYPE NAME", "end_header") and against what CGAL's PLY reader assumes
 /// without checking (its release build reads through a null pointer otherwise): a vertex element has scalar x, y, z
 /// of a floating type; a face's index list counts in 8 or 16 bits (CGAL allocates the count a 32-bit one gives before
-/// reading the indices) and holds int or uint indices; a halfedge element's source and target are uint. Element
-/// counts are bounded by MeshLimits. A file with vertices but no faces is a point cloud, said so.
-void check_ply_header(std::string_view content, const std::string& name) {
+/// reading the indices) and holds int or uint indices; a halfedge element's source and target are uint. Before any
+/// record is read, each element's count times the least bytes a record of it takes (binary: its scalars' sizes and
+/// its lists' counts; ASCII: two bytes a value, a digit and a separator) is bounded by the bytes the file holds after
+/// its header: a count the file cannot hold is refused at its element line (a 2 kB file declaring 3e7 vertices took
+/// minutes and gigabytes in a reader that allocates the count first). Then MeshLimits, then the body
+/// (check_ply_body). A file with vertices but no faces is a point cloud, said so.
+void check_ply(std::string_view content, const std::string& name, double unit_m, std::vector<std::size_t>& face_lines) {
   constexpr std::size_t kMaxHeaderBytes = 64 * 1024;
   const auto fail = [&](std::size_t line, const std::string& problem) {
     throw line_error(name, line, "PLY header: " + problem);
   };
   std::size_t pos = 0, line_no = 0;
-  std::string element;             // the element whose properties follow
-  std::size_t vertex_count = 0, face_count = 0;
-  bool has_face_element = false;
-  std::map<std::string, std::string, std::less<>> vertex_props;  // name -> type, of the vertex element
-  std::size_t element_line = 0;
-  std::vector<std::string> element_props;  // property names of the current element: a repeated one is refused (CGAL
-                                           // takes the first of a name, topple's checks would see the last)
+  std::vector<PlyElement> elements;
+  std::string format;
   const auto finish_element = [&]() {
-    if (element == "vertex" || element == "vertices") {
-      for (const char* axis : {"x", "y", "z"}) {
-        const auto it = vertex_props.find(axis);
-        if (it == vertex_props.end() || !is_ply_float(it->second)) {
-          fail(element_line, fmt::format("the {} element has no property '{}' of type float or double", element,
-                                         axis));
+    if (elements.empty()) return;
+    const PlyElement& e = elements.back();
+    if ((e.name == "face" || e.name == "faces") &&
+        std::none_of(e.properties.begin(), e.properties.end(), [](const PlyProperty& p) {
+          return p.name == "vertex_indices" || p.name == "vertex_index";
+        })) {
+      // found by fuzz_mesh_ply: CGAL's reader then fails, printing "can't find vertex indices" to stderr
+      fail(e.line, fmt::format("the {} element has no property 'vertex_indices' (the list of a face's vertex "
+                               "indices)",
+                               e.name));
+    }
+    if (e.name == "vertex" || e.name == "vertices") {
+      for (const char* axis : kAxes) {
+        const auto it = std::find_if(e.properties.begin(), e.properties.end(),
+                                     [&](const PlyProperty& p) { return p.name == axis; });
+        if (it == e.properties.end()) {
+          fail(e.line, fmt::format("the {} element has no property '{}' (the vertices' coordinates are the "
+                                   "properties x, y and z, of type float or double)",
+                                   e.name, axis));
+        }
+        if (!it->count_type.empty() || !is_ply_float(it->type)) {
+          fail(e.line, fmt::format("the {} element has no property '{}' of type float or double (it is {})", e.name,
+                                   axis, it->count_type.empty() ? it->type : "a list"));
         }
       }
-      vertex_props.clear();
     }
   };
   while (true) {
@@ -201,64 +454,55 @@ void check_ply_header(std::string_view content, const std::string& name) {
           tokens[2] != "1.0") {
         fail(line_no, "the second line is not 'format ascii|binary_little_endian|binary_big_endian 1.0'");
       }
+      format = std::string(tokens[1]);
       continue;
     }
     if (key == "comment" || key == "obj_info") continue;
-    if (key == "end_header" && tokens.size() == 1) {
-      finish_element();
-      if (vertex_count == 0 && face_count == 0) fail(line_no, "no vertex and no face elements");
-      if (!has_face_element || face_count == 0) {
-        throw line_error(name, line_no, fmt::format("{} vertices and no faces: {}", vertex_count, kPointCloud));
-      }
-      return;
-    }
+    if (key == "end_header" && tokens.size() == 1) break;
     if (key == "element") {
-      const bool count_ok = tokens.size() == 3 && !tokens[2].empty() && tokens[2].size() <= 9 &&
-                            std::all_of(tokens[2].begin(), tokens[2].end(), [](unsigned char c) { return std::isdigit(c); });
-      if (!count_ok || !is_identifier(tokens[1])) fail(line_no, "an element line is not 'element NAME COUNT'");
+      std::uint64_t count = 0;
+      const bool digits = tokens.size() == 3 && !tokens[2].empty() &&
+                          std::all_of(tokens[2].begin(), tokens[2].end(), [](unsigned char c) { return std::isdigit(c); });
+      if (!digits || !is_identifier(tokens[1])) fail(line_no, "an element line is not 'element NAME COUNT'");
+      const auto [end, ec] = std::from_chars(tokens[2].data(), tokens[2].data() + tokens[2].size(), count);
+      if (ec != std::errc{}) {
+        fail(line_no, fmt::format("element {} {}: the count is too large for any file", tokens[1],
+                                  std::string(tokens[2].substr(0, 40))));
+      }
       finish_element();
-      element = std::string(tokens[1]);
-      element_line = line_no;
-      element_props.clear();
-      const std::size_t count = std::stoul(std::string(tokens[2]));
-      const bool face = element == "face" || element == "faces";
-      const std::size_t limit = face ? MeshLimits::max_triangles : 3 * MeshLimits::max_triangles;
-      if (count > limit) {
-        fail(line_no, fmt::format("{} {} elements: more than the {} topple reads", count, element, limit));
+      const std::string element(tokens[1]);
+      if (std::any_of(elements.begin(), elements.end(), [&](const PlyElement& e) { return e.name == element; })) {
+        fail(line_no, fmt::format("a second element '{}'", element));
       }
-      if (face) {
-        has_face_element = true;
-        face_count += count;
-      }
-      if (element == "vertex" || element == "vertices") vertex_count += count;
+      elements.push_back({element, count, line_no, {}});
       continue;
     }
     if (key == "property") {
       const bool scalar = tokens.size() == 3 && is_ply_type(tokens[1]) && is_identifier(tokens[2]);
       const bool list = tokens.size() == 5 && tokens[1] == "list" && is_ply_type(tokens[2]) &&
                         is_ply_type(tokens[3]) && is_identifier(tokens[4]);
-      if (!(scalar || list) || element.empty()) {
+      if (!(scalar || list) || elements.empty()) {
         fail(line_no, "a property line is not 'property TYPE NAME' or 'property list TYPE TYPE NAME' after an "
                       "element line");
       }
+      PlyElement& e = elements.back();
       if (list && !is_ply_small_count(tokens[2])) {
         fail(line_no, fmt::format("the list '{}' is counted by a {}: topple reads lists counted by 8- or 16-bit "
                                   "types (uchar, ushort, ...)",
                                   tokens[4], tokens[2]));
       }
-      const std::string_view prop = scalar ? tokens[2] : tokens[4];
-      if (std::find(element_props.begin(), element_props.end(), prop) != element_props.end()) {
-        fail(line_no, fmt::format("the {} element has two properties named '{}'", element, prop));
+      const std::string prop(scalar ? tokens[2] : tokens[4]);
+      if (std::any_of(e.properties.begin(), e.properties.end(), [&](const PlyProperty& p) { return p.name == prop; })) {
+        // CGAL takes the first of a name, topple's checks would see the last
+        fail(line_no, fmt::format("the {} element has two properties named '{}'", e.name, prop));
       }
-      element_props.emplace_back(prop);
-      if (element == "vertex" || element == "vertices") {
-        vertex_props[std::string(prop)] = scalar ? std::string(tokens[1]) : std::string("list");
-      }
-      if ((element == "face" || element == "faces") && (prop == "vertex_indices" || prop == "vertex_index") &&
+      e.properties.push_back({prop, std::string(scalar ? tokens[1] : tokens[3]),
+                              scalar ? std::string() : std::string(tokens[2])});
+      if ((e.name == "face" || e.name == "faces") && (prop == "vertex_indices" || prop == "vertex_index") &&
           !(list && is_ply_index(tokens[3]))) {
         fail(line_no, fmt::format("the face property '{}' is not a list of int or uint", prop));
       }
-      if (element == "halfedge" && (prop == "source" || prop == "target") &&
+      if (e.name == "halfedge" && (prop == "source" || prop == "target") &&
           !(scalar && (tokens[1] == "uint" || tokens[1] == "uint32"))) {
         fail(line_no, fmt::format("the halfedge property '{}' is not a uint", prop));
       }
@@ -266,29 +510,58 @@ void check_ply_header(std::string_view content, const std::string& name) {
     }
     fail(line_no, fmt::format("'{}' is not a PLY header line", std::string(line.substr(0, 60))));
   }
+  finish_element();
+  // Counts against the bytes after the header, saturating at 2^64 - 1 (a count of up to 1.8e19 times a record of up
+  // to 64 kB).
+  const bool ascii = format == "ascii";
+  const std::uint64_t body = content.size() - pos;
+  constexpr std::uint64_t kSaturated = std::numeric_limits<std::uint64_t>::max();
+  std::uint64_t total = 0;
+  for (const PlyElement& e : elements) {
+    std::uint64_t least = 0;  // bytes of one record at the least
+    for (const PlyProperty& p : e.properties) {
+      least += ascii ? 2 : ply_type_bytes(p.count_type.empty() ? p.type : p.count_type);
+    }
+    const std::uint64_t need = least != 0 && e.count > kSaturated / least ? kSaturated : e.count * least;
+    total = need > kSaturated - total ? kSaturated : total + need;
+    if (need > 0 && (ascii ? need - 1 : need) > body) {
+      fail(e.line, fmt::format("element {} {}: the count is too large for the file: {} records of {} values need at "
+                               "least {} bytes ({}), but the file holds {} bytes after its header",
+                               e.name, e.count, e.count, e.properties.size(), need,
+                               ascii ? "as ASCII, a digit and a separator a value" : "binary, by the property types",
+                               body));
+    }
+    if (total > body + (ascii ? 1 : 0)) {
+      fail(e.line, fmt::format("element {} {}: the counts so far need at least {} bytes, but the file holds {} bytes "
+                               "after its header: a count is too large for the file",
+                               e.name, e.count, total, body));
+    }
+  }
+  std::uint64_t vertex_count = 0, face_count = 0;
+  bool has_face_element = false;
+  for (const PlyElement& e : elements) {
+    const bool face = e.name == "face" || e.name == "faces";
+    const std::uint64_t limit = face ? MeshLimits::max_triangles : 3 * std::uint64_t{MeshLimits::max_triangles};
+    if (e.count > limit) {
+      fail(e.line, fmt::format("{} {} elements: more than the {} topple reads (decimate the scan)", e.count, e.name,
+                               limit));
+    }
+    if (face) {
+      has_face_element = true;
+      face_count += e.count;
+    }
+    if (e.name == "vertex" || e.name == "vertices") vertex_count += e.count;
+  }
+  if (vertex_count == 0 && face_count == 0) fail(line_no, "no vertex and no face elements");
+  if (!has_face_element || face_count == 0) {
+    throw line_error(name, line_no, fmt::format("{} vertices and no faces: {}", vertex_count, kPointCloud));
+  }
+  check_ply_body(content, pos, line_no, ascii, format == "binary_big_endian", elements, name, unit_m, face_lines);
 }
 
 // --- OBJ, STL, OFF: what CGAL's readers would read wrongly or without saying where ---------------------------------
 
-std::string_view next_line(std::string_view content, std::size_t& pos) {
-  std::size_t eol = content.find('\n', pos);
-  if (eol == std::string_view::npos) eol = content.size();
-  std::string_view line = content.substr(pos, eol - pos);
-  pos = eol + 1;
-  if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-  return line;
-}
 
-/// A token that is a whole number in the C locale (a leading '+' allowed, as C++ streams read it).
-bool parse_double(std::string_view token, double& value) {
-  if (!token.empty() && token.front() == '+') token.remove_prefix(1);
-  const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
-  return ec == std::errc{} && end == token.data() + token.size();
-}
-bool parse_index(std::string_view token, std::size_t& value) {
-  const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
-  return ec == std::errc{} && end == token.data() + token.size();
-}
 
 /// The statements CGAL::IO::read_OBJ (CGAL 5.5, OBJ.h) passes over as valid; any other but v, vt, vn, f, l and a
 /// comment makes it fail without saying where, so the line is named here first.
@@ -303,36 +576,90 @@ bool is_obj_statement(std::string_view key) {
   return false;
 }
 
-/// OBJ statements counted before CGAL reads the file: vertices (v) but no faces (f) is a point cloud; a polyline (l),
-/// which CGAL's reader stops at without saying where, is refused with its line; a v line must hold three finite
-/// numbers (CGAL reads them with a stream, and does not say which line it could not read); an unknown statement is
-/// refused with its line.
-void check_obj(std::string_view content, const std::string& name) {
-  std::size_t pos = 0, line_no = 0, vertices = 0, faces = 0, first_l = 0;
+/// An OBJ face token: "v", "v/vt", "v//vn" or "v/vt/vn", each a whole integer (negative: relative), the token entire
+/// (CGAL reads the vertex number with a stream, which takes "2.5" as 2 and "3x" as 3).
+bool is_obj_face_token(std::string_view token) {
+  int parts = 0;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t slash = token.find('/', start);
+    const std::string_view part = token.substr(start, slash == std::string_view::npos ? std::string_view::npos
+                                                                                     : slash - start);
+    ++parts;
+    if (parts > 3) return false;
+    const bool optional_empty = parts > 1 && part.empty();  // "v//vn", "v/vt/"
+    if (!optional_empty) {
+      long long v = 0;
+      const auto [end, ec] = std::from_chars(part.data(), part.data() + part.size(), v);
+      if (ec != std::errc{} || end != part.data() + part.size() || (parts == 1 && v == 0)) return false;
+    }
+    if (slash == std::string_view::npos) return true;
+    start = slash + 1;
+  }
+}
+
+/// OBJ statements checked before CGAL reads the file, with their lines: a v line is x y z, x y z w with w = 1 (the
+/// weight is for rational curves and surfaces, Wavefront's OBJ specification; CGAL ignores it, so any other w would
+/// be a silent guess), or x y z r g b (the vertex colours MeshLab and Open3D write); each a whole token that is a
+/// finite number within kMaxFileCoordinateM, quoted as typed when not (a stream reads the prefix: "6D-1" as 6). A
+/// face token is a whole vertex reference. Vertices are numbered by the file's v lines, faces by its f lines (their
+/// line numbers kept for messages); vertices (v) but no faces (f) is a point cloud; a polyline (l), which CGAL's
+/// reader stops at without saying where, is refused with its line; an unknown statement is refused with its line.
+/// mtllib is passed over and no material file is ever opened (CGAL 5.5's read_OBJ does not open it either: the
+/// geometry needs none; a test proves it with a FIFO).
+void check_obj(std::string_view content, const std::string& name, double unit_m, std::vector<std::size_t>& face_lines) {
+  std::size_t pos = 0, line_no = 0, vertices = 0, first_l = 0;
   while (pos < content.size()) {
     ++line_no;
     const std::vector<std::string_view> tokens = split_blank(next_line(content, pos));
     if (tokens.empty()) continue;
     if (tokens[0] == "v") {
       ++vertices;
-      double xyz[3];
-      for (int k = 0; k < 3; ++k) {
-        if (tokens.size() < 4 || !parse_double(tokens[1 + k], xyz[k]) || !std::isfinite(xyz[k])) {
-          throw line_error(name, line_no, fmt::format("vertex {} (this v line) does not hold three finite numbers",
-                                                      vertices));
+      const auto vertex = [&]() { return fmt::format("vertex {}", vertices); };
+      const std::size_t n = tokens.size() - 1;
+      if (n != 3 && n != 4 && n != 6) {
+        throw field_error(name, line_no, vertex(),
+                          fmt::format("the v line holds {} value{} where it needs x y z (or x y z w with w = 1, or "
+                                      "x y z r g b)",
+                                      n, n == 1 ? "" : "s"));
+      }
+      for (std::size_t k = 0; k < n; ++k) {
+        double value = 0.0;
+        const auto field = [&]() {
+          return k < 3 ? vertex() + ", " + kAxes[k] : n == 4 ? vertex() + ", w" : vertex() + ", " + "rgb"[k - 3];
+        };
+        const std::string problem = k < 3 ? coordinate_problem(tokens[1 + k], unit_m, value)
+                                           : parse_double(tokens[1 + k], value) && std::isfinite(value)
+                                                 ? std::string()
+                                                 : quoted(tokens[1 + k]) + " is not a finite number";
+        if (!problem.empty()) throw field_error(name, line_no, field(), problem);
+        if (n == 4 && k == 3 && value != 1.0) {
+          throw field_error(name, line_no, field(),
+                            fmt::format("a weight w = {}: OBJ's fourth vertex number is the weight of rational "
+                                        "curves and surfaces, which topple does not read; a polygon vertex is x y z "
+                                        "(w = 1 or none)",
+                                        quoted(tokens[4])));
         }
       }
     } else if (tokens[0] == "f") {
-      ++faces;
+      face_lines.push_back(line_no);
+      for (std::size_t k = 1; k < tokens.size(); ++k) {
+        if (!is_obj_face_token(tokens[k])) {
+          throw field_error(name, line_no, fmt::format("face {}, vertex {}", face_lines.size(), k),
+                            fmt::format("{} is not a vertex number (v, v/vt, v//vn or v/vt/vn, whole numbers, not "
+                                        "0)",
+                                        quoted(tokens[k])));
+        }
+      }
     } else if (tokens[0] == "l") {
       if (first_l == 0) first_l = line_no;
     } else if (tokens[0].front() != '#' && !is_obj_statement(tokens[0])) {
-      throw line_error(name, line_no, fmt::format("'{}' is not an OBJ statement (v, vt, vn, f, g, o, s, usemtl, "
+      throw line_error(name, line_no, fmt::format("{} is not an OBJ statement (v, vt, vn, f, g, o, s, usemtl, "
                                                   "mtllib, ...)",
-                                                  std::string(tokens[0].substr(0, 40))));
+                                                  quoted(tokens[0])));
     }
   }
-  if (faces == 0) {
+  if (face_lines.empty()) {
     if (vertices == 0) throw mesh_error(name, "no vertices (v) and no faces (f): not a mesh");
     throw mesh_error(name, fmt::format("{} vertices and no faces (f lines): {}", vertices, kPointCloud));
   }
@@ -342,29 +669,129 @@ void check_obj(std::string_view content, const std::string& name) {
   }
 }
 
-/// STL: a file that does not begin with "solid" is binary, and must hold the 84 + 50 n bytes its facet count n says
-/// (CGAL's reader takes a file shorter than 80 bytes as an empty binary STL); a binary STL's coordinates must be
-/// finite (CGAL welds equal points in a std::map, whose order a NaN breaks).
-void check_stl(std::string_view content, const std::string& name) {
+/// An ASCII STL checked line by line against its grammar (3D Systems' StereoLithography Interface Specification,
+/// 1989: "solid NAME", then facets of "facet normal ni nj nk", "outer loop", three "vertex x y z", "endloop",
+/// "endfacet", then "endsolid NAME"), with the line of each facet kept for messages: a facet's fourth vertex (CGAL's
+/// reader drops it without a word), a number that is not one (quoted as typed), a file cut short or a second solid
+/// are refused at their line. Returns an empty string when the text is an ASCII STL, else what is wrong (the caller
+/// may then say what the file would be as a binary STL).
+std::string check_stl_ascii(std::string_view content, const std::string& name, double unit_m,
+                            std::vector<std::size_t>& face_lines, std::size_t& bad_line) {
+  enum class Want { solid, facet, loop, vertex, endloop, endfacet, end };
+  Want want = Want::solid;
+  std::size_t pos = 0, line_no = 0, corners = 0, facet_line = 0;
+  while (pos < content.size()) {
+    ++line_no;
+    bad_line = line_no;
+    const std::vector<std::string_view> t = split_blank(next_line(content, pos));
+    if (t.empty()) continue;
+    const auto facet_name = [&]() { return fmt::format("facet {} (line {})", face_lines.size(), facet_line); };
+    switch (want) {
+      case Want::solid:
+        if (t[0] != "solid") return "the first line is not 'solid NAME'";
+        want = Want::facet;
+        continue;
+      case Want::facet:
+        if (t[0] == "endsolid") {
+          want = Want::end;
+          continue;
+        }
+        if (t[0] != "facet" || t.size() != 5 || t[1] != "normal") {
+          return fmt::format("{} where 'facet normal ni nj nk' or 'endsolid' belongs", quoted(t[0]));
+        }
+        for (int k = 0; k < 3; ++k) {
+          double v = 0.0;
+          if (!parse_double(t[2 + k], v)) {
+            throw field_error(name, line_no, fmt::format("facet {}, normal", face_lines.size() + 1),
+                              quoted(t[2 + k]) + " is not a number");
+          }
+        }
+        face_lines.push_back(line_no);
+        facet_line = line_no;
+        want = Want::loop;
+        continue;
+      case Want::loop:
+        if (t.size() != 2 || t[0] != "outer" || t[1] != "loop") return facet_name() + ": 'outer loop' belongs here";
+        corners = 0;
+        want = Want::vertex;
+        continue;
+      case Want::vertex:
+      case Want::endloop:
+        if (t[0] == "vertex") {
+          if (want == Want::endloop) {
+            throw field_error(name, line_no, facet_name() + ", vertex 4",
+                              "a fourth vertex: an STL facet is a triangle of three (split the polygon into "
+                              "triangles in the program that wrote the file)");
+          }
+          ++corners;
+          const auto field = [&]() { return fmt::format("facet {}, vertex {}", face_lines.size(), corners); };
+          if (t.size() != 4) {
+            throw field_error(name, line_no, field(),
+                              fmt::format("the vertex line holds {} values where it needs x y z", t.size() - 1));
+          }
+          for (int k = 0; k < 3; ++k) {
+            double v = 0.0;
+            const std::string problem = coordinate_problem(t[1 + k], unit_m, v);
+            if (!problem.empty()) throw field_error(name, line_no, field() + ", " + kAxes[k], problem);
+          }
+          if (corners == 3) want = Want::endloop;
+          continue;
+        }
+        if (want == Want::vertex) {
+          return fmt::format("{} has {} vertices: a facet is a triangle of three", facet_name(), corners);
+        }
+        if (t.size() != 1 || t[0] != "endloop") return facet_name() + ": 'endloop' belongs here";
+        want = Want::endfacet;
+        continue;
+      case Want::endfacet:
+        if (t.size() != 1 || t[0] != "endfacet") return facet_name() + ": 'endfacet' belongs here";
+        want = Want::facet;
+        continue;
+      case Want::end:
+        return fmt::format("{} after endsolid: topple reads one solid a file", quoted(t[0]));
+    }
+  }
+  ++line_no;
+  bad_line = line_no;
+  if (want != Want::end) return "the file ends before its 'endsolid' line (cut short?)";
+  return {};
+}
+
+/// STL. A file that begins with "solid" and is an ASCII STL by its grammar is read as ASCII (check_stl_ascii); any
+/// other file is binary: 80 bytes of header, a facet count n (uint32, little-endian), and n records of 50 bytes, the
+/// file's size exactly 84 + 50 n (a larger or smaller file is refused with both sizes: the count or the file is
+/// wrong, and reading the count's facets of a longer file would drop the rest without a word; a binary STL whose
+/// header begins with "solid", as some CAD programs write, is told apart by its size); its coordinates must be finite
+/// (CGAL welds equal points in a std::map, whose order a NaN breaks).
+void check_stl(std::string_view content, const std::string& name, double unit_m, std::vector<std::size_t>& face_lines) {
   static_assert(std::endian::native == std::endian::little, "binary STL is little-endian; topple reads it by memcpy");
   std::size_t i = 0;
   while (i < content.size() && std::isspace(static_cast<unsigned char>(content[i]))) ++i;
-  const bool solid = content.substr(i, 5) == "solid" && i + 5 < content.size() &&
-                     (content[i + 5] == ' ' || content[i + 5] == '\n' || content[i + 5] == '\r');
+  const bool solid = content.substr(i, 5) == "solid" &&
+                     (i + 5 == content.size() || std::isspace(static_cast<unsigned char>(content[i + 5])));
   std::uint32_t n = 0;
   if (content.size() >= 84) std::memcpy(&n, content.data() + 80, 4);
   const std::uint64_t binary_bytes = 84 + 50 * std::uint64_t{n};
-  const bool binary = content.size() >= 84 && (solid ? content.size() == binary_bytes : content.size() >= binary_bytes);
-  if (!binary) {
-    if (solid) return;  // ASCII: CGAL reads it
+  const bool binary_size = content.size() >= 84 && content.size() == binary_bytes;
+  if (solid && !binary_size) {
+    std::size_t bad_line = 0;
+    const std::string problem = check_stl_ascii(content, name, unit_m, face_lines, bad_line);
+    if (problem.empty()) return;
+    const bool text = std::none_of(content.begin(), content.end(), [](char c) { return c == '\0'; });
+    if (text || content.size() < 84) throw line_error(name, bad_line, "ASCII STL: " + problem);
+    // NUL bytes after "solid": a binary STL whose header begins with "solid", of the wrong size
+  }
+  if (!binary_size) {
     if (content.size() < 84) {
       throw mesh_error(name, fmt::format("{} bytes: neither an ASCII STL (beginning with 'solid') nor a binary one "
                                          "(80 bytes of header and a facet count)",
                                          content.size()));
     }
-    throw mesh_error(name, fmt::format("cannot be read as stl: as a binary STL of {} facets it would be {} bytes, but "
-                                       "the file is {} bytes (truncated, or not an STL file)",
-                                       n, binary_bytes, content.size()));
+    throw mesh_error(name, fmt::format("cannot be read as stl: as a binary STL of {} facets (the count at bytes 80-83) "
+                                       "it would be 84 + 50 x {} = {} bytes, but the file is {} bytes ({}, or not an "
+                                       "STL file)",
+                                       n, n, binary_bytes, content.size(),
+                                       content.size() < binary_bytes ? "truncated" : "data beyond the count"));
   }
   if (n > MeshLimits::max_triangles) {
     throw mesh_error(name, fmt::format("{} facets: more than the {} topple reads (decimate the scan)", n,
@@ -374,10 +801,13 @@ void check_stl(std::string_view content, const std::string& name) {
     for (int c = 0; c < 3; ++c) {
       float xyz[3];
       std::memcpy(xyz, content.data() + 84 + 50 * f + 12 + 12 * c, sizeof xyz);
-      if (!std::isfinite(xyz[0]) || !std::isfinite(xyz[1]) || !std::isfinite(xyz[2])) {
-        throw mesh_error(name, fmt::format("facet {}, corner {} has a coordinate that is not a finite number "
-                                           "({}, {}, {})",
-                                           f + 1, c + 1, xyz[0], xyz[1], xyz[2]));
+      for (int k = 0; k < 3; ++k) {
+        if (!std::isfinite(xyz[k]) || !(std::abs(double{xyz[k]}) * unit_m <= kMaxFileCoordinateM)) {
+          throw field_error(name, 0, fmt::format("facet {}, vertex {}, {}", f + 1, c + 1, kAxes[k]),
+                            fmt::format("{} is not a finite number within {:g} m of the file's origin (at --unit {:g} "
+                                        "m)",
+                                        xyz[k], kMaxFileCoordinateM, unit_m));
+        }
       }
     }
   }
@@ -389,7 +819,7 @@ void check_stl(std::string_view content, const std::string& name) {
 /// comment, blank lines are skipped; "OFF" (the counts may follow on its line); "nv nf ne"; nv lines of x y z; nf
 /// lines of "n i_1 ... i_n" (indices from 0), optionally followed by a colour. A file with vertices and no faces is a
 /// point cloud, said so.
-void check_off(std::string_view content, const std::string& name) {
+void check_off(std::string_view content, const std::string& name, double unit_m, std::vector<std::size_t>& face_lines) {
   std::size_t pos = 0, line_no = 0;
   std::vector<std::string_view> tokens;
   const auto next = [&]() -> bool {  // the next line holding something, comments cut
@@ -422,15 +852,26 @@ void check_off(std::string_view content, const std::string& name) {
   for (std::size_t v = 0; v < nv; ++v) {
     if (!next()) throw line_error(name, line_no, fmt::format("the file ends after {} of its {} vertices", v, nv));
     double x = 0.0;
-    bool ok = tokens.size() >= 3 && tokens.size() <= 7;  // x y z and an optional colour of 1, 3 or 4 numbers
-    for (std::size_t k = 0; ok && k < tokens.size(); ++k) ok = parse_double(tokens[k], x) && std::isfinite(x);
-    if (!ok) {
-      throw line_error(name, line_no, fmt::format("vertex {} (index {}) is not a line of three finite numbers", v + 1,
-                                                  v));
+    const auto vertex = [&]() { return fmt::format("vertex {} (index {})", v + 1, v); };
+    if (tokens.size() < 3 || tokens.size() > 7) {  // x y z and an optional colour of 1, 3 or 4 numbers
+      throw field_error(name, line_no, vertex(),
+                        fmt::format("the line holds {} values where it needs x y z (and an optional colour of 1, 3 "
+                                    "or 4 numbers)",
+                                    tokens.size()));
+    }
+    for (std::size_t k = 0; k < tokens.size(); ++k) {
+      const std::string problem = k < 3 ? coordinate_problem(tokens[k], unit_m, x)
+                                  : parse_double(tokens[k], x) && std::isfinite(x)
+                                      ? std::string()
+                                      : quoted(tokens[k]) + " is not a finite number";
+      if (!problem.empty()) {
+        throw field_error(name, line_no, vertex() + ", " + (k < 3 ? std::string(kAxes[k]) : "colour"), problem);
+      }
     }
   }
   for (std::size_t f = 0; f < nf; ++f) {
     if (!next()) throw line_error(name, line_no, fmt::format("the file ends after {} of its {} faces", f, nf));
+    face_lines.push_back(line_no);
     std::size_t n = 0, index = 0;
     bool ok = parse_index(tokens[0], n) && n >= 3 && n <= kMaxPolygonVertices && tokens.size() >= n + 1 &&
               tokens.size() <= n + 5;
@@ -445,27 +886,27 @@ void check_off(std::string_view content, const std::string& name) {
   }
 }
 
-Soup read_soup(std::string_view content, const std::string& format, const std::string& name) {
+Soup read_soup(std::string_view content, const std::string& format, const std::string& name, double unit_m) {
   ViewBuffer buffer(content);
   std::istream in(&buffer);
   Soup soup;
   bool ok = false;
   try {
     if (format == "obj") {
-      check_obj(content, name);
+      check_obj(content, name, unit_m, soup.face_lines);
       ok = CGAL::IO::read_OBJ(in, soup.points, soup.polygons);
     } else if (format == "off") {
-      check_off(content, name);
+      check_off(content, name, unit_m, soup.face_lines);
       soup.base = 0;
       ok = CGAL::IO::read_OFF(in, soup.points, soup.polygons);
     } else if (format == "stl") {
-      check_stl(content, name);
+      check_stl(content, name, unit_m, soup.face_lines);
       soup.numbered = false;
       soup.face_word = "facet";
       ok = CGAL::IO::read_STL(in, soup.points, soup.polygons);
       if (ok && soup.polygons.empty()) throw mesh_error(name, "an STL of no facets: " + kPointCloud);
     } else {
-      check_ply_header(content, name);
+      check_ply(content, name, unit_m, soup.face_lines);
       soup.base = 0;
       ok = CGAL::IO::read_PLY(in, soup.points, soup.polygons);
     }
@@ -543,13 +984,25 @@ class Builder {
     if (soup_.base == 1) return fmt::format("vertex {} {}", v + 1, file_point(v));
     return fmt::format("vertex {} (index {}) {}", v + 1, v, file_point(v));
   }
+  /// "face 7 at line 16 (f 9 2 1)" (OBJ: the n-th f line, its vertex numbers as written), "face 3 at line 14
+  /// (indices 0 1 3)" (OFF, PLY: the n-th face, its 0-based indices), "facet 5 at line 30" (STL); no line in a binary
+  /// file.
+  [[nodiscard]] std::string face_short(std::size_t f) const {
+    return f < soup_.face_lines.size() && soup_.face_lines[f] != 0
+               ? fmt::format("{} {} at line {}", soup_.face_word, f + 1, soup_.face_lines[f])
+               : fmt::format("{} {}", soup_.face_word, f + 1);
+  }
   [[nodiscard]] std::string face_name(std::size_t f) const {
     const auto& poly = soup_.polygons[f];
-    if (!soup_.numbered) return fmt::format("facet {}", f + 1);
+    const std::string at = f < soup_.face_lines.size() && soup_.face_lines[f] != 0
+                               ? fmt::format(" at line {}", soup_.face_lines[f])
+                               : std::string();
+    if (!soup_.numbered) return fmt::format("facet {}{}", f + 1, at);
     std::string ids;
     for (std::size_t k = 0; k < poly.size() && k < 8; ++k) ids += fmt::format("{}{}", k ? " " : "", poly[k] + soup_.base);
     if (poly.size() > 8) ids += " ...";
-    return soup_.base == 1 ? fmt::format("face {} (f {})", f + 1, ids) : fmt::format("face {} (indices {})", f + 1, ids);
+    return soup_.base == 1 ? fmt::format("face {}{} (f {})", f + 1, at, ids)
+                           : fmt::format("face {}{} (indices {})", f + 1, at, ids);
   }
 
   void check_faces() {
@@ -559,15 +1012,15 @@ class Builder {
     for (std::size_t f = 0; f < soup_.polygons.size(); ++f) {
       const auto& poly = soup_.polygons[f];
       if (poly.size() < 3) {
-        throw mesh_error(name_, fmt::format("{} {} has {} vertices: points or lines, not a face of a solid",
-                                            soup_.face_word, f + 1, poly.size()));
+        throw mesh_error(name_, fmt::format("{} has {} vertices: points or lines, not a face of a solid",
+                                            face_short(f), poly.size()));
       }
       for (std::size_t v : poly) {
         if (v >= nv) {
           // OBJ's negative (relative) numbers that reach before the first vertex wrap around in CGAL's reader
           const std::string number = v < (std::size_t{1} << 40) ? fmt::format("vertex {}", v + soup_.base)
                                                                  : std::string("a vertex before the first");
-          throw mesh_error(name_, fmt::format("face {} refers to {}, but the file has {} vertices", f + 1, number,
+          throw mesh_error(name_, fmt::format("{} refers to {}, but the file has {} vertices", face_short(f), number,
                                               nv));
         }
       }
@@ -885,7 +1338,7 @@ TriangleMesh parse_mesh(std::string_view content, const std::string& format, con
     throw mesh_error(name, fmt::format("{} bytes: larger than the {} bytes topple reads (decimate the scan)",
                                        content.size(), kMaxMeshFileBytes));
   }
-  Soup soup = read_soup(content, format, name);
+  Soup soup = read_soup(content, format, name, unit_m);
   TriangleMesh mesh = Builder(soup, name, unit_m).build();
   check_mesh(mesh, name);  // what is left: vertex manifoldness, volume and orientation, self-intersection
   return mesh;

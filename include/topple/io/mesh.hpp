@@ -3,9 +3,14 @@
 //
 // Formats, chosen by the file's extension (any case): Wavefront OBJ (.obj), OFF (.off, ASCII), STL (.stl, ASCII and
 // binary) and PLY (.ply, ASCII, binary little- and big-endian), read by CGAL's own I/O (CGAL::IO::read_OBJ, read_OFF,
-// read_STL, read_PLY) into double-precision points and polygons; what those readers assume without checking (PLY
-// property types and list widths, OFF counts and indices, binary STL sizes and finite floats, OBJ v lines) is checked
-// before them. Any other extension is refused; a file whose content is not of its extension's format is refused.
+// read_STL, read_PLY) into double-precision points and polygons. Before them, a validating pre-scan per format
+// (issue 31) checks what those readers assume or guess, so that every refusal names the file, the line (text formats)
+// and the field: PLY header grammar, element counts bounded by the bytes the file holds (before anything is
+// allocated), the body against the header (absent elements, trailing data, each value a whole token of its type);
+// OBJ v lines (x y z, x y z w with w = 1, or x y z r g b, each a whole finite number) and f tokens; the ASCII STL
+// grammar (three vertices a facet) and a binary STL's exact size; OFF line by line. Coordinates are quoted as typed.
+// Any other extension is refused; a file whose content is not of its extension's format is refused. An OBJ's mtllib
+// is never opened.
 //
 // Recentring: before any arithmetic, the coordinates are measured from the centre of the bounding box of the vertices
 // the faces use (in the file's units: x - o is then exact for any mesh lying at least half its size from a coordinate
@@ -19,9 +24,9 @@
 // tolerance. Polygons are split into fans (a polygon that is not convex is refused). A vertex no face uses takes no
 // part (it is given the place of a used one); the numbering of the others is kept.
 //
-// Messages number vertices and faces as the file does: OBJ vertex numbers as its f lines write them (from 1) and the
-// n-th f line as "face n (f a b c)"; OFF and PLY the n-th vertex with the index the faces write (from 0) and the n-th
-// face; STL the n-th facet and its corners' coordinates. A file with vertices but no faces (a point cloud) is refused
+// Messages number vertices and faces as the file does: OBJ vertex numbers as its v lines count them (from 1) and the
+// n-th f line as "face n at line L (f a b c)"; OFF and PLY the n-th vertex with the index the faces write (from 0)
+// and the n-th face (with its line in a text file); STL the n-th facet (and its line) and its corners' coordinates. A file with vertices but no faces (a point cloud) is refused
 // with what to do (mesh it first); an open mesh with its first boundary edge and how to close it.
 //
 // Units: the file's numbers are multiplied by `unit_m` (1 for metres, 0.001 for millimetres) and read as x east,
