@@ -188,9 +188,11 @@ void write_contours_geojson(const std::filesystem::path& path, const std::vector
 nlohmann::ordered_json survey_inversion_json(const Survey& survey, const SurveyInversion& inversion,
                                              const std::optional<Provenance>& provenance, const RegionalSettings& settings) {
   const std::vector<Site> sites = inversion.sites_with_objects(survey);
-  const auto site_json = [&](std::size_t k) {
-    nlohmann::ordered_json sj = provenance ? inversion_json(inversion.results[k], sites[k], *provenance)
-                                           : inversion_json(inversion.results[k], sites[k]);
+  // A site's JSON, with the whole provenance (a one-site survey) or without it (the caller adds the reference).
+  const auto site_json = [&](std::size_t k, bool with_provenance) {
+    nlohmann::ordered_json sj = provenance && with_provenance
+                                    ? inversion_json(inversion.results[k], sites[k], *provenance)
+                                    : inversion_json(inversion.results[k], sites[k]);
     // A site's macroseismic intensity (issue 30), beside its objects' estimate: its PGA through the conversion and
     // whether the two agree. Only for a site with an intensity: other sites' JSON is unchanged.
     if (sites[k].intensity) {
@@ -205,18 +207,18 @@ nlohmann::ordered_json survey_inversion_json(const Survey& survey, const SurveyI
   };
   nlohmann::ordered_json j;
   if (survey.sites.size() <= 1) {
-    j = site_json(0);
+    j = site_json(0, true);
   } else {
     // Provenance once per output (issue 31): the survey text verbatim at the top level; each site keeps the small
     // fields and a reference (RFC 6901 JSON pointer) to the text instead of a copy of it, so that the JSON grows
     // linearly in the sites with a small constant (the copy made 1000 one-object sites 273 MB).
     j["sites"] = nlohmann::ordered_json::array();
     for (std::size_t k = 0; k < inversion.results.size(); ++k) {
+      nlohmann::ordered_json sj = site_json(k, false);
       if (!provenance) {
-        j["sites"].push_back(inversion_json(inversion.results[k], sites[k]));
+        j["sites"].push_back(std::move(sj));
         continue;
       }
-      nlohmann::ordered_json sj = inversion_json(inversion.results[k], sites[k]);
       nlohmann::ordered_json p = nlohmann::ordered_json::object();
       for (const ProvenanceField& field : kProvenanceFields) {
         if (field.member != &Provenance::survey_text) p[field.key] = (*provenance).*field.member;
