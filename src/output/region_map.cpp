@@ -70,7 +70,10 @@ RegionMap region_map(const RegionalResult& fit, const Survey& survey, const std:
   m.epicentre_lon_deg = survey.epicentre_lon_deg.value();
   for (const PooledSite& p : fit.sites) {
     const Site& site = survey.sites.at(p.site_index);
-    m.sites.push_back(MapSite{static_cast<int>(p.site_index) + 1, p.name, site.lat_deg.value(), site.lon_deg.value(),
+    // Longitudes within 180 degrees of the epicentre's (issue 31): a survey across the antimeridian is one small
+    // region (GMT takes a region such as 175/185), not the globe between its sites.
+    const double lon = m.epicentre_lon_deg + std::remainder(site.lon_deg.value() - m.epicentre_lon_deg, 360.0);
+    m.sites.push_back(MapSite{static_cast<int>(p.site_index) + 1, p.name, site.lat_deg.value(), lon,
                               p.pga_g.median, p.instrument_pga_g.has_value(), std::nullopt,
                               p.intensity.has_value() && site.objects.empty() && !p.instrument_pga_g});
     const InversionResult* r = p.site_index < per_site.size() ? per_site[p.site_index] : nullptr;

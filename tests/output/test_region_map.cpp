@@ -154,6 +154,36 @@ TEST(RegionMapScript, RegionHoldsEverySiteWithAMargin) {
   }
 }
 
+// Sites either side of the antimeridian (issue 31): the map's region is the small box around them (its longitudes
+// may pass 180, as GMT allows), not the 359 degrees between -179.8 and 179.7.
+TEST(RegionMapScript, SitesAcrossTheAntimeridianMakeOneSmallRegion) {
+  Survey survey;
+  survey.epicentre_lat_deg = -17.0;
+  survey.epicentre_lon_deg = 179.9;
+  const double where[][3] = {{-17.1, -179.8, 0.3}, {-16.8, 179.7, 0.12}, {-17.3, -179.6, 0.08}, {-16.9, 179.5, 0.06}};
+  for (const auto& w : where) {
+    Site site;
+    site.name = fmt::format("station at {} {}", w[0], w[1]);
+    site.lat_deg = w[0];
+    site.lon_deg = w[1];
+    site.instrument_pga_g = w[2];
+    survey.sites.push_back(site);
+  }
+  const std::vector<const InversionResult*> per_site(survey.sites.size(), nullptr);
+  std::vector<std::string> notes;
+  const RegionalResult fit = fit_survey_region(survey, per_site, notes).value();
+  const RegionMap m = region_map(fit, survey, {}, per_site);
+  const MapBounds b = map_bounds(m);
+  EXPECT_LT(b.lon_max_deg - b.lon_min_deg, 2.0);  // the sites span 0.9 degrees; a margin of 10 km or 20 % each side
+  for (const MapSite& site : m.sites) {
+    EXPECT_GT(site.lon_deg, b.lon_min_deg) << site.name;
+    EXPECT_LT(site.lon_deg, b.lon_max_deg) << site.name;
+    EXPECT_NEAR(std::remainder(site.lon_deg - survey.epicentre_lon_deg.value(), 360.0),
+                site.lon_deg - survey.epicentre_lon_deg.value(), 1e-9) << site.name;
+  }
+  EXPECT_NEAR(m.sites[0].lon_deg, 180.2, 1e-9);  // -179.8 drawn east of 180
+}
+
 // A lone site on the epicentre still gets a map: 10 km each side, measured here by the WGS84 geodesic (the margin is
 // computed on a sphere of the mean radius; the two differ by under 0.5 % at 38 N, hence 9.95 km).
 TEST(RegionMapScript, ALoneSiteGetsTenKilometresEachSide) {
