@@ -13,6 +13,7 @@
 #include "topple/core/output_file.hpp"
 #include "topple/core/units.hpp"
 #include "topple/output/plot.hpp"
+#include "topple/output/rigid3d_json.hpp"
 #include "topple/output/write.hpp"
 
 namespace topple::cli {
@@ -135,33 +136,7 @@ void run_3d(const RunMotion& run, const Rigid3DRequest& request) {
                   {"energy lost", s.energy_lost_j_per_kg}, {"end time", s.end_time_s}});
   const auto opt = [](const std::optional<double>& v) { return v ? nlohmann::ordered_json(*v) : nullptr; };
   if (request.json) {
-    nlohmann::ordered_json j;
-    j["model"] = "3d";
-    j["overturned"] = s.overturned;
-    j["overturn_time_s"] = opt(s.overturn_time_s);
-    j["overturn_azimuth_deg"] = s.overturned ? nlohmann::ordered_json(s.overturn_azimuth_deg) : nullptr;
-    j["max_tilt_rad"] = s.max_tilt_rad;
-    j["max_tilt_azimuth_deg"] = s.max_tilt_azimuth_deg;
-    j["max_tilt_time_s"] = s.max_tilt_time_s;
-    j["max_tilt_over_limit"] = s.max_tilt_over_limit;
-    j["exceeded_limit_time_s"] = opt(s.exceeded_limit_time_s);
-    j["impacts"] = s.impacts;
-    j["uplifts"] = s.uplifts;
-    j["uplift_time_s"] = opt(s.uplift_time_s);
-    j["energy_lost_j_per_kg"] = s.energy_lost_j_per_kg;
-    j["flight_time_s"] = opt(s.flight_time_s);
-    j["end_time_s"] = s.end_time_s;
-    j["end_mode"] = rigid3d_mode_name(s.end_mode);
-    nlohmann::ordered_json modes = nlohmann::ordered_json::array();
-    for (const Rigid3DModeChange& m : s.modes) {
-      modes.push_back({{"time_s", m.time_s},
-                       {"mode", rigid3d_mode_name(m.mode)},
-                       {"vertex_a", m.vertex_a >= 0 ? nlohmann::ordered_json(m.vertex_a) : nullptr},
-                       {"vertex_b", m.vertex_b >= 0 ? nlohmann::ordered_json(m.vertex_b) : nullptr}});
-    }
-    j["modes"] = modes;
-    j["steps"] = s.steps;
-    j["warnings"] = s.warnings;
+    nlohmann::ordered_json j = io::rigid3d_summary_json(s);
     if (request.mesh_file.empty()) {
       j["body"] = {{"shape", "block"},
                    {"width_m", request.width_m},
@@ -179,13 +154,7 @@ void run_3d(const RunMotion& run, const Rigid3DRequest& request) {
                    {"centre_of_mass_m", {c[0], c[1], c[2]}},
                    {"bearing_deg", opt(request.bearing_deg)}};
     }
-    j["solver"] = {{"model", "3d"},
-                   {"restitution", restitution_mode_name(request.options.restitution)},
-                   {"e", request.options.restitution == RestitutionMode::given
-                             ? nlohmann::ordered_json(request.options.e)
-                             : nullptr},
-                   {"rel_tol", request.options.rel_tol},
-                   {"g_m_s2", g}};
+    j["solver"] = io::rigid3d_solver_json(request.options);
     j["input"] = io::run_input_json(run.input, *reference, g);
     if (request.set != nullptr) j["input"]["h2"] = request.h2;
     fmt::print("{}\n", j.dump(2));

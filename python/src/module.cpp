@@ -55,6 +55,7 @@
 #include "topple/output/flexible_json.hpp"
 #include "topple/output/inversion_output.hpp"
 #include "topple/output/region_output.hpp"
+#include "topple/output/rigid3d_json.hpp"
 #include "topple/io/read.hpp"
 #include "topple/io/survey_file.hpp"
 #include "topple/io/sweep_file.hpp"
@@ -524,40 +525,10 @@ nb::dict run_rock3d(const GroundMotion& first, const GroundMotion* second, doubl
   }
   const Rigid3DSummary& s = r.summary;
   const auto opt = [](const std::optional<double>& v) { return v ? nlohmann::ordered_json(*v) : nullptr; };
-  nlohmann::ordered_json j;
-  j["model"] = "3d";
-  j["overturned"] = s.overturned;
-  j["overturn_time_s"] = opt(s.overturn_time_s);
-  j["overturn_azimuth_deg"] = s.overturned ? nlohmann::ordered_json(s.overturn_azimuth_deg) : nullptr;
-  j["max_tilt_rad"] = s.max_tilt_rad;
-  j["max_tilt_azimuth_deg"] = s.max_tilt_azimuth_deg;
-  j["max_tilt_time_s"] = s.max_tilt_time_s;
-  j["max_tilt_over_limit"] = s.max_tilt_over_limit;
-  j["exceeded_limit_time_s"] = opt(s.exceeded_limit_time_s);
-  j["impacts"] = s.impacts;
-  j["uplifts"] = s.uplifts;
-  j["uplift_time_s"] = opt(s.uplift_time_s);
-  j["energy_lost_j_per_kg"] = s.energy_lost_j_per_kg;
-  j["flight_time_s"] = opt(s.flight_time_s);
-  j["end_time_s"] = s.end_time_s;
-  j["end_mode"] = rigid3d_mode_name(s.end_mode);
-  nlohmann::ordered_json modes = nlohmann::ordered_json::array();
-  for (const Rigid3DModeChange& m : s.modes) {
-    modes.push_back({{"time_s", m.time_s},
-                     {"mode", rigid3d_mode_name(m.mode)},
-                     {"vertex_a", m.vertex_a >= 0 ? nlohmann::ordered_json(m.vertex_a) : nullptr},
-                     {"vertex_b", m.vertex_b >= 0 ? nlohmann::ordered_json(m.vertex_b) : nullptr}});
-  }
-  j["modes"] = modes;
-  j["steps"] = s.steps;
-  j["warnings"] = s.warnings;
+  nlohmann::ordered_json j = io::rigid3d_summary_json(s);
   j["body"] = {{"shape", "block"}, {"width_m", width_m}, {"depth_m", depth_m}, {"height_m", height_m},
                {"bearing_deg", opt(bearing_deg)}};
-  j["solver"] = {{"model", "3d"},
-                 {"restitution", restitution_mode_name(options.restitution)},
-                 {"e", options.restitution == RestitutionMode::given ? nlohmann::ordered_json(options.e) : nullptr},
-                 {"rel_tol", options.rel_tol},
-                 {"g_m_s2", options.g_m_s2}};
+  j["solver"] = io::rigid3d_solver_json(options);
   if (history) {
     const Rigid3DHistory& h = r.history;
     nlohmann::ordered_json hj;

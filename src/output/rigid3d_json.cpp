@@ -1,0 +1,52 @@
+#include "topple/output/rigid3d_json.hpp"
+
+#include <optional>
+
+namespace topple::io {
+
+namespace {
+
+nlohmann::ordered_json or_null(const std::optional<double>& v) { return v ? nlohmann::ordered_json(*v) : nullptr; }
+
+}  // namespace
+
+nlohmann::ordered_json rigid3d_summary_json(const Rigid3DSummary& s) {
+  nlohmann::ordered_json j;
+  j["model"] = "3d";
+  j["overturned"] = s.overturned;
+  j["overturn_time_s"] = or_null(s.overturn_time_s);
+  j["overturn_azimuth_deg"] = s.overturned ? nlohmann::ordered_json(s.overturn_azimuth_deg) : nullptr;
+  j["max_tilt_rad"] = s.max_tilt_rad;
+  j["max_tilt_azimuth_deg"] = s.max_tilt_azimuth_deg;
+  j["max_tilt_time_s"] = s.max_tilt_time_s;
+  j["max_tilt_over_limit"] = s.max_tilt_over_limit;
+  j["exceeded_limit_time_s"] = or_null(s.exceeded_limit_time_s);
+  j["impacts"] = s.impacts;
+  j["uplifts"] = s.uplifts;
+  j["uplift_time_s"] = or_null(s.uplift_time_s);
+  j["energy_lost_j_per_kg"] = s.energy_lost_j_per_kg;
+  j["flight_time_s"] = or_null(s.flight_time_s);
+  j["end_time_s"] = s.end_time_s;
+  j["end_mode"] = rigid3d_mode_name(s.end_mode);
+  nlohmann::ordered_json modes = nlohmann::ordered_json::array();
+  for (const Rigid3DModeChange& m : s.modes) {
+    modes.push_back({{"time_s", m.time_s},
+                     {"mode", rigid3d_mode_name(m.mode)},
+                     {"vertex_a", m.vertex_a >= 0 ? nlohmann::ordered_json(m.vertex_a) : nullptr},
+                     {"vertex_b", m.vertex_b >= 0 ? nlohmann::ordered_json(m.vertex_b) : nullptr}});
+  }
+  j["modes"] = modes;
+  j["steps"] = s.steps;
+  j["warnings"] = s.warnings;
+  return j;
+}
+
+nlohmann::ordered_json rigid3d_solver_json(const Rigid3DOptions& options) {
+  return {{"model", "3d"},
+          {"restitution", restitution_mode_name(options.restitution)},
+          {"e", options.restitution == RestitutionMode::given ? nlohmann::ordered_json(options.e) : nullptr},
+          {"rel_tol", options.rel_tol},
+          {"g_m_s2", options.g_m_s2}};
+}
+
+}  // namespace topple::io
