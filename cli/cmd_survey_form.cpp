@@ -22,7 +22,9 @@ void add_survey_form_command(CLI::App& app) {
                      "survey as TOML or CSV (docs/survey.md, \"The offline survey form\")");
   cmd->add_option("-o,--output", *output, "Write the page to this file instead of stdout");
   add_quiet_flag(*cmd, *quiet);  // nothing to silence: accepted so that every command takes --quiet
-  cmd->callback([output] {
+  // The callback owns both variables: CLI11 writes --quiet into *quiet while parsing, after this function returns.
+  cmd->callback([output, quiet] {
+    (void)quiet;
     const std::string page = io::survey_form_html();
     if (!output->empty()) {
       io::write_file_atomically(*output, page);
