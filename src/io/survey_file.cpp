@@ -545,6 +545,16 @@ void parse_object_displacement(Reader& named, ObservedObject& o, int components,
   }
 }
 
+/// `evidence`: how far the outcome of an object (or of a population's members) is to be trusted (survey.hpp, Evidence).
+void parse_evidence(Reader& named, ObservedObject& o) {
+  if (const auto ev = named.string("evidence")) {
+    if (*ev == "certain") o.evidence = Evidence::certain;
+    else if (*ev == "likely") o.evidence = Evidence::likely;
+    else if (*ev == "reported") o.evidence = Evidence::reported;
+    else throw named.error("evidence", fmt::format("unknown evidence '{}' (known: certain, likely, reported)", *ev));
+  }
+}
+
 ObservedObject parse_object(const toml::table& t, const std::string& file, const std::string& path,
                             ReaderMessages& said, const std::filesystem::path& base_dir,
                             const Site* site = nullptr, int components = 1) {
@@ -567,12 +577,7 @@ ObservedObject parse_object(const toml::table& t, const std::string& file, const
   // Housner's restitution of a body that strikes (survey.hpp, check_object_restitution).
   at_object_keys(named, [&] { check_object_restitution(o); });
   parse_object_displacement(named, o, components, said);
-  if (const auto ev = named.string("evidence")) {
-    if (*ev == "certain") o.evidence = Evidence::certain;
-    else if (*ev == "likely") o.evidence = Evidence::likely;
-    else if (*ev == "reported") o.evidence = Evidence::reported;
-    else throw named.error("evidence", fmt::format("unknown evidence '{}' (known: certain, likely, reported)", *ev));
-  }
+  parse_evidence(named, o);
   named.refuse_unknown();
   return o;
 }
@@ -708,12 +713,7 @@ Population parse_population(const toml::table& t, const std::string& file, const
   }
   parse_friction_and_restitution(named, o);
   parse_object_placement(named, o, site, components);
-  if (const auto ev = named.string("evidence")) {
-    if (*ev == "certain") o.evidence = Evidence::certain;
-    else if (*ev == "likely") o.evidence = Evidence::likely;
-    else if (*ev == "reported") o.evidence = Evidence::reported;
-    else throw named.error("evidence", fmt::format("unknown evidence '{}' (known: certain, likely, reported)", *ev));
-  }
+  parse_evidence(named, o);
   named.refuse_unknown();
   if (components == 3) {
     // Three components (docs/survey.md, "[[population]]"): the counts of overturned and the fall directions; the
