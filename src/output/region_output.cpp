@@ -146,14 +146,26 @@ void write_region_csv(const std::filesystem::path& path, const RegionalResult& f
   const auto cell = [](const std::optional<double>& v) { return v ? fmt::format("{}", *v) : std::string(); };
   out << "site,hypocentral_distance_km,instrument_pga_g,independent_median_g,independent_ci95_low_g,"
          "independent_ci95_high_g,pooled_median_g,pooled_ci68_low_g,pooled_ci68_high_g,pooled_ci95_low_g,"
-         "pooled_ci95_high_g,relation_median_g\n";
+         "pooled_ci95_high_g,relation_median_g,"
+         // Issue 30: the site's macroseismic intensity, appended so that the columns before keep their positions.
+         "intensity,intensity_scale,intensity_reports,intensity_pga_median_g,intensity_pga_ci95_low_g,"
+         "intensity_pga_ci95_high_g,intensity_objects_agree\n";
   for (const PooledSite& p : fit.sites) {
     const InversionResult* r = results.at(p.site_index);
     const std::optional<double> med = r ? std::optional<double>(r->pga_estimate_g.median) : std::nullopt;
-    out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}\n", csv_name(p.name), p.distance_km,
+    out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}", csv_name(p.name), p.distance_km,
                        cell(p.instrument_pga_g), cell(med), cell(r ? r->pga_estimate_g.ci95_low : std::nullopt),
                        cell(r ? r->pga_estimate_g.ci95_high : std::nullopt), p.pga_g.median, p.pga_g.ci68_low,
                        p.pga_g.ci68_high, p.pga_g.ci95_low, p.pga_g.ci95_high, p.relation_pga_g.median);
+    // Empty cells for a site without an intensity; the agreement (true/false) only where the site also has objects.
+    if (const auto& i = p.intensity) {
+      out << fmt::format(",{},{},{},{},{},{},{}\n", i->intensity.value, intensity_scale_name(i->intensity.scale),
+                         i->intensity.reports ? fmt::format("{}", *i->intensity.reports) : std::string(), i->pga_g,
+                         i->ci95_low_g(), i->ci95_high_g(),
+                         r != nullptr ? (objects_agree_with_intensity(r->pga_estimate_g, *i) ? "true" : "false") : "");
+    } else {
+      out << ",,,,,,,\n";
+    }
   }
   file.commit();
 }

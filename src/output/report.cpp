@@ -18,6 +18,7 @@
 #include "topple/inversion/evidence.hpp"
 #include "topple/inversion/inversion_3c.hpp"
 #include "topple/inversion/matching.hpp"
+#include "topple/region/intensity.hpp"
 #include "topple/solvers/rocking.hpp"
 #include "topple/solvers/slide_rock.hpp"
 #include "topple/solvers/sliding.hpp"
@@ -610,6 +611,32 @@ void estimate_html(std::ostringstream& h, const InversionResult& r) {
        "smoothed Fourier amplitude spectrum. PGA in g = 9.80665 m/s&#178;.</p>\n";
 }
 
+/// A site's macroseismic intensity (issue 30; region/intensity.hpp, eqs. I1-I3): its value, scale and reports, the
+/// PGA it implies through WGRW12 with its 95 % interval, and whether the objects' own estimate agrees with it (the
+/// test the regional page and the JSON apply, objects_agree_with_intensity). Nothing for a site without one.
+void intensity_html(std::ostringstream& h, const Site& site, const InversionResult& r) {
+  if (!site.intensity) return;
+  const IntensityPga i = intensity_pga(*site.intensity);
+  const bool agree = objects_agree_with_intensity(r.pga_estimate_g, i);
+  h << "<h2 id=\"intensity\">Macroseismic intensity</h2>\n";
+  h << fmt::format("<p id=\"intensity-value\">{} {:g} from {}; through the conversion PGA {:.3g} g, 95 % interval "
+                   "[{:.3g}, {:.3g}] g (&sigma; = {:.3g} in ln PGA, of which {:.3g} intensity units from the number "
+                   "of reports){}.</p>\n",
+                   intensity_scale_name(i.intensity.scale), i.intensity.value,
+                   i.intensity.reports ? fmt::format("{} report{}", *i.intensity.reports,
+                                                     *i.intensity.reports == 1 ? "" : "s")
+                                       : std::string("an unstated number of reports (counted as one)"),
+                   i.pga_g, i.ci95_low_g(), i.ci95_high_g(), i.sigma_ln, i.sigma_intensity,
+                   i.extrapolated ? " (extrapolated: above MMI 10 the conversion has no data)" : "");
+  h << fmt::format("<p id=\"intensity-check\">{}: {}.</p>\n",
+                   agree ? "The objects agree with the intensity"
+                         : "<span class=\"flag\">The objects disagree with the intensity</span>",
+                   html_escape(std::string(kIntensityAgreementTest)));
+  h << "<p class=\"def\">Conversion: " << html_escape(std::string(kIntensityConversion))
+    << " (docs/method.md, &ldquo;Macroseismic intensity as PGA evidence&rdquo;). The estimate above is the "
+       "objects' alone; the intensity enters the regional fit of a survey with several sites.</p>\n";
+}
+
 /// Static thresholds, hard and soft, beside the estimate; then the notes.
 void thresholds_html(std::ostringstream& h, const InversionResult& r) {
   const Estimate& pga = r.pga_estimate_g;
@@ -883,6 +910,7 @@ void write_report(const std::filesystem::path& dir, const Survey& survey, const 
   std::ostringstream h;
   head_html(h, site, r);
   estimate_html(h, r);
+  intensity_html(h, site, r);
   thresholds_html(h, r);
   figures_html(h, dir, r);
   next_objects_html(h, r);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <numbers>
 #include <random>
 #include <string>
@@ -275,6 +276,66 @@ TEST(IntensityCli, RegionalSurveyWithIntensitySitesEndToEnd) {
   const std::string page = test::slurp(tmp.path() / "rep" / "index.html");
   EXPECT_NE(page.find("<th>intensity [reports]: PGA median [95 %] (g)</th>"), std::string::npos);
   EXPECT_NE(page.find("the intensity</"), std::string::npos);  // agree / disagree with the intensity
+  // The site's own page (report.cpp, intensity_html): its intensity, the PGA through WGRW12 with its 95 % interval,
+  // and the agreement, as the regional JSON says them (MMI 8: 0.401 g; 20 reports: [0.0767, 2.1] g).
+  std::string site_page;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(tmp.path() / "rep")) {
+    if (entry.path().filename() == "index.html" && entry.path().parent_path() != tmp.path() / "rep") {
+      site_page = test::slurp(entry.path());
+    }
+  }
+  ASSERT_NE(site_page.find("<h2 id=\"intensity\">Macroseismic intensity</h2>"), std::string::npos) << site_page;
+  const auto& ij = stones.at("intensity");
+  EXPECT_NE(site_page.find(fmt::format("MMI 8 from 20 reports; through the conversion PGA {:.3g} g, 95 % interval "
+                                       "[{:.3g}, {:.3g}] g",
+                                       ij.at("pga_g").at("median").get<double>(), ij.at("pga_g").at("ci95")[0].get<double>(),
+                                       ij.at("pga_g").at("ci95")[1].get<double>())),
+            std::string::npos)
+      << site_page;
+  EXPECT_NE(site_page.find("The objects agree with the intensity: the objects' own 95 % PGA interval overlaps"),
+            std::string::npos);
+  // region.csv: the old twelve columns where they were, the intensity's seven appended (empty where none).
+  const std::string csv = test::slurp(tmp.path() / "rep" / "region.csv");
+  std::vector<std::vector<std::string>> rows;
+  for (std::size_t at = 0; at < csv.size();) {
+    const std::size_t end = csv.find('\n', at);
+    std::vector<std::string> cells;
+    std::string line = csv.substr(at, end - at), c;
+    for (std::size_t p = 0;; ++p) {
+      if (p == line.size() || line[p] == ',') {
+        cells.push_back(c);
+        c.clear();
+        if (p == line.size()) break;
+      } else {
+        c += line[p];
+      }
+    }
+    rows.push_back(cells);
+    at = end + 1;
+  }
+  ASSERT_EQ(rows.size(), 5u) << csv;
+  const std::vector<std::string> header{"site", "hypocentral_distance_km", "instrument_pga_g", "independent_median_g",
+                                        "independent_ci95_low_g", "independent_ci95_high_g", "pooled_median_g",
+                                        "pooled_ci68_low_g", "pooled_ci68_high_g", "pooled_ci95_low_g",
+                                        "pooled_ci95_high_g", "relation_median_g", "intensity", "intensity_scale",
+                                        "intensity_reports", "intensity_pga_median_g", "intensity_pga_ci95_low_g",
+                                        "intensity_pga_ci95_high_g", "intensity_objects_agree"};
+  EXPECT_EQ(rows[0], header);
+  for (const auto& row : rows) ASSERT_EQ(row.size(), header.size()) << csv;
+  EXPECT_EQ(rows[1][0], "stones");
+  EXPECT_EQ(std::vector<std::string>(rows[1].begin() + 12, rows[1].begin() + 15),
+            (std::vector<std::string>{"8", "MMI", "20"}));
+  EXPECT_EQ(std::stod(rows[1][15]), ij.at("pga_g").at("median").get<double>());
+  EXPECT_EQ(std::stod(rows[1][16]), ij.at("pga_g").at("ci95")[0].get<double>());
+  EXPECT_EQ(std::stod(rows[1][17]), ij.at("pga_g").at("ci95")[1].get<double>());
+  EXPECT_EQ(rows[1][18], "true");
+  EXPECT_EQ(rows[2][0], "station");
+  EXPECT_EQ(rows[2][2], "0.1");
+  for (std::size_t c = 12; c < header.size(); ++c) EXPECT_EQ(rows[2][c], "") << header[c];
+  EXPECT_EQ(rows[4][12], "4.6");
+  EXPECT_EQ(rows[4][13], "EMS-98");
+  EXPECT_EQ(rows[4][14], "40");
+  EXPECT_EQ(rows[4][18], "");  // no objects: nothing to compare
 
   // A one-site survey: the intensity beside the objects' estimate in the site's JSON.
   test::write_file(tmp.path() / "one.toml", "[inversion]\npga_g = [0.02, 2.0, 10]\nfreq_hz = [2.0, 4.0, 2]\n"

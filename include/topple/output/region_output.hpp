@@ -31,7 +31,9 @@ namespace topple::io {
                                                  const RegionalSettings& settings);
 
 /// One row per fitted site: site,hypocentral_distance_km,instrument_pga_g,independent median and 95 % ends, pooled
-/// median and 68/95 % ends, relation median (g). Empty cells where a value does not exist.
+/// median and 68/95 % ends, relation median (g); then (issue 30, appended) the site's intensity, its scale, reports,
+/// the PGA it implies through WGRW12 (median and 95 % ends, g) and whether the objects agree with it (true/false,
+/// empty without objects). Empty cells where a value does not exist.
 void write_region_csv(const std::filesystem::path& path, const RegionalResult& fit,
                       const std::vector<const InversionResult*>& results);
 
