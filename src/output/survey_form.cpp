@@ -65,6 +65,7 @@ h1 { font-size: 1.4rem; } h2 { font-size: 1.15rem; margin-top: 1.6rem; border-bo
 .field.bad input, .field.bad select { border: 2px solid #b00020; }
 .object { border: 1px solid #bbb; border-radius: 6px; padding: 0.5rem 0.8rem; margin: 0.8rem 0; }
 .object h3 { margin: 0.2rem 0 0.5rem; font-size: 1rem; }
+.population { border-color: #7a9; }
 button { font-size: 1rem; padding: 0.4rem 0.9rem; margin: 0.2rem 0.4rem 0.2rem 0; }
 #errors li { color: #b00020; } #status { font-weight: 600; }
 textarea { width: 100%; height: 12rem; font-family: ui-monospace, monospace; font-size: 0.85rem; }
@@ -74,15 +75,21 @@ textarea { width: 100%; height: 12rem; font-family: ui-monospace, monospace; fon
 <body>
 <h1>topple: field survey</h1>
 <p>This page works offline: nothing leaves this device. Fill in the site, the earthquake if known, and every object
-you observed; the checks below each field are those of <code>topple invert</code>'s reader. Save the survey as TOML
+you observed, one by one or as populations of similar objects counted together ("71 of 212 stones toppled",
+their sizes as ranges or a measured sample); the checks below each field are those of <code>topple invert</code>'s
+reader. Save the survey as TOML
 or CSV and run <code>topple invert survey.toml</code>. Lengths take their unit; a friction coefficient, restitution or
 amplification may be a value (<code>0.5</code>) or a range (<code>0.4-0.6</code> or <code>[0.4, 0.6]</code>).
-Keys not offered here (meshes, record files, flexible supports) are written in the file: docs/survey.md.</p>
+A population's sizes are a value or a range (<code>40-50</code>) in the unit beside them, or a measured sample, one
+member per line. Keys not offered here (meshes, record files, flexible supports) are written in the file:
+docs/survey.md.</p>
 <h2>Site</h2><div id="site" class="fields"></div>
 <h2>Earthquake (optional)</h2><div id="event" class="fields"></div>
 <h2>Inversion settings (optional)</h2><div id="inversion" class="fields"></div>
 <h2>Objects</h2><div id="objects"></div>
 <button type="button" id="add-object">Add an object</button>
+<h2>Populations (optional)</h2><div id="populations"></div>
+<button type="button" id="add-population">Add a population</button>
 <h2>Save</h2>
 <button type="button" id="save-toml">Save TOML</button><button type="button" id="save-csv">Save CSV</button>
 <p id="status"></p>
@@ -99,7 +106,7 @@ const LENGTH_UNITS = {mm: 0.001, cm: 0.01, m: 1.0, in: 0.0254, ft: 0.3048};  // 
 const AREA_UNITS = ['cm2', 'mm2', 'm2'];
 const NUMBER = /^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$/;
 const RANGE = /^\[?\s*([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)\s*(?:,|-|–|to)\s*([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)\s*\]?$/;
-const FORM_TABLES = ['site', 'event', 'inversion', 'object'];
+const FORM_TABLES = ['site', 'event', 'inversion', 'object', 'population'];
 // family = "records" needs its record files, which are written in the file: the form offers the other families.
 const NOT_OFFERED = {'inversion.family': ['records']};
 
@@ -141,8 +148,16 @@ function makeField(k, scope) {
     const skip = NOT_OFFERED[k.table + '.' + k.key] || [];
     for (const c of k.choices) if (!skip.includes(c)) s.appendChild(el('option', {value: c, text: c}));
     box.appendChild(s);
+  } else if (k.kind === 'tables') {
+    // A population's measured sample: one member per line, its two sizes (width and height; a cylinder's diameter
+    // and height), each a number with the unit beside or its own ("45, 100" or "45cm 1m").
+    box.appendChild(add(el('textarea', {id: id, class: 'sample', rows: '4', placeholder: '45, 100\n48, 105'})));
+    const s = add(el('select', {id: id + '-unit', 'aria-label': k.key + ' unit'}));
+    for (const u of Object.keys(LENGTH_UNITS)) s.appendChild(el('option', {value: u, text: u}));
+    s.value = 'cm';
+    box.appendChild(s);
   } else if (k.kind === 'length' || k.kind === 'area') {
-    box.appendChild(text('n', 'number'));
+    box.appendChild(text(k.table === 'population' ? 't' : 'n', k.table === 'population' ? '45 or 40-50' : 'number'));
     const s = add(el('select', {id: id + '-unit', 'aria-label': k.key + ' unit'}));
     for (const u of (k.kind === 'length' ? Object.keys(LENGTH_UNITS) : AREA_UNITS)) {
       s.appendChild(el('option', {value: u, text: u}));
@@ -158,7 +173,7 @@ function makeField(k, scope) {
   } else {
     box.appendChild(text(k.kind === 'number' || k.kind === 'integer' ? 'n' : 't', ''));
   }
-  if (k.key === 'mu' && k.table === 'object') {
+  if (k.key === 'mu' && (k.table === 'object' || k.table === 'population')) {
     // The friction table of docs/survey.md: choosing a pair of surfaces fills mu with its range.
     const s = el('select', {id: id + '-material', 'aria-label': 'surfaces'});
     s.appendChild(el('option', {value: '', text: '(surfaces: fill mu from the table)'}));
@@ -185,7 +200,9 @@ function makeField(k, scope) {
 function readField(box) {
   const k = box.schema;
   const raw = box.inputs.map(i => i.value.trim());
-  if (raw.every(v => v === '') || (k.kind === 'length' || k.kind === 'area') && raw[0] === '') return {given: false};
+  if (raw.every(v => v === '') || (k.kind === 'length' || k.kind === 'area' || k.kind === 'tables') && raw[0] === '') {
+    return {given: false};
+  }
   const num = (t) => NUMBER.test(t) ? Number(t) : null;
   const bad = (problem) => ({given: true, problem: problem});
   switch (k.kind) {
@@ -199,6 +216,11 @@ function readField(box) {
     case 'number': case 'integer': {
       const v = num(raw[0]);
       if (v === null) return bad('expected a number');
+      if (k.table === 'population' && k.kind === 'integer') {
+        // A population's counts as survey_file.cpp's population_count words them, before the key's own range.
+        if (v !== Math.floor(v)) return bad('a count is a whole number');
+        if (v < 0) return bad(fill(COUNT_PROBLEM, [v]));
+      }
       const whole = k.kind === 'integer' && v !== Math.floor(v);
       if (whole || outside(k, v)) return bad(fill(k.range_problem, [v]));
       return {given: true, toml: show(v), csv: show(v), value: v};
@@ -219,6 +241,7 @@ function readField(box) {
       return {given: true, toml: toml, csv: toml, value: lo};
     }
     case 'length': case 'area': {
+      if (k.table === 'population') return populationLength(k, raw[0], raw[1]);
       const v = num(raw[0]);
       if (v === null) return bad('expected a number');
       if (k.kind === 'length' && outside(k, v * LENGTH_UNITS[raw[1]])) {
@@ -226,7 +249,7 @@ function readField(box) {
       }
       if (k.kind === 'area' && !(v > 0)) return bad('is not a positive area with unit m2, cm2 or mm2');
       const text = show(v) + raw[1];
-      return {given: true, toml: JSON.stringify(text), csv: text, value: v};
+      return {given: true, toml: JSON.stringify(text), csv: text, value: v, unit: raw[1]};
     }
     case 'axis': {
       const [lo, hi, count] = raw.map(num);
@@ -237,6 +260,14 @@ function readField(box) {
       }
       const toml = '[' + show(lo) + ', ' + show(hi) + ', ' + show(count) + ']';
       return {given: true, toml: toml, csv: toml, value: lo};
+    }
+    case 'tables': return populationSample(raw[0], raw[1]);
+    case 'numbers': {
+      const parts = raw[0].replace(/[\[\]]/g, '').split(/[,;\s]+/).filter(t => t !== '');
+      const vs = parts.map(num);
+      if (vs.some(v => v === null)) return bad('expected a list of numbers');
+      const list = '[' + vs.map(show).join(', ') + ']';
+      return {given: true, toml: list, csv: list, value: vs.length, list: vs};
     }
     case 'lat_lon': {
       const [lat, lon] = raw.map(num);
@@ -251,8 +282,71 @@ function readField(box) {
   return bad('unsupported');
 }
 
+// ---- populations (survey/population.hpp; the reader's words of check_population, held against the reader by
+// tests/cli/test_cli_survey_form.cpp) ----
+const COUNT_PROBLEM = schemaKey('population', 'overturned').range_problem;  // "a count cannot be negative, got {}"
+// fmt's "{:.4g}" (population.cpp words a size outside the stated range so): 4 significant digits, no trailing zeros.
+function g4(v) { return String(Number(v.toPrecision(4))); }
+// A size: a length "45" or a range "40-50" / "[40, 50]", in the unit beside it. {lo, hi} as typed, {loM, hiM} in m.
+function populationLength(k, text, unit) {
+  const bad = (problem) => ({given: true, problem: problem});
+  const factor = LENGTH_UNITS[unit];
+  let lo, hi;
+  if (NUMBER.test(text)) { lo = hi = Number(text); } else {
+    const m = RANGE.exec(text);
+    if (!m) return bad('expected a length or a range [low, high] of lengths');
+    lo = Number(m[1]); hi = Number(m[2]);
+  }
+  const loM = lo * factor, hiM = hi * factor;
+  if (loM > hiM) return bad('range [' + show(loM) + ', ' + show(hiM) + '] m has low > high');
+  if (outside(k, loM)) return bad(fill(k.range_problem, [loM]));
+  const one = (v) => JSON.stringify(show(v) + unit);
+  return {given: true, toml: lo === hi ? one(lo) : '[' + one(lo) + ', ' + one(hi) + ']',
+          csv: lo === hi ? show(lo) + unit : null, value: lo, lo: lo, hi: hi, unit: unit, loM: loM, hiM: hiM,
+          range: lo !== hi};
+}
+// The measured sample: one member per line (or separated by ';'), two sizes each; a number takes the unit beside
+// the list unless it carries its own. The members' sizes are checked against the ranges in validate().
+function populationSample(text, unit) {
+  const members = [];
+  const lines = text.split(/[\n;]+/).map(t => t.trim()).filter(t => t !== '');
+  for (let i = 0; i < lines.length; ++i) {
+    const parts = lines[i].split(/[,\s]+/).filter(t => t !== '');
+    const sizes = parts.map(p => /^([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)\s*([a-z]*)$/.exec(p));
+    if (parts.length !== 2 || sizes.some(m => !m || m[2] !== '' && !(m[2] in LENGTH_UNITS))) {
+      return {given: true, problem: 'member ' + (i + 1) + ': expected two lengths (width and height; a cylinder: ' +
+                                    'diameter and height), e.g. "45, 100"'};
+    }
+    members.push(sizes.map(m => ({value: Number(m[1]), unit: m[2] || unit, m: Number(m[1]) * LENGTH_UNITS[m[2] || unit]})));
+  }
+  return {given: true, value: members.length, members: members};
+}
+
 // ---- the form ----
 const objects = [];
+const populations = [];
+function addPopulation() {
+  const box = el('div', {class: 'object population'});
+  const title = el('h3', {text: 'population ' + (populations.length + 1)});
+  const remove = el('button', {type: 'button', text: 'Remove'});
+  remove.addEventListener('click', () => {
+    populations.splice(populations.indexOf(box), 1);
+    box.remove();
+    populations.forEach((p, i) => { p.heading.textContent = 'population ' + (i + 1); });
+    validate();
+  });
+  const fields = el('div', {class: 'fields'});
+  box.fields = keysOf('population').map(k => makeField(k, 'population' + (populations.length + 1)));
+  for (const f of box.fields) fields.appendChild(f);
+  box.appendChild(title);
+  box.appendChild(fields);
+  box.appendChild(remove);
+  box.heading = title;
+  populations.push(box);
+  document.getElementById('populations').appendChild(box);
+  validate();
+  return box;
+}
 function addObject() {
   const n = objects.length + 1;
   const box = el('div', {class: 'object'});
@@ -286,6 +380,7 @@ for (const k of KEYS.filter(k => !k.in_form)) {
       '[' + k.table + '] ') + k.key + ': ' + k.help}));
 }
 document.getElementById('add-object').addEventListener('click', addObject);
+document.getElementById('add-population').addEventListener('click', addPopulation);
 
 function fieldOf(boxes, key) { return boxes.find(b => b.schema.key === key); }
 
@@ -363,7 +458,9 @@ function validate() {
     }
     check('object', o.box.fields.filter(b => b.schema.key !== 'id' && !b.classList.contains('hidden')), o.read, named);
   });
-  if (objs.length === 0) {
+  const pops = populations.map(p => ({box: p, read: readAll(p.fields)}));
+  pops.forEach((p, i) => checkPopulation(p, i, ids, said, check));
+  if (objs.length === 0 && pops.length === 0) {
     const station = read.site.get('pga_g').given;
     errors.push('object: ' + (station ? 'the survey has no site with observed objects to invert'
                                       : 'a site needs at least one observed object (or an instrument: pga_g or record)'));
@@ -373,11 +470,93 @@ function validate() {
   for (const e of errors) list.appendChild(el('li', {text: e}));
   document.getElementById('status').textContent = errors.length ? errors.length + ' problem(s): not saved yet' : 'ready to save';
   if (errors.length) return {errors: errors};
-  return {errors: errors, toml: tomlText(read, objs), csv: csvText(read, objs)};
+  const csv = csvText(read, objs, pops);
+  return {errors: errors, toml: tomlText(read, objs, pops), csv: csv.text, csvProblem: csv.problem};
+}
+
+// A population's checks (survey_file.cpp's parse_population, population.cpp's check_population), each problem in the
+// reader's words at the field the reader names: population[2](stones).overturned.
+function checkPopulation(p, i, ids, said, check) {
+  const idr = p.read.get('id');
+  const id = idr.given ? idr.value : '';
+  const named = (key) => 'population[' + (i + 1) + '](' + id + ').' + key;
+  const field = (key) => fieldOf(p.box.fields, key);
+  if (!id) said(field('id'), 'population[' + (i + 1) + '].id', schemaKey('population', 'id').missing_problem);
+  else if (ids.has(id)) {
+    said(field('id'), 'population[' + (i + 1) + '].id', "duplicate id '" + id + "' (objects and populations share " +
+                                                         'one list of ids)');
+  }
+  ids.set(id, i);
+  const shape = p.read.get('shape').given ? p.read.get('shape').value : 'block';
+  for (const b of p.box.fields) {
+    // A key whose shape condition fails (a block's diameter, a cylinder's width or bearing) is not offered.
+    const byShape = b.schema.conditions.find(c => c.key === 'shape');
+    b.classList.toggle('hidden', Boolean(byShape) && !byShape.values.includes(shape));
+    if (b.schema.key !== 'id' && b.schema.required && !p.read.get(b.schema.key).given) {
+      said(b, named(b.schema.key), b.schema.missing_problem);
+    }
+  }
+  check('population', p.box.fields.filter(b => b.schema.key !== 'id' && !b.classList.contains('hidden')), p.read, named);
+  // What check_population says of the keys together, for keys that are fine alone.
+  const fine = (key) => {
+    const r = p.read.get(key), b = field(key);
+    return r && r.given && !r.problem && !b.classList.contains('hidden') && !b.classList.contains('bad');
+  };
+  const val = (key) => fine(key) ? p.read.get(key).value : null;
+  const count = val('count'), over = val('overturned');
+  if (count !== null && over !== null) {
+    if (over > count) {
+      said(field('overturned'), named('overturned'), over + ' overturned of ' + count + ' counted: more than the count');
+    } else {
+      const rocked = val('rocked'), slid = val('slid');
+      const moved = over + (rocked || 0) + (slid || 0);
+      if (moved > count) {
+        const key = slid !== null ? 'slid' : 'rocked';
+        said(field(key), named(key), 'overturned + rocked + slid = ' + moved + ' is more than the count, ' + count);
+      }
+    }
+  }
+  if (fine('fallen_azimuths_deg')) {
+    const list = p.read.get('fallen_azimuths_deg').list;
+    const wrong = list.find(a => !(a >= 0 && a < 360));
+    if (over !== null && list.length > over) {
+      said(field('fallen_azimuths_deg'), named('fallen_azimuths_deg'), list.length + ' fall directions for ' + over +
+                                                                       ' overturned');
+    } else if (wrong !== undefined) {
+      said(field('fallen_azimuths_deg'), named('fallen_azimuths_deg'), 'a direction lies in [0, 360) deg, got ' +
+                                                                       show(wrong));
+    }
+  }
+  const base = shape === 'cylinder' ? 'diameter' : 'width';
+  const sample = p.read.get('sample');
+  if (!sample.given) {
+    const missing = !p.read.get('height').given ? 'height' : !p.read.get(base).given ? base : null;
+    if (missing) {
+      said(field(missing), named(missing), 'a population needs its sizes: a range for height and ' + base +
+                                           ' (or a measured sample = [{...}, ...])');
+    }
+  } else if (!sample.problem) {
+    sample.members.forEach((m, j) => {
+      for (const [key, size] of [['height', m[1]], [base, m[0]]]) {
+        const where = named('sample[' + (j + 1) + '].' + key);
+        if (!(size.m > 0)) {
+          said(field('sample'), where, 'must be positive, got ' + show(size.m) + ' m');
+          continue;
+        }
+        if (fine(key)) {
+          const r = p.read.get(key);
+          if (size.m < r.loM || size.m > r.hiM) {
+            said(field('sample'), where, g4(size.m) + " m is outside the population's stated range [" + g4(r.loM) +
+                                         ', ' + g4(r.hiM) + '] m');
+          }
+        }
+      }
+    });
+  }
 }
 
 function given(m, boxes) { return boxes.filter(b => m.get(b.schema.key).given && !b.classList.contains('hidden')); }
-function tomlText(read, objs) {
+function tomlText(read, objs, pops) {
   let out = '# survey written by topple survey-form (docs/survey.md)\n';
   for (const t of ['site', 'event', 'inversion']) {
     const g = given(read[t], tables[t]);
@@ -389,32 +568,98 @@ function tomlText(read, objs) {
     out += '\n[[object]]\n';
     for (const b of given(o.read, o.box.fields)) out += b.schema.key + ' = ' + o.read.get(b.schema.key).toml + '\n';
   }
+  for (const p of pops) {
+    out += '\n[[population]]\n';
+    const base = baseOf(p);
+    for (const b of given(p.read, p.box.fields)) {
+      const r = p.read.get(b.schema.key);
+      if (b.schema.kind === 'tables') {
+        const size = (s) => JSON.stringify(show(s.value) + s.unit);
+        out += 'sample = [' + r.members.map(m => '{' + base + ' = ' + size(m[0]) + ', height = ' + size(m[1]) + '}')
+                                      .join(', ') + ']\n';
+      } else {
+        out += b.schema.key + ' = ' + r.toml + '\n';
+      }
+    }
+  }
   return out;
 }
+function baseOf(p) { return p.read.get('shape').given && p.read.get('shape').value === 'cylinder' ? 'diameter' : 'width'; }
 // RFC 4180: a cell with a separator, a quote, a line break or spaces at its ends is quoted, its quotes doubled.
 function cell(text) { return /[",\n\r;#]|^\s|\s$/.test(text) ? '"' + text.replace(/"/g, '""') + '"' : text; }
-function csvText(read, objs) {
+function csvText(read, objs, pops) {
   let out = '# survey written by topple survey-form (docs/survey.md, "CSV surveys")\n';
   for (const t of ['site', 'event', 'inversion']) {
     for (const b of given(read[t], tables[t])) out += cell(t + '.' + b.schema.key) + ',' + cell(read[t].get(b.schema.key).csv) + '\n';
   }
-  const columns = keysOf('object').map(k => k.key).filter(key => objs.some(o => given(o.read, o.box.fields)
-                                                                       .some(b => b.schema.key === key)));
-  out += columns.join(',') + '\n';
+  // A population's size range is written in a column whose header names the unit ("width_cm", cells "[40, 50]"), so
+  // every size in that column (objects', populations', measured members') must be in that one unit.
+  const unitOf = {};
+  for (const key of ['width', 'height', 'diameter']) {
+    const units = new Set();
+    let range = false;
+    for (const o of objs) if (given(o.read, o.box.fields).some(b => b.schema.key === key)) units.add(o.read.get(key).unit);
+    for (const p of pops) {
+      if (given(p.read, p.box.fields).some(b => b.schema.key === key)) {
+        units.add(p.read.get(key).unit);
+        range = range || p.read.get(key).range;
+      }
+      const sample = p.read.get('sample');
+      if (sample.given) for (const m of sample.members) units.add((key === 'height' ? m[1] : key === baseOf(p) ? m[0] : m[2] || {}).unit);
+    }
+    units.delete(undefined);
+    if (!range) continue;
+    if (units.size > 1) {
+      return {problem: 'CSV not saved: a population\'s ' + key + ' range is written in a column whose header names ' +
+                       'one unit (' + key + '_cm), but the ' + key + 's are given in ' + [...units].join(' and ') +
+                       ': give them all in one unit, or save TOML'};
+    }
+    unitOf[key] = [...units][0];
+  }
+  const used = (entries, key) => entries.some(e => given(e.read, e.box.fields).some(b => b.schema.key === key));
+  const columns = keysOf('object').map(k => k.key).filter(key => used(objs, key));
+  for (const k of keysOf('population')) {
+    if (k.kind !== 'tables' && !columns.includes(k.key) && used(pops, k.key)) columns.push(k.key);
+  }
+  const members = pops.some(p => p.read.get('sample').given);
+  if (members) columns.push('population');
+  const header = columns.map(key => unitOf[key] ? key + '_' + unitOf[key] : key);
+  out += header.join(',') + '\n';
+  const sized = (key, r) => unitOf[key] ? (r.range ? '[' + show(r.lo) + ', ' + show(r.hi) + ']' : show(r.lo !== undefined ? r.lo : r.value))
+                                        : r.csv;
   for (const o of objs) {
     const g = given(o.read, o.box.fields).map(b => b.schema.key);
-    out += columns.map(key => g.includes(key) ? cell(o.read.get(key).csv) : '').join(',') + '\n';
+    out += columns.map(key => g.includes(key) ? cell(sized(key, o.read.get(key))) : '').join(',') + '\n';
   }
-  return out;
+  for (const p of pops) {
+    const g = given(p.read, p.box.fields).map(b => b.schema.key);
+    out += columns.map(key => g.includes(key) && key !== 'population' ? cell(sized(key, p.read.get(key))) : '').join(',') + '\n';
+  }
+  // The measured members: a row each, its population's id in the population column and its two sizes.
+  for (const p of pops) {
+    const sample = p.read.get('sample');
+    if (!sample.given) continue;
+    const base = baseOf(p);
+    for (const m of sample.members) {
+      const size = (s, key) => unitOf[key] ? show(s.value) : show(s.value) + s.unit;
+      out += columns.map(key => key === 'population' ? cell(p.read.get('id').value) : key === base ? size(m[0], key)
+                                : key === 'height' ? size(m[1], key) : '').join(',') + '\n';
+    }
+  }
+  return {text: out};
 }
 
 function save(kind, download) {
   const r = validate();
   const area = document.getElementById(kind + '-out');
   // Both the text (what the page's DOM holds, and what a test reads) and the value (what is shown).
-  const text = r.errors.length ? '' : r[kind];
+  const text = r.errors.length || !r[kind] ? '' : r[kind];
   area.textContent = text;
   area.value = text;
+  if (kind === 'csv' && !r.errors.length && r.csvProblem) {
+    document.getElementById('status').textContent = r.csvProblem;
+    return false;
+  }
   if (r.errors.length) return false;
   if (download) {
     const blob = new Blob([r[kind]], {type: kind === 'toml' ? 'application/toml' : 'text/csv'});
@@ -430,13 +675,17 @@ document.getElementById('save-csv').addEventListener('click', () => save('csv', 
 
 // ---- filling the form from data: a query string ?prefill=JSON (what the test drives), or this device's last entry ----
 // {"site": {"name": "kitchen"}, "inversion": {"pga_g": "0.05,2,8"}, "objects": [{"id": "vase", "diameter": "8cm",
-//  "material": "wood on wood", ...}], "save": true}: each value as typed (a length with its unit, an axis or
-// [lat, lon] with commas); "save" fills both text areas as the buttons do (without downloading).
+//  "material": "wood on wood", ...}], "populations": [{"id": "stones", "count": "40", "width": "40-50cm",
+//  "sample": "45, 100; 48, 105", "sample_unit": "cm", ...}], "save": true}: each value as typed (a length with its
+// unit, a range "40-50cm", an axis or [lat, lon] with commas, a sample's members separated by ';'); "save" fills both
+// text areas as the buttons do (without downloading).
 function setField(box, value) {
   const k = box.schema, v = String(value);
   if (k.kind === 'length' || k.kind === 'area') {
     const m = /^\s*([^a-zA-Z]*?)\s*([a-zA-Z][a-zA-Z0-9]*)\s*$/.exec(v);
     if (m) { box.inputs[0].value = m[1]; box.inputs[1].value = m[2]; } else box.inputs[0].value = v;
+  } else if (k.kind === 'tables') {
+    box.inputs[0].value = v.replace(/;\s*/g, '\n');
   } else if (k.kind === 'axis' || k.kind === 'lat_lon') {
     v.replace(/[\[\]]/g, '').split(',').forEach((p, i) => { if (box.inputs[i]) box.inputs[i].value = p.trim(); });
   } else {
@@ -450,28 +699,34 @@ function fillFrom(data) {
       if (box) setField(box, value);
     }
   }
-  for (const o of data.objects || []) {
-    const box = addObject();
-    for (const [key, value] of Object.entries(o)) {
+  const fillEntry = (box, entry) => {
+    for (const [key, value] of Object.entries(entry)) {
       if (key === 'material') {
         const mu = fieldOf(box.fields, 'mu');
         mu.material.value = String(SCHEMA.friction.findIndex(r => r.surfaces === value));
         mu.material.dispatchEvent(new Event('change'));
         continue;
       }
+      if (key === 'sample_unit') {  // the unit of a measured sample's bare numbers
+        fieldOf(box.fields, 'sample').inputs[1].value = value;
+        continue;
+      }
       const f = fieldOf(box.fields, key);
       if (f) setField(f, value);
     }
-  }
+  };
+  for (const o of data.objects || []) fillEntry(addObject(), o);
+  for (const p of data.populations || []) fillEntry(addPopulation(), p);
   validate();
 }
 function stateOf() {
   const grab = (boxes) => Object.fromEntries(boxes.filter(b => b.inputs.some(i => i.tagName !== 'SELECT' && i.value)
-      || b.schema.kind === 'choice' && b.inputs[0].value).map(b => [b.schema.key,
-      b.schema.kind === 'length' || b.schema.kind === 'area' ? b.inputs[0].value + b.inputs[1].value
-                                                             : b.inputs.map(i => i.value).join(',')]));
+      || b.schema.kind === 'choice' && b.inputs[0].value).flatMap(b => b.schema.kind === 'tables'
+      ? [[b.schema.key, b.inputs[0].value.replace(/\n/g, ';')], ['sample_unit', b.inputs[1].value]]
+      : [[b.schema.key, b.schema.kind === 'length' || b.schema.kind === 'area' ? b.inputs[0].value + b.inputs[1].value
+                                                                              : b.inputs.map(i => i.value).join(',')]]));
   return {site: grab(tables.site), event: grab(tables.event), inversion: grab(tables.inversion),
-          objects: objects.map(o => grab(o.fields))};
+          objects: objects.map(o => grab(o.fields)), populations: populations.map(p => grab(p.fields))};
 }
 const query = new URLSearchParams(location.search);
 if (query.has('prefill')) {

@@ -307,14 +307,14 @@ std::vector<SurveyKey> make_schema() {
   }
   add(key("support", "name", K::text, "a label for the report", "\"upper floor\"")).in_form = false;
 
-  // ---- [[population]] (docs/survey.md, "Populations"; survey_file.cpp's parse_population). Not in the form yet: the
-  // page lists them under the keys it does not offer. Shared keys (mu, e, support, amplification, evidence, bearing)
-  // are read as an object's. ----
+  // ---- [[population]] (docs/survey.md, "Populations"; survey_file.cpp's parse_population; population.cpp's
+  // check_population for the counts and sizes). Offered by the form (issue 30). The class' shared keys (mu, e,
+  // amplification, orientation_deg, azimuth_deg, evidence) are read as an object's, in the object's words: their rows
+  // are the object's, copied (a flexible support and a box's depth are written in the file). ----
   const auto population = [&](const char* name, K kind, const char* help, const char* example) -> SurveyKey& {
-    auto& k = add(key("population", name, kind, help, example));
-    k.in_form = false;
-    return k;
+    return add(key("population", name, kind, help, example));
   };
+  const char* kCountProblem = "a count cannot be negative, got {}";
   {
     auto& k = population("id", K::text, "a short unique name of the class (\"stones-A\")", "\"stones\"");
     k.required = true;
@@ -327,7 +327,9 @@ std::vector<SurveyKey> make_schema() {
     k.default_text = "block";
   }
   {
+    // population_count refuses a negative count in its words first; check_population then asks for at least one.
     auto& k = population("count", K::integer, "how many objects of the class were there", "10");
+    ranged(k, incl(1.0), std::nullopt, "must be at least 1, got {}");
     k.required = true;
     k.missing_problem = "a population needs its count (how many objects of the class were there)";
   }
@@ -335,28 +337,57 @@ std::vector<SurveyKey> make_schema() {
     auto& k = population("overturned", K::integer, "how many of them toppled (0 if none)", "2");
     k.required = true;
     k.missing_problem = "a population needs how many overturned (0 if none)";
-    ranged(k, incl(0.0), std::nullopt, "a count cannot be negative, got {}");
+    ranged(k, incl(0.0), std::nullopt, kCountProblem);
   }
   {
     auto& k = population("rocked", K::integer, "how many stood and visibly rocked (a category when given)", "1");
-    ranged(k, incl(0.0), std::nullopt, "a count cannot be negative, got {}");
+    ranged(k, incl(0.0), std::nullopt, kCountProblem);
+    k.conditions.push_back({"inversion.components", {"1"}, "a population's rocked count needs [inversion] components = 1"});
   }
   {
     auto& k = population("slid", K::integer, "how many stood and visibly slid (a category when given)", "1");
-    ranged(k, incl(0.0), std::nullopt, "a count cannot be negative, got {}");
+    ranged(k, incl(0.0), std::nullopt, kCountProblem);
+    k.conditions.push_back({"inversion.components", {"1"}, "a population's slid count needs [inversion] components = 1"});
   }
-  population("width", K::length, "a block's width: a length or a range [low, high] of lengths", "\"10cm\"");
-  population("height", K::length, "the height: a length or a range [low, high] of lengths", "\"40cm\"");
-  population("diameter", K::length, "a cylinder's diameter: a length or a range [low, high]", "\"10cm\"")
-      .conditions.push_back({"shape", {"cylinder"}, "a population of blocks has no diameter"});
-  population("sample", K::tables, "the measured members, instead of ranges: [{width = ..., height = ...}, ...]",
+  // A size is a length or a range [low, high] of lengths; check_population's words for one not positive (of a range,
+  // its low end), in metres.
+  const char* kSizeProblem = "sizes must be positive, got {} m";
+  {
+    auto& k = population("width", K::length, "a block's width: a length or a range [low, high] of lengths", "\"10cm\"");
+    ranged(k, excl(0.0), std::nullopt, kSizeProblem);
+    k.conditions.push_back({"shape", {"block"}, "a population of cylinders has no width"});
+  }
+  ranged(population("height", K::length, "the height: a length or a range [low, high] of lengths", "\"40cm\""),
+         excl(0.0), std::nullopt, kSizeProblem);
+  {
+    auto& k = population("diameter", K::length, "a cylinder's diameter: a length or a range [low, high]", "\"10cm\"");
+    ranged(k, excl(0.0), std::nullopt, kSizeProblem);
+    k.conditions.push_back({"shape", {"cylinder"}, "a population of blocks has no diameter"});
+  }
+  population("sample", K::tables, "the measured members, instead of ranges (or inside them): one per line, "
+                                  "width and height (a cylinder: diameter and height)",
              "[{width = \"10cm\", height = \"40cm\"}]");
-  population("members", K::integer, "K, the representative members simulated", "16").default_text = "16";
+  {
+    auto& k = population("members", K::integer, "K, the representative members simulated", "16");
+    k.default_text = "16";
+    ranged(k, incl(1.0), incl(200.0), "must be 1 to 200, got {}");  // population.hpp, kMaxPopulationMembers
+  }
   {
     auto& k = population("fallen_azimuths_deg", K::numbers, "the directions the toppled ones fell, deg from north",
                          "[40.0]");
+    k.unit = "deg";
     k.conditions.push_back({"inversion.components", kComponents3, "fall directions need [inversion] components = 3"});
     k.conditions.push_back({"shape", {"cylinder"}, "only a cylinder or a box"});
+  }
+  for (const char* shared : {"mu", "e", "amplification", "orientation_deg", "azimuth_deg", "evidence"}) {
+    const SurveyKey* object_row = nullptr;
+    for (const SurveyKey& k : s) {
+      if (k.table == "object" && k.key == shared) object_row = &k;
+    }
+    SurveyKey k = *object_row;  // copied before add() may move the rows
+    k.table = "population";
+    if (k.key == "azimuth_deg") k.conditions.back().values = {"block"};  // a population is of blocks or cylinders
+    add(std::move(k));
   }
 
   // ---- [inversion] (docs/survey.md, "[inversion]") ----

@@ -112,10 +112,35 @@ amplification = [1, 1.5]
 outcome = "slid"
 slid = "3cm"
 slid_uncertainty = "1cm"
+
+[[population]]
+id = "stones"
+description = "gravestones, row 3"
+count = 40
+overturned = 12
+rocked = 5
+width = ["40cm", "50cm"]
+height = ["90cm", "110cm"]
+sample = [{width = "45cm", height = "100cm"}, {width = "48cm", height = "105cm"}, {width = "42cm", height = "95cm"}]
+members = 3
+mu = [0.4, 0.62]
+evidence = "likely"
+
+[[population]]
+id = "jars"
+shape = "cylinder"
+count = 10
+overturned = 3
+diameter = "10cm"
+height = ["20cm", "30cm"]
+members = 4
+mu = 0.5
 )";
 
 // The same survey as a field team types it into the form: the vase's mu from the friction table (wood on wood,
-// 0.25-0.5), a range typed as "1-1.5", lengths as a number and a unit.
+// 0.25-0.5), a range typed as "1-1.5", lengths as a number and a unit; two populations (issue 30), one with stated
+// ranges and a measured sample typed one member per line (bare numbers in the list's unit, or each with its own),
+// one a range alone.
 const char* kPrefill = R"({
   "site": {"name": "kitchen & hall, \"north\"", "lat": "35.5", "lon": "139.25", "vs30_m_s": "400",
            "notes": "ground floor"},
@@ -128,6 +153,13 @@ const char* kPrefill = R"({
     {"id": "tv", "shape": "block", "width": "25cm", "height": "45cm", "mu": "0.5", "outcome": "not_slid"},
     {"id": "pot", "shape": "cylinder", "diameter": "250mm", "height": "15cm", "mu": "0.25", "amplification": "1-1.5",
      "outcome": "slid", "slid": "3cm", "slid_uncertainty": "1cm"}
+  ],
+  "populations": [
+    {"id": "stones", "description": "gravestones, row 3", "count": "40", "overturned": "12", "rocked": "5",
+     "width": "40-50cm", "height": "[90, 110]cm", "sample": "45, 100; 48cm 105cm; 42, 95", "sample_unit": "cm",
+     "members": "3", "material": "wood on stone, brick, concrete", "evidence": "likely"},
+    {"id": "jars", "shape": "cylinder", "count": "10", "overturned": "3", "diameter": "10cm", "height": "20-30cm",
+     "members": "4", "mu": "0.5"}
   ],
   "save": true
 })";
@@ -189,6 +221,17 @@ TEST(CliSurveyForm, FilledInABrowserSavesSurveysThatInvertAsTheHandWrittenOne) {
   EXPECT_NE(toml.find("amplification = [1, 1.5]"), std::string::npos) << toml;
   EXPECT_NE(toml.find("diameter = \"250mm\""), std::string::npos) << toml;
   EXPECT_NE(csv.find("\"blue vase, on the sideboard\""), std::string::npos) << csv;
+  // The populations: a range of sizes and the measured sample in TOML; in CSV a population's row (its count) with
+  // its ranges under a header that names the unit, and a row per measured member naming its population.
+  EXPECT_NE(toml.find("width = [\"40cm\", \"50cm\"]"), std::string::npos) << toml;
+  EXPECT_NE(toml.find("sample = [{width = \"45cm\", height = \"100cm\"}, {width = \"48cm\", height = \"105cm\"}, "
+                      "{width = \"42cm\", height = \"95cm\"}]"),
+            std::string::npos)
+      << toml;
+  EXPECT_NE(csv.find(",width_cm,diameter,height_cm,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find(",\"[40, 50]\",,\"[90, 110]\","), std::string::npos) << csv;
+  EXPECT_NE(csv.find(",48,,105,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find(",stones\n"), std::string::npos) << csv;
   test::write_file(tmp.path() / "form.toml", toml);
   test::write_file(tmp.path() / "form.csv", csv);
   test::write_file(tmp.path() / "hand.toml", kHandWritten);
@@ -200,12 +243,13 @@ TEST(CliSurveyForm, FilledInABrowserSavesSurveysThatInvertAsTheHandWrittenOne) {
   const nlohmann::json hand = invert("hand.toml");
   ASSERT_TRUE(hand.contains("pga_g"));
   EXPECT_EQ(hand.at("objects").size(), 3u);
+  ASSERT_EQ(hand.at("populations").size(), 2u);  // both populations were read and inverted
   for (const char* saved : {"form.toml", "form.csv"}) {
     SCOPED_TRACE(saved);
     const nlohmann::json got = invert(saved);
     int count = 0;
     expect_same_numbers(hand, got, "json", count);
-    EXPECT_GT(count, 20);  // the estimates, intervals, bounds and every object's numbers were compared
+    EXPECT_GT(count, 100);  // the estimates, intervals, bounds, every object's and population's numbers were compared
   }
 }
 
@@ -260,10 +304,17 @@ TEST(CliSurveyForm, TheWordsThePageWritesItselfAreTheReadersToo) {
   // duplicate id): each as the reader says it, checked here on the reader's own output.
   if (!have_chromium()) GTEST_SKIP() << "chromium is not installed";
   test::TempDir tmp;
+  // And a population's counts and sizes as check_population words them (issue 30): more toppled than present, a
+  // negative count, a measured member outside the stated range, more moved than present.
   const auto [dom, log] = form_dom(
       R"({"inversion": {"pga_g": "0.05, 2, 1"}, "objects": [{"id": "vase", "width": "8cm", "height": "40cm",
           "mu": "0.6-0.4", "outcome": "overturned"}, {"id": "vase", "width": "8cm", "height": "40cm", "mu": "0.5",
-          "outcome": "overturned"}], "save": true})",
+          "outcome": "overturned"}],
+          "populations": [{"id": "stones", "count": "10", "overturned": "12", "width": "40-50cm", "height": "1m",
+          "mu": "0.5"}, {"id": "rows", "count": "-3", "overturned": "1", "width": "40cm", "height": "1m", "mu": "0.5"},
+          {"id": "urns", "shape": "cylinder", "count": "10", "overturned": "2", "diameter": "10cm", "height": "20-30cm",
+          "sample": "10, 25; 10, 35", "mu": "0.5"}, {"id": "jars", "count": "10", "overturned": "4", "rocked": "7",
+          "width": "10cm", "height": "30cm", "mu": "0.5"}], "save": true})",
       tmp.path());
   EXPECT_EQ(log.find("Uncaught"), std::string::npos) << log;
   const std::string errors = element_text(dom, "<ul id=\"errors\"", "</ul>");
@@ -278,6 +329,39 @@ TEST(CliSurveyForm, TheWordsThePageWritesItselfAreTheReadersToo) {
             std::string::npos);
   EXPECT_NE(reader_error(tmp.path() / "b.toml", object + "mu = [0.6, 0.4]\n").find(backwards), std::string::npos);
   EXPECT_NE(reader_error(tmp.path() / "c.toml", object + "mu = 0.5\n" + object + "mu = 0.5\n").find(twice),
+            std::string::npos);
+  // The populations' words, each against the reader on a survey whose population stands where the page's did.
+  const auto nth = [&](int n, const std::string& population) {
+    std::string text = object + "mu = 0.5\n";
+    for (int i = 1; i < n; ++i) text += fmt::format("[[population]]\nid = \"p{}\"\ncount = 2\noverturned = 0\n"
+                                                    "width = \"10cm\"\nheight = \"30cm\"\nmu = 0.5\n", i);
+    return text + "[[population]]\n" + population;
+  };
+  const std::string more = "population[1](stones).overturned: 12 overturned of 10 counted: more than the count";
+  const std::string negative = "population[2](rows).count: a count cannot be negative, got -3";
+  const std::string outside =
+      "population[3](urns).sample[2].height: 0.35 m is outside the population's stated range [0.2, 0.3] m";
+  const std::string moved = "population[4](jars).rocked: overturned + rocked + slid = 11 is more than the count, 10";
+  for (const std::string& said : {more, negative, outside, moved}) {
+    EXPECT_NE(errors.find("<li>" + said + "</li>"), std::string::npos) << said << "\n" << errors;
+  }
+  EXPECT_NE(reader_error(tmp.path() / "d.toml", nth(1, "id = \"stones\"\ncount = 10\noverturned = 12\n"
+                                                       "width = [\"40cm\", \"50cm\"]\nheight = \"1m\"\nmu = 0.5\n"))
+                .find(more),
+            std::string::npos);
+  EXPECT_NE(reader_error(tmp.path() / "e.toml", nth(2, "id = \"rows\"\ncount = -3\noverturned = 1\nwidth = \"40cm\"\n"
+                                                       "height = \"1m\"\nmu = 0.5\n"))
+                .find(negative),
+            std::string::npos);
+  EXPECT_NE(reader_error(tmp.path() / "f.toml",
+                         nth(3, "id = \"urns\"\nshape = \"cylinder\"\ncount = 10\noverturned = 2\n"
+                                "diameter = \"10cm\"\nheight = [\"20cm\", \"30cm\"]\nmu = 0.5\n"
+                                "sample = [{diameter = \"10cm\", height = \"25cm\"}, {diameter = \"10cm\", height = \"35cm\"}]\n"))
+                .find(outside),
+            std::string::npos);
+  EXPECT_NE(reader_error(tmp.path() / "g.toml", nth(4, "id = \"jars\"\ncount = 10\noverturned = 4\nrocked = 7\n"
+                                                       "width = \"10cm\"\nheight = \"30cm\"\nmu = 0.5\n"))
+                .find(moved),
             std::string::npos);
 }
 

@@ -120,7 +120,7 @@ void complete(SurveyText& s) {
     };
     pput("id", "\"p1\"");
     pput("count", "10");
-    pput("overturned", "2");
+    pput("overturned", "1");  // one: as many as count's lowest value, 1, and a fall direction (the examples)
     pput("mu", "0.5");
     if (!p.contains("sample")) {
       if (p.contains("shape") && p["shape"] == "\"cylinder\"") pput("diameter", "\"10cm\"");
