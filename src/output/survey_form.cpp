@@ -611,7 +611,7 @@ function csvText(read, objs, pops) {
     if (!range) continue;
     if (units.size > 1) {
       return {problem: 'CSV not saved: a population\'s ' + key + ' range is written in a column whose header names ' +
-                       'one unit (' + key + '_cm), but the ' + key + 's are given in ' + [...units].join(' and ') +
+                       'one unit (e.g. ' + key + '_cm), but the ' + key + 's are given in ' + [...units].join(' and ') +
                        ': give them all in one unit, or save TOML'};
     }
     unitOf[key] = [...units][0];
@@ -620,6 +620,11 @@ function csvText(read, objs, pops) {
   const columns = keysOf('object').map(k => k.key).filter(key => used(objs, key));
   for (const k of keysOf('population')) {
     if (k.kind !== 'tables' && !columns.includes(k.key) && used(pops, k.key)) columns.push(k.key);
+  }
+  // A measured member's two sizes need their columns even where no object or range uses them.
+  for (const p of pops) {
+    if (!p.read.get('sample').given) continue;
+    for (const key of [baseOf(p), 'height']) if (!columns.includes(key)) columns.push(key);
   }
   const members = pops.some(p => p.read.get('sample').given);
   if (members) columns.push('population');
