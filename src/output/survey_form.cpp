@@ -319,6 +319,10 @@ function populationSample(text, unit) {
     }
     members.push(sizes.map(m => ({value: Number(m[1]), unit: m[2] || unit, m: Number(m[1]) * LENGTH_UNITS[m[2] || unit]})));
   }
+  if (!members.length) {  // survey_file.cpp's population_sample, of sample = []
+    return {given: true, problem: 'the measured sample is empty: give its members, or leave sample out and state the ' +
+                                  'sizes as ranges'};
+  }
   return {given: true, value: members.length, members: members};
 }
 
