@@ -1,7 +1,8 @@
 // `topple survey-form`: the offline survey form (docs/survey.md, "The offline survey form") opened in a real headless
 // browser (Debian's chromium): the page's own JavaScript fills the form from a query string (?prefill=JSON, as typed),
-// saves, and `topple invert` gives the saved TOML and CSV the same answer as the equivalent hand-written survey; an
-// impossible value or a missing field shows the reader's own error in the page.
+// saves, and `topple invert` gives the saved TOML and CSV the same answer as the equivalent hand-written survey (objects
+// and populations, issue 30); an impossible value, a missing field or a population's impossible counts and sizes show
+// the reader's own error in the page.
 #include <cstdlib>
 #include <filesystem>
 #include <string>
