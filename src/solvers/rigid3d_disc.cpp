@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <optional>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -29,6 +31,9 @@ constexpr double kDirectionFloor = 1e-12;
 // A tilt minimum below kFlatTilt times alpha with a sideways rate above kWhirlRate_rad_s is a flat landing (header).
 constexpr double kFlatTilt = 1e-3;
 constexpr double kWhirlRate_rad_s = 1e-8;
+// A step from flat shorter than this (times 1/p) in which the body never rises above the ground ends at rest: a lift
+// shorter than it is not resolved (finish_step).
+constexpr double kMinLiftStep = 1e-7;
 
 V add(V a, V b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
 V sub(V a, V b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
@@ -99,19 +104,40 @@ V z_perp_rate(V a, V ad) {
 }
 
 /// The contact geometry of a state: axis a, contact direction u (from the base's centre), sin(theta), r = c - p.
+/// d = -z_perp / sin(theta) is the lowest point's direction. Within a step the rim equations are continued past the
+/// upright on the step's side (as the planar engine continues its pivot's equation past theta = 0): where d points
+/// away from the step's starting contact u0 (d . u0 < 0: the lowest point is now on the other side), u = -d, the
+/// point of the rim opposite the lowest one. In one vertical plane that is the rim point fixed in the body that was
+/// the contact, (cos theta, 0, -sin theta) on both sides of the upright: the planar engine's continued pivot, smooth
+/// through theta = 0, so a step may run past the landing, which is then found on its dense output. Out of the plane
+/// (a sideways rate near the upright) u jumps where d . u0 changes sign; the landing is found there (finish_step)
+/// and the step's error control sees the jump beyond it.
 struct Contact {
-  V a, u, r;
+  V a, u, r, d;
   double sin_tilt;
+  bool reflected = false;
 };
-Contact contact_of(const Geo& g, const Quaternion& q, V fallback_u) {
+Contact contact_of(const Geo& g, const Quaternion& q, V fallback_u, const V* u0 = nullptr) {
   Contact c;
   c.a = rotate(q, kZ);
   const V zp = z_perp(c.a);
   c.sin_tilt = norm(zp);
   if (c.sin_tilt > kDirectionFloor) {
-    c.u = mul(zp, -1.0 / c.sin_tilt);
+    c.d = mul(zp, -1.0 / c.sin_tilt);
+    c.u = c.d;
+    if (u0 != nullptr) {
+      if (dot(c.d, *u0) < 0.0) {
+        c.u = mul(c.d, -1.0);
+        c.reflected = true;
+      }
+    }
   } else {
-    c.u = fallback_u;  // flat: the contact chosen at the uplift or the impact (first stage only)
+    // flat: the contact chosen at the uplift or the impact, or (a landing inside a step) the step's starting contact
+    // brought to the ground plane: at the upright the rim point that was the contact is horizontal (its tilted
+    // direction would put r off by R sin(theta0), a relative error theta0 in the impact's velocity)
+    const double hn = std::hypot(fallback_u[0], fallback_u[1]);
+    c.u = hn > 0.0 ? V{fallback_u[0] / hn, fallback_u[1] / hn, 0.0} : fallback_u;
+    c.d = c.u;
   }
   c.r = sub(mul(c.a, g.h), mul(c.u, g.R));
   return c;
@@ -152,7 +178,29 @@ class Engine {
     record(t0);
     const std::size_t n = grid_.size();
     double t_end = t0;
+    // The rest scan (the planar engine's, rocking.cpp): with no vertical component the uplift test at rest is one
+    // comparison per sample, |a_h|^2 <= (g R / h)^2: |a_h|^2 is convex on each linear piece, so both ends below the
+    // level keep the whole interval below it. The first sample is left to the general path (a jump from still ground).
+    const bool fast_rest = gravity_.empty();
+    const double level2 = std::pow(opt_.g_m_s2 * g_.R / g_.h, 2);
+    const std::span<const double> ax = grid_.accel_m_s2(0);
+    const std::span<const double> ay = grid_.has(1) ? grid_.accel_m_s2(1) : std::span<const double>{};
     for (std::size_t i = 0; i + 1 < n && !done(); ++i) {
+      if (fast_rest && mode_ == Rigid3DMode::rest && i > 0) {
+        if (ay.empty()) {
+          while (i + 1 < n && ax[i + 1] * ax[i + 1] <= level2) {
+            ++i;
+            if (opt_.record_history) record(grid_.time_s(i));
+          }
+        } else {
+          while (i + 1 < n && ax[i + 1] * ax[i + 1] + ay[i + 1] * ay[i + 1] <= level2) {
+            ++i;
+            if (opt_.record_history) record(grid_.time_s(i));
+          }
+        }
+        t_end = grid_.time_s(i);
+        if (i + 1 >= n) break;
+      }
       const double ta = grid_.time_s(i), tb = grid_.time_s(i + 1);
       if (tb > ta) advance(ta, tb, accel(i), accel(i + 1));
       t_end = tb;
@@ -199,14 +247,15 @@ class Engine {
   [[nodiscard]] State rhs(const State& y, const std::array<double, 3>& acc) const {
     const Quaternion q = quat(y);
     const V w = omega(y);
-    const Contact c = contact_of(g_, q, u_);
+    const Contact c = contact_of(g_, q, u_, &u_);  // u_: the step's starting contact (continued past the upright)
     const V ad = cross(w, c.a);
     // flat (first stage after an uplift or an impact): the contact is the rim point fixed in the body, u' = w x u
     // (the rocking limit; a sideways rate there would make u' infinite)
     V ud = cross(w, c.u);
     if (c.sin_tilt > kDirectionFloor) {
       const V zpd = z_perp_rate(c.a, ad);
-      ud = mul(sub(zpd, mul(c.u, dot(c.u, zpd))), -1.0 / c.sin_tilt);
+      ud = mul(sub(zpd, mul(c.d, dot(c.d, zpd))), -1.0 / c.sin_tilt);  // d'
+      if (c.reflected) ud = mul(ud, -1.0);                             // u = -d past the upright
     }
     const V rd = sub(mul(ad, g_.h), mul(ud, g_.R));
     const V f{-acc[0], -acc[1], -acc[2]};
@@ -243,7 +292,7 @@ class Engine {
         // the uplift instant: the root (the planar engine's too), nudged up by a few ulps to where the threshold is
         // met when rounding left it just below
         double tr = tu;
-        for (int k = 0; k < 16 && !(f(tr) > 0.0) && tr < tb; ++k) tr = std::nextafter(tr, tb);
+        for (int n = 0; n < 16 && !(f(tr) > 0.0) && tr < tb; ++n) tr = std::nextafter(tr, tb);
         if (!std::isfinite(tr)) tr = tb;
         t = tr;
         uplift(t, acc_at(t));
@@ -333,7 +382,14 @@ class Engine {
         }
         return y;
       };
-      const double t_new = finish_step(t, h, y1, dense, acc_at);
+      const std::optional<double> t_next = finish_step(t, h, y1, dense, acc_at);
+      if (!t_next) {
+        // a lift from flat shorter than the step's sixteenth: the step again, 16 times shorter (bounded: finish_step
+        // accepts "no lift" once h is below kMinLiftStep / p)
+        h /= 16.0;
+        continue;
+      }
+      const double t_new = *t_next;
       // k7 is f(y1, t + h) of this step's input piece: valid as the next k1 only when the step ran to its end with no
       // event and the state was not changed
       if (t_new == t + h && mode_ == Rigid3DMode::rocking && y_ == y1) {
@@ -347,7 +403,7 @@ class Engine {
   }
 
   template <class Dense, class Acc>
-  double finish_step(double t, double h, const State& y1, const Dense& dense, const Acc& acc_at) {
+  std::optional<double> finish_step(double t, double h, const State& y1, const Dense& dense, const Acc& acc_at) {
     Rigid3DSummary& s = res_.summary;
     const V u0 = contact_of(g_, quat(y_), u_).u;
     // event functions of the step fraction
@@ -361,28 +417,65 @@ class Engine {
       const V a = rotate(quat(y), kZ);
       return -dot(z_perp(a), u0);
     };
+    const auto landing_rate = [&](double sf) {  // d/dt of landing: -z_perp' . u0, a' = w x a
+      const State y = dense(sf);
+      const V a = rotate(quat(y), kZ);
+      return -dot(z_perp_rate(a, cross(omega(y), a)), u0);
+    };
     const double cos_alpha = std::cos(g_.alpha);
     // the earliest terminal event
     double s_end = 1.0;
     int kind = 0;  // 0 none, 1 landing, 2 fall
-    const double l0 = landing(0.0);
-    double l1 = landing(1.0);
+    double s_lo = 0.0;  // a step fraction where the body is on its rim (landing > 0), from which to look for events
+    double l_lo = landing(0.0);
+    const double l1_end = landing(1.0);
+    double l1 = l1_end;
+    if (!(l_lo > 0.0)) {
+      // The step starts flat (the first step after an uplift or an impact): the continued equations may rise and come
+      // back within the step (a lift and return, in chatter). The first of 16 equally spaced points where the body is
+      // up starts the search; none: the lift did not happen (the ground's pull was too short or round-off sent the
+      // body below), the body stays at rest at the step's end (the planar engine's rule), and time advances by h > 0.
+      for (int j = 1; j <= 16 && !(l_lo > 0.0); ++j) {
+        s_lo = j / 16.0;
+        l_lo = j == 16 ? l1_end : landing(s_lo);
+      }
+      if (!(l_lo > 0.0)) {
+        (void)y1;
+        const double p = std::sqrt(opt_.g_m_s2 / std::hypot(g_.R, g_.h));
+        if (h * p > kMinLiftStep) return std::nullopt;  // look again with a shorter step
+        return no_lift(t + h);
+      }
+    }
     double s_land = 1.0;
-    if (l0 > 0.0 && l1 > 0.0) {
-      // a tilt minimum inside the step (a_z' from > 0 to < 0) may dip below the landing level and come back: look
-      // there (the planar engine's turning points)
-      const double q0 = tilt_rate(0.0), q1 = tilt_rate(1.0);
-      if (q0 > 0.0 && q1 < 0.0) {
-        const double s_min = detail::find_root(tilt_rate, 0.0, 1.0, q0, q1);
+    if (l_lo > 0.0 && l1 > 0.0) {
+      // The step ends on the rim. On the continued equations it may still have passed the upright and come back (a
+      // landing and a rise on the far rim point inside one step): then the landing function has a minimum inside at
+      // or below zero, where its rate goes from < 0 to > 0 (the planar engine's turning points of theta); the landing
+      // is the root before it.
+      const double sr0 = landing_rate(s_lo), sr1 = landing_rate(1.0);
+      if (sr0 < 0.0 && sr1 > 0.0) {
+        const double s_min = detail::find_root(landing_rate, s_lo, 1.0, sr0, sr1);
         if (std::isfinite(s_min)) {
-          l1 = landing(s_min);
-          s_land = s_min;
-          // a whirl: the contact runs round the rim as the tilt passes a small minimum with a sideways rate (w . u
-          // != 0; exactly 0 in planar rocking) instead of landing: the base is within 2 R sin(theta) of the ground
-          // all round; below kFlatTilt alpha it counts as landed flat at the minimum (docs/method.md)
+          const double lm = landing(s_min);
+          if (!(lm > 0.0)) {
+            l1 = lm;
+            s_land = s_min;
+          }
+        }
+      }
+    }
+    if (l_lo > 0.0 && l1 > 0.0) {
+      // a tilt minimum inside the step (a_z' from > 0 to < 0) with a sideways rate: a whirl, the contact runs round
+      // the rim as the tilt passes a small minimum (w . u != 0; exactly 0 in planar rocking) instead of landing: the
+      // base is within 2 R sin(theta) of the ground all round; below kFlatTilt alpha it counts as landed flat at the
+      // minimum (docs/method.md)
+      const double q0 = tilt_rate(s_lo), q1 = tilt_rate(1.0);
+      if (q0 > 0.0 && q1 < 0.0) {
+        const double s_min = detail::find_root(tilt_rate, s_lo, 1.0, q0, q1);
+        if (std::isfinite(s_min)) {
           const State ym = dense(s_min);
           const Contact cm = contact_of(g_, quat(ym), u0);
-          if (l1 > 0.0 && std::asin(std::min(cm.sin_tilt, 1.0)) < kFlatTilt * g_.alpha &&
+          if (std::asin(std::min(cm.sin_tilt, 1.0)) < kFlatTilt * g_.alpha &&
               std::abs(dot(omega(ym), cm.u)) > kWhirlRate_rad_s) {
             s_end = s_min;
             kind = 1;
@@ -390,8 +483,9 @@ class Engine {
         }
       }
     }
-    if (kind == 0 && l0 > 0.0 && l1 <= 0.0) {
-      s_end = detail::find_root(landing, 0.0, s_land, l0, l1);
+    if (kind == 0 && l_lo > 0.0 && l1 <= 0.0) {
+      // the landing: s_lo < root <= s_land (l_lo > 0), so time advances
+      s_end = detail::find_root(landing, s_lo, s_land, l_lo, l1);
       kind = 1;
     }
     const double z0 = axis_z(0.0), z1 = axis_z(s_end);
@@ -433,6 +527,19 @@ class Engine {
       impact(t_new, u0);
     }
     (void)acc_at;
+    return t_new;
+  }
+
+  /// A step from flat whose continued motion never rose above the ground (finish_step): the body stays flat and at
+  /// rest; time moves on to t_new (> the step's start), so this cannot loop.
+  double no_lift(double t_new) {
+    Rigid3DSummary& s = res_.summary;
+    y_[4] = y_[5] = y_[6] = 0.0;  // y_ is still the step's flat start
+    mode_ = Rigid3DMode::rest;
+    s.modes.push_back({t_new, mode_, -1, -1});
+    h_try_ = 0.0;
+    fsal_valid_ = false;
+    record(t_new);
     return t_new;
   }
 
