@@ -47,13 +47,11 @@ Quaternion quat(const State& y) { return {y[0], y[1], y[2], y[3]}; }
 V omega(const State& y) { return {y[4], y[5], y[6]}; }
 V position(const State& y) { return {y[7], y[8], y[9]}; }
 
-/// R(q) v for q = (w, x, y, z), normalised.
-V rotate(Quaternion q, V v) {
-  const double n = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-  for (double& c : q) c /= n;
-  const V u{q[1], q[2], q[3]};
-  const V t = mul(cross(u, v), 2.0);
-  return add(add(v, mul(t, q[0])), cross(u, t));
+/// The body's axis R(q) e_z for any q != 0 (the third column of the rotation of q / |q|: one division, no root).
+V axis(const Quaternion& q) {
+  const double w = q[0], x = q[1], y = q[2], z = q[3];
+  const double inv = 1.0 / (w * w + x * x + y * y + z * z);
+  return {2.0 * (x * z + w * y) * inv, 2.0 * (y * z - w * x) * inv, (w * w - x * x - y * y + z * z) * inv};
 }
 Quaternion qmul(Quaternion a, Quaternion b) {
   return {a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3], a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
@@ -67,8 +65,9 @@ Quaternion normalised(Quaternion q) {
 /// Solves the symmetric 3x3 system M x = b (Cramer; M is an inertia tensor, positive definite).
 V solve3(const std::array<V, 3>& M, V b) {
   const V c0{M[0][0], M[1][0], M[2][0]}, c1{M[0][1], M[1][1], M[2][1]}, c2{M[0][2], M[1][2], M[2][2]};
-  const double det = dot(c0, cross(c1, c2));
-  return {dot(b, cross(c1, c2)) / det, dot(c0, cross(b, c2)) / det, dot(c0, cross(c1, b)) / det};
+  const V c12 = cross(c1, c2);
+  const double inv = 1.0 / dot(c0, c12);
+  return {dot(b, c12) * inv, dot(c0, cross(b, c2)) * inv, dot(c0, cross(c1, b)) * inv};
 }
 double azimuth_deg(V d) {  // clockwise from north of a plan direction
   double az = std::atan2(d[0], d[1]) * 180.0 / M_PI;
@@ -115,21 +114,24 @@ V z_perp_rate(V a, V ad) {
 struct Contact {
   V a, u, r, d;
   double sin_tilt;
+  double ex = 0.0, ey = 0.0;  // e = a_h / sin(theta) (tilted only)
   bool reflected = false;
 };
 Contact contact_of(const Geo& g, const Quaternion& q, V fallback_u, const V* u0 = nullptr) {
   Contact c;
-  c.a = rotate(q, kZ);
-  const V zp = z_perp(c.a);
-  c.sin_tilt = norm(zp);
+  c.a = axis(q);
+  // |z_perp| = |a_h| |a| = sin(theta) and d = -z_perp / sin(theta) = a_z e - sin(theta) z, e = a_h / |a_h|
+  c.sin_tilt = std::sqrt(c.a[0] * c.a[0] + c.a[1] * c.a[1]);
   if (c.sin_tilt > kDirectionFloor) {
-    c.d = mul(zp, -1.0 / c.sin_tilt);
+    const double inv = 1.0 / c.sin_tilt;
+    const double ex = c.a[0] * inv, ey = c.a[1] * inv;
+    c.ex = ex;
+    c.ey = ey;
+    c.d = {c.a[2] * ex, c.a[2] * ey, -c.sin_tilt};
     c.u = c.d;
-    if (u0 != nullptr) {
-      if (dot(c.d, *u0) < 0.0) {
-        c.u = mul(c.d, -1.0);
-        c.reflected = true;
-      }
+    if (u0 != nullptr && dot(c.d, *u0) < 0.0) {
+      c.u = mul(c.d, -1.0);
+      c.reflected = true;
     }
   } else {
     // flat: the contact chosen at the uplift or the impact, or (a landing inside a step) the step's starting contact
@@ -153,7 +155,11 @@ double energy(const Geo& g, const State& y, V fallback_u, double grav) {
 class Engine {
  public:
   Engine(const InputGrid& grid, std::vector<double> gravity, const Geo& geo, const Rigid3DOptions& opt)
-      : grid_(grid), gravity_(std::move(gravity)), g_(geo), opt_(opt) {}
+      : grid_(grid),
+        gravity_(std::move(gravity)),
+        g_(geo),
+        opt_(opt),
+        p_(std::sqrt(opt.g_m_s2 / std::hypot(geo.R, geo.h))) {}
 
   Rigid3DResult run(const std::optional<CylinderInitialState>& initial) {
     Rigid3DSummary& s = res_.summary;
@@ -162,7 +168,7 @@ class Engine {
     const double t0 = grid_.time_s(0);
     if (initial) {
       const Quaternion q = normalised(initial->orientation);
-      const V a = rotate(q, kZ);
+      const V a = axis(q);
       if (!(a[2] > 0.0 && a[2] < 1.0)) {
         throw parameter_error("initial", "the initial tilt must be strictly between 0 and 90 degrees");
       }
@@ -206,14 +212,25 @@ class Engine {
       t_end = tb;
       if (!done() && opt_.record_history) record(tb);
     }
-    // run-out on still ground
+    // Run-out on still ground: the forcing is constant, so steps need not end on a grid (one interval up to the cap,
+    // the error control sets the steps; the planar engine's run-out). History rows continue the record's spacing from
+    // each step's dense output (finish_step), so a run with a history takes the same steps as one without.
     const double dt = grid_.dt_s() > 0.0 ? grid_.dt_s() : 0.01;
     const std::array<double, 3> still{0.0, 0.0, opt_.g_m_s2};
+    const double t_stop = t_end + opt_.max_run_out_s;
     double t = t_end;
-    while (!done() && mode_ != Rigid3DMode::rest && t - t_end < opt_.max_run_out_s) {
-      advance(t, t + dt, still, still);
-      t += dt;
-      if (!done() && opt_.record_history) record(t);
+    if (!done() && mode_ != Rigid3DMode::rest && t_stop > t_end) {
+      rows_dt_ = dt;
+      rows_t0_ = t_end;
+      rows_next_ = 1;
+      fsal_valid_ = false;  // the ground jumps to still
+      advance(t_end, t_stop, still, still);
+      rows_dt_ = 0.0;
+      t = done() || mode_ != Rigid3DMode::rest ? t_stop : s.modes.back().time_s;
+      if (!done() && mode_ != Rigid3DMode::rest && opt_.record_history &&
+          (res_.history.time_s.empty() || res_.history.time_s.back() < t)) {
+        record(t);
+      }
     }
     s.end_time_s = done() ? *s.overturn_time_s : t;
     s.end_mode = mode_;
@@ -230,16 +247,17 @@ class Engine {
   }
   [[nodiscard]] bool done() const { return mode_ == Rigid3DMode::fallen; }
 
-  void record(double t) {
+  void record(double t) { record_state(t, y_); }
+  void record_state(double t, const State& y) {
     if (!opt_.record_history) return;
     Rigid3DHistory& h = res_.history;
-    const Quaternion q = normalised(quat(y_));
-    const V a = rotate(q, kZ);
+    const Quaternion q = normalised(quat(y));
+    const V a = axis(q);
     h.time_s.push_back(t);
-    h.position_m.push_back(sub(position(y_), mul(a, g_.h)));
+    h.position_m.push_back(sub(position(y), mul(a, g_.h)));
     h.orientation.push_back(q);
-    h.angular_velocity_rad_s.push_back(omega(y_));
-    h.energy_j_per_kg.push_back(mode_ == Rigid3DMode::rest ? 0.0 : energy(g_, y_, u_, opt_.g_m_s2));
+    h.angular_velocity_rad_s.push_back(omega(y));
+    h.energy_j_per_kg.push_back(mode_ == Rigid3DMode::rest ? 0.0 : energy(g_, y, u_, opt_.g_m_s2));
     h.mode.push_back(mode_);
   }
 
@@ -253,9 +271,12 @@ class Engine {
     // (the rocking limit; a sideways rate there would make u' infinite)
     V ud = cross(w, c.u);
     if (c.sin_tilt > kDirectionFloor) {
-      const V zpd = z_perp_rate(c.a, ad);
-      ud = mul(sub(zpd, mul(c.d, dot(c.d, zpd))), -1.0 / c.sin_tilt);  // d'
-      if (c.reflected) ud = mul(ud, -1.0);                             // u = -d past the upright
+      // d = a_z e - sin(theta) z with e = a_h / sin(theta): d' = a_z' e + a_z e' - (e . a_h') z, e' the part of a_h'
+      // normal to e over sin(theta), ((e x a_h') . z / sin(theta)) (z x e) (exactly 0 in one vertical plane)
+      const double ex = c.ex, ey = c.ey;
+      const double turn = (ex * ad[1] - ey * ad[0]) / c.sin_tilt;
+      ud = {ad[2] * ex - c.a[2] * turn * ey, ad[2] * ey + c.a[2] * turn * ex, -(ex * ad[0] + ey * ad[1])};
+      if (c.reflected) ud = mul(ud, -1.0);  // u = -d past the upright
     }
     const V rd = sub(mul(ad, g_.h), mul(ud, g_.R));
     const V f{-acc[0], -acc[1], -acc[2]};
@@ -323,7 +344,7 @@ class Engine {
     if (h_try_ <= 0.0) h_try_ = std::min(tb - t, 1e-3);
     double h = std::min(h_try_, tb - t);
     if (tb - t - h < 1e-12 * std::max(1.0, std::abs(tb))) h = tb - t;
-    const double p = std::sqrt(opt_.g_m_s2 / std::hypot(g_.R, g_.h));
+    const double p = p_;
     const std::array<double, kN> scale{g_.alpha, g_.alpha, g_.alpha, g_.alpha, p * g_.alpha, p * g_.alpha,
                                        p * g_.alpha, g_.alpha * g_.h, g_.alpha * g_.h, g_.alpha * g_.h};
     while (true) {
@@ -407,19 +428,19 @@ class Engine {
     Rigid3DSummary& s = res_.summary;
     const V u0 = contact_of(g_, quat(y_), u_).u;
     // event functions of the step fraction
-    const auto axis_z = [&](double sf) { return rotate(quat(dense(sf)), kZ)[2]; };
+    const auto axis_z = [&](double sf) { return axis(quat(dense(sf)))[2]; };
     const auto tilt_rate = [&](double sf) {  // d(a_z)/dt = (w x a)_z: > 0 while the tilt decreases
       const State y = dense(sf);
-      return cross(omega(y), rotate(quat(y), kZ))[2];
+      return cross(omega(y), axis(quat(y)))[2];
     };
     const auto landing = [&](double sf) {
       const State y = dense(sf);
-      const V a = rotate(quat(y), kZ);
+      const V a = axis(quat(y));
       return -dot(z_perp(a), u0);
     };
     const auto landing_rate = [&](double sf) {  // d/dt of landing: -z_perp' . u0, a' = w x a
       const State y = dense(sf);
-      const V a = rotate(quat(y), kZ);
+      const V a = axis(quat(y));
       return -dot(z_perp_rate(a, cross(omega(y), a)), u0);
     };
     const double cos_alpha = std::cos(g_.alpha);
@@ -441,8 +462,7 @@ class Engine {
       }
       if (!(l_lo > 0.0)) {
         (void)y1;
-        const double p = std::sqrt(opt_.g_m_s2 / std::hypot(g_.R, g_.h));
-        if (h * p > kMinLiftStep) return std::nullopt;  // look again with a shorter step
+        if (h * p_ > kMinLiftStep) return std::nullopt;  // look again with a shorter step
         return no_lift(t + h);
       }
     }
@@ -497,7 +517,7 @@ class Engine {
     const double r0 = tilt_rate(0.0), r1 = tilt_rate(s_end);
     const auto note_tilt = [&](double sf) {
       const State y = dense(sf);
-      const V a = rotate(quat(y), kZ);
+      const V a = axis(quat(y));
       const double tilt = std::atan2(std::hypot(a[0], a[1]), a[2]);
       if (tilt > s.max_tilt_rad) {
         s.max_tilt_rad = tilt;
@@ -513,6 +533,15 @@ class Engine {
       if (e0 > 0.0 && e1 <= 0.0) s.exceeded_limit_time_s = t + h * detail::find_root(lim, 0.0, s_end, e0, e1);
     }
     const double t_new = kind == 0 ? t + h : t + h * s_end;
+    if (rows_dt_ > 0.0 && opt_.record_history) {
+      // run-out history rows on the record's spacing inside this step (an event's own row is at t_new)
+      for (;;) {
+        const double tg = rows_t0_ + static_cast<double>(rows_next_) * rows_dt_;
+        if (tg > t_new || (kind != 0 && tg == t_new)) break;
+        ++rows_next_;
+        if (tg > t) record_state(tg, tg == t + h ? y1 : dense((tg - t) / h));
+      }
+    }
     y_ = kind == 0 ? y1 : dense(s_end);
     u_ = contact_of(g_, quat(y_), u_).u;
     if (!std::isfinite(t_new)) throw StepLimitError("rock3d_cylinder: an event could not be located");
@@ -520,7 +549,7 @@ class Engine {
       mode_ = Rigid3DMode::fallen;
       s.overturned = true;
       s.overturn_time_s = t_new;
-      s.overturn_azimuth_deg = azimuth_deg(rotate(quat(y_), kZ));
+      s.overturn_azimuth_deg = azimuth_deg(axis(quat(y_)));
       s.modes.push_back({t_new, mode_, -1, -1});
       record(t_new);
     } else if (kind == 1) {
@@ -612,6 +641,10 @@ class Engine {
   std::vector<double> gravity_;
   Geo g_;
   Rigid3DOptions opt_;
+  double rows_dt_ = 0.0;  // > 0 in the run-out: history rows at rows_t0_ + k rows_dt_ (k >= rows_next_)
+  double rows_t0_ = 0.0;
+  std::size_t rows_next_ = 0;
+  double p_;  // the frequency parameter sqrt(g / |r|) of the upright body (the error norm's rate scale), rad/s
   Rigid3DResult res_;
   State y_{};
   V u_{1.0, 0.0, 0.0};

@@ -272,6 +272,36 @@ TEST(Rigid3DDisc, RotatedGroundMotionGivesTheRotatedMotion) {
   (void)fell;
 }
 
+// The run-out after the record takes steps of any length (constant forcing); with a history its rows continue the
+// record's spacing from the dense output, so the run takes the same steps: the same summary to the last bit.
+TEST(Rigid3DDisc, RunOutHistoryTakesTheSameSteps) {
+  const CylinderBody3D cyl = CylinderBody3D::solid(0.3, 1.0);
+  // a free wobble (FreeRollingConservesEnergy's) on 1 s of still ground, rolling on through a 2 s run-out
+  const GroundMotion m1 = still(1.0, 0.005);
+  const CylinderInitialState init{tilted(0.2, 0.3), {0.4, -0.3, 6.0}};
+  Rigid3DOptions o;
+  o.g_m_s2 = kG;
+  o.max_run_out_s = 2.0;
+  const Rigid3DSummary a = rock3d_cylinder(m1, nullptr, nullptr, cyl, o, init).summary;
+  o.record_history = true;
+  const Rigid3DResult b = rock3d_cylinder(m1, nullptr, nullptr, cyl, o, init);
+  ASSERT_NEAR(a.end_time_s, m1.end_time_s() + 2.0, 1e-12);  // rolling through the whole run-out
+  ASSERT_FALSE(a.overturned);
+  EXPECT_EQ(a.steps, b.summary.steps);
+  EXPECT_EQ(a.impacts, b.summary.impacts);
+  EXPECT_EQ(a.max_tilt_rad, b.summary.max_tilt_rad);
+  EXPECT_EQ(a.end_time_s, b.summary.end_time_s);
+  EXPECT_FALSE(a.overturned);
+  // the run-out's rows: on the record's spacing after its end, and an event's own rows
+  std::size_t on_grid = 0;
+  for (const double t : b.history.time_s) {
+    if (t <= m1.end_time_s()) continue;
+    const double k = (t - m1.end_time_s()) / m1.dt_s();
+    on_grid += std::abs(k - std::round(k)) < 1e-6 ? 1U : 0U;
+  }
+  EXPECT_GT(on_grid, static_cast<std::size_t>(0.9 * (a.end_time_s - m1.end_time_s()) / m1.dt_s()));
+}
+
 TEST(Rigid3DDisc, BadInputNamesTheField) {
   EXPECT_THROW((void)CylinderBody3D::solid(0.0, 1.0), InputError);
   EXPECT_THROW((void)CylinderBody3D::general(0.1, 0.5, 1.0, 0.1), InputError);
