@@ -119,12 +119,17 @@ struct Contact {
 };
 Contact contact_of(const Geo& g, const Quaternion& q, V fallback_u, const V* u0 = nullptr) {
   Contact c;
-  c.a = axis(q);
+  // the axis as axis(q), its horizontal length and direction from the unnormalised column (two independent chains)
+  const double qw = q[0], qx = q[1], qy = q[2], qz = q[3];
+  const double Ax = 2.0 * (qx * qz + qw * qy), Ay = 2.0 * (qy * qz - qw * qx);
+  const double inv_n2 = 1.0 / (qw * qw + qx * qx + qy * qy + qz * qz);
+  const double horizontal = std::sqrt(Ax * Ax + Ay * Ay);
+  c.a = {Ax * inv_n2, Ay * inv_n2, (qw * qw - qx * qx - qy * qy + qz * qz) * inv_n2};
   // |z_perp| = |a_h| |a| = sin(theta) and d = -z_perp / sin(theta) = a_z e - sin(theta) z, e = a_h / |a_h|
-  c.sin_tilt = std::sqrt(c.a[0] * c.a[0] + c.a[1] * c.a[1]);
+  c.sin_tilt = horizontal * inv_n2;
   if (c.sin_tilt > kDirectionFloor) {
-    const double inv = 1.0 / c.sin_tilt;
-    const double ex = c.a[0] * inv, ey = c.a[1] * inv;
+    const double inv = 1.0 / horizontal;
+    const double ex = Ax * inv, ey = Ay * inv;
     c.ex = ex;
     c.ey = ey;
     c.d = {c.a[2] * ex, c.a[2] * ey, -c.sin_tilt};
@@ -427,23 +432,27 @@ class Engine {
   std::optional<double> finish_step(double t, double h, const State& y1, const Dense& dense, const Acc& acc_at) {
     Rigid3DSummary& s = res_.summary;
     const V u0 = contact_of(g_, quat(y_), u_).u;
-    // event functions of the step fraction
-    const auto axis_z = [&](double sf) { return axis(quat(dense(sf)))[2]; };
+    // event functions of the step fraction, on the axis and the rate (the step's ends computed once)
+    struct AxisRate {
+      V a, w;
+    };
+    const AxisRate end0{axis(quat(y_)), omega(y_)}, end1{axis(quat(y1)), omega(y1)};
+    const auto at = [&](double sf) {
+      if (sf == 0.0) return end0;
+      if (sf == 1.0) return end1;
+      const State y = dense(sf);
+      return AxisRate{axis(quat(y)), omega(y)};
+    };
+    const auto axis_z = [&](double sf) { return at(sf).a[2]; };
     const auto tilt_rate = [&](double sf) {  // d(a_z)/dt = (w x a)_z: > 0 while the tilt decreases
-      const State y = dense(sf);
-      return cross(omega(y), axis(quat(y)))[2];
+      const AxisRate x = at(sf);
+      return cross(x.w, x.a)[2];
     };
-    const auto landing = [&](double sf) {
-      const State y = dense(sf);
-      const V a = axis(quat(y));
-      return -dot(z_perp(a), u0);
-    };
+    const auto landing = [&](double sf) { return -dot(z_perp(at(sf).a), u0); };
     const auto landing_rate = [&](double sf) {  // d/dt of landing: -z_perp' . u0, a' = w x a
-      const State y = dense(sf);
-      const V a = axis(quat(y));
-      return -dot(z_perp_rate(a, cross(omega(y), a)), u0);
+      const AxisRate x = at(sf);
+      return -dot(z_perp_rate(x.a, cross(x.w, x.a)), u0);
     };
-    const double cos_alpha = std::cos(g_.alpha);
     // the earliest terminal event
     double s_end = 1.0;
     int kind = 0;  // 0 none, 1 landing, 2 fall
@@ -516,18 +525,22 @@ class Engine {
     // tilt maxima (a_z' from < 0 to > 0) and the static limit, before the terminal event
     const double r0 = tilt_rate(0.0), r1 = tilt_rate(s_end);
     const auto note_tilt = [&](double sf) {
-      const State y = dense(sf);
-      const V a = axis(quat(y));
-      const double tilt = std::atan2(std::hypot(a[0], a[1]), a[2]);
+      const V a = at(sf).a;
+      // the tilt stays below 90 degrees (the fall ends the run there), where sin^2 orders it: most steps stop here
+      const double sin2 = a[0] * a[0] + a[1] * a[1];
+      if (sin2 < max_tilt_sin2_) return;
+      const double tilt = std::atan2(std::sqrt(sin2), a[2]);
       if (tilt > s.max_tilt_rad) {
         s.max_tilt_rad = tilt;
         s.max_tilt_azimuth_deg = azimuth_deg(a);
         s.max_tilt_time_s = t + sf * h;
+        max_tilt_sin2_ = std::pow(std::sin(tilt), 2) * (1.0 - 1e-12);
       }
     };
     if (r0 < 0.0 && r1 > 0.0) note_tilt(detail::find_root(tilt_rate, 0.0, s_end, r0, r1));
     note_tilt(s_end);
     if (!s.exceeded_limit_time_s) {
+      const double cos_alpha = std::cos(g_.alpha);
       const auto lim = [&](double sf) { return axis_z(sf) - cos_alpha; };
       const double e0 = lim(0.0), e1 = lim(s_end);
       if (e0 > 0.0 && e1 <= 0.0) s.exceeded_limit_time_s = t + h * detail::find_root(lim, 0.0, s_end, e0, e1);
@@ -641,6 +654,7 @@ class Engine {
   std::vector<double> gravity_;
   Geo g_;
   Rigid3DOptions opt_;
+  double max_tilt_sin2_ = 0.0;  // below sin^2 of the summary's max tilt (less a margin for rounding)
   double rows_dt_ = 0.0;  // > 0 in the run-out: history rows at rows_t0_ + k rows_dt_ (k >= rows_next_)
   double rows_t0_ = 0.0;
   std::size_t rows_next_ = 0;
