@@ -576,6 +576,8 @@ class Engine {
   /// rest; time moves on to t_new (> the step's start), so this cannot loop.
   double no_lift(double t_new) {
     Rigid3DSummary& s = res_.summary;
+    // the kinetic energy the body had at the step's flat start (after an impact) is lost with it (flat: no potential)
+    s.energy_lost_j_per_kg += std::max(0.0, energy(g_, y_, u_, opt_.g_m_s2));
     y_[4] = y_[5] = y_[6] = 0.0;  // y_ is still the step's flat start
     mode_ = Rigid3DMode::rest;
     s.modes.push_back({t_new, mode_, -1, -1});
