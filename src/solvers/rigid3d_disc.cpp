@@ -463,8 +463,9 @@ class Engine {
     if (!(l_lo > 0.0)) {
       // The step starts flat (the first step after an uplift or an impact): the continued equations may rise and come
       // back within the step (a lift and return, in chatter). The first of 16 equally spaced points where the body is
-      // up starts the search; none: the lift did not happen (the ground's pull was too short or round-off sent the
-      // body below), the body stays at rest at the step's end (the planar engine's rule), and time advances by h > 0.
+      // up starts the search; none: the step is taken again 16 times shorter (the lift may be shorter than h / 16),
+      // and once h p is below kMinLiftStep the lift did not happen (the ground's pull was too short or round-off sent
+      // the body below): the body stays at rest at the step's end (the planar engine's rule), time advancing by h > 0.
       for (int j = 1; j <= 16 && !(l_lo > 0.0); ++j) {
         s_lo = j / 16.0;
         l_lo = j == 16 ? l1_end : landing(s_lo);
