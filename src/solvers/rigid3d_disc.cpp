@@ -115,6 +115,7 @@ struct Contact {
   V a, u, r, d;
   double sin_tilt;
   double ex = 0.0, ey = 0.0;  // e = a_h / sin(theta) (tilted only)
+  double inv_sin_tilt = 0.0;  // 1 / sin(theta) (tilted only)
   bool reflected = false;
 };
 Contact contact_of(const Geo& g, const Quaternion& q, V fallback_u, const V* u0 = nullptr) {
@@ -122,7 +123,8 @@ Contact contact_of(const Geo& g, const Quaternion& q, V fallback_u, const V* u0 
   // the axis as axis(q), its horizontal length and direction from the unnormalised column (two independent chains)
   const double qw = q[0], qx = q[1], qy = q[2], qz = q[3];
   const double Ax = 2.0 * (qx * qz + qw * qy), Ay = 2.0 * (qy * qz - qw * qx);
-  const double inv_n2 = 1.0 / (qw * qw + qx * qx + qy * qy + qz * qz);
+  const double n2 = qw * qw + qx * qx + qy * qy + qz * qz;
+  const double inv_n2 = 1.0 / n2;
   const double horizontal = std::sqrt(Ax * Ax + Ay * Ay);
   c.a = {Ax * inv_n2, Ay * inv_n2, (qw * qw - qx * qx - qy * qy + qz * qz) * inv_n2};
   // |z_perp| = |a_h| |a| = sin(theta) and d = -z_perp / sin(theta) = a_z e - sin(theta) z, e = a_h / |a_h|
@@ -130,6 +132,7 @@ Contact contact_of(const Geo& g, const Quaternion& q, V fallback_u, const V* u0 
   if (c.sin_tilt > kDirectionFloor) {
     const double inv = 1.0 / horizontal;
     const double ex = Ax * inv, ey = Ay * inv;
+    c.inv_sin_tilt = inv * n2;
     c.ex = ex;
     c.ey = ey;
     c.d = {c.a[2] * ex, c.a[2] * ey, -c.sin_tilt};
@@ -279,7 +282,7 @@ class Engine {
       // d = a_z e - sin(theta) z with e = a_h / sin(theta): d' = a_z' e + a_z e' - (e . a_h') z, e' the part of a_h'
       // normal to e over sin(theta), ((e x a_h') . z / sin(theta)) (z x e) (exactly 0 in one vertical plane)
       const double ex = c.ex, ey = c.ey;
-      const double turn = (ex * ad[1] - ey * ad[0]) / c.sin_tilt;
+      const double turn = (ex * ad[1] - ey * ad[0]) * c.inv_sin_tilt;
       ud = {ad[2] * ex - c.a[2] * turn * ey, ad[2] * ey + c.a[2] * turn * ex, -(ex * ad[0] + ey * ad[1])};
       if (c.reflected) ud = mul(ud, -1.0);  // u = -d past the upright
     }
