@@ -191,21 +191,25 @@ void run_oriented(const RockOptions& o, const RunMotion& run, const RockingBody&
   report(o, run, horizontal, planar, options, gov.summary, &report_of);
 }
 
-/// --model 3d: the three-dimensional engine (rigid3d.hpp) for a block with a depth or a mesh as posed (rock_3d.hpp).
-/// `body` is the planar body of the options (none with --mesh); run_rock refused --body already.
+/// --model 3d: the three-dimensional engine (rigid3d.hpp) for a block with a depth or a mesh as posed, or the rim
+/// engine (rigid3d_disc.hpp) for a solid cylinder (rock_3d.hpp). `body` is the planar body of the options (none with
+/// --mesh); run_rock refused --body already.
 void run_model_3d(const RockOptions& o, RunMotion& run, const std::optional<RockingBody>& body,
                   const RockingOptions& options) {
-  if (body && body->shape == RockingBody::Shape::cylinder) {
-    throw parameter_error("--shape", "--model 3d: a cylinder's circular base (rolling and wobbling on its rim) is not "
-                                     "built in the three-dimensional engine yet; use the planar model (--model rocking "
-                                     "with --h2: the worst of its directions)");
+  const bool cylinder = body && body->shape == RockingBody::Shape::cylinder;
+  if (cylinder && !o.depth.empty()) {
+    throw parameter_error("--depth", "is a block's: a cylinder is given by --diameter and --height");
   }
-  if (body && body->shape != RockingBody::Shape::block) {
+  if (cylinder && o.bearing_deg) {
+    throw parameter_error("--bearing-deg", "a cylinder is the same body turned about its axis: it has no bearing "
+                                           "(the components act along their --azimuths)");
+  }
+  if (body && !cylinder && body->shape != RockingBody::Shape::block) {
     throw parameter_error("--shape", "--model 3d: a general body (--a/--h/--D or --b1/--b2/--h/--inertia) is a "
                                      "section in one vertical plane, without a base in three dimensions; give a block "
                                      "(--shape block --width --depth --height) or a mesh (--mesh FILE)");
   }
-  if (body && o.depth.empty()) {
+  if (body && !cylinder && o.depth.empty()) {
     throw parameter_error("--depth", "--model 3d needs the block's depth, with a unit (its extent along its own y "
                                      "axis: along bearing + 90 with --h2)");
   }
@@ -218,7 +222,12 @@ void run_model_3d(const RockOptions& o, RunMotion& run, const std::optional<Rock
   if (o.direction_step_deg) throw parameter_error("--direction-step-deg", "is for a cylinder of the rocking model");
   if (options.method != RockingMethod::adaptive) throw parameter_error("--method", "--model 3d is adaptive only");
   Rigid3DRequest request;
-  if (body) {
+  if (cylinder) {
+    // the planar cylinder's a = d / 2 and h = H / 2 (rocking_body.hpp): the same solid cylinder in three dimensions
+    request.width_m = 2.0 * body->a_m;
+    request.height_m = 2.0 * body->h_m;
+    request.cylinder = naming_options([&] { return CylinderBody3D::solid(request.width_m, request.height_m); });
+  } else if (body) {
     request.width_m = 2.0 * body->a_m;
     request.height_m = 2.0 * body->h_m;
     request.depth_m = parse_length_m(o.depth, "--depth");
@@ -246,11 +255,11 @@ void run_model_3d(const RockOptions& o, RunMotion& run, const std::optional<Rock
   request.json = o.json;
   std::optional<MotionSet> set;
   if (!o.h2.empty()) {
-    if (!o.bearing_deg) {
+    if (!cylinder && !o.bearing_deg) {
       throw parameter_error("--bearing-deg", "required with --model 3d and --h2: the azimuth of the body's +x axis "
                                              "(a block: across its width), degrees clockwise from north");
     }
-    if (!std::isfinite(*o.bearing_deg)) {
+    if (o.bearing_deg && !std::isfinite(*o.bearing_deg)) {
       throw parameter_error("--bearing-deg", fmt::format("must be finite, got {}", *o.bearing_deg));
     }
     set = load_motion_set(run, o.motion, o.h2, o.azimuths);

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iterator>
+#include <optional>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -54,16 +55,21 @@ plot::Series ground_series(const GroundMotion& m, double g, const std::string& l
 /// --plot: the ground components, the tilt with the smallest static limit, the tilt's direction, the angular
 /// velocity; mode changes marked. Plotting computes no physics: the engine's history as it is.
 void draw(const Rigid3DRequest& request, const RunMotion& run, const GroundMotion& x, const GroundMotion* y,
-          const GroundMotion* z, const RigidBody3D& body, const Rigid3DResult& r) {
+          const GroundMotion* z, const RigidBody3D* body, const Rigid3DResult& r) {
   const double g = request.options.g_m_s2;
   const Rigid3DHistory& h = r.history;
   plot::Panel accel{"ground acceleration (g)", {}, {}, {}, false, false};
   accel.series.push_back(ground_series(x, g, y != nullptr ? "east" : "along the body's +x", "#34495e"));
   if (y != nullptr) accel.series.push_back(ground_series(*y, g, "north", "#e67e22"));
   if (z != nullptr) accel.series.push_back(ground_series(*z, g, "vertical", "#27ae60"));
-  // The smallest static limit over all directions (the support function's minimum over 1-degree steps).
+  // The smallest static limit over all directions (the support function's minimum over 1-degree steps; a cylinder's
+  // is the same in every direction).
   double limit = INFINITY;
-  for (int a = 0; a < 360; ++a) limit = std::min(limit, body.static_tilt_limit_rad(a));
+  if (request.cylinder) {
+    limit = request.cylinder->static_tilt_limit_rad();
+  } else {
+    for (int a = 0; a < 360; ++a) limit = std::min(limit, body->static_tilt_limit_rad(a));
+  }
   plot::Panel tilt{"tilt (deg)", {{"tilt", h.time_s, {}, "lines", "#c0392b", 1.8}},
                    {{rad_to_deg(limit), fmt::format("smallest static limit {:.3g} deg", rad_to_deg(limit))}}, {},
                    false, false};
@@ -92,10 +98,13 @@ void draw(const Rigid3DRequest& request, const RunMotion& run, const GroundMotio
   tilt.marks_x = marks;
   rate.marks_x = marks;
   const std::string body_text =
-      request.mesh_file.empty()
+      request.cylinder        ? fmt::format("cylinder {:.3g} x {:.3g} m", request.width_m, request.height_m)
+      : request.mesh_file.empty()
           ? fmt::format("block {:.3g} x {:.3g} x {:.3g} m", request.width_m, request.depth_m, request.height_m)
           : plot::file_label(request.mesh_file);
-  plot::Figure figure{fmt::format("Rocking and pivoting in 3-D, {}{}{}: {}{}", body_text,
+  plot::Figure figure{fmt::format("{} in 3-D, {}{}{}: {}{}",
+                                  request.cylinder ? "Rocking and rolling on the rim" : "Rocking and pivoting",
+                                  body_text,
                                   request.bearing_deg ? fmt::format(", +x at {:g}°", *request.bearing_deg) : "",
                                   request.vertical_label.empty()
                                       ? std::string()
@@ -116,7 +125,20 @@ void run_3d(const RunMotion& run, const Rigid3DRequest& request) {
   Rigid3DOptions options = request.options;
   options.record_history = !request.out.empty() || !request.plot.empty();
   Rigid3DResult result;
-  if (request.set != nullptr) {
+  if (request.cylinder) {
+    // Axisymmetric: the pair along east (x) and north (y) (eq. M1) as it is; one record along x (azimuth 90).
+    std::optional<GroundMotion> east, north;
+    if (request.set != nullptr) {
+      east = request.set->projected(90.0);
+      north = request.set->projected(0.0);
+    }
+    const GroundMotion& x = east ? *east : run.horizontal;
+    const GroundMotion* y = north ? &*north : nullptr;
+    const GroundMotion* z = request.set != nullptr ? request.set->vertical_ptr() : run.vertical_ptr();
+    result = rock3d_cylinder(x, y, z, *request.cylinder, options);
+    if (!request.out.empty()) write_history_csv(request.out, result.history);
+    if (!request.plot.empty()) draw(request, run, x, y, z, nullptr, result);
+  } else if (request.set != nullptr) {
     // The pair along east (x) and north (y) (eq. M1), the body turned so that its +x axis points to the bearing:
     // a rotation by 90 - bearing degrees counter-clockwise seen from above.
     const GroundMotion east = request.set->projected(90.0);
@@ -124,11 +146,11 @@ void run_3d(const RunMotion& run, const Rigid3DRequest& request) {
     const RigidBody3D turned = request.body.rotated_about_vertical(deg_to_rad(90.0 - *request.bearing_deg));
     result = rock3d(east, &north, request.set->vertical_ptr(), turned, options);
     if (!request.out.empty()) write_history_csv(request.out, result.history);
-    if (!request.plot.empty()) draw(request, run, east, &north, request.set->vertical_ptr(), turned, result);
+    if (!request.plot.empty()) draw(request, run, east, &north, request.set->vertical_ptr(), &turned, result);
   } else {
     result = rock3d(run.horizontal, nullptr, run.vertical_ptr(), request.body, options);
     if (!request.out.empty()) write_history_csv(request.out, result.history);
-    if (!request.plot.empty()) draw(request, run, run.horizontal, nullptr, run.vertical_ptr(), request.body, result);
+    if (!request.plot.empty()) draw(request, run, run.horizontal, nullptr, run.vertical_ptr(), &request.body, result);
   }
   const Rigid3DSummary& s = result.summary;
   for (const auto& w : s.warnings) fmt::print(stderr, "topple: warning: {}\n", w);
@@ -137,7 +159,12 @@ void run_3d(const RunMotion& run, const Rigid3DRequest& request) {
   const auto opt = [](const std::optional<double>& v) { return v ? nlohmann::ordered_json(*v) : nullptr; };
   if (request.json) {
     nlohmann::ordered_json j = io::rigid3d_summary_json(s);
-    if (request.mesh_file.empty()) {
+    if (request.cylinder) {
+      j["body"] = {{"shape", "cylinder"},
+                   {"diameter_m", request.width_m},
+                   {"height_m", request.height_m},
+                   {"bearing_deg", nullptr}};
+    } else if (request.mesh_file.empty()) {
       j["body"] = {{"shape", "block"},
                    {"width_m", request.width_m},
                    {"depth_m", request.depth_m},
@@ -160,22 +187,30 @@ void run_3d(const RunMotion& run, const Rigid3DRequest& request) {
     fmt::print("{}\n", j.dump(2));
     return;
   }
-  fmt::print("three-dimensional rocking and pivoting (no sliding): {}{}\n",
-             request.mesh_file.empty()
-                 ? fmt::format("block {:.6g} x {:.6g} x {:.6g} m (width x depth x height)", request.width_m,
-                               request.depth_m, request.height_m)
-                 : fmt::format("mesh {} as posed, base of {} vertices, centre of mass {:.6g} m above it",
-                               plot::file_label(request.mesh_file), request.body.base_xy_m.size(),
-                               request.body.height_m()),
-             request.bearing_deg ? fmt::format(", +x axis at {:g} deg", *request.bearing_deg)
-                                 : std::string(", the record along +x (azimuth 90)"));
+  if (request.cylinder) {
+    fmt::print("three-dimensional rocking and rolling on the rim (no sliding): cylinder {:.6g} x {:.6g} m (diameter x "
+               "height){}\n",
+               request.width_m, request.height_m,
+               request.set != nullptr ? std::string(", the pair along east and north")
+                                      : std::string(", the record along +x (azimuth 90)"));
+  } else {
+    fmt::print("three-dimensional rocking and pivoting (no sliding): {}{}\n",
+               request.mesh_file.empty()
+                   ? fmt::format("block {:.6g} x {:.6g} x {:.6g} m (width x depth x height)", request.width_m,
+                                 request.depth_m, request.height_m)
+                   : fmt::format("mesh {} as posed, base of {} vertices, centre of mass {:.6g} m above it",
+                                 plot::file_label(request.mesh_file), request.body.base_xy_m.size(),
+                                 request.body.height_m()),
+               request.bearing_deg ? fmt::format(", +x axis at {:g} deg", *request.bearing_deg)
+                                   : std::string(", the record along +x (azimuth 90)"));
+  }
   fmt::print("max tilt               {:.6g} rad toward {:.2f} deg at {:.4f} s, {:.6g} x the static limit\n",
              s.max_tilt_rad, s.max_tilt_azimuth_deg, s.max_tilt_time_s, s.max_tilt_over_limit);
   fmt::print("first uplift           {}\n", format_seconds_or_none(s.uplift_time_s));
   fmt::print("uplifts, impacts       {}, {}\n", s.uplifts, s.impacts);
   std::size_t pivots = 0;
   for (const auto& m : s.modes) pivots += m.mode == Rigid3DMode::pivot ? 1 : 0;
-  fmt::print("pivots on a corner     {}\n", pivots);
+  if (!request.cylinder) fmt::print("pivots on a corner     {}\n", pivots);
   fmt::print("overturned             {}\n",
              s.overturned ? fmt::format("yes, at {} toward {:.2f} deg", format_seconds_or_none(s.overturn_time_s),
                                         s.overturn_azimuth_deg)

@@ -7,12 +7,16 @@
 #include "common.hpp"
 #include "topple/motion/motion_set.hpp"
 #include "topple/solvers/rigid3d.hpp"
+#include "topple/solvers/rigid3d_disc.hpp"
 
 namespace topple::cli {
 
 /// What `topple rock --model 3d` parsed, besides the motion.
 struct Rigid3DRequest {
   RigidBody3D body;  ///< in its own frame (the block's, or the posed mesh's shifted down to its support plane)
+  /// A solid cylinder (--shape cylinder): the rim engine (rigid3d_disc.hpp) instead of `body`; width_m is its
+  /// diameter, height_m its height. Axisymmetric: no bearing (with --h2 the pair acts along east and north).
+  std::optional<CylinderBody3D> cylinder;
   /// The block's dimensions (x, y, z in its own frame); zero for a mesh.
   double width_m = 0.0, depth_m = 0.0, height_m = 0.0;
   std::string mesh_file;  ///< --mesh: the file (the body is the mesh's); empty for a block

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <optional>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -29,6 +31,9 @@ constexpr double kDirectionFloor = 1e-12;
 // A tilt minimum below kFlatTilt times alpha with a sideways rate above kWhirlRate_rad_s is a flat landing (header).
 constexpr double kFlatTilt = 1e-3;
 constexpr double kWhirlRate_rad_s = 1e-8;
+// A step from flat shorter than this (times 1/p) in which the body never rises above the ground ends at rest: a lift
+// shorter than it is not resolved (finish_step).
+constexpr double kMinLiftStep = 1e-7;
 
 V add(V a, V b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
 V sub(V a, V b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
@@ -42,13 +47,11 @@ Quaternion quat(const State& y) { return {y[0], y[1], y[2], y[3]}; }
 V omega(const State& y) { return {y[4], y[5], y[6]}; }
 V position(const State& y) { return {y[7], y[8], y[9]}; }
 
-/// R(q) v for q = (w, x, y, z), normalised.
-V rotate(Quaternion q, V v) {
-  const double n = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-  for (double& c : q) c /= n;
-  const V u{q[1], q[2], q[3]};
-  const V t = mul(cross(u, v), 2.0);
-  return add(add(v, mul(t, q[0])), cross(u, t));
+/// The body's axis R(q) e_z for any q != 0 (the third column of the rotation of q / |q|: one division, no root).
+V axis(const Quaternion& q) {
+  const double w = q[0], x = q[1], y = q[2], z = q[3];
+  const double inv = 1.0 / (w * w + x * x + y * y + z * z);
+  return {2.0 * (x * z + w * y) * inv, 2.0 * (y * z - w * x) * inv, (w * w - x * x - y * y + z * z) * inv};
 }
 Quaternion qmul(Quaternion a, Quaternion b) {
   return {a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3], a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
@@ -62,8 +65,9 @@ Quaternion normalised(Quaternion q) {
 /// Solves the symmetric 3x3 system M x = b (Cramer; M is an inertia tensor, positive definite).
 V solve3(const std::array<V, 3>& M, V b) {
   const V c0{M[0][0], M[1][0], M[2][0]}, c1{M[0][1], M[1][1], M[2][1]}, c2{M[0][2], M[1][2], M[2][2]};
-  const double det = dot(c0, cross(c1, c2));
-  return {dot(b, cross(c1, c2)) / det, dot(c0, cross(b, c2)) / det, dot(c0, cross(c1, b)) / det};
+  const V c12 = cross(c1, c2);
+  const double inv = 1.0 / dot(c0, c12);
+  return {dot(b, c12) * inv, dot(c0, cross(b, c2)) * inv, dot(c0, cross(c1, b)) * inv};
 }
 double azimuth_deg(V d) {  // clockwise from north of a plan direction
   double az = std::atan2(d[0], d[1]) * 180.0 / M_PI;
@@ -99,19 +103,51 @@ V z_perp_rate(V a, V ad) {
 }
 
 /// The contact geometry of a state: axis a, contact direction u (from the base's centre), sin(theta), r = c - p.
+/// d = -z_perp / sin(theta) is the lowest point's direction. Within a step the rim equations are continued past the
+/// upright on the step's side (as the planar engine continues its pivot's equation past theta = 0): where d points
+/// away from the step's starting contact u0 (d . u0 < 0: the lowest point is now on the other side), u = -d, the
+/// point of the rim opposite the lowest one. In one vertical plane that is the rim point fixed in the body that was
+/// the contact, (cos theta, 0, -sin theta) on both sides of the upright: the planar engine's continued pivot, smooth
+/// through theta = 0, so a step may run past the landing, which is then found on its dense output. Out of the plane
+/// (a sideways rate near the upright) u jumps where d . u0 changes sign; the landing is found there (finish_step)
+/// and the step's error control sees the jump beyond it.
 struct Contact {
-  V a, u, r;
+  V a, u, r, d;
   double sin_tilt;
+  double ex = 0.0, ey = 0.0;  // e = a_h / sin(theta) (tilted only)
+  double inv_sin_tilt = 0.0;  // 1 / sin(theta) (tilted only)
+  bool reflected = false;
 };
-Contact contact_of(const Geo& g, const Quaternion& q, V fallback_u) {
+Contact contact_of(const Geo& g, const Quaternion& q, V fallback_u, const V* u0 = nullptr) {
   Contact c;
-  c.a = rotate(q, kZ);
-  const V zp = z_perp(c.a);
-  c.sin_tilt = norm(zp);
+  // the axis as axis(q), its horizontal length and direction from the unnormalised column (two independent chains)
+  const double qw = q[0], qx = q[1], qy = q[2], qz = q[3];
+  const double Ax = 2.0 * (qx * qz + qw * qy), Ay = 2.0 * (qy * qz - qw * qx);
+  const double n2 = qw * qw + qx * qx + qy * qy + qz * qz;
+  const double inv_n2 = 1.0 / n2;
+  const double horizontal = std::sqrt(Ax * Ax + Ay * Ay);
+  c.a = {Ax * inv_n2, Ay * inv_n2, (qw * qw - qx * qx - qy * qy + qz * qz) * inv_n2};
+  // |z_perp| = |a_h| |a| = sin(theta) and d = -z_perp / sin(theta) = a_z e - sin(theta) z, e = a_h / |a_h|
+  c.sin_tilt = horizontal * inv_n2;
   if (c.sin_tilt > kDirectionFloor) {
-    c.u = mul(zp, -1.0 / c.sin_tilt);
+    const double inv = 1.0 / horizontal;
+    const double ex = Ax * inv, ey = Ay * inv;
+    c.inv_sin_tilt = inv * n2;
+    c.ex = ex;
+    c.ey = ey;
+    c.d = {c.a[2] * ex, c.a[2] * ey, -c.sin_tilt};
+    c.u = c.d;
+    if (u0 != nullptr && dot(c.d, *u0) < 0.0) {
+      c.u = mul(c.d, -1.0);
+      c.reflected = true;
+    }
   } else {
-    c.u = fallback_u;  // flat: the contact chosen at the uplift or the impact (first stage only)
+    // flat: the contact chosen at the uplift or the impact, or (a landing inside a step) the step's starting contact
+    // brought to the ground plane: at the upright the rim point that was the contact is horizontal (its tilted
+    // direction would put r off by R sin(theta0), a relative error theta0 in the impact's velocity)
+    const double hn = std::hypot(fallback_u[0], fallback_u[1]);
+    c.u = hn > 0.0 ? V{fallback_u[0] / hn, fallback_u[1] / hn, 0.0} : fallback_u;
+    c.d = c.u;
   }
   c.r = sub(mul(c.a, g.h), mul(c.u, g.R));
   return c;
@@ -127,7 +163,11 @@ double energy(const Geo& g, const State& y, V fallback_u, double grav) {
 class Engine {
  public:
   Engine(const InputGrid& grid, std::vector<double> gravity, const Geo& geo, const Rigid3DOptions& opt)
-      : grid_(grid), gravity_(std::move(gravity)), g_(geo), opt_(opt) {}
+      : grid_(grid),
+        gravity_(std::move(gravity)),
+        g_(geo),
+        opt_(opt),
+        p_(std::sqrt(opt.g_m_s2 / std::hypot(geo.R, geo.h))) {}
 
   Rigid3DResult run(const std::optional<CylinderInitialState>& initial) {
     Rigid3DSummary& s = res_.summary;
@@ -136,7 +176,7 @@ class Engine {
     const double t0 = grid_.time_s(0);
     if (initial) {
       const Quaternion q = normalised(initial->orientation);
-      const V a = rotate(q, kZ);
+      const V a = axis(q);
       if (!(a[2] > 0.0 && a[2] < 1.0)) {
         throw parameter_error("initial", "the initial tilt must be strictly between 0 and 90 degrees");
       }
@@ -152,20 +192,53 @@ class Engine {
     record(t0);
     const std::size_t n = grid_.size();
     double t_end = t0;
+    // The rest scan (the planar engine's, rocking.cpp): with no vertical component the uplift test at rest is one
+    // comparison per sample, |a_h|^2 <= (g R / h)^2: |a_h|^2 is convex on each linear piece, so both ends below the
+    // level keep the whole interval below it. The first sample is left to the general path (a jump from still ground).
+    const bool fast_rest = gravity_.empty();
+    const double level2 = std::pow(opt_.g_m_s2 * g_.R / g_.h, 2);
+    const std::span<const double> ax = grid_.accel_m_s2(0);
+    const std::span<const double> ay = grid_.has(1) ? grid_.accel_m_s2(1) : std::span<const double>{};
     for (std::size_t i = 0; i + 1 < n && !done(); ++i) {
+      if (fast_rest && mode_ == Rigid3DMode::rest && i > 0) {
+        if (ay.empty()) {
+          while (i + 1 < n && ax[i + 1] * ax[i + 1] <= level2) {
+            ++i;
+            if (opt_.record_history) record(grid_.time_s(i));
+          }
+        } else {
+          while (i + 1 < n && ax[i + 1] * ax[i + 1] + ay[i + 1] * ay[i + 1] <= level2) {
+            ++i;
+            if (opt_.record_history) record(grid_.time_s(i));
+          }
+        }
+        t_end = grid_.time_s(i);
+        if (i + 1 >= n) break;
+      }
       const double ta = grid_.time_s(i), tb = grid_.time_s(i + 1);
       if (tb > ta) advance(ta, tb, accel(i), accel(i + 1));
       t_end = tb;
       if (!done() && opt_.record_history) record(tb);
     }
-    // run-out on still ground
+    // Run-out on still ground: the forcing is constant, so steps need not end on a grid (one interval up to the cap,
+    // the error control sets the steps; the planar engine's run-out). History rows continue the record's spacing from
+    // each step's dense output (finish_step), so a run with a history takes the same steps as one without.
     const double dt = grid_.dt_s() > 0.0 ? grid_.dt_s() : 0.01;
     const std::array<double, 3> still{0.0, 0.0, opt_.g_m_s2};
+    const double t_stop = t_end + opt_.max_run_out_s;
     double t = t_end;
-    while (!done() && mode_ != Rigid3DMode::rest && t - t_end < opt_.max_run_out_s) {
-      advance(t, t + dt, still, still);
-      t += dt;
-      if (!done() && opt_.record_history) record(t);
+    if (!done() && mode_ != Rigid3DMode::rest && t_stop > t_end) {
+      rows_dt_ = dt;
+      rows_t0_ = t_end;
+      rows_next_ = 1;
+      fsal_valid_ = false;  // the ground jumps to still
+      advance(t_end, t_stop, still, still);
+      rows_dt_ = 0.0;
+      t = done() || mode_ != Rigid3DMode::rest ? t_stop : s.modes.back().time_s;
+      if (!done() && mode_ != Rigid3DMode::rest && opt_.record_history &&
+          (res_.history.time_s.empty() || res_.history.time_s.back() < t)) {
+        record(t);
+      }
     }
     s.end_time_s = done() ? *s.overturn_time_s : t;
     s.end_mode = mode_;
@@ -182,16 +255,17 @@ class Engine {
   }
   [[nodiscard]] bool done() const { return mode_ == Rigid3DMode::fallen; }
 
-  void record(double t) {
+  void record(double t) { record_state(t, y_); }
+  void record_state(double t, const State& y) {
     if (!opt_.record_history) return;
     Rigid3DHistory& h = res_.history;
-    const Quaternion q = normalised(quat(y_));
-    const V a = rotate(q, kZ);
+    const Quaternion q = normalised(quat(y));
+    const V a = axis(q);
     h.time_s.push_back(t);
-    h.position_m.push_back(sub(position(y_), mul(a, g_.h)));
+    h.position_m.push_back(sub(position(y), mul(a, g_.h)));
     h.orientation.push_back(q);
-    h.angular_velocity_rad_s.push_back(omega(y_));
-    h.energy_j_per_kg.push_back(mode_ == Rigid3DMode::rest ? 0.0 : energy(g_, y_, u_, opt_.g_m_s2));
+    h.angular_velocity_rad_s.push_back(omega(y));
+    h.energy_j_per_kg.push_back(mode_ == Rigid3DMode::rest ? 0.0 : energy(g_, y, u_, opt_.g_m_s2));
     h.mode.push_back(mode_);
   }
 
@@ -199,14 +273,18 @@ class Engine {
   [[nodiscard]] State rhs(const State& y, const std::array<double, 3>& acc) const {
     const Quaternion q = quat(y);
     const V w = omega(y);
-    const Contact c = contact_of(g_, q, u_);
+    const Contact c = contact_of(g_, q, u_, &u_);  // u_: the step's starting contact (continued past the upright)
     const V ad = cross(w, c.a);
     // flat (first stage after an uplift or an impact): the contact is the rim point fixed in the body, u' = w x u
     // (the rocking limit; a sideways rate there would make u' infinite)
     V ud = cross(w, c.u);
     if (c.sin_tilt > kDirectionFloor) {
-      const V zpd = z_perp_rate(c.a, ad);
-      ud = mul(sub(zpd, mul(c.u, dot(c.u, zpd))), -1.0 / c.sin_tilt);
+      // d = a_z e - sin(theta) z with e = a_h / sin(theta): d' = a_z' e + a_z e' - (e . a_h') z, e' the part of a_h'
+      // normal to e over sin(theta), ((e x a_h') . z / sin(theta)) (z x e) (exactly 0 in one vertical plane)
+      const double ex = c.ex, ey = c.ey;
+      const double turn = (ex * ad[1] - ey * ad[0]) * c.inv_sin_tilt;
+      ud = {ad[2] * ex - c.a[2] * turn * ey, ad[2] * ey + c.a[2] * turn * ex, -(ex * ad[0] + ey * ad[1])};
+      if (c.reflected) ud = mul(ud, -1.0);  // u = -d past the upright
     }
     const V rd = sub(mul(ad, g_.h), mul(ud, g_.R));
     const V f{-acc[0], -acc[1], -acc[2]};
@@ -243,7 +321,7 @@ class Engine {
         // the uplift instant: the root (the planar engine's too), nudged up by a few ulps to where the threshold is
         // met when rounding left it just below
         double tr = tu;
-        for (int k = 0; k < 16 && !(f(tr) > 0.0) && tr < tb; ++k) tr = std::nextafter(tr, tb);
+        for (int n = 0; n < 16 && !(f(tr) > 0.0) && tr < tb; ++n) tr = std::nextafter(tr, tb);
         if (!std::isfinite(tr)) tr = tb;
         t = tr;
         uplift(t, acc_at(t));
@@ -274,7 +352,7 @@ class Engine {
     if (h_try_ <= 0.0) h_try_ = std::min(tb - t, 1e-3);
     double h = std::min(h_try_, tb - t);
     if (tb - t - h < 1e-12 * std::max(1.0, std::abs(tb))) h = tb - t;
-    const double p = std::sqrt(opt_.g_m_s2 / std::hypot(g_.R, g_.h));
+    const double p = p_;
     const std::array<double, kN> scale{g_.alpha, g_.alpha, g_.alpha, g_.alpha, p * g_.alpha, p * g_.alpha,
                                        p * g_.alpha, g_.alpha * g_.h, g_.alpha * g_.h, g_.alpha * g_.h};
     while (true) {
@@ -333,7 +411,14 @@ class Engine {
         }
         return y;
       };
-      const double t_new = finish_step(t, h, y1, dense, acc_at);
+      const std::optional<double> t_next = finish_step(t, h, y1, dense, acc_at);
+      if (!t_next) {
+        // a lift from flat shorter than the step's sixteenth: the step again, 16 times shorter (bounded: finish_step
+        // accepts "no lift" once h is below kMinLiftStep / p)
+        h /= 16.0;
+        continue;
+      }
+      const double t_new = *t_next;
       // k7 is f(y1, t + h) of this step's input piece: valid as the next k1 only when the step ran to its end with no
       // event and the state was not changed
       if (t_new == t + h && mode_ == Rigid3DMode::rocking && y_ == y1) {
@@ -347,42 +432,83 @@ class Engine {
   }
 
   template <class Dense, class Acc>
-  double finish_step(double t, double h, const State& y1, const Dense& dense, const Acc& acc_at) {
+  std::optional<double> finish_step(double t, double h, const State& y1, const Dense& dense, const Acc& acc_at) {
     Rigid3DSummary& s = res_.summary;
     const V u0 = contact_of(g_, quat(y_), u_).u;
-    // event functions of the step fraction
-    const auto axis_z = [&](double sf) { return rotate(quat(dense(sf)), kZ)[2]; };
+    // event functions of the step fraction, on the axis and the rate (the step's ends computed once)
+    struct AxisRate {
+      V a, w;
+    };
+    const AxisRate end0{axis(quat(y_)), omega(y_)}, end1{axis(quat(y1)), omega(y1)};
+    const auto at = [&](double sf) {
+      if (sf == 0.0) return end0;
+      if (sf == 1.0) return end1;
+      const State y = dense(sf);
+      return AxisRate{axis(quat(y)), omega(y)};
+    };
+    const auto axis_z = [&](double sf) { return at(sf).a[2]; };
     const auto tilt_rate = [&](double sf) {  // d(a_z)/dt = (w x a)_z: > 0 while the tilt decreases
-      const State y = dense(sf);
-      return cross(omega(y), rotate(quat(y), kZ))[2];
+      const AxisRate x = at(sf);
+      return cross(x.w, x.a)[2];
     };
-    const auto landing = [&](double sf) {
-      const State y = dense(sf);
-      const V a = rotate(quat(y), kZ);
-      return -dot(z_perp(a), u0);
+    const auto landing = [&](double sf) { return -dot(z_perp(at(sf).a), u0); };
+    const auto landing_rate = [&](double sf) {  // d/dt of landing: -z_perp' . u0, a' = w x a
+      const AxisRate x = at(sf);
+      return -dot(z_perp_rate(x.a, cross(x.w, x.a)), u0);
     };
-    const double cos_alpha = std::cos(g_.alpha);
     // the earliest terminal event
     double s_end = 1.0;
     int kind = 0;  // 0 none, 1 landing, 2 fall
-    const double l0 = landing(0.0);
-    double l1 = landing(1.0);
+    double s_lo = 0.0;  // a step fraction where the body is on its rim (landing > 0), from which to look for events
+    double l_lo = landing(0.0);
+    const double l1_end = landing(1.0);
+    double l1 = l1_end;
+    if (!(l_lo > 0.0)) {
+      // The step starts flat (the first step after an uplift or an impact): the continued equations may rise and come
+      // back within the step (a lift and return, in chatter). The first of 16 equally spaced points where the body is
+      // up starts the search; none: the step is taken again 16 times shorter (the lift may be shorter than h / 16),
+      // and once h p is below kMinLiftStep the lift did not happen (the ground's pull was too short or round-off sent
+      // the body below): the body stays at rest at the step's end (the planar engine's rule), time advancing by h > 0.
+      for (int j = 1; j <= 16 && !(l_lo > 0.0); ++j) {
+        s_lo = j / 16.0;
+        l_lo = j == 16 ? l1_end : landing(s_lo);
+      }
+      if (!(l_lo > 0.0)) {
+        (void)y1;
+        if (h * p_ > kMinLiftStep) return std::nullopt;  // look again with a shorter step
+        return no_lift(t + h);
+      }
+    }
     double s_land = 1.0;
-    if (l0 > 0.0 && l1 > 0.0) {
-      // a tilt minimum inside the step (a_z' from > 0 to < 0) may dip below the landing level and come back: look
-      // there (the planar engine's turning points)
-      const double q0 = tilt_rate(0.0), q1 = tilt_rate(1.0);
-      if (q0 > 0.0 && q1 < 0.0) {
-        const double s_min = detail::find_root(tilt_rate, 0.0, 1.0, q0, q1);
+    if (l_lo > 0.0 && l1 > 0.0) {
+      // The step ends on the rim. On the continued equations it may still have passed the upright and come back (a
+      // landing and a rise on the far rim point inside one step): then the landing function has a minimum inside at
+      // or below zero, where its rate goes from < 0 to > 0 (the planar engine's turning points of theta); the landing
+      // is the root before it.
+      const double sr0 = landing_rate(s_lo), sr1 = landing_rate(1.0);
+      if (sr0 < 0.0 && sr1 > 0.0) {
+        const double s_min = detail::find_root(landing_rate, s_lo, 1.0, sr0, sr1);
         if (std::isfinite(s_min)) {
-          l1 = landing(s_min);
-          s_land = s_min;
-          // a whirl: the contact runs round the rim as the tilt passes a small minimum with a sideways rate (w . u
-          // != 0; exactly 0 in planar rocking) instead of landing: the base is within 2 R sin(theta) of the ground
-          // all round; below kFlatTilt alpha it counts as landed flat at the minimum (docs/method.md)
+          const double lm = landing(s_min);
+          if (!(lm > 0.0)) {
+            l1 = lm;
+            s_land = s_min;
+          }
+        }
+      }
+    }
+    if (l_lo > 0.0 && l1 > 0.0) {
+      // a tilt minimum inside the step (a_z' from > 0 to < 0) with a sideways rate: a whirl, the contact runs round
+      // the rim as the tilt passes a small minimum (w . u != 0; exactly 0 in planar rocking) instead of landing: the
+      // base is within 2 R sin(theta) of the ground all round; below kFlatTilt alpha it counts as landed flat at the
+      // minimum (docs/method.md)
+      const double q0 = tilt_rate(s_lo), q1 = tilt_rate(1.0);
+      if (q0 > 0.0 && q1 < 0.0) {
+        const double s_min = detail::find_root(tilt_rate, s_lo, 1.0, q0, q1);
+        if (std::isfinite(s_min)) {
           const State ym = dense(s_min);
           const Contact cm = contact_of(g_, quat(ym), u0);
-          if (l1 > 0.0 && std::asin(std::min(cm.sin_tilt, 1.0)) < kFlatTilt * g_.alpha &&
+          if (std::asin(std::min(cm.sin_tilt, 1.0)) < kFlatTilt * g_.alpha &&
               std::abs(dot(omega(ym), cm.u)) > kWhirlRate_rad_s) {
             s_end = s_min;
             kind = 1;
@@ -390,8 +516,9 @@ class Engine {
         }
       }
     }
-    if (kind == 0 && l0 > 0.0 && l1 <= 0.0) {
-      s_end = detail::find_root(landing, 0.0, s_land, l0, l1);
+    if (kind == 0 && l_lo > 0.0 && l1 <= 0.0) {
+      // the landing: s_lo < root <= s_land (l_lo > 0), so time advances
+      s_end = detail::find_root(landing, s_lo, s_land, l_lo, l1);
       kind = 1;
     }
     const double z0 = axis_z(0.0), z1 = axis_z(s_end);
@@ -402,23 +529,36 @@ class Engine {
     // tilt maxima (a_z' from < 0 to > 0) and the static limit, before the terminal event
     const double r0 = tilt_rate(0.0), r1 = tilt_rate(s_end);
     const auto note_tilt = [&](double sf) {
-      const State y = dense(sf);
-      const V a = rotate(quat(y), kZ);
-      const double tilt = std::atan2(std::hypot(a[0], a[1]), a[2]);
+      const V a = at(sf).a;
+      // the tilt stays below 90 degrees (the fall ends the run there), where sin^2 orders it: most steps stop here
+      const double sin2 = a[0] * a[0] + a[1] * a[1];
+      if (sin2 < max_tilt_sin2_) return;
+      const double tilt = std::atan2(std::sqrt(sin2), a[2]);
       if (tilt > s.max_tilt_rad) {
         s.max_tilt_rad = tilt;
         s.max_tilt_azimuth_deg = azimuth_deg(a);
         s.max_tilt_time_s = t + sf * h;
+        max_tilt_sin2_ = std::pow(std::sin(tilt), 2) * (1.0 - 1e-12);
       }
     };
     if (r0 < 0.0 && r1 > 0.0) note_tilt(detail::find_root(tilt_rate, 0.0, s_end, r0, r1));
     note_tilt(s_end);
     if (!s.exceeded_limit_time_s) {
+      const double cos_alpha = std::cos(g_.alpha);
       const auto lim = [&](double sf) { return axis_z(sf) - cos_alpha; };
       const double e0 = lim(0.0), e1 = lim(s_end);
       if (e0 > 0.0 && e1 <= 0.0) s.exceeded_limit_time_s = t + h * detail::find_root(lim, 0.0, s_end, e0, e1);
     }
     const double t_new = kind == 0 ? t + h : t + h * s_end;
+    if (rows_dt_ > 0.0 && opt_.record_history) {
+      // run-out history rows on the record's spacing inside this step (an event's own row is at t_new)
+      for (;;) {
+        const double tg = rows_t0_ + static_cast<double>(rows_next_) * rows_dt_;
+        if (tg > t_new || (kind != 0 && tg == t_new)) break;
+        ++rows_next_;
+        if (tg > t) record_state(tg, tg == t + h ? y1 : dense((tg - t) / h));
+      }
+    }
     y_ = kind == 0 ? y1 : dense(s_end);
     u_ = contact_of(g_, quat(y_), u_).u;
     if (!std::isfinite(t_new)) throw StepLimitError("rock3d_cylinder: an event could not be located");
@@ -426,13 +566,28 @@ class Engine {
       mode_ = Rigid3DMode::fallen;
       s.overturned = true;
       s.overturn_time_s = t_new;
-      s.overturn_azimuth_deg = azimuth_deg(rotate(quat(y_), kZ));
+      s.overturn_azimuth_deg = azimuth_deg(axis(quat(y_)));
       s.modes.push_back({t_new, mode_, -1, -1});
       record(t_new);
     } else if (kind == 1) {
       impact(t_new, u0);
     }
     (void)acc_at;
+    return t_new;
+  }
+
+  /// A step from flat whose continued motion never rose above the ground (finish_step): the body stays flat and at
+  /// rest; time moves on to t_new (> the step's start), so this cannot loop.
+  double no_lift(double t_new) {
+    Rigid3DSummary& s = res_.summary;
+    // the kinetic energy the body had at the step's flat start (after an impact) is lost with it (flat: no potential)
+    s.energy_lost_j_per_kg += std::max(0.0, energy(g_, y_, u_, opt_.g_m_s2));
+    y_[4] = y_[5] = y_[6] = 0.0;  // y_ is still the step's flat start
+    mode_ = Rigid3DMode::rest;
+    s.modes.push_back({t_new, mode_, -1, -1});
+    h_try_ = 0.0;
+    fsal_valid_ = false;
+    record(t_new);
     return t_new;
   }
 
@@ -505,6 +660,11 @@ class Engine {
   std::vector<double> gravity_;
   Geo g_;
   Rigid3DOptions opt_;
+  double max_tilt_sin2_ = 0.0;  // below sin^2 of the summary's max tilt (less a margin for rounding)
+  double rows_dt_ = 0.0;  // > 0 in the run-out: history rows at rows_t0_ + k rows_dt_ (k >= rows_next_)
+  double rows_t0_ = 0.0;
+  std::size_t rows_next_ = 0;
+  double p_;  // the frequency parameter sqrt(g / |r|) of the upright body (the error norm's rate scale), rad/s
   Rigid3DResult res_;
   State y_{};
   V u_{1.0, 0.0, 0.0};

@@ -14,6 +14,8 @@
 #include "support/meshes.hpp"
 #include "support/shared_data.hpp"
 #include "support/toml_fixtures.hpp"
+#include "topple/io/read.hpp"
+#include "topple/solvers/rigid3d_disc.hpp"
 
 namespace topple {
 namespace {
@@ -287,6 +289,45 @@ TEST_F(CliOriented, Model3dBearingTurnsWithTheComponents) {
   EXPECT_EQ(a.at("body").at("bearing_deg"), 0.0);
 }
 
+// --model 3d --shape cylinder: the rim engine (rigid3d_disc.hpp). Under one component it is the planar cylinder
+// (verdict, impacts, max tilt over the limit to 1e-6) and exactly the library call on the same record and options;
+// under two components turned together by 30 degrees (the cylinder is axisymmetric: no bearing) the same motion with
+// the tilt's azimuth turned by 30.
+TEST_F(CliOriented, Model3dCylinderIsTheRimEngine) {
+  const std::string cylinder = " --shape cylinder --diameter 20cm --height 80cm --json";
+  const auto planar = test::run_json("rock " + h1 + cylinder);
+  const auto solid = test::run_json("rock " + h1 + " --model 3d" + cylinder);
+  EXPECT_EQ(solid.at("model"), "3d");
+  EXPECT_EQ(solid.at("body").at("shape"), "cylinder");
+  EXPECT_EQ(solid.at("body").at("diameter_m"), 0.2);
+  EXPECT_GT(planar.at("impacts").get<int>(), 0) << "the station must rock the cylinder";
+  EXPECT_EQ(solid.at("impacts"), planar.at("impacts"));
+  EXPECT_EQ(solid.at("overturned"), planar.at("overturned"));
+  EXPECT_NEAR(solid.at("max_tilt_over_limit").get<double>(), planar.at("max_rotation_over_alpha").get<double>(),
+              1e-6);
+  // the library call (rel_tol, g, run-out: the CLI's defaults are the engine's)
+  const GroundMotion m = io::read_motion(dir.path() / "m.h1.csv");
+  const Rigid3DSummary lib = rock3d_cylinder(m, nullptr, nullptr, CylinderBody3D::solid(0.2, 0.8)).summary;
+  EXPECT_EQ(solid.at("impacts").get<std::size_t>(), lib.impacts);
+  EXPECT_EQ(solid.at("uplifts").get<std::size_t>(), lib.uplifts);
+  EXPECT_EQ(solid.at("max_tilt_rad").get<double>(), lib.max_tilt_rad);
+  EXPECT_EQ(solid.at("energy_lost_j_per_kg").get<double>(), lib.energy_lost_j_per_kg);
+  EXPECT_EQ(solid.at("end_time_s").get<double>(), lib.end_time_s);
+
+  const auto a = test::run_json("rock " + h1 + " --h2 " + h2 + " --vertical " + v + " --azimuths 0,90 --model 3d" +
+                                cylinder);
+  const auto b = test::run_json("rock " + h1 + " --h2 " + h2 + " --vertical " + v + " --azimuths 30,120 --model 3d" +
+                                cylinder);
+  EXPECT_GT(a.at("impacts").get<int>(), 0);
+  EXPECT_EQ(a.at("impacts"), b.at("impacts"));
+  EXPECT_EQ(a.at("overturned"), b.at("overturned"));
+  EXPECT_NEAR(a.at("max_tilt_rad").get<double>(), b.at("max_tilt_rad").get<double>(), 1e-7);
+  EXPECT_NEAR(std::remainder(b.at("max_tilt_azimuth_deg").get<double>() - a.at("max_tilt_azimuth_deg").get<double>() -
+                                 30.0, 360.0),
+              0.0, 1e-4);
+  EXPECT_TRUE(a.at("body").at("bearing_deg").is_null());
+}
+
 TEST_F(CliOriented, Model3dRefusesWhatItDoesNotModel) {
   const auto expect_error = [](const std::string& args, const std::string& option) {
     const auto r = test::run_cli(args);
@@ -296,7 +337,9 @@ TEST_F(CliOriented, Model3dRefusesWhatItDoesNotModel) {
   expect_error("rock " + h1 + " --model 3d --shape block --width 20cm --height 80cm", "--depth");
   expect_error("rock " + h1 + " --h2 " + h2 + " --azimuths 0,90 --model 3d --shape block --width 20cm --depth 30cm "
                "--height 80cm", "--bearing-deg");
-  expect_error("rock " + h1 + " --model 3d --shape cylinder --diameter 20cm --height 80cm --depth 20cm", "--shape");
+  expect_error("rock " + h1 + " --model 3d --shape cylinder --diameter 20cm --height 80cm --depth 20cm", "--depth");
+  expect_error("rock " + h1 + " --h2 " + h2 + " --azimuths 0,90 --model 3d --shape cylinder --diameter 20cm "
+               "--height 80cm --bearing-deg 10", "--bearing-deg");
   expect_error("rock " + h1 + " --model 3d --shape block --width 20cm --depth 30cm --height 80cm --mu 0.5", "--mu");
   expect_error("rock " + h1 + " --model 3d --shape block --width 20cm --depth 0cm --height 80cm", "--depth");
   // Bodies without a base in three dimensions: a body file (a section in one plane), a general body.

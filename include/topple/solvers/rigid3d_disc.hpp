@@ -28,8 +28,16 @@
 // Transitions. rest -> rim: the static threshold |a_h| > (g + a_z) R / h (the resultant of gravity and the ground's
 // inertial force leaves the base), located in each sample interval by TOMS 748 on |a_h|^2 - ((g + a_z) R / h)^2; the
 // contact is the rim point toward -a_h (the body tips away from the ground's acceleration, as the planar engine's
-// "a_h < 0 drives theta > 0"). rim -> landing: the base lands flat when s(t) = -z_perp(t) . u0 (sin(theta) cos(theta)
-// cos(the contact's turn since the step's start u0)) falls to 0; in planar rocking this is theta = 0 exactly. A body
+// "a_h < 0 drives theta > 0"); with no vertical component the test at rest is one comparison per sample (|a_h|^2 is
+// convex on a linear piece). rim -> landing: the base lands flat when s(t) = -z_perp(t) . u0 (sin(theta) cos(theta)
+// cos(the contact's turn since the step's start u0)) falls to 0; in planar rocking this is theta = 0 exactly. Within a
+// step the rim equations are continued past the upright on the step's side (u = -d where the lowest point d has
+// passed to the far side, d . u0 < 0: in one plane the rim point fixed in the body that was the contact, as the planar
+// engine continues its pivot's equation past theta = 0), so a step may end past the landing, which is the first root
+// of s on the dense output: where s ends below 0, or at a minimum of s inside the step (ds/dt from < 0 to > 0) at or
+// below 0. A step from flat (after an uplift or an impact; s = 0 there) looks for the body up (s > 0) at 16 points of
+// the step; none: the step is taken again 16 times shorter, and below 1e-7 / p (p = sqrt(g / sqrt(R^2 + h^2))) the
+// lift did not happen and the body is at rest at the step's end (time advances). A body
 // with a sideways rate (w . u != 0) near the upright does not land on the ideal rim: its contact runs round the rim
 // (u' ~ rate / theta) and it rolls over onto the other side (the rolling disk); a tilt minimum below 1e-3 alpha with a
 // sideways rate counts as a flat landing at the minimum (a stated approximation: the whole base is then within
@@ -46,8 +54,10 @@
 // body at rest. RestitutionMode::given keeps that direction and sets the kinetic-energy ratio to e^2.
 //
 // Method: Dormand-Prince 5(4) with its dense output (numerics/dp5.hpp) on the state (q, w, x_c), steps ending on
-// every sample; events are roots of the dense output by TOMS 748 (numerics/event_root.hpp) inside each step where
-// their function changes sign at the step's ends (a double crossing inside one step is missed: stated). Not
+// every sample (after the record, on still ground, steps of any length; history rows from the dense output on the
+// record's spacing); events are roots of the dense output by TOMS 748 (numerics/event_root.hpp) inside each step where
+// their function changes sign at the step's ends or at one turning point (a double crossing inside one step between
+// two turning points is missed: stated). Not
 // modelled: slip on the rim, flight (the vertical contact force is not checked), rolling resistance.
 #include <optional>
 
