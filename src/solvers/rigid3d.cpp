@@ -296,11 +296,12 @@ class Engine {
         edge_(EdgeRhs{this}, opt.abs_tol, opt.rel_tol, 0.1 * grid.dt_s()),
         pivot_(PivotRhs{this}, opt.abs_tol, opt.rel_tol, 0.1 * grid.dt_s()) {
     eps_z_ = 1e-12 * geo_.size;
-    // Simultaneous contact (touch_down): vertices within 1e-5 of the size of the ground when another touches down
-    // join the impact (a base within about 1e-5 rad of flat lands flat, one impact over all its contacts). Which of
-    // them lands first, microseconds apart, hangs on micrometres (roughness, the contact's compliance, the input's
-    // last digits) that a rigid model does not have; one impact does not (docs/method.md, "Impact law").
-    tie_z_ = 1e-5 * geo_.size;
+    // Simultaneous contact (touch_down): vertices within simultaneous_contact (1e-5) of the size of the ground when
+    // another touches down join the impact (a base within about 1e-5 rad of flat lands flat, one impact over all its
+    // contacts). Which of them lands first, microseconds apart, hangs on micrometres (roughness, the contact's
+    // compliance, the input's last digits) that a rigid model does not have; one impact does not (docs/method.md,
+    // "Impact law"). The floor 1e-12 (eps_z_) keeps a vertex on the ground to round-off in the set at 0.
+    tie_z_ = std::max(opt.simultaneous_contact, 1e-12) * geo_.size;
     pivot_.set_scale({geo_.alpha_ref, geo_.alpha_ref, geo_.alpha_ref, geo_.alpha_ref, geo_.p_ref * geo_.alpha_ref,
                       geo_.p_ref * geo_.alpha_ref, geo_.p_ref * geo_.alpha_ref});
     P_w_ = geo_.v[0];
@@ -1281,6 +1282,9 @@ void check_options(const Rigid3DOptions& o) {
   }
   if (!std::isfinite(o.rest_energy_fraction) || !(o.rest_energy_fraction > 0.0) || o.rest_energy_fraction >= 1.0) {
     throw parameter_error("rest_energy_fraction", fmt::format("must be in (0, 1), got {}", o.rest_energy_fraction));
+  }
+  if (!std::isfinite(o.simultaneous_contact) || o.simultaneous_contact < 0.0 || o.simultaneous_contact > 0.01) {
+    throw parameter_error("simultaneous_contact", fmt::format("must be in [0, 0.01], got {}", o.simultaneous_contact));
   }
   if (!std::isfinite(o.max_run_out_s) || o.max_run_out_s < 0.0) {
     throw parameter_error("max_run_out_s", fmt::format("must be >= 0 and finite, got {}", o.max_run_out_s));
