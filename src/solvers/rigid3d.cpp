@@ -948,7 +948,9 @@ class Engine {
     int edge = -1;    // rocking about this edge, or
     int vertex = -1;  // pivoting on this vertex (both -1 with ok: the flat base at rest)
     Vec3 omega{};     // after (ground frame)
-    double violation = std::numeric_limits<double>::infinity();  // of the complementarity conditions, relative
+    double violation = std::numeric_limits<double>::infinity();  // of the complementarity conditions, relative:
+    double pull = 0.0;         // of the impulses' sign (a contact that would have to pull), and
+    double penetration = 0.0;  // of the other contacts' velocities (one that would move into the ground)
   };
 
   /// The impact law. Just before the impact the body turns with omega (ground frame) about its old contact, the body
@@ -991,11 +993,14 @@ class Engine {
       }
       return worst;
     };
-    Outcome best;
-    const auto consider = [&](const Outcome& o) {
-      // a strictly smaller violation wins; within the tolerance the earlier (more contacts) is kept
-      constexpr double kTol = 1e-9;
+    constexpr double kTol = 1e-9;
+    Outcome best;            // the first set that meets every condition (flat, edges, vertices), else the least violating
+    Outcome best_no_entry;   // the least pulling among the sets that move no contact into the ground
+    best_no_entry.pull = std::numeric_limits<double>::infinity();
+    const auto consider = [&](Outcome o) {
+      o.violation = std::max(o.pull, o.penetration);
       if (!(best.violation <= kTol && o.violation <= kTol) && o.violation < best.violation) best = o;
+      if (o.penetration <= kTol && o.pull < best_no_entry.pull) best_no_entry = o;
     };
     if (flat) {
       Outcome o;
@@ -1013,7 +1018,7 @@ class Engine {
           viol = std::max(viol, -inside / geo_.size);
         }
       }
-      o.violation = viol;
+      o.pull = viol;
       consider(o);
     }
     for (const EdgeGeom& e : geo_.edges) {
@@ -1031,7 +1036,8 @@ class Engine {
       const double Lz = cross(o.omega, cw - F)[2] - vcz_before;
       const double Lbz = dot(cross(ew, kUp), dH) / e.length;
       const double Laz = Lz - Lbz;
-      o.violation = std::max({-Laz / v_scale, -Lbz / v_scale, lift_violation(o.omega, F, e.a, e.b)});
+      o.pull = std::max(-Laz / v_scale, -Lbz / v_scale);
+      o.penetration = lift_violation(o.omega, F, e.a, e.b);
       consider(o);
     }
     for (const int p : active) {
@@ -1043,9 +1049,14 @@ class Engine {
       o.vertex = p;
       o.omega = mul(R, mul(vg.Jp_inv, mul_t(R, H)));
       const double Lz = cross(o.omega, cw - F)[2] - vcz_before;
-      o.violation = std::max(-Lz / v_scale, lift_violation(o.omega, F, p, -1));
+      o.pull = -Lz / v_scale;
+      o.penetration = lift_violation(o.omega, F, p, -1);
       consider(o);
     }
+    // No set meets them all: the conditions have no solution with contacts that stick (the impact would make a
+    // contact slide, which the model excludes). The set that moves no contact into the ground and pulls least is
+    // taken (at a corner landing next to the pivot: the edge, an end pulling a little), else the least violating.
+    if (best.violation > kTol && best_no_entry.ok) best = best_no_entry;
     if (best.ok && opt_.restitution == RestitutionMode::given && (best.edge >= 0 || best.vertex >= 0)) {
       // the direction of the motion after the impact as above, the ratio of kinetic energies e^2
       const double before = kinetic(R, omega, pb_old);
@@ -1116,11 +1127,14 @@ class Engine {
     }
   }
 
+  /// An impact whose conditions no set of sticking contacts meets (impact()): counted, and named once in the warnings.
   void note_violation(const Outcome& o) {
-    if (o.violation > 1e-6) {
-      out_.summary.warnings.push_back(fmt::format("t = {} s: no contact set meets the impact law's conditions (the "
-                                                  "least violating one, by {:.2e} of |w| size, was taken)", t_,
-                                                  o.violation));
+    if (!(o.violation > 1e-6)) return;
+    if (++unmet_impacts_ == 1) {
+      out_.summary.warnings.push_back(fmt::format("t = {} s: an impact that would make a contact slide (no set of "
+                                                  "sticking contacts meets the impact law, by {:.2e} of |w| size); "
+                                                  "the set that moves no contact into the ground and pulls least was "
+                                                  "taken, here and at any later such impact", t_, o.violation));
     }
   }
 
@@ -1254,6 +1268,7 @@ class Engine {
   bool done_ = false;
   bool from_rest_ = false;
   double eps_z_ = 0.0, tie_z_ = 0.0;
+  std::size_t unmet_impacts_ = 0;  // impacts whose law no set of sticking contacts meets (note_violation)
   // rocking
   int edge_index_ = -1;
   Vec3 e_w_{}, n_w_{};
