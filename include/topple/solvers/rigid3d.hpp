@@ -43,9 +43,11 @@
 // solved by enumerating its sets: a vertex p alone (the impulse at p only, so the angular momentum about p is
 // conserved, J_p' w+ = J w- + r' x v_c-: Housner 1963 generalised), an edge (impulses at both ends, the momentum about
 // its axis conserved, J_e' theta'+ = e' . (J w- + r' x v_c-)), or the flat base at rest; the solution is the set
-// whose vertical impulses are >= 0 and whose other contacts move up or stay. A corner landing next to the pivot thus
-// pivots on the new corner, the old one lifting (Housner's impulse at the new contact only), unless the motion would
-// push the old one down; a block landing on its opposite edge is Housner's e = 1 - 2 a^2 / D (the planar law).
+// whose vertical impulses are >= 0 and whose other contacts move up or stay (none: the impact would make a contact
+// slide, which the model excludes; the set that moves no contact into the ground and pulls least is taken, and a
+// warning says so once). A corner landing next to the pivot thus pivots on the new corner, the old one lifting
+// (Housner's impulse at the new contact only), unless the motion would push the old one down; a block landing on its
+// opposite edge is Housner's e = 1 - 2 a^2 / D (the planar law).
 // Pivot swaps between the two ends of an edge whose kinetic energy off the edge's axis falls below 1e-8 of the whole
 // take their (Zeno) limit, rocking about the edge. Vertices within simultaneous_contact times the body's size of the
 // ground at a touch-down join it (a base that close to flat lands as one impact). A given e (RestitutionMode::given)
