@@ -995,9 +995,10 @@ inline constexpr const char* rock3d =
     R"(Rocking and pivoting of a box in three dimensions, as `topple rock --model 3d --json` (no sliding).
 
 The box rocks about an edge of its base or pivots on a corner under one or two horizontal components and the
-vertical (topple/solvers/rigid3d.hpp, docs/method.md "Rocking in three dimensions"): impacts by Housner's law
-generalised (angular momentum about the new contact conserved) or a given e; no sliding, no flight (a warning names
-the first instant the vertical contact force vanished).
+vertical (topple/solvers/rigid3d.hpp, docs/method.md "Rocking in three dimensions"): impacts perfectly plastic and
+sticking, the complementarity solution over the corners down (docs/method.md "Impact law": Housner's law where the
+impulse acts at the new contact only), or a given e; no sliding, no flight (a warning names the first instant the
+vertical contact force vanished).
 
 Parameters
 ----------

@@ -45,6 +45,11 @@ nlohmann::ordered_json rigid3d_solver_json(const Rigid3DOptions& options) {
   return {{"model", "3d"},
           {"restitution", restitution_mode_name(options.restitution)},
           {"e", options.restitution == RestitutionMode::given ? nlohmann::ordered_json(options.e) : nullptr},
+          // the impact law (rigid3d.hpp): the complementarity solution over the contacts down at the instant, those
+          // within simultaneous_contact of the body's size joining one impact (before issue 29's fix: one contact
+          // chosen, an edge kept down after a corner landing next to the pivot)
+          {"impact_law", "complementarity"},
+          {"simultaneous_contact", options.simultaneous_contact},
           {"rel_tol", options.rel_tol},
           {"g_m_s2", options.g_m_s2}};
 }

@@ -296,7 +296,12 @@ class Engine {
         edge_(EdgeRhs{this}, opt.abs_tol, opt.rel_tol, 0.1 * grid.dt_s()),
         pivot_(PivotRhs{this}, opt.abs_tol, opt.rel_tol, 0.1 * grid.dt_s()) {
     eps_z_ = 1e-12 * geo_.size;
-    tie_z_ = 1e-9 * geo_.size;
+    // Simultaneous contact (touch_down): vertices within simultaneous_contact (1e-5) of the size of the ground when
+    // another touches down join the impact (a base within about 1e-5 rad of flat lands flat, one impact over all its
+    // contacts). Which of them lands first, microseconds apart, hangs on micrometres (roughness, the contact's
+    // compliance, the input's last digits) that a rigid model does not have; one impact does not (docs/method.md,
+    // "Impact law"). The floor 1e-12 (eps_z_) keeps a vertex on the ground to round-off in the set at 0.
+    tie_z_ = std::max(opt.simultaneous_contact, 1e-12) * geo_.size;
     pivot_.set_scale({geo_.alpha_ref, geo_.alpha_ref, geo_.alpha_ref, geo_.alpha_ref, geo_.p_ref * geo_.alpha_ref,
                       geo_.p_ref * geo_.alpha_ref, geo_.p_ref * geo_.alpha_ref});
     P_w_ = geo_.v[0];
@@ -857,8 +862,10 @@ class Engine {
           // highest point, then the touch-down after it
           const double tp = locate([&](double t) { return vertex_rate(pivot_.dense(t), j); }, ta, tb2,
                                    vertex_rate(xa, j), vertex_rate(xb, j));
+          // above eps_z_, as the first case: a vertex that starts at rest on the ground and only grazes it (a rate
+          // of round-off size at a lift-off) has not left it
           const double zp = height(tp);
-          if (zp > 0.0) tt = locate(height, tp, tb2, zp, zb);
+          if (zp > eps_z_) tt = locate(height, tp, tb2, zp, zb);
         }
         if (tt < t_touch) {
           t_touch = tt;
@@ -919,14 +926,15 @@ class Engine {
                                                 "the planar engine keeps it", t));
   }
 
-  // ---- impacts (header: Housner's law about the new contact) ----
-  /// Angular momentum per unit mass about the ground point P' of the motion omega (ground frame) about the fixed
-  /// point P (both on the ground): J_w omega + r' x (omega x (c - P)), r' = c - P'.
-  [[nodiscard]] Vec3 momentum_about(const M3& R, const Vec3& omega, const Vec3& c_w, const Vec3& Pn) const {
-    // positions relative to the old contact P (the origin here): v_c = omega x c_w
+  // ---- impacts (header; docs/method.md, "Impact law": a perfectly plastic, sticking impact solved as a small linear
+  // complementarity problem over the contacts active at the instant) ----
+  /// Angular momentum per unit mass about the ground point Q of the rotation omega (ground frame) about the fixed
+  /// point F (positions relative to the old contact, the origin here): J_w omega + (c - Q) x (omega x (c - F)).
+  [[nodiscard]] Vec3 momentum_about(const M3& R, const Vec3& omega, const Vec3& c_w, const Vec3& F,
+                                    const Vec3& Q) const {
     const Vec3 wb = mul_t(R, omega);
     const Vec3 Jw = mul(R, mul(geo_.J, wb));
-    return Jw + cross(c_w - Pn, cross(omega, c_w));
+    return Jw + cross(c_w - Q, cross(omega, c_w - F));
   }
 
   /// Kinetic energy per unit mass of the rotation omega (ground frame) about the fixed body point pb.
@@ -938,38 +946,150 @@ class Engine {
   struct Outcome {
     bool ok = false;
     int edge = -1;    // rocking about this edge, or
-    int vertex = -1;  // pivoting on this vertex
+    int vertex = -1;  // pivoting on this vertex (both -1 with ok: the flat base at rest)
     Vec3 omega{};     // after (ground frame)
+    double violation = std::numeric_limits<double>::infinity();  // of the complementarity conditions, relative:
+    double pull = 0.0;         // of the impulses' sign (a contact that would have to pull), and
+    double penetration = 0.0;  // of the other contacts' velocities (one that would move into the ground)
   };
 
-  /// Housner's law onto the edge (theta'+ along its axis) or the vertex, from the motion omega about the body point
-  /// pb_old; R the orientation at impact.
-  [[nodiscard]] Outcome housner(const M3& R, const Vec3& omega, const Vec3& pb_old, int edge, int vertex) const {
-    const Vec3 cw = mul(R, geo_.c - pb_old);  // c relative to the old contact (origin of this computation)
-    Outcome out;
-    out.edge = edge;
-    out.vertex = vertex;
-    if (edge >= 0) {
-      const EdgeGeom& e = geo_.edges[static_cast<std::size_t>(edge)];
-      const Vec3 Pn = mul(R, geo_.v[static_cast<std::size_t>(e.a)] - pb_old);
-      const Vec3 H = momentum_about(R, omega, cw, Pn);
-      const Vec3 ew = mul(R, e.e_b);
-      out.omega = (dot(ew, H) / e.J) * ew;
-    } else {
-      const VertexGeom& vg = geo_.vertices[static_cast<std::size_t>(vertex)];
-      const Vec3 Pn = mul(R, vg.p - pb_old);
-      const Vec3 H = momentum_about(R, omega, cw, Pn);
-      out.omega = mul(R, mul(vg.Jp_inv, mul_t(R, H)));
+  /// The impact law. Just before the impact the body turns with omega (ground frame) about its old contact, the body
+  /// point pb_old (an end of the rocking edge, or the pivot), which is the origin of this computation; R is the
+  /// orientation at the impact; `active` the vertices on the ground at that instant (the old contact among them);
+  /// `flat`: the whole base is down. The impact is perfectly plastic and sticking (Newton's e = 0, friction large
+  /// enough that no contact slides: the model's assumption): the contacts that carry an impulse end at rest, the
+  /// others carry none. Which ones carry it is a linear complementarity problem (Moreau 1988; Glocker & Pfeiffer
+  /// 1995; Pfeiffer & Glocker 1996, ch. 7), solved here by enumerating its complementary sets, the body's modes:
+  ///   vertex p alone  the impulse at p only, so the angular momentum about p is conserved (Housner 1963 in 3-D):
+  ///                   J_p w+ = H_p-; its vertical impulse v_cz+ - v_cz- >= 0;
+  ///   edge (a, b)     impulses at both ends, the momentum about the edge's axis conserved: J_e theta'+ = e . H_a-;
+  ///                   each end's vertical impulse >= 0 (the end b's from the moment balance about a:
+  ///                   Lambda_bz = n . (H_a+ - H_a-) / L, n = e x z; the end a's the rest of Lambda_z);
+  ///   flat            (the whole base down) w+ = 0: the impulse -v_c- and the moment -H_O- need a vertical
+  ///                   resultant >= 0 acting at a point of the base (the centre of the impulses' pressure);
+  /// and in every case each active vertex that carries no impulse has a normal velocity >= 0 after it (it lifts or
+  /// stays). The set that meets every condition is the solution; this is the old contact lifting at once when the
+  /// new one alone can carry the impulse (a corner landing next to a pivot pivots on the new corner), and Housner's
+  /// law (a block onto its opposite edge) where that is the solution. Tolerances: each condition relative to
+  /// |w-| size (velocities and vertical impulses per unit mass) or to size (the centre of pressure); when no set
+  /// meets them all (round-off at a tie) the least violating one is taken. Ties within the tolerance prefer the set
+  /// with more contacts (flat, then an edge, then a vertex): its motion is the one a smaller violation would pick.
+  [[nodiscard]] Outcome impact(const M3& R, const Vec3& omega, const Vec3& pb_old, const std::vector<int>& active,
+                               bool flat) const {
+    const Vec3 cw = mul(R, geo_.c - pb_old);
+    const Vec3 zero{0.0, 0.0, 0.0};
+    const double w_norm = norm(omega);
+    const double v_scale = std::max(w_norm * geo_.size, std::numeric_limits<double>::min());
+    const double vcz_before = cross(omega, cw)[2];
+    std::vector<Vec3> P(geo_.n);  // the vertices relative to the old contact
+    for (std::size_t k = 0; k < geo_.n; ++k) P[k] = mul(R, geo_.v[k] - pb_old);
+    const auto is_active = [&](int k) { return std::find(active.begin(), active.end(), k) != active.end(); };
+    // the largest violation of "every active vertex not in S moves up or stays" (relative), for w+ about F
+    const auto lift_violation = [&](const Vec3& w, const Vec3& F, int s1, int s2) {
+      double worst = -std::numeric_limits<double>::infinity();
+      for (const int k : active) {
+        if (k == s1 || k == s2) continue;
+        worst = std::max(worst, -cross(w, P[static_cast<std::size_t>(k)] - F)[2] / v_scale);
+      }
+      return worst;
+    };
+    constexpr double kTol = 1e-9;
+    Outcome best;            // the first set that meets every condition (flat, edges, vertices), else the least violating
+    Outcome best_no_entry;   // the least pulling among the sets that move no contact into the ground
+    best_no_entry.pull = std::numeric_limits<double>::infinity();
+    const auto consider = [&](Outcome o) {
+      o.violation = std::max(o.pull, o.penetration);
+      if (!(best.violation <= kTol && o.violation <= kTol) && o.violation < best.violation) best = o;
+      if (o.penetration <= kTol && o.pull < best_no_entry.pull) best_no_entry = o;
+    };
+    if (flat) {
+      Outcome o;
+      o.ok = true;
+      const Vec3 H = momentum_about(R, omega, cw, zero, zero);
+      const double Lz = -vcz_before;  // the vertical impulse that stops c
+      double viol = -Lz / v_scale;
+      if (Lz > 0.0) {
+        const Vec3 X{H[1] / Lz, -H[0] / Lz, 0.0};  // where the resultant of the vertical impulses acts
+        for (std::size_t k = 0; k < geo_.n; ++k) {
+          const Vec3& A = P[k];
+          const Vec3& B = P[(k + 1) % geo_.n];
+          const Vec3 d = B - A;
+          const double inside = (d[0] * (X[1] - A[1]) - d[1] * (X[0] - A[0])) / norm(d);  // > 0 inside (CCW)
+          viol = std::max(viol, -inside / geo_.size);
+        }
+      }
+      o.pull = viol;
+      consider(o);
     }
-    out.ok = true;
-    if (opt_.restitution == RestitutionMode::given) {  // Housner's direction, kinetic energy ratio e^2
+    for (const EdgeGeom& e : geo_.edges) {
+      if (!is_active(e.a) || !is_active(e.b)) continue;
+      const Vec3 F = P[static_cast<std::size_t>(e.a)];
+      Vec3 ew = mul(R, e.e_b);
+      ew[2] = 0.0;
+      ew = (1.0 / norm(ew)) * ew;
+      const Vec3 H = momentum_about(R, omega, cw, zero, F);
+      Outcome o;
+      o.ok = true;
+      o.edge = e.a;
+      o.omega = (dot(ew, H) / e.J) * ew;
+      const Vec3 dH = momentum_about(R, o.omega, cw, F, F) - H;
+      const double Lz = cross(o.omega, cw - F)[2] - vcz_before;
+      const double Lbz = dot(cross(ew, kUp), dH) / e.length;
+      const double Laz = Lz - Lbz;
+      o.pull = std::max(-Laz / v_scale, -Lbz / v_scale);
+      o.penetration = lift_violation(o.omega, F, e.a, e.b);
+      consider(o);
+    }
+    for (const int p : active) {
+      const VertexGeom& vg = geo_.vertices[static_cast<std::size_t>(p)];
+      const Vec3 F = P[static_cast<std::size_t>(p)];
+      const Vec3 H = momentum_about(R, omega, cw, zero, F);
+      Outcome o;
+      o.ok = true;
+      o.vertex = p;
+      o.omega = mul(R, mul(vg.Jp_inv, mul_t(R, H)));
+      const double Lz = cross(o.omega, cw - F)[2] - vcz_before;
+      o.pull = -Lz / v_scale;
+      o.penetration = lift_violation(o.omega, F, p, -1);
+      consider(o);
+    }
+    // No set meets them all: the conditions have no solution with contacts that stick (the impact would make a
+    // contact slide, which the model excludes). The set that moves no contact into the ground and pulls least is
+    // taken (at a corner landing next to the pivot: the edge, an end pulling a little), else the least violating.
+    if (best.violation > kTol && best_no_entry.ok) best = best_no_entry;
+    if (best.ok && opt_.restitution == RestitutionMode::given && (best.edge >= 0 || best.vertex >= 0)) {
+      // the direction of the motion after the impact as above, the ratio of kinetic energies e^2
       const double before = kinetic(R, omega, pb_old);
-      const Vec3 pb_new = edge >= 0 ? geo_.v[static_cast<std::size_t>(geo_.edges[static_cast<std::size_t>(edge)].a)]
-                                    : geo_.v[static_cast<std::size_t>(vertex)];
-      const double after = kinetic(R, out.omega, pb_new);
-      if (after > 0.0) out.omega = (opt_.e * std::sqrt(before / after)) * out.omega;
+      const Vec3 pb_new = best.edge >= 0 ? geo_.v[static_cast<std::size_t>(best.edge)]
+                                         : geo_.v[static_cast<std::size_t>(best.vertex)];
+      const double after = kinetic(R, best.omega, pb_new);
+      if (after > 0.0) best.omega = (opt_.e * std::sqrt(before / after)) * best.omega;
     }
-    return out;
+    return best;
+  }
+
+  /// Starts the motion the impact law chose (the orientation R, the old contact still current) and counts the
+  /// energy lost; false (nothing counted): the body comes to rest, the flat set or the rest rule.
+  bool after_impact(const Outcome& o, const M3& R, double theta, double ke_before) {
+    if (o.edge < 0 && o.vertex < 0) return false;
+    const Vec3 pb_new = geo_.v[static_cast<std::size_t>(o.edge >= 0 ? o.edge : o.vertex)];
+    const double ke_after = kinetic(R, o.omega, pb_new);
+    if (theta == 0.0) {  // a flat landing: the rest rule (as the planar engine's)
+      const double lift = o.edge >= 0 ? geo_.edges[static_cast<std::size_t>(o.edge)].lift_energy
+                                      : geo_.vertices[static_cast<std::size_t>(o.vertex)].lift_energy;
+      if (ke_after < opt_.rest_energy_fraction * lift) return false;
+    }
+    out_.summary.energy_lost_j_per_kg += ke_before - ke_after;
+    if (o.edge >= 0) {
+      const EdgeGeom& e = geo_.edges[static_cast<std::size_t>(o.edge)];
+      Vec3 ew = mul(R, e.e_b);
+      ew[2] = 0.0;
+      start_rocking(o.edge, theta, dot(o.omega, (1.0 / norm(ew)) * ew));
+    } else {
+      start_pivot(o.vertex, orientation(), mul_t(R, o.omega));
+    }
+    row();
+    return true;
   }
 
   /// The base lands flat (theta = 0 while rocking, or every vertex down while pivoting).
@@ -986,87 +1106,36 @@ class Engine {
     const Quaternion flat = sa > 0.0 ? normalized(qmul(axis_angle((1.0 / sa) * axis, std::atan2(sa, zb[2])), q)) : q;
     const M3 R = rotation(flat);
     const double ke_before = kinetic(R, omega, pb_old);
-    // Vertical velocities of the vertices about the old contact.
-    std::vector<double> vz(geo_.n);
-    double vmin = 0.0;
-    for (std::size_t j = 0; j < geo_.n; ++j) {
-      vz[j] = cross(omega, mul(R, geo_.v[j] - pb_old))[2];
-      vmin = std::min(vmin, vz[j]);
-    }
     // pose: flat, contact unchanged (orientation() and contact_b() below read q_flat_ and rest_contact_)
     rest_contact_ = pb_old;
     mode_ = Rigid3DMode::rest;
     q_flat_ = flat;
-    const auto settle = [&](double lost) {
-      go_rest(lost);
+    double vmin = 0.0;
+    for (std::size_t j = 0; j < geo_.n; ++j) vmin = std::min(vmin, cross(omega, mul(R, geo_.v[j] - pb_old))[2]);
+    if (!(vmin < 0.0)) {  // nothing comes down: no impulse, the body stays
+      go_rest(ke_before);
       row();
-    };
-    if (!(vmin < 0.0)) {
-      settle(ke_before);
       return;
     }
-    const double tol = 1e-9 * std::abs(vmin);
-    const int n = static_cast<int>(geo_.n);
-    int edge = -1;
-    int vertex = -1;
-    for (int j = 0; j < n; ++j) {
-      const int k = (j + 1) % n;
-      if (vz[static_cast<std::size_t>(j)] <= vmin + tol && vz[static_cast<std::size_t>(k)] <= vmin + tol) edge = j;
+    std::vector<int> all(geo_.n);
+    for (std::size_t j = 0; j < geo_.n; ++j) all[j] = static_cast<int>(j);
+    const Outcome o = impact(R, omega, pb_old, all, true);
+    note_violation(o);
+    if (!after_impact(o, R, 0.0, ke_before)) {
+      go_rest(ke_before);
+      row();
     }
-    if (edge < 0) {
-      vertex = static_cast<int>(std::min_element(vz.begin(), vz.end()) - vz.begin());
+  }
+
+  /// An impact whose conditions no set of sticking contacts meets (impact()): counted, and named once in the warnings.
+  void note_violation(const Outcome& o) {
+    if (!(o.violation > 1e-6)) return;
+    if (++unmet_impacts_ == 1) {
+      out_.summary.warnings.push_back(fmt::format("t = {} s: an impact that would make a contact slide (no set of "
+                                                  "sticking contacts meets the impact law, by {:.2e} of |w| size); "
+                                                  "the set that moves no contact into the ground and pulls least was "
+                                                  "taken, here and at any later such impact", t_, o.violation));
     }
-    Outcome o = housner(R, omega, pb_old, edge, vertex);
-    // A pivot whose motion after the impact pushes an adjacent vertex down lands on that edge instead.
-    if (vertex >= 0) {
-      const Vec3 pn = geo_.v[static_cast<std::size_t>(vertex)];
-      double worst = 0.0;
-      int k_worst = -1;
-      for (int j = 0; j < n; ++j) {
-        const double v = cross(o.omega, mul(R, geo_.v[static_cast<std::size_t>(j)] - pn))[2];
-        if (v < worst) {
-          worst = v;
-          k_worst = j;
-        }
-      }
-      if (k_worst >= 0 && worst < -1e-9 * norm(o.omega) * geo_.size) {
-        if (k_worst == (vertex + 1) % n) {
-          o = housner(R, omega, pb_old, vertex, -1);
-        } else if (vertex == (k_worst + 1) % n) {
-          o = housner(R, omega, pb_old, k_worst, -1);
-        } else {
-          o.ok = false;
-        }
-      }
-    }
-    double theta_dot = 0.0;
-    if (o.ok && o.edge >= 0) {
-      const EdgeGeom& e = geo_.edges[static_cast<std::size_t>(o.edge)];
-      theta_dot = dot(o.omega, mul(R, e.e_b));
-      if (!(theta_dot > 0.0)) o.ok = false;  // it would not lift the base
-    }
-    if (!o.ok) {
-      out_.summary.warnings.push_back(fmt::format("t = {} s: no contact after a flat landing lifts the body; it was "
-                                                  "put at rest", t_));
-      settle(ke_before);
-      return;
-    }
-    const Vec3 pb_new = o.edge >= 0 ? geo_.v[static_cast<std::size_t>(geo_.edges[static_cast<std::size_t>(o.edge)].a)]
-                                    : geo_.v[static_cast<std::size_t>(o.vertex)];
-    const double ke_after = kinetic(R, o.omega, pb_new);
-    const double lift = o.edge >= 0 ? geo_.edges[static_cast<std::size_t>(o.edge)].lift_energy
-                                    : geo_.vertices[static_cast<std::size_t>(o.vertex)].lift_energy;
-    out_.summary.energy_lost_j_per_kg += ke_before - ke_after;
-    if (ke_after < opt_.rest_energy_fraction * lift) {  // the rest rule
-      settle(ke_after);
-      return;
-    }
-    if (o.edge >= 0) {
-      start_rocking(o.edge, 0.0, theta_dot);
-    } else {
-      start_pivot(o.vertex, flat, mul_t(R, o.omega));
-    }
-    row();
   }
 
   /// While pivoting, vertex j touched the ground.
@@ -1075,31 +1144,49 @@ class Engine {
     const M3 R = rotation(q);
     const Vec3 pb_old = contact_b();
     const int n = static_cast<int>(geo_.n);
-    // Flat landing: another vertex is down too and coming down (three vertices of a convex base on the ground: the
-    // whole base is). One that is down but rising (a base almost flat turning about the edge of the pivot and j)
-    // leaves an edge impact onto that edge.
-    bool flat = false;
-    const Vec3 w = omega_world();
+    // The vertices on the ground at this instant: the pivot, j, and any other within tie_z_ (a base almost flat).
+    // Three of a convex base down is the whole base: a flat landing.
+    std::vector<int> active{vertex_, j};
     for (int k = 0; k < n; ++k) {
       if (k == vertex_ || k == j) continue;
-      const Vec3 rk = mul(R, geo_.v[static_cast<std::size_t>(k)] - pb_old);
-      if (rk[2] <= tie_z_ && cross(w, rk)[2] < 0.0) flat = true;
+      if (dot(R[2], geo_.v[static_cast<std::size_t>(k)] - pb_old) <= tie_z_) active.push_back(k);
     }
-    if (flat || (j != (vertex_ + 1) % n && (j + 1) % n != vertex_)) {
+    if (active.size() > 2 || (j != (vertex_ + 1) % n && (j + 1) % n != vertex_)) {
       land_flat();
       return;
     }
-    ++out_.summary.impacts;
-    const int edge = j == (vertex_ + 1) % n ? vertex_ : j;
     const Vec3 omega = omega_world();
     const double ke_before = kinetic(R, omega, pb_old);
-    const Outcome o = housner(R, omega, pb_old, edge, -1);
-    const EdgeGeom& e = geo_.edges[static_cast<std::size_t>(edge)];
-    const double theta_dot = dot(o.omega, mul(R, e.e_b));
-    out_.summary.energy_lost_j_per_kg += ke_before - 0.5 * e.J * theta_dot * theta_dot;
     const double theta = std::atan2(std::hypot(R[0][2], R[1][2]), R[2][2]);
-    start_rocking(edge, theta, theta_dot);
-    row();
+    ++out_.summary.impacts;
+    Outcome o = impact(R, omega, pb_old, active, false);
+    note_violation(o);
+    if (o.vertex == j) {
+      // The old pivot lifts. While it is the edge's other end, what separates the pivot on j from rocking about the
+      // edge is the kinetic energy of the motion's part off the edge's axis (the edge's part, e . J_j w / J_e, is
+      // that of the edge impact: the momentum along the axis is the same about both ends). Each swap of the pivot
+      // between the two ends removes part of it (a Zeno sequence of ever shorter pivots, whose limit is the rocking
+      // about the edge); below kZenoEnergyFraction of the kinetic energy the engine takes that limit.
+      const int edge = j == (vertex_ + 1) % n ? vertex_ : j;
+      const EdgeGeom& e = geo_.edges[static_cast<std::size_t>(edge)];
+      Vec3 ew = mul(R, e.e_b);
+      ew[2] = 0.0;
+      ew = (1.0 / norm(ew)) * ew;
+      const Vec3 F = mul(R, geo_.v[static_cast<std::size_t>(j)] - pb_old);
+      const double theta_dot = dot(ew, momentum_about(R, o.omega, mul(R, geo_.c - pb_old), F, F)) / e.J;
+      const double ke_vertex = kinetic(R, o.omega, geo_.v[static_cast<std::size_t>(j)]);
+      if (ke_vertex - 0.5 * e.J * theta_dot * theta_dot <= kZenoEnergyFraction * ke_vertex) {
+        o.vertex = -1;
+        o.edge = edge;
+        o.omega = theta_dot * ew;
+      }
+    }
+    if (!after_impact(o, R, theta, ke_before)) {
+      // no motion chosen (cannot happen with a tilted base: the flat set is not a candidate); keep the edge
+      out_.summary.energy_lost_j_per_kg += ke_before;
+      start_rocking(j == (vertex_ + 1) % n ? vertex_ : j, theta, 0.0);
+      row();
+    }
   }
 
   void fall(double t, const auto& x) {
@@ -1164,6 +1251,7 @@ class Engine {
 
   static constexpr int kMaxEventsPerInterval = 100'000;
   static constexpr int kPivotSubdivisions = 4;
+  static constexpr double kZenoEnergyFraction = 1e-8;  // touch_down: a pivot swap's wobble taken as the edge's limit
   const InputGrid& grid_;
   std::span<const double> ax_, ay_;
   std::vector<double> gravity_;
@@ -1180,6 +1268,7 @@ class Engine {
   bool done_ = false;
   bool from_rest_ = false;
   double eps_z_ = 0.0, tie_z_ = 0.0;
+  std::size_t unmet_impacts_ = 0;  // impacts whose law no set of sticking contacts meets (note_violation)
   // rocking
   int edge_index_ = -1;
   Vec3 e_w_{}, n_w_{};
@@ -1208,6 +1297,9 @@ void check_options(const Rigid3DOptions& o) {
   }
   if (!std::isfinite(o.rest_energy_fraction) || !(o.rest_energy_fraction > 0.0) || o.rest_energy_fraction >= 1.0) {
     throw parameter_error("rest_energy_fraction", fmt::format("must be in (0, 1), got {}", o.rest_energy_fraction));
+  }
+  if (!std::isfinite(o.simultaneous_contact) || o.simultaneous_contact < 0.0 || o.simultaneous_contact > 0.01) {
+    throw parameter_error("simultaneous_contact", fmt::format("must be in [0, 0.01], got {}", o.simultaneous_contact));
   }
   if (!std::isfinite(o.max_run_out_s) || o.max_run_out_s < 0.0) {
     throw parameter_error("max_run_out_s", fmt::format("must be >= 0 and finite, got {}", o.max_run_out_s));

@@ -532,6 +532,75 @@ TEST(Rigid3D, RandomBodiesEndWithFiniteResults) {
   EXPECT_GT(pivoting, 150);
 }
 
+// The impact law after a corner pivot (docs/method.md, "Impact law"), against the Siconos reference's numbers at
+// fine steps (tests/verification/test_siconos_reference.cpp (4), (4b), (5); docs/verification.md), so that the
+// check runs where Siconos is not installed. A box 0.2 x 0.12 x 0.8 m.
+// Diagonal pulse (one sine cycle, 0.45 g, 0.3 s, along the base diagonal): the box pivots on +x+y and comes back
+// down nearly flat, -x+y touching 17 us before -x-y. One impact over all corners (simultaneous_contact = 1e-5, the
+// default): max tilt 0.077023 rad toward -121.15 deg; the reference at h = 125, 40, 10 us: 0.077019, 0.077023,
+// 0.077029 rad, toward -121.15 deg. Successive impacts (simultaneous_contact = 0): the reference at h = 5, 2, 1 us
+// (below the gap): 0.083086, 0.083094, 0.083090 rad toward -127.66 deg. Allowed 1e-4 of the tilt (the spread of the
+// reference's values) and 0.05 deg.
+// Rotating load (0.5 g turning at 2.5 Hz in a 0.8 s window): a corner lands next to the pivot and the box pivots on
+// it, the old pivot lifting; max tilt against the reference at h = 62.5 us, 0.125431 rad toward 157.26 deg: allowed
+// 0.2 % and 0.1 deg (the reference's values at 0.5, 0.25, 0.125 ms: 0.125345, 0.125313, 0.125300 rad, 157.56 to
+// 157.25 deg: not monotone, within 0.1 %).
+TEST(Rigid3D, ImpactsAfterACornerPivotAgreeWithTheReferenceAtFineSteps) {
+  const double a = 0.1, b = 0.06, c = 0.4, dt = 0.001;
+  const RigidBody3D box = RigidBody3D::box(2 * a, 2 * b, 2 * c);
+  const double phi = std::atan2(b, a);
+  std::vector<double> dx, dy;
+  for (int i = 0; i <= 300; ++i) {
+    const double v = 0.45 * kG * std::sin(2.0 * M_PI * i * dt / 0.3);
+    dx.push_back(-v * std::cos(phi));
+    dy.push_back(-v * std::sin(phi));
+  }
+  const GroundMotion mx = GroundMotion::uniform(dx, dt);
+  const GroundMotion my = GroundMotion::uniform(dy, dt);
+  const auto azimuth_error = [](double az, double expected) { return std::remainder(az - expected, 360.0); };
+  for (const double simultaneous : {1e-5, 0.0}) {
+    Rigid3DOptions o;
+    o.g_m_s2 = kG;
+    o.max_run_out_s = 1.7;
+    o.simultaneous_contact = simultaneous;
+    const Rigid3DSummary s = rock3d(mx, &my, nullptr, box, o).summary;
+    SCOPED_TRACE(testing::Message() << "simultaneous_contact " << simultaneous);
+    std::printf("diagonal pulse, simultaneous_contact %g: max tilt %.6f rad toward %.2f deg at %.4f s, %zu impacts\n",
+                simultaneous, s.max_tilt_rad, s.max_tilt_azimuth_deg, s.max_tilt_time_s, s.impacts);
+    EXPECT_FALSE(s.overturned);
+    const double tilt = simultaneous > 0.0 ? 0.077023 : 0.08309;
+    EXPECT_NEAR(s.max_tilt_rad, tilt, 1e-4 * tilt);
+    EXPECT_NEAR(azimuth_error(s.max_tilt_azimuth_deg, simultaneous > 0.0 ? -121.15 : -127.66), 0.0, 0.05);
+    // the landing: one flat impact and a pivot on -x-y (vertex 0), or -x+y (vertex 3) first
+    ASSERT_GE(s.modes.size(), 3U);
+    EXPECT_EQ(s.modes[2].mode, Rigid3DMode::pivot);
+    EXPECT_EQ(s.modes[2].vertex_a, simultaneous > 0.0 ? 0 : 3);
+  }
+  std::vector<double> rx, ry;
+  for (int i = 0; i <= 800; ++i) {
+    const double t = i * dt;
+    const double w = std::pow(std::sin(M_PI * t / 0.8), 2);
+    rx.push_back(0.5 * kG * w * std::cos(2.0 * M_PI * t / 0.4));
+    ry.push_back(0.5 * kG * w * std::sin(2.0 * M_PI * t / 0.4));
+  }
+  Rigid3DOptions o;
+  o.g_m_s2 = kG;
+  o.max_run_out_s = 1.7;
+  const GroundMotion rmx = GroundMotion::uniform(rx, dt);
+  const GroundMotion rmy = GroundMotion::uniform(ry, dt);
+  const Rigid3DSummary s = rock3d(rmx, &rmy, nullptr, box, o).summary;
+  std::printf("rotating load: max tilt %.6f rad toward %.2f deg at %.4f s, %zu impacts\n", s.max_tilt_rad,
+              s.max_tilt_azimuth_deg, s.max_tilt_time_s, s.impacts);
+  EXPECT_NEAR(s.max_tilt_rad, 0.125431, 2e-3 * 0.125431);
+  EXPECT_NEAR(azimuth_error(s.max_tilt_azimuth_deg, 157.26), 0.0, 0.1);
+  // the corner landing next to the pivot (+x+y, vertex 2) at 0.309 s: a pivot on it (-x+y, vertex 3), not an edge
+  ASSERT_GE(s.modes.size(), 4U);
+  EXPECT_EQ(s.modes[2].mode, Rigid3DMode::pivot);
+  EXPECT_EQ(s.modes[2].vertex_a, 2);
+  EXPECT_EQ(s.modes[3].mode, Rigid3DMode::pivot);
+  EXPECT_EQ(s.modes[3].vertex_a, 3);
+}
+
 TEST(Rigid3D, BadBodiesAndOptionsAreInputErrors) {
   EXPECT_THROW((void)RigidBody3D::box(0.0, 1.0, 1.0), InputError);
   const std::array<Vec3, 3> J{{{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}}};
@@ -544,6 +613,11 @@ TEST(Rigid3D, BadBodiesAndOptionsAreInputErrors) {
   Rigid3DOptions o;
   o.restitution = RestitutionMode::given;
   o.e = 1.5;
+  EXPECT_THROW((void)rock3d(m, nullptr, nullptr, box, o), InputError);
+  o = {};
+  o.simultaneous_contact = 0.02;  // over 0.01 of the size: not a tie of contacts any more
+  EXPECT_THROW((void)rock3d(m, nullptr, nullptr, box, o), InputError);
+  o.simultaneous_contact = -1e-6;
   EXPECT_THROW((void)rock3d(m, nullptr, nullptr, box, o), InputError);
   const GroundMotion down = sine(-12.0, 0.5, 1.0, 0.01);
   EXPECT_THROW((void)rock3d(m, nullptr, &down, box, {}), InputError);

@@ -282,15 +282,14 @@ TEST(SiconosReference, ALoadAlongTheDiagonalPivotsOnACornerAtTheCornersStaticThr
 // (4)-(6) topple's three-dimensional engine (rigid3d.hpp) against the reference, where the planar engine cannot
 // follow: a corner pivot, a load that turns in plan, an oblique overturn.
 //
-// Impact laws. rock3d's impact (Housner generalised: the impulse at the new contact only, angular momentum about it
-// conserved, the old contact lifting off) is, as argued above (1a) for an edge, the Moreau-Jean answer with Newton's
-// e = 0 at the corners when that motion has every other corner rising and friction holds the new contact: the
-// impulse acts at the new contact, which ends at rest, and no other corner moves into the ground, so the post-impact
-// velocity satisfies the impact law's complementarity at all four corners. When the box lands flat after a corner
-// pivot, rock3d picks one new contact (the vertex or edge hit fastest) and Moreau-Jean distributes the impulse over
-// all corners touching at the end of the step; the two agree only where rock3d's choice is the complementarity
-// solution, which the tests below measure rather than assume: each compares the phase before rock3d's first impact
-// with a bound from the step, and states where the whole motion (max tilt after impacts) also agrees.
+// Impact laws. rock3d's impact (rigid3d.hpp, docs/method.md "Impact law") is perfectly plastic and sticking, a small
+// linear complementarity problem over the corners down at the instant: the contacts that carry an impulse end at
+// rest, every other corner down moves up or stays, every vertical impulse is >= 0. Moreau-Jean with Newton's e = 0
+// at the corners and mu = 10 solves the same conditions, at the end of each step, over the corners whose gap closes
+// within it. So the two agree after impacts too, with two provisos the tests below measure: impacts closer in time
+// than the reference's step are one impact to it (rock3d joins the corners within simultaneous_contact = 1e-5 of the
+// size of the ground, a base within ~1e-5 rad of flat: one impact as well), and the reference's positions drift
+// O(h) at each impact, so its whole-run numbers converge to rock3d's as h halves.
 
 /// The body's z axis in the ground frame, R(q) e_z, of a unit quaternion (w, x, y, z).
 std::array<double, 3> z_axis_of(const std::array<double, 4>& q) {
@@ -457,15 +456,102 @@ void print_comparison(const char* name, double h, const Comparison3D& r) {
               s.max_tilt_rad, s.max_tilt_azimuth_deg, s.max_tilt_time_s, modes_text(s).c_str());
 }
 
+/// A change of the corner the box pivots on: the corner (the reference's order: +x+y, -x+y, -x-y, +x-y) and when the
+/// impact that made it happened.
+struct PivotChange {
+  int corner = -1;
+  double time_s = 0.0;
+};
+
+/// The reference's pivots over the whole run: a corner is down below kDown_m (its positions drift O(h^2) per step
+/// into the ground; a lifted corner is far above); each time exactly one corner is down and it is not the last
+/// pivot, a change, timed when that corner came down (the impact's step).
+std::vector<PivotChange> reference_pivots(const SiconosResult& r) {
+  constexpr double kDown_m = 1e-5;
+  std::vector<PivotChange> out;
+  std::array<double, 4> down_since{0.0, 0.0, 0.0, 0.0};
+  std::array<bool, 4> was_down{true, true, true, true};
+  const auto& h = r.history;
+  for (std::size_t i = 0; i < h.time_s.size(); ++i) {
+    int count = 0, only = -1;
+    for (int k = 0; k < 4; ++k) {
+      const bool down = h.corner_z_m[i][static_cast<std::size_t>(k)] < kDown_m;
+      if (down && !was_down[static_cast<std::size_t>(k)]) down_since[static_cast<std::size_t>(k)] = h.time_s[i];
+      was_down[static_cast<std::size_t>(k)] = down;
+      if (down) {
+        ++count;
+        only = k;
+      }
+    }
+    if (count == 1 && (out.empty() || out.back().corner != only))
+      out.push_back({only, down_since[static_cast<std::size_t>(only)]});
+  }
+  return out;
+}
+
+/// rock3d's pivots: each pivot mode on a corner other than the last (box vertices (-a,-b), (a,-b), (a,b), (-a,b) are
+/// the reference's corners 2, 3, 0, 1), timed at the mode's start (the impact, or the uplift for the first).
+std::vector<PivotChange> rigid3d_pivots(const topple::Rigid3DSummary& s) {
+  constexpr std::array<int, 4> kCorner{2, 3, 0, 1};
+  std::vector<PivotChange> out;
+  for (const auto& m : s.modes)
+    if (m.mode == topple::Rigid3DMode::pivot && (out.empty() || out.back().corner != kCorner[static_cast<std::size_t>(m.vertex_a)]))
+      out.push_back({kCorner[static_cast<std::size_t>(m.vertex_a)], m.time_s});
+  return out;
+}
+
+/// The whole run compared: the max tilt, its direction and time, and the pivots (the corners in order, and the
+/// largest difference of the change times before until_s, the first change, an uplift, excluded).
+struct WholeRun {
+  double tilt_error = 0.0, azimuth_error_deg = 0.0, time_error_s = 0.0, change_time_error_s = 0.0;
+  bool same_pivots = false;
+  std::size_t changes = 0;
+};
+WholeRun compare_whole_run(const Comparison3D& r, double until_s) {
+  WholeRun w;
+  const auto& s = r.engine.summary;
+  w.tilt_error = std::abs(r.reference.max_tilt_rad - s.max_tilt_rad);
+  const double az_ref = azimuth_deg_of(r.reference.max_tilt_axis[0], r.reference.max_tilt_axis[1]);
+  w.azimuth_error_deg = std::abs(std::remainder(az_ref - s.max_tilt_azimuth_deg, 360.0));
+  w.time_error_s = std::abs(r.reference.max_tilt_time_s - s.max_tilt_time_s);
+  const auto ref = reference_pivots(r.reference);
+  const auto eng = rigid3d_pivots(s);
+  w.same_pivots = ref.size() == eng.size();
+  for (std::size_t i = 0; w.same_pivots && i < ref.size(); ++i) {
+    w.same_pivots = ref[i].corner == eng[i].corner;
+    if (i > 0 && eng[i].time_s < until_s)
+      w.change_time_error_s = std::max(w.change_time_error_s, std::abs(ref[i].time_s - eng[i].time_s));
+  }
+  w.changes = eng.empty() ? 0 : eng.size() - 1;
+  std::string text;
+  for (std::size_t i = 0; i < std::max(ref.size(), eng.size()); ++i) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, " [%d %.4f | %d %.4f]", i < ref.size() ? ref[i].corner : -1,
+                  i < ref.size() ? ref[i].time_s : -1.0, i < eng.size() ? eng[i].corner : -1,
+                  i < eng.size() ? eng[i].time_s : -1.0);
+    text += buf;
+  }
+  std::printf("  whole run: max tilt error %.2e rad (%.3f %%), direction %.3f deg, time %.4f s; pivots (reference | "
+              "rock3d)%s; %s, change times to %.1f s within %.4f s\n", w.tilt_error,
+              100 * w.tilt_error / s.max_tilt_rad, w.azimuth_error_deg, w.time_error_s, text.c_str(),
+              w.same_pivots ? "the same corners" : "DIFFERENT corners", until_s, w.change_time_error_s);
+  return w;
+}
+
 // (4) A box 0.2 x 0.12 x 0.8 m (as in (3)) under one sine cycle along its base diagonal, 0.45 g (1.5 x the corner's
 // threshold d / c = 0.29), 0.3 s: it pivots on the +x+y corner (rock3d: pivot from 0.0337 s; the other three corners
 // leave the ground in both at 0.063-0.081 s, within 1 ms) and rocks back.
-// Compared up to rock3d's first impact (0.2118 s), not after: the box comes back down nearly flat, the adjacent
-// corner -x+y touching a moment before the base lands whole. rock3d treats the two as successive impacts (Housner
-// about the edge, then about the opposite edge: it then rocks toward 180 deg, max tilt 0.048 rad); Moreau-Jean
-// resolves all four corners at once in one step (a simultaneous impact: it pivots on the far corner toward -121 deg,
-// 0.077 rad). Sequential and simultaneous multi-contact impacts are different laws, neither a step error (the
-// reference's numbers do not move as h halves: 0.0765 and 0.0769 rad), so the whole run cannot be compared.
+// Then the box comes back down nearly flat at 0.2118 s: the -x+y corner touches, the -x-y corner 17 us later,
+// +x-y a few us after that. rock3d joins the corners within simultaneous_contact (1e-5 of the size: here 4 um) of
+// the ground, so it lands flat, one impact over all four corners, and pivots on the far corner -x-y; Moreau-Jean at
+// any step above ~10 us does the same (the landings fall in one step). Before the impact law's fix rock3d took two
+// successive impacts (an edge, then the opposite edge: max tilt 0.048 rad toward 180 deg against the reference's
+// 0.077 toward -121). The whole run (2 s, 12 impacts) is then compared: the same corners pivoted on in the same
+// order, and the max tilt 0.077023 rad toward -121.15 deg at 0.4297 s; the reference's error falls as h halves
+// (measured 5.4e-4 -> 8.1e-5 rad, 0.70 % -> 0.11 %; the times of the pivots' changes before 1 s 6.3 -> 3.3 ms),
+// allowed 0.2 % at 0.5 ms, halving, the direction to 0.1 deg (measured 0.004), the time to 2 h. (With
+// simultaneous_contact = 0 the impacts are successive and the reference agrees with that at h <= 5 us:
+// DISABLED_Rigid3DSuccessiveImpactsAtMicrosecondSteps, figures in docs/verification.md.)
 // Tolerances before the impact: the body's z axis (tilt and direction at once) within 2 max|w| h of rock3d's (an
 // uplift shifted by up to h, as in (1a); measured 0.25x that bound at 1 ms, 0.26x at 0.5 ms), and the error must
 // shrink as h halves (measured 2.25e-4 -> 1.22e-4); the pivot's largest tilt to 0.1 % at 0.5 ms (measured 0.01 %),
@@ -479,7 +565,8 @@ TEST(SiconosReference, Rigid3DPivotOnACornerUnderADiagonalPulse) {
     ax.push_back(-v * std::cos(phi));  // toward -diagonal: the inertial load pushes toward the +x+y corner
     ay.push_back(-v * std::sin(phi));
   }
-  double previous_error = 0.0;
+  double previous_error = 0.0, max_tilt = 0.0;
+  std::array<WholeRun, 2> whole{};
   for (const double h : {1e-3, 5e-4}) {
     const auto r = compare_3d(a, b, c, ax, ay, dt, 2.0, h);
     print_comparison("diagonal pulse", h, r);
@@ -508,6 +595,59 @@ TEST(SiconosReference, Rigid3DPivotOnACornerUnderADiagonalPulse) {
     EXPECT_LE(std::count_if(r.reference.unconverged_step_times_s.begin(), r.reference.unconverged_step_times_s.end(),
                             [&](double t) { return t < r.compare_until_s; }), 1);
     previous_error = r.axis_error;
+    // after the impacts: the whole run
+    const WholeRun w = compare_whole_run(r, 1.0);
+    whole[h < 1e-3 ? 1 : 0] = w;
+    EXPECT_FALSE(r.engine.summary.overturned);
+    EXPECT_FALSE(r.reference.overturned);
+    EXPECT_TRUE(w.same_pivots) << "h = " << h;
+    EXPECT_GE(w.changes, 10u);  // the comparison runs through many impacts
+    EXPECT_LE(w.azimuth_error_deg, 0.1) << "h = " << h;
+    EXPECT_LE(w.time_error_s, 2 * h + 1e-9) << "h = " << h;
+    max_tilt = r.engine.summary.max_tilt_rad;
+  }
+  EXPECT_LE(whole[1].tilt_error, 2e-3 * max_tilt);
+  EXPECT_LT(whole[1].tilt_error, 0.5 * whole[0].tilt_error) << "the error must fall as the step halves";
+  EXPECT_LT(whole[1].change_time_error_s, 0.75 * whole[0].change_time_error_s) << "the error must fall as h halves";
+}
+
+// (4b) A measurement, not run by default (minutes: ~10^5 reference steps each; --gtest_also_run_disabled_tests):
+// the landing of (4) with successive impacts (simultaneous_contact = 0: -x+y alone, pivot on it, then -x-y 17 us
+// later) against the reference at steps below that gap, where Moreau-Jean resolves the landings one by one too.
+// Measured (docs/verification.md): rock3d 0.083091 rad toward 232.34 deg (-127.66) at 0.4400 s; the reference
+// 0.083086 and 0.083094 rad toward -127.66 deg at 0.4400 s at h = 5 and 2.5 us (0.077023 toward -121.15, the
+// simultaneous landing, at h >= 10 us). Allowed 0.05 % on the tilt, 0.1 deg, 2 ms (the records' sample: the max tilt
+// falls on a 1 ms row in rock3d's history).
+TEST(SiconosReference, DISABLED_Rigid3DSuccessiveImpactsAtMicrosecondSteps) {
+  const double a = 0.1, b = 0.06, c = 0.4, dt = 0.001;
+  const double phi = std::atan2(b, a);
+  const auto base = sine_pulse(0.45 * kG, 0.3, dt, 0.3);
+  std::vector<double> ax, ay;
+  for (const double v : base) {
+    ax.push_back(-v * std::cos(phi));
+    ay.push_back(-v * std::sin(phi));
+  }
+  topple::Rigid3DOptions o;
+  o.g_m_s2 = kG;
+  o.simultaneous_contact = 0.0;
+  o.max_run_out_s = 0.2;
+  const auto mx = GroundMotion::uniform(ax, dt);
+  const auto my = GroundMotion::uniform(ay, dt);
+  const auto s = topple::rock3d(mx, &my, nullptr, topple::RigidBody3D::box(2 * a, 2 * b, 2 * c), o).summary;
+  std::printf("successive impacts: rock3d max tilt %.6f rad toward %.2f deg at %.4f s;%s\n", s.max_tilt_rad,
+              s.max_tilt_azimuth_deg, s.max_tilt_time_s, modes_text(s).c_str());
+  for (const double h : {5e-6, 2.5e-6}) {
+    SiconosOptions options;
+    options.step_s = h;
+    options.duration_s = 0.5;
+    const auto r = simulate_siconos_box(SiconosBox{a, b, c, 1.0, 0.0, 10.0}, SiconosGroundMotion{dt, ax, ay, {}},
+                                        options);
+    const double az = azimuth_deg_of(r.max_tilt_axis[0], r.max_tilt_axis[1]);
+    std::printf("  reference h = %g: max tilt %.6f rad toward %.2f deg at %.4f s\n", h, r.max_tilt_rad, az,
+                r.max_tilt_time_s);
+    EXPECT_NEAR(r.max_tilt_rad, s.max_tilt_rad, 5e-4 * s.max_tilt_rad) << "h = " << h;
+    EXPECT_NEAR(std::remainder(az - s.max_tilt_azimuth_deg, 360.0), 0.0, 0.1) << "h = " << h;
+    EXPECT_NEAR(r.max_tilt_time_s, s.max_tilt_time_s, 0.002) << "h = " << h;
   }
 }
 
@@ -517,13 +657,14 @@ TEST(SiconosReference, Rigid3DPivotOnACornerUnderADiagonalPulse) {
 // 0.2320 s: the +x-y corner leaves the ground at 0.275-0.276 s in both) until the -x+y corner lands (0.3089 s).
 // Compared up to that first impact, with the tolerances of (4) (measured 0.06x and 0.07x the bound, 6.6e-5 ->
 // 3.9e-5 as h halves; every corner's lift-off within 1 ms).
-// After it the two differ, by their laws: rock3d takes the landing of a corner next to the pivot as an impact on
-// the edge between them (rigid3d.hpp: angular momentum about the edge's axis conserved; the old pivot stays down and
-// leaves later, pivot on -x+y from 0.3357 s, +x+y above 0.1 mm at 0.362 s), while Moreau-Jean's e = 0 impact, the
-// complementarity solution at all four corners, lifts the old pivot at once (+x+y above 0.1 mm at 0.315 s at both
-// steps): the impulse acts at the new corner only, a pivot on it. The z axes then differ by 0.034 rad at 0.62 s at
-// both steps. This is a finding about rock3d's impact rule for a pivot landing on an adjacent corner (reported with
-// the comparison in docs/verification.md), not a tolerance.
+// After it: the -x+y corner lands next to the pivot +x+y, and the impact law (the impulse at the new corner only,
+// the old one's velocity after it >= 0) pivots the box on -x+y, the old pivot lifting at once: above 0.1 mm at
+// 0.315 s in both (before the fix rock3d took an edge impact there, the old pivot down until 0.362 s, and the z axes
+// differed by 0.034 rad at 0.62 s at both steps). The whole run (2.5 s, 9 impacts): the same corners in the same
+// order, the max tilt 0.125452 rad toward 157.29 deg at 0.9448 s; the reference's error falls as h halves (measured
+// 6.1e-4 -> 1.1e-4 rad, 0.49 % -> 0.085 %; the pivots' change times before 1 s 1.0 -> 0.4 ms), allowed 0.2 % at
+// 0.5 ms, halving; the direction within 0.5 deg (measured 0.23 and 0.27 deg: not yet falling at these steps, 0.03
+// deg at 62.5 us, docs/verification.md), the time to 2 h.
 TEST(SiconosReference, Rigid3DRotatingLoadPivotsAndChangesContact) {
   const double a = 0.1, b = 0.06, c = 0.4, dt = 0.001, A = 0.5 * kG, T = 0.4, D = 0.8;
   std::vector<double> ax, ay;
@@ -533,7 +674,8 @@ TEST(SiconosReference, Rigid3DRotatingLoadPivotsAndChangesContact) {
     ax.push_back(A * w * std::cos(2 * std::numbers::pi * t / T));
     ay.push_back(A * w * std::sin(2 * std::numbers::pi * t / T));
   }
-  double previous_error = 0.0;
+  double previous_error = 0.0, max_tilt = 0.0;
+  std::array<WholeRun, 2> whole{};
   for (const double h : {1e-3, 5e-4}) {
     const auto r = compare_3d(a, b, c, ax, ay, dt, 2.5, h);
     print_comparison("rotating load", h, r);
@@ -556,7 +698,37 @@ TEST(SiconosReference, Rigid3DRotatingLoadPivotsAndChangesContact) {
     }
     EXPECT_TRUE(r.reference.unconverged_step_times_s.empty());
     previous_error = r.axis_error;
+    // after the impacts: the whole run
+    const WholeRun w = compare_whole_run(r, 1.0);
+    whole[h < 1e-3 ? 1 : 0] = w;
+    EXPECT_FALSE(r.engine.summary.overturned);
+    EXPECT_FALSE(r.reference.overturned);
+    EXPECT_TRUE(w.same_pivots) << "h = " << h;
+    EXPECT_GE(w.changes, 8u);  // the comparison runs through many impacts
+    EXPECT_LE(w.azimuth_error_deg, 0.5) << "h = " << h;
+    EXPECT_LE(w.time_error_s, 2 * h + 1e-9) << "h = " << h;
+    // The old pivot +x+y lifts at once after the -x+y corner lands next to it (the impulse at the new corner only;
+    // before this fix rock3d kept it down, an edge impact, until 0.362 s): above kLift_m within 2 h of each other.
+    ASSERT_GE(modes.size(), 5u);
+    ASSERT_EQ(modes[3].mode, topple::Rigid3DMode::pivot);
+    EXPECT_EQ(modes[3].vertex_a, 3);  // (-a, +b): the new corner
+    const double t_land = modes[3].time_s;
+    double lift_ref = -1.0, lift_engine = -1.0;
+    const auto& rh = r.reference.history;
+    for (std::size_t i = 0; i < rh.time_s.size() && lift_ref < 0; ++i)
+      if (rh.time_s[i] > t_land && rh.corner_z_m[i][0] > kLift_m) lift_ref = rh.time_s[i];
+    const auto& eh = r.engine.history;
+    for (std::size_t i = 0; i < eh.time_s.size() && lift_engine < 0; ++i)
+      if (eh.time_s[i] > t_land && rigid3d_vertex_z(eh, i, a, b) > kLift_m) lift_engine = eh.time_s[i];
+    std::printf("  the old pivot +x+y above %.0e m after the landing at %.4f s: reference %.4f s, rock3d %.4f s\n",
+                kLift_m, t_land, lift_ref, lift_engine);
+    ASSERT_GT(lift_ref, 0.0);
+    EXPECT_NEAR(lift_engine, lift_ref, 2 * h + 1e-9);
+    max_tilt = r.engine.summary.max_tilt_rad;
   }
+  EXPECT_LE(whole[1].tilt_error, 2e-3 * max_tilt);
+  EXPECT_LT(whole[1].tilt_error, 0.5 * whole[0].tilt_error) << "the error must fall as the step halves";
+  EXPECT_LT(whole[1].change_time_error_s, 0.75 * whole[0].change_time_error_s) << "the error must fall as h halves";
 }
 
 // (6) A large oblique pulse overturns the box: one half-sine of 1.0 g, 0.5 s, pushing it toward azimuth 60 deg (30

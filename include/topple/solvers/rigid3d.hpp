@@ -34,18 +34,25 @@
 //   rocking -> pivot: the vertical contact force at one end of the edge vanishes (the centre of pressure reaches the
 //           end): the body pivots on the other end with the same angular velocity (no impact).
 //   rocking -> impact: theta returns to 0 (the base lands flat). pivot -> impact: another vertex touches down (an
-//           adjacent one: the new contact is that edge) or the base lands flat (a third vertex down and coming down).
+//           adjacent one: the impact law below picks the new corner, the edge or rest) or the base lands flat (a
+//           third vertex within simultaneous_contact of the ground).
 //   rocking/pivot -> fallen: the tilt (the angle between the body's z axis and the vertical) reaches 90 degrees.
 //
-// Impact law (Housner 1963, generalised): the impulse acts at the new contact only, so the angular momentum about it
-// is conserved: about a new vertex p' the whole vector, J_p' w+ = J w- + r' x v_c- (r' = c - p', v_c- the velocity
-// of c before); about a new edge the component along its axis, J_e' theta'+ = e' . (J w- + r' x v_c-). For a block
-// landing on its opposite edge this is Housner's e = 1 - 2 a^2 / D exactly (the planar law). The new contact of a
-// base landing flat is the vertex, or the edge of two vertices, hit with the largest downward velocity; when the
-// motion after the impact would push another vertex into the ground the contact is that edge instead, and when no
-// contact gives a motion that lifts the body it comes to rest (energy counted as lost). A given e
-// (RestitutionMode::given) keeps Housner's direction of the motion after the impact and sets the ratio of kinetic
-// energies to e^2 (the planar engine's theta'+ = e theta'- for a block on its opposite edge).
+// Impact law (docs/method.md, "Impact law"): perfectly plastic and sticking (Newton's e = 0, no contact slides), a
+// small linear complementarity problem over the vertices down at the instant (Moreau 1988; Glocker & Pfeiffer 1995),
+// solved by enumerating its sets: a vertex p alone (the impulse at p only, so the angular momentum about p is
+// conserved, J_p' w+ = J w- + r' x v_c-: Housner 1963 generalised), an edge (impulses at both ends, the momentum about
+// its axis conserved, J_e' theta'+ = e' . (J w- + r' x v_c-)), or the flat base at rest; the solution is the set
+// whose vertical impulses are >= 0 and whose other contacts move up or stay (none: the impact would make a contact
+// slide, which the model excludes; the set that moves no contact into the ground and pulls least is taken, and a
+// warning says so once). A corner landing next to the pivot thus pivots on the new corner, the old one lifting
+// (Housner's impulse at the new contact only), unless the motion would push the old one down; a block landing on its
+// opposite edge is Housner's e = 1 - 2 a^2 / D (the planar law).
+// Pivot swaps between the two ends of an edge whose kinetic energy off the edge's axis falls below 1e-8 of the whole
+// take their (Zeno) limit, rocking about the edge. Vertices within simultaneous_contact times the body's size of the
+// ground at a touch-down join it (a base that close to flat lands as one impact). A given e (RestitutionMode::given)
+// keeps that direction of the motion after the impact and sets the ratio of kinetic energies to e^2 (the planar
+// engine's theta'+ = e theta'- for a block on its opposite edge).
 //
 // Rest rule: as the planar engine's (rocking.hpp): after a flat landing, kinetic energy below rest_energy_fraction times
 // the energy to lift the centre of mass over the new contact (g (|c - contact| - h)) puts the body at rest.
@@ -106,6 +113,10 @@ struct Rigid3DOptions {
   double rel_tol = 1e-8;                 ///< Dormand-Prince relative tolerance per step
   double abs_tol = 1e-12;                ///< absolute, on the state scaled by alpha and p alpha (as rocking.hpp)
   double rest_energy_fraction = 1e-8;    ///< rest rule (header), in (0, 1)
+  /// Impact law (header): at a touch-down, vertices within this fraction of the body's size (its largest distance
+  /// from c to a vertex) of the ground join the impact, in [0, 0.01]; 1e-5: a base within about 1e-5 rad of flat
+  /// lands flat (one impact, as Moreau-Jean time stepping resolves it); 0: strictly successive impacts
+  double simultaneous_contact = 1e-5;
   double max_run_out_s = 60.0;           ///< after the record, still ground, until rest, fall or this long, s
   std::size_t max_steps = 100'000'000;   ///< integrator steps (accepted and rejected); StepLimitError past it
   bool record_history = false;           ///< fill Rigid3DResult::history
