@@ -208,3 +208,91 @@ TEST(Rigid3DPublished, AngleOfTurnIndependentOfAxialInertiaAndStart) {
 
 }  // namespace
 }  // namespace topple
+
+namespace topple {
+namespace {
+
+/// Steady rolling on the rim (O'Reilly 1996, "The dynamics of rolling disks and sliding disks", Nonlinear Dynamics 10,
+/// 287-305: the steady motions of a rolling disk; here with the centre of mass at h above the base's centre): tilt theta
+/// constant, the axis a precessing at Omega about the vertical, a spin sigma about the axis, w = Omega z + sigma a. With
+/// the axis leaning toward +x, r = c - p = (r_x, 0, r_z) = (h sin - R cos, 0, h cos + R sin); no slip gives
+/// v_c = w x r = (0, Omega r_x - sigma R, 0) = V e_y, so the centre of mass runs round a circle of radius b = V / Omega
+/// at Omega, a_c = -Omega V e_x; the angular momentum H = J_t Omega z + S a, S = J_a (sigma + Omega cos) - J_t Omega cos,
+/// turns with the body, dH/dt = Omega z x H = Omega S sin e_y, and equals the contact force's moment about the centre,
+/// -r x (a_c + g z) = (r_z Omega V + g r_x) e_y:
+///   Omega S sin(theta) = r_z Omega V + g r_x,  linear in sigma:
+///   sigma = [g r_x + Omega^2 (r_z r_x - (J_a - J_t) sin cos)] / (Omega (J_a sin + R r_z)).
+/// Limits: sigma = 0 is the steady precession about the contact of test_rigid3d_disc.cpp; h = 0 with the centre at rest
+/// (V = 0) is Euler's disk, Omega^2 = g R / (J_t sin theta) = 4 g / (R sin theta) for a thin disk (Moffatt 2000,
+/// "Euler's disk and its finite-time singularity", Nature 404, 833-834, eq. 2).
+double steady_spin(const CylinderBody3D& b, double theta, double Omega) {
+  const double R = b.radius_m, h = b.centre_height_m, Ja = b.inertia_axial_m2, Jt = b.inertia_transverse_m2;
+  const double s = std::sin(theta), c = std::cos(theta);
+  const double rx = h * s - R * c, rz = h * c + R * s;
+  return (kG * rx + Omega * Omega * (rz * rx - (Ja - Jt) * s * c)) / (Omega * (Ja * s + R * rz));
+}
+
+// A coin-like solid cylinder (d 0.2 m, H 0.02 m) in two steady motions from the condition above: spinning in place
+// (the centre of mass at rest: V = 0 fixes Omega) and rolling round a circle (Omega given, sigma from it). Over 1 s
+// the tilt stays, the axis turns at Omega and the base's centre keeps its circle, each to 1e-6 (rad, rad, m) at
+// rel_tol 1e-11 (the integration's error over ~5 turns; these motions are stable, the error does not grow).
+TEST(Rigid3DPublished, SteadyRollingOnTheRimOReilly1996) {
+  const CylinderBody3D coin = CylinderBody3D::solid(0.2, 0.02);
+  const double R = coin.radius_m, h = coin.centre_height_m, Ja = coin.inertia_axial_m2, Jt = coin.inertia_transverse_m2;
+  struct Motion {
+    const char* name;
+    double theta, Omega;
+  };
+  std::vector<Motion> motions;
+  {
+    // in place: V = 0 -> sigma = Omega r_x / R; the condition gives Omega^2 = g r_x / (sin (J_a (r_x / R + cos) - J_t cos))
+    const double th = 0.5, s = std::sin(th), c = std::cos(th), rx = h * s - R * c;
+    const double Omega = std::sqrt(kG * rx / (s * (Ja * (rx / R + c) - Jt * c)));
+    motions.push_back({"spinning in place", th, Omega});
+    // Euler's disk's value for a thin disk of the same radius, for scale: 4 g / (R sin theta)
+    std::printf("spinning in place at theta 0.5: Omega %.4f rad/s (thin disk, Moffatt 2000: %.4f)\n", Omega,
+                std::sqrt(4.0 * kG / (R * s)));
+  }
+  motions.push_back({"rolling round a circle", 1.3, 2.0});
+  for (const Motion& m : motions) {
+    const double sigma = steady_spin(coin, m.theta, m.Omega);
+    const double s = std::sin(m.theta), c = std::cos(m.theta);
+    const Vec3 a{s, 0.0, c};
+    const double V = m.Omega * (h * s - R * c) - sigma * R;
+    const double base_radius = std::abs(V / m.Omega - h * s);  // the base's centre o = c - h a, about the circle's axis
+    Rigid3DOptions o;
+    o.g_m_s2 = kG;
+    o.rel_tol = 1e-11;
+    o.abs_tol = 1e-14;
+    o.max_run_out_s = 0.0;
+    o.record_history = true;
+    const CylinderInitialState init{{std::cos(0.5 * m.theta), 0.0, std::sin(0.5 * m.theta), 0.0},
+                                    {sigma * a[0], sigma * a[1], m.Omega + sigma * a[2]}};
+    const Rigid3DResult r = rock3d_cylinder(still(1.0, 1e-3), nullptr, nullptr, coin, o, init);
+    SCOPED_TRACE(testing::Message() << m.name << " Omega " << m.Omega << " sigma " << sigma);
+    ASSERT_FALSE(r.summary.overturned);
+    EXPECT_EQ(r.summary.impacts, 0U);
+    ASSERT_GT(r.history.time_s.size(), 900U);
+    // the circle's centre: o(0) less (V / Omega - h sin) e_x (c - O = b e_x at t = 0)
+    const Vec3 o0 = r.history.position_m.front();
+    const double Ox = o0[0] - (V / m.Omega - h * s), Oy = o0[1];
+    double worst_tilt = 0.0, worst_phase = 0.0, worst_radius = 0.0;
+    for (std::size_t i = 0; i < r.history.time_s.size(); ++i) {
+      const Vec3 ax = axis_of(r.history.orientation[i]);
+      worst_tilt = std::max(worst_tilt, std::abs(std::acos(ax[2]) - m.theta));
+      const double phase = std::atan2(ax[1], ax[0]) - m.Omega * r.history.time_s[i];
+      worst_phase = std::max(worst_phase, std::abs(std::remainder(phase, 2.0 * M_PI)));
+      const Vec3& p = r.history.position_m[i];
+      worst_radius = std::max(worst_radius, std::abs(std::hypot(p[0] - Ox, p[1] - Oy) - base_radius));
+    }
+    std::printf("%s: theta %.3f, Omega %.4f, sigma %.4f rad/s, base centre on a %.4f m circle: worst tilt %.2g rad, "
+                "phase %.2g rad, radius %.2g m\n",
+                m.name, m.theta, m.Omega, sigma, base_radius, worst_tilt, worst_phase, worst_radius);
+    EXPECT_LT(worst_tilt, 1e-6);
+    EXPECT_LT(worst_phase, 1e-6);
+    EXPECT_LT(worst_radius, 1e-6);
+  }
+}
+
+}  // namespace
+}  // namespace topple
