@@ -7,19 +7,20 @@
 // toward the upright, does not slap flat, and rolls on its rim: the contact point runs quickly round the rim, and the
 // can rises again leaning toward a direction turned by an "angle of turn". Their abstract states: (i) the angle is
 // nearly independent of the initial conditions, (ii) it depends on the geometry and mass distribution but not on the
-// moment of inertia about the symmetry axis, (iii) for tall containers it is just over pi. Their asymptotic formula
-// (rolling, no slip, the tilt's minimum small against its maximum) is, with R the base radius, h the centre of mass
-// above the base's centre and J_t the transverse inertia per unit mass about the centre of mass:
+// moment of inertia about the symmetry axis, (iii) for tall containers it is just over pi. They derive an asymptotic
+// formula for it (rolling, no slip, the tilt's minimum small against its maximum); the stored copies of the paper this
+// work could reach hold its abstract only, so their equation is not quoted: the value below is derived here, and has
+// (i)-(iii). With R the base radius, h the centre of mass above the base's centre and J_t the transverse inertia per
+// unit mass about the centre of mass:
 //
 //   dpsi_inf = pi sqrt(1 + R^2 / (h^2 + J_t))                                                           (SR)
 //
-// Derivation (so that the test does not rest on a formula it cannot show; the stored copies of the paper this work
-// could reach hold its abstract only): near the upright, with tilt theta, lean azimuth psi and no spin about the axis,
+// Derivation: near the upright, with tilt theta, lean azimuth psi and no spin about the axis,
 // the centre of mass moves as h times the axis' tilt vector horizontally and R theta vertically, so the kinetic energy
 // per unit mass is  1/2 [(A + R^2) theta'^2 + A theta^2 psi'^2],  A = h^2 + J_t (the transverse inertia about the base's
 // centre). This is the metric of a cone (rho = sqrt(A + R^2) theta, phi = k psi, k = sqrt(A / (A + R^2))); where the
 // tilt is small the potential g (h cos theta + R sin theta) changes by O(g R theta) only, the motion is free, a straight
-// line on the unrolled cone: phi turns by pi, psi by pi / k, (SR). It holds (i)-(iii) above.
+// line on the unrolled cone: phi turns by pi, psi by pi / k, (SR).
 //
 // Finite tilt minimum: with the cone's potential g R theta (linear in rho) kept, the orbit's turn between two tilt
 // maxima is a function of x = theta_min / theta_max only, Phi(x) / k with Phi(0) = pi (the apsidal angle of a central
@@ -224,7 +225,7 @@ namespace {
 ///   sigma = [g r_x + Omega^2 (r_z r_x - (J_a - J_t) sin cos)] / (Omega (J_a sin + R r_z)).
 /// Limits: sigma = 0 is the steady precession about the contact of test_rigid3d_disc.cpp; h = 0 with the centre at rest
 /// (V = 0) is Euler's disk, Omega^2 = g R / (J_t sin theta) = 4 g / (R sin theta) for a thin disk (Moffatt 2000,
-/// "Euler's disk and its finite-time singularity", Nature 404, 833-834, eq. 2).
+/// "Euler's disk and its finite-time singularity", Nature 404, 833-834).
 double steady_spin(const CylinderBody3D& b, double theta, double Omega) {
   const double R = b.radius_m, h = b.centre_height_m, Ja = b.inertia_axial_m2, Jt = b.inertia_transverse_m2;
   const double s = std::sin(theta), c = std::cos(theta);
