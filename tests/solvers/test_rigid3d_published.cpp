@@ -17,10 +17,10 @@
 //
 // Derivation: near the upright, with tilt theta, lean azimuth psi and no spin about the axis,
 // the centre of mass moves as h times the axis' tilt vector horizontally and R theta vertically, so the kinetic energy
-// per unit mass is  1/2 [(A + R^2) theta'^2 + A theta^2 psi'^2],  A = h^2 + J_t (the transverse inertia about the base's
+// per unit mass is 1/2 [(A + R^2) theta'^2 + A theta^2 psi'^2], A = h^2 + J_t (the transverse inertia about the base's
 // centre). This is the metric of a cone (rho = sqrt(A + R^2) theta, phi = k psi, k = sqrt(A / (A + R^2))); where the
-// tilt is small the potential g (h cos theta + R sin theta) changes by O(g R theta) only, the motion is free, a straight
-// line on the unrolled cone: phi turns by pi, psi by pi / k, (SR).
+// tilt is small the potential g (h cos theta + R sin theta) changes by O(g R theta) only: the motion is free, a
+// straight line on the unrolled cone: phi turns by pi, psi by pi / k, (SR).
 //
 // Finite tilt minimum: with the cone's potential g R theta (linear in rho) kept, the orbit's turn between two tilt
 // maxima is a function of x = theta_min / theta_max only, Phi(x) / k with Phi(0) = pi (the apsidal angle of a central
@@ -137,8 +137,8 @@ CylinderBody3D closed_can() {
 }
 
 // The angle of turn approaches (SR) as the sideways rate (and with it x = theta_min / theta0) falls, for a slender
-// solid cylinder (tall: "just over pi"), a squat one and a thin-walled can; the excess is the finite-x correction of the
-// small-tilt model, Phi(x)/pi - 1.
+// solid cylinder (tall: "just over pi"), a squat one and a thin-walled can; the excess is the finite-x correction of
+// the small-tilt model, Phi(x)/pi - 1.
 TEST(Rigid3DPublished, AngleOfTurnOfARockingCanSrinivasanRuina2008) {
   struct Case {
     const char* name;
@@ -214,13 +214,13 @@ namespace topple {
 namespace {
 
 /// Steady rolling on the rim (O'Reilly 1996, "The dynamics of rolling disks and sliding disks", Nonlinear Dynamics 10,
-/// 287-305: the steady motions of a rolling disk; here with the centre of mass at h above the base's centre): tilt theta
-/// constant, the axis a precessing at Omega about the vertical, a spin sigma about the axis, w = Omega z + sigma a. With
-/// the axis leaning toward +x, r = c - p = (r_x, 0, r_z) = (h sin - R cos, 0, h cos + R sin); no slip gives
+/// 287-305: the steady motions of a rolling disk; here with the centre of mass at h above the base's centre): tilt
+/// theta constant, the axis a precessing at Omega about the vertical, a spin sigma about the axis:
+/// w = Omega z + sigma a. With the axis leaning toward +x, r = c - p = (r_x, 0, r_z) = (h sin - R cos, 0, h cos + R sin); no slip gives
 /// v_c = w x r = (0, Omega r_x - sigma R, 0) = V e_y, so the centre of mass runs round a circle of radius b = V / Omega
-/// at Omega, a_c = -Omega V e_x; the angular momentum H = J_t Omega z + S a, S = J_a (sigma + Omega cos) - J_t Omega cos,
-/// turns with the body, dH/dt = Omega z x H = Omega S sin e_y, and equals the contact force's moment about the centre,
-/// -r x (a_c + g z) = (r_z Omega V + g r_x) e_y:
+/// at Omega, a_c = -Omega V e_x; the angular momentum H = J_t Omega z + S a, with
+/// S = J_a (sigma + Omega cos) - J_t Omega cos, turns with the body, dH/dt = Omega z x H = Omega S sin e_y, and equals
+/// the contact force's moment about the centre, -r x (a_c + g z) = (r_z Omega V + g r_x) e_y:
 ///   Omega S sin(theta) = r_z Omega V + g r_x,  linear in sigma:
 ///   sigma = [g r_x + Omega^2 (r_z r_x - (J_a - J_t) sin cos)] / (Omega (J_a sin + R r_z)).
 /// Limits: sigma = 0 is the steady precession about the contact of test_rigid3d_disc.cpp; h = 0 with the centre at rest
@@ -246,7 +246,8 @@ TEST(Rigid3DPublished, SteadyRollingOnTheRimOReilly1996) {
   };
   std::vector<Motion> motions;
   {
-    // in place: V = 0 -> sigma = Omega r_x / R; the condition gives Omega^2 = g r_x / (sin (J_a (r_x / R + cos) - J_t cos))
+    // in place: V = 0 -> sigma = Omega r_x / R; the condition gives
+    // Omega^2 = g r_x / (sin (J_a (r_x / R + cos) - J_t cos))
     const double th = 0.5, s = std::sin(th), c = std::cos(th), rx = h * s - R * c;
     const double Omega = std::sqrt(kG * rx / (s * (Ja * (rx / R + c) - Jt * c)));
     motions.push_back({"spinning in place", th, Omega});
