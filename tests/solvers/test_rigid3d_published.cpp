@@ -214,13 +214,13 @@ namespace topple {
 namespace {
 
 /// Steady rolling on the rim (O'Reilly 1996, "The dynamics of rolling disks and sliding disks", Nonlinear Dynamics 10,
-/// 287-305: the steady motions of a rolling disk; here with the centre of mass at h above the base's centre): tilt
-/// theta constant, the axis a precessing at Omega about the vertical, a spin sigma about the axis:
-/// w = Omega z + sigma a. With the axis leaning toward +x, r = c - p = (r_x, 0, r_z) = (h sin - R cos, 0, h cos + R sin); no slip gives
-/// v_c = w x r = (0, Omega r_x - sigma R, 0) = V e_y, so the centre of mass runs round a circle of radius b = V / Omega
-/// at Omega, a_c = -Omega V e_x; the angular momentum H = J_t Omega z + S a, with
-/// S = J_a (sigma + Omega cos) - J_t Omega cos, turns with the body, dH/dt = Omega z x H = Omega S sin e_y, and equals
-/// the contact force's moment about the centre, -r x (a_c + g z) = (r_z Omega V + g r_x) e_y:
+/// 287-305: the steady motions of a rolling disk; here with the centre of mass h above the base's centre): tilt theta
+/// constant, the axis a precessing at Omega about the vertical, a spin sigma about the axis: w = Omega z + sigma a.
+/// With the axis leaning toward +x, r = c - p = (r_x, 0, r_z) = (h sin - R cos, 0, h cos + R sin); no slip gives v_c =
+/// w x r = (0, Omega r_x - sigma R, 0) = V e_y, so the centre of mass runs round a circle of radius b = V / Omega at
+/// Omega, a_c = -Omega V e_x; the angular momentum H = J_t Omega z + S a, with S = J_a (sigma + Omega cos) - J_t Omega
+/// cos, turns with the body, dH/dt = Omega z x H = Omega S sin e_y, and equals the contact force's moment about the
+/// centre, -r x (a_c + g z) = (r_z Omega V + g r_x) e_y:
 ///   Omega S sin(theta) = r_z Omega V + g r_x,  linear in sigma:
 ///   sigma = [g r_x + Omega^2 (r_z r_x - (J_a - J_t) sin cos)] / (Omega (J_a sin + R r_z)).
 /// Limits: sigma = 0 is the steady precession about the contact of test_rigid3d_disc.cpp; h = 0 with the centre at rest
