@@ -143,11 +143,11 @@ TEST(Rigid3DPublished, AngleOfTurnOfARockingCanSrinivasanRuina2008) {
   struct Case {
     const char* name;
     CylinderBody3D body;
-    std::vector<double> rates;  // nu, chosen for x ~ 0.04, 0.012, 0.004
+    std::vector<double> rates;  // nu, chosen for x ~ 0.04, 0.012, 0.004 (the can: 0.022, 0.007, 0.004)
   };
   const std::vector<Case> cases{{"solid d 0.3 m, H 1.0 m", CylinderBody3D::solid(0.3, 1.0), {0.04, 0.012, 0.004}},
                                 {"solid d 1.0 m, H 1.0 m", CylinderBody3D::solid(1.0, 1.0), {0.1, 0.03, 0.01}},
-                                {"can d 66 mm, H 122 mm", closed_can(), {0.1, 0.03, 0.01}}};
+                                {"can d 66 mm, H 122 mm", closed_can(), {0.1, 0.03, 0.017}}};
   for (const Case& c : cases) {
     const double limit = turn_limit(c.body);
     const double theta0 = 0.6 * c.body.static_tilt_limit_rad();
@@ -167,14 +167,14 @@ TEST(Rigid3DPublished, AngleOfTurnOfARockingCanSrinivasanRuina2008) {
       EXPECT_GT(excess, 0.0);                // from above, as Phi(x) > pi
       EXPECT_LT(excess, previous_excess);    // closer as x falls
       // the excess falls with x as the small-tilt model's does, times a factor that depends on theta0 and the body
-      // (measured 1.47-1.56 slender, 0.85-0.89 squat, 1.28-1.37 can: the model leaves out the inverted pendulum's
+      // (measured 1.47-1.56 slender, 0.85-0.89 squat, 1.31-1.37 can: the model leaves out the inverted pendulum's
       // -g h theta^2 / 2, h theta0 / (2 R) = 0.29, 0.24, 0.28 here, and the spin the rolling constraint couples in)
       EXPECT_GT(excess / model_excess, 0.75);
       EXPECT_LT(excess / model_excess, 1.75);
       previous_excess = excess;
     }
-    // x ~ 0.004 (0.0023 for the can): within 1.2 % of the limit (measured 1.04, 0.60, 0.57 %; the small-tilt model's
-    // own excess there is 0.71, 0.71, 0.44 %)
+    // x ~ 0.004: within 1.2 % of the limit (measured 1.04, 0.60, 0.89 %; the small-tilt model's own excess there is
+    // 0.71, 0.71, 0.68 %)
     EXPECT_LT(previous_excess, 0.012);
   }
 }
