@@ -17,8 +17,8 @@
 //
 // Derivation: near the upright, with tilt theta, lean azimuth psi and no spin about the axis, the centre of mass moves
 // as h times the axis' tilt vector horizontally and R theta vertically, so the kinetic energy per unit mass is
-// 1/2 [(A + R^2) theta'^2 + A theta^2 psi'^2], A = h^2 + J_t (the transverse inertia about the base's centre). This is the
-// metric of a cone (rho = sqrt(A + R^2) theta, phi = k psi, k = sqrt(A / (A + R^2))); where the tilt is small the
+// 1/2 [(A + R^2) theta'^2 + A theta^2 psi'^2], A = h^2 + J_t (the transverse inertia about the base's centre). This is
+// the metric of a cone (rho = sqrt(A + R^2) theta, phi = k psi, k = sqrt(A / (A + R^2))); where the tilt is small the
 // potential g (h cos theta + R sin theta) changes by O(g R theta) only: the motion is free, a straight line on the
 // unrolled cone: phi turns by pi, psi by pi / k, (SR).
 //
@@ -180,8 +180,8 @@ TEST(Rigid3DPublished, AngleOfTurnOfARockingCanSrinivasanRuina2008) {
 }
 
 // (ii) not on the moment of inertia about the symmetry axis: J_a from 0.1 J_t to 2 J_t (the solid cylinder's is
-// 0.126 J_t) with R, h, J_t fixed turns the lean by the same angle to 1e-3 (measured 8e-5: with no spin at the start J_a
-// enters only through the spin the rolling constraint couples in, which stays small); (i) nearly independent of the
+// 0.126 J_t) with R, h, J_t fixed turns the lean by the same angle to 1e-3 (measured 8e-5: with no spin at the start
+// J_a enters only through the spin the rolling constraint couples in, which stays small); (i) nearly independent of the
 // initial conditions: released from 0.3 alpha instead of 0.6 alpha at the same x ~ 0.004, the same to 0.3 % (measured
 // 0.20 %, a fifth of either's excess over the limit (SR), 1.04 and 0.84 %: the finite-tilt part of the correction).
 TEST(Rigid3DPublished, AngleOfTurnIndependentOfAxialInertiaAndStart) {
