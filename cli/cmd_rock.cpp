@@ -61,6 +61,7 @@ struct RockOptions {
   std::optional<double> direction_step_deg;  // cylinder: spacing of the directions tried
   std::string method = "adaptive";
   std::optional<double> rtol;
+  std::optional<double> simultaneous_contact;  // --model 3d, a polygon base: fraction of the body's size (rigid3d.hpp)
   std::optional<int> rk4_substeps;
   std::optional<std::size_t> max_steps;
   std::string run_out;
@@ -79,7 +80,7 @@ const std::map<std::string, std::string>& option_names() {
       {"max_steps", "--max-steps"},
       {"max_run_out_s", "--run-out"}, {"vertical", "--vertical"}, {"mu_k", "--mu-k"}, {"slope", "--slope-deg"},
       {"depth", "--depth"},   {"bearing", "--bearing-deg"}, {"cylinder_step", "--direction-step-deg"},
-      {"azimuth", "--azimuths"}};
+      {"azimuth", "--azimuths"}, {"simultaneous_contact", "--simultaneous-contact"}};
   return names;
 }
 
@@ -252,6 +253,19 @@ void run_model_3d(const RockOptions& o, RunMotion& run, const std::optional<Rock
   request.options.rel_tol = options.rel_tol;
   request.options.max_steps = options.max_steps;
   request.options.max_run_out_s = options.max_run_out_s;
+  if (o.simultaneous_contact) {
+    if (cylinder) {
+      throw parameter_error("--simultaneous-contact", "is the polygon engine's (a block's or a mesh's corners landing "
+                                                      "together): a cylinder's base lands flat on its rim");
+    }
+    // rock3d checks the same range (field "simultaneous_contact", which option_names maps to this option); here the
+    // refusal also says what the number is.
+    if (!std::isfinite(*o.simultaneous_contact) || *o.simultaneous_contact < 0.0 || *o.simultaneous_contact > 0.01) {
+      throw parameter_error("--simultaneous-contact", fmt::format("must be in [0, 0.01] (a fraction of the body's "
+                                                                  "size), got {}", *o.simultaneous_contact));
+    }
+    request.options.simultaneous_contact = *o.simultaneous_contact;
+  }
   request.json = o.json;
   std::optional<MotionSet> set;
   if (!o.h2.empty()) {
@@ -280,6 +294,9 @@ void run_rock(const RockOptions& o) {
   if (!o.mesh.empty() && o.model != "3d") {
     throw parameter_error("--mesh", "needs --model 3d (for the planar models: `topple body MESH --json > body.json`, "
                                     "then --body body.json)");
+  }
+  if (o.simultaneous_contact && o.model != "3d") {
+    throw parameter_error("--simultaneous-contact", "applies with --model 3d only (the planar models land on one edge)");
   }
   if (!o.body_file.empty() && o.model == "3d") {
     throw parameter_error("--body", "--model 3d needs the body in three dimensions: a body file holds its section in "
@@ -519,6 +536,10 @@ void add_rock_command(CLI::App& app) {
   cmd->add_option("--method", o->method, "adaptive (Dormand-Prince with event location) or rk4 (fixed step dt/n, "
                                          "as in the thesis)")->capture_default_str();
   cmd->add_option("--rtol", o->rtol, "Relative tolerance of the adaptive method (default 1e-8)");
+  cmd->add_option("--simultaneous-contact", o->simultaneous_contact,
+                  "--model 3d, a block or a mesh: at a touch-down, base vertices within this fraction of the body's "
+                  "size (its largest distance from the centre of mass to a vertex; dimensionless) of the ground land "
+                  "with it as one impact, in [0, 0.01] (default 1e-5; 0: strictly successive impacts)");
   cmd->add_option("--rk4-substeps", o->rk4_substeps, "RK4 steps per sample interval (default 10)");
   cmd->add_option("--max-steps", o->max_steps, "Cap on integrator steps; past it the run stops with exit status 3 "
                                                "(default 100000000)");

@@ -992,13 +992,15 @@ inline constexpr const char* rotd =
     "g : float\n    Gravity, m/s^2, for the values in g.\n\n" TOPPLE_DOC_ROTD_RETURNS;
 
 inline constexpr const char* rock3d =
-    R"(Rocking and pivoting of a box in three dimensions, as `topple rock --model 3d --json` (no sliding).
+    R"(A box or a solid cylinder rocking in three dimensions, as `topple rock --model 3d --json` (no sliding).
 
 The box rocks about an edge of its base or pivots on a corner under one or two horizontal components and the
 vertical (topple/solvers/rigid3d.hpp, docs/method.md "Rocking in three dimensions"): impacts perfectly plastic and
 sticking, the complementarity solution over the corners down (docs/method.md "Impact law": Housner's law where the
 impulse acts at the new contact only), or a given e; no sliding, no flight (a warning names the first instant the
-vertical contact force vanished).
+vertical contact force vanished). A solid cylinder (diameter_m instead of width_m and depth_m; the CLI's --shape
+cylinder --diameter --height) rocks and rolls on the rim of its base (topple/solvers/rigid3d_disc.hpp, docs/method.md
+"A circular base: rolling on the rim"); it is axisymmetric: no bearing_deg, the pair acts along east and north.
 
 Parameters
 ----------
@@ -1006,12 +1008,17 @@ first : GroundMotion
     The horizontal component; alone, it acts along the box's +x axis (reported as azimuth 90 deg).
 second : GroundMotion, optional
     The other horizontal component: the pair acts along east and north, the box's +x axis toward bearing_deg.
-width_m, depth_m, height_m : float
-    The box along its x, y and z axes, m (> 0).
+width_m, depth_m : float, optional
+    A box: its extent along its x and y axes, m (> 0); both required unless diameter_m is given.
+height_m : float
+    The box's or the cylinder's height, m (> 0).
+diameter_m : float, optional
+    A solid cylinder: the diameter of its base, m (> 0); instead of width_m and depth_m.
 azimuths_deg : sequence of two float
     With second: the components' azimuths, deg clockwise from north (default (90, 0): east, north); perpendicular.
 bearing_deg : float, optional
-    With second (required): the azimuth of the box's +x axis, deg clockwise from north.
+    With second (required for a box; refused for a cylinder): the azimuth of the box's +x axis, deg clockwise from
+    north.
 vertical : GroundMotion, optional
     Vertical ground acceleration (up positive); g + a_z must stay positive.
 e : "housner" or float
@@ -1021,6 +1028,10 @@ g : float
     Gravity, m/s^2.
 rel_tol : float
     Relative tolerance of the Dormand-Prince steps (dimensionless).
+simultaneous_contact : float, optional
+    A box: at a touch-down, the base corners within this fraction of the body's size (its largest distance from the
+    centre of mass to a corner; dimensionless) of the ground land with it as one impact, in [0, 0.01]; None: 1e-5
+    (the CLI's --simultaneous-contact); 0: strictly successive impacts. Refused for a cylinder (its base lands flat).
 max_run_out_s : float
     Longest integration after the record on still ground, s.
 history : bool

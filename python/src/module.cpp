@@ -52,6 +52,7 @@
 #include "topple/region/survey_inversion.hpp"
 #include "topple/solvers/oriented.hpp"
 #include "topple/solvers/rigid3d.hpp"
+#include "topple/solvers/rigid3d_disc.hpp"
 #include "topple/output/flexible_json.hpp"
 #include "topple/output/inversion_output.hpp"
 #include "topple/output/region_output.hpp"
@@ -466,25 +467,55 @@ SlideRockRun run_slide_rock(const GroundMotion& motion, const RockingBody& shape
   return run;
 }
 
-/// rock3d: the three-dimensional engine (rigid3d.hpp) for a box, as `topple rock --model 3d --json` less its "input"
-/// (the same keys, in the same order; cli/rock_3d.cpp), plus "history" when asked.
-nb::dict run_rock3d(const GroundMotion& first, const GroundMotion* second, double width_m, double depth_m,
-                    double height_m, const std::vector<double>& azimuths_deg, std::optional<double> bearing_deg,
+/// rock3d: the three-dimensional engine (rigid3d.hpp) for a box, or the rim engine (rigid3d_disc.hpp) for a solid
+/// cylinder (diameter_m instead of width_m and depth_m), as `topple rock --model 3d --json` less its "input" (the same
+/// keys, in the same order; cli/rock_3d.cpp), plus "history" when asked.
+nb::dict run_rock3d(const GroundMotion& first, const GroundMotion* second, std::optional<double> width_m,
+                    std::optional<double> depth_m, double height_m, std::optional<double> diameter_m,
+                    const std::vector<double>& azimuths_deg, std::optional<double> bearing_deg,
                     const GroundMotion* vertical, const std::variant<double, std::string>& e, double g_m_s2,
-                    double rel_tol, double max_run_out_s, bool history) {
+                    double rel_tol, std::optional<double> simultaneous_contact, double max_run_out_s, bool history) {
   const auto naming = [](auto f) {
     return with_field_names({{"bearing", "bearing_deg"},
                              {"depth", "depth_m"},
                              {"width", "width_m"},
                              {"height", "height_m"},
+                             {"diameter", "diameter_m"},
                              {"azimuths", "azimuths_deg"},
                              {"azimuth", "azimuths_deg"},
                              {"g", "g"},
                              {"rel_tol", "rel_tol"},
+                             {"simultaneous_contact", "simultaneous_contact"},
                              {"max_run_out_s", "max_run_out_s"}},
                             f);
   };
-  const RigidBody3D box = naming([&] { return RigidBody3D::box(width_m, depth_m, height_m); });
+  // The body: a box (width_m, depth_m, height_m) or a solid cylinder (diameter_m, height_m), as the CLI's --shape
+  // block --width --depth --height or --shape cylinder --diameter --height.
+  const bool cylinder = diameter_m.has_value();
+  if (cylinder && (width_m || depth_m)) {
+    throw parameter_error(width_m ? "width_m" : "depth_m",
+                          "is a box's: a cylinder is given by diameter_m and height_m");
+  }
+  if (!cylinder && (!width_m || !depth_m)) {
+    throw parameter_error(width_m ? "depth_m" : "width_m",
+                          "required: a box is given by width_m, depth_m and height_m, a cylinder by diameter_m and "
+                          "height_m");
+  }
+  if (cylinder && bearing_deg) {
+    throw parameter_error("bearing_deg", "a cylinder is the same body turned about its axis: it has no bearing (the "
+                                         "components act along their azimuths_deg)");
+  }
+  if (cylinder && simultaneous_contact) {
+    throw parameter_error("simultaneous_contact", "is the polygon engine's (a box's corners landing together): a "
+                                                  "cylinder's base lands flat on its rim");
+  }
+  std::optional<CylinderBody3D> disc;
+  RigidBody3D box;
+  if (cylinder) {
+    disc = naming([&] { return CylinderBody3D::solid(*diameter_m, height_m); });
+  } else {
+    box = naming([&] { return RigidBody3D::box(*width_m, *depth_m, height_m); });
+  }
   // The restitution as `rock` takes it ("housner" or a number in [0, 1]); the rocking options check it.
   const RockingOptions rocking = make_rocking_options(e, std::nullopt, g_m_s2, "adaptive", rel_tol,
                                                       RockingOptions{}.rk4_substeps, max_run_out_s);
@@ -494,16 +525,18 @@ nb::dict run_rock3d(const GroundMotion& first, const GroundMotion* second, doubl
   options.e = rocking.e;
   options.rel_tol = rocking.rel_tol;
   options.max_run_out_s = rocking.max_run_out_s;
+  if (simultaneous_contact) options.simultaneous_contact = *simultaneous_contact;  // checked by rock3d, [0, 0.01]
   options.record_history = history;
   Rigid3DResult r;
   if (second != nullptr) {
-    // As the CLI: the pair along east and north (eq. M1), the box turned so that its +x axis points to the bearing.
+    // As the CLI: the pair along east and north (eq. M1); a box turned so that its +x axis points to the bearing, a
+    // cylinder (axisymmetric) as it is.
     check_two_azimuths(azimuths_deg);
-    if (!bearing_deg) {
+    if (!cylinder && !bearing_deg) {
       throw parameter_error("bearing_deg", "required with a second component: the azimuth of the box's +x axis "
                                            "(across its width), degrees clockwise from north");
     }
-    if (!std::isfinite(*bearing_deg)) {
+    if (bearing_deg && !std::isfinite(*bearing_deg)) {
       throw parameter_error("bearing_deg", fmt::format("must be finite, got {}", *bearing_deg));
     }
     const MotionSet set = naming([&] {
@@ -511,23 +544,35 @@ nb::dict run_rock3d(const GroundMotion& first, const GroundMotion* second, doubl
     });
     const GroundMotion east = set.projected(90.0);
     const GroundMotion north = set.projected(0.0);
-    const RigidBody3D turned = box.rotated_about_vertical(deg_to_rad(90.0 - *bearing_deg));
-    r = naming([&] {
-      nb::gil_scoped_release release;
-      return rock3d(east, &north, set.vertical_ptr(), turned, options);
-    });
+    if (cylinder) {
+      r = naming([&] {
+        nb::gil_scoped_release release;
+        return rock3d_cylinder(east, &north, set.vertical_ptr(), *disc, options);
+      });
+    } else {
+      const RigidBody3D turned = box.rotated_about_vertical(deg_to_rad(90.0 - *bearing_deg));
+      r = naming([&] {
+        nb::gil_scoped_release release;
+        return rock3d(east, &north, set.vertical_ptr(), turned, options);
+      });
+    }
   } else {
     if (bearing_deg) throw parameter_error("bearing_deg", "applies with a second component (second=...)");
     r = naming([&] {
       nb::gil_scoped_release release;
-      return rock3d(first, nullptr, vertical, box, options);
+      return cylinder ? rock3d_cylinder(first, nullptr, vertical, *disc, options)
+                      : rock3d(first, nullptr, vertical, box, options);
     });
   }
   const Rigid3DSummary& s = r.summary;
   const auto opt = [](const std::optional<double>& v) { return v ? nlohmann::ordered_json(*v) : nullptr; };
   nlohmann::ordered_json j = io::rigid3d_summary_json(s);
-  j["body"] = {{"shape", "block"}, {"width_m", width_m}, {"depth_m", depth_m}, {"height_m", height_m},
-               {"bearing_deg", opt(bearing_deg)}};
+  if (cylinder) {  // as cli/rock_3d.cpp
+    j["body"] = {{"shape", "cylinder"}, {"diameter_m", *diameter_m}, {"height_m", height_m}, {"bearing_deg", nullptr}};
+  } else {
+    j["body"] = {{"shape", "block"}, {"width_m", *width_m}, {"depth_m", *depth_m}, {"height_m", height_m},
+                 {"bearing_deg", opt(bearing_deg)}};
+  }
   j["solver"] = io::rigid3d_solver_json(options);
   if (history) {
     const Rigid3DHistory& h = r.history;
@@ -1186,7 +1231,8 @@ nb::dict fragility_dict(nb::handle motions, nb::handle levels, const std::string
   }
   if (body) {
     spec.overturning =
-        OverturnFailure{*body, make_rocking_options(e, rock_mu, g_m_s2, method, rel_tol, rk4_substeps, max_run_out_s)};
+        OverturnFailure{*body, make_rocking_options(e, rock_mu, g_m_s2, method, rel_tol, rk4_substeps, max_run_out_s),
+                        std::nullopt};  // Housner's rocking: no coupled slide-rock body (fragility.hpp)
   }
   spec.threads = threads;
   const FragilityResult result = with_field_names({{"bearing", "bearing_deg"}, {"slope", "slope_deg"}}, [&] {
@@ -1673,11 +1719,11 @@ void bind_slide_rock(nb::module_& m) {
       .def_prop_ro("modes",
                    [](const SlideRockRun& r) {
                      nb::dict out;
-                     for (std::size_t m = 0; m < kSlideRockModes; ++m) {
+                     for (std::size_t k = 0; k < kSlideRockModes; ++k) {
                        nb::dict d;
-                       d["entries"] = r.result.summary.mode_entries[m];
-                       d["first_time_s"] = r.result.summary.mode_first_time_s[m];
-                       out[nb::str(std::string(slide_rock_mode_name(static_cast<SlideRockMode>(m))).c_str())] = d;
+                       d["entries"] = r.result.summary.mode_entries[k];
+                       d["first_time_s"] = r.result.summary.mode_first_time_s[k];
+                       out[nb::str(std::string(slide_rock_mode_name(static_cast<SlideRockMode>(k))).c_str())] = d;
                      }
                      return out;
                    })
@@ -1727,10 +1773,12 @@ void bind_slide_rock(nb::module_& m) {
         "rel_tol"_a = kRockingDefaults.rel_tol, "rk4_substeps"_a = kRockingDefaults.rk4_substeps,
         "max_run_out_s"_a = kRockingDefaults.max_run_out_s, doc::rock_oriented);
   const Rigid3DOptions kRigid3DDefaults;  // the library's defaults are the Python defaults
-  m.def("rock3d", &run_rock3d, "first"_a, "second"_a = nb::none(), nb::kw_only(), "width_m"_a, "depth_m"_a,
-        "height_m"_a, "azimuths_deg"_a = std::vector<double>{90.0, 0.0}, "bearing_deg"_a = nb::none(),
-        "vertical"_a = nb::none(), "e"_a = "housner", "g"_a = kStandardGravity, "rel_tol"_a = kRigid3DDefaults.rel_tol,
-        "max_run_out_s"_a = kRigid3DDefaults.max_run_out_s, "history"_a = false, doc::rock3d);
+  m.def("rock3d", &run_rock3d, "first"_a, "second"_a = nb::none(), nb::kw_only(), "width_m"_a = nb::none(),
+        "depth_m"_a = nb::none(), "height_m"_a, "diameter_m"_a = nb::none(),
+        "azimuths_deg"_a = std::vector<double>{90.0, 0.0}, "bearing_deg"_a = nb::none(), "vertical"_a = nb::none(),
+        "e"_a = "housner", "g"_a = kStandardGravity, "rel_tol"_a = kRigid3DDefaults.rel_tol,
+        "simultaneous_contact"_a = nb::none(), "max_run_out_s"_a = kRigid3DDefaults.max_run_out_s,
+        "history"_a = false, doc::rock3d);
 }
 
 /// Synthetic motions, intensity measures, the survey and regional inversions.

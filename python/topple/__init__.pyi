@@ -305,12 +305,13 @@ def slide_rock(motion: GroundMotion, body: RockingBody, mu: float, mu_k: Optiona
                history: bool = True) -> SlideRockResult:
     """Coupled sliding and rocking of a rigid body with Coulomb friction on a level or inclined base (slide_rock.hpp)."""
 
-def rock3d(first: GroundMotion, second: Optional[GroundMotion] = None, *, width_m: float, depth_m: float,
-           height_m: float, azimuths_deg: Sequence[float] = (90.0, 0.0), bearing_deg: Optional[float] = None,
+def rock3d(first: GroundMotion, second: Optional[GroundMotion] = None, *, width_m: Optional[float] = None,
+           depth_m: Optional[float] = None, height_m: float, diameter_m: Optional[float] = None,
+           azimuths_deg: Sequence[float] = (90.0, 0.0), bearing_deg: Optional[float] = None,
            vertical: Optional[GroundMotion] = None, e: Union[Literal["housner"], float] = "housner",
-           g: float = 9.80665, rel_tol: float = 1e-8, max_run_out_s: float = 60.0,
-           history: bool = False) -> dict[str, Any]:
-    """Rocking and pivoting of a box in three dimensions, as `topple rock --model 3d --json` (no sliding)."""
+           g: float = 9.80665, rel_tol: float = 1e-8, simultaneous_contact: Optional[float] = None,
+           max_run_out_s: float = 60.0, history: bool = False) -> dict[str, Any]:
+    """A box or a solid cylinder rocking in three dimensions, as `topple rock --model 3d --json` (no sliding)."""
 
 def rock_oriented(first: GroundMotion, second: GroundMotion, shape: RockingBody, *,
                   azimuths_deg: Sequence[float] = (90.0, 0.0), bearing_deg: Optional[float] = None,
