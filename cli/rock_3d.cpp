@@ -181,7 +181,7 @@ void run_3d(const RunMotion& run, const Rigid3DRequest& request) {
                    {"centre_of_mass_m", {c[0], c[1], c[2]}},
                    {"bearing_deg", opt(request.bearing_deg)}};
     }
-    j["solver"] = io::rigid3d_solver_json(request.options);
+    j["solver"] = io::rigid3d_solver_json(request.options, static_cast<bool>(request.cylinder));
     j["input"] = io::run_input_json(run.input, *reference, g);
     if (request.set != nullptr) j["input"]["h2"] = request.h2;
     fmt::print("{}\n", j.dump(2));

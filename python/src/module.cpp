@@ -573,7 +573,7 @@ nb::dict run_rock3d(const GroundMotion& first, const GroundMotion* second, std::
     j["body"] = {{"shape", "block"}, {"width_m", *width_m}, {"depth_m", *depth_m}, {"height_m", height_m},
                  {"bearing_deg", opt(bearing_deg)}};
   }
-  j["solver"] = io::rigid3d_solver_json(options);
+  j["solver"] = io::rigid3d_solver_json(options, cylinder);
   if (history) {
     const Rigid3DHistory& h = r.history;
     nlohmann::ordered_json hj;

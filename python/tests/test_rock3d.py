@@ -105,6 +105,7 @@ def test_cylinder_equals_the_cli(cli, cylinder_station):
     got = topple.rock3d(topple.read(h1), diameter_m=0.2, height_m=0.8)
     assert got == without_input(one)
     assert got["body"] == {"shape": "cylinder", "diameter_m": 0.2, "height_m": 0.8, "bearing_deg": None}
+    assert got["solver"]["impact_law"] == "housner_rim_point" and got["solver"]["simultaneous_contact"] is None
     two = cli.json("rock", h1, "--h2", h2, "--vertical", v, "--azimuths", "0,90", *CYLINDER, "--e", "0.8")
     assert two["impacts"] > 0
     got = topple.rock3d(topple.read(h1), topple.read(h2), diameter_m=0.2, height_m=0.8, azimuths_deg=(0.0, 90.0),

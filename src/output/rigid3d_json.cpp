@@ -41,15 +41,18 @@ nlohmann::ordered_json rigid3d_summary_json(const Rigid3DSummary& s) {
   return j;
 }
 
-nlohmann::ordered_json rigid3d_solver_json(const Rigid3DOptions& options) {
+nlohmann::ordered_json rigid3d_solver_json(const Rigid3DOptions& options, bool circular_base) {
   return {{"model", "3d"},
           {"restitution", restitution_mode_name(options.restitution)},
           {"e", options.restitution == RestitutionMode::given ? nlohmann::ordered_json(options.e) : nullptr},
           // the impact law (rigid3d.hpp): the complementarity solution over the contacts down at the instant, those
           // within simultaneous_contact of the body's size joining one impact (before issue 29's fix: one contact
           // chosen, an edge kept down after a corner landing next to the pivot)
-          {"impact_law", "complementarity"},
-          {"simultaneous_contact", options.simultaneous_contact},
+          // A circular base lands flat and strikes at one rim point: Housner's angular-momentum balance about that
+          // point, generalised to 3-D (docs/method.md, "A circular base: rolling on the rim", impact law).
+          {"impact_law", circular_base ? "housner_rim_point" : "complementarity"},
+          {"simultaneous_contact",
+           circular_base ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(options.simultaneous_contact)},
           {"rel_tol", options.rel_tol},
           {"g_m_s2", options.g_m_s2}};
 }

@@ -301,6 +301,9 @@ TEST_F(CliOriented, Model3dCylinderIsTheRimEngine) {
   EXPECT_EQ(solid.at("model"), "3d");
   EXPECT_EQ(solid.at("body").at("shape"), "cylinder");
   EXPECT_EQ(solid.at("body").at("diameter_m"), 0.2);
+  // The rim engine's own impact law, not the polygon engine's complementarity over corners (rigid3d_json.cpp).
+  EXPECT_EQ(solid.at("solver").at("impact_law"), "housner_rim_point");
+  EXPECT_TRUE(solid.at("solver").at("simultaneous_contact").is_null());
   EXPECT_GT(planar.at("impacts").get<int>(), 0) << "the station must rock the cylinder";
   EXPECT_EQ(solid.at("impacts"), planar.at("impacts"));
   EXPECT_EQ(solid.at("overturned"), planar.at("overturned"));

@@ -13,7 +13,9 @@ namespace topple::io {
 /// vertex_b}], steps, warnings}; absent times are null.
 [[nodiscard]] nlohmann::ordered_json rigid3d_summary_json(const Rigid3DSummary& summary);
 
-/// {"model": "3d", restitution, e (null unless given), rel_tol, g_m_s2}.
-[[nodiscard]] nlohmann::ordered_json rigid3d_solver_json(const Rigid3DOptions& options);
+/// {"model": "3d", restitution, e (null unless given), impact_law, simultaneous_contact, rel_tol, g_m_s2}.
+/// `circular_base`: the rim engine (rigid3d_disc.hpp), whose impact law is Housner's about the landing rim point and
+/// which has no corners to join (simultaneous_contact null).
+[[nodiscard]] nlohmann::ordered_json rigid3d_solver_json(const Rigid3DOptions& options, bool circular_base = false);
 
 }  // namespace topple::io
