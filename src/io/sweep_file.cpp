@@ -1007,11 +1007,11 @@ void read_rock(const Reader& r, const toml::table& o, const std::string& key, do
                                      "support_damping", "depth", "depth_m"};
   if (coupled) keys.emplace_back("mu_kinetic");
   r.check_keys(o, key, keys);
-  const auto supports = read_supports(r, o, prefix);
   const bool from_mesh = o.get("mesh") != nullptr;
   // A body from a mesh is a general body: its shape may be left out.
   const std::string shape = r.string(o, "shape", prefix + "shape").value_or(from_mesh ? "general" : "");
   if (three_d) refuse_for_3d(r, o, prefix, shape, from_mesh);
+  const auto supports = read_supports(r, o, prefix);
   // A block's depth (a box, oriented.hpp): under [[motions.set]] only (make_plan says so).
   std::vector<std::optional<double>> depths{std::nullopt};
   if (const auto d = r.quantities(o, "depth_m", "depth", prefix, length_parser(), "30cm")) {
