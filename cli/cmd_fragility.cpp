@@ -58,7 +58,8 @@ struct FragilityOptions {
   std::string mesh_unit = "m";
   BodyOptions mesh_options;
   PoseOptionsText mesh_pose;  // --pose, --up, --rotation, --axis-angle, --face, --contact-tolerance, --base-tolerance
-  std::string model = "rocking";  // or "coupled": the slide-rock model (slide_rock.hpp)
+  std::string model = "rocking";  // or "coupled": the slide-rock model (slide_rock.hpp); or "3d" (rigid3d.hpp, pairs)
+  std::string depth;              // --model 3d, a block: its depth (along its +y axis, bearing + 90)
   std::optional<double> rock_mu;
   std::optional<double> rock_mu_k;
   bool as_recorded = false;
@@ -105,6 +106,7 @@ std::string fragility_title(const FragilityOptions& o, std::size_t motions) {
   }
   if (!o.shape.empty() || !o.body_file.empty() || !o.mesh.empty()) {
     t += ", e = " + o.e;
+    if (o.model == "3d") t += fmt::format(", in 3-D{}", o.depth.empty() ? "" : " with depth " + o.depth);
     if (o.model == "coupled") {
       t += fmt::format(", coupled slide-rock (μ = {:g}{})", o.rock_mu.value_or(0.0),
                        o.rock_mu_k ? fmt::format(", μ_k = {:g}", *o.rock_mu_k) : std::string());
@@ -201,6 +203,43 @@ RockingBody make_fragility_body(const FragilityOptions& o, double g) {
   }
 }
 
+/// --model 3d: the body in three dimensions (rigid3d.hpp): a block with --depth (width along +x, depth along +y), or
+/// the mesh as posed turned so that its direction --azimuth (clockwise from its +y) is the body's +x axis, the one
+/// the bearing places (as the survey's mesh objects, docs/survey.md). A cylinder, a general body and --body are
+/// refused (no base in three dimensions, or the circular engine not wired here yet).
+RigidBody3D make_fragility_body_3d(const FragilityOptions& o, double g) {
+  if (!o.body_file.empty()) {
+    throw parameter_error("--body", "--model 3d needs the body in three dimensions: a body file holds its section in "
+                                    "one plane; give the mesh (--mesh FILE) or a block (--shape block --depth)");
+  }
+  if (!o.mesh.empty()) {
+    if (!o.depth.empty()) throw parameter_error("--depth", "is a block's: a mesh has its own shape");
+    BodyOptions b = o.mesh_options;
+    b.g_m_s2 = g;
+    const double unit_m = io::mesh_unit_m(o.mesh_unit, "--mesh-unit");
+    const MeshBody body =
+        with_field_names({{"--unit", "--mesh-unit"}}, [&] { return io::read_mesh_body(o.mesh, unit_m, b); });
+    return RigidBody3D::from_mesh(body).rotated_about_vertical(deg_to_rad(o.mesh_options.azimuth_deg - 90.0));
+  }
+  if (o.shape == "cylinder") {
+    throw parameter_error("--shape", "--model 3d: a cylinder's circular base (rolling and wobbling on its rim) is not "
+                                     "wired into fragility yet; use the rocking model (its worst direction)");
+  }
+  if (o.shape != "block") {
+    throw parameter_error("--shape", "--model 3d: a general body is a section in one vertical plane, without a base "
+                                     "in three dimensions; give a block (--shape block --width --depth --height) or a "
+                                     "mesh (--mesh FILE)");
+  }
+  if (o.depth.empty()) {
+    throw parameter_error("--depth", "--model 3d needs the block's depth, with a unit (its extent along bearing + 90)");
+  }
+  const double width = parse_length_m(o.width, "--width");
+  const double depth = parse_length_m(o.depth, "--depth");
+  const double height = parse_length_m(o.height, "--height");
+  return with_field_names({{"width", "--width"}, {"depth", "--depth"}, {"height", "--height"}},
+                          [&] { return RigidBody3D::box(width, depth, height); });
+}
+
 /// The failure modes asked for: a sliding block past its threshold and/or an overturning rocking body.
 void add_failures(const FragilityOptions& o, double g, FragilitySpec& spec) {
   if (o.mu) {
@@ -230,8 +269,14 @@ void add_failures(const FragilityOptions& o, double g, FragilitySpec& spec) {
       }
       f.coupled = with_field_names({{"mu", "--rock-mu"}, {"mu_k", "--rock-mu-k"}},
                                    [&] { return SlideRockBody::from_rocking(f.body, *o.rock_mu, o.rock_mu_k); });
+    } else if (o.model == "3d") {
+      if (o.rock_mu || o.rock_mu_k) {
+        throw parameter_error(o.rock_mu ? "--rock-mu" : "--rock-mu-k", "--model 3d does not slide (friction large "
+                                                                       "enough)");
+      }
+      f.body_3d = make_fragility_body_3d(o, g);
     } else if (o.model != "rocking") {
-      throw parameter_error("--model", fmt::format("'rocking' or 'coupled', got '{}'", o.model));
+      throw parameter_error("--model", fmt::format("'rocking', 'coupled' or '3d', got '{}'", o.model));
     } else if (o.rock_mu || o.rock_mu_k) {
       throw parameter_error(o.rock_mu ? "--rock-mu" : "--rock-mu-k", "needs --model coupled (the rocking model does "
                                                                      "not slide)");
@@ -240,6 +285,9 @@ void add_failures(const FragilityOptions& o, double g, FragilitySpec& spec) {
   } else if (o.model != "rocking" || o.rock_mu || o.rock_mu_k) {
     throw parameter_error(o.model != "rocking" ? "--model" : "--rock-mu",
                           "applies to a rocking body (--shape, --body or --mesh)");
+  }
+  if (!o.depth.empty() && o.model != "3d") {
+    throw parameter_error("--depth", "a block's depth applies to --model 3d (the planar models rock in one plane)");
   }
   if (!spec.sliding && !spec.overturning) {
     throw parameter_error("--mu", "give a sliding block (--mu, --threshold) and/or a rocking body (--shape ..., "
@@ -520,8 +568,11 @@ void add_fragility_command(CLI::App& app) {
     mesh_option->excludes(cmd->get_option(name));
   }
   body_option->excludes(mesh_option);
-  cmd->add_option("--model", o->model, "Rocking body: rocking (Housner) or coupled (sliding and rocking at once, "
-                                       "slide_rock.hpp; needs --rock-mu)")->capture_default_str();
+  cmd->add_option("--model", o->model, "Rocking body: rocking (Housner), coupled (sliding and rocking at once, "
+                                       "slide_rock.hpp; needs --rock-mu) or 3d (pairs: a block with --depth or a "
+                                       "mesh, rocking and pivoting in three dimensions, rigid3d.hpp)")
+      ->capture_default_str();
+  cmd->add_option("--depth", o->depth, "--model 3d, a block: its depth (along bearing + 90), with a unit");
   cmd->add_option("--rock-mu", o->rock_mu, "--model coupled: the rocking body's static friction coefficient");
   cmd->add_option("--rock-mu-k", o->rock_mu_k, "--model coupled: its kinetic friction coefficient (default: "
                                                "--rock-mu)");

@@ -14,10 +14,12 @@
 #include <fmt/format.h>
 
 #include "topple/solvers/summary_fields.hpp"
+#include "topple/solvers/summary_fields_3d.hpp"
 #include "topple/ensemble/sweep.hpp"
 #include "topple/core/error.hpp"
 #include "topple/solvers/flexible.hpp"
 #include "topple/solvers/sliding2d.hpp"
+#include "topple/core/units.hpp"
 
 namespace topple::ensemble {
 namespace {
@@ -126,6 +128,19 @@ class OnSupport {
   std::optional<GroundMotion> filtered_;
 };
 
+/// The three-dimensional engine's options from a rocking object's (the settings they share, as `topple rock --model
+/// 3d` copies them).
+Rigid3DOptions rigid3d_options(const RockingOptions& x) {
+  Rigid3DOptions o;
+  o.g_m_s2 = x.g_m_s2;
+  o.restitution = x.restitution;
+  o.e = x.e;
+  o.rel_tol = x.rel_tol;
+  o.max_run_out_s = x.max_run_out_s;
+  o.max_steps = x.max_steps;
+  return o;
+}
+
 /// A motion case made from a record set: the set (its first component is the case's base motion, which the engine
 /// transforms), the transform to apply to its other components, and the objects' bearing.
 struct SetCase {
@@ -143,7 +158,7 @@ class Runner {
          OrientationOptions orientation)
       : objects_(std::move(objects)), slide_(kSlidingFields, results), slide_2d_(kSliding2dFields, results),
         rock_(kRockingFields, results),
-        rock_sides_(kRockingSideFields, results), coupled_(results), stride_(results.names().size()), set_cases_(std::move(set_cases)),
+        rock_sides_(kRockingSideFields, results), rock_3d_(kRigid3DFields, results), coupled_(results), stride_(results.names().size()), set_cases_(std::move(set_cases)),
         orientation_(orientation), governing_azimuth_(results.at("governing_azimuth_deg")),
         governing_axis_(results.at("governing_axis")) {}
 
@@ -200,6 +215,8 @@ class Runner {
     std::optional<MotionSet> transformed;
     if (!c.transform.is_identity()) transformed = transformed_set(*c.set, c.transform, first);
     const MotionSet& set = transformed ? *transformed : *c.set;
+    // Three-dimensional objects: the pair along east and north (eq. M1), made once for the case's objects.
+    std::optional<std::pair<GroundMotion, GroundMotion>> east_north;
     for (std::size_t o = begin; o < end; ++o) {
       Value* row = out.data() + (o - begin) * stride_;
       if (const auto* s = std::get_if<SlideObject>(&objects_[o])) {
@@ -209,6 +226,13 @@ class Runner {
         continue;
       }
       const auto& r = std::get<RockObject>(objects_[o]);
+      if (r.body_3d) {
+        if (!east_north) east_north.emplace(set.projected(90.0), set.projected(0.0));
+        const Rigid3DSummary summary = run_3d(r, east_north->first, east_north->second, set.vertical_ptr(),
+                                              c.bearing_deg);
+        rock_3d_.fill(Rigid3DOutcome{summary}, row);
+        continue;
+      }
       const OrientedBody body = OrientedBody::make(r.body, r.depth_m);
       const OrientedRockingSummary s = rock_oriented_summary(set, body, c.bearing_deg, r.options, orientation_);
       const DirectionResponse& g = s.governing_response();
@@ -218,6 +242,15 @@ class Runner {
       if (governing_azimuth_ != kAbsent) row[governing_azimuth_] = g.azimuth_deg;
       if (governing_axis_ != kAbsent) row[governing_axis_] = std::string(oriented_axis_name(g.axis));
     }
+  }
+
+  /// A three-dimensional object at `bearing_deg` (its +x axis; degrees clockwise from north) under the pair along east
+  /// and north and the vertical: the body turned by 90 - bearing degrees counter-clockwise seen from above, as
+  /// `topple rock --model 3d --h2 --bearing-deg` turns it (cli/rock_3d.cpp), so that its azimuths are the ground's.
+  static Rigid3DSummary run_3d(const RockObject& r, const GroundMotion& east, const GroundMotion& north,
+                               const GroundMotion* vertical, double bearing_deg) {
+    const RigidBody3D turned = r.body_3d->rotated_about_vertical(deg_to_rad(90.0 - bearing_deg));
+    return rock3d(east, &north, vertical, turned, rigid3d_options(r.options)).summary;
   }
 
   static bool batchable(const SlideObject& first, const ObjectSpec& next) {
@@ -232,6 +265,7 @@ class Runner {
   FieldSlots<Sliding2dOutcome> slide_2d_;
   FieldSlots<RockingOutcome> rock_;
   FieldSlots<RockingOutcome> rock_sides_;
+  FieldSlots<Rigid3DOutcome> rock_3d_;
   CoupledSlots coupled_;
   std::size_t stride_ = 0;
   std::vector<std::optional<SetCase>> set_cases_;  ///< by motion index; empty for records and pulses
@@ -309,6 +343,7 @@ struct SweepKinds {
   bool any_single = false;  // single records or pulses
   bool any_rocking = false;  // rocking objects (Housner's model)
   bool any_coupled = false;  // coupled slide-rock objects
+  bool any_3d = false;       // three-dimensional objects (model "3d")
 };
 
 SweepKinds kinds_of(const SweepSpec& spec) {
@@ -318,7 +353,8 @@ SweepKinds kinds_of(const SweepSpec& spec) {
     if (const auto* r = std::get_if<RockObject>(&o)) {
       k.any_rock = true;
       k.any_coupled = k.any_coupled || r->coupled;
-      k.any_rocking = k.any_rocking || !r->coupled;
+      k.any_3d = k.any_3d || r->body_3d.has_value();
+      k.any_rocking = k.any_rocking || (!r->coupled && !r->body_3d);
       k.any_rock_mu = k.any_rock_mu || r->options.mu.has_value();
       k.any_block = k.any_block || r->body.shape == RockingBody::Shape::block;
       k.any_cylinder = k.any_cylinder || r->body.shape == RockingBody::Shape::cylinder;
@@ -352,6 +388,18 @@ void check_objects(const SweepSpec& spec, bool any_set) {
       } catch (const InputError& e) {
         throw parameter_error(name + "." + (e.where().field == "mu_k" ? "mu_kinetic" : e.where().field), e.problem());
       }
+    }
+    if (r != nullptr && r->body_3d) {
+      if (!spec.records.empty() || !spec.pulses.empty()) {
+        throw parameter_error(name + ".model", "a three-dimensional object (model = \"3d\") runs under two horizontal "
+                                               "components and a vertical: [[motions.set]] only, not single records "
+                                               "or pulses");
+      }
+      if (r->options.mu) {
+        throw parameter_error(name + ".mu", "the three-dimensional engine does not slide (friction large enough): "
+                                            "leave mu out");
+      }
+      if (r->coupled) throw parameter_error(name + ".model", "an object is coupled or three-dimensional, not both");
     }
     if (r != nullptr && r->depth_m) {
       if (!spec.records.empty() || !spec.pulses.empty()) {
@@ -491,7 +539,7 @@ ColumnSet result_columns(const SweepKinds& k) {
   if (k.any_rocking) {
     for (const auto* f : sweep_fields(kRockingFields)) result_cols.add(f->name);
   }
-  if (k.any_set && k.any_rock) {
+  if (k.any_set && k.any_rocking) {  // planar rocking objects (a 3-D object has no governing direction)
     result_cols.add("governing_azimuth_deg");
     result_cols.add("governing_axis");
   }
@@ -500,6 +548,9 @@ ColumnSet result_columns(const SweepKinds& k) {
   }
   if (k.any_coupled) {
     for (const auto* f : coupled_fields()) result_cols.add(f->name);
+  }
+  if (k.any_3d) {
+    for (const auto* f : sweep_fields(kRigid3DFields)) result_cols.add(f->name);
   }
   return result_cols;
 }
@@ -638,7 +689,7 @@ class MotionCases {
 };
 
 void set_rock_values(const RockObject& r, RowValues& v) {
-  v.set("model", std::string(r.coupled ? "coupled" : "rock"));
+  v.set("model", std::string(r.coupled ? "coupled" : r.body_3d ? "3d" : "rock"));
   v.set("g_m_s2", r.options.g_m_s2);
   if (r.coupled) v.set("mu_kinetic", r.mu_kinetic.value_or(r.options.mu.value_or(0.0)));
   if (r.options.mu) v.set("mu", *r.options.mu);
@@ -680,6 +731,13 @@ std::string rock_identity(const RockObject& r) {
     identity += fmt::format(" b1={} D1={}", r.body.pivot_b_m(-1), r.body.pivot_D_m2(-1));
   }
   if (r.coupled) identity += " coupled";  // appended only for one: other sweeps keep their identity
+  if (r.body_3d) {  // likewise: the three-dimensional body as run (a mesh's base, centre and inertia)
+    identity += " 3d base=";
+    for (const auto& v : r.body_3d->base_xy_m) identity += fmt::format("{},{};", v[0], v[1]);
+    const Vec3& c = r.body_3d->centre_of_mass_m;
+    identity += fmt::format(" c={},{},{} J=", c[0], c[1], c[2]);
+    for (const Vec3& row : r.body_3d->inertia_cm_m2) identity += fmt::format("{},{},{};", row[0], row[1], row[2]);
+  }
   return identity;
 }
 

@@ -15,6 +15,7 @@
 #include "topple/core/error.hpp"
 #include "topple/motion/intensity.hpp"
 #include "topple/solvers/oriented.hpp"
+#include "topple/solvers/rigid3d.hpp"
 #include "topple/motion/rotd.hpp"
 #include "topple/solvers/sliding2d.hpp"
 #include "topple/ensemble/sweep.hpp"
@@ -378,6 +379,23 @@ bool overturns(const GroundMotion& m, const OverturnFailure& f) {
   return rock_summary(m, f.body, f.options).overturned;
 }
 
+/// A three-dimensional body at `bearing_deg` (its +x axis, degrees clockwise from north) under a pair: the pair along
+/// east and north (eq. M1) and the vertical, the body turned by 90 - bearing degrees counter-clockwise seen from above
+/// (as `topple rock --model 3d --h2 --bearing-deg`), so that its azimuths are the ground's.
+bool overturns_3d(const MotionSet& set, const OverturnFailure& f, double bearing_deg) {
+  Rigid3DOptions o;
+  o.g_m_s2 = f.options.g_m_s2;
+  o.restitution = f.options.restitution;
+  o.e = f.options.e;
+  o.rel_tol = f.options.rel_tol;
+  o.max_run_out_s = f.options.max_run_out_s;
+  o.max_steps = f.options.max_steps;
+  const GroundMotion east = set.projected(90.0);
+  const GroundMotion north = set.projected(0.0);
+  const RigidBody3D turned = f.body_3d->rotated_about_vertical((90.0 - bearing_deg) * kPi / 180.0);
+  return rock3d(east, &north, set.vertical_ptr(), turned, o).summary.overturned;
+}
+
 /// The objects: at least one, a valid threshold; the rocking options (and the coupled body) checked on a still
 /// record in the caller's thread, so that a bad option is an InputError here, not a worker's.
 void check_objects(const FragilitySpec& spec) {
@@ -474,6 +492,12 @@ FragilityResult fragility_analysis(const FragilitySpec& spec) {
     throw parameter_error("model", "the coupled model runs single-component motions; pairs rock an oriented body "
                                    "(the rocking model)");
   }
+  if (spec.overturning && spec.overturning->body_3d && (!pairs || spec.overturning->coupled)) {
+    throw parameter_error("model", spec.overturning->coupled
+                                       ? "a body is coupled or three-dimensional, not both"
+                                       : "the three-dimensional model runs under pairs (two horizontal components "
+                                         "and, optionally, a vertical), not single-component motions");
+  }
   // Each motion's base: the record, or a pair's first component (aliasing the set, which owns it).
   std::vector<std::shared_ptr<const GroundMotion>> bases = spec.motions;
   for (const auto& set : spec.motion_sets) bases.emplace_back(set, &set->first());
@@ -522,6 +546,8 @@ FragilityResult fragility_analysis(const FragilitySpec& spec) {
         if (has_slide && o == 0) {
           failed = slide_2d_summary(set.first(), set.second(), *set.azimuths(), spec.sliding->block,
                                     set.vertical_ptr()).max_abs_displacement_m > spec.sliding->threshold_m;
+        } else if (spec.overturning->body_3d) {
+          failed = overturns_3d(set, *spec.overturning, bearings[i]);
         } else {
           failed = rock_oriented_summary(set, OrientedBody::planar(spec.overturning->body), bearings[i],
                                          spec.overturning->options).governing_response().summary.overturned;
@@ -775,6 +801,10 @@ AsRecordedResult as_recorded_analysis(const FragilitySpec& spec) {
                                      "PGA: the scaled fragility)");
   }
   if (spec.motions.empty()) throw parameter_error("motions", "the ensemble has no motion");
+  if (spec.overturning && spec.overturning->body_3d) {
+    throw parameter_error("model", "the three-dimensional model runs under pairs; records as recorded are single "
+                                   "components");
+  }
   check_objects(spec);
   AsRecordedResult out;
   for (std::size_t i = 0; i < spec.motions.size(); ++i) {

@@ -20,6 +20,7 @@
 #include "topple/solvers/flexible.hpp"
 #include "topple/motion/motion_set.hpp"
 #include "topple/solvers/oriented.hpp"
+#include "topple/solvers/rigid3d.hpp"
 #include "topple/solvers/rocking.hpp"
 #include "topple/motion/rotd.hpp"
 #include "topple/solvers/sliding2d.hpp"
@@ -183,8 +184,28 @@ void observation_match_3c(const ObservedObject& object, const DrawnParameters& p
     double match = 0.0;
     std::optional<double> fall_from_major_deg;
   };
+  // model = "3d" (header, item 3): the three-dimensional engine (rigid3d.hpp) on the pair and the vertical. The frame's
+  // major axis (azimuth 0) plays north (the engine's y), the minor (azimuth 90) east (its x); the body is turned so
+  // that its +x axis points at angle_deg from the major axis (90 - angle_deg counter-clockwise seen from above, as
+  // `topple rock --model 3d --bearing-deg` turns it), and its fall azimuth is then measured from the major axis.
+  const bool three_d = object_model(object) == ObjectModel::three_d;
+  std::optional<Rigid3DOptions> options_3d;
+  if (three_d) {
+    options_3d.emplace();
+    options_3d->g_m_s2 = options.g_m_s2;
+    options_3d->restitution = options.restitution;
+    options_3d->e = options.e;
+    options_3d->rel_tol = options.rel_tol;
+    options_3d->max_run_out_s = options.max_run_out_s;
+  }
   const auto run = [&](double angle_deg) -> Run {
     if (lifted) return {rocking_match(object.outcome, true, 0.0), std::nullopt};  // item 3: as overturned
+    if (three_d) {
+      const RigidBody3D turned = object.body_3d->rotated_about_vertical((90.0 - angle_deg) * kDeg);
+      const Rigid3DSummary s = rock3d(minor, &major, &vertical, turned, *options_3d).summary;
+      return {rocking_match(object.outcome, s.overturned, s.max_tilt_rad),
+              s.overturned ? std::optional<double>(s.overturn_azimuth_deg) : std::nullopt};
+    }
     // A box: both axes, the governing one's response (oriented.hpp, "Box"). A cylinder with an observed fall
     // direction: oriented.hpp's grid of directions, the governing one its fall axis (header, item 4).
     const bool cylinder_grid = object.body.shape == RockingBody::Shape::cylinder && object.toppled_azimuth_deg;
@@ -219,6 +240,31 @@ void observation_match_3c(const ObservedObject& object, const DrawnParameters& p
   }
 }
 
+namespace {
+
+/// A three-dimensional body's static coefficients (header, item 6): uplift about some edge needs the resultant of
+/// gravity and the ground's inertial force to leave the base polygon (rigid3d.hpp, rest -> rocking), i.e.
+/// |a| / (g + a_v) > d(u) / h in the direction u of a, where d(u) is the distance from the centre of mass' plan to
+/// where the polygon's boundary meets the ray -u. Its smallest value is the distance from c to the nearest edge line
+/// (a rocked or overturned body: |a| reached at least that), its largest the distance to the farthest vertex (a body
+/// that did not rock: |a| stayed below that in every direction). A box: min(w, d) / 2 and the half-diagonal, over h.
+std::pair<double, double> polygon_static_coefficients(const RigidBody3D& body) {
+  const auto& v = body.base_xy_m;
+  const double cx = body.centre_of_mass_m[0], cy = body.centre_of_mass_m[1], h = body.centre_of_mass_m[2];
+  double nearest_edge = std::numeric_limits<double>::infinity(), farthest_vertex = 0.0;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const auto& a = v[i];
+    const auto& b = v[(i + 1) % v.size()];
+    const double ex = b[0] - a[0], ey = b[1] - a[1];
+    // Counter-clockwise polygon, c inside: the distance to the edge's line is the cross product over the length.
+    nearest_edge = std::min(nearest_edge, (ex * (cy - a[1]) - ey * (cx - a[0])) / std::hypot(ex, ey));
+    farthest_vertex = std::max(farthest_vertex, std::hypot(a[0] - cx, a[1] - cy));
+  }
+  return {nearest_edge / h, farthest_vertex / h};
+}
+
+}  // namespace
+
 ThreeComponentBounds static_bounds_3c(const Site& site, double rho) {
   ThreeComponentBounds out;
   constexpr double c = kRotD50FloorOfRotD100;
@@ -248,8 +294,12 @@ ThreeComponentBounds static_bounds_3c(const Site& site, double rho) {
     const OrientedBody oriented = OrientedBody::make(o.body, o.depth_m);
     // Uplift: the planar body's tan alpha (detail::uplift_tan_alpha: an asymmetric body's weaker one); a box rocks
     // first about its smaller one when it rocked, and is bounded by both when it did not.
-    const double tan_lower = oriented.across ? std::min(std::tan(o.body.alpha_rad()), std::tan(oriented.across->alpha_rad()))
-                                             : detail::uplift_tan_alpha(o.body, true);
+    // A model = "3d" body (a box, or a mesh's support polygon): its polygon's coefficients, every direction at once.
+    const std::optional<std::pair<double, double>> polygon =
+        o.body_3d ? std::optional(polygon_static_coefficients(*o.body_3d)) : std::nullopt;
+    const double tan_lower = polygon          ? polygon->first
+                             : oriented.across ? std::min(std::tan(o.body.alpha_rad()), std::tan(oriented.across->alpha_rad()))
+                                               : detail::uplift_tan_alpha(o.body, true);
     if (o.support_filter) {  // lower thresholds only (inversion.hpp, item 1); the vertical passes unfiltered
       const double peak = max_peak_amplification(o.support_filter->damping.low);
       const double h = o.amplification.high * peak;
@@ -268,7 +318,9 @@ ThreeComponentBounds static_bounds_3c(const Site& site, double rho) {
       case Outcome::rocked:
       case Outcome::overturned: lower(tan_lower, "b/h", hi, hi, amp_text(hi)); break;
       case Outcome::not_rocked:
-        if (oriented.across) {
+        if (polygon) {
+          upper(polygon->second, "the farthest base vertex's distance / h", lo, amp_text(lo));
+        } else if (oriented.across) {
           upper(std::hypot(std::tan(o.body.alpha_rad()), std::tan(oriented.across->alpha_rad())),
                 "hypot of the box's two b/h", lo, amp_text(lo));
         } else if (oriented.axisymmetric()) {
@@ -514,7 +566,12 @@ detail::SiteRuns detail::simulate_site_3c(const Site& site, const InversionSetti
   // The solver its runs used (observation_match_3c): the two-dimensional sliding block or the oriented rocking body.
   // The survey reader refuses the coupled model and a model key that contradicts the outcome with components = 3, so
   // this is also object_model (survey.hpp).
-  for (const ObservedObject& o : site.objects) out.models.push_back(is_sliding(o.outcome) ? ObjectModel::slide : ObjectModel::rock);
+  // model = "3d" is the three-dimensional engine's.
+  for (const ObservedObject& o : site.objects) {
+    out.models.push_back(object_model(o) == ObjectModel::three_d ? ObjectModel::three_d
+                         : is_sliding(o.outcome)                 ? ObjectModel::slide
+                                                                 : ObjectModel::rock);
+  }
   // The family's facts (the direction estimate is the pipeline's, from the posterior).
   ThreeComponentResult tc;
   double larger = 0.0, r100 = 0.0, count = 0.0;

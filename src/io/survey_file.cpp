@@ -18,6 +18,7 @@
 #include "topple/region/geodesy.hpp"
 #include "topple/solvers/flexible.hpp"
 #include "topple/solvers/oriented.hpp"
+#include "topple/solvers/rigid3d.hpp"
 #include "topple/survey/population.hpp"
 #include "io/survey_csv.hpp"
 
@@ -286,6 +287,13 @@ RockingBody mesh_object_body(Reader& named, const std::filesystem::path& base_di
   o.mesh_azimuth_deg = options.azimuth_deg;
   try {
     const MeshBody mb = read_mesh_body(path.string(), unit_m, options);
+    if (const toml::node* m = named.get("model"); m != nullptr && m->value_or(std::string()) == "3d") {
+      // model = "3d": the mesh as posed in three dimensions, turned so that its direction mesh_azimuth_deg (clockwise
+      // from its +y) is the body's +x axis: the bearing azimuth_deg then places that direction, as it places the
+      // planar section's plane of shaking (the keys keep their meaning).
+      o.body_3d = std::make_shared<const RigidBody3D>(
+          RigidBody3D::from_mesh(mb).rotated_about_vertical(deg_to_rad(options.azimuth_deg - 90.0)));
+    }
     o.mesh_pose = mb.pose.method == PoseMethod::as_scanned
                       ? std::string("as-scanned")
                       : fmt::format("rest on face {} (tilt {:.4g} deg from the scan)", mb.pose.face.value_or(0),
@@ -322,11 +330,18 @@ void parse_object_model(Reader& named, ObservedObject& o, int components, std::v
     if (*m == "slide") o.model = ObjectModel::slide;
     else if (*m == "rock") o.model = ObjectModel::rock;
     else if (*m == "coupled") o.model = ObjectModel::coupled;
-    else throw named.error("model", fmt::format("unknown model '{}' (known: slide, rock, coupled)", *m));
+    else if (*m == "3d") o.model = ObjectModel::three_d;
+    else throw named.error("model", fmt::format("unknown model '{}' (known: slide, rock, coupled, 3d)", *m));
   }
   // The survey's rules for the model (survey.hpp, check_object_model), located at this object's keys.
   for (const ObjectCheck& w : at_object_keys(named, [&] { return check_object_model(o, components); })) {
     warnings.push_back(named.error(w.field, w.problem).what());
+  }
+  // model = "3d": a box's body in three dimensions (a mesh's was made with its body, mesh_object_body), its +x axis
+  // (the width) along the bearing, as the oriented box's (oriented.hpp).
+  if (o.model == ObjectModel::three_d && !o.body_3d) {
+    o.body_3d = std::make_shared<const RigidBody3D>(
+        at_object_keys(named, [&] { return RigidBody3D::box(*o.width_m, *o.depth_m, *o.height_m); }));
   }
 }
 

@@ -26,6 +26,7 @@
 #include "topple/io/read.hpp"
 #include "topple/motion/motion_set.hpp"
 #include "topple/solvers/oriented.hpp"
+#include "topple/solvers/rigid3d.hpp"
 #include "topple/motion/pulses.hpp"
 #include "topple/core/units.hpp"
 
@@ -682,6 +683,7 @@ struct BodyCase {
   std::string mesh;                  ///< a body from a mesh: the file as given, and its plane's azimuth
   std::optional<double> mesh_azimuth_deg;
   std::string mesh_pose;             ///< "rest" or "as-scanned"
+  std::optional<RigidBody3D> body_3d;  ///< model = "3d", a body from a mesh: its three-dimensional body as posed
 };
 
 /// The sweep key of a BodyOptions option named by check_body_options or mesh_body.
@@ -744,9 +746,18 @@ void read_mesh_pose(const Reader& r, const toml::table& o, const std::string& pr
 /// x `mesh_azimuth_deg` (one value, a list or a range), posed by the `mesh_pose` keys (read_mesh_pose), through the
 /// mesh pipeline (io::read_mesh_body, rocking_body). A refusal names the sweep file, the line, the key and the mesh
 /// file.
-std::vector<BodyCase> mesh_bodies(const Reader& r, const toml::table& o, const std::string& prefix) {
+/// With `three_d` (model = "3d") the body is the mesh as posed in three dimensions (RigidBody3D::from_mesh), turned by
+/// the sweep's bearings: mesh_azimuth_deg (a planar body's plane of shaking) is refused.
+std::vector<BodyCase> mesh_bodies(const Reader& r, const toml::table& o, const std::string& prefix,
+                                  bool three_d = false) {
   const auto files = r.strings(o, "mesh", prefix + "mesh");
-  const auto azimuths = r.numbers(o, "mesh_azimuth_deg", prefix + "mesh_azimuth_deg");
+  if (three_d && o.get("mesh_azimuth_deg") != nullptr) {
+    r.fail(o.get("mesh_azimuth_deg"), prefix + "mesh_azimuth_deg",
+           "a three-dimensional body (model = \"3d\") has no plane of shaking: it stands with the mesh's +x axis at "
+           "the sweep's bearing_deg");
+  }
+  const auto azimuths = three_d ? std::optional(std::vector<double>{0.0})
+                                : r.numbers(o, "mesh_azimuth_deg", prefix + "mesh_azimuth_deg");
   if (!azimuths) {
     r.fail(&o, prefix + "mesh_azimuth_deg", "a body from a mesh needs the azimuth of its plane of shaking, degrees "
                                             "clockwise from the mesh's north (+y)");
@@ -777,6 +788,10 @@ std::vector<BodyCase> mesh_bodies(const Reader& r, const toml::table& o, const s
       BodyCase c;
       try {
         const MeshBody mb = read_mesh_body(path.string(), unit_m, options);
+        if (three_d) {
+          c.body_3d = RigidBody3D::from_mesh(mb);
+          // The planar section at azimuth 0 stays the object's planar body (the b1, b2, h columns).
+        }
         c.body = rocking_body(mb);
         c.inertia_m2 = mb.planar.inertia_cm_kg_m2 / mb.mass.mass_kg;
       } catch (const InputError& e) {
@@ -786,7 +801,7 @@ std::vector<BodyCase> mesh_bodies(const Reader& r, const toml::table& o, const s
         r.fail(o.get("mesh"), prefix + "mesh", fmt::format("mesh '{}' gives no body: {}", path.string(), e.what()));
       }
       c.mesh = file;
-      c.mesh_azimuth_deg = azimuth;
+      if (!three_d) c.mesh_azimuth_deg = azimuth;
       c.mesh_pose = options.pose == PoseMethod::as_scanned ? "as-scanned" : "rest";
       out.push_back(std::move(c));
     }
@@ -940,10 +955,47 @@ std::vector<BodyCase> axis_bodies(const Reader& r, const toml::table& o, const s
   return bodies;
 }
 
-/// A rocking object (model = "rock") or, `coupled`, a coupled slide-rock object (model = "coupled": the same body
-/// keys, mu required, mu_kinetic optional; slide_rock.hpp).
+/// Which model a rocking object's keys are read for.
+enum class RockModel { rock, coupled, three_d };
+
+/// The keys a three-dimensional object (model = "3d") refuses, with why: it is a box (a block with its depth) or a
+/// body from a mesh, which does not slide and stands on the ground (rigid3d.hpp).
+void refuse_for_3d(const Reader& r, const toml::table& o, const std::string& prefix, const std::string& shape,
+                   bool from_mesh) {
+  if (const toml::node* n = o.get("mu")) {
+    r.fail(n, prefix + "mu", "the three-dimensional engine (model = \"3d\") does not slide (friction large enough): "
+                             "leave mu out");
+  }
+  for (const char* k : {"support_freq_hz", "support_freq", "support_damping"}) {
+    if (const toml::node* n = o.get(k)) {
+      r.fail(n, prefix + k, "a three-dimensional object (model = \"3d\") stands on the ground: flexible supports are "
+                            "not run under [[motions.set]]");
+    }
+  }
+  if (from_mesh) return;
+  if (shape == "cylinder") {
+    r.fail(o.get("shape"), prefix + "shape",
+           "model = \"3d\": a cylinder's circular base (rolling and wobbling on its rim) is not wired into sweeps yet; "
+           "use model = \"rock\" (under [[motions.set]]: the worst of its directions)");
+  }
+  if (shape == "general") {
+    r.fail(o.get("shape") != nullptr ? o.get("shape") : &o, prefix + "shape",
+           "model = \"3d\": a general body (a, h, D or b1, b2, h, inertia) is a section in one vertical plane, "
+           "without a base in three dimensions; give a block with its depth, or a mesh");
+  }
+  if (shape == "block" && o.get("depth") == nullptr && o.get("depth_m") == nullptr) {
+    r.fail(&o, prefix + "depth", "model = \"3d\" needs the block's depth (depth_m, or depth with a unit): its extent "
+                                 "along its own y axis, along bearing + 90");
+  }
+}
+
+/// A rocking object (model = "rock"), a coupled slide-rock object (model = "coupled": the same body keys, mu
+/// required, mu_kinetic optional; slide_rock.hpp) or a three-dimensional one (model = "3d": a block with its depth or
+/// a mesh, no mu, no support; rigid3d.hpp).
 void read_rock(const Reader& r, const toml::table& o, const std::string& key, double g, SweepFile& out,
-               bool coupled = false) {
+               RockModel model = RockModel::rock) {
+  const bool coupled = model == RockModel::coupled;
+  const bool three_d = model == RockModel::three_d;
   const std::string prefix = key + ".";
   // The body keys of every rocking object; a coupled one (model = "coupled") also takes mu_kinetic.
   std::vector<std::string_view> keys{"model", "shape", "width", "width_m", "height", "height_m", "diameter",
@@ -955,10 +1007,11 @@ void read_rock(const Reader& r, const toml::table& o, const std::string& key, do
                                      "support_damping", "depth", "depth_m"};
   if (coupled) keys.emplace_back("mu_kinetic");
   r.check_keys(o, key, keys);
-  const auto supports = read_supports(r, o, prefix);
   const bool from_mesh = o.get("mesh") != nullptr;
   // A body from a mesh is a general body: its shape may be left out.
   const std::string shape = r.string(o, "shape", prefix + "shape").value_or(from_mesh ? "general" : "");
+  if (three_d) refuse_for_3d(r, o, prefix, shape, from_mesh);
+  const auto supports = read_supports(r, o, prefix);
   // A block's depth (a box, oriented.hpp): under [[motions.set]] only (make_plan says so).
   std::vector<std::optional<double>> depths{std::nullopt};
   if (const auto d = r.quantities(o, "depth_m", "depth", prefix, length_parser(), "30cm")) {
@@ -990,12 +1043,14 @@ void read_rock(const Reader& r, const toml::table& o, const std::string& key, do
     if (const auto ks = r.numbers(o, "mu_kinetic", prefix + "mu_kinetic")) mu_k_values.assign(ks->begin(), ks->end());
   }
   std::vector<BodyCase> bodies;
-  if (from_mesh) bodies = mesh_bodies(r, o, prefix);
+  if (from_mesh) bodies = mesh_bodies(r, o, prefix, three_d);
   for (BodyCase& c : axis_bodies(r, o, prefix, shape, asymmetric, axes)) bodies.push_back(std::move(c));
   for (const BodyCase& c : bodies) {
     const RockingBody& body = c.body;
     for (const auto& e : es) {
-      if (!e) r.located(o.get("e") != nullptr ? o.get("e") : &o, prefix + "e", [&] {
+      // The planar rule; the three-dimensional impact has none (a body that cannot lift about the new contact comes
+      // to rest, rigid3d.hpp).
+      if (!e && !three_d) r.located(o.get("e") != nullptr ? o.get("e") : &o, prefix + "e", [&] {
         ensemble::check_housner_restitution(body);  // the rocking model's rule (sweep.hpp)
       });
       for (const auto& m : mu_values) {
@@ -1022,6 +1077,14 @@ void read_rock(const Reader& r, const toml::table& o, const std::string& key, do
             ro.depth_m = depth;
             if (depth) r.located(o.get("depth") != nullptr ? o.get("depth") : o.get("depth_m"), prefix + "depth",
                                  [&] { return OrientedBody::box(*c.width_m, *depth, *c.height_m); });
+            if (three_d) {  // the box in three dimensions (width along +x, depth along +y), or the mesh's body
+              ro.body_3d = c.body_3d ? c.body_3d
+                                     : std::optional(r.located(o.get("depth") != nullptr ? o.get("depth")
+                                                                                         : o.get("depth_m"),
+                                                               prefix + "depth", [&] {
+                                         return RigidBody3D::box(*c.width_m, *depth, *c.height_m);
+                                       }));
+            }
             for (const auto& support : supports) {
               ro.support = support;
               out.spec.objects.emplace_back(ro);
@@ -1044,15 +1107,17 @@ void read_objects(const Reader& r, const toml::table& t, SweepFile& out) {
     const toml::table& o = *arr->get(i)->as_table();
     const std::string key = fmt::format("object[{}]", i + 1);
     const auto model = r.string(o, "model", key + ".model");
-    if (!model) r.fail(&o, key + ".model", "an object needs its model: \"slide\", \"rock\" or \"coupled\"");
+    if (!model) r.fail(&o, key + ".model", "an object needs its model: \"slide\", \"rock\", \"coupled\" or \"3d\"");
     if (*model == "slide") {
       read_slide(r, o, key, out.spec.g_m_s2, out);
     } else if (*model == "rock") {
       read_rock(r, o, key, out.spec.g_m_s2, out);
     } else if (*model == "coupled") {
-      read_rock(r, o, key, out.spec.g_m_s2, out, true);
+      read_rock(r, o, key, out.spec.g_m_s2, out, RockModel::coupled);
+    } else if (*model == "3d") {
+      read_rock(r, o, key, out.spec.g_m_s2, out, RockModel::three_d);
     } else {
-      r.fail(o.get("model"), key + ".model", fmt::format("unknown model '{}' (known: slide, rock, coupled)", *model));
+      r.fail(o.get("model"), key + ".model", fmt::format("unknown model '{}' (known: slide, rock, coupled, 3d)", *model));
     }
   }
 }

@@ -130,7 +130,9 @@ std::string observed_text(const ObservedObject& o, const ObjectReport& rep, bool
   if (rep.model == ObjectModel::coupled) {
     s += " (coupled slide-rock model)";
   } else if (three_component) {  // the model its runs used (inversion_3c.cpp): said for every object
-    s += rep.model == ObjectModel::slide ? " (2-D sliding block model)" : " (oriented rocking model)";
+    s += rep.model == ObjectModel::slide     ? " (2-D sliding block model)"
+         : rep.model == ObjectModel::three_d ? " (3-D rocking model)"
+                                             : " (oriented rocking model)";
   }
   return s;
 }

@@ -168,6 +168,56 @@ TEST_F(CliOriented, SweepOverBearingsEqualsSingleRuns) {
   }
 }
 
+// model = "3d" in a sweep: each row is `topple rock --model 3d --h2 --bearing-deg` of the same station, object and
+// bearing (the same projection on east and north, the same turn of the body: the same numbers exactly), with the
+// inverse polarity as --invert. `topple fragility --model 3d` runs under pairs and refuses single components and a
+// block without its depth, naming the option.
+TEST_F(CliOriented, Model3dSweepRowsAreSingleRunsAndFragilityRefusals) {
+  const test::Table t = test::run_sweep(
+      dir.path(), "[motions]\nbearing_deg = [0, 37]\npolarity = [\"normal\", \"inverse\"]\n" +
+                      test::station_set_toml(true) +
+                      "[[object]]\nmodel = \"3d\"\nshape = \"block\"\nwidth = \"20cm\"\ndepth = \"30cm\"\n"
+                      "height = \"80cm\"\n");
+  ASSERT_EQ(t.rows.size(), 4U);
+  const std::string set = "rock " + h1 + " --h2 " + h2 + " --vertical " + v + " --azimuths 0,90";
+  int rocked = 0;
+  for (std::size_t row = 0; row < t.rows.size(); ++row) {
+    SCOPED_TRACE(fmt::format("run {}", row));
+    EXPECT_EQ(t.at(row, "model"), "3d");
+    const bool inverse = t.at(row, "polarity") == "inverse";
+    const auto single = test::run_json(set + " --bearing-deg " + t.at(row, "bearing_deg") +
+                                       (inverse ? " --invert" : "") +
+                                       " --model 3d --shape block --width 20cm --depth 30cm --height 80cm --json");
+    for (const char* key : {"overturned", "overturn_time_s", "overturn_azimuth_deg", "max_tilt_rad",
+                            "max_tilt_azimuth_deg", "max_tilt_time_s", "max_tilt_over_limit", "exceeded_limit_time_s",
+                            "impacts", "uplifts", "uplift_time_s", "energy_lost_j_per_kg", "flight_time_s",
+                            "end_time_s", "end_mode"}) {
+      test::expect_same(t.at(row, key), single.at(key), key);
+    }
+    rocked += single.at("uplifts").get<int>() > 0;
+  }
+  EXPECT_GT(rocked, 0);  // the station rocks the box (the comparison is not of rests)
+  const std::string box = " --model 3d --shape block --width 15cm --depth 30cm --height 60cm --im-range 0.1:1:3";
+  for (const auto& [args, option] :
+       {std::pair{"fragility --synth 2 --components 2" + box, std::string("")},
+        std::pair{"fragility --synth 2" + box, std::string("--model")},
+        std::pair{std::string("fragility --synth 2 --components 2 --model 3d --shape block --width 15cm "
+                              "--height 60cm --im-range 0.1:1:3"),
+                  std::string("--depth")},
+        std::pair{std::string("fragility --synth 2 --components 2 --shape block --width 15cm --depth 30cm "
+                              "--height 60cm --im-range 0.1:1:3"),
+                  std::string("--depth")}}) {
+    SCOPED_TRACE(args);
+    const auto r = test::run_cli(args + " --quiet");
+    if (option.empty()) {
+      EXPECT_EQ(r.exit_code, 0) << r.err;
+    } else {
+      EXPECT_EQ(r.exit_code, 2) << r.err;
+      EXPECT_NE(r.err.find(option), std::string::npos) << r.err;
+    }
+  }
+}
+
 TEST_F(CliOriented, SweepOfSlidersAndRockersUnderASetEqualsSingleRuns) {
   // Sliding objects under a set are bidirectional sliders (friction is isotropic: the bearing does not enter, the
   // row at every bearing is the same run); rocking objects beside them are oriented. A single record with the same

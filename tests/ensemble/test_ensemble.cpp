@@ -28,6 +28,7 @@
 #include "topple/core/error.hpp"
 #include "topple/motion/motion_set.hpp"
 #include "topple/motion/pulses.hpp"
+#include "topple/solvers/rigid3d.hpp"
 #include "topple/solvers/rocking.hpp"
 #include "topple/solvers/sliding.hpp"
 #include "topple/solvers/summary_fields.hpp"
@@ -239,6 +240,92 @@ TEST(EnsembleRun, SlidersUnderASetAreBidirectionalAndCollinearInputIsThe1dRow) {
     FAIL() << "an inclined slider under a set was accepted";
   } catch (const InputError& e) {
     EXPECT_EQ(e.where().field, "object[4].slope_deg");
+  }
+}
+
+// A three-dimensional object (model "3d": a box with its depth) under a set whose second component is zero, at the
+// bearing of the first component (east): the input lies in the box's plane of symmetry across its width, where the
+// three-dimensional engine is the planar one (rigid3d.hpp; test_rigid3d: 1e-6 at rel_tol 1e-10). The planar
+// oriented box beside it sees the same projection along its bearing and nothing across: the verdicts are equal, the
+// tilt over the static limit is the planar theta / alpha (both engines at the default rel_tol 1e-8: 1e-5), and the
+// fall azimuth is the bearing's side the planar body fell to (theta > 0: toward the bearing). The 3-D columns are
+// added after the others (a sweep without a 3-D object keeps its columns) and a planar row leaves them empty.
+TEST(EnsembleRun, ThreeDimensionalBoxInItsPlaneOfSymmetryGivesThePlanarVerdicts) {
+  SweepSpec spec;
+  const auto rec = noise_record(5);
+  const std::vector<double> zero(rec->size(), 0.0);
+  const GroundMotion quiet = GroundMotion::uniform(zero, rec->dt_s(), rec->start_time_s());
+  spec.record_sets.push_back(
+      {"rec+zero", std::make_shared<const MotionSet>(MotionSet::make(*rec, &quiet, ComponentAzimuths{90.0, 0.0}))});
+  spec.bearings_deg = {90.0};
+  spec.scales = {{ScaleSpec::Kind::factor, 0.4}, {ScaleSpec::Kind::factor, 0.8}, {ScaleSpec::Kind::factor, 1.6}};
+  spec.inverse = {false, true};
+  RockObject planar{.body = RockingBody::block(0.2, 0.8), .options = {}, .width_m = 0.2, .height_m = 0.8,
+                    .diameter_m = std::nullopt};
+  planar.depth_m = 0.3;
+  RockObject three_d = planar;
+  three_d.body_3d = RigidBody3D::box(0.2, 0.3, 0.8);
+  spec.objects = {planar};
+  const Plan planar_plan = make_plan(spec);
+  spec.objects = {planar, three_d};
+  const Plan plan = make_plan(spec);
+  std::vector<std::string> expected = planar_plan.result_columns;
+  for (const char* c : {"overturn_azimuth_deg", "max_tilt_rad", "max_tilt_azimuth_deg", "max_tilt_time_s",
+                        "max_tilt_over_limit", "exceeded_limit_time_s", "flight_time_s", "end_mode"}) {
+    expected.emplace_back(c);
+  }
+  EXPECT_EQ(plan.result_columns, expected);
+  EXPECT_NE(plan.identity, planar_plan.identity);
+  const ResultTable t = run_in_memory(plan);
+  ASSERT_EQ(t.rows.size(), 12U);
+  const auto cell = [&](std::size_t run, const std::string& name) { return t.rows[run][column(t, name)]; };
+  int fell = 0;
+  for (std::size_t run = 0; run < t.rows.size(); run += 2) {
+    SCOPED_TRACE("run " + std::to_string(run));
+    const std::size_t r3 = run + 1;
+    EXPECT_EQ(std::get<std::string>(cell(run, "model")), "rock");
+    EXPECT_EQ(std::get<std::string>(cell(r3, "model")), "3d");
+    EXPECT_EQ(std::get<std::string>(cell(run, "governing_axis")), "bearing");
+    EXPECT_TRUE(std::holds_alternative<std::monostate>(cell(r3, "governing_axis")));
+    EXPECT_TRUE(std::holds_alternative<std::monostate>(cell(run, "max_tilt_over_limit")));
+    const bool over = std::get<bool>(cell(run, "overturned"));
+    EXPECT_EQ(std::get<bool>(cell(r3, "overturned")), over);
+    EXPECT_NEAR(number(cell(r3, "max_tilt_over_limit")), number(cell(run, "max_rotation_over_alpha")), 1e-5);
+    EXPECT_NEAR(number(cell(r3, "max_tilt_rad")), number(cell(run, "max_abs_rotation_rad")), 1e-5);
+    EXPECT_EQ(number(cell(r3, "impacts")), number(cell(run, "impacts")));
+    if (over) {
+      ++fell;
+      EXPECT_NEAR(number(cell(r3, "overturn_time_s")), number(cell(run, "overturn_time_s")), 1e-5);
+      // The planar replay tells the side: theta > 0 is toward the bearing (oriented.hpp).
+      RockingOptions po;
+      const double factor = number(cell(run, "scale_factor"));
+      const bool inverse = std::get<std::string>(cell(run, "polarity")) == "inverse";
+      const RockingSummary p = rock_summary(rec->scaled(inverse ? -factor : factor), planar.body, po);
+      ASSERT_TRUE(p.overturned);
+      EXPECT_NEAR(number(cell(r3, "overturn_azimuth_deg")), p.overturned_side > 0 ? 90.0 : 270.0, 1e-3);
+    } else {
+      EXPECT_TRUE(std::holds_alternative<std::monostate>(cell(r3, "overturn_azimuth_deg")));
+    }
+  }
+  EXPECT_GT(fell, 0);
+  EXPECT_LT(fell, 6);
+  // Under a single record a 3-D object has no second component: refused naming its model.
+  spec.records.push_back({"rec", rec});
+  spec.objects = {three_d};
+  try {
+    (void)make_plan(spec);
+    FAIL() << "a 3-D object under a single record was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().field, "object[1].model");
+  }
+  spec.records.clear();
+  three_d.options.mu = 0.5;
+  spec.objects = {three_d};
+  try {
+    (void)make_plan(spec);
+    FAIL() << "a 3-D object with a friction coefficient was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().field, "object[1].mu");
   }
 }
 

@@ -15,6 +15,7 @@
 #include "topple/motion/intensity.hpp"
 #include "topple/motion/motion_set.hpp"
 #include "topple/solvers/oriented.hpp"
+#include "topple/solvers/rigid3d.hpp"
 #include "topple/motion/rotd.hpp"
 #include "topple/motion/synthesis.hpp"
 
@@ -253,6 +254,47 @@ TEST(FragilityAnalysis, PairsWithAZeroSecondComponentAtTheRecordsAzimuthAreThe1d
   two.bearing_deg = 0.0;
   two.sliding.reset();
   EXPECT_EQ(fragility_analysis(two).curves[0].data.failures, std::vector<int>(8, 0));
+}
+
+// A body in three dimensions (OverturnFailure::body_3d) under the same collinear pairs: a box at bearing 90 (its +x
+// axis, the width, along the record) rocks in its plane of symmetry, where the three-dimensional engine is the planar
+// one (rigid3d.hpp; 1e-6 in test_rigid3d), so its counts are the planar block's of its width; at bearing 0 the record
+// lies along its depth, and its counts are the planar block's of its depth. Under single components it is refused.
+TEST(FragilityAnalysis, AThreeDimensionalBoxUnderCollinearPairsIsThePlanarBlockOfItsSection) {
+  std::vector<std::shared_ptr<const MotionSet>> sets;
+  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+    const GroundMotion m = synthesize(ensemble_spec(seed, 8.0));
+    const GroundMotion quiet = GroundMotion::uniform(std::vector<double>(m.size(), 0.0), m.dt_s());
+    sets.push_back(std::make_shared<const MotionSet>(MotionSet::make(m, &quiet, ComponentAzimuths{90.0, 0.0})));
+  }
+  FragilitySpec planar;
+  planar.motion_sets = sets;
+  planar.levels_si = log_grid(0.1 * kStandardGravity, 1.2 * kStandardGravity, 8);
+  planar.bearing_deg = 90.0;
+  FragilitySpec box = planar;
+  box.overturning = OverturnFailure{RockingBody::block(0.15, 0.6), RockingOptions{}};
+  box.overturning->body_3d = RigidBody3D::box(0.15, 0.3, 0.6);
+  int varied = 0;
+  for (const double bearing : {90.0, 0.0}) {
+    SCOPED_TRACE(bearing);
+    planar.overturning = OverturnFailure{RockingBody::block(bearing == 90.0 ? 0.15 : 0.3, 0.6), RockingOptions{}};
+    box.bearing_deg = bearing;
+    const FragilityResult a = fragility_analysis(planar), b = fragility_analysis(box);
+    ASSERT_EQ(b.curves.size(), 1U);
+    EXPECT_EQ(b.curves[0].data.failures, a.curves[0].data.failures);
+    varied += a.curves[0].data.failures.front() != a.curves[0].data.failures.back();
+  }
+  EXPECT_EQ(varied, 2);  // the failures vary over the levels at both bearings (the test is not vacuous)
+  FragilitySpec single = box;
+  single.motion_sets.clear();
+  single.motions.push_back(std::make_shared<const GroundMotion>(sets.front()->first()));
+  single.bearing_deg.reset();
+  try {
+    (void)fragility_analysis(single);
+    FAIL() << "a 3-D body under single components was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().field, "model");
+  }
 }
 
 TEST(FragilityAnalysis, PairsWithoutABearingDrawOnePerMotionAndBadInputIsNamed) {

@@ -319,6 +319,10 @@ TEST_F(SchemaAgainstReader, EveryChoiceParsesAndNoOtherWord) {
       if (k.key == "family" && c == "records") s.set("inversion", "records", "[\"r.csv\"]");
       if (k.key == "outcome" || k.key == "model") s.set("object", "mu", "0.1");
       if (k.key == "model" && c == "slide") s.set("object", "outcome", "\"not_slid\"");
+      if (k.key == "model" && c == "3d") {  // three components and a box (docs/survey.md)
+        s.set("inversion", "components", "3");
+        s.set("object", "depth", "\"30cm\"");
+      }
       if (k.key == "outcome" && (c == "slid_toppled" || c == "walked")) s.set("object", "mu", "0.8");
       const auto e = refusal(s);
       EXPECT_FALSE(e) << c << ": " << (e ? e->what() : "");

@@ -19,6 +19,7 @@
 #include "topple/solvers/flexible.hpp"
 #include "topple/io/sweep_file.hpp"
 #include "topple/motion/pulses.hpp"
+#include "topple/solvers/rigid3d.hpp"
 #include "topple/solvers/sliding.hpp"
 #include "topple/ensemble/sweep.hpp"
 
@@ -611,6 +612,82 @@ TEST(SweepFile, GeneralAndMeshErrorsNameFileLineKeyAndMesh) {
     expect_refused(dir.path() / "bad.toml", std::string(kPulseMotions) + "[[object]]\nmodel = \"rock\"\n" + c.keys,
                    c.field, c.line, c.problem_part);
   }
+}
+
+// model = "3d": a box (a block with its depth) is RigidBody3D::box of its width, depth and height, a mesh its posed
+// three-dimensional body (here the same box scanned standing, as-scanned: the same static limits in every direction
+// and the same height of the centre of mass); a model = "3d" object runs under [[motions.set]] only (make_plan names
+// its model under a pulse).
+TEST(SweepFile, ThreeDimensionalObjectsAreBoxesAndMeshesAsPosed) {
+  TempDir dir;
+  write_file(dir.path() / "box.stl", test::stl_binary_bytes(test::box_mesh(0.2, 0.3, 0.8)));
+  const SweepFile f = parse_in(dir, std::string(kPulseMotions) + R"([[object]]
+model = "3d"
+shape = "block"
+width = "20cm"
+depth_m = [0.3, 0.4]
+height_m = 0.8
+e = 0.9
+[[object]]
+model = "3d"
+mesh = "box.stl"
+mesh_pose = "as-scanned"
+)");
+  ASSERT_EQ(f.spec.objects.size(), 3U);
+  for (std::size_t i = 0; i < 3; ++i) {
+    SCOPED_TRACE(i);
+    const auto& ro = std::get<RockObject>(f.spec.objects[i]);
+    ASSERT_TRUE(ro.body_3d.has_value());
+    EXPECT_FALSE(ro.mu_kinetic.has_value());
+    const RigidBody3D expected = RigidBody3D::box(0.2, i == 1 ? 0.4 : 0.3, 0.8);
+    const double tol = i == 2 ? 1e-7 : 1e-12;  // a binary STL holds single-precision coordinates (0.8 -> 0.8 + 1.2e-8)
+    EXPECT_NEAR(ro.body_3d->height_m(), 0.4, tol);
+    for (const double az : {0.0, 30.0, 90.0, 135.0, 200.0}) {
+      EXPECT_NEAR(ro.body_3d->static_tilt_limit_rad(az), expected.static_tilt_limit_rad(az), tol) << az;
+    }
+    if (i < 2) {
+      EXPECT_EQ(ro.depth_m.value_or(0.0), i == 0 ? 0.3 : 0.4);
+      EXPECT_EQ(ro.options.restitution, RestitutionMode::given);
+      EXPECT_EQ(ro.options.e, 0.9);
+    } else {
+      EXPECT_EQ(ro.mesh, "box.stl");
+      EXPECT_FALSE(ro.mesh_azimuth_deg.has_value());
+    }
+  }
+  try {
+    (void)ensemble::make_plan(f.spec);
+    ADD_FAILURE() << "a 3-D object under a pulse was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().field, "object[1].model");
+  }
+}
+
+TEST(SweepFile, ThreeDimensionalRefusalsNameFileLineAndKey) {
+  TempDir dir;
+  write_file(dir.path() / "box.stl", test::stl_binary_bytes(test::box_mesh(0.2, 0.3, 0.8)));
+  struct Case {
+    std::string keys;  // after model = "3d" (line 9 of the file on)
+    std::string field;
+    std::size_t line;
+    std::string problem_part;
+  };
+  const std::string box = "shape = \"block\"\nwidth_m = 0.2\ndepth_m = 0.3\nheight_m = 0.8\n";  // lines 9-12
+  const Case cases[] = {
+      {"shape = \"cylinder\"\ndiameter_m = 0.1\nheight_m = 0.3\n", "object[1].shape", 9, "cylinder"},
+      {"shape = \"general\"\na_m = 0.03\nh_m = 0.2\nD_m2 = 0.05\n", "object[1].shape", 9, "general body"},
+      {"shape = \"block\"\nwidth_m = 0.1\nheight_m = 0.3\n", "object[1].depth", 7, "depth"},
+      {box + "mu = 0.5\n", "object[1].mu", 13, "does not slide"},
+      {box + "support_freq_hz = 5\n", "object[1].support_freq_hz", 13, "support"},
+      {"mesh = \"box.stl\"\nmesh_azimuth_deg = 0\n", "object[1].mesh_azimuth_deg", 10, "bearing_deg"},
+      {"shape = \"block\"\nwidth_m = 0.2\ndepth_m = -0.3\nheight_m = 0.8\n", "object[1].depth", 11, "-0.3"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.keys);
+    expect_refused(dir.path() / "bad.toml", std::string(kPulseMotions) + "[[object]]\nmodel = \"3d\"\n" + c.keys,
+                   c.field, c.line, c.problem_part);
+  }
+  expect_refused(dir.path() / "bad.toml", std::string(kPulseMotions) + "[[object]]\nmodel = \"4d\"\n" + box,
+                 "object[1].model", 8, "3d");
 }
 
 // Without an asymmetric body a sweep has the columns it always had: no per-side results, no b1/b2/inertia/mesh.

@@ -17,6 +17,7 @@
 #include "topple/io/survey_file.hpp"
 #include "topple/motion/pulses.hpp"
 #include "topple/output/inversion_output.hpp"
+#include "topple/solvers/rigid3d.hpp"
 #include "topple/solvers/rocking.hpp"
 
 namespace topple {
@@ -111,6 +112,36 @@ InputError refusal(const std::string& text, const std::filesystem::path& base_di
   }
   ADD_FAILURE() << "no InputError for:\n" << text;
   return InputError("none");
+}
+
+// model = "3d" on a mesh (three components): the mesh as posed in three dimensions, turned so that its direction
+// mesh_azimuth_deg (clockwise from its +y) is the body's +x axis, the one the bearing places. A box 20 cm along x,
+// 30 cm along y, 80 cm high, standing as scanned: at mesh_azimuth_deg = 90 the body's +x is the mesh's x (static
+// limit atan(10/40) toward +x, azimuth 90, and atan(15/40) toward +y); at 0 its +x is the mesh's +y (the limits
+// swap). Without model = "3d" no three-dimensional body is made (the planar section as before).
+TEST(SurveyBodies, ThreeDimensionalMeshObjectIsThePosedMeshAtItsAzimuth) {
+  TempDir dir;
+  write_file(dir.path() / "box.obj", test::obj_text(test::box_mesh(0.2, 0.3, 0.8)));
+  const auto survey = dir.path() / "survey.toml";
+  const std::string object = "mesh = \"box.obj\"\nmesh_pose = \"as-scanned\"\nmu = 0.6\noutcome = \"overturned\"\n";
+  write_file(survey, "[inversion]\ncomponents = 3\n[[object]]\nid = \"x\"\nmesh_azimuth_deg = 90\nmodel = \"3d\"\n" +
+                         object + "[[object]]\nid = \"y\"\nmesh_azimuth_deg = 0\nmodel = \"3d\"\n" + object +
+                         "[[object]]\nid = \"planar\"\nmesh_azimuth_deg = 0\n" + object);
+  const Survey s = io::read_survey(survey);
+  const auto& objects = s.sites.at(0).objects;
+  ASSERT_EQ(objects.size(), 3U);
+  for (std::size_t i = 0; i < 2; ++i) {
+    SCOPED_TRACE(objects[i].id);
+    ASSERT_TRUE(objects[i].body_3d);
+    const RigidBody3D& b = *objects[i].body_3d;
+    EXPECT_NEAR(b.height_m(), 0.4, 1e-12);
+    const double along = i == 0 ? 0.1 : 0.15, across = i == 0 ? 0.15 : 0.1;
+    EXPECT_NEAR(b.static_tilt_limit_rad(90.0), std::atan(along / 0.4), 1e-12);
+    EXPECT_NEAR(b.static_tilt_limit_rad(270.0), std::atan(along / 0.4), 1e-12);
+    EXPECT_NEAR(b.static_tilt_limit_rad(0.0), std::atan(across / 0.4), 1e-12);
+  }
+  EXPECT_FALSE(objects[2].body_3d);
+  EXPECT_EQ(object_model(objects[2]), ObjectModel::rock);
 }
 
 TEST(SurveyBodies, RefusalsNameTheFileTheLineAndTheField) {

@@ -18,6 +18,7 @@
 #include "topple/motion/ground_motion.hpp"
 #include "topple/motion/motion_set.hpp"
 #include "topple/solvers/oriented.hpp"
+#include "topple/solvers/rigid3d.hpp"
 #include "topple/motion/pulses.hpp"
 #include "topple/solvers/rocking.hpp"
 #include "topple/solvers/slide_rock.hpp"
@@ -87,6 +88,12 @@ struct RockObject {
   /// (the static friction coefficient) is then required. Single records and pulses only.
   bool coupled = false;
   std::optional<double> mu_kinetic = std::nullopt;  ///< coupled: kinetic friction (none: options.mu)
+  /// The three-dimensional engine (rigid3d.hpp: rocking about base edges and pivoting on corners) instead of the
+  /// planar models (model = "3d" in a sweep file): a box (a block with depth_m) or a body from a mesh as posed, run
+  /// by rock3d under each record set with its +x axis at the bearing (as `topple rock --model 3d --h2
+  /// --bearing-deg`), with options.g_m_s2, restitution, e, rel_tol, max_run_out_s and max_steps. `body` stays the
+  /// planar body (its columns). Record sets only; no friction (the engine does not slide), no support.
+  std::optional<RigidBody3D> body_3d = std::nullopt;
 };
 
 using ObjectSpec = std::variant<SlideObject, RockObject>;
@@ -142,12 +149,18 @@ struct SweepSpec {
 ///            body is asymmetric, the per-side results (kRockingSideFields: alpha_negative_rad ... overturned_side)
 ///            coupled slide-rock objects (model "coupled"; only when some object is one): kSlideRockFields in their
 ///            order (overturned ... used_sliding_kernel), less mu_static, mu_kinetic, g_m_s2 and e_mode, which are
-///            object columns (mu, mu_kinetic, g_m_s2, restitution); a name a rocking column has is that column
+///            object columns (mu, mu_kinetic, g_m_s2, restitution); a name a rocking column has is that column;
+///            three-dimensional objects (model "3d"; only when some object is one): kRigid3DFields in their order
+///            (overturned, overturn_time_s, overturn_azimuth_deg, max_tilt_rad, max_tilt_azimuth_deg,
+///            max_tilt_time_s, max_tilt_over_limit, exceeded_limit_time_s, impacts, uplifts, uplift_time_s,
+///            energy_lost_j_per_kg, flight_time_s, end_time_s, end_mode); a name a rocking column has is that column
+///            (a 3-D row leaves the planar-only cells empty, a planar row the 3-D-only ones)
 /// Throws InputError for an empty spec (no motion or no object), a motion that cannot be scaled (zero record), a
 /// one-way or inclined sliding object under a record set (fields "object[k].mode", "object[k].slope_deg"), a flexible
 /// support under a record set, a box (depth) under a single record or pulse, a coupled object without mu or under a
-/// record set ("object[k].model"), record sets with rocking objects other
-/// than cylinders and without bearings (field "bearing"), or a bearing without record sets.
+/// record set ("object[k].model"), a three-dimensional object under a single record or pulse or with a friction
+/// coefficient ("object[k].model", "object[k].mu"), record sets with rocking objects other than cylinders and
+/// without bearings (field "bearing"), or a bearing without record sets.
 [[nodiscard]] Plan make_plan(const SweepSpec& spec);
 
 /// A rocking object of a sweep with Housner's restitution (e = "housner"): 1 - 2a^2/D must not be negative (a body

@@ -37,7 +37,11 @@
 // under the projection of the pair on the bearing, with the vertical; a cylinder in its worst direction): the given
 // bearing for every motion or, when none is given, a bearing drawn uniformly on [0, 360) deg for each motion
 // (PortableRandom(bearing_seed), the i-th draw for the i-th motion, the same at every level: common random numbers
-// across levels), i.e. objects standing at unknown, uniformly distributed orientations.
+// across levels), i.e. objects standing at unknown, uniformly distributed orientations. A body in three dimensions
+// (OverturnFailure::body_3d, `topple fragility --model 3d`: a box or a mesh's body) is instead run by the
+// three-dimensional engine (rigid3d.hpp) on the pair along east and north and the vertical, its +x axis at the bearing
+// (as `topple rock --model 3d --h2 --bearing-deg`): it rocks about any base edge and pivots on a corner under both
+// components at once.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -51,6 +55,7 @@
 #include "topple/core/progress.hpp"
 #include "topple/motion/ground_motion.hpp"
 #include "topple/motion/motion_set.hpp"
+#include "topple/solvers/rigid3d.hpp"
 #include "topple/solvers/rocking.hpp"
 #include "topple/solvers/slide_rock.hpp"
 #include "topple/solvers/sliding.hpp"
@@ -122,6 +127,11 @@ struct OverturnFailure {
   /// (SlideRockBody::from_rocking(body, mu, mu_k)), run with slide_rock_options(options); failure when it falls.
   /// Single-component ensembles only (the pairs' oriented model is the rocking one).
   std::optional<SlideRockBody> coupled;
+  /// The three-dimensional engine (rigid3d.hpp: rocking about any base edge, pivoting on a corner, no sliding)
+  /// instead of the planar oriented model (header, "Pairs"): a box or a mesh's body with its +x axis at the bearing,
+  /// run by rock3d under the pair projected on east and north and the vertical, with options' g, restitution, e,
+  /// rel_tol, max_run_out_s and max_steps; failure when it falls. Pairs only. `body` stays the planar body (along +x).
+  std::optional<RigidBody3D> body_3d;
 };
 
 struct FragilitySpec {
@@ -229,7 +239,8 @@ struct AsRecordedResult {
 /// failures on the grid keeps its counts and gets no fit). Throws InputError naming "motions", "levels", "object"
 /// (neither failure mode given) or "threshold"; under pairs also "motions" (both kinds given, a set without a second
 /// component or azimuths, a zero pair), "im" (not pga), "mode" / "slope" (a one-way or inclined block) and "bearing"
-/// (not finite, or given for a cylinder).
+/// (not finite, or given for a cylinder); "model" for a coupled body under pairs, or a three-dimensional body (body_3d)
+/// with single components or with the coupled model.
 [[nodiscard]] FragilityResult fragility_analysis(const FragilitySpec& spec);
 
 }  // namespace topple

@@ -14,6 +14,8 @@
 
 namespace topple {
 
+struct RigidBody3D;  // solvers/rigid3d.hpp: a body with a convex polygonal base in three dimensions
+
 /// A quantity known as a value (low == high) or a range [low, high], sampled uniformly in the inversion. The ends are
 /// in the unit of the field that holds the interval (all of them dimensionless today: mu, e, amplification).
 struct Interval {
@@ -50,8 +52,11 @@ inline constexpr double kVisibleSlipM = 0.002;      ///< 2 mm
 ///   slide:   the exact sliding block (sliding.hpp), two-way, level ground
 ///   rock:    Housner's rocking body on a base that does not slide (rocking.hpp)
 ///   coupled: the coupled slide-rock body (slide_rock.hpp) with mu_s = mu_k = the object's mu
-enum class ObjectModel { slide, rock, coupled };
-[[nodiscard]] std::string_view object_model_name(ObjectModel model);  ///< "slide", "rock", "coupled"
+///   three_d: the three-dimensional engine (rigid3d.hpp: rocking about any base edge, pivoting on a corner, no
+///            sliding) on the pair and the vertical at the object's bearing; three-component surveys only, a box (a
+///            block with its depth) or a body from a mesh, `model = "3d"` only (never by the rule: docs/survey.md)
+enum class ObjectModel { slide, rock, coupled, three_d };
+[[nodiscard]] std::string_view object_model_name(ObjectModel model);  ///< "slide", "rock", "coupled", "3d"
 
 enum class Evidence { certain, likely, reported };
 [[nodiscard]] std::string_view evidence_name(Evidence evidence);
@@ -106,8 +111,11 @@ struct ObservedObject {
   /// bearing by the planar model: its fall direction says nothing more.)
   std::optional<double> toppled_azimuth_deg;
   Outcome outcome = Outcome::not_overturned;
-  /// `model = "slide" | "rock" | "coupled"` as the survey forces it; none: the rule (object_model).
+  /// `model = "slide" | "rock" | "coupled" | "3d"` as the survey forces it; none: the rule (object_model).
   std::optional<ObjectModel> model;
+  /// model = "3d": the body in three dimensions (the box of width, depth and height, or the mesh as posed, its +x
+  /// axis along azimuth_deg), set by the reader. None for the other models.
+  std::shared_ptr<const RigidBody3D> body_3d;
   std::optional<double> slid_m;              ///< observed sliding distance (outcome slid or slid_stood)
   double slid_uncertainty_m = 0.0;           ///< its one-sigma uncertainty
   std::optional<double> slid_at_least_m;     ///< or: it slid at least this far
@@ -131,7 +139,9 @@ struct ObjectCheck {
 
 /// The survey's rules for the model of `object` in a survey of `components` (1 or 3) components, with the object's
 /// model, outcome, body and mu already read: throws parameter_error(field, problem) for a combination that makes no
-/// sense (object_model above; a coupled object in a three-component survey; slid_toppled or walked on a body that
+/// sense (object_model above; a coupled object in a three-component survey; model = "3d" outside a three-component
+/// survey, on a sliding outcome (field "model"), on a cylinder or a general body ("shape") or a block without its
+/// depth ("depth"); slid_toppled or walked on a body that
 /// slides before it can lift over its whole mu range, Shenton 1996) and returns the warnings, kept values that the
 /// user should know of (mu at or above the body's Painleve limit, slide_rock.hpp, painleve_friction_limit).
 [[nodiscard]] std::vector<ObjectCheck> check_object_model(const ObservedObject& object, int components);
@@ -147,8 +157,8 @@ void check_object_restitution(const ObservedObject& object);
 void check_object_bearing(const ObservedObject& object);
 
 /// An object given the direction it fell (toppled_azimuth_deg), with its body, depth and outcome read: only an
-/// overturned cylinder or box tells the direction of the shaking by the way it fell (the planar model of a block
-/// without depth falls along its bearing). Throws parameter_error("toppled_azimuth_deg", problem).
+/// overturned cylinder, box or model = "3d" body tells the direction of the shaking by the way it fell (the planar
+/// model of a block without depth falls along its bearing). Throws parameter_error("toppled_azimuth_deg", problem).
 void check_object_fall_direction(const ObservedObject& object);
 
 /// The macroseismic scales a site's intensity may be given on (docs/survey.md, "Macroseismic intensity"): MMI
