@@ -392,11 +392,13 @@ DirectionEstimate direction_estimate(const std::vector<double>& bins_deg, const 
 
 namespace {
 /// The runs of every object at every direction bin (header, items 2-4): one MatchTable per bin, and the solver runs
-/// done.
+/// done. `draw_index[o]` (empty: o) is the index object o draws its parameters and unknown bearing with, so that a
+/// population's members never repeat an object's draws and a fall-direction variant repeats its member's.
 std::pair<std::vector<MatchTable>, std::size_t> simulate_matches_3c(const Site& site, const InversionSettings& st,
                                                                     const std::vector<double>& pga_g,
                                                                     const FamilyGrid3c& family,
-                                                                    const InversionOptions& options) {
+                                                                    const InversionOptions& options,
+                                                                    const std::vector<std::size_t>& draw_index = {}) {
   const std::size_t nf = family.motions.size(), n = family.motions.front().size(), no = site.objects.size();
   const std::size_t nb = static_cast<std::size_t>(st.directions);
   const std::vector<double> bins = direction_bins_deg(st);
@@ -411,8 +413,9 @@ std::pair<std::vector<MatchTable>, std::size_t> simulate_matches_3c(const Site& 
   std::vector<double> unknown(n * no);
   for (std::size_t k = 0; k < n; ++k) {
     for (std::size_t o = 0; o < no; ++o) {
-      drawn[k * no + o] = draw_parameters(site.objects[o], st.seed, k, o);
-      unknown[k * no + o] = unknown_bearing_angle_deg(st.seed, k, o);
+      const std::size_t d = draw_index.empty() ? o : draw_index[o];
+      drawn[k * no + o] = draw_parameters(site.objects[o], st.seed, k, d);
+      unknown[k * no + o] = unknown_bearing_angle_deg(st.seed, k, d);
     }
   }
   ensemble::Plan plan;
@@ -486,21 +489,33 @@ void simulate_populations_3c(const Site& site, const InversionSettings& st, cons
   Site members;
   std::vector<Span> base;                  // per population: its K members
   std::vector<std::vector<Span>> variants;  // per population, per fallen azimuth: its K variants
+  // Draw indices: the members' from far above any object's (as the one-component likelihood's kMemberDrawOffset),
+  // numbered over all populations; a variant draws as its member, so that E[kernel | overturned] (eq. P2) is taken
+  // over the same realisations as the share f it is divided by.
+  constexpr std::size_t kMemberDrawOffset = 1000000;
+  std::vector<std::size_t> draw_index;
+  std::size_t next_member = 0;
   for (const Population& p : site.populations) {
     const std::vector<ObservedObject> m = population_members(p);
     base.push_back({members.objects.size(), m.size()});
-    for (const ObservedObject& o : m) members.objects.push_back(o);
+    for (std::size_t j = 0; j < m.size(); ++j) {
+      members.objects.push_back(m[j]);
+      draw_index.push_back(kMemberDrawOffset + next_member + j);
+    }
     variants.emplace_back();
     for (std::size_t i = 0; i < p.fallen_azimuths_deg.size(); ++i) {
       variants.back().push_back({members.objects.size(), m.size()});
-      for (ObservedObject o : m) {
+      for (std::size_t j = 0; j < m.size(); ++j) {
+        ObservedObject o = m[j];
         o.id += fmt::format("@{}", i + 1);
         o.toppled_azimuth_deg = p.fallen_azimuths_deg[i];
         members.objects.push_back(std::move(o));
+        draw_index.push_back(kMemberDrawOffset + next_member + j);
       }
     }
+    next_member += m.size();
   }
-  auto [tables, runs] = simulate_matches_3c(members, st, pga_g, family, options);
+  auto [tables, runs] = simulate_matches_3c(members, st, pga_g, family, options, draw_index);
   out.runs += runs;
   const std::size_t nb = tables.size();
   const std::size_t cells = pga_g.size() * family.motions.size();
