@@ -9,6 +9,12 @@
 // strictly inside the polygon in plan, J = I_cm / m the inertia tensor about c per unit mass (B axes). Orientation:
 // the unit quaternion q with R(q) mapping B to G. Everything is per unit mass (the mass drops out).
 //
+// Friction (Rigid3DOptions::mu_s, mu_k; rigid3d_slide.cpp; docs/method.md "Sliding in three dimensions"): absent,
+// no contact point slides (the modes below). Given, the flat base sticks while |a_h| <= mu_s (g + a_z) and otherwise
+// slides flat without spin as sliding2d.hpp's block (exact: no friction torque about c's vertical); it lifts where the
+// centre of pressure c + h F_t / N leaves the base: from sticking the modes below take over (no slip after that),
+// while slipping (slide-rock) the run stops with a warning (not modelled).
+//
 // Contact modes (friction large enough that no contact point slides):
 //   rest    the base lies flat on the ground;
 //   rocking the body turns about a base edge (v_i, v_i+1) lying on the ground: one degree of freedom, the tilt theta
