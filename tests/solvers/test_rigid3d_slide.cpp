@@ -272,6 +272,43 @@ TEST(Rigid3DSlide, SlidingPhaseConvergesWithTheTolerance) {
   EXPECT_LT(e1, 1e-3 * std::hypot(ref[0], ref[1]));
 }
 
+// slide -> slide-rock (not modelled): a box 1.0 (x) x 0.3 (y) x 0.8 m (b/h = 1.25 along x, 0.375 along y) with
+// mu = 0.5 starts to slide along x (it cannot lift that way); a load along y then turns the sliding direction until
+// the centre of pressure c + h mu_k w/|w| crosses the long side: mu_k |w_y| / |w| > 0.375, i.e. |w_y| / |w| > 0.75.
+// The run stops there with slide_rock_time_s and a warning, never lifted before; the track turned from x toward y.
+TEST(Rigid3DSlide, SlideRockOnsetWhileSlidingStopsTheRun) {
+  const RigidBody3D box = RigidBody3D::box(1.0, 0.3, 0.8);
+  const GroundMotion x = pulse(0.9 * kG, 0.5, 0.5, 0.0, 0.002, 1.5);
+  std::vector<double> ay(x.size(), 0.0);
+  for (std::size_t i = 0; i < ay.size(); ++i) {
+    const double t = x.time_s(i);
+    if (t > 0.15 && t < 0.7) ay[i] = 0.45 * kG;
+  }
+  const GroundMotion y = GroundMotion::uniform(ay, 0.002);
+  Rigid3DOptions o = friction(0.5, 0.5);
+  o.record_history = true;
+  const Rigid3DResult r = rock3d(x, &y, nullptr, box, o);
+  ASSERT_TRUE(r.summary.slide_rock_time_s.has_value());
+  EXPECT_EQ(r.summary.end_mode, Rigid3DMode::sliding);
+  EXPECT_EQ(r.summary.uplifts, 0U);
+  EXPECT_EQ(r.summary.end_time_s, *r.summary.slide_rock_time_s);
+  ASSERT_FALSE(r.summary.warnings.empty());
+  const auto& h = r.history;
+  ASSERT_GE(h.time_s.size(), 3U);
+  EXPECT_EQ(h.time_s.back(), *r.summary.slide_rock_time_s);
+  const std::size_t n = h.time_s.size();
+  // the sliding direction from successive positions (the history keeps u, and w's magnitude in the energy)
+  const auto dir_y = [&](std::size_t i) {
+    const double dx = h.position_m[i][0] - h.position_m[i - 1][0];
+    const double dy = h.position_m[i][1] - h.position_m[i - 1][1];
+    return std::abs(dy) / std::hypot(dx, dy);
+  };
+  EXPECT_GT(dir_y(n - 1), 0.7);  // the last chord's direction (it lags the velocity's a little)
+  std::size_t first = 1;
+  while (first + 1 < n && h.position_m[first] == h.position_m[first - 1]) ++first;
+  EXPECT_LT(dir_y(first), 0.1);  // the slip began along x
+}
+
 TEST(Rigid3DSlide, BadFrictionIsAnInputErrorNamingTheField) {
   const RigidBody3D box = RigidBody3D::box(0.4, 0.3, 0.8);
   const GroundMotion x = sine(0.3 * kG, 0.5, 1.0, 0.01, 0.1);
