@@ -260,6 +260,24 @@ Rigid3DResult rock3d_friction(const GroundMotion& x, const GroundMotion* y, cons
                     fmt::format("the body lifted from sticking at t = {} s; from then on no contact point slides "
                                 "(slide-rock and sliding after rocking are not modelled in three dimensions)",
                                 e.uplift_time_s.value_or(t_cut)));
+  // Back at rest after the uplift, the no-slip engine keeps the body stuck: say where it would have slid (the stick
+  // test on the record's samples in those rest periods).
+  for (std::size_t k = 1; k < e.modes.size(); ++k) {
+    if (e.modes[k].mode != Rigid3DMode::rest || e.modes[k].time_s <= t_cut) continue;
+    const double t_to = k + 1 < e.modes.size() ? e.modes[k + 1].time_s : e.end_time_s;
+    std::optional<double> slip;
+    for (std::size_t i = 0; i < x.size() && !slip; ++i) {
+      const double t = x.time_s(i);
+      if (t < e.modes[k].time_s || t > t_to) continue;
+      const double G = g + (z ? z->accel_at(t) : 0.0);
+      if (std::hypot(x.accel_m_s2()[i], y ? y->accel_at(t) : 0.0) > mu_s * G) slip = t;
+    }
+    if (slip) {
+      e.warnings.push_back(fmt::format("t = {} s: the body at rest after rocking would slide (|a_h| > mu_s (g + a_z)); "
+                                       "sliding after an uplift is not modelled", *slip));
+      break;
+    }
+  }
   if (options.record_history) {
     for (std::size_t k = 0; k < r.history.time_s.size(); ++k) {
       Vec3 p = r.history.position_m[k];
