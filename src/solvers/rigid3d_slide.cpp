@@ -22,6 +22,7 @@
 // A body with mu_s h < b_min (b_min the least distance from c's plan to an edge) can never lift: p stays within
 // h mu_s (stuck) or h mu_k (slipping) of c (Shenton 1996's criterion, in every direction).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <optional>
@@ -101,6 +102,76 @@ void totals_from_rows(const Sliding2dHistory& h, std::size_t last, double mu_k, 
   s.slide_path_length_m = path;
   s.friction_energy_j_per_kg = work;
   s.max_slide_speed_m_s = vmax;
+}
+
+/// The first history row at which the contact of the no-slip engine (rocking about an edge, pivoting on a vertex)
+/// would need more friction than mu_s N. Per unit mass, in the ground frame: the contact force is F = a_c - f (f the
+/// gravity and inertial force, a_c the acceleration of c about the fixed contact), with the angular acceleration of
+/// fixed-axis rotation about the edge (axis e, J_e theta'' = e . (r x f), J_e = e . J_P e) or of Euler's equations
+/// about the fixed vertex (J_P w' = r x f - w x J_P w); J_P = R J R^T + |r|^2 1 - r r^T (parallel axes).
+std::optional<double> first_contact_slip(const Rigid3DResult& r, const RigidBody3D& body, const GroundMotion& x,
+                                         const GroundMotion* y, const GroundMotion* z, double g, double mu_s) {
+  using M3 = std::array<Vec3, 3>;
+  const auto dot = [](const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
+  const auto cross = [](const Vec3& a, const Vec3& b) {
+    return Vec3{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+  };
+  const auto mul = [&](const M3& m, const Vec3& v) { return Vec3{dot(m[0], v), dot(m[1], v), dot(m[2], v)}; };
+  const auto& h = r.history;
+  const auto& modes = r.summary.modes;
+  std::size_t m = 0;
+  for (std::size_t i = 0; i < h.time_s.size(); ++i) {
+    const double t = h.time_s[i];
+    while (m + 1 < modes.size() && modes[m + 1].time_s <= t) ++m;
+    const Rigid3DMode mode = h.mode[i];
+    if (mode != Rigid3DMode::rocking && mode != Rigid3DMode::pivot) continue;
+    if (modes[m].mode != mode || modes[m].vertex_a < 0) continue;  // an event row whose mode list entry is ahead
+    const Quaternion& q = h.orientation[i];
+    const double n2 = q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3];
+    const double sq = 2.0 / n2;
+    const double qw = q[0], qx = q[1], qy = q[2], qz = q[3];
+    const M3 R{{{1.0 - sq * (qy * qy + qz * qz), sq * (qx * qy - qw * qz), sq * (qx * qz + qw * qy)},
+                {sq * (qx * qy + qw * qz), 1.0 - sq * (qx * qx + qz * qz), sq * (qy * qz - qw * qx)},
+                {sq * (qx * qz - qw * qy), sq * (qy * qz + qw * qx), 1.0 - sq * (qx * qx + qy * qy)}}};
+    const auto& va = body.base_xy_m[static_cast<std::size_t>(modes[m].vertex_a)];
+    const Vec3 rb{body.centre_of_mass_m[0] - va[0], body.centre_of_mass_m[1] - va[1], body.centre_of_mass_m[2]};
+    const Vec3 rw = mul(R, rb);
+    M3 Jp{};  // R J R^T + |r|^2 1 - r r^T
+    for (std::size_t a = 0; a < 3; ++a) {
+      for (std::size_t b = 0; b < 3; ++b) {
+        double sum = 0.0;
+        for (std::size_t k = 0; k < 3; ++k) {
+          for (std::size_t l = 0; l < 3; ++l) sum += R[a][k] * body.inertia_cm_m2[k][l] * R[b][l];
+        }
+        Jp[a][b] = sum + (a == b ? dot(rw, rw) : 0.0) - rw[a] * rw[b];
+      }
+    }
+    const Vec3 f{-x.accel_at(t), -(y ? y->accel_at(t) : 0.0), -(g + (z ? z->accel_at(t) : 0.0))};
+    const Vec3& w = h.angular_velocity_rad_s[i];
+    Vec3 alpha{};
+    if (mode == Rigid3DMode::rocking) {
+      const auto& vb = body.base_xy_m[static_cast<std::size_t>(modes[m].vertex_b)];
+      Vec3 e = mul(R, Vec3{vb[0] - va[0], vb[1] - va[1], 0.0});
+      const double len = std::sqrt(dot(e, e));
+      e = {e[0] / len, e[1] / len, e[2] / len};
+      const double theta_dd = dot(e, cross(rw, f)) / dot(e, mul(Jp, e));
+      alpha = {theta_dd * e[0], theta_dd * e[1], theta_dd * e[2]};
+    } else {
+      const Vec3 torque = cross(rw, f);
+      const Vec3 gyro = cross(w, mul(Jp, w));
+      const Vec3 rhs{torque[0] - gyro[0], torque[1] - gyro[1], torque[2] - gyro[2]};
+      // J_P alpha = rhs by Cramer's rule (J_P symmetric positive definite)
+      const double det = dot(Jp[0], cross(Jp[1], Jp[2]));
+      const Vec3 c0 = cross(Jp[1], Jp[2]), c1 = cross(Jp[2], Jp[0]), c2 = cross(Jp[0], Jp[1]);
+      alpha = {dot(c0, rhs) / det, dot(c1, rhs) / det, dot(c2, rhs) / det};
+    }
+    const Vec3 tangential = cross(alpha, rw);
+    const Vec3 centripetal = cross(w, cross(w, rw));
+    const Vec3 F{tangential[0] + centripetal[0] - f[0], tangential[1] + centripetal[1] - f[1],
+                 tangential[2] + centripetal[2] - f[2]};
+    if (F[2] > 0.0 && std::hypot(F[0], F[1]) > mu_s * F[2] * (1.0 + 1e-9)) return t;
+  }
+  return std::nullopt;
 }
 
 }  // namespace
@@ -239,7 +310,10 @@ Rigid3DResult rock3d_friction(const GroundMotion& x, const GroundMotion* y, cons
   Rigid3DOptions rigid = options;
   rigid.mu_s.reset();
   rigid.mu_k.reset();
+  rigid.record_history = true;  // for the friction check of the contact below
   Rigid3DResult r = rock3d_rigid(x, y, z, checked, rigid, t_cut);
+  const std::optional<double> contact_slip = first_contact_slip(r, checked, x, y, z, g, mu_s);
+  if (!options.record_history) r.history = {};
   // Merge: the engine's summary, the flat phase's modes first (the engine's first mode is its rest at t_cut).
   Rigid3DSummary& e = r.summary;
   std::vector<Rigid3DModeChange> modes = s.modes;
@@ -260,6 +334,10 @@ Rigid3DResult rock3d_friction(const GroundMotion& x, const GroundMotion* y, cons
                     fmt::format("the body lifted from sticking at t = {} s; from then on no contact point slides "
                                 "(slide-rock and sliding after rocking are not modelled in three dimensions)",
                                 e.uplift_time_s.value_or(t_cut)));
+  if (contact_slip) {
+    e.warnings.push_back(fmt::format("t = {} s: the contact of the rocking or pivoting body would slip (|F_t| > mu_s N "
+                                     "on the history's rows); slide-rock is not modelled", *contact_slip));
+  }
   // Back at rest after the uplift, the no-slip engine keeps the body stuck: say where it would have slid (the stick
   // test on the record's samples in those rest periods).
   for (std::size_t k = 1; k < e.modes.size(); ++k) {
