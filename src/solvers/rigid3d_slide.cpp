@@ -266,7 +266,9 @@ Rigid3DResult rock3d_friction(const GroundMotion& x, const GroundMotion* y, cons
     s.residual_slide_north_m = slide.summary.residual_north_m;
     s.end_time_s = slide.summary.end_time_s;
     s.end_mode = slide.summary.at_rest_at_end ? Rigid3DMode::rest : Rigid3DMode::sliding;
-    if (!slide.summary.at_rest_at_end) s.warnings.push_back("the body was still sliding at the record's end (mu_k = 0)");
+    if (!slide.summary.at_rest_at_end) {
+      s.warnings.push_back("the body was still sliding at the record's end (mu_k = 0)");
+    }
     if (options.record_history && out.history.time_s.back() < s.end_time_s) {  // the run-out's stop
       auto& r = out.history;
       r.time_s.push_back(s.end_time_s);

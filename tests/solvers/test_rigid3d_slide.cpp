@@ -180,7 +180,8 @@ TEST(Rigid3DSlide, BoxInItsPlaneOfSymmetryEqualsThePlanarCoupledModel) {
     EXPECT_EQ(r.summary.overturned, s.overturned) << c.amplitude_g << " " << c.mu;
     const double theta = std::max(s.max_rotation_positive_rad, s.max_rotation_negative_rad);
     EXPECT_NEAR(r.summary.max_tilt_rad, theta, 1e-6 * std::max(theta, 1e-3)) << c.amplitude_g << " " << c.mu;
-    EXPECT_NEAR(r.summary.residual_slide_east_m, s.residual_slide_m, 1e-6 * std::max(std::abs(s.residual_slide_m), 1e-3))
+    EXPECT_NEAR(r.summary.residual_slide_east_m, s.residual_slide_m,
+                1e-6 * std::max(std::abs(s.residual_slide_m), 1e-3))
         << c.amplitude_g << " " << c.mu;
     EXPECT_NEAR(r.summary.residual_slide_north_m, 0.0, 1e-12);
   }
