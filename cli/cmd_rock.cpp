@@ -79,6 +79,7 @@ const std::map<std::string, std::string>& option_names() {
       {"g", "--g"},           {"rel_tol", "--rtol"},  {"rk4_substeps", "--rk4-substeps"},
       {"max_steps", "--max-steps"},
       {"max_run_out_s", "--run-out"}, {"vertical", "--vertical"}, {"mu_k", "--mu-k"}, {"slope", "--slope-deg"},
+      {"mu_s", "--mu"},
       {"depth", "--depth"},   {"bearing", "--bearing-deg"}, {"cylinder_step", "--direction-step-deg"},
       {"azimuth", "--azimuths"}, {"simultaneous_contact", "--simultaneous-contact"}};
   return names;
@@ -215,10 +216,6 @@ void run_model_3d(const RockOptions& o, RunMotion& run, const std::optional<Rock
                                      "axis: along bearing + 90 with --h2)");
   }
   if (!body && !o.depth.empty()) throw parameter_error("--depth", "is a block's: a mesh has its own shape");
-  if (o.mu || o.mu_k) {
-    throw parameter_error(o.mu ? "--mu" : "--mu-k", "--model 3d does not slide (friction large enough); sliding in "
-                                                    "three dimensions is not built yet");
-  }
   if (o.slope_deg) throw parameter_error("--slope-deg", "--model 3d has a level base");
   if (o.direction_step_deg) throw parameter_error("--direction-step-deg", "is for a cylinder of the rocking model");
   if (options.method != RockingMethod::adaptive) throw parameter_error("--method", "--model 3d is adaptive only");
@@ -266,6 +263,12 @@ void run_model_3d(const RockOptions& o, RunMotion& run, const std::optional<Rock
     }
     request.options.simultaneous_contact = *o.simultaneous_contact;
   }
+  if (cylinder && (o.mu || o.mu_k)) {
+    throw parameter_error(o.mu ? "--mu" : "--mu-k", "the cylinder's rim engine (rigid3d_disc.hpp) rolls without "
+                                                    "slip: sliding in three dimensions is a block's or a mesh's");
+  }
+  request.options.mu_s = o.mu;  // absent: no sliding (rigid3d.hpp); checked by rock3d ("mu_s" -> --mu)
+  request.options.mu_k = o.mu_k;
   request.json = o.json;
   std::optional<MotionSet> set;
   if (!o.h2.empty()) {
@@ -361,7 +364,7 @@ void run_rock(const RockOptions& o) {
   if (o.model != "rocking") {
     throw parameter_error("--model", fmt::format("'rocking', 'coupled' or '3d', got '{}'", o.model));
   }
-  if (o.mu_k) throw parameter_error("--mu-k", "needs --model coupled (the rocking model does not slide)");
+  if (o.mu_k) throw parameter_error("--mu-k", "needs --model coupled or 3d (the rocking model does not slide)");
   if (o.slope_deg) throw parameter_error("--slope-deg", "needs --model coupled (the rocking model has a level base)");
   if (!o.h2.empty()) {
     run_oriented(o, run, body, options);
@@ -516,12 +519,12 @@ void add_rock_command(CLI::App& app) {
   cmd->add_option("--e", o->e, "Coefficient of restitution (angular-velocity ratio at impact) in [0, 1], or "
                                "'housner' (1 - 2a^2/D, from angular momentum)")->capture_default_str();
   cmd->add_option("--mu", o->mu, "Friction coefficient: check Shenton's slide/rock/slide-rock onset criterion; with "
-                                 "--model coupled the static friction coefficient");
+                                 "--model coupled or 3d the static friction coefficient (3d without it: no sliding)");
   cmd->add_option("--model", o->model, "rocking (Housner; no sliding), coupled (sliding and rocking at once, "
                                        "Coulomb friction --mu/--mu-k: slide_rock.hpp) or 3d (a block with --depth, "
                                        "or a mesh (--mesh), rocking and pivoting on its base in three dimensions, "
-                                       "no sliding: rigid3d.hpp)")->capture_default_str();
-  cmd->add_option("--mu-k", o->mu_k, "--model coupled: kinetic friction coefficient (default: --mu)");
+                                       "sliding flat with --mu/--mu-k: rigid3d.hpp)")->capture_default_str();
+  cmd->add_option("--mu-k", o->mu_k, "--model coupled or 3d: kinetic friction coefficient (default: --mu)");
   cmd->add_option("--slope-deg", o->slope_deg, "--model coupled: inclination of the base, degrees, down-slope toward "
                                                "-x (the b1 corner); needs tan(slope) <= --mu and slope <= alpha-");
   add_motion_set_options(*cmd, o->vertical, o->h2, o->azimuths,

@@ -194,7 +194,11 @@ void run_3d(const RunMotion& run, const Rigid3DRequest& request) {
                request.set != nullptr ? std::string(", the pair along east and north")
                                       : std::string(", the record along +x (azimuth 90)"));
   } else {
-    fmt::print("three-dimensional rocking and pivoting (no sliding): {}{}\n",
+    const bool friction = request.options.mu_s.has_value();
+    fmt::print("three-dimensional rocking and pivoting ({}): {}{}\n",
+               friction ? fmt::format("sliding flat, mu_s = {:.6g}, mu_k = {:.6g}", *request.options.mu_s,
+                                      request.options.mu_k.value_or(*request.options.mu_s))
+                        : std::string("no sliding"),
                request.mesh_file.empty()
                    ? fmt::format("block {:.6g} x {:.6g} x {:.6g} m (width x depth x height)", request.width_m,
                                  request.depth_m, request.height_m)
@@ -217,6 +221,13 @@ void run_3d(const RunMotion& run, const Rigid3DRequest& request) {
                           : std::string("no"));
   fmt::print("end                    {} at {:.4f} s\n", rigid3d_mode_name(s.end_mode), s.end_time_s);
   fmt::print("energy lost            {:.6g} J/kg\n", s.energy_lost_j_per_kg);
+  if (friction) {
+    fmt::print("residual slide         {:.6g} m east, {:.6g} m north ({} slip episodes, first {})\n",
+               s.residual_slide_east_m, s.residual_slide_north_m, s.slip_episodes,
+               format_seconds_or_none(s.first_slip_time_s));
+    fmt::print("max slide speed        {:.6g} m/s, path {:.6g} m, friction energy {:.6g} J/kg\n", s.max_slide_speed_m_s,
+               s.slide_path_length_m, s.friction_energy_j_per_kg);
+  }
   if (!request.out.empty()) fmt::print("history written to {}\n", request.out);
   if (!request.plot.empty()) fmt::print("figure written to {}\n", request.plot);
 }

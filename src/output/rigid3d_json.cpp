@@ -36,6 +36,15 @@ nlohmann::ordered_json rigid3d_summary_json(const Rigid3DSummary& s) {
                      {"vertex_b", m.vertex_b >= 0 ? nlohmann::ordered_json(m.vertex_b) : nullptr}});
   }
   j["modes"] = modes;
+  // sliding (rigid3d.hpp, Rigid3DOptions::mu_s; zero without friction)
+  j["residual_slide_east_m"] = s.residual_slide_east_m;
+  j["residual_slide_north_m"] = s.residual_slide_north_m;
+  j["max_slide_speed_m_s"] = s.max_slide_speed_m_s;
+  j["slide_path_length_m"] = s.slide_path_length_m;
+  j["friction_energy_j_per_kg"] = s.friction_energy_j_per_kg;
+  j["slip_episodes"] = s.slip_episodes;
+  j["first_slip_time_s"] = or_null(s.first_slip_time_s);
+  j["slide_rock_time_s"] = or_null(s.slide_rock_time_s);
   j["steps"] = s.steps;
   j["warnings"] = s.warnings;
   return j;
@@ -54,6 +63,8 @@ nlohmann::ordered_json rigid3d_solver_json(const Rigid3DOptions& options, bool c
           {"simultaneous_contact",
            circular_base ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(options.simultaneous_contact)},
           {"rel_tol", options.rel_tol},
+          {"mu_s", or_null(options.mu_s)},
+          {"mu_k", options.mu_s ? nlohmann::ordered_json(options.mu_k.value_or(*options.mu_s)) : nullptr},
           {"g_m_s2", options.g_m_s2}};
 }
 

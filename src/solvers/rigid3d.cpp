@@ -22,6 +22,7 @@
 #include "topple/numerics/dp5.hpp"
 #include "topple/numerics/event_root.hpp"
 #include "topple/numerics/step_law.hpp"
+#include "rigid3d_slide.hpp"
 
 namespace topple {
 namespace {
@@ -290,11 +291,14 @@ using S7 = State<7>;
 
 class Engine {
  public:
-  Engine(const InputGrid& grid, std::vector<double> gravity, const Geometry& geo, const Rigid3DOptions& opt)
+  /// start_time_s: the body at rest at that time (before the grid's start: from its start).
+  Engine(const InputGrid& grid, std::vector<double> gravity, const Geometry& geo, const Rigid3DOptions& opt,
+         double start_time_s = -std::numeric_limits<double>::infinity())
       : grid_(grid), ax_(grid.accel_m_s2(0)), ay_(grid.accel_m_s2(1)), gravity_(std::move(gravity)), geo_(geo),
         opt_(opt),
         edge_(EdgeRhs{this}, opt.abs_tol, opt.rel_tol, 0.1 * grid.dt_s()),
         pivot_(PivotRhs{this}, opt.abs_tol, opt.rel_tol, 0.1 * grid.dt_s()) {
+    start_time_s_ = start_time_s;
     eps_z_ = 1e-12 * geo_.size;
     // Simultaneous contact (touch_down): vertices within simultaneous_contact (1e-5) of the size of the ground when
     // another touches down join the impact (a base within about 1e-5 rad of flat lands flat, one impact over all its
@@ -311,10 +315,15 @@ class Engine {
   Rigid3DResult run() {
     const std::size_t n = grid_.size();
     t_ = grid_.time_s(0);
+    std::size_t i_start = 0;  // a later start (rigid3d_slide.cpp: at rest after sliding): its sample interval
+    if (start_time_s_ > t_) {
+      while (i_start + 2 < n && grid_.time_s(i_start + 1) <= start_time_s_) ++i_start;
+      t_ = start_time_s_;
+    }
     enter(Rigid3DMode::rest, -1, -1);
     row();
     refresh_rest();
-    for (std::size_t i = 0; !done_ && i + 1 < n; ++i) {
+    for (std::size_t i = i_start; !done_ && i + 1 < n; ++i) {
       if (mode_ == Rigid3DMode::rest && (i > 0 || rest_below(0))) {
         // Full contact: each sample costs one test per edge (the uplift functions are linear in t over an interval,
         // so both ends below zero keep the whole interval below).
@@ -336,7 +345,7 @@ class Engine {
             }
           }
         }
-        t_ = grid_.time_s(i);
+        t_ = std::max(t_, grid_.time_s(i));  // a start inside interval i stays where it is
         if (i + 1 >= n) break;
       }
       const double ta = grid_.time_s(i);
@@ -1252,6 +1261,7 @@ class Engine {
   static constexpr int kMaxEventsPerInterval = 100'000;
   static constexpr int kPivotSubdivisions = 4;
   static constexpr double kZenoEnergyFraction = 1e-8;  // touch_down: a pivot swap's wobble taken as the edge's limit
+  double start_time_s_ = 0.0;
   const InputGrid& grid_;
   std::span<const double> ax_, ay_;
   std::vector<double> gravity_;
@@ -1431,11 +1441,12 @@ double RigidBody3D::static_tilt_limit_rad(double azimuth_deg) const {
   return std::atan2(b, centre_of_mass_m[2]);
 }
 
-constexpr std::array<EnumName<Rigid3DMode>, 4> kModeNames{{
+constexpr std::array<EnumName<Rigid3DMode>, 5> kModeNames{{
     {Rigid3DMode::rest, "rest"},
     {Rigid3DMode::rocking, "rocking"},
     {Rigid3DMode::pivot, "pivot"},
     {Rigid3DMode::fallen, "fallen"},
+    {Rigid3DMode::sliding, "sliding"},
 }};
 
 std::string_view rigid3d_mode_name(Rigid3DMode mode) { return enum_name(kModeNames, mode); }
@@ -1443,6 +1454,12 @@ std::string_view rigid3d_mode_name(Rigid3DMode mode) { return enum_name(kModeNam
 Rigid3DResult rock3d(const GroundMotion& x, const GroundMotion* y, const GroundMotion* z, const RigidBody3D& body,
                      const Rigid3DOptions& options) {
   check_options(options);
+  if (options.mu_s || options.mu_k) return detail::rock3d_friction(x, y, z, body, options);  // rigid3d_slide.cpp
+  return detail::rock3d_rigid(x, y, z, body, options, -std::numeric_limits<double>::infinity());
+}
+
+Rigid3DResult detail::rock3d_rigid(const GroundMotion& x, const GroundMotion* y, const GroundMotion* z,
+                                   const RigidBody3D& body, const Rigid3DOptions& options, double start_time_s) {
   const RigidBody3D checked = RigidBody3D::polygon(body.base_xy_m, body.centre_of_mass_m, body.inertia_cm_m2);
   const std::array<const GroundMotion*, 3> components{&x, y, z};
   const InputGrid grid(components);
@@ -1456,7 +1473,7 @@ Rigid3DResult rock3d(const GroundMotion& x, const GroundMotion* y, const GroundM
     }
   }
   const Geometry geo = make_geometry(checked, options.g_m_s2);
-  Engine engine(grid, std::move(gravity), geo, options);
+  Engine engine(grid, std::move(gravity), geo, options, start_time_s);
   return engine.run();
 }
 

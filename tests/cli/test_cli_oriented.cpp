@@ -321,6 +321,28 @@ TEST_F(CliOriented, Model3dBlockUnderOneComponentIsThePlanarBlock) {
   }
 }
 
+// --model 3d --mu/--mu-k (rigid3d.hpp, sliding): a wide block that cannot lift (b/h = 2.5 > mu_s) under one
+// component slides as the planar coupled model of its section (which is then the exact sliding solver): the residual
+// slide along +x to 1e-9 relative, none across (to round-off); the JSON names the friction and the new keys.
+TEST_F(CliOriented, Model3dWithFrictionSlidesAsTheCoupledModel) {
+  const std::string body = " --shape block --width 100cm --height 40cm --mu 0.15 --mu-k 0.12 --json";
+  const auto planar = test::run_json("rock " + h1 + " --vertical " + v + " --model coupled" + body);
+  const auto solid = test::run_json("rock " + h1 + " --vertical " + v + " --model 3d --depth 80cm" + body);
+  const double u = planar.at("residual_slide_m").get<double>();
+  ASSERT_GT(std::abs(u), 1e-4);
+  EXPECT_NEAR(solid.at("residual_slide_east_m").get<double>(), u, 1e-9 * std::abs(u));
+  EXPECT_NEAR(solid.at("residual_slide_north_m").get<double>(), 0.0, 1e-15);  // round-off of slide_2d's direction
+  EXPECT_GT(solid.at("slip_episodes").get<int>(), 0);
+  EXPECT_GT(solid.at("friction_energy_j_per_kg").get<double>(), 0.0);
+  EXPECT_EQ(solid.at("uplifts"), 0);
+  EXPECT_EQ(solid.at("solver").at("mu_s"), 0.15);
+  EXPECT_EQ(solid.at("solver").at("mu_k"), 0.12);
+  const auto rigid = test::run_json("rock " + h1 + " --model 3d --shape block --width 20cm --depth 30cm --height 80cm "
+                                    "--json");
+  EXPECT_TRUE(rigid.at("solver").at("mu_s").is_null());  // no friction given: no sliding, as before
+  EXPECT_EQ(rigid.at("residual_slide_east_m"), 0.0);
+}
+
 // --model 3d with --h2: the block's bearing and the components' azimuths turned together by 30 degrees give the same
 // motion relative to the block (impacts, modes, max tilt to 1e-7) with the azimuths of the tilt turned by 30.
 TEST_F(CliOriented, Model3dBearingTurnsWithTheComponents) {
@@ -394,7 +416,9 @@ TEST_F(CliOriented, Model3dRefusesWhatItDoesNotModel) {
   expect_error("rock " + h1 + " --model 3d --shape cylinder --diameter 20cm --height 80cm --depth 20cm", "--depth");
   expect_error("rock " + h1 + " --h2 " + h2 + " --azimuths 0,90 --model 3d --shape cylinder --diameter 20cm "
                "--height 80cm --bearing-deg 10", "--bearing-deg");
-  expect_error("rock " + h1 + " --model 3d --shape block --width 20cm --depth 30cm --height 80cm --mu 0.5", "--mu");
+  expect_error("rock " + h1 + " --model 3d --shape block --width 20cm --depth 30cm --height 80cm --mu 0.3 --mu-k 0.5",
+               "--mu-k");
+  expect_error("rock " + h1 + " --model 3d --shape cylinder --diameter 20cm --height 80cm --mu 0.5", "--mu");
   expect_error("rock " + h1 + " --model 3d --shape block --width 20cm --depth 0cm --height 80cm", "--depth");
   // Bodies without a base in three dimensions: a body file (a section in one plane), a general body.
   test::write_file(dir.path() / "body.json", "{}");

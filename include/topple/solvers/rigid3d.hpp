@@ -9,6 +9,12 @@
 // strictly inside the polygon in plan, J = I_cm / m the inertia tensor about c per unit mass (B axes). Orientation:
 // the unit quaternion q with R(q) mapping B to G. Everything is per unit mass (the mass drops out).
 //
+// Friction (Rigid3DOptions::mu_s, mu_k; rigid3d_slide.cpp; docs/method.md "Sliding in three dimensions"): absent,
+// no contact point slides (the modes below). Given, the flat base sticks while |a_h| <= mu_s (g + a_z) and otherwise
+// slides flat without spin as sliding2d.hpp's block (exact: no friction torque about c's vertical); it lifts where the
+// centre of pressure c + h F_t / N leaves the base: from sticking the modes below take over (no slip after that),
+// while slipping (slide-rock) the run stops with a warning (not modelled).
+//
 // Contact modes (friction large enough that no contact point slides):
 //   rest    the base lies flat on the ground;
 //   rocking the body turns about a base edge (v_i, v_i+1) lying on the ground: one degree of freedom, the tilt theta
@@ -76,6 +82,7 @@
 #include "topple/core/units.hpp"
 #include "topple/motion/ground_motion.hpp"
 #include "topple/solvers/rocking.hpp"
+#include "topple/solvers/sliding2d.hpp"
 
 namespace topple {
 
@@ -120,10 +127,18 @@ struct Rigid3DOptions {
   double max_run_out_s = 60.0;           ///< after the record, still ground, until rest, fall or this long, s
   std::size_t max_steps = 100'000'000;   ///< integrator steps (accepted and rejected); StepLimitError past it
   bool record_history = false;           ///< fill Rigid3DResult::history
+  /// Coulomb friction in the base plane (docs/method.md, "Sliding in three dimensions"). Absent (the default): no
+  /// contact point slides (friction large enough), today's engine bit for bit. Given: the body at rest sticks while
+  /// |a_h| <= mu_s (g + a_z) and slides otherwise, flat and without spin, as sliding2d.hpp's block (stated below).
+  std::optional<double> mu_s;
+  std::optional<double> mu_k;            ///< kinetic friction, 0 <= mu_k <= mu_s; absent: mu_s (needs mu_s)
+  Sliding2dOptions sliding{};            ///< tolerances of the sliding phases (sliding2d.hpp's defaults)
 };
 
-enum class Rigid3DMode : std::uint8_t { rest, rocking, pivot, fallen };
-[[nodiscard]] std::string_view rigid3d_mode_name(Rigid3DMode mode);  ///< "rest", "rocking", "pivot", "fallen"
+/// sliding: the base flat on the ground, slipping (only with friction given, Rigid3DOptions::mu_s).
+enum class Rigid3DMode : std::uint8_t { rest, rocking, pivot, fallen, sliding };
+/// "rest", "rocking", "pivot", "fallen", "sliding"
+[[nodiscard]] std::string_view rigid3d_mode_name(Rigid3DMode mode);
 
 /// A mode entered at time_s, with its contact: rocking: the edge (vertex_a, vertex_b = vertex_a + 1, indices into
 /// base_xy_m); pivot: the vertex vertex_a (vertex_b = -1); others -1, -1.
@@ -153,6 +168,17 @@ struct Rigid3DSummary {
   double energy_lost_j_per_kg = 0.0;     ///< to impacts and the rest rule
   std::optional<double> flight_time_s;   ///< first instant the vertical contact force vanished (contact kept: a limit)
   std::vector<Rigid3DModeChange> modes;  ///< every mode entered, in order (the first: rest at the start)
+  // Sliding (zero unless Rigid3DOptions::mu_s is given):
+  double residual_slide_east_m = 0.0;    ///< the base's displacement on the ground at the end, east
+  double residual_slide_north_m = 0.0;   ///< same, north
+  double max_slide_speed_m_s = 0.0;      ///< largest sliding speed |w| of the base on the ground
+  double slide_path_length_m = 0.0;      ///< length of the base's track on the ground
+  double friction_energy_j_per_kg = 0.0; ///< dissipated by kinetic friction (not in energy_lost_j_per_kg)
+  int slip_episodes = 0;                 ///< slip starts from sticking
+  std::optional<double> first_slip_time_s;
+  /// the first time the centre of pressure left the base while the body slid (slide-rock, not modelled: the run
+  /// stops there with a warning)
+  std::optional<double> slide_rock_time_s;
   double end_time_s = 0.0;
   Rigid3DMode end_mode = Rigid3DMode::rest;
   std::size_t steps = 0;
