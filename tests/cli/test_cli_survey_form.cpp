@@ -1,8 +1,9 @@
 // `topple survey-form`: the offline survey form (docs/survey.md, "The offline survey form") opened in a real headless
 // browser (Debian's chromium): the page's own JavaScript fills the form from a query string (?prefill=JSON, as typed),
 // saves, and `topple invert` gives the saved TOML and CSV the same answer as the equivalent hand-written survey (objects
-// and populations, issue 30); an impossible value, a missing field or a population's impossible counts and sizes show
-// the reader's own error in the page.
+// and populations, issue 30; a population's support, a box's depth and fall directions in a three-component survey
+// entered after it in the same page); a CSV whose size column would mix units is refused; an impossible value, a
+// missing field or a population's impossible counts and sizes show the reader's own error in the page.
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -136,13 +137,55 @@ diameter = "10cm"
 height = ["20cm", "30cm"]
 members = 4
 mu = 0.5
+support = {freq_hz = [3, 6], damping = 0.05, name = "upper shelf"}
+)";
+
+// A three-component survey of populations (entered in the same page after the first): a box population (its depth,
+// bearing and fall directions) and a cylinder population with its fall direction, each on a support named in text.
+// (A flexible support is in the first survey: with three components a box or a fall direction on a flexible support
+// is refused by the library's record check today, a defect reported apart.)
+const char* kHandWritten3 = R"(
+[inversion]
+pga_g = [0.05, 2.0, 6]
+freq_hz = [0.5, 10.0, 4]
+motions_per_cell = 3
+seed = 5
+duration_s = 6
+components = 3
+directions = 8
+
+[[population]]
+id = "crates"
+description = "crates on the upper shelf"
+count = 20
+overturned = 6
+width = ["30cm", "40cm"]
+height = "80cm"
+depth = "50cm"
+members = 2
+mu = 0.6
+support = "shelf"
+azimuth_deg = 40
+fallen_azimuths_deg = [120, 130, 300]
+
+[[population]]
+id = "urns"
+shape = "cylinder"
+count = 8
+overturned = 2
+diameter = "12cm"
+height = ["30cm", "40cm"]
+members = 2
+mu = 0.5
+support = "floor"
+fallen_azimuths_deg = [125]
 )";
 
 // The same survey as a field team types it into the form: the vase's mu from the friction table (wood on wood,
 // 0.25-0.5), a range typed as "1-1.5", lengths as a number and a unit; two populations (issue 30), one with stated
 // ranges and a measured sample typed one member per line (bare numbers in the list's unit, or each with its own),
 // one a range alone.
-const char* kPrefill = R"({
+const char* kPrefill = R"([{
   "site": {"name": "kitchen & hall, \"north\"", "lat": "35.5", "lon": "139.25", "vs30_m_s": "400",
            "notes": "ground floor"},
   "event": {"epicentre": "35.2, 139.1", "depth_km": "10"},
@@ -160,10 +203,25 @@ const char* kPrefill = R"({
      "width": "40-50cm", "height": "[90, 110]cm", "sample": "45, 100; 48cm 105cm; 42, 95", "sample_unit": "cm",
      "members": "3", "material": "wood on stone, brick, concrete", "evidence": "likely"},
     {"id": "jars", "shape": "cylinder", "count": "10", "overturned": "3", "diameter": "10cm", "height": "20-30cm",
-     "members": "4", "mu": "0.5"}
+     "members": "4", "mu": "0.5", "support": {"name": "upper shelf", "freq_hz": "3-6", "damping": "0.05"}}
   ],
   "save": true
-})";
+}, {
+  "inversion": {"pga_g": "0.05, 2.0, 6", "freq_hz": "0.5, 10, 4", "motions_per_cell": "3", "seed": "5",
+                "duration_s": "6", "components": "3", "directions": "8"},
+  "populations": [
+    {"id": "crates", "description": "crates on the upper shelf", "count": "20", "overturned": "6", "width": "30-40cm",
+     "height": "80cm", "depth": "50cm", "members": "2", "mu": "0.6", "support": "shelf", "azimuth_deg": "40",
+     "fallen_azimuths_deg": "120, 130, 300"},
+    {"id": "urns", "shape": "cylinder", "count": "8", "overturned": "2", "diameter": "12cm", "height": "30-40cm",
+     "members": "2", "mu": "0.5", "support": "floor", "fallen_azimuths_deg": "125"}
+  ],
+  "save": true
+}, {
+  "objects": [{"id": "tv", "width": "250mm", "height": "45cm", "mu": "0.5", "outcome": "not_slid"}],
+  "populations": [{"id": "stones", "count": "40", "overturned": "12", "width": "40-50cm", "height": "1m", "mu": "0.5"}],
+  "save": true
+}])";
 
 /// Every number of the inversion's answer (estimates, intervals, bounds, objects' probabilities), compared exactly:
 /// the two surveys state the same decimal numbers, so the runs are the same runs. Strings (the file's name, the
@@ -212,9 +270,14 @@ TEST(CliSurveyForm, FilledInABrowserSavesSurveysThatInvertAsTheHandWrittenOne) {
   test::TempDir tmp;
   const auto [dom, log] = form_dom(kPrefill, tmp.path());
   EXPECT_EQ(log.find("Uncaught"), std::string::npos) << log;
-  EXPECT_NE(dom.find("ready to save"), std::string::npos) << element_text(dom, "<ul id=\"errors\"", "</ul>");
-  const std::string toml = element_text(dom, "<textarea id=\"toml-out\"", "</textarea>");
-  const std::string csv = element_text(dom, "<textarea id=\"csv-out\"", "</textarea>");
+  // What the page showed for each of the surveys entered one after the other (run 1, 2, 3).
+  const auto run = [&](int n, const char* what) {
+    return element_text(dom, fmt::format("<pre id=\"run-{}-{}\"", n, what), "</pre>");
+  };
+  EXPECT_EQ(run(1, "status"), "ready to save") << run(1, "errors");
+  EXPECT_EQ(run(2, "status"), "ready to save") << run(2, "errors");
+  const std::string toml = run(1, "toml");
+  const std::string csv = run(1, "csv");
   ASSERT_FALSE(toml.empty()) << dom;
   ASSERT_FALSE(csv.empty()) << dom;
   // The page's own JavaScript wrote these: the friction table's range, a range typed "1-1.5", a unit kept.
@@ -233,9 +296,28 @@ TEST(CliSurveyForm, FilledInABrowserSavesSurveysThatInvertAsTheHandWrittenOne) {
   EXPECT_NE(csv.find(",\"[40, 50]\",,\"[90, 110]\","), std::string::npos) << csv;
   EXPECT_NE(csv.find(",48,,105,"), std::string::npos) << csv;
   EXPECT_NE(csv.find(",stones\n"), std::string::npos) << csv;
+  // A population's flexible support, typed as its text (its name), frequency and damping.
+  EXPECT_NE(toml.find("support = {freq_hz = [3, 6], damping = 0.05, name = \"upper shelf\"}"), std::string::npos) << toml;
+  EXPECT_NE(csv.find("\"{freq_hz = [3, 6], damping = 0.05, name = \"\"upper shelf\"\"}\""), std::string::npos) << csv;
+  // The three-component survey: a box population's depth and fall directions, a cylinder's fall direction.
+  const std::string toml3 = run(2, "toml");
+  const std::string csv3 = run(2, "csv");
+  EXPECT_NE(toml3.find("depth = \"50cm\"\n"), std::string::npos) << toml3;
+  EXPECT_NE(toml3.find("fallen_azimuths_deg = [120, 130, 300]\n"), std::string::npos) << toml3;
+  EXPECT_NE(csv3.find(",\"[120, 130, 300]\","), std::string::npos) << csv3;
+  // The CSV refusal when one size column would hold two units (an object's width in mm, a population's range in cm):
+  // the TOML is saved, the CSV is not, and the page says why.
+  EXPECT_EQ(run(3, "status"),
+            "CSV not saved: a population's width range is written in a column whose header names one unit (e.g. "
+            "width_cm), but the widths are given in mm and cm: give them all in one unit, or save TOML");
+  EXPECT_EQ(run(3, "csv"), "");
+  EXPECT_NE(run(3, "toml").find("width = [\"40cm\", \"50cm\"]"), std::string::npos) << run(3, "toml");
   test::write_file(tmp.path() / "form.toml", toml);
   test::write_file(tmp.path() / "form.csv", csv);
   test::write_file(tmp.path() / "hand.toml", kHandWritten);
+  test::write_file(tmp.path() / "form3.toml", toml3);
+  test::write_file(tmp.path() / "form3.csv", csv3);
+  test::write_file(tmp.path() / "hand3.toml", kHandWritten3);
   const auto invert = [&](const char* name) {
     const auto r = test::run_cli("invert '" + (tmp.path() / name).string() + "' --json --quiet", 300);
     EXPECT_EQ(r.exit_code, 0) << name << ": " << r.err << "\n" << slurp(tmp.path() / name);
@@ -251,6 +333,15 @@ TEST(CliSurveyForm, FilledInABrowserSavesSurveysThatInvertAsTheHandWrittenOne) {
     int count = 0;
     expect_same_numbers(hand, got, "json", count);
     EXPECT_GT(count, 100);  // the estimates, intervals, bounds, every object's and population's numbers were compared
+  }
+  const nlohmann::json hand3 = invert("hand3.toml");
+  ASSERT_EQ(hand3.at("populations").size(), 2u);
+  for (const char* saved : {"form3.toml", "form3.csv"}) {
+    SCOPED_TRACE(saved);
+    const nlohmann::json got = invert(saved);
+    int count = 0;
+    expect_same_numbers(hand3, got, "json", count);
+    EXPECT_GT(count, 50);
   }
 }
 
