@@ -4,8 +4,10 @@
 // and populations, issue 30; a population's support, a box's depth and fall directions in a three-component survey
 // entered after it in the same page); a CSV whose size column would mix units is refused; an impossible value, a
 // missing field or a population's impossible counts and sizes show the reader's own error in the page.
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+#include <set>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -258,6 +260,22 @@ TEST(CliSurveyForm, PageIsOneSelfContainedFile) {
   EXPECT_NE(r.out.find(R"("key":"vs30_m_s")"), std::string::npos);
   EXPECT_NE(r.out.find(R"("range_problem":"must lie in [100, 3000] m/s, got {}")"), std::string::npos);
   EXPECT_NE(r.out.find(R"("surfaces":"felt pads on wood","mu_low":0.2,"mu_high":0.3)"), std::string::npos);
+  // Every key of [[population]] is offered (a key not offered would be listed under "Keys written in the file", with
+  // the page's reason): the reader's population keys, support and depth among them, are all in the page's table.
+  const std::string open = R"(<script type="application/json" id="schema">)";
+  const auto at = r.out.find(open) + open.size();
+  const auto schema = nlohmann::json::parse(r.out.substr(at, r.out.find("</script>", at) - at));
+  std::set<std::string> offered;
+  for (const auto& k : schema.at("keys")) {
+    if (k.at("table") != "population") continue;
+    EXPECT_TRUE(k.at("in_form").get<bool>()) << k.at("key");
+    offered.insert(k.at("key").get<std::string>());
+  }
+  for (const char* key : {"id", "description", "shape", "count", "overturned", "rocked", "slid", "width", "height",
+                          "diameter", "sample", "members", "fallen_azimuths_deg", "mu", "e", "support", "amplification",
+                          "orientation_deg", "azimuth_deg", "depth", "evidence"}) {
+    EXPECT_TRUE(offered.contains(key)) << key;
+  }
   // --output writes the same page.
   test::TempDir tmp;
   const auto file = tmp.path() / "form.html";
@@ -397,19 +415,43 @@ TEST(CliSurveyForm, TheWordsThePageWritesItselfAreTheReadersToo) {
   if (!have_chromium()) GTEST_SKIP() << "chromium is not installed";
   test::TempDir tmp;
   // And a population's counts and sizes as check_population words them (issue 30): more toppled than present, a
-  // negative count, a measured member outside the stated range, more moved than present.
+  // negative count, a measured member outside the stated range, more moved than present; then, in a second survey
+  // entered in the same page (three components), a block's fall directions without its depth, a flexible support
+  // without its damping or with one out of range, and a box's depth of zero.
   const auto [dom, log] = form_dom(
-      R"({"inversion": {"pga_g": "0.05, 2, 1"}, "objects": [{"id": "vase", "width": "8cm", "height": "40cm",
+      R"([{"inversion": {"pga_g": "0.05, 2, 1"}, "objects": [{"id": "vase", "width": "8cm", "height": "40cm",
           "mu": "0.6-0.4", "outcome": "overturned"}, {"id": "vase", "width": "8cm", "height": "40cm", "mu": "0.5",
           "outcome": "overturned"}],
           "populations": [{"id": "stones", "count": "10", "overturned": "12", "width": "40-50cm", "height": "1m",
           "mu": "0.5"}, {"id": "rows", "count": "-3", "overturned": "1", "width": "40cm", "height": "1m", "mu": "0.5"},
           {"id": "urns", "shape": "cylinder", "count": "10", "overturned": "2", "diameter": "10cm", "height": "20-30cm",
           "sample": "10, 25; 10, 35", "mu": "0.5"}, {"id": "jars", "count": "10", "overturned": "4", "rocked": "7",
-          "width": "10cm", "height": "30cm", "mu": "0.5"}], "save": true})",
+          "width": "10cm", "height": "30cm", "mu": "0.5"}], "save": true},
+          {"inversion": {"components": "3"}, "populations": [{"id": "boxes", "count": "10", "overturned": "2",
+          "width": "30cm", "height": "80cm", "mu": "0.5", "azimuth_deg": "40", "fallen_azimuths_deg": "100, 120"},
+          {"id": "jars", "shape": "cylinder", "count": "10", "overturned": "1", "diameter": "10cm", "height": "30cm",
+          "mu": "0.5", "support": {"freq_hz": "3-6"}}, {"id": "pots", "shape": "cylinder", "count": "10",
+          "overturned": "1", "diameter": "10cm", "height": "30cm", "mu": "0.5",
+          "support": {"name": "shelf", "freq_hz": "3", "damping": "0.05-1"}}, {"id": "crates", "count": "10",
+          "overturned": "1", "width": "30cm", "height": "80cm", "depth": "0cm", "mu": "0.5", "azimuth_deg": "40"}],
+          "save": true}])",
       tmp.path());
   EXPECT_EQ(log.find("Uncaught"), std::string::npos) << log;
-  const std::string errors = element_text(dom, "<ul id=\"errors\"", "</ul>");
+  const auto run = [&](int n, const char* what) {
+    return element_text(dom, fmt::format("<pre id=\"run-{}-{}\"", n, what), "</pre>");
+  };
+  // The runs' lists of problems, one a line, each line as the page's list showed it (<li>...</li>).
+  const auto listed = [&](int n) {
+    std::string out;
+    std::string text = run(n, "errors");
+    for (std::size_t at = 0; at <= text.size();) {
+      const auto end = std::min(text.find('\n', at), text.size());
+      out += "<li>" + text.substr(at, end - at) + "</li>";
+      at = end + 1;
+    }
+    return out;
+  };
+  const std::string errors = listed(1);
   const std::string object = "[[object]]\nid = \"vase\"\nwidth = \"8cm\"\nheight = \"40cm\"\noutcome = \"overturned\"\n";
   const std::string count = "inversion.pga_g: count must be a whole number from 2 to 1000, got 1";
   const std::string backwards = "object[1](vase).mu: range [0.6, 0.4] has low > high";
@@ -454,6 +496,42 @@ TEST(CliSurveyForm, TheWordsThePageWritesItselfAreTheReadersToo) {
   EXPECT_NE(reader_error(tmp.path() / "g.toml", nth(4, "id = \"jars\"\ncount = 10\noverturned = 4\nrocked = 7\n"
                                                        "width = \"10cm\"\nheight = \"30cm\"\nmu = 0.5\n"))
                 .find(moved),
+            std::string::npos);
+  // The second survey's words, each against the reader on a three-component survey with the population in its place.
+  const std::string errors3 = listed(2);
+  const auto nth3 = [&](int n, const std::string& population) {
+    std::string text = "[inversion]\ncomponents = 3\n";
+    for (int i = 1; i < n; ++i) text += fmt::format("[[population]]\nid = \"p{}\"\nshape = \"cylinder\"\ncount = 2\n"
+                                                    "overturned = 0\ndiameter = \"10cm\"\nheight = \"30cm\"\nmu = 0.5\n", i);
+    return text + "[[population]]\n" + population;
+  };
+  const std::string fall = "population[1](boxes).fallen_azimuths_deg: only a cylinder or a box (a block with depth) "
+                           "tells the direction of the shaking by the way it fell: the planar model of a block without "
+                           "depth falls along its bearing (give that as azimuth_deg, or give the block's depth)";
+  const std::string no_damping = "population[2](jars).support.damping: a flexible support needs its damping ratio "
+                                 "(decimal: 0.05 is 5 %)";
+  const std::string damping = "population[3](pots).support.damping: the damping ratio must lie in [0, 1), got [0.05, 1]";
+  const std::string depth = "population[4](crates).depth: width must be positive and finite, got 0";
+  for (const std::string& said : {fall, no_damping, damping, depth}) {
+    EXPECT_NE(errors3.find("<li>" + said + "</li>"), std::string::npos) << said << "\n" << errors3;
+  }
+  const std::string cylinder = "shape = \"cylinder\"\ncount = 10\noverturned = 1\ndiameter = \"10cm\"\n"
+                               "height = \"30cm\"\nmu = 0.5\n";
+  EXPECT_NE(reader_error(tmp.path() / "h.toml", nth3(1, "id = \"boxes\"\ncount = 10\noverturned = 2\nwidth = \"30cm\"\n"
+                                                        "height = \"80cm\"\nmu = 0.5\nazimuth_deg = 40\n"
+                                                        "fallen_azimuths_deg = [100, 120]\n"))
+                .find(fall),
+            std::string::npos);
+  EXPECT_NE(reader_error(tmp.path() / "i.toml", nth3(2, "id = \"jars\"\n" + cylinder + "support = {freq_hz = [3, 6]}\n"))
+                .find(no_damping),
+            std::string::npos);
+  EXPECT_NE(reader_error(tmp.path() / "j.toml", nth3(3, "id = \"pots\"\n" + cylinder +
+                                                        "support = {freq_hz = 3, damping = [0.05, 1], name = \"shelf\"}\n"))
+                .find(damping),
+            std::string::npos);
+  EXPECT_NE(reader_error(tmp.path() / "k.toml", nth3(4, "id = \"crates\"\ncount = 10\noverturned = 1\nwidth = \"30cm\"\n"
+                                                        "height = \"80cm\"\ndepth = \"0cm\"\nmu = 0.5\nazimuth_deg = 40\n"))
+                .find(depth),
             std::string::npos);
 }
 
