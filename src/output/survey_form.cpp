@@ -3,6 +3,7 @@
 // each kind of key is typed (a length as a number and a unit, a range as "0.4-0.6" or "[0.4, 0.6]").
 #include "topple/output/survey_form.hpp"
 
+#include "topple/solvers/flexible.hpp"
 #include "topple/survey/schema.hpp"
 
 namespace topple::io {
@@ -41,7 +42,9 @@ nlohmann::ordered_json survey_schema_json() {
     friction.push_back({{"surfaces", row.surfaces}, {"mu_low", row.mu_low}, {"mu_high", row.mu_high},
                         {"source", row.source}});
   }
-  return {{"keys", keys}, {"friction", friction}};
+  // The reader's upper limit on a flexible support's frequency (survey_file.cpp's parse_support_filter, the library's
+  // SupportOscillator::kMaxFreqHz), which the key table does not carry.
+  return {{"keys", keys}, {"friction", friction}, {"support_max_freq_hz", SupportOscillator::kMaxFreqHz}};
 }
 
 namespace {
@@ -315,6 +318,11 @@ function supportOf(raw) {
       return {given: true, problem: k.range_problem + ', got [' + show(typed.lo) + ', ' + show(typed.hi) + ']', at: key};
     }
     if (r.problem) return {given: true, problem: r.problem, at: key};
+    if (key === 'freq_hz' && r.hi > SCHEMA.support_max_freq_hz) {
+      return {given: true, at: key, problem: show(r.hi) + ' Hz is above ' + show(SCHEMA.support_max_freq_hz) + ' Hz, ' +
+              'where no shelf or floor is: a support that stiff moves with the ground (give the support as text for a ' +
+              'rigid one)'};
+    }
     parts[key] = r.toml;
   }
   const toml = '{freq_hz = ' + parts.freq_hz + ', damping = ' + parts.damping + (name ? ', name = ' + quoted(name) : '') +

@@ -433,7 +433,9 @@ TEST(CliSurveyForm, TheWordsThePageWritesItselfAreTheReadersToo) {
           "mu": "0.5", "support": {"freq_hz": "3-6"}}, {"id": "pots", "shape": "cylinder", "count": "10",
           "overturned": "1", "diameter": "10cm", "height": "30cm", "mu": "0.5",
           "support": {"name": "shelf", "freq_hz": "3", "damping": "0.05-1"}}, {"id": "crates", "count": "10",
-          "overturned": "1", "width": "30cm", "height": "80cm", "depth": "0cm", "mu": "0.5", "azimuth_deg": "40"}],
+          "overturned": "1", "width": "30cm", "height": "80cm", "depth": "0cm", "mu": "0.5", "azimuth_deg": "40"},
+          {"id": "vats", "shape": "cylinder", "count": "10", "overturned": "1", "diameter": "10cm", "height": "30cm",
+          "mu": "0.5", "support": {"freq_hz": "5-20000", "damping": "0.05"}}],
           "save": true}])",
       tmp.path());
   EXPECT_EQ(log.find("Uncaught"), std::string::npos) << log;
@@ -512,7 +514,9 @@ TEST(CliSurveyForm, TheWordsThePageWritesItselfAreTheReadersToo) {
                                  "(decimal: 0.05 is 5 %)";
   const std::string damping = "population[3](pots).support.damping: the damping ratio must lie in [0, 1), got [0.05, 1]";
   const std::string depth = "population[4](crates).depth: width must be positive and finite, got 0";
-  for (const std::string& said : {fall, no_damping, damping, depth}) {
+  const std::string stiff = "population[5](vats).support.freq_hz: 20000 Hz is above 10000 Hz, where no shelf or floor "
+                            "is: a support that stiff moves with the ground (give the support as text for a rigid one)";
+  for (const std::string& said : {fall, no_damping, damping, depth, stiff}) {
     EXPECT_NE(errors3.find("<li>" + said + "</li>"), std::string::npos) << said << "\n" << errors3;
   }
   const std::string cylinder = "shape = \"cylinder\"\ncount = 10\noverturned = 1\ndiameter = \"10cm\"\n"
@@ -532,6 +536,10 @@ TEST(CliSurveyForm, TheWordsThePageWritesItselfAreTheReadersToo) {
   EXPECT_NE(reader_error(tmp.path() / "k.toml", nth3(4, "id = \"crates\"\ncount = 10\noverturned = 1\nwidth = \"30cm\"\n"
                                                         "height = \"80cm\"\ndepth = \"0cm\"\nmu = 0.5\nazimuth_deg = 40\n"))
                 .find(depth),
+            std::string::npos);
+  EXPECT_NE(reader_error(tmp.path() / "l.toml", nth3(5, "id = \"vats\"\n" + cylinder +
+                                                        "support = {freq_hz = [5, 20000], damping = 0.05}\n"))
+                .find(stiff),
             std::string::npos);
 }
 
