@@ -315,18 +315,19 @@ function supportOf(raw) {
     const r = rangeOf(k, text);
     const typed = rangeOf({low: null, high: null, choices: []}, text);
     if (r.problem && key === 'damping' && !typed.problem) {
-      return {given: true, problem: k.range_problem + ', got [' + show(typed.lo) + ', ' + show(typed.hi) + ']', at: key};
+      return {given: true, at: key,
+              problem: k.range_problem + ', got [' + show(typed.lo) + ', ' + show(typed.hi) + ']'};
     }
     if (r.problem) return {given: true, problem: r.problem, at: key};
     if (key === 'freq_hz' && r.hi > SCHEMA.support_max_freq_hz) {
-      return {given: true, at: key, problem: show(r.hi) + ' Hz is above ' + show(SCHEMA.support_max_freq_hz) + ' Hz, ' +
-              'where no shelf or floor is: a support that stiff moves with the ground (give the support as text for a ' +
-              'rigid one)'};
+      return {given: true, at: key, problem: show(r.hi) + ' Hz is above ' + show(SCHEMA.support_max_freq_hz) +
+              ' Hz, where no shelf or floor is: a support that stiff moves with the ground (give the support as ' +
+              'text for a rigid one)'};
     }
     parts[key] = r.toml;
   }
-  const toml = '{freq_hz = ' + parts.freq_hz + ', damping = ' + parts.damping + (name ? ', name = ' + quoted(name) : '') +
-               '}';
+  const toml = '{freq_hz = ' + parts.freq_hz + ', damping = ' + parts.damping +
+               (name ? ', name = ' + quoted(name) : '') + '}';
   return {given: true, toml: toml, csv: toml, value: name, flexible: true};
 }
 
@@ -801,7 +802,9 @@ function stateOf() {
 }
 // An empty form: every field as made, no object, no population.
 function clearForm() {
-  for (const t of ['site', 'event', 'inversion']) for (const b of tables[t]) b.inputs.forEach((i, j) => { i.value = b.initial[j]; });
+  for (const t of ['site', 'event', 'inversion']) {
+    for (const b of tables[t]) b.inputs.forEach((i, j) => { i.value = b.initial[j]; });
+  }
   for (const list of [objects, populations]) { for (const b of list) b.remove(); list.length = 0; }
   validate();
 }

@@ -315,7 +315,8 @@ TEST(CliSurveyForm, FilledInABrowserSavesSurveysThatInvertAsTheHandWrittenOne) {
   EXPECT_NE(csv.find(",48,,105,"), std::string::npos) << csv;
   EXPECT_NE(csv.find(",stones\n"), std::string::npos) << csv;
   // A population's flexible support, typed as its text (its name), frequency and damping.
-  EXPECT_NE(toml.find("support = {freq_hz = [3, 6], damping = 0.05, name = \"upper shelf\"}"), std::string::npos) << toml;
+  EXPECT_NE(toml.find("support = {freq_hz = [3, 6], damping = 0.05, name = \"upper shelf\"}"), std::string::npos)
+      << toml;
   EXPECT_NE(csv.find("\"{freq_hz = [3, 6], damping = 0.05, name = \"\"upper shelf\"\"}\""), std::string::npos) << csv;
   // The three-component survey: a box population's depth and fall directions, a cylinder's fall direction.
   const std::string toml3 = run(2, "toml");
@@ -503,8 +504,10 @@ TEST(CliSurveyForm, TheWordsThePageWritesItselfAreTheReadersToo) {
   const std::string errors3 = listed(2);
   const auto nth3 = [&](int n, const std::string& population) {
     std::string text = "[inversion]\ncomponents = 3\n";
-    for (int i = 1; i < n; ++i) text += fmt::format("[[population]]\nid = \"p{}\"\nshape = \"cylinder\"\ncount = 2\n"
-                                                    "overturned = 0\ndiameter = \"10cm\"\nheight = \"30cm\"\nmu = 0.5\n", i);
+    for (int i = 1; i < n; ++i) {
+      text += fmt::format("[[population]]\nid = \"p{}\"\nshape = \"cylinder\"\ncount = 2\noverturned = 0\n"
+                          "diameter = \"10cm\"\nheight = \"30cm\"\nmu = 0.5\n", i);
+    }
     return text + "[[population]]\n" + population;
   };
   const std::string fall = "population[1](boxes).fallen_azimuths_deg: only a cylinder or a box (a block with depth) "
@@ -512,7 +515,8 @@ TEST(CliSurveyForm, TheWordsThePageWritesItselfAreTheReadersToo) {
                            "depth falls along its bearing (give that as azimuth_deg, or give the block's depth)";
   const std::string no_damping = "population[2](jars).support.damping: a flexible support needs its damping ratio "
                                  "(decimal: 0.05 is 5 %)";
-  const std::string damping = "population[3](pots).support.damping: the damping ratio must lie in [0, 1), got [0.05, 1]";
+  const std::string damping =
+      "population[3](pots).support.damping: the damping ratio must lie in [0, 1), got [0.05, 1]";
   const std::string depth = "population[4](crates).depth: width must be positive and finite, got 0";
   const std::string stiff = "population[5](vats).support.freq_hz: 20000 Hz is above 10000 Hz, where no shelf or floor "
                             "is: a support that stiff moves with the ground (give the support as text for a rigid one)";
@@ -526,15 +530,18 @@ TEST(CliSurveyForm, TheWordsThePageWritesItselfAreTheReadersToo) {
                                                         "fallen_azimuths_deg = [100, 120]\n"))
                 .find(fall),
             std::string::npos);
-  EXPECT_NE(reader_error(tmp.path() / "i.toml", nth3(2, "id = \"jars\"\n" + cylinder + "support = {freq_hz = [3, 6]}\n"))
+  EXPECT_NE(reader_error(tmp.path() / "i.toml",
+                         nth3(2, "id = \"jars\"\n" + cylinder + "support = {freq_hz = [3, 6]}\n"))
                 .find(no_damping),
             std::string::npos);
-  EXPECT_NE(reader_error(tmp.path() / "j.toml", nth3(3, "id = \"pots\"\n" + cylinder +
-                                                        "support = {freq_hz = 3, damping = [0.05, 1], name = \"shelf\"}\n"))
+  EXPECT_NE(reader_error(tmp.path() / "j.toml",
+                         nth3(3, "id = \"pots\"\n" + cylinder +
+                                     "support = {freq_hz = 3, damping = [0.05, 1], name = \"shelf\"}\n"))
                 .find(damping),
             std::string::npos);
-  EXPECT_NE(reader_error(tmp.path() / "k.toml", nth3(4, "id = \"crates\"\ncount = 10\noverturned = 1\nwidth = \"30cm\"\n"
-                                                        "height = \"80cm\"\ndepth = \"0cm\"\nmu = 0.5\nazimuth_deg = 40\n"))
+  EXPECT_NE(reader_error(tmp.path() / "k.toml",
+                         nth3(4, "id = \"crates\"\ncount = 10\noverturned = 1\nwidth = \"30cm\"\nheight = \"80cm\"\n"
+                                 "depth = \"0cm\"\nmu = 0.5\nazimuth_deg = 40\n"))
                 .find(depth),
             std::string::npos);
   EXPECT_NE(reader_error(tmp.path() / "l.toml", nth3(5, "id = \"vats\"\n" + cylinder +
