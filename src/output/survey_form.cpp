@@ -3,6 +3,7 @@
 // each kind of key is typed (a length as a number and a unit, a range as "0.4-0.6" or "[0.4, 0.6]").
 #include "topple/output/survey_form.hpp"
 
+#include "topple/solvers/flexible.hpp"
 #include "topple/survey/schema.hpp"
 
 namespace topple::io {
@@ -32,6 +33,7 @@ nlohmann::ordered_json survey_schema_json() {
     j["conditions"] = conditions;
     j["default"] = k.default_text;
     j["help"] = k.help;
+    j["example"] = k.example;
     j["in_form"] = k.in_form;
     keys.push_back(std::move(j));
   }
@@ -40,7 +42,9 @@ nlohmann::ordered_json survey_schema_json() {
     friction.push_back({{"surfaces", row.surfaces}, {"mu_low", row.mu_low}, {"mu_high", row.mu_high},
                         {"source", row.source}});
   }
-  return {{"keys", keys}, {"friction", friction}};
+  // The reader's upper limit on a flexible support's frequency (survey_file.cpp's parse_support_filter, the library's
+  // SupportOscillator::kMaxFreqHz), which the key table does not carry.
+  return {{"keys", keys}, {"friction", friction}, {"support_max_freq_hz", SupportOscillator::kMaxFreqHz}};
 }
 
 namespace {
@@ -81,8 +85,9 @@ reader. Save the survey as TOML
 or CSV and run <code>topple invert survey.toml</code>. Lengths take their unit; a friction coefficient, restitution or
 amplification may be a value (<code>0.5</code>) or a range (<code>0.4-0.6</code> or <code>[0.4, 0.6]</code>).
 A population's sizes are a value or a range (<code>40-50</code>) in the unit beside them, or a measured sample, one
-member per line. Keys not offered here (meshes, record files, flexible supports) are written in the file:
-docs/survey.md.</p>
+member per line. An object's or a population's <code>support</code> is a text ("furniture") or, with its natural
+frequency and damping ratio given beside it, a flexible support (its text then names it). Keys not offered here
+(meshes, record files, a site's default flexible support) are written in the file: docs/survey.md.</p>
 <h2>Site</h2><div id="site" class="fields"></div>
 <h2>Earthquake (optional)</h2><div id="event" class="fields"></div>
 <h2>Inversion settings (optional)</h2><div id="inversion" class="fields"></div>
@@ -97,6 +102,7 @@ docs/survey.md.</p>
 <label for="toml-out">survey.toml</label><textarea id="toml-out" readonly></textarea>
 <label for="csv-out">survey.csv</label><textarea id="csv-out" readonly></textarea>
 <details><summary>Keys written in the file, not in this form</summary><ul id="not-in-form"></ul></details>
+<div id="runs" class="hidden"></div>
 <script type="application/json" id="schema">@SCHEMA@</script>
 <script>
 'use strict';
@@ -164,6 +170,14 @@ function makeField(k, scope) {
     }
     s.value = k.kind === 'length' ? 'cm' : 'cm2';
     box.appendChild(s);
+  } else if (k.kind === 'support') {
+    // Free text; with freq_hz and damping a flexible support (docs/survey.md, "Flexible supports"), the text its name.
+    box.appendChild(text('t', 'text, e.g. furniture'));
+    for (const name of ['freq_hz', 'damping']) {
+      const sk = schemaKey('support', name);
+      box.appendChild(el('small', {text: 'flexible: ' + name + (sk.unit ? ' (' + sk.unit + ')' : '')}));
+      box.appendChild(text('n', sk.example.replace(/[\[\]]/g, '').replace(', ', '-')));
+    }
   } else if (k.kind === 'axis') {
     for (const ph of ['min', 'max', 'count']) box.appendChild(text('n', ph));
   } else if (k.kind === 'lat_lon') {
@@ -191,6 +205,7 @@ function makeField(k, scope) {
   box.appendChild(el('small', {text: k.help}));
   box.appendChild(el('div', {class: 'error'}));
   box.inputs = inputs;
+  box.initial = inputs.map(i => i.value);  // what clearForm() puts back
   box.schema = k;
   for (const i of inputs) i.addEventListener(i.tagName === 'SELECT' ? 'change' : 'input', validate);
   return box;
@@ -206,8 +221,8 @@ function readField(box) {
   const num = (t) => NUMBER.test(t) ? Number(t) : null;
   const bad = (problem) => ({given: true, problem: problem});
   switch (k.kind) {
-    case 'text': case 'support': return {given: true, toml: JSON.stringify(raw[0]).replace(/\x7f/g, '\\u007F'),
-                                         csv: raw[0], value: raw[0]};
+    case 'text': return {given: true, toml: quoted(raw[0]), csv: raw[0], value: raw[0]};
+    case 'support': return supportOf(raw);
     case 'choice': {
       const n = num(raw[0]);
       const toml = n !== null ? raw[0] : JSON.stringify(raw[0]);
@@ -227,21 +242,10 @@ function readField(box) {
     }
     case 'value_or_range': {
       if (k.choices.includes(raw[0])) return {given: true, toml: JSON.stringify(raw[0]), csv: raw[0], value: raw[0]};
-      let lo, hi;
-      const single = num(raw[0]);
-      if (single !== null) { lo = hi = single; } else {
-        const m = RANGE.exec(raw[0]);
-        if (!m) return bad(k.choices.length ? 'write "' + k.choices[0] + '", a value or a range' :
-                           'expected a number');
-        lo = Number(m[1]); hi = Number(m[2]);
-        if (lo > hi) return bad('range [' + show(lo) + ', ' + show(hi) + '] has low > high');
-      }
-      for (const end of [lo, hi]) if (outside(k, end)) return bad(fill(k.range_problem, [end]));
-      const toml = lo === hi ? show(lo) : '[' + show(lo) + ', ' + show(hi) + ']';
-      return {given: true, toml: toml, csv: toml, value: lo};
+      return rangeOf(k, raw[0]);
     }
     case 'length': case 'area': {
-      if (k.table === 'population') return populationLength(k, raw[0], raw[1]);
+      if (k.table === 'population' && SIZES.includes(k.key)) return populationLength(k, raw[0], raw[1]);
       const v = num(raw[0]);
       if (v === null) return bad('expected a number');
       if (k.kind === 'length' && outside(k, v * LENGTH_UNITS[raw[1]])) {
@@ -282,9 +286,59 @@ function readField(box) {
   return bad('unsupported');
 }
 
+function quoted(text) { return JSON.stringify(text).replace(/\x7f/g, '\\u007F'); }
+// A value or a range [low, high] of `k` ("0.5", "0.4-0.6", "[0.4, 0.6]"), each end held to k's range.
+function rangeOf(k, text) {
+  const bad = (problem) => ({given: true, problem: problem});
+  let lo, hi;
+  if (NUMBER.test(text)) { lo = hi = Number(text); } else {
+    const m = RANGE.exec(text);
+    if (!m) return bad(k.choices.length ? 'write "' + k.choices[0] + '", a value or a range' : 'expected a number');
+    lo = Number(m[1]); hi = Number(m[2]);
+    if (lo > hi) return bad('range [' + show(lo) + ', ' + show(hi) + '] has low > high');
+  }
+  for (const end of [lo, hi]) if (outside(k, end)) return bad(fill(k.range_problem, [end]));
+  const toml = lo === hi ? show(lo) : '[' + show(lo) + ', ' + show(hi) + ']';
+  return {given: true, toml: toml, csv: toml, value: lo, lo: lo, hi: hi};
+}
+// An object's or a population's support: free text, or a flexible support {freq_hz, damping, name} when either
+// number is given (survey_file.cpp's parse_support_filter: both required; its words, at support.freq_hz or
+// support.damping). A problem names its key in `at`.
+function supportOf(raw) {
+  const [name, freqText, dampingText] = raw;
+  if (freqText === '' && dampingText === '') return {given: true, toml: quoted(name), csv: name, value: name};
+  const parts = {};
+  for (const [key, text] of [['freq_hz', freqText], ['damping', dampingText]]) {
+    const k = schemaKey('support', key);
+    if (text === '') return {given: true, problem: k.missing_problem, at: key};
+    // The range's words; the reader says the damping ratio's with the range read ("..., got [0.05, 1]").
+    const r = rangeOf(k, text);
+    const typed = rangeOf({low: null, high: null, choices: []}, text);
+    if (r.problem && key === 'damping' && !typed.problem) {
+      return {given: true, at: key,
+              problem: k.range_problem + ', got [' + show(typed.lo) + ', ' + show(typed.hi) + ']'};
+    }
+    if (r.problem) return {given: true, problem: r.problem, at: key};
+    if (key === 'freq_hz' && r.hi > SCHEMA.support_max_freq_hz) {
+      return {given: true, at: key, problem: show(r.hi) + ' Hz is above ' + show(SCHEMA.support_max_freq_hz) +
+              ' Hz, where no shelf or floor is: a support that stiff moves with the ground (give the support as ' +
+              'text for a rigid one)'};
+    }
+    parts[key] = r.toml;
+  }
+  const toml = '{freq_hz = ' + parts.freq_hz + ', damping = ' + parts.damping +
+               (name ? ', name = ' + quoted(name) : '') + '}';
+  return {given: true, toml: toml, csv: toml, value: name, flexible: true};
+}
+
 // ---- populations (survey/population.hpp; the reader's words of check_population, held against the reader by
 // tests/cli/test_cli_survey_form.cpp) ----
 const COUNT_PROBLEM = schemaKey('population', 'overturned').range_problem;  // "a count cannot be negative, got {}"
+const SIZES = ['width', 'height', 'diameter'];  // a population's sizes: a length or a range (depth is one length)
+// survey.cpp's check_object_fall_direction, of a population's fall directions (held against the reader by the test).
+const FALL_PROBLEM = 'only a cylinder or a box (a block with depth) tells the direction of the shaking by the way it ' +
+                     'fell: the planar model of a block without depth falls along its bearing (give that as ' +
+                     'azimuth_deg, or give the block\'s depth)';
 // fmt's "{:.4g}" (population.cpp words a size outside the stated range so): 4 significant digits, no trailing zeros.
 function g4(v) { return String(Number(v.toPrecision(4))); }
 // A size: a length "45" or a range "40-50" / "[40, 50]", in the unit beside it. {lo, hi} as typed, {loM, hiM} in m.
@@ -379,9 +433,10 @@ for (const t of ['site', 'event', 'inversion']) {
   tables[t] = keysOf(t).map(k => makeField(k, t));
   for (const f of tables[t]) document.getElementById(t).appendChild(f);
 }
-for (const k of KEYS.filter(k => !k.in_form)) {
-  document.getElementById('not-in-form').appendChild(el('li', {text: (k.table === 'support' ? 'support table: ' :
-      '[' + k.table + '] ') + k.key + ': ' + k.help}));
+// A flexible support's keys are offered beside an object's or a population's support (its text is the name); the
+// site's default support, meshes and record files are not.
+for (const k of KEYS.filter(k => !k.in_form && k.table !== 'support')) {
+  document.getElementById('not-in-form').appendChild(el('li', {text: '[' + k.table + '] ' + k.key + ': ' + k.help}));
 }
 document.getElementById('add-object').addEventListener('click', addObject);
 document.getElementById('add-population').addEventListener('click', addPopulation);
@@ -437,7 +492,7 @@ function validate() {
     for (const b of boxes) {
       const k = b.schema, r = own.get(k.key);
       if (!r.given) continue;
-      if (r.problem) { said(b, path(k.key), r.problem); continue; }
+      if (r.problem) { said(b, path(r.at ? k.key + '.' + r.at : k.key), r.problem); continue; }
       const failed = k.conditions.find(c => !holds(table, own, c));
       if (failed) said(b, path(k.key), failed.problem);
     }
@@ -529,6 +584,8 @@ function checkPopulation(p, i, ids, said, check) {
     } else if (wrong !== undefined) {
       said(field('fallen_azimuths_deg'), named('fallen_azimuths_deg'), 'a direction lies in [0, 360) deg, got ' +
                                                                        show(wrong));
+    } else if (shape === 'block' && !p.read.get('depth').given) {
+      said(field('fallen_azimuths_deg'), named('fallen_azimuths_deg'), FALL_PROBLEM);
     }
   }
   const base = shape === 'cylinder' ? 'diameter' : 'width';
@@ -695,6 +752,10 @@ function setField(box, value) {
     if (m) { box.inputs[0].value = m[1]; box.inputs[1].value = m[2]; } else box.inputs[0].value = v;
   } else if (k.kind === 'tables') {
     box.inputs[0].value = v.replace(/;\s*/g, '\n');
+  } else if (k.kind === 'support') {
+    // "furniture", or {"name": ..., "freq_hz": "3-6", "damping": "0.05"} for a flexible support.
+    const f = typeof value === 'object' ? value : {name: v};
+    box.inputs[0].value = f.name || ''; box.inputs[1].value = f.freq_hz || ''; box.inputs[2].value = f.damping || '';
   } else if (k.kind === 'axis' || k.kind === 'lat_lon') {
     v.replace(/[\[\]]/g, '').split(',').forEach((p, i) => { if (box.inputs[i]) box.inputs[i].value = p.trim(); });
   } else {
@@ -732,16 +793,41 @@ function stateOf() {
   const grab = (boxes) => Object.fromEntries(boxes.filter(b => b.inputs.some(i => i.tagName !== 'SELECT' && i.value)
       || b.schema.kind === 'choice' && b.inputs[0].value).flatMap(b => b.schema.kind === 'tables'
       ? [[b.schema.key, b.inputs[0].value.replace(/\n/g, ';')], ['sample_unit', b.inputs[1].value]]
+      : b.schema.kind === 'support' ? [[b.schema.key, {name: b.inputs[0].value, freq_hz: b.inputs[1].value,
+                                                       damping: b.inputs[2].value}]]
       : [[b.schema.key, b.schema.kind === 'length' || b.schema.kind === 'area' ? b.inputs[0].value + b.inputs[1].value
                                                                               : b.inputs.map(i => i.value).join(',')]]));
   return {site: grab(tables.site), event: grab(tables.event), inversion: grab(tables.inversion),
           objects: objects.map(o => grab(o.fields)), populations: populations.map(p => grab(p.fields))};
 }
+// An empty form: every field as made, no object, no population.
+function clearForm() {
+  for (const t of ['site', 'event', 'inversion']) {
+    for (const b of tables[t]) b.inputs.forEach((i, j) => { i.value = b.initial[j]; });
+  }
+  for (const list of [objects, populations]) { for (const b of list) b.remove(); list.length = 0; }
+  validate();
+}
+// A list of prefills is several surveys entered one after the other in this one page (what the test drives): each
+// is filled into a cleared form and saved, and what the page showed is kept under #runs as run-N-toml, run-N-csv,
+// run-N-status and run-N-errors.
+function keepRun(n) {
+  const runs = document.getElementById('runs');
+  const pre = (what, text) => runs.appendChild(el('pre', {id: 'run-' + n + '-' + what, text: text}));
+  pre('toml', document.getElementById('toml-out').value);
+  pre('csv', document.getElementById('csv-out').value);
+  pre('status', document.getElementById('status').textContent);
+  pre('errors', [...document.getElementById('errors').children].map(li => li.textContent).join('\n'));
+}
 const query = new URLSearchParams(location.search);
 if (query.has('prefill')) {
   const data = JSON.parse(query.get('prefill'));
-  fillFrom(data);
-  if (data.save) { save('toml', false); save('csv', false); }
+  (Array.isArray(data) ? data : [data]).forEach((d, i) => {
+    if (i > 0) clearForm();
+    fillFrom(d);
+    if (d.save) { save('toml', false); save('csv', false); }
+    if (Array.isArray(data)) keepRun(i + 1);
+  });
 } else {
   let saved = null;
   try { saved = JSON.parse(localStorage.getItem('topple-survey-form') || 'null'); } catch (e) { saved = null; }

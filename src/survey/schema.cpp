@@ -309,8 +309,8 @@ std::vector<SurveyKey> make_schema() {
 
   // ---- [[population]] (docs/survey.md, "Populations"; survey_file.cpp's parse_population; population.cpp's
   // check_population for the counts and sizes). Offered by the form (issue 30). The class' shared keys (mu, e,
-  // amplification, orientation_deg, azimuth_deg, evidence) are read as an object's, in the object's words: their rows
-  // are the object's, copied (a flexible support and a box's depth are written in the file). ----
+  // support, amplification, orientation_deg, azimuth_deg, depth, evidence) are read as an object's (survey_file.cpp's
+  // parse_object_placement), in the object's words: their rows are the object's, copied. ----
   const auto population = [&](const char* name, K kind, const char* help, const char* example) -> SurveyKey& {
     return add(key("population", name, kind, help, example));
   };
@@ -377,9 +377,11 @@ std::vector<SurveyKey> make_schema() {
                          "[40.0]");
     k.unit = "deg";
     k.conditions.push_back({"inversion.components", kComponents3, "fall directions need [inversion] components = 3"});
-    k.conditions.push_back({"shape", {"cylinder"}, "only a cylinder or a box"});
+    // A cylinder or a box (a block with depth): not one condition on one key, so the form says it itself, in the
+    // reader's words (survey.cpp's check_object_fall_direction, held against the reader by the form's test).
   }
-  for (const char* shared : {"mu", "e", "amplification", "orientation_deg", "azimuth_deg", "evidence"}) {
+  for (const char* shared : {"mu", "e", "support", "amplification", "orientation_deg", "azimuth_deg", "depth",
+                             "evidence"}) {
     const SurveyKey* object_row = nullptr;
     for (const SurveyKey& k : s) {
       if (k.table == "object" && k.key == shared) object_row = &k;
@@ -387,6 +389,9 @@ std::vector<SurveyKey> make_schema() {
     SurveyKey k = *object_row;  // copied before add() may move the rows
     k.table = "population";
     if (k.key == "azimuth_deg") k.conditions.back().values = {"block"};  // a population is of blocks or cylinders
+    // A box's other horizontal size, one length for the class (not a range): the reader's words for one not positive
+    // are RockingBody::block's, of the box's other axis (a block of width `depth`), in metres.
+    if (k.key == "depth") ranged(k, excl(0.0), std::nullopt, "width must be positive and finite, got {}");
     add(std::move(k));
   }
 

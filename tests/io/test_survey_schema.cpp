@@ -122,6 +122,8 @@ void complete(SurveyText& s) {
     pput("count", "10");
     pput("overturned", "1");  // one: as many as count's lowest value, 1, and a fall direction (the examples)
     pput("mu", "0.5");
+    // Fall directions need a cylinder or a box: a cylinder unless a depth makes the block a box.
+    if (p.contains("fallen_azimuths_deg") && !p.contains("depth")) pput("shape", "\"cylinder\"");
     if (!p.contains("sample")) {
       if (p.contains("shape") && p["shape"] == "\"cylinder\"") pput("diameter", "\"10cm\"");
       else pput("width", "\"10cm\"");
