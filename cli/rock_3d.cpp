@@ -187,6 +187,7 @@ void run_3d(const RunMotion& run, const Rigid3DRequest& request) {
     fmt::print("{}\n", j.dump(2));
     return;
   }
+  const bool friction = request.options.mu_s.has_value();
   if (request.cylinder) {
     fmt::print("three-dimensional rocking and rolling on the rim (no sliding): cylinder {:.6g} x {:.6g} m (diameter x "
                "height){}\n",
@@ -194,7 +195,6 @@ void run_3d(const RunMotion& run, const Rigid3DRequest& request) {
                request.set != nullptr ? std::string(", the pair along east and north")
                                       : std::string(", the record along +x (azimuth 90)"));
   } else {
-    const bool friction = request.options.mu_s.has_value();
     fmt::print("three-dimensional rocking and pivoting ({}): {}{}\n",
                friction ? fmt::format("sliding flat, mu_s = {:.6g}, mu_k = {:.6g}", *request.options.mu_s,
                                       request.options.mu_k.value_or(*request.options.mu_s))
