@@ -23,6 +23,7 @@
 #include "topple/solvers/sliding.hpp"
 #include "topple/motion/spectra.hpp"
 #include "topple/motion/synthesis.hpp"
+#include "inversion/inversion_detail.hpp"
 
 namespace topple {
 namespace {
@@ -1112,6 +1113,52 @@ TEST(Evidence, InvertSiteRanksTheCatalogue) {
   InversionOptions off;
   off.next_objects = false;
   EXPECT_TRUE(invert_site(site, st, off).next_objects.empty());
+}
+
+// Performance only (issue 32): a survey object whose rocking run is a catalogue object's (the bookend and the mantel
+// clock, same bodies, Housner's restitution, rigid support) gives the ranking its outcomes instead of a second run. The
+// ranking must be the same, bit for bit, as the one that runs every catalogue object (suggest_next_objects alone);
+// and the sharing must have happened (else this test would compare a thing with itself).
+TEST(Evidence, SharedCatalogueRunsGiveTheSameRanking) {
+  Site site;
+  site.name = "shared";
+  site.objects.push_back(block("bookend", 0.10, 0.15, {0.6, 0.6}, Outcome::not_overturned));
+  site.objects.push_back(block("clock", 0.10, 0.25, {0.5, 0.5}, Outcome::rocked));
+  site.objects.push_back(block("fell", 0.07, 0.5, {0.5, 0.5}, Outcome::overturned));  // no catalogue twin
+  const InversionSettings st = small_grid(4);
+  const InversionResult r = invert_site(site, st);
+  const FamilyGrid family = build_family(st, r.freq_hz);
+  const std::vector<NextObject> alone = suggest_next_objects(r, st, family);
+  ASSERT_EQ(alone.size(), r.next_objects.size());
+  for (std::size_t x = 0; x < alone.size(); ++x) {
+    EXPECT_EQ(r.next_objects[x].object, alone[x].object);
+    EXPECT_EQ(r.next_objects[x].bits_pga, alone[x].bits_pga) << alone[x].object;  // exact: the same outcomes
+    EXPECT_EQ(r.next_objects[x].bits_freq, alone[x].bits_freq) << alone[x].object;
+  }
+  // The share: the bookend and the mantel clock found, and outcomes recorded for some of their runs, equal to a
+  // catalogue run's where recorded.
+  detail::CatalogueShare share;
+  const MatchTable m = detail::simulate_matches(site, st, r.pga_g, family, {}, &share);
+  EXPECT_EQ(m.match, simulate_matches(site, st, r.pga_g, family).match);
+  const auto& catalogue = household_catalogue();
+  std::size_t recorded = 0;
+  for (std::size_t x = 0; x < catalogue.size(); ++x) {
+    const bool twin = catalogue[x].name == "bookend" || catalogue[x].name == "mantel clock";
+    EXPECT_EQ(share.block[x] >= 0, twin) << catalogue[x].name;
+    if (!twin) continue;
+    for (std::size_t c = 0; c < share.cells; c += 7) {
+      for (std::size_t k = 0; k < share.nk; ++k) {
+        const std::uint8_t y = share.at(x, c, k);
+        if (y == detail::CatalogueShare::kNotRecorded) continue;
+        ++recorded;
+        const std::size_t nf = r.freq_hz.size();
+        const GroundMotion motion = family.motions[c % nf][k]->scaled(r.pga_g[c / nf] * st.g_m_s2);
+        EXPECT_EQ(y, catalogue_outcome(catalogue[x].object, draw_parameters(catalogue[x].object, st.seed, k, 1000 + x),
+                                       motion, st.g_m_s2));
+      }
+    }
+  }
+  EXPECT_GT(recorded, 0u);
 }
 
 }  // namespace
