@@ -367,47 +367,52 @@ void validate_inversion_settings(const InversionSettings& st) {
   }
 }
 
-std::vector<GroundMotion> family_motions(const InversionSettings& st, double freq_hz) {
-  std::vector<GroundMotion> out;
+namespace {
+
+/// Motion k of a drawn family's column (synthetic, rezaeian2010, boore2003): each motion depends on (settings,
+/// column, k) alone, so build_family can make them on any thread in any order.
+GroundMotion drawn_family_motion(const InversionSettings& st, double freq_hz, int k) {
   if (st.family == MotionFamily::synthetic) {
-    out.reserve(static_cast<std::size_t>(st.motions_per_cell));
-    for (int k = 0; k < st.motions_per_cell; ++k) {
-      GroundMotion m = synthesize(family_spec(st, freq_hz, k));
-      // Put the motion's measured predominant frequency exactly on the column's: time scaling by c divides every
-      // frequency by c.
-      const double measured = predominant_frequency_hz(m);
-      out.push_back(m.time_scaled(measured / freq_hz).scaled_to_pga(1.0));
-    }
-    return out;
+    GroundMotion m = synthesize(family_spec(st, freq_hz, k));
+    // Put the motion's measured predominant frequency exactly on the column's: time scaling by c divides every
+    // frequency by c.
+    const double measured = predominant_frequency_hz(m);
+    return m.time_scaled(measured / freq_hz).scaled_to_pga(1.0);
   }
   if (st.family == MotionFamily::rezaeian2010) {
-    out.reserve(static_cast<std::size_t>(st.motions_per_cell));
-    for (int k = 0; k < st.motions_per_cell; ++k) {
-      // Parameters of motion k drawn once (the same in every column: common random numbers), f_mid at the column.
-      const std::uint64_t seed = mix(st.seed, static_cast<std::uint64_t>(k) + 1);
-      RezaeianSpec spec = draw_rezaeian(seed, freq_hz);
-      GroundMotion m = synthesize_rezaeian(spec);
-      double measured = predominant_frequency_hz(m);
-      // The measured peak may sit well off f_mid (a broad filter, a strong drift): aim f_mid once more, so that the
-      // time scaling below stays within a factor 1.25 or so and keeps the drawn durations.
-      if (measured > 1.25 * freq_hz || measured < 0.8 * freq_hz) {
-        spec = draw_rezaeian(seed, freq_hz * freq_hz / measured);
-        m = synthesize_rezaeian(spec);
-        measured = predominant_frequency_hz(m);
-      }
-      out.push_back(m.time_scaled(measured / freq_hz).scaled_to_pga(1.0));
+    // Parameters of motion k drawn once (the same in every column: common random numbers), f_mid at the column.
+    const std::uint64_t seed = mix(st.seed, static_cast<std::uint64_t>(k) + 1);
+    RezaeianSpec spec = draw_rezaeian(seed, freq_hz);
+    GroundMotion m = synthesize_rezaeian(spec);
+    double measured = predominant_frequency_hz(m);
+    // The measured peak may sit well off f_mid (a broad filter, a strong drift): aim f_mid once more, so that the
+    // time scaling below stays within a factor 1.25 or so and keeps the drawn durations.
+    if (measured > 1.25 * freq_hz || measured < 0.8 * freq_hz) {
+      spec = draw_rezaeian(seed, freq_hz * freq_hz / measured);
+      m = synthesize_rezaeian(spec);
+      measured = predominant_frequency_hz(m);
     }
-    return out;
+    return m.time_scaled(measured / freq_hz).scaled_to_pga(1.0);
   }
-  if (st.family == MotionFamily::boore2003) {
+  // boore2003. Motion k: scenarios (M, R, kappa0) drawn for a spectral peak at the column and kept when the motion's
+  // measured predominant frequency lies within a factor 1.15 of it (stochastic.hpp, draw_boore2003); the same seeds
+  // in every column. The time scaling then puts it exactly on the column.
+  const BooreDraw d = draw_boore2003(mix(st.seed, static_cast<std::uint64_t>(k) + 1), freq_hz);
+  return d.motion.time_scaled(d.measured_hz / freq_hz).scaled_to_pga(1.0);
+}
+
+bool drawn_family(const InversionSettings& st) {
+  return st.family == MotionFamily::synthetic || st.family == MotionFamily::rezaeian2010 ||
+         st.family == MotionFamily::boore2003;
+}
+
+}  // namespace
+
+std::vector<GroundMotion> family_motions(const InversionSettings& st, double freq_hz) {
+  std::vector<GroundMotion> out;
+  if (drawn_family(st)) {
     out.reserve(static_cast<std::size_t>(st.motions_per_cell));
-    for (int k = 0; k < st.motions_per_cell; ++k) {
-      // Motion k: scenarios (M, R, kappa0) drawn for a spectral peak at the column and kept when the motion's measured
-      // predominant frequency lies within a factor 1.15 of it (stochastic.hpp, draw_boore2003); the same seeds in
-      // every column. The time scaling then puts it exactly on the column.
-      const BooreDraw d = draw_boore2003(mix(st.seed, static_cast<std::uint64_t>(k) + 1), freq_hz);
-      out.push_back(d.motion.time_scaled(d.measured_hz / freq_hz).scaled_to_pga(1.0));
-    }
+    for (int k = 0; k < st.motions_per_cell; ++k) out.push_back(drawn_family_motion(st, freq_hz, k));
     return out;
   }
   if (st.record_motions.empty()) {
@@ -443,8 +448,35 @@ FamilyGrid build_family(const InversionSettings& st, const std::vector<double>& 
   family.freq_hz = freq_hz;
   family.motions.resize(nf);
   family.measured_freq_hz.resize(nf);
-  // Columns in parallel, within the thread limit of `options` (the runs below obey it too).
+  // Within the thread limit of `options` (the runs below obey it too).
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+  if (drawn_family(st)) {
+    // Every (column, motion) on its own task, not one column per task: the high-frequency columns' motions are up to
+    // 4x longer, and a thread left with the last of them would run it alone while the other waits (issue 32). The
+    // same motions and, summed in k order, the same measured frequencies as family_motions column by column.
+    const auto n = static_cast<std::size_t>(st.motions_per_cell);
+    std::vector<std::shared_ptr<const GroundMotion>> motions(nf * n);
+    std::vector<double> measured(nf * n);
+    arena.execute([&] {
+      tbb::parallel_for(std::size_t{0}, nf * n, [&](std::size_t task) {
+        // High-frequency (costly) columns first: fewer left at the end.
+        const std::size_t j = nf - 1 - task / n;
+        const std::size_t k = task % n;
+        auto m = std::make_shared<const GroundMotion>(drawn_family_motion(st, freq_hz[j], static_cast<int>(k)));
+        measured[j * n + k] = predominant_frequency_hz(*m);
+        motions[j * n + k] = std::move(m);
+      });
+    });
+    for (std::size_t j = 0; j < nf; ++j) {
+      double sum = 0.0;
+      for (std::size_t k = 0; k < n; ++k) {
+        sum += measured[j * n + k];
+        family.motions[j].push_back(std::move(motions[j * n + k]));
+      }
+      family.measured_freq_hz[j] = sum / static_cast<double>(n);
+    }
+    return family;
+  }
   arena.execute([&] {
     tbb::parallel_for(std::size_t{0}, nf, [&](std::size_t j) {
       double sum = 0.0;

@@ -309,6 +309,35 @@ TEST(InversionSettingsCheck, Rezaeian2010FamilyIsChosenByNameAndOldSurveysKeepTh
   }
 }
 
+// build_family makes each (column, motion) on its own task (issue 32, performance only): the same motions, bit for
+// bit, as family_motions column by column, and the same measured frequencies (each motion's, summed in k order), for
+// every drawn family.
+TEST(InversionSettingsCheck, BuildFamilyIsFamilyMotionsColumnByColumn) {
+  for (const MotionFamily family : {MotionFamily::synthetic, MotionFamily::rezaeian2010, MotionFamily::boore2003}) {
+    InversionSettings st;
+    st.family = family;
+    st.motions_per_cell = 3;
+    st.duration_s = 10.0;
+    const std::vector<double> freq{0.7, 6.0};
+    const FamilyGrid grid = build_family(st, freq);
+    ASSERT_EQ(grid.motions.size(), freq.size());
+    for (std::size_t j = 0; j < freq.size(); ++j) {
+      SCOPED_TRACE(fmt::format("{} column {}", motion_family_name(family), j));
+      const std::vector<GroundMotion> want = family_motions(st, freq[j]);
+      ASSERT_EQ(grid.motions[j].size(), want.size());
+      double sum = 0.0;
+      for (std::size_t k = 0; k < want.size(); ++k) {
+        const GroundMotion& got = *grid.motions[j][k];
+        ASSERT_EQ(got.size(), want[k].size());
+        EXPECT_EQ(got.dt_s(), want[k].dt_s());
+        EXPECT_TRUE(std::equal(got.accel_m_s2().begin(), got.accel_m_s2().end(), want[k].accel_m_s2().begin()));
+        sum += predominant_frequency_hz(want[k]);
+      }
+      EXPECT_EQ(grid.measured_freq_hz[j], sum / static_cast<double>(want.size()));
+    }
+  }
+}
+
 // The stochastic point-source family (issue 32, motion/stochastic.hpp) is chosen by name and listed among the known
 // ones; its frequency axis is 0.1-25 Hz; every motion of a column is on the column with unit PGA; the example survey
 // inverted with it on a small grid gives finite estimates inside the grid.
