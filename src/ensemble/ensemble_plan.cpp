@@ -1,5 +1,6 @@
 // The ensemble plan: chunk sizes, motion transforms and the plan's consistency checks (ensemble.hpp).
 #include <algorithm>
+#include <optional>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -12,11 +13,15 @@
 namespace topple::ensemble {
 
 GroundMotion MotionTransform::apply(const GroundMotion& base) const {
-  GroundMotion m = time_scale == 1.0 ? base : base.time_scaled(time_scale);
-  if (target_pga_m_s2) m = m.scaled_to_pga(*target_pga_m_s2);
-  if (factor) m = m.scaled(*factor);
-  if (invert) m = m.inverted();
-  return m;
+  // Each transform reads the previous one's motion and makes a new one; the base itself is copied only when no
+  // transform applies (the inversion's 30,000 motions per survey are scaled_to_pga alone: one copy, not two).
+  std::optional<GroundMotion> m;
+  const auto current = [&]() -> const GroundMotion& { return m ? *m : base; };
+  if (time_scale != 1.0) m = base.time_scaled(time_scale);
+  if (target_pga_m_s2) m = current().scaled_to_pga(*target_pga_m_s2);
+  if (factor) m = current().scaled(*factor);
+  if (invert) m = current().inverted();
+  return m ? std::move(*m) : base;
 }
 
 std::size_t default_chunk_runs(std::size_t runs) noexcept {

@@ -2,6 +2,9 @@
 #include "topple/inversion/evidence.hpp"
 
 #include <algorithm>
+#include <atomic>
+#include <cstdint>
+#include <optional>
 #include <cmath>
 #include <numeric>
 #include <stdexcept>
@@ -10,6 +13,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "topple/inversion/matching.hpp"
 #include "topple/solvers/rocking.hpp"
 #include "topple/solvers/sliding.hpp"
 #include "inversion/inversion_detail.hpp"
@@ -148,8 +152,40 @@ std::size_t catalogue_outcome(const ObservedObject& object, const DrawnParameter
   return s.max_abs_rotation_rad >= kVisibleRockingRad ? 1 : 2;
 }
 
+namespace {
+
+bool same_body(const RockingBody& a, const RockingBody& b) {
+  const bool pivots = a.negative_pivot.has_value() == b.negative_pivot.has_value() &&
+                      (!a.negative_pivot || (a.negative_pivot->b_m == b.negative_pivot->b_m &&
+                                             a.negative_pivot->D_m2 == b.negative_pivot->D_m2));
+  return a.shape == b.shape && a.a_m == b.a_m && a.h_m == b.h_m && a.D_m2 == b.D_m2 && pivots;
+}
+
+}  // namespace
+
+bool detail::same_rocking_run(const ObservedObject& a, const DrawnParameters& pa, const ObservedObject& b,
+                              const DrawnParameters& pb, double g) {
+  // observation_match and catalogue_outcome both call rock_summary(motion, body, inversion_rocking_options(...))
+  // when the model is rock, there is no support filter and the plane factor is 1: the same call when the bodies
+  // and the options (restitution; the rest is fixed) agree.
+  if (object_model(a) != ObjectModel::rock || object_model(b) != ObjectModel::rock) return false;
+  if (a.support_filter || b.support_filter) return false;
+  if (rocking_plane_factor(a, pa) != 1.0 || rocking_plane_factor(b, pb) != 1.0) return false;
+  if (!same_body(a.body, b.body)) return false;
+  const RockingOptions oa = inversion_rocking_options(a, pa, g);
+  const RockingOptions ob = inversion_rocking_options(b, pb, g);
+  return oa.restitution == ob.restitution && oa.e == ob.e && oa.g_m_s2 == ob.g_m_s2 &&
+         oa.max_run_out_s == ob.max_run_out_s && oa.rel_tol == ob.rel_tol && oa.abs_tol == ob.abs_tol;
+}
+
 std::vector<NextObject> suggest_next_objects(const InversionResult& r, const InversionSettings& st,
                                              const FamilyGrid& family, const InversionOptions& options) {
+  return detail::suggest_next_objects(r, st, family, options, nullptr);
+}
+
+std::vector<NextObject> detail::suggest_next_objects(const InversionResult& r, const InversionSettings& st,
+                                                     const FamilyGrid& family, const InversionOptions& options,
+                                                     const CatalogueShare* share) {
   const std::size_t np = r.pga_g.size(), nf = r.freq_hz.size();
   const std::size_t n = family.motions_per_column();
   if (r.posterior.size() != np * nf || family.motions.size() != nf || n == 0) {
@@ -178,18 +214,31 @@ std::vector<NextObject> suggest_next_objects(const InversionResult& r, const Inv
   const std::size_t nk = std::min<std::size_t>(n, kCatalogueMotions);
   // counts[(x * cells + s) * 3 + y]: runs of catalogue object x in the s-th cell with outcome y.
   std::vector<unsigned> counts(nx * cells.size() * 3, 0);
+  const bool shared = share != nullptr && share->cells == r.posterior.size() && share->nk == nk;
+  // The parameters of motion k drawn as for the survey's objects with object indices after any survey's (1000 + x).
+  std::vector<DrawnParameters> drawn(nx * nk);
+  for (std::size_t x = 0; x < nx; ++x) {
+    for (std::size_t k = 0; k < nk; ++k) drawn[x * nk + k] = draw_parameters(catalogue[x].object, st.seed, k, 1000 + x);
+  }
+  // One task per (cell, motion): the scaled motion is made once for all the catalogue objects that need a run, and
+  // not at all when the survey's runs gave every outcome (CatalogueShare).
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
   arena.execute([&] {
-    tbb::parallel_for(std::size_t{0}, nx * cells.size(), [&](std::size_t task) {
-      const std::size_t x = task / cells.size();
-      const std::size_t c = cells[task % cells.size()];
-      const ObservedObject& object = catalogue[x].object;
-      for (std::size_t k = 0; k < nk; ++k) {
-        // The family's motion k of the cell's column at the cell's PGA (motions have PGA 1 m/s^2), the parameters of
-        // motion k drawn as for the survey's objects with object indices after any survey's (1000 + x).
-        const GroundMotion motion = family.motions[c % nf][k]->scaled(r.pga_g[c / nf] * st.g_m_s2);
-        const DrawnParameters p = draw_parameters(object, st.seed, k, 1000 + x);
-        ++counts[task * 3 + catalogue_outcome(object, p, motion, st.g_m_s2)];
+    tbb::parallel_for(std::size_t{0}, cells.size() * nk, [&](std::size_t task) {
+      const std::size_t s = task / nk;
+      const std::size_t k = task % nk;
+      const std::size_t c = cells[s];
+      std::optional<GroundMotion> motion;  // the family's motion k of the cell's column at the cell's PGA
+      for (std::size_t x = 0; x < nx; ++x) {
+        const std::uint8_t known = shared ? share->at(x, c, k) : detail::CatalogueShare::kNotRecorded;
+        std::size_t y = known;
+        if (known == detail::CatalogueShare::kNotRecorded) {
+          // (Family motions have PGA 1 m/s^2.)
+          if (!motion) motion = family.motions[c % nf][k]->scaled(r.pga_g[c / nf] * st.g_m_s2);
+          y = catalogue_outcome(catalogue[x].object, drawn[x * nk + k], *motion, st.g_m_s2);
+        }
+        // Distinct (x, s) slots of one task; tasks of one cell (several k) meet on the same slot: atomic.
+        std::atomic_ref<unsigned>(counts[(x * cells.size() + s) * 3 + y]).fetch_add(1, std::memory_order_relaxed);
       }
     });
   });

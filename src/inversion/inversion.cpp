@@ -367,47 +367,52 @@ void validate_inversion_settings(const InversionSettings& st) {
   }
 }
 
-std::vector<GroundMotion> family_motions(const InversionSettings& st, double freq_hz) {
-  std::vector<GroundMotion> out;
+namespace {
+
+/// Motion k of a drawn family's column (synthetic, rezaeian2010, boore2003): each motion depends on (settings,
+/// column, k) alone, so build_family can make them on any thread in any order.
+GroundMotion drawn_family_motion(const InversionSettings& st, double freq_hz, int k) {
   if (st.family == MotionFamily::synthetic) {
-    out.reserve(static_cast<std::size_t>(st.motions_per_cell));
-    for (int k = 0; k < st.motions_per_cell; ++k) {
-      GroundMotion m = synthesize(family_spec(st, freq_hz, k));
-      // Put the motion's measured predominant frequency exactly on the column's: time scaling by c divides every
-      // frequency by c.
-      const double measured = predominant_frequency_hz(m);
-      out.push_back(m.time_scaled(measured / freq_hz).scaled_to_pga(1.0));
-    }
-    return out;
+    GroundMotion m = synthesize(family_spec(st, freq_hz, k));
+    // Put the motion's measured predominant frequency exactly on the column's: time scaling by c divides every
+    // frequency by c.
+    const double measured = predominant_frequency_hz(m);
+    return m.time_scaled(measured / freq_hz).scaled_to_pga(1.0);
   }
   if (st.family == MotionFamily::rezaeian2010) {
-    out.reserve(static_cast<std::size_t>(st.motions_per_cell));
-    for (int k = 0; k < st.motions_per_cell; ++k) {
-      // Parameters of motion k drawn once (the same in every column: common random numbers), f_mid at the column.
-      const std::uint64_t seed = mix(st.seed, static_cast<std::uint64_t>(k) + 1);
-      RezaeianSpec spec = draw_rezaeian(seed, freq_hz);
-      GroundMotion m = synthesize_rezaeian(spec);
-      double measured = predominant_frequency_hz(m);
-      // The measured peak may sit well off f_mid (a broad filter, a strong drift): aim f_mid once more, so that the
-      // time scaling below stays within a factor 1.25 or so and keeps the drawn durations.
-      if (measured > 1.25 * freq_hz || measured < 0.8 * freq_hz) {
-        spec = draw_rezaeian(seed, freq_hz * freq_hz / measured);
-        m = synthesize_rezaeian(spec);
-        measured = predominant_frequency_hz(m);
-      }
-      out.push_back(m.time_scaled(measured / freq_hz).scaled_to_pga(1.0));
+    // Parameters of motion k drawn once (the same in every column: common random numbers), f_mid at the column.
+    const std::uint64_t seed = mix(st.seed, static_cast<std::uint64_t>(k) + 1);
+    RezaeianSpec spec = draw_rezaeian(seed, freq_hz);
+    GroundMotion m = synthesize_rezaeian(spec);
+    double measured = predominant_frequency_hz(m);
+    // The measured peak may sit well off f_mid (a broad filter, a strong drift): aim f_mid once more, so that the
+    // time scaling below stays within a factor 1.25 or so and keeps the drawn durations.
+    if (measured > 1.25 * freq_hz || measured < 0.8 * freq_hz) {
+      spec = draw_rezaeian(seed, freq_hz * freq_hz / measured);
+      m = synthesize_rezaeian(spec);
+      measured = predominant_frequency_hz(m);
     }
-    return out;
+    return m.time_scaled(measured / freq_hz).scaled_to_pga(1.0);
   }
-  if (st.family == MotionFamily::boore2003) {
+  // boore2003. Motion k: scenarios (M, R, kappa0) drawn for a spectral peak at the column and kept when the motion's
+  // measured predominant frequency lies within a factor 1.15 of it (stochastic.hpp, draw_boore2003); the same seeds
+  // in every column. The time scaling then puts it exactly on the column.
+  const BooreDraw d = draw_boore2003(mix(st.seed, static_cast<std::uint64_t>(k) + 1), freq_hz);
+  return d.motion.time_scaled(d.measured_hz / freq_hz).scaled_to_pga(1.0);
+}
+
+bool drawn_family(const InversionSettings& st) {
+  return st.family == MotionFamily::synthetic || st.family == MotionFamily::rezaeian2010 ||
+         st.family == MotionFamily::boore2003;
+}
+
+}  // namespace
+
+std::vector<GroundMotion> family_motions(const InversionSettings& st, double freq_hz) {
+  std::vector<GroundMotion> out;
+  if (drawn_family(st)) {
     out.reserve(static_cast<std::size_t>(st.motions_per_cell));
-    for (int k = 0; k < st.motions_per_cell; ++k) {
-      // Motion k: scenarios (M, R, kappa0) drawn for a spectral peak at the column and kept when the motion's measured
-      // predominant frequency lies within a factor 1.15 of it (stochastic.hpp, draw_boore2003); the same seeds in
-      // every column. The time scaling then puts it exactly on the column.
-      const BooreDraw d = draw_boore2003(mix(st.seed, static_cast<std::uint64_t>(k) + 1), freq_hz);
-      out.push_back(d.motion.time_scaled(d.measured_hz / freq_hz).scaled_to_pga(1.0));
-    }
+    for (int k = 0; k < st.motions_per_cell; ++k) out.push_back(drawn_family_motion(st, freq_hz, k));
     return out;
   }
   if (st.record_motions.empty()) {
@@ -443,8 +448,35 @@ FamilyGrid build_family(const InversionSettings& st, const std::vector<double>& 
   family.freq_hz = freq_hz;
   family.motions.resize(nf);
   family.measured_freq_hz.resize(nf);
-  // Columns in parallel, within the thread limit of `options` (the runs below obey it too).
+  // Within the thread limit of `options` (the runs below obey it too).
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+  if (drawn_family(st)) {
+    // Every (column, motion) on its own task, not one column per task: the high-frequency columns' motions are up to
+    // 4x longer, and a thread left with the last of them would run it alone while the other waits (issue 32). The
+    // same motions and, summed in k order, the same measured frequencies as family_motions column by column.
+    const auto n = static_cast<std::size_t>(st.motions_per_cell);
+    std::vector<std::shared_ptr<const GroundMotion>> motions(nf * n);
+    std::vector<double> measured(nf * n);
+    arena.execute([&] {
+      tbb::parallel_for(std::size_t{0}, nf * n, [&](std::size_t task) {
+        // High-frequency (costly) columns first: fewer left at the end.
+        const std::size_t j = nf - 1 - task / n;
+        const std::size_t k = task % n;
+        auto m = std::make_shared<const GroundMotion>(drawn_family_motion(st, freq_hz[j], static_cast<int>(k)));
+        measured[j * n + k] = predominant_frequency_hz(*m);
+        motions[j * n + k] = std::move(m);
+      });
+    });
+    for (std::size_t j = 0; j < nf; ++j) {
+      double sum = 0.0;
+      for (std::size_t k = 0; k < n; ++k) {
+        sum += measured[j * n + k];
+        family.motions[j].push_back(std::move(motions[j * n + k]));
+      }
+      family.measured_freq_hz[j] = sum / static_cast<double>(n);
+    }
+    return family;
+  }
   arena.execute([&] {
     tbb::parallel_for(std::size_t{0}, nf, [&](std::size_t j) {
       double sum = 0.0;
@@ -460,6 +492,12 @@ FamilyGrid build_family(const InversionSettings& st, const std::vector<double>& 
 
 MatchTable simulate_matches(const Site& site, const InversionSettings& st, const std::vector<double>& pga_g,
                             const FamilyGrid& family, const InversionOptions& options) {
+  return detail::simulate_matches(site, st, pga_g, family, options, nullptr);
+}
+
+MatchTable detail::simulate_matches(const Site& site, const InversionSettings& st, const std::vector<double>& pga_g,
+                                    const FamilyGrid& family, const InversionOptions& options,
+                                    CatalogueShare* share) {
   validate_inversion_options(options);
   MatchTable table;
   table.pga_count = pga_g.size();
@@ -495,11 +533,62 @@ MatchTable simulate_matches(const Site& site, const InversionSettings& st, const
     for (std::size_t o = 0; o < no; ++o) drawn[k * no + o] = draw_parameters(site.objects[o], st.seed, k, o);
   }
   const double g = st.g_m_s2;
-  plan.run = [&site, &drawn, n, no, g](const GroundMotion& motion, std::size_t motion_index, std::size_t o0,
-                                      std::size_t o1, std::span<ensemble::Value> results) {
+  // What to look for next (evidence.hpp) runs catalogue objects under the first kCatalogueMotions motions of the cells;
+  // a survey object whose rocking run is the same computation as a catalogue object's (same_rocking_run for each of
+  // those motions) records its outcome category for the ranking, which then need not run it again. Only where the
+  // motions are bit-identical: the engine's motion is base.scaled_to_pga(target), a multiplication of each sample by
+  // target / peak, the ranking's base.scaled(target), one by target; equal when target / peak == target.
+  std::vector<std::ptrdiff_t> share_of(no, -1);  // survey object o -> its block in share->outcome
+  std::vector<std::uint8_t> motion_shared;       // per (cell, k < nk): the two motions are bit-identical
+  const std::size_t nk = std::min<std::size_t>(n, kCatalogueMotions);
+  if (share != nullptr) {
+    const std::vector<CatalogueObject>& catalogue = household_catalogue();
+    *share = CatalogueShare{};
+    share->cells = np * nf;
+    share->nk = nk;
+    share->block.assign(catalogue.size(), -1);
+    std::ptrdiff_t blocks = 0;
+    for (std::size_t x = 0; x < catalogue.size(); ++x) {
+      for (std::size_t o = 0; o < no && share->block[x] < 0; ++o) {
+        if (share_of[o] >= 0) continue;
+        bool same = nk > 0;
+        for (std::size_t k = 0; k < nk && same; ++k) {
+          same = same_rocking_run(site.objects[o], drawn[k * no + o], catalogue[x].object,
+                                  draw_parameters(catalogue[x].object, st.seed, k, 1000 + x), g);
+        }
+        if (same) share->block[x] = share_of[o] = blocks++;
+      }
+    }
+    share->outcome.assign(static_cast<std::size_t>(blocks) * share->cells * nk, CatalogueShare::kNotRecorded);
+    if (blocks > 0) {
+      motion_shared.assign(share->cells * nk, 0);
+      for (std::size_t i = 0; i < np; ++i) {
+        const double target = pga_g[i] * g;  // as the plan's transform and the ranking form it
+        for (std::size_t j = 0; j < nf; ++j) {
+          for (std::size_t k = 0; k < nk; ++k) {
+            motion_shared[(i * nf + j) * nk + k] = target / family.motions[j][k]->pga_m_s2() == target ? 1 : 0;
+          }
+        }
+      }
+    }
+  }
+  plan.run = [&site, &drawn, &share_of, &motion_shared, share, n, nk, no, g](
+                 const GroundMotion& motion, std::size_t motion_index, std::size_t o0, std::size_t o1,
+                 std::span<ensemble::Value> results) {
     const std::size_t k = motion_index % n;
+    const std::size_t cell = motion_index / n;
     for (std::size_t o = o0; o < o1; ++o) {
-      results[o - o0] = ensemble::Value(observation_match(site.objects[o], drawn[k * no + o], motion, g));
+      const ObservedObject& object = site.objects[o];
+      const DrawnParameters& p = drawn[k * no + o];
+      if (share_of[o] >= 0 && k < nk && motion_shared[cell * nk + k] != 0) {
+        // observation_match's rocking path for a rigid support and factor 1 (same_rocking_run), with the summary kept.
+        const RockingSummary s = rock_summary(motion, object.body, inversion_rocking_options(object, p, g));
+        share->outcome[(static_cast<std::size_t>(share_of[o]) * share->cells + cell) * nk + k] =
+            s.overturned ? 0 : (s.max_abs_rotation_rad >= kVisibleRockingRad ? 1 : 2);
+        results[o - o0] = ensemble::Value(rocking_match(object.outcome, s.overturned, s.max_abs_rotation_rad));
+        continue;
+      }
+      results[o - o0] = ensemble::Value(observation_match(object, p, motion, g));
     }
   };
   ensemble::ExecuteOptions exec;
@@ -933,7 +1022,9 @@ detail::SiteRuns detail::simulate_site(const Site& site, const InversionSettings
     empty.motions = family.motions_per_column();
     runs.bins.push_back(std::move(empty));
   } else {
-    runs.bins.push_back(simulate_matches(site, st, pga_g, family, options));  // one component: one direction bin
+    // One component: one direction bin; the catalogue outcomes it can share are recorded for the ranking.
+    runs.bins.push_back(detail::simulate_matches(site, st, pga_g, family, options,
+                                                 options.next_objects ? &runs.catalogue_share : nullptr));
   }
   runs.runs = runs.bins.front().match.size();
   if (!site.populations.empty()) {  // population_likelihood.cpp
@@ -1091,10 +1182,11 @@ std::vector<InversionResult> invert_sites(const std::vector<Site>& sites, const 
   for (const Site& site : sites) {
     detail::SiteRuns runs = three ? detail::simulate_site_3c(site, st, pga_g, *three, options)
                                   : detail::simulate_site(site, st, pga_g, *one, options);
+    const detail::CatalogueShare share = std::move(runs.catalogue_share);
     out.push_back(detail::infer_site(site, pga_g, freq_hz, measured, std::move(runs)));
     // What to look for next (evidence.hpp): one component only (the catalogue is run on the family's motions).
     if (one && options.next_objects && !site.objects.empty()) {
-      out.back().next_objects = suggest_next_objects(out.back(), st, *one, options);
+      out.back().next_objects = detail::suggest_next_objects(out.back(), st, *one, options, &share);
     }
     const auto now = std::chrono::steady_clock::now();
     out.back().seconds = std::chrono::duration<double>(now - start).count();

@@ -1,5 +1,6 @@
 #pragma once
 // Internals of the inversion shared by inversion.cpp (one component) and inversion_3c.cpp (three components).
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -7,6 +8,7 @@
 #include <vector>
 
 #include "topple/inversion/inversion.hpp"
+#include "topple/inversion/matching.hpp"
 #include "topple/inversion/inversion_3c.hpp"
 #include "topple/motion/synthesis.hpp"
 #include "topple/survey/population.hpp"
@@ -48,6 +50,42 @@ void settle_static_bounds(StaticBounds& b);
 /// eps_o of every object of the site (survey.hpp, evidence_error_rate), in the site's order.
 [[nodiscard]] std::vector<double> evidence_error_rates(const Site& site);
 
+/// Outcomes of "what to look for next" (evidence.hpp, suggest_next_objects) that the survey's runs already computed
+/// (performance only: the same numbers, fewer runs). A catalogue object whose run is the same computation as a survey
+/// object's (same_rocking_run: the same body, restitution, no support filter, factor 1) under a bit-identical motion
+/// (the survey's motion scaled_to_pga(target) equals the ranking's scaled(target) when target / peak == target) has
+/// the survey run's outcome category recorded here, so the ranking does not run it again.
+struct CatalogueShare {
+  std::size_t cells = 0;  ///< the grid's cells
+  std::size_t nk = 0;     ///< motions k < nk of each cell are recorded (kCatalogueMotions or fewer)
+  /// Per catalogue object x (household_catalogue()): the index of its block in `outcome`, or -1 when not shared.
+  std::vector<std::ptrdiff_t> block;
+  /// outcome[(block * cells + c) * nk + k]: catalogue_outcome's category, or kNotRecorded.
+  std::vector<std::uint8_t> outcome;
+  static constexpr std::uint8_t kNotRecorded = 255;
+  [[nodiscard]] std::uint8_t at(std::size_t x, std::size_t c, std::size_t k) const {
+    if (x >= block.size() || block[x] < 0 || k >= nk) return kNotRecorded;
+    return outcome[(static_cast<std::size_t>(block[x]) * cells + c) * nk + k];
+  }
+};
+
+/// True when the rocking run of `a` with parameters pa is the same computation as that of `b` with pb (both the rigid
+/// rocking model, no support filter, rocking_plane_factor 1, equal bodies and restitution): then the two objects'
+/// summaries under one motion are identical.
+[[nodiscard]] bool same_rocking_run(const ObservedObject& a, const DrawnParameters& pa, const ObservedObject& b,
+                                    const DrawnParameters& pb, double g_m_s2);
+
+/// simulate_matches, recording the catalogue outcomes it can share into *share (null: none recorded).
+[[nodiscard]] MatchTable simulate_matches(const Site& site, const InversionSettings& settings,
+                                          const std::vector<double>& pga_g, const FamilyGrid& family,
+                                          const InversionOptions& options, CatalogueShare* share);
+
+/// suggest_next_objects with the outcomes of `share` used instead of runs where recorded (null: every run made).
+[[nodiscard]] std::vector<NextObject> suggest_next_objects(const InversionResult& result,
+                                                           const InversionSettings& settings,
+                                                           const FamilyGrid& family, const InversionOptions& options,
+                                                           const CatalogueShare* share);
+
 /// What the runs of a motion family give the pipeline for one site. The direction axis: one component has one bin;
 /// three components (inversion_3c.hpp) have settings.directions bins and the family's own facts.
 struct SiteRuns {
@@ -69,6 +107,8 @@ struct SiteRuns {
   /// population. And their reports, model_fraction filled.
   std::vector<double> population_run_log;
   std::vector<PopulationReport> populations;
+  /// The catalogue objects' outcomes that the survey's own runs gave on the way (CatalogueShare).
+  CatalogueShare catalogue_share;
 };
 
 // ---- Populations (population_likelihood.cpp; docs/method.md, "Populations of objects") ----

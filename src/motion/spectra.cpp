@@ -2,6 +2,8 @@
 #include "topple/motion/spectra.hpp"
 
 #include <algorithm>
+#include <cstdint>
+#include <array>
 #include <cmath>
 #include <complex>
 #include <limits>
@@ -93,13 +95,13 @@ FourierSpectrum fourier_amplitude_spectrum(const GroundMotion& motion, std::size
   return s;
 }
 
-std::vector<double> konno_ohmachi_smooth(const FourierSpectrum& spectrum, std::span<const double> centre_hz,
-                                         double bandwidth) {
-  if (!(bandwidth > 0.0) || !std::isfinite(bandwidth)) {
-    throw parameter_error("bandwidth", fmt::format("the Konno-Ohmachi bandwidth must be positive, got {}", bandwidth));
-  }
-  const auto& f = spectrum.frequency_hz;
-  const auto& amp = spectrum.amplitude_m_s;
+namespace {
+
+/// Visits the Konno-Ohmachi window of every centre: f(c) before centre c's window, then w(c, k, weight) for each
+/// frequency k in it (in increasing k), the one place the weights are formed (konno_ohmachi_smooth below).
+template <class BeginCentre, class Weight>
+void konno_ohmachi_windows(std::span<const double> f, std::span<const double> centre_hz, double bandwidth,
+                           BeginCentre&& begin_centre, Weight&& weight) {
   std::vector<double> log_f(f.size(), 0.0);
   // sin(b (log f - log fc)) = sin(b log f) cos(b log fc) - cos(b log f) sin(b log fc): the sines and cosines of the
   // spectrum's frequencies are computed once, not once per (frequency, centre) pair.
@@ -112,19 +114,17 @@ std::vector<double> konno_ohmachi_smooth(const FourierSpectrum& spectrum, std::s
   }
   const double half_width = 6.0 * kPi / bandwidth;  // in log10 f
   const double ratio = std::pow(10.0, half_width);
-  std::vector<double> out(centre_hz.size(), 0.0);
   for (std::size_t c = 0; c < centre_hz.size(); ++c) {
     const double fc = centre_hz[c];
     if (!(fc > 0.0) || !std::isfinite(fc)) {
       throw parameter_error("centre_hz", fmt::format("centre frequencies must be positive, got {} Hz", fc));
     }
+    begin_centre(c);
     const double log_fc = std::log10(fc);
     const double sin_c = std::sin(bandwidth * log_fc);
     const double cos_c = std::cos(bandwidth * log_fc);
     auto k = static_cast<std::size_t>(std::lower_bound(f.begin(), f.end(), fc / ratio) - f.begin());
     k = std::max<std::size_t>(k, 1);
-    double num = 0.0;
-    double den = 0.0;
     for (; k < f.size() && f[k] <= fc * ratio; ++k) {
       const double x = bandwidth * (log_f[k] - log_fc);
       if (std::abs(x) > 6.0 * kPi) continue;
@@ -133,10 +133,99 @@ std::vector<double> konno_ohmachi_smooth(const FourierSpectrum& spectrum, std::s
         const double s = (sin_f[k] * cos_c - cos_f[k] * sin_c) / x;
         w = (s * s) * (s * s);
       }
-      num += w * amp[k];
-      den += w;
+      weight(c, k, w);
     }
-    out[c] = den > 0.0 ? num / den : 0.0;
+  }
+}
+
+/// The weights of one (frequency grid, centres, bandwidth), kept for the next spectra on the same grid: the
+/// predominant frequencies of a motion family's column are measured on motions of one length and step, whose weights
+/// are the same every time (issue 32: Konno-Ohmachi was 13 % of the default inversion's instructions). Each smoothing
+/// with the table adds the same products in the same order as one without it: the same result, bit for bit.
+struct KonnoOhmachiTable {
+  std::vector<double> frequency_hz;
+  std::vector<double> centre_hz;
+  double bandwidth = 0.0;
+  std::vector<std::size_t> offset;  ///< centre c's weights: [offset[c], offset[c + 1])
+  std::vector<std::uint32_t> bin;   ///< their frequency indices
+  std::vector<double> weight;
+  std::vector<double> den;          ///< per centre: the sum of its weights, in order
+  [[nodiscard]] bool is_for(std::span<const double> f, std::span<const double> centres, double b) const {
+    return b == bandwidth && std::equal(f.begin(), f.end(), frequency_hz.begin(), frequency_hz.end()) &&
+           std::equal(centres.begin(), centres.end(), centre_hz.begin(), centre_hz.end());
+  }
+};
+
+/// Per thread: the last two grids smoothed (a table is built for a grid seen twice in a row of three calls) and the
+/// table of the last grid seen twice. Thread-local: no lock, and each of the family's threads keeps its own column.
+struct KonnoOhmachiCache {
+  std::array<KonnoOhmachiTable, 2> seen;  ///< keys only (frequency_hz, centre_hz, bandwidth); [0] the most recent
+  KonnoOhmachiTable table;
+};
+
+}  // namespace
+
+std::vector<double> konno_ohmachi_smooth(const FourierSpectrum& spectrum, std::span<const double> centre_hz,
+                                         double bandwidth) {
+  if (!(bandwidth > 0.0) || !std::isfinite(bandwidth)) {
+    throw parameter_error("bandwidth", fmt::format("the Konno-Ohmachi bandwidth must be positive, got {}", bandwidth));
+  }
+  const auto& f = spectrum.frequency_hz;
+  const auto& amp = spectrum.amplitude_m_s;
+  std::vector<double> out(centre_hz.size(), 0.0);
+  // The frequency indices are kept in 32 bits: a larger spectrum is smoothed without the table.
+  const bool small = f.size() < (std::size_t{1} << 32);
+  thread_local KonnoOhmachiCache cache;
+  if (small && !cache.table.frequency_hz.empty() && cache.table.is_for(f, centre_hz, bandwidth)) {
+    const KonnoOhmachiTable& t = cache.table;
+    for (std::size_t c = 0; c < centre_hz.size(); ++c) {
+      double num = 0.0;
+      for (std::size_t i = t.offset[c]; i < t.offset[c + 1]; ++i) num += t.weight[i] * amp[t.bin[i]];
+      out[c] = t.den[c] > 0.0 ? num / t.den[c] : 0.0;
+    }
+    return out;
+  }
+  const auto seen_at = [&](std::size_t i) { return cache.seen[i].is_for(f, centre_hz, bandwidth) &&
+                                                   !cache.seen[i].frequency_hz.empty(); };
+  if (small && (seen_at(0) || seen_at(1))) {
+    // The second time of this grid in the last three calls: build its table, then smooth with it (below).
+    KonnoOhmachiTable& t = cache.table;
+    t.frequency_hz.assign(f.begin(), f.end());
+    t.centre_hz.assign(centre_hz.begin(), centre_hz.end());
+    t.bandwidth = bandwidth;
+    t.offset.assign(centre_hz.size() + 1, 0);
+    t.bin.clear();
+    t.weight.clear();
+    t.den.assign(centre_hz.size(), 0.0);
+    konno_ohmachi_windows(
+        f, centre_hz, bandwidth, [&](std::size_t c) { t.offset[c] = t.weight.size(); },
+        [&](std::size_t c, std::size_t k, double w) {
+          t.bin.push_back(static_cast<std::uint32_t>(k));
+          t.weight.push_back(w);
+          t.den[c] += w;
+        });
+    t.offset.back() = t.weight.size();
+    for (std::size_t c = 0; c < centre_hz.size(); ++c) {
+      double num = 0.0;
+      for (std::size_t i = t.offset[c]; i < t.offset[c + 1]; ++i) num += t.weight[i] * amp[t.bin[i]];
+      out[c] = t.den[c] > 0.0 ? num / t.den[c] : 0.0;
+    }
+    return out;
+  }
+  std::vector<double> num(centre_hz.size(), 0.0);
+  std::vector<double> den(centre_hz.size(), 0.0);
+  konno_ohmachi_windows(
+      f, centre_hz, bandwidth, [](std::size_t) {},
+      [&](std::size_t c, std::size_t k, double w) {
+        num[c] += w * amp[k];
+        den[c] += w;
+      });
+  for (std::size_t c = 0; c < centre_hz.size(); ++c) out[c] = den[c] > 0.0 ? num[c] / den[c] : 0.0;
+  if (small) {  // remember this grid (the older of the two keys goes)
+    std::swap(cache.seen[0], cache.seen[1]);
+    cache.seen[0].frequency_hz.assign(f.begin(), f.end());
+    cache.seen[0].centre_hz.assign(centre_hz.begin(), centre_hz.end());
+    cache.seen[0].bandwidth = bandwidth;
   }
   return out;
 }

@@ -99,6 +99,18 @@ class Engine {
         // A symmetric body's test is one |a| <= threshold (the hot loop of a body at rest: kept as tight as before
         // asymmetric bodies came; bench_rocking's BM_Rocking/100/50).
         if (threshold_pos == threshold_neg) {
+          if constexpr (!kRecord) {
+            // Blocks of kRestBlock samples first: the block's comparisons have no early exit, so the compiler
+            // evaluates them side by side (SIMD); a block with a sample above the threshold is left to the loop
+            // below, which stops at that sample. The same i as the loop alone (issue 32: the rest scan was 4 % of
+            // the inversion's time).
+            while (i + kRestBlock < n) {
+              bool all_below = true;
+              for (std::size_t j = 1; j <= kRestBlock; ++j) all_below &= std::abs(a[i + j]) <= threshold_pos;
+              if (!all_below) break;
+              i += kRestBlock;
+            }
+          }
           while (i + 1 < n && std::abs(a[i + 1]) <= threshold_pos) {
             ++i;
             if constexpr (kRecord) row(in_.time(i), u_);
@@ -521,6 +533,7 @@ class Engine {
 
  private:
   static constexpr int kMaxEventsPerInterval = 1'000'000;
+  static constexpr std::size_t kRestBlock = 8;  // samples per block of the rest scan
   const Input& in_;
   const Params& par_;
   const RockingOptions& opt_;

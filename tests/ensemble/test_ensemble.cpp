@@ -338,6 +338,29 @@ TEST(EnsemblePlan, DefaultChunkSizeDependsOnRunsOnly) {
   EXPECT_EQ(default_chunk_runs(10'000'000'000), 100'000u);
 }
 
+// A transform is the chain time_scaled, scaled_to_pga, scaled, inverted in that order (ensemble.hpp); apply makes it
+// without copying the base first (issue 32, performance only): the same samples, bit for bit, for every combination.
+TEST(EnsemblePlan, TransformIsTheChainOfItsSteps) {
+  test::NoiseRecordSpec ns;
+  ns.pga_m_s2 = 2.0;
+  const GroundMotion base = test::noise_record(ns);
+  for (int mask = 0; mask < 16; ++mask) {
+    MotionTransform t;
+    GroundMotion want = base;
+    if ((mask & 1) != 0) want = want.time_scaled(t.time_scale = 0.8);
+    if ((mask & 2) != 0) want = want.scaled_to_pga(*(t.target_pga_m_s2 = 3.3));
+    if ((mask & 4) != 0) want = want.scaled(*(t.factor = 0.7));
+    if ((mask & 8) != 0) want = want.inverted();
+    t.invert = (mask & 8) != 0;
+    const GroundMotion got = t.apply(base);
+    SCOPED_TRACE(mask);
+    ASSERT_EQ(got.size(), want.size());
+    EXPECT_EQ(got.dt_s(), want.dt_s());
+    EXPECT_TRUE(std::equal(got.accel_m_s2().begin(), got.accel_m_s2().end(), want.accel_m_s2().begin()));
+    if (mask == 0) EXPECT_TRUE(t.is_identity());
+  }
+}
+
 TEST(EnsemblePlan, EmptySpecsAreRefused) {
   SweepSpec s = mixed_spec();
   s.objects.clear();

@@ -23,6 +23,7 @@
 #include "topple/solvers/sliding.hpp"
 #include "topple/motion/spectra.hpp"
 #include "topple/motion/synthesis.hpp"
+#include "inversion/inversion_detail.hpp"
 
 namespace topple {
 namespace {
@@ -304,6 +305,35 @@ TEST(InversionSettingsCheck, Rezaeian2010FamilyIsChosenByNameAndOldSurveysKeepTh
     for (const GroundMotion& m : motions) {
       EXPECT_NEAR(predominant_frequency_hz(m), f, 1e-3 * f);
       EXPECT_NEAR(m.pga_m_s2(), 1.0, 1e-12);
+    }
+  }
+}
+
+// build_family makes each (column, motion) on its own task (issue 32, performance only): the same motions, bit for
+// bit, as family_motions column by column, and the same measured frequencies (each motion's, summed in k order), for
+// every drawn family.
+TEST(InversionSettingsCheck, BuildFamilyIsFamilyMotionsColumnByColumn) {
+  for (const MotionFamily family : {MotionFamily::synthetic, MotionFamily::rezaeian2010, MotionFamily::boore2003}) {
+    InversionSettings st;
+    st.family = family;
+    st.motions_per_cell = 3;
+    st.duration_s = 10.0;
+    const std::vector<double> freq{0.7, 6.0};
+    const FamilyGrid grid = build_family(st, freq);
+    ASSERT_EQ(grid.motions.size(), freq.size());
+    for (std::size_t j = 0; j < freq.size(); ++j) {
+      SCOPED_TRACE(fmt::format("{} column {}", motion_family_name(family), j));
+      const std::vector<GroundMotion> want = family_motions(st, freq[j]);
+      ASSERT_EQ(grid.motions[j].size(), want.size());
+      double sum = 0.0;
+      for (std::size_t k = 0; k < want.size(); ++k) {
+        const GroundMotion& got = *grid.motions[j][k];
+        ASSERT_EQ(got.size(), want[k].size());
+        EXPECT_EQ(got.dt_s(), want[k].dt_s());
+        EXPECT_TRUE(std::equal(got.accel_m_s2().begin(), got.accel_m_s2().end(), want[k].accel_m_s2().begin()));
+        sum += predominant_frequency_hz(want[k]);
+      }
+      EXPECT_EQ(grid.measured_freq_hz[j], sum / static_cast<double>(want.size()));
     }
   }
 }
@@ -1112,6 +1142,52 @@ TEST(Evidence, InvertSiteRanksTheCatalogue) {
   InversionOptions off;
   off.next_objects = false;
   EXPECT_TRUE(invert_site(site, st, off).next_objects.empty());
+}
+
+// Performance only (issue 32): a survey object whose rocking run is a catalogue object's (the bookend and the mantel
+// clock, same bodies, Housner's restitution, rigid support) gives the ranking its outcomes instead of a second run. The
+// ranking must be the same, bit for bit, as the one that runs every catalogue object (suggest_next_objects alone);
+// and the sharing must have happened (else this test would compare a thing with itself).
+TEST(Evidence, SharedCatalogueRunsGiveTheSameRanking) {
+  Site site;
+  site.name = "shared";
+  site.objects.push_back(block("bookend", 0.10, 0.15, {0.6, 0.6}, Outcome::not_overturned));
+  site.objects.push_back(block("clock", 0.10, 0.25, {0.5, 0.5}, Outcome::rocked));
+  site.objects.push_back(block("fell", 0.07, 0.5, {0.5, 0.5}, Outcome::overturned));  // no catalogue twin
+  const InversionSettings st = small_grid(4);
+  const InversionResult r = invert_site(site, st);
+  const FamilyGrid family = build_family(st, r.freq_hz);
+  const std::vector<NextObject> alone = suggest_next_objects(r, st, family);
+  ASSERT_EQ(alone.size(), r.next_objects.size());
+  for (std::size_t x = 0; x < alone.size(); ++x) {
+    EXPECT_EQ(r.next_objects[x].object, alone[x].object);
+    EXPECT_EQ(r.next_objects[x].bits_pga, alone[x].bits_pga) << alone[x].object;  // exact: the same outcomes
+    EXPECT_EQ(r.next_objects[x].bits_freq, alone[x].bits_freq) << alone[x].object;
+  }
+  // The share: the bookend and the mantel clock found, and outcomes recorded for some of their runs, equal to a
+  // catalogue run's where recorded.
+  detail::CatalogueShare share;
+  const MatchTable m = detail::simulate_matches(site, st, r.pga_g, family, {}, &share);
+  EXPECT_EQ(m.match, simulate_matches(site, st, r.pga_g, family).match);
+  const auto& catalogue = household_catalogue();
+  std::size_t recorded = 0;
+  for (std::size_t x = 0; x < catalogue.size(); ++x) {
+    const bool twin = catalogue[x].name == "bookend" || catalogue[x].name == "mantel clock";
+    EXPECT_EQ(share.block[x] >= 0, twin) << catalogue[x].name;
+    if (!twin) continue;
+    for (std::size_t c = 0; c < share.cells; c += 7) {
+      for (std::size_t k = 0; k < share.nk; ++k) {
+        const std::uint8_t y = share.at(x, c, k);
+        if (y == detail::CatalogueShare::kNotRecorded) continue;
+        ++recorded;
+        const std::size_t nf = r.freq_hz.size();
+        const GroundMotion motion = family.motions[c % nf][k]->scaled(r.pga_g[c / nf] * st.g_m_s2);
+        EXPECT_EQ(y, catalogue_outcome(catalogue[x].object, draw_parameters(catalogue[x].object, st.seed, k, 1000 + x),
+                                       motion, st.g_m_s2));
+      }
+    }
+  }
+  EXPECT_GT(recorded, 0u);
 }
 
 }  // namespace

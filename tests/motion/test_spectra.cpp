@@ -8,6 +8,7 @@
 #include <fstream>
 #include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <fmt/format.h>
@@ -127,6 +128,52 @@ TEST(SpectrumFourier, KonnoOhmachiKeepsAConstantSpectrum) {
   const std::vector<double> centres = {0.2, 1.0, 10.0, 40.0};
   for (double v : konno_ohmachi_smooth(s, centres, 40.0)) EXPECT_NEAR(v, 3.0, 1e-12);
   EXPECT_THROW((void)konno_ohmachi_smooth(s, centres, 0.0), InputError);
+}
+
+// konno_ohmachi_smooth keeps the weights of a grid it met twice in its last three calls (spectra.cpp,
+// KonnoOhmachiTable; issue 32, performance only): smoothing with the table must give, bit for bit, what a thread that
+// never met the grid computes. Two grids alternate as build_family's measurements do (a column's raw motions on one
+// grid, each time-scaled motion on its own): the first call on grid A computes, the second builds the table, the
+// third and later use it; grid B always computes.
+TEST(SpectrumSmoothing, KonnoOhmachiTableGivesTheSameBits) {
+  const auto spectrum = [](std::uint64_t seed, double dt_s) {
+    test::NoiseRecordSpec ns;
+    ns.seed = seed;
+    ns.samples = 3000;
+    ns.dt_s = dt_s;
+    ns.pga_m_s2 = 1.0;
+    const GroundMotion m = test::noise_record(ns);
+    return fourier_amplitude_spectrum(m, predominant_frequency_fft_length(m.size()));
+  };
+  const std::vector<double> centres = predominant_frequency_centres_hz(0.005);
+  std::vector<FourierSpectrum> on_a, on_b;
+  for (std::uint64_t k = 0; k < 4; ++k) {
+    on_a.push_back(spectrum(k + 1, 0.005));
+    on_b.push_back(spectrum(k + 11, 0.005 * (1.1 + 0.1 * static_cast<double>(k))));
+  }
+  // The reference: each spectrum smoothed on a fresh thread (an empty cache: the direct sums).
+  const auto fresh = [&](const FourierSpectrum& s) {
+    std::vector<double> out;
+    std::thread([&] { out = konno_ohmachi_smooth(s, centres, 40.0); }).join();
+    return out;
+  };
+  std::vector<std::vector<double>> want_a, want_b;
+  for (std::size_t k = 0; k < 4; ++k) {
+    want_a.push_back(fresh(on_a[k]));
+    want_b.push_back(fresh(on_b[k]));
+  }
+  std::thread([&] {  // one thread, so that its cache sees the sequence A0 B0 A1 B1 A2 B2 A3 B3
+    for (std::size_t k = 0; k < 4; ++k) {
+      EXPECT_EQ(konno_ohmachi_smooth(on_a[k], centres, 40.0), want_a[k]) << "A" << k;  // computed, built, used, used
+      EXPECT_EQ(konno_ohmachi_smooth(on_b[k], centres, 40.0), want_b[k]) << "B" << k;
+    }
+    // Another bandwidth on grid A is another table.
+    const std::vector<double> other = konno_ohmachi_smooth(on_a[0], centres, 20.0);
+    EXPECT_NE(other, want_a[0]);
+    EXPECT_EQ(konno_ohmachi_smooth(on_a[0], centres, 40.0), want_a[0]);
+  }).join();
+  // The smoothing is not trivial here: the values differ from spectrum to spectrum.
+  EXPECT_NE(want_a[0], want_a[1]);
 }
 
 TEST(SpectrumPeriods, TpAndTmOfASine) {

@@ -881,6 +881,30 @@ TEST(RockingHistory, SummaryPathSkipsOnlyTurningPointsThatChangeNothing) {
   EXPECT_EQ(s.end_state, r.summary.end_state);
 }
 
+TEST(RockingHistory, RestScanInBlocksStopsAtTheSampleThatLifts) {
+  // The summary path scans rest in blocks of 8 samples (rocking.cpp, kRestBlock; issue 32), the history path one
+  // sample at a time. One spike above the uplift threshold g a/h = 0.2 g, at every sample 1 to 20 in turn (every
+  // position within the first blocks), in shaking below it: both paths must lift off in the interval before the
+  // spike, at the same time, with the same uplifts and steps.
+  const auto b = RockingBody::block(0.08, 0.40);
+  for (std::size_t spike = 1; spike <= 20; ++spike) {
+    SCOPED_TRACE(spike);
+    std::vector<double> a(400);
+    for (std::size_t i = 0; i < a.size(); ++i) a[i] = 0.1 * kG * std::sin(0.05 * static_cast<double>(i));
+    a[spike] = 0.5 * kG;
+    const auto rec = GroundMotion::uniform(a, 0.005);
+    const auto r = rock(rec, b, housner());
+    const auto s = rock_summary(rec, b, housner());
+    ASSERT_TRUE(s.uplift_time_s.has_value());
+    EXPECT_EQ(*s.uplift_time_s, *r.summary.uplift_time_s);
+    EXPECT_GT(*s.uplift_time_s, 0.005 * static_cast<double>(spike - 1));
+    EXPECT_LE(*s.uplift_time_s, 0.005 * static_cast<double>(spike));
+    EXPECT_EQ(s.uplifts, r.summary.uplifts);
+    EXPECT_EQ(s.steps, r.summary.steps);
+    EXPECT_EQ(s.max_abs_rotation_rad, r.summary.max_abs_rotation_rad);
+  }
+}
+
 TEST(RockingHistory, PolarityFlipMirrorsTheResponse) {
   // The equation is odd in (theta, a_h): the flipped record gives -theta. Same operations with flipped signs, so
   // equal to round-off of sin/cos symmetry (1e-12 relative).
