@@ -171,7 +171,7 @@ TEST(FragilityAnalysis, CountsEqualSingleRuns) {
   spec.im = IntensityMeasure::pga;
   spec.levels_si = log_grid(0.05 * kStandardGravity, 1.5 * kStandardGravity, 6);
   spec.sliding = SlidingFailure{SlidingBlock::make(0.2), 0.02};
-  spec.overturning = OverturnFailure{RockingBody::block(0.1, 0.4), RockingOptions{}};
+  spec.overturning = OverturnFailure{RockingBody::block(0.1, 0.4), RockingOptions{}, std::nullopt, std::nullopt};
   const FragilityResult r = fragility_analysis(spec);
   ASSERT_EQ(r.curves.size(), 2u);
   EXPECT_EQ(r.runs, 4u * 6u * 2u);
@@ -224,7 +224,7 @@ TEST(FragilityAnalysis, PairsWithAZeroSecondComponentAtTheRecordsAzimuthAreThe1d
   one.motions = motions;
   one.levels_si = log_grid(0.1 * kStandardGravity, 1.2 * kStandardGravity, 8);
   one.sliding = SlidingFailure{SlidingBlock::make(0.2), 0.02};
-  one.overturning = OverturnFailure{RockingBody::block(0.15, 0.6), RockingOptions{}};
+  one.overturning = OverturnFailure{RockingBody::block(0.15, 0.6), RockingOptions{}, std::nullopt, std::nullopt};
   const FragilityResult r1 = fragility_analysis(one);
   FragilitySpec two = one;
   two.motions.clear();
@@ -272,12 +272,12 @@ TEST(FragilityAnalysis, AThreeDimensionalBoxUnderCollinearPairsIsThePlanarBlockO
   planar.levels_si = log_grid(0.1 * kStandardGravity, 1.2 * kStandardGravity, 8);
   planar.bearing_deg = 90.0;
   FragilitySpec box = planar;
-  box.overturning = OverturnFailure{RockingBody::block(0.15, 0.6), RockingOptions{}};
+  box.overturning = OverturnFailure{RockingBody::block(0.15, 0.6), RockingOptions{}, std::nullopt, std::nullopt};
   box.overturning->body_3d = RigidBody3D::box(0.15, 0.3, 0.6);
   int varied = 0;
   for (const double bearing : {90.0, 0.0}) {
     SCOPED_TRACE(bearing);
-    planar.overturning = OverturnFailure{RockingBody::block(bearing == 90.0 ? 0.15 : 0.3, 0.6), RockingOptions{}};
+    planar.overturning = OverturnFailure{RockingBody::block(bearing == 90.0 ? 0.15 : 0.3, 0.6), RockingOptions{}, std::nullopt, std::nullopt};
     box.bearing_deg = bearing;
     const FragilityResult a = fragility_analysis(planar), b = fragility_analysis(box);
     ASSERT_EQ(b.curves.size(), 1U);
@@ -309,7 +309,7 @@ TEST(FragilityAnalysis, PairsWithoutABearingDrawOnePerMotionAndBadInputIsNamed) 
   FragilitySpec spec;
   spec.motion_sets = sets;
   spec.levels_si = {0.2 * kStandardGravity, 0.8 * kStandardGravity};
-  spec.overturning = OverturnFailure{RockingBody::block(0.15, 0.6), RockingOptions{}};
+  spec.overturning = OverturnFailure{RockingBody::block(0.15, 0.6), RockingOptions{}, std::nullopt, std::nullopt};
   const FragilityResult a = fragility_analysis(spec);
   // PortableRandom(1)'s first five uniforms x 360 deg: the same bearings on every machine and every call.
   PortableRandom random(1);
@@ -390,7 +390,7 @@ TEST(FragilityAnalysis, PairsWithAVerticalRefuseLevelsWhereTheRockingBodyWouldLe
   FragilitySpec spec;
   spec.motion_sets = sets;
   spec.bearing_deg = 30.0;
-  spec.overturning = OverturnFailure{RockingBody::block(0.15, 0.6), RockingOptions{}};
+  spec.overturning = OverturnFailure{RockingBody::block(0.15, 0.6), RockingOptions{}, std::nullopt, std::nullopt};
   // Just below the lowest lift-off level every run keeps contact and the analysis runs (each count 0..3).
   spec.levels_si = {0.2 * kStandardGravity, allowed * (1.0 - 1e-9)};
   const FragilityResult ok = fragility_analysis(spec);
@@ -536,7 +536,7 @@ TEST(FragilityAsRecorded, OutcomesAreSingleRunsAndTheCoupledModelIsSlideRock) {
     spec.motions.push_back(std::make_shared<const GroundMotion>(synthesize(s)));
   }
   const RockingBody body = RockingBody::general_asymmetric(0.05, 0.08, 0.3, 0.02);
-  spec.overturning = OverturnFailure{body, RockingOptions{}, std::nullopt};
+  spec.overturning = OverturnFailure{body, RockingOptions{}, std::nullopt, std::nullopt};
   spec.sliding = SlidingFailure{SlidingBlock::make(0.3), 0.01};
   const AsRecordedResult r = as_recorded_analysis(spec);
   ASSERT_EQ(r.curves.size(), 2u);
