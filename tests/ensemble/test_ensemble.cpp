@@ -357,7 +357,9 @@ TEST(EnsemblePlan, TransformIsTheChainOfItsSteps) {
     ASSERT_EQ(got.size(), want.size());
     EXPECT_EQ(got.dt_s(), want.dt_s());
     EXPECT_TRUE(std::equal(got.accel_m_s2().begin(), got.accel_m_s2().end(), want.accel_m_s2().begin()));
-    if (mask == 0) EXPECT_TRUE(t.is_identity());
+    if (mask == 0) {
+      EXPECT_TRUE(t.is_identity());
+    }
   }
 }
 
