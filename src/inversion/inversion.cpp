@@ -337,6 +337,10 @@ void validate_inversion_settings(const InversionSettings& st) {
       }
     }
   }
+  if (st.family == MotionFamily::mixture) {  // family_mixture.cpp: an even N, a grid both members accept
+    detail::validate_mixture_settings(st);
+    return;
+  }
   if (st.family == MotionFamily::records) {
     if (st.records.empty() && st.record_motions.empty()) {
       throw parameter_error("inversion.records", "family = \"records\" needs records = [\"file\", ...]");
@@ -409,6 +413,7 @@ bool drawn_family(const InversionSettings& st) {
 }  // namespace
 
 std::vector<GroundMotion> family_motions(const InversionSettings& st, double freq_hz) {
+  if (st.family == MotionFamily::mixture) return detail::mixture_family_motions(st, freq_hz);  // family_mixture.cpp
   std::vector<GroundMotion> out;
   if (drawn_family(st)) {
     out.reserve(static_cast<std::size_t>(st.motions_per_cell));
@@ -487,6 +492,7 @@ FamilyGrid build_family(const InversionSettings& st, const std::vector<double>& 
       family.measured_freq_hz[j] = sum / static_cast<double>(family.motions[j].size());
     });
   });
+  if (st.family == MotionFamily::mixture) detail::label_mixture_members(family);  // each motion's member and draw
   return family;
 }
 
@@ -530,7 +536,7 @@ MatchTable detail::simulate_matches(const Site& site, const InversionSettings& s
   // Parameters drawn once per (motion k, object): the same draw in every cell.
   std::vector<DrawnParameters> drawn(n * no);
   for (std::size_t k = 0; k < n; ++k) {
-    for (std::size_t o = 0; o < no; ++o) drawn[k * no + o] = draw_parameters(site.objects[o], st.seed, k, o);
+    for (std::size_t o = 0; o < no; ++o) drawn[k * no + o] = draw_parameters(site.objects[o], st.seed, family.draw_of(k), o);
   }
   const double g = st.g_m_s2;
   // What to look for next (evidence.hpp) runs catalogue objects under the first kCatalogueMotions motions of the cells;
@@ -1034,6 +1040,7 @@ detail::SiteRuns detail::simulate_site(const Site& site, const InversionSettings
     runs.population_run_log = std::move(pop.run_log);
   }
   for (const ObservedObject& o : site.objects) runs.models.push_back(object_model(o));
+  runs.member = family.member;  // family = "mixture": the weights of its members (infer_site)
   runs.log_prior = log_prior_for(pga_g, family.freq_hz, site, st);  // the prior (prior.hpp)
   runs.prior = std::string(inversion_prior_name(st.prior));
   if (st.prior != InversionPrior::log_uniform) runs.notes.push_back("The prior: " + prior_description(site, st) + ".");
@@ -1126,6 +1133,12 @@ InversionResult detail::infer_site(const Site& site, const std::vector<double>& 
   r.log_prior = std::move(runs.log_prior);
   r.prior = runs.prior;
   fill_posterior_and_estimates(r);
+  if (!runs.member.empty()) {  // family = "mixture": P(f | data) of its members (family_mixture.cpp), one bin
+    r.family_weights = mixture_family_weights(runs.bins.front(), runs.member, error_rates,
+                                              population_run_log == nullptr ? nullptr : population_run_log->data(),
+                                              r.log_prior);
+    runs.notes.push_back(mixture_note(r.family_weights));
+  }
   if (!r.log_prior.empty()) {
     for (std::size_t c = 0; c < cells; ++c) {
       for (std::size_t b = 0; b < nb; ++b) ll_joint[c * nb + b] += r.log_prior[c];
@@ -1184,6 +1197,7 @@ std::vector<InversionResult> invert_sites(const std::vector<Site>& sites, const 
                                   : detail::simulate_site(site, st, pga_g, *one, options);
     const detail::CatalogueShare share = std::move(runs.catalogue_share);
     out.push_back(detail::infer_site(site, pga_g, freq_hz, measured, std::move(runs)));
+    out.back().family = std::string(motion_family_name(st.family));
     // What to look for next (evidence.hpp): one component only (the catalogue is run on the family's motions).
     if (one && options.next_objects && !site.objects.empty()) {
       out.back().next_objects = detail::suggest_next_objects(out.back(), st, *one, options, &share);

@@ -109,7 +109,32 @@ struct SiteRuns {
   std::vector<PopulationReport> populations;
   /// The catalogue objects' outcomes that the survey's own runs gave on the way (CatalogueShare).
   CatalogueShare catalogue_share;
+  /// family = "mixture": the member family of each motion k (FamilyGrid::member); empty for a single family.
+  std::vector<MotionFamily> member;
 };
+
+// ---- family = "mixture" (family_mixture.cpp; docs/method.md, "A mixture of the two families") ----
+
+/// A member's prior weight w_f (1/2 for each of synthetic and boore2003).
+[[nodiscard]] double mixture_prior_weight(MotionFamily member);
+/// The mixture's own rule: an even motions_per_cell (N/2 motions of each member) and a grid both members accept
+/// (each member's validate_inversion_settings with N/2 motions).
+void validate_mixture_settings(const InversionSettings& settings);
+/// The column's motions: member k % 2's motion k / 2 (synthetic, boore2003, synthetic, ...), each as family_motions
+/// makes it for that member with N/2 motions.
+[[nodiscard]] std::vector<GroundMotion> mixture_family_motions(const InversionSettings& settings, double freq_hz);
+/// Fills family.member and family.draw_index for the alternation above (draw index k / 2).
+void label_mixture_members(FamilyGrid& family);
+/// Each member's prior and posterior weight (inversion.hpp, FamilyWeight) from the mixture's match table of one bin:
+/// member f's likelihood L_f(c) is reduce_likelihood over its motions alone, Z_f = sum_c prior(c) L_f(c) with the
+/// prior normalised over the grid (log_prior; empty: uniform), P(f | data) = w_f Z_f / sum_g w_g Z_g.
+[[nodiscard]] std::vector<FamilyWeight> mixture_family_weights(const MatchTable& matches,
+                                                               const std::vector<MotionFamily>& member,
+                                                               const std::vector<double>& error_rates,
+                                                               const double* population_run_log,
+                                                               const std::vector<double>& log_prior);
+/// The note that says what the mixture was and what the objects made of its members.
+[[nodiscard]] std::string mixture_note(const std::vector<FamilyWeight>& weights);
 
 // ---- Populations (population_likelihood.cpp; docs/method.md, "Populations of objects") ----
 

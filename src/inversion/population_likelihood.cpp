@@ -94,7 +94,7 @@ PopulationRuns simulate_populations(const Site& site, const InversionSettings& s
   // Parameters drawn once per (motion k, member), the same in every cell (as the objects', simulate_matches).
   std::vector<DrawnParameters> drawn(n * nm);
   for (std::size_t k = 0; k < n; ++k) {
-    for (std::size_t m = 0; m < nm; ++m) drawn[k * nm + m] = draw_parameters(members[m], st.seed, k, kMemberDrawOffset + m);
+    for (std::size_t m = 0; m < nm; ++m) drawn[k * nm + m] = draw_parameters(members[m], st.seed, family.draw_of(k), kMemberDrawOffset + m);
   }
   const double g = st.g_m_s2;
   plan.run = [&](const GroundMotion& motion, std::size_t motion_index, std::size_t o0, std::size_t o1,

@@ -949,7 +949,9 @@ void parse_inversion_table(const toml::table& t, const std::string& name, const 
     else if (*fam == "records") st.family = MotionFamily::records;
     else if (*fam == "rezaeian2010") st.family = MotionFamily::rezaeian2010;
     else if (*fam == "boore2003") st.family = MotionFamily::boore2003;
-    else throw r.error("family", fmt::format("unknown family '{}' (known: synthetic, records, rezaeian2010, boore2003)",
+    else if (*fam == "mixture") st.family = MotionFamily::mixture;
+    else throw r.error("family", fmt::format("unknown family '{}' (known: synthetic, records, rezaeian2010, boore2003, "
+                                             "mixture)",
                                              *fam));
   }
   if (const toml::node* rec = r.get("records")) {

@@ -117,6 +117,20 @@ nlohmann::ordered_json inversion_json(const InversionResult& r, const Site& site
   j["contradictions"] = r.bounds.contradictions;
   j["notes"] = r.notes;
   j["prior"] = r.prior;  // added (issue 32): which prior made the posterior ("log-uniform", "earthquake")
+  // Added (issue 32): the motion family when it is not the default (a default survey's JSON keeps its bytes), and for
+  // family = "mixture" its members' posterior weights P(f | data) beside their prior weights (docs/method.md, "A
+  // mixture of the two families").
+  if (r.family != motion_family_name(MotionFamily::synthetic)) j["family"] = r.family;
+  if (!r.family_weights.empty()) {
+    nlohmann::ordered_json post = nlohmann::ordered_json::object();
+    nlohmann::ordered_json prior = nlohmann::ordered_json::object();
+    for (const FamilyWeight& w : r.family_weights) {
+      post[w.family] = w.posterior_weight;
+      prior[w.family] = w.prior_weight;
+    }
+    j["family_weights"] = post;
+    j["family_prior_weights"] = prior;
+  }
   j["misfit_level"] = kMisfitProbability;
   nlohmann::ordered_json constraining = nlohmann::ordered_json::array();
   for (std::size_t o : most_constraining_objects(r)) constraining.push_back(r.objects[o].id);

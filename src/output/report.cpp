@@ -862,6 +862,9 @@ void method_html(std::ostringstream& h, const InversionSettings& st, const Site&
                    : st.family == MotionFamily::rezaeian2010 ? "synthetic record-like (Rezaeian &amp; Der Kiureghian 2010)"
                    : st.family == MotionFamily::boore2003
                        ? "stochastic point-source (Boore 2003: Brune source, magnitude and distance drawn for the frequency)"
+                   : st.family == MotionFamily::mixture
+                       ? "model-averaged (half synthetic Clough&ndash;Penzien, half stochastic point-source Boore 2003, "
+                         "prior weights 1/2 each)"
                        : "recorded")
     << "<li>All objects saw the same motion: a cell's likelihood is the average over its motions of the product over "
        "objects of 0.98 (certain), 0.90 (likely) or 0.75 (reported) when the run reproduces the observation and 0.02, "
@@ -884,6 +887,13 @@ void provenance_html(std::ostringstream& h, const io::Provenance& provenance, co
   h << "</table>\n";
   h << fmt::format("<p>Family {}, seed {}, g = {} m/s&#178;, {} runs in {:.1f} s.</p>\n",
                    motion_family_name(st.family), st.seed, st.g_m_s2, r.runs, r.seconds);
+  if (!r.family_weights.empty()) {  // family = "mixture": what the objects made of its members
+    h << "<p>Posterior weights of the mixture's families (prior weights in brackets):";
+    for (const FamilyWeight& w : r.family_weights) {
+      h << fmt::format(" {} {:.2f} ({:.2f});", w.family, w.posterior_weight, w.prior_weight);
+    }
+    h << "</p>\n";
+  }
   if (st.family == MotionFamily::records) {
     h << "<ul>";
     for (const auto& rec : st.records) h << "<li><code>" << html_escape(rec) << "</code></li>";

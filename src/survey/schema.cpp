@@ -399,7 +399,7 @@ std::vector<SurveyKey> make_schema() {
   {
     auto& k = add(key("inversion", "family", K::choice,
                       "the motion family (records: written in the file with its record files)", "\"rezaeian2010\""));
-    k.choices = {"synthetic", "records", "rezaeian2010", "boore2003"};
+    k.choices = {"synthetic", "records", "rezaeian2010", "boore2003", "mixture"};
     k.default_text = "synthetic";
   }
   {

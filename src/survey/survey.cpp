@@ -52,11 +52,12 @@ ObjectModel object_model(const ObservedObject& o) noexcept {
   return o.outcome == Outcome::slid || o.outcome == Outcome::not_slid ? ObjectModel::slide : ObjectModel::rock;
 }
 
-constexpr std::array<EnumName<MotionFamily>, 4> kMotionFamilyNames{{
+constexpr std::array<EnumName<MotionFamily>, 5> kMotionFamilyNames{{
     {MotionFamily::synthetic, "synthetic"},
     {MotionFamily::records, "records"},
     {MotionFamily::rezaeian2010, "rezaeian2010"},
     {MotionFamily::boore2003, "boore2003"},
+    {MotionFamily::mixture, "mixture"},
 }};
 
 std::string_view motion_family_name(MotionFamily f) { return enum_name(kMotionFamilyNames, f); }

@@ -3,12 +3,14 @@
 // and computed at test time where .venv-test holds it; skipped without it), the mean-period model, the earthquake
 // prior's closed form with the event known, its weak-prior form without, the posterior step with a prior, the survey
 // keys and the JSON's "prior".
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -20,6 +22,7 @@
 #include "support/observed_objects.hpp"
 
 #include "topple/core/error.hpp"
+#include "topple/inversion/evidence.hpp"
 #include "topple/inversion/inversion.hpp"
 #include "topple/inversion/prior.hpp"
 #include "topple/io/survey_file.hpp"
@@ -339,6 +342,156 @@ TEST(PosteriorWithPrior, DISABLED_SyntheticCalibrationWithBoore2003AndTheEarthqu
   st.prior = InversionPrior::earthquake;
   st.family = MotionFamily::boore2003;
   expect_synthetic_calibration(st);
+}
+
+// The same 30 Clough-Penzien truths under the family mixture (family = "mixture": Bayesian model averaging of the
+// synthetic and boore2003 families, 5 motions of each per cell), with either prior. Disabled: a measurement for the
+// choice of default (docs/verification.md, "A mixture of the two families"), not a guard; run it with
+// --gtest_also_run_disabled_tests. Measured 2026-11-28: log-uniform 28/30 (95 %) and 18/30 (68 %), which holds the
+// criterion (>= 26, >= 17); earthquake 24/30 and 16/30, which does not (six 95 % misses, truths of 3.9-6.3 Hz read at
+// 1.3-1.6 Hz).
+TEST(PosteriorWithPrior, DISABLED_SyntheticCalibrationWithTheMixture) {
+  InversionSettings st = small_grid(10);
+  st.family = MotionFamily::mixture;
+  expect_synthetic_calibration(st);
+}
+
+TEST(PosteriorWithPrior, DISABLED_SyntheticCalibrationWithTheMixtureAndTheEarthquakePrior) {
+  InversionSettings st = small_grid(10);
+  st.prior = InversionPrior::earthquake;
+  st.family = MotionFamily::mixture;
+  expect_synthetic_calibration(st);
+}
+
+// ---- the family mixture (family = "mixture", docs/method.md "A mixture of the two families") ----
+
+namespace {
+
+/// Three objects with uncertain friction (so that the parameters drawn per motion matter) on a 4 x 3 grid.
+Site mixture_site() {
+  Site site;
+  site.name = "mix";
+  site.objects.push_back(block("fell", 0.05, 0.25, {0.5, 0.7}, Outcome::overturned));
+  site.objects.push_back(block("pan", 0.2, 0.1, {0.15, 0.25}, Outcome::slid));
+  site.objects.push_back(block("stood", 0.15, 0.30, {0.5, 0.7}, Outcome::not_overturned));
+  return site;
+}
+
+InversionSettings mixture_grid(MotionFamily family, int motions) {
+  InversionSettings st = testing::small_grid(0.1, 4, 1.0, 8.0, 3, motions);
+  st.duration_s = 6.0;
+  st.family = family;
+  return st;
+}
+
+}  // namespace
+
+// The mixture's cell likelihood is the prior-weighted average of the two families' (BMA, Hoeting et al. 1999):
+// L_mix(c) = 1/2 L_synthetic(c) + 1/2 L_boore2003(c), each family's computed by its own inversion with half the
+// motions; and the families' posterior weights are w_f Z_f / sum_g w_g Z_g, Z_f = sum_c prior(c) L_f(c), summing
+// to 1, under either prior.
+TEST(FamilyMixture, LikelihoodIsTheWeightedAverageOfTheTwoFamilies) {
+  const Site site = mixture_site();
+  InversionOptions options;
+  options.next_objects = false;
+  const InversionResult syn = invert_site(site, mixture_grid(MotionFamily::synthetic, 2), options);
+  const InversionResult boo = invert_site(site, mixture_grid(MotionFamily::boore2003, 2), options);
+  const InversionResult mix = invert_site(site, mixture_grid(MotionFamily::mixture, 4), options);
+  ASSERT_EQ(mix.log_likelihood.size(), 12u);
+  for (std::size_t c = 0; c < mix.log_likelihood.size(); ++c) {
+    const double want = std::log(0.5 * std::exp(syn.log_likelihood[c]) + 0.5 * std::exp(boo.log_likelihood[c]));
+    EXPECT_NEAR(mix.log_likelihood[c], want, 1e-12) << "cell " << c;  // an absolute error in ln: relative in L
+  }
+  // The two families' likelihoods differ (else the test would not tell a weighted average from either).
+  double most = 0.0;
+  for (std::size_t c = 0; c < 12; ++c) most = std::max(most, std::abs(syn.log_likelihood[c] - boo.log_likelihood[c]));
+  EXPECT_GT(most, 0.1);
+  EXPECT_EQ(mix.family, "mixture");
+  EXPECT_EQ(syn.family, "synthetic");
+  EXPECT_TRUE(syn.family_weights.empty());
+  EXPECT_TRUE(boo.family_weights.empty());
+
+  // P(f | data) from the two single-family likelihoods and the prior, by hand, against the mixture's.
+  InversionSettings eq = mixture_grid(MotionFamily::mixture, 4);
+  eq.prior = InversionPrior::earthquake;
+  const InversionResult mix_eq = invert_site(site, eq, options);
+  for (const InversionResult* r : {&mix, &mix_eq}) {
+    const std::vector<double> prior = prior_cells(*r);  // normalised over the grid
+    double z_syn = 0.0, z_boo = 0.0;
+    for (std::size_t c = 0; c < prior.size(); ++c) {
+      z_syn += prior[c] * std::exp(syn.log_likelihood[c]);
+      z_boo += prior[c] * std::exp(boo.log_likelihood[c]);
+    }
+    ASSERT_EQ(r->family_weights.size(), 2u);
+    EXPECT_EQ(r->family_weights[0].family, "synthetic");
+    EXPECT_EQ(r->family_weights[1].family, "boore2003");
+    EXPECT_EQ(r->family_weights[0].prior_weight, 0.5);
+    EXPECT_EQ(r->family_weights[1].prior_weight, 0.5);
+    EXPECT_NEAR(r->family_weights[0].posterior_weight, z_syn / (z_syn + z_boo), 1e-12);
+    EXPECT_NEAR(r->family_weights[1].posterior_weight, z_boo / (z_syn + z_boo), 1e-12);
+    EXPECT_NEAR(r->family_weights[0].posterior_weight + r->family_weights[1].posterior_weight, 1.0, 1e-12);
+  }
+  // The prior changes the weights (a different Z_f) but not the likelihood.
+  for (std::size_t c = 0; c < 12; ++c) EXPECT_EQ(mix_eq.log_likelihood[c], mix.log_likelihood[c]);
+
+  // The JSON says which family and what the objects made of its members; a single family's JSON has no weights, and
+  // the default family's no "family" key (its bytes as before).
+  const auto j = io::inversion_json(mix, site);
+  EXPECT_EQ(j.at("family"), "mixture");
+  EXPECT_NEAR(j.at("family_weights").at("synthetic").get<double>() + j.at("family_weights").at("boore2003").get<double>(),
+              1.0, 1e-12);
+  EXPECT_EQ(j.at("family_prior_weights").at("boore2003"), 0.5);
+  EXPECT_FALSE(io::inversion_json(syn, site).contains("family"));
+  EXPECT_FALSE(io::inversion_json(syn, site).contains("family_weights"));
+  EXPECT_EQ(io::inversion_json(boo, site).at("family"), "boore2003");
+  bool noted = false;
+  for (const std::string& n : mix.notes) noted = noted || n.starts_with("The motions: a model-averaged mixture");
+  EXPECT_TRUE(noted);
+}
+
+// The mixture's motions: motion k of a column is motion k / 2 of synthetic (k even) or boore2003 (k odd), as each
+// makes it alone with half the motions; a survey names it; odd counts and grids one member cannot make are refused.
+TEST(FamilyMixture, MotionsAlternateTheMembersAndTheKeyIsChecked) {
+  const InversionSettings mix = mixture_grid(MotionFamily::mixture, 4);
+  const std::vector<GroundMotion> m = family_motions(mix, 2.0);
+  const std::vector<GroundMotion> s = family_motions(mixture_grid(MotionFamily::synthetic, 2), 2.0);
+  const std::vector<GroundMotion> b = family_motions(mixture_grid(MotionFamily::boore2003, 2), 2.0);
+  ASSERT_EQ(m.size(), 4u);
+  for (std::size_t k = 0; k < 4; ++k) {
+    const GroundMotion& want = k % 2 == 0 ? s[k / 2] : b[k / 2];
+    EXPECT_EQ(m[k].dt_s(), want.dt_s());
+    const std::span<const double> got = m[k].accel_m_s2(), expected = want.accel_m_s2();
+    EXPECT_TRUE(std::equal(got.begin(), got.end(), expected.begin(), expected.end())) << "motion " << k;
+  }
+  const FamilyGrid grid = build_family(mix, {1.0, 4.0});
+  ASSERT_EQ(grid.member.size(), 4u);
+  EXPECT_EQ(grid.member[1], MotionFamily::boore2003);
+  EXPECT_EQ(grid.draw_of(3), 1u);
+  EXPECT_TRUE(build_family(mixture_grid(MotionFamily::synthetic, 2), {1.0}).draw_index.empty());
+
+  const std::string objects = "[[object]]\nid = \"a\"\nwidth = \"5cm\"\nheight = \"20cm\"\nmu = 0.5\n"
+                              "outcome = \"overturned\"\n";
+  const auto read = [&](const std::string& inversion) {
+    return io::parse_survey("[site]\nname = \"x\"\n[inversion]\n" + inversion + objects, "f.toml").inversion;
+  };
+  EXPECT_EQ(read("family = \"mixture\"\n").family, MotionFamily::mixture);
+  EXPECT_EQ(motion_family_name(MotionFamily::mixture), "mixture");
+  try {
+    (void)read("family = \"mixture\"\nmotions_per_cell = 5\n");
+    FAIL() << "an odd motion count accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().field, "inversion.motions_per_cell");
+    EXPECT_NE(e.problem().find("even"), std::string::npos) << e.what();
+  }
+  try {  // 22 Hz: the point-source family makes it, the Clough-Penzien one does not
+    (void)read("family = \"mixture\"\nfreq_hz = [0.5, 22.0, 5]\n");
+    FAIL() << "a 22 Hz column accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().field, "inversion.freq_hz");
+  }
+  InversionSettings three = mixture_grid(MotionFamily::mixture, 4);
+  three.components = 3;
+  EXPECT_THROW(validate_inversion_settings(three), InputError);
 }
 
 // ---- the survey keys ----

@@ -145,8 +145,21 @@ struct PopulationReport {
   double posterior_predictive_fraction = 0.0;  ///< sum_c posterior(c) model_fraction(c)
 };
 
+/// family = "mixture" (docs/method.md, "A mixture of the two families"): one member family's prior weight w_f and
+/// posterior weight P(f | data) = w_f Z_f / sum_g w_g Z_g, Z_f = sum_c prior(c) L_f(c) the family's evidence over
+/// the grid (Hoeting, Madigan, Raftery & Volinsky 1999, eq. 2), both dimensionless.
+struct FamilyWeight {
+  std::string family;          ///< the member's name ("synthetic", "boore2003")
+  double prior_weight = 0.0;   ///< w_f
+  double posterior_weight = 0.0;  ///< P(f | data); the members' sum to 1
+};
+
 struct InversionResult {
   std::string site;
+  /// The motion family that made the likelihood (survey.hpp, motion_family_name).
+  std::string family = "synthetic";
+  /// family = "mixture": each member's prior and posterior weight (FamilyWeight); empty for a single family.
+  std::vector<FamilyWeight> family_weights;
   std::vector<double> pga_g;     ///< grid rows, g
   std::vector<double> freq_hz;   ///< grid columns, Hz
   std::vector<double> measured_freq_hz;  ///< mean measured predominant frequency of each column's motions, Hz
@@ -231,7 +244,14 @@ struct FamilyGrid {
   std::vector<std::vector<std::shared_ptr<const GroundMotion>>> motions;  ///< [column j][motion k]
   std::vector<double> freq_hz;                                            ///< the columns' frequencies, Hz
   std::vector<double> measured_freq_hz;                                   ///< per column, Hz
+  /// family = "mixture": per motion k of a column (the same in every column), the member family it comes from and
+  /// the index its uncertain parameters are drawn with (draw_parameters), the member's own motion index, so that
+  /// each member's runs are those of that family alone with motions_per_cell / 2. Empty for a single family: motion k
+  /// is drawn with k.
+  std::vector<MotionFamily> member;
+  std::vector<std::size_t> draw_index;
   [[nodiscard]] std::size_t motions_per_column() const noexcept { return motions.empty() ? 0 : motions.front().size(); }
+  [[nodiscard]] std::size_t draw_of(std::size_t k) const { return draw_index.empty() ? k : draw_index[k]; }
 };
 [[nodiscard]] FamilyGrid build_family(const InversionSettings& settings, const std::vector<double>& freq_hz,
                                       const InversionOptions& options = {});

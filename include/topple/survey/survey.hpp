@@ -235,9 +235,11 @@ struct Site {
 /// The motions the inversion explores. synthetic: Clough-Penzien filtered noise (synthesis.hpp), the default;
 /// rezaeian2010: the record-like family of Rezaeian & Der Kiureghian (2010) (synthesis.hpp, docs/method.md);
 /// records: the survey's own records; boore2003: the stochastic point-source method of Boore (2003), motions from an
-/// earthquake's magnitude and distance (stochastic.hpp, docs/method.md).
-enum class MotionFamily { synthetic, records, rezaeian2010, boore2003 };
-/// "synthetic", "records", "rezaeian2010", "boore2003": the names a survey's `family` key takes.
+/// earthquake's magnitude and distance (stochastic.hpp, docs/method.md); mixture: Bayesian model averaging over
+/// synthetic and boore2003 with prior weights 1/2 each, half of each cell's motions from each (inversion.hpp,
+/// FamilyGrid; docs/method.md, "A mixture of the two families").
+enum class MotionFamily { synthetic, records, rezaeian2010, boore2003, mixture };
+/// "synthetic", "records", "rezaeian2010", "boore2003", "mixture": the names a survey's `family` key takes.
 [[nodiscard]] std::string_view motion_family_name(MotionFamily family);
 
 /// The prior on (PGA, predominant frequency) (docs/method.md, "Priors"; inversion/prior.hpp). log_uniform: uniform
