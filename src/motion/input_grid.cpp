@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cassert>
+#include <cmath>
 #include <limits>
 
 namespace topple {
@@ -19,6 +20,13 @@ bool same_uniform_grid(std::span<const GroundMotion* const> components) {
   });
 }
 
+/// Whether sample time t (>= T: T is the earliest sample not yet taken) is the instant T. Two records' sample times
+/// that are the same instant computed two ways (i dt / s on a support's finer grid against j dt: flexible.hpp's
+/// demand motion) differ by round-off, a few ulp of T; kept apart they would make two samples 1e-17 s apart, which
+/// GroundMotion refuses (Limits::min_dt_s, 1e-6 s). 1e-12 of max(|T|, 1 s) is far above round-off and far below any
+/// spacing a record may have, so no distinct samples are joined.
+bool same_instant(double t, double T) { return t - T <= 1e-12 * std::max(std::abs(T), 1.0); }
+
 /// Values of component m at instant T (see the header), with k its first sample not yet taken; advances k past the
 /// samples at T.
 void values_at(const GroundMotion& m, double T, double t_start, double t_end, std::size_t& k,
@@ -26,9 +34,9 @@ void values_at(const GroundMotion& m, double T, double t_start, double t_end, st
   out.clear();
   const std::size_t n = m.size();
   const auto a = m.accel_m_s2();
-  if (k < n && m.time_s(k) == T) {
+  if (k < n && same_instant(m.time_s(k), T)) {
     const bool first = k == 0;
-    while (k < n && m.time_s(k) == T) out.push_back(a[k++]);
+    while (k < n && same_instant(m.time_s(k), T)) out.push_back(a[k++]);
     if (first && T > t_start && out.front() != 0.0) out.insert(out.begin(), 0.0);  // from the still ground
     if (k == n && T < t_end && out.back() != 0.0) out.push_back(0.0);             // back to the still ground
     return;

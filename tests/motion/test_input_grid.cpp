@@ -1,5 +1,6 @@
 // The shared input grid (input_grid.hpp): several components on one time grid, jumps kept.
 #include <array>
+#include <cmath>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -48,6 +49,28 @@ TEST(InputGrid, AJumpOfTheHorizontalSurvivesAVerticalOnAnotherGrid) {
   EXPECT_EQ(av[2], av[3]);  // continuous component: the same value on both sides of the other's jump
   EXPECT_EQ(av[1], 1.0);
   EXPECT_EQ(av[6], 4.0);
+}
+
+TEST(InputGrid, SampleTimesThatDifferByRoundOffAreOneInstant) {
+  // A flexible support's demand motion is on the ground's grid refined s times (flexible.hpp): i dt / s and j dt are
+  // the same instants computed two ways. Before, they were kept apart (0.1 + 1e-17 s), and GroundMotion refused the
+  // merged record (two samples closer than 1e-6 s): a three-component box on a flexible support failed to run.
+  const double dt = 0.01;
+  std::vector<double> fine(61), coarse(21);
+  for (std::size_t i = 0; i < fine.size(); ++i) fine[i] = std::sin(0.1 * static_cast<double>(i));
+  for (std::size_t j = 0; j < coarse.size(); ++j) coarse[j] = static_cast<double>(j);
+  const auto h = GroundMotion::uniform(fine, dt / 3.0);
+  const auto v = GroundMotion::uniform(coarse, dt);
+  std::size_t apart = 0;  // the premise: some instants do differ by round-off
+  for (std::size_t j = 0; j < coarse.size(); ++j) apart += h.time_s(3 * j) != v.time_s(j) ? 1u : 0u;
+  ASSERT_GT(apart, 0u);
+  const InputGrid g(h, &v);
+  ASSERT_EQ(g.size(), fine.size());  // one point per instant: the fine grid's
+  for (std::size_t i = 0; i < g.size(); ++i) {
+    EXPECT_NEAR(g.time_s(i), h.time_s(i), 1e-15);
+    EXPECT_EQ(g.accel_m_s2(0)[i], fine[i]);
+    EXPECT_NEAR(g.accel_m_s2(1)[i], static_cast<double>(i) / 3.0, 1e-12);  // the vertical's linear interpolant
+  }
 }
 
 TEST(InputGrid, ComponentsStartingLateOrEndingEarlyJumpFromAndToStillGround) {
