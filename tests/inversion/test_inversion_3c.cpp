@@ -473,6 +473,26 @@ TEST(Inversion3c, AThreeDimensionalObjectSaysItsModel) {
   EXPECT_GT(r.marginal_pga.back(), r.marginal_pga.front());
 }
 
+TEST(Inversion3c, ABoxOnAFlexibleSupportRuns) {
+  // The support's demand motion is on a finer grid (i dt / s) than the vertical (j dt); merging the two once made
+  // samples 7e-18 s apart, which GroundMotion refuses, and the survey failed before any run (input_grid.cpp,
+  // same_instant). The same box on the ground and on a stiff support (60-90 Hz, about rigid at these frequencies)
+  // must both run, and overturn more readily at the top of the grid than at its bottom.
+  for (const std::string support : {"", "support = {freq_hz = [60, 90], damping = 0.05}\n",
+                                    "support = {freq_hz = [3, 6], damping = 0.05}\n"}) {
+    SCOPED_TRACE(support);
+    const std::string text = "[inversion]\ncomponents = 3\ndirections = 4\npga_g = [0.05, 2.0, 3]\n"
+                             "freq_hz = [0.5, 10.0, 2]\nmotions_per_cell = 2\nduration_s = 6.0\n"
+                             "[[object]]\nid = \"c\"\nwidth = \"30cm\"\nheight = \"80cm\"\ndepth = \"50cm\"\nmu = 0.6\n"
+                             "azimuth_deg = 40\noutcome = \"overturned\"\n" + support;
+    const Survey s = parse(text);
+    InversionResult r;
+    ASSERT_NO_THROW(r = invert_site(s.sites[0], s.inversion));
+    ASSERT_FALSE(r.marginal_pga.empty());
+    EXPECT_GT(r.marginal_pga.back(), r.marginal_pga.front());
+  }
+}
+
 // ---- Static thresholds in three components (inversion_3c.hpp, item 6) ----
 
 TEST(StaticBounds3c, RotD50IsAtLeastTheFloorTimesRotD100) {

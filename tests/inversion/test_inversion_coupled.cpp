@@ -72,7 +72,9 @@ void expect_read(const Survey& s, const std::vector<Read>& expected) {
     SCOPED_TRACE(obj[i].id);
     EXPECT_EQ(obj[i].outcome, expected[i].outcome);
     ASSERT_EQ(obj[i].slid_m.has_value(), expected[i].slid_m.has_value());
-    if (expected[i].slid_m) EXPECT_DOUBLE_EQ(*obj[i].slid_m, *expected[i].slid_m);
+    if (expected[i].slid_m) {
+      EXPECT_DOUBLE_EQ(*obj[i].slid_m, *expected[i].slid_m);
+    }
     EXPECT_EQ(obj[i].model, expected[i].model);
   }
 }
