@@ -511,6 +511,9 @@ void parse_object_placement(Reader& named, ObservedObject& o, const Site* site, 
                                  "rocking)");
     }
     o.depth_m = named.length("depth");
+    if (!(std::isfinite(*o.depth_m) && *o.depth_m > 0.0)) {  // the words of schema.cpp's kDepthProblem, in metres
+      throw named.error("depth", fmt::format("depth must be positive and finite, got {}", *o.depth_m));
+    }
     try {
       (void)OrientedBody::make(o.body, o.depth_m);  // a block only; positive and finite
     } catch (const InputError& e) {

@@ -55,6 +55,7 @@ SurveyKey& ranged(SurveyKey& k, std::optional<SurveyKeyBound> low, std::optional
 
 const std::vector<std::string> kComponents3{"3"};
 const char* kBearingProblem = "a bearing must lie in [0, 360) degrees clockwise from north, got {}";
+const char* kDepthProblem = "depth must be positive and finite, got {}";  // survey_file.cpp, a box's depth
 const char* kLengthProblem = "must be positive, got {} m";
 
 std::vector<SurveyKey> make_schema() {
@@ -236,6 +237,7 @@ std::vector<SurveyKey> make_schema() {
                       "three components, a block: its other horizontal dimension (the block is then a box)", "\"30cm\""));
     k.conditions.push_back({"inversion.components", kComponents3, "a box's depth needs [inversion] components = 3"});
     k.conditions.push_back({"shape", {"block"}, "a depth applies to a block (a box) only"});
+    ranged(k, excl(0.0), std::nullopt, kDepthProblem);
   }
   {
     auto& k = add(key("object", "toppled_azimuth_deg", K::number,
@@ -389,9 +391,6 @@ std::vector<SurveyKey> make_schema() {
     SurveyKey k = *object_row;  // copied before add() may move the rows
     k.table = "population";
     if (k.key == "azimuth_deg") k.conditions.back().values = {"block"};  // a population is of blocks or cylinders
-    // A box's other horizontal size, one length for the class (not a range): the reader's words for one not positive
-    // are RockingBody::block's, of the box's other axis (a block of width `depth`), in metres.
-    if (k.key == "depth") ranged(k, excl(0.0), std::nullopt, "width must be positive and finite, got {}");
     add(std::move(k));
   }
 

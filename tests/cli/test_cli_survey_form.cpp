@@ -517,7 +517,7 @@ TEST(CliSurveyForm, TheWordsThePageWritesItselfAreTheReadersToo) {
                                  "(decimal: 0.05 is 5 %)";
   const std::string damping =
       "population[3](pots).support.damping: the damping ratio must lie in [0, 1), got [0.05, 1]";
-  const std::string depth = "population[4](crates).depth: width must be positive and finite, got 0";
+  const std::string depth = "population[4](crates).depth: depth must be positive and finite, got 0";
   const std::string stiff = "population[5](vats).support.freq_hz: 20000 Hz is above 10000 Hz, where no shelf or floor "
                             "is: a support that stiff moves with the ground (give the support as text for a rigid one)";
   for (const std::string& said : {fall, no_damping, damping, depth, stiff}) {
