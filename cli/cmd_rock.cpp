@@ -244,12 +244,7 @@ void run_model_3d(const RockOptions& o, RunMotion& run, const std::optional<Rock
   request.out = o.out;
   request.plot = o.plot;
   request.vertical_label = o.vertical;
-  request.options.g_m_s2 = options.g_m_s2;
-  request.options.restitution = options.restitution;
-  request.options.e = options.e;
-  request.options.rel_tol = options.rel_tol;
-  request.options.max_steps = options.max_steps;
-  request.options.max_run_out_s = options.max_run_out_s;
+  request.options = rigid3d_options(options);  // rigid3d.hpp: the settings the planar options share
   if (o.simultaneous_contact) {
     if (cylinder) {
       throw parameter_error("--simultaneous-contact", "is the polygon engine's (a block's or a mesh's corners landing "

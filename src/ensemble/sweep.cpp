@@ -128,19 +128,6 @@ class OnSupport {
   std::optional<GroundMotion> filtered_;
 };
 
-/// The three-dimensional engine's options from a rocking object's (the settings they share, as `topple rock --model
-/// 3d` copies them).
-Rigid3DOptions rigid3d_options(const RockingOptions& x) {
-  Rigid3DOptions o;
-  o.g_m_s2 = x.g_m_s2;
-  o.restitution = x.restitution;
-  o.e = x.e;
-  o.rel_tol = x.rel_tol;
-  o.max_run_out_s = x.max_run_out_s;
-  o.max_steps = x.max_steps;
-  return o;
-}
-
 /// A motion case made from a record set: the set (its first component is the case's base motion, which the engine
 /// transforms), the transform to apply to its other components, and the objects' bearing.
 struct SetCase {

@@ -383,13 +383,7 @@ bool overturns(const GroundMotion& m, const OverturnFailure& f) {
 /// east and north (eq. M1) and the vertical, the body turned by 90 - bearing degrees counter-clockwise seen from above
 /// (as `topple rock --model 3d --h2 --bearing-deg`), so that its azimuths are the ground's.
 bool overturns_3d(const MotionSet& set, const OverturnFailure& f, double bearing_deg) {
-  Rigid3DOptions o;
-  o.g_m_s2 = f.options.g_m_s2;
-  o.restitution = f.options.restitution;
-  o.e = f.options.e;
-  o.rel_tol = f.options.rel_tol;
-  o.max_run_out_s = f.options.max_run_out_s;
-  o.max_steps = f.options.max_steps;
+  const Rigid3DOptions o = rigid3d_options(f.options);
   const GroundMotion east = set.projected(90.0);
   const GroundMotion north = set.projected(0.0);
   const RigidBody3D turned = f.body_3d->rotated_about_vertical((90.0 - bearing_deg) * kPi / 180.0);

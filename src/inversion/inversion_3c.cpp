@@ -190,14 +190,7 @@ void observation_match_3c(const ObservedObject& object, const DrawnParameters& p
   // `topple rock --model 3d --bearing-deg` turns it), and its fall azimuth is then measured from the major axis.
   const bool three_d = object_model(object) == ObjectModel::three_d;
   std::optional<Rigid3DOptions> options_3d;
-  if (three_d) {
-    options_3d.emplace();
-    options_3d->g_m_s2 = options.g_m_s2;
-    options_3d->restitution = options.restitution;
-    options_3d->e = options.e;
-    options_3d->rel_tol = options.rel_tol;
-    options_3d->max_run_out_s = options.max_run_out_s;
-  }
+  if (three_d) options_3d = rigid3d_options(options);  // rigid3d.hpp: the settings the two engines share
   const auto run = [&](double angle_deg) -> Run {
     if (lifted) return {rocking_match(object.outcome, true, 0.0), std::nullopt};  // item 3: as overturned
     if (three_d) {

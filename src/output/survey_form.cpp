@@ -44,7 +44,10 @@ nlohmann::ordered_json survey_schema_json() {
   }
   // The reader's upper limit on a flexible support's frequency (survey_file.cpp's parse_support_filter, the library's
   // SupportOscillator::kMaxFreqHz), which the key table does not carry.
-  return {{"keys", keys}, {"friction", friction}, {"support_max_freq_hz", SupportOscillator::kMaxFreqHz}};
+  return {{"keys", keys},
+          {"friction", friction},
+          {"support_max_freq_hz", SupportOscillator::kMaxFreqHz},
+          {"fall_direction_problem", kFallDirectionProblem}};
 }
 
 namespace {
@@ -335,10 +338,8 @@ function supportOf(raw) {
 // tests/cli/test_cli_survey_form.cpp) ----
 const COUNT_PROBLEM = schemaKey('population', 'overturned').range_problem;  // "a count cannot be negative, got {}"
 const SIZES = ['width', 'height', 'diameter'];  // a population's sizes: a length or a range (depth is one length)
-// survey.cpp's check_object_fall_direction, of a population's fall directions (held against the reader by the test).
-const FALL_PROBLEM = 'only a cylinder or a box (a block with depth) tells the direction of the shaking by the way it ' +
-                     'fell: the planar model of a block without depth falls along its bearing (give that as ' +
-                     'azimuth_deg, or give the block\'s depth)';
+// survey.cpp's check_object_fall_direction's words (schema.hpp), of a population's fall directions.
+const FALL_PROBLEM = SCHEMA.fall_direction_problem;
 // fmt's "{:.4g}" (population.cpp words a size outside the stated range so): 4 significant digits, no trailing zeros.
 function g4(v) { return String(Number(v.toPrecision(4))); }
 // A size: a length "45" or a range "40-50" / "[40, 50]", in the unit beside it. {lo, hi} as typed, {loM, hiM} in m.

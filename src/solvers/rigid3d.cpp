@@ -1477,4 +1477,15 @@ Rigid3DResult detail::rock3d_rigid(const GroundMotion& x, const GroundMotion* y,
   return engine.run();
 }
 
+Rigid3DOptions rigid3d_options(const RockingOptions& rocking) {
+  Rigid3DOptions o;
+  o.g_m_s2 = rocking.g_m_s2;
+  o.restitution = rocking.restitution;
+  o.e = rocking.e;
+  o.rel_tol = rocking.rel_tol;
+  o.max_run_out_s = rocking.max_run_out_s;
+  o.max_steps = rocking.max_steps;
+  return o;
+}
+
 }  // namespace topple

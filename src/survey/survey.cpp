@@ -16,6 +16,7 @@
 #include "topple/solvers/rocking.hpp"
 #include "topple/solvers/slide_rock.hpp"
 #include "topple/core/enum_names.hpp"
+#include "topple/survey/schema.hpp"
 
 namespace topple {
 
@@ -199,10 +200,7 @@ void check_object_fall_direction(const ObservedObject& o) {
     throw parameter_error("toppled_azimuth_deg", "a fall direction goes with outcome = \"overturned\"");
   }
   if (o.body.shape != RockingBody::Shape::cylinder && !o.depth_m && object_model(o) != ObjectModel::three_d) {
-    throw parameter_error("toppled_azimuth_deg",
-                          "only a cylinder or a box (a block with depth), or a model = \"3d\" body, tells the direction of the shaking by the way "
-                          "it fell: the planar model of a block without depth falls along its bearing (give that as "
-                          "azimuth_deg, or give the block's depth)");
+    throw parameter_error("toppled_azimuth_deg", kFallDirectionProblem);  // schema.hpp: the form says the same
   }
 }
 

@@ -510,9 +510,10 @@ TEST(CliSurveyForm, TheWordsThePageWritesItselfAreTheReadersToo) {
     }
     return text + "[[population]]\n" + population;
   };
-  const std::string fall = "population[1](boxes).fallen_azimuths_deg: only a cylinder or a box (a block with depth) "
-                           "tells the direction of the shaking by the way it fell: the planar model of a block without "
-                           "depth falls along its bearing (give that as azimuth_deg, or give the block's depth)";
+  const std::string fall = "population[1](boxes).fallen_azimuths_deg: only a cylinder or a box (a block with depth), "
+                           "or a model = \"3d\" body, tells the direction of the shaking by the way it fell: the "
+                           "planar model of a block without depth falls along its bearing (give that as azimuth_deg, "
+                           "or give the block's depth)";
   const std::string no_damping = "population[2](jars).support.damping: a flexible support needs its damping ratio "
                                  "(decimal: 0.05 is 5 %)";
   const std::string damping =

@@ -200,6 +200,11 @@ struct Rigid3DResult {
   Rigid3DHistory history;
 };
 
+/// The three-dimensional engine's options from a planar rocking body's (the settings the two share: g, restitution
+/// and e, rel_tol, max_run_out_s, max_steps; no friction), as `topple rock --model 3d` copies them: how sweeps,
+/// fragility and the three-component survey run a `model = "3d"` object with its planar options.
+[[nodiscard]] Rigid3DOptions rigid3d_options(const RockingOptions& rocking);
+
 /// The response to ground accelerations along x (east; required), y (north) and z (up) (m/s^2; null: absent). The
 /// components may have different grids (the union is used, input_grid.hpp). Throws InputError for a bad option or
 /// g + a_z <= 0 ("vertical").

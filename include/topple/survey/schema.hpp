@@ -81,4 +81,11 @@ struct FrictionRow {
 };
 [[nodiscard]] const std::vector<FrictionRow>& friction_table();
 
+/// The reader's words for a fall direction on a body whose planar model has none (survey.cpp,
+/// check_object_fall_direction), which the form repeats for a population's fall directions, not one key's range.
+inline constexpr const char* kFallDirectionProblem =
+    "only a cylinder or a box (a block with depth), or a model = \"3d\" body, tells the direction of the shaking by "
+    "the way it fell: the planar model of a block without depth falls along its bearing (give that as azimuth_deg, "
+    "or give the block's depth)";
+
 }  // namespace topple
