@@ -226,9 +226,24 @@ std::vector<CampaignRow> run_campaign(const std::vector<CampaignTest>& tests, co
   std::vector<std::exception_ptr> errors(tests.size());
   const auto body = [&](std::size_t i) {
     try {
-      const CampaignInput input = load(i);
+      const CampaignInput input = load(i);  // its errors name the test already (the loader's)
       for (std::size_t k = 0; k < n_models; ++k) {
-        rows[i * n_models + k] = run_campaign_test(tests[i], input, settings.models[k], settings);
+        // A model's refusal or limit names the test and the model, so that one test among hundreds is found.
+        const std::string who =
+            fmt::format("test '{}', model '{}': ", tests[i].id, campaign_model_name(settings.models[k]));
+        try {
+          rows[i * n_models + k] = run_campaign_test(tests[i], input, settings.models[k], settings);
+        } catch (const InputError& e) {
+          throw InputError(e.where(), who + e.problem());
+        } catch (const StepLimitError& e) {
+          throw StepLimitError(who + e.what());
+        } catch (const EventLimitError& e) {
+          throw EventLimitError(who + e.what());
+        } catch (const RootFindingError& e) {
+          throw RootFindingError(who + e.what());
+        } catch (const SolverError& e) {
+          throw SolverError(who + e.what());
+        }
       }
     } catch (...) {
       errors[i] = std::current_exception();

@@ -249,6 +249,7 @@ TEST(CampaignRun, CylinderUnderTwoComponentsAndErrorsOfTheFirstFailingTest) {
     FAIL() << "a block of negative width ran";
   } catch (const InputError& e) {
     EXPECT_EQ(e.where().field, "width");  // test 2's error, not test 3's, whatever the threads
+    EXPECT_NE(std::string(e.what()).find("test 'bad', model 'planar': "), std::string::npos) << e.what();
   }
   const std::vector<CampaignRow> rows = run_campaign({tests[0]}, settings, load, 0);
   ASSERT_EQ(rows.size(), 2u);

@@ -113,7 +113,8 @@ struct CampaignRow {
 
 /// Runs every test under every model on all cores (oneTBB), `load(i)` giving test i's inputs (called once per test,
 /// from any thread). Rows in a fixed order whatever the threads: by test, then by model in settings.models' order.
-/// When tests fail, the error of the first failing test (in file order) is rethrown after all have ended.
+/// When tests fail, the error of the first failing test (in file order) is rethrown after all have ended; a model's
+/// InputError or SolverError is rethrown with "test 'ID', model 'M': " before its problem (its location kept).
 /// `threads` = 0: all cores.
 [[nodiscard]] std::vector<CampaignRow> run_campaign(const std::vector<CampaignTest>& tests,
                                                     const CampaignSettings& settings,
