@@ -9,6 +9,7 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "grids.hpp"
+#include "progress.hpp"
 #include "topple/core/output_file.hpp"
 #include "topple/ensemble/campaign.hpp"
 #include "topple/io/campaign_file.hpp"
@@ -22,6 +23,7 @@ struct CampaignOptions {
   std::string csv;
   std::string json;
   int threads = 0;
+  bool quiet = false;
 };
 
 std::string ratio_text(const nlohmann::ordered_json& v) {
@@ -33,9 +35,11 @@ void run_campaign_command(const CampaignOptions& o) {
   check_output_path(o.csv);  // before any work: a result that cannot be written is not computed
   check_output_path(o.json);
   const io::CampaignFile campaign = io::read_campaign_file(o.file);
+  ProgressBar bar(progress_wanted(o.quiet), campaign.settings.name);
   const std::vector<ensemble::CampaignRow> rows = ensemble::run_campaign(
       campaign.tests, campaign.settings, [&](std::size_t i) { return io::load_campaign_input(campaign, i); },
-      static_cast<std::size_t>(o.threads));
+      static_cast<std::size_t>(o.threads), bar.callback());
+  bar.finish();
   for (const auto& r : rows) {
     require_finite({{"max tilt over limit", r.max_tilt_over_limit}, {"cpu seconds", r.cpu_s},
                     {"duration", r.duration_s}});
@@ -81,6 +85,7 @@ void add_campaign_command(CLI::App& app) {
   cmd->add_option("--json", o->json, "Write the summary (JSON) to this file and print a short table (default: the "
                                      "JSON on stdout)");
   cmd->add_option("--threads", o->threads, "Worker threads (default 0: every core)")->capture_default_str();
+  add_quiet_flag(*cmd, o->quiet);
   cmd->callback([o] { run_campaign_command(*o); });
 }
 

@@ -4,6 +4,7 @@
 #include <time.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <exception>
 #include <numbers>
@@ -220,10 +221,12 @@ CampaignRow run_campaign_test(const CampaignTest& test, const CampaignInput& inp
 }
 
 std::vector<CampaignRow> run_campaign(const std::vector<CampaignTest>& tests, const CampaignSettings& settings,
-                                      const std::function<CampaignInput(std::size_t)>& load, std::size_t threads) {
+                                      const std::function<CampaignInput(std::size_t)>& load, std::size_t threads,
+                                      const ProgressCallback& progress) {
   const std::size_t n_models = settings.models.size();
   std::vector<CampaignRow> rows(tests.size() * n_models);
   std::vector<std::exception_ptr> errors(tests.size());
+  std::atomic<std::size_t> done{0};
   const auto body = [&](std::size_t i) {
     try {
       const CampaignInput input = load(i);  // its errors name the test already (the loader's)
@@ -248,6 +251,8 @@ std::vector<CampaignRow> run_campaign(const std::vector<CampaignTest>& tests, co
     } catch (...) {
       errors[i] = std::current_exception();
     }
+    const std::size_t n = done.fetch_add(1) + 1;
+    if (progress) progress(n, tests.size());
   };
   std::optional<tbb::global_control> limit;
   std::optional<tbb::task_arena> arena;

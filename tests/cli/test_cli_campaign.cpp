@@ -114,7 +114,7 @@ TEST(CliCampaign, ClosedFormBlocksScoreThreeOfFour) {
 
   // --json: the summary to a file (the same one), a short table on stdout.
   const fs::path summary = dir.path() / "summary.json";
-  const auto table = run_cli(fmt::format("campaign '{}' --json '{}' --threads 1", (dir.path() / "c.toml").string(),
+  const auto table = run_cli(fmt::format("campaign '{}' --json '{}' --threads 1 --quiet", (dir.path() / "c.toml").string(),
                                          summary.string()),
                              120);
   ASSERT_EQ(table.exit_code, 0) << table.err;

@@ -39,6 +39,7 @@
 #include <vector>
 
 #include "topple/bodies/body.hpp"
+#include "topple/core/progress.hpp"
 #include "topple/motion/ground_motion.hpp"
 #include "topple/solvers/rocking.hpp"
 
@@ -115,11 +116,11 @@ struct CampaignRow {
 /// from any thread). Rows in a fixed order whatever the threads: by test, then by model in settings.models' order.
 /// When tests fail, the error of the first failing test (in file order) is rethrown after all have ended; a model's
 /// InputError or SolverError is rethrown with "test 'ID', model 'M': " before its problem (its location kept).
-/// `threads` = 0: all cores.
+/// `threads` = 0: all cores. `progress` (optional) is called with (tests done, tests) after each test, from any thread.
 [[nodiscard]] std::vector<CampaignRow> run_campaign(const std::vector<CampaignTest>& tests,
                                                     const CampaignSettings& settings,
                                                     const std::function<CampaignInput(std::size_t)>& load,
-                                                    std::size_t threads = 0);
+                                                    std::size_t threads = 0, const ProgressCallback& progress = {});
 
 /// Confusion counts, positive = overturned.
 struct Confusion {
