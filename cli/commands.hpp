@@ -14,5 +14,6 @@ void add_spectrum_command(CLI::App& app);
 void add_fragility_command(CLI::App& app);
 void add_body_command(CLI::App& app);
 void add_survey_form_command(CLI::App& app);
+void add_campaign_command(CLI::App& app);
 
 }  // namespace topple::cli

@@ -46,6 +46,7 @@ int main(int argc, char** argv) {
   topple::cli::add_fragility_command(app);
   topple::cli::add_body_command(app);
   topple::cli::add_survey_form_command(app);
+  topple::cli::add_campaign_command(app);
   refuse_empty_values(app);
   try {
     app.parse(argc, argv);

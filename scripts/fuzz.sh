@@ -16,7 +16,7 @@ seconds="${1:-20}"
 jobs="${TOPPLE_JOBS:-2}"
 shared="${TOPPLE_SHARED_DIR:-$(pwd)/../shared}"
 runs="${TOPPLE_FUZZ_RUNS:--1}"   # -1: no limit on executions, only on time
-read -r -a targets <<<"${TOPPLE_FUZZ_TARGETS:-fuzz_peer_at2 fuzz_cosmos_v2 fuzz_csmip_v2 fuzz_knet fuzz_usgs_smc fuzz_esm fuzz_plain fuzz_detect fuzz_survey fuzz_sweep fuzz_mesh_obj fuzz_mesh_off fuzz_mesh_stl fuzz_mesh_ply}"
+read -r -a targets <<<"${TOPPLE_FUZZ_TARGETS:-fuzz_peer_at2 fuzz_cosmos_v2 fuzz_csmip_v2 fuzz_knet fuzz_usgs_smc fuzz_esm fuzz_plain fuzz_detect fuzz_survey fuzz_sweep fuzz_campaign fuzz_mesh_obj fuzz_mesh_off fuzz_mesh_stl fuzz_mesh_ply}"
 
 cmake --preset fuzz >/dev/null
 cmake --build --preset fuzz -j "$jobs" --target "${targets[@]}"
@@ -34,7 +34,7 @@ seeds_for() {
     fuzz_usgs_smc) echo '*.smc' ;;
     fuzz_esm) echo '*.ASC' ;;
     fuzz_plain) echo '*.csv slammer/*.csv' ;;
-    fuzz_survey|fuzz_sweep|fuzz_mesh_*|fuzz_body_file) echo '' ;;  # seeded from examples/ and tests/ below
+    fuzz_survey|fuzz_sweep|fuzz_campaign|fuzz_mesh_*|fuzz_body_file) echo '' ;;  # seeded from examples/ and tests/ below
     *) echo '*' ;;
   esac
 }
@@ -149,6 +149,7 @@ for target in "${targets[@]}"; do
     fuzz_survey) cp examples/survey.toml "$corpus/seed-survey.toml"; cp examples/survey.csv "$corpus/seed-survey.csv"
                  dict=fuzz/toml.dict ;;
     fuzz_sweep) for f in examples/sweep/*.toml; do cp "$f" "$corpus/seed-$(basename "$f")"; done; dict=fuzz/toml.dict ;;
+    fuzz_campaign) cp examples/campaign/campaign.toml "$corpus/seed-campaign.toml"; dict=fuzz/toml.dict ;;
     fuzz_mesh_*) mesh_seeds "${target#fuzz_mesh_}" "$corpus"; dict=fuzz/mesh.dict ;;
     fuzz_body_file) cp tests/cli/fixtures/balanced_rock_body_az30*.json "$corpus/"; dict=fuzz/toml.dict ;;
   esac

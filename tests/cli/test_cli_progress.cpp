@@ -41,7 +41,7 @@ bool have_script() { return std::system("command -v script >/dev/null 2>&1") == 
 // Every command takes --quiet (scripts can pass it to any of them).
 TEST(CliQuiet, EveryCommandAcceptsQuiet) {
   for (const char* cmd : {"info", "slide", "rock", "synth", "sweep", "spectrum slide", "spectrum rock", "fragility",
-                          "invert"}) {
+                          "invert", "campaign"}) {
     const auto r = test::run_cli(std::string(cmd) + " --help");
     EXPECT_EQ(r.exit_code, 0) << cmd;
     EXPECT_NE(r.out.find("--quiet"), std::string::npos) << cmd << " --help lacks --quiet:\n" << r.out;
