@@ -1232,7 +1232,7 @@ nb::dict fragility_dict(nb::handle motions, nb::handle levels, const std::string
   if (body) {
     spec.overturning =
         OverturnFailure{*body, make_rocking_options(e, rock_mu, g_m_s2, method, rel_tol, rk4_substeps, max_run_out_s),
-                        std::nullopt, std::nullopt};  // Housner's rocking: no coupled or 3-D body (fragility.hpp)
+                        std::nullopt, std::nullopt, std::nullopt};  // Housner's rocking: no coupled or 3-D body (fragility.hpp)
   }
   spec.threads = threads;
   const FragilityResult result = with_field_names({{"bearing", "bearing_deg"}, {"slope", "slope_deg"}}, [&] {

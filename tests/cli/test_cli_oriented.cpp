@@ -200,6 +200,12 @@ TEST_F(CliOriented, Model3dSweepRowsAreSingleRunsAndFragilityRefusals) {
   const std::string box = " --model 3d --shape block --width 15cm --depth 30cm --height 60cm --im-range 0.1:1:3";
   for (const auto& [args, option] :
        {std::pair{"fragility --synth 2 --components 2" + box, std::string("")},
+        std::pair{std::string("fragility --synth 2 --components 2 --model 3d --shape cylinder --diameter 20cm "
+                              "--height 80cm --im-range 0.1:1:3"),
+                  std::string("")},
+        std::pair{std::string("fragility --synth 2 --components 2 --model 3d --shape cylinder --diameter 20cm "
+                              "--depth 20cm --height 80cm --im-range 0.1:1:3"),
+                  std::string("--depth")},
         std::pair{"fragility --synth 2" + box, std::string("--model")},
         std::pair{std::string("fragility --synth 2 --components 2 --model 3d --shape block --width 15cm "
                               "--height 60cm --im-range 0.1:1:3"),
