@@ -338,8 +338,9 @@ void parse_object_model(Reader& named, ObservedObject& o, int components, std::v
     warnings.push_back(named.error(w.field, w.problem).what());
   }
   // model = "3d": a box's body in three dimensions (a mesh's was made with its body, mesh_object_body), its +x axis
-  // (the width) along the bearing, as the oriented box's (oriented.hpp).
-  if (o.model == ObjectModel::three_d && !o.body_3d) {
+  // (the width) along the bearing, as the oriented box's (oriented.hpp). A cylinder's is its planar body's solid
+  // cylinder (inversion_3c.cpp: the rim engine, rigid3d_disc.hpp), with no body_3d.
+  if (o.model == ObjectModel::three_d && !o.body_3d && o.body.shape == RockingBody::Shape::block) {
     o.body_3d = std::make_shared<const RigidBody3D>(
         at_object_keys(named, [&] { return RigidBody3D::box(*o.width_m, *o.depth_m, *o.height_m); }));
   }

@@ -21,6 +21,8 @@
 #include "topple/motion/motion_set.hpp"
 #include "topple/solvers/oriented.hpp"
 #include "topple/solvers/rigid3d.hpp"
+#include "topple/solvers/rigid3d_disc.hpp"
+#include "topple/inversion/matching.hpp"
 #include "topple/output/report.hpp"
 #include "topple/solvers/rocking.hpp"
 #include "topple/motion/rotd.hpp"
@@ -392,9 +394,13 @@ TEST(Survey3c, ModelThreeDIsABoxOrAMeshAndRefusedWhereItCannotApply) {
                "needs the block's depth");
   expect_error(three + kObjectBlock + "depth = \"30cm\"\nmodel = \"3d\"\noutcome = \"slid\"\n", "object[1](a).model",
                "does not slide");
-  expect_error(three + "[[object]]\nid = \"c\"\nshape = \"cylinder\"\ndiameter = \"8cm\"\nheight = \"40cm\"\nmu = 0.5\n"
-                       "model = \"3d\"\noutcome = \"overturned\"\n",
-               "object[1](c).shape", "cylinder");
+  // A cylinder is the rim engine's (inversion_3c.cpp; no body_3d, no depth, no bearing needed).
+  const ObservedObject c = parse(three + "[[object]]\nid = \"c\"\nshape = \"cylinder\"\ndiameter = \"8cm\"\n"
+                                         "height = \"40cm\"\nmu = 0.5\nmodel = \"3d\"\noutcome = \"overturned\"\n"
+                                         "toppled_azimuth_deg = 30\n").sites[0].objects[0];
+  EXPECT_EQ(object_model(c), ObjectModel::three_d);
+  EXPECT_FALSE(c.body_3d);
+  EXPECT_EQ(c.toppled_azimuth_deg, 30.0);
   expect_error(three + "[[object]]\nid = \"g\"\nshape = \"general\"\na = \"3cm\"\nh = \"20cm\"\nD = \"0.05m2\"\n"
                        "mu = 0.5\nmodel = \"3d\"\noutcome = \"overturned\"\n",
                "object[1](g).shape", "general body");
@@ -450,6 +456,59 @@ TEST(Match3c, AThreeDimensionalBoxInItsPlaneOfSymmetryIsTheOrientedBox) {
         SCOPED_TRACE(::testing::Message() << outcome_name(outcome) << " pga " << pga_g << " bin " << az[i]);
         EXPECT_NEAR(b[i], a[i], 1e-6);
         if (outcome == Outcome::overturned) (a[i] > 0.0 ? fell : stood) += 1;
+      }
+    }
+  }
+  EXPECT_GT(fell, 0);   // the set holds falls ...
+  EXPECT_GT(stood, 0);  // ... and survivals
+}
+
+// A cylinder with model = "3d" (the rim engine, rigid3d_disc.hpp). Under the major component alone its match in the
+// bin along it is the planar cylinder's there (the planar model's projection on the bin is the major itself; the rim
+// engine in one plane is the planar cylinder, 1e-6 in test_rigid3d_disc), verdict and "rocked visibly" alike. Under
+// the three components its match in every bin is rocking_match of rock3d_cylinder's own run on (minor as x, major as
+// y, vertical), called here directly, times the fall-direction kernel about the run's fall azimuth (as a box's).
+TEST(Match3c, AThreeDimensionalCylinderIsTheRimEngine) {
+  const InversionSettings st = small_3c(2, 6);
+  const Realisation3c r = family_realisation_3c(st, 2.0, 1);
+  const std::vector<double> az{0.0, 90.0};
+  const CylinderBody3D solid = CylinderBody3D::solid(0.08, 0.40);
+  int fell = 0, stood = 0;
+  for (const Outcome outcome : {Outcome::overturned, Outcome::rocked, Outcome::not_rocked}) {
+    for (const double pga_g : {0.1, 0.25, 0.4, 0.7}) {
+      const double f = pga_g * kStandardGravity;
+      ObservedObject planar;
+      planar.id = "c";
+      planar.body = RockingBody::cylinder(0.08, 0.40);
+      planar.mu = {0.5, 0.5};
+      planar.outcome = outcome;
+      planar.azimuth_deg = 0.0;
+      ObservedObject three_d = planar;
+      three_d.model = ObjectModel::three_d;
+      {  // the major alone: the planar cylinder in bin 0
+        const GroundMotion major = r.major->scaled(f), minor = r.minor->scaled(0.0), vertical = r.vertical->scaled(0.0);
+        std::vector<double> a(az.size()), b(az.size());
+        observation_match_3c(planar, draw_parameters(planar, 1, 0, 0), major, minor, vertical, r.rotd100_angle_deg, az,
+                             0.0, kStandardGravity, a);
+        observation_match_3c(three_d, draw_parameters(three_d, 1, 0, 0), major, minor, vertical, r.rotd100_angle_deg,
+                             az, 0.0, kStandardGravity, b);
+        SCOPED_TRACE(::testing::Message() << outcome_name(outcome) << " pga " << pga_g);
+        EXPECT_NEAR(b[0], a[0], 1e-6);
+        EXPECT_EQ(b[0], b[1]);  // axisymmetric: the bins see the same run
+        if (outcome == Outcome::overturned) (a[0] > 0.5 ? fell : stood) += 1;
+      }
+      {  // the three components: rock3d_cylinder's own run
+        const GroundMotion major = r.major->scaled(f), minor = r.minor->scaled(f), vertical = r.vertical->scaled(f);
+        std::vector<double> b(az.size());
+        observation_match_3c(three_d, draw_parameters(three_d, 1, 0, 0), major, minor, vertical, r.rotd100_angle_deg,
+                             az, 0.0, kStandardGravity, b);
+        const Rigid3DSummary s = rock3d_cylinder(minor, &major, &vertical, solid,
+                                                 rigid3d_options(inversion_rocking_options(three_d, draw_parameters(
+                                                                                                        three_d, 1, 0, 0),
+                                                                                          kStandardGravity)))
+                                     .summary;
+        const double expected = rocking_match(outcome, s.overturned, s.max_tilt_rad);
+        for (std::size_t i = 0; i < az.size(); ++i) EXPECT_NEAR(b[i], expected, 1e-15) << az[i];
       }
     }
   }
