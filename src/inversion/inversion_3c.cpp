@@ -192,6 +192,8 @@ void observation_match_3c(const ObservedObject& object, const DrawnParameters& p
   const bool three_d = object_model(object) == ObjectModel::three_d;
   std::optional<Rigid3DOptions> options_3d;
   if (three_d) options_3d = rigid3d_options(options);  // rigid3d.hpp: the settings the two engines share
+  // friction_3d = "mu": Coulomb friction mu_s = mu_k = the drawn mu (survey.hpp); absent, the no-slip engine.
+  if (three_d && object.friction_3d) options_3d->mu_s = p.mu;
   // A cylinder (no mesh, no body_3d): the rim engine's solid cylinder of the planar body's a = d / 2, h = H / 2
   // (rigid3d_disc.hpp; rocking_body.hpp), axisymmetric: the pair as it is at every bearing angle.
   std::optional<CylinderBody3D> cylinder_3d;
@@ -321,6 +323,10 @@ ThreeComponentBounds static_bounds_3c(const Site& site, double rho) {
       case Outcome::rocked:
       case Outcome::overturned: lower(tan_lower, "b/h", hi, hi, amp_text(hi)); break;
       case Outcome::not_rocked:
+        // friction_3d: a base that slides before the resultant leaves it need not rock at any PGA (the friction
+        // force caps the horizontal one at mu N): the bound holds only where mu >= the farthest vertex's d/h (the
+        // resultant leaves the base, in every direction, while it still sticks).
+        if (polygon && o.friction_3d && o.mu.low < polygon->second) break;
         if (polygon) {
           upper(polygon->second, "the farthest base vertex's distance / h", lo, amp_text(lo));
         } else if (oriented.across) {

@@ -333,6 +333,12 @@ void parse_object_model(Reader& named, ObservedObject& o, int components, std::v
     else if (*m == "3d") o.model = ObjectModel::three_d;
     else throw named.error("model", fmt::format("unknown model '{}' (known: slide, rock, coupled, 3d)", *m));
   }
+  // friction_3d (model = "3d"): the engine's base slides with the object's mu (survey.hpp).
+  if (const auto f = named.string("friction_3d")) {
+    if (*f == "mu") o.friction_3d = true;
+    else if (*f != "none") throw named.error("friction_3d", fmt::format("unknown value '{}' (known: none, mu)", *f));
+    if (o.model != ObjectModel::three_d) throw named.error("friction_3d", "friction_3d goes with model = \"3d\"");
+  }
   // The survey's rules for the model (survey.hpp, check_object_model), located at this object's keys.
   for (const ObjectCheck& w : at_object_keys(named, [&] { return check_object_model(o, components); })) {
     warnings.push_back(named.error(w.field, w.problem).what());
