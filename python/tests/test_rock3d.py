@@ -180,13 +180,14 @@ def test_friction_equals_the_cli(cli, station):
     """mu and mu_k are the CLI's --mu and --mu-k (Rigid3DOptions::mu_s, mu_k): the same JSON, bit for bit; without
     them the no-slip engine (the summary's sliding keys zero, the solver's mu_s null)."""
     h1, h2, v = station
-    expected = cli.json("rock", h1, "--h2", h2, "--azimuths", "0,90", "--bearing-deg", "30", *BOX, "--mu", "0.3",
-                        "--mu-k", "0.25")
+    expected = cli.json("rock", h1, "--h2", h2, "--azimuths", "0,90", "--bearing-deg", "30", *BOX, "--mu", "0.2",
+                        "--mu-k", "0.15")
     got = topple.rock3d(topple.read(h1), topple.read(h2), width_m=0.2, depth_m=0.3, height_m=0.8,
-                        azimuths_deg=(0.0, 90.0), bearing_deg=30.0, mu=0.3, mu_k=0.25)
+                        azimuths_deg=(0.0, 90.0), bearing_deg=30.0, mu=0.2, mu_k=0.15)
     assert got == without_input(expected)
-    assert got["solver"]["mu_s"] == 0.3 and got["solver"]["mu_k"] == 0.25
-    assert got["slide_path_length_m"] > 0.0  # a PGA of 0.45 g over mu_s = 0.3: it slides
+    assert got["solver"]["mu_s"] == 0.2 and got["solver"]["mu_k"] == 0.15
+    # mu_s = 0.2 below the box's b/h = 0.25: it slides before it can lift (Shenton 1996), under a PGA of 0.45 g
+    assert got["slide_path_length_m"] > 1e-3
     dry = topple.rock3d(topple.read(h1), topple.read(h2), width_m=0.2, depth_m=0.3, height_m=0.8,
                         azimuths_deg=(0.0, 90.0), bearing_deg=30.0)
     assert dry["solver"]["mu_s"] is None and dry["slide_path_length_m"] == 0.0
