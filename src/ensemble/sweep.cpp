@@ -228,7 +228,7 @@ class Runner {
         const Rigid3DSummary summary = run_3d(r, east_north->first, east_north->second, set.vertical_ptr(),
                                               c.bearing_deg);
         rock_3d_.fill(Rigid3DOutcome{summary}, row);
-        fill_slide_3d(summary, row);
+        if (r.options.mu) fill_slide_3d(summary, row);  // without friction the cells do not apply: empty
         continue;
       }
       const OrientedBody body = OrientedBody::make(r.body, r.depth_m);
@@ -258,7 +258,7 @@ class Runner {
     return rock3d(east, &north, vertical, turned, options).summary;
   }
 
-  /// The sliding columns of a model = "3d" run (slide_3d_columns; zero without friction, as the engine's summary).
+  /// The sliding columns of a model = "3d" run with friction (kSlide3DColumns).
   void fill_slide_3d(const Rigid3DSummary& s, Value* row) const {
     const auto put = [&](std::size_t i, Value v) {
       if (slide_3d_[i] != kAbsent) row[slide_3d_[i]] = std::move(v);
