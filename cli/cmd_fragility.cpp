@@ -205,8 +205,8 @@ RockingBody make_fragility_body(const FragilityOptions& o, double g) {
 
 /// --model 3d: the body in three dimensions (rigid3d.hpp): a block with --depth (width along +x, depth along +y), or
 /// the mesh as posed turned so that its direction --azimuth (clockwise from its +y) is the body's +x axis, the one
-/// the bearing places (as the survey's mesh objects, docs/survey.md). A cylinder, a general body and --body are
-/// refused (no base in three dimensions, or the circular engine not wired here yet).
+/// the bearing places (as the survey's mesh objects, docs/survey.md). A general body and --body are refused (no base
+/// in three dimensions); a cylinder is add_failures' (the rim engine, rigid3d_disc.hpp).
 RigidBody3D make_fragility_body_3d(const FragilityOptions& o, double g) {
   if (!o.body_file.empty()) {
     throw parameter_error("--body", "--model 3d needs the body in three dimensions: a body file holds its section in "
@@ -220,10 +220,6 @@ RigidBody3D make_fragility_body_3d(const FragilityOptions& o, double g) {
     const MeshBody body =
         with_field_names({{"--unit", "--mesh-unit"}}, [&] { return io::read_mesh_body(o.mesh, unit_m, b); });
     return RigidBody3D::from_mesh(body).rotated_about_vertical(deg_to_rad(o.mesh_options.azimuth_deg - 90.0));
-  }
-  if (o.shape == "cylinder") {
-    throw parameter_error("--shape", "--model 3d: a cylinder's circular base (rolling and wobbling on its rim) is not "
-                                     "wired into fragility yet; use the rocking model (its worst direction)");
   }
   if (o.shape != "block") {
     throw parameter_error("--shape", "--model 3d: a general body is a section in one vertical plane, without a base "
@@ -274,7 +270,15 @@ void add_failures(const FragilityOptions& o, double g, FragilitySpec& spec) {
         throw parameter_error(o.rock_mu ? "--rock-mu" : "--rock-mu-k", "--model 3d does not slide (friction large "
                                                                        "enough)");
       }
-      f.body_3d = make_fragility_body_3d(o, g);
+      if (o.shape == "cylinder" && o.mesh.empty() && o.body_file.empty()) {
+        // the rim engine's solid cylinder of the planar cylinder's a = d / 2, h = H / 2 (rocking_body.hpp)
+        if (!o.depth.empty()) {
+          throw parameter_error("--depth", "is a block's: a cylinder is given by --diameter and --height");
+        }
+        f.cylinder_3d = CylinderBody3D::solid(2.0 * f.body.a_m, 2.0 * f.body.h_m);
+      } else {
+        f.body_3d = make_fragility_body_3d(o, g);
+      }
     } else if (o.model != "rocking") {
       throw parameter_error("--model", fmt::format("'rocking', 'coupled' or '3d', got '{}'", o.model));
     } else if (o.rock_mu || o.rock_mu_k) {
@@ -570,7 +574,8 @@ void add_fragility_command(CLI::App& app) {
   body_option->excludes(mesh_option);
   cmd->add_option("--model", o->model, "Rocking body: rocking (Housner), coupled (sliding and rocking at once, "
                                        "slide_rock.hpp; needs --rock-mu) or 3d (pairs: a block with --depth or a "
-                                       "mesh, rocking and pivoting in three dimensions, rigid3d.hpp)")
+                                       "mesh, rocking and pivoting in three dimensions, rigid3d.hpp; a cylinder "
+                                       "rocking and rolling on its rim, rigid3d_disc.hpp)")
       ->capture_default_str();
   cmd->add_option("--depth", o->depth, "--model 3d, a block: its depth (along bearing + 90), with a unit");
   cmd->add_option("--rock-mu", o->rock_mu, "--model coupled: the rocking body's static friction coefficient");

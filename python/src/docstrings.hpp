@@ -992,7 +992,7 @@ inline constexpr const char* rotd =
     "g : float\n    Gravity, m/s^2, for the values in g.\n\n" TOPPLE_DOC_ROTD_RETURNS;
 
 inline constexpr const char* rock3d =
-    R"(A box or a solid cylinder rocking in three dimensions, as `topple rock --model 3d --json` (no sliding).
+    R"(A box or a solid cylinder rocking in three dimensions, as `topple rock --model 3d --json`.
 
 The box rocks about an edge of its base or pivots on a corner under one or two horizontal components and the
 vertical (topple/solvers/rigid3d.hpp, docs/method.md "Rocking in three dimensions"): impacts perfectly plastic and
@@ -1032,6 +1032,13 @@ simultaneous_contact : float, optional
     A box: at a touch-down, the base corners within this fraction of the body's size (its largest distance from the
     centre of mass to a corner; dimensionless) of the ground land with it as one impact, in [0, 0.01]; None: 1e-5
     (the CLI's --simultaneous-contact); 0: strictly successive impacts. Refused for a cylinder (its base lands flat).
+mu : float, optional
+    A box: the static friction coefficient mu_s (>= 0; the CLI's --mu; docs/method.md "Sliding in three
+    dimensions"): the base sticks while |a_h| <= mu_s (g + a_z) and slides flat otherwise. None (the default): no
+    sliding, the engine as before. Refused for a cylinder (its rim engine rolls without slip). A run that reaches
+    slide-rock stops there with a warning (summary "slide_rock_time_s").
+mu_k : float, optional
+    A box: the kinetic friction coefficient, 0 <= mu_k <= mu (the CLI's --mu-k); None: mu. Needs mu.
 max_run_out_s : float
     Longest integration after the record on still ground, s.
 history : bool

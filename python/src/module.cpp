@@ -474,7 +474,8 @@ nb::dict run_rock3d(const GroundMotion& first, const GroundMotion* second, std::
                     std::optional<double> depth_m, double height_m, std::optional<double> diameter_m,
                     const std::vector<double>& azimuths_deg, std::optional<double> bearing_deg,
                     const GroundMotion* vertical, const std::variant<double, std::string>& e, double g_m_s2,
-                    double rel_tol, std::optional<double> simultaneous_contact, double max_run_out_s, bool history) {
+                    double rel_tol, std::optional<double> simultaneous_contact, double max_run_out_s, bool history,
+                    std::optional<double> mu, std::optional<double> mu_k) {
   const auto naming = [](auto f) {
     return with_field_names({{"bearing", "bearing_deg"},
                              {"depth", "depth_m"},
@@ -486,7 +487,9 @@ nb::dict run_rock3d(const GroundMotion& first, const GroundMotion* second, std::
                              {"g", "g"},
                              {"rel_tol", "rel_tol"},
                              {"simultaneous_contact", "simultaneous_contact"},
-                             {"max_run_out_s", "max_run_out_s"}},
+                             {"max_run_out_s", "max_run_out_s"},
+                             {"mu_s", "mu"},
+                             {"mu_k", "mu_k"}},
                             f);
   };
   // The body: a box (width_m, depth_m, height_m) or a solid cylinder (diameter_m, height_m), as the CLI's --shape
@@ -526,6 +529,14 @@ nb::dict run_rock3d(const GroundMotion& first, const GroundMotion* second, std::
   options.rel_tol = rocking.rel_tol;
   options.max_run_out_s = rocking.max_run_out_s;
   if (simultaneous_contact) options.simultaneous_contact = *simultaneous_contact;  // checked by rock3d, [0, 0.01]
+  if (cylinder && (mu || mu_k)) {  // as the CLI's --mu/--mu-k with --shape cylinder
+    throw parameter_error(mu ? "mu" : "mu_k", "the cylinder's rim engine (rigid3d_disc.hpp) rolls without slip: "
+                                              "sliding in three dimensions is a box's");
+  }
+  // Coulomb friction (rigid3d.hpp, Rigid3DOptions::mu_s, mu_k): absent, the no-slip engine; checked by rock3d
+  // ("mu_s" named as mu, "mu_k" as mu_k).
+  options.mu_s = mu;
+  options.mu_k = mu_k;
   options.record_history = history;
   Rigid3DResult r;
   if (second != nullptr) {
@@ -1232,7 +1243,7 @@ nb::dict fragility_dict(nb::handle motions, nb::handle levels, const std::string
   if (body) {
     spec.overturning =
         OverturnFailure{*body, make_rocking_options(e, rock_mu, g_m_s2, method, rel_tol, rk4_substeps, max_run_out_s),
-                        std::nullopt, std::nullopt};  // Housner's rocking: no coupled or 3-D body (fragility.hpp)
+                        std::nullopt, std::nullopt, std::nullopt};  // Housner's rocking: no coupled or 3-D body (fragility.hpp)
   }
   spec.threads = threads;
   const FragilityResult result = with_field_names({{"bearing", "bearing_deg"}, {"slope", "slope_deg"}}, [&] {
@@ -1778,7 +1789,7 @@ void bind_slide_rock(nb::module_& m) {
         "azimuths_deg"_a = std::vector<double>{90.0, 0.0}, "bearing_deg"_a = nb::none(), "vertical"_a = nb::none(),
         "e"_a = "housner", "g"_a = kStandardGravity, "rel_tol"_a = kRigid3DDefaults.rel_tol,
         "simultaneous_contact"_a = nb::none(), "max_run_out_s"_a = kRigid3DDefaults.max_run_out_s,
-        "history"_a = false, doc::rock3d);
+        "history"_a = false, "mu"_a = nb::none(), "mu_k"_a = nb::none(), doc::rock3d);
 }
 
 /// Synthetic motions, intensity measures, the survey and regional inversions.

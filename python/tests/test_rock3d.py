@@ -174,3 +174,29 @@ def test_simultaneous_contact_is_the_impact_laws_limit(cli, tmp_path):
     for bad in (-1e-6, 0.02, math.nan):
         with pytest.raises(topple.InputError, match="simultaneous_contact"):
             topple.rock3d(topple.read(east), topple.read(north), simultaneous_contact=bad, **box)
+
+
+def test_friction_equals_the_cli(cli, station):
+    """mu and mu_k are the CLI's --mu and --mu-k (Rigid3DOptions::mu_s, mu_k): the same JSON, bit for bit; without
+    them the no-slip engine (the summary's sliding keys zero, the solver's mu_s null)."""
+    h1, h2, v = station
+    expected = cli.json("rock", h1, "--h2", h2, "--azimuths", "0,90", "--bearing-deg", "30", *BOX, "--mu", "0.2",
+                        "--mu-k", "0.15")
+    got = topple.rock3d(topple.read(h1), topple.read(h2), width_m=0.2, depth_m=0.3, height_m=0.8,
+                        azimuths_deg=(0.0, 90.0), bearing_deg=30.0, mu=0.2, mu_k=0.15)
+    assert got == without_input(expected)
+    assert got["solver"]["mu_s"] == 0.2 and got["solver"]["mu_k"] == 0.15
+    # mu_s = 0.2 below the box's b/h = 0.25: it slides before it can lift (Shenton 1996), under a PGA of 0.45 g
+    assert got["slide_path_length_m"] > 1e-3
+    dry = topple.rock3d(topple.read(h1), topple.read(h2), width_m=0.2, depth_m=0.3, height_m=0.8,
+                        azimuths_deg=(0.0, 90.0), bearing_deg=30.0)
+    assert dry["solver"]["mu_s"] is None and dry["slide_path_length_m"] == 0.0
+
+
+def test_friction_refusals_are_the_librarys(station):
+    r1 = topple.read(station[0])
+    box = dict(width_m=0.2, depth_m=0.3, height_m=0.8)
+    for kwargs, name in ((dict(box, mu=-0.1), "mu"), (dict(box, mu=0.3, mu_k=0.4), "mu_k"),
+                         (dict(box, mu_k=0.2), "mu"), (dict(diameter_m=0.2, height_m=0.8, mu=0.5), "mu")):
+        with pytest.raises(topple.InputError, match=name):
+            topple.rock3d(r1, **kwargs)

@@ -74,6 +74,14 @@ struct FieldSlots {
   }
 };
 
+/// The sliding result columns of model = "3d" objects with friction (Rigid3DSummary; the names of `topple rock --model
+/// 3d --json`, io::rigid3d_summary_json), in this order. Only a sweep with such an object has them: others keep their
+/// columns.
+constexpr std::array<const char*, 8> kSlide3DColumns{"residual_slide_east_m", "residual_slide_north_m",
+                                                     "max_slide_speed_m_s",   "slide_path_length_m",
+                                                     "friction_energy_j_per_kg", "slip_episodes",
+                                                     "first_slip_time_s",    "slide_rock_time_s"};
+
 /// The coupled model's result columns: kSlideRockFields in order, less those that are object columns (sweep.hpp).
 std::vector<const Field<SlideRockOutcome>*> coupled_fields() {
   std::vector<const Field<SlideRockOutcome>*> fields;
@@ -147,7 +155,9 @@ class Runner {
         rock_(kRockingFields, results),
         rock_sides_(kRockingSideFields, results), rock_3d_(kRigid3DFields, results), coupled_(results), stride_(results.names().size()), set_cases_(std::move(set_cases)),
         orientation_(orientation), governing_azimuth_(results.at("governing_azimuth_deg")),
-        governing_axis_(results.at("governing_axis")) {}
+        governing_axis_(results.at("governing_axis")) {
+    for (std::size_t i = 0; i < kSlide3DColumns.size(); ++i) slide_3d_[i] = results.at(kSlide3DColumns[i]);
+  }
 
   void operator()(const GroundMotion& ground, std::size_t motion_index, std::size_t begin, std::size_t end,
                   std::span<Value> out) const {
@@ -213,11 +223,12 @@ class Runner {
         continue;
       }
       const auto& r = std::get<RockObject>(objects_[o]);
-      if (r.body_3d) {
+      if (r.three_d()) {
         if (!east_north) east_north.emplace(set.projected(90.0), set.projected(0.0));
         const Rigid3DSummary summary = run_3d(r, east_north->first, east_north->second, set.vertical_ptr(),
                                               c.bearing_deg);
         rock_3d_.fill(Rigid3DOutcome{summary}, row);
+        if (r.options.mu) fill_slide_3d(summary, row);  // without friction the cells do not apply: empty
         continue;
       }
       const OrientedBody body = OrientedBody::make(r.body, r.depth_m);
@@ -234,10 +245,33 @@ class Runner {
   /// A three-dimensional object at `bearing_deg` (its +x axis; degrees clockwise from north) under the pair along east
   /// and north and the vertical: the body turned by 90 - bearing degrees counter-clockwise seen from above, as
   /// `topple rock --model 3d --h2 --bearing-deg` turns it (cli/rock_3d.cpp), so that its azimuths are the ground's.
+  /// A cylinder (cylinder_3d) is axisymmetric: the pair along east and north as it is, whatever the bearing
+  /// (cli/rock_3d.cpp likewise). Friction (options.mu, mu_kinetic) goes to Rigid3DOptions::mu_s, mu_k; absent: the
+  /// no-slip engine, as before friction was taken.
   static Rigid3DSummary run_3d(const RockObject& r, const GroundMotion& east, const GroundMotion& north,
                                const GroundMotion* vertical, double bearing_deg) {
+    Rigid3DOptions options = rigid3d_options(r.options);
+    options.mu_s = r.options.mu;
+    options.mu_k = r.mu_kinetic;
+    if (r.cylinder_3d) return rock3d_cylinder(east, &north, vertical, *r.cylinder_3d, options).summary;
     const RigidBody3D turned = r.body_3d->rotated_about_vertical(deg_to_rad(90.0 - bearing_deg));
-    return rock3d(east, &north, vertical, turned, rigid3d_options(r.options)).summary;
+    return rock3d(east, &north, vertical, turned, options).summary;
+  }
+
+  /// The sliding columns of a model = "3d" run with friction (kSlide3DColumns).
+  void fill_slide_3d(const Rigid3DSummary& s, Value* row) const {
+    const auto put = [&](std::size_t i, Value v) {
+      if (slide_3d_[i] != kAbsent) row[slide_3d_[i]] = std::move(v);
+    };
+    const auto opt = [](const std::optional<double>& x) { return x ? Value(*x) : Value(); };
+    put(0, s.residual_slide_east_m);
+    put(1, s.residual_slide_north_m);
+    put(2, s.max_slide_speed_m_s);
+    put(3, s.slide_path_length_m);
+    put(4, s.friction_energy_j_per_kg);
+    put(5, static_cast<std::int64_t>(s.slip_episodes));
+    put(6, opt(s.first_slip_time_s));
+    put(7, opt(s.slide_rock_time_s));
   }
 
   static bool batchable(const SlideObject& first, const ObjectSpec& next) {
@@ -259,6 +293,7 @@ class Runner {
   OrientationOptions orientation_;
   std::size_t governing_azimuth_ = kAbsent;
   std::size_t governing_axis_ = kAbsent;
+  std::array<std::size_t, 8> slide_3d_{};  ///< where kSlide3DColumns go (kAbsent: not a column)
 };
 
 std::string_view polarity_name(bool inverse) { return inverse ? "inverse" : "normal"; }
@@ -331,6 +366,7 @@ struct SweepKinds {
   bool any_rocking = false;  // rocking objects (Housner's model)
   bool any_coupled = false;  // coupled slide-rock objects
   bool any_3d = false;       // three-dimensional objects (model "3d")
+  bool any_3d_mu = false;    // three-dimensional objects with friction (mu)
 };
 
 SweepKinds kinds_of(const SweepSpec& spec) {
@@ -340,8 +376,9 @@ SweepKinds kinds_of(const SweepSpec& spec) {
     if (const auto* r = std::get_if<RockObject>(&o)) {
       k.any_rock = true;
       k.any_coupled = k.any_coupled || r->coupled;
-      k.any_3d = k.any_3d || r->body_3d.has_value();
-      k.any_rocking = k.any_rocking || (!r->coupled && !r->body_3d);
+      k.any_3d = k.any_3d || r->three_d();
+      k.any_3d_mu = k.any_3d_mu || (r->three_d() && r->options.mu.has_value());
+      k.any_rocking = k.any_rocking || (!r->coupled && !r->three_d());
       k.any_rock_mu = k.any_rock_mu || r->options.mu.has_value();
       k.any_block = k.any_block || r->body.shape == RockingBody::Shape::block;
       k.any_cylinder = k.any_cylinder || r->body.shape == RockingBody::Shape::cylinder;
@@ -376,15 +413,29 @@ void check_objects(const SweepSpec& spec, bool any_set) {
         throw parameter_error(name + "." + (e.where().field == "mu_k" ? "mu_kinetic" : e.where().field), e.problem());
       }
     }
-    if (r != nullptr && r->body_3d) {
+    if (r != nullptr && r->three_d()) {
       if (!spec.records.empty() || !spec.pulses.empty()) {
         throw parameter_error(name + ".model", "a three-dimensional object (model = \"3d\") runs under two horizontal "
                                                "components and a vertical: [[motions.set]] only, not single records "
                                                "or pulses");
       }
-      if (r->options.mu) {
-        throw parameter_error(name + ".mu", "the three-dimensional engine does not slide (friction large enough): "
-                                            "leave mu out");
+      if (r->cylinder_3d && (r->options.mu || r->mu_kinetic)) {
+        throw parameter_error(name + (r->options.mu ? ".mu" : ".mu_kinetic"),
+                              "a cylinder's rim engine (rigid3d_disc.hpp) rolls without slip: sliding in three "
+                              "dimensions is a box's or a mesh's; leave mu out");
+      }
+      if (r->mu_kinetic && !r->options.mu) {
+        throw parameter_error(name + ".mu_kinetic", "a kinetic friction coefficient needs the static one (mu)");
+      }
+      if (r->options.mu) {  // the engine's own check (rigid3d.hpp: mu_s >= 0, 0 <= mu_k <= mu_s), before any run
+        const double mu = *r->options.mu;
+        if (!std::isfinite(mu) || mu < 0.0) {
+          throw parameter_error(name + ".mu", fmt::format("static friction must be >= 0 and finite, got {}", mu));
+        }
+        if (r->mu_kinetic && (!std::isfinite(*r->mu_kinetic) || *r->mu_kinetic < 0.0 || *r->mu_kinetic > mu)) {
+          throw parameter_error(name + ".mu_kinetic", fmt::format("kinetic friction must be in [0, mu = {}], got {}",
+                                                                  mu, *r->mu_kinetic));
+        }
       }
       if (r->coupled) throw parameter_error(name + ".model", "an object is coupled or three-dimensional, not both");
     }
@@ -485,7 +536,7 @@ ColumnSet object_columns(const SweepKinds& k) {
   if (k.any_slide) {
     for (const char* c : {"mu_kinetic", "slope_deg", "mode"}) object_cols.add(c);
   }
-  if (k.any_coupled) object_cols.add("mu_kinetic");
+  if (k.any_coupled || k.any_3d_mu) object_cols.add("mu_kinetic");
   if (k.any_rock) {
     object_cols.add("shape");
     if (k.any_block) object_cols.add("width_m");
@@ -538,6 +589,9 @@ ColumnSet result_columns(const SweepKinds& k) {
   }
   if (k.any_3d) {
     for (const auto* f : sweep_fields(kRigid3DFields)) result_cols.add(f->name);
+  }
+  if (k.any_3d_mu) {
+    for (const char* c : kSlide3DColumns) result_cols.add(c);
   }
   return result_cols;
 }
@@ -676,9 +730,11 @@ class MotionCases {
 };
 
 void set_rock_values(const RockObject& r, RowValues& v) {
-  v.set("model", std::string(r.coupled ? "coupled" : r.body_3d ? "3d" : "rock"));
+  v.set("model", std::string(r.coupled ? "coupled" : r.three_d() ? "3d" : "rock"));
   v.set("g_m_s2", r.options.g_m_s2);
-  if (r.coupled) v.set("mu_kinetic", r.mu_kinetic.value_or(r.options.mu.value_or(0.0)));
+  if (r.coupled || (r.three_d() && r.options.mu)) {
+    v.set("mu_kinetic", r.mu_kinetic.value_or(r.options.mu.value_or(0.0)));
+  }
   if (r.options.mu) v.set("mu", *r.options.mu);
   v.set("shape", std::string(shape_name(r.body.shape)));
   if (r.width_m) v.set("width_m", *r.width_m);
@@ -724,6 +780,11 @@ std::string rock_identity(const RockObject& r) {
     const Vec3& c = r.body_3d->centre_of_mass_m;
     identity += fmt::format(" c={},{},{} J=", c[0], c[1], c[2]);
     for (const Vec3& row : r.body_3d->inertia_cm_m2) identity += fmt::format("{},{},{};", row[0], row[1], row[2]);
+  }
+  if (r.cylinder_3d) {  // likewise: the cylinder's rim engine (rigid3d_disc.hpp)
+    const CylinderBody3D& c = *r.cylinder_3d;
+    identity += fmt::format(" 3d cylinder R={} h={} Ja={} Jt={}", c.radius_m, c.centre_height_m, c.inertia_axial_m2,
+                            c.inertia_transverse_m2);
   }
   return identity;
 }

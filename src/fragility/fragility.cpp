@@ -382,10 +382,12 @@ bool overturns(const GroundMotion& m, const OverturnFailure& f) {
 /// A three-dimensional body at `bearing_deg` (its +x axis, degrees clockwise from north) under a pair: the pair along
 /// east and north (eq. M1) and the vertical, the body turned by 90 - bearing degrees counter-clockwise seen from above
 /// (as `topple rock --model 3d --h2 --bearing-deg`), so that its azimuths are the ground's.
+/// A cylinder (cylinder_3d) is axisymmetric: the pair as it is, whatever the bearing.
 bool overturns_3d(const MotionSet& set, const OverturnFailure& f, double bearing_deg) {
   const Rigid3DOptions o = rigid3d_options(f.options);
   const GroundMotion east = set.projected(90.0);
   const GroundMotion north = set.projected(0.0);
+  if (f.cylinder_3d) return rock3d_cylinder(east, &north, set.vertical_ptr(), *f.cylinder_3d, o).summary.overturned;
   const RigidBody3D turned = f.body_3d->rotated_about_vertical((90.0 - bearing_deg) * kPi / 180.0);
   return rock3d(east, &north, set.vertical_ptr(), turned, o).summary.overturned;
 }
@@ -486,7 +488,7 @@ FragilityResult fragility_analysis(const FragilitySpec& spec) {
     throw parameter_error("model", "the coupled model runs single-component motions; pairs rock an oriented body "
                                    "(the rocking model)");
   }
-  if (spec.overturning && spec.overturning->body_3d && (!pairs || spec.overturning->coupled)) {
+  if (spec.overturning && spec.overturning->three_d() && (!pairs || spec.overturning->coupled)) {
     throw parameter_error("model", spec.overturning->coupled
                                        ? "a body is coupled or three-dimensional, not both"
                                        : "the three-dimensional model runs under pairs (two horizontal components "
@@ -540,7 +542,7 @@ FragilityResult fragility_analysis(const FragilitySpec& spec) {
         if (has_slide && o == 0) {
           failed = slide_2d_summary(set.first(), set.second(), *set.azimuths(), spec.sliding->block,
                                     set.vertical_ptr()).max_abs_displacement_m > spec.sliding->threshold_m;
-        } else if (spec.overturning->body_3d) {
+        } else if (spec.overturning->three_d()) {
           failed = overturns_3d(set, *spec.overturning, bearings[i]);
         } else {
           failed = rock_oriented_summary(set, OrientedBody::planar(spec.overturning->body), bearings[i],
@@ -795,7 +797,7 @@ AsRecordedResult as_recorded_analysis(const FragilitySpec& spec) {
                                      "PGA: the scaled fragility)");
   }
   if (spec.motions.empty()) throw parameter_error("motions", "the ensemble has no motion");
-  if (spec.overturning && spec.overturning->body_3d) {
+  if (spec.overturning && spec.overturning->three_d()) {
     throw parameter_error("model", "the three-dimensional model runs under pairs; records as recorded are single "
                                    "components");
   }

@@ -14,6 +14,8 @@
 #include <tbb/task_arena.h>
 
 #include "topple/inversion/matching.hpp"
+#include "topple/solvers/rigid3d.hpp"
+#include "topple/solvers/rigid3d_disc.hpp"
 #include "topple/solvers/rocking.hpp"
 #include "topple/solvers/sliding.hpp"
 #include "inversion/inversion_detail.hpp"
@@ -146,6 +148,21 @@ std::size_t catalogue_outcome(const ObservedObject& object, const DrawnParameter
   }
   const double factor = rocking_plane_factor(object, p);
   const RockingOptions options = inversion_rocking_options(object, p, g);
+  if (object_model(object) == ObjectModel::three_d) {
+    // model = "3d" (a box, a mesh or a cylinder): the three-dimensional engine, not the planar one, with the motion
+    // along the body's +x axis (its bearing); friction_3d: mu_s = the drawn mu. The same categories (kVisibleRockingRad
+    // on the tilt).
+    Rigid3DOptions o = rigid3d_options(options);
+    if (object.friction_3d) o.mu_s = p.mu;
+    const GroundMotion m = motion.scaled(factor);
+    const Rigid3DSummary s =
+        object.body_3d ? rock3d(m, nullptr, nullptr, *object.body_3d, o).summary
+                       : rock3d_cylinder(m, nullptr, nullptr,
+                                         CylinderBody3D::solid(2.0 * object.body.a_m, 2.0 * object.body.h_m), o)
+                             .summary;
+    if (s.overturned) return 0;
+    return s.max_tilt_rad >= kVisibleRockingRad ? 1 : 2;
+  }
   const RockingSummary s = factor == 1.0 ? rock_summary(motion, object.body, options)
                                          : rock_summary(motion.scaled(factor), object.body, options);
   if (s.overturned) return 0;

@@ -21,6 +21,7 @@
 #include "topple/motion/motion_set.hpp"
 #include "topple/solvers/oriented.hpp"
 #include "topple/solvers/rigid3d.hpp"
+#include "topple/solvers/rigid3d_disc.hpp"
 #include "topple/solvers/rocking.hpp"
 #include "topple/motion/rotd.hpp"
 #include "topple/solvers/sliding2d.hpp"
@@ -191,11 +192,22 @@ void observation_match_3c(const ObservedObject& object, const DrawnParameters& p
   const bool three_d = object_model(object) == ObjectModel::three_d;
   std::optional<Rigid3DOptions> options_3d;
   if (three_d) options_3d = rigid3d_options(options);  // rigid3d.hpp: the settings the two engines share
+  // friction_3d = "mu": Coulomb friction mu_s = mu_k = the drawn mu (survey.hpp); absent, the no-slip engine.
+  if (three_d && object.friction_3d) options_3d->mu_s = p.mu;
+  // A cylinder (no mesh, no body_3d): the rim engine's solid cylinder of the planar body's a = d / 2, h = H / 2
+  // (rigid3d_disc.hpp; rocking_body.hpp), axisymmetric: the pair as it is at every bearing angle.
+  std::optional<CylinderBody3D> cylinder_3d;
+  if (three_d && !object.body_3d && object.body.shape == RockingBody::Shape::cylinder) {
+    cylinder_3d = CylinderBody3D::solid(2.0 * object.body.a_m, 2.0 * object.body.h_m);
+  }
   const auto run = [&](double angle_deg) -> Run {
     if (lifted) return {rocking_match(object.outcome, true, 0.0), std::nullopt};  // item 3: as overturned
     if (three_d) {
-      const RigidBody3D turned = object.body_3d->rotated_about_vertical((90.0 - angle_deg) * kDeg);
-      const Rigid3DSummary s = rock3d(minor, &major, &vertical, turned, *options_3d).summary;
+      const Rigid3DSummary s =
+          cylinder_3d ? rock3d_cylinder(minor, &major, &vertical, *cylinder_3d, *options_3d).summary
+                      : rock3d(minor, &major, &vertical,
+                               object.body_3d->rotated_about_vertical((90.0 - angle_deg) * kDeg), *options_3d)
+                            .summary;
       return {rocking_match(object.outcome, s.overturned, s.max_tilt_rad),
               s.overturned ? std::optional<double>(s.overturn_azimuth_deg) : std::nullopt};
     }
@@ -311,6 +323,10 @@ ThreeComponentBounds static_bounds_3c(const Site& site, double rho) {
       case Outcome::rocked:
       case Outcome::overturned: lower(tan_lower, "b/h", hi, hi, amp_text(hi)); break;
       case Outcome::not_rocked:
+        // friction_3d: a base that slides before the resultant leaves it need not rock at any PGA (the friction
+        // force caps the horizontal one at mu N): the bound holds only where mu >= the farthest vertex's d/h (the
+        // resultant leaves the base, in every direction, while it still sticks).
+        if (polygon && o.friction_3d && o.mu.low < polygon->second) break;
         if (polygon) {
           upper(polygon->second, "the farthest base vertex's distance / h", lo, amp_text(lo));
         } else if (oriented.across) {

@@ -160,7 +160,7 @@ std::string toml_value(std::string_view cell) {
 // `support` is not among them: besides a text it may be a flexible support's inline table {freq_hz = ..., ...}.
 const std::set<std::string, std::less<>> kStringKeys{"id",   "description", "shape",  "outcome",  "evidence",
                                                      "name", "notes",       "family", "mesh", "mesh_unit", "model",
-                                                     "intensity_scale", "population"};
+                                                     "intensity_scale", "population", "friction_3d"};
 const std::set<std::string, std::less<>> kLengthKeys{"width", "height", "diameter",         "a",            "h",
                                                      "b1",    "b2",     "slid", "slid_uncertainty", "slid_at_least",
                                                      "depth"};

@@ -333,13 +333,20 @@ void parse_object_model(Reader& named, ObservedObject& o, int components, std::v
     else if (*m == "3d") o.model = ObjectModel::three_d;
     else throw named.error("model", fmt::format("unknown model '{}' (known: slide, rock, coupled, 3d)", *m));
   }
+  // friction_3d (model = "3d"): the engine's base slides with the object's mu (survey.hpp).
+  if (const auto f = named.string("friction_3d")) {
+    if (*f == "mu") o.friction_3d = true;
+    else if (*f != "none") throw named.error("friction_3d", fmt::format("unknown value '{}' (known: none, mu)", *f));
+    if (o.model != ObjectModel::three_d) throw named.error("friction_3d", "friction_3d goes with model = \"3d\"");
+  }
   // The survey's rules for the model (survey.hpp, check_object_model), located at this object's keys.
   for (const ObjectCheck& w : at_object_keys(named, [&] { return check_object_model(o, components); })) {
     warnings.push_back(named.error(w.field, w.problem).what());
   }
   // model = "3d": a box's body in three dimensions (a mesh's was made with its body, mesh_object_body), its +x axis
-  // (the width) along the bearing, as the oriented box's (oriented.hpp).
-  if (o.model == ObjectModel::three_d && !o.body_3d) {
+  // (the width) along the bearing, as the oriented box's (oriented.hpp). A cylinder's is its planar body's solid
+  // cylinder (inversion_3c.cpp: the rim engine, rigid3d_disc.hpp), with no body_3d.
+  if (o.model == ObjectModel::three_d && !o.body_3d && o.body.shape == RockingBody::Shape::block) {
     o.body_3d = std::make_shared<const RigidBody3D>(
         at_object_keys(named, [&] { return RigidBody3D::box(*o.width_m, *o.depth_m, *o.height_m); }));
   }

@@ -27,6 +27,7 @@
 #include "topple/motion/motion_set.hpp"
 #include "topple/solvers/oriented.hpp"
 #include "topple/solvers/rigid3d.hpp"
+#include "topple/solvers/rigid3d_disc.hpp"
 #include "topple/motion/pulses.hpp"
 #include "topple/core/units.hpp"
 
@@ -958,13 +959,18 @@ std::vector<BodyCase> axis_bodies(const Reader& r, const toml::table& o, const s
 /// Which model a rocking object's keys are read for.
 enum class RockModel { rock, coupled, three_d };
 
-/// The keys a three-dimensional object (model = "3d") refuses, with why: it is a box (a block with its depth) or a
-/// body from a mesh, which does not slide and stands on the ground (rigid3d.hpp).
+/// The keys a three-dimensional object (model = "3d") refuses, with why: it is a box (a block with its depth), a
+/// solid cylinder (the rim engine, rigid3d_disc.hpp, which rolls without slip: no mu) or a body from a mesh, which
+/// stands on the ground (rigid3d.hpp).
 void refuse_for_3d(const Reader& r, const toml::table& o, const std::string& prefix, const std::string& shape,
                    bool from_mesh) {
-  if (const toml::node* n = o.get("mu")) {
-    r.fail(n, prefix + "mu", "the three-dimensional engine (model = \"3d\") does not slide (friction large enough): "
-                             "leave mu out");
+  if (!from_mesh && shape == "cylinder") {
+    for (const char* k : {"mu", "mu_kinetic"}) {
+      if (const toml::node* n = o.get(k)) {
+        r.fail(n, prefix + k, "model = \"3d\": a cylinder's rim engine (rigid3d_disc.hpp) rolls without slip; "
+                              "sliding in three dimensions is a box's or a mesh's: leave mu out");
+      }
+    }
   }
   for (const char* k : {"support_freq_hz", "support_freq", "support_damping"}) {
     if (const toml::node* n = o.get(k)) {
@@ -973,11 +979,6 @@ void refuse_for_3d(const Reader& r, const toml::table& o, const std::string& pre
     }
   }
   if (from_mesh) return;
-  if (shape == "cylinder") {
-    r.fail(o.get("shape"), prefix + "shape",
-           "model = \"3d\": a cylinder's circular base (rolling and wobbling on its rim) is not wired into sweeps yet; "
-           "use model = \"rock\" (under [[motions.set]]: the worst of its directions)");
-  }
   if (shape == "general") {
     r.fail(o.get("shape") != nullptr ? o.get("shape") : &o, prefix + "shape",
            "model = \"3d\": a general body (a, h, D or b1, b2, h, inertia) is a section in one vertical plane, "
@@ -1005,7 +1006,7 @@ void read_rock(const Reader& r, const toml::table& o, const std::string& key, do
                                      "mesh_axis_angle_deg", "mesh_face", "mesh_contact_tolerance",
                                      "mesh_contact_tolerance_m", "e", "mu", "support_freq_hz", "support_freq",
                                      "support_damping", "depth", "depth_m"};
-  if (coupled) keys.emplace_back("mu_kinetic");
+  if (coupled || three_d) keys.emplace_back("mu_kinetic");
   r.check_keys(o, key, keys);
   const bool from_mesh = o.get("mesh") != nullptr;
   // A body from a mesh is a general body: its shape may be left out.
@@ -1039,8 +1040,11 @@ void read_rock(const Reader& r, const toml::table& o, const std::string& key, do
     mu_values.emplace_back(std::nullopt);
   }
   std::vector<std::optional<double>> mu_k_values{std::nullopt};
-  if (coupled) {
+  if (coupled || three_d) {
     if (const auto ks = r.numbers(o, "mu_kinetic", prefix + "mu_kinetic")) mu_k_values.assign(ks->begin(), ks->end());
+  }
+  if (three_d && !mus && o.get("mu_kinetic") != nullptr) {
+    r.fail(o.get("mu_kinetic"), prefix + "mu_kinetic", "a kinetic friction coefficient needs the static one (mu)");
   }
   std::vector<BodyCase> bodies;
   if (from_mesh) bodies = mesh_bodies(r, o, prefix, three_d);
@@ -1063,6 +1067,11 @@ void read_rock(const Reader& r, const toml::table& o, const std::string& key, do
               r.fail(o.get(kinetic ? "mu_kinetic" : "mu"), prefix + (kinetic ? "mu_kinetic" : "mu"), err.problem());
             }
           }
+          // model = "3d" with friction: Rigid3DOptions' rule 0 <= mu_k <= mu_s (rigid3d.hpp), at the key's line
+          if (three_d && m && mu_k && (!std::isfinite(*mu_k) || *mu_k < 0.0 || *mu_k > *m)) {
+            r.fail(o.get("mu_kinetic"), prefix + "mu_kinetic",
+                   fmt::format("kinetic friction must be in [0, mu = {}], got {}", *m, *mu_k));
+          }
           RockingOptions options;
           options.g_m_s2 = g;
           options.restitution = e ? RestitutionMode::given : RestitutionMode::housner;
@@ -1077,7 +1086,12 @@ void read_rock(const Reader& r, const toml::table& o, const std::string& key, do
             ro.depth_m = depth;
             if (depth) r.located(o.get("depth") != nullptr ? o.get("depth") : o.get("depth_m"), prefix + "depth",
                                  [&] { return OrientedBody::box(*c.width_m, *depth, *c.height_m); });
-            if (three_d) {  // the box in three dimensions (width along +x, depth along +y), or the mesh's body
+            if (three_d && shape == "cylinder" && !from_mesh) {
+              // the planar cylinder's a = d / 2, h = H / 2 (rocking_body.hpp): the same solid cylinder on its rim
+              ro.cylinder_3d = r.located(o.get("shape"), prefix + "shape", [&] {
+                return CylinderBody3D::solid(2.0 * body.a_m, 2.0 * body.h_m);
+              });
+            } else if (three_d) {  // the box in three dimensions (width along +x, depth along +y), or the mesh's body
               ro.body_3d = c.body_3d ? c.body_3d
                                      : std::optional(r.located(o.get("depth") != nullptr ? o.get("depth")
                                                                                          : o.get("depth_m"),

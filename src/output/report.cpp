@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <tuple>
 
@@ -19,6 +20,8 @@
 #include "topple/inversion/inversion_3c.hpp"
 #include "topple/inversion/matching.hpp"
 #include "topple/region/intensity.hpp"
+#include "topple/solvers/rigid3d.hpp"
+#include "topple/solvers/rigid3d_disc.hpp"
 #include "topple/solvers/rocking.hpp"
 #include "topple/solvers/slide_rock.hpp"
 #include "topple/solvers/sliding.hpp"
@@ -427,20 +430,77 @@ plot::Figure direction_figure(const InversionResult& r, const Site& site) {
   return f;
 }
 
+namespace {
+
+/// The tilt (the angle of the body's z axis from the vertical) of a unit quaternion (w, x, y, z): the z component of
+/// R e_z is 1 - 2 (x^2 + y^2).
+double tilt_of(const Quaternion& q) {
+  const double n2 = q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3];
+  return std::acos(std::clamp(1.0 - 2.0 * (q[1] * q[1] + q[2] * q[2]) / n2, -1.0, 1.0));
+}
+
+/// A model = "3d" object's replay (docs/survey.md, "The report"): the three-dimensional engine as its runs use it
+/// (inversion_3c.cpp, observation_match_3c: the realisation's minor component as the engine's x, the major as its y,
+/// the vertical; amplified, the horizontals through a flexible support; a box or a mesh turned to its bearing from
+/// the major axis, 0 when unknown; a cylinder, the rim engine, as it is; friction_3d: mu_s = the nominal mu), drawn
+/// as the tilt from Rigid3DHistory over the body's smallest static limit (over every direction: a box's narrower
+/// side, a cylinder's atan(R / h)), so that 1 is the first direction in which the centre of mass passes the base.
+void replay_3d(const ObservedObject& obj, const DrawnParameters& nominal, const Realisation3c& real, double scale,
+               double g, const std::string& color, plot::Panel& rocking) {
+  const double amp = nominal.amplification * scale;
+  const GroundMotion major = object_motion(obj, nominal, real.major->scaled(amp));
+  const GroundMotion minor = object_motion(obj, nominal, real.minor->scaled(amp));
+  const GroundMotion vertical = real.vertical->scaled(amp);
+  Rigid3DOptions options = rigid3d_options(inversion_rocking_options(obj, nominal, g));
+  if (obj.friction_3d) options.mu_s = nominal.mu;
+  options.record_history = true;
+  Rigid3DResult res;
+  double limit = INFINITY;
+  if (obj.body_3d) {
+    const double angle = obj.azimuth_deg.value_or(0.0);
+    const RigidBody3D turned = obj.body_3d->rotated_about_vertical(deg_to_rad(90.0 - angle));
+    res = rock3d(minor, &major, &vertical, turned, options);
+    for (int a = 0; a < 360; ++a) limit = std::min(limit, turned.static_tilt_limit_rad(a));
+  } else {  // a cylinder (survey.cpp: model = "3d" is a box, a mesh or a cylinder)
+    const CylinderBody3D cylinder = CylinderBody3D::solid(2.0 * obj.body.a_m, 2.0 * obj.body.h_m);
+    res = rock3d_cylinder(minor, &major, &vertical, cylinder, options);
+    limit = cylinder.static_tilt_limit_rad();
+  }
+  std::vector<double> ratio(res.history.time_s.size());
+  for (std::size_t i = 0; i < ratio.size(); ++i) ratio[i] = tilt_of(res.history.orientation[i]) / limit;
+  const bool observed_fallen = obj.outcome == Outcome::overturned;
+  std::string label = obj.id + " (3-D: tilt / smallest static limit)";
+  if (res.summary.overturned) {
+    label += fmt::format(" (falls toward {:.0f} deg from the major axis{})", res.summary.overturn_azimuth_deg,
+                         observed_fallen ? ", as observed" : " in this one motion; observed standing");
+  }
+  if (!res.summary.overturned && observed_fallen) label += " (stands in this one motion; observed overturned)";
+  rocking.series.push_back({label, res.history.time_s, ratio, "lines", color, 1.6});
+}
+
+}  // namespace
+
 plot::Figure best_cell_figure(const InversionResult& r, const Site& site, const InversionSettings& settings) {
   const double pga = r.pga_g[r.best_cell / r.freq_hz.size()];
   const double freq = r.freq_hz[r.best_cell % r.freq_hz.size()];
   InversionSettings one = settings;
   one.motions_per_cell = 1;
   // Three components: the major-axis component of the family's first realisation, each object as if across it (an
-  // illustration; the runs use the projection on each object's bearing and the vertical, inversion_3c.hpp).
+  // illustration; the runs use the projection on each object's bearing and the vertical, inversion_3c.hpp); a
+  // model = "3d" object under the whole realisation (replay_3d).
   const bool three = settings.components == 3;
   const GroundMotion motion = three ? family_realisation_3c(one, freq, 0).major->scaled(pga * settings.g_m_s2)
                                     : family_motions(one, freq).front().scaled(pga * settings.g_m_s2);
   plot::Figure f;
   f.title = fmt::format("Maximum-likelihood cell (PGA {:.3g} g{}, {:.3g} Hz): {}, each object's response", pga,
                         three ? " RotD50" : "", freq,
-                        three ? "the major-axis component of one motion of the family, each object across it"
+                        three ? std::any_of(site.objects.begin(), site.objects.end(),
+                                            [](const ObservedObject& o) {
+                                              return object_model(o) == ObjectModel::three_d;
+                                            })
+                                    ? "the major-axis component of one motion of the family, each planar object "
+                                      "across it, 3-D objects under all three components"
+                                    : "the major-axis component of one motion of the family, each object across it"
                               : "one motion of the family");
   f.xlabel = "time (s)";
   plot::Panel ground{"ground acceleration (g)", {}, {}, {}, false, false};
@@ -451,6 +511,9 @@ plot::Figure best_cell_figure(const InversionResult& r, const Site& site, const 
   }
   ground.series.push_back(gs);
   plot::Panel rocking{"rotation theta / alpha", {}, {{1.0, "CM over pivot"}, {-1.0, ""}}, {}, false, false};
+  // model = "3d" objects (three components): the whole realisation, as their runs take it (inversion_3c.cpp).
+  std::optional<Realisation3c> real;
+  if (three) real = family_realisation_3c(one, freq, 0);
   plot::Panel sliding{"sliding displacement (m)", {}, {}, {}, false, false};
   for (std::size_t o = 0; o < site.objects.size(); ++o) {
     const ObservedObject& obj = site.objects[o];
@@ -461,7 +524,9 @@ plot::Figure best_cell_figure(const InversionResult& r, const Site& site, const 
     const GroundMotion seen = object_motion(obj, nominal, motion);  // through a flexible support, if any
     const double factor = rocking_plane_factor(obj, nominal);
     const ObjectModel model = object_model(obj);
-    if (model == ObjectModel::coupled) {
+    if (model == ObjectModel::three_d && real) {
+      replay_3d(obj, nominal, *real, pga * settings.g_m_s2, settings.g_m_s2, color, rocking);
+    } else if (model == ObjectModel::coupled) {
       // The coupled body (survey.hpp, object_model): its tilt over its side's alpha and its base's slide.
       SlideRockOptions opt = inversion_slide_rock_options(obj, nominal, settings.g_m_s2);
       opt.record_history = true;

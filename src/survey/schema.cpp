@@ -262,7 +262,16 @@ std::vector<SurveyKey> make_schema() {
   {
     auto& k = add(key("object", "model", K::choice,
                       "the model it is simulated with (absent: chosen by the rule of docs/survey.md)", "\"rock\""));
-    k.choices = {"slide", "rock", "coupled", "3d"};  // "3d": three components, a box or a mesh (docs/survey.md)
+    k.choices = {"slide", "rock", "coupled", "3d"};  // "3d": three components, a box, a cylinder or a mesh (docs/survey.md)
+  }
+  {
+    auto& k = add(key("object", "friction_3d", K::choice,
+                      "model = \"3d\", a box or a mesh: \"mu\" lets its base slide with the object's mu (mu_s = mu_k), "
+                      "\"none\" (default) does not",
+                      "\"mu\""));
+    k.choices = {"none", "mu"};
+    k.default_text = "none";
+    k.conditions.push_back({"model", {"3d"}, "friction_3d goes with model = \"3d\""});
   }
   {
     auto& k = add(key("object", "slid", K::length, "outcome slid or slid_stood: how far it slid", "\"3cm\""));

@@ -105,7 +105,8 @@ std::vector<ObjectCheck> check_object_model(const ObservedObject& o, int compone
   }
   if (o.model == ObjectModel::three_d) {
     // The three-dimensional engine (rigid3d.hpp): two horizontal components and the vertical at a bearing, a
-    // polygonal base (a box, or a mesh's support polygon), no sliding (docs/survey.md, "Three-dimensional objects").
+    // polygonal base (a box, or a mesh's support polygon), or a solid cylinder's circular base (rigid3d_disc.hpp, no
+    // bearing needed), no sliding (docs/survey.md, "Three-dimensional objects").
     if (components != 3) {
       throw parameter_error("model", "model = \"3d\" needs a three-component survey ([inversion] components = 3): "
                                      "the body responds to both horizontal components and the vertical");
@@ -115,16 +116,16 @@ std::vector<ObjectCheck> check_object_model(const ObservedObject& o, int compone
                                                  "model \"slide\"", outcome_name(o.outcome)));
     }
     if (o.mesh_file.empty()) {
-      if (o.body.shape == RockingBody::Shape::cylinder) {
-        throw parameter_error("shape", "model = \"3d\": a cylinder's circular base (rolling and wobbling on its rim) "
-                                       "is not wired into the survey yet; leave model out (the oriented model takes "
-                                       "a cylinder in its worst direction)");
-      }
-      if (o.body.shape != RockingBody::Shape::block) {
+      if (o.body.shape != RockingBody::Shape::block && o.body.shape != RockingBody::Shape::cylinder) {
         throw parameter_error("shape", "model = \"3d\": a general body is a section in one vertical plane, without a "
-                                       "base in three dimensions; give a block with its depth, or a mesh");
+                                       "base in three dimensions; give a block with its depth, a cylinder, or a "
+                                       "mesh");
       }
-      if (!o.depth_m) {
+      if (o.friction_3d && o.body.shape == RockingBody::Shape::cylinder) {
+        throw parameter_error("friction_3d", "model = \"3d\": a cylinder's rim engine (rigid3d_disc.hpp) rolls "
+                                             "without slip; sliding in three dimensions is a box's or a mesh's");
+      }
+      if (!o.depth_m && o.body.shape == RockingBody::Shape::block) {
         throw parameter_error("depth", "model = \"3d\" needs the block's depth (its extent along bearing + 90 deg), "
                                        "a length with a unit");
       }

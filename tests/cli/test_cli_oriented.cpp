@@ -200,6 +200,12 @@ TEST_F(CliOriented, Model3dSweepRowsAreSingleRunsAndFragilityRefusals) {
   const std::string box = " --model 3d --shape block --width 15cm --depth 30cm --height 60cm --im-range 0.1:1:3";
   for (const auto& [args, option] :
        {std::pair{"fragility --synth 2 --components 2" + box, std::string("")},
+        std::pair{std::string("fragility --synth 2 --components 2 --model 3d --shape cylinder --diameter 20cm "
+                              "--height 80cm --im-range 0.1:1:3"),
+                  std::string("")},
+        std::pair{std::string("fragility --synth 2 --components 2 --model 3d --shape cylinder --diameter 20cm "
+                              "--depth 20cm --height 80cm --im-range 0.1:1:3"),
+                  std::string("--depth")},
         std::pair{"fragility --synth 2" + box, std::string("--model")},
         std::pair{std::string("fragility --synth 2 --components 2 --model 3d --shape block --width 15cm "
                               "--height 60cm --im-range 0.1:1:3"),
@@ -216,6 +222,48 @@ TEST_F(CliOriented, Model3dSweepRowsAreSingleRunsAndFragilityRefusals) {
       EXPECT_NE(r.err.find(option), std::string::npos) << r.err;
     }
   }
+}
+
+// model = "3d" for a cylinder and for a box with friction, in a sweep file: each row is `topple rock --model 3d --h2`
+// of the same station (a cylinder: --shape cylinder, no bearing; the box: --bearing-deg with --mu and --mu-k), the
+// same numbers exactly, sliding columns included.
+TEST_F(CliOriented, Model3dCylinderAndFrictionSweepRowsAreSingleRuns) {
+  const test::Table t = test::run_sweep(
+      dir.path(), "[motions]\nbearing_deg = 37\npolarity = [\"normal\", \"inverse\"]\n" + test::station_set_toml(true) +
+                      "[[object]]\nmodel = \"3d\"\nshape = \"cylinder\"\ndiameter = \"20cm\"\nheight = \"80cm\"\n"
+                      "[[object]]\nmodel = \"3d\"\nshape = \"block\"\nwidth = \"20cm\"\ndepth = \"30cm\"\n"
+                      "height = \"80cm\"\nmu = 0.15\nmu_kinetic = 0.12\n");
+  ASSERT_EQ(t.rows.size(), 4U);
+  const std::string set = "rock " + h1 + " --h2 " + h2 + " --vertical " + v + " --azimuths 0,90";
+  int moved = 0;
+  for (std::size_t row = 0; row < t.rows.size(); ++row) {
+    SCOPED_TRACE(fmt::format("run {}", row));
+    EXPECT_EQ(t.at(row, "model"), "3d");
+    const bool inverse = t.at(row, "polarity") == "inverse";
+    const bool cylinder = t.at(row, "shape") == "cylinder";
+    const auto single = test::run_json(
+        set + (inverse ? " --invert" : "") +
+        (cylinder ? std::string(" --model 3d --shape cylinder --diameter 20cm --height 80cm --json")
+                  : std::string(" --bearing-deg 37 --model 3d --shape block --width 20cm --depth 30cm --height 80cm "
+                                "--mu 0.15 --mu-k 0.12 --json")));
+    for (const char* key : {"overturned", "overturn_time_s", "overturn_azimuth_deg", "max_tilt_rad",
+                            "max_tilt_azimuth_deg", "max_tilt_over_limit", "impacts", "uplifts", "end_time_s",
+                            "end_mode"}) {
+      test::expect_same(t.at(row, key), single.at(key), key);
+    }
+    if (!cylinder) {
+      for (const char* key : {"residual_slide_east_m", "residual_slide_north_m", "max_slide_speed_m_s",
+                              "slide_path_length_m", "friction_energy_j_per_kg", "slip_episodes",
+                              "first_slip_time_s", "slide_rock_time_s"}) {
+        test::expect_same(t.at(row, key), single.at(key), key);
+      }
+      moved += single.at("slide_path_length_m").get<double>() > 0.0;
+    } else {
+      moved += single.at("uplifts").get<int>() > 0;
+      EXPECT_EQ(t.at(row, "residual_slide_east_m"), "");  // a cylinder's row leaves the sliding cells empty
+    }
+  }
+  EXPECT_GE(moved, 2);  // the station moves the objects (the comparison is not of rests)
 }
 
 TEST_F(CliOriented, SweepOfSlidersAndRockersUnderASetEqualsSingleRuns) {

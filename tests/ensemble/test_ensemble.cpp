@@ -29,6 +29,7 @@
 #include "topple/motion/motion_set.hpp"
 #include "topple/motion/pulses.hpp"
 #include "topple/solvers/rigid3d.hpp"
+#include "topple/solvers/rigid3d_disc.hpp"
 #include "topple/solvers/rocking.hpp"
 #include "topple/solvers/sliding.hpp"
 #include "topple/solvers/summary_fields.hpp"
@@ -319,14 +320,195 @@ TEST(EnsembleRun, ThreeDimensionalBoxInItsPlaneOfSymmetryGivesThePlanarVerdicts)
     EXPECT_EQ(e.where().field, "object[1].model");
   }
   spec.records.clear();
+  // Friction (Rigid3DOptions::mu_s, mu_k) is taken; out of the engine's range it is refused before any run.
+  three_d.options.mu = 0.5;
+  spec.objects = {three_d};
+  EXPECT_NO_THROW((void)make_plan(spec));
+  three_d.mu_kinetic = 0.6;
+  spec.objects = {three_d};
+  try {
+    (void)make_plan(spec);
+    FAIL() << "mu_kinetic above mu was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().field, "object[1].mu_kinetic");
+  }
+  three_d.options.mu = std::nullopt;
+  three_d.mu_kinetic = 0.3;
+  spec.objects = {three_d};
+  try {
+    (void)make_plan(spec);
+    FAIL() << "mu_kinetic without mu was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().field, "object[1].mu_kinetic");
+  }
+}
+
+/// The cell as a number (bool, integer or double), NaN if empty.
+double number_or_nan(const Value& v) {
+  if (std::holds_alternative<std::monostate>(v)) return std::nan("");
+  if (const auto* b = std::get_if<bool>(&v)) return *b ? 1.0 : 0.0;
+  if (const auto* i = std::get_if<std::int64_t>(&v)) return static_cast<double>(*i);
+  return std::get<double>(v);
+}
+
+// A solid cylinder under model "3d" (the rim engine, rigid3d_disc.hpp) under a set whose second component is zero:
+// the motion stays in the vertical plane of the input, where the rim engine is the planar cylinder (rocking.hpp;
+// test_rigid3d_disc: 1e-6 at rel_tol 1e-12). Here both at the default rel_tol 1e-8: the verdict equal, the max tilt
+// and tilt over the limit within 1e-5 of the planar rock_summary's on the same component (and of the planar
+// model = "rock" row beside it, the worst of its directions). Axisymmetric: no bearing needed, and at two bearings
+// the rows are one run.
+TEST(EnsembleRun, ThreeDimensionalCylinderUnderOneComponentIsThePlanarCylinder) {
+  SweepSpec spec;
+  const auto rec = noise_record(5);
+  const std::vector<double> zero(rec->size(), 0.0);
+  const GroundMotion quiet = GroundMotion::uniform(zero, rec->dt_s(), rec->start_time_s());
+  spec.record_sets.push_back(
+      {"rec+zero", std::make_shared<const MotionSet>(MotionSet::make(*rec, &quiet, ComponentAzimuths{90.0, 0.0}))});
+  spec.scales = {{ScaleSpec::Kind::factor, 0.4}, {ScaleSpec::Kind::factor, 0.8}, {ScaleSpec::Kind::factor, 1.6}};
+  spec.inverse = {false, true};
+  RockObject planar{.body = RockingBody::cylinder(0.3, 1.0), .options = {}, .width_m = std::nullopt,
+                    .height_m = 1.0, .diameter_m = 0.3};
+  RockObject three_d = planar;
+  three_d.cylinder_3d = CylinderBody3D::solid(0.3, 1.0);
+  spec.objects = {planar, three_d};
+  const Plan plan = make_plan(spec);  // no bearing: cylinders need none
+  const ResultTable t = run_in_memory(plan);
+  ASSERT_EQ(t.rows.size(), 12U);
+  const auto cell = [&](std::size_t run, const std::string& name) { return t.rows[run][column(t, name)]; };
+  int fell = 0, stood = 0;
+  for (std::size_t run = 0; run < t.rows.size(); run += 2) {
+    SCOPED_TRACE("run " + std::to_string(run));
+    const std::size_t r3 = run + 1;
+    EXPECT_EQ(std::get<std::string>(cell(r3, "model")), "3d");
+    EXPECT_EQ(std::get<std::string>(cell(r3, "shape")), "cylinder");
+    const double factor = number(cell(run, "scale_factor"));
+    const bool inverse = std::get<std::string>(cell(run, "polarity")) == "inverse";
+    const RockingSummary p = rock_summary(rec->scaled(inverse ? -factor : factor), planar.body, RockingOptions{});
+    EXPECT_EQ(std::get<bool>(cell(r3, "overturned")), p.overturned);
+    EXPECT_EQ(std::get<bool>(cell(run, "overturned")), p.overturned);
+    EXPECT_NEAR(number(cell(r3, "max_tilt_rad")), p.max_abs_rotation_rad, 1e-5);
+    EXPECT_NEAR(number(cell(r3, "max_tilt_over_limit")), p.max_rotation_over_alpha, 1e-5);
+    EXPECT_NEAR(number(cell(r3, "max_tilt_rad")), number(cell(run, "max_abs_rotation_rad")), 1e-5);
+    EXPECT_EQ(number(cell(r3, "impacts")), static_cast<double>(p.impacts));
+    if (p.overturned) {
+      ++fell;
+      EXPECT_NEAR(number(cell(r3, "overturn_time_s")), *p.overturn_time_s, 1e-5);
+      // along the input: east (90) or west (270)
+      const double az = number(cell(r3, "overturn_azimuth_deg"));
+      EXPECT_LT(std::min(std::abs(az - 90.0), std::abs(az - 270.0)), 1e-3);
+    } else {
+      ++stood;
+    }
+  }
+  EXPECT_GT(fell, 0);
+  EXPECT_GT(stood, 0);
+  // At two bearings the cylinder's rows are the same run (its bearing does not enter).
+  spec.bearings_deg = {0.0, 37.0};
+  spec.objects = {three_d};
+  const ResultTable tb = run_in_memory(make_plan(spec));
+  ASSERT_EQ(tb.rows.size(), 12U);
+  const std::size_t tilt = column(tb, "max_tilt_rad");
+  for (std::size_t run = 0; run < 6; ++run) EXPECT_EQ(number(tb.rows[run][tilt]), number(tb.rows[run + 6][tilt]));
+  // A cylinder rolls without slip on its rim: friction is refused by name.
   three_d.options.mu = 0.5;
   spec.objects = {three_d};
   try {
     (void)make_plan(spec);
-    FAIL() << "a 3-D object with a friction coefficient was accepted";
+    FAIL() << "a 3-D cylinder with friction was accepted";
   } catch (const InputError& e) {
     EXPECT_EQ(e.where().field, "object[1].mu");
   }
+}
+
+// Two horizontal components: the cylinder on its rim (model "3d") against the planar cylinder in the worst of its
+// directions (model "rock"). Each 3-D row is rock3d_cylinder's own run on the pair along east and north (called here
+// directly, not through the sweep), and at some scale the two models' verdicts differ (the 3-D body wobbles and rolls
+// round its rim, which no plane of rocking has).
+TEST(EnsembleRun, ThreeDimensionalCylinderUnderTwoComponentsIsTheRimEngine) {
+  SweepSpec spec;
+  const auto h1 = noise_record(11), h2 = noise_record(12);
+  const auto set = std::make_shared<const MotionSet>(MotionSet::make(*h1, h2.get(), ComponentAzimuths{30.0, 120.0}));
+  spec.record_sets.push_back({"pair", set});
+  spec.scales.clear();
+  for (const double f : {0.5, 0.6, 0.7, 0.8, 0.9, 1.0, 1.1, 1.2, 1.4}) spec.scales.push_back({ScaleSpec::Kind::factor, f});
+  RockObject planar{.body = RockingBody::cylinder(0.3, 1.0), .options = {}, .width_m = std::nullopt,
+                    .height_m = 1.0, .diameter_m = 0.3};
+  RockObject three_d = planar;
+  three_d.cylinder_3d = CylinderBody3D::solid(0.3, 1.0);
+  spec.objects = {planar, three_d};
+  const ResultTable t = run_in_memory(make_plan(spec));
+  ASSERT_EQ(t.rows.size(), 18U);
+  const auto cell = [&](std::size_t run, const std::string& name) { return t.rows[run][column(t, name)]; };
+  int differ = 0;
+  for (std::size_t run = 0; run < t.rows.size(); run += 2) {
+    const double factor = number(cell(run, "scale_factor"));
+    SCOPED_TRACE("factor " + std::to_string(factor));
+    const GroundMotion a = h1->scaled(factor), b = h2->scaled(factor);
+    const MotionSet scaled = MotionSet::make(a, &b, ComponentAzimuths{30.0, 120.0});
+    const GroundMotion east = scaled.projected(90.0), north = scaled.projected(0.0);
+    const Rigid3DSummary s = rock3d_cylinder(east, &north, nullptr, *three_d.cylinder_3d, Rigid3DOptions{}).summary;
+    const std::size_t r3 = run + 1;
+    EXPECT_EQ(std::get<bool>(cell(r3, "overturned")), s.overturned);
+    EXPECT_EQ(number(cell(r3, "max_tilt_rad")), s.max_tilt_rad);
+    EXPECT_EQ(number(cell(r3, "impacts")), static_cast<double>(s.impacts));
+    if (s.overturned) {
+      EXPECT_EQ(number(cell(r3, "overturn_azimuth_deg")), s.overturn_azimuth_deg);
+    }
+    const bool planar_fell = std::get<bool>(cell(run, "overturned"));
+    std::printf("factor %.2f: planar worst direction %s (max %.4f rad), 3-D %s (max tilt %.4f rad)\n", factor,
+                planar_fell ? "fell" : "stood", number_or_nan(cell(run, "max_abs_rotation_rad")),
+                s.overturned ? "fell" : "stood", s.max_tilt_rad);
+    differ += planar_fell != s.overturned ? 1 : 0;
+  }
+  EXPECT_GT(differ, 0);
+}
+
+// Friction under model "3d" (Rigid3DOptions::mu_s, mu_k): a box with mu and mu_kinetic is rock3d's run with those
+// (called directly), with its sliding columns; without mu the row is the no-slip engine's and the sliding columns
+// are not there (a sweep without friction keeps its columns).
+TEST(EnsembleRun, ThreeDimensionalFrictionIsPassedToTheEngine) {
+  SweepSpec spec;
+  const auto h1 = noise_record(21), h2 = noise_record(22);
+  const auto set = std::make_shared<const MotionSet>(MotionSet::make(*h1, h2.get(), ComponentAzimuths{0.0, 90.0}));
+  spec.record_sets.push_back({"pair", set});
+  spec.bearings_deg = {20.0};
+  RockObject box{.body = RockingBody::block(0.4, 0.8), .options = {}, .width_m = 0.4, .height_m = 0.8,
+                 .diameter_m = std::nullopt};
+  box.depth_m = 0.5;
+  box.body_3d = RigidBody3D::box(0.4, 0.5, 0.8);
+  spec.objects = {box};
+  const std::vector<std::string> dry = make_plan(spec).columns();
+  for (const char* c : {"residual_slide_east_m", "slide_path_length_m", "slide_rock_time_s", "mu_kinetic"}) {
+    EXPECT_EQ(std::count(dry.begin(), dry.end(), c), 0) << c;
+  }
+  RockObject slippery = box;
+  slippery.options.mu = 0.25;
+  slippery.mu_kinetic = 0.2;
+  spec.objects = {box, slippery};
+  const ResultTable t = run_in_memory(make_plan(spec));
+  ASSERT_EQ(t.rows.size(), 2U);
+  const auto cell = [&](std::size_t run, const std::string& name) { return t.rows[run][column(t, name)]; };
+  const GroundMotion east = set->projected(90.0), north = set->projected(0.0);
+  const RigidBody3D turned = box.body_3d->rotated_about_vertical((90.0 - 20.0) * kPi / 180.0);
+  const Rigid3DSummary no_slip = rock3d(east, &north, nullptr, turned, Rigid3DOptions{}).summary;
+  Rigid3DOptions o;
+  o.mu_s = 0.25;
+  o.mu_k = 0.2;
+  const Rigid3DSummary slid = rock3d(east, &north, nullptr, turned, o).summary;
+  EXPECT_EQ(number(cell(0, "max_tilt_rad")), no_slip.max_tilt_rad);
+  EXPECT_EQ(std::get<bool>(cell(0, "overturned")), no_slip.overturned);
+  EXPECT_TRUE(std::holds_alternative<std::monostate>(cell(0, "residual_slide_east_m")));  // no friction: n/a
+  EXPECT_EQ(number(cell(1, "mu")), 0.25);
+  EXPECT_EQ(number(cell(1, "mu_kinetic")), 0.2);
+  EXPECT_EQ(number(cell(1, "max_tilt_rad")), slid.max_tilt_rad);
+  EXPECT_EQ(number(cell(1, "residual_slide_east_m")), slid.residual_slide_east_m);
+  EXPECT_EQ(number(cell(1, "residual_slide_north_m")), slid.residual_slide_north_m);
+  EXPECT_EQ(number(cell(1, "slide_path_length_m")), slid.slide_path_length_m);
+  EXPECT_EQ(number(cell(1, "slip_episodes")), static_cast<double>(slid.slip_episodes));
+  EXPECT_GT(slid.slide_path_length_m, 1e-3);  // a PGA of 0.4 g over mu_s = 0.25: it slides
+  std::printf("box 0.4 x 0.5 x 0.8 m, mu 0.25/0.2: path %.4g m, residual (%.4g, %.4g) m, max tilt %.4g rad%s\n",
+              slid.slide_path_length_m, slid.residual_slide_east_m, slid.residual_slide_north_m, slid.max_tilt_rad,
+              slid.slide_rock_time_s ? " (stopped at slide-rock)" : "");
 }
 
 TEST(EnsemblePlan, DefaultChunkSizeDependsOnRunsOnly) {

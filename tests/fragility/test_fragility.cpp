@@ -16,6 +16,7 @@
 #include "topple/motion/motion_set.hpp"
 #include "topple/solvers/oriented.hpp"
 #include "topple/solvers/rigid3d.hpp"
+#include "topple/solvers/rigid3d_disc.hpp"
 #include "topple/motion/rotd.hpp"
 #include "topple/motion/synthesis.hpp"
 
@@ -171,7 +172,7 @@ TEST(FragilityAnalysis, CountsEqualSingleRuns) {
   spec.im = IntensityMeasure::pga;
   spec.levels_si = log_grid(0.05 * kStandardGravity, 1.5 * kStandardGravity, 6);
   spec.sliding = SlidingFailure{SlidingBlock::make(0.2), 0.02};
-  spec.overturning = OverturnFailure{RockingBody::block(0.1, 0.4), RockingOptions{}, std::nullopt, std::nullopt};
+  spec.overturning = OverturnFailure{RockingBody::block(0.1, 0.4), RockingOptions{}, std::nullopt, std::nullopt, std::nullopt};
   const FragilityResult r = fragility_analysis(spec);
   ASSERT_EQ(r.curves.size(), 2u);
   EXPECT_EQ(r.runs, 4u * 6u * 2u);
@@ -224,7 +225,7 @@ TEST(FragilityAnalysis, PairsWithAZeroSecondComponentAtTheRecordsAzimuthAreThe1d
   one.motions = motions;
   one.levels_si = log_grid(0.1 * kStandardGravity, 1.2 * kStandardGravity, 8);
   one.sliding = SlidingFailure{SlidingBlock::make(0.2), 0.02};
-  one.overturning = OverturnFailure{RockingBody::block(0.15, 0.6), RockingOptions{}, std::nullopt, std::nullopt};
+  one.overturning = OverturnFailure{RockingBody::block(0.15, 0.6), RockingOptions{}, std::nullopt, std::nullopt, std::nullopt};
   const FragilityResult r1 = fragility_analysis(one);
   FragilitySpec two = one;
   two.motions.clear();
@@ -272,12 +273,12 @@ TEST(FragilityAnalysis, AThreeDimensionalBoxUnderCollinearPairsIsThePlanarBlockO
   planar.levels_si = log_grid(0.1 * kStandardGravity, 1.2 * kStandardGravity, 8);
   planar.bearing_deg = 90.0;
   FragilitySpec box = planar;
-  box.overturning = OverturnFailure{RockingBody::block(0.15, 0.6), RockingOptions{}, std::nullopt, std::nullopt};
+  box.overturning = OverturnFailure{RockingBody::block(0.15, 0.6), RockingOptions{}, std::nullopt, std::nullopt, std::nullopt};
   box.overturning->body_3d = RigidBody3D::box(0.15, 0.3, 0.6);
   int varied = 0;
   for (const double bearing : {90.0, 0.0}) {
     SCOPED_TRACE(bearing);
-    planar.overturning = OverturnFailure{RockingBody::block(bearing == 90.0 ? 0.15 : 0.3, 0.6), RockingOptions{}, std::nullopt, std::nullopt};
+    planar.overturning = OverturnFailure{RockingBody::block(bearing == 90.0 ? 0.15 : 0.3, 0.6), RockingOptions{}, std::nullopt, std::nullopt, std::nullopt};
     box.bearing_deg = bearing;
     const FragilityResult a = fragility_analysis(planar), b = fragility_analysis(box);
     ASSERT_EQ(b.curves.size(), 1U);
@@ -297,6 +298,50 @@ TEST(FragilityAnalysis, AThreeDimensionalBoxUnderCollinearPairsIsThePlanarBlockO
   }
 }
 
+// A cylinder in three dimensions (OverturnFailure::cylinder_3d, the rim engine rigid3d_disc.hpp) under collinear
+// pairs: it rocks in the vertical plane of the record, where the rim engine is the planar cylinder (test_rigid3d_disc:
+// 1e-6), so its counts are those of the planar cylinder's section (a, h, D as a general body) rocking in the record's
+// plane (bearing 90). Not those of model "rocking" for a cylinder under pairs: that takes the worst of its 12
+// directions, and overturning is not monotonic in the amplitude, so a direction that sees cos(phi) of the record can
+// fall where the record's own does not (here 5 of 6 against 3 of 6 at one level). No bearing: a cylinder is
+// axisymmetric. Under single components it is refused.
+TEST(FragilityAnalysis, AThreeDimensionalCylinderUnderCollinearPairsIsThePlanarCylinder) {
+  std::vector<std::shared_ptr<const MotionSet>> sets;
+  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+    const GroundMotion m = synthesize(ensemble_spec(seed, 8.0));
+    const GroundMotion quiet = GroundMotion::uniform(std::vector<double>(m.size(), 0.0), m.dt_s());
+    sets.push_back(std::make_shared<const MotionSet>(MotionSet::make(m, &quiet, ComponentAzimuths{90.0, 0.0})));
+  }
+  FragilitySpec planar;
+  planar.motion_sets = sets;
+  planar.levels_si = log_grid(0.1 * kStandardGravity, 1.2 * kStandardGravity, 8);
+  const RockingBody section = RockingBody::cylinder(0.2, 0.8);
+  FragilitySpec cyl = planar;
+  cyl.overturning = OverturnFailure{section, RockingOptions{}, std::nullopt, std::nullopt, std::nullopt};
+  cyl.overturning->cylinder_3d = CylinderBody3D::solid(0.2, 0.8);
+  planar.overturning = OverturnFailure{RockingBody::general(section.a_m, section.h_m, section.D_m2), RockingOptions{},
+                                       std::nullopt, std::nullopt, std::nullopt};
+  planar.bearing_deg = 90.0;
+  const FragilityResult a = fragility_analysis(planar), b = fragility_analysis(cyl);
+  ASSERT_EQ(b.curves.size(), 1U);
+  EXPECT_EQ(b.curves[0].data.failures, a.curves[0].data.failures);
+  EXPECT_NE(a.curves[0].data.failures.front(), a.curves[0].data.failures.back());  // not vacuous
+  FragilitySpec worst = cyl;  // model "rocking" for the cylinder: the worst of its directions
+  worst.overturning->cylinder_3d.reset();
+  std::printf("cylinder 0.2 x 0.8 m under collinear pairs: 3-D %s, worst planar direction %s\n",
+              testing::PrintToString(b.curves[0].data.failures).c_str(),
+              testing::PrintToString(fragility_analysis(worst).curves[0].data.failures).c_str());
+  FragilitySpec single = cyl;
+  single.motion_sets.clear();
+  single.motions.push_back(std::make_shared<const GroundMotion>(sets.front()->first()));
+  try {
+    (void)fragility_analysis(single);
+    FAIL() << "a 3-D cylinder under single components was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().field, "model");
+  }
+}
+
 TEST(FragilityAnalysis, PairsWithoutABearingDrawOnePerMotionAndBadInputIsNamed) {
   std::vector<std::shared_ptr<const MotionSet>> sets;
   for (std::uint64_t seed = 1; seed <= 5; ++seed) {
@@ -309,7 +354,7 @@ TEST(FragilityAnalysis, PairsWithoutABearingDrawOnePerMotionAndBadInputIsNamed) 
   FragilitySpec spec;
   spec.motion_sets = sets;
   spec.levels_si = {0.2 * kStandardGravity, 0.8 * kStandardGravity};
-  spec.overturning = OverturnFailure{RockingBody::block(0.15, 0.6), RockingOptions{}, std::nullopt, std::nullopt};
+  spec.overturning = OverturnFailure{RockingBody::block(0.15, 0.6), RockingOptions{}, std::nullopt, std::nullopt, std::nullopt};
   const FragilityResult a = fragility_analysis(spec);
   // PortableRandom(1)'s first five uniforms x 360 deg: the same bearings on every machine and every call.
   PortableRandom random(1);
@@ -390,7 +435,7 @@ TEST(FragilityAnalysis, PairsWithAVerticalRefuseLevelsWhereTheRockingBodyWouldLe
   FragilitySpec spec;
   spec.motion_sets = sets;
   spec.bearing_deg = 30.0;
-  spec.overturning = OverturnFailure{RockingBody::block(0.15, 0.6), RockingOptions{}, std::nullopt, std::nullopt};
+  spec.overturning = OverturnFailure{RockingBody::block(0.15, 0.6), RockingOptions{}, std::nullopt, std::nullopt, std::nullopt};
   // Just below the lowest lift-off level every run keeps contact and the analysis runs (each count 0..3).
   spec.levels_si = {0.2 * kStandardGravity, allowed * (1.0 - 1e-9)};
   const FragilityResult ok = fragility_analysis(spec);
@@ -536,7 +581,7 @@ TEST(FragilityAsRecorded, OutcomesAreSingleRunsAndTheCoupledModelIsSlideRock) {
     spec.motions.push_back(std::make_shared<const GroundMotion>(synthesize(s)));
   }
   const RockingBody body = RockingBody::general_asymmetric(0.05, 0.08, 0.3, 0.02);
-  spec.overturning = OverturnFailure{body, RockingOptions{}, std::nullopt, std::nullopt};
+  spec.overturning = OverturnFailure{body, RockingOptions{}, std::nullopt, std::nullopt, std::nullopt};
   spec.sliding = SlidingFailure{SlidingBlock::make(0.3), 0.01};
   const AsRecordedResult r = as_recorded_analysis(spec);
   ASSERT_EQ(r.curves.size(), 2u);

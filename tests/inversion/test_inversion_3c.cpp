@@ -21,6 +21,8 @@
 #include "topple/motion/motion_set.hpp"
 #include "topple/solvers/oriented.hpp"
 #include "topple/solvers/rigid3d.hpp"
+#include "topple/solvers/rigid3d_disc.hpp"
+#include "topple/inversion/matching.hpp"
 #include "topple/output/report.hpp"
 #include "topple/solvers/rocking.hpp"
 #include "topple/motion/rotd.hpp"
@@ -392,9 +394,13 @@ TEST(Survey3c, ModelThreeDIsABoxOrAMeshAndRefusedWhereItCannotApply) {
                "needs the block's depth");
   expect_error(three + kObjectBlock + "depth = \"30cm\"\nmodel = \"3d\"\noutcome = \"slid\"\n", "object[1](a).model",
                "does not slide");
-  expect_error(three + "[[object]]\nid = \"c\"\nshape = \"cylinder\"\ndiameter = \"8cm\"\nheight = \"40cm\"\nmu = 0.5\n"
-                       "model = \"3d\"\noutcome = \"overturned\"\n",
-               "object[1](c).shape", "cylinder");
+  // A cylinder is the rim engine's (inversion_3c.cpp; no body_3d, no depth, no bearing needed).
+  const ObservedObject c = parse(three + "[[object]]\nid = \"c\"\nshape = \"cylinder\"\ndiameter = \"8cm\"\n"
+                                         "height = \"40cm\"\nmu = 0.5\nmodel = \"3d\"\noutcome = \"overturned\"\n"
+                                         "toppled_azimuth_deg = 30\n").sites[0].objects[0];
+  EXPECT_EQ(object_model(c), ObjectModel::three_d);
+  EXPECT_FALSE(c.body_3d);
+  EXPECT_EQ(c.toppled_azimuth_deg, 30.0);
   expect_error(three + "[[object]]\nid = \"g\"\nshape = \"general\"\na = \"3cm\"\nh = \"20cm\"\nD = \"0.05m2\"\n"
                        "mu = 0.5\nmodel = \"3d\"\noutcome = \"overturned\"\n",
                "object[1](g).shape", "general body");
@@ -455,6 +461,172 @@ TEST(Match3c, AThreeDimensionalBoxInItsPlaneOfSymmetryIsTheOrientedBox) {
   }
   EXPECT_GT(fell, 0);   // the set holds falls ...
   EXPECT_GT(stood, 0);  // ... and survivals
+}
+
+// A cylinder with model = "3d" (the rim engine, rigid3d_disc.hpp). Under the major component alone its match in the
+// bin along it is the planar cylinder's there (the planar model's projection on the bin is the major itself; the rim
+// engine in one plane is the planar cylinder, 1e-6 in test_rigid3d_disc), verdict and "rocked visibly" alike. Under
+// the three components its match in every bin is rocking_match of rock3d_cylinder's own run on (minor as x, major as
+// y, vertical), called here directly, times the fall-direction kernel about the run's fall azimuth (as a box's).
+TEST(Match3c, AThreeDimensionalCylinderIsTheRimEngine) {
+  const InversionSettings st = small_3c(2, 6);
+  const Realisation3c r = family_realisation_3c(st, 2.0, 1);
+  const std::vector<double> az{0.0, 90.0};
+  const CylinderBody3D solid = CylinderBody3D::solid(0.08, 0.40);
+  int fell = 0, stood = 0;
+  for (const Outcome outcome : {Outcome::overturned, Outcome::rocked, Outcome::not_rocked}) {
+    for (const double pga_g : {0.1, 0.25, 0.4, 0.7}) {
+      const double f = pga_g * kStandardGravity;
+      ObservedObject planar;
+      planar.id = "c";
+      planar.body = RockingBody::cylinder(0.08, 0.40);
+      planar.mu = {0.5, 0.5};
+      planar.outcome = outcome;
+      planar.azimuth_deg = 0.0;
+      ObservedObject three_d = planar;
+      three_d.model = ObjectModel::three_d;
+      {  // the major alone: the planar cylinder in bin 0
+        const GroundMotion major = r.major->scaled(f), minor = r.minor->scaled(0.0), vertical = r.vertical->scaled(0.0);
+        std::vector<double> a(az.size()), b(az.size());
+        observation_match_3c(planar, draw_parameters(planar, 1, 0, 0), major, minor, vertical, r.rotd100_angle_deg, az,
+                             0.0, kStandardGravity, a);
+        observation_match_3c(three_d, draw_parameters(three_d, 1, 0, 0), major, minor, vertical, r.rotd100_angle_deg,
+                             az, 0.0, kStandardGravity, b);
+        SCOPED_TRACE(::testing::Message() << outcome_name(outcome) << " pga " << pga_g);
+        EXPECT_NEAR(b[0], a[0], 1e-6);
+        EXPECT_EQ(b[0], b[1]);  // axisymmetric: the bins see the same run
+        if (outcome == Outcome::overturned) (a[0] > 0.5 ? fell : stood) += 1;
+      }
+      {  // the three components: rock3d_cylinder's own run
+        const GroundMotion major = r.major->scaled(f), minor = r.minor->scaled(f), vertical = r.vertical->scaled(f);
+        std::vector<double> b(az.size());
+        observation_match_3c(three_d, draw_parameters(three_d, 1, 0, 0), major, minor, vertical, r.rotd100_angle_deg,
+                             az, 0.0, kStandardGravity, b);
+        const Rigid3DSummary s = rock3d_cylinder(minor, &major, &vertical, solid,
+                                                 rigid3d_options(inversion_rocking_options(three_d, draw_parameters(
+                                                                                                        three_d, 1, 0, 0),
+                                                                                          kStandardGravity)))
+                                     .summary;
+        const double expected = rocking_match(outcome, s.overturned, s.max_tilt_rad);
+        for (std::size_t i = 0; i < az.size(); ++i) EXPECT_NEAR(b[i], expected, 1e-15) << az[i];
+      }
+    }
+  }
+  EXPECT_GT(fell, 0);   // the set holds falls ...
+  EXPECT_GT(stood, 0);  // ... and survivals
+}
+
+// friction_3d = "mu" (a box or a mesh with model = "3d"): the engine's base slides with mu_s = mu_k = the drawn mu.
+// The match is rocking_match of rock3d's own run with that friction (called directly); without the key the object is
+// the no-slip engine's (old surveys keep their meaning). The key is refused without model = "3d", on a cylinder, and
+// with an unknown value, at the object's key. A box that may slide has no "did not rock" upper bound where mu is
+// below the farthest corner's d/h (it can slide instead of rocking at any PGA).
+TEST(Match3c, FrictionThreeDIsTheEnginesFriction) {
+  const std::string three = "[inversion]\ncomponents = 3\n";
+  const std::string box = "[[object]]\nid = \"a\"\nwidth = \"20cm\"\ndepth = \"30cm\"\nheight = \"60cm\"\nmu = 0.2\n"
+                          "model = \"3d\"\n";
+  const ObservedObject o = parse(three + box + "friction_3d = \"mu\"\noutcome = \"rocked\"\n").sites[0].objects[0];
+  EXPECT_TRUE(o.friction_3d);
+  EXPECT_FALSE(parse(three + box + "outcome = \"rocked\"\n").sites[0].objects[0].friction_3d);
+  EXPECT_FALSE(parse(three + box + "friction_3d = \"none\"\noutcome = \"rocked\"\n").sites[0].objects[0].friction_3d);
+  expect_error(three + std::string(kObjectBlock) + "friction_3d = \"mu\"\noutcome = \"overturned\"\n",
+               "object[1](a).friction_3d", "model = \"3d\"");
+  expect_error(three + box + "friction_3d = \"yes\"\noutcome = \"overturned\"\n", "object[1](a).friction_3d", "none, mu");
+  expect_error(three + "[[object]]\nid = \"c\"\nshape = \"cylinder\"\ndiameter = \"8cm\"\nheight = \"40cm\"\n"
+                       "mu = 0.5\nmodel = \"3d\"\nfriction_3d = \"mu\"\noutcome = \"overturned\"\n",
+               "object[1](c).friction_3d", "without slip");
+  // The match against the engine run directly.
+  const InversionSettings st = small_3c(2, 6);
+  const Realisation3c r = family_realisation_3c(st, 2.0, 1);
+  const std::vector<double> az{0.0, 60.0};
+  ObservedObject slides = o;
+  slides.azimuth_deg = 0.0;  // the bin at major azimuth a runs the box at angle 360 - a from the major axis
+  int slid = 0;
+  for (const double pga_g : {0.15, 0.3, 0.5}) {
+    const double f = pga_g * kStandardGravity;
+    const GroundMotion major = r.major->scaled(f), minor = r.minor->scaled(f), vertical = r.vertical->scaled(0.0);
+    std::vector<double> b(az.size());
+    const DrawnParameters p = draw_parameters(slides, 1, 0, 0);
+    observation_match_3c(slides, p, major, minor, vertical, r.rotd100_angle_deg, az, 0.0, kStandardGravity, b);
+    for (std::size_t i = 0; i < az.size(); ++i) {
+      Rigid3DOptions opts = rigid3d_options(inversion_rocking_options(slides, p, kStandardGravity));
+      opts.mu_s = p.mu;
+      const double angle = az[i] == 0.0 ? 0.0 : 360.0 - az[i];
+      const RigidBody3D turned = slides.body_3d->rotated_about_vertical((90.0 - angle) * kDegRad);
+      const Rigid3DSummary s = rock3d(minor, &major, &vertical, turned, opts).summary;
+      EXPECT_NEAR(b[i], rocking_match(slides.outcome, s.overturned, s.max_tilt_rad), 1e-12) << pga_g << " " << az[i];
+      slid += s.slide_path_length_m > 0.0 ? 1 : 0;
+    }
+  }
+  EXPECT_GT(slid, 0);  // mu = 0.2 under 0.3 g and 0.5 g: the engine's base slid (the friction reached it)
+  // Static bounds: "did not rock" bounds the PGA only without friction here (mu 0.2 < the farthest corner's d/h =
+  // hypot(0.1, 0.15) / 0.3 = 0.60).
+  Site site;
+  site.objects = {o};
+  site.objects[0].outcome = Outcome::not_rocked;
+  EXPECT_TRUE(static_bounds_3c(site, 0.0).rotd100.upper.empty());
+  site.objects[0].friction_3d = false;
+  EXPECT_EQ(static_bounds_3c(site, 0.0).rotd100.upper.size(), 1U);
+}
+
+// The report's replay (best_cell_figure) of model = "3d" objects: the three-dimensional engine under the whole
+// realisation (minor as x, major as y, vertical), drawn as the tilt from Rigid3DHistory over the body's smallest
+// static limit. Each series is checked against the engine run here directly (rock3d for the box at its bearing,
+// rock3d_cylinder for the cylinder); a planar object beside them keeps its theta / alpha trace.
+TEST(Inversion3c, TheReportReplaysThreeDimensionalObjectsWithTheEngine) {
+  const InversionSettings st = small_3c(1, 4);
+  InversionResult r;
+  r.site = "t";
+  r.pga_g = {0.6};
+  r.freq_hz = {2.0};
+  r.best_cell = 0;
+  Site site;
+  ObservedObject box = block("box", 0.2, 0.6, {0.5, 0.5}, Outcome::overturned);
+  box.depth_m = 0.3;
+  box.azimuth_deg = 40.0;
+  box.model = ObjectModel::three_d;
+  box.body_3d = std::make_shared<const RigidBody3D>(RigidBody3D::box(0.2, 0.3, 0.6));
+  ObservedObject cyl;
+  cyl.id = "cyl";
+  cyl.body = RockingBody::cylinder(0.2, 0.6);
+  cyl.mu = {0.5, 0.5};
+  cyl.outcome = Outcome::not_overturned;
+  cyl.model = ObjectModel::three_d;
+  site.objects = {box, cyl, block("planar", 0.2, 0.6, {0.5, 0.5}, Outcome::not_overturned)};
+  const plot::Figure fig = best_cell_figure(r, site, st);
+  ASSERT_EQ(fig.panels.size(), 2U);  // ground and rocking
+  const auto& series = fig.panels[1].series;
+  ASSERT_EQ(series.size(), 3U);
+  InversionSettings one = st;
+  one.motions_per_cell = 1;
+  const Realisation3c real = family_realisation_3c(one, 2.0, 0);
+  const double scale = 0.6 * st.g_m_s2;
+  const GroundMotion major = real.major->scaled(scale), minor = real.minor->scaled(scale),
+                     vertical = real.vertical->scaled(scale);
+  Rigid3DOptions o = rigid3d_options(inversion_rocking_options(box, nominal_parameters(box), st.g_m_s2));
+  o.record_history = true;
+  const RigidBody3D turned = box.body_3d->rotated_about_vertical((90.0 - 40.0) * kDegRad);
+  const CylinderBody3D solid = CylinderBody3D::solid(0.2, 0.6);
+  const Rigid3DResult runs[] = {rock3d(minor, &major, &vertical, turned, o),
+                                rock3d_cylinder(minor, &major, &vertical, solid, o)};
+  const double limits[] = {std::atan(0.1 / 0.3), std::atan(0.1 / 0.3)};  // the box's narrower side; R / h
+  for (std::size_t k = 0; k < 2; ++k) {
+    SCOPED_TRACE(series[k].label);
+    EXPECT_NE(series[k].label.find("(3-D: tilt / smallest static limit)"), std::string::npos);
+    const Rigid3DHistory& h = runs[k].history;
+    ASSERT_EQ(series[k].y.size(), h.time_s.size());
+    ASSERT_GT(h.time_s.size(), 100U);
+    double peak = 0.0;
+    for (std::size_t i = 0; i < h.time_s.size(); ++i) {
+      const Quaternion& q = h.orientation[i];
+      const double tilt = std::acos(std::clamp(1.0 - 2.0 * (q[1] * q[1] + q[2] * q[2]), -1.0, 1.0));
+      EXPECT_NEAR(series[k].y[i], tilt / limits[k], 1e-9) << i;
+      peak = std::max(peak, series[k].y[i]);
+    }
+    EXPECT_GT(peak, 0.05);  // it rocked: the trace is not a flat line
+    EXPECT_EQ(series[k].label.find("falls") != std::string::npos, runs[k].summary.overturned);
+  }
+  EXPECT_EQ(series[2].label.find("3-D"), std::string::npos);
 }
 
 TEST(Inversion3c, AThreeDimensionalObjectSaysItsModel) {

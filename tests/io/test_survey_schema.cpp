@@ -166,6 +166,12 @@ SurveyText survey_with(const SurveyKey& k, const std::string& value, const Surve
     if (c.values.empty()) set_condition_key(s, k.table, c.key, condition_key(k.table, c.key).example);
     else if (!absent) set_condition_key(s, k.table, c.key, toml_choice(c.values.front()));
   }
+  // A key that goes with model = "3d" (friction_3d): a valid three-dimensional object, three components and a box.
+  const auto object = s.tables.find("object");
+  if (object != s.tables.end() && object->second.contains("model") && object->second.at("model") == "\"3d\"") {
+    s.set("inversion", "components", "3");
+    s.set("object", "depth", "\"30cm\"");
+  }
   s.set(k.table, k.key, value);
   complete(s);
   return s;

@@ -20,6 +20,7 @@
 #include "topple/io/sweep_file.hpp"
 #include "topple/motion/pulses.hpp"
 #include "topple/solvers/rigid3d.hpp"
+#include "topple/solvers/rigid3d_disc.hpp"
 #include "topple/solvers/sliding.hpp"
 #include "topple/ensemble/sweep.hpp"
 
@@ -662,6 +663,52 @@ mesh_pose = "as-scanned"
   }
 }
 
+// model = "3d" for a cylinder: the rim engine's solid cylinder (rigid3d_disc.hpp) of the diameter and height; a box
+// takes mu and mu_kinetic (Rigid3DOptions::mu_s, mu_k), each value a case; without them no friction (the no-slip
+// engine, as before).
+TEST(SweepFile, ThreeDimensionalCylindersAndFriction) {
+  TempDir dir;
+  const SweepFile f = parse_in(dir, std::string(kPulseMotions) + R"([[object]]
+model = "3d"
+shape = "cylinder"
+diameter = "30cm"
+height_m = 1.0
+[[object]]
+model = "3d"
+shape = "block"
+width_m = 0.2
+depth_m = 0.3
+height_m = 0.8
+mu = [0.3, 0.6]
+mu_kinetic = 0.25
+[[object]]
+model = "3d"
+shape = "block"
+width_m = 0.2
+depth_m = 0.3
+height_m = 0.8
+)");
+  ASSERT_EQ(f.spec.objects.size(), 4U);
+  const auto& cyl = std::get<RockObject>(f.spec.objects[0]);
+  ASSERT_TRUE(cyl.cylinder_3d.has_value());
+  EXPECT_FALSE(cyl.body_3d.has_value());
+  EXPECT_TRUE(cyl.three_d());
+  const CylinderBody3D expected = CylinderBody3D::solid(0.3, 1.0);
+  EXPECT_NEAR(cyl.cylinder_3d->radius_m, 0.15, 1e-15);
+  EXPECT_NEAR(cyl.cylinder_3d->centre_height_m, 0.5, 1e-15);
+  EXPECT_NEAR(cyl.cylinder_3d->inertia_axial_m2, expected.inertia_axial_m2, 1e-15);
+  EXPECT_NEAR(cyl.cylinder_3d->inertia_transverse_m2, expected.inertia_transverse_m2, 1e-15);
+  for (std::size_t i = 1; i < 3; ++i) {
+    const auto& ro = std::get<RockObject>(f.spec.objects[i]);
+    ASSERT_TRUE(ro.body_3d.has_value());
+    EXPECT_EQ(ro.options.mu.value_or(-1.0), i == 1 ? 0.3 : 0.6);
+    EXPECT_EQ(ro.mu_kinetic.value_or(-1.0), 0.25);
+  }
+  const auto& dry = std::get<RockObject>(f.spec.objects[3]);
+  EXPECT_FALSE(dry.options.mu.has_value());
+  EXPECT_FALSE(dry.mu_kinetic.has_value());
+}
+
 TEST(SweepFile, ThreeDimensionalRefusalsNameFileLineAndKey) {
   TempDir dir;
   write_file(dir.path() / "box.stl", test::stl_binary_bytes(test::box_mesh(0.2, 0.3, 0.8)));
@@ -673,10 +720,11 @@ TEST(SweepFile, ThreeDimensionalRefusalsNameFileLineAndKey) {
   };
   const std::string box = "shape = \"block\"\nwidth_m = 0.2\ndepth_m = 0.3\nheight_m = 0.8\n";  // lines 9-12
   const Case cases[] = {
-      {"shape = \"cylinder\"\ndiameter_m = 0.1\nheight_m = 0.3\n", "object[1].shape", 9, "cylinder"},
+      {"shape = \"cylinder\"\ndiameter_m = 0.1\nheight_m = 0.3\nmu = 0.5\n", "object[1].mu", 12, "without slip"},
       {"shape = \"general\"\na_m = 0.03\nh_m = 0.2\nD_m2 = 0.05\n", "object[1].shape", 9, "general body"},
       {"shape = \"block\"\nwidth_m = 0.1\nheight_m = 0.3\n", "object[1].depth", 7, "depth"},
-      {box + "mu = 0.5\n", "object[1].mu", 13, "does not slide"},
+      {box + "mu_kinetic = 0.3\n", "object[1].mu_kinetic", 13, "needs the static one"},
+      {box + "mu = 0.3\nmu_kinetic = [0.2, 0.4]\n", "object[1].mu_kinetic", 14, "[0, mu = 0.3]"},
       {box + "support_freq_hz = 5\n", "object[1].support_freq_hz", 13, "support"},
       {"mesh = \"box.stl\"\nmesh_azimuth_deg = 0\n", "object[1].mesh_azimuth_deg", 10, "bearing_deg"},
       {"shape = \"block\"\nwidth_m = 0.2\ndepth_m = -0.3\nheight_m = 0.8\n", "object[1].depth", 11, "-0.3"},

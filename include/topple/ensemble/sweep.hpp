@@ -19,6 +19,7 @@
 #include "topple/motion/motion_set.hpp"
 #include "topple/solvers/oriented.hpp"
 #include "topple/solvers/rigid3d.hpp"
+#include "topple/solvers/rigid3d_disc.hpp"
 #include "topple/motion/pulses.hpp"
 #include "topple/solvers/rocking.hpp"
 #include "topple/solvers/slide_rock.hpp"
@@ -92,8 +93,15 @@ struct RockObject {
   /// planar models (model = "3d" in a sweep file): a box (a block with depth_m) or a body from a mesh as posed, run
   /// by rock3d under each record set with its +x axis at the bearing (as `topple rock --model 3d --h2
   /// --bearing-deg`), with options.g_m_s2, restitution, e, rel_tol, max_run_out_s and max_steps. `body` stays the
-  /// planar body (its columns). Record sets only; no friction (the engine does not slide), no support.
+  /// planar body (its columns). Record sets only; no support. Friction: options.mu (Rigid3DOptions::mu_s) and
+  /// mu_kinetic (mu_k), absent: the no-slip engine (rigid3d.hpp).
   std::optional<RigidBody3D> body_3d = std::nullopt;
+  /// model = "3d" for a solid cylinder: the rim engine (rigid3d_disc.hpp, rock3d_cylinder) under the pair along east
+  /// and north and the vertical. Axisymmetric: the bearing does not enter (each bearing's row is the same run). No
+  /// friction (the rim engine rolls without slip).
+  std::optional<CylinderBody3D> cylinder_3d = std::nullopt;
+  /// A three-dimensional object (model = "3d"): body_3d or cylinder_3d.
+  [[nodiscard]] bool three_d() const noexcept { return body_3d.has_value() || cylinder_3d.has_value(); }
 };
 
 using ObjectSpec = std::variant<SlideObject, RockObject>;
@@ -154,12 +162,16 @@ struct SweepSpec {
 ///            (overturned, overturn_time_s, overturn_azimuth_deg, max_tilt_rad, max_tilt_azimuth_deg,
 ///            max_tilt_time_s, max_tilt_over_limit, exceeded_limit_time_s, impacts, uplifts, uplift_time_s,
 ///            energy_lost_j_per_kg, flight_time_s, end_time_s, end_mode); a name a rocking column has is that column
-///            (a 3-D row leaves the planar-only cells empty, a planar row the 3-D-only ones)
+///            (a 3-D row leaves the planar-only cells empty, a planar row the 3-D-only ones); then, only when some
+///            3-D object has friction (mu), residual_slide_east_m, residual_slide_north_m, max_slide_speed_m_s,
+///            slide_path_length_m, friction_energy_j_per_kg, slip_episodes, first_slip_time_s, slide_rock_time_s
+///            (a name a sliding column has is that column)
 /// Throws InputError for an empty spec (no motion or no object), a motion that cannot be scaled (zero record), a
 /// one-way or inclined sliding object under a record set (fields "object[k].mode", "object[k].slope_deg"), a flexible
 /// support under a record set, a box (depth) under a single record or pulse, a coupled object without mu or under a
-/// record set ("object[k].model"), a three-dimensional object under a single record or pulse or with a friction
-/// coefficient ("object[k].model", "object[k].mu"), record sets with rocking objects other than cylinders and
+/// record set ("object[k].model"), a three-dimensional object under a single record or pulse ("object[k].model"),
+/// or with friction out of range, or on a cylinder, or mu_kinetic without mu ("object[k].mu", "object[k].mu_kinetic"),
+/// record sets with rocking objects other than cylinders and
 /// without bearings (field "bearing"), or a bearing without record sets.
 [[nodiscard]] Plan make_plan(const SweepSpec& spec);
 

@@ -56,6 +56,7 @@
 #include "topple/motion/ground_motion.hpp"
 #include "topple/motion/motion_set.hpp"
 #include "topple/solvers/rigid3d.hpp"
+#include "topple/solvers/rigid3d_disc.hpp"
 #include "topple/solvers/rocking.hpp"
 #include "topple/solvers/slide_rock.hpp"
 #include "topple/solvers/sliding.hpp"
@@ -132,6 +133,11 @@ struct OverturnFailure {
   /// run by rock3d under the pair projected on east and north and the vertical, with options' g, restitution, e,
   /// rel_tol, max_run_out_s and max_steps; failure when it falls. Pairs only. `body` stays the planar body (along +x).
   std::optional<RigidBody3D> body_3d;
+  /// The same for a solid cylinder: the rim engine (rigid3d_disc.hpp, rock3d_cylinder) under the pair along east and
+  /// north and the vertical; axisymmetric, so no bearing. Pairs only. `body` stays the planar cylinder.
+  std::optional<CylinderBody3D> cylinder_3d;
+  /// A three-dimensional body (body_3d or cylinder_3d).
+  [[nodiscard]] bool three_d() const noexcept { return body_3d.has_value() || cylinder_3d.has_value(); }
 };
 
 struct FragilitySpec {
@@ -239,8 +245,8 @@ struct AsRecordedResult {
 /// failures on the grid keeps its counts and gets no fit). Throws InputError naming "motions", "levels", "object"
 /// (neither failure mode given) or "threshold"; under pairs also "motions" (both kinds given, a set without a second
 /// component or azimuths, a zero pair), "im" (not pga), "mode" / "slope" (a one-way or inclined block) and "bearing"
-/// (not finite, or given for a cylinder); "model" for a coupled body under pairs, or a three-dimensional body (body_3d)
-/// with single components or with the coupled model.
+/// (not finite, or given for a cylinder); "model" for a coupled body under pairs, or a three-dimensional body (body_3d,
+/// cylinder_3d) with single components or with the coupled model.
 [[nodiscard]] FragilityResult fragility_analysis(const FragilitySpec& spec);
 
 }  // namespace topple

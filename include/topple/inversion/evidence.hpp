@@ -68,6 +68,8 @@ struct CatalogueObject {
 
 /// The outcome categories of a catalogue object for one run: rocking 0 overturned, 1 rocked visibly and stood,
 /// 2 stood without visible rocking; sliding 0 slid visibly (>= 2 mm), 1 not. `motion` is scaled to the cell's PGA.
+/// A model = "3d" object runs the three-dimensional engine (rigid3d.hpp; a cylinder the rim engine, rigid3d_disc.hpp)
+/// with the motion along its +x axis, its tilt in place of |theta|.
 [[nodiscard]] std::size_t catalogue_outcome(const ObservedObject& object, const DrawnParameters& parameters,
                                             const GroundMotion& motion, double g_m_s2);
 [[nodiscard]] std::size_t catalogue_outcome_count(const ObservedObject& object);

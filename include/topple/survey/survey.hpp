@@ -116,6 +116,10 @@ struct ObservedObject {
   /// model = "3d": the body in three dimensions (the box of width, depth and height, or the mesh as posed, its +x
   /// axis along azimuth_deg), set by the reader. None for the other models.
   std::shared_ptr<const RigidBody3D> body_3d;
+  /// model = "3d", a box or a mesh (`friction_3d = "mu"`): the engine's base may slide with Coulomb friction, mu_s =
+  /// mu_k = the drawn mu (Rigid3DOptions::mu_s; as the coupled model takes mu). False (the default, `"none"`): the
+  /// no-slip engine, as before the key.
+  bool friction_3d = false;
   std::optional<double> slid_m;              ///< observed sliding distance (outcome slid or slid_stood)
   double slid_uncertainty_m = 0.0;           ///< its one-sigma uncertainty
   std::optional<double> slid_at_least_m;     ///< or: it slid at least this far
