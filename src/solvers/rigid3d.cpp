@@ -1277,12 +1277,14 @@ double RigidBody3D::static_tilt_limit_rad(double azimuth_deg) const {
   return std::atan2(b, centre_of_mass_m[2]);
 }
 
-constexpr std::array<EnumName<Rigid3DMode>, 5> kModeNames{{
+constexpr std::array<EnumName<Rigid3DMode>, 7> kModeNames{{
     {Rigid3DMode::rest, "rest"},
     {Rigid3DMode::rocking, "rocking"},
     {Rigid3DMode::pivot, "pivot"},
     {Rigid3DMode::fallen, "fallen"},
     {Rigid3DMode::sliding, "sliding"},
+    {Rigid3DMode::slide_rock, "slide_rock"},
+    {Rigid3DMode::flight, "flight"},
 }};
 
 std::string_view rigid3d_mode_name(Rigid3DMode mode) { return enum_name(kModeNames, mode); }

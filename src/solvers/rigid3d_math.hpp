@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <utility>
 
+#include "topple/bodies/body.hpp"
 #include "topple/core/units.hpp"
 #include "topple/numerics/dp5.hpp"
 #include "topple/numerics/step_law.hpp"
