@@ -554,6 +554,13 @@ class ContactEngine {
           const double fn = hnorm(ds.F[k]);
           set[k].s = fn > 0.0 ? Vec3{-ds.F[k][0] / fn, -ds.F[k][1] / fn, 0.0} : Vec3{1.0, 0.0, 0.0};
         }
+        // first the sticking force's opposite (the planar model's sigma; exact at the stick limit)
+        if (consistent(dynamics(x_, t_, set), set, starting, down)) {
+          slip_dir_ = {};
+          enter(Kind::contact, set);
+          return true;
+        }
+        // then the tangential acceleration's direction by fixed-point iteration (in 3-D it may differ)
         for (int it = 0; it < 20; ++it) {
           const Dyn di = dynamics(x_, t_, set);
           if (!di.ok) break;
@@ -562,11 +569,10 @@ class ContactEngine {
             if (!starting[k]) continue;
             const Vec3 ak = di.a + cross(di.alpha, di.r[k]) + cross(di.w, cross(di.w, di.r[k]));
             const double an = hnorm(ak);
-            // at the stick limit the slip acceleration starts from 0: its direction is the sticking force's
             if (!(an > 1e-6 * g_)) continue;
-            const Vec3 s{ak[0] / an, ak[1] / an, 0.0};
-            change = std::max(change, hnorm(s - set[k].s));
-            set[k].s = s;
+            const Vec3 sd{ak[0] / an, ak[1] / an, 0.0};
+            change = std::max(change, hnorm(sd - set[k].s));
+            set[k].s = sd;
           }
           if (change < 1e-12) break;
         }
@@ -583,7 +589,10 @@ class ContactEngine {
 
   /// The mode at an instant, by enumeration over the vertices down (header). no_stick: a vertex that may not stick
   /// (a stick limit just reached); exclude: a vertex that just lifted.
-  void choose(std::vector<int> down, std::vector<int> exclude, int no_stick) {
+  /// skip_rest, skip_slide: at a located exit from rest (flat sliding) the flat mode is left (on the boundary to
+  /// round-off it would be taken again).
+  void choose(std::vector<int> down, std::vector<int> exclude, int no_stick, bool skip_rest = false,
+              bool skip_slide = false) {
     std::erase_if(down, [&](int j) { return std::find(exclude.begin(), exclude.end(), j) != exclude.end(); });
     const Vec3 f = forcing_.f(t_);
     const double G = -f[2];
@@ -592,12 +601,12 @@ class ContactEngine {
       if (G > 0.0) {
         if (sp <= kSlipZero * p_ref_ * size_) {
           x_[3] = x_[4] = 0.0;
-          if (hnorm(f) <= mu_s_ * G && pressure_excess(-f[0] / G, -f[1] / G) <= 0.0 && no_stick < 0) {
+          if (!skip_rest && hnorm(f) <= mu_s_ * G && pressure_excess(-f[0] / G, -f[1] / G) <= 0.0 && no_stick < 0) {
             enter(Kind::rest, {});
             return;
           }
           const double fh = hnorm(f);
-          if (fh > mu_s_ * G || no_stick >= 0) {
+          if (!skip_slide && (fh > mu_s_ * G || no_stick >= 0 || skip_rest)) {
             slip_dir_ = fh > 0.0 ? Vec3{f[0] / fh, f[1] / fh, 0.0} : Vec3{1.0, 0.0, 0.0};
             if (pressure_excess(-mu_k_ * slip_dir_[0], -mu_k_ * slip_dir_[1]) <= 0.0) {
               enter(Kind::flat_slip, {});
@@ -606,7 +615,7 @@ class ContactEngine {
           }
         } else {
           slip_dir_ = {x_[3] / sp, x_[4] / sp, 0.0};
-          if (pressure_excess(-mu_k_ * slip_dir_[0], -mu_k_ * slip_dir_[1]) <= 0.0) {
+          if (!skip_slide && pressure_excess(-mu_k_ * slip_dir_[0], -mu_k_ * slip_dir_[1]) <= 0.0) {
             enter(Kind::flat_slip, {});
             return;
           }
@@ -640,6 +649,7 @@ class ContactEngine {
     // Painleve's paradox or a boundary case: a slipping contact stopped by a tangential impact, else held sticking.
     ++painleve_;
     ++out_.summary.painleve_events;
+    if (std::getenv("R3D_DEBUG")) std::fprintf(stderr, "  painleve at %.9f down %zu\n", t_, down.size());
     if (down.size() >= 3) {
       x_[3] = x_[4] = 0.0;
       enter(Kind::rest, {});
@@ -775,6 +785,11 @@ class ContactEngine {
             for (std::size_t i = 3; i < 6; ++i) x_[i] *= k;
             for (std::size_t i = 10; i < 13; ++i) x_[i] *= k;
           }
+        }
+        if (std::getenv("R3D_DEBUG")) {
+          std::fprintf(stderr, "  impact outcome c=%u:", c);
+          for (std::size_t k = 0; k < m; ++k) std::fprintf(stderr, " %d P=(%.4g,%.4g,%.4g) u=(%.4g,%.4g,%.4g)", verts[k], (*P)[k][0], (*P)[k][1], (*P)[k][2], u[k][0], u[k][1], u[k][2]);
+          std::fprintf(stderr, "\n");
         }
         after_impact(ke_before, down.size() >= 3, verts);
         return;
@@ -1045,6 +1060,7 @@ class ContactEngine {
       const double t1p = part == kParts ? tb : ta + (tb - ta) * part / kParts;
       events(x_, t1p, gb);
       double t_event = std::numeric_limits<double>::infinity();
+      std::size_t which = 0;
       for (std::size_t i = 0; i < gb.size(); ++i) {
         if (ga[i] < 0.0 && gb[i] >= 0.0) {
           const auto fn = [&, i](double t) {
@@ -1052,13 +1068,17 @@ class ContactEngine {
             events(x_, t, g);
             return g[i];
           };
-          t_event = std::min(t_event, locate(fn, t0p, t1p, ga[i], gb[i]));
+          const double r = locate(fn, t0p, t1p, ga[i], gb[i]);
+          if (r < t_event) {
+            t_event = r;
+            which = i;
+          }
         }
       }
       if (std::isfinite(t_event) && t_event < tb) {
         t_ = t_event;
         const std::size_t before = out_.summary.modes.size();
-        choose(all_down(), {}, -1);
+        choose(all_down(), {}, -1, true, which != 0);  // 0: slip starts; 1: the centre of pressure leaves; 2: flight
         if (kind_ == Kind::rest && out_.summary.modes.size() == before) {
           // on the boundary to round-off: step past it
           t_ = std::min(tb, t_event + std::max(1e-9 * grid_.dt_s(), 4.0 * std::numeric_limits<double>::epsilon() *
@@ -1084,9 +1104,8 @@ class ContactEngine {
       if (which == 0) {  // stopped
         x_[3] = x_[4] = 0.0;
         choose(all_down(), {}, -1);
-      } else {
-        choose(all_down(), {}, -1);
-        if (kind_ == Kind::flat_slip) restart_ = true;
+      } else {  // the centre of pressure left the base, or flight
+        choose(all_down(), {}, -1, true, true);
       }
       return;
     }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <optional>
 #include <string>
@@ -65,6 +66,9 @@ TEST(Rigid3DContact, Explore) {
                 r.summary.slide_rock_time_s ? "y" : "n", r.summary.flights, r.summary.painleve_events,
                 r.summary.warnings.size());
     for (const auto& w : r.summary.warnings) std::printf("   %s\n", w.c_str());
+    if (std::getenv("R3D_PLANAR")) {
+      for (const auto& t : p.transitions) std::printf("  planar %.9f %s\n", t.time_s, std::string(slide_rock_mode_name(t.mode)).c_str());
+    }
   }
 }
 
