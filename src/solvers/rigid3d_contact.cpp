@@ -493,7 +493,7 @@ class ContactEngine {
     const double tolF = 1e-9 * g_;
     for (std::size_t k = 0; k < set.size(); ++k) {
       const Vec3& F = d.F[k];
-      if (F[2] < -tolF) return false;
+      if (!(F[2] > tolF)) return false;  // a contact with N = 0 lifts (flight at g + a_z = 0: no contact set)
       if (!set[k].slip && hnorm(F) > mu_s_ * F[2] * (1.0 + 1e-9) + tolF) return false;
       if (set[k].slip && starting[k]) {
         const Vec3 ak = d.a + cross(d.alpha, d.r[k]) + cross(d.w, cross(d.w, d.r[k]));
@@ -709,6 +709,12 @@ class ContactEngine {
              static_cast<std::size_t>(a) == (static_cast<std::size_t>(b) + 1) % n;
     };
     const auto in = [](const std::vector<int>& s, int j) { return std::find(s.begin(), s.end(), j) != s.end(); };
+    // Zeno: a strike on the neighbour of the single contact within kZenoGap_s of the last impact (pivot swaps between
+    // the ends of an edge, ever shorter) is taken as the edge's limit first (cf. rigid3d.cpp's rule)
+    if (set_.size() == 1 && fresh.size() == 1 && adjacent(set_[0].v, fresh[0]) && t_ - last_impact_t_ < kZenoGap_s) {
+      cands.push_back({set_[0].v, fresh[0]});
+    }
+    last_impact_t_ = t_;
     for (int j : fresh) cands.push_back({j});
     for (std::size_t a = 0; a < down.size(); ++a) {
       for (std::size_t b = a + 1; b < down.size(); ++b) {
@@ -1257,6 +1263,7 @@ class ContactEngine {
 
   static constexpr int kParts = 4;
   static constexpr int kMaxEvents = 10'000;
+  static constexpr double kZenoGap_s = 1e-6;
   static constexpr double kSlipZero = 1e-9;  // a slip speed below this times p size is zero (a located stop)
   const InputGrid& grid_;
   std::span<const double> ax_, ay_;
@@ -1274,6 +1281,7 @@ class ContactEngine {
   Rigid3DResult out_;
   SX x_{};
   double t_ = 0.0, last_row_t_ = -std::numeric_limits<double>::infinity();
+  double last_impact_t_ = -std::numeric_limits<double>::infinity();
   Kind kind_ = Kind::rest;
   std::vector<Contact> set_;
   Vec3 slip_dir_{1.0, 0.0, 0.0}, slip_ref_{};
