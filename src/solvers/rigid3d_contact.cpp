@@ -52,8 +52,6 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
-#include <cstdio>
-#include <cstdlib>
 #include <limits>
 #include <optional>
 #include <span>
@@ -441,11 +439,6 @@ class ContactEngine {
       flat_before_ = kind_ == Kind::rest || kind_ == Kind::flat_slip;
     }
     row();
-    if (std::getenv("R3D_DEBUG")) {
-      std::fprintf(stderr, "t=%.9f enter %s", t_, std::string(rigid3d_mode_name(m)).c_str());
-      for (const Contact& c : set_) std::fprintf(stderr, " [%d %s s=(%.3f,%.3f)]", c.v, c.slip ? "slip" : "stick", c.s[0], c.s[1]);
-      std::fprintf(stderr, " v=(%.3g,%.3g,%.3g) w=(%.3g,%.3g,%.3g)\n", x_[3], x_[4], x_[5], x_[10], x_[11], x_[12]);
-    }
   }
 
   /// The flat pose: the tilt removed (yaw kept), c at height h, no vertical or tilting motion.
@@ -649,7 +642,6 @@ class ContactEngine {
     // Painleve's paradox or a boundary case: a slipping contact stopped by a tangential impact, else held sticking.
     ++painleve_;
     ++out_.summary.painleve_events;
-    if (std::getenv("R3D_DEBUG")) std::fprintf(stderr, "  painleve at %.9f down %zu\n", t_, down.size());
     if (down.size() >= 3) {
       x_[3] = x_[4] = 0.0;
       enter(Kind::rest, {});
@@ -701,7 +693,8 @@ class ContactEngine {
       for (const Contact& c : set_) old = old || c.v == j;
       if (!old) fresh.push_back(j);
     }
-    // candidate outcome sets (header): the striking vertices alone, their edges, then with the old contacts
+    // candidate outcome sets (header): the striking vertices alone, their edges, then with the old contacts; a base
+    // landing flat (three or more vertices striking at once, e.g. from flight without rotation) lands flat
     std::vector<std::vector<int>> cands;
     const std::size_t n = v_.size();
     const auto adjacent = [&](int a, int b) {
@@ -731,6 +724,7 @@ class ContactEngine {
     for (int j : down) {
       if (!in(fresh, j)) cands.push_back({j});
     }
+    if (fresh.size() >= 3) cands.clear();
     const double tolV = 1e-9 * p_ref_ * size_;
     for (const auto& verts : cands) {
       const std::size_t m = verts.size();
@@ -791,11 +785,6 @@ class ContactEngine {
             for (std::size_t i = 3; i < 6; ++i) x_[i] *= k;
             for (std::size_t i = 10; i < 13; ++i) x_[i] *= k;
           }
-        }
-        if (std::getenv("R3D_DEBUG")) {
-          std::fprintf(stderr, "  impact outcome c=%u:", c);
-          for (std::size_t k = 0; k < m; ++k) std::fprintf(stderr, " %d P=(%.4g,%.4g,%.4g) u=(%.4g,%.4g,%.4g)", verts[k], (*P)[k][0], (*P)[k][1], (*P)[k][2], u[k][0], u[k][1], u[k][2]);
-          std::fprintf(stderr, "\n");
         }
         after_impact(ke_before, down.size() >= 3, verts);
         return;
@@ -1010,7 +999,6 @@ class ContactEngine {
             return g[i];
           };
           const double r = locate(fn, t0p, t1p, ga[i], gb[i]);
-          if (std::getenv("R3D_DEBUG")) std::fprintf(stderr, "  root %zu at %.12f: ga %.3g gb %.3g f(r) %.3g [%.12f %.12f] step [%.12f %.12f]\n", i, r, ga[i], gb[i], fn(r), t0p, t1p, ta, tbs);
           if (r < t_event) {
             t_event = r;
             which = i;
@@ -1098,14 +1086,6 @@ class ContactEngine {
   }
 
   void handle(std::size_t which) {
-    if (std::getenv("R3D_DEBUG")) {
-      std::fprintf(stderr, "t=%.9f event %zu", t_, which);
-      for (const Contact& c : set_) {
-        const Vec3 u = vertex_velocity(x_, static_cast<std::size_t>(c.v));
-        std::fprintf(stderr, " u%d=(%.3g,%.3g,%.3g)", c.v, u[0], u[1], u[2]);
-      }
-      std::fprintf(stderr, "\n");
-    }
     if (kind_ == Kind::flat_slip) {
       if (which == 0) {  // stopped
         x_[3] = x_[4] = 0.0;
