@@ -237,6 +237,7 @@ class ContactEngine {
   Rigid3DResult run() {
     const std::size_t n = grid_.size();
     t_ = start_.time_s;
+    mode_since_ = t_;
     std::size_t i = 0;
     while (i + 2 < n && grid_.time_s(i + 1) <= t_) ++i;
     x_ = {};
@@ -261,6 +262,7 @@ class ContactEngine {
     }
     if (!done_) run_out();
     auto& s = out_.summary;
+    if (!s.modes.empty()) close_mode(s.modes.back().mode);
     s.end_time_s = t_;
     s.end_mode = mode_name();
     if (!done_ && kind_ != Kind::rest) {
@@ -419,6 +421,7 @@ class ContactEngine {
     }
     auto& s = out_.summary;
     if (s.modes.empty() || s.modes.back().mode != m || s.modes.back().vertex_a != a || s.modes.back().vertex_b != b) {
+      if (!s.modes.empty()) close_mode(s.modes.back().mode);
       s.modes.push_back({t_, m, a, b});
       if (m == Rigid3DMode::slide_rock && !s.slide_rock_time_s) s.slide_rock_time_s = t_;
       if (m == Rigid3DMode::flight) {
@@ -1136,6 +1139,7 @@ class ContactEngine {
     s.overturn_time_s = t_;
     const M3 R = rot();
     s.overturn_azimuth_deg = azimuth({R[0][2], R[1][2], 0.0});
+    close_mode(s.modes.back().mode);
     s.modes.push_back({t_, Rigid3DMode::fallen, -1, -1});
     row();
   }
@@ -1179,14 +1183,14 @@ class ContactEngine {
     if (ratio >= 1.0 && !s.exceeded_limit_time_s) s.exceeded_limit_time_s = t;
   }
 
+  /// The time since the last mode change into the durations of slide-rock and flight.
+  void close_mode(Rigid3DMode m) {
+    if (m == Rigid3DMode::slide_rock) out_.summary.slide_rock_duration_s += t_ - mode_since_;
+    if (m == Rigid3DMode::flight) out_.summary.flight_duration_s += t_ - mode_since_;
+    mode_since_ = t_;
+  }
+
   void row() {
-    const double dt = t_ - last_row_t_;
-    if (dt > 0.0) {
-      const Rigid3DMode m = mode_name();
-      if (m == Rigid3DMode::slide_rock) out_.summary.slide_rock_duration_s += dt;
-      if (m == Rigid3DMode::flight) out_.summary.flight_duration_s += dt;
-    }
-    last_row_t_ = t_;
     if (!opt_.record_history) return;
     auto& h = out_.history;
     const Rigid3DMode m = mode_name();
@@ -1260,7 +1264,7 @@ class ContactEngine {
   Forcing forcing_{};
   Rigid3DResult out_;
   SX x_{};
-  double t_ = 0.0, last_row_t_ = -std::numeric_limits<double>::infinity();
+  double t_ = 0.0, mode_since_ = 0.0;
   double last_impact_t_ = -std::numeric_limits<double>::infinity();
   Kind kind_ = Kind::rest;
   std::vector<Contact> set_;
