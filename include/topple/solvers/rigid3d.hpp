@@ -12,8 +12,12 @@
 // Friction (Rigid3DOptions::mu_s, mu_k; rigid3d_slide.cpp; docs/method.md "Sliding in three dimensions"): absent,
 // no contact point slides (the modes below). Given, the flat base sticks while |a_h| <= mu_s (g + a_z) and otherwise
 // slides flat without spin as sliding2d.hpp's block (exact: no friction torque about c's vertical); it lifts where the
-// centre of pressure c + h F_t / N leaves the base: from sticking the modes below take over (no slip after that),
-// while slipping (slide-rock) the run stops with a warning (not modelled).
+// centre of pressure c + h F_t / N leaves the base. From sticking the no-slip modes below take over, and their answer
+// is kept where no contact needs more than mu_s N, the body never slides after coming back to rest and g + a_z > 0;
+// otherwise (and from slipping: slide-rock) the run is rigid3d_contact.cpp's (docs/method.md, "Slide-rock and flight in
+// three dimensions"): a free rigid body with an active set of base vertices, each sticking or slipping, the modes
+// slide_rock (a contact vertex slipping while the base is not flat) and flight (no contact), impacts with a Coulomb
+// impulse, Painleve's paradox resolved as slide_rock.hpp does. A run with friction never stops early.
 //
 // Contact modes (friction large enough that no contact point slides):
 //   rest    the base lies flat on the ground;
@@ -27,9 +31,11 @@
 //   pivot   the body turns about a base vertex p fixed on the ground: three rotational degrees of freedom, Euler's
 //           equations about the fixed point in the body frame with r = c - p, J_p = J + |r|^2 1 - r r^T:
 //             J_p w' = r x f_B - w x (J_p w),   q' = q (0, w) / 2,   f_B = R^T (-a_x, -a_y, -(g + a_z)).
-//   flight  not modelled (a stated limit): when the vertical contact force vanishes (a body thrown up by a strong
-//           vertical input, or one falling fast near the ground) the first instant is reported
-//           (Rigid3DSummary::flight_time_s, a warning) and the contact is kept, as the planar engine keeps it.
+//   flight  without friction not modelled (a stated limit): when the vertical contact force vanishes (a body thrown
+//           up by a strong vertical input, or one falling fast near the ground) the first instant is reported
+//           (Rigid3DSummary::flight_time_s, a warning) and the contact is kept, as the planar engine keeps it. With
+//           friction given flight is modelled (ballistic c, torque-free rotation, landing an impact:
+//           rigid3d_contact.cpp).
 //
 // Transitions (contact forces and moment balance):
 //   rest -> the centre of pressure p(t) = c_plan - h a_h(t) / (g + a_z(t)) (where the resultant of gravity and the
