@@ -411,6 +411,7 @@ class ContactEngine {
   void enter(Kind kind, std::vector<Contact> set) {
     kind_ = kind;
     set_ = std::move(set);
+    since_ = t_;
     if (kind_ == Kind::rest || kind_ == Kind::flat_slip) flatten();
     restart_ = true;
     const Rigid3DMode m = mode_name();
@@ -1116,6 +1117,15 @@ class ContactEngine {
           std::vector<Contact> st = set_;
           st[k].slip = false;
           stick_impulse(st);
+          if (t_ - since_ < kChatter_s) {
+            // Stick-slip chattering (the slip that started at this instant stops at once: the stick limit and the
+            // slip's deceleration balance to round-off, e.g. mu_s = mu_k at a contact of a pair): the contact is held
+            // sticking, as slide_rock.hpp holds a sticking pivot, counted with Painleve's cases (docs/method.md).
+            ++painleve_;
+            ++out_.summary.painleve_events;
+            enter(Kind::contact, st);
+            return;
+          }
           choose(down, {}, -1);
         } else {  // the stick limit
           choose(down, {}, vk);
@@ -1248,6 +1258,7 @@ class ContactEngine {
   static constexpr int kParts = 4;
   static constexpr int kMaxEvents = 10'000;
   static constexpr double kZenoGap_s = 1e-6;
+  static constexpr double kChatter_s = 1e-6;  // a slip that stops within this of its start: held sticking
   static constexpr double kSlipZero = 1e-9;  // a slip speed below this times p size is zero (a located stop)
   const InputGrid& grid_;
   std::span<const double> ax_, ay_;
@@ -1264,7 +1275,7 @@ class ContactEngine {
   Forcing forcing_{};
   Rigid3DResult out_;
   SX x_{};
-  double t_ = 0.0, mode_since_ = 0.0;
+  double t_ = 0.0, mode_since_ = 0.0, since_ = 0.0;  // since_: the last entry into a contact set
   double last_impact_t_ = -std::numeric_limits<double>::infinity();
   Kind kind_ = Kind::rest;
   std::vector<Contact> set_;
