@@ -45,6 +45,12 @@ nlohmann::ordered_json rigid3d_summary_json(const Rigid3DSummary& s) {
   j["slip_episodes"] = s.slip_episodes;
   j["first_slip_time_s"] = or_null(s.first_slip_time_s);
   j["slide_rock_time_s"] = or_null(s.slide_rock_time_s);
+  // slide-rock and flight (rigid3d_contact.cpp; with friction given, modelled; zero without)
+  j["slide_rock_duration_s"] = s.slide_rock_duration_s;
+  j["flights"] = s.flights;
+  j["flight_duration_s"] = s.flight_duration_s;
+  j["residual_yaw_deg"] = s.residual_yaw_deg;
+  j["painleve_events"] = s.painleve_events;
   j["steps"] = s.steps;
   j["warnings"] = s.warnings;
   return j;

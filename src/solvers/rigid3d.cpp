@@ -22,177 +22,13 @@
 #include "topple/numerics/dp5.hpp"
 #include "topple/numerics/event_root.hpp"
 #include "topple/numerics/step_law.hpp"
+#include "rigid3d_math.hpp"
 #include "rigid3d_slide.hpp"
 
 namespace topple {
 namespace {
 
-// ---------------------------------------------------------------------------------------------------------------
-// Small fixed-size algebra (3-vectors, 3x3 matrices as rows, quaternions w, x, y, z).
-
-using M3 = std::array<Vec3, 3>;
-
-Vec3 operator+(const Vec3& a, const Vec3& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
-Vec3 operator-(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-Vec3 operator*(double k, const Vec3& a) { return {k * a[0], k * a[1], k * a[2]}; }
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
-Vec3 mul(const M3& m, const Vec3& v) { return {dot(m[0], v), dot(m[1], v), dot(m[2], v)}; }
-Vec3 mul_t(const M3& m, const Vec3& v) {  // m^T v
-  return {m[0][0] * v[0] + m[1][0] * v[1] + m[2][0] * v[2], m[0][1] * v[0] + m[1][1] * v[1] + m[2][1] * v[2],
-          m[0][2] * v[0] + m[1][2] * v[1] + m[2][2] * v[2]};
-}
-M3 inverse(const M3& m) {
-  const Vec3 c0 = cross(m[1], m[2]);
-  const Vec3 c1 = cross(m[2], m[0]);
-  const Vec3 c2 = cross(m[0], m[1]);
-  const double det = dot(m[0], c0);
-  // rows of the inverse are the columns of (c0 c1 c2) / det
-  return {{{c0[0] / det, c1[0] / det, c2[0] / det},
-           {c0[1] / det, c1[1] / det, c2[1] / det},
-           {c0[2] / det, c1[2] / det, c2[2] / det}}};
-}
-/// J_p = J + |r|^2 1 - r r^T (parallel axes, per unit mass).
-M3 shifted_inertia(const M3& J, const Vec3& r) {
-  M3 out = J;
-  const double r2 = dot(r, r);
-  for (std::size_t i = 0; i < 3; ++i) {
-    for (std::size_t j = 0; j < 3; ++j) out[i][j] += (i == j ? r2 : 0.0) - r[i] * r[j];
-  }
-  return out;
-}
-
-Quaternion qmul(const Quaternion& a, const Quaternion& b) {
-  return {a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3], a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
-          a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1], a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0]};
-}
-Quaternion normalized(const Quaternion& q) {
-  const double n = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-  return {q[0] / n, q[1] / n, q[2] / n, q[3] / n};
-}
-/// Rotation by angle about the unit axis.
-Quaternion axis_angle(const Vec3& axis, double angle) {
-  const double s = std::sin(0.5 * angle);
-  return {std::cos(0.5 * angle), s * axis[0], s * axis[1], s * axis[2]};
-}
-/// The rotation matrix of q / |q| (rows).
-M3 rotation(const Quaternion& q) {
-  const double n2 = q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3];
-  const double s = 2.0 / n2;
-  const double w = q[0], x = q[1], y = q[2], z = q[3];
-  return {{{1.0 - s * (y * y + z * z), s * (x * y - w * z), s * (x * z + w * y)},
-           {s * (x * y + w * z), 1.0 - s * (x * x + z * z), s * (y * z - w * x)},
-           {s * (x * z - w * y), s * (y * z + w * x), 1.0 - s * (x * x + y * y)}}};
-}
-
-constexpr Vec3 kUp{0.0, 0.0, 1.0};
-
-// ---------------------------------------------------------------------------------------------------------------
-// Dormand-Prince 5(4) with dense output for N components (the tableau and dense weights of numerics/dp5.hpp, the
-// error norm and step law of rocking_steppers.hpp's AdaptiveStepper: error_i / (abs_tol scale_i + rel_tol |x0_i|)).
-
-template <std::size_t N>
-using State = std::array<double, N>;
-
-template <std::size_t N, class F>
-class Dp5 {
- public:
-  Dp5(F f, double abs_tol, double rel_tol, double dt0) : f_(std::move(f)), abs_tol_(abs_tol), rel_tol_(rel_tol),
-                                                         dt_(dt0) {}
-  void set_scale(const State<N>& scale) { scale_ = scale; }
-  void restart(double t, const State<N>& x) {
-    t1_ = t;
-    x1_ = x;
-    f_(x1_, t1_, k_[5]);
-  }
-  [[nodiscard]] bool step(double t_limit, std::size_t& steps, std::size_t max_steps) {
-    t0_ = t1_;
-    x0_ = x1_;
-    k_[0] = k_[5];
-    dense_ready_ = false;
-    const double remaining = t_limit - t0_;
-    for (;;) {
-      if (++steps > max_steps) return false;
-      const bool clamped = dt_ >= remaining;
-      const double dt = clamped ? remaining : dt_;
-      const double error = try_step(dt);
-      if (error <= 1.0) {
-        h_ = dt;
-        t1_ = clamped ? t_limit : t0_ + dt;
-        const double next = detail::StepLaw::increase(dt, error);
-        dt_ = clamped ? std::max(dt_, next) : next;
-        return true;
-      }
-      dt_ = detail::StepLaw::decrease(dt, error);
-    }
-  }
-  [[nodiscard]] State<N> dense(double t) const {
-    if (t == t1_) return x1_;
-    if (t == t0_) return x0_;
-    if (!dense_ready_) expand();
-    const double s = (t - t0_) / h_;
-    State<N> x{};
-    for (std::size_t i = 0; i < N; ++i) {
-      const auto& c = poly_[i];
-      x[i] = x0_[i] + s * (c[0] + s * (c[1] + s * (c[2] + s * (c[3] + s * c[4]))));
-    }
-    return x;
-  }
-  [[nodiscard]] double t0() const { return t0_; }
-  [[nodiscard]] double t1() const { return t1_; }
-  [[nodiscard]] const State<N>& x0() const { return x0_; }
-  [[nodiscard]] const State<N>& x1() const { return x1_; }
-
- private:
-  double try_step(double h) {
-    using namespace detail::dp5;
-    State<N> y{};
-    State<N> k2{};
-    const auto stage = [&](State<N>& out, double t, auto&&... terms) {
-      for (std::size_t i = 0; i < N; ++i) y[i] = x0_[i] + h * (0.0 + ... + (terms.first * terms.second[i]));
-      f_(y, t, out);
-    };
-    using P = std::pair<double, const State<N>&>;
-    stage(k2, t0_ + a2 * h, P{b21, k_[0]});
-    stage(k_[1], t0_ + a3 * h, P{b31, k_[0]}, P{b32, k2});
-    stage(k_[2], t0_ + a4 * h, P{b41, k_[0]}, P{b42, k2}, P{b43, k_[1]});
-    stage(k_[3], t0_ + a5 * h, P{b51, k_[0]}, P{b52, k2}, P{b53, k_[1]}, P{b54, k_[2]});
-    stage(k_[4], t0_ + h, P{b61, k_[0]}, P{b62, k2}, P{b63, k_[1]}, P{b64, k_[2]}, P{b65, k_[3]});
-    for (std::size_t i = 0; i < N; ++i) {
-      x1_[i] = x0_[i] + h * (c1 * k_[0][i] + c3 * k_[1][i] + c4 * k_[2][i] + c5 * k_[3][i] + c6 * k_[4][i]);
-    }
-    f_(x1_, t0_ + h, k_[5]);
-    double error = 0.0;
-    for (std::size_t i = 0; i < N; ++i) {
-      const double e = h * (dc1 * k_[0][i] + dc3 * k_[1][i] + dc4 * k_[2][i] + dc5 * k_[3][i] + dc6 * k_[4][i] +
-                            dc7 * k_[5][i]);
-      error = std::max(error, std::abs(e) / (abs_tol_ * scale_[i] + rel_tol_ * std::abs(x0_[i])));
-    }
-    return error;
-  }
-  void expand() const {
-    for (std::size_t i = 0; i < N; ++i) {
-      for (std::size_t m = 1; m < 6; ++m) {
-        double sum = 0.0;
-        for (std::size_t j = 0; j < 6; ++j) sum += detail::dp5::kDense[j].c[m] * k_[j][i];
-        poly_[i][m - 1] = h_ * sum;
-      }
-    }
-    dense_ready_ = true;
-  }
-
-  F f_;
-  double abs_tol_, rel_tol_, dt_;
-  State<N> scale_{};
-  double h_ = 0.0, t0_ = 0.0, t1_ = 0.0;
-  State<N> x0_{}, x1_{};
-  std::array<State<N>, 6> k_{};  // k1, k3, k4, k5, k6, k7 (the weights' order in kDense)
-  mutable std::array<std::array<double, 5>, N> poly_{};
-  mutable bool dense_ready_ = false;
-};
+using namespace detail::r3d;  // rigid3d_math.hpp: the algebra and the Dormand-Prince stepper
 
 // ---------------------------------------------------------------------------------------------------------------
 // Geometry of the body, precomputed per edge and per vertex.
@@ -1441,12 +1277,14 @@ double RigidBody3D::static_tilt_limit_rad(double azimuth_deg) const {
   return std::atan2(b, centre_of_mass_m[2]);
 }
 
-constexpr std::array<EnumName<Rigid3DMode>, 5> kModeNames{{
+constexpr std::array<EnumName<Rigid3DMode>, 7> kModeNames{{
     {Rigid3DMode::rest, "rest"},
     {Rigid3DMode::rocking, "rocking"},
     {Rigid3DMode::pivot, "pivot"},
     {Rigid3DMode::fallen, "fallen"},
     {Rigid3DMode::sliding, "sliding"},
+    {Rigid3DMode::slide_rock, "slide_rock"},
+    {Rigid3DMode::flight, "flight"},
 }};
 
 std::string_view rigid3d_mode_name(Rigid3DMode mode) { return enum_name(kModeNames, mode); }

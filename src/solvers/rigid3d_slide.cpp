@@ -174,6 +174,51 @@ std::optional<double> first_contact_slip(const Rigid3DResult& r, const RigidBody
   return std::nullopt;
 }
 
+/// The flat phase up to the cut (`out`: its modes, history rows and sliding totals) followed by the contact engine
+/// from `start` (rigid3d_contact.cpp).
+Rigid3DResult merge_contact(Rigid3DResult out, const GroundMotion& x, const GroundMotion* y, const GroundMotion* z,
+                            const RigidBody3D& body, const Rigid3DOptions& options, const ContactStart& start) {
+  Rigid3DResult r = rock3d_contact(x, y, z, body, options, start);
+  const Rigid3DSummary& s = out.summary;
+  Rigid3DSummary& e = r.summary;
+  std::vector<Rigid3DModeChange> modes = s.modes;
+  for (std::size_t k = 0; k < e.modes.size(); ++k) {
+    if (k == 0 && e.modes[k].mode == modes.back().mode) continue;
+    modes.push_back(e.modes[k]);
+  }
+  e.modes = std::move(modes);
+  e.max_slide_speed_m_s = std::max(e.max_slide_speed_m_s, s.max_slide_speed_m_s);
+  e.slide_path_length_m += s.slide_path_length_m;
+  e.friction_energy_j_per_kg += s.friction_energy_j_per_kg;
+  e.slip_episodes += s.slip_episodes;
+  if (s.first_slip_time_s) e.first_slip_time_s = s.first_slip_time_s;
+  e.steps += s.steps;
+  if (options.record_history) {
+    auto& h = out.history;
+    const auto& c = r.history;
+    for (std::size_t k = 0; k < c.time_s.size(); ++k) {
+      if (!h.time_s.empty() && c.time_s[k] <= h.time_s.back() && k == 0) {  // the cut row: the engine's state
+        h.position_m.back() = c.position_m[k];
+        h.orientation.back() = c.orientation[k];
+        h.angular_velocity_rad_s.back() = c.angular_velocity_rad_s[k];
+        h.energy_j_per_kg.back() = c.energy_j_per_kg[k];
+        h.mode.back() = c.mode[k];
+        continue;
+      }
+      h.time_s.push_back(c.time_s[k]);
+      h.position_m.push_back(c.position_m[k]);
+      h.orientation.push_back(c.orientation[k]);
+      h.angular_velocity_rad_s.push_back(c.angular_velocity_rad_s[k]);
+      h.energy_j_per_kg.push_back(c.energy_j_per_kg[k]);
+      h.mode.push_back(c.mode[k]);
+    }
+  } else {
+    out.history = {};
+  }
+  out.summary = std::move(e);
+  return out;
+}
+
 }  // namespace
 
 Rigid3DResult rock3d_friction(const GroundMotion& x, const GroundMotion* y, const GroundMotion* z,
@@ -187,10 +232,6 @@ Rigid3DResult rock3d_friction(const GroundMotion& x, const GroundMotion* y, cons
   const SlidingBlock block = SlidingBlock::make(mu_s, mu_k, 0.0, SlidingMode::two_way, g);
   const ComponentAzimuths az{90.0, 0.0};
   Sliding2dResult slide = slide_2d(x, north, az, block, z, options.sliding);
-  if (slide.summary.contact_lost_time_s) {
-    throw parameter_error("vertical", fmt::format("g + a_z <= 0 at {} s: the body would leave the ground, which this "
-                                                  "model excludes", *slide.summary.contact_lost_time_s));
-  }
   const Sliding2dHistory& H = slide.history;
   const double h = checked.height_m();
   const std::vector<PlanEdge> edges = plan_edges(checked);
@@ -222,9 +263,23 @@ Rigid3DResult rock3d_friction(const GroundMotion& x, const GroundMotion* y, cons
       }
     }
   }
+  // g + a_z <= 0 (the vertical lifts the body: flight, the contact engine) before either: the row before it
+  std::optional<std::size_t> lost;
+  if (slide.summary.contact_lost_time_s) {
+    std::size_t j = 0;
+    while (j + 1 < H.time_s.size() && H.time_s[j + 1] < *slide.summary.contact_lost_time_s) ++j;
+    const std::size_t other = handover ? *handover : slide_rock ? *slide_rock : H.time_s.size();
+    if (j < other) {
+      lost = j;
+      handover.reset();
+      slide_rock.reset();
+    }
+  }
 
   // The flat phase's modes and history up to the cut (all rows when the body never lifts).
-  const std::size_t cut = handover ? *handover : slide_rock ? *slide_rock : H.time_s.size() - 1;
+  // slide-rock: the contact engine starts at the last row before the centre of pressure left the base (slipping)
+  if (slide_rock && *slide_rock > 0) --*slide_rock;
+  const std::size_t cut = handover ? *handover : slide_rock ? *slide_rock : lost ? *lost : H.time_s.size() - 1;
   Rigid3DResult out;
   auto& s = out.summary;
   s.modes.push_back({H.time_s.front(), Rigid3DMode::rest, -1, -1});
@@ -258,7 +313,7 @@ Rigid3DResult rock3d_friction(const GroundMotion& x, const GroundMotion* y, cons
     }
   }
 
-  if (!handover && !slide_rock) {  // never lifted: slide_2d's answer whole
+  if (!handover && !slide_rock && !lost) {  // never lifted: slide_2d's answer whole
     s.max_slide_speed_m_s = slide.summary.max_abs_velocity_m_s;
     s.slide_path_length_m = slide.summary.path_length_m;
     s.friction_energy_j_per_kg = slide.summary.friction_work_J_kg;
@@ -281,21 +336,10 @@ Rigid3DResult rock3d_friction(const GroundMotion& x, const GroundMotion* y, cons
     return out;
   }
 
-  if (slide_rock) {
-    totals_from_rows(H, cut, mu_k, z, g, s);
-    s.slide_rock_time_s = t_cut;
-    s.end_time_s = t_cut;
-    s.end_mode = Rigid3DMode::sliding;
-    s.warnings.push_back(fmt::format("t = {} s: the centre of pressure left the base while the body slid (mu_k h "
-                                     "exceeds the base's extent in the sliding direction): slide-rock is not "
-                                     "modelled in three dimensions; the run stops here", t_cut));
-    return out;
-  }
-
-  // Uplift from sticking: the sliding totals up to the cut (the body is stuck there), then the no-slip engine.
+  // The sliding totals up to the cut.
   if (cut > 0) {
     bool exact = false;
-    try {  // slide_2d on the records cut at t_cut: its totals are those of the phase (stuck at the end)
+    try {  // slide_2d on the records cut at t_cut: its totals are those of the phase
       const GroundMotion xc = x.trimmed(x.start_time_s(), t_cut);
       const GroundMotion nc = north.trimmed(north.start_time_s(), t_cut);
       std::optional<GroundMotion> zc;
@@ -309,12 +353,42 @@ Rigid3DResult rock3d_friction(const GroundMotion& x, const GroundMotion* y, cons
     }
     if (!exact) totals_from_rows(H, cut, mu_k, z, g, s);
   }
+  const ContactStart start{t_cut, {H.east_m[cut], H.north_m[cut], 0.0}, {H.east_m_s[cut], H.north_m_s[cut], 0.0},
+                           kIdentityQuaternion, {0.0, 0.0, 0.0}};
+  if (slide_rock || lost) return merge_contact(std::move(out), x, y, z, checked, options, start);
+
+  if (z) {  // g + a_z <= 0 after the uplift: flight, which the no-slip engine excludes
+    for (std::size_t i = 0; i < z->size(); ++i) {
+      if (z->time_s(i) >= t_cut && !(g + z->accel_m_s2()[i] > 0.0)) {
+        return merge_contact(std::move(out), x, y, z, checked, options, start);
+      }
+    }
+  }
   Rigid3DOptions rigid = options;
   rigid.mu_s.reset();
   rigid.mu_k.reset();
   rigid.record_history = true;  // for the friction check of the contact below
   Rigid3DResult r = rock3d_rigid(x, y, z, checked, rigid, t_cut);
   const std::optional<double> contact_slip = first_contact_slip(r, checked, x, y, z, g, mu_s);
+  // Back at rest after the uplift, the no-slip engine keeps the body stuck: would it slide (the stick test on the
+  // record's samples in those rest periods)?
+  std::optional<double> slide_after;
+  for (std::size_t k = 1; k < r.summary.modes.size() && !slide_after; ++k) {
+    const auto& modes = r.summary.modes;
+    if (modes[k].mode != Rigid3DMode::rest || modes[k].time_s <= t_cut) continue;
+    const double t_to = k + 1 < modes.size() ? modes[k + 1].time_s : r.summary.end_time_s;
+    for (std::size_t i = 0; i < x.size() && !slide_after; ++i) {
+      const double t = x.time_s(i);
+      if (t < modes[k].time_s || t > t_to) continue;
+      const double G = g + (z ? z->accel_at(t) : 0.0);
+      if (std::hypot(x.accel_m_s2()[i], y ? y->accel_at(t) : 0.0) > mu_s * G) slide_after = t;
+    }
+  }
+  // The no-slip engine's answer holds where no contact needed to slip, the body never slid after an uplift and never
+  // left the ground; else the contact engine (rigid3d_contact.cpp) runs from the uplift instead.
+  if (contact_slip || slide_after || r.summary.flight_time_s) {
+    return merge_contact(std::move(out), x, y, z, checked, options, start);
+  }
   if (!options.record_history) r.history = {};
   // Merge: the engine's summary, the flat phase's modes first (the engine's first mode is its rest at t_cut).
   Rigid3DSummary& e = r.summary;
@@ -332,32 +406,6 @@ Rigid3DResult rock3d_friction(const GroundMotion& x, const GroundMotion* y, cons
   e.slip_episodes = s.slip_episodes;
   e.first_slip_time_s = s.first_slip_time_s;
   e.steps += s.steps;
-  e.warnings.insert(e.warnings.begin(),
-                    fmt::format("the body lifted from sticking at t = {} s; from then on no contact point slides "
-                                "(slide-rock and sliding after rocking are not modelled in three dimensions)",
-                                e.uplift_time_s.value_or(t_cut)));
-  if (contact_slip) {
-    e.warnings.push_back(fmt::format("t = {} s: the contact of the rocking or pivoting body would slip (|F_t| > mu_s N "
-                                     "on the history's rows); slide-rock is not modelled", *contact_slip));
-  }
-  // Back at rest after the uplift, the no-slip engine keeps the body stuck: say where it would have slid (the stick
-  // test on the record's samples in those rest periods).
-  for (std::size_t k = 1; k < e.modes.size(); ++k) {
-    if (e.modes[k].mode != Rigid3DMode::rest || e.modes[k].time_s <= t_cut) continue;
-    const double t_to = k + 1 < e.modes.size() ? e.modes[k + 1].time_s : e.end_time_s;
-    std::optional<double> slip;
-    for (std::size_t i = 0; i < x.size() && !slip; ++i) {
-      const double t = x.time_s(i);
-      if (t < e.modes[k].time_s || t > t_to) continue;
-      const double G = g + (z ? z->accel_at(t) : 0.0);
-      if (std::hypot(x.accel_m_s2()[i], y ? y->accel_at(t) : 0.0) > mu_s * G) slip = t;
-    }
-    if (slip) {
-      e.warnings.push_back(fmt::format("t = {} s: the body at rest after rocking would slide (|a_h| > mu_s (g + a_z)); "
-                                       "sliding after an uplift is not modelled", *slip));
-      break;
-    }
-  }
   if (options.record_history) {
     for (std::size_t k = 0; k < r.history.time_s.size(); ++k) {
       Vec3 p = r.history.position_m[k];

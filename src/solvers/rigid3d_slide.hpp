@@ -16,4 +16,20 @@ namespace topple::detail {
 [[nodiscard]] Rigid3DResult rock3d_friction(const GroundMotion& x, const GroundMotion* y, const GroundMotion* z,
                                             const RigidBody3D& body, const Rigid3DOptions& options);
 
+/// The state the contact engine starts from (rigid3d_contact.cpp): the body frame's origin in the ground frame, c's
+/// velocity, the orientation and the angular velocity (ground frame).
+struct ContactStart {
+  double time_s = 0.0;
+  Vec3 position_m{};
+  Vec3 velocity_m_s{};
+  Quaternion orientation = kIdentityQuaternion;
+  Vec3 angular_velocity_rad_s{};
+};
+
+/// The engine with slipping contacts and flight (rigid3d_contact.cpp), friction given (checked by the caller), from
+/// `start` (a flat base: at rest or sliding) to the end of the run. Its summary covers the run from start.time_s.
+[[nodiscard]] Rigid3DResult rock3d_contact(const GroundMotion& x, const GroundMotion* y, const GroundMotion* z,
+                                           const RigidBody3D& body, const Rigid3DOptions& options,
+                                           const ContactStart& start);
+
 }  // namespace topple::detail

@@ -391,6 +391,33 @@ TEST_F(CliOriented, Model3dWithFrictionSlidesAsTheCoupledModel) {
   EXPECT_EQ(rigid.at("residual_slide_east_m"), 0.0);
 }
 
+// --model 3d --mu with a block that lifts (b/h = 0.25 < mu_s) and whose contact slips while it rocks: the run that
+// stopped at slide-rock before (a warning, slide_rock_time_s) now runs to its end as the planar coupled model of its
+// section under the one component (its plane of symmetry): residual slide and max tilt to 1e-6, the same verdict; the
+// JSON carries the slide-rock and flight keys.
+TEST_F(CliOriented, Model3dSlideRockRunsAsTheCoupledModel) {
+  int slide_rocked = 0;
+  for (const char* mu : {" --mu 0.3 --mu-k 0.25", " --mu 0.26 --mu-k 0.26", " --mu 0.35 --mu-k 0.3"}) {
+    const std::string body = std::string(" --shape block --width 20cm --height 80cm --json") + mu;
+    const auto planar = test::run_json("rock " + h1 + " --model coupled" + body);
+    const auto solid = test::run_json("rock " + h1 + " --model 3d --depth 30cm" + body);
+    for (const char* key : {"slide_rock_duration_s", "flights", "flight_duration_s", "residual_yaw_deg",
+                            "painleve_events", "slide_rock_time_s"}) {
+      EXPECT_TRUE(solid.contains(key)) << key;
+    }
+    for (const auto& w : solid.at("warnings")) EXPECT_EQ(w.get<std::string>().find("not modelled"), std::string::npos);
+    const double u = planar.at("residual_slide_m").get<double>();
+    EXPECT_NEAR(solid.at("residual_slide_east_m").get<double>(), u, 1e-6 * std::max(std::abs(u), 1e-3)) << mu;
+    EXPECT_EQ(solid.at("overturned"), planar.at("overturned")) << mu;
+    if (!solid.at("slide_rock_time_s").is_null()) {
+      ++slide_rocked;
+      EXPECT_GT(solid.at("slide_rock_duration_s").get<double>(), 0.0);
+      EXPECT_GE(solid.at("end_time_s").get<double>(), solid.at("slide_rock_time_s").get<double>());
+    }
+  }
+  EXPECT_GE(slide_rocked, 1);
+}
+
 // --model 3d with --h2: the block's bearing and the components' azimuths turned together by 30 degrees give the same
 // motion relative to the block (impacts, modes, max tilt to 1e-7) with the azimuths of the tilt turned by 30.
 TEST_F(CliOriented, Model3dBearingTurnsWithTheComponents) {

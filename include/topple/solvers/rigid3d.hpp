@@ -12,8 +12,12 @@
 // Friction (Rigid3DOptions::mu_s, mu_k; rigid3d_slide.cpp; docs/method.md "Sliding in three dimensions"): absent,
 // no contact point slides (the modes below). Given, the flat base sticks while |a_h| <= mu_s (g + a_z) and otherwise
 // slides flat without spin as sliding2d.hpp's block (exact: no friction torque about c's vertical); it lifts where the
-// centre of pressure c + h F_t / N leaves the base: from sticking the modes below take over (no slip after that),
-// while slipping (slide-rock) the run stops with a warning (not modelled).
+// centre of pressure c + h F_t / N leaves the base. From sticking the no-slip modes below take over, and their answer
+// is kept where no contact needs more than mu_s N, the body never slides after coming back to rest and g + a_z > 0;
+// otherwise (and from slipping: slide-rock) the run is rigid3d_contact.cpp's (docs/method.md, "Slide-rock and flight in
+// three dimensions"): a free rigid body with an active set of base vertices, each sticking or slipping, the modes
+// slide_rock (a contact vertex slipping while the base is not flat) and flight (no contact), impacts with a Coulomb
+// impulse, Painleve's paradox resolved as slide_rock.hpp does. A run with friction never stops early.
 //
 // Contact modes (friction large enough that no contact point slides):
 //   rest    the base lies flat on the ground;
@@ -27,9 +31,11 @@
 //   pivot   the body turns about a base vertex p fixed on the ground: three rotational degrees of freedom, Euler's
 //           equations about the fixed point in the body frame with r = c - p, J_p = J + |r|^2 1 - r r^T:
 //             J_p w' = r x f_B - w x (J_p w),   q' = q (0, w) / 2,   f_B = R^T (-a_x, -a_y, -(g + a_z)).
-//   flight  not modelled (a stated limit): when the vertical contact force vanishes (a body thrown up by a strong
-//           vertical input, or one falling fast near the ground) the first instant is reported
-//           (Rigid3DSummary::flight_time_s, a warning) and the contact is kept, as the planar engine keeps it.
+//   flight  without friction not modelled (a stated limit): when the vertical contact force vanishes (a body thrown
+//           up by a strong vertical input, or one falling fast near the ground) the first instant is reported
+//           (Rigid3DSummary::flight_time_s, a warning) and the contact is kept, as the planar engine keeps it. With
+//           friction given flight is modelled (ballistic c, torque-free rotation, landing an impact:
+//           rigid3d_contact.cpp).
 //
 // Transitions (contact forces and moment balance):
 //   rest -> the centre of pressure p(t) = c_plan - h a_h(t) / (g + a_z(t)) (where the resultant of gravity and the
@@ -135,9 +141,10 @@ struct Rigid3DOptions {
   Sliding2dOptions sliding{};            ///< tolerances of the sliding phases (sliding2d.hpp's defaults)
 };
 
-/// sliding: the base flat on the ground, slipping (only with friction given, Rigid3DOptions::mu_s).
-enum class Rigid3DMode : std::uint8_t { rest, rocking, pivot, fallen, sliding };
-/// "rest", "rocking", "pivot", "fallen", "sliding"
+/// sliding: the base flat on the ground, slipping; slide_rock: on one or two base vertices of which at least one
+/// slips; flight: no contact (these three only with friction given, Rigid3DOptions::mu_s).
+enum class Rigid3DMode : std::uint8_t { rest, rocking, pivot, fallen, sliding, slide_rock, flight };
+/// "rest", "rocking", "pivot", "fallen", "sliding", "slide_rock", "flight"
 [[nodiscard]] std::string_view rigid3d_mode_name(Rigid3DMode mode);
 
 /// A mode entered at time_s, with its contact: rocking: the edge (vertex_a, vertex_b = vertex_a + 1, indices into
@@ -166,7 +173,9 @@ struct Rigid3DSummary {
   std::size_t uplifts = 0;               ///< departures from rest
   std::optional<double> uplift_time_s;
   double energy_lost_j_per_kg = 0.0;     ///< to impacts and the rest rule
-  std::optional<double> flight_time_s;   ///< first instant the vertical contact force vanished (contact kept: a limit)
+  /// first instant the vertical contact force vanished: without friction the contact is kept (a limit); with friction
+  /// given (Rigid3DOptions::mu_s) the first instant of a modelled flight
+  std::optional<double> flight_time_s;
   std::vector<Rigid3DModeChange> modes;  ///< every mode entered, in order (the first: rest at the start)
   // Sliding (zero unless Rigid3DOptions::mu_s is given):
   double residual_slide_east_m = 0.0;    ///< the base's displacement on the ground at the end, east
@@ -176,9 +185,18 @@ struct Rigid3DSummary {
   double friction_energy_j_per_kg = 0.0; ///< dissipated by kinetic friction (not in energy_lost_j_per_kg)
   int slip_episodes = 0;                 ///< slip starts from sticking
   std::optional<double> first_slip_time_s;
-  /// the first time the centre of pressure left the base while the body slid (slide-rock, not modelled: the run
-  /// stops there with a warning)
+  /// the first time slide-rock began: a contact vertex slipping while the base is not flat (modelled, rigid3d_contact.cpp;
+  /// the run goes on)
   std::optional<double> slide_rock_time_s;
+  double slide_rock_duration_s = 0.0;    ///< time spent in slide-rock (friction given)
+  std::size_t flights = 0;               ///< entries into flight (friction given)
+  double flight_duration_s = 0.0;        ///< time spent in flight (friction given)
+  /// the body's rotation about the vertical at the end, degrees counter-clockwise seen from above (the heading of its
+  /// x axis; friction given: twist happens while a contact slips)
+  double residual_yaw_deg = 0.0;
+  /// contact modes with no or several consistent solutions (Painleve's paradox, docs/method.md): resolved by a
+  /// tangential impact or a held contact
+  std::size_t painleve_events = 0;
   double end_time_s = 0.0;
   Rigid3DMode end_mode = Rigid3DMode::rest;
   std::size_t steps = 0;
