@@ -16,6 +16,7 @@
 #include "topple/io/mesh.hpp"
 #include "topple/solvers/rigid3d.hpp"
 #include "topple/solvers/rigid3d_disc.hpp"
+#include "io/mesh_pose_keys.hpp"
 
 namespace topple::io {
 namespace {
@@ -142,9 +143,9 @@ void read_record_keys(const Reader& r, const toml::table& t, const std::string& 
 /// mesh_axis_angle_deg, mesh_face, mesh_contact_tolerance_m.
 void read_mesh_pose(const Reader& r, const toml::table& t, const std::string& prefix, BodyOptions& options) {
   if (const auto pose = r.string(t, "mesh_pose", prefix + "mesh_pose")) {
-    if (*pose == "rest") options.pose = PoseMethod::rest;
-    else if (*pose == "as-scanned") options.pose = PoseMethod::as_scanned;
-    else r.fail(t.get("mesh_pose"), prefix + "mesh_pose", fmt::format("'{}' is not a pose: \"rest\" or \"as-scanned\"", *pose));
+    const auto method = io_detail::mesh_pose_method(*pose);
+    if (!method) r.fail(t.get("mesh_pose"), prefix + "mesh_pose", io_detail::mesh_pose_problem(*pose));
+    options.pose = *method;
   }
   const auto fixed = [&](std::string_view key, std::size_t count, const char* what) -> std::optional<std::vector<double>> {
     const toml::node* n = t.get(key);
@@ -162,21 +163,10 @@ void read_mesh_pose(const Reader& r, const toml::table& t, const std::string& pr
     }
     return v;
   };
-  if (const auto v = fixed("mesh_up", 3, "[x, y, z], the mesh's direction that becomes up")) {
-    options.up = Vec3{(*v)[0], (*v)[1], (*v)[2]};
-  }
-  if (const auto v = fixed("mesh_rotation_wxyz", 4, "[w, x, y, z], a unit quaternion")) {
-    options.rotation_wxyz = Quaternion{(*v)[0], (*v)[1], (*v)[2], (*v)[3]};
-  }
-  if (const auto v = fixed("mesh_axis_angle_deg", 4, "[x, y, z, degrees], an axis and an angle")) {
-    options.axis_angle_deg = std::array<double, 4>{(*v)[0], (*v)[1], (*v)[2], (*v)[3]};
-  }
+  io_detail::read_mesh_orientation(options, fixed);
   if (const toml::node* n = t.get("mesh_face")) {
-    const auto* i = n->as_integer();
-    if (i == nullptr || i->get() < 1) {
-      r.fail(n, prefix + "mesh_face", "expected a face number (an integer from 1; see topple body --list-faces)");
-    }
-    options.face = static_cast<std::size_t>(i->get());
+    options.face = io_detail::mesh_face_number(*n);
+    if (!options.face) r.fail(n, prefix + "mesh_face", io_detail::kMeshFaceProblem);
   }
   if (const auto tol = r.number(t, "mesh_contact_tolerance_m", prefix + "mesh_contact_tolerance_m")) {
     options.contact_tolerance_m = *tol;
@@ -185,12 +175,7 @@ void read_mesh_pose(const Reader& r, const toml::table& t, const std::string& pr
   try {
     check_body_options(options);
   } catch (const InputError& e) {
-    static const std::map<std::string, std::string> keys{
-        {"--pose", "mesh_pose"}, {"--up", "mesh_up"}, {"--rotation", "mesh_rotation_wxyz"},
-        {"--axis-angle", "mesh_axis_angle_deg"}, {"--face", "mesh_face"},
-        {"--contact-tolerance", "mesh_contact_tolerance_m"}};
-    const auto it = keys.find(e.where().field);
-    const std::string key = it != keys.end() ? it->second : "mesh";
+    const std::string key = io_detail::mesh_option_key(e.where().field, "mesh_contact_tolerance_m", "mesh");
     r.fail(t.get(key) != nullptr ? t.get(key) : &t, prefix + key, e.problem());
   }
 }

@@ -20,6 +20,7 @@
 #include "topple/solvers/oriented.hpp"
 #include "topple/solvers/rigid3d.hpp"
 #include "topple/survey/population.hpp"
+#include "io/mesh_pose_keys.hpp"
 #include "io/survey_csv.hpp"
 
 namespace topple {
@@ -203,22 +204,15 @@ double parse_bearing(Reader& r, std::string_view key, double value) {
 /// field and the mesh file.
 /// The survey key of a BodyOptions option named by check_body_options.
 std::string mesh_option_key(const std::string& option) {
-  if (option == "--density") return "mesh_density_kg_m3";
-  if (option == "--pose") return "mesh_pose";
-  if (option == "--up") return "mesh_up";
-  if (option == "--rotation") return "mesh_rotation_wxyz";
-  if (option == "--axis-angle") return "mesh_axis_angle_deg";
-  if (option == "--face") return "mesh_face";
-  if (option == "--contact-tolerance") return "mesh_contact_tolerance";
-  return "mesh_azimuth_deg";
+  return io_detail::mesh_option_key(option, "mesh_contact_tolerance", "mesh_azimuth_deg");
 }
 
 /// The pose keys of a mesh object (checked later by check_body_options, by name).
 void read_mesh_pose(Reader& named, BodyOptions& options) {
   if (const auto pose = named.string("mesh_pose")) {
-    if (*pose == "rest") options.pose = PoseMethod::rest;
-    else if (*pose == "as-scanned") options.pose = PoseMethod::as_scanned;
-    else throw named.error("mesh_pose", fmt::format("'{}' is not a pose: \"rest\" or \"as-scanned\"", *pose));
+    const auto method = io_detail::mesh_pose_method(*pose);
+    if (!method) throw named.error("mesh_pose", io_detail::mesh_pose_problem(*pose));
+    options.pose = *method;
   }
   const auto fixed = [&](std::string_view key, std::size_t count, const char* what) -> std::optional<std::vector<double>> {
     const toml::node* n = named.get(key);
@@ -231,21 +225,10 @@ void read_mesh_pose(Reader& named, BodyOptions& options) {
     for (const auto& e : *arr) v.push_back(named.as_number(key, e));
     return v;
   };
-  if (const auto v = fixed("mesh_up", 3, "[x, y, z], the mesh's direction that becomes up")) {
-    options.up = Vec3{(*v)[0], (*v)[1], (*v)[2]};
-  }
-  if (const auto v = fixed("mesh_rotation_wxyz", 4, "[w, x, y, z], a unit quaternion")) {
-    options.rotation_wxyz = Quaternion{(*v)[0], (*v)[1], (*v)[2], (*v)[3]};
-  }
-  if (const auto v = fixed("mesh_axis_angle_deg", 4, "[x, y, z, degrees], an axis and an angle")) {
-    options.axis_angle_deg = std::array<double, 4>{(*v)[0], (*v)[1], (*v)[2], (*v)[3]};
-  }
+  io_detail::read_mesh_orientation(options, fixed);
   if (const toml::node* n = named.get("mesh_face")) {
-    const auto* i = n->as_integer();
-    if (i == nullptr || i->get() < 1) {
-      throw named.error("mesh_face", "expected a face number (an integer from 1; see topple body --list-faces)", n);
-    }
-    options.face = static_cast<std::size_t>(i->get());
+    options.face = io_detail::mesh_face_number(*n);
+    if (!options.face) throw named.error("mesh_face", io_detail::kMeshFaceProblem, n);
   }
   if (const auto tol = named.length("mesh_contact_tolerance")) options.contact_tolerance_m = *tol;
 }

@@ -30,6 +30,7 @@
 #include "topple/solvers/rigid3d_disc.hpp"
 #include "topple/motion/pulses.hpp"
 #include "topple/core/units.hpp"
+#include "io/mesh_pose_keys.hpp"
 
 namespace topple::io {
 namespace fs = std::filesystem;
@@ -689,14 +690,7 @@ struct BodyCase {
 
 /// The sweep key of a BodyOptions option named by check_body_options or mesh_body.
 std::string mesh_option_key(const std::string& option) {
-  if (option == "--density") return "mesh_density_kg_m3";
-  if (option == "--pose") return "mesh_pose";
-  if (option == "--up") return "mesh_up";
-  if (option == "--rotation") return "mesh_rotation_wxyz";
-  if (option == "--axis-angle") return "mesh_axis_angle_deg";
-  if (option == "--face") return "mesh_face";
-  if (option == "--contact-tolerance") return "mesh_contact_tolerance";
-  return "mesh_azimuth_deg";
+  return io_detail::mesh_option_key(option, "mesh_contact_tolerance", "mesh_azimuth_deg");
 }
 
 /// The pose keys of a mesh object (bodies/pose.hpp; one value each, for every mesh of the object): `mesh_pose`
@@ -705,9 +699,9 @@ std::string mesh_option_key(const std::string& option) {
 /// `mesh_contact_tolerance` ("1mm") or `mesh_contact_tolerance_m`.
 void read_mesh_pose(const Reader& r, const toml::table& o, const std::string& prefix, BodyOptions& options) {
   if (const auto pose = r.string(o, "mesh_pose", prefix + "mesh_pose")) {
-    if (*pose == "rest") options.pose = PoseMethod::rest;
-    else if (*pose == "as-scanned") options.pose = PoseMethod::as_scanned;
-    else r.fail(o.get("mesh_pose"), prefix + "mesh_pose", fmt::format("'{}' is not a pose: \"rest\" or \"as-scanned\"", *pose));
+    const auto method = io_detail::mesh_pose_method(*pose);
+    if (!method) r.fail(o.get("mesh_pose"), prefix + "mesh_pose", io_detail::mesh_pose_problem(*pose));
+    options.pose = *method;
   }
   const auto fixed = [&](std::string_view key, std::size_t count, const char* what) {
     auto v = r.numbers(o, key, prefix + std::string(key));
@@ -716,21 +710,10 @@ void read_mesh_pose(const Reader& r, const toml::table& o, const std::string& pr
     }
     return v;
   };
-  if (const auto v = fixed("mesh_up", 3, "[x, y, z], the mesh's direction that becomes up")) {
-    options.up = Vec3{(*v)[0], (*v)[1], (*v)[2]};
-  }
-  if (const auto v = fixed("mesh_rotation_wxyz", 4, "[w, x, y, z], a unit quaternion")) {
-    options.rotation_wxyz = Quaternion{(*v)[0], (*v)[1], (*v)[2], (*v)[3]};
-  }
-  if (const auto v = fixed("mesh_axis_angle_deg", 4, "[x, y, z, degrees], an axis and an angle")) {
-    options.axis_angle_deg = std::array<double, 4>{(*v)[0], (*v)[1], (*v)[2], (*v)[3]};
-  }
+  io_detail::read_mesh_orientation(options, fixed);
   if (const toml::node* n = o.get("mesh_face")) {
-    const auto* i = n->as_integer();
-    if (i == nullptr || i->get() < 1) {
-      r.fail(n, prefix + "mesh_face", "expected a face number (an integer from 1; see topple body --list-faces)");
-    }
-    options.face = static_cast<std::size_t>(i->get());
+    options.face = io_detail::mesh_face_number(*n);
+    if (!options.face) r.fail(n, prefix + "mesh_face", io_detail::kMeshFaceProblem);
   }
   if (const auto tol = r.quantities(o, "mesh_contact_tolerance_m", "mesh_contact_tolerance", prefix, length_parser(),
                                     "1mm")) {
