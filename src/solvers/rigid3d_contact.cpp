@@ -17,20 +17,25 @@
 // edge) and solved by Gaussian elimination with partial pivoting. Both ends of an edge sticking leave the forces
 // along the edge indeterminate (equal and opposite forces along the line of the two points move nothing): the
 // second end's force along the edge is set to 0 in the solve and the total along the edge is then shared in
-// proportion to the normal forces (a stated choice; it decides only the stick test, not the motion).
+// proportion to the contacts' spare capacities in their cones, so that the pair sticks whenever some share would
+// (contact_forces; a stated choice: it decides only the stick test, not the motion).
 // The flat base (three or more vertices down) is handled as rigid3d_slide.cpp's flat phase: stuck (rest) or
 // translating with F_t = -mu_k N s, N = g + a_z, no rotation, lifting where the centre of pressure leaves the base.
 // Flight: a_c = f, Euler's equations about c.
 //
 // Mode choice (the contact LCP solved by enumeration, slide_rock.hpp's order generalised): the candidate sets are the
 // vertices down (z and the normal velocity at zero); the flat base first (stuck, then slipping), then the edges, then
-// single vertices, then flight; per set, contacts with zero slip velocity stick first, then slip (the direction of
-// the slip start: the tangential acceleration's, found by fixed-point iteration from the sticking solution's), those
-// with a slip velocity slip. The first set whose forces have N_k >= 0, |F_t,k| <= mu_s N_k for the sticking contacts,
+// single vertices, then flight; per set, contacts with zero slip velocity stick first, then slip, those with a slip
+// velocity slip. The direction of a slip starting from rest (issue 29): Coulomb's law at the acceleration level, the
+// slip acceleration along s and F_t = -mu_k N s, a root of an angle problem per contact (slip_directions: the stable
+// root nearest the sticking force's opposite; at a stick limit the limit t -> t0+ by a short look-ahead), renewed at
+// each step while the new slip is slower than kSlipStart p size; the former fixed-point rule where it has no root. The first set whose forces have N_k >= 0, |F_t,k| <= mu_s N_k for the sticking contacts,
 // slip accelerations along the assumed direction for a starting slip, and whose other down vertices do not
 // accelerate into the ground, is taken. None (Painleve's paradox, or round-off at a boundary): a slipping contact is
 // stopped by a tangential impact (the sticking velocity impulse), a sticking one is held (slide_rock.hpp's rule);
-// counted in Rigid3DSummary::painleve_events.
+// counted in Rigid3DSummary::painleve_events. Also counted there: a slip that stops within kChatter_s of its start
+// is held sticking, and (hold_slow_slips) where one sample interval needs kSlowSteps steps while a contact slips slower
+// than kSlipStart p size (stiff direction relaxation, or a slip spiralling in to rest) it is stopped and held sticking.
 //
 // Events, located by TOMS 748 on the Dormand-Prince dense output (4 parts per step, as the pivot mode of rigid3d.cpp):
 // N_k -> 0 (lift), the slip velocity along its direction at the step's start -> 0 (stop or turn), |F_t| -> mu_s N
@@ -1073,12 +1078,36 @@ class ContactEngine {
         throw EventLimitError(fmt::format("rock3d: more than {} events in one sample interval ending at {} s",
                                           kMaxEvents, tb));
       }
+      if (count == kSlowSteps && kind_ == Kind::contact && hold_slow_slips()) continue;
       if (tb - t_ <= 4.0 * std::numeric_limits<double>::epsilon() * std::max(std::abs(tb), 1.0)) {
         t_ = tb;
         break;
       }
       phase(tb);
     }
+  }
+
+  /// The backstop of issue 29: kSlowSteps steps and events within one sample interval while a contact slips slower
+  /// than kSlipStart p size (the direction of a slow slip relaxing stiffly, or a slip spiralling in to rest, that the
+  /// stop event does not see): those contacts are stopped by the sticking velocity impulse and held sticking (the
+  /// engine's rule for a slip that stops as it starts, slide_rock.hpp's held pivot), counted in painleve_events.
+  bool hold_slow_slips() {
+    std::vector<Contact> st = set_;
+    bool any = false;
+    for (Contact& c : st) {
+      if (!c.slip) continue;
+      if (hnorm(vertex_velocity(x_, static_cast<std::size_t>(c.v))) < kSlipStart * p_ref_ * size_) {
+        c.slip = false;
+        c.fresh = false;
+        any = true;
+      }
+    }
+    if (!any) return false;
+    stick_impulse(st);
+    ++painleve_;
+    ++out_.summary.painleve_events;
+    enter(Kind::contact, st);
+    return true;
   }
 
   void phase(double tb) {
@@ -1274,6 +1303,7 @@ class ContactEngine {
           // with the contact at rest.
           std::vector<Contact> st = set_;
           st[k].slip = false;
+          st[k].fresh = false;
           stick_impulse(st);
           if (t_ - since_ < kChatter_s) {
             // Stick-slip chattering (the slip that started at this instant stops at once: the stick limit and the
@@ -1415,6 +1445,7 @@ class ContactEngine {
 
   static constexpr int kParts = 4;
   static constexpr int kMaxEvents = 10'000;
+  static constexpr int kSlowSteps = 1'000;  // steps in a sample interval after which slow slips are held
   static constexpr double kZenoGap_s = 1e-6;
   static constexpr double kConeTol = 1e-6;  // a sticking force within this fraction of mu_s N: on the boundary
   static constexpr double kParallel = 1e-3;  // a slip direction within this angle (rad) of a_t's line: along it
