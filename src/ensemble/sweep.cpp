@@ -76,11 +76,14 @@ struct FieldSlots {
 
 /// The sliding result columns of model = "3d" objects with friction (Rigid3DSummary; the names of `topple rock --model
 /// 3d --json`, io::rigid3d_summary_json), in this order. Only a sweep with such an object has them: others keep their
-/// columns.
-constexpr std::array<const char*, 8> kSlide3DColumns{"residual_slide_east_m", "residual_slide_north_m",
-                                                     "max_slide_speed_m_s",   "slide_path_length_m",
-                                                     "friction_energy_j_per_kg", "slip_episodes",
-                                                     "first_slip_time_s",    "slide_rock_time_s"};
+/// columns. The last five (issue 29: slide-rock and flight) were appended after the first eight.
+constexpr std::array<const char*, 13> kSlide3DColumns{"residual_slide_east_m", "residual_slide_north_m",
+                                                      "max_slide_speed_m_s",   "slide_path_length_m",
+                                                      "friction_energy_j_per_kg", "slip_episodes",
+                                                      "first_slip_time_s",    "slide_rock_time_s",
+                                                      "slide_rock_duration_s", "flights",
+                                                      "flight_duration_s",    "residual_yaw_deg",
+                                                      "painleve_events"};
 
 /// The coupled model's result columns: kSlideRockFields in order, less those that are object columns (sweep.hpp).
 std::vector<const Field<SlideRockOutcome>*> coupled_fields() {
@@ -272,6 +275,11 @@ class Runner {
     put(5, static_cast<std::int64_t>(s.slip_episodes));
     put(6, opt(s.first_slip_time_s));
     put(7, opt(s.slide_rock_time_s));
+    put(8, s.slide_rock_duration_s);
+    put(9, static_cast<std::int64_t>(s.flights));
+    put(10, s.flight_duration_s);
+    put(11, s.residual_yaw_deg);
+    put(12, static_cast<std::int64_t>(s.painleve_events));
   }
 
   static bool batchable(const SlideObject& first, const ObjectSpec& next) {
@@ -293,7 +301,7 @@ class Runner {
   OrientationOptions orientation_;
   std::size_t governing_azimuth_ = kAbsent;
   std::size_t governing_axis_ = kAbsent;
-  std::array<std::size_t, 8> slide_3d_{};  ///< where kSlide3DColumns go (kAbsent: not a column)
+  std::array<std::size_t, kSlide3DColumns.size()> slide_3d_{};  ///< where kSlide3DColumns go (kAbsent: not a column)
 };
 
 std::string_view polarity_name(bool inverse) { return inverse ? "inverse" : "normal"; }

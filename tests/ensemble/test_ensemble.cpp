@@ -478,7 +478,8 @@ TEST(EnsembleRun, ThreeDimensionalFrictionIsPassedToTheEngine) {
   box.body_3d = RigidBody3D::box(0.4, 0.5, 0.8);
   spec.objects = {box};
   const std::vector<std::string> dry = make_plan(spec).columns();
-  for (const char* c : {"residual_slide_east_m", "slide_path_length_m", "slide_rock_time_s", "mu_kinetic"}) {
+  for (const char* c : {"residual_slide_east_m", "slide_path_length_m", "slide_rock_time_s", "mu_kinetic",
+                        "slide_rock_duration_s", "flights", "flight_duration_s", "residual_yaw_deg", "painleve_events"}) {
     EXPECT_EQ(std::count(dry.begin(), dry.end(), c), 0) << c;
   }
   RockObject slippery = box;
@@ -505,6 +506,17 @@ TEST(EnsembleRun, ThreeDimensionalFrictionIsPassedToTheEngine) {
   EXPECT_EQ(number(cell(1, "residual_slide_north_m")), slid.residual_slide_north_m);
   EXPECT_EQ(number(cell(1, "slide_path_length_m")), slid.slide_path_length_m);
   EXPECT_EQ(number(cell(1, "slip_episodes")), static_cast<double>(slid.slip_episodes));
+  // the slide-rock and flight columns (issue 29), appended after the eight sliding columns, at the end of the header
+  const std::vector<std::string> wet = make_plan(spec).columns();
+  const std::vector<std::string> last(wet.end() - 6, wet.end());
+  EXPECT_EQ(last, (std::vector<std::string>{"slide_rock_time_s", "slide_rock_duration_s", "flights",
+                                            "flight_duration_s", "residual_yaw_deg", "painleve_events"}));
+  EXPECT_EQ(number(cell(1, "slide_rock_duration_s")), slid.slide_rock_duration_s);
+  EXPECT_EQ(number(cell(1, "flights")), static_cast<double>(slid.flights));
+  EXPECT_EQ(number(cell(1, "flight_duration_s")), slid.flight_duration_s);
+  EXPECT_EQ(number(cell(1, "residual_yaw_deg")), slid.residual_yaw_deg);
+  EXPECT_EQ(number(cell(1, "painleve_events")), static_cast<double>(slid.painleve_events));
+  EXPECT_TRUE(std::holds_alternative<std::monostate>(cell(0, "residual_yaw_deg")));  // no friction: n/a
   EXPECT_GT(slid.slide_path_length_m, 1e-3);  // a PGA of 0.4 g over mu_s = 0.25: it slides
   std::printf("box 0.4 x 0.5 x 0.8 m, mu 0.25/0.2: path %.4g m, residual (%.4g, %.4g) m, max tilt %.4g rad%s\n",
               slid.slide_path_length_m, slid.residual_slide_east_m, slid.residual_slide_north_m, slid.max_tilt_rad,
