@@ -107,8 +107,8 @@ std::string fragility_title(const FragilityOptions& o, std::size_t motions) {
   if (!o.shape.empty() || !o.body_file.empty() || !o.mesh.empty()) {
     t += ", e = " + o.e;
     if (o.model == "3d") t += fmt::format(", in 3-D{}", o.depth.empty() ? "" : " with depth " + o.depth);
-    if (o.model == "coupled") {
-      t += fmt::format(", coupled slide-rock (μ = {:g}{})", o.rock_mu.value_or(0.0),
+    if (o.model == "coupled" || (o.model == "3d" && o.rock_mu)) {
+      t += fmt::format(", {} (μ = {:g}{})", o.model == "3d" ? "with friction" : "coupled slide-rock", o.rock_mu.value_or(0.0),
                        o.rock_mu_k ? fmt::format(", μ_k = {:g}", *o.rock_mu_k) : std::string());
     }
   }
@@ -266,11 +266,11 @@ void add_failures(const FragilityOptions& o, double g, FragilitySpec& spec) {
       f.coupled = with_field_names({{"mu", "--rock-mu"}, {"mu_k", "--rock-mu-k"}},
                                    [&] { return SlideRockBody::from_rocking(f.body, *o.rock_mu, o.rock_mu_k); });
     } else if (o.model == "3d") {
-      if (o.rock_mu || o.rock_mu_k) {
-        throw parameter_error(o.rock_mu ? "--rock-mu" : "--rock-mu-k", "--model 3d does not slide (friction large "
-                                                                       "enough)");
-      }
+      if (o.rock_mu_k && !o.rock_mu) throw parameter_error("--rock-mu-k", "needs --rock-mu");
+      f.mu_3d = o.rock_mu;  // absent: no contact slides (the no-slip engine)
+      f.mu_k_3d = o.rock_mu_k;
       if (o.shape == "cylinder" && o.mesh.empty() && o.body_file.empty()) {
+        if (o.rock_mu) throw parameter_error("--rock-mu", "a cylinder's rim engine (rigid3d_disc.hpp) does not slide");
         // the rim engine's solid cylinder of the planar cylinder's a = d / 2, h = H / 2 (rocking_body.hpp)
         if (!o.depth.empty()) {
           throw parameter_error("--depth", "is a block's: a cylinder is given by --diameter and --height");
@@ -578,8 +578,9 @@ void add_fragility_command(CLI::App& app) {
                                        "rocking and rolling on its rim, rigid3d_disc.hpp)")
       ->capture_default_str();
   cmd->add_option("--depth", o->depth, "--model 3d, a block: its depth (along bearing + 90), with a unit");
-  cmd->add_option("--rock-mu", o->rock_mu, "--model coupled: the rocking body's static friction coefficient");
-  cmd->add_option("--rock-mu-k", o->rock_mu_k, "--model coupled: its kinetic friction coefficient (default: "
+  cmd->add_option("--rock-mu", o->rock_mu, "--model coupled, or 3d (a block or mesh; absent: no sliding): the "
+                                           "rocking body's static friction coefficient");
+  cmd->add_option("--rock-mu-k", o->rock_mu_k, "--model coupled or 3d: its kinetic friction coefficient (default: "
                                                "--rock-mu)");
   cmd->add_flag("--as-recorded", o->as_recorded, "Run each record once as recorded (no rescaling; no --im-range): "
                                                  "per record PGA, PGV, PGV/PGA and outcome, and the fragility surface "

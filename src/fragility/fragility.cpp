@@ -384,7 +384,9 @@ bool overturns(const GroundMotion& m, const OverturnFailure& f) {
 /// (as `topple rock --model 3d --h2 --bearing-deg`), so that its azimuths are the ground's.
 /// A cylinder (cylinder_3d) is axisymmetric: the pair as it is, whatever the bearing.
 bool overturns_3d(const MotionSet& set, const OverturnFailure& f, double bearing_deg) {
-  const Rigid3DOptions o = rigid3d_options(f.options);
+  Rigid3DOptions o = rigid3d_options(f.options);
+  o.mu_s = f.mu_3d;
+  o.mu_k = f.mu_k_3d;
   const GroundMotion east = set.projected(90.0);
   const GroundMotion north = set.projected(0.0);
   if (f.cylinder_3d) return rock3d_cylinder(east, &north, set.vertical_ptr(), *f.cylinder_3d, o).summary.overturned;
@@ -402,6 +404,17 @@ void check_objects(const FragilitySpec& spec) {
     throw parameter_error("threshold", fmt::format("must be >= 0 m, got {}", spec.sliding->threshold_m));
   }
   if (spec.overturning) (void)overturns(GroundMotion::uniform({0.0, 0.0}, 1.0), *spec.overturning);
+  if (spec.overturning && (spec.overturning->mu_3d || spec.overturning->mu_k_3d)) {
+    const OverturnFailure& f = *spec.overturning;
+    if (!f.body_3d) {
+      throw parameter_error("mu", f.cylinder_3d ? "a cylinder's rim engine (rigid3d_disc.hpp) does not slide"
+                                                : "friction applies to a three-dimensional body (model 3d)");
+    }
+    // The engine's own checks of mu and mu_k (InputError naming them), on a still pair, before any worker runs.
+    const GroundMotion still = GroundMotion::uniform({0.0, 0.0}, 1.0);
+    const MotionSet set = MotionSet::make(still, &still, ComponentAzimuths{90.0, 0.0});
+    (void)overturns_3d(set, f, 0.0);
+  }
 }
 
 /// Under pairs: checks the sets and the objects, and gives each motion's bearing (header, "Pairs").

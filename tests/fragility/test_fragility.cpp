@@ -298,6 +298,49 @@ TEST(FragilityAnalysis, AThreeDimensionalBoxUnderCollinearPairsIsThePlanarBlockO
   }
 }
 
+// Friction for a three-dimensional box (OverturnFailure::mu_3d): with mu < b / h it can never lift (Shenton 1996; in
+// three dimensions the centre of pressure of a base sticking or sliding flat lies within h mu of c's plan, rigid3d.hpp:
+// here h = 0.3 m, mu = 0.2, h mu = 0.06 m < b = 0.075 m, the half-width along the record), so no pair overturns it at
+// any level, where without friction the same box falls. A cylinder with friction and a bad mu are refused by name,
+// before any run.
+TEST(FragilityAnalysis, AThreeDimensionalBoxWithFrictionBelowItsAspectRatioNeverFalls) {
+  std::vector<std::shared_ptr<const MotionSet>> sets;
+  for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+    const GroundMotion m = synthesize(ensemble_spec(seed, 8.0));
+    const GroundMotion quiet = GroundMotion::uniform(std::vector<double>(m.size(), 0.0), m.dt_s());
+    sets.push_back(std::make_shared<const MotionSet>(MotionSet::make(m, &quiet, ComponentAzimuths{90.0, 0.0})));
+  }
+  FragilitySpec box;
+  box.motion_sets = sets;
+  box.levels_si = log_grid(0.1 * kStandardGravity, 1.2 * kStandardGravity, 6);
+  box.bearing_deg = 90.0;
+  box.overturning = OverturnFailure{RockingBody::block(0.15, 0.6), RockingOptions{}, std::nullopt, std::nullopt, std::nullopt};
+  box.overturning->body_3d = RigidBody3D::box(0.15, 0.3, 0.6);
+  const std::vector<int> no_slip = fragility_analysis(box).curves.at(0).data.failures;
+  EXPECT_GT(no_slip.back(), 0);  // without friction it falls: the limit below is not vacuous
+  box.overturning->mu_3d = 0.2;  // b / h = 0.075 / 0.3 = 0.25
+  EXPECT_EQ(fragility_analysis(box).curves.at(0).data.failures, std::vector<int>(6, 0));
+
+  FragilitySpec bad = box;
+  bad.overturning->mu_3d = -0.1;
+  try {
+    (void)fragility_analysis(bad);
+    FAIL() << "a negative mu was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(e.where().field.find("mu"), std::string::npos) << e.what();
+  }
+  FragilitySpec cyl = box;
+  cyl.overturning->body_3d.reset();
+  cyl.overturning->cylinder_3d = CylinderBody3D::solid(0.2, 0.8);
+  cyl.overturning->mu_3d = 0.5;
+  try {
+    (void)fragility_analysis(cyl);
+    FAIL() << "a cylinder with friction was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().field, "mu");
+  }
+}
+
 // A cylinder in three dimensions (OverturnFailure::cylinder_3d, the rim engine rigid3d_disc.hpp) under collinear
 // pairs: it rocks in the vertical plane of the record, where the rim engine is the planar cylinder (test_rigid3d_disc:
 // 1e-6), so its counts are those of the planar cylinder's section (a, h, D as a general body) rocking in the record's
