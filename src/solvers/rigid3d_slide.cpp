@@ -245,11 +245,18 @@ Rigid3DResult rock3d_friction(const GroundMotion& x, const GroundMotion* y, cons
     const double we = H.east_m_s[j];
     const double wn = H.north_m_s[j];
     const bool moving = H.slipping[j] != 0 && (we != 0.0 || wn != 0.0);
-    if (!moving) {  // stuck, or a slip starting here from sticking: F_t = a_h
+    if (!moving) {  // stuck, or a slip starting here from sticking: F_t = a_h, at most mu_s N
       const double G = g + (z ? z->accel_at(t) : 0.0);
       const double ax = x.accel_at(t);
       const double ay = y ? y->accel_at(t) : 0.0;
-      if (!pressure_inside(edges, h, -ax / G, -ay / G)) {
+      // At rest (w = 0) the friction force cannot exceed mu_s N: a row where |a_h| > mu_s N is a slip starting (a
+      // stop at a sample row, or a stop that reverses at once), whose contact force is mu_s N along a_h at the
+      // onset and mu_k N after it. Taking F_t = a_h there put p up to h |a_h| / N from c, outside the base of a body
+      // with h mu_s < b that can never lift (issue 29: such a tall box was handed to the contact engine above
+      // ~0.5 g at mu = 0.05, and failed on its event limit at 3.2 g with mu = 0.2).
+      const double ah = std::hypot(ax, ay);
+      const double k = ah > mu_s * G ? mu_s * G / ah : 1.0;
+      if (!pressure_inside(edges, h, -k * ax / G, -k * ay / G)) {
         handover = last_stuck.value_or(j);
         break;
       }
