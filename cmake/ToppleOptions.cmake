@@ -1,4 +1,8 @@
 # Warnings and sanitizers shared by every target of the project.
+# Precompiled headers for the test executables (tests/CMakeLists.txt): third-party and standard headers only; the
+# library's sources have none (the Python package's build reuses their release objects through ccache,
+# docs/performance.md). OFF to check that each test source includes what it uses.
+option(TOPPLE_PRECOMPILE_HEADERS "Precompile the third-party headers of the test executables" ON)
 add_library(topple_options INTERFACE)
 target_compile_options(topple_options INTERFACE -Wall -Wextra -Wpedantic -Wshadow -Wconversion -Wno-sign-conversion)
 if(TOPPLE_SANITIZE)

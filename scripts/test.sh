@@ -14,7 +14,10 @@
 # EarthquakePrior, CoupledSurvey.RecoversKnownShakingWithCoupledObjectsAndCalibratedIntervals and RegionRecovery.-
 # IntervalsCoverTheTruthAndPoolingNarrowsThem: 2.5 CPU minutes under the sanitizers, repeating on many synthetic
 # surveys the inversions that the other tests of the same executables run once there. A test's own code and the CLI
-# compile at -O0 in that build (tests/CMakeLists.txt, cmake/ToppleOptions.cmake), the library at -O1.
+# compile at -O0 in that build (tests/CMakeLists.txt, cmake/ToppleOptions.cmake), the library at -O1. In the optimised
+# build they compile at -O1, the library at -O3 (cli/CMakeLists.txt, tests/CMakeLists.txt); the test executables share
+# one precompiled header of third-party and standard headers per build. The fuzz phase compiles at OSS-Fuzz's default
+# flags, -O1 -gline-tables-only (the `fuzz` preset). docs/performance.md, "The test command", has the measurements.
 # Tests that read ../shared/ (records, verification data) skip when it is absent.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -39,6 +42,10 @@ scripts/test-venv.sh || echo "test-venv: no .venv-test; the pyrotd/eqsig compari
 launcher=()
 if command -v ccache >/dev/null; then
   export CCACHE_DIR="${CCACHE_DIR:-$PWD/build/ccache}" CCACHE_BASEDIR="${CCACHE_BASEDIR:-$PWD}" CCACHE_DEPEND=true
+  # The test executables' sources use a precompiled header (TOPPLE_PRECOMPILE_HEADERS, tests/CMakeLists.txt); ccache
+  # caches such compiles only with this sloppiness (ccache's manual, "Precompiled headers"). No source of the project
+  # uses __DATE__ or __TIME__. The library's sources, which the Python phase reuses, have no precompiled header.
+  export CCACHE_SLOPPINESS="${CCACHE_SLOPPINESS:+$CCACHE_SLOPPINESS,}pch_defines,time_macros"
   launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
   export TOPPLE_PYTHON_CCACHE=1
 fi
