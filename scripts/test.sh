@@ -13,7 +13,11 @@
 # AndDirection, Inversion.RecoversKnownShakingWithCalibratedIntervals, PosteriorWithPrior.SyntheticCalibrationWithThe-
 # EarthquakePrior, CoupledSurvey.RecoversKnownShakingWithCoupledObjectsAndCalibratedIntervals and RegionRecovery.-
 # IntervalsCoverTheTruthAndPoolingNarrowsThem: 2.5 CPU minutes under the sanitizers, repeating on many synthetic
-# surveys the inversions that the other tests of the same executables run once there. A test's own code and the CLI
+# surveys the inversions that the other tests of the same executables run once there. Also left out there: the three
+# end-to-end runs of whole examples through the CLI (CliInvert.ExampleSurveyJsonMatchesThePinnedOutput, CliInvert.-
+# CemeteryExampleIsItsScriptsOutputAndRecoversThePga, RegionCli.ExampleRunsEndToEnd): 126 of the phase's 263 test
+# seconds at 8d76373, whole inversions on default grids whose readers, writers and CLI paths the shorter CLI tests of
+# the label run under the sanitizers too; all three run in the optimised build. A test's own code and the CLI
 # compile at -O0 in that build (tests/CMakeLists.txt, cmake/ToppleOptions.cmake), the library at -O1. In the optimised
 # build they compile at -O1, the library at -O3 (cli/CMakeLists.txt, tests/CMakeLists.txt); the test executables share
 # one precompiled header of third-party and standard headers per build. The fuzz phase compiles at OSS-Fuzz's default
