@@ -113,15 +113,6 @@ Geometry make_geometry(const RigidBody3D& body, double g) {
 // ---------------------------------------------------------------------------------------------------------------
 // The engine.
 
-struct Forcing {  // over the current sample interval: a(t) = a0 + as (t - t_ref); G = g + a_z
-  double t_ref = 0.0;
-  double ax0 = 0.0, axs = 0.0, ay0 = 0.0, ays = 0.0, G0 = 0.0, Gs = 0.0;
-  [[nodiscard]] Vec3 f(double t) const {  // the force per unit mass in the ground frame: -a_g - g z
-    const double tau = t - t_ref;
-    return {-(ax0 + axs * tau), -(ay0 + ays * tau), -(G0 + Gs * tau)};
-  }
-};
-
 using S2 = State<2>;
 using S7 = State<7>;
 
@@ -387,14 +378,7 @@ class Engine {
 
   // ---- the input ----
   void set_forcing(std::size_t i, double ta, double tb) {
-    const double dt = tb - ta;
-    forcing_.t_ref = ta;
-    forcing_.ax0 = ax_[i];
-    forcing_.axs = (ax_[i + 1] - ax_[i]) / dt;
-    forcing_.ay0 = ay_.empty() ? 0.0 : ay_[i];
-    forcing_.ays = ay_.empty() ? 0.0 : (ay_[i + 1] - ay_[i]) / dt;
-    forcing_.G0 = gravity_.empty() ? g_ : gravity_[i];
-    forcing_.Gs = gravity_.empty() ? 0.0 : (gravity_[i + 1] - gravity_[i]) / dt;
+    forcing_ = Forcing::interval(i, ta, tb, ax_, ay_, gravity_, g_);
     // No restart: the forcing is continuous at a sample, so the last stage's derivative (FSAL) holds there.
   }
 
@@ -1082,7 +1066,7 @@ class Engine {
   void run_out() {
     if (mode_ == Rigid3DMode::rest || opt_.max_run_out_s == 0.0) return;
     const double t_end = t_;
-    forcing_ = Forcing{t_end, 0.0, 0.0, 0.0, 0.0, g_, 0.0};
+    forcing_ = Forcing::still(t_end, g_);
     restart_ = true;
     const double t_stop = t_end + opt_.max_run_out_s;
     const double dt = std::max(grid_.dt_s(), opt_.max_run_out_s * 1e-5);

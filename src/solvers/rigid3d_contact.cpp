@@ -201,14 +201,6 @@ std::optional<std::vector<Vec3>> contact_forces(const std::vector<Contact>& set,
 
 double hnorm(const Vec3& a) { return std::hypot(a[0], a[1]); }
 
-struct Forcing {
-  double t_ref = 0.0, ax0 = 0.0, axs = 0.0, ay0 = 0.0, ays = 0.0, G0 = 0.0, Gs = 0.0;
-  [[nodiscard]] Vec3 f(double t) const {
-    const double tau = t - t_ref;
-    return {-(ax0 + axs * tau), -(ay0 + ays * tau), -(G0 + Gs * tau)};
-  }
-};
-
 enum class Kind : std::uint8_t { rest, flat_slip, contact, flight };
 
 class ContactEngine;
@@ -1408,21 +1400,13 @@ class ContactEngine {
   }
 
   void set_forcing(std::size_t i) {
-    const double ta = grid_.time_s(i), tb = grid_.time_s(i + 1);
-    const double dt = tb - ta;
-    forcing_.t_ref = ta;
-    forcing_.ax0 = ax_[i];
-    forcing_.axs = (ax_[i + 1] - ax_[i]) / dt;
-    forcing_.ay0 = ay_.empty() ? 0.0 : ay_[i];
-    forcing_.ays = ay_.empty() ? 0.0 : (ay_[i + 1] - ay_[i]) / dt;
-    forcing_.G0 = gravity_.empty() ? g_ : gravity_[i];
-    forcing_.Gs = gravity_.empty() ? 0.0 : (gravity_[i + 1] - gravity_[i]) / dt;
+    forcing_ = Forcing::interval(i, grid_.time_s(i), grid_.time_s(i + 1), ax_, ay_, gravity_, g_);
   }
 
   void run_out() {
     if (kind_ == Kind::rest || opt_.max_run_out_s == 0.0) return;
     const double t_end = t_;
-    forcing_ = Forcing{t_end, 0.0, 0.0, 0.0, 0.0, g_, 0.0};
+    forcing_ = Forcing::still(t_end, g_);
     restart_ = true;
     const double t_stop = t_end + opt_.max_run_out_s;
     const double dt = std::max(grid_.dt_s(), opt_.max_run_out_s * 1e-5);

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <span>
 #include <utility>
 
 #include "topple/bodies/body.hpp"
@@ -182,5 +183,30 @@ class Dp5 {
   mutable bool dense_ready_ = false;
 };
 
+/// The input over one sample interval, linear as the record is between samples: a(t) = a0 + as (t - t_ref) along x
+/// and y, G = g + a_z likewise; f(t) is the force per unit mass in the ground frame, -a_g - g z. Both engines' (the
+/// no-slip one, rigid3d.cpp; the contact one, rigid3d_contact.cpp).
+struct Forcing {
+  double t_ref = 0.0;
+  double ax0 = 0.0, axs = 0.0, ay0 = 0.0, ays = 0.0, G0 = 0.0, Gs = 0.0;
+  [[nodiscard]] Vec3 f(double t) const {
+    const double tau = t - t_ref;
+    return {-(ax0 + axs * tau), -(ay0 + ays * tau), -(G0 + Gs * tau)};
+  }
+  /// Over [ta, tb], samples i and i + 1 of x (required), y and the vertical's g + a_z (empty: absent, G = g).
+  [[nodiscard]] static Forcing interval(std::size_t i, double ta, double tb, std::span<const double> ax,
+                                        std::span<const double> ay, std::span<const double> gravity, double g) {
+    const double dt = tb - ta;
+    return {ta,
+            ax[i],
+            (ax[i + 1] - ax[i]) / dt,
+            ay.empty() ? 0.0 : ay[i],
+            ay.empty() ? 0.0 : (ay[i + 1] - ay[i]) / dt,
+            gravity.empty() ? g : gravity[i],
+            gravity.empty() ? 0.0 : (gravity[i + 1] - gravity[i]) / dt};
+  }
+  /// Still ground from t on (the run-out after the record).
+  [[nodiscard]] static Forcing still(double t, double g) { return {t, 0.0, 0.0, 0.0, 0.0, g, 0.0}; }
+};
 
 }  // namespace topple::detail::r3d
