@@ -346,7 +346,10 @@ class Engine {
       const Vec3 w{xv_[4], xv_[5], xv_[6]};
       ke = 0.5 * dot(w, mul(geo_.vertices[static_cast<std::size_t>(vertex_)].Jp, w));
     }
-    return ke + g_ * (zc - geo_.h);
+    if (frame_.level) return ke + g_ * (zc - geo_.h);
+    // An inclined base: the potential of still ground's load in the base frame (rigid3d_math.hpp, BaseFrame), c
+    // relative to its place at the start (the body frame's origin at the ground's).
+    return ke + frame_.potential(P_w_ + mul(R, geo_.c - pb), geo_.c);
   }
 
   void row() {
@@ -1066,7 +1069,7 @@ class Engine {
   void run_out() {
     if (mode_ == Rigid3DMode::rest || opt_.max_run_out_s == 0.0) return;
     const double t_end = t_;
-    forcing_ = Forcing::still(t_end, g_);
+    forcing_ = Forcing::still(t_end, frame_.still);  // level: (0, 0, g)
     restart_ = true;
     const double t_stop = t_end + opt_.max_run_out_s;
     const double dt = std::max(grid_.dt_s(), opt_.max_run_out_s * 1e-5);
@@ -1088,6 +1091,7 @@ class Engine {
   const Geometry& geo_;
   const Rigid3DOptions& opt_;
   double g_ = opt_.g_m_s2;
+  BaseFrame frame_ = BaseFrame::make(opt_.base_incline_deg, opt_.base_incline_azimuth_deg, opt_.g_m_s2);
   Dp5<2, EdgeRhs> edge_;
   Dp5<7, PivotRhs> pivot_;
   Forcing forcing_{};
@@ -1135,6 +1139,14 @@ void check_options(const Rigid3DOptions& o) {
     throw parameter_error("max_run_out_s", fmt::format("must be >= 0 and finite, got {}", o.max_run_out_s));
   }
   if (o.max_steps < 1) throw parameter_error("max_steps", "the integrator needs at least 1 step, got 0");
+  if (!std::isfinite(o.base_incline_deg) || o.base_incline_deg < 0.0 || o.base_incline_deg >= 90.0) {
+    throw parameter_error("base_incline_deg", fmt::format("the base's inclination must be in [0, 90) degrees, got {}",
+                                                          o.base_incline_deg));
+  }
+  if (!std::isfinite(o.base_incline_azimuth_deg)) {
+    throw parameter_error("base_incline_azimuth_deg",
+                          fmt::format("the downhill azimuth must be finite, got {}", o.base_incline_azimuth_deg));
+  }
 }
 
 }  // namespace
@@ -1277,6 +1289,10 @@ Rigid3DResult rock3d(const GroundMotion& x, const GroundMotion* y, const GroundM
                      const Rigid3DOptions& options) {
   check_options(options);
   if (options.mu_s || options.mu_k) return detail::rock3d_friction(x, y, z, body, options);  // rigid3d_slide.cpp
+  if (options.base_incline_deg != 0.0) {  // the engine in the base's frame (header, "Inclined base")
+    const detail::BaseRecords base = detail::base_records(x, y, z, options);
+    return detail::rock3d_rigid(*base.x, &*base.y, &*base.z, body, options, -std::numeric_limits<double>::infinity());
+  }
   return detail::rock3d_rigid(x, y, z, body, options, -std::numeric_limits<double>::infinity());
 }
 
@@ -1289,6 +1305,11 @@ Rigid3DResult detail::rock3d_rigid(const GroundMotion& x, const GroundMotion* y,
   if (!gravity.empty()) {
     const double lowest = *std::min_element(gravity.begin(), gravity.end());
     if (!(lowest > 0.0)) {
+      if (options.base_incline_deg != 0.0) {  // z: the load normal to the inclined base, less g
+        throw parameter_error("vertical", fmt::format("the load normal to the inclined base (gravity's and the "
+                                                      "ground's) falls to {} m/s2 <= 0: the body would leave the "
+                                                      "base, which this model excludes", lowest));
+      }
       throw parameter_error("vertical", fmt::format("the vertical acceleration reaches {} m/s2, so g + a_z = {} m/s2 "
                                                     "<= 0: the body would leave the ground, which this model excludes",
                                                     lowest - options.g_m_s2, lowest));

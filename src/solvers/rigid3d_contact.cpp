@@ -407,7 +407,10 @@ class ContactEngine {
     const Vec3 wb = mul_t(R, w);
     return 0.5 * (x[3] * x[3] + x[4] * x[4] + x[5] * x[5]) + 0.5 * dot(wb, mul(J_, wb));
   }
-  [[nodiscard]] double energy(const SX& x) const { return kinetic(x) + g_ * (x[2] - h_); }
+  [[nodiscard]] double energy(const SX& x) const {
+    if (frame_.level) return kinetic(x) + g_ * (x[2] - h_);
+    return kinetic(x) + frame_.potential({x[0], x[1], x[2]}, c_);  // an inclined base: still ground's load, base frame
+  }
 
   // ---- modes ----
   [[nodiscard]] Rigid3DMode mode_name() const {
@@ -1406,7 +1409,7 @@ class ContactEngine {
   void run_out() {
     if (kind_ == Kind::rest || opt_.max_run_out_s == 0.0) return;
     const double t_end = t_;
-    forcing_ = Forcing::still(t_end, g_);
+    forcing_ = Forcing::still(t_end, frame_.still);  // level: (0, 0, g)
     restart_ = true;
     const double t_stop = t_end + opt_.max_run_out_s;
     const double dt = std::max(grid_.dt_s(), opt_.max_run_out_s * 1e-5);
@@ -1452,6 +1455,7 @@ class ContactEngine {
   M3 J_{};
   std::vector<std::array<double, 3>> edges_;  // body frame: n_x, n_y, b
   Forcing forcing_{};
+  BaseFrame frame_ = BaseFrame::make(opt_.base_incline_deg, opt_.base_incline_azimuth_deg, opt_.g_m_s2);
   Rigid3DResult out_;
   SX x_{};
   double t_ = 0.0, mode_since_ = 0.0, since_ = 0.0;  // since_: the last entry into a contact set

@@ -207,6 +207,52 @@ struct Forcing {
   }
   /// Still ground from t on (the run-out after the record).
   [[nodiscard]] static Forcing still(double t, double g) { return {t, 0.0, 0.0, 0.0, 0.0, g, 0.0}; }
+  /// Still ground from t on, the load (a_x, a_y, G) per unit mass constant (an inclined base: BaseFrame::still).
+  [[nodiscard]] static Forcing still(double t, const Vec3& load) {
+    return {t, load[0], 0.0, load[1], 0.0, load[2], 0.0};
+  }
+};
+
+/// The inclined base's frame (rigid3d.hpp, "Inclined base"; docs/method.md, "An inclined base"): Q rotates by beta
+/// about the horizontal axis k = z x e_d (e_d the downhill direction), so Q z = cos(beta) z + sin(beta) e_d = n, the
+/// base normal, and Q e_d = cos(beta) e_d - sin(beta) z, the plane's line of steepest descent. A load (a_x, a_y, G)
+/// given in the record's frame (the ground's acceleration and g + a_z) is Q^T (a_x, a_y, G) in the base frame.
+struct BaseFrame {
+  bool level = true;
+  M3 to_base{{{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}}};  // Q^T (rows)
+  Vec3 still{};  // Q^T (0, 0, g): still ground's load in the base frame
+  double g = 0.0;
+
+  [[nodiscard]] static BaseFrame make(double incline_deg, double azimuth_deg, double g_m_s2) {
+    BaseFrame f;
+    f.g = g_m_s2;
+    f.still = {0.0, 0.0, g_m_s2};
+    if (incline_deg == 0.0) return f;
+    f.level = false;
+    const double b = deg_to_rad(incline_deg);
+    const double a = deg_to_rad(azimuth_deg);
+    const Vec3 k{-std::cos(a), std::sin(a), 0.0};  // z x e_d, e_d = (sin A, cos A, 0)
+    const double cb = std::cos(b), sb = std::sin(b);
+    // Rodrigues: Q v = v cos(b) + (k x v) sin(b) + k (k . v)(1 - cos(b)); Q^T the same with -b. Row i of Q^T is
+    // Q e_i (Q^T_ij = Q_ji = e_j . Q e_i).
+    for (std::size_t i = 0; i < 3; ++i) {
+      Vec3 e{};
+      e[i] = 1.0;
+      f.to_base[i] = cb * e + sb * cross(k, e) + ((1.0 - cb) * k[i]) * k;
+    }
+    f.still = g_m_s2 * mul(f.to_base, kUp);
+    return f;
+  }
+  /// The base-frame load of a record-frame one.
+  [[nodiscard]] Vec3 load(double ax, double ay, double G) const {
+    return level ? Vec3{ax, ay, G} : mul(to_base, Vec3{ax, ay, G});
+  }
+  /// The potential energy per unit mass of the centre of mass at c (base frame) relative to c0: the load of still
+  /// ground times the displacement (on level ground g (z - z0)).
+  [[nodiscard]] double potential(const Vec3& c, const Vec3& c0) const {
+    if (level) return g * (c[2] - c0[2]);
+    return dot(still, c - c0);
+  }
 };
 
 }  // namespace topple::detail::r3d

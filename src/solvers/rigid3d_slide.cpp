@@ -26,14 +26,17 @@
 #include <cmath>
 #include <cstddef>
 #include <optional>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include <fmt/format.h>
 
+#include "rigid3d_math.hpp"
 #include "rigid3d_slide.hpp"
 #include "topple/core/error.hpp"
+#include "topple/motion/input_grid.hpp"
 #include "topple/motion/motion_set.hpp"
 #include "topple/solvers/sliding.hpp"
 #include "topple/solvers/sliding2d.hpp"
@@ -84,9 +87,10 @@ GroundMotion zero_like(const GroundMotion& m) {
 }
 
 /// The sliding phase's totals up to history row `last` (inclusive), by the trapezoidal rule on the rows (used only
-/// where the run is cut while slipping, or where a cut record cannot be formed).
-void totals_from_rows(const Sliding2dHistory& h, std::size_t last, double mu_k, const GroundMotion* z, double g,
-                      Rigid3DSummary& s) {
+/// where the run is cut while slipping, or where a cut record cannot be formed, and on an inclined base). normal(t):
+/// the normal load per unit mass (g + a_z; on an incline the base frame's).
+template <class Normal>
+void totals_from_rows(const Sliding2dHistory& h, std::size_t last, double mu_k, Normal normal, Rigid3DSummary& s) {
   double path = 0.0, work = 0.0, vmax = 0.0;
   for (std::size_t j = 0; j <= last; ++j) {
     const double v = std::hypot(h.east_m_s[j], h.north_m_s[j]);
@@ -94,8 +98,8 @@ void totals_from_rows(const Sliding2dHistory& h, std::size_t last, double mu_k, 
     if (j == 0) continue;
     const double v0 = std::hypot(h.east_m_s[j - 1], h.north_m_s[j - 1]);
     const double dt = h.time_s[j] - h.time_s[j - 1];
-    const double G0 = g + (z ? z->accel_at(h.time_s[j - 1]) : 0.0);
-    const double G1 = g + (z ? z->accel_at(h.time_s[j]) : 0.0);
+    const double G0 = normal(h.time_s[j - 1]);
+    const double G1 = normal(h.time_s[j]);
     path += 0.5 * dt * (v0 + v);
     work += 0.5 * dt * mu_k * (G0 * v0 + G1 * v);
   }
@@ -108,9 +112,10 @@ void totals_from_rows(const Sliding2dHistory& h, std::size_t last, double mu_k, 
 /// would need more friction than mu_s N. Per unit mass, in the ground frame: the contact force is F = a_c - f (f the
 /// gravity and inertial force, a_c the acceleration of c about the fixed contact), with the angular acceleration of
 /// fixed-axis rotation about the edge (axis e, J_e theta'' = e . (r x f), J_e = e . J_P e) or of Euler's equations
-/// about the fixed vertex (J_P w' = r x f - w x J_P w); J_P = R J R^T + |r|^2 1 - r r^T (parallel axes).
-std::optional<double> first_contact_slip(const Rigid3DResult& r, const RigidBody3D& body, const GroundMotion& x,
-                                         const GroundMotion* y, const GroundMotion* z, double g, double mu_s) {
+/// about the fixed vertex (J_P w' = r x f - w x J_P w); J_P = R J R^T + |r|^2 1 - r r^T (parallel axes). load(t):
+/// (a_x, a_y, g + a_z) at t (on an inclined base in its frame, still ground's after the record), f = -load.
+template <class Load>
+std::optional<double> first_contact_slip(const Rigid3DResult& r, const RigidBody3D& body, Load load, double mu_s) {
   using M3 = std::array<Vec3, 3>;
   const auto dot = [](const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
   const auto cross = [](const Vec3& a, const Vec3& b) {
@@ -146,7 +151,8 @@ std::optional<double> first_contact_slip(const Rigid3DResult& r, const RigidBody
         Jp[a][b] = sum + (a == b ? dot(rw, rw) : 0.0) - rw[a] * rw[b];
       }
     }
-    const Vec3 f{-x.accel_at(t), -(y ? y->accel_at(t) : 0.0), -(g + (z ? z->accel_at(t) : 0.0))};
+    const Vec3 l = load(t);
+    const Vec3 f{-l[0], -l[1], -l[2]};
     const Vec3& w = h.angular_velocity_rad_s[i];
     Vec3 alpha{};
     if (mode == Rigid3DMode::rocking) {
@@ -229,9 +235,28 @@ Rigid3DResult rock3d_friction(const GroundMotion& x, const GroundMotion* y, cons
   const double mu_k = options.mu_k.value_or(mu_s);
   const double g = options.g_m_s2;
   const GroundMotion north = y ? *y : zero_like(x);
-  const SlidingBlock block = SlidingBlock::make(mu_s, mu_k, 0.0, SlidingMode::two_way, g);
-  const ComponentAzimuths az{90.0, 0.0};
+  // An inclined base (rigid3d.hpp, "Inclined base"): the flat phases are sliding2d.hpp's incline (eq S11), whose
+  // in-plane load and normal force are the base frame's load below and whose residual is in the base frame's axes
+  // (the downhill in-plane axis carried on e_d); its still tail carries a run-out down the plane.
+  const bool inclined = options.base_incline_deg != 0.0;
+  const SlidingBlock block =
+      SlidingBlock::make(mu_s, mu_k, deg_to_rad(options.base_incline_deg), SlidingMode::two_way, g);
+  const ComponentAzimuths az{90.0, 0.0, options.base_incline_azimuth_deg};
   Sliding2dResult slide = slide_2d(x, north, az, block, z, options.sliding);
+  // The records the engines and the tests below read: on an incline, in the base's frame.
+  BaseRecords base;
+  if (inclined) base = base_records(x, y, z, options);
+  const GroundMotion& xb = inclined ? *base.x : x;
+  const GroundMotion* yb = inclined ? &*base.y : y;
+  const GroundMotion* zb = inclined ? &*base.z : z;
+  const r3d::BaseFrame frame =
+      r3d::BaseFrame::make(options.base_incline_deg, options.base_incline_azimuth_deg, options.g_m_s2);
+  // (a_x, a_y, g + a_z) at t; outside the record the ground is still (on an incline: gravity's load in the base frame,
+  // at slide_2d's tail rows and the engine's run-out).
+  const auto load = [&](double t) -> Vec3 {
+    if (inclined && (t > xb.end_time_s() || t < xb.start_time_s())) return frame.still;
+    return {xb.accel_at(t), yb ? yb->accel_at(t) : 0.0, g + (zb ? zb->accel_at(t) : 0.0)};
+  };
   const Sliding2dHistory& H = slide.history;
   const double h = checked.height_m();
   const std::vector<PlanEdge> edges = plan_edges(checked);
@@ -246,9 +271,10 @@ Rigid3DResult rock3d_friction(const GroundMotion& x, const GroundMotion* y, cons
     const double wn = H.north_m_s[j];
     const bool moving = H.slipping[j] != 0 && (we != 0.0 || wn != 0.0);
     if (!moving) {  // stuck, or a slip starting here from sticking: F_t = a_h, at most mu_s N
-      const double G = g + (z ? z->accel_at(t) : 0.0);
-      const double ax = x.accel_at(t);
-      const double ay = y ? y->accel_at(t) : 0.0;
+      const Vec3 l = load(t);
+      const double G = l[2];
+      const double ax = l[0];
+      const double ay = l[1];
       // At rest (w = 0) the friction force cannot exceed mu_s N: a row where |a_h| > mu_s N is a slip starting (a
       // stop at a sample row, or a stop that reverses at once), whose contact force is mu_s N along a_h at the
       // onset and mu_k N after it. Taking F_t = a_h there put p up to h |a_h| / N from c, outside the base of a body
@@ -305,7 +331,9 @@ Rigid3DResult rock3d_friction(const GroundMotion& x, const GroundMotion* y, cons
       r.position_m.push_back({H.east_m[j], H.north_m[j], 0.0});
       r.orientation.push_back(kIdentityQuaternion);
       r.angular_velocity_rad_s.push_back({0.0, 0.0, 0.0});
-      r.energy_j_per_kg.push_back(0.5 * (we * we + wn * wn));
+      // kinetic, and on an incline the potential of the displacement along the plane (level: none while flat)
+      r.energy_j_per_kg.push_back(0.5 * (we * we + wn * wn) +
+                                  (inclined ? frame.potential({H.east_m[j], H.north_m[j], 0.0}, {}) : 0.0));
       r.mode.push_back(H.slipping[j] != 0 ? Rigid3DMode::sliding : Rigid3DMode::rest);
     }
   }
@@ -329,7 +357,9 @@ Rigid3DResult rock3d_friction(const GroundMotion& x, const GroundMotion* y, cons
     s.end_time_s = slide.summary.end_time_s;
     s.end_mode = slide.summary.at_rest_at_end ? Rigid3DMode::rest : Rigid3DMode::sliding;
     if (!slide.summary.at_rest_at_end) {
-      s.warnings.push_back("the body was still sliding at the record's end (mu_k = 0)");
+      s.warnings.push_back(inclined ? "the body was still sliding down the inclined base at the record's end "
+                                      "(tan(base_incline_deg) >= mu_k: it cannot stop)"
+                                    : "the body was still sliding at the record's end (mu_k = 0)");
     }
     if (options.record_history && out.history.time_s.back() < s.end_time_s) {  // the run-out's stop
       auto& r = out.history;
@@ -337,7 +367,8 @@ Rigid3DResult rock3d_friction(const GroundMotion& x, const GroundMotion* y, cons
       r.position_m.push_back({s.residual_slide_east_m, s.residual_slide_north_m, 0.0});
       r.orientation.push_back(kIdentityQuaternion);
       r.angular_velocity_rad_s.push_back({0.0, 0.0, 0.0});
-      r.energy_j_per_kg.push_back(0.0);
+      r.energy_j_per_kg.push_back(
+          inclined ? frame.potential({s.residual_slide_east_m, s.residual_slide_north_m, 0.0}, {}) : 0.0);
       r.mode.push_back(s.end_mode);
     }
     return out;
@@ -346,7 +377,8 @@ Rigid3DResult rock3d_friction(const GroundMotion& x, const GroundMotion* y, cons
   // The sliding totals up to the cut.
   if (cut > 0) {
     bool exact = false;
-    try {  // slide_2d on the records cut at t_cut: its totals are those of the phase
+    // On an incline the cut records would get slide_2d's still tail (a run-out past the cut): the rows' totals.
+    if (!inclined) try {  // slide_2d on the records cut at t_cut: its totals are those of the phase
       const GroundMotion xc = x.trimmed(x.start_time_s(), t_cut);
       const GroundMotion nc = north.trimmed(north.start_time_s(), t_cut);
       std::optional<GroundMotion> zc;
@@ -358,16 +390,16 @@ Rigid3DResult rock3d_friction(const GroundMotion& x, const GroundMotion* y, cons
       exact = true;
     } catch (const InputError&) {  // a cut within 1 us of a sample (GroundMotion's least step)
     }
-    if (!exact) totals_from_rows(H, cut, mu_k, z, g, s);
+    if (!exact) totals_from_rows(H, cut, mu_k, [&](double t) { return load(t)[2]; }, s);
   }
   const ContactStart start{t_cut, {H.east_m[cut], H.north_m[cut], 0.0}, {H.east_m_s[cut], H.north_m_s[cut], 0.0},
                            kIdentityQuaternion, {0.0, 0.0, 0.0}};
-  if (slide_rock || lost) return merge_contact(std::move(out), x, y, z, checked, options, start);
+  if (slide_rock || lost) return merge_contact(std::move(out), xb, yb, zb, checked, options, start);
 
-  if (z) {  // g + a_z <= 0 after the uplift: flight, which the no-slip engine excludes
-    for (std::size_t i = 0; i < z->size(); ++i) {
-      if (z->time_s(i) >= t_cut && !(g + z->accel_m_s2()[i] > 0.0)) {
-        return merge_contact(std::move(out), x, y, z, checked, options, start);
+  if (zb) {  // g + a_z <= 0 after the uplift: flight, which the no-slip engine excludes
+    for (std::size_t i = 0; i < zb->size(); ++i) {
+      if (zb->time_s(i) >= t_cut && !(g + zb->accel_m_s2()[i] > 0.0)) {
+        return merge_contact(std::move(out), xb, yb, zb, checked, options, start);
       }
     }
   }
@@ -375,8 +407,8 @@ Rigid3DResult rock3d_friction(const GroundMotion& x, const GroundMotion* y, cons
   rigid.mu_s.reset();
   rigid.mu_k.reset();
   rigid.record_history = true;  // for the friction check of the contact below
-  Rigid3DResult r = rock3d_rigid(x, y, z, checked, rigid, t_cut);
-  const std::optional<double> contact_slip = first_contact_slip(r, checked, x, y, z, g, mu_s);
+  Rigid3DResult r = rock3d_rigid(xb, yb, zb, checked, rigid, t_cut);
+  const std::optional<double> contact_slip = first_contact_slip(r, checked, load, mu_s);
   // Back at rest after the uplift, the no-slip engine keeps the body stuck: would it slide (the stick test on the
   // record's samples in those rest periods)?
   std::optional<double> slide_after;
@@ -384,17 +416,17 @@ Rigid3DResult rock3d_friction(const GroundMotion& x, const GroundMotion* y, cons
     const auto& modes = r.summary.modes;
     if (modes[k].mode != Rigid3DMode::rest || modes[k].time_s <= t_cut) continue;
     const double t_to = k + 1 < modes.size() ? modes[k + 1].time_s : r.summary.end_time_s;
-    for (std::size_t i = 0; i < x.size() && !slide_after; ++i) {
-      const double t = x.time_s(i);
+    for (std::size_t i = 0; i < xb.size() && !slide_after; ++i) {
+      const double t = xb.time_s(i);
       if (t < modes[k].time_s || t > t_to) continue;
-      const double G = g + (z ? z->accel_at(t) : 0.0);
-      if (std::hypot(x.accel_m_s2()[i], y ? y->accel_at(t) : 0.0) > mu_s * G) slide_after = t;
+      const double G = g + (zb ? zb->accel_at(t) : 0.0);
+      if (std::hypot(xb.accel_m_s2()[i], yb ? yb->accel_at(t) : 0.0) > mu_s * G) slide_after = t;
     }
   }
   // The no-slip engine's answer holds where no contact needed to slip, the body never slid after an uplift and never
   // left the ground; else the contact engine (rigid3d_contact.cpp) runs from the uplift instead.
   if (contact_slip || slide_after || r.summary.flight_time_s) {
-    return merge_contact(std::move(out), x, y, z, checked, options, start);
+    return merge_contact(std::move(out), xb, yb, zb, checked, options, start);
   }
   if (!options.record_history) r.history = {};
   // Merge: the engine's summary, the flat phase's modes first (the engine's first mode is its rest at t_cut).
@@ -422,11 +454,43 @@ Rigid3DResult rock3d_friction(const GroundMotion& x, const GroundMotion* y, cons
       out.history.position_m.push_back(p);
       out.history.orientation.push_back(r.history.orientation[k]);
       out.history.angular_velocity_rad_s.push_back(r.history.angular_velocity_rad_s[k]);
-      out.history.energy_j_per_kg.push_back(r.history.energy_j_per_kg[k]);
+      // the engine's potential is relative to its start; on an incline add the slide's along the plane
+      out.history.energy_j_per_kg.push_back(
+          r.history.energy_j_per_kg[k] +
+          (inclined ? frame.potential({s.residual_slide_east_m, s.residual_slide_north_m, 0.0}, {}) : 0.0));
       out.history.mode.push_back(r.history.mode[k]);
     }
   }
   out.summary = std::move(e);
+  return out;
+}
+
+BaseRecords base_records(const GroundMotion& x, const GroundMotion* y, const GroundMotion* z,
+                         const Rigid3DOptions& options) {
+  const std::array<const GroundMotion*, 3> components{&x, y, z};
+  const InputGrid grid(components);
+  const double g = options.g_m_s2;
+  const std::vector<double> gravity = effective_gravity(grid, 2, g);
+  const std::span<const double> ax = grid.accel_m_s2(0);
+  const std::span<const double> ay = grid.accel_m_s2(1);
+  const r3d::BaseFrame frame = r3d::BaseFrame::make(options.base_incline_deg, options.base_incline_azimuth_deg, g);
+  const std::size_t n = grid.size();
+  std::vector<double> bx(n), by(n), bz(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3 l = frame.load(ax[i], ay.empty() ? 0.0 : ay[i], gravity.empty() ? g : gravity[i]);
+    bx[i] = l[0];
+    by[i] = l[1];
+    bz[i] = l[2] - g;
+  }
+  const auto make = [&](std::vector<double> a) {
+    if (grid.is_uniform()) return GroundMotion::uniform(std::move(a), grid.dt_s(), grid.start_time_s());
+    const std::span<const double> t = grid.times_s();
+    return GroundMotion::irregular(std::vector<double>(t.begin(), t.end()), std::move(a));
+  };
+  BaseRecords out;
+  out.x = make(std::move(bx));
+  out.y = make(std::move(by));
+  out.z = make(std::move(bz));
   return out;
 }
 

@@ -1,10 +1,22 @@
 #pragma once
 // Internal: the two halves of rock3d (rigid3d.hpp). rigid3d.cpp holds the no-slip engine, rigid3d_slide.cpp the
 // sliding phases with Coulomb friction (docs/method.md, "Sliding in three dimensions").
+#include <optional>
+
 #include "topple/motion/ground_motion.hpp"
 #include "topple/solvers/rigid3d.hpp"
 
 namespace topple::detail {
+
+/// The records in an inclined base's frame (rigid3d.hpp, "Inclined base"; rigid3d_slide.cpp): on the union grid of
+/// x, y and z (input_grid.hpp), the components of Q^T (a_x, a_y, g + a_z): x' and y' along the base's x and y axes and
+/// z' = (the load normal to the base) - g, so that the engines' g + a_z is that load. All three are given (zero
+/// where the load is), so that the engines never take the x-alone path. Between samples linear as the records are.
+struct BaseRecords {
+  std::optional<GroundMotion> x, y, z;
+};
+[[nodiscard]] BaseRecords base_records(const GroundMotion& x, const GroundMotion* y, const GroundMotion* z,
+                                       const Rigid3DOptions& options);
 
 /// The no-slip engine (rigid3d.cpp), the body at rest at start_time_s (before the record: from its start). Options
 /// checked by the caller; mu_s and mu_k are not read.

@@ -66,6 +66,24 @@
 // keeps that direction of the motion after the impact and sets the ratio of kinetic energies to e^2 (the planar
 // engine's theta'+ = e theta'- for a block on its opposite edge).
 //
+// Inclined base (Rigid3DOptions::base_incline_deg = beta > 0, downhill azimuth A; docs/method.md, "An inclined base").
+// The base is a rigid plane through the ground's origin with normal n = cos(beta) z + sin(beta) e_d, e_d = (sin A,
+// cos A, 0) the downhill direction; it moves with the ground (the record's accelerations, given in the horizontal and
+// vertical frame of the record, are the base's). The engines above run unchanged in the base's frame P: the rotation
+// Q by beta about the horizontal axis z x e_d (across the slope) maps the record frame's axes onto P's (z onto n, e_d
+// onto the downhill line of the plane, the across-slope axis onto itself). Per unit mass the load in P is
+// Q^T (a_x, a_y, g + a_z): the "horizontal" components a_P = (a_x', a_y') carry gravity's slope component
+// -g sin(beta) e_d, the "vertical" one g cos(beta) + ... (linear in t between samples, so the engines' exactness is
+// kept), and still ground (after the record) is Q^T (0, 0, g). Every output is in P: the tilt is the angle between the
+// body's z axis and the base normal (the natural tilt of a body resting on the plane; fallen: 90 degrees from the
+// normal), the azimuths (of the fall, of the tilt) are directions in the plane measured clockwise from P's y axis
+// (north carried onto the plane by Q: on the fall line and across it they are the compass azimuths), the residual
+// slide (east, north) is the displacement along the plane, its components on P's x and y axes (the downhill in-plane
+// axis carried on e_d, as sliding2d.hpp's slope), the history in P, its energy with the potential of gravity in P.
+// Without friction the base sticks (no contact slides, however steep: stated); with mu_s the flat phases are
+// sliding2d.hpp's incline (eq S11; a body with tan(beta) > mu_s slides from the start, at g (sin beta - mu_k cos beta)
+// down the plane on still ground).
+//
 // Rest rule: as the planar engine's (rocking.hpp): after a flat landing, kinetic energy below rest_energy_fraction times
 // the energy to lift the centre of mass over the new contact (g (|c - contact| - h)) puts the body at rest.
 //
@@ -139,6 +157,12 @@ struct Rigid3DOptions {
   std::optional<double> mu_s;
   std::optional<double> mu_k;            ///< kinetic friction, 0 <= mu_k <= mu_s; absent: mu_s (needs mu_s)
   Sliding2dOptions sliding{};            ///< tolerances of the sliding phases (sliding2d.hpp's defaults)
+  /// An inclined base (docs/method.md, "An inclined base"): the plane's inclination beta, degrees in [0, 90); 0 (the
+  /// default): level, today's engine bit for bit. The engines work in the base's frame (below).
+  double base_incline_deg = 0.0;
+  /// The plane's downhill direction seen from above (its fall line), degrees clockwise from north; finite; unused
+  /// when base_incline_deg = 0.
+  double base_incline_azimuth_deg = 0.0;
 };
 
 /// sliding: the base flat on the ground, slipping; slide_rock: on one or two base vertices of which at least one
