@@ -62,6 +62,8 @@ struct RockOptions {
   std::string method = "adaptive";
   std::optional<double> rtol;
   std::optional<double> simultaneous_contact;  // --model 3d, a polygon base: fraction of the body's size (rigid3d.hpp)
+  std::optional<double> base_incline_deg;          // --model 3d, a polygon base: an inclined base (rigid3d.hpp)
+  std::optional<double> base_incline_azimuth_deg;  // its downhill azimuth
   std::optional<int> rk4_substeps;
   std::optional<std::size_t> max_steps;
   std::string run_out;
@@ -81,7 +83,8 @@ const std::map<std::string, std::string>& option_names() {
       {"max_run_out_s", "--run-out"}, {"vertical", "--vertical"}, {"mu_k", "--mu-k"}, {"slope", "--slope-deg"},
       {"mu_s", "--mu"},
       {"depth", "--depth"},   {"bearing", "--bearing-deg"}, {"cylinder_step", "--direction-step-deg"},
-      {"azimuth", "--azimuths"}, {"simultaneous_contact", "--simultaneous-contact"}};
+      {"azimuth", "--azimuths"}, {"simultaneous_contact", "--simultaneous-contact"},
+      {"base_incline_deg", "--base-incline-deg"}, {"base_incline_azimuth_deg", "--base-incline-azimuth-deg"}};
   return names;
 }
 
@@ -216,7 +219,10 @@ void run_model_3d(const RockOptions& o, RunMotion& run, const std::optional<Rock
                                      "axis: along bearing + 90 with --h2)");
   }
   if (!body && !o.depth.empty()) throw parameter_error("--depth", "is a block's: a mesh has its own shape");
-  if (o.slope_deg) throw parameter_error("--slope-deg", "--model 3d has a level base");
+  if (o.slope_deg) {
+    throw parameter_error("--slope-deg", "is the coupled model's; --model 3d takes an inclined base as "
+                                         "--base-incline-deg and --base-incline-azimuth-deg");
+  }
   if (o.direction_step_deg) throw parameter_error("--direction-step-deg", "is for a cylinder of the rocking model");
   if (options.method != RockingMethod::adaptive) throw parameter_error("--method", "--model 3d is adaptive only");
   Rigid3DRequest request;
@@ -258,6 +264,19 @@ void run_model_3d(const RockOptions& o, RunMotion& run, const std::optional<Rock
     }
     request.options.simultaneous_contact = *o.simultaneous_contact;
   }
+  if (o.base_incline_deg || o.base_incline_azimuth_deg) {
+    if (cylinder) {
+      throw parameter_error(o.base_incline_deg ? "--base-incline-deg" : "--base-incline-azimuth-deg",
+                            "the cylinder's rim engine (rigid3d_disc.hpp) has a level base: an inclined base is a "
+                            "block's or a mesh's");
+    }
+    if (!o.base_incline_deg) {
+      throw parameter_error("--base-incline-azimuth-deg", "needs --base-incline-deg (the base's inclination)");
+    }
+    // checked by rock3d: [0, 90) degrees, a finite azimuth (fields named as these options)
+    request.options.base_incline_deg = *o.base_incline_deg;
+    request.options.base_incline_azimuth_deg = o.base_incline_azimuth_deg.value_or(0.0);
+  }
   if (cylinder && (o.mu || o.mu_k)) {
     throw parameter_error(o.mu ? "--mu" : "--mu-k", "the cylinder's rim engine (rigid3d_disc.hpp) rolls without "
                                                     "slip: sliding in three dimensions is a block's or a mesh's");
@@ -292,6 +311,10 @@ void run_rock(const RockOptions& o) {
   if (!o.mesh.empty() && o.model != "3d") {
     throw parameter_error("--mesh", "needs --model 3d (for the planar models: `topple body MESH --json > body.json`, "
                                     "then --body body.json)");
+  }
+  if ((o.base_incline_deg || o.base_incline_azimuth_deg) && o.model != "3d") {
+    throw parameter_error(o.base_incline_deg ? "--base-incline-deg" : "--base-incline-azimuth-deg",
+                          "applies with --model 3d only (the coupled model's inclined base is --slope-deg)");
   }
   if (o.simultaneous_contact && o.model != "3d") {
     throw parameter_error("--simultaneous-contact", "applies with --model 3d only (the planar models land on one edge)");
@@ -538,6 +561,13 @@ void add_rock_command(CLI::App& app) {
                   "--model 3d, a block or a mesh: at a touch-down, base vertices within this fraction of the body's "
                   "size (its largest distance from the centre of mass to a vertex; dimensionless) of the ground land "
                   "with it as one impact, in [0, 0.01] (default 1e-5; 0: strictly successive impacts)");
+  cmd->add_option("--base-incline-deg", o->base_incline_deg,
+                  "--model 3d, a block or a mesh: the base is a plane inclined at this angle, degrees in [0, 90) "
+                  "(default 0, level); the body sticks to it without --mu, slides on it with --mu; the outputs are in "
+                  "the base's frame (tilt from the base normal, slide along the plane)");
+  cmd->add_option("--base-incline-azimuth-deg", o->base_incline_azimuth_deg,
+                  "--model 3d with --base-incline-deg: the plane's downhill direction, degrees clockwise from north "
+                  "(default 0; without --h2 the record runs along the body's +x, azimuth 90)");
   cmd->add_option("--rk4-substeps", o->rk4_substeps, "RK4 steps per sample interval (default 10)");
   cmd->add_option("--max-steps", o->max_steps, "Cap on integrator steps; past it the run stops with exit status 3 "
                                                "(default 100000000)");

@@ -208,6 +208,11 @@ void run_3d(const RunMotion& run, const Rigid3DRequest& request) {
                request.bearing_deg ? fmt::format(", +x axis at {:g} deg", *request.bearing_deg)
                                    : std::string(", the record along +x (azimuth 90)"));
   }
+  if (request.options.base_incline_deg != 0.0) {
+    fmt::print("inclined base          {:.6g} deg, downhill toward {:.6g} deg; tilt from the base normal, azimuths and "
+               "slide in the base's plane\n",
+               request.options.base_incline_deg, request.options.base_incline_azimuth_deg);
+  }
   fmt::print("max tilt               {:.6g} rad toward {:.2f} deg at {:.4f} s, {:.6g} x the static limit\n",
              s.max_tilt_rad, s.max_tilt_azimuth_deg, s.max_tilt_time_s, s.max_tilt_over_limit);
   fmt::print("first uplift           {}\n", format_seconds_or_none(s.uplift_time_s));

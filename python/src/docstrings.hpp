@@ -1039,6 +1039,14 @@ mu : float, optional
     slide-rock stops there with a warning (summary "slide_rock_time_s").
 mu_k : float, optional
     A box: the kinetic friction coefficient, 0 <= mu_k <= mu (the CLI's --mu-k); None: mu. Needs mu.
+base_incline_deg : float
+    A box: the base is a plane inclined at this angle, degrees in [0, 90) (the CLI's --base-incline-deg; docs/method.md
+    "An inclined base"); 0 (the default): level. Without mu the box sticks to the plane; with mu it slides on it (from
+    rest where tan(incline) > mu). The summary is in the base's frame: tilt from the base normal, azimuths and the
+    residual slide in the plane (east and north carried onto it); "solver" says the incline. Refused for a cylinder.
+base_incline_azimuth_deg : float
+    The plane's downhill direction, degrees clockwise from north (the CLI's --base-incline-azimuth-deg); with one
+    component (no second) the record acts along the box's +x, azimuth 90.
 max_run_out_s : float
     Longest integration after the record on still ground, s.
 history : bool

@@ -475,7 +475,8 @@ nb::dict run_rock3d(const GroundMotion& first, const GroundMotion* second, std::
                     const std::vector<double>& azimuths_deg, std::optional<double> bearing_deg,
                     const GroundMotion* vertical, const std::variant<double, std::string>& e, double g_m_s2,
                     double rel_tol, std::optional<double> simultaneous_contact, double max_run_out_s, bool history,
-                    std::optional<double> mu, std::optional<double> mu_k) {
+                    std::optional<double> mu, std::optional<double> mu_k, double base_incline_deg,
+                    double base_incline_azimuth_deg) {
   const auto naming = [](auto f) {
     return with_field_names({{"bearing", "bearing_deg"},
                              {"depth", "depth_m"},
@@ -489,7 +490,9 @@ nb::dict run_rock3d(const GroundMotion& first, const GroundMotion* second, std::
                              {"simultaneous_contact", "simultaneous_contact"},
                              {"max_run_out_s", "max_run_out_s"},
                              {"mu_s", "mu"},
-                             {"mu_k", "mu_k"}},
+                             {"mu_k", "mu_k"},
+                             {"base_incline_deg", "base_incline_deg"},
+                             {"base_incline_azimuth_deg", "base_incline_azimuth_deg"}},
                             f);
   };
   // The body: a box (width_m, depth_m, height_m) or a solid cylinder (diameter_m, height_m), as the CLI's --shape
@@ -537,6 +540,14 @@ nb::dict run_rock3d(const GroundMotion& first, const GroundMotion* second, std::
   // ("mu_s" named as mu, "mu_k" as mu_k).
   options.mu_s = mu;
   options.mu_k = mu_k;
+  // An inclined base (rigid3d.hpp, "Inclined base"; the CLI's --base-incline-deg, --base-incline-azimuth-deg):
+  // checked by rock3d; the cylinder's rim engine has a level base.
+  if (cylinder && base_incline_deg != 0.0) {
+    throw parameter_error("base_incline_deg", "the cylinder's rim engine (rigid3d_disc.hpp) has a level base: an "
+                                              "inclined base is a box's");
+  }
+  options.base_incline_deg = base_incline_deg;
+  options.base_incline_azimuth_deg = base_incline_azimuth_deg;
   options.record_history = history;
   Rigid3DResult r;
   if (second != nullptr) {
@@ -1789,7 +1800,8 @@ void bind_slide_rock(nb::module_& m) {
         "azimuths_deg"_a = std::vector<double>{90.0, 0.0}, "bearing_deg"_a = nb::none(), "vertical"_a = nb::none(),
         "e"_a = "housner", "g"_a = kStandardGravity, "rel_tol"_a = kRigid3DDefaults.rel_tol,
         "simultaneous_contact"_a = nb::none(), "max_run_out_s"_a = kRigid3DDefaults.max_run_out_s,
-        "history"_a = false, "mu"_a = nb::none(), "mu_k"_a = nb::none(), doc::rock3d);
+        "history"_a = false, "mu"_a = nb::none(), "mu_k"_a = nb::none(), "base_incline_deg"_a = 0.0,
+        "base_incline_azimuth_deg"_a = 0.0, doc::rock3d);
 }
 
 /// Synthetic motions, intensity measures, the survey and regional inversions.

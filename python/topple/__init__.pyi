@@ -311,7 +311,8 @@ def rock3d(first: GroundMotion, second: Optional[GroundMotion] = None, *, width_
            vertical: Optional[GroundMotion] = None, e: Union[Literal["housner"], float] = "housner",
            g: float = 9.80665, rel_tol: float = 1e-8, simultaneous_contact: Optional[float] = None,
            max_run_out_s: float = 60.0, history: bool = False, mu: Optional[float] = None,
-           mu_k: Optional[float] = None) -> dict[str, Any]:
+           mu_k: Optional[float] = None, base_incline_deg: float = 0.0,
+           base_incline_azimuth_deg: float = 0.0) -> dict[str, Any]:
     """A box or a solid cylinder rocking in three dimensions, as `topple rock --model 3d --json`."""
 
 def rock_oriented(first: GroundMotion, second: GroundMotion, shape: RockingBody, *,

@@ -71,7 +71,13 @@ nlohmann::ordered_json rigid3d_solver_json(const Rigid3DOptions& options, bool c
           {"rel_tol", options.rel_tol},
           {"mu_s", or_null(options.mu_s)},
           {"mu_k", options.mu_s ? nlohmann::ordered_json(options.mu_k.value_or(*options.mu_s)) : nullptr},
-          {"g_m_s2", options.g_m_s2}};
+          {"g_m_s2", options.g_m_s2},
+          // the base (rigid3d.hpp, "Inclined base"): level (0) or inclined; the summary's tilt, azimuths and slide are
+          // in the base's frame ("base"; on a level base the same as the ground's)
+          {"base_incline_deg", options.base_incline_deg},
+          {"base_incline_azimuth_deg",
+           options.base_incline_deg != 0.0 ? nlohmann::ordered_json(options.base_incline_azimuth_deg) : nullptr},
+          {"output_frame", options.base_incline_deg != 0.0 ? "base" : "ground"}};
 }
 
 }  // namespace topple::io

@@ -716,6 +716,7 @@ Rigid3DResult rock3d_cylinder(const GroundMotion& x, const GroundMotion* y, cons
   if (!(options.max_run_out_s >= 0.0) || !std::isfinite(options.max_run_out_s)) {
     throw parameter_error("max_run_out_s", "max_run_out_s must be >= 0 and finite");
   }
+  if (options.base_incline_deg != 0.0) throw parameter_error("base_incline_deg", "the rim engine has a level base");
   const std::array<const GroundMotion*, 3> components{&x, y, z};
   const InputGrid grid(components);
   std::vector<double> gravity = effective_gravity(grid, 2, options.g_m_s2);

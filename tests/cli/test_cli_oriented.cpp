@@ -418,6 +418,73 @@ TEST_F(CliOriented, Model3dSlideRockRunsAsTheCoupledModel) {
   EXPECT_GE(slide_rocked, 1);
 }
 
+// --model 3d --base-incline-deg (rigid3d.hpp, "Inclined base"): the planar coupled model on its inclined base
+// (--slope-deg, slide_rock.hpp: down-slope is -x there) is the 3-D block's section under one component along +x with
+// the plane falling toward azimuth 270: a wide block that cannot lift slides the same to 1e-9 (both are the exact
+// incline sliding solvers), a tall one that rocks, slide-rocks and falls down the slope falls at the same time, losing
+// the same energy to impacts and friction (1e-6);
+// the JSON's solver block says the incline and the output frame; a cylinder and the other models refuse the options.
+TEST_F(CliOriented, Model3dOnAnInclineIsTheCoupledModelOnItsSlope) {
+  const std::string slope = " --slope-deg 8";
+  const std::string incline = " --base-incline-deg 8 --base-incline-azimuth-deg 270";
+  {
+    const std::string body = " --shape block --width 100cm --height 40cm --mu 0.3 --mu-k 0.25 --json";
+    const auto planar = test::run_json("rock " + h1 + " --model coupled" + slope + body);
+    const auto solid = test::run_json("rock " + h1 + " --model 3d --depth 80cm" + incline + body);
+    const double u = planar.at("residual_slide_m").get<double>();
+    ASSERT_LT(u, -1e-3);  // down the slope, -x
+    EXPECT_NEAR(solid.at("residual_slide_east_m").get<double>(), u, 1e-9 * std::abs(u));
+    EXPECT_NEAR(solid.at("residual_slide_north_m").get<double>(), 0.0, 1e-12);
+    EXPECT_EQ(solid.at("uplifts"), 0);
+    EXPECT_EQ(solid.at("solver").at("base_incline_deg"), 8.0);
+    EXPECT_EQ(solid.at("solver").at("base_incline_azimuth_deg"), 270.0);
+    EXPECT_EQ(solid.at("solver").at("output_frame"), "base");
+  }
+  {
+    const std::string body = " --shape block --width 20cm --height 80cm --mu 0.35 --mu-k 0.3 --json";
+    const auto planar = test::run_json("rock " + h1 + " --model coupled" + slope + body);
+    const auto solid = test::run_json("rock " + h1 + " --model 3d --depth 30cm" + incline + body);
+    // it rocks, slips while rocking (slide-rock) and falls down the slope at 5.77 s: the fall's time, the energies
+    // lost to impacts and to friction, the max tilt over the static limit (tilted by the slope) to 1e-6
+    EXPECT_EQ(solid.at("overturned"), planar.at("overturned"));
+    EXPECT_EQ(solid.at("impacts"), planar.at("impacts"));
+    EXPECT_GT(solid.at("uplifts").get<int>(), 0);
+    const auto near = [&](const char* key3d, const char* key2d) {
+      const double want = planar.at(key2d).get<double>();
+      EXPECT_NEAR(solid.at(key3d).get<double>(), want, 1e-6 * std::abs(want)) << key3d;
+    };
+    near("energy_lost_j_per_kg", "impact_energy_j_per_kg");
+    near("friction_energy_j_per_kg", "friction_energy_j_per_kg");
+    near("max_tilt_over_limit", "max_rotation_over_alpha");
+    if (planar.at("overturned").get<bool>()) {
+      near("overturn_time_s", "overturn_time_s");
+      EXPECT_EQ(solid.at("overturn_azimuth_deg"), 270.0);  // down the slope
+    } else {
+      const double u = planar.at("residual_slide_m").get<double>();
+      EXPECT_NEAR(solid.at("residual_slide_east_m").get<double>(), u, 1e-6 * std::max(std::abs(u), 1e-3));
+    }
+  }
+  const auto level = test::run_json("rock " + h1 + " --model 3d --shape block --width 20cm --depth 30cm --height 80cm "
+                                    "--json");
+  EXPECT_EQ(level.at("solver").at("base_incline_deg"), 0.0);
+  EXPECT_TRUE(level.at("solver").at("base_incline_azimuth_deg").is_null());
+  EXPECT_EQ(level.at("solver").at("output_frame"), "ground");
+  const auto expect_error = [](const std::string& args, const std::string& option) {
+    const auto r = test::run_cli(args);
+    EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.out;
+    EXPECT_NE(r.err.find(option), std::string::npos) << args << "\n" << r.err;
+  };
+  expect_error("rock " + h1 + " --model 3d --shape cylinder --diameter 20cm --height 80cm --base-incline-deg 5",
+               "--base-incline-deg");
+  expect_error("rock " + h1 + " --model 3d --shape block --width 20cm --depth 30cm --height 80cm "
+               "--base-incline-deg 90", "--base-incline-deg");
+  expect_error("rock " + h1 + " --model 3d --shape block --width 20cm --depth 30cm --height 80cm "
+               "--base-incline-azimuth-deg 30", "--base-incline-azimuth-deg");
+  expect_error("rock " + h1 + " --shape block --width 20cm --height 80cm --base-incline-deg 5", "--base-incline-deg");
+  expect_error("rock " + h1 + " --model 3d --shape block --width 20cm --depth 30cm --height 80cm --slope-deg 5",
+               "--base-incline-deg");
+}
+
 // --model 3d with --h2: the block's bearing and the components' azimuths turned together by 30 degrees give the same
 // motion relative to the block (impacts, modes, max tilt to 1e-7) with the azimuths of the tilt turned by 30.
 TEST_F(CliOriented, Model3dBearingTurnsWithTheComponents) {
