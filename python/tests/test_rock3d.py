@@ -200,3 +200,18 @@ def test_friction_refusals_are_the_librarys(station):
                          (dict(box, mu_k=0.2), "mu"), (dict(diameter_m=0.2, height_m=0.8, mu=0.5), "mu")):
         with pytest.raises(topple.InputError, match=name):
             topple.rock3d(r1, **kwargs)
+
+
+def test_inclined_base_equals_the_cli(cli, station):
+    """base_incline_deg / base_incline_azimuth_deg are the CLI's --base-incline-deg / --base-incline-azimuth-deg
+    (rigid3d.hpp, "Inclined base"): the same JSON, whose solver block says the incline; a cylinder refuses it."""
+    h1, h2, v = station
+    expected = cli.json("rock", h1, "--h2", h2, "--vertical", v, "--azimuths", "0,90", "--bearing-deg", "30", *BOX,
+                        "--mu", "0.6", "--base-incline-deg", "6", "--base-incline-azimuth-deg", "200")
+    assert expected["solver"]["base_incline_deg"] == 6.0 and expected["solver"]["output_frame"] == "base"
+    got = topple.rock3d(topple.read(h1), topple.read(h2), width_m=0.2, depth_m=0.3, height_m=0.8,
+                        azimuths_deg=(0.0, 90.0), bearing_deg=30.0, vertical=topple.read(v), mu=0.6,
+                        base_incline_deg=6.0, base_incline_azimuth_deg=200.0)
+    assert got == without_input(expected)
+    with pytest.raises(topple.InputError, match="base_incline_deg"):
+        topple.rock3d(topple.read(h1), diameter_m=0.2, height_m=0.8, base_incline_deg=5.0)

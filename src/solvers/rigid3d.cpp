@@ -1071,14 +1071,12 @@ class Engine {
     const double t_end = t_;
     forcing_ = Forcing::still(t_end, frame_.still);  // level: (0, 0, g)
     restart_ = true;
-    const double t_stop = t_end + opt_.max_run_out_s;
-    const double dt = std::max(grid_.dt_s(), opt_.max_run_out_s * 1e-5);
-    double next = t_end + dt;
-    while (!done_ && mode_ != Rigid3DMode::rest && t_ < t_stop) {
-      interval(std::min(next, t_stop));
-      if (!done_) row();
-      next += dt;
-    }
+    run_out_on_still_ground(
+        t_end, grid_.dt_s(), opt_.max_run_out_s, t_, [this] { return !done_ && mode_ != Rigid3DMode::rest; },
+        [this](double tb) { interval(tb); },
+        [this] {
+          if (!done_) row();
+        });
   }
 
   static constexpr int kMaxEventsPerInterval = 100'000;

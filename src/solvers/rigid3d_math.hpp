@@ -213,6 +213,23 @@ struct Forcing {
   }
 };
 
+/// The run-out after the record, one loop for the no-slip (rigid3d.cpp) and the contact (rigid3d_contact.cpp)
+/// engines: from t_end on still ground (the caller has set Forcing::still and its restart), intervals of
+/// max(dt, max_run_out_s x 1e-5) s, each integrated by interval(t_b) and followed by row() (a history row), while
+/// moving() (not at rest, not fallen) and t < t_end + max_run_out_s. t: the engine's clock, advanced by interval().
+template <class Moving, class Interval, class Row>
+void run_out_on_still_ground(double t_end, double dt_s, double max_run_out_s, const double& t, Moving moving,
+                             Interval interval, Row row) {
+  const double t_stop = t_end + max_run_out_s;
+  const double dt = std::max(dt_s, max_run_out_s * 1e-5);
+  double next = t_end + dt;
+  while (moving() && t < t_stop) {
+    interval(std::min(next, t_stop));
+    row();
+    next += dt;
+  }
+}
+
 /// The inclined base's frame (rigid3d.hpp, "Inclined base"; docs/method.md, "An inclined base"): Q rotates by beta
 /// about the horizontal axis k = z x e_d (e_d the downhill direction), so Q z = cos(beta) z + sin(beta) e_d = n, the
 /// base normal, and Q e_d = cos(beta) e_d - sin(beta) z, the plane's line of steepest descent. A load (a_x, a_y, G)
