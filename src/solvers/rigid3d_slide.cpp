@@ -378,17 +378,19 @@ Rigid3DResult rock3d_friction(const GroundMotion& x, const GroundMotion* y, cons
   if (cut > 0) {
     bool exact = false;
     // On an incline the cut records would get slide_2d's still tail (a run-out past the cut): the rows' totals.
-    if (!inclined) try {  // slide_2d on the records cut at t_cut: its totals are those of the phase
-      const GroundMotion xc = x.trimmed(x.start_time_s(), t_cut);
-      const GroundMotion nc = north.trimmed(north.start_time_s(), t_cut);
-      std::optional<GroundMotion> zc;
-      if (z) zc = z->trimmed(z->start_time_s(), t_cut);
-      const Sliding2dSummary part = slide_2d_summary(xc, nc, az, block, zc ? &*zc : nullptr, options.sliding);
-      s.max_slide_speed_m_s = part.max_abs_velocity_m_s;
-      s.slide_path_length_m = part.path_length_m;
-      s.friction_energy_j_per_kg = part.friction_work_J_kg;
-      exact = true;
-    } catch (const InputError&) {  // a cut within 1 us of a sample (GroundMotion's least step)
+    if (!inclined) {
+      try {  // slide_2d on the records cut at t_cut: its totals are those of the phase
+        const GroundMotion xc = x.trimmed(x.start_time_s(), t_cut);
+        const GroundMotion nc = north.trimmed(north.start_time_s(), t_cut);
+        std::optional<GroundMotion> zc;
+        if (z) zc = z->trimmed(z->start_time_s(), t_cut);
+        const Sliding2dSummary part = slide_2d_summary(xc, nc, az, block, zc ? &*zc : nullptr, options.sliding);
+        s.max_slide_speed_m_s = part.max_abs_velocity_m_s;
+        s.slide_path_length_m = part.path_length_m;
+        s.friction_energy_j_per_kg = part.friction_work_J_kg;
+        exact = true;
+      } catch (const InputError&) {  // a cut within 1 us of a sample (GroundMotion's least step)
+      }
     }
     if (!exact) totals_from_rows(H, cut, mu_k, [&](double t) { return load(t)[2]; }, s);
   }

@@ -1,7 +1,7 @@
 #pragma once
-// Three-dimensional rocking and pivoting of a rigid body with a convex polygonal base on a rigid level base under
-// three ground components, without sliding (issue 29, the foundation; docs/method.md, "Rocking in three
-// dimensions").
+// Three-dimensional rocking and pivoting of a rigid body with a convex polygonal base on a rigid level base (or an
+// inclined one: "Inclined base" below) under three ground components, without sliding (issue 29, the foundation;
+// docs/method.md, "Rocking in three dimensions").
 //
 // Frames. The ground frame G moves with the ground: x east, y north, z up (the ground's acceleration enters as the
 // inertial force -a_g per unit mass, gravity as -g z). The body frame B: the base plane is z = 0, the base polygon's
