@@ -130,6 +130,17 @@ TEST(Rigid3DIncline, BoxTipsDownhillWithNoShakingPastItsStaticLimit) {
     EXPECT_TRUE(t.overturned);
     EXPECT_NEAR(angle_diff(t.overturn_azimuth_deg, 90.0), 0.0, 1e-6);
   }
+  // A plane falling toward azimuth 30 (e_d = (sin 30, cos 30) on the base's axes): the centre of pressure
+  // c + h tan(beta) e_d leaves the base past x = a = 0.1 m first (h tan(beta) sin 30 = a at tan(beta) = 0.6667, before
+  // y = 0.2 m at 0.7698): tips about the +x edge from beta = atan(2/3) = 33.69 degrees, not below.
+  const double oblique = std::atan(0.1 / (0.3 * std::sin(M_PI / 6.0))) * 180.0 / M_PI;
+  const Rigid3DSummary below = rock3d(still, nullptr, nullptr, box, incline(oblique - 0.05, 30.0)).summary;
+  EXPECT_EQ(below.uplifts, 0U);
+  const Rigid3DSummary above = rock3d(still, nullptr, nullptr, box, incline(oblique + 0.05, 30.0)).summary;
+  ASSERT_GE(above.modes.size(), 2U);
+  EXPECT_EQ(above.modes[1].time_s, 0.0);
+  EXPECT_EQ(above.modes[1].mode, Rigid3DMode::rocking);
+  EXPECT_EQ(above.modes[1].vertex_a, 1);
 }
 
 // The onset under a horizontal ramp a(t) = -+k t along the fall line (downhill east, beta = 10 degrees): in the base
