@@ -98,6 +98,22 @@ TEST(Rigid3DIncline, LevelIsTodaysEngineAndATinyInclineIsLevel) {
     EXPECT_NEAR(c.residual_slide_east_m, a.residual_slide_east_m, 1e-7);
     EXPECT_NEAR(c.residual_slide_north_m, a.residual_slide_north_m, 1e-7);
   }
+  // A vertical on another grid, shorter than the horizontals (the union grid is irregular, with the vertical's jump to
+  // still ground at its end): the base frame's records on that grid, the same answer.
+  const RigidBody3D box = RigidBody3D::box(0.2, 0.3, 0.8);
+  const GroundMotion mx = noise(7, 0.5 * kG);
+  const GroundMotion my = noise(8, 0.4 * kG);
+  const GroundMotion mz = noise(9, 0.2 * kG, 1000, 0.004);
+  Rigid3DOptions level;
+  level.g_m_s2 = kG;
+  Rigid3DOptions tiny = level;
+  tiny.base_incline_deg = 1e-9;
+  const Rigid3DSummary a = rock3d(mx, &my, &mz, box, level).summary;
+  const Rigid3DSummary c = rock3d(mx, &my, &mz, box, tiny).summary;
+  EXPECT_GT(a.impacts, 0U);
+  EXPECT_EQ(a.impacts, c.impacts);
+  EXPECT_EQ(a.modes.size(), c.modes.size());
+  EXPECT_NEAR(c.max_tilt_rad, a.max_tilt_rad, 1e-7 * a.max_tilt_rad);
 }
 
 // No shaking: a box (b = 0.1 m across its x edges, h = 0.3 m: alpha = atan(1/3) = 18.43 degrees) on a plane falling
