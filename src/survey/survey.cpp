@@ -182,7 +182,9 @@ std::vector<ObjectCheck> check_object_model(const ObservedObject& o, int compone
   if (object_model(o) != ObjectModel::coupled) return warnings;
   if (components != 1) {
     throw parameter_error(o.model ? "model" : "outcome", "the coupled slide-rock model is planar: it needs a "
-                                                     "one-component survey ([inversion] components = 1)");
+                                                     "one-component survey ([inversion] components = 1); in three "
+                                                     "components a box or a mesh with model = \"3d\" and "
+                                                     "friction_3d = \"mu\" makes this outcome");
   }
   // Shenton (1996): a body with mu_s < min(b1, b2) / h slides before it can lift and never lifts while sliding
   // (slide_rock.hpp, cannot_uplift), so it can neither topple nor rock; refused when that holds over the whole range.

@@ -1163,6 +1163,8 @@ TEST(Survey3c, SlidingOutcomesOfAThreeDimensionalBoxNeedItsFriction) {
                "object[1](a).slid_azimuth_deg", "outcome = \"slid\"");
   expect_error(three + std::string(kObjectBlock) + "outcome = \"slid_stood\"\n", "object[1](a).outcome",
                "one-component");
+  expect_error(three + std::string(kObjectBlock) + "outcome = \"slid_stood\"\n", "object[1](a).outcome",
+               "model = \"3d\" and friction_3d = \"mu\" makes this outcome");
   // A cylinder's rim engine has no friction: still refused there.
   expect_error(three + "[[object]]\nid = \"c\"\nshape = \"cylinder\"\ndiameter = \"8cm\"\nheight = \"40cm\"\n"
                        "mu = 0.5\nmodel = \"3d\"\nfriction_3d = \"mu\"\noutcome = \"slid\"\n",
