@@ -142,6 +142,32 @@ double direction_kernel(double x_deg) {
   return 0.5 * (v(x_deg) + v(x_deg + 180.0));
 }
 
+/// The match of any observation of a model = "3d" object from its run (docs/survey.md, "Three-dimensional objects":
+/// the one place the engine's results become outcomes). With friction_3d the base slides: the slide is scored as the
+/// sliding block's (sliding_match) on the base's largest excursion max_slide_m (sliding2d.hpp's max |u| where the
+/// base never lifts) and its residual displacement |(east, north)| at the end, and the coupled outcomes as the planar
+/// coupled model's (matching.cpp, coupled_match) with the 3-D run's counterparts: overturned, the largest tilt for the
+/// rotation, impacts, and "never slid flat" as no entry into the flat sliding mode.
+double match_3d(const ObservedObject& object, const Rigid3DSummary& s) {
+  const double residual = std::hypot(s.residual_slide_east_m, s.residual_slide_north_m);
+  switch (object.outcome) {
+    case Outcome::slid:
+    case Outcome::not_slid: return sliding_match(object, s.max_slide_m, residual);
+    case Outcome::slid_stood: return s.overturned ? 0.0 : sliding_match(object, s.max_slide_m, residual);
+    case Outcome::slid_toppled: return s.overturned && s.max_slide_m >= kVisibleSlipM ? 1.0 : 0.0;
+    case Outcome::walked: {
+      const bool never_slid_flat = std::none_of(s.modes.begin(), s.modes.end(), [](const Rigid3DModeChange& m) {
+        return m.mode == Rigid3DMode::sliding;
+      });
+      return !s.overturned && s.max_tilt_rad >= kVisibleRockingRad && s.impacts > 0 && residual >= kVisibleSlipM &&
+                     never_slid_flat
+                 ? 1.0
+                 : 0.0;
+    }
+    default: return rocking_match(object.outcome, s.overturned, s.max_tilt_rad);
+  }
+}
+
 }  // namespace
 
 void observation_match_3c(const ObservedObject& object, const DrawnParameters& p, const GroundMotion& major_in,
@@ -158,7 +184,8 @@ void observation_match_3c(const ObservedObject& object, const DrawnParameters& p
     major = support_motion(major, support);
     minor = support_motion(minor, support);
   }
-  if (is_sliding(object.outcome)) {
+  const bool three_d = object_model(object) == ObjectModel::three_d;
+  if (is_sliding(object.outcome) && !three_d) {
     const Sliding2dOptions so;  // the solver's defaults (looser tolerances hit its low-speed step limit)
     const Sliding2dSummary s =
         slide_2d_summary(major, minor, ComponentAzimuths{0.0, 90.0},
@@ -184,12 +211,12 @@ void observation_match_3c(const ObservedObject& object, const DrawnParameters& p
   struct Run {
     double match = 0.0;
     std::optional<double> fall_from_major_deg;
+    std::optional<double> slid_from_major_deg;  ///< model = "3d", outcome slid: the residual slide's azimuth
   };
   // model = "3d" (header, item 3): the three-dimensional engine (rigid3d.hpp) on the pair and the vertical. The frame's
   // major axis (azimuth 0) plays north (the engine's y), the minor (azimuth 90) east (its x); the body is turned so
   // that its +x axis points at angle_deg from the major axis (90 - angle_deg counter-clockwise seen from above, as
   // `topple rock --model 3d --bearing-deg` turns it), and its fall azimuth is then measured from the major axis.
-  const bool three_d = object_model(object) == ObjectModel::three_d;
   std::optional<Rigid3DOptions> options_3d;
   if (three_d) options_3d = rigid3d_options(options);  // rigid3d.hpp: the settings the two engines share
   // friction_3d = "mu": Coulomb friction mu_s = mu_k = the drawn mu (survey.hpp); absent, the no-slip engine.
@@ -200,16 +227,33 @@ void observation_match_3c(const ObservedObject& object, const DrawnParameters& p
   if (three_d && !object.body_3d && object.body.shape == RockingBody::Shape::cylinder) {
     cylinder_3d = CylinderBody3D::solid(2.0 * object.body.a_m, 2.0 * object.body.h_m);
   }
+  // Item 3: a run whose vertical lifts the body off (g + a_v <= 0 somewhere) scores as overturned, without a
+  // direction. For the sliding and coupled outcomes of a model = "3d" object (friction_3d, survey.cpp) that is: it
+  // fell and its base moved (slid_toppled), and it did not stand (slid, not_slid, slid_stood, walked: 0). (The contact
+  // engine models the flight, but a thrown body's landing is outside what the observation model can score, and its
+  // runs meet the engine's event limit there.)
+  const auto thrown = [&]() -> Run {
+    if (is_sliding(object.outcome) || is_coupled_outcome(object.outcome)) {
+      return {object.outcome == Outcome::slid_toppled ? 1.0 : 0.0, std::nullopt, std::nullopt};
+    }
+    return {rocking_match(object.outcome, true, 0.0), std::nullopt, std::nullopt};
+  };
   const auto run = [&](double angle_deg) -> Run {
-    if (lifted) return {rocking_match(object.outcome, true, 0.0), std::nullopt};  // item 3: as overturned
+    if (lifted) return thrown();
     if (three_d) {
       const Rigid3DSummary s =
           cylinder_3d ? rock3d_cylinder(minor, &major, &vertical, *cylinder_3d, *options_3d).summary
                       : rock3d(minor, &major, &vertical,
                                object.body_3d->rotated_about_vertical((90.0 - angle_deg) * kDeg), *options_3d)
                             .summary;
-      return {rocking_match(object.outcome, s.overturned, s.max_tilt_rad),
-              s.overturned ? std::optional<double>(s.overturn_azimuth_deg) : std::nullopt};
+      Run r{match_3d(object, s), s.overturned ? std::optional<double>(s.overturn_azimuth_deg) : std::nullopt,
+            std::nullopt};
+      // The residual slide's direction in the frame (east: the minor axis, north: the major), clockwise from the
+      // major axis as sliding2d.hpp's residual_azimuth_deg; none when the base never moved.
+      if (s.residual_slide_east_m != 0.0 || s.residual_slide_north_m != 0.0) {
+        r.slid_from_major_deg = wrap(std::atan2(s.residual_slide_east_m, s.residual_slide_north_m) / kDeg, 360.0);
+      }
+      return r;
     }
     // A box: both axes, the governing one's response (oriented.hpp, "Box"). A cylinder with an observed fall
     // direction: oriented.hpp's grid of directions, the governing one its fall axis (header, item 4).
@@ -220,15 +264,20 @@ void observation_match_3c(const ObservedObject& object, const DrawnParameters& p
           rock_oriented_summary(with_vertical, OrientedBody::make(object.body, object.depth_m), angle_deg, options);
       const DirectionResponse& d = both.governing_response();  // azimuth_deg: from the major axis (frame azimuth 0)
       return {rocking_match(object.outcome, d.summary.overturned, d.summary.max_abs_rotation_rad),
-              d.summary.overturned ? std::optional<double>(d.azimuth_deg) : std::nullopt};
+              d.summary.overturned ? std::optional<double>(d.azimuth_deg) : std::nullopt, std::nullopt};
     }
     const RockingSummary s = rock_summary(frame.projected(angle_deg), object.body, options, &vertical);
     return {rocking_match(object.outcome, s.overturned, s.max_abs_rotation_rad),
-            s.overturned ? std::optional<double>(angle_deg) : std::nullopt};
+            s.overturned ? std::optional<double>(angle_deg) : std::nullopt, std::nullopt};
   };
   // The fall direction's kernel (item 4) in a bin whose major axis points at major_az: 1 without an observed one;
   // the kernel's mean over a uniform direction for a run with no fall direction (as a block that never slid).
   const auto fall = [&](const Run& r, double major_az) {
+    if (object.slid_azimuth_deg && r.match != 0.0) {  // model = "3d", outcome slid: the slide's direction, as above
+      return r.slid_from_major_deg
+                 ? direction_kernel(*r.slid_from_major_deg + major_az - *object.slid_azimuth_deg)
+                 : std::exp(-kSlidDirectionKappa) * std::cyl_bessel_i(0.0, kSlidDirectionKappa);
+    }
     if (!object.toppled_azimuth_deg || r.match == 0.0) return 1.0;
     return r.fall_from_major_deg
                ? direction_kernel(*r.fall_from_major_deg + major_az - *object.toppled_azimuth_deg)
@@ -305,21 +354,43 @@ ThreeComponentBounds static_bounds_3c(const Site& site, double rho) {
     const double tan_lower = polygon          ? polygon->first
                              : oriented.across ? std::min(std::tan(o.body.alpha_rad()), std::tan(oriented.across->alpha_rad()))
                                                : detail::uplift_tan_alpha(o.body, true);
+    // A model = "3d" base that may slide (friction_3d) leaves rest only when |a_h| / (g + a_z) passes mu (the flat
+    // base slips: rigid3d_slide.cpp, the sliding block's onset) or the nearest edge's b/h (it lifts), whichever is
+    // less (Shenton 1996): a base that moved bounds PGA by that smaller one (it may slip while it rocks, below mu g),
+    // one that toppled or walked by b/h (it lifted).
+    const bool slides_3d = polygon && o.friction_3d;
+    const double moved = slides_3d ? std::min(o.mu.low, polygon->first) : o.mu.low;
+    const char* moved_symbol = slides_3d ? "min(mu, b/h)" : "mu";
     if (o.support_filter) {  // lower thresholds only (inversion.hpp, item 1); the vertical passes unfiltered
       const double peak = max_peak_amplification(o.support_filter->damping.low);
       const double h = o.amplification.high * peak;
       if (!std::isfinite(h)) continue;
       const std::string gain = fmt::format(", support peak gain <= {:.3g}", h);
-      if (o.outcome == Outcome::slid) lower(o.mu.low, "mu", h, o.amplification.high, gain);
-      if (o.outcome == Outcome::rocked || o.outcome == Outcome::overturned) {
+      if (o.outcome == Outcome::slid || (slides_3d && o.outcome == Outcome::slid_stood)) {
+        lower(moved, moved_symbol, h, o.amplification.high, gain);
+      }
+      if (o.outcome == Outcome::rocked || o.outcome == Outcome::overturned ||
+          (slides_3d && (o.outcome == Outcome::slid_toppled || o.outcome == Outcome::walked))) {
         lower(tan_lower, "b/h", h, o.amplification.high, gain);
       }
       continue;
     }
     const double hi = o.amplification.high, lo = o.amplification.low;
     switch (o.outcome) {
-      case Outcome::slid: lower(o.mu.low, "mu", hi, hi, amp_text(hi)); break;
-      case Outcome::not_slid: upper(o.mu.high, "mu", lo, amp_text(lo)); break;
+      case Outcome::slid: lower(moved, moved_symbol, hi, hi, amp_text(hi)); break;
+      case Outcome::not_slid:
+        // model = "3d": a base that may lift before it slips (mu >= b_min / h somewhere in its range) can rock, or
+        // topple, without sliding at any PGA: the sliding block's bound holds only where it can never lift.
+        if (slides_3d && !(o.mu.high < polygon->first)) break;
+        upper(o.mu.high, "mu", lo, amp_text(lo));
+        break;
+      case Outcome::slid_stood:  // model = "3d" only (the coupled model is one-component)
+        if (slides_3d) lower(moved, moved_symbol, hi, hi, amp_text(hi));
+        break;
+      case Outcome::slid_toppled:
+      case Outcome::walked:
+        if (slides_3d) lower(tan_lower, "b/h", hi, hi, amp_text(hi));
+        break;
       case Outcome::rocked:
       case Outcome::overturned: lower(tan_lower, "b/h", hi, hi, amp_text(hi)); break;
       case Outcome::not_rocked:
@@ -455,8 +526,23 @@ std::pair<std::vector<MatchTable>, std::size_t> simulate_matches_3c(const Site& 
     const GroundMotion vertical = real.vertical->scaled(factor);
     std::vector<double> out(nb);
     for (std::size_t o = o0; o < o1; ++o) {
-      observation_match_3c(site.objects[o], drawn[k * no + o], major, minor, vertical, real.rotd100_angle_deg,
-                           std::span<const double>(major_azimuth.data() + k * nb, nb), unknown[k * no + o], g, out);
+      // A solver's limit names the object, the cell and the motion, so that the one run among thousands is found
+      // (as `topple campaign` names its test and model).
+      const auto who = [&] {
+        return fmt::format("object '{}' (model {}), RotD50 PGA {:.4g} g, {:.4g} Hz, motion {}: ", site.objects[o].id,
+                           object_model_name(object_model(site.objects[o])), pga_g[cell / nf],
+                           family.freq_hz[cell % nf], k);
+      };
+      try {
+        observation_match_3c(site.objects[o], drawn[k * no + o], major, minor, vertical, real.rotd100_angle_deg,
+                             std::span<const double>(major_azimuth.data() + k * nb, nb), unknown[k * no + o], g, out);
+      } catch (const StepLimitError& e) {
+        throw StepLimitError(who() + e.what());
+      } catch (const EventLimitError& e) {
+        throw EventLimitError(who() + e.what());
+      } catch (const RootFindingError& e) {
+        throw RootFindingError(who() + e.what());
+      }
       for (std::size_t b = 0; b < nb; ++b) results[(o - o0) * nb + b] = ensemble::Value(out[b]);
     }
   };
@@ -473,7 +559,9 @@ std::pair<std::vector<MatchTable>, std::size_t> simulate_matches_3c(const Site& 
   std::size_t runs = 0;
   // Solver runs: one per bin for a rocking object with a bearing, else one.
   for (const ObservedObject& o : site.objects) {
-    const bool per_bin = !is_sliding(o.outcome) && o.azimuth_deg && o.body.shape != RockingBody::Shape::cylinder;
+    // A model = "3d" body with a bearing runs in every bin, whatever it was seen to do (its base is not isotropic).
+    const bool slide_block = is_sliding(o.outcome) && object_model(o) != ObjectModel::three_d;
+    const bool per_bin = !slide_block && o.azimuth_deg && o.body.shape != RockingBody::Shape::cylinder;
     // A box rocks about both axes; a cylinder with a fall direction on oriented.hpp's 12 directions.
     const std::size_t axes = is_sliding(o.outcome)                                                     ? 1
                              : o.depth_m                                                                ? 2

@@ -39,6 +39,7 @@ nlohmann::ordered_json rigid3d_summary_json(const Rigid3DSummary& s) {
   // sliding (rigid3d.hpp, Rigid3DOptions::mu_s; zero without friction)
   j["residual_slide_east_m"] = s.residual_slide_east_m;
   j["residual_slide_north_m"] = s.residual_slide_north_m;
+  j["max_slide_m"] = s.max_slide_m;  // the base's largest excursion from its start (rigid3d.hpp)
   j["max_slide_speed_m_s"] = s.max_slide_speed_m_s;
   j["slide_path_length_m"] = s.slide_path_length_m;
   j["friction_energy_j_per_kg"] = s.friction_energy_j_per_kg;

@@ -1210,10 +1210,15 @@ RigidBody3D RigidBody3D::polygon(std::vector<std::array<double, 2>> base_xy_m, V
     }
   }
   const auto& J = inertia_cm_m2;
+  // Symmetric to 1e-9 of the tensor's largest diagonal component: relative to the pair alone, two off-diagonal
+  // components that are round-off of zero (a square base turned about the vertical, rotated_about_vertical: J_xy =
+  // (J_xx - J_yy) sin cos, -3.5e-18 and +3.5e-18 at 0.5 rad) were refused, and the friction engine, which checks a
+  // body again, failed on such a turned box.
+  const double scale = std::max({std::abs(J[0][0]), std::abs(J[1][1]), std::abs(J[2][2])});
   for (std::size_t i = 0; i < 3; ++i) {
     for (std::size_t j = 0; j < 3; ++j) {
       if (!std::isfinite(J[i][j])) throw parameter_error("inertia", "every component must be finite");
-      if (std::abs(J[i][j] - J[j][i]) > 1e-9 * (std::abs(J[i][j]) + std::abs(J[j][i]))) {
+      if (std::abs(J[i][j] - J[j][i]) > 1e-9 * std::max(scale, std::abs(J[i][j]) + std::abs(J[j][i]))) {
         throw parameter_error("inertia", "the inertia tensor must be symmetric");
       }
     }

@@ -1359,6 +1359,17 @@ class ContactEngine {
         }
       }
     }
+    // max_slide_m (rigid3d.hpp): the base's excursion from where it started (the body frame's origin at 0 and
+    // unturned then, so a vertex started at its body coordinates): flat, its reference point; on vertices, those.
+    if (kind_ == Kind::rest || kind_ == Kind::flat_slip) {
+      s.max_slide_m = std::max(s.max_slide_m, hnorm(Vec3{x[0], x[1], x[2]} - mul(R, c_)));
+    } else if (kind_ == Kind::contact) {
+      for (const Contact& c : set_) {
+        const Vec3& vb = v_[static_cast<std::size_t>(c.v)];
+        const Vec3 at = Vec3{x[0], x[1], x[2]} + mul(R, vb - c_);
+        s.max_slide_m = std::max(s.max_slide_m, std::hypot(at[0] - vb[0], at[1] - vb[1]));
+      }
+    }
     if (!(tilt > 0.0)) return;
     const Vec3 d{zb[0] / horizontal, zb[1] / horizontal, 0.0};
     Vec3 u = mul_t(R, Vec3{d[0] * zb[2], d[1] * zb[2], -horizontal});

@@ -193,6 +193,7 @@ Rigid3DResult merge_contact(Rigid3DResult out, const GroundMotion& x, const Grou
     modes.push_back(e.modes[k]);
   }
   e.modes = std::move(modes);
+  e.max_slide_m = std::max(e.max_slide_m, s.max_slide_m);
   e.max_slide_speed_m_s = std::max(e.max_slide_speed_m_s, s.max_slide_speed_m_s);
   e.slide_path_length_m += s.slide_path_length_m;
   e.friction_energy_j_per_kg += s.friction_energy_j_per_kg;
@@ -349,6 +350,7 @@ Rigid3DResult rock3d_friction(const GroundMotion& x, const GroundMotion* y, cons
   }
 
   if (!handover && !slide_rock && !lost) {  // never lifted: slide_2d's answer whole
+    s.max_slide_m = slide.summary.max_abs_displacement_m;
     s.max_slide_speed_m_s = slide.summary.max_abs_velocity_m_s;
     s.slide_path_length_m = slide.summary.path_length_m;
     s.friction_energy_j_per_kg = slide.summary.friction_work_J_kg;
@@ -385,6 +387,7 @@ Rigid3DResult rock3d_friction(const GroundMotion& x, const GroundMotion* y, cons
         std::optional<GroundMotion> zc;
         if (z) zc = z->trimmed(z->start_time_s(), t_cut);
         const Sliding2dSummary part = slide_2d_summary(xc, nc, az, block, zc ? &*zc : nullptr, options.sliding);
+        s.max_slide_m = part.max_abs_displacement_m;
         s.max_slide_speed_m_s = part.max_abs_velocity_m_s;
         s.slide_path_length_m = part.path_length_m;
         s.friction_energy_j_per_kg = part.friction_work_J_kg;
@@ -394,6 +397,8 @@ Rigid3DResult rock3d_friction(const GroundMotion& x, const GroundMotion* y, cons
     }
     if (!exact) totals_from_rows(H, cut, mu_k, [&](double t) { return load(t)[2]; }, s);
   }
+  // The base's excursion up to the cut at the rows too (the cut row's position is where the next phase starts).
+  for (std::size_t j = 0; j <= cut; ++j) s.max_slide_m = std::max(s.max_slide_m, std::hypot(H.east_m[j], H.north_m[j]));
   const ContactStart start{t_cut, {H.east_m[cut], H.north_m[cut], 0.0}, {H.east_m_s[cut], H.north_m_s[cut], 0.0},
                            kIdentityQuaternion, {0.0, 0.0, 0.0}};
   if (slide_rock || lost) return merge_contact(std::move(out), xb, yb, zb, checked, options, start);
@@ -441,6 +446,7 @@ Rigid3DResult rock3d_friction(const GroundMotion& x, const GroundMotion* y, cons
   e.modes = std::move(modes);
   e.residual_slide_east_m = s.residual_slide_east_m;
   e.residual_slide_north_m = s.residual_slide_north_m;
+  e.max_slide_m = s.max_slide_m;  // the no-slip engine's contacts do not slide
   e.max_slide_speed_m_s = s.max_slide_speed_m_s;
   e.slide_path_length_m = s.slide_path_length_m;
   e.friction_energy_j_per_kg = s.friction_energy_j_per_kg;

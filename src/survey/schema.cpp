@@ -267,7 +267,8 @@ std::vector<SurveyKey> make_schema() {
   {
     auto& k = add(key("object", "friction_3d", K::choice,
                       "model = \"3d\", a box or a mesh: \"mu\" lets its base slide with the object's mu (mu_s = mu_k), "
-                      "\"none\" (default) does not",
+                      "which the outcomes slid, not_slid, slid_stood, slid_toppled and walked need; \"none\" (default) "
+                      "does not",
                       "\"mu\""));
     k.choices = {"none", "mu"};
     k.default_text = "none";

@@ -13,6 +13,7 @@
 #include "topple/core/error.hpp"
 #include "topple/core/units.hpp"
 #include "topple/solvers/oriented.hpp"
+#include "topple/solvers/rigid3d.hpp"
 #include "topple/solvers/rocking.hpp"
 #include "topple/solvers/slide_rock.hpp"
 #include "topple/core/enum_names.hpp"
@@ -87,12 +88,41 @@ double evidence_error_rate(Evidence e) noexcept {
   return 0.02;
 }
 
+namespace {
+
+/// A model = "3d" object's least uplift ratio b_min / h: the distance from its centre of mass' plan to the nearest
+/// edge of its base (a mesh's support polygon; a box's min(width, depth) / 2), over the height of the centre of mass
+/// (inversion_3c.cpp's polygon coefficients, the smaller). Below it in mu the base slides before it can lift and never
+/// lifts while sliding (Shenton 1996, in every direction; rigid3d_slide.cpp).
+double three_d_uplift_ratio(const ObservedObject& o) {
+  if (o.body_3d) {  // a mesh's support polygon (a box's body_3d is made after the checks; the same number below)
+    const auto& v = o.body_3d->base_xy_m;
+    const Vec3& c = o.body_3d->centre_of_mass_m;
+    double nearest = INFINITY;
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      const auto& a = v[i];
+      const auto& b = v[(i + 1) % v.size()];
+      const double ex = b[0] - a[0], ey = b[1] - a[1];
+      nearest = std::min(nearest, (ex * (c[1] - a[1]) - ey * (c[0] - a[0])) / std::hypot(ex, ey));
+    }
+    return nearest / c[2];
+  }
+  // A box: half its smaller horizontal side over half its height (a cylinder: its radius, the planar body's a).
+  const double half = o.depth_m ? std::min(o.body.a_m, 0.5 * *o.depth_m) : o.body.a_m;
+  return half / o.body.h_m;
+}
+
+}  // namespace
+
 std::vector<ObjectCheck> check_object_model(const ObservedObject& o, int components) {
   std::vector<ObjectCheck> warnings;
   const bool sliding = o.outcome == Outcome::slid || o.outcome == Outcome::not_slid;
-  if (o.model && *o.model != ObjectModel::coupled && is_coupled_outcome(o.outcome)) {
+  // model = "3d" makes the coupled outcomes too where its base may slide (friction_3d, checked below).
+  if (o.model && *o.model != ObjectModel::coupled && *o.model != ObjectModel::three_d &&
+      is_coupled_outcome(o.outcome)) {
     throw parameter_error("model", fmt::format("outcome \"{}\" is an observation of sliding and rocking together: only "
-                                           "the coupled model makes it (leave model out or write \"coupled\")",
+                                           "the coupled model makes it (leave model out or write \"coupled\"; in a "
+                                           "three-component survey, model = \"3d\" with friction_3d = \"mu\")",
                                            outcome_name(o.outcome)));
   }
   if (o.model == ObjectModel::slide && !sliding) {
@@ -106,14 +136,18 @@ std::vector<ObjectCheck> check_object_model(const ObservedObject& o, int compone
   if (o.model == ObjectModel::three_d) {
     // The three-dimensional engine (rigid3d.hpp): two horizontal components and the vertical at a bearing, a
     // polygonal base (a box, or a mesh's support polygon), or a solid cylinder's circular base (rigid3d_disc.hpp, no
-    // bearing needed), no sliding (docs/survey.md, "Three-dimensional objects").
+    // bearing needed); with friction_3d = "mu" a box's or a mesh's base slides, and the sliding and coupled outcomes
+    // are scored on its runs (docs/survey.md, "Three-dimensional objects").
     if (components != 3) {
       throw parameter_error("model", "model = \"3d\" needs a three-component survey ([inversion] components = 3): "
                                      "the body responds to both horizontal components and the vertical");
     }
-    if (sliding) {
-      throw parameter_error("model", fmt::format("the three-dimensional engine does not slide: outcome \"{}\" needs "
-                                                 "model \"slide\"", outcome_name(o.outcome)));
+    if ((sliding || is_coupled_outcome(o.outcome)) && !o.friction_3d) {
+      throw parameter_error("model", fmt::format("the three-dimensional engine does not slide without friction: "
+                                                 "outcome \"{}\" needs friction_3d = \"mu\" (the base slides with "
+                                                 "the object's mu){}",
+                                                 outcome_name(o.outcome),
+                                                 sliding ? ", or model \"slide\"" : ""));
     }
     if (o.mesh_file.empty()) {
       if (o.body.shape != RockingBody::Shape::block && o.body.shape != RockingBody::Shape::cylinder) {
@@ -130,11 +164,27 @@ std::vector<ObjectCheck> check_object_model(const ObservedObject& o, int compone
                                        "a length with a unit");
       }
     }
+    // Shenton (1996) in every direction (rigid3d_slide.cpp): a base with mu_s h < b_min, b_min the least distance
+    // from the centre of mass' plan to an edge, slides before it can lift and never lifts while sliding, so it can
+    // neither topple nor rock: refused when that holds over the whole mu range, as for the coupled model.
+    if (o.outcome == Outcome::slid_toppled || o.outcome == Outcome::walked) {
+      const double b_over_h = three_d_uplift_ratio(o);
+      if (o.mu.high < b_over_h) {
+        throw parameter_error("outcome", fmt::format("a body with mu <= {:.3g} < b/h = {:.3g} (its nearest base edge) "
+                                                     "slides before it can lift and never lifts while sliding "
+                                                     "(Shenton 1996): it cannot have {}; write \"slid\" or "
+                                                     "\"slid_stood\", or check mu and the dimensions",
+                                                     o.mu.high, b_over_h,
+                                                     o.outcome == Outcome::walked ? "walked (rocked)" : "toppled"));
+      }
+    }
   }
   if (object_model(o) != ObjectModel::coupled) return warnings;
   if (components != 1) {
     throw parameter_error(o.model ? "model" : "outcome", "the coupled slide-rock model is planar: it needs a "
-                                                     "one-component survey ([inversion] components = 1)");
+                                                     "one-component survey ([inversion] components = 1); in three "
+                                                     "components a box or a mesh with model = \"3d\" and "
+                                                     "friction_3d = \"mu\" makes this outcome");
   }
   // Shenton (1996): a body with mu_s < min(b1, b2) / h slides before it can lift and never lifts while sliding
   // (slide_rock.hpp, cannot_uplift), so it can neither topple nor rock; refused when that holds over the whole range.

@@ -3,10 +3,13 @@
 // readers' tests (tests/io, tests/cli) check that the same messages still come back located at the file's line.
 #include <gtest/gtest.h>
 
+#include <array>
+#include <memory>
 #include <string>
 
 #include "topple/bodies/rocking_body.hpp"
 #include "topple/core/error.hpp"
+#include "topple/solvers/rigid3d.hpp"
 #include "topple/survey/survey.hpp"
 
 namespace topple {
@@ -96,6 +99,39 @@ TEST(SurveyRules, MuAtThePainleveLimitIsKeptWithAWarning) {
   // Objects on the sliding or rocking model are not checked for it.
   o.outcome = Outcome::slid;
   EXPECT_TRUE(check_object_model(o, 1).empty());
+}
+
+
+TEST(SurveyRules, AThreeDimensionalBodySlidesOnlyWithItsFriction) {
+  // model = "3d": the sliding and coupled outcomes need friction_3d (field "model"); with it a body whose mu stays below
+  // its least uplift ratio b_min / h cannot topple or walk (Shenton 1996, every direction; field "outcome"). A mesh's
+  // support polygon, by hand: the triangle (0, 0), (0.3, 0), (0, 0.3) m with its centre of mass over (0.1, 0.1) at
+  // h = 0.25 m is nearest its hypotenuse, (0.3 - 0.2) / sqrt(2) = 0.0707 m: b_min / h = 0.283.
+  ObservedObject o = block_object(0.2, 0.6, 0.5, Outcome::walked);
+  o.mesh_file = "rock.obj";
+  o.model = ObjectModel::three_d;
+  o.body_3d = std::make_shared<const RigidBody3D>(RigidBody3D::polygon(
+      {{0.0, 0.0}, {0.3, 0.0}, {0.0, 0.3}}, Vec3{0.1, 0.1, 0.25},
+      std::array<Vec3, 3>{Vec3{0.01, 0.0, 0.0}, Vec3{0.0, 0.01, 0.0}, Vec3{0.0, 0.0, 0.01}}));
+  for (const Outcome outcome : {Outcome::slid, Outcome::not_slid, Outcome::slid_stood, Outcome::slid_toppled,
+                                Outcome::walked}) {
+    o.outcome = outcome;
+    o.friction_3d = false;
+    EXPECT_EQ(refused_field([&] { (void)check_object_model(o, 3); }), "model") << outcome_name(outcome);
+    o.friction_3d = true;
+    EXPECT_EQ(refused_field([&] { (void)check_object_model(o, 3); }), "") << outcome_name(outcome);
+    EXPECT_EQ(refused_field([&] { (void)check_object_model(o, 1); }), "model") << outcome_name(outcome);
+  }
+  o.mu = Interval{0.2, 0.28};  // below 0.283 over the whole range
+  for (const Outcome outcome : {Outcome::slid_toppled, Outcome::walked}) {
+    o.outcome = outcome;
+    EXPECT_EQ(refused_field([&] { (void)check_object_model(o, 3); }), "outcome") << outcome_name(outcome);
+  }
+  o.outcome = Outcome::slid_stood;  // sliding without lifting stands
+  EXPECT_EQ(refused_field([&] { (void)check_object_model(o, 3); }), "");
+  o.mu = Interval{0.2, 0.29};  // may lift at its top
+  o.outcome = Outcome::slid_toppled;
+  EXPECT_EQ(refused_field([&] { (void)check_object_model(o, 3); }), "");
 }
 
 }  // namespace

@@ -204,6 +204,13 @@ struct Rigid3DSummary {
   // Sliding (zero unless Rigid3DOptions::mu_s is given):
   double residual_slide_east_m = 0.0;    ///< the base's displacement on the ground at the end, east
   double residual_slide_north_m = 0.0;   ///< same, north
+  /// the largest horizontal distance of the base from where it started over the run (the excursion a sliding
+  /// observation's "slid" / "not_slid" is scored on, as sliding2d.hpp's max |u|): while the base is flat, of its
+  /// reference point (the body frame's origin, whose end position is the residual slide); while the body stands on one
+  /// or two base vertices, of those contact vertices (the planar coupled model's u, the pivot corner's slide,
+  /// slide_rock.hpp: tilting about a contact that sticks adds nothing); not updated in flight. Taken at the sliding
+  /// solver's rows (its max |u| where the base never lifts) and the contact engine's step ends and events.
+  double max_slide_m = 0.0;
   double max_slide_speed_m_s = 0.0;      ///< largest sliding speed |w| of the base on the ground
   double slide_path_length_m = 0.0;      ///< length of the base's track on the ground
   double friction_energy_j_per_kg = 0.0; ///< dissipated by kinetic friction (not in energy_lost_j_per_kg)

@@ -52,9 +52,10 @@ inline constexpr double kVisibleSlipM = 0.002;      ///< 2 mm
 ///   slide:   the exact sliding block (sliding.hpp), two-way, level ground
 ///   rock:    Housner's rocking body on a base that does not slide (rocking.hpp)
 ///   coupled: the coupled slide-rock body (slide_rock.hpp) with mu_s = mu_k = the object's mu
-///   three_d: the three-dimensional engine (rigid3d.hpp: rocking about any base edge, pivoting on a corner, no
-///            sliding) on the pair and the vertical at the object's bearing; three-component surveys only, a box (a
-///            block with its depth) or a body from a mesh, `model = "3d"` only (never by the rule: docs/survey.md)
+///   three_d: the three-dimensional engine (rigid3d.hpp: rocking about any base edge, pivoting on a corner; with
+///            friction_3d sliding and slide-rock too, and then the sliding and coupled outcomes) on the pair and the
+///            vertical at the object's bearing; three-component surveys only, a box (a block with its depth), a
+///            cylinder or a body from a mesh, `model = "3d"` only (never by the rule: docs/survey.md)
 enum class ObjectModel { slide, rock, coupled, three_d };
 [[nodiscard]] std::string_view object_model_name(ObjectModel model);  ///< "slide", "rock", "coupled", "3d"
 
@@ -118,7 +119,8 @@ struct ObservedObject {
   std::shared_ptr<const RigidBody3D> body_3d;
   /// model = "3d", a box or a mesh (`friction_3d = "mu"`): the engine's base may slide with Coulomb friction, mu_s =
   /// mu_k = the drawn mu (Rigid3DOptions::mu_s; as the coupled model takes mu). False (the default, `"none"`): the
-  /// no-slip engine, as before the key.
+  /// no-slip engine, as before the key. Needed for the sliding and coupled outcomes with model = "3d" (scored on the
+  /// engine's run, inversion_3c.cpp; docs/survey.md).
   bool friction_3d = false;
   std::optional<double> slid_m;              ///< observed sliding distance (outcome slid or slid_stood)
   double slid_uncertainty_m = 0.0;           ///< its one-sigma uncertainty
@@ -144,9 +146,10 @@ struct ObjectCheck {
 /// The survey's rules for the model of `object` in a survey of `components` (1 or 3) components, with the object's
 /// model, outcome, body and mu already read: throws parameter_error(field, problem) for a combination that makes no
 /// sense (object_model above; a coupled object in a three-component survey; model = "3d" outside a three-component
-/// survey, on a sliding outcome (field "model"), on a cylinder or a general body ("shape") or a block without its
-/// depth ("depth"); slid_toppled or walked on a body that
-/// slides before it can lift over its whole mu range, Shenton 1996) and returns the warnings, kept values that the
+/// survey, or on a sliding or coupled outcome without friction_3d (field "model"), on a general body ("shape") or a
+/// block without its depth ("depth"), friction_3d on a cylinder; slid_toppled or walked on a body that
+/// slides before it can lift over its whole mu range, Shenton 1996, for the coupled model and model = "3d" alike) and
+/// returns the warnings, kept values that the
 /// user should know of (mu at or above the body's Painleve limit, slide_rock.hpp, painleve_friction_limit).
 [[nodiscard]] std::vector<ObjectCheck> check_object_model(const ObservedObject& object, int components);
 
