@@ -305,19 +305,8 @@ namespace {
 /// The synthetic calibration (RecoversKnownShakingWithCalibratedIntervals' 30 truths and objects) under settings `st`:
 /// the criterion >= 85 % / >= 55 % (issue 32: "the synthetic calibration test keeps" it under any prior or family).
 void expect_synthetic_calibration(const InversionSettings& st) {
-  std::vector<ObservedObject> objects;
-  objects.push_back(block("slender", 0.06, 0.40, {0.5, 0.7}, Outcome::overturned));
-  objects.push_back(block("medium", 0.10, 0.30, {0.5, 0.7}, Outcome::overturned));
-  objects.push_back(block("stocky", 0.15, 0.25, {0.5, 0.7}, Outcome::overturned));
-  objects.push_back(block("tall-box", 0.25, 1.00, {0.5, 0.7}, Outcome::overturned));
-  objects.push_back(block("pan", 0.2, 0.1, {0.15, 0.25}, Outcome::slid));
-  objects.push_back(block("crate", 0.3, 0.3, {0.4, 0.6}, Outcome::slid));
-  objects.push_back(block("bin", 0.3, 0.3, {0.7, 0.9}, Outcome::slid));
   const int trials = 30;
-  const testing::RecoveryCoverage c = testing::recovery_coverage(
-      st, objects, trials, 2026, 777, [&st](const ObservedObject& o, double mu, const GroundMotion& truth) {
-        return testing::observe_uncoupled(o, mu, truth, st);
-      });
+  const testing::RecoveryCoverage c = testing::synthetic_calibration(st, trials);
   ::testing::Test::RecordProperty("in95", c.in95);
   ::testing::Test::RecordProperty("in68", c.in68);
   EXPECT_GE(c.in95, static_cast<int>(std::ceil(0.85 * trials)));
