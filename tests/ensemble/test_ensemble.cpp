@@ -716,6 +716,16 @@ struct CountingPlan {
   }
 };
 
+/// A store in a fresh folder (its CSV out.csv) for CountingPlan's plan, on this process alone: the set-up of most
+/// store tests, each of which binds the four by name.
+struct StoreCase {
+  TempDir tmp;
+  CountingPlan cp;
+  SingleProcess one;
+  StoreOptions store;
+  StoreCase() { store.csv_path = tmp.path() / "out.csv"; }
+};
+
 std::vector<fs::path> chunk_files(const fs::path& dir) {
   std::vector<fs::path> out;
   for (const auto& e : fs::directory_iterator(dir)) {
@@ -774,11 +784,8 @@ TEST(EnsembleStore, FilesEqualTheInMemoryTable) {
 }
 
 TEST(EnsembleStore, ResumesAfterAFailureWithoutRecomputing) {
-  TempDir tmp;
-  CountingPlan cp;
-  SingleProcess one;
-  StoreOptions store;
-  store.csv_path = tmp.path() / "out.csv";
+  StoreCase c;
+  auto& [tmp, cp, one, store] = c;
   const std::string expected = to_csv(run_in_memory(cp.plan));
   cp.calls->store(0);
 
@@ -802,11 +809,8 @@ TEST(EnsembleStore, ResumesAfterAFailureWithoutRecomputing) {
 }
 
 TEST(EnsembleStore, CutShortChunksAreRecomputed) {
-  TempDir tmp;
-  CountingPlan cp;
-  SingleProcess one;
-  StoreOptions store;
-  store.csv_path = tmp.path() / "out.csv";
+  StoreCase c;
+  auto& [tmp, cp, one, store] = c;
   const std::string expected = to_csv(run_in_memory(cp.plan));
   cp.fail_from->store(100);
   ExecuteOptions single;
@@ -827,11 +831,8 @@ TEST(EnsembleStore, CutShortChunksAreRecomputed) {
 }
 
 TEST(EnsembleStore, AChangedPlanIsRefusedUnlessRestarted) {
-  TempDir tmp;
-  CountingPlan cp;
-  SingleProcess one;
-  StoreOptions store;
-  store.csv_path = tmp.path() / "out.csv";
+  StoreCase c;
+  auto& [tmp, cp, one, store] = c;
   store.field = "output.path";
   cp.fail_from->store(50);
   EXPECT_THROW(static_cast<void>(run_to_files(cp.plan, store, {}, one)), std::runtime_error);
@@ -858,11 +859,8 @@ TEST(EnsembleStore, AChangedPlanIsRefusedUnlessRestarted) {
 }
 
 TEST(EnsembleStore, ALockedStoreIsRefused) {
-  TempDir tmp;
-  CountingPlan cp;
-  SingleProcess one;
-  StoreOptions store;
-  store.csv_path = tmp.path() / "out.csv";
+  StoreCase c;
+  auto& [tmp, cp, one, store] = c;
   const fs::path dir = parts_directory(store.csv_path);
   fs::create_directories(dir);
   const int fd = ::open((dir / "lock").c_str(), O_RDWR | O_CREAT, 0644);
@@ -1049,11 +1047,8 @@ TEST(EnsembleStore, ChunksOfAnotherSweepAreRefusedWithoutAManifest) {
 class EnsembleStoreFinishedOutput : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(EnsembleStoreFinishedOutput, IsNotReportedCompleteButRefused) {
-  TempDir tmp;
-  CountingPlan cp;
-  SingleProcess one;
-  StoreOptions store;
-  store.csv_path = tmp.path() / "out.csv";
+  StoreCase c;
+  auto& [tmp, cp, one, store] = c;
   store.jsonl_path = tmp.path() / "out.jsonl";
   static_cast<void>(run_to_files(cp.plan, store, {}, one));
   const std::string csv = slurp(store.csv_path);
@@ -1084,11 +1079,8 @@ INSTANTIATE_TEST_SUITE_P(Kinds, EnsembleStoreFinishedOutput,
 
 // A store of the earlier format (no checksums) is refused with a message that says what to do.
 TEST(EnsembleStore, AStoreOfTheEarlierFormatIsRefused) {
-  TempDir tmp;
-  CountingPlan cp;
-  SingleProcess one;
-  StoreOptions store;
-  store.csv_path = tmp.path() / "out.csv";
+  StoreCase c;
+  auto& [tmp, cp, one, store] = c;
   fs::create_directories(parts_directory(store.csv_path));
   test::write_file(parts_directory(store.csv_path) / "manifest.json",
                    R"({"format": "topple-sweep-parts/1", "fingerprint": ")" + plan_fingerprint(cp.plan) +
