@@ -716,16 +716,6 @@ struct CountingPlan {
   }
 };
 
-/// A store in a fresh folder (its CSV out.csv) for CountingPlan's plan, on this process alone: the set-up of most
-/// store tests, each of which binds the four by name.
-struct StoreCase {
-  TempDir tmp;
-  CountingPlan cp;
-  SingleProcess one;
-  StoreOptions store;
-  StoreCase() { store.csv_path = tmp.path() / "out.csv"; }
-};
-
 std::vector<fs::path> chunk_files(const fs::path& dir) {
   std::vector<fs::path> out;
   for (const auto& e : fs::directory_iterator(dir)) {
@@ -735,6 +725,27 @@ std::vector<fs::path> chunk_files(const fs::path& dir) {
   std::sort(out.begin(), out.end());
   return out;
 }
+
+/// A store in a fresh folder (its CSV out.csv) for CountingPlan's plan, on this process alone: the set-up of most
+/// store tests, each of which binds the four by name.
+struct StoreCase {
+  TempDir tmp;
+  CountingPlan cp;
+  SingleProcess one;
+  StoreOptions store;
+  StoreCase() { store.csv_path = tmp.path() / "out.csv"; }
+
+  /// Runs the plan on one thread with every run from `fail_from` on failing (CountingPlan's injected failure), as
+  /// a sweep killed part-way, then lifts the failure; the chunk files that run finished.
+  std::vector<fs::path> interrupt_at(std::size_t fail_from) {
+    cp.fail_from->store(fail_from);
+    ExecuteOptions single;
+    single.threads = 1;
+    EXPECT_THROW(static_cast<void>(run_to_files(cp.plan, store, single, one)), std::runtime_error);
+    cp.fail_from->store(std::numeric_limits<std::size_t>::max());
+    return chunk_files(parts_directory(store.csv_path));
+  }
+};
 
 TEST(EnsembleStore, FilesEqualTheInMemoryTable) {
   TempDir tmp;
@@ -789,16 +800,11 @@ TEST(EnsembleStore, ResumesAfterAFailureWithoutRecomputing) {
   const std::string expected = to_csv(run_in_memory(cp.plan));
   cp.calls->store(0);
 
-  cp.fail_from->store(60);  // runs 60.. fail: chunks 0-6 (runs 0-55) can finish
-  ExecuteOptions single;
-  single.threads = 1;
-  EXPECT_THROW(static_cast<void>(run_to_files(cp.plan, store, single, one)), std::runtime_error);
+  const auto done = c.interrupt_at(60);  // runs 60.. fail: chunks 0-6 (runs 0-55) can finish
   EXPECT_FALSE(fs::exists(store.csv_path));
-  const auto done = chunk_files(parts_directory(store.csv_path));
   ASSERT_GE(done.size(), 1u);
   ASSERT_LE(done.size(), 7u);
 
-  cp.fail_from->store(std::numeric_limits<std::size_t>::max());
   cp.calls->store(0);
   const SweepReport r = run_to_files(cp.plan, store, {}, one);
   EXPECT_EQ(r.chunks_already_done, done.size());
@@ -812,18 +818,13 @@ TEST(EnsembleStore, CutShortChunksAreRecomputed) {
   StoreCase c;
   auto& [tmp, cp, one, store] = c;
   const std::string expected = to_csv(run_in_memory(cp.plan));
-  cp.fail_from->store(100);
-  ExecuteOptions single;
-  single.threads = 1;
-  EXPECT_THROW(static_cast<void>(run_to_files(cp.plan, store, single, one)), std::runtime_error);
-  const auto done = chunk_files(parts_directory(store.csv_path));
+  const auto done = c.interrupt_at(100);
   ASSERT_GE(done.size(), 2u);
   // A machine crash can leave a renamed file without its last bytes, or empty; a killed writer leaves a temporary.
   const std::string text = slurp(done[0]);
   test::write_file(done[0], text.substr(0, text.size() - 5));
   test::write_file(done[1], "");
   test::write_file(parts_directory(store.csv_path) / ".tmp-0-1-00000003.csv", "partial");
-  cp.fail_from->store(std::numeric_limits<std::size_t>::max());
   const SweepReport r = run_to_files(cp.plan, store, {}, one);
   EXPECT_EQ(r.chunks_already_done, done.size() - 2);
   EXPECT_EQ(slurp(store.csv_path), expected);
