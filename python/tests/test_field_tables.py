@@ -29,12 +29,18 @@ def stub_class(name):
 
 
 def stub_members(name):
+    """The members a stub class declares, with those of the stub classes it derives from (_SlidingSummary: the fields
+    the two sliding results share, written once)."""
+    node = stub_class(name)
     members = set()
-    for node in stub_class(name).body:
-        if isinstance(node, ast.AnnAssign) and isinstance(node.target, ast.Name):
-            members.add(node.target.id)
-        elif isinstance(node, ast.FunctionDef):
-            members.add(node.name)
+    for base in node.bases:
+        if isinstance(base, ast.Name):
+            members |= stub_members(base.id)
+    for item in node.body:
+        if isinstance(item, ast.AnnAssign) and isinstance(item.target, ast.Name):
+            members.add(item.target.id)
+        elif isinstance(item, ast.FunctionDef):
+            members.add(item.name)
     return members
 
 

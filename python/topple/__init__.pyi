@@ -94,8 +94,9 @@ def read(path: str, format: Optional[str] = None, units: Optional[str] = None, d
          baseline: str = "none") -> GroundMotion:
     """Read a strong-motion record."""
 
-class SlidingResult:
-    """Sliding response of a rigid block (the result of topple.slide)."""
+class _SlidingSummary:
+    # Not a runtime class: the fields topple.slide's and topple.slide_2d's results share (the rows their field tables,
+    # solvers/summary_fields.hpp, have in common), written once for both.
     max_abs_displacement_m: float
     max_displacement_time_s: float
     residual_displacement_m: float
@@ -106,14 +107,17 @@ class SlidingResult:
     end_time_s: float
     at_rest_at_end: bool
     contact_lost_time_s: Optional[float]
-    yield_down_g: float
-    yield_up_g: Optional[float]  # None in one-way mode
     mu_static: float
     mu_kinetic: float
-    slope_deg: float
-    mode: str
     g_m_s2: float
     time_s: npt.NDArray[np.float64]
+
+class SlidingResult(_SlidingSummary):
+    """Sliding response of a rigid block (the result of topple.slide)."""
+    yield_down_g: float
+    yield_up_g: Optional[float]  # None in one-way mode
+    slope_deg: float
+    mode: str
     displacement_m: npt.NDArray[np.float64]
     velocity_m_s: npt.NDArray[np.float64]
     state: npt.NDArray[np.int8]
@@ -125,29 +129,15 @@ def slide(motion: GroundMotion, *, mu: float, mu_kinetic: Optional[float] = None
           vertical: Optional[GroundMotion] = None, g: float = 9.80665, history: bool = True) -> SlidingResult:
     """Exact sliding of a rigid block with Coulomb friction on a level or inclined plane."""
 
-class Sliding2dResult:
+class Sliding2dResult(_SlidingSummary):
     """Bidirectional sliding response of a rigid block (the result of topple.slide_2d)."""
-    residual_displacement_m: float
     residual_azimuth_deg: Optional[float]  # None when the block never moved
     residual_east_m: float
     residual_north_m: float
-    max_abs_displacement_m: float
-    max_displacement_time_s: float
     path_length_m: float
-    max_abs_velocity_m_s: float
-    slip_episodes: int
-    first_slip_time_s: Optional[float]
-    total_slip_duration_s: float
-    end_time_s: float
-    at_rest_at_end: bool
-    contact_lost_time_s: Optional[float]
     input_work_J_kg: float
     friction_work_J_kg: float
     integrator_steps: int
-    mu_static: float
-    mu_kinetic: float
-    g_m_s2: float
-    time_s: npt.NDArray[np.float64]
     east_m: npt.NDArray[np.float64]
     north_m: npt.NDArray[np.float64]
     east_m_s: npt.NDArray[np.float64]

@@ -17,58 +17,20 @@
 #include "topple/solvers/rigid3d.hpp"
 #include "topple/solvers/rigid3d_disc.hpp"
 #include "io/mesh_pose_keys.hpp"
+#include "io/toml_reader.hpp"
 
 namespace topple::io {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string type_name(const toml::node& n) {
-  switch (n.type()) {
-    case toml::node_type::string: return "a string";
-    case toml::node_type::integer: return "an integer";
-    case toml::node_type::floating_point: return "a number";
-    case toml::node_type::boolean: return "a boolean";
-    case toml::node_type::array: return "a list";
-    case toml::node_type::table: return "a table";
-    default: return "a date or time";
-  }
-}
+using io_detail::toml_type_name;
 
-std::optional<std::size_t> line_of(const toml::node* n) {
-  if (n != nullptr && n->source().begin.line > 0) return n->source().begin.line;
-  return std::nullopt;
-}
-
-/// Reads one campaign file; every error names the file, the line and the key.
-class Reader {
+/// Reads one campaign file; every error names the file, the line and the key (io_detail::TomlReader); what only a
+/// campaign file reads: numbers, positive numbers, file names.
+class Reader : public io_detail::TomlReader {
  public:
-  Reader(std::string file, fs::path dir) : file_(std::move(file)), dir_(std::move(dir)) {}
-
-  [[noreturn]] void fail(const toml::node* node, const std::string& key, const std::string& problem) const {
-    throw InputError(InputLocation{file_, line_of(node), key}, problem);
-  }
-
-  /// Rethrows an InputError of a library check with this file's location and the user's key.
-  template <class F>
-  auto located(const toml::node* node, const std::string& key, F f) const {
-    try {
-      return f();
-    } catch (const InputError& e) {
-      fail(node, key, e.problem());
-    }
-  }
-
-  void check_keys(const toml::table& t, const std::string& where, std::initializer_list<std::string_view> allowed) const {
-    for (auto&& [k, v] : t) {
-      const std::string_view name = k.str();
-      if (std::find(allowed.begin(), allowed.end(), name) != allowed.end()) continue;
-      std::string known;
-      for (const auto& a : allowed) known += (known.empty() ? "" : ", ") + std::string(a);
-      fail(&v, where.empty() ? std::string(name) : where + "." + std::string(name),
-           fmt::format("unknown key '{}' (known here: {})", name, known));
-    }
-  }
+  using TomlReader::TomlReader;
 
   [[nodiscard]] std::optional<double> number(const toml::table& t, std::string_view key, const std::string& field) const {
     const toml::node* n = t.get(key);
@@ -79,7 +41,7 @@ class Reader {
     } else if (const auto* f = n->as_floating_point()) {
       v = f->get();
     } else {
-      fail(n, field, fmt::format("expected a number, got {}", type_name(*n)));
+      fail(n, field, fmt::format("expected a number, got {}", toml_type_name(*n)));
     }
     if (!std::isfinite(v)) fail(n, field, fmt::format("must be finite, got {}", v));
     return v;
@@ -92,15 +54,6 @@ class Reader {
     return *v;
   }
 
-  [[nodiscard]] std::optional<std::string> string(const toml::table& t, std::string_view key,
-                                                  const std::string& field) const {
-    const toml::node* n = t.get(key);
-    if (n == nullptr) return std::nullopt;
-    const auto* s = n->as_string();
-    if (s == nullptr) fail(n, field, fmt::format("expected a string, got {}", type_name(*n)));
-    return s->get();
-  }
-
   /// A file named by `key`, relative to the campaign file's directory.
   [[nodiscard]] std::optional<fs::path> file(const toml::table& t, std::string_view key, const std::string& field,
                                              const std::string& id, bool check) const {
@@ -108,7 +61,7 @@ class Reader {
     if (!name) return std::nullopt;
     if (name->empty()) fail(t.get(key), field, fmt::format("test '{}': the file name is empty", id));
     if (name->find_first_of("\r\n") != std::string::npos) fail(t.get(key), field, "a file name holds a line break");
-    const fs::path p = fs::path(*name).is_absolute() ? fs::path(*name) : dir_ / *name;
+    const fs::path p = fs::path(*name).is_absolute() ? fs::path(*name) : dir() / *name;
     std::error_code ec;
     if (check && !fs::is_regular_file(p, ec)) {
       fail(t.get(key), field, fmt::format("test '{}': file '{}' not found{}", id, p.string(),
@@ -116,23 +69,11 @@ class Reader {
     }
     return p;
   }
-
-  [[nodiscard]] const std::string& file_name() const { return file_; }
-
- private:
-  std::string file_;
-  fs::path dir_;
 };
 
 /// format, units, dt_s: in [campaign] (every test's default) or in a test.
 void read_record_keys(const Reader& r, const toml::table& t, const std::string& prefix, double g, ReadOptions& ro) {
-  if (const auto f = r.string(t, "format", prefix + "format")) {
-    ro.format = r.located(t.get("format"), prefix + "format", [&] { return parse_format_name(*f, prefix + "format"); });
-  }
-  if (const auto u = r.string(t, "units", prefix + "units")) {
-    r.located(t.get("units"), prefix + "units", [&] { return acceleration_unit_factor(*u, prefix + "units", g); });
-    ro.units = *u;
-  }
+  io_detail::read_record_format_and_units(r, t, prefix, g, ro);
   if (const auto dt = r.number(t, "dt_s", prefix + "dt_s")) {
     if (!(*dt > 0.0)) r.fail(t.get("dt_s"), prefix + "dt_s", fmt::format("must be > 0, got {}", *dt));
     ro.dt_s = dt;
@@ -159,7 +100,7 @@ void read_mesh_pose(const Reader& r, const toml::table& t, const std::string& pr
       const toml::node& e = *a->get(k);
       if (const auto* i = e.as_integer()) v.push_back(static_cast<double>(i->get()));
       else if (const auto* f = e.as_floating_point()) v.push_back(f->get());
-      else r.fail(&e, prefix + std::string(key), fmt::format("expected a number, got {}", type_name(e)));
+      else r.fail(&e, prefix + std::string(key), fmt::format("expected a number, got {}", toml_type_name(e)));
     }
     return v;
   };
@@ -187,7 +128,7 @@ void read_settings(const Reader& r, const toml::table& root, CampaignFile& out, 
   const toml::node* cn = root.get("campaign");
   if (cn == nullptr) return;
   const toml::table* c = cn->as_table();
-  if (c == nullptr) r.fail(cn, "campaign", fmt::format("expected a table [campaign], got {}", type_name(*cn)));
+  if (c == nullptr) r.fail(cn, "campaign", fmt::format("expected a table [campaign], got {}", toml_type_name(*cn)));
   r.check_keys(*c, "campaign", {"name", "description", "models", "mu", "mu_k", "restitution", "g_m_s2", "format",
                                 "units", "dt_s", "mesh_unit"});
   if (const auto name = r.string(*c, "name", "campaign.name")) s.name = *name;
@@ -199,7 +140,7 @@ void read_settings(const Reader& r, const toml::table& root, CampaignFile& out, 
     for (std::size_t k = 0; k < a->size(); ++k) {
       const toml::node& e = *a->get(k);
       const auto* str = e.as_string();
-      if (str == nullptr) r.fail(&e, "campaign.models", fmt::format("expected a model name, got {}", type_name(e)));
+      if (str == nullptr) r.fail(&e, "campaign.models", fmt::format("expected a model name, got {}", toml_type_name(e)));
       const auto m = r.located(&e, "campaign.models", [&] { return ensemble::parse_campaign_model(str->get()); });
       if (std::find(s.models.begin(), s.models.end(), m) != s.models.end()) {
         r.fail(&e, "campaign.models", fmt::format("model '{}' listed twice", str->get()));
@@ -251,7 +192,7 @@ void read_test(const Reader& r, const toml::table& t, std::size_t number, bool c
                 "scale", "bearing_deg", "observed", "observed_azimuth_deg"});
   ensemble::CampaignTest test;
   CampaignTestFiles files;
-  files.line = line_of(&t);
+  files.line = io_detail::toml_line(&t);
   const auto id = r.string(t, "id", prefix + "id");
   if (!id || id->empty()) r.fail(id ? t.get("id") : &t, prefix + "id", "every test needs a non-empty id");
   if (id->find_first_of("\r\n,\"") != std::string::npos) {
@@ -271,7 +212,7 @@ void read_test(const Reader& r, const toml::table& t, std::size_t number, bool c
     if (!mesh && t.get(key) != nullptr) r.fail(t.get(key), prefix + key, "applies to a mesh body only");
   }
   if (mesh) {
-    files.mesh_line = line_of(t.get("mesh"));
+    files.mesh_line = io_detail::toml_line(t.get("mesh"));
     test.body = ensemble::CampaignMesh{r.file(t, "mesh", prefix + "mesh", test.id, check)->string()};
     files.mesh_unit_m = default_mesh_unit_m;
     if (const auto u = r.string(t, "mesh_unit", prefix + "mesh_unit")) {
@@ -283,7 +224,7 @@ void read_test(const Reader& r, const toml::table& t, std::size_t number, bool c
     const std::string key = block ? "block" : "cylinder";
     const toml::node* bn = t.get(key);
     const toml::table* b = bn->as_table();
-    if (b == nullptr) r.fail(bn, prefix + key, fmt::format("expected an inline table, got {}", type_name(*bn)));
+    if (b == nullptr) r.fail(bn, prefix + key, fmt::format("expected an inline table, got {}", toml_type_name(*bn)));
     const std::string p = prefix + key + ".";
     if (block) {
       r.check_keys(*b, prefix + key, {"width_m", "depth_m", "height_m"});
@@ -314,14 +255,14 @@ void read_test(const Reader& r, const toml::table& t, std::size_t number, bool c
   const auto x = r.file(t, "x", prefix + "x", test.id, check);
   if (!x) r.fail(&t, prefix + "x", fmt::format("test '{}': the table's x record is required (x = \"file\")", test.id));
   files.x = *x;
-  files.x_line = line_of(t.get("x"));
+  files.x_line = io_detail::toml_line(t.get("x"));
   if (const auto y = r.file(t, "y", prefix + "y", test.id, check)) {
     files.y = *y;
-    files.y_line = line_of(t.get("y"));
+    files.y_line = io_detail::toml_line(t.get("y"));
   }
   if (const auto z = r.file(t, "z", prefix + "z", test.id, check)) {
     files.z = *z;
-    files.z_line = line_of(t.get("z"));
+    files.z_line = io_detail::toml_line(t.get("z"));
   }
   files.read = defaults;
   read_record_keys(r, t, prefix, defaults.g_m_s2, files.read);

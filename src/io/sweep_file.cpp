@@ -31,6 +31,7 @@
 #include "topple/motion/pulses.hpp"
 #include "topple/core/units.hpp"
 #include "io/mesh_pose_keys.hpp"
+#include "io/toml_reader.hpp"
 
 namespace topple::io {
 namespace fs = std::filesystem;
@@ -38,20 +39,7 @@ namespace {
 
 using Parser = std::function<double(std::string_view text, const std::string& field)>;
 
-std::string type_name(const toml::node& n) {
-  switch (n.type()) {
-    case toml::node_type::string: return "a string";
-    case toml::node_type::integer: return "an integer";
-    case toml::node_type::floating_point: return "a number";
-    case toml::node_type::boolean: return "a boolean";
-    case toml::node_type::date: return "a date";
-    case toml::node_type::time: return "a time";
-    case toml::node_type::date_time: return "a date-time";
-    case toml::node_type::array: return "a list";
-    case toml::node_type::table: return "a table";
-    default: return "nothing";
-  }
-}
+using io_detail::toml_type_name;
 
 std::optional<double> number_of(const toml::node& n) {
   if (const auto* i = n.as_integer()) return static_cast<double>(i->get());
@@ -59,40 +47,11 @@ std::optional<double> number_of(const toml::node& n) {
   return std::nullopt;
 }
 
-/// Reads one sweep file; every error names the file, the line and the key.
-class Reader {
+/// Reads one sweep file; every error names the file, the line and the key (io_detail::TomlReader); what only a
+/// sweep file reads: values as one, a list or a range, quantities with units, record file patterns.
+class Reader : public io_detail::TomlReader {
  public:
-  Reader(std::string file, fs::path dir) : file_(std::move(file)), dir_(std::move(dir)) {}
-
-  [[noreturn]] void fail(const toml::node* node, const std::string& key, const std::string& problem) const {
-    std::optional<std::size_t> line;
-    if (node != nullptr && node->source().begin.line > 0) line = node->source().begin.line;
-    throw InputError(InputLocation{file_, line, key}, problem);
-  }
-
-  /// Rethrows an InputError of a units helper or a model factory with this file's location and the user's key.
-  template <class F>
-  auto located(const toml::node* node, const std::string& key, F f) const {
-    try {
-      return f();
-    } catch (const InputError& e) {
-      fail(node, key, e.problem());
-    }
-  }
-
-  void check_keys(const toml::table& t, const std::string& where, std::initializer_list<std::string_view> allowed) const {
-    check_keys(t, where, std::vector<std::string_view>(allowed));
-  }
-  void check_keys(const toml::table& t, const std::string& where, const std::vector<std::string_view>& allowed) const {
-    for (auto&& [k, v] : t) {
-      const std::string_view name = k.str();
-      if (std::find(allowed.begin(), allowed.end(), name) != allowed.end()) continue;
-      std::string known;
-      for (const auto& a : allowed) known += (known.empty() ? "" : ", ") + std::string(a);
-      fail(&v, where.empty() ? std::string(name) : where + "." + std::string(name),
-           fmt::format("unknown key '{}' (known here: {})", name, known));
-    }
-  }
+  using TomlReader::TomlReader;
 
   /// Numbers: a number, a list of numbers or a range table. Empty when the key is absent.
   [[nodiscard]] std::optional<std::vector<double>> numbers(const toml::table& t, std::string_view key,
@@ -105,7 +64,7 @@ class Reader {
       std::vector<double> out;
       for (const auto& e : *a) {
         const auto x = number_of(e);
-        if (!x) fail(&e, field, fmt::format("expected numbers in the list, got {}", type_name(e)));
+        if (!x) fail(&e, field, fmt::format("expected numbers in the list, got {}", toml_type_name(e)));
         out.push_back(*x);
       }
       return out;
@@ -113,12 +72,12 @@ class Reader {
     if (const auto* r = n->as_table()) {
       return range(*r, field, [&](const toml::node& e, const std::string& f) -> double {
         const auto x = number_of(e);
-        if (!x) fail(&e, f, fmt::format("expected a number, got {}", type_name(e)));
+        if (!x) fail(&e, f, fmt::format("expected a number, got {}", toml_type_name(e)));
         return *x;
       });
     }
     fail(n, field, fmt::format("expected a number, a list of numbers or a range table {{from, to, count}}, got {}",
-                               type_name(*n)));
+                               toml_type_name(*n)));
   }
 
   /// A dimensional parameter: `unit_key` (e.g. "width_m") takes numbers in that unit, `plain_key` (e.g. "width")
@@ -139,7 +98,7 @@ class Reader {
         fail(&e, plain_field, fmt::format("{} has no unit: write it as a string with one (e.g. \"{}\"), or use {} "
                                           "for a plain number", *x, example, unit_key));
       }
-      fail(&e, plain_field, fmt::format("expected a string with a unit (e.g. \"{}\"), got {}", example, type_name(e)));
+      fail(&e, plain_field, fmt::format("expected a string with a unit (e.g. \"{}\"), got {}", example, toml_type_name(e)));
     };
     if (const auto* a = plain->as_array()) {
       if (a->empty()) fail(plain, plain_field, "empty list: give at least one value");
@@ -164,21 +123,12 @@ class Reader {
       std::vector<std::string> out;
       for (const auto& e : *a) {
         const auto* s = e.as_string();
-        if (s == nullptr) fail(&e, field, fmt::format("expected strings in the list, got {}", type_name(e)));
+        if (s == nullptr) fail(&e, field, fmt::format("expected strings in the list, got {}", toml_type_name(e)));
         out.push_back(s->get());
       }
       return out;
     }
-    fail(n, field, fmt::format("expected a string or a list of strings, got {}", type_name(*n)));
-  }
-
-  [[nodiscard]] std::optional<std::string> string(const toml::table& t, std::string_view key,
-                                                  const std::string& field) const {
-    const toml::node* n = t.get(key);
-    if (n == nullptr) return std::nullopt;
-    const auto* s = n->as_string();
-    if (s == nullptr) fail(n, field, fmt::format("expected a string, got {}", type_name(*n)));
-    return s->get();
+    fail(n, field, fmt::format("expected a string or a list of strings, got {}", toml_type_name(*n)));
   }
 
   [[nodiscard]] std::optional<std::int64_t> integer(const toml::table& t, std::string_view key,
@@ -186,7 +136,7 @@ class Reader {
     const toml::node* n = t.get(key);
     if (n == nullptr) return std::nullopt;
     const auto* i = n->as_integer();
-    if (i == nullptr) fail(n, field, fmt::format("expected an integer, got {}", type_name(*n)));
+    if (i == nullptr) fail(n, field, fmt::format("expected an integer, got {}", toml_type_name(*n)));
     return i->get();
   }
 
@@ -194,7 +144,7 @@ class Reader {
     const toml::node* n = t.get(key);
     if (n == nullptr) return std::nullopt;
     const auto* b = n->as_boolean();
-    if (b == nullptr) fail(n, field, fmt::format("expected true or false, got {}", type_name(*n)));
+    if (b == nullptr) fail(n, field, fmt::format("expected true or false, got {}", toml_type_name(*n)));
     return b->get();
   }
 
@@ -272,9 +222,9 @@ class Reader {
       const bool absolute = fs::path(pattern).is_absolute();
       std::string prefix;
       std::size_t plain_prefix_size = 0;  // the prefix without its escapes: what glob's matches start with
-      if (!absolute && !dir_.empty()) {
-        plain_prefix_size = dir_.string().size() + 1;
-        for (const char c : dir_.string()) {
+      if (!absolute && !dir().empty()) {
+        plain_prefix_size = dir().string().size() + 1;
+        for (const char c : dir().string()) {
           if (c == '*' || c == '?' || c == '[' || c == '\\' || c == '{') prefix += '\\';
           prefix += c;
         }
@@ -308,12 +258,6 @@ class Reader {
     }
     return out;
   }
-
-  [[nodiscard]] const fs::path& dir() const { return dir_; }
-
- private:
-  std::string file_;
-  fs::path dir_;
 };
 
 Parser length_parser() { return [](std::string_view s, const std::string& f) { return parse_length_m(s, f); }; }
@@ -410,13 +354,7 @@ void read_record_sets(const Reader& r, const toml::table& m, const ReadOptions& 
 ReadOptions read_record_options(const Reader& r, const toml::table& m, double g) {
   ReadOptions ro;
   ro.g_m_s2 = g;
-  if (const auto f = r.string(m, "format", "motions.format")) {
-    ro.format = r.located(m.get("format"), "motions.format", [&] { return parse_format_name(*f, "motions.format"); });
-  }
-  if (const auto u = r.string(m, "units", "motions.units")) {
-    r.located(m.get("units"), "motions.units", [&] { return acceleration_unit_factor(*u, "motions.units", g); });
-    ro.units = *u;
-  }
+  io_detail::read_record_format_and_units(r, m, "motions.", g, ro);
   ro.dt_s = r.quantity(m, "dt_s", "dt", "motions.", duration_parser(), "0.01s");
   if (ro.dt_s && !(*ro.dt_s > 0.0)) r.fail(m.get("dt") ? m.get("dt") : m.get("dt_s"), "motions.dt", "must be > 0");
   if (const auto c = r.integer(m, "channel", "motions.channel")) {
@@ -446,12 +384,12 @@ ReadOptions read_record_options(const Reader& r, const toml::table& m, double g)
           if (str->get().find('"') != std::string::npos) r.fail(&e, field, "a column name with a double quote");
           part = str->get().empty() ? std::string() : "\"" + str->get() + "\"";
         } else {
-          r.fail(&e, field, fmt::format("expected a column number or a header name, got {}", type_name(e)));
+          r.fail(&e, field, fmt::format("expected a column number or a header name, got {}", toml_type_name(e)));
         }
         text += (k == 0 ? "" : ",") + part;
       }
     } else {
-      r.fail(n, field, fmt::format("expected [time, acceleration] or a string \"TIME,ACCEL\", got {}", type_name(*n)));
+      r.fail(n, field, fmt::format("expected [time, acceleration] or a string \"TIME,ACCEL\", got {}", toml_type_name(*n)));
     }
     ro.columns = r.located(n, field, [&] { return parse_columns(text, field); });
   }
@@ -585,7 +523,7 @@ void read_motions(const Reader& r, const toml::table& t, SweepFile& out) {
   const toml::table* m = nullptr;
   if (const toml::node* n = t.get("motions")) {
     m = n->as_table();
-    if (m == nullptr) r.fail(n, "motions", fmt::format("expected a table [motions], got {}", type_name(*n)));
+    if (m == nullptr) r.fail(n, "motions", fmt::format("expected a table [motions], got {}", toml_type_name(*n)));
   } else {
     r.fail(&t, "motions", "the sweep has no [motions] table");
   }
@@ -880,7 +818,7 @@ std::vector<std::optional<double>> read_restitutions(const Reader& r, const toml
       r.fail(&e, prefix + "e", fmt::format("'{}' is neither 'housner' nor a number in [0, 1]", s->get()));
     }
     const auto x = number_of(e);
-    if (!x) r.fail(&e, prefix + "e", fmt::format("expected \"housner\" or a number in [0, 1], got {}", type_name(e)));
+    if (!x) r.fail(&e, prefix + "e", fmt::format("expected \"housner\" or a number in [0, 1], got {}", toml_type_name(e)));
     if (!(*x >= 0.0 && *x <= 1.0)) r.fail(&e, prefix + "e", fmt::format("must be in [0, 1], got {}", *x));
     return *x;
   };
@@ -1124,7 +1062,7 @@ void read_output(const Reader& r, const toml::table& t, const fs::path& sweep_pa
   csv.replace_extension(".csv");
   if (const toml::node* n = t.get("output")) {
     const auto* o = n->as_table();
-    if (o == nullptr) r.fail(n, "output", fmt::format("expected a table [output], got {}", type_name(*n)));
+    if (o == nullptr) r.fail(n, "output", fmt::format("expected a table [output], got {}", toml_type_name(*n)));
     r.check_keys(*o, "output", {"path", "jsonl", "chunk_runs"});
     if (const auto p = r.string(*o, "path", "output.path")) {
       if (p->empty()) r.fail(o->get("path"), "output.path", "empty path");

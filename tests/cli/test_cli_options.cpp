@@ -35,7 +35,9 @@ TEST_P(CliBadOption, ExitsTwoNamingTheOption) {
   EXPECT_EQ(r.exit_code, 2) << c.args << "\n" << r.err;
   EXPECT_NE(r.err.find(c.option), std::string::npos) << c.args << "\n" << r.err;
   // A dimension out of range is the user's --width, not the D derived from it.
-  if (std::string(c.option) != "--D") EXPECT_EQ(r.err.find("--D"), std::string::npos) << r.err;
+  if (std::string(c.option) != "--D") {
+    EXPECT_EQ(r.err.find("--D"), std::string::npos) << r.err;
+  }
 }
 
 // Each case passes on today's main without the named error: it allocates without bound or runs for hours (the
@@ -78,13 +80,16 @@ INSTANTIATE_TEST_SUITE_P(
                               "--duration 0.3"},
         BadOption{"--D", "rock --shape general --a 2cm --h 10cm --D 1e300m2 --pulse rect --amp-g 0.5 --duration 0.3"},
         BadOption{"--width", "fragility --synth 2 --im-range 0.1:1:2 --shape block --width 1e308m --height 1m"}),
-    [](const ::testing::TestParamInfo<BadOption>& info) {
+    // (The parameter is not called `info`: INSTANTIATE_TEST_SUITE_P's own function has a parameter of that name,
+    // which it would shadow, -Wshadow.)
+    [](const ::testing::TestParamInfo<BadOption>& case_info) {
       // "<command>_<option>_<index>": ctest names without blanks.
-      std::string name = std::string(info.param.args).substr(0, std::string(info.param.args).find(' ')) + "_";
-      for (const char* c = info.param.option; *c != '\0'; ++c) {
+      const std::string args = case_info.param.args;
+      std::string name = args.substr(0, args.find(' ')) + "_";
+      for (const char* c = case_info.param.option; *c != '\0'; ++c) {
         if (std::isalnum(static_cast<unsigned char>(*c))) name += *c;
       }
-      return name + "_" + std::to_string(info.index);
+      return name + "_" + std::to_string(case_info.index);
     });
 
 // ---- output files ----

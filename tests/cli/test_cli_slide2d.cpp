@@ -206,7 +206,9 @@ TEST(CliSlide2d, SpectrumOfACollinearPairIsThe1dSpectrum) {
     EXPECT_NEAR(p2.at("max_abs_displacement_m").get<double>(), scale, 1e-9 * scale);
     EXPECT_NEAR(p2.at("residual_displacement_m").get<double>(), std::abs(d), 1e-9 * scale);
     EXPECT_NEAR(p2.at("residual_east_m").get<double>(), -d, 1e-9 * scale);
-    if (std::abs(d) > 1e-6) EXPECT_NEAR(p2.at("residual_azimuth_deg").get<double>(), d > 0 ? 270.0 : 90.0, 1e-6);
+    if (std::abs(d) > 1e-6) {
+      EXPECT_NEAR(p2.at("residual_azimuth_deg").get<double>(), d > 0 ? 270.0 : 90.0, 1e-6);
+    }
     EXPECT_EQ(p2.at("slip_episodes"), p1.at("slip_episodes"));
     EXPECT_EQ(p2.at("h1_alone").at("residual_displacement_m"), p1.at("residual_displacement_m"));
     EXPECT_EQ(p2.at("h2_alone").at("max_abs_displacement_m").get<double>(), 0.0);

@@ -83,7 +83,7 @@ TEST(OutputFile, ADirectoryAsTheFinalNameIsRefusedAtOnceLeavingNothing) {
   // then fail on the rename: the target is checked when the output is opened, before any work.
   const fs::path dir = fresh_dir("is_dir");
   fs::create_directories(dir / "out");
-  for (const fs::path target : {dir / "out", fs::path((dir / "out").string() + "/")}) {
+  for (const fs::path& target : {dir / "out", fs::path((dir / "out").string() + "/")}) {
     try {
       OutputFile f(target);
       FAIL() << "expected OutputError for " << target;

@@ -545,27 +545,13 @@ TEST(InversionSteps, SitesSharingTheFamilyGiveTheSameResultsAsSiteBySite) {
 // observations were made with observation_match itself). The truths and the observations are drawn with fixed seeds,
 // so the test is deterministic.
 TEST(Inversion, RecoversKnownShakingWithCalibratedIntervals) {
-  const InversionSettings st = small_grid(10);
-  std::vector<ObservedObject> objects;
-  objects.push_back(block("slender", 0.06, 0.40, {0.5, 0.7}, Outcome::overturned));
-  objects.push_back(block("medium", 0.10, 0.30, {0.5, 0.7}, Outcome::overturned));
-  objects.push_back(block("stocky", 0.15, 0.25, {0.5, 0.7}, Outcome::overturned));
-  objects.push_back(block("tall-box", 0.25, 1.00, {0.5, 0.7}, Outcome::overturned));
-  objects.push_back(block("pan", 0.2, 0.1, {0.15, 0.25}, Outcome::slid));
-  objects.push_back(block("crate", 0.3, 0.3, {0.4, 0.6}, Outcome::slid));
-  objects.push_back(block("bin", 0.3, 0.3, {0.7, 0.9}, Outcome::slid));
-  const int trials = 30;
   // What happened, from the solvers themselves (not from observation_match, which is under test): each object's
-  // friction drawn uniformly in its range with the test's own generator (777), the truths with 2026.
-  const testing::RecoveryCoverage c = testing::recovery_coverage(
-      st, objects, trials, 2026, 777,
-      [&st](const ObservedObject& o, double mu, const GroundMotion& truth) {
-        return testing::observe_uncoupled(o, mu, truth, st);
-      });
-  const int in95 = c.in95;
-  const int in68 = c.in68;
-  EXPECT_GE(in95, static_cast<int>(std::ceil(0.85 * trials)));
-  EXPECT_GE(in68, static_cast<int>(std::ceil(0.55 * trials)));
+  // friction drawn uniformly in its range with the test's own generator (777), the truths with 2026
+  // (tests/support/observed_objects.hpp: calibration_objects, synthetic_calibration).
+  const int trials = 30;
+  const testing::RecoveryCoverage c = testing::synthetic_calibration(small_grid(10), trials);
+  EXPECT_GE(c.in95, static_cast<int>(std::ceil(0.85 * trials)));
+  EXPECT_GE(c.in68, static_cast<int>(std::ceil(0.55 * trials)));
 }
 
 // ---- flexible supports (survey.hpp: SupportFilter; flexible.hpp: support_motion) ----------------------------------

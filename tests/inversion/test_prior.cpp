@@ -20,6 +20,7 @@
 
 #include "support/input_errors.hpp"
 #include "support/observed_objects.hpp"
+#include "support/peer_script.hpp"
 
 #include "topple/core/error.hpp"
 #include "topple/inversion/evidence.hpp"
@@ -125,9 +126,7 @@ TEST(Bssa14, PgaAgreesWithOpenQuakeHazardlibsTableOnAGrid) {
   RecordProperty("worst_relative_median", std::to_string(expect_bssa14_agrees_with(bssa14_peer_grid(), table)));
 }
 
-std::filesystem::path venv_python() {
-  return std::filesystem::path(TOPPLE_SOURCE_DIR) / ".venv-test" / "bin" / "python";
-}
+using test::venv_python;
 
 // The same against hazardlib itself, run now: where .venv-test holds it (TOPPLE_TEST_HAZARDLIB=1 scripts/test-venv.sh);
 // skipped otherwise, as in the test command.
@@ -139,21 +138,8 @@ TEST(Bssa14, PgaAgreesWithOpenQuakeHazardlibOnAGrid) {
     GTEST_SKIP() << "openquake.hazardlib is absent from .venv-test (TOPPLE_TEST_HAZARDLIB=1 scripts/test-venv.sh)";
   }
   const nlohmann::json grid = bssa14_peer_grid();
-  const std::string cmd = fmt::format("'{}' '{}/tests/peer/peer_bssa14.py' '{}' 2>&1", venv_python().string(),
-                                      TOPPLE_SOURCE_DIR, grid.dump());
-  std::string text;
-  {
-    std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(cmd.c_str(), "r"), pclose);
-    ASSERT_TRUE(pipe);
-    std::array<char, 4096> buf{};
-    while (fgets(buf.data(), static_cast<int>(buf.size()), pipe.get()) != nullptr) text += buf.data();
-  }
-  nlohmann::json peer;
-  try {
-    peer = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception&) {
-    FAIL() << "peer script failed: " << text;
-  }
+  const nlohmann::json peer = test::run_peer_script("peer_bssa14.py", fmt::format("'{}'", grid.dump()));
+  ASSERT_FALSE(peer.is_null());
   RecordProperty("worst_relative_median", std::to_string(expect_bssa14_agrees_with(grid, peer)));
 }
 
@@ -305,19 +291,8 @@ namespace {
 /// The synthetic calibration (RecoversKnownShakingWithCalibratedIntervals' 30 truths and objects) under settings `st`:
 /// the criterion >= 85 % / >= 55 % (issue 32: "the synthetic calibration test keeps" it under any prior or family).
 void expect_synthetic_calibration(const InversionSettings& st) {
-  std::vector<ObservedObject> objects;
-  objects.push_back(block("slender", 0.06, 0.40, {0.5, 0.7}, Outcome::overturned));
-  objects.push_back(block("medium", 0.10, 0.30, {0.5, 0.7}, Outcome::overturned));
-  objects.push_back(block("stocky", 0.15, 0.25, {0.5, 0.7}, Outcome::overturned));
-  objects.push_back(block("tall-box", 0.25, 1.00, {0.5, 0.7}, Outcome::overturned));
-  objects.push_back(block("pan", 0.2, 0.1, {0.15, 0.25}, Outcome::slid));
-  objects.push_back(block("crate", 0.3, 0.3, {0.4, 0.6}, Outcome::slid));
-  objects.push_back(block("bin", 0.3, 0.3, {0.7, 0.9}, Outcome::slid));
   const int trials = 30;
-  const testing::RecoveryCoverage c = testing::recovery_coverage(
-      st, objects, trials, 2026, 777, [&st](const ObservedObject& o, double mu, const GroundMotion& truth) {
-        return testing::observe_uncoupled(o, mu, truth, st);
-      });
+  const testing::RecoveryCoverage c = testing::synthetic_calibration(st, trials);
   ::testing::Test::RecordProperty("in95", c.in95);
   ::testing::Test::RecordProperty("in68", c.in68);
   EXPECT_GE(c.in95, static_cast<int>(std::ceil(0.85 * trials)));

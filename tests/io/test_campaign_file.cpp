@@ -182,6 +182,9 @@ TEST(CampaignFile, RefusalsNameFileLineAndKey) {
       {"[campaign]\nrestitution = \"newton\"\n" + ok, "campaign.restitution", 2, "housner"},
       {"[campaign]\nrestitution = 1.5\n" + ok, "campaign.restitution", 2, "[0, 1]"},
       {"[campaign]\ng_m_s2 = -9.8\n" + ok, "campaign.g_m_s2", 2, "must be > 0"},
+      // format and units: the words of the sweep reader too (io/toml_reader.hpp, test_sweep_file.cpp).
+      {"[campaign]\nunits = \"furlong\"\n" + ok, "campaign.units", 2, "unknown acceleration unit 'furlong'"},
+      {"[campaign]\nformat = 3\n" + ok, "campaign.format", 2, "expected a string, got an integer"},
       {"[campaign]\nname = \"x\"\n", "test", std::nullopt, "no [[test]]"},
       {"[campaign]\nname = \"x\"\nspeed = 3\n" + ok, "campaign.speed", 3, "unknown key"},
       {"[campaign\n", "", 1, "not valid TOML"},

@@ -364,6 +364,13 @@ mu = 0.1
                  "motions.columns", 3, "2 columns");
   expect_refused(dir.path() / "b3.toml", "[motions]\nfiles = \"t.txt\"\nseparator = \"pipe\"\n" + slide,
                  "motions.separator", 3, "unknown separator");
+  // format and units: the words of the campaign reader too (io/toml_reader.hpp, test_campaign_file.cpp).
+  expect_refused(dir.path() / "b4.toml", "[motions]\nfiles = \"t.txt\"\nformat = \"at3\"\n" + slide,
+                 "motions.format", 3, "unknown format 'at3'");
+  expect_refused(dir.path() / "b5.toml", "[motions]\nfiles = \"t.txt\"\nunits = \"furlong\"\n" + slide,
+                 "motions.units", 3, "unknown acceleration unit 'furlong'");
+  expect_refused(dir.path() / "b6.toml", "[motions]\nfiles = \"t.txt\"\nformat = 3\n" + slide,
+                 "motions.format", 3, "expected a string, got an integer");
   try {
     static_cast<void>(parse_in(dir, "[motions]\nfiles = \"t.txt\"\ncolumns = [1, \"Acc (g)\"]\n" + slide));
     FAIL() << "accepted";

@@ -39,7 +39,9 @@ TEST(Intensity, PiecewiseLinearIntegralsAreExact) {
 TEST(Intensity, MeasuresOfARecordAreTheSingleFunctions) {
   // A 2 Hz sine of 0.3 g for 10 s at 0.01 s: intensity_measures() is each measure's own function, to the bit.
   std::vector<double> a(1001);
-  for (std::size_t i = 0; i < a.size(); ++i) a[i] = 0.3 * kStandardGravity * std::sin(2.0 * kPi * 2.0 * 0.01 * i);
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    a[i] = 0.3 * kStandardGravity * std::sin(2.0 * kPi * 2.0 * 0.01 * static_cast<double>(i));
+  }
   const GroundMotion m = GroundMotion::uniform(a, 0.01);
   const IntensityMeasures im = intensity_measures(m, 9.81);
   EXPECT_EQ(im.basic.arias_m_s, basic_intensity(m, 9.81).arias_m_s);
@@ -108,7 +110,9 @@ TEST(Intensity, FiniteAtTheCornerOfTheLimits) {
   ASSERT_TRUE(im.d5_95);
   EXPECT_NEAR(im.d5_95->duration_s, 0.9 * t, 1e-9 * t);  // constant power: 5 % and 95 % of the time
   for (const OptionalMeasure* v : {&im.tp_s, &im.tm_s, &im.predominant_frequency_hz}) {
-    if (v->value) EXPECT_TRUE(std::isfinite(*v->value)) << *v->value;
+    if (v->value) {
+      EXPECT_TRUE(std::isfinite(*v->value)) << *v->value;
+    }
   }
 }
 }  // namespace

@@ -17,6 +17,7 @@
 
 #include "support/input_errors.hpp"
 #include "support/noise_record.hpp"
+#include "support/peer_script.hpp"
 #include "support/shared_data.hpp"
 #include "topple/core/error.hpp"
 #include "topple/io/read.hpp"
@@ -302,14 +303,8 @@ TEST(RotD, EveryAngleEqualsTheSpectrumOfTheProjectedRecord) {
 
 // ---- pyrotd on a real pair ----
 
-std::filesystem::path venv_python() {
-  return std::filesystem::path(TOPPLE_SOURCE_DIR) / ".venv-test" / "bin" / "python";
-}
-
-void write_column(const std::filesystem::path& path, std::span<const double> a) {
-  std::ofstream out(path);
-  for (double x : a) out << fmt::format("{}\n", x);
-}
+using test::venv_python;
+using test::write_column;
 
 TEST(RotDPeer, PyrotdOnTheCsmipPair) {
   if (!test::have_shared()) GTEST_SKIP() << "../shared is absent";
@@ -338,22 +333,10 @@ TEST(RotDPeer, PyrotdOnTheCsmipPair) {
   const test::TempDir dir;
   write_column(dir.path() / "a.txt", h1.accel_m_s2());
   write_column(dir.path() / "b.txt", c3.accel_m_s2());
-  const std::string cmd = fmt::format("'{}' '{}/tests/peer/peer_rotd.py' '{}' '{}' {} '{}' {} {} 2>&1",
-                                      venv_python().string(), TOPPLE_SOURCE_DIR, (dir.path() / "a.txt").string(),
-                                      (dir.path() / "b.txt").string(), dt, nlohmann::json(periods).dump(), kUp, kPad);
-  std::string text;
-  {
-    std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(cmd.c_str(), "r"), pclose);
-    ASSERT_TRUE(pipe);
-    std::array<char, 4096> buf{};
-    while (fgets(buf.data(), static_cast<int>(buf.size()), pipe.get()) != nullptr) text += buf.data();
-  }
-  nlohmann::json peer;
-  try {
-    peer = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception&) {
-    FAIL() << "peer script failed: " << text;
-  }
+  const nlohmann::json peer = test::run_peer_script(
+      "peer_rotd.py", fmt::format("'{}' '{}' {} '{}' {} {}", (dir.path() / "a.txt").string(),
+                                  (dir.path() / "b.txt").string(), dt, nlohmann::json(periods).dump(), kUp, kPad));
+  ASSERT_FALSE(peer.is_null());
   const auto fine = [&](const GroundMotion& m) { return test::upsampled_padded(m, kUp, kPad); };
   const GroundMotion f1 = fine(h1);
   const GroundMotion f3 = fine(c3);

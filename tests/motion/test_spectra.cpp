@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "support/noise_record.hpp"
+#include "support/peer_script.hpp"
 #include "support/shared_data.hpp"
 #include "topple/core/error.hpp"
 #include "topple/motion/intensity.hpp"
@@ -235,31 +236,14 @@ TEST(IntensityCav, ExactAcrossZeroCrossings) {
 
 // ---- Peers: eqsig (same recurrence; trapezoid-rule intensity measures) and pyrotd (frequency domain) ----
 
-std::filesystem::path venv_python() {
-  return std::filesystem::path(TOPPLE_SOURCE_DIR) / ".venv-test" / "bin" / "python";
-}
+using test::venv_python;
 
 nlohmann::json run_peers(const GroundMotion& m, const std::vector<double>& periods, int upsample, double pad_s) {
   const test::TempDir dir;
   const auto accel = dir.path() / "accel.txt";
-  {
-    std::ofstream out(accel);
-    for (double a : m.accel_m_s2()) out << fmt::format("{}\n", a);
-  }
-  const std::string cmd = fmt::format("'{}' '{}/tests/peer/peer_spectra.py' '{}' {} '{}' {} {} 2>&1",
-                                      venv_python().string(), TOPPLE_SOURCE_DIR, accel.string(), m.dt_s(),
-                                      nlohmann::json(periods).dump(), upsample, pad_s);
-  std::string text;
-  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(cmd.c_str(), "r"), pclose);
-  if (!pipe) return nullptr;
-  std::array<char, 4096> buf{};
-  while (fgets(buf.data(), static_cast<int>(buf.size()), pipe.get()) != nullptr) text += buf.data();
-  try {
-    return nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception&) {
-    ADD_FAILURE() << "peer script failed: " << text;
-    return nullptr;
-  }
+  test::write_column(accel, m.accel_m_s2());
+  return test::run_peer_script("peer_spectra.py", fmt::format("'{}' {} '{}' {} {}", accel.string(), m.dt_s(),
+                                                              nlohmann::json(periods).dump(), upsample, pad_s));
 }
 
 class SpectrumPeers : public ::testing::TestWithParam<const char*> {};

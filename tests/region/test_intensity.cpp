@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "support/pinned_region.hpp"
 #include "support/regional_scenario.hpp"
 #include "support/shared_data.hpp"
 #include "topple/core/error.hpp"
@@ -192,18 +193,9 @@ SiteEvidence felt(const std::string& name, double r_km, double mmi, int reports)
 // stations' closed-form test (tests/region/test_region.cpp): 0.3 % of the value.
 TEST(IntensityFit, PinnedParametersGiveTheClosedFormPooledSite) {
   const double c0 = 2.0, c1 = 1.1, tau = 0.4;
-  RegionalSettings st;
   std::vector<SiteEvidence> sites{felt("a", 10, 8.2, 30), felt("b", 30, 6.1, 2), felt("c", 60, 3.5, 1)};
   sites.push_back(site_evidence("d", 20, nullptr, 0.25, SiteIntensity{7.0, IntensityScale::mmi, 5}));
-  double mean_ln_rho = 0.0;
-  for (const auto& s : sites) mean_ln_rho += std::log(std::hypot(s.distance_km, st.c2_km)) / 4.0;
-  const double x = c0 - c1 * mean_ln_rho;
-  st.ln_a_ref_min = x;
-  st.ln_a_ref_max = x + 1e-6;
-  st.c1_min = c1;
-  st.c1_max = c1 + 1e-6;
-  st.tau_min = tau;
-  st.tau_max = tau + 1e-6;
+  const RegionalSettings st = test::pinned_relation(sites, c0, c1, tau);
   const RegionalResult fit = fit_region(sites, st);
   for (std::size_t s = 0; s < sites.size(); ++s) {
     const double mu = c0 - c1 * std::log(std::hypot(sites[s].distance_km, st.c2_km));

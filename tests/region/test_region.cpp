@@ -19,6 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include "support/input_errors.hpp"
+#include "support/pinned_region.hpp"
 #include "support/regional_scenario.hpp"
 #include "support/shared_data.hpp"
 #include "topple/core/error.hpp"
@@ -139,17 +140,8 @@ SiteEvidence station(const std::string& name, double r_km, double pga_g) {
 // interpolated linearly (error well under a step), the pinned box spans 1e-6.
 TEST(RegionFit, PinnedParametersGiveTheClosedFormPooledStation) {
   const double c0 = 2.0, c1 = 1.1, tau = 0.4;
-  RegionalSettings st;
   std::vector<SiteEvidence> sites{station("a", 10, 0.3), station("b", 30, 0.12), station("c", 60, 0.02)};
-  double mean_ln_rho = 0.0;
-  for (const auto& s : sites) mean_ln_rho += std::log(std::hypot(s.distance_km, st.c2_km)) / 3.0;
-  const double x = c0 - c1 * mean_ln_rho;
-  st.ln_a_ref_min = x;
-  st.ln_a_ref_max = x + 1e-6;
-  st.c1_min = c1;
-  st.c1_max = c1 + 1e-6;
-  st.tau_min = tau;
-  st.tau_max = tau + 1e-6;
+  const RegionalSettings st = test::pinned_relation(sites, c0, c1, tau);
   const RegionalResult fit = fit_region(sites, st);
   for (std::size_t s = 0; s < sites.size(); ++s) {
     const double mu = c0 - c1 * std::log(std::hypot(sites[s].distance_km, st.c2_km));

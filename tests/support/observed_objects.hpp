@@ -1,5 +1,6 @@
 #pragma once
-// Observed objects for the inversion's tests (test_inversion.cpp, test_inversion_3c.cpp).
+// Observed objects for the inversion's tests (test_inversion.cpp, test_prior.cpp, test_inversion_3c.cpp,
+// test_inversion_coupled.cpp), and the synthetic calibration they share.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -109,6 +110,29 @@ RecoveryCoverage recovery_coverage(const InversionSettings& st, const std::vecto
   }
   fmt::print("coverage: 95 % region {}/{}, 68 % region {}/{}\n", c.in95, trials, c.in68, trials);
   return c;
+}
+
+/// The witnesses of the synthetic calibration (test_inversion.cpp, RecoversKnownShakingWithCalibratedIntervals;
+/// test_prior.cpp, under other priors and families): four blocks seen overturned (friction 0.5-0.7) and three seen
+/// slid, of low, middling and high friction.
+inline std::vector<ObservedObject> calibration_objects() {
+  return {block("slender", 0.06, 0.40, {0.5, 0.7}, Outcome::overturned),
+          block("medium", 0.10, 0.30, {0.5, 0.7}, Outcome::overturned),
+          block("stocky", 0.15, 0.25, {0.5, 0.7}, Outcome::overturned),
+          block("tall-box", 0.25, 1.00, {0.5, 0.7}, Outcome::overturned),
+          block("pan", 0.2, 0.1, {0.15, 0.25}, Outcome::slid),
+          block("crate", 0.3, 0.3, {0.4, 0.6}, Outcome::slid),
+          block("bin", 0.3, 0.3, {0.7, 0.9}, Outcome::slid)};
+}
+
+/// The synthetic calibration under settings `st`: recovery_coverage of calibration_objects over `trials` truths
+/// drawn with seed 2026, each object's friction drawn with 777, what was seen from the uncoupled solvers
+/// (observe_uncoupled, never observation_match, which is under test).
+inline RecoveryCoverage synthetic_calibration(const InversionSettings& st, int trials) {
+  return recovery_coverage(st, calibration_objects(), trials, 2026, 777,
+                           [&st](const ObservedObject& o, double mu, const GroundMotion& truth) {
+                             return observe_uncoupled(o, mu, truth, st);
+                           });
 }
 
 }  // namespace topple::testing
