@@ -18,6 +18,7 @@
 #include "topple/motion/input_grid.hpp"
 #include "topple/numerics/dp5.hpp"
 #include "topple/numerics/event_root.hpp"
+#include "rigid3d_slide.hpp"
 
 namespace topple {
 namespace {
@@ -167,7 +168,9 @@ class Engine {
         gravity_(std::move(gravity)),
         g_(geo),
         opt_(opt),
-        p_(std::sqrt(opt.g_m_s2 / std::hypot(geo.R, geo.h))) {}
+        p_(std::sqrt(opt.g_m_s2 / std::hypot(geo.R, geo.h))) {
+    if (opt.mu_s) mu_s_ = *opt.mu_s;
+  }
 
   Rigid3DResult run(const std::optional<CylinderInitialState>& initial) {
     Rigid3DSummary& s = res_.summary;
@@ -240,7 +243,7 @@ class Engine {
         record(t);
       }
     }
-    s.end_time_s = done() ? *s.overturn_time_s : t;
+    s.end_time_s = stop_time_ ? *stop_time_ : done() ? *s.overturn_time_s : t;
     s.end_mode = mode_;
     s.steps = steps_;
     s.max_tilt_over_limit = s.max_tilt_rad / g_.alpha;
@@ -253,7 +256,7 @@ class Engine {
     const auto comp = [&](std::size_t c) { return grid_.has(c) ? grid_.accel_m_s2(c)[i] : 0.0; };
     return {comp(0), comp(1), gravity_.empty() ? opt_.g_m_s2 : gravity_[i]};
   }
-  [[nodiscard]] bool done() const { return mode_ == Rigid3DMode::fallen; }
+  [[nodiscard]] bool done() const { return mode_ == Rigid3DMode::fallen || stop_time_.has_value(); }
 
   void record(double t) { record_state(t, y_); }
   void record_state(double t, const State& y) {
@@ -269,8 +272,12 @@ class Engine {
     h.mode.push_back(mode_);
   }
 
-  // The equations of motion on the rim (header), f = (-a_x, -a_y, -(g + a_z)).
-  [[nodiscard]] State rhs(const State& y, const std::array<double, 3>& acc) const {
+  /// The rim's rates of a state: the contact, w' and r' (header).
+  struct RimRates {
+    Contact c;
+    V wd, rd;
+  };
+  [[nodiscard]] RimRates rim_rates(const State& y, const std::array<double, 3>& acc) const {
     const Quaternion q = quat(y);
     const V w = omega(y);
     const Contact c = contact_of(g_, q, u_, &u_);  // u_: the step's starting contact (continued past the upright)
@@ -289,10 +296,30 @@ class Engine {
     const V rd = sub(mul(ad, g_.h), mul(ud, g_.R));
     const V f{-acc[0], -acc[1], -acc[2]};
     const V rhs_m = sub(sub(cross(c.r, f), cross(w, g_.JG(c.a, w))), cross(c.r, cross(w, rd)));
-    const V wd = solve3(g_.Mp(c.a, c.r), rhs_m);
-    const Quaternion qd = qmul({0.0, w[0], w[1], w[2]}, q);
-    const V vc = cross(w, c.r);
+    return {c, solve3(g_.Mp(c.a, c.r), rhs_m), rd};
+  }
+
+  // The equations of motion on the rim (header), f = (-a_x, -a_y, -(g + a_z)).
+  [[nodiscard]] State rhs(const State& y, const std::array<double, 3>& acc) const {
+    const RimRates k = rim_rates(y, acc);
+    const V w = omega(y);
+    const V& wd = k.wd;
+    const Quaternion qd = qmul({0.0, w[0], w[1], w[2]}, quat(y));
+    const V vc = cross(w, k.c.r);
     return {0.5 * qd[0], 0.5 * qd[1], 0.5 * qd[2], 0.5 * qd[3], wd[0], wd[1], wd[2], vc[0], vc[1], vc[2]};
+  }
+
+  /// The contact force per unit mass on the rim (friction given): Newton, F = a_c - f with a_c = d(w x r)/dt =
+  /// w' x r + w x r' (header); its margin min(N, mu_s N - |F_t|) / (g + a_z): > 0 while the rolling contact holds.
+  [[nodiscard]] V contact_force(const State& y, const std::array<double, 3>& acc) const {
+    const RimRates k = rim_rates(y, acc);
+    const V w = omega(y);
+    const V ac = add(cross(k.wd, k.c.r), cross(w, k.rd));
+    return {ac[0] + acc[0], ac[1] + acc[1], ac[2] + acc[2]};
+  }
+  [[nodiscard]] double contact_margin(const State& y, const std::array<double, 3>& acc) const {
+    const V F = contact_force(y, acc);
+    return std::min(F[2], mu_s_ * F[2] - std::hypot(F[0], F[1])) / acc[2];
   }
 
   /// The sample interval [ta, tb] with the input linear between acc_a and acc_b.
@@ -526,6 +553,27 @@ class Engine {
       s_end = detail::find_root(axis_z, 0.0, s_end, z0, z1);
       kind = 2;
     }
+    if (mu_s_ >= 0.0) {
+      // friction given: the rolling contact holds while N > 0 and |F_t| <= mu_s N (header); the first root of the
+      // margin on the dense output, looked for on 4 equal parts of the step up to its terminal event (a violation
+      // that begins and ends inside one part is missed, as the polygon engine's pivot events: stated)
+      const auto margin = [&](double sf) { return contact_margin(sf == 0.0 ? y_ : dense(sf), acc_at(t + sf * h)); };
+      double s_prev = 0.0, m_prev = margin(0.0);
+      if (!(m_prev > 0.0)) {
+        s_end = 0.0;
+        kind = 3;
+      }
+      for (int j = 1; j <= 4 && kind != 3; ++j) {
+        const double sj = s_end * j / 4.0;
+        const double mj = margin(sj);
+        if (!(mj > 0.0)) {
+          s_end = std::isfinite(mj) ? detail::find_root(margin, s_prev, sj, m_prev, mj) : sj;
+          kind = 3;
+        }
+        s_prev = sj;
+        m_prev = mj;
+      }
+    }
     // tilt maxima (a_z' from < 0 to > 0) and the static limit, before the terminal event
     const double r0 = tilt_rate(0.0), r1 = tilt_rate(s_end);
     const auto note_tilt = [&](double sf) {
@@ -571,9 +619,53 @@ class Engine {
       record(t_new);
     } else if (kind == 1) {
       impact(t_new, u0);
+    } else if (kind == 3) {
+      contact_fails(t_new, acc_at(t_new));
     }
     (void)acc_at;
     return t_new;
+  }
+
+  /// The rolling contact needs more than Coulomb's friction or a pull (friction given): slip on the rim or flight
+  /// begins at t. Not modelled for a circular base: the run stops there with a warning (docs/method.md, "A circular
+  /// base with friction"), the summary up to t. Past the static limit with the tilt growing (the centre of mass
+  /// beyond the contact, falling away; a toppling body's contact fails near the end of its fall, where N -> 0) the
+  /// stop counts as the fall (a stated approximation: the verdict, not the fall's last instants).
+  void contact_fails(double t, const std::array<double, 3>& acc) {
+    Rigid3DSummary& s = res_.summary;
+    const V F = contact_force(y_, acc);
+    const V a = axis(quat(y_));
+    const double tilt = std::atan2(std::hypot(a[0], a[1]), a[2]);
+    const bool falling = tilt > g_.alpha && cross(omega(y_), a)[2] < 0.0;  // a_z' < 0: the tilt grows
+    stop_time_ = t;
+    if (falling) {
+      mode_ = Rigid3DMode::fallen;
+      s.overturned = true;
+      s.overturn_time_s = t;
+      s.overturn_azimuth_deg = azimuth_deg(a);
+      s.modes.push_back({t, mode_, -1, -1});
+      s.warnings.push_back(fmt::format(
+          "the rolling contact failed at t = {:.6g} s at a tilt of {:.4g} deg past the static limit {:.4g} deg with "
+          "the tilt growing: counted as the fall (slip and flight of a cylinder are not modelled)",
+          t, tilt * 180.0 / M_PI, g_.alpha * 180.0 / M_PI));
+    }
+    if (!(F[2] > 0.0)) {
+      s.flight_time_s = t;
+      if (falling) return record(t);
+      s.warnings.push_back(fmt::format(
+          "the contact force on the rim vanished at t = {:.6g} s (the body would leave the ground): flight of a "
+          "cylinder is not modelled; the run stops there",
+          t));
+    } else {
+      s.slide_rock_time_s = t;
+      if (!s.first_slip_time_s) s.first_slip_time_s = t;
+      if (falling) return record(t);
+      s.warnings.push_back(fmt::format(
+          "the rolling contact needs |F_t| / N = {:.4g} > mu_s = {:.4g} at t = {:.6g} s (the rim would slip): slip "
+          "on the rim of a cylinder is not modelled; the run stops there",
+          std::hypot(F[0], F[1]) / F[2], mu_s_, t));
+    }
+    record(t);
   }
 
   /// A step from flat whose continued motion never rose above the ground (finish_step): the body stays flat and at
@@ -669,6 +761,8 @@ class Engine {
   State y_{};
   V u_{1.0, 0.0, 0.0};
   Rigid3DMode mode_ = Rigid3DMode::rest;
+  double mu_s_ = -1.0;                 // friction given: mu_s (>= 0); absent: -1 (the contact force is not checked)
+  std::optional<double> stop_time_;    // the run stopped where the rolling contact failed (contact_fails)
   double h_try_ = 0.0;
   std::size_t steps_ = 0;
   State k1_{};
@@ -716,6 +810,9 @@ Rigid3DResult rock3d_cylinder(const GroundMotion& x, const GroundMotion* y, cons
   if (!(options.max_run_out_s >= 0.0) || !std::isfinite(options.max_run_out_s)) {
     throw parameter_error("max_run_out_s", "max_run_out_s must be >= 0 and finite");
   }
+  if (options.mu_s || options.mu_k) {
+    detail::check_friction(options);
+  }
   const std::array<const GroundMotion*, 3> components{&x, y, z};
   const InputGrid grid(components);
   std::vector<double> gravity = effective_gravity(grid, 2, options.g_m_s2);
@@ -726,6 +823,11 @@ Rigid3DResult rock3d_cylinder(const GroundMotion& x, const GroundMotion* y, cons
                                                     "which this model excludes",
                                                     lowest));
     }
+  }
+  if (options.mu_s && !initial && *options.mu_s * b.centre_height_m < b.radius_m) {
+    // Shenton (1996): with mu_s h < R the centre of pressure c_plan + h F_t / N (|F_t| <= mu_s N) never reaches the
+    // rim, so the base never lifts and the body is the sliding block of sliding2d.hpp exactly (docs/method.md)
+    return detail::rock3d_flat_slide(x, y, z, options);
   }
   Geo geo{b.radius_m, b.centre_height_m, b.inertia_axial_m2, b.inertia_transverse_m2,
           std::atan2(b.radius_m, b.centre_height_m), 0.0};

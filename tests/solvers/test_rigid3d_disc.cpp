@@ -14,6 +14,8 @@
 #include "topple/core/error.hpp"
 #include "topple/solvers/rigid3d_disc.hpp"
 #include "topple/solvers/rocking.hpp"
+#include "topple/solvers/sliding.hpp"
+#include "topple/solvers/sliding2d.hpp"
 
 namespace topple {
 namespace {
@@ -340,6 +342,152 @@ TEST(Rigid3DDisc, BadInputNamesTheField) {
   const GroundMotion m = noise(1, 0.3 * kG);
   const GroundMotion v = times(m, -10.0);
   EXPECT_THROW((void)rock3d_cylinder(m, nullptr, &v, CylinderBody3D::solid(0.3, 1.0)), InputError);
+}
+
+
+// Friction given (Rigid3DOptions::mu_s; docs/method.md, "A circular base with friction"). With mu large the rolling
+// contact never needs more than mu_s N: the answer is the no-slip rim engine's (the same steps: the check reads the
+// contact force on the dense output and changes no state), for two components and a vertical.
+TEST(Rigid3DDiscFriction, LargeMuIsTheNoSlipRimEngine) {
+  const CylinderBody3D cyl = CylinderBody3D::solid(0.3, 1.0);
+  int rocked = 0, fell = 0;
+  std::size_t contact_failed = 0;
+  for (const unsigned seed : {1U, 2U, 3U}) {
+    for (const double pga_g : {0.3, 0.6}) {
+      const GroundMotion ex = noise(seed, pga_g * kG);
+      const GroundMotion ny = noise(seed + 10, 0.7 * pga_g * kG);
+      const GroundMotion up = noise(seed + 20, 0.3 * pga_g * kG);
+      Rigid3DOptions o;
+      o.g_m_s2 = kG;
+      const Rigid3DSummary a = rock3d_cylinder(ex, &ny, &up, cyl, o).summary;
+      o.mu_s = 10.0;
+      o.mu_k = 8.0;
+      const Rigid3DSummary b = rock3d_cylinder(ex, &ny, &up, cyl, o).summary;
+      SCOPED_TRACE(testing::Message() << "seed " << seed << " pga " << pga_g);
+      EXPECT_EQ(b.overturned, a.overturned);
+      EXPECT_EQ(b.impacts, a.impacts);
+      EXPECT_EQ(b.uplifts, a.uplifts);
+      EXPECT_EQ(b.residual_slide_east_m, 0.0);
+      if (!a.overturned) {
+        EXPECT_TRUE(b.warnings.empty());
+        EXPECT_FALSE(b.slide_rock_time_s);
+        EXPECT_FALSE(b.flight_time_s);
+        EXPECT_NEAR(b.max_tilt_rad, a.max_tilt_rad, 1e-6);
+        EXPECT_NEAR(b.end_time_s, a.end_time_s, 1e-9);
+      } else {
+        // a toppling body's rolling contact fails near the end of its fall, where N -> 0 and |F_t| / N grows without
+        // bound (even at mu = 10): counted as the fall there (past the static limit, the tilt growing), before the
+        // no-slip engine's tilt of 90 degrees
+        // (measured: 0 to 0.13 s before, at tilts from 0.97 rad)
+        ASSERT_TRUE(b.overturn_time_s);
+        EXPECT_LE(*b.overturn_time_s, *a.overturn_time_s);
+        EXPECT_GT(*b.overturn_time_s, *a.overturn_time_s - 0.2);
+        EXPECT_GT(b.max_tilt_rad, 3.0 * cyl.static_tilt_limit_rad());
+        EXPECT_NEAR(b.overturn_azimuth_deg, a.overturn_azimuth_deg, 10.0);
+        EXPECT_LE(b.warnings.size(), 1U);
+        if (b.warnings.empty()) EXPECT_EQ(*b.overturn_time_s, *a.overturn_time_s);
+        contact_failed += b.warnings.size();
+      }
+      rocked += a.uplifts > 0 ? 1 : 0;
+      fell += a.overturned ? 1 : 0;
+    }
+  }
+  EXPECT_GE(rocked, 4);
+  EXPECT_GT(fell, 0);
+  EXPECT_GT(contact_failed, 0U);
+  std::printf("mu 10: %d of 6 runs rocked, %d fell, %zu falls decided where the rim's contact failed\n", rocked, fell,
+              contact_failed);
+}
+
+// mu_s h < R: the centre of pressure never reaches the rim (Shenton 1996), the cylinder is slide_2d's block: residual
+// displacement, max speed, path and friction work to 1e-9 relative, never a tilt. Just above (mu_s h > R) a strong
+// record lifts it.
+TEST(Rigid3DDiscFriction, NoUpliftBelowShentonIsSlide2d) {
+  const CylinderBody3D cyl = CylinderBody3D::solid(0.6, 1.0);  // R / h = 0.6
+  const GroundMotion ex = noise(4, 1.5 * kG);
+  const GroundMotion ny = noise(5, 1.0 * kG);
+  const GroundMotion up = noise(6, 0.3 * kG);
+  Rigid3DOptions o;
+  o.g_m_s2 = kG;
+  o.mu_s = 0.55;
+  o.mu_k = 0.45;
+  o.record_history = true;
+  const Rigid3DResult r = rock3d_cylinder(ex, &ny, &up, cyl, o);
+  const Sliding2dSummary s =
+      slide_2d_summary(ex, ny, ComponentAzimuths{90.0, 0.0}, SlidingBlock::make(0.55, 0.45, 0.0, SlidingMode::two_way, kG),
+                       &up);
+  const double d = std::hypot(s.residual_east_m, s.residual_north_m);
+  ASSERT_GT(d, 0.05);  // it slid
+  EXPECT_NEAR(r.summary.residual_slide_east_m, s.residual_east_m, 1e-9 * d);
+  EXPECT_NEAR(r.summary.residual_slide_north_m, s.residual_north_m, 1e-9 * d);
+  EXPECT_NEAR(r.summary.max_slide_speed_m_s, s.max_abs_velocity_m_s, 1e-9 * s.max_abs_velocity_m_s);
+  EXPECT_NEAR(r.summary.slide_path_length_m, s.path_length_m, 1e-9 * s.path_length_m);
+  EXPECT_NEAR(r.summary.friction_energy_j_per_kg, s.friction_work_J_kg, 1e-9 * s.friction_work_J_kg);
+  EXPECT_EQ(r.summary.uplifts, 0U);
+  EXPECT_EQ(r.summary.max_tilt_rad, 0.0);
+  EXPECT_GT(r.summary.slip_episodes, 0);
+  ASSERT_TRUE(r.summary.first_slip_time_s);
+  for (const Rigid3DMode m : r.history.mode) EXPECT_TRUE(m == Rigid3DMode::rest || m == Rigid3DMode::sliding);
+  o.mu_s = 0.65;
+  o.mu_k = 0.65;
+  EXPECT_GT(rock3d_cylinder(ex, &ny, &up, cyl, o).summary.uplifts, 0U);
+}
+
+// The contact force on the rim against its closed form. Released from rest at tilt theta0 in one vertical plane
+// (w = 0), or with a rate w about the rocking axis, the body turns about the contact: with rho = |c - p|, beta = alpha
+// - theta0 the angle of c - p from the vertical, D = J_t + rho^2 (rocking.hpp's cylinder), theta'' = g rho sin(beta) /
+// D back toward the upright; c's acceleration is rho theta'' across c - p plus w^2 rho toward p, so (per unit mass)
+//   F_t = g rho^2 sin(beta) cos(beta) / D - w^2 rho sin(beta),   N = g (1 - rho^2 sin^2(beta) / D) - w^2 rho cos(beta).
+// A mu_s just below F_t / N stops the run at its start with a slip on the rim; just above, not there. A w^2 just above
+// N's zero stops it at its start with flight; just below, not there.
+TEST(Rigid3DDiscFriction, RimContactForceAgainstTheClosedForm) {
+  const CylinderBody3D cyl = CylinderBody3D::solid(0.3, 1.0);
+  const double R = 0.15, h = 0.5, rho2 = R * R + h * h, rho = std::sqrt(rho2);
+  const double D = cyl.inertia_transverse_m2 + rho2;
+  const double theta0 = 0.2, beta = std::atan2(R, h) - theta0;
+  const auto run = [&](double mu, double w) {
+    Rigid3DOptions o;
+    o.g_m_s2 = kG;
+    o.mu_s = mu;
+    o.max_run_out_s = 0.0;
+    // tilted toward +x (the contact on the +x rim); w about y: positive w raises the tilt (any sign: w^2)
+    return rock3d_cylinder(still(1.0), nullptr, nullptr, cyl, o, CylinderInitialState{tilted(theta0, 0.0), {0.0, w, 0.0}})
+        .summary;
+  };
+  const double ratio = rho2 * std::sin(beta) * std::cos(beta) / (D - rho2 * std::pow(std::sin(beta), 2));
+  std::printf("cylinder 0.3 x 1.0 released at 0.2 rad: F_t / N = %.6f\n", ratio);
+  const Rigid3DSummary below = run(ratio * (1.0 - 1e-6), 0.0);
+  ASSERT_TRUE(below.slide_rock_time_s);
+  EXPECT_EQ(*below.slide_rock_time_s, 0.0);
+  EXPECT_FALSE(below.flight_time_s);
+  EXPECT_EQ(below.warnings.size(), 1U);
+  EXPECT_EQ(below.end_time_s, 0.0);
+  const Rigid3DSummary above = run(ratio * (1.0 + 1e-6), 0.0);
+  ASSERT_TRUE(above.slide_rock_time_s);  // the ratio grows as the body falls back (beta grows): slips soon after
+  EXPECT_GT(*above.slide_rock_time_s, 0.0);
+  EXPECT_LT(*above.slide_rock_time_s, 0.1);
+  // flight: N = 0 at w0^2 = g (1 - rho^2 sin^2(beta) / D) / (rho cos(beta)); mu_s = 100 keeps the slip test off
+  const double w0 = std::sqrt(kG * (1.0 - rho2 * std::pow(std::sin(beta), 2) / D) / (rho * std::cos(beta)));
+  const Rigid3DSummary fly = run(100.0, w0 * (1.0 + 1e-6));
+  ASSERT_TRUE(fly.flight_time_s);
+  EXPECT_EQ(*fly.flight_time_s, 0.0);
+  EXPECT_FALSE(fly.slide_rock_time_s);
+  const Rigid3DSummary stays = run(100.0, w0 * (1.0 - 1e-3));
+  EXPECT_TRUE(!stays.flight_time_s || *stays.flight_time_s > 0.0);
+}
+
+// Bad friction is refused as for a polygonal base (rigid3d_slide.cpp): mu_k without mu_s, mu_k > mu_s, mu_s < 0.
+TEST(Rigid3DDiscFriction, BadFrictionNamesTheField) {
+  const CylinderBody3D cyl = CylinderBody3D::solid(0.3, 1.0);
+  const GroundMotion m = noise(1, 0.3 * kG);
+  Rigid3DOptions o;
+  o.mu_k = 0.3;
+  EXPECT_THROW(static_cast<void>(rock3d_cylinder(m, nullptr, nullptr, cyl, o)), InputError);
+  o.mu_s = 0.2;
+  EXPECT_THROW(static_cast<void>(rock3d_cylinder(m, nullptr, nullptr, cyl, o)), InputError);
+  o.mu_s = -1.0;
+  o.mu_k.reset();
+  EXPECT_THROW(static_cast<void>(rock3d_cylinder(m, nullptr, nullptr, cyl, o)), InputError);
 }
 
 }  // namespace
