@@ -14,6 +14,7 @@
 #include "topple/core/error.hpp"
 #include "topple/solvers/rigid3d_disc.hpp"
 #include "topple/solvers/rocking.hpp"
+#include "topple/solvers/slide_rock.hpp"
 #include "topple/solvers/sliding.hpp"
 #include "topple/solvers/sliding2d.hpp"
 
@@ -474,6 +475,62 @@ TEST(Rigid3DDiscFriction, RimContactForceAgainstTheClosedForm) {
   EXPECT_FALSE(fly.slide_rock_time_s);
   const Rigid3DSummary stays = run(100.0, w0 * (1.0 - 1e-3));
   EXPECT_TRUE(!stays.flight_time_s || *stays.flight_time_s > 0.0);
+}
+
+// Under one component with no spin the cylinder stays in the vertical plane of the input, where the planar coupled
+// model (slide_rock.hpp) with the cylinder's planar body (RockingBody::cylinder: b = d / 2, k2 = J_t) is the same
+// mechanics: while its pivot sticks (rock) the rim engine rolls identically (verdict, impacts, max tilt to 1e-6),
+// and its first slip of a rocking pivot (slide-rock) or lift-off (flight), located there on its own dense output at
+// |F| = mu_s N or N = 0, is where the rim engine's contact check stops the run (to 1e-6 s).
+TEST(Rigid3DDiscFriction, OneComponentAgreesWithThePlanarCoupledModel) {
+  const CylinderBody3D cyl = CylinderBody3D::solid(0.3, 1.0);
+  const RockingBody planar = RockingBody::cylinder(0.3, 1.0);
+  int same = 0, stopped = 0;
+  double worst_tilt = 0.0, worst_time = 0.0;
+  for (const unsigned seed : {1U, 2U, 3U}) {
+    for (const double pga_g : {0.3, 0.5}) {
+      for (const double mu : {0.35, 0.5, 1.0}) {
+        const GroundMotion m = noise(seed, pga_g * kG);
+        SlideRockOptions po;
+        po.g_m_s2 = kG;
+        po.rel_tol = 1e-12;
+        const SlideRockResult p = slide_rock(m, SlideRockBody::from_rocking(planar, mu, mu), po);
+        const auto& first = p.summary.mode_first_time_s;
+        const auto sr = first[static_cast<std::size_t>(SlideRockMode::slide_rock)];
+        const auto fl = first[static_cast<std::size_t>(SlideRockMode::flight)];
+        const auto sl = first[static_cast<std::size_t>(SlideRockMode::slide)];
+        Rigid3DOptions o;
+        o.g_m_s2 = kG;
+        o.rel_tol = 1e-12;
+        o.mu_s = mu;
+        const Rigid3DSummary s = rock3d_cylinder(m, nullptr, nullptr, cyl, o).summary;
+        SCOPED_TRACE(testing::Message() << "seed " << seed << " pga " << pga_g << " mu " << mu);
+        EXPECT_FALSE(sl.has_value());  // mu_s >= R / h: never slides flat from rest
+        if (!sr && !fl) {
+          EXPECT_TRUE(s.warnings.empty());
+          EXPECT_EQ(s.overturned, p.summary.overturned);
+          EXPECT_EQ(s.impacts, p.summary.impacts);
+          EXPECT_NEAR(s.max_tilt_rad, p.summary.max_rotation_over_alpha * planar.alpha_rad(), 1e-6);
+          worst_tilt = std::max(worst_tilt,
+                                std::abs(s.max_tilt_rad - p.summary.max_rotation_over_alpha * planar.alpha_rad()));
+          ++same;
+        } else {
+          const double t1 = std::min(sr.value_or(1e300), fl.value_or(1e300));
+          const std::optional<double> mine = s.slide_rock_time_s ? s.slide_rock_time_s : s.flight_time_s;
+          ASSERT_TRUE(mine.has_value());
+          EXPECT_NEAR(*mine, t1, 1e-6);
+          EXPECT_EQ(s.flight_time_s.has_value(), fl.has_value() && *fl == t1);
+          worst_time = std::max(worst_time, std::abs(*mine - t1));
+          ++stopped;
+        }
+      }
+    }
+  }
+  std::printf("one component vs the coupled model: %d runs the same (worst max tilt %.3g rad), %d stopped where it "
+              "slips or flies (worst %.3g s)\n",
+              same, worst_tilt, stopped, worst_time);
+  EXPECT_GE(same, 3);
+  EXPECT_GE(stopped, 3);
 }
 
 // Bad friction is refused as for a polygonal base (rigid3d_slide.cpp): mu_k without mu_s, mu_k > mu_s, mu_s < 0.
