@@ -301,8 +301,8 @@ TEST(FragilityAnalysis, AThreeDimensionalBoxUnderCollinearPairsIsThePlanarBlockO
 // Friction for a three-dimensional box (OverturnFailure::mu_3d): with mu < b / h it can never lift (Shenton 1996; in
 // three dimensions the centre of pressure of a base sticking or sliding flat lies within h mu of c's plan, rigid3d.hpp:
 // here h = 0.3 m, mu = 0.2, h mu = 0.06 m < b = 0.075 m, the half-width along the record), so no pair overturns it at
-// any level, where without friction the same box falls. A cylinder with friction and a bad mu are refused by name,
-// before any run.
+// any level, where without friction the same box falls; likewise a cylinder (rigid3d_disc.hpp). A bad mu is refused by
+// name, before any run.
 TEST(FragilityAnalysis, AThreeDimensionalBoxWithFrictionBelowItsAspectRatioNeverFalls) {
   std::vector<std::shared_ptr<const MotionSet>> sets;
   for (std::uint64_t seed = 1; seed <= 4; ++seed) {
@@ -329,15 +329,21 @@ TEST(FragilityAnalysis, AThreeDimensionalBoxWithFrictionBelowItsAspectRatioNever
   } catch (const InputError& e) {
     EXPECT_NE(e.where().field.find("mu"), std::string::npos) << e.what();
   }
+  // A cylinder with friction (rigid3d_disc.hpp): below Shenton's mu_s = R / h (0.1 / 0.4 = 0.25) it never lifts,
+  // at any scale; a negative mu is refused by name.
   FragilitySpec cyl = box;
   cyl.overturning->body_3d.reset();
   cyl.overturning->cylinder_3d = CylinderBody3D::solid(0.2, 0.8);
-  cyl.overturning->mu_3d = 0.5;
+  cyl.overturning->mu_3d.reset();
+  EXPECT_GT(fragility_analysis(cyl).curves.at(0).data.failures.back(), 0);
+  cyl.overturning->mu_3d = 0.2;
+  EXPECT_EQ(fragility_analysis(cyl).curves.at(0).data.failures, std::vector<int>(6, 0));
+  cyl.overturning->mu_3d = -0.1;
   try {
     (void)fragility_analysis(cyl);
-    FAIL() << "a cylinder with friction was accepted";
+    FAIL() << "a negative mu was accepted";
   } catch (const InputError& e) {
-    EXPECT_EQ(e.where().field, "mu");
+    EXPECT_NE(e.where().field.find("mu"), std::string::npos) << e.what();
   }
 }
 
