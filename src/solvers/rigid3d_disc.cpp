@@ -18,6 +18,7 @@
 #include "topple/motion/input_grid.hpp"
 #include "topple/numerics/dp5.hpp"
 #include "topple/numerics/event_root.hpp"
+#include "rigid3d_disc_contact.hpp"
 #include "rigid3d_slide.hpp"
 
 namespace topple {
@@ -338,13 +339,29 @@ class Engine {
           const auto a = acc_at(tt);
           return a[0] * a[0] + a[1] * a[1] - (a[2] * k) * (a[2] * k);
         };
-        const double fa = f(t), fb = f(tb);
+        // friction given: g + a_z reaching 0 at rest is flight, the contact engine's (rigid3d_disc_contact.cpp); the
+        // uplift is looked for before it
+        double t_lim = tb;
+        bool flies = false;
+        if (mu_s_ >= 0.0) {
+          const auto G = [&](double tt) { return acc_at(tt)[2]; };
+          const double ga = G(t), gb = G(tb);
+          if (!(ga > 0.0)) return contact_fails(t, acc_at(t));
+          if (!(gb > 0.0)) {
+            t_lim = detail::find_root(G, t, tb, ga, gb);
+            flies = true;
+          }
+        }
+        const double fa = f(t), fb = f(t_lim);
         if (fa > 0.0) {
           uplift(t, acc_at(t));
           continue;
         }
-        if (!(fb > 0.0)) return;
-        const double tu = detail::find_root(f, t, tb, fa, fb);
+        if (!(fb > 0.0)) {
+          if (flies) contact_fails(t_lim, acc_at(t_lim));
+          return;
+        }
+        const double tu = detail::find_root(f, t, t_lim, fa, fb);
         // the uplift instant: the root (the planar engine's too), nudged up by a few ulps to where the threshold is
         // met when rounding left it just below
         double tr = tu;
@@ -627,47 +644,20 @@ class Engine {
   }
 
   /// The rolling contact needs more than Coulomb's friction or a pull (friction given): slip on the rim or flight
-  /// begins at t. Not modelled for a circular base: the run stops there with a warning (docs/method.md, "A circular
-  /// base with friction"), the summary up to t. Past the static limit with the tilt growing (the centre of mass
-  /// beyond the contact, falling away; a toppling body's contact fails near the end of its fall, where N -> 0) the
-  /// stop counts as the fall (a stated approximation: the verdict, not the fall's last instants).
+  /// begins at t. The run stops here and rock3d_cylinder hands it to the contact engine (rigid3d_disc_contact.cpp)
+  /// from this state: c's velocity w x r (rolling), the contact direction u.
   void contact_fails(double t, const std::array<double, 3>& acc) {
-    Rigid3DSummary& s = res_.summary;
-    const V F = contact_force(y_, acc);
-    const V a = axis(quat(y_));
-    const double tilt = std::atan2(std::hypot(a[0], a[1]), a[2]);
-    const bool falling = tilt > g_.alpha && cross(omega(y_), a)[2] < 0.0;  // a_z' < 0: the tilt grows
+    (void)acc;
     stop_time_ = t;
-    if (falling) {
-      mode_ = Rigid3DMode::fallen;
-      s.overturned = true;
-      s.overturn_time_s = t;
-      s.overturn_azimuth_deg = azimuth_deg(a);
-      s.modes.push_back({t, mode_, -1, -1});
-      s.warnings.push_back(fmt::format(
-          "the rolling contact failed at t = {:.6g} s at a tilt of {:.4g} deg past the static limit {:.4g} deg with "
-          "the tilt growing: counted as the fall (slip and flight of a cylinder are not modelled)",
-          t, tilt * 180.0 / M_PI, g_.alpha * 180.0 / M_PI));
-    }
-    if (!(F[2] > 0.0)) {
-      s.flight_time_s = t;
-      if (falling) return record(t);
-      s.warnings.push_back(fmt::format(
-          "the contact force on the rim vanished at t = {:.6g} s (the body would leave the ground): flight of a "
-          "cylinder is not modelled; the run stops there",
-          t));
-    } else {
-      s.slide_rock_time_s = t;
-      if (!s.first_slip_time_s) s.first_slip_time_s = t;
-      if (falling) return record(t);
-      s.warnings.push_back(fmt::format(
-          "the rolling contact needs |F_t| / N = {:.4g} > mu_s = {:.4g} at t = {:.6g} s (the rim would slip): slip "
-          "on the rim of a cylinder is not modelled; the run stops there",
-          std::hypot(F[0], F[1]) / F[2], mu_s_, t));
-    }
-    record(t);
+    const Contact c = contact_of(g_, quat(y_), u_);
+    const V w = omega(y_);
+    handover_ = detail::DiscStart{t, position(y_), cross(w, c.r), normalised(quat(y_)), w, c.u};
   }
 
+ public:
+  [[nodiscard]] const std::optional<detail::DiscStart>& handover() const { return handover_; }
+
+ private:
   /// A step from flat whose continued motion never rose above the ground (finish_step): the body stays flat and at
   /// rest; time moves on to t_new (> the step's start), so this cannot loop.
   double no_lift(double t_new) {
@@ -763,12 +753,77 @@ class Engine {
   Rigid3DMode mode_ = Rigid3DMode::rest;
   double mu_s_ = -1.0;                 // friction given: mu_s (>= 0); absent: -1 (the contact force is not checked)
   std::optional<double> stop_time_;    // the run stopped where the rolling contact failed (contact_fails)
+  std::optional<detail::DiscStart> handover_;  // the state there, for the contact engine
   double h_try_ = 0.0;
   std::size_t steps_ = 0;
   State k1_{};
   bool fsal_valid_ = false;
   std::array<double, 3> fsal_acc_{};
 };
+
+/// The rolling engine's run up to the hand-over followed by the contact engine's (rigid3d_disc_contact.cpp): modes
+/// and history joined, counters added, the extremes of both, the contact engine's end.
+Rigid3DResult merge_disc_contact(Rigid3DResult a, Rigid3DResult b, const Rigid3DOptions& options, double alpha) {
+  Rigid3DSummary& s = a.summary;
+  Rigid3DSummary& e = b.summary;
+  for (std::size_t k = 0; k < e.modes.size(); ++k) {
+    if (k == 0 && !s.modes.empty() && e.modes[k].mode == s.modes.back().mode) continue;
+    s.modes.push_back(e.modes[k]);
+  }
+  s.overturned = e.overturned;
+  s.overturn_time_s = e.overturn_time_s;
+  s.overturn_azimuth_deg = e.overturn_azimuth_deg;
+  if (e.max_tilt_rad > s.max_tilt_rad) {
+    s.max_tilt_rad = e.max_tilt_rad;
+    s.max_tilt_azimuth_deg = e.max_tilt_azimuth_deg;
+    s.max_tilt_time_s = e.max_tilt_time_s;
+  }
+  s.max_tilt_over_limit = s.max_tilt_rad / alpha;
+  if (!s.exceeded_limit_time_s) s.exceeded_limit_time_s = e.exceeded_limit_time_s;
+  s.impacts += e.impacts;
+  s.uplifts += e.uplifts;
+  if (!s.uplift_time_s) s.uplift_time_s = e.uplift_time_s;
+  s.energy_lost_j_per_kg += e.energy_lost_j_per_kg;
+  s.flight_time_s = e.flight_time_s;
+  s.residual_slide_east_m = e.residual_slide_east_m;
+  s.residual_slide_north_m = e.residual_slide_north_m;
+  s.max_slide_speed_m_s = e.max_slide_speed_m_s;
+  s.slide_path_length_m = e.slide_path_length_m;
+  s.friction_energy_j_per_kg = e.friction_energy_j_per_kg;
+  s.slip_episodes = e.slip_episodes;
+  s.first_slip_time_s = e.first_slip_time_s;
+  s.slide_rock_time_s = e.slide_rock_time_s;
+  s.slide_rock_duration_s = e.slide_rock_duration_s;
+  s.flights = e.flights;
+  s.flight_duration_s = e.flight_duration_s;
+  s.residual_yaw_deg = e.residual_yaw_deg;
+  s.painleve_events = e.painleve_events;
+  s.end_time_s = e.end_time_s;
+  s.end_mode = e.end_mode;
+  s.steps += e.steps;
+  for (auto& w : e.warnings) s.warnings.push_back(std::move(w));
+  if (options.record_history) {
+    auto& h = a.history;
+    const auto& c = b.history;
+    for (std::size_t k = 0; k < c.time_s.size(); ++k) {
+      if (!h.time_s.empty() && c.time_s[k] <= h.time_s.back()) {  // the hand-over row: the contact engine's state
+        h.position_m.back() = c.position_m[k];
+        h.orientation.back() = c.orientation[k];
+        h.angular_velocity_rad_s.back() = c.angular_velocity_rad_s[k];
+        h.energy_j_per_kg.back() = c.energy_j_per_kg[k];
+        h.mode.back() = c.mode[k];
+        continue;
+      }
+      h.time_s.push_back(c.time_s[k]);
+      h.position_m.push_back(c.position_m[k]);
+      h.orientation.push_back(c.orientation[k]);
+      h.angular_velocity_rad_s.push_back(c.angular_velocity_rad_s[k]);
+      h.energy_j_per_kg.push_back(c.energy_j_per_kg[k]);
+      h.mode.push_back(c.mode[k]);
+    }
+  }
+  return a;
+}
 
 }  // namespace
 
@@ -816,7 +871,8 @@ Rigid3DResult rock3d_cylinder(const GroundMotion& x, const GroundMotion* y, cons
   const std::array<const GroundMotion*, 3> components{&x, y, z};
   const InputGrid grid(components);
   std::vector<double> gravity = effective_gravity(grid, 2, options.g_m_s2);
-  if (!gravity.empty()) {
+  const bool shenton = options.mu_s && !initial && *options.mu_s * b.centre_height_m < b.radius_m;
+  if (!gravity.empty() && (!options.mu_s || shenton)) {  // friction given: flight is modelled (contact engine)
     const double lowest = *std::min_element(gravity.begin(), gravity.end());
     if (!(lowest > 0.0)) {
       throw parameter_error("vertical", fmt::format("g + a_z reaches {} m/s2 <= 0: the body would leave the ground, "
@@ -824,7 +880,7 @@ Rigid3DResult rock3d_cylinder(const GroundMotion& x, const GroundMotion* y, cons
                                                     lowest));
     }
   }
-  if (options.mu_s && !initial && *options.mu_s * b.centre_height_m < b.radius_m) {
+  if (shenton) {
     // Shenton (1996): with mu_s h < R the centre of pressure c_plan + h F_t / N (|F_t| <= mu_s N) never reaches the
     // rim, so the base never lifts and the body is the sliding block of sliding2d.hpp exactly (docs/method.md)
     return detail::rock3d_flat_slide(x, y, z, options);
@@ -833,7 +889,10 @@ Rigid3DResult rock3d_cylinder(const GroundMotion& x, const GroundMotion* y, cons
           std::atan2(b.radius_m, b.centre_height_m), 0.0};
   geo.lift_energy = options.g_m_s2 * (std::hypot(geo.R, geo.h) - geo.h);
   Engine engine(grid, std::move(gravity), geo, options);
-  return engine.run(initial);
+  Rigid3DResult rolled = engine.run(initial);
+  if (!engine.handover()) return rolled;
+  return merge_disc_contact(std::move(rolled), detail::rock3d_disc_contact(x, y, z, b, options, *engine.handover()),
+                            options, geo.alpha);
 }
 
 }  // namespace topple

@@ -368,8 +368,8 @@ TEST(Rigid3DDiscFriction, LargeMuIsTheNoSlipRimEngine) {
       EXPECT_EQ(b.overturned, a.overturned);
       EXPECT_EQ(b.impacts, a.impacts);
       EXPECT_EQ(b.uplifts, a.uplifts);
-      EXPECT_EQ(b.residual_slide_east_m, 0.0);
       if (!a.overturned) {
+        EXPECT_EQ(b.residual_slide_east_m, 0.0);
         EXPECT_TRUE(b.warnings.empty());
         EXPECT_FALSE(b.slide_rock_time_s);
         EXPECT_FALSE(b.flight_time_s);
@@ -377,17 +377,13 @@ TEST(Rigid3DDiscFriction, LargeMuIsTheNoSlipRimEngine) {
         EXPECT_NEAR(b.end_time_s, a.end_time_s, 1e-9);
       } else {
         // a toppling body's rolling contact fails near the end of its fall, where N -> 0 and |F_t| / N grows without
-        // bound (even at mu = 10): counted as the fall there (past the static limit, the tilt growing), before the
-        // no-slip engine's tilt of 90 degrees
-        // (measured: 0 to 0.13 s before, at tilts from 0.97 rad)
+        // bound (even at mu = 10): it slips or flies for the last instants of the fall (measured: the fall at 90
+        // degrees within 5e-3 s of the no-slip engine's, the same azimuth within 1 degree)
         ASSERT_TRUE(b.overturn_time_s);
-        EXPECT_LE(*b.overturn_time_s, *a.overturn_time_s);
-        EXPECT_GT(*b.overturn_time_s, *a.overturn_time_s - 0.2);
-        EXPECT_GT(b.max_tilt_rad, 3.0 * cyl.static_tilt_limit_rad());
-        EXPECT_NEAR(b.overturn_azimuth_deg, a.overturn_azimuth_deg, 10.0);
-        EXPECT_LE(b.warnings.size(), 1U);
-        if (b.warnings.empty()) EXPECT_EQ(*b.overturn_time_s, *a.overturn_time_s);
-        contact_failed += b.warnings.size();
+        EXPECT_NEAR(*b.overturn_time_s, *a.overturn_time_s, 0.02);
+        EXPECT_NEAR(std::remainder(b.overturn_azimuth_deg - a.overturn_azimuth_deg, 360.0), 0.0, 2.0);
+        EXPECT_NEAR(b.max_tilt_rad, a.max_tilt_rad, 1e-6);  // 90 degrees
+        if (b.slide_rock_time_s || b.flight_time_s) ++contact_failed;
       }
       rocked += a.uplifts > 0 ? 1 : 0;
       fell += a.overturned ? 1 : 0;
@@ -396,7 +392,7 @@ TEST(Rigid3DDiscFriction, LargeMuIsTheNoSlipRimEngine) {
   EXPECT_GE(rocked, 4);
   EXPECT_GT(fell, 0);
   EXPECT_GT(contact_failed, 0U);
-  std::printf("mu 10: %d of 6 runs rocked, %d fell, %zu falls decided where the rim's contact failed\n", rocked, fell,
+  std::printf("mu 10: %d of 6 runs rocked, %d fell, %zu falls ending in slip or flight\n", rocked, fell,
               contact_failed);
 }
 
@@ -461,8 +457,7 @@ TEST(Rigid3DDiscFriction, RimContactForceAgainstTheClosedForm) {
   ASSERT_TRUE(below.slide_rock_time_s);
   EXPECT_EQ(*below.slide_rock_time_s, 0.0);
   EXPECT_FALSE(below.flight_time_s);
-  EXPECT_EQ(below.warnings.size(), 1U);
-  EXPECT_EQ(below.end_time_s, 0.0);
+  EXPECT_GT(below.slide_path_length_m, 0.0);
   const Rigid3DSummary above = run(ratio * (1.0 + 1e-6), 0.0);
   ASSERT_TRUE(above.slide_rock_time_s);  // the ratio grows as the body falls back (beta grows): slips soon after
   EXPECT_GT(*above.slide_rock_time_s, 0.0);
@@ -472,65 +467,197 @@ TEST(Rigid3DDiscFriction, RimContactForceAgainstTheClosedForm) {
   const Rigid3DSummary fly = run(100.0, w0 * (1.0 + 1e-6));
   ASSERT_TRUE(fly.flight_time_s);
   EXPECT_EQ(*fly.flight_time_s, 0.0);
-  EXPECT_FALSE(fly.slide_rock_time_s);
+  EXPECT_TRUE(!fly.slide_rock_time_s || *fly.slide_rock_time_s > 0.0);  // after landing, if at all
+  EXPECT_GE(fly.flights, 1U);
   const Rigid3DSummary stays = run(100.0, w0 * (1.0 - 1e-3));
   EXPECT_TRUE(!stays.flight_time_s || *stays.flight_time_s > 0.0);
 }
 
 // Under one component with no spin the cylinder stays in the vertical plane of the input, where the planar coupled
 // model (slide_rock.hpp) with the cylinder's planar body (RockingBody::cylinder: b = d / 2, k2 = J_t) is the same
-// mechanics: while its pivot sticks (rock) the rim engine rolls identically (verdict, impacts, max tilt to 1e-6),
-// and its first slip of a rocking pivot (slide-rock) or lift-off (flight), located there on its own dense output at
-// |F| = mu_s N or N = 0, is where the rim engine's contact check stops the run (to 1e-6 s).
+// mechanics: while its pivot sticks (rock) the rim engine rolls identically (verdict, impacts, max tilt to 1e-6); its
+// first slip of a rocking pivot (slide-rock) or lift-off (flight), located there on its own dense output at |F| = mu_s
+// N or N = 0, is where the rim engine's rolling contact fails (to 1e-6 s); after it the two engines slide-rock and fly
+// with the same laws but impacts differ (the rim engine's flat landing, header), so the verdict and residual slide are
+// compared within the numbers measured below.
 TEST(Rigid3DDiscFriction, OneComponentAgreesWithThePlanarCoupledModel) {
   const CylinderBody3D cyl = CylinderBody3D::solid(0.3, 1.0);
   const RockingBody planar = RockingBody::cylinder(0.3, 1.0);
-  int same = 0, stopped = 0;
+  int same = 0, coupled = 0, flights = 0, verdicts = 0;
   double worst_tilt = 0.0, worst_time = 0.0;
   for (const unsigned seed : {1U, 2U, 3U}) {
     for (const double pga_g : {0.3, 0.5}) {
-      for (const double mu : {0.35, 0.5, 1.0}) {
-        const GroundMotion m = noise(seed, pga_g * kG);
-        SlideRockOptions po;
-        po.g_m_s2 = kG;
-        po.rel_tol = 1e-12;
-        const SlideRockResult p = slide_rock(m, SlideRockBody::from_rocking(planar, mu, mu), po);
-        const auto& first = p.summary.mode_first_time_s;
-        const auto sr = first[static_cast<std::size_t>(SlideRockMode::slide_rock)];
-        const auto fl = first[static_cast<std::size_t>(SlideRockMode::flight)];
-        const auto sl = first[static_cast<std::size_t>(SlideRockMode::slide)];
-        Rigid3DOptions o;
-        o.g_m_s2 = kG;
-        o.rel_tol = 1e-12;
-        o.mu_s = mu;
-        const Rigid3DSummary s = rock3d_cylinder(m, nullptr, nullptr, cyl, o).summary;
-        SCOPED_TRACE(testing::Message() << "seed " << seed << " pga " << pga_g << " mu " << mu);
-        EXPECT_FALSE(sl.has_value());  // mu_s >= R / h: never slides flat from rest
-        if (!sr && !fl) {
-          EXPECT_TRUE(s.warnings.empty());
-          EXPECT_EQ(s.overturned, p.summary.overturned);
-          EXPECT_EQ(s.impacts, p.summary.impacts);
-          EXPECT_NEAR(s.max_tilt_rad, p.summary.max_rotation_over_alpha * planar.alpha_rad(), 1e-6);
-          worst_tilt = std::max(worst_tilt,
-                                std::abs(s.max_tilt_rad - p.summary.max_rotation_over_alpha * planar.alpha_rad()));
-          ++same;
-        } else {
+      for (const double mu : {0.32, 0.5, 1.0}) {
+        for (const bool vertical : {false, true}) {
+          const GroundMotion m = noise(seed, pga_g * kG);
+          const GroundMotion up = noise(seed + 30, 2.2 * pga_g * kG);
+          SlideRockOptions po;
+          po.g_m_s2 = kG;
+          po.rel_tol = 1e-12;
+          const SlideRockResult p =
+              slide_rock(m, SlideRockBody::from_rocking(planar, mu, mu), po, vertical ? &up : nullptr);
+          const auto& first = p.summary.mode_first_time_s;
+          const auto sr = first[static_cast<std::size_t>(SlideRockMode::slide_rock)];
+          const auto fl = first[static_cast<std::size_t>(SlideRockMode::flight)];
+          Rigid3DOptions o;
+          o.g_m_s2 = kG;
+          o.rel_tol = 1e-12;
+          o.mu_s = mu;
+          const Rigid3DSummary s = rock3d_cylinder(m, nullptr, vertical ? &up : nullptr, cyl, o).summary;
+          SCOPED_TRACE(testing::Message() << "seed " << seed << " pga " << pga_g << " mu " << mu << " vertical "
+                                          << vertical);
           const double t1 = std::min(sr.value_or(1e300), fl.value_or(1e300));
-          const std::optional<double> mine = s.slide_rock_time_s ? s.slide_rock_time_s : s.flight_time_s;
-          ASSERT_TRUE(mine.has_value());
-          EXPECT_NEAR(*mine, t1, 1e-6);
-          EXPECT_EQ(s.flight_time_s.has_value(), fl.has_value() && *fl == t1);
-          worst_time = std::max(worst_time, std::abs(*mine - t1));
-          ++stopped;
+          const double mine = std::min(s.slide_rock_time_s.value_or(1e300), s.flight_time_s.value_or(1e300));
+          if (t1 > 1e299) {
+            EXPECT_GT(mine, 1e299);
+            EXPECT_EQ(s.overturned, p.summary.overturned);
+            EXPECT_EQ(s.impacts, p.summary.impacts);
+            EXPECT_NEAR(s.max_tilt_rad, p.summary.max_rotation_over_alpha * planar.alpha_rad(), 1e-6);
+            worst_tilt = std::max(worst_tilt,
+                                  std::abs(s.max_tilt_rad - p.summary.max_rotation_over_alpha * planar.alpha_rad()));
+            ++same;
+          } else {
+            EXPECT_NEAR(mine, t1, 1e-6);
+            worst_time = std::max(worst_time, std::abs(mine - t1));
+            flights += fl ? 1 : 0;
+            verdicts += s.overturned == p.summary.overturned ? 1 : 0;
+            if (!s.overturned && !p.summary.overturned) {
+              // both stand: the base's residual slide (the planar pivot's u) within 10 % + 0.1 mm (measured: to the
+              // printed 0.1 mm)
+              EXPECT_NEAR(std::hypot(s.residual_slide_east_m, s.residual_slide_north_m),
+                          std::abs(p.summary.residual_slide_m), 0.1 * std::abs(p.summary.residual_slide_m) + 1e-4);
+              EXPECT_NEAR(s.residual_slide_north_m, 0.0, 1e-9);  // in the plane of the input
+            }
+            std::printf("  seed %u pga %.1f mu %.2f v %d: first %.6f / %.6f, fell %d / %d, impacts %zu / %zu, slide "
+                        "%.4f / %.4f m, flights %zu / %zu\n",
+                        seed, pga_g, mu, vertical ? 1 : 0, mine, t1, s.overturned ? 1 : 0,
+                        p.summary.overturned ? 1 : 0, s.impacts, p.summary.impacts,
+                        std::hypot(s.residual_slide_east_m, s.residual_slide_north_m), p.summary.residual_slide_m,
+                        s.flights, p.summary.mode_entries[static_cast<std::size_t>(SlideRockMode::flight)]);
+            ++coupled;
+          }
         }
       }
     }
   }
-  std::printf("one component vs the coupled model: %d runs the same (worst max tilt %.3g rad), %d stopped where it "
-              "slips or flies (worst %.3g s)\n",
-              same, worst_tilt, stopped, worst_time);
+  std::printf("one component vs the coupled model: %d runs roll the same (worst max tilt %.3g rad); %d slip or fly "
+              "(%d fly; first instant worst %.3g s; the same verdict in %d)\n",
+              same, worst_tilt, coupled, flights, worst_time, verdicts);
   EXPECT_GE(same, 3);
-  EXPECT_GE(stopped, 3);
+  EXPECT_GE(coupled, 3);
+  EXPECT_GE(flights, 1);
+  // measured: 16 of 17 (one run, chattering through 131 impacts after two flights, stands where the coupled model's
+  // falls: the flat landing's law differs from the planar corner impact, header)
+  EXPECT_GE(verdicts, coupled - 1);
+}
+
+// Frictionless (mu_s = mu_k = 0) a cylinder released past its static limit slips on its rim: no horizontal force, so
+// c falls straight down (its horizontal position fixed to rounding), and energy is conserved; with the contact on the
+// ground (z_c = h cos(theta) + R sin(theta)) the energy gives the rate in closed form (planar, the "falling rod on a
+// smooth floor"):  theta'^2 (J_t + (R cos(theta) - h sin(theta))^2) / 2 + g (h cos(theta) + R sin(theta) - h) = E_0.
+TEST(Rigid3DDiscFriction, FrictionlessSlipIsTheFallingRodOnASmoothFloor) {
+  const CylinderBody3D cyl = CylinderBody3D::solid(0.3, 1.0);
+  const double R = 0.15, h = 0.5, Jt = cyl.inertia_transverse_m2, theta0 = 0.4;
+  Rigid3DOptions o;
+  o.g_m_s2 = kG;
+  o.mu_s = 0.0;
+  o.max_run_out_s = 0.0;
+  o.record_history = true;
+  o.rel_tol = 1e-10;
+  const Rigid3DResult r =
+      rock3d_cylinder(still(2.0), nullptr, nullptr, cyl, o, CylinderInitialState{tilted(theta0, 0.0), {}});
+  ASSERT_TRUE(r.summary.overturned);
+  ASSERT_TRUE(r.summary.slide_rock_time_s);
+  EXPECT_EQ(*r.summary.slide_rock_time_s, 0.0);
+  const double E0 = kG * (h * std::cos(theta0) + R * std::sin(theta0) - h);
+  const auto& H = r.history;
+  ASSERT_GT(H.time_s.size(), 5U);
+  double worst_rate = 0.0, worst_x = 0.0;
+  const double cx0 = H.position_m.front()[0] + h * axis_of(H.orientation.front())[0];
+  for (std::size_t i = 0; i < H.time_s.size(); ++i) {
+    const Vec3 a = axis_of(H.orientation[i]);
+    const double th = std::atan2(std::hypot(a[0], a[1]), a[2]);
+    if (th > 1.5) break;  // up to the fall
+    const double cx = H.position_m[i][0] + h * a[0];
+    worst_x = std::max(worst_x, std::abs(cx - cx0));
+    const double m = Jt + std::pow(R * std::cos(th) - h * std::sin(th), 2);
+    const double rate = std::sqrt(2.0 * (E0 - kG * (h * std::cos(th) + R * std::sin(th) - h)) / m);
+    worst_rate = std::max(worst_rate, std::abs(std::hypot(H.angular_velocity_rad_s[i][0],
+                                                          H.angular_velocity_rad_s[i][1]) - rate));
+    EXPECT_NEAR(H.energy_j_per_kg[i], E0, 1e-7) << "at " << H.time_s[i];  // conserved
+  }
+  std::printf("frictionless fall: |c_x drift| %.3g m, |theta' - closed form| %.3g rad/s\n", worst_x, worst_rate);
+  EXPECT_LT(worst_x, 1e-9);
+  EXPECT_LT(worst_rate, 1e-6);
+  EXPECT_EQ(r.summary.friction_energy_j_per_kg, 0.0);
+}
+
+// On still ground, a cylinder released tilted with friction (rocking back onto its base, or wobbling with spin:
+// slip, stick, flat landings, flat sliding): the energy never increases, and kinetic friction plus impacts account for
+// what is lost (1e-6).
+TEST(Rigid3DDiscFriction, EnergyNeverIncreasesOnStillGround) {
+  const CylinderBody3D cyl = CylinderBody3D::solid(0.3, 1.0);
+  int slipped = 0;
+  std::size_t impacts = 0;
+  struct Start {
+    double tilt, phi;
+    Vec3 w;
+  };
+  for (const double mu : {0.05, 0.1, 0.2, 0.35}) {
+    for (const Start& st : {Start{0.15, 1.0, {0.2530, -0.1613, 0.0}}, Start{0.2, 0.7, {-1.0, 0.6, 4.0}}}) {
+      Rigid3DOptions o;
+      o.g_m_s2 = kG;
+      o.mu_s = mu;
+      o.mu_k = 0.8 * mu;
+      o.max_run_out_s = 0.0;
+      o.record_history = true;
+      const Rigid3DResult r =
+          rock3d_cylinder(still(3.0), nullptr, nullptr, cyl, o, CylinderInitialState{tilted(st.tilt, st.phi), st.w});
+      SCOPED_TRACE(testing::Message() << "mu " << mu << " spin " << st.w[2]);
+      const auto& e = r.history.energy_j_per_kg;
+      ASSERT_GT(e.size(), 10U);
+      for (std::size_t i = 1; i < e.size(); ++i) EXPECT_LE(e[i], e[i - 1] + 1e-7) << "at " << r.history.time_s[i];
+      const double lost = r.summary.energy_lost_j_per_kg + r.summary.friction_energy_j_per_kg;
+      EXPECT_NEAR(e.front() - e.back(), lost, 1e-6 * e.front() + 1e-6);
+      slipped += r.summary.slide_rock_time_s ? 1 : 0;
+      impacts += r.summary.impacts;
+    }
+  }
+  EXPECT_GE(slipped, 4);
+  EXPECT_GE(impacts, 3U);
+}
+
+// The slipping rim's error falls with the tolerance (Dormand-Prince's error control): a spinning cylinder slipping
+// on a frictionless floor for 0.3 s (no impact): the end axis against rel_tol 1e-12.
+TEST(Rigid3DDiscFriction, SlipErrorFallsWithTheTolerance) {
+  const CylinderBody3D cyl = CylinderBody3D::solid(0.3, 1.0);
+  const auto end_axis = [&](double tol) {
+    Rigid3DOptions o;
+    o.g_m_s2 = kG;
+    o.mu_s = 0.1;
+    o.mu_k = 0.05;
+    o.rel_tol = tol;
+    o.abs_tol = tol * 1e-4;
+    o.max_run_out_s = 0.0;
+    o.record_history = true;
+    const Rigid3DResult r =
+        rock3d_cylinder(still(0.3), nullptr, nullptr, cyl, o, CylinderInitialState{tilted(0.25, 0.3), {0.5, -0.4, 6.0}});
+    EXPECT_EQ(r.summary.impacts, 0U);
+    EXPECT_TRUE(r.summary.slide_rock_time_s.has_value());
+    return axis_of(r.history.orientation.back());
+  };
+  const Vec3 ref = end_axis(1e-12);
+  const auto err = [&](double tol) {
+    const Vec3 a = end_axis(tol);
+    return std::hypot(a[0] - ref[0], a[1] - ref[1], a[2] - ref[2]);
+  };
+  const double e6 = err(1e-6), e8 = err(1e-8), e10 = err(1e-10);
+  const double order = std::log10(e6 / e10) / 4.0;
+  std::printf("slip: end-axis error at rel_tol 1e-6 / 1e-8 / 1e-10: %.3g / %.3g / %.3g, order %.3f\n", e6, e8, e10,
+              order);
+  EXPECT_LT(e8, e6 / 10.0);
+  EXPECT_LT(e10, e8 / 10.0);
+  EXPECT_GT(order, 0.7);
 }
 
 // Bad friction is refused as for a polygonal base (rigid3d_slide.cpp): mu_k without mu_s, mu_k > mu_s, mu_s < 0.
