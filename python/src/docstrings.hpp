@@ -1035,9 +1035,9 @@ simultaneous_contact : float, optional
 mu : float, optional
     The static friction coefficient mu_s (>= 0; the CLI's --mu; docs/method.md "Sliding in three dimensions"): the
     base sticks while |a_h| <= mu_s (g + a_z) and slides flat otherwise. None (the default): no sliding, the engine as
-    before. A cylinder (docs/method.md "A circular base with friction"): slides flat when mu_s h < R; otherwise rolls
-    on its rim while the contact force is inside the friction cone, and stops with a warning where it would slip or
-    fly (summary "slide_rock_time_s", "flight_time_s").
+    before. A cylinder (docs/method.md "A circular base with friction"): slides flat when mu_s h < R (it can never
+    lift); otherwise rolls on its rim while the contact force is inside the friction cone, and slips on its rim and
+    flies where it is not (summary "slide_rock_time_s", "flight_time_s", the sliding keys).
 mu_k : float, optional
     The kinetic friction coefficient, 0 <= mu_k <= mu (the CLI's --mu-k); None: mu. Needs mu.
 max_run_out_s : float
