@@ -270,7 +270,6 @@ void add_failures(const FragilityOptions& o, double g, FragilitySpec& spec) {
       f.mu_3d = o.rock_mu;  // absent: no contact slides (the no-slip engine)
       f.mu_k_3d = o.rock_mu_k;
       if (o.shape == "cylinder" && o.mesh.empty() && o.body_file.empty()) {
-        if (o.rock_mu) throw parameter_error("--rock-mu", "a cylinder's rim engine (rigid3d_disc.hpp) does not slide");
         // the rim engine's solid cylinder of the planar cylinder's a = d / 2, h = H / 2 (rocking_body.hpp)
         if (!o.depth.empty()) {
           throw parameter_error("--depth", "is a block's: a cylinder is given by --diameter and --height");

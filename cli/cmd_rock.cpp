@@ -277,11 +277,8 @@ void run_model_3d(const RockOptions& o, RunMotion& run, const std::optional<Rock
     request.options.base_incline_deg = *o.base_incline_deg;
     request.options.base_incline_azimuth_deg = o.base_incline_azimuth_deg.value_or(0.0);
   }
-  if (cylinder && (o.mu || o.mu_k)) {
-    throw parameter_error(o.mu ? "--mu" : "--mu-k", "the cylinder's rim engine (rigid3d_disc.hpp) rolls without "
-                                                    "slip: sliding in three dimensions is a block's or a mesh's");
-  }
-  request.options.mu_s = o.mu;  // absent: no sliding (rigid3d.hpp); checked by rock3d ("mu_s" -> --mu)
+  // absent: no sliding (rigid3d.hpp; a cylinder: rigid3d_disc.hpp's friction); checked by rock3d ("mu_s" -> --mu)
+  request.options.mu_s = o.mu;
   request.options.mu_k = o.mu_k;
   request.json = o.json;
   std::optional<MotionSet> set;

@@ -189,8 +189,11 @@ void run_3d(const RunMotion& run, const Rigid3DRequest& request) {
   }
   const bool friction = request.options.mu_s.has_value();
   if (request.cylinder) {
-    fmt::print("three-dimensional rocking and rolling on the rim (no sliding): cylinder {:.6g} x {:.6g} m (diameter x "
+    fmt::print("three-dimensional rocking and rolling on the rim ({}): cylinder {:.6g} x {:.6g} m (diameter x "
                "height){}\n",
+               friction ? fmt::format("friction mu_s = {:.6g}, mu_k = {:.6g}", *request.options.mu_s,
+                                      request.options.mu_k.value_or(*request.options.mu_s))
+                        : std::string("no sliding"),
                request.width_m, request.height_m,
                request.set != nullptr ? std::string(", the pair along east and north")
                                       : std::string(", the record along +x (azimuth 90)"));

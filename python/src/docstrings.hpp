@@ -1033,12 +1033,13 @@ simultaneous_contact : float, optional
     centre of mass to a corner; dimensionless) of the ground land with it as one impact, in [0, 0.01]; None: 1e-5
     (the CLI's --simultaneous-contact); 0: strictly successive impacts. Refused for a cylinder (its base lands flat).
 mu : float, optional
-    A box: the static friction coefficient mu_s (>= 0; the CLI's --mu; docs/method.md "Sliding in three
-    dimensions"): the base sticks while |a_h| <= mu_s (g + a_z) and slides flat otherwise. None (the default): no
-    sliding, the engine as before. Refused for a cylinder (its rim engine rolls without slip). A run that reaches
-    slide-rock stops there with a warning (summary "slide_rock_time_s").
+    The static friction coefficient mu_s (>= 0; the CLI's --mu; docs/method.md "Sliding in three dimensions"): the
+    base sticks while |a_h| <= mu_s (g + a_z) and slides flat otherwise. None (the default): no sliding, the engine as
+    before. A cylinder (docs/method.md "A circular base with friction"): slides flat when mu_s h < R (it can never
+    lift); otherwise rolls on its rim while the contact force is inside the friction cone, and slips on its rim and
+    flies where it is not (summary "slide_rock_time_s", "flight_time_s", the sliding keys).
 mu_k : float, optional
-    A box: the kinetic friction coefficient, 0 <= mu_k <= mu (the CLI's --mu-k); None: mu. Needs mu.
+    The kinetic friction coefficient, 0 <= mu_k <= mu (the CLI's --mu-k); None: mu. Needs mu.
 base_incline_deg : float
     A box: the base is a plane inclined at this angle, degrees in [0, 90) (the CLI's --base-incline-deg; docs/method.md
     "An inclined base"); 0 (the default): level. Without mu the box sticks to the plane; with mu it slides on it (from

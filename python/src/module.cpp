@@ -532,10 +532,6 @@ nb::dict run_rock3d(const GroundMotion& first, const GroundMotion* second, std::
   options.rel_tol = rocking.rel_tol;
   options.max_run_out_s = rocking.max_run_out_s;
   if (simultaneous_contact) options.simultaneous_contact = *simultaneous_contact;  // checked by rock3d, [0, 0.01]
-  if (cylinder && (mu || mu_k)) {  // as the CLI's --mu/--mu-k with --shape cylinder
-    throw parameter_error(mu ? "mu" : "mu_k", "the cylinder's rim engine (rigid3d_disc.hpp) rolls without slip: "
-                                              "sliding in three dimensions is a box's");
-  }
   // Coulomb friction (rigid3d.hpp, Rigid3DOptions::mu_s, mu_k): absent, the no-slip engine; checked by rock3d
   // ("mu_s" named as mu, "mu_k" as mu_k).
   options.mu_s = mu;

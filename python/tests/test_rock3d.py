@@ -111,6 +111,13 @@ def test_cylinder_equals_the_cli(cli, cylinder_station):
     got = topple.rock3d(topple.read(h1), topple.read(h2), diameter_m=0.2, height_m=0.8, azimuths_deg=(0.0, 90.0),
                         vertical=topple.read(v), e=0.8)
     assert got == without_input(two)
+    # with friction (rigid3d_disc.hpp): the CLI's --mu, --mu-k, the same JSON; mu = 0.2 below R / h = 0.25, the
+    # cylinder slides flat and never tilts (Shenton 1996)
+    slid = cli.json("rock", h1, "--h2", h2, "--azimuths", "0,90", *CYLINDER, "--mu", "0.2", "--mu-k", "0.15")
+    got = topple.rock3d(topple.read(h1), topple.read(h2), diameter_m=0.2, height_m=0.8, azimuths_deg=(0.0, 90.0),
+                        mu=0.2, mu_k=0.15)
+    assert got == without_input(slid)
+    assert got["solver"]["mu_s"] == 0.2 and got["slide_path_length_m"] > 1e-3 and got["max_tilt_rad"] == 0.0
 
 
 def test_cylinder_under_one_component_is_the_planar_cylinder(cylinder_station):
@@ -197,7 +204,7 @@ def test_friction_refusals_are_the_librarys(station):
     r1 = topple.read(station[0])
     box = dict(width_m=0.2, depth_m=0.3, height_m=0.8)
     for kwargs, name in ((dict(box, mu=-0.1), "mu"), (dict(box, mu=0.3, mu_k=0.4), "mu_k"),
-                         (dict(box, mu_k=0.2), "mu"), (dict(diameter_m=0.2, height_m=0.8, mu=0.5), "mu")):
+                         (dict(box, mu_k=0.2), "mu"), (dict(diameter_m=0.2, height_m=0.8, mu=0.3, mu_k=0.5), "mu_k")):
         with pytest.raises(topple.InputError, match=name):
             topple.rock3d(r1, **kwargs)
 

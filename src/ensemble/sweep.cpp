@@ -427,11 +427,6 @@ void check_objects(const SweepSpec& spec, bool any_set) {
                                                "components and a vertical: [[motions.set]] only, not single records "
                                                "or pulses");
       }
-      if (r->cylinder_3d && (r->options.mu || r->mu_kinetic)) {
-        throw parameter_error(name + (r->options.mu ? ".mu" : ".mu_kinetic"),
-                              "a cylinder's rim engine (rigid3d_disc.hpp) rolls without slip: sliding in three "
-                              "dimensions is a box's or a mesh's; leave mu out");
-      }
       if (r->mu_kinetic && !r->options.mu) {
         throw parameter_error(name + ".mu_kinetic", "a kinetic friction coefficient needs the static one (mu)");
       }

@@ -406,9 +406,8 @@ void check_objects(const FragilitySpec& spec) {
   if (spec.overturning) (void)overturns(GroundMotion::uniform({0.0, 0.0}, 1.0), *spec.overturning);
   if (spec.overturning && (spec.overturning->mu_3d || spec.overturning->mu_k_3d)) {
     const OverturnFailure& f = *spec.overturning;
-    if (!f.body_3d) {
-      throw parameter_error("mu", f.cylinder_3d ? "a cylinder's rim engine (rigid3d_disc.hpp) does not slide"
-                                                : "friction applies to a three-dimensional body (model 3d)");
+    if (!f.body_3d && !f.cylinder_3d) {
+      throw parameter_error("mu", "friction applies to a three-dimensional body (model 3d)");
     }
     // The engine's own checks of mu and mu_k (InputError naming them), on a still pair, before any worker runs.
     const GroundMotion still = GroundMotion::uniform({0.0, 0.0}, 1.0);

@@ -881,18 +881,10 @@ std::vector<BodyCase> axis_bodies(const Reader& r, const toml::table& o, const s
 enum class RockModel { rock, coupled, three_d };
 
 /// The keys a three-dimensional object (model = "3d") refuses, with why: it is a box (a block with its depth), a
-/// solid cylinder (the rim engine, rigid3d_disc.hpp, which rolls without slip: no mu) or a body from a mesh, which
-/// stands on the ground (rigid3d.hpp).
+/// solid cylinder (the rim engine, rigid3d_disc.hpp; mu and mu_kinetic its Coulomb friction) or a body from a mesh,
+/// which stands on the ground (rigid3d.hpp).
 void refuse_for_3d(const Reader& r, const toml::table& o, const std::string& prefix, const std::string& shape,
                    bool from_mesh) {
-  if (!from_mesh && shape == "cylinder") {
-    for (const char* k : {"mu", "mu_kinetic"}) {
-      if (const toml::node* n = o.get(k)) {
-        r.fail(n, prefix + k, "model = \"3d\": a cylinder's rim engine (rigid3d_disc.hpp) rolls without slip; "
-                              "sliding in three dimensions is a box's or a mesh's: leave mu out");
-      }
-    }
-  }
   for (const char* k : {"support_freq_hz", "support_freq", "support_damping"}) {
     if (const toml::node* n = o.get(k)) {
       r.fail(n, prefix + k, "a three-dimensional object (model = \"3d\") stands on the ground: flexible supports are "

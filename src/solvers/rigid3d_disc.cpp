@@ -18,6 +18,8 @@
 #include "topple/motion/input_grid.hpp"
 #include "topple/numerics/dp5.hpp"
 #include "topple/numerics/event_root.hpp"
+#include "rigid3d_disc_contact.hpp"
+#include "rigid3d_slide.hpp"
 
 namespace topple {
 namespace {
@@ -167,7 +169,9 @@ class Engine {
         gravity_(std::move(gravity)),
         g_(geo),
         opt_(opt),
-        p_(std::sqrt(opt.g_m_s2 / std::hypot(geo.R, geo.h))) {}
+        p_(std::sqrt(opt.g_m_s2 / std::hypot(geo.R, geo.h))) {
+    if (opt.mu_s) mu_s_ = *opt.mu_s;
+  }
 
   Rigid3DResult run(const std::optional<CylinderInitialState>& initial) {
     Rigid3DSummary& s = res_.summary;
@@ -240,7 +244,7 @@ class Engine {
         record(t);
       }
     }
-    s.end_time_s = done() ? *s.overturn_time_s : t;
+    s.end_time_s = stop_time_ ? *stop_time_ : done() ? *s.overturn_time_s : t;
     s.end_mode = mode_;
     s.steps = steps_;
     s.max_tilt_over_limit = s.max_tilt_rad / g_.alpha;
@@ -253,7 +257,7 @@ class Engine {
     const auto comp = [&](std::size_t c) { return grid_.has(c) ? grid_.accel_m_s2(c)[i] : 0.0; };
     return {comp(0), comp(1), gravity_.empty() ? opt_.g_m_s2 : gravity_[i]};
   }
-  [[nodiscard]] bool done() const { return mode_ == Rigid3DMode::fallen; }
+  [[nodiscard]] bool done() const { return mode_ == Rigid3DMode::fallen || stop_time_.has_value(); }
 
   void record(double t) { record_state(t, y_); }
   void record_state(double t, const State& y) {
@@ -269,7 +273,35 @@ class Engine {
     h.mode.push_back(mode_);
   }
 
-  // The equations of motion on the rim (header), f = (-a_x, -a_y, -(g + a_z)).
+  /// The rim's rates of a state: the contact, w' and r' (header).
+  struct RimRates {
+    Contact c;
+    V wd, rd;
+  };
+  [[nodiscard]] RimRates rim_rates(const State& y, const std::array<double, 3>& acc) const {
+    const Quaternion q = quat(y);
+    const V w = omega(y);
+    const Contact c = contact_of(g_, q, u_, &u_);  // u_: the step's starting contact (continued past the upright)
+    const V ad = cross(w, c.a);
+    // flat (first stage after an uplift or an impact): the contact is the rim point fixed in the body, u' = w x u
+    // (the rocking limit; a sideways rate there would make u' infinite)
+    V ud = cross(w, c.u);
+    if (c.sin_tilt > kDirectionFloor) {
+      // d = a_z e - sin(theta) z with e = a_h / sin(theta): d' = a_z' e + a_z e' - (e . a_h') z, e' the part of a_h'
+      // normal to e over sin(theta), ((e x a_h') . z / sin(theta)) (z x e) (exactly 0 in one vertical plane)
+      const double ex = c.ex, ey = c.ey;
+      const double turn = (ex * ad[1] - ey * ad[0]) * c.inv_sin_tilt;
+      ud = {ad[2] * ex - c.a[2] * turn * ey, ad[2] * ey + c.a[2] * turn * ex, -(ex * ad[0] + ey * ad[1])};
+      if (c.reflected) ud = mul(ud, -1.0);  // u = -d past the upright
+    }
+    const V rd = sub(mul(ad, g_.h), mul(ud, g_.R));
+    const V f{-acc[0], -acc[1], -acc[2]};
+    const V rhs_m = sub(sub(cross(c.r, f), cross(w, g_.JG(c.a, w))), cross(c.r, cross(w, rd)));
+    return {c, solve3(g_.Mp(c.a, c.r), rhs_m), rd};
+  }
+
+  // The equations of motion on the rim (header), f = (-a_x, -a_y, -(g + a_z)). (rim_rates above is the same
+  // evaluation, for the contact force; kept apart so that the no-friction path is the code it was.)
   [[nodiscard]] State rhs(const State& y, const std::array<double, 3>& acc) const {
     const Quaternion q = quat(y);
     const V w = omega(y);
@@ -295,6 +327,19 @@ class Engine {
     return {0.5 * qd[0], 0.5 * qd[1], 0.5 * qd[2], 0.5 * qd[3], wd[0], wd[1], wd[2], vc[0], vc[1], vc[2]};
   }
 
+  /// The contact force per unit mass on the rim (friction given): Newton, F = a_c - f with a_c = d(w x r)/dt =
+  /// w' x r + w x r' (header); its margin min(N, mu_s N - |F_t|) / (g + a_z): > 0 while the rolling contact holds.
+  [[nodiscard]] V contact_force(const State& y, const std::array<double, 3>& acc) const {
+    const RimRates k = rim_rates(y, acc);
+    const V w = omega(y);
+    const V ac = add(cross(k.wd, k.c.r), cross(w, k.rd));
+    return {ac[0] + acc[0], ac[1] + acc[1], ac[2] + acc[2]};
+  }
+  [[nodiscard]] double contact_margin(const State& y, const std::array<double, 3>& acc) const {
+    const V F = contact_force(y, acc);
+    return std::min(F[2], mu_s_ * F[2] - std::hypot(F[0], F[1])) / acc[2];
+  }
+
   /// The sample interval [ta, tb] with the input linear between acc_a and acc_b.
   void advance(double ta, double tb, std::array<double, 3> acc_a, std::array<double, 3> acc_b) {
     const auto acc_at = [&](double t) {
@@ -311,13 +356,29 @@ class Engine {
           const auto a = acc_at(tt);
           return a[0] * a[0] + a[1] * a[1] - (a[2] * k) * (a[2] * k);
         };
-        const double fa = f(t), fb = f(tb);
+        // friction given: g + a_z reaching 0 at rest is flight, the contact engine's (rigid3d_disc_contact.cpp); the
+        // uplift is looked for before it
+        double t_lim = tb;
+        bool flies = false;
+        if (mu_s_ >= 0.0) {
+          const auto G = [&](double tt) { return acc_at(tt)[2]; };
+          const double ga = G(t), gb = G(tb);
+          if (!(ga > 0.0)) return contact_fails(t, acc_at(t));
+          if (!(gb > 0.0)) {
+            t_lim = detail::find_root(G, t, tb, ga, gb);
+            flies = true;
+          }
+        }
+        const double fa = f(t), fb = f(t_lim);
         if (fa > 0.0) {
           uplift(t, acc_at(t));
           continue;
         }
-        if (!(fb > 0.0)) return;
-        const double tu = detail::find_root(f, t, tb, fa, fb);
+        if (!(fb > 0.0)) {
+          if (flies) contact_fails(t_lim, acc_at(t_lim));
+          return;
+        }
+        const double tu = detail::find_root(f, t, t_lim, fa, fb);
         // the uplift instant: the root (the planar engine's too), nudged up by a few ulps to where the threshold is
         // met when rounding left it just below
         double tr = tu;
@@ -526,6 +587,27 @@ class Engine {
       s_end = detail::find_root(axis_z, 0.0, s_end, z0, z1);
       kind = 2;
     }
+    if (mu_s_ >= 0.0) {
+      // friction given: the rolling contact holds while N > 0 and |F_t| <= mu_s N (header); the first root of the
+      // margin on the dense output, looked for on 4 equal parts of the step up to its terminal event (a violation
+      // that begins and ends inside one part is missed, as the polygon engine's pivot events: stated)
+      const auto margin = [&](double sf) { return contact_margin(sf == 0.0 ? y_ : dense(sf), acc_at(t + sf * h)); };
+      double s_prev = 0.0, m_prev = margin(0.0);
+      if (!(m_prev > 0.0)) {
+        s_end = 0.0;
+        kind = 3;
+      }
+      for (int j = 1; j <= 4 && kind != 3; ++j) {
+        const double sj = s_end * j / 4.0;
+        const double mj = margin(sj);
+        if (!(mj > 0.0)) {
+          s_end = std::isfinite(mj) ? detail::find_root(margin, s_prev, sj, m_prev, mj) : sj;
+          kind = 3;
+        }
+        s_prev = sj;
+        m_prev = mj;
+      }
+    }
     // tilt maxima (a_z' from < 0 to > 0) and the static limit, before the terminal event
     const double r0 = tilt_rate(0.0), r1 = tilt_rate(s_end);
     const auto note_tilt = [&](double sf) {
@@ -571,11 +653,28 @@ class Engine {
       record(t_new);
     } else if (kind == 1) {
       impact(t_new, u0);
+    } else if (kind == 3) {
+      contact_fails(t_new, acc_at(t_new));
     }
     (void)acc_at;
     return t_new;
   }
 
+  /// The rolling contact needs more than Coulomb's friction or a pull (friction given): slip on the rim or flight
+  /// begins at t. The run stops here and rock3d_cylinder hands it to the contact engine (rigid3d_disc_contact.cpp)
+  /// from this state: c's velocity w x r (rolling), the contact direction u.
+  void contact_fails(double t, const std::array<double, 3>& acc) {
+    (void)acc;
+    stop_time_ = t;
+    const Contact c = contact_of(g_, quat(y_), u_);
+    const V w = omega(y_);
+    handover_ = detail::DiscStart{t, position(y_), cross(w, c.r), normalised(quat(y_)), w, c.u};
+  }
+
+ public:
+  [[nodiscard]] const std::optional<detail::DiscStart>& handover() const { return handover_; }
+
+ private:
   /// A step from flat whose continued motion never rose above the ground (finish_step): the body stays flat and at
   /// rest; time moves on to t_new (> the step's start), so this cannot loop.
   double no_lift(double t_new) {
@@ -669,12 +768,80 @@ class Engine {
   State y_{};
   V u_{1.0, 0.0, 0.0};
   Rigid3DMode mode_ = Rigid3DMode::rest;
+  double mu_s_ = -1.0;                 // friction given: mu_s (>= 0); absent: -1 (the contact force is not checked)
+  std::optional<double> stop_time_;    // the run stopped where the rolling contact failed (contact_fails)
+  std::optional<detail::DiscStart> handover_;  // the state there, for the contact engine
   double h_try_ = 0.0;
   std::size_t steps_ = 0;
   State k1_{};
   bool fsal_valid_ = false;
   std::array<double, 3> fsal_acc_{};
 };
+
+/// The rolling engine's run up to the hand-over followed by the contact engine's (rigid3d_disc_contact.cpp): modes
+/// and history joined, counters added, the extremes of both, the contact engine's end.
+Rigid3DResult merge_disc_contact(Rigid3DResult a, Rigid3DResult b, const Rigid3DOptions& options, double alpha) {
+  Rigid3DSummary& s = a.summary;
+  Rigid3DSummary& e = b.summary;
+  for (std::size_t k = 0; k < e.modes.size(); ++k) {
+    if (k == 0 && !s.modes.empty() && e.modes[k].mode == s.modes.back().mode) continue;
+    s.modes.push_back(e.modes[k]);
+  }
+  s.overturned = e.overturned;
+  s.overturn_time_s = e.overturn_time_s;
+  s.overturn_azimuth_deg = e.overturn_azimuth_deg;
+  if (e.max_tilt_rad > s.max_tilt_rad) {
+    s.max_tilt_rad = e.max_tilt_rad;
+    s.max_tilt_azimuth_deg = e.max_tilt_azimuth_deg;
+    s.max_tilt_time_s = e.max_tilt_time_s;
+  }
+  s.max_tilt_over_limit = s.max_tilt_rad / alpha;
+  if (!s.exceeded_limit_time_s) s.exceeded_limit_time_s = e.exceeded_limit_time_s;
+  s.impacts += e.impacts;
+  s.uplifts += e.uplifts;
+  if (!s.uplift_time_s) s.uplift_time_s = e.uplift_time_s;
+  s.energy_lost_j_per_kg += e.energy_lost_j_per_kg;
+  s.flight_time_s = e.flight_time_s;
+  s.residual_slide_east_m = e.residual_slide_east_m;
+  s.residual_slide_north_m = e.residual_slide_north_m;
+  s.max_slide_m = e.max_slide_m;
+  s.max_slide_speed_m_s = e.max_slide_speed_m_s;
+  s.slide_path_length_m = e.slide_path_length_m;
+  s.friction_energy_j_per_kg = e.friction_energy_j_per_kg;
+  s.slip_episodes = e.slip_episodes;
+  s.first_slip_time_s = e.first_slip_time_s;
+  s.slide_rock_time_s = e.slide_rock_time_s;
+  s.slide_rock_duration_s = e.slide_rock_duration_s;
+  s.flights = e.flights;
+  s.flight_duration_s = e.flight_duration_s;
+  s.residual_yaw_deg = e.residual_yaw_deg;
+  s.painleve_events = e.painleve_events;
+  s.end_time_s = e.end_time_s;
+  s.end_mode = e.end_mode;
+  s.steps += e.steps;
+  for (auto& w : e.warnings) s.warnings.push_back(std::move(w));
+  if (options.record_history) {
+    auto& h = a.history;
+    const auto& c = b.history;
+    for (std::size_t k = 0; k < c.time_s.size(); ++k) {
+      if (!h.time_s.empty() && c.time_s[k] <= h.time_s.back()) {  // the hand-over row: the contact engine's state
+        h.position_m.back() = c.position_m[k];
+        h.orientation.back() = c.orientation[k];
+        h.angular_velocity_rad_s.back() = c.angular_velocity_rad_s[k];
+        h.energy_j_per_kg.back() = c.energy_j_per_kg[k];
+        h.mode.back() = c.mode[k];
+        continue;
+      }
+      h.time_s.push_back(c.time_s[k]);
+      h.position_m.push_back(c.position_m[k]);
+      h.orientation.push_back(c.orientation[k]);
+      h.angular_velocity_rad_s.push_back(c.angular_velocity_rad_s[k]);
+      h.energy_j_per_kg.push_back(c.energy_j_per_kg[k]);
+      h.mode.push_back(c.mode[k]);
+    }
+  }
+  return a;
+}
 
 }  // namespace
 
@@ -717,10 +884,14 @@ Rigid3DResult rock3d_cylinder(const GroundMotion& x, const GroundMotion* y, cons
     throw parameter_error("max_run_out_s", "max_run_out_s must be >= 0 and finite");
   }
   if (options.base_incline_deg != 0.0) throw parameter_error("base_incline_deg", "the rim engine has a level base");
+  if (options.mu_s || options.mu_k) {
+    detail::check_friction(options);
+  }
   const std::array<const GroundMotion*, 3> components{&x, y, z};
   const InputGrid grid(components);
   std::vector<double> gravity = effective_gravity(grid, 2, options.g_m_s2);
-  if (!gravity.empty()) {
+  const bool shenton = options.mu_s && !initial && *options.mu_s * b.centre_height_m < b.radius_m;
+  if (!gravity.empty() && (!options.mu_s || shenton)) {  // friction given: flight is modelled (contact engine)
     const double lowest = *std::min_element(gravity.begin(), gravity.end());
     if (!(lowest > 0.0)) {
       throw parameter_error("vertical", fmt::format("g + a_z reaches {} m/s2 <= 0: the body would leave the ground, "
@@ -728,11 +899,19 @@ Rigid3DResult rock3d_cylinder(const GroundMotion& x, const GroundMotion* y, cons
                                                     lowest));
     }
   }
+  if (shenton) {
+    // Shenton (1996): with mu_s h < R the centre of pressure c_plan + h F_t / N (|F_t| <= mu_s N) never reaches the
+    // rim, so the base never lifts and the body is the sliding block of sliding2d.hpp exactly (docs/method.md)
+    return detail::rock3d_flat_slide(x, y, z, options);
+  }
   Geo geo{b.radius_m, b.centre_height_m, b.inertia_axial_m2, b.inertia_transverse_m2,
           std::atan2(b.radius_m, b.centre_height_m), 0.0};
   geo.lift_energy = options.g_m_s2 * (std::hypot(geo.R, geo.h) - geo.h);
   Engine engine(grid, std::move(gravity), geo, options);
-  return engine.run(initial);
+  Rigid3DResult rolled = engine.run(initial);
+  if (!engine.handover()) return rolled;
+  return merge_disc_contact(std::move(rolled), detail::rock3d_disc_contact(x, y, z, b, options, *engine.handover()),
+                            options, geo.alpha);
 }
 
 }  // namespace topple

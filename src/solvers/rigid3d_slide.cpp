@@ -69,17 +69,6 @@ bool pressure_inside(const std::vector<PlanEdge>& edges, double h, double dx, do
   return std::all_of(edges.begin(), edges.end(), [&](const PlanEdge& e) { return h * (dx * e.nx + dy * e.ny) <= e.b; });
 }
 
-void check_friction(const Rigid3DOptions& o) {
-  if (!o.mu_s) throw parameter_error("mu_s", "a kinetic friction coefficient needs the static one (mu_s)");
-  if (!std::isfinite(*o.mu_s) || *o.mu_s < 0.0) {
-    throw parameter_error("mu_s", fmt::format("static friction must be >= 0 and finite, got {}", *o.mu_s));
-  }
-  if (o.mu_k && (!std::isfinite(*o.mu_k) || *o.mu_k < 0.0 || *o.mu_k > *o.mu_s)) {
-    throw parameter_error("mu_k", fmt::format("kinetic friction must be in [0, mu_s = {}], got {}", *o.mu_s, *o.mu_k));
-  }
-  o.sliding.validate();
-}
-
 GroundMotion zero_like(const GroundMotion& m) {
   std::vector<double> zeros(m.size(), 0.0);
   if (m.is_uniform()) return GroundMotion::uniform(std::move(zeros), m.dt_s(), m.start_time_s());
@@ -180,6 +169,77 @@ std::optional<double> first_contact_slip(const Rigid3DResult& r, const RigidBody
   return std::nullopt;
 }
 
+/// The flat phase's result up to history row `cut` (inclusive): modes rest / sliding, history rows (identity
+/// orientation), the base's displacement at the cut, slip episodes. `handover`: the body lifts at the cut (that row is
+/// stuck: a slip starting there is the one the uplift pre-empts). `incline`: the inclined base's frame (null: level),
+/// whose potential of the displacement along the plane joins the history's energy (level: none while flat).
+Rigid3DResult flat_phase(const Sliding2dResult& slide, std::size_t cut, bool handover, const Rigid3DOptions& options,
+                         const r3d::BaseFrame* incline) {
+  const Sliding2dHistory& H = slide.history;
+  Rigid3DResult out;
+  auto& s = out.summary;
+  s.modes.push_back({H.time_s.front(), Rigid3DMode::rest, -1, -1});
+  for (std::size_t j = 1; j <= cut; ++j) {
+    const bool slipping = H.slipping[j] != 0 && !(handover && j == cut);
+    const Rigid3DMode m = slipping ? Rigid3DMode::sliding : Rigid3DMode::rest;
+    if (m != s.modes.back().mode) s.modes.push_back({H.time_s[j], m, -1, -1});
+  }
+  if (options.record_history) {
+    auto& r = out.history;
+    for (std::size_t j = 0; j <= cut; ++j) {
+      const double we = H.east_m_s[j];
+      const double wn = H.north_m_s[j];
+      r.time_s.push_back(H.time_s[j]);
+      r.position_m.push_back({H.east_m[j], H.north_m[j], 0.0});
+      r.orientation.push_back(kIdentityQuaternion);
+      r.angular_velocity_rad_s.push_back({0.0, 0.0, 0.0});
+      r.energy_j_per_kg.push_back(0.5 * (we * we + wn * wn) +
+                                  (incline ? incline->potential({H.east_m[j], H.north_m[j], 0.0}, {}) : 0.0));
+      r.mode.push_back(H.slipping[j] != 0 ? Rigid3DMode::sliding : Rigid3DMode::rest);
+    }
+  }
+  s.residual_slide_east_m = H.east_m[cut];
+  s.residual_slide_north_m = H.north_m[cut];
+  s.steps = slide.summary.integrator_steps;
+  for (const Rigid3DModeChange& m : s.modes) {
+    if (m.mode == Rigid3DMode::sliding) {
+      ++s.slip_episodes;
+      if (!s.first_slip_time_s) s.first_slip_time_s = m.time_s;
+    }
+  }
+  return out;
+}
+
+/// A body that never lifted: slide_2d's summary whole on the flat phase of all rows (`incline` as flat_phase).
+Rigid3DResult whole_slide(Rigid3DResult out, const Sliding2dResult& slide, const Rigid3DOptions& options,
+                          const r3d::BaseFrame* incline) {
+  auto& s = out.summary;
+  s.max_slide_m = slide.summary.max_abs_displacement_m;
+  s.max_slide_speed_m_s = slide.summary.max_abs_velocity_m_s;
+  s.slide_path_length_m = slide.summary.path_length_m;
+  s.friction_energy_j_per_kg = slide.summary.friction_work_J_kg;
+  s.residual_slide_east_m = slide.summary.residual_east_m;
+  s.residual_slide_north_m = slide.summary.residual_north_m;
+  s.end_time_s = slide.summary.end_time_s;
+  s.end_mode = slide.summary.at_rest_at_end ? Rigid3DMode::rest : Rigid3DMode::sliding;
+  if (!slide.summary.at_rest_at_end) {
+    s.warnings.push_back(incline ? "the body was still sliding down the inclined base at the record's end "
+                                   "(tan(base_incline_deg) >= mu_k: it cannot stop)"
+                                 : "the body was still sliding at the record's end (mu_k = 0)");
+  }
+  if (options.record_history && out.history.time_s.back() < s.end_time_s) {  // the run-out's stop
+    auto& r = out.history;
+    r.time_s.push_back(s.end_time_s);
+    r.position_m.push_back({s.residual_slide_east_m, s.residual_slide_north_m, 0.0});
+    r.orientation.push_back(kIdentityQuaternion);
+    r.angular_velocity_rad_s.push_back({0.0, 0.0, 0.0});
+    r.energy_j_per_kg.push_back(
+        incline ? incline->potential({s.residual_slide_east_m, s.residual_slide_north_m, 0.0}, {}) : 0.0);
+    r.mode.push_back(s.end_mode);
+  }
+  return out;
+}
+
 /// The flat phase up to the cut (`out`: its modes, history rows and sliding totals) followed by the contact engine
 /// from `start` (rigid3d_contact.cpp).
 Rigid3DResult merge_contact(Rigid3DResult out, const GroundMotion& x, const GroundMotion* y, const GroundMotion* z,
@@ -227,6 +287,28 @@ Rigid3DResult merge_contact(Rigid3DResult out, const GroundMotion& x, const Grou
 }
 
 }  // namespace
+
+void check_friction(const Rigid3DOptions& o) {
+  if (!o.mu_s) throw parameter_error("mu_s", "a kinetic friction coefficient needs the static one (mu_s)");
+  if (!std::isfinite(*o.mu_s) || *o.mu_s < 0.0) {
+    throw parameter_error("mu_s", fmt::format("static friction must be >= 0 and finite, got {}", *o.mu_s));
+  }
+  if (o.mu_k && (!std::isfinite(*o.mu_k) || *o.mu_k < 0.0 || *o.mu_k > *o.mu_s)) {
+    throw parameter_error("mu_k", fmt::format("kinetic friction must be in [0, mu_s = {}], got {}", *o.mu_s, *o.mu_k));
+  }
+  o.sliding.validate();
+}
+
+Rigid3DResult rock3d_flat_slide(const GroundMotion& x, const GroundMotion* y, const GroundMotion* z,
+                                const Rigid3DOptions& options) {
+  const double mu_s = *options.mu_s;
+  const SlidingBlock block =
+      SlidingBlock::make(mu_s, options.mu_k.value_or(mu_s), 0.0, SlidingMode::two_way, options.g_m_s2);
+  const GroundMotion north = y ? *y : zero_like(x);
+  Sliding2dResult slide = slide_2d(x, north, ComponentAzimuths{90.0, 0.0}, block, z, options.sliding);
+  Rigid3DResult out = flat_phase(slide, slide.history.time_s.size() - 1, false, options, nullptr);
+  return whole_slide(std::move(out), slide, options, nullptr);
+}
 
 Rigid3DResult rock3d_friction(const GroundMotion& x, const GroundMotion* y, const GroundMotion* z,
                               const RigidBody3D& body, const Rigid3DOptions& options) {
@@ -314,67 +396,11 @@ Rigid3DResult rock3d_friction(const GroundMotion& x, const GroundMotion* y, cons
   // slide-rock: the contact engine starts at the last row before the centre of pressure left the base (slipping)
   if (slide_rock && *slide_rock > 0) --*slide_rock;
   const std::size_t cut = handover ? *handover : slide_rock ? *slide_rock : lost ? *lost : H.time_s.size() - 1;
-  Rigid3DResult out;
+  Rigid3DResult out = flat_phase(slide, cut, handover.has_value(), options, inclined ? &frame : nullptr);
   auto& s = out.summary;
-  s.modes.push_back({H.time_s.front(), Rigid3DMode::rest, -1, -1});
-  for (std::size_t j = 1; j <= cut; ++j) {
-    // the handover row is stuck (a slip starting there is the one the uplift pre-empts)
-    const bool slipping = H.slipping[j] != 0 && !(handover && j == cut);
-    const Rigid3DMode m = slipping ? Rigid3DMode::sliding : Rigid3DMode::rest;
-    if (m != s.modes.back().mode) s.modes.push_back({H.time_s[j], m, -1, -1});
-  }
-  if (options.record_history) {
-    auto& r = out.history;
-    for (std::size_t j = 0; j <= cut; ++j) {
-      const double we = H.east_m_s[j];
-      const double wn = H.north_m_s[j];
-      r.time_s.push_back(H.time_s[j]);
-      r.position_m.push_back({H.east_m[j], H.north_m[j], 0.0});
-      r.orientation.push_back(kIdentityQuaternion);
-      r.angular_velocity_rad_s.push_back({0.0, 0.0, 0.0});
-      // kinetic, and on an incline the potential of the displacement along the plane (level: none while flat)
-      r.energy_j_per_kg.push_back(0.5 * (we * we + wn * wn) +
-                                  (inclined ? frame.potential({H.east_m[j], H.north_m[j], 0.0}, {}) : 0.0));
-      r.mode.push_back(H.slipping[j] != 0 ? Rigid3DMode::sliding : Rigid3DMode::rest);
-    }
-  }
-  s.residual_slide_east_m = H.east_m[cut];
-  s.residual_slide_north_m = H.north_m[cut];
-  s.steps = slide.summary.integrator_steps;
   const double t_cut = H.time_s[cut];
-  for (const Rigid3DModeChange& m : s.modes) {
-    if (m.mode == Rigid3DMode::sliding) {
-      ++s.slip_episodes;
-      if (!s.first_slip_time_s) s.first_slip_time_s = m.time_s;
-    }
-  }
 
-  if (!handover && !slide_rock && !lost) {  // never lifted: slide_2d's answer whole
-    s.max_slide_m = slide.summary.max_abs_displacement_m;
-    s.max_slide_speed_m_s = slide.summary.max_abs_velocity_m_s;
-    s.slide_path_length_m = slide.summary.path_length_m;
-    s.friction_energy_j_per_kg = slide.summary.friction_work_J_kg;
-    s.residual_slide_east_m = slide.summary.residual_east_m;
-    s.residual_slide_north_m = slide.summary.residual_north_m;
-    s.end_time_s = slide.summary.end_time_s;
-    s.end_mode = slide.summary.at_rest_at_end ? Rigid3DMode::rest : Rigid3DMode::sliding;
-    if (!slide.summary.at_rest_at_end) {
-      s.warnings.push_back(inclined ? "the body was still sliding down the inclined base at the record's end "
-                                      "(tan(base_incline_deg) >= mu_k: it cannot stop)"
-                                    : "the body was still sliding at the record's end (mu_k = 0)");
-    }
-    if (options.record_history && out.history.time_s.back() < s.end_time_s) {  // the run-out's stop
-      auto& r = out.history;
-      r.time_s.push_back(s.end_time_s);
-      r.position_m.push_back({s.residual_slide_east_m, s.residual_slide_north_m, 0.0});
-      r.orientation.push_back(kIdentityQuaternion);
-      r.angular_velocity_rad_s.push_back({0.0, 0.0, 0.0});
-      r.energy_j_per_kg.push_back(
-          inclined ? frame.potential({s.residual_slide_east_m, s.residual_slide_north_m, 0.0}, {}) : 0.0);
-      r.mode.push_back(s.end_mode);
-    }
-    return out;
-  }
+  if (!handover && !slide_rock && !lost) return whole_slide(std::move(out), slide, options, inclined ? &frame : nullptr);
 
   // The sliding totals up to the cut.
   if (cut > 0) {

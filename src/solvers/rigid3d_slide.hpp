@@ -28,6 +28,16 @@ struct BaseRecords {
 [[nodiscard]] Rigid3DResult rock3d_friction(const GroundMotion& x, const GroundMotion* y, const GroundMotion* z,
                                             const RigidBody3D& body, const Rigid3DOptions& options);
 
+/// The friction options' checks (rock3d_friction's): mu_s given, finite and >= 0, 0 <= mu_k <= mu_s, the sliding
+/// tolerances. Throws InputError naming "mu_s" or "mu_k".
+void check_friction(const Rigid3DOptions& options);
+
+/// A body that can never lift (Shenton 1996: mu_s h below the least distance from c's plan to the base's edge):
+/// slide_2d's answer whole, as rock3d_friction returns it for such a body (modes rest / sliding; history rows with the
+/// identity orientation). Friction given and checked by the caller.
+[[nodiscard]] Rigid3DResult rock3d_flat_slide(const GroundMotion& x, const GroundMotion* y, const GroundMotion* z,
+                                              const Rigid3DOptions& options);
+
 /// The state the contact engine starts from (rigid3d_contact.cpp): the body frame's origin in the ground frame, c's
 /// velocity, the orientation and the angular velocity (ground frame).
 struct ContactStart {

@@ -155,10 +155,6 @@ std::vector<ObjectCheck> check_object_model(const ObservedObject& o, int compone
                                        "base in three dimensions; give a block with its depth, a cylinder, or a "
                                        "mesh");
       }
-      if (o.friction_3d && o.body.shape == RockingBody::Shape::cylinder) {
-        throw parameter_error("friction_3d", "model = \"3d\": a cylinder's rim engine (rigid3d_disc.hpp) rolls "
-                                             "without slip; sliding in three dimensions is a box's or a mesh's");
-      }
       if (!o.depth_m && o.body.shape == RockingBody::Shape::block) {
         throw parameter_error("depth", "model = \"3d\" needs the block's depth (its extent along bearing + 90 deg), "
                                        "a length with a unit");

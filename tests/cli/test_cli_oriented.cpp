@@ -560,7 +560,8 @@ TEST_F(CliOriented, Model3dRefusesWhatItDoesNotModel) {
                "--height 80cm --bearing-deg 10", "--bearing-deg");
   expect_error("rock " + h1 + " --model 3d --shape block --width 20cm --depth 30cm --height 80cm --mu 0.3 --mu-k 0.5",
                "--mu-k");
-  expect_error("rock " + h1 + " --model 3d --shape cylinder --diameter 20cm --height 80cm --mu 0.5", "--mu");
+  expect_error("rock " + h1 + " --model 3d --shape cylinder --diameter 20cm --height 80cm --mu 0.3 --mu-k 0.5",
+               "--mu-k");
   expect_error("rock " + h1 + " --model 3d --shape block --width 20cm --depth 0cm --height 80cm", "--depth");
   // Bodies without a base in three dimensions: a body file (a section in one plane), a general body.
   test::write_file(dir.path() / "body.json", "{}");

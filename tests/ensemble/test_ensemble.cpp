@@ -392,10 +392,29 @@ TEST(EnsembleRun, ThreeDimensionalCylinderUnderOneComponentIsThePlanarCylinder) 
   ASSERT_EQ(tb.rows.size(), 12U);
   const std::size_t tilt = column(tb, "max_tilt_rad");
   for (std::size_t run = 0; run < 6; ++run) EXPECT_EQ(number(tb.rows[run][tilt]), number(tb.rows[run + 6][tilt]));
-  // A cylinder rolls without slip on its rim: friction is refused by name.
+  // With friction (mu, mu_kinetic: Rigid3DOptions::mu_s, mu_k; rigid3d_disc.hpp) each row is rock3d_cylinder's own
+  // run with them on the pair along east and north (called here directly); a bad mu_kinetic is refused by name.
   three_d.options.mu = 0.5;
+  three_d.mu_kinetic = 0.4;
   spec.objects = {three_d};
-  EXPECT_EQ(refused_field(spec), "object[1].mu");  // a 3-D cylinder with friction
+  spec.bearings_deg = {0.0};
+  const ResultTable tf = run_in_memory(make_plan(spec));
+  ASSERT_EQ(tf.rows.size(), 6U);
+  const std::size_t fell_col = column(tf, "overturned");
+  for (std::size_t run = 0; run < 6; ++run) {
+    const double factor = number(tf.rows[run][column(tf, "scale_factor")]);
+    const bool inverse = std::get<std::string>(tf.rows[run][column(tf, "polarity")]) == "inverse";
+    const GroundMotion east = rec->scaled(inverse ? -factor : factor);
+    Rigid3DOptions o = rigid3d_options(three_d.options);
+    o.mu_s = 0.5;
+    o.mu_k = 0.4;
+    const Rigid3DSummary s = rock3d_cylinder(east, &quiet, nullptr, CylinderBody3D::solid(0.3, 1.0), o).summary;
+    EXPECT_EQ(std::get<bool>(tf.rows[run][fell_col]), s.overturned) << run;
+    EXPECT_EQ(number(tf.rows[run][column(tf, "max_tilt_rad")]), s.max_tilt_rad) << run;
+  }
+  three_d.mu_kinetic = 0.6;
+  spec.objects = {three_d};
+  EXPECT_EQ(refused_field(spec), "object[1].mu_kinetic");  // mu_kinetic above mu
 }
 
 // Two horizontal components: the cylinder on its rim (model "3d") against the planar cylinder in the worst of its

@@ -333,8 +333,8 @@ TEST(FragilityAnalysis, AThreeDimensionalBoxUnderCollinearPairsIsThePlanarBlockO
 // Friction for a three-dimensional box (OverturnFailure::mu_3d): with mu < b / h it can never lift (Shenton 1996; in
 // three dimensions the centre of pressure of a base sticking or sliding flat lies within h mu of c's plan, rigid3d.hpp:
 // here h = 0.3 m, mu = 0.2, h mu = 0.06 m < b = 0.075 m, the half-width along the record), so no pair overturns it at
-// any level, where without friction the same box falls. A cylinder with friction and a bad mu are refused by name,
-// before any run.
+// any level, where without friction the same box falls; likewise a cylinder (rigid3d_disc.hpp). A bad mu is refused by
+// name, before any run.
 TEST(FragilityAnalysis, AThreeDimensionalBoxWithFrictionBelowItsAspectRatioNeverFalls) {
   const std::vector<std::shared_ptr<const MotionSet>> sets = collinear_pairs(4);
   FragilitySpec box = box_3d_under(sets, 6);
@@ -346,11 +346,17 @@ TEST(FragilityAnalysis, AThreeDimensionalBoxWithFrictionBelowItsAspectRatioNever
   FragilitySpec bad = box;
   bad.overturning->mu_3d = -0.1;
   EXPECT_NE(refused_field(bad).find("mu"), std::string::npos) << refused_field(bad);  // a negative mu
+  // A cylinder with friction (rigid3d_disc.hpp): below Shenton's mu_s = R / h (0.1 / 0.4 = 0.25) it never lifts,
+  // at any scale; a negative mu is refused by name.
   FragilitySpec cyl = box;
   cyl.overturning->body_3d.reset();
   cyl.overturning->cylinder_3d = CylinderBody3D::solid(0.2, 0.8);
-  cyl.overturning->mu_3d = 0.5;
-  EXPECT_EQ(refused_field(cyl), "mu");  // the rim engine has no friction
+  cyl.overturning->mu_3d.reset();
+  EXPECT_GT(fragility_analysis(cyl).curves.at(0).data.failures.back(), 0);
+  cyl.overturning->mu_3d = 0.2;
+  EXPECT_EQ(fragility_analysis(cyl).curves.at(0).data.failures, std::vector<int>(6, 0));
+  cyl.overturning->mu_3d = -0.1;
+  EXPECT_NE(refused_field(cyl).find("mu"), std::string::npos) << refused_field(cyl);  // a negative mu
 }
 
 // A cylinder in three dimensions (OverturnFailure::cylinder_3d, the rim engine rigid3d_disc.hpp) under collinear

@@ -520,8 +520,8 @@ TEST(Match3c, AThreeDimensionalCylinderIsTheRimEngine) {
 
 // friction_3d = "mu" (a box or a mesh with model = "3d"): the engine's base slides with mu_s = mu_k = the drawn mu.
 // The match is rocking_match of rock3d's own run with that friction (called directly); without the key the object is
-// the no-slip engine's (old surveys keep their meaning). The key is refused without model = "3d", on a cylinder, and
-// with an unknown value, at the object's key. A box that may slide has no "did not rock" upper bound where mu is
+// the no-slip engine's (old surveys keep their meaning). The key is refused without model = "3d" and with an unknown
+// value, at the object's key; a cylinder takes it (rigid3d_disc.hpp's friction). A box that may slide has no "did not rock" upper bound where mu is
 // below the farthest corner's d/h (it can slide instead of rocking at any PGA).
 TEST(Match3c, FrictionThreeDIsTheEnginesFriction) {
   const std::string three = "[inversion]\ncomponents = 3\n";
@@ -534,9 +534,11 @@ TEST(Match3c, FrictionThreeDIsTheEnginesFriction) {
   expect_error(three + std::string(kObjectBlock) + "friction_3d = \"mu\"\noutcome = \"overturned\"\n",
                "object[1](a).friction_3d", "model = \"3d\"");
   expect_error(three + box + "friction_3d = \"yes\"\noutcome = \"overturned\"\n", "object[1](a).friction_3d", "none, mu");
-  expect_error(three + "[[object]]\nid = \"c\"\nshape = \"cylinder\"\ndiameter = \"8cm\"\nheight = \"40cm\"\n"
-                       "mu = 0.5\nmodel = \"3d\"\nfriction_3d = \"mu\"\noutcome = \"overturned\"\n",
-               "object[1](c).friction_3d", "without slip");
+  EXPECT_TRUE(parse(three + "[[object]]\nid = \"c\"\nshape = \"cylinder\"\ndiameter = \"8cm\"\nheight = \"40cm\"\n"
+                             "mu = 0.5\nmodel = \"3d\"\nfriction_3d = \"mu\"\noutcome = \"overturned\"\n")
+                  .sites[0]
+                  .objects[0]
+                  .friction_3d);
   // The match against the engine run directly.
   const InversionSettings st = small_3c(2, 6);
   const Realisation3c r = family_realisation_3c(st, 2.0, 1);

@@ -671,8 +671,8 @@ mesh_pose = "as-scanned"
 }
 
 // model = "3d" for a cylinder: the rim engine's solid cylinder (rigid3d_disc.hpp) of the diameter and height; a box
-// takes mu and mu_kinetic (Rigid3DOptions::mu_s, mu_k), each value a case; without them no friction (the no-slip
-// engine, as before).
+// and a cylinder take mu and mu_kinetic (Rigid3DOptions::mu_s, mu_k), each value a case; without them no friction
+// (the no-slip engines, as before).
 TEST(SweepFile, ThreeDimensionalCylindersAndFriction) {
   TempDir dir;
   const SweepFile f = parse_in(dir, std::string(kPulseMotions) + R"([[object]]
@@ -680,6 +680,7 @@ model = "3d"
 shape = "cylinder"
 diameter = "30cm"
 height_m = 1.0
+mu = 0.5
 [[object]]
 model = "3d"
 shape = "block"
@@ -699,6 +700,7 @@ height_m = 0.8
   const auto& cyl = std::get<RockObject>(f.spec.objects[0]);
   ASSERT_TRUE(cyl.cylinder_3d.has_value());
   EXPECT_FALSE(cyl.body_3d.has_value());
+  EXPECT_EQ(cyl.options.mu.value_or(-1.0), 0.5);
   EXPECT_TRUE(cyl.three_d());
   const CylinderBody3D expected = CylinderBody3D::solid(0.3, 1.0);
   EXPECT_NEAR(cyl.cylinder_3d->radius_m, 0.15, 1e-15);
@@ -727,7 +729,8 @@ TEST(SweepFile, ThreeDimensionalRefusalsNameFileLineAndKey) {
   };
   const std::string box = "shape = \"block\"\nwidth_m = 0.2\ndepth_m = 0.3\nheight_m = 0.8\n";  // lines 9-12
   const Case cases[] = {
-      {"shape = \"cylinder\"\ndiameter_m = 0.1\nheight_m = 0.3\nmu = 0.5\n", "object[1].mu", 12, "without slip"},
+      {"shape = \"cylinder\"\ndiameter_m = 0.1\nheight_m = 0.3\nmu = 0.5\nmu_kinetic = 0.6\n", "object[1].mu_kinetic", 13,
+       "[0, mu = 0.5]"},
       {"shape = \"general\"\na_m = 0.03\nh_m = 0.2\nD_m2 = 0.05\n", "object[1].shape", 9, "general body"},
       {"shape = \"block\"\nwidth_m = 0.1\nheight_m = 0.3\n", "object[1].depth", 7, "depth"},
       {box + "mu_kinetic = 0.3\n", "object[1].mu_kinetic", 13, "needs the static one"},

@@ -12,8 +12,12 @@
 
 #include "support/noise_record.hpp"
 #include "topple/core/error.hpp"
+#include "topple/solvers/rigid3d.hpp"
 #include "topple/solvers/rigid3d_disc.hpp"
 #include "topple/solvers/rocking.hpp"
+#include "topple/solvers/slide_rock.hpp"
+#include "topple/solvers/sliding.hpp"
+#include "topple/solvers/sliding2d.hpp"
 
 namespace topple {
 namespace {
@@ -340,6 +344,384 @@ TEST(Rigid3DDisc, BadInputNamesTheField) {
   const GroundMotion m = noise(1, 0.3 * kG);
   const GroundMotion v = times(m, -10.0);
   EXPECT_THROW((void)rock3d_cylinder(m, nullptr, &v, CylinderBody3D::solid(0.3, 1.0)), InputError);
+}
+
+
+// Friction given (Rigid3DOptions::mu_s; docs/method.md, "A circular base with friction"). With mu large the rolling
+// contact never needs more than mu_s N: the answer is the no-slip rim engine's (the same steps: the check reads the
+// contact force on the dense output and changes no state), for two components and a vertical.
+TEST(Rigid3DDiscFriction, LargeMuIsTheNoSlipRimEngine) {
+  const CylinderBody3D cyl = CylinderBody3D::solid(0.3, 1.0);
+  int rocked = 0, fell = 0;
+  std::size_t contact_failed = 0;
+  for (const unsigned seed : {1U, 2U, 3U}) {
+    for (const double pga_g : {0.3, 0.6}) {
+      const GroundMotion ex = noise(seed, pga_g * kG);
+      const GroundMotion ny = noise(seed + 10, 0.7 * pga_g * kG);
+      const GroundMotion up = noise(seed + 20, 0.3 * pga_g * kG);
+      Rigid3DOptions o;
+      o.g_m_s2 = kG;
+      const Rigid3DSummary a = rock3d_cylinder(ex, &ny, &up, cyl, o).summary;
+      o.mu_s = 10.0;
+      o.mu_k = 8.0;
+      const Rigid3DSummary b = rock3d_cylinder(ex, &ny, &up, cyl, o).summary;
+      SCOPED_TRACE(testing::Message() << "seed " << seed << " pga " << pga_g);
+      EXPECT_EQ(b.overturned, a.overturned);
+      EXPECT_EQ(b.impacts, a.impacts);
+      EXPECT_EQ(b.uplifts, a.uplifts);
+      if (!a.overturned) {
+        EXPECT_EQ(b.residual_slide_east_m, 0.0);
+        EXPECT_TRUE(b.warnings.empty());
+        EXPECT_FALSE(b.slide_rock_time_s);
+        EXPECT_FALSE(b.flight_time_s);
+        EXPECT_NEAR(b.max_tilt_rad, a.max_tilt_rad, 1e-6);
+        EXPECT_NEAR(b.end_time_s, a.end_time_s, 1e-9);
+      } else {
+        // a toppling body's rolling contact fails near the end of its fall, where N -> 0 and |F_t| / N grows without
+        // bound (even at mu = 10): it slips or flies for the last instants of the fall (measured: the fall at 90
+        // degrees within 5e-3 s of the no-slip engine's, the same azimuth within 1 degree)
+        ASSERT_TRUE(b.overturn_time_s);
+        EXPECT_NEAR(*b.overturn_time_s, *a.overturn_time_s, 0.02);
+        EXPECT_NEAR(std::remainder(b.overturn_azimuth_deg - a.overturn_azimuth_deg, 360.0), 0.0, 2.0);
+        EXPECT_NEAR(b.max_tilt_rad, a.max_tilt_rad, 1e-6);  // 90 degrees
+        if (b.slide_rock_time_s || b.flight_time_s) ++contact_failed;
+      }
+      rocked += a.uplifts > 0 ? 1 : 0;
+      fell += a.overturned ? 1 : 0;
+    }
+  }
+  EXPECT_GE(rocked, 4);
+  EXPECT_GT(fell, 0);
+  EXPECT_GT(contact_failed, 0U);
+  std::printf("mu 10: %d of 6 runs rocked, %d fell, %zu falls ending in slip or flight\n", rocked, fell,
+              contact_failed);
+}
+
+// mu_s h < R: the centre of pressure never reaches the rim (Shenton 1996), the cylinder is slide_2d's block: residual
+// displacement, max speed, path and friction work to 1e-9 relative, never a tilt. Just above (mu_s h > R) a strong
+// record lifts it.
+TEST(Rigid3DDiscFriction, NoUpliftBelowShentonIsSlide2d) {
+  const CylinderBody3D cyl = CylinderBody3D::solid(0.6, 1.0);  // R / h = 0.6
+  const GroundMotion ex = noise(4, 1.5 * kG);
+  const GroundMotion ny = noise(5, 1.0 * kG);
+  const GroundMotion up = noise(6, 0.3 * kG);
+  Rigid3DOptions o;
+  o.g_m_s2 = kG;
+  o.mu_s = 0.55;
+  o.mu_k = 0.45;
+  o.record_history = true;
+  const Rigid3DResult r = rock3d_cylinder(ex, &ny, &up, cyl, o);
+  const Sliding2dSummary s =
+      slide_2d_summary(ex, ny, ComponentAzimuths{90.0, 0.0}, SlidingBlock::make(0.55, 0.45, 0.0, SlidingMode::two_way, kG),
+                       &up);
+  const double d = std::hypot(s.residual_east_m, s.residual_north_m);
+  ASSERT_GT(d, 0.05);  // it slid
+  EXPECT_NEAR(r.summary.residual_slide_east_m, s.residual_east_m, 1e-9 * d);
+  EXPECT_NEAR(r.summary.residual_slide_north_m, s.residual_north_m, 1e-9 * d);
+  EXPECT_NEAR(r.summary.max_slide_speed_m_s, s.max_abs_velocity_m_s, 1e-9 * s.max_abs_velocity_m_s);
+  EXPECT_NEAR(r.summary.slide_path_length_m, s.path_length_m, 1e-9 * s.path_length_m);
+  EXPECT_NEAR(r.summary.friction_energy_j_per_kg, s.friction_work_J_kg, 1e-9 * s.friction_work_J_kg);
+  EXPECT_EQ(r.summary.uplifts, 0U);
+  EXPECT_EQ(r.summary.max_tilt_rad, 0.0);
+  EXPECT_GT(r.summary.slip_episodes, 0);
+  ASSERT_TRUE(r.summary.first_slip_time_s);
+  for (const Rigid3DMode m : r.history.mode) EXPECT_TRUE(m == Rigid3DMode::rest || m == Rigid3DMode::sliding);
+  o.mu_s = 0.65;
+  o.mu_k = 0.65;
+  EXPECT_GT(rock3d_cylinder(ex, &ny, &up, cyl, o).summary.uplifts, 0U);
+}
+
+// The contact force on the rim against its closed form. Released from rest at tilt theta0 in one vertical plane
+// (w = 0), or with a rate w about the rocking axis, the body turns about the contact: with rho = |c - p|, beta = alpha
+// - theta0 the angle of c - p from the vertical, D = J_t + rho^2 (rocking.hpp's cylinder), theta'' = g rho sin(beta) /
+// D back toward the upright; c's acceleration is rho theta'' across c - p plus w^2 rho toward p, so (per unit mass)
+//   F_t = g rho^2 sin(beta) cos(beta) / D - w^2 rho sin(beta),   N = g (1 - rho^2 sin^2(beta) / D) - w^2 rho cos(beta).
+// A mu_s just below F_t / N stops the run at its start with a slip on the rim; just above, not there. A w^2 just above
+// N's zero stops it at its start with flight; just below, not there.
+TEST(Rigid3DDiscFriction, RimContactForceAgainstTheClosedForm) {
+  const CylinderBody3D cyl = CylinderBody3D::solid(0.3, 1.0);
+  const double R = 0.15, h = 0.5, rho2 = R * R + h * h, rho = std::sqrt(rho2);
+  const double D = cyl.inertia_transverse_m2 + rho2;
+  const double theta0 = 0.2, beta = std::atan2(R, h) - theta0;
+  const auto run = [&](double mu, double w) {
+    Rigid3DOptions o;
+    o.g_m_s2 = kG;
+    o.mu_s = mu;
+    o.max_run_out_s = 0.0;
+    // tilted toward +x (the contact on the +x rim); w about y: positive w raises the tilt (any sign: w^2)
+    return rock3d_cylinder(still(1.0), nullptr, nullptr, cyl, o, CylinderInitialState{tilted(theta0, 0.0), {0.0, w, 0.0}})
+        .summary;
+  };
+  const double ratio = rho2 * std::sin(beta) * std::cos(beta) / (D - rho2 * std::pow(std::sin(beta), 2));
+  std::printf("cylinder 0.3 x 1.0 released at 0.2 rad: F_t / N = %.6f\n", ratio);
+  const Rigid3DSummary below = run(ratio * (1.0 - 1e-6), 0.0);
+  ASSERT_TRUE(below.slide_rock_time_s);
+  EXPECT_EQ(*below.slide_rock_time_s, 0.0);
+  EXPECT_FALSE(below.flight_time_s);
+  EXPECT_GT(below.slide_path_length_m, 0.0);
+  const Rigid3DSummary above = run(ratio * (1.0 + 1e-6), 0.0);
+  ASSERT_TRUE(above.slide_rock_time_s);  // the ratio grows as the body falls back (beta grows): slips soon after
+  EXPECT_GT(*above.slide_rock_time_s, 0.0);
+  EXPECT_LT(*above.slide_rock_time_s, 0.1);
+  // flight: N = 0 at w0^2 = g (1 - rho^2 sin^2(beta) / D) / (rho cos(beta)); mu_s = 100 keeps the slip test off
+  const double w0 = std::sqrt(kG * (1.0 - rho2 * std::pow(std::sin(beta), 2) / D) / (rho * std::cos(beta)));
+  const Rigid3DSummary fly = run(100.0, w0 * (1.0 + 1e-6));
+  ASSERT_TRUE(fly.flight_time_s);
+  EXPECT_EQ(*fly.flight_time_s, 0.0);
+  EXPECT_TRUE(!fly.slide_rock_time_s || *fly.slide_rock_time_s > 0.0);  // after landing, if at all
+  EXPECT_GE(fly.flights, 1U);
+  const Rigid3DSummary stays = run(100.0, w0 * (1.0 - 1e-3));
+  EXPECT_TRUE(!stays.flight_time_s || *stays.flight_time_s > 0.0);
+}
+
+// Under one component with no spin the cylinder stays in the vertical plane of the input, where the planar coupled
+// model (slide_rock.hpp) with the cylinder's planar body (RockingBody::cylinder: b = d / 2, k2 = J_t) is the same
+// mechanics: while its pivot sticks (rock) the rim engine rolls identically (verdict, impacts, max tilt to 1e-6); its
+// first slip of a rocking pivot (slide-rock) or lift-off (flight), located there on its own dense output at |F| = mu_s
+// N or N = 0, is where the rim engine's rolling contact fails (to 1e-6 s); after it the two engines slide-rock and fly
+// with the same laws but impacts differ (the rim engine's flat landing, header), so the verdict and residual slide are
+// compared within the numbers measured below.
+TEST(Rigid3DDiscFriction, OneComponentAgreesWithThePlanarCoupledModel) {
+  const CylinderBody3D cyl = CylinderBody3D::solid(0.3, 1.0);
+  const RockingBody planar = RockingBody::cylinder(0.3, 1.0);
+  int same = 0, coupled = 0, flights = 0, verdicts = 0;
+  double worst_tilt = 0.0, worst_time = 0.0;
+  for (const unsigned seed : {1U, 2U, 3U}) {
+    for (const double pga_g : {0.3, 0.5}) {
+      for (const double mu : {0.32, 0.5, 1.0}) {
+        for (const bool vertical : {false, true}) {
+          const GroundMotion m = noise(seed, pga_g * kG);
+          const GroundMotion up = noise(seed + 30, 2.2 * pga_g * kG);
+          SlideRockOptions po;
+          po.g_m_s2 = kG;
+          po.rel_tol = 1e-12;
+          const SlideRockResult p =
+              slide_rock(m, SlideRockBody::from_rocking(planar, mu, mu), po, vertical ? &up : nullptr);
+          const auto& first = p.summary.mode_first_time_s;
+          const auto sr = first[static_cast<std::size_t>(SlideRockMode::slide_rock)];
+          const auto fl = first[static_cast<std::size_t>(SlideRockMode::flight)];
+          Rigid3DOptions o;
+          o.g_m_s2 = kG;
+          o.rel_tol = 1e-12;
+          o.mu_s = mu;
+          const Rigid3DSummary s = rock3d_cylinder(m, nullptr, vertical ? &up : nullptr, cyl, o).summary;
+          SCOPED_TRACE(testing::Message() << "seed " << seed << " pga " << pga_g << " mu " << mu << " vertical "
+                                          << vertical);
+          const double t1 = std::min(sr.value_or(1e300), fl.value_or(1e300));
+          const double mine = std::min(s.slide_rock_time_s.value_or(1e300), s.flight_time_s.value_or(1e300));
+          if (t1 > 1e299) {
+            EXPECT_GT(mine, 1e299);
+            EXPECT_EQ(s.overturned, p.summary.overturned);
+            EXPECT_EQ(s.impacts, p.summary.impacts);
+            EXPECT_NEAR(s.max_tilt_rad, p.summary.max_rotation_over_alpha * planar.alpha_rad(), 1e-6);
+            worst_tilt = std::max(worst_tilt,
+                                  std::abs(s.max_tilt_rad - p.summary.max_rotation_over_alpha * planar.alpha_rad()));
+            ++same;
+          } else {
+            EXPECT_NEAR(mine, t1, 1e-6);
+            worst_time = std::max(worst_time, std::abs(mine - t1));
+            flights += fl ? 1 : 0;
+            verdicts += s.overturned == p.summary.overturned ? 1 : 0;
+            if (!s.overturned && !p.summary.overturned) {
+              // both stand: the base's residual slide (the planar pivot's u) within 10 % + 0.1 mm (measured: to the
+              // printed 0.1 mm)
+              EXPECT_NEAR(std::hypot(s.residual_slide_east_m, s.residual_slide_north_m),
+                          std::abs(p.summary.residual_slide_m), 0.1 * std::abs(p.summary.residual_slide_m) + 1e-4);
+              EXPECT_NEAR(s.residual_slide_north_m, 0.0, 1e-9);  // in the plane of the input
+            }
+            std::printf("  seed %u pga %.1f mu %.2f v %d: first %.6f / %.6f, fell %d / %d, impacts %zu / %zu, slide "
+                        "%.4f / %.4f m, flights %zu / %zu\n",
+                        seed, pga_g, mu, vertical ? 1 : 0, mine, t1, s.overturned ? 1 : 0,
+                        p.summary.overturned ? 1 : 0, s.impacts, p.summary.impacts,
+                        std::hypot(s.residual_slide_east_m, s.residual_slide_north_m), p.summary.residual_slide_m,
+                        s.flights, p.summary.mode_entries[static_cast<std::size_t>(SlideRockMode::flight)]);
+            ++coupled;
+          }
+        }
+      }
+    }
+  }
+  std::printf("one component vs the coupled model: %d runs roll the same (worst max tilt %.3g rad); %d slip or fly "
+              "(%d fly; first instant worst %.3g s; the same verdict in %d)\n",
+              same, worst_tilt, coupled, flights, worst_time, verdicts);
+  EXPECT_GE(same, 3);
+  EXPECT_GE(coupled, 3);
+  EXPECT_GE(flights, 1);
+  // measured: 16 of 17 (one run, chattering through 131 impacts after two flights, stands where the coupled model's
+  // falls: the flat landing's law differs from the planar corner impact, header)
+  EXPECT_GE(verdicts, coupled - 1);
+}
+
+// Frictionless (mu_s = mu_k = 0) a cylinder released past its static limit slips on its rim: no horizontal force, so
+// c falls straight down (its horizontal position fixed to rounding), and energy is conserved; with the contact on the
+// ground (z_c = h cos(theta) + R sin(theta)) the energy gives the rate in closed form (planar, the "falling rod on a
+// smooth floor"):  theta'^2 (J_t + (R cos(theta) - h sin(theta))^2) / 2 + g (h cos(theta) + R sin(theta) - h) = E_0.
+TEST(Rigid3DDiscFriction, FrictionlessSlipIsTheFallingRodOnASmoothFloor) {
+  const CylinderBody3D cyl = CylinderBody3D::solid(0.3, 1.0);
+  const double R = 0.15, h = 0.5, Jt = cyl.inertia_transverse_m2, theta0 = 0.4;
+  Rigid3DOptions o;
+  o.g_m_s2 = kG;
+  o.mu_s = 0.0;
+  o.max_run_out_s = 0.0;
+  o.record_history = true;
+  o.rel_tol = 1e-10;
+  const Rigid3DResult r =
+      rock3d_cylinder(still(2.0), nullptr, nullptr, cyl, o, CylinderInitialState{tilted(theta0, 0.0), {}});
+  ASSERT_TRUE(r.summary.overturned);
+  ASSERT_TRUE(r.summary.slide_rock_time_s);
+  EXPECT_EQ(*r.summary.slide_rock_time_s, 0.0);
+  const double E0 = kG * (h * std::cos(theta0) + R * std::sin(theta0) - h);
+  const auto& H = r.history;
+  ASSERT_GT(H.time_s.size(), 5U);
+  double worst_rate = 0.0, worst_x = 0.0;
+  const double cx0 = H.position_m.front()[0] + h * axis_of(H.orientation.front())[0];
+  for (std::size_t i = 0; i < H.time_s.size(); ++i) {
+    const Vec3 a = axis_of(H.orientation[i]);
+    const double th = std::atan2(std::hypot(a[0], a[1]), a[2]);
+    if (th > 1.5) break;  // up to the fall
+    const double cx = H.position_m[i][0] + h * a[0];
+    worst_x = std::max(worst_x, std::abs(cx - cx0));
+    const double m = Jt + std::pow(R * std::cos(th) - h * std::sin(th), 2);
+    const double rate = std::sqrt(2.0 * (E0 - kG * (h * std::cos(th) + R * std::sin(th) - h)) / m);
+    worst_rate = std::max(worst_rate, std::abs(std::hypot(H.angular_velocity_rad_s[i][0],
+                                                          H.angular_velocity_rad_s[i][1]) - rate));
+    EXPECT_NEAR(H.energy_j_per_kg[i], E0, 1e-7) << "at " << H.time_s[i];  // conserved
+  }
+  std::printf("frictionless fall: |c_x drift| %.3g m, |theta' - closed form| %.3g rad/s\n", worst_x, worst_rate);
+  EXPECT_LT(worst_x, 1e-9);
+  EXPECT_LT(worst_rate, 1e-6);
+  EXPECT_EQ(r.summary.friction_energy_j_per_kg, 0.0);
+}
+
+// On still ground, a cylinder released tilted with friction (rocking back onto its base, or wobbling with spin:
+// slip, stick, flat landings, flat sliding): the energy never increases, and kinetic friction plus impacts account for
+// what is lost (1e-6).
+TEST(Rigid3DDiscFriction, EnergyNeverIncreasesOnStillGround) {
+  const CylinderBody3D cyl = CylinderBody3D::solid(0.3, 1.0);
+  int slipped = 0;
+  std::size_t impacts = 0;
+  struct Start {
+    double tilt, phi;
+    Vec3 w;
+  };
+  for (const double mu : {0.05, 0.1, 0.2, 0.35}) {
+    for (const Start& st : {Start{0.15, 1.0, {0.2530, -0.1613, 0.0}}, Start{0.2, 0.7, {-1.0, 0.6, 4.0}}}) {
+      Rigid3DOptions o;
+      o.g_m_s2 = kG;
+      o.mu_s = mu;
+      o.mu_k = 0.8 * mu;
+      o.max_run_out_s = 0.0;
+      o.record_history = true;
+      const Rigid3DResult r =
+          rock3d_cylinder(still(3.0), nullptr, nullptr, cyl, o, CylinderInitialState{tilted(st.tilt, st.phi), st.w});
+      SCOPED_TRACE(testing::Message() << "mu " << mu << " spin " << st.w[2]);
+      const auto& e = r.history.energy_j_per_kg;
+      ASSERT_GT(e.size(), 10U);
+      for (std::size_t i = 1; i < e.size(); ++i) EXPECT_LE(e[i], e[i - 1] + 1e-7) << "at " << r.history.time_s[i];
+      const double lost = r.summary.energy_lost_j_per_kg + r.summary.friction_energy_j_per_kg;
+      EXPECT_NEAR(e.front() - e.back(), lost, 1e-6 * e.front() + 1e-6);
+      slipped += r.summary.slide_rock_time_s ? 1 : 0;
+      impacts += r.summary.impacts;
+    }
+  }
+  EXPECT_GE(slipped, 4);
+  EXPECT_GE(impacts, 3U);
+}
+
+// The slipping rim's error falls with the tolerance (Dormand-Prince's error control): a spinning cylinder slipping
+// on a frictionless floor for 0.3 s (no impact): the end axis against rel_tol 1e-12.
+TEST(Rigid3DDiscFriction, SlipErrorFallsWithTheTolerance) {
+  const CylinderBody3D cyl = CylinderBody3D::solid(0.3, 1.0);
+  const auto end_axis = [&](double tol) {
+    Rigid3DOptions o;
+    o.g_m_s2 = kG;
+    o.mu_s = 0.1;
+    o.mu_k = 0.05;
+    o.rel_tol = tol;
+    o.abs_tol = tol * 1e-4;
+    o.max_run_out_s = 0.0;
+    o.record_history = true;
+    const Rigid3DResult r =
+        rock3d_cylinder(still(0.3), nullptr, nullptr, cyl, o, CylinderInitialState{tilted(0.25, 0.3), {0.5, -0.4, 6.0}});
+    EXPECT_EQ(r.summary.impacts, 0U);
+    EXPECT_TRUE(r.summary.slide_rock_time_s.has_value());
+    return axis_of(r.history.orientation.back());
+  };
+  const Vec3 ref = end_axis(1e-12);
+  const auto err = [&](double tol) {
+    const Vec3 a = end_axis(tol);
+    return std::hypot(a[0] - ref[0], a[1] - ref[1], a[2] - ref[2]);
+  };
+  const double e6 = err(1e-6), e8 = err(1e-8), e10 = err(1e-10);
+  const double order = std::log10(e6 / e10) / 4.0;
+  std::printf("slip: end-axis error at rel_tol 1e-6 / 1e-8 / 1e-10: %.3g / %.3g / %.3g, order %.3f\n", e6, e8, e10,
+              order);
+  EXPECT_LT(e8, e6 / 10.0);
+  EXPECT_LT(e10, e8 / 10.0);
+  EXPECT_GT(order, 0.7);
+}
+
+// An independent check: the cylinder as a 128-gon prism in the polygon engine with friction (rigid3d_slide.cpp,
+// rigid3d_contact.cpp: vertex contacts, their own impact law), its vertices on the rim, an edge across the input
+// (b = R cos(pi / 128): its static limit 1.2e-4 smaller in relative terms), the solid cylinder's inertia, under one
+// component at 0.5 g, mu = 0.32. The first uplift agrees (the polygon's approximation), and where the first slip
+// comes in the first rocking episode (seed 2) its instant agrees to 1e-3 s. After that the engines part (measured,
+// printed: the prism falls in all 3 runs, where the rim engine and the planar coupled model, test above, both stand in
+// 2: the polygon engine hands the whole run from the uplift to its contact engine as soon as a history row needs
+// more than mu_s N, and lands a 128-gon on its vertices by its own law): a disagreement stated in docs/method.md.
+TEST(Rigid3DDiscFriction, A128GonPrismInThePolygonEngineAgrees) {
+  const CylinderBody3D cyl = CylinderBody3D::solid(0.3, 1.0);
+  const double R = 0.15;
+  std::vector<std::array<double, 2>> base;
+  for (int k = 0; k < 128; ++k) {
+    const double a = (2.0 * k + 1.0) * M_PI / 128.0;  // an edge's normal along +x and -x
+    base.push_back({R * std::cos(a), R * std::sin(a)});
+  }
+  const RigidBody3D prism = RigidBody3D::polygon(
+      base, {0.0, 0.0, 0.5},
+      {Vec3{cyl.inertia_transverse_m2, 0.0, 0.0}, Vec3{0.0, cyl.inertia_transverse_m2, 0.0},
+       Vec3{0.0, 0.0, cyl.inertia_axial_m2}});
+  int cases = 0, same_verdict = 0;
+  double worst_first = 0.0;
+  for (const unsigned seed : {1U, 2U, 3U}) {
+    const GroundMotion m = noise(seed, 0.5 * kG);
+    Rigid3DOptions o;
+    o.g_m_s2 = kG;
+    o.mu_s = 0.32;
+    const Rigid3DSummary c = rock3d_cylinder(m, nullptr, nullptr, cyl, o).summary;
+    const Rigid3DSummary p = rock3d(m, nullptr, nullptr, prism, o).summary;
+    SCOPED_TRACE(testing::Message() << "seed " << seed);
+    ASSERT_TRUE(c.slide_rock_time_s.has_value());
+    ASSERT_TRUE(p.slide_rock_time_s.has_value());
+    std::printf("  128-gon seed %u: first slide-rock %.5f / %.5f s, fell %d / %d, max tilt %.4f / %.4f rad, impacts "
+                "%zu / %zu, slide %.4f / %.4f m\n",
+                seed, *c.slide_rock_time_s, *p.slide_rock_time_s, c.overturned ? 1 : 0, p.overturned ? 1 : 0,
+                c.max_tilt_rad, p.max_tilt_rad, c.impacts, p.impacts,
+                std::hypot(c.residual_slide_east_m, c.residual_slide_north_m),
+                std::hypot(p.residual_slide_east_m, p.residual_slide_north_m));
+    ASSERT_TRUE(c.uplift_time_s && p.uplift_time_s);
+    EXPECT_NEAR(*c.uplift_time_s, *p.uplift_time_s, 1e-3);
+    if (seed == 2) EXPECT_NEAR(*c.slide_rock_time_s, *p.slide_rock_time_s, 1e-3);
+    worst_first = std::max(worst_first, std::abs(*c.slide_rock_time_s - *p.slide_rock_time_s));
+    same_verdict += c.overturned == p.overturned ? 1 : 0;
+    ++cases;
+  }
+  std::printf("128-gon prism vs the rim engine: the same verdict in %d of %d, first slide-rock within %.3g s\n",
+              same_verdict, cases, worst_first);
+}
+
+// Bad friction is refused as for a polygonal base (rigid3d_slide.cpp): mu_k without mu_s, mu_k > mu_s, mu_s < 0.
+TEST(Rigid3DDiscFriction, BadFrictionNamesTheField) {
+  const CylinderBody3D cyl = CylinderBody3D::solid(0.3, 1.0);
+  const GroundMotion m = noise(1, 0.3 * kG);
+  Rigid3DOptions o;
+  o.mu_k = 0.3;
+  EXPECT_THROW(static_cast<void>(rock3d_cylinder(m, nullptr, nullptr, cyl, o)), InputError);
+  o.mu_s = 0.2;
+  EXPECT_THROW(static_cast<void>(rock3d_cylinder(m, nullptr, nullptr, cyl, o)), InputError);
+  o.mu_s = -1.0;
+  o.mu_k.reset();
+  EXPECT_THROW(static_cast<void>(rock3d_cylinder(m, nullptr, nullptr, cyl, o)), InputError);
 }
 
 }  // namespace

@@ -97,8 +97,8 @@ struct RockObject {
   /// mu_kinetic (mu_k), absent: the no-slip engine (rigid3d.hpp).
   std::optional<RigidBody3D> body_3d = std::nullopt;
   /// model = "3d" for a solid cylinder: the rim engine (rigid3d_disc.hpp, rock3d_cylinder) under the pair along east
-  /// and north and the vertical. Axisymmetric: the bearing does not enter (each bearing's row is the same run). No
-  /// friction (the rim engine rolls without slip).
+  /// and north and the vertical. Axisymmetric: the bearing does not enter (each bearing's row is the same run).
+  /// Friction as body_3d's (options.mu, mu_kinetic; rigid3d_disc.hpp's friction); absent: rolling without slip.
   std::optional<CylinderBody3D> cylinder_3d = std::nullopt;
   /// A three-dimensional object (model = "3d"): body_3d or cylinder_3d.
   [[nodiscard]] bool three_d() const noexcept { return body_3d.has_value() || cylinder_3d.has_value(); }

@@ -138,9 +138,9 @@ struct OverturnFailure {
   std::optional<CylinderBody3D> cylinder_3d;
   /// A three-dimensional body (body_3d or cylinder_3d).
   [[nodiscard]] bool three_d() const noexcept { return body_3d.has_value() || cylinder_3d.has_value(); }
-  /// body_3d only: Coulomb friction at its base (Rigid3DOptions::mu_s, mu_k: the base slides flat, slide-rocks and
-  /// flies as rigid3d.hpp states; docs/method.md, "Slide-rock and flight in three dimensions"). Absent: no contact
-  /// slides (the no-slip engine, as before). A cylinder's rim engine has no friction: refused ("mu").
+  /// Coulomb friction at the base of body_3d or cylinder_3d (Rigid3DOptions::mu_s, mu_k: the base slides flat,
+  /// slide-rocks and flies as rigid3d.hpp and rigid3d_disc.hpp state; docs/method.md, "Slide-rock and flight in three
+  /// dimensions", "A circular base with friction"). Absent: no contact slides (the no-slip engines, as before).
   std::optional<double> mu_3d;
   std::optional<double> mu_k_3d;  ///< kinetic, 0 <= mu_k <= mu; absent: mu
 };

@@ -3,6 +3,14 @@
 // tanks) on a rigid level base under three ground components, without slip (issue 29; docs/method.md, "Rocking in
 // three dimensions", "A circular base: rolling on the rim"). Frames, units and outputs as rigid3d.hpp.
 //
+// Friction (Rigid3DOptions::mu_s, mu_k; docs/method.md, "A circular base with friction"): absent, the engine below
+// bit for bit. Given: with mu_s h < R the base never lifts (Shenton 1996) and the run is slide_2d's block exactly;
+// otherwise the rolling engine below runs with its contact force F = a_c - f checked on the dense output (N > 0,
+// |F_t| <= mu_s N), and where it fails (or g + a_z reaches 0 at rest) the run goes on in rigid3d_disc_contact.cpp: a
+// free rigid body on the lowest point of its rim, sticking (rolling), slipping (Coulomb, N from the normal
+// constraint) or in flight, flat on the ground at rest or sliding, with plastic Coulomb impacts; modes sliding,
+// slide_rock, flight and the sliding fields of Rigid3DSummary as the polygon engine fills them.
+//
 // Body. Base circle of radius R in the body plane z = 0, centred at the body frame's origin; centre of mass on the
 // axis at c = (0, 0, h); inertia per unit mass about c: J_a about the axis, J_t about any transverse axis (an
 // axisymmetric body). In the ground frame: a = R(q) e_z the axis, J_G w = J_t w + (J_a - J_t)(a . w) a.
@@ -57,8 +65,8 @@
 // every sample (after the record, on still ground, steps of any length; history rows from the dense output on the
 // record's spacing); events are roots of the dense output by TOMS 748 (numerics/event_root.hpp) inside each step where
 // their function changes sign at the step's ends or at one turning point (a double crossing inside one step between
-// two turning points is missed: stated). Not
-// modelled: slip on the rim, flight (the vertical contact force is not checked), rolling resistance.
+// two turning points is missed: stated). Without friction the contact force is not checked (no slip, no flight; with
+// friction: above). Not modelled: rolling resistance.
 #include <optional>
 
 #include "topple/bodies/body.hpp"
@@ -91,8 +99,9 @@ struct CylinderInitialState {
 };
 
 /// The response of a cylinder to ground accelerations along x (east; required), y (north) and z (up) (m/s^2; null:
-/// absent). Rigid3DSummary: modes rest / rocking (on the rim; vertex_a = vertex_b = -1) / fallen. Throws InputError
-/// for a bad option or g + a_z <= 0 ("vertical").
+/// absent). Rigid3DSummary: modes rest / rocking (on the rim; vertex_a = vertex_b = -1) / fallen, and with friction
+/// sliding / slide_rock / flight. Throws InputError for a bad option, bad friction ("mu_s", "mu_k"), or g + a_z <= 0
+/// ("vertical") without friction or with mu_s h < R.
 [[nodiscard]] Rigid3DResult rock3d_cylinder(const GroundMotion& x, const GroundMotion* y, const GroundMotion* z,
                                             const CylinderBody3D& body, const Rigid3DOptions& options = {},
                                             const std::optional<CylinderInitialState>& initial = std::nullopt);

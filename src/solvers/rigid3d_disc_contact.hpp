@@ -1,0 +1,28 @@
+#pragma once
+// Internal: the cylinder's engine with a slipping rim point and free flight (rigid3d_disc_contact.cpp), friction
+// given; rock3d_cylinder (rigid3d_disc.cpp) hands a run to it where the rolling contact fails.
+#include "topple/motion/ground_motion.hpp"
+#include "topple/solvers/rigid3d.hpp"
+#include "topple/solvers/rigid3d_disc.hpp"
+
+namespace topple::detail {
+
+/// The state the contact engine starts from: the centre of mass and its velocity, the orientation (body -> ground)
+/// and the angular velocity (ground frame), and the rim point in contact (its direction from the base's centre; used
+/// where the base is flat).
+struct DiscStart {
+  double time_s = 0.0;
+  Vec3 centre_m{};
+  Vec3 velocity_m_s{};
+  Quaternion orientation = kIdentityQuaternion;
+  Vec3 angular_velocity_rad_s{};
+  Vec3 contact_direction{1.0, 0.0, 0.0};
+};
+
+/// From `start` (the body on its rim, the rolling contact just failed) to the end of the run; friction given and the
+/// options checked by the caller. Its summary covers the run from start.time_s (counters from zero).
+[[nodiscard]] Rigid3DResult rock3d_disc_contact(const GroundMotion& x, const GroundMotion* y, const GroundMotion* z,
+                                                const CylinderBody3D& body, const Rigid3DOptions& options,
+                                                const DiscStart& start);
+
+}  // namespace topple::detail
