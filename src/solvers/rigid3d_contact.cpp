@@ -242,8 +242,12 @@ class ContactEngine {
       const double b = -dot(c_ - v_[i], nb);
       edges_.push_back({nb[0], nb[1], b});
       alpha_ref_ = std::min(alpha_ref_, std::atan2(b, h_));
+      lift_min_ = std::min(lift_min_, g_ * (std::hypot(b, h_) - h_));  // c over this edge from flat
     }
     p_ref_ = std::sqrt(g_ / size_);
+    launch_speed_ =
+        std::max(std::sqrt(opt.sliding.abs_tol * kLaunchSpeedScale), kLaunchSpeedTolerances * opt.sliding.abs_tol);
+    floor_speed_ = kFloorLaunchFraction * launch_speed_;
     tie_z_ = std::max(opt.simultaneous_contact, 1e-12) * size_;
     const double a = alpha_ref_;
     const double L = size_ * a, V = p_ref_ * size_ * a;
@@ -355,11 +359,28 @@ class ContactEngine {
     dx = {};
     const Vec3 f = forcing_.f(t);
     if (kind_ == Kind::flat_slip) {  // translation with Coulomb friction, N = g + a_z
-      const double sp = std::hypot(x[3], x[4]);
-      const Vec3 s = sp > 0.0 ? Vec3{x[3] / sp, x[4] / sp, 0.0} : slip_dir_;
       const double N = -f[2];
       dx[0] = x[3];
       dx[1] = x[4];
+      const double fm = std::hypot(f[0], f[1]);
+      if (launch_ && fm > 0.0) {
+        // The launch (docs/method.md, "Bidirectional sliding", S5'): the velocity slaved to the load's direction n =
+        // f_h / |f_h|, v = r n with r' = |f_h| - mu_k N and n' = (f_h' - n (f_h' . n)) / |f_h| (f_h' = -(axs, ays):
+        // the load is linear on a sample interval), v' = r' n + r n'; smooth through r = 0, so that the stop event
+        // (v . n at the step's start) has a simple root.
+        const Vec3 n{f[0] / fm, f[1] / fm, 0.0};
+        const double r = x[3] * n[0] + x[4] * n[1];
+        const double fd0 = -forcing_.axs, fd1 = -forcing_.ays;
+        const double along = fd0 * n[0] + fd1 * n[1];
+        const double rd = fm - mu_k_ * N;
+        dx[3] = rd * n[0] + r * (fd0 - n[0] * along) / fm;
+        dx[4] = rd * n[1] + r * (fd1 - n[1] * along) / fm;
+        dx[13] = std::abs(r);
+        dx[14] = mu_k_ * N * std::abs(r);
+        return;
+      }
+      const double sp = std::hypot(x[3], x[4]);
+      const Vec3 s = sp > 0.0 ? Vec3{x[3] / sp, x[4] / sp, 0.0} : slip_dir_;
       dx[3] = f[0] - mu_k_ * N * s[0];
       dx[4] = f[1] - mu_k_ * N * s[1];
       dx[13] = sp;
@@ -760,6 +781,7 @@ class ContactEngine {
           if (!skip_slide && (fh > mu_s_ * G || no_stick >= 0 || skip_rest)) {
             slip_dir_ = fh > 0.0 ? Vec3{f[0] / fh, f[1] / fh, 0.0} : Vec3{1.0, 0.0, 0.0};
             if (pressure_excess(-mu_k_ * slip_dir_[0], -mu_k_ * slip_dir_[1]) <= 0.0) {
+              launch_ = fh > 0.0;  // from rest: the launch (S5'), the velocity slaved to the load's direction
               enter(Kind::flat_slip, {});
               return;
             }
@@ -767,6 +789,7 @@ class ContactEngine {
         } else {
           slip_dir_ = {x_[3] / sp, x_[4] / sp, 0.0};
           if (!skip_slide && pressure_excess(-mu_k_ * slip_dir_[0], -mu_k_ * slip_dir_[1]) <= 0.0) {
+            launch_ = false;  // moving: its own direction (a slow one may land on the load's, update_launch)
             enter(Kind::flat_slip, {});
             return;
           }
@@ -961,7 +984,15 @@ class ContactEngine {
     }
     x_[5] = 0.0;
     x_[10] = x_[11] = x_[12] = 0.0;
-    const double ke_after = 0.5 * (x_[3] * x_[3] + x_[4] * x_[4]);
+    double ke_after = 0.5 * (x_[3] * x_[3] + x_[4] * x_[4]);
+    // The rest rule after a flat landing (rocking.hpp's, as after_impact's): kinetic energy below
+    // rest_energy_fraction of the least energy to lift c over an edge of the base ends the motion. Without it a body
+    // settling flat under a load at its uplift limit cycles through ever smaller flat landings, slips on an edge and
+    // pivots on a vertex (issue 29: tilts of 1e-9 rad at 1e-15 J/kg, thousands of events in one sample interval).
+    if (ke_after < opt_.rest_energy_fraction * lift_min_) {
+      x_[3] = x_[4] = 0.0;
+      ke_after = 0.0;
+    }
     out_.summary.energy_lost_j_per_kg += std::max(ke_before - ke_after, 0.0);
     kind_ = Kind::rest;  // flatten below keeps the horizontal velocity when choose() slides
     flatten_keep();
@@ -1067,13 +1098,14 @@ class ContactEngine {
   }
 
   void interval(double tb) {
-    int count = 0;
+    int& count = interval_count_;
+    count = 0;
     while (!done_ && t_ < tb) {
       if (++count > kMaxEvents) {
         throw EventLimitError(fmt::format("rock3d: more than {} events in one sample interval ending at {} s",
                                           kMaxEvents, tb));
       }
-      if (count == kSlowSteps && kind_ == Kind::contact && hold_slow_slips()) continue;
+      if (count % kSlowSteps == 0 && kind_ == Kind::contact && hold_slow_slips()) continue;
       if (tb - t_ <= 4.0 * std::numeric_limits<double>::epsilon() * std::max(std::abs(tb), 1.0)) {
         t_ = tb;
         break;
@@ -1111,6 +1143,7 @@ class ContactEngine {
       return;
     }
     if (kind_ == Kind::contact) follow_slip_start();
+    if (kind_ == Kind::flat_slip) update_launch();
     if (restart_) {
       dp_.restart(t_, x_);
       restart_ = false;
@@ -1210,6 +1243,73 @@ class ContactEngine {
     t_ = tbs;
     x_ = dp_.x1();
     track(t_, x_);
+    slow_slip_floor();
+  }
+
+  /// The flat slip's launch and landing at a step's start (docs/method.md, "Bidirectional sliding", S5' and the
+  /// slaved landing; sliding2d.cpp's update_launch, with its launch speed r_L from Rigid3DOptions::sliding): the launch
+  /// ends where the speed passes r_L or the quasi-static direction's lag behind the load, r |f_h x f_h'| / |f_h|^3,
+  /// would pass kLaunchMaxLag; a block slower than r_L, decelerating (|f_h| < mu_k N), moving along the load within
+  /// kLaunchMaxLag and with a lag below half of it is put on the load's direction and slaved to it again (the landing).
+  void update_launch() {
+    const Vec3 f = forcing_.f(t_);
+    const double fm = hnorm(f), N = -f[2];
+    const double r = std::hypot(x_[3], x_[4]);
+    const double lag_num = r * std::abs(f[0] * forcing_.ays - f[1] * forcing_.axs);  // r |f_h x f_h'|
+    if (launch_) {
+      if (!(fm > 0.0) || r > launch_speed_ || lag_num > kLaunchMaxLag * fm * fm * fm) {
+        launch_ = false;
+        restart_ = true;
+      }
+      return;
+    }
+    if (!(r < launch_speed_) || !(r > 0.0) || !(fm > 0.0) || !(fm < mu_k_ * N)) return;
+    const Vec3 n{f[0] / fm, f[1] / fm, 0.0};
+    const bool along = x_[3] * n[0] + x_[4] * n[1] > 0.0 && std::abs(x_[3] * n[1] - x_[4] * n[0]) < kLaunchMaxLag * r;
+    if (along && lag_num < 0.5 * kLaunchMaxLag * fm * fm * fm) {
+      launch_ = true;
+      x_[3] = r * n[0];
+      x_[4] = r * n[1];
+      restart_ = true;
+    }
+  }
+
+  /// After a step without an event: slips that are over. Flat: a launch that went backwards along the load (its
+  /// onset decided by round-off, the load not overcoming kinetic friction: sliding2d's "never moving forward"), or a
+  /// slip slower than the noise floor r_F = kFloorLaunchFraction r_L (S6: the direction is not resolved there; the
+  /// rest of the run-in is r_F^2 / (2 a) long), has stopped. A contact: a slip (not one starting from rest) slower
+  /// than kFloorLaunchFraction kSlipStart p size has stopped likewise (the contact's velocity v_c + w x r is resolved
+  /// only to about rel_tol |v_c|: a slip spiralling in to rest there never crosses its stop event, issue 29). The stop
+  /// is handled as a located one (handle()).
+  void slow_slip_floor() {
+    if (done_) return;
+    if (kind_ == Kind::flat_slip) {
+      const double r = std::hypot(x_[3], x_[4]);
+      bool stopped = !launch_ && r < floor_speed_;  // a launch grows from 0 through the floor: exempt
+      if (launch_) {
+        const Vec3 f = forcing_.f(t_);
+        stopped = f[0] * x_[3] + f[1] * x_[4] <= 0.0;
+      }
+      if (stopped) handle(0);
+      return;
+    }
+    // (contacts: a backstop, only in a sample interval that has already taken kSlowSteps steps and events; elsewhere
+    // the stop event locates the stop, as the planar model's, whose Painleve counts the tests compare)
+    if (kind_ != Kind::contact || interval_count_ < kSlowSteps || t_ - since_ < kChatter_s) return;
+    const double floor = kFloorLaunchFraction * kSlipStart * p_ref_ * size_;
+    for (std::size_t k = 0; k < set_.size(); ++k) {
+      if (!set_[k].slip || set_[k].fresh) continue;
+      const Vec3 u = vertex_velocity(x_, static_cast<std::size_t>(set_[k].v));
+      if (!(hnorm(u) < floor)) continue;
+      // slowing down along its slip direction (its acceleration against the velocity): a stop, not a turn
+      const Dyn d = dynamics(x_, t_, set_);
+      if (!d.ok) continue;
+      const Vec3 a = d.a + cross(d.alpha, d.r[k]) + cross(d.w, cross(d.w, d.r[k]));
+      if (a[0] * u[0] + a[1] * u[1] < 0.0) {
+        handle(2 * k + 1);
+        return;
+      }
+    }
   }
 
   /// The vertex of a touch-down event function (index i of events()), or -1.
@@ -1451,6 +1551,13 @@ class ContactEngine {
   // (stiff: steps of 1e-10 s at 1e-9 m/s, issue 29); above, the velocity's direction is used.
   static constexpr double kSlipStart = 1e-6;
   static constexpr double kSlipZero = 1e-9;  // a slip speed below this times p size is zero (a located stop)
+  // The flat slip's launch and landing (docs/method.md, S5', sliding2d.cpp's constants): the launch speed r_L =
+  // max(sqrt(abs_tol x 0.1 m/s), 1000 abs_tol) of Rigid3DOptions::sliding, the largest lag of the slaved direction,
+  // and the noise floor r_F = kFloorLaunchFraction r_L below which a slowing slip has stopped.
+  static constexpr double kLaunchSpeedScale = 0.1;  // m/s
+  static constexpr double kLaunchSpeedTolerances = 1000.0;
+  static constexpr double kLaunchMaxLag = 1e-3;
+  static constexpr double kFloorLaunchFraction = 0.03;
   const InputGrid& grid_;
   std::span<const double> ax_, ay_;
   std::vector<double> gravity_;
@@ -1473,6 +1580,10 @@ class ContactEngine {
   std::vector<Contact> set_;
   Vec3 slip_dir_{1.0, 0.0, 0.0}, slip_ref_{};
   std::vector<bool> armed_;
+  int interval_count_ = 0;  // steps and events in the current sample interval (interval())
+  bool launch_ = false;  // a flat slip whose velocity is slaved to the load's direction (update_launch)
+  double launch_speed_ = 0.0, floor_speed_ = 0.0;
+  double lift_min_ = std::numeric_limits<double>::infinity();  // the least energy to tip over an edge, J/kg
   bool restart_ = true, done_ = false, fallen_ = false, was_slipping_ = false, flat_before_ = true;
   std::size_t steps_ = 0, painleve_ = 0;
 };
