@@ -408,6 +408,8 @@ TEST(EnsembleRun, ThreeDimensionalCylinderUnderOneComponentIsThePlanarCylinder) 
     Rigid3DOptions o = rigid3d_options(three_d.options);
     o.mu_s = 0.5;
     o.mu_k = 0.4;
+    const GroundMotion quiet = GroundMotion::uniform(std::vector<double>(rec->size(), 0.0), rec->dt_s(),
+                                                     rec->start_time_s());  // collinear_set's still north
     const Rigid3DSummary s = rock3d_cylinder(east, &quiet, nullptr, CylinderBody3D::solid(0.3, 1.0), o).summary;
     EXPECT_EQ(std::get<bool>(tf.rows[run][fell_col]), s.overturned) << run;
     EXPECT_EQ(number(tf.rows[run][column(tf, "max_tilt_rad")]), s.max_tilt_rad) << run;

@@ -77,7 +77,9 @@ TEST(Rigid3DContact, BoxInItsPlaneOfSymmetrySlideRocksAndFliesAsThePlanarCoupled
     EXPECT_NEAR(r.summary.residual_yaw_deg, 0.0, 1e-6);
     const auto& first = s.mode_first_time_s[static_cast<std::size_t>(SlideRockMode::slide_rock)];
     ASSERT_EQ(r.summary.slide_rock_time_s.has_value(), first.has_value()) << c.amp_g << " " << c.mu;
-    if (first) EXPECT_NEAR(*r.summary.slide_rock_time_s, *first, 1e-6) << c.amp_g << " " << c.mu;
+    if (first) {
+      EXPECT_NEAR(*r.summary.slide_rock_time_s, *first, 1e-6) << c.amp_g << " " << c.mu;
+    }
     EXPECT_EQ(r.summary.painleve_events, s.tangential_impacts + s.painleve_holds);
     for (const auto& w : r.summary.warnings) EXPECT_EQ(w.find("not modelled"), std::string::npos) << w;
   }
