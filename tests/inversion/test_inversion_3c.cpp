@@ -1167,10 +1167,15 @@ TEST(Survey3c, SlidingOutcomesOfAThreeDimensionalBoxNeedItsFriction) {
                "one-component");
   expect_error(three + std::string(kObjectBlock) + "outcome = \"slid_stood\"\n", "object[1](a).outcome",
                "model = \"3d\" and friction_3d = \"mu\" makes this outcome");
-  // A cylinder's rim engine has no friction: still refused there.
-  expect_error(three + "[[object]]\nid = \"c\"\nshape = \"cylinder\"\ndiameter = \"8cm\"\nheight = \"40cm\"\n"
-                       "mu = 0.5\nmodel = \"3d\"\nfriction_3d = \"mu\"\noutcome = \"slid\"\n",
-               "object[1](c).friction_3d", "without slip");
+  // A cylinder: its rim engine slides with friction too (rigid3d_disc.hpp), and Shenton's bound is its R / h (4 cm
+  // over 20 cm = 0.2): walked is refused below it and accepted above.
+  const std::string cylinder = "[[object]]\nid = \"c\"\nshape = \"cylinder\"\ndiameter = \"8cm\"\nheight = \"40cm\"\n"
+                               "model = \"3d\"\nfriction_3d = \"mu\"\n";
+  const ObservedObject cyl = parse(three + cylinder + "mu = 0.5\noutcome = \"slid\"\nslid = \"1cm\"\n").sites[0].objects[0];
+  EXPECT_TRUE(cyl.friction_3d);
+  EXPECT_EQ(cyl.outcome, Outcome::slid);
+  expect_error(three + cylinder + "mu = 0.15\noutcome = \"walked\"\n", "object[1](c).outcome", "Shenton");
+  EXPECT_EQ(parse(three + cylinder + "mu = 0.25\noutcome = \"walked\"\n").sites[0].objects[0].outcome, Outcome::walked);
 }
 
 // A box that cannot lift (mu = 0.2 < b_min / h = 1/3, Shenton 1996) slides flat without spin, which is the
