@@ -244,6 +244,13 @@ class Engine {
         record(t);
       }
     }
+    if (!done() && mode_ != Rigid3DMode::rest) {
+      // as the contact engine (rigid3d_disc_contact.cpp): a run-out that ends with the body still on its rim says so
+      // (issue 29's sweep: a cylinder wobbling on its rim without a landing, which the no-slip rim conserves, ended
+      // "rocking" at the cap without a word)
+      s.warnings.push_back(fmt::format("the body was still moving {} s after the record ended (max_run_out_s)",
+                                       opt_.max_run_out_s));
+    }
     s.end_time_s = stop_time_ ? *stop_time_ : done() ? *s.overturn_time_s : t;
     s.end_mode = mode_;
     s.steps = steps_;

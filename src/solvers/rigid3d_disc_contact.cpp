@@ -665,7 +665,10 @@ class DiscEngine {
   /// Both counted in painleve_events (docs/method.md: stated approximations).
   bool slow_slip() {
     const Rim r = rim(x_, u_);
-    if (hnorm(r.vp) < kSlipStart * p_ref_ * size_) {
+    // kSlowHold eps, not eps: the regularised direction (slip_direction) is singular where v_p,h = -e s_0, |v_p,h| =
+    // e <= eps; a fresh slip that runs against s_0 is caught there, its direction flipping on each step (the sweep's
+    // one EventLimitError: 0.3 x 0.9 m, mu 0.8, hovering at 1.001 eps), so the hold covers speeds up to 2 eps
+    if (hnorm(r.vp) < kSlowHold * kSlipStart * p_ref_ * size_) {
       ++out_.summary.painleve_events;
       stick_impulse(r);
       enter(Kind::stick);
@@ -830,6 +833,7 @@ class DiscEngine {
   // Summary and history
 
   void track(double t, const SX& x) {
+    check_above_ground(t, x);
     const Vec3 a = axis(x);
     const double tilt = std::atan2(hnorm(a), a[2]);
     auto& s = out_.summary;
@@ -844,7 +848,24 @@ class DiscEngine {
     s.max_slide_m = std::max(s.max_slide_m, std::hypot(x[15], x[16]));
   }
 
+  /// The invariant of issue 29: the rim's lowest point never more than kBelowGround of the size below the ground (on
+  /// the rim it is held at 0 to the constraint's drift, in flight the landing event stops it at 0). A violation is a
+  /// defect of the engine: an internal error, never a silent answer. Flat (rest, sliding) the base is set on the
+  /// ground exactly.
+  void check_above_ground(double t, const SX& x) const {
+    if (kind_ == Kind::rest || kind_ == Kind::flat_slip) return;
+    const Rim r = rim(x, u_);
+    const double low = x[2] + std::min(r.rho[2], -h_ * r.a[2] - R_ * r.sin_tilt);
+    if (!(low >= -kBelowGround * size_)) {
+      throw SolverError(fmt::format(
+          "rock3d_cylinder: internal error: the rim's lowest point {:.3g} m below the ground at {} s (more than {} of "
+          "the body's size; mode {}): please report it",
+          -low, t, kBelowGround, static_cast<int>(kind_)));
+    }
+  }
+
   void row() {
+    check_above_ground(t_, x_);
     if (!opt_.record_history) return;
     auto& h = out_.history;
     const Rigid3DMode m = mode_name();
@@ -873,6 +894,8 @@ class DiscEngine {
   static constexpr double kFreshEnd = 1e3;
   static constexpr double kChatter_s = 1e-6;
   static constexpr int kSlowSteps = 1'000;
+  static constexpr double kSlowHold = 2.0;      // the slow-slip backstop's speed, in eps (slow_slip)
+  static constexpr double kBelowGround = 1e-6;  // the invariant: the rim never lower than this times the size
   static constexpr double kNearFlat = 0.02;
 
   const InputGrid& grid_;
