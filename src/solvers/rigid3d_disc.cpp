@@ -900,6 +900,15 @@ Rigid3DResult rock3d_cylinder(const GroundMotion& x, const GroundMotion* y, cons
   const bool shenton = options.mu_s && !initial && *options.mu_s * b.centre_height_m < b.radius_m;
   if (!gravity.empty() && (!options.mu_s || shenton)) {  // friction given: flight is modelled (contact engine)
     const double lowest = *std::min_element(gravity.begin(), gravity.end());
+    if (!(lowest > 0.0) && shenton) {
+      // the flat slide model excludes flight; the contact engine's flat phases (rest, sliding, flight, landing) hold
+      // Shenton's flat base as well (its flat sliding lifts onto the rim only where mu_k h > R)
+      detail::DiscStart flat;
+      flat.time_s = grid.time_s(0);
+      flat.centre_m = {0.0, 0.0, b.centre_height_m};
+      flat.at_rest = true;
+      return detail::rock3d_disc_contact(x, y, z, b, options, flat);
+    }
     if (!(lowest > 0.0)) {
       throw parameter_error("vertical", fmt::format("g + a_z reaches {} m/s2 <= 0: the body would leave the ground, "
                                                     "which this model excludes",

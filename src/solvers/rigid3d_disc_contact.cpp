@@ -117,7 +117,11 @@ class DiscEngine {
     for (std::size_t k = 0; k < 4; ++k) x_[6 + k] = start_.orientation[k];
     base0_ = hpart(start_.centre_m - h_ * axis(x_));
     if (i + 1 < n) set_forcing(i);
-    decide_rim(false);
+    if (start_.at_rest) {
+      enter(Kind::rest);
+    } else {
+      decide_rim(false);
+    }
     row();
     for (; !done_ && i + 1 < n; ++i) {
       const double tb = grid_.time_s(i + 1);
@@ -234,7 +238,13 @@ class DiscEngine {
     if (kind_ == Kind::flat_slip) {
       const double G = -f[2];
       const double sp = std::hypot(x[3], x[4]);
-      const Vec3 s = sp > 0.0 ? Vec3{x[3] / sp, x[4] / sp, 0.0} : slip_dir_;
+      // a flat slide from rest: its direction regularised as a rim slip's (slip_direction): s = (v + e s_0) /
+      // |v + e s_0|, so that a slide starting at |a_h| = mu G (zero acceleration along s_0) does not turn stiffly at
+      // 1e-11 m/s (issue 29's sweep, 12 runs; docs/method.md)
+      const double eps = kSlipStart * p_ref_ * size_;
+      const double e = fresh_ ? std::max(0.0, eps * (1.0 - sp / (kFreshEnd * eps))) : 0.0;
+      const double vx = x[3] + e * slip_dir_[0], vy = x[4] + e * slip_dir_[1], vn = std::hypot(vx, vy);
+      const Vec3 s = vn > 0.0 ? Vec3{vx / vn, vy / vn, 0.0} : slip_dir_;
       dx[3] = f[0] - mu_k_ * G * s[0];
       dx[4] = f[1] - mu_k_ * G * s[1];
       dx[5] = 0.0;
@@ -422,6 +432,7 @@ class DiscEngine {
         break;
       }
       if (count % kSlowSteps == 0 && kind_ == Kind::slip && slow_slip()) continue;
+      if (count % kSlowSteps == 0 && kind_ == Kind::flat_slip && slow_flat_slide()) continue;
       if (kind_ == Kind::rest) {
         rest_phase(tb);
       } else {
@@ -490,6 +501,7 @@ class DiscEngine {
       return;
     }
     slip_dir_ = {-a[0] / ah, -a[1] / ah, 0.0};  // the flat block slides along -a_h from rest
+    fresh_ = true;
     enter(Kind::flat_slip);
   }
 
@@ -530,7 +542,7 @@ class DiscEngine {
                         : slip_direction(x0, r0, forcing_.f(t0));
     // The event functions (> 0 while the mode holds), by index: 0 N (flight), 1 stick cone, 2 slip speed along s0,
     // 3 landing flat, 4 the tilt below 90 degrees, 5 flight: the lowest point's height, 6 flat: the slide speed, 7 the
-    // tilt's rate (a minimum: the whirl rule).
+    // tilt's rate (a minimum: the whirl rule), 8 flat: g + a_z (flight).
     const auto ev = [&](int k, double t) -> double {
       const SX x = dp_.dense(t);
       if (k == 6) return x[3] * s0[0] + x[4] * s0[1];
@@ -552,6 +564,8 @@ class DiscEngine {
         case 4: return r.a[2] - 1e-6;
         case 5: return (x[2] + r.rho[2] - gap_ref_) / size_;
         case 7: return cross(omega(x), r.a)[2] / p_ref_;  // a_z' > 0 while the tilt falls: 0 at a tilt minimum
+        // flat sliding: the normal force g + a_z (issue 29: below 0 the flat phase's friction would push, mu_k N < 0)
+        case 8: return -forcing_.f(t)[2] / g_;
         default: return 1.0;
       }
     };
@@ -560,7 +574,7 @@ class DiscEngine {
       case Kind::stick: active = {0, 1, 3, 4, 7}; break;
       case Kind::slip: active = {0, 2, 3, 4, 7}; break;
       case Kind::flight: active = {5, 4}; break;
-      case Kind::flat_slip: active = {6}; break;
+      case Kind::flat_slip: active = {6, 8}; break;
       case Kind::rest: break;
     }
     // the landing function starts at 0 on a flat start: armed once it has been positive (rigid3d_disc.cpp's rule)
@@ -668,6 +682,9 @@ class DiscEngine {
         x_[3] = x_[4] = 0.0;
         slide_stops();
         break;
+      case 8:
+        enter(Kind::flight);  // the base leaves the ground flat, sliding (the landing: rim_landing, flat below 1e-3 alpha)
+        break;
       default:
         break;
     }
@@ -713,11 +730,26 @@ class DiscEngine {
     return false;
   }
 
+  /// The flat phase's backstop (rigid3d_contact.cpp's flat floor, issue 29): a flat slide that takes kSlowSteps steps
+  /// in one sample interval slower than kSlipStart p size has stopped (its direction, v / |v| in the friction force,
+  /// turns on the time scale |v| / |a| and its stop event, the speed along the step's direction -> 0, is never
+  /// crossed: the sweep's 12 runs of mu h < R with g + a_z reaching 0 at 1 g, stepping 1e-11 s at 1e-11 m/s); then
+  /// rest or a slide from rest (slide_stops). Counted in painleve_events.
+  bool slow_flat_slide() {
+    if (!(std::hypot(x_[3], x_[4]) < kSlowHold * kSlipStart * p_ref_ * size_)) return false;
+    ++out_.summary.painleve_events;
+    x_[3] = x_[4] = 0.0;
+    slide_stops();
+    row();
+    return true;
+  }
+
   void slide_stops() {
     const Vec3 a = -1.0 * forcing_.f(t_);
     const double ah = std::hypot(a[0], a[1]);
     if (ah <= mu_s_ * a[2]) return enter(Kind::rest);
     slip_dir_ = {-a[0] / ah, -a[1] / ah, 0.0};
+    fresh_ = true;
     enter(Kind::flat_slip);
   }
 
@@ -834,6 +866,7 @@ class DiscEngine {
     s.energy_lost_j_per_kg += e_before - energy(x_);
     if (hnorm(vh) > 0.0) {
       slip_dir_ = (1.0 / hnorm(vh)) * vh;
+      fresh_ = false;
       enter(Kind::flat_slip);
     } else {
       enter(Kind::rest);

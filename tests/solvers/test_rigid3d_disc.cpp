@@ -769,6 +769,33 @@ TEST(Rigid3DDisc, RunOutEndingOnTheRimWarns) {
   EXPECT_NE(r.summary.warnings[0].find("still moving"), std::string::npos);
 }
 
+// Shenton's flat base (mu_s h < R: the base never lifts) under a vertical input that reaches g + a_z <= 0: the flat
+// slide model excludes flight (an InputError before issue 29's sweep, 12 of 270 runs at 1 g); the contact engine's flat
+// phases take it: the body leaves the ground flat and lands flat (no rotation acts in flight: the tilt stays 0), and the
+// flat slide's near-threshold starts end (the backstop, docs/method.md).
+TEST(Rigid3DDiscFriction, ShentonBaseWithFlightStaysFlat) {
+  const GroundMotion m = noise(1, 0.5 * kG);
+  const GroundMotion up = noise(31, 1.6 * kG);
+  ASSERT_LT(*std::min_element(up.accel_m_s2().begin(), up.accel_m_s2().end()), -kG);  // the premise: a flight
+  Rigid3DOptions o;
+  o.g_m_s2 = kG;
+  o.mu_s = 0.2;  // 0.2 x 0.5 m < R = 0.15 m
+  Rigid3DResult r;
+  ASSERT_NO_THROW(r = rock3d_cylinder(m, nullptr, &up, CylinderBody3D::solid(0.3, 1.0), o));
+  EXPECT_GE(r.summary.flights, 1U);
+  EXPECT_FALSE(r.summary.overturned);
+  EXPECT_EQ(r.summary.max_tilt_rad, 0.0);
+  EXPECT_EQ(r.summary.uplifts, 0U);
+  EXPECT_EQ(r.summary.end_mode, Rigid3DMode::rest);
+  EXPECT_GT(r.summary.slide_path_length_m, 0.0);
+  std::printf("  Shenton base with flight: flights %zu, slide %.4f m, held %zu\n", r.summary.flights,
+              std::hypot(r.summary.residual_slide_east_m, r.summary.residual_slide_north_m),
+              r.summary.painleve_events);
+  // without the vertical the flat slide model runs, as before (no flight)
+  const Rigid3DResult flat = rock3d_cylinder(m, nullptr, nullptr, CylinderBody3D::solid(0.3, 1.0), o);
+  EXPECT_EQ(flat.summary.flights, 0U);
+}
+
 // Bad friction is refused as for a polygonal base (rigid3d_slide.cpp): mu_k without mu_s, mu_k > mu_s, mu_s < 0.
 TEST(Rigid3DDiscFriction, BadFrictionNamesTheField) {
   const CylinderBody3D cyl = CylinderBody3D::solid(0.3, 1.0);
