@@ -20,7 +20,7 @@
 // v_p,h . s0 -> 0 (s0 the direction at the step's start): stick if the stick force is in the cone, else a slip from
 // rest; stick/slip -> flight where N -> 0; flight -> impact where the lowest point's height -> 0; the base landing
 // flat (the rolling engine's landing function); the tilt reaching 90 degrees (fallen); flat sliding -> rest where the
-// speed -> 0; rest -> rim (the rolling engine's uplift test) or sliding (|a_h| > mu_s N), flight where g + a_z <= 0;
+// speed -> 0, flight where g + a_z -> 0; rest -> rim (the rolling engine's uplift test) or sliding (|a_h| > mu_s N), flight where g + a_z <= 0;
 // flat sliding -> rim (slipping) at once where mu_k h > R (the centre of pressure beyond the rim).
 // Painleve: a slip with (W (z - mu_k s))_z <= 0 has no consistent N; the contact is then held sticking (slide_rock.hpp's
 // rule), counted in painleve_events.
