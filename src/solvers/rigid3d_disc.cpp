@@ -244,6 +244,13 @@ class Engine {
         record(t);
       }
     }
+    if (!done() && mode_ != Rigid3DMode::rest) {
+      // as the contact engine (rigid3d_disc_contact.cpp): a run-out that ends with the body still on its rim says so
+      // (issue 29's sweep: a cylinder wobbling on its rim without a landing, which the no-slip rim conserves, ended
+      // "rocking" at the cap without a word)
+      s.warnings.push_back(fmt::format("the body was still moving {} s after the record ended (max_run_out_s)",
+                                       opt_.max_run_out_s));
+    }
     s.end_time_s = stop_time_ ? *stop_time_ : done() ? *s.overturn_time_s : t;
     s.end_mode = mode_;
     s.steps = steps_;
@@ -893,6 +900,15 @@ Rigid3DResult rock3d_cylinder(const GroundMotion& x, const GroundMotion* y, cons
   const bool shenton = options.mu_s && !initial && *options.mu_s * b.centre_height_m < b.radius_m;
   if (!gravity.empty() && (!options.mu_s || shenton)) {  // friction given: flight is modelled (contact engine)
     const double lowest = *std::min_element(gravity.begin(), gravity.end());
+    if (!(lowest > 0.0) && shenton) {
+      // the flat slide model excludes flight; the contact engine's flat phases (rest, sliding, flight, landing) hold
+      // Shenton's flat base as well (its flat sliding lifts onto the rim only where mu_k h > R)
+      detail::DiscStart flat;
+      flat.time_s = grid.time_s(0);
+      flat.centre_m = {0.0, 0.0, b.centre_height_m};
+      flat.at_rest = true;
+      return detail::rock3d_disc_contact(x, y, z, b, options, flat);
+    }
     if (!(lowest > 0.0)) {
       throw parameter_error("vertical", fmt::format("g + a_z reaches {} m/s2 <= 0: the body would leave the ground, "
                                                     "which this model excludes",

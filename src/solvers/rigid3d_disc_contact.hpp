@@ -17,6 +17,9 @@ struct DiscStart {
   Quaternion orientation = kIdentityQuaternion;
   Vec3 angular_velocity_rad_s{};
   Vec3 contact_direction{1.0, 0.0, 0.0};
+  /// the base flat on the ground, at rest (rock3d_cylinder's Shenton case, mu_s h < R, where g + a_z reaches 0: the
+  /// flat slide model excludes flight, this engine does not); else the body on its rim, the rolling contact just failed
+  bool at_rest = false;
 };
 
 /// From `start` (the body on its rim, the rolling contact just failed) to the end of the run; friction given and the

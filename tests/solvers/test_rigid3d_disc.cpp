@@ -12,6 +12,7 @@
 
 #include "support/noise_record.hpp"
 #include "topple/core/error.hpp"
+#include "topple/motion/synthesis.hpp"
 #include "topple/solvers/rigid3d.hpp"
 #include "topple/solvers/rigid3d_disc.hpp"
 #include "topple/solvers/rocking.hpp"
@@ -689,7 +690,25 @@ TEST(Rigid3DDiscFriction, A128GonPrismInThePolygonEngineAgrees) {
     o.g_m_s2 = kG;
     o.mu_s = 0.32;
     const Rigid3DSummary c = rock3d_cylinder(m, nullptr, nullptr, cyl, o).summary;
-    const Rigid3DSummary p = rock3d(m, nullptr, nullptr, prism, o).summary;
+    o.record_history = true;
+    const Rigid3DResult pr = rock3d(m, nullptr, nullptr, prism, o);
+    const Rigid3DSummary& p = pr.summary;
+    // the prism's lowest base vertex over its history rows (issue 29: the polygon engine let vertices pass through
+    // the ground; printed to tell whether that explains a differing verdict)
+    double lowest = 0.0, lowest_t = 0.0;
+    for (std::size_t i = 0; i < pr.history.time_s.size(); ++i) {
+      const Quaternion& q = pr.history.orientation[i];
+      const double w = q[0], x = q[1], y = q[2], z = q[3];
+      for (const auto& v : base) {
+        const double vz = pr.history.position_m[i][2] + 2.0 * (x * z - w * y) * v[0] + 2.0 * (y * z + w * x) * v[1];
+        if (vz < lowest) {
+          lowest = vz;
+          lowest_t = pr.history.time_s[i];
+        }
+      }
+    }
+    std::printf("  128-gon seed %u: the prism's lowest base vertex %.3g m (%.3g of its size) at %.4f s\n", seed,
+                lowest, lowest / std::hypot(R, 0.5), lowest_t);
     SCOPED_TRACE(testing::Message() << "seed " << seed);
     ASSERT_TRUE(c.slide_rock_time_s.has_value());
     ASSERT_TRUE(p.slide_rock_time_s.has_value());
@@ -710,6 +729,73 @@ TEST(Rigid3DDiscFriction, A128GonPrismInThePolygonEngineAgrees) {
   }
   std::printf("128-gon prism vs the rim engine: the same verdict in %d of %d, first slide-rock within %.3g s\n",
               same_verdict, cases, worst_first);
+}
+
+// Issue 29's sweep (solid cylinders x mu x `topple synth` 3-component sets): a cylinder 0.3 x 0.9 m, mu 0.8, under the
+// set of seed 4 at 0.5 g ended in EventLimitError at 5.57 s: a fresh slip running against its starting direction s_0
+// sat at the regularised direction's singular point v_p,h = -e s_0 (|v_p,h| = 1.001 eps), stepping 1e-8 s. The slow-slip
+// backstop holds slips up to 2 eps (docs/method.md); the run now ends (it overturns, as the CLI run does), and no
+// rim point is ever below the ground (the engine's invariant, checked at every step's parts: it would throw).
+TEST(Rigid3DDiscFriction, AFreshSlipAtItsDirectionsSingularPointEnds) {
+  SynthesisSetSpec spec;
+  spec.horizontal.pga_m_s2 = 0.5 * kG;
+  spec.horizontal.predominant_frequency_hz = 3.0;
+  spec.horizontal.duration_s = 20.0;
+  spec.horizontal.dt_s = 0.01;
+  spec.horizontal.seed = 4;
+  const SynthesizedSet set = synthesize_set(spec);
+  Rigid3DOptions o;
+  o.g_m_s2 = kG;
+  o.mu_s = 0.8;
+  Rigid3DResult r;
+  ASSERT_NO_THROW(r = rock3d_cylinder(set.first, &set.second, &*set.vertical, CylinderBody3D::solid(0.3, 0.9), o));
+  std::printf("  seed 4, 0.3 x 0.9, mu 0.8: fell %d at %.4f s, held or Painleve %zu, steps %zu\n",
+              r.summary.overturned ? 1 : 0, r.summary.overturn_time_s.value_or(-1.0), r.summary.painleve_events,
+              r.summary.steps);
+  EXPECT_TRUE(r.summary.overturned);
+  EXPECT_GE(r.summary.painleve_events, 1U);  // the hold acted (the slip stopped by the sticking impulse)
+}
+
+// A cylinder wobbling on its rim without a landing (the no-slip rim conserves energy) at the end of the run-out says
+// so, as the contact engine does (the sweep's 0.3 x 0.9 m cylinder under seed 1 at 0.3 g ended "rocking" silently).
+TEST(Rigid3DDisc, RunOutEndingOnTheRimWarns) {
+  Rigid3DOptions o;
+  o.g_m_s2 = kG;
+  o.max_run_out_s = 1.0;
+  const CylinderInitialState start{tilted(0.2, 0.3), {0.4, -0.3, 6.0}};  // FreeRollingConservesEnergy's wobble
+  const Rigid3DResult r = rock3d_cylinder(still(3.0), nullptr, nullptr, CylinderBody3D::solid(0.3, 1.0), o, start);
+  EXPECT_EQ(r.summary.impacts, 0U);
+  EXPECT_FALSE(r.summary.overturned);
+  EXPECT_EQ(r.summary.end_mode, Rigid3DMode::rocking);
+  ASSERT_EQ(r.summary.warnings.size(), 1U);
+  EXPECT_NE(r.summary.warnings[0].find("still moving"), std::string::npos);
+}
+
+// Shenton's flat base (mu_s h < R: the base never lifts) under a vertical input that reaches g + a_z <= 0: the flat
+// slide model excludes flight (an InputError before issue 29's sweep, 12 of 270 runs at 1 g); the contact engine's flat
+// phases take it: the body leaves the ground flat and lands flat (no rotation acts in flight: the tilt stays 0), and the
+// flat slide's near-threshold starts end (the backstop, docs/method.md).
+TEST(Rigid3DDiscFriction, ShentonBaseWithFlightStaysFlat) {
+  const GroundMotion m = noise(1, 0.5 * kG);
+  const GroundMotion up = noise(31, 1.6 * kG);
+  ASSERT_LT(*std::min_element(up.accel_m_s2().begin(), up.accel_m_s2().end()), -kG);  // the premise: a flight
+  Rigid3DOptions o;
+  o.g_m_s2 = kG;
+  o.mu_s = 0.2;  // 0.2 x 0.5 m < R = 0.15 m
+  Rigid3DResult r;
+  ASSERT_NO_THROW(r = rock3d_cylinder(m, nullptr, &up, CylinderBody3D::solid(0.3, 1.0), o));
+  EXPECT_GE(r.summary.flights, 1U);
+  EXPECT_FALSE(r.summary.overturned);
+  EXPECT_EQ(r.summary.max_tilt_rad, 0.0);
+  EXPECT_EQ(r.summary.uplifts, 0U);
+  EXPECT_EQ(r.summary.end_mode, Rigid3DMode::rest);
+  EXPECT_GT(r.summary.slide_path_length_m, 0.0);
+  std::printf("  Shenton base with flight: flights %zu, slide %.4f m, held %zu\n", r.summary.flights,
+              std::hypot(r.summary.residual_slide_east_m, r.summary.residual_slide_north_m),
+              r.summary.painleve_events);
+  // without the vertical the flat slide model runs, as before (no flight)
+  const Rigid3DResult flat = rock3d_cylinder(m, nullptr, nullptr, CylinderBody3D::solid(0.3, 1.0), o);
+  EXPECT_EQ(flat.summary.flights, 0U);
 }
 
 // Bad friction is refused as for a polygonal base (rigid3d_slide.cpp): mu_k without mu_s, mu_k > mu_s, mu_s < 0.
