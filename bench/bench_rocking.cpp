@@ -164,6 +164,8 @@ void BM_Cylinder3DWobble(benchmark::State& state) {
   // The same cylinder in the three-dimensional rim engine (rigid3d_disc.hpp) under the record along x and, along y,
   // the record times the third argument (percent) delayed by 1 s: two components, so it wobbles (the contact moves
   // round the rim); with 0 the input of BM_CylinderPlanar (the same planar motion, tests/solvers/test_rigid3d_disc.cpp).
+  // A fourth argument, mu in percent (0: absent, the no-slip engine), gives the base Coulomb friction mu_s = mu_k
+  // (rigid3d_disc.hpp with friction: it may slip on its rim, slide flat and fly).
   const GroundMotion& rec = record();
   const double d = static_cast<double>(state.range(0)) / 100.0;
   const double slenderness = static_cast<double>(state.range(1)) / 100.0;
@@ -173,7 +175,8 @@ void BM_Cylinder3DWobble(benchmark::State& state) {
   const double k = static_cast<double>(state.range(2)) / 100.0;
   for (std::size_t i = delay; i < rec.size(); ++i) a[i] = k * rec.accel_m_s2()[i - delay];
   const GroundMotion y = GroundMotion::uniform(a, rec.dt_s(), rec.start_time_s());
-  const topple::Rigid3DOptions options;
+  topple::Rigid3DOptions options;
+  if (state.range(3) > 0) options.mu_s = static_cast<double>(state.range(3)) / 100.0;
   topple::Rigid3DSummary s;
   for (auto _ : state) {
     s = topple::rock3d_cylinder(rec, &y, nullptr, body, options).summary;
@@ -184,22 +187,29 @@ void BM_Cylinder3DWobble(benchmark::State& state) {
   state.counters["max_tilt_over_limit"] = s.max_tilt_over_limit;
   state.counters["steps_per_sample"] = static_cast<double>(s.steps) / static_cast<double>(rec.size());
   state.counters["overturned"] = s.overturned ? 1.0 : 0.0;
+  state.counters["slide_path_mm"] = 1e3 * s.slide_path_length_m;
   // the fraction of the record on the rim (from the mode changes), as BM_Rocking's rocking_fraction
   double on_rim = 0.0;
   for (std::size_t i = 0; i < s.modes.size(); ++i) {
     const double end = i + 1 < s.modes.size() ? s.modes[i + 1].time_s : s.end_time_s;
-    if (s.modes[i].mode == topple::Rigid3DMode::rocking) on_rim += end - s.modes[i].time_s;
+    const auto m = s.modes[i].mode;
+    if (m == topple::Rigid3DMode::rocking || m == topple::Rigid3DMode::slide_rock || m == topple::Rigid3DMode::flight) {
+      on_rim += end - s.modes[i].time_s;
+    }
   }
   state.counters["rim_fraction"] = on_rim / (rec.end_time_s() - rec.start_time_s());
   state.counters["moving_samples_per_second"] = benchmark::Counter(
       static_cast<double>(state.iterations()) * on_rim / rec.dt_s(), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_Cylinder3DWobble)
-    ->Args({100, 15, 70})
-    ->Args({100, 10, 70})
-    ->Args({100, 15, 0})
-    ->Args({100, 10, 0})
-    ->Args({100, 50, 70})  // never lifts (uplift level 0.5 g > the pair's peak): the rest scan's cost per sample
+    ->Args({100, 15, 70, 0})
+    ->Args({100, 10, 70, 0})
+    ->Args({100, 15, 0, 0})
+    ->Args({100, 10, 0, 0})
+    ->Args({100, 15, 70, 50})  // with friction mu = 0.5 (> R / h: it lifts)
+    ->Args({100, 10, 70, 50})
+    ->Args({100, 10, 70, 20})  // mu = 0.2 > R / h = 0.1: slips on its rim more
+    ->Args({100, 50, 70, 0})  // never lifts (uplift level 0.5 g > the pair's peak): the rest scan's cost per sample
     ->Unit(benchmark::kMillisecond);
 
 void BM_RockingRk4Thesis(benchmark::State& state) {
