@@ -862,7 +862,7 @@ class ContactEngine {
   }
 
   // ---- impacts ----
-  void impact(int striking) {
+  void impact(int striking, bool land_flat = false) {
     const double ke_before = kinetic(x_);
     std::vector<int> down = all_down();
     if (std::find(down.begin(), down.end(), striking) == down.end()) down.push_back(striking);
@@ -905,7 +905,14 @@ class ContactEngine {
     for (int j : down) {
       if (!in(fresh, j)) cands.push_back({j});
     }
-    if (fresh.size() >= 3) cands.clear();
+    // (issue 29) a strike slower than kFlatStrike p size with three or more vertices within simultaneous_contact of
+    // the ground lands flat too: a body sliding flat to that tolerance whose contact alternates between opposite
+    // edges every 1e-8 s at strike speeds of 1e-8 m/s (an accumulation the rest rule on the whole kinetic energy does
+    // not end while the body slides) is on its flat base
+    if (down.size() >= 3 && -vertex_velocity(x_, static_cast<std::size_t>(striking))[2] < kFlatStrike * p_ref_ * size_) {
+      land_flat = true;
+    }
+    if (fresh.size() >= 3 || land_flat) cands.clear();
     const double tolV = 1e-9 * p_ref_ * size_;
     for (const auto& verts : cands) {
       const std::size_t m = verts.size();
@@ -1078,6 +1085,14 @@ class ContactEngine {
       out.push_back(in ? -1.0 : -(x[2] + dot(R[2], v_[j] - c_)) / size_);  // touch-down
     }
     out.push_back(-R[2][2]);  // fallen: the body's z axis horizontal
+    // Dips (issue 29): a vertex not in the set that starts the phase at or below the ground (gap z0 <= 0) has a
+    // touch-down function starting at >= 0, which is armed only once the vertex rises; moving down it would pass
+    // through the ground unseen. Its dip function -(z - z0 + kDip size) / size starts below 0 and fires when the
+    // vertex has gone kDip size below where it started: an impact there (the backstop of settle_down_vertices()).
+    for (std::size_t j = 0; j < v_.size(); ++j) {
+      const double z0 = j < dip_ref_.size() ? dip_ref_[j] : kNoDip;
+      out.push_back(z0 == kNoDip ? -1.0 : -(x[2] + dot(R[2], v_[j] - c_) - z0 + kDip * size_) / size_);
+    }
   }
 
   [[nodiscard]] double pressure_excess_at(const SX& x, double fx, double fy) const {
@@ -1148,6 +1163,7 @@ class ContactEngine {
       dp_.restart(t_, x_);
       restart_ = false;
       arm(x_, t_);
+      if (settle_down_vertices()) return;
     }
     if (kind_ == Kind::flat_slip) slip_ref_ = {x_[3], x_[4], 0.0};
     if (!dp_.step(tb, steps_, opt_.max_steps)) {
@@ -1324,7 +1340,62 @@ class ContactEngine {
     return j;
   }
 
+  /// The mode decision's check at a phase's start (issue 29; the event-driven rule, Pfeiffer & Glocker 1996, ch. 7;
+  /// Glocker 2001): a base vertex not in the set at a gap <= 0 must separate. One moving into the ground (normal
+  /// velocity < -tolV) strikes now (an impact); one at rest normally (|v_z| <= tolV) whose acceleration under the
+  /// set's forces points into the ground (a_z < -tolF) closes a contact: the mode is chosen again over all the
+  /// vertices down, whose check (consistent()) then includes it. A vertex separating (v_z > tolV, or a_z >= -tolF)
+  /// is left to its touch-down and dip events. At most kMaxSettle times at one instant (then the dips take over).
+  /// True: the state or the mode changed (the phase starts again).
+  bool settle_down_vertices() {
+    if (kind_ != Kind::contact && kind_ != Kind::flight) return false;
+    if (t_ != settle_t_) {
+      settle_t_ = t_;
+      settle_n_ = 0;
+    }
+    if (settle_n_ >= kMaxSettle) return false;
+    const double tolV = 1e-9 * p_ref_ * size_, tolF = 1e-9 * g_;
+    std::optional<Dyn> d;
+    int strike = -1;
+    bool close = false;
+    double fastest = -tolV;
+    for (std::size_t j = 0; j < v_.size(); ++j) {
+      bool in = false;
+      for (const Contact& c : set_) in = in || c.v == static_cast<int>(j);
+      if (in || vertex_z(x_, j) > 0.0) continue;
+      const double vz = vertex_velocity(x_, j)[2];
+      if (vz < fastest) {
+        fastest = vz;
+        strike = static_cast<int>(j);
+        continue;
+      }
+      if (vz > tolV) continue;
+      if (!d) d = dynamics(x_, t_, set_);
+      if (!d->ok) continue;
+      const Vec3 r = mul(d->R, v_[j] - c_);
+      const Vec3 aj = d->a + cross(d->alpha, r) + cross(d->w, cross(d->w, r));
+      if (aj[2] < -tolF) close = true;
+    }
+    if (strike < 0 && !close) return false;
+    ++settle_n_;
+    if (strike >= 0) {
+      impact(strike);
+    } else {
+      choose(all_down(), {}, -1);
+    }
+    return true;
+  }
+
   void arm(const SX& x, double t) {
+    dip_ref_.assign(v_.size(), kNoDip);
+    if (kind_ == Kind::contact || kind_ == Kind::flight) {
+      for (std::size_t j = 0; j < v_.size(); ++j) {
+        bool in = false;
+        for (const Contact& c : set_) in = in || c.v == static_cast<int>(j);
+        const double z = vertex_z(x, j);
+        if (!in && z <= 0.0) dip_ref_[j] = z;
+      }
+    }
     std::vector<double> g;
     events(x, t, g);
     armed_.assign(g.size(), false);
@@ -1421,6 +1492,13 @@ class ContactEngine {
       impact(static_cast<int>(j));
       return;
     }
+    if (j > v_.size() && j <= 2 * v_.size()) {  // a dip (events()): the vertex is coming down through the ground
+      // With three or more vertices within simultaneous_contact of the ground the body is flat to that tolerance: it
+      // lands flat (the flat outcome), as a strike of three or more vertices does; a body rocking between opposite
+      // edges at tilts of 1e-6 rad would otherwise dip an edge at each swap (issue 29).
+      impact(static_cast<int>(j - v_.size() - 1), all_down().size() >= 3);
+      return;
+    }
     fall();
   }
 
@@ -1445,6 +1523,19 @@ class ContactEngine {
 
   void track(double t, const SX& x) {
     const M3 R = rot(x);
+    // The invariant (issue 29): no base vertex below the ground by more than kPenetration of the body's size. The
+    // touch-down, dip and settle rules keep it; a breach is the engine's fault, never silent.
+    for (std::size_t j = 0; j < v_.size(); ++j) {
+      const double z = x[2] + dot(R[2], v_[j] - c_);
+      if (z < -kPenetration * size_) {
+        bool in = false;
+        for (const Contact& c : set_) in = in || c.v == static_cast<int>(j);
+        throw SolverError(fmt::format(
+            "rock3d: internal error: base vertex {} is {:.3g} m below the ground at t = {} s (more than {} of the "
+            "body's size {:.3g} m; mode {}, {}): the contact engine lost the ground; please report it",
+            j, -z, t, kPenetration, size_, static_cast<int>(kind_), in ? "a contact" : "not a contact"));
+      }
+    }
     const Vec3 zb{R[0][2], R[1][2], R[2][2]};
     const double horizontal = std::hypot(zb[0], zb[1]);
     const double tilt = std::atan2(horizontal, zb[2]);
@@ -1543,6 +1634,11 @@ class ContactEngine {
   static constexpr int kMaxEvents = 10'000;
   static constexpr int kSlowSteps = 1'000;  // steps in a sample interval after which slow slips are held
   static constexpr double kZenoGap_s = 1e-6;
+  static constexpr double kFlatStrike = 1e-6;  // a strike slower than this times p size on a flat base: lands flat
+  static constexpr double kDip = 1e-9;          // a dip event's depth below the vertex's start, of the body's size
+  static constexpr double kPenetration = 1e-6;  // the invariant: no vertex deeper than this of the body's size
+  static constexpr double kNoDip = std::numeric_limits<double>::infinity();  // dip_ref_: no dip event
+  static constexpr int kMaxSettle = 4;          // settle_down_vertices() at one instant
   static constexpr double kConeTol = 1e-6;  // a sticking force within this fraction of mu_s N: on the boundary
   static constexpr double kParallel = 1e-3;  // a slip direction within this angle (rad) of a_t's line: along it
   static constexpr double kChatter_s = 1e-6;  // a slip that stops within this of its start: held sticking
@@ -1580,6 +1676,9 @@ class ContactEngine {
   std::vector<Contact> set_;
   Vec3 slip_dir_{1.0, 0.0, 0.0}, slip_ref_{};
   std::vector<bool> armed_;
+  std::vector<double> dip_ref_;  // per vertex: its height at the phase's start where <= 0 (a dip event), else kNoDip
+  double settle_t_ = -1.0;
+  int settle_n_ = 0;
   int interval_count_ = 0;  // steps and events in the current sample interval (interval())
   bool launch_ = false;  // a flat slip whose velocity is slaved to the load's direction (update_launch)
   double launch_speed_ = 0.0, floor_speed_ = 0.0;
