@@ -862,7 +862,46 @@ class ContactEngine {
   }
 
   // ---- impacts ----
+  /// The striking vertex back on the ground (issue 29): a vertex located by its dip strikes up to kDip size below
+  /// the ground, and one that started its phase below it (the constraint's drift at the acceleration level, ~1e-10 of
+  /// the size per phase) lower still; left so, a pivot swapping between the ends of an edge sinks the edge by that
+  /// at each swap. The body is turned about the current contacts (the line of an edge; for a pivot, the horizontal
+  /// axis through it across the striking vertex) by the small angle that brings the striking vertex to z = 0, the
+  /// contacts staying where they are; in flight it is lifted. The velocities are kept (a position projection,
+  /// the post-stabilisation of Cline & Pai 2003).
+  void level_strike(int striking) {
+    const auto js = static_cast<std::size_t>(striking);
+    const double zs = vertex_z(x_, js);
+    if (!(zs < 0.0)) return;
+    const M3 R = rot();
+    const Vec3 c{x_[0], x_[1], x_[2]};
+    const auto at = [&](int j) { return c + mul(R, v_[static_cast<std::size_t>(j)] - c_); };
+    Vec3 axis{};
+    Vec3 pivot{};
+    if (set_.size() == 2) {
+      pivot = at(set_[0].v);
+      axis = at(set_[1].v) - pivot;
+    } else if (set_.size() == 1) {
+      pivot = at(set_[0].v);
+      axis = cross(kUp, at(striking) - pivot);
+    }
+    const double an = norm(axis);
+    const double lever = an > 0.0 ? cross((1.0 / an) * axis, at(striking) - pivot)[2] : 0.0;
+    if (set_.empty() || set_.size() > 2 || !(std::abs(lever) > 1e-3 * size_)) {
+      x_[2] -= zs;
+      return;
+    }
+    const double phi = -zs / lever;
+    const Vec3 e = (1.0 / an) * axis;
+    const Quaternion qr = axis_angle(e, phi);
+    const Vec3 cn = pivot + mul(rotation(qr), c - pivot);
+    const Quaternion q = normalized(qmul(qr, {x_[6], x_[7], x_[8], x_[9]}));
+    for (std::size_t k = 0; k < 3; ++k) x_[k] = cn[k];
+    for (std::size_t k = 0; k < 4; ++k) x_[6 + k] = q[k];
+  }
+
   void impact(int striking, bool land_flat = false) {
+    level_strike(striking);
     const double ke_before = kinetic(x_);
     std::vector<int> down = all_down();
     if (std::find(down.begin(), down.end(), striking) == down.end()) down.push_back(striking);
