@@ -418,18 +418,20 @@ double lowest_vertex_over_size(const Rigid3DResult& r, const RigidBody3D& body) 
 // seeds s, s + 1, s + 2 as east, north and vertical, bearing 30):
 // (1) a vertex on the ground at a phase's start moving down had no touch-down event (its function started at 0):
 //     it went through the ground (0.4 x 0.3 x 0.8, mu 0.45, 0.5 g, seeds 7-9: a base vertex 0.30 m deep, then
-//     "fallen" at 3.06 s; 0.2 x 0.15 x 0.6, mu 0.45, 0.5 g, seeds 2-4: 0.078 m deep, "fallen" at 3.48 s);
-// (2) a flight entered where g + a_z only touches 0 (the synthetic vertical's -1 g sample, seeds 4-6 at 1.0 g) fell
-//     through the ground for the rest of the run (z = -29800 m, end mode flight after the 60 s run-out).
-// Now every run ends at rest at the record's end or fallen, and no base vertex is ever below the ground by more than
-// 1e-6 of the size (the engine's invariant, which throws a SolverError otherwise).
+//     "fallen" at 3.06 s with 13 impacts; now it stands, max tilt 1.4e-4 rad, 74 impacts);
+// (2) a flight entered where g + a_z only touches 0 (the synthetic vertical's -1 g sample: seeds 4-6 with mu 0.2,
+//     seeds 9-11 with mu 0.45, at 1.0 g) fell through the ground for the rest of the run (z = -29800 m, end mode
+//     flight after the 60 s run-out); now the touch is one flight shorter than a sample, ended by a flat landing.
+// Every run ends at rest at the record's end or fallen, and no base vertex is ever below the ground by more than
+// 1e-6 of the size (the history's rows here; the engine's invariant, which throws a SolverError otherwise, at every
+// step and event).
 TEST(Rigid3DContact, NoBaseVertexPassesThroughTheGround) {
   struct Run {
     double w, d, h, mu, pga_g;
     std::uint64_t seed;
   };
-  for (const Run& c : {Run{0.4, 0.3, 0.8, 0.45, 0.5, 7}, Run{0.2, 0.15, 0.6, 0.45, 0.5, 2},
-                       Run{0.2, 0.15, 0.6, 0.2, 1.0, 4}, Run{0.6, 0.5, 0.7, 0.2, 1.0, 4}}) {
+  for (const Run& c : {Run{0.4, 0.3, 0.8, 0.45, 0.5, 7}, Run{0.2, 0.15, 0.6, 0.2, 1.0, 4},
+                       Run{0.6, 0.5, 0.7, 0.45, 1.0, 9}}) {
     const GroundMotion east = synth(c.pga_g, c.seed), north = synth(c.pga_g, c.seed + 1),
                        up = synth(c.pga_g, c.seed + 2);
     const RigidBody3D box = RigidBody3D::box(c.w, c.d, c.h).rotated_about_vertical(M_PI / 3.0);  // bearing 30
@@ -446,10 +448,12 @@ TEST(Rigid3DContact, NoBaseVertexPassesThroughTheGround) {
       EXPECT_NEAR(s.end_time_s, 20.0, 1e-9) << c.w << " " << c.seed;
     }
     EXPECT_GE(s.energy_lost_j_per_kg, 0.0) << c.w << " " << c.seed;
+    if (c.pga_g == 1.0) {
+      // (2): g + a_z > 0 but at the one -1 g sample, so no flight can outlast a sample interval (0.01 s)
+      EXPECT_LE(s.flights, 1U) << c.w << " " << c.seed;
+      EXPECT_LT(s.flight_duration_s, 0.01) << c.w << " " << c.seed;
+    }
     for (double e : r.history.energy_j_per_kg) EXPECT_TRUE(std::isfinite(e));
-    std::printf("case %.2f seed %d: overturned %d at %g, impacts %zu, flights %zu, end mode %d at %g, lowest %.3g\n", c.w,
-                static_cast<int>(c.seed), s.overturned, s.overturn_time_s.value_or(-1.0), s.impacts, s.flights,
-                static_cast<int>(s.end_mode), s.end_time_s, lowest_vertex_over_size(r, box));
   }
 }
 
