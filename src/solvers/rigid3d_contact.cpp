@@ -42,6 +42,10 @@
 // (slip starts), another vertex's height -> 0 (impact), the tilt -> 90 degrees (fallen), in flight a vertex's height
 // -> 0 (landing); flat: the centre of pressure crossing an edge, the slip velocity -> 0, |a_h| -> mu_s N, g + a_z ->
 // 0. Tilt maxima are located as roots of the tilt's rate (the summary's max tilt).
+// The ground's impenetrability (issue 29; docs/method.md): at a mode's start a vertex not in the set at a gap <= 0
+// moving down strikes, one accelerating down joins the set (settle_down_vertices); a dip event per such vertex fires
+// 1e-9 size below where it started (an impact); a striking vertex below the ground is levelled onto it (level_strike);
+// and a vertex deeper than kPenetration of the size throws (track()).
 //
 // Impacts (Brogliato 1999, sec. 4.2; Glocker & Pfeiffer 1995; Shenton & Jones 1991, as slide_rock.hpp in the plane):
 // plastic in the normal direction (the striking contacts' normal velocity after is 0), a Coulomb impulse
