@@ -42,6 +42,10 @@
 // (slip starts), another vertex's height -> 0 (impact), the tilt -> 90 degrees (fallen), in flight a vertex's height
 // -> 0 (landing); flat: the centre of pressure crossing an edge, the slip velocity -> 0, |a_h| -> mu_s N, g + a_z ->
 // 0. Tilt maxima are located as roots of the tilt's rate (the summary's max tilt).
+// The ground's impenetrability (issue 29; docs/method.md): at a mode's start a vertex not in the set at a gap <= 0
+// moving down strikes, one accelerating down joins the set (settle_down_vertices); a dip event per such vertex fires
+// 1e-9 size below where it started (an impact); a striking vertex below the ground is levelled onto it (level_strike);
+// and a vertex deeper than kPenetration of the size throws (track()).
 //
 // Impacts (Brogliato 1999, sec. 4.2; Glocker & Pfeiffer 1995; Shenton & Jones 1991, as slide_rock.hpp in the plane):
 // plastic in the normal direction (the striking contacts' normal velocity after is 0), a Coulomb impulse
@@ -862,7 +866,46 @@ class ContactEngine {
   }
 
   // ---- impacts ----
-  void impact(int striking) {
+  /// The striking vertex back on the ground (issue 29): a vertex located by its dip strikes up to kDip size below
+  /// the ground, and one that started its phase below it (the constraint's drift at the acceleration level, ~1e-10 of
+  /// the size per phase) lower still; left so, a pivot swapping between the ends of an edge sinks the edge by that
+  /// at each swap. The body is turned about the current contacts (the line of an edge; for a pivot, the horizontal
+  /// axis through it across the striking vertex) by the small angle that brings the striking vertex to z = 0, the
+  /// contacts staying where they are; in flight it is lifted. The velocities are kept (a position projection,
+  /// the post-stabilisation of Cline & Pai 2003).
+  void level_strike(int striking) {
+    const auto js = static_cast<std::size_t>(striking);
+    const double zs = vertex_z(x_, js);
+    if (!(zs < 0.0)) return;
+    const M3 R = rot();
+    const Vec3 c{x_[0], x_[1], x_[2]};
+    const auto at = [&](int j) { return c + mul(R, v_[static_cast<std::size_t>(j)] - c_); };
+    Vec3 axis{};
+    Vec3 pivot{};
+    if (set_.size() == 2) {
+      pivot = at(set_[0].v);
+      axis = at(set_[1].v) - pivot;
+    } else if (set_.size() == 1) {
+      pivot = at(set_[0].v);
+      axis = cross(kUp, at(striking) - pivot);
+    }
+    const double an = norm(axis);
+    const double lever = an > 0.0 ? cross((1.0 / an) * axis, at(striking) - pivot)[2] : 0.0;
+    if (set_.empty() || set_.size() > 2 || !(std::abs(lever) > 1e-3 * size_)) {
+      x_[2] -= zs;
+      return;
+    }
+    const double phi = -zs / lever;
+    const Vec3 e = (1.0 / an) * axis;
+    const Quaternion qr = axis_angle(e, phi);
+    const Vec3 cn = pivot + mul(rotation(qr), c - pivot);
+    const Quaternion q = normalized(qmul(qr, {x_[6], x_[7], x_[8], x_[9]}));
+    for (std::size_t k = 0; k < 3; ++k) x_[k] = cn[k];
+    for (std::size_t k = 0; k < 4; ++k) x_[6 + k] = q[k];
+  }
+
+  void impact(int striking, bool land_flat = false) {
+    level_strike(striking);
     const double ke_before = kinetic(x_);
     std::vector<int> down = all_down();
     if (std::find(down.begin(), down.end(), striking) == down.end()) down.push_back(striking);
@@ -905,7 +948,14 @@ class ContactEngine {
     for (int j : down) {
       if (!in(fresh, j)) cands.push_back({j});
     }
-    if (fresh.size() >= 3) cands.clear();
+    // (issue 29) a strike slower than kFlatStrike p size with every base vertex within simultaneous_contact of the
+    // ground lands flat too: a body sliding flat to that tolerance whose contact alternates between opposite edges
+    // every 1e-8 s at strike speeds of 1e-8 m/s (an accumulation the rest rule on the whole kinetic energy does not
+    // end while the body slides) is on its flat base
+    if (down.size() == v_.size() && -vertex_velocity(x_, static_cast<std::size_t>(striking))[2] < kFlatStrike * p_ref_ * size_) {
+      land_flat = true;
+    }
+    if (fresh.size() >= 3 || land_flat) cands.clear();
     const double tolV = 1e-9 * p_ref_ * size_;
     for (const auto& verts : cands) {
       const std::size_t m = verts.size();
@@ -1078,6 +1128,14 @@ class ContactEngine {
       out.push_back(in ? -1.0 : -(x[2] + dot(R[2], v_[j] - c_)) / size_);  // touch-down
     }
     out.push_back(-R[2][2]);  // fallen: the body's z axis horizontal
+    // Dips (issue 29): a vertex not in the set that starts the phase at or below the ground (gap z0 <= 0) has a
+    // touch-down function starting at >= 0, which is armed only once the vertex rises; moving down it would pass
+    // through the ground unseen. Its dip function -(z - z0 + kDip size) / size starts below 0 and fires when the
+    // vertex has gone kDip size below where it started: an impact there (the backstop of settle_down_vertices()).
+    for (std::size_t j = 0; j < v_.size(); ++j) {
+      const double z0 = j < dip_ref_.size() ? dip_ref_[j] : kNoDip;
+      out.push_back(z0 == kNoDip ? -1.0 : -(x[2] + dot(R[2], v_[j] - c_) - z0 + kDip * size_) / size_);
+    }
   }
 
   [[nodiscard]] double pressure_excess_at(const SX& x, double fx, double fy) const {
@@ -1148,6 +1206,7 @@ class ContactEngine {
       dp_.restart(t_, x_);
       restart_ = false;
       arm(x_, t_);
+      if (settle_down_vertices()) return;
     }
     if (kind_ == Kind::flat_slip) slip_ref_ = {x_[3], x_[4], 0.0};
     if (!dp_.step(tb, steps_, opt_.max_steps)) {
@@ -1324,7 +1383,62 @@ class ContactEngine {
     return j;
   }
 
+  /// The mode decision's check at a phase's start (issue 29; the event-driven rule, Pfeiffer & Glocker 1996, ch. 7;
+  /// Glocker 2001): a base vertex not in the set at a gap <= 0 must separate. One moving into the ground (normal
+  /// velocity < -tolV) strikes now (an impact); one at rest normally (|v_z| <= tolV) whose acceleration under the
+  /// set's forces points into the ground (a_z < -tolF) closes a contact: the mode is chosen again over all the
+  /// vertices down, whose check (consistent()) then includes it. A vertex separating (v_z > tolV, or a_z >= -tolF)
+  /// is left to its touch-down and dip events. At most kMaxSettle times at one instant (then the dips take over).
+  /// True: the state or the mode changed (the phase starts again).
+  bool settle_down_vertices() {
+    if (kind_ != Kind::contact && kind_ != Kind::flight) return false;
+    if (t_ != settle_t_) {
+      settle_t_ = t_;
+      settle_n_ = 0;
+    }
+    if (settle_n_ >= kMaxSettle) return false;
+    const double tolV = 1e-9 * p_ref_ * size_, tolF = 1e-9 * g_;
+    std::optional<Dyn> d;
+    int strike = -1;
+    bool close = false;
+    double fastest = -tolV;
+    for (std::size_t j = 0; j < v_.size(); ++j) {
+      bool in = false;
+      for (const Contact& c : set_) in = in || c.v == static_cast<int>(j);
+      if (in || vertex_z(x_, j) > 0.0) continue;
+      const double vz = vertex_velocity(x_, j)[2];
+      if (vz < fastest) {
+        fastest = vz;
+        strike = static_cast<int>(j);
+        continue;
+      }
+      if (vz > tolV) continue;
+      if (!d) d = dynamics(x_, t_, set_);
+      if (!d->ok) continue;
+      const Vec3 r = mul(d->R, v_[j] - c_);
+      const Vec3 aj = d->a + cross(d->alpha, r) + cross(d->w, cross(d->w, r));
+      if (aj[2] < -tolF) close = true;
+    }
+    if (strike < 0 && !close) return false;
+    ++settle_n_;
+    if (strike >= 0) {
+      impact(strike);
+    } else {
+      choose(all_down(), {}, -1);
+    }
+    return true;
+  }
+
   void arm(const SX& x, double t) {
+    dip_ref_.assign(v_.size(), kNoDip);
+    if (kind_ == Kind::contact || kind_ == Kind::flight) {
+      for (std::size_t j = 0; j < v_.size(); ++j) {
+        bool in = false;
+        for (const Contact& c : set_) in = in || c.v == static_cast<int>(j);
+        const double z = vertex_z(x, j);
+        if (!in && z <= 0.0) dip_ref_[j] = z;
+      }
+    }
     std::vector<double> g;
     events(x, t, g);
     armed_.assign(g.size(), false);
@@ -1421,6 +1535,14 @@ class ContactEngine {
       impact(static_cast<int>(j));
       return;
     }
+    if (j > v_.size() && j <= 2 * v_.size()) {  // a dip (events()): the vertex is coming down through the ground
+      // With every base vertex within simultaneous_contact of the ground the body is flat to that tolerance: it
+      // lands flat (the flat outcome), as a strike of three or more vertices does; a body rocking between opposite
+      // edges at tilts of 1e-6 rad would otherwise dip an edge at each swap (issue 29). (Every vertex, not three:
+      // the neighbours of a pivot of a fine polygon, a 128-gon, are within that tolerance at tilts of 0.03 rad.)
+      impact(static_cast<int>(j - v_.size() - 1), all_down().size() == v_.size());
+      return;
+    }
     fall();
   }
 
@@ -1445,6 +1567,19 @@ class ContactEngine {
 
   void track(double t, const SX& x) {
     const M3 R = rot(x);
+    // The invariant (issue 29): no base vertex below the ground by more than kPenetration of the body's size. The
+    // touch-down, dip and settle rules keep it; a breach is the engine's fault, never silent.
+    for (std::size_t j = 0; j < v_.size(); ++j) {
+      const double z = x[2] + dot(R[2], v_[j] - c_);
+      if (z < -kPenetration * size_) {
+        bool in = false;
+        for (const Contact& c : set_) in = in || c.v == static_cast<int>(j);
+        throw SolverError(fmt::format(
+            "rock3d: internal error: base vertex {} is {:.3g} m below the ground at t = {} s (more than {} of the "
+            "body's size {:.3g} m; mode {}, {}): the contact engine lost the ground; please report it",
+            j, -z, t, kPenetration, size_, static_cast<int>(kind_), in ? "a contact" : "not a contact"));
+      }
+    }
     const Vec3 zb{R[0][2], R[1][2], R[2][2]};
     const double horizontal = std::hypot(zb[0], zb[1]);
     const double tilt = std::atan2(horizontal, zb[2]);
@@ -1543,6 +1678,11 @@ class ContactEngine {
   static constexpr int kMaxEvents = 10'000;
   static constexpr int kSlowSteps = 1'000;  // steps in a sample interval after which slow slips are held
   static constexpr double kZenoGap_s = 1e-6;
+  static constexpr double kFlatStrike = 1e-6;  // a strike slower than this times p size on a flat base: lands flat
+  static constexpr double kDip = 1e-9;          // a dip event's depth below the vertex's start, of the body's size
+  static constexpr double kPenetration = 1e-6;  // the invariant: no vertex deeper than this of the body's size
+  static constexpr double kNoDip = std::numeric_limits<double>::infinity();  // dip_ref_: no dip event
+  static constexpr int kMaxSettle = 4;          // settle_down_vertices() at one instant
   static constexpr double kConeTol = 1e-6;  // a sticking force within this fraction of mu_s N: on the boundary
   static constexpr double kParallel = 1e-3;  // a slip direction within this angle (rad) of a_t's line: along it
   static constexpr double kChatter_s = 1e-6;  // a slip that stops within this of its start: held sticking
@@ -1580,6 +1720,9 @@ class ContactEngine {
   std::vector<Contact> set_;
   Vec3 slip_dir_{1.0, 0.0, 0.0}, slip_ref_{};
   std::vector<bool> armed_;
+  std::vector<double> dip_ref_;  // per vertex: its height at the phase's start where <= 0 (a dip event), else kNoDip
+  double settle_t_ = -1.0;
+  int settle_n_ = 0;
   int interval_count_ = 0;  // steps and events in the current sample interval (interval())
   bool launch_ = false;  // a flat slip whose velocity is slaved to the load's direction (update_launch)
   double launch_speed_ = 0.0, floor_speed_ = 0.0;

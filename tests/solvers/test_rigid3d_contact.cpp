@@ -398,5 +398,66 @@ TEST(Rigid3DContact, SyntheticThreeComponentRunsWithFrictionRunToTheirEnd) {
   }
 }
 
+// Issue 29, the ground's impenetrability: the lowest base vertex over a run's history (rows at the samples and the
+// events) as a fraction of the body's size (the largest distance of c from a base vertex, the engine's size).
+double lowest_vertex_over_size(const Rigid3DResult& r, const RigidBody3D& body) {
+  double size = 0.0;
+  for (const auto& p : body.base_xy_m) {
+    size = std::max(size, std::hypot(p[0] - body.centre_of_mass_m[0], p[1] - body.centre_of_mass_m[1],
+                                     body.centre_of_mass_m[2]));
+  }
+  double low = 0.0;
+  const auto& h = r.history;
+  for (std::size_t i = 0; i < h.time_s.size(); ++i) {
+    const auto& q = h.orientation[i];  // (w, x, y, z), body -> ground: the rotation matrix's third row
+    const double r20 = 2.0 * (q[1] * q[3] - q[0] * q[2]), r21 = 2.0 * (q[2] * q[3] + q[0] * q[1]);
+    for (const auto& p : body.base_xy_m) low = std::min(low, h.position_m[i][2] + r20 * p[0] + r21 * p[1]);
+  }
+  return low / size;
+}
+
+// Issue 29, two defects of the contact engine found by the 540-run sweep of docs/method.md (a `topple synth` family:
+// seeds s, s + 1, s + 2 as east, north and vertical, bearing 30):
+// (1) a vertex on the ground at a phase's start moving down had no touch-down event (its function started at 0):
+//     it went through the ground (0.4 x 0.3 x 0.8, mu 0.45, 0.5 g, seeds 7-9: a base vertex 0.30 m deep, then
+//     "fallen" at 3.06 s with 13 impacts; now it stands, max tilt 1.4e-4 rad, 74 impacts);
+// (2) a flight entered where g + a_z only touches 0 (the synthetic vertical's -1 g sample: seeds 4-6 with mu 0.2,
+//     seeds 9-11 with mu 0.45, at 1.0 g) fell through the ground for the rest of the run (z = -29800 m, end mode
+//     flight after the 60 s run-out); now the touch is one flight shorter than a sample, ended by a flat landing.
+// Every run ends at rest at the record's end or fallen, and no base vertex is ever below the ground by more than
+// 1e-6 of the size (the history's rows here; the engine's invariant, which throws a SolverError otherwise, at every
+// step and event).
+TEST(Rigid3DContact, NoBaseVertexPassesThroughTheGround) {
+  struct Run {
+    double w, d, h, mu, pga_g;
+    std::uint64_t seed;
+  };
+  for (const Run& c : {Run{0.4, 0.3, 0.8, 0.45, 0.5, 7}, Run{0.2, 0.15, 0.6, 0.2, 1.0, 4},
+                       Run{0.6, 0.5, 0.7, 0.45, 1.0, 9}}) {
+    const GroundMotion east = synth(c.pga_g, c.seed), north = synth(c.pga_g, c.seed + 1),
+                       up = synth(c.pga_g, c.seed + 2);
+    const RigidBody3D box = RigidBody3D::box(c.w, c.d, c.h).rotated_about_vertical(M_PI / 3.0);  // bearing 30
+    Rigid3DOptions o = friction(c.mu, c.mu);
+    o.record_history = true;
+    Rigid3DResult r;
+    ASSERT_NO_THROW(r = rock3d(east, &north, &up, box, o)) << c.w << " " << c.seed;
+    const auto& s = r.summary;
+    EXPECT_GE(lowest_vertex_over_size(r, box), -1e-6) << c.w << " " << c.seed;
+    if (s.overturned) {
+      EXPECT_EQ(s.end_mode, Rigid3DMode::fallen) << c.w << " " << c.seed;
+    } else {
+      EXPECT_EQ(s.end_mode, Rigid3DMode::rest) << c.w << " " << c.seed;
+      EXPECT_NEAR(s.end_time_s, 20.0, 1e-9) << c.w << " " << c.seed;
+    }
+    EXPECT_GE(s.energy_lost_j_per_kg, 0.0) << c.w << " " << c.seed;
+    if (c.pga_g == 1.0) {
+      // (2): g + a_z > 0 but at the one -1 g sample, so no flight can outlast a sample interval (0.01 s)
+      EXPECT_LE(s.flights, 1U) << c.w << " " << c.seed;
+      EXPECT_LT(s.flight_duration_s, 0.01) << c.w << " " << c.seed;
+    }
+    for (double e : r.history.energy_j_per_kg) EXPECT_TRUE(std::isfinite(e));
+  }
+}
+
 }  // namespace
 }  // namespace topple
