@@ -307,31 +307,15 @@ class Engine {
     return {c, solve3(g_.Mp(c.a, c.r), rhs_m), rd};
   }
 
-  // The equations of motion on the rim (header), f = (-a_x, -a_y, -(g + a_z)). (rim_rates above is the same
-  // evaluation, for the contact force; kept apart so that the no-friction path is the code it was.)
+  // The equations of motion on the rim (header), f = (-a_x, -a_y, -(g + a_z)): rim_rates' w', with q' and the
+  // centre of mass's velocity w x r.
   [[nodiscard]] State rhs(const State& y, const std::array<double, 3>& acc) const {
     const Quaternion q = quat(y);
     const V w = omega(y);
-    const Contact c = contact_of(g_, q, u_, &u_);  // u_: the step's starting contact (continued past the upright)
-    const V ad = cross(w, c.a);
-    // flat (first stage after an uplift or an impact): the contact is the rim point fixed in the body, u' = w x u
-    // (the rocking limit; a sideways rate there would make u' infinite)
-    V ud = cross(w, c.u);
-    if (c.sin_tilt > kDirectionFloor) {
-      // d = a_z e - sin(theta) z with e = a_h / sin(theta): d' = a_z' e + a_z e' - (e . a_h') z, e' the part of a_h'
-      // normal to e over sin(theta), ((e x a_h') . z / sin(theta)) (z x e) (exactly 0 in one vertical plane)
-      const double ex = c.ex, ey = c.ey;
-      const double turn = (ex * ad[1] - ey * ad[0]) * c.inv_sin_tilt;
-      ud = {ad[2] * ex - c.a[2] * turn * ey, ad[2] * ey + c.a[2] * turn * ex, -(ex * ad[0] + ey * ad[1])};
-      if (c.reflected) ud = mul(ud, -1.0);  // u = -d past the upright
-    }
-    const V rd = sub(mul(ad, g_.h), mul(ud, g_.R));
-    const V f{-acc[0], -acc[1], -acc[2]};
-    const V rhs_m = sub(sub(cross(c.r, f), cross(w, g_.JG(c.a, w))), cross(c.r, cross(w, rd)));
-    const V wd = solve3(g_.Mp(c.a, c.r), rhs_m);
+    const RimRates k = rim_rates(y, acc);
     const Quaternion qd = qmul({0.0, w[0], w[1], w[2]}, q);
-    const V vc = cross(w, c.r);
-    return {0.5 * qd[0], 0.5 * qd[1], 0.5 * qd[2], 0.5 * qd[3], wd[0], wd[1], wd[2], vc[0], vc[1], vc[2]};
+    const V vc = cross(w, k.c.r);
+    return {0.5 * qd[0], 0.5 * qd[1], 0.5 * qd[2], 0.5 * qd[3], k.wd[0], k.wd[1], k.wd[2], vc[0], vc[1], vc[2]};
   }
 
   /// The contact force per unit mass on the rim (friction given): Newton, F = a_c - f with a_c = d(w x r)/dt =
