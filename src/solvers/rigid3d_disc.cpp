@@ -19,6 +19,7 @@
 #include "topple/numerics/dp5.hpp"
 #include "topple/numerics/event_root.hpp"
 #include "rigid3d_disc_contact.hpp"
+#include "rigid3d_math.hpp"
 #include "rigid3d_slide.hpp"
 
 namespace topple {
@@ -812,24 +813,7 @@ Rigid3DResult merge_disc_contact(Rigid3DResult a, Rigid3DResult b, const Rigid3D
   s.steps += e.steps;
   for (auto& w : e.warnings) s.warnings.push_back(std::move(w));
   if (options.record_history) {
-    auto& h = a.history;
-    const auto& c = b.history;
-    for (std::size_t k = 0; k < c.time_s.size(); ++k) {
-      if (!h.time_s.empty() && c.time_s[k] <= h.time_s.back()) {  // the hand-over row: the contact engine's state
-        h.position_m.back() = c.position_m[k];
-        h.orientation.back() = c.orientation[k];
-        h.angular_velocity_rad_s.back() = c.angular_velocity_rad_s[k];
-        h.energy_j_per_kg.back() = c.energy_j_per_kg[k];
-        h.mode.back() = c.mode[k];
-        continue;
-      }
-      h.time_s.push_back(c.time_s[k]);
-      h.position_m.push_back(c.position_m[k]);
-      h.orientation.push_back(c.orientation[k]);
-      h.angular_velocity_rad_s.push_back(c.angular_velocity_rad_s[k]);
-      h.energy_j_per_kg.push_back(c.energy_j_per_kg[k]);
-      h.mode.push_back(c.mode[k]);
-    }
+    detail::r3d::append_history(a.history, b.history, false);  // the hand-over row: the contact engine's state
   }
   return a;
 }

@@ -1,7 +1,8 @@
 #pragma once
 // Internal: the small fixed-size algebra (3-vectors, 3x3 matrices as rows, quaternions w, x, y, z) and the
 // Dormand-Prince 5(4) stepper with dense output shared by the three-dimensional engines (rigid3d.cpp, the no-slip
-// engine; rigid3d_contact.cpp, the engine with slipping contacts and flight).
+// engine; rigid3d_contact.cpp, the engine with slipping contacts and flight), and the pieces the engines that hand a
+// run over to another share (rigid3d_slide.cpp, rigid3d_disc.cpp, rigid3d_disc_contact.cpp).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -13,6 +14,7 @@
 #include "topple/core/units.hpp"
 #include "topple/numerics/dp5.hpp"
 #include "topple/numerics/step_law.hpp"
+#include "topple/solvers/rigid3d.hpp"
 
 namespace topple::detail::r3d {
 
@@ -271,5 +273,30 @@ struct BaseFrame {
     return dot(still, c - c0);
   }
 };
+
+// ---------------------------------------------------------------------------------------------------------------
+// Handing a run over from one engine to the next.
+
+/// Appends `next`, the history of the engine that took a run over, to `h`. A row of `next` at or before h's last time
+/// is the hand-over row: it keeps h's time and takes the state of `next` (the engine that goes on); with
+/// `first_row_only`, only next's first row is taken for one.
+inline void append_history(Rigid3DHistory& h, const Rigid3DHistory& next, bool first_row_only) {
+  for (std::size_t k = 0; k < next.time_s.size(); ++k) {
+    if (!h.time_s.empty() && next.time_s[k] <= h.time_s.back() && (k == 0 || !first_row_only)) {
+      h.position_m.back() = next.position_m[k];
+      h.orientation.back() = next.orientation[k];
+      h.angular_velocity_rad_s.back() = next.angular_velocity_rad_s[k];
+      h.energy_j_per_kg.back() = next.energy_j_per_kg[k];
+      h.mode.back() = next.mode[k];
+      continue;
+    }
+    h.time_s.push_back(next.time_s[k]);
+    h.position_m.push_back(next.position_m[k]);
+    h.orientation.push_back(next.orientation[k]);
+    h.angular_velocity_rad_s.push_back(next.angular_velocity_rad_s[k]);
+    h.energy_j_per_kg.push_back(next.energy_j_per_kg[k]);
+    h.mode.push_back(next.mode[k]);
+  }
+}
 
 }  // namespace topple::detail::r3d

@@ -261,24 +261,7 @@ Rigid3DResult merge_contact(Rigid3DResult out, const GroundMotion& x, const Grou
   if (s.first_slip_time_s) e.first_slip_time_s = s.first_slip_time_s;
   e.steps += s.steps;
   if (options.record_history) {
-    auto& h = out.history;
-    const auto& c = r.history;
-    for (std::size_t k = 0; k < c.time_s.size(); ++k) {
-      if (!h.time_s.empty() && c.time_s[k] <= h.time_s.back() && k == 0) {  // the cut row: the engine's state
-        h.position_m.back() = c.position_m[k];
-        h.orientation.back() = c.orientation[k];
-        h.angular_velocity_rad_s.back() = c.angular_velocity_rad_s[k];
-        h.energy_j_per_kg.back() = c.energy_j_per_kg[k];
-        h.mode.back() = c.mode[k];
-        continue;
-      }
-      h.time_s.push_back(c.time_s[k]);
-      h.position_m.push_back(c.position_m[k]);
-      h.orientation.push_back(c.orientation[k]);
-      h.angular_velocity_rad_s.push_back(c.angular_velocity_rad_s[k]);
-      h.energy_j_per_kg.push_back(c.energy_j_per_kg[k]);
-      h.mode.push_back(c.mode[k]);
-    }
+    r3d::append_history(out.history, r.history, true);  // the cut row: the engine's state
   } else {
     out.history = {};
   }
