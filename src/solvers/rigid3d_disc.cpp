@@ -716,16 +716,7 @@ class Engine {
     const auto Mv = [&](V v) { return V{dot(M[0], v), dot(M[1], v), dot(M[2], v)}; };
     const double m11 = dot(tn, Mv(tn)), m12 = dot(tn, Mv(kZ)), m22 = dot(kZ, Mv(kZ));
     const double l1 = dot(tn, L), l2 = dot(kZ, L);
-    const double det = m11 * m22 - m12 * m12;
-    double wt = (l1 * m22 - l2 * m12) / det;
-    double wz = (m11 * l2 - m12 * l1) / det;
-    double ke_after = 0.5 * (m11 * wt * wt + 2.0 * m12 * wt * wz + m22 * wz * wz);
-    if (opt_.restitution == RestitutionMode::given && ke_after > 0.0) {
-      const double k = opt_.e * std::sqrt(ke_before / ke_after);
-      wt *= k;
-      wz *= k;
-      ke_after = opt_.e * opt_.e * ke_before;
-    }
+    const auto [wt, wz, ke_after] = detail::r3d::flat_landing(m11, m12, m22, l1, l2, ke_before, opt_);
     // the position of the centre of mass: flat, above the landing spot
     const V o_flat = sub(position(y_), mul(c.a, g_.h));  // the base's centre (the tilt is 0 to rounding)
     y_[0] = qf[0], y_[1] = qf[1], y_[2] = qf[2], y_[3] = qf[3];

@@ -825,15 +825,7 @@ class DiscEngine {
     const auto Mp = [&](const Vec3& u) { return Jmul(kUp, u) + dot(r_new, r_new) * u - dot(r_new, u) * r_new; };
     const double m11 = dot(tn, Mp(tn)), m12 = dot(tn, Mp(kUp)), m22 = dot(kUp, Mp(kUp));
     const double l1 = dot(tn, L), l2 = dot(kUp, L);
-    const double det = m11 * m22 - m12 * m12;
-    double wt = (l1 * m22 - l2 * m12) / det, wz = (m11 * l2 - m12 * l1) / det;
-    double ke_after = 0.5 * (m11 * wt * wt + 2.0 * m12 * wt * wz + m22 * wz * wz);
-    if (opt_.restitution == RestitutionMode::given && ke_after > 0.0) {
-      const double k = opt_.e * std::sqrt(ke_before / ke_after);
-      wt *= k;
-      wz *= k;
-      ke_after = opt_.e * opt_.e * ke_before;
-    }
+    const auto [wt, wz, ke_after] = r3d::flat_landing(m11, m12, m22, l1, l2, ke_before, opt_);
     const Vec3 w_after = wt * tn + wz * kUp;
     const Vec3 v_after = cross(w_after, r_new);
     const Vec3 P = v_after - v;

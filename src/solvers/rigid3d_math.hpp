@@ -299,4 +299,26 @@ inline void append_history(Rigid3DHistory& h, const Rigid3DHistory& next, bool f
   }
 }
 
+/// A landing flat on the base (the cylinder's engines, rigid3d_disc.cpp and rigid3d_disc_contact.cpp): the rates
+/// about the rim's tangent and the vertical, (w_t, w_z), from the angular momentum about the new contact,
+/// [m11 m12; m12 m22] (w_t, w_z) = (l1, l2) (Cramer's rule), and their kinetic energy; with a given restitution e,
+/// both rates scaled so that it is e^2 of the energy before, `ke_before` (docs/method.md).
+struct FlatLanding {
+  double wt, wz, ke_after;
+};
+inline FlatLanding flat_landing(double m11, double m12, double m22, double l1, double l2, double ke_before,
+                                const Rigid3DOptions& options) {
+  const double det = m11 * m22 - m12 * m12;
+  double wt = (l1 * m22 - l2 * m12) / det;
+  double wz = (m11 * l2 - m12 * l1) / det;
+  double ke_after = 0.5 * (m11 * wt * wt + 2.0 * m12 * wt * wz + m22 * wz * wz);
+  if (options.restitution == RestitutionMode::given && ke_after > 0.0) {
+    const double k = options.e * std::sqrt(ke_before / ke_after);
+    wt *= k;
+    wz *= k;
+    ke_after = options.e * options.e * ke_before;
+  }
+  return {wt, wz, ke_after};
+}
+
 }  // namespace topple::detail::r3d
