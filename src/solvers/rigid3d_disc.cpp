@@ -660,7 +660,7 @@ class Engine {
     stop_time_ = t;
     const Contact c = contact_of(g_, quat(y_), u_);
     const V w = omega(y_);
-    handover_ = detail::DiscStart{t, position(y_), cross(w, c.r), normalised(quat(y_)), w, c.u};
+    handover_ = detail::DiscStart{{t, position(y_), cross(w, c.r), normalised(quat(y_)), w}, c.u};
   }
 
  public:
@@ -864,7 +864,7 @@ Rigid3DResult rock3d_cylinder(const GroundMotion& x, const GroundMotion* y, cons
       // Shenton's flat base as well (its flat sliding lifts onto the rim only where mu_k h > R)
       detail::DiscStart flat;
       flat.time_s = grid.time_s(0);
-      flat.centre_m = {0.0, 0.0, b.centre_height_m};
+      flat.position_m = {0.0, 0.0, b.centre_height_m};
       flat.at_rest = true;
       return detail::rock3d_disc_contact(x, y, z, b, options, flat);
     }

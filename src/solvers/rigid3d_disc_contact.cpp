@@ -110,12 +110,12 @@ class DiscEngine {
     std::size_t i = 0;
     while (i + 2 < n && grid_.time_s(i + 1) <= t_) ++i;
     for (std::size_t k = 0; k < 3; ++k) {
-      x_[k] = start_.centre_m[k];
+      x_[k] = start_.position_m[k];
       x_[3 + k] = start_.velocity_m_s[k];
       x_[10 + k] = start_.angular_velocity_rad_s[k];
     }
     for (std::size_t k = 0; k < 4; ++k) x_[6 + k] = start_.orientation[k];
-    base0_ = hpart(start_.centre_m - h_ * axis(x_));
+    base0_ = hpart(start_.position_m - h_ * axis(x_));
     if (i + 1 < n) set_forcing(i);
     if (start_.at_rest) {
       enter(Kind::rest);

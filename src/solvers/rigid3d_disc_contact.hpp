@@ -4,18 +4,13 @@
 #include "topple/motion/ground_motion.hpp"
 #include "topple/solvers/rigid3d.hpp"
 #include "topple/solvers/rigid3d_disc.hpp"
+#include "rigid3d_math.hpp"
 
 namespace topple::detail {
 
-/// The state the contact engine starts from: the centre of mass and its velocity, the orientation (body -> ground)
-/// and the angular velocity (ground frame), and the rim point in contact (its direction from the base's centre; used
-/// where the base is flat).
-struct DiscStart {
-  double time_s = 0.0;
-  Vec3 centre_m{};
-  Vec3 velocity_m_s{};
-  Quaternion orientation = kIdentityQuaternion;
-  Vec3 angular_velocity_rad_s{};
+/// The state the contact engine starts from: position_m is the centre of mass (r3d::EngineStart, rigid3d_math.hpp),
+/// and the rim point in contact (its direction from the base's centre; used where the base is flat).
+struct DiscStart : r3d::EngineStart {
   Vec3 contact_direction{1.0, 0.0, 0.0};
   /// the base flat on the ground, at rest (rock3d_cylinder's Shenton case, mu_s h < R, where g + a_z reaches 0: the
   /// flat slide model excludes flight, this engine does not); else the body on its rim, the rolling contact just failed

@@ -321,4 +321,15 @@ inline FlatLanding flat_landing(double m11, double m12, double m22, double l1, d
   return {wt, wz, ke_after};
 }
 
+/// The state an engine takes a run over in (rigid3d_slide.hpp's ContactStart, rigid3d_disc_contact.hpp's DiscStart):
+/// the time, a point of the body (ContactStart: the body frame's origin; DiscStart: the centre of mass) and the centre
+/// of mass's velocity in the ground frame, the orientation (body -> ground) and the angular velocity (ground frame).
+struct EngineStart {
+  double time_s = 0.0;
+  Vec3 position_m{};
+  Vec3 velocity_m_s{};
+  Quaternion orientation = kIdentityQuaternion;
+  Vec3 angular_velocity_rad_s{};
+};
+
 }  // namespace topple::detail::r3d

@@ -408,8 +408,8 @@ Rigid3DResult rock3d_friction(const GroundMotion& x, const GroundMotion* y, cons
   }
   // The base's excursion up to the cut at the rows too (the cut row's position is where the next phase starts).
   for (std::size_t j = 0; j <= cut; ++j) s.max_slide_m = std::max(s.max_slide_m, std::hypot(H.east_m[j], H.north_m[j]));
-  const ContactStart start{t_cut, {H.east_m[cut], H.north_m[cut], 0.0}, {H.east_m_s[cut], H.north_m_s[cut], 0.0},
-                           kIdentityQuaternion, {0.0, 0.0, 0.0}};
+  const ContactStart start{{t_cut, {H.east_m[cut], H.north_m[cut], 0.0}, {H.east_m_s[cut], H.north_m_s[cut], 0.0},
+                            kIdentityQuaternion, {0.0, 0.0, 0.0}}};
   if (slide_rock || lost) return merge_contact(std::move(out), xb, yb, zb, checked, options, start);
 
   if (zb) {  // g + a_z <= 0 after the uplift: flight, which the no-slip engine excludes

@@ -5,6 +5,7 @@
 
 #include "topple/motion/ground_motion.hpp"
 #include "topple/solvers/rigid3d.hpp"
+#include "rigid3d_math.hpp"
 
 namespace topple::detail {
 
@@ -38,15 +39,9 @@ void check_friction(const Rigid3DOptions& options);
 [[nodiscard]] Rigid3DResult rock3d_flat_slide(const GroundMotion& x, const GroundMotion* y, const GroundMotion* z,
                                               const Rigid3DOptions& options);
 
-/// The state the contact engine starts from (rigid3d_contact.cpp): the body frame's origin in the ground frame, c's
-/// velocity, the orientation and the angular velocity (ground frame).
-struct ContactStart {
-  double time_s = 0.0;
-  Vec3 position_m{};
-  Vec3 velocity_m_s{};
-  Quaternion orientation = kIdentityQuaternion;
-  Vec3 angular_velocity_rad_s{};
-};
+/// The state the contact engine starts from (rigid3d_contact.cpp): position_m is the body frame's origin in the
+/// ground frame (r3d::EngineStart, rigid3d_math.hpp).
+struct ContactStart : r3d::EngineStart {};
 
 /// The engine with slipping contacts and flight (rigid3d_contact.cpp), friction given (checked by the caller), from
 /// `start` (a flat base: at rest or sliding) to the end of the run. Its summary covers the run from start.time_s.
