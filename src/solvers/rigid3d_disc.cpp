@@ -785,14 +785,7 @@ Rigid3DResult merge_disc_contact(Rigid3DResult a, Rigid3DResult b, const Rigid3D
   if (!s.uplift_time_s) s.uplift_time_s = e.uplift_time_s;
   s.energy_lost_j_per_kg += e.energy_lost_j_per_kg;
   s.flight_time_s = e.flight_time_s;
-  s.residual_slide_east_m = e.residual_slide_east_m;
-  s.residual_slide_north_m = e.residual_slide_north_m;
-  s.max_slide_m = e.max_slide_m;
-  s.max_slide_speed_m_s = e.max_slide_speed_m_s;
-  s.slide_path_length_m = e.slide_path_length_m;
-  s.friction_energy_j_per_kg = e.friction_energy_j_per_kg;
-  s.slip_episodes = e.slip_episodes;
-  s.first_slip_time_s = e.first_slip_time_s;
+  detail::r3d::copy_slide_totals(s, e);  // the rolling engine does not slide
   s.slide_rock_time_s = e.slide_rock_time_s;
   s.slide_rock_duration_s = e.slide_rock_duration_s;
   s.flights = e.flights;

@@ -332,4 +332,18 @@ struct EngineStart {
   Vec3 angular_velocity_rad_s{};
 };
 
+/// Copies the sliding totals (residual slide, the largest slide and slide speed, path, friction work, slip episodes
+/// and the first slip) of the phase that holds them, `from`, into `to` (the other engine's summary: its own contacts
+/// did not slide, or `from` already holds them whole).
+inline void copy_slide_totals(Rigid3DSummary& to, const Rigid3DSummary& from) {
+  to.residual_slide_east_m = from.residual_slide_east_m;
+  to.residual_slide_north_m = from.residual_slide_north_m;
+  to.max_slide_m = from.max_slide_m;
+  to.max_slide_speed_m_s = from.max_slide_speed_m_s;
+  to.slide_path_length_m = from.slide_path_length_m;
+  to.friction_energy_j_per_kg = from.friction_energy_j_per_kg;
+  to.slip_episodes = from.slip_episodes;
+  to.first_slip_time_s = from.first_slip_time_s;
+}
+
 }  // namespace topple::detail::r3d

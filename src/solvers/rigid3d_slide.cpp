@@ -453,14 +453,7 @@ Rigid3DResult rock3d_friction(const GroundMotion& x, const GroundMotion* y, cons
     modes.push_back(e.modes[k]);
   }
   e.modes = std::move(modes);
-  e.residual_slide_east_m = s.residual_slide_east_m;
-  e.residual_slide_north_m = s.residual_slide_north_m;
-  e.max_slide_m = s.max_slide_m;  // the no-slip engine's contacts do not slide
-  e.max_slide_speed_m_s = s.max_slide_speed_m_s;
-  e.slide_path_length_m = s.slide_path_length_m;
-  e.friction_energy_j_per_kg = s.friction_energy_j_per_kg;
-  e.slip_episodes = s.slip_episodes;
-  e.first_slip_time_s = s.first_slip_time_s;
+  r3d::copy_slide_totals(e, s);  // the no-slip engine's contacts do not slide
   e.steps += s.steps;
   if (options.record_history) {
     for (std::size_t k = 0; k < r.history.time_s.size(); ++k) {
