@@ -57,6 +57,9 @@
 // friction large the sticking outcome is the no-slip engine's law (rigid3d.cpp; Housner's about the new contact). The
 // flat outcome (none of those consistent) stops the vertical and tilting motion and the horizontal one if
 // |v_h| <= mu_s |v_z| (else it slides with v_h reduced by mu_k |v_z|), and stops any twist (an approximation).
+// Zeno (issue 29; docs/method.md, "The ground's impenetrability", rule 6): after kZenoSwaps pivot swaps in a row
+// between the ends of one edge with ever slower strikes, both ends go down together (the frictionless plastic edge
+// projection, taken where its impulses are >= 0 or it removes less than the rest rule's energy).
 #include <algorithm>
 #include <array>
 #include <cmath>
