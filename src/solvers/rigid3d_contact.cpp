@@ -933,13 +933,16 @@ class ContactEngine {
     // the ends of an edge, ever shorter) is taken as the edge's limit first (cf. rigid3d.cpp's rule)
     const double v_strike = -vertex_velocity(x_, static_cast<std::size_t>(striking))[2];
     const bool swap = set_.size() == 1 && fresh.size() == 1 && adjacent(set_[0].v, fresh[0]);
-    if (swap && fresh[0] == swap_pivot_ && set_[0].v == swap_striker_ && v_strike < swap_speed_) {
+    // each strike slower than the same end's last (the two ends' strike speeds need not interleave monotonically)
+    const double same_end = swaps_ >= 2 ? swap_speed2_ : std::numeric_limits<double>::infinity();
+    if (swap && fresh[0] == swap_pivot_ && set_[0].v == swap_striker_ && v_strike < same_end) {
       ++swaps_;
     } else {
       swaps_ = swap ? 1 : 0;
     }
     swap_pivot_ = swap ? set_[0].v : -1;
     swap_striker_ = swap ? fresh[0] : -1;
+    swap_speed2_ = swap_speed_;
     swap_speed_ = v_strike;
     if (swap && (t_ - last_impact_t_ < kZenoGap_s || swaps_ >= kZenoSwaps)) {
       cands.push_back({set_[0].v, fresh[0]});
@@ -1776,7 +1779,7 @@ class ContactEngine {
   double t_ = 0.0, mode_since_ = 0.0, since_ = 0.0;  // since_: the last entry into a contact set
   double last_impact_t_ = -std::numeric_limits<double>::infinity();
   int swaps_ = 0, swap_pivot_ = -1, swap_striker_ = -1;  // the pivot swaps in a row along one edge (impact())
-  double swap_speed_ = 0.0;
+  double swap_speed_ = 0.0, swap_speed2_ = 0.0;  // the last two strike speeds of a swap sequence
   Kind kind_ = Kind::rest;
   std::vector<Contact> set_;
   Vec3 slip_dir_{1.0, 0.0, 0.0}, slip_ref_{};
