@@ -57,6 +57,9 @@
 // friction large the sticking outcome is the no-slip engine's law (rigid3d.cpp; Housner's about the new contact). The
 // flat outcome (none of those consistent) stops the vertical and tilting motion and the horizontal one if
 // |v_h| <= mu_s |v_z| (else it slides with v_h reduced by mu_k |v_z|), and stops any twist (an approximation).
+// Zeno (issue 29; docs/method.md, "The ground's impenetrability", rule 6): after kZenoSwaps pivot swaps in a row
+// between the ends of one edge with ever slower strikes, both ends go down together (the frictionless plastic edge
+// projection, taken where its impulses are >= 0 or it removes less than the rest rule's energy).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -928,7 +931,20 @@ class ContactEngine {
     const auto in = [](const std::vector<int>& s, int j) { return std::find(s.begin(), s.end(), j) != s.end(); };
     // Zeno: a strike on the neighbour of the single contact within kZenoGap_s of the last impact (pivot swaps between
     // the ends of an edge, ever shorter) is taken as the edge's limit first (cf. rigid3d.cpp's rule)
-    if (set_.size() == 1 && fresh.size() == 1 && adjacent(set_[0].v, fresh[0]) && t_ - last_impact_t_ < kZenoGap_s) {
+    const double v_strike = -vertex_velocity(x_, static_cast<std::size_t>(striking))[2];
+    const bool swap = set_.size() == 1 && fresh.size() == 1 && adjacent(set_[0].v, fresh[0]);
+    // each strike slower than the same end's last (the two ends' strike speeds need not interleave monotonically)
+    const double same_end = swaps_ >= 2 ? swap_speed2_ : std::numeric_limits<double>::infinity();
+    if (swap && fresh[0] == swap_pivot_ && set_[0].v == swap_striker_ && v_strike < same_end) {
+      ++swaps_;
+    } else {
+      swaps_ = swap ? 1 : 0;
+    }
+    swap_pivot_ = swap ? set_[0].v : -1;
+    swap_striker_ = swap ? fresh[0] : -1;
+    swap_speed2_ = swap_speed_;
+    swap_speed_ = v_strike;
+    if (swap && (t_ - last_impact_t_ < kZenoGap_s || swaps_ >= kZenoSwaps)) {
       cands.push_back({set_[0].v, fresh[0]});
     }
     last_impact_t_ = t_;
@@ -957,6 +973,51 @@ class ContactEngine {
     }
     if (fresh.size() >= 3 || land_flat) cands.clear();
     const double tolV = 1e-9 * p_ref_ * size_;
+    // Zeno (issue 29): kZenoSwaps pivot swaps in a row between the ends of one edge, each strike slower than the
+    // last, whose edge impact with friction is inconsistent (a pulling impulse at the old pivot): the accumulation's
+    // limit is the edge down (Glocker 2001, the limit contact set of a converging impact sequence). Both ends'
+    // normal velocities are set to 0 by normal impulses alone (frictionless plastic: a projection in the kinetic
+    // metric, so the kinetic energy does not grow); taken when both impulses are >= 0, or, as the rest rule of the
+    // planar engines (rocking.hpp), when the energy it removes (the swapping rocking's) is below rest_energy_fraction
+    // of the energy to lift c over an end (a slender body's projection pulls at the old pivot: the sequence's limit
+    // includes the load's impulse over its finite duration, which the instantaneous projection leaves out). Slips
+    // at both ends slower than kSlipStart p size then stop (the sticking impulse, hold_slow_slips' rule) unless that
+    // would add energy. The edge mode is then chosen by enumeration (after_impact). docs/method.md.
+    if (swap && swaps_ >= kZenoSwaps && !land_flat) {
+      const std::vector<int> verts{set_[0].v, fresh[0]};
+      std::vector<Vec3> r, u;
+      std::vector<Contact> set(2);
+      for (std::size_t k = 0; k < 2; ++k) {
+        r.push_back(mul(d.R, v_[static_cast<std::size_t>(verts[k])] - c_));
+        u.push_back(vertex_velocity(x_, static_cast<std::size_t>(verts[k])));
+        set[k] = {verts[k], true, {1.0, 0.0, 0.0}};
+      }
+      const auto P = contact_forces(set, r, d.Jinv, u, 0.0, 0.0);
+      if (P) {
+        const SX saved = x_;
+        apply_impulse(d, set, r, *P);
+        const double removed = ke_before - kinetic(x_);
+        // the energy to lift c over either end from here (rocking.hpp's rest rule's scale)
+        double lift = std::numeric_limits<double>::infinity();
+        for (std::size_t k = 0; k < 2; ++k) lift = std::min(lift, g_ * (norm(r[k]) + r[k][2]));
+        if (((*P)[0][2] >= -tolV && (*P)[1][2] >= -tolV) || (removed >= 0.0 && removed < opt_.rest_energy_fraction * lift)) {
+          swaps_ = 0;
+          double slip = 0.0;
+          for (int j : verts) slip = std::max(slip, hnorm(vertex_velocity(x_, static_cast<std::size_t>(j))));
+          if (slip < kSlipStart * p_ref_ * size_) {
+            const double kb = kinetic(x_);
+            stick_impulse({{verts[0], false, {}}, {verts[1], false, {}}});
+            if (kinetic(x_) > kb) {  // a sticking impulse adds no energy; else the projection alone
+              x_ = saved;
+              apply_impulse(d, set, r, *P);
+            }
+          }
+          after_impact(ke_before, false, verts);
+          return;
+        }
+        x_ = saved;
+      }
+    }
     for (const auto& verts : cands) {
       const std::size_t m = verts.size();
       std::vector<Vec3> r, u;
@@ -1678,6 +1739,7 @@ class ContactEngine {
   static constexpr int kMaxEvents = 10'000;
   static constexpr int kSlowSteps = 1'000;  // steps in a sample interval after which slow slips are held
   static constexpr double kZenoGap_s = 1e-6;
+  static constexpr int kZenoSwaps = 8;  // pivot swaps in a row along one edge, each strike slower: the edge's limit
   static constexpr double kFlatStrike = 1e-6;  // a strike slower than this times p size on a flat base: lands flat
   static constexpr double kDip = 1e-9;          // a dip event's depth below the vertex's start, of the body's size
   static constexpr double kPenetration = 1e-6;  // the invariant: no vertex deeper than this of the body's size
@@ -1716,6 +1778,8 @@ class ContactEngine {
   SX x_{};
   double t_ = 0.0, mode_since_ = 0.0, since_ = 0.0;  // since_: the last entry into a contact set
   double last_impact_t_ = -std::numeric_limits<double>::infinity();
+  int swaps_ = 0, swap_pivot_ = -1, swap_striker_ = -1;  // the pivot swaps in a row along one edge (impact())
+  double swap_speed_ = 0.0, swap_speed2_ = 0.0;  // the last two strike speeds of a swap sequence
   Kind kind_ = Kind::rest;
   std::vector<Contact> set_;
   Vec3 slip_dir_{1.0, 0.0, 0.0}, slip_ref_{};
